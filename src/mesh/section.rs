@@ -1,0 +1,435 @@
+//! Cross-section meshes over the x–z plane: Lagrange quadrilaterals L4, L9,
+//! L16 with straight edges (the isoparametric map itself is general, so any
+//! convex quadrilateral works).
+//!
+//! Every builder reduces to [`CrossSection::from_quads`]: a list of corner
+//! points and counter-clockwise quadrilaterals. Higher-order nodes are then
+//! generated on the straight edges and inside each quad; nodes on an edge
+//! shared by two quads are shared.
+
+use std::collections::HashMap;
+
+use super::MeshError;
+use crate::shape::{Lagrange2d, SectionElementKind};
+
+/// A cross-section mesh: nodes `(x, z)` and quadrilateral Lagrange elements.
+#[derive(Debug, Clone)]
+pub struct CrossSection {
+    /// Element type (all elements of a section share it).
+    pub kind: SectionElementKind,
+    /// Node coordinates `(x, z)` in m.
+    pub nodes: Vec<[f64; 2]>,
+    /// Connectivity, `kind.nodes()` entries per element, in the lexicographic
+    /// local order of [`crate::shape`].
+    pub connectivity: Vec<usize>,
+}
+
+/// Local edge `k` of a quadrilateral as seen from its natural coordinates:
+/// 0: η = −1, 1: ξ = +1, 2: η = +1, 3: ξ = −1.
+pub const EDGES: usize = 4;
+
+impl CrossSection {
+    /// Number of elements.
+    pub fn n_elements(&self) -> usize {
+        self.connectivity.len() / self.kind.nodes()
+    }
+
+    /// Number of nodes.
+    pub fn n_nodes(&self) -> usize {
+        self.nodes.len()
+    }
+
+    /// Global node indices of element `e`.
+    pub fn element(&self, e: usize) -> &[usize] {
+        let m = self.kind.nodes();
+        &self.connectivity[e * m..(e + 1) * m]
+    }
+
+    /// Local node indices (in the element's lexicographic order) on local edge `k`,
+    /// ordered along the edge parameter (increasing ξ or η).
+    pub fn edge_local_nodes(&self, k: usize) -> Vec<usize> {
+        let m = self.kind.order() + 1;
+        (0..m)
+            .map(|t| match k {
+                0 => t,
+                1 => t * m + (m - 1),
+                2 => (m - 1) * m + t,
+                _ => t * m,
+            })
+            .collect()
+    }
+
+    /// Builds a section from corner points and counter-clockwise quads
+    /// (corner order: (−1,−1), (1,−1), (1,1), (−1,1) in natural coordinates).
+    /// `key` names the model-file key in errors.
+    pub fn from_quads(
+        kind: SectionElementKind,
+        corners: &[[f64; 2]],
+        quads: &[[usize; 4]],
+        key: &str,
+    ) -> Result<Self, MeshError> {
+        if quads.is_empty() {
+            return Err(MeshError::invalid(
+                format!("{key}.quads"),
+                "[]",
+                "at least one quadrilateral",
+            ));
+        }
+        let mut used = vec![false; corners.len()];
+        for (q, quad) in quads.iter().enumerate() {
+            for &c in quad {
+                if c >= corners.len() {
+                    return Err(MeshError::invalid(
+                        format!("{key}.quads[{q}]"),
+                        format!("{quad:?}"),
+                        format!("indices of points 0..{}", corners.len()),
+                    ));
+                }
+                used[c] = true;
+            }
+            let mut sorted = *quad;
+            sorted.sort_unstable();
+            if sorted.windows(2).any(|w| w[0] == w[1]) {
+                return Err(MeshError::invalid(
+                    format!("{key}.quads[{q}]"),
+                    format!("{quad:?}"),
+                    "four distinct corner points",
+                ));
+            }
+            let [a, b, c, d] = quad.map(|i| corners[i]);
+            // Jacobian sign at the four corners: all positive for a convex CCW quad.
+            let cross = |o: [f64; 2], p: [f64; 2], r: [f64; 2]| {
+                (p[0] - o[0]) * (r[1] - o[1]) - (p[1] - o[1]) * (r[0] - o[0])
+            };
+            let dets = [
+                cross(a, b, d),
+                cross(b, c, a),
+                cross(c, d, b),
+                cross(d, a, c),
+            ];
+            if dets.iter().any(|&v| !(v > 0.0)) {
+                return Err(MeshError::invalid(
+                    format!("{key}.quads[{q}]"),
+                    format!("{quad:?}"),
+                    "a convex quadrilateral with corners listed counter-clockwise in the x–z plane",
+                ));
+            }
+        }
+        if let Some(i) = used.iter().position(|u| !u) {
+            return Err(MeshError::invalid(
+                format!("{key}.points[{i}]"),
+                format!("{:?}", corners[i]),
+                "a point used by at least one quad (unused points would be unconstrained)",
+            ));
+        }
+
+        let p = kind.order();
+        let m = p + 1;
+        let basis = Lagrange2d::new(p);
+        let mut nodes: Vec<[f64; 2]> = corners.to_vec();
+        let mut edge_nodes: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
+        let mut connectivity = Vec::with_capacity(quads.len() * m * m);
+
+        for quad in quads {
+            let bilinear = |xi: f64, eta: f64| {
+                let w = [
+                    0.25 * (1.0 - xi) * (1.0 - eta),
+                    0.25 * (1.0 + xi) * (1.0 - eta),
+                    0.25 * (1.0 + xi) * (1.0 + eta),
+                    0.25 * (1.0 - xi) * (1.0 + eta),
+                ];
+                let mut x = [0.0; 2];
+                for (k, wk) in w.iter().enumerate() {
+                    x[0] += wk * corners[quad[k]][0];
+                    x[1] += wk * corners[quad[k]][1];
+                }
+                x
+            };
+            let mut interior = HashMap::new();
+            for j in 0..m {
+                for i in 0..m {
+                    let [xi, eta] = basis.node(j * m + i);
+                    let corner = match (i, j) {
+                        (0, 0) => Some(quad[0]),
+                        (i, 0) if i == p => Some(quad[1]),
+                        (i, j) if i == p && j == p => Some(quad[2]),
+                        (0, j) if j == p => Some(quad[3]),
+                        _ => None,
+                    };
+                    let id = if let Some(c) = corner {
+                        c
+                    } else {
+                        // (edge from corner u to v, position s along it)
+                        let edge = if j == 0 {
+                            Some((quad[0], quad[1], i))
+                        } else if j == p {
+                            Some((quad[3], quad[2], i))
+                        } else if i == 0 {
+                            Some((quad[0], quad[3], j))
+                        } else if i == p {
+                            Some((quad[1], quad[2], j))
+                        } else {
+                            None
+                        };
+                        match edge {
+                            Some((u, v, s)) => {
+                                let key = (u.min(v), u.max(v));
+                                let list = edge_nodes.entry(key).or_insert_with(|| {
+                                    // nodes ordered from the lower corner index to the higher
+                                    let (a, b) = (corners[key.0], corners[key.1]);
+                                    (1..p)
+                                        .map(|t| {
+                                            let f = t as f64 / p as f64;
+                                            nodes.push([
+                                                a[0] + f * (b[0] - a[0]),
+                                                a[1] + f * (b[1] - a[1]),
+                                            ]);
+                                            nodes.len() - 1
+                                        })
+                                        .collect()
+                                });
+                                if u < v { list[s - 1] } else { list[p - 1 - s] }
+                            }
+                            None => *interior.entry((i, j)).or_insert_with(|| {
+                                nodes.push(bilinear(xi, eta));
+                                nodes.len() - 1
+                            }),
+                        }
+                    };
+                    connectivity.push(id);
+                }
+            }
+        }
+        Ok(Self {
+            kind,
+            nodes,
+            connectivity,
+        })
+    }
+
+    /// A rectangle cut by the given element boundaries along x and along z.
+    pub fn rectangle(
+        kind: SectionElementKind,
+        x_lines: &[f64],
+        z_lines: &[f64],
+    ) -> Result<Self, MeshError> {
+        let nx = x_lines.len();
+        let mut corners = Vec::with_capacity(nx * z_lines.len());
+        for &z in z_lines {
+            for &x in x_lines {
+                corners.push([x, z]);
+            }
+        }
+        let mut quads = Vec::new();
+        for j in 0..z_lines.len() - 1 {
+            for i in 0..nx - 1 {
+                let c = j * nx + i;
+                quads.push([c, c + 1, c + 1 + nx, c + nx]);
+            }
+        }
+        Self::from_quads(kind, &corners, &quads, "section")
+    }
+
+    /// A thin-walled rectangular tube with outer corner `(x0, z0)`, outer
+    /// `width` × `height` and wall `thickness`. Each corner is a square block
+    /// of `through × through` elements; the straight parts between corner
+    /// blocks carry `along_x` (top and bottom walls) and `along_z` (side walls)
+    /// elements, `through` elements thick. Elements around the wall (for
+    /// `through = 1`): `4 + 2 along_x + 2 along_z`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn tube(
+        kind: SectionElementKind,
+        x0: f64,
+        z0: f64,
+        width: f64,
+        height: f64,
+        thickness: f64,
+        along_x: usize,
+        along_z: usize,
+        through: usize,
+    ) -> Result<Self, MeshError> {
+        let lines = |start: f64, length: f64, along: usize| {
+            let mut l = Vec::new();
+            for k in 0..=through {
+                l.push(start + thickness * k as f64 / through as f64);
+            }
+            let inner = length - 2.0 * thickness;
+            for k in 1..=along {
+                l.push(start + thickness + inner * k as f64 / along as f64);
+            }
+            for k in 1..=through {
+                l.push(start + length - thickness + thickness * k as f64 / through as f64);
+            }
+            l
+        };
+        let xl = lines(x0, width, along_x);
+        let zl = lines(z0, height, along_z);
+        let (nx, nz) = (xl.len() - 1, zl.len() - 1);
+        let in_wall = |i: usize, j: usize| {
+            i < through || i >= nx - through || j < through || j >= nz - through
+        };
+        // corner ids for used grid points only
+        let mut id = vec![usize::MAX; (nx + 1) * (nz + 1)];
+        let mut corners = Vec::new();
+        let mut quads = Vec::new();
+        for j in 0..nz {
+            for i in 0..nx {
+                if !in_wall(i, j) {
+                    continue;
+                }
+                let grid = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+                let q = grid.map(|(a, b)| {
+                    let g = b * (nx + 1) + a;
+                    if id[g] == usize::MAX {
+                        id[g] = corners.len();
+                        corners.push([xl[a], zl[b]]);
+                    }
+                    id[g]
+                });
+                quads.push(q);
+            }
+        }
+        Self::from_quads(kind, &corners, &quads, "section")
+    }
+
+    /// Edges on the section boundary, as `(element, local edge)`.
+    pub fn boundary_edges(&self) -> Vec<(usize, usize)> {
+        let mut count: HashMap<(usize, usize), usize> = HashMap::new();
+        let ends = |e: usize, k: usize| {
+            let loc = self.edge_local_nodes(k);
+            let el = self.element(e);
+            let (a, b) = (el[loc[0]], el[*loc.last().unwrap()]);
+            (a.min(b), a.max(b))
+        };
+        for e in 0..self.n_elements() {
+            for k in 0..EDGES {
+                *count.entry(ends(e, k)).or_default() += 1;
+            }
+        }
+        let mut out = Vec::new();
+        for e in 0..self.n_elements() {
+            for k in 0..EDGES {
+                if count[&ends(e, k)] == 1 {
+                    out.push((e, k));
+                }
+            }
+        }
+        out
+    }
+
+    /// Bounding box `[xmin, xmax, zmin, zmax]`.
+    pub fn bounds(&self) -> [f64; 4] {
+        let mut b = [
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+        ];
+        for n in &self.nodes {
+            b[0] = b[0].min(n[0]);
+            b[1] = b[1].max(n[0]);
+            b[2] = b[2].min(n[1]);
+            b[3] = b[3].max(n[1]);
+        }
+        b
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn rectangle_node_counts() {
+        let xl: Vec<f64> = (0..=18).map(|i| i as f64 / 36.0).collect();
+        let zl: Vec<f64> = (0..=6).map(|i| i as f64 / 20.0).collect();
+        let s = CrossSection::rectangle(SectionElementKind::L9, &xl, &zl).unwrap();
+        assert_eq!(s.n_elements(), 108);
+        assert_eq!(s.n_nodes(), 37 * 13);
+        let s = CrossSection::rectangle(SectionElementKind::L16, &xl[..3], &zl[..3]).unwrap();
+        assert_eq!(s.n_nodes(), 7 * 7);
+        let s = CrossSection::rectangle(SectionElementKind::L4, &xl[..3], &zl[..3]).unwrap();
+        assert_eq!(s.n_nodes(), 9);
+    }
+
+    #[test]
+    fn tube_ring_node_counts() {
+        // A ring of n L9 elements, one through the wall, has 2n nodes per layer, 3 layers.
+        for (along, n) in [(4, 20), (6, 28)] {
+            let s = CrossSection::tube(
+                SectionElementKind::L9,
+                0.0,
+                0.0,
+                0.03,
+                0.03,
+                0.0015,
+                along,
+                along,
+                1,
+            )
+            .unwrap();
+            assert_eq!(s.n_elements(), n);
+            assert_eq!(s.n_nodes(), 6 * n);
+        }
+    }
+
+    #[test]
+    fn element_nodes_sit_where_the_basis_says() {
+        // Every element's nodes must map to the bilinear image of its natural nodes.
+        let s = CrossSection::tube(
+            SectionElementKind::L16,
+            0.0,
+            0.0,
+            0.04,
+            0.03,
+            0.004,
+            3,
+            2,
+            2,
+        )
+        .unwrap();
+        let basis = Lagrange2d::new(3);
+        for e in 0..s.n_elements() {
+            let el = s.element(e);
+            let (c0, c1, c2, c3) = (
+                s.nodes[el[0]],
+                s.nodes[el[3]],
+                s.nodes[el[15]],
+                s.nodes[el[12]],
+            );
+            for (k, &g) in el.iter().enumerate() {
+                let [xi, eta] = basis.node(k);
+                let w = [
+                    0.25 * (1.0 - xi) * (1.0 - eta),
+                    0.25 * (1.0 + xi) * (1.0 - eta),
+                    0.25 * (1.0 + xi) * (1.0 + eta),
+                    0.25 * (1.0 - xi) * (1.0 + eta),
+                ];
+                for d in 0..2 {
+                    let x = w[0] * c0[d] + w[1] * c1[d] + w[2] * c2[d] + w[3] * c3[d];
+                    assert!((x - s.nodes[g][d]).abs() < 1e-14);
+                }
+            }
+        }
+        // boundary edges: outer + inner perimeter
+        let n_el = s.n_elements();
+        assert_eq!(n_el, 4 * 4 + 2 * 3 * 2 + 2 * 2 * 2);
+    }
+
+    #[test]
+    fn rejects_clockwise_quads() {
+        let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        let err = CrossSection::from_quads(
+            SectionElementKind::L9,
+            &corners,
+            &[[0, 3, 2, 1]],
+            "bodies[0].section",
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            err.contains("bodies[0].section.quads[0]") && err.contains("counter-clockwise"),
+            "{err}"
+        );
+    }
+}

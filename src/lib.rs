@@ -12,8 +12,17 @@
 //! unknown is a displacement. See `ARCHITECTURE.md` for the module map and the
 //! data flow model file → mesh → assembly → Newton → output.
 
+pub mod analysis;
+pub mod assembly;
+pub mod bc;
+pub mod contact;
+pub mod elements;
+pub mod io;
 pub mod materials;
 pub mod mesh;
+pub mod model;
+pub mod post;
 pub mod quadrature;
 pub mod shape;
+pub mod solver;
 pub mod voigt;

@@ -138,27 +138,13 @@ mod tests {
         for n in 1..=8 {
             let g = GaussRule::new(n);
             for deg in 0..2 * n {
-                let exact = if deg % 2 == 1 {
-                    0.0
-                } else {
-                    2.0 / (deg as f64 + 1.0)
-                };
-                let q: f64 = g
-                    .points
-                    .iter()
-                    .zip(&g.weights)
-                    .map(|(x, w)| w * x.powi(deg as i32))
-                    .sum();
+                let exact = if deg % 2 == 1 { 0.0 } else { 2.0 / (deg as f64 + 1.0) };
+                let q: f64 = g.points.iter().zip(&g.weights).map(|(x, w)| w * x.powi(deg as i32)).sum();
                 assert!((q - exact).abs() < 1e-14, "n={n} deg={deg}: {q} vs {exact}");
             }
             // and not exact at degree 2n
             let deg = 2 * n;
-            let q: f64 = g
-                .points
-                .iter()
-                .zip(&g.weights)
-                .map(|(x, w)| w * x.powi(deg as i32))
-                .sum();
+            let q: f64 = g.points.iter().zip(&g.weights).map(|(x, w)| w * x.powi(deg as i32)).sum();
             assert!((q - 2.0 / (deg as f64 + 1.0)).abs() > 1e-6);
         }
     }

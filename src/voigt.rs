@@ -45,8 +45,7 @@ pub fn deviator(s: &Voigt) -> Voigt {
 /// Frobenius norm `sqrt(s:s)` of a *stress-like* tensor (shear entries count twice).
 #[inline]
 pub fn norm_stress(s: &Voigt) -> f64 {
-    (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]))
-        .sqrt()
+    (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])).sqrt()
 }
 
 /// Von Mises equivalent stress `sqrt(3/2 s:s)` of a stress vector.

@@ -48,10 +48,7 @@ impl Hardening {
     pub fn on_segment(&self, k: usize, peeq: f64) -> (f64, f64) {
         match self {
             Self::Perfect { yield_stress } => (*yield_stress, 0.0),
-            Self::Linear {
-                yield_stress,
-                modulus,
-            } => (yield_stress + modulus * peeq, *modulus),
+            Self::Linear { yield_stress, modulus } => (yield_stress + modulus * peeq, *modulus),
             Self::Table { strains, stresses } => {
                 if k + 1 >= strains.len() {
                     (*stresses.last().unwrap(), 0.0)
@@ -83,10 +80,7 @@ mod tests {
 
     #[test]
     fn table_is_interpolated_and_constant_past_the_end() {
-        let h = Hardening::Table {
-            strains: vec![0.0, 0.01, 0.03],
-            stresses: vec![100e6, 120e6, 130e6],
-        };
+        let h = Hardening::Table { strains: vec![0.0, 0.01, 0.03], stresses: vec![100e6, 120e6, 130e6] };
         assert_eq!(h.eval(0.0), (100e6, 2e9));
         let (s, d) = h.eval(0.02);
         assert!((s - 125e6).abs() < 1e-6 && (d - 0.5e9).abs() < 1e-3);

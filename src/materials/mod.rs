@@ -60,19 +60,8 @@ pub struct Material {
 impl Material {
     /// A material from E, ν and an optional hardening law. Inputs are assumed
     /// validated (E > 0, −1 < ν < 0.5, positive yield stress).
-    pub fn new(
-        name: impl Into<String>,
-        young: f64,
-        poisson: f64,
-        hardening: Option<Hardening>,
-    ) -> Self {
-        Self {
-            name: name.into(),
-            young,
-            poisson,
-            hardening,
-            elastic: voigt::isotropic_stiffness(young, poisson),
-        }
+    pub fn new(name: impl Into<String>, young: f64, poisson: f64, hardening: Option<Hardening>) -> Self {
+        Self { name: name.into(), young, poisson, hardening, elastic: voigt::isotropic_stiffness(young, poisson) }
     }
 
     /// Shear modulus G.
@@ -102,12 +91,7 @@ impl Material {
             *e -= p;
         }
         let trial = voigt::mat_vec(&self.elastic, &elastic_strain);
-        let elastic = Response {
-            stress: trial,
-            tangent: self.elastic,
-            state: *old,
-            plastic: false,
-        };
+        let elastic = Response { stress: trial, tangent: self.elastic, state: *old, plastic: false };
         let Some(hardening) = &self.hardening else {
             return elastic;
         };
@@ -155,12 +139,7 @@ impl Material {
                 tangent[i][j] = a * idev[i][j] + b * n[i] * n[j] + vol;
             }
         }
-        Response {
-            stress,
-            tangent,
-            state,
-            plastic: true,
-        }
+        Response { stress, tangent, state, plastic: true }
     }
 }
 
@@ -196,25 +175,12 @@ mod tests {
 
     fn linear(e: f64, et: f64, sy: f64) -> Material {
         // Uniaxial tangent modulus E_T relates to the plastic modulus by H = E E_T / (E − E_T).
-        Material::new(
-            "m",
-            e,
-            0.3,
-            Some(Hardening::Linear {
-                yield_stress: sy,
-                modulus: e * et / (e - et),
-            }),
-        )
+        Material::new("m", e, 0.3, Some(Hardening::Linear { yield_stress: sy, modulus: e * et / (e - et) }))
     }
 
     /// Drives a material point along a uniaxial *stress* path: ε_xx is
     /// prescribed, the lateral strains are solved so that σ_yy = σ_zz = 0.
-    fn uniaxial(
-        m: &Material,
-        eps_xx: f64,
-        old: &PointState,
-        lateral_guess: f64,
-    ) -> (Response, f64) {
+    fn uniaxial(m: &Material, eps_xx: f64, old: &PointState, lateral_guess: f64) -> (Response, f64) {
         let mut lat = lateral_guess;
         for _ in 0..50 {
             let eps = [eps_xx, lat, lat, 0.0, 0.0, 0.0];
@@ -237,11 +203,7 @@ mod tests {
         // σ = σ_y + E_T (ε − σ_y/E) = 100 + 10e3·0.009 = 190 MPa (issue #3).
         let m = linear(100e9, 10e9, 100e6);
         let (r, _) = uniaxial(&m, 0.01, &PointState::default(), -0.003);
-        assert!(
-            (r.stress[0] - 190e6).abs() < 1e-6 * 190e6,
-            "{}",
-            r.stress[0]
-        );
+        assert!((r.stress[0] - 190e6).abs() < 1e-6 * 190e6, "{}", r.stress[0]);
         assert!(r.plastic);
     }
 
@@ -275,24 +237,15 @@ mod tests {
     fn table_return_map_crosses_segment_breaks_exactly() {
         // Uniaxial: with a table, σ(ε) must follow the table where εᵖ = ε − σ/E.
         let strains = vec![0.0, 0.002, 0.005, 0.01, 0.02, 0.05, 0.10, 0.20];
-        let stresses: Vec<f64> = [29.0, 44.7, 55.3, 62.5, 71.1, 90.2, 109.9, 126.7]
-            .iter()
-            .map(|s| s * 1e6)
-            .collect();
-        let h = Hardening::Table {
-            strains: strains.clone(),
-            stresses: stresses.clone(),
-        };
+        let stresses: Vec<f64> = [29.0, 44.7, 55.3, 62.5, 71.1, 90.2, 109.9, 126.7].iter().map(|s| s * 1e6).collect();
+        let h = Hardening::Table { strains: strains.clone(), stresses: stresses.clone() };
         let m = Material::new("al", 68e9, 0.33, Some(h.clone()));
         for &eps in &[0.001, 0.004, 0.03, 0.12, 0.3] {
             let (r, _) = uniaxial(&m, eps, &PointState::default(), -0.5 * eps);
             let s = r.stress[0];
             let ep = eps - s / 68e9;
             let (expect, _) = h.eval(ep);
-            assert!(
-                (s - expect).abs() < 1e-9 * expect,
-                "eps={eps}: {s} vs {expect}"
-            );
+            assert!((s - expect).abs() < 1e-9 * expect, "eps={eps}: {s} vs {expect}");
             assert!((r.state.peeq - ep).abs() < 1e-12);
         }
     }
@@ -300,11 +253,7 @@ mod tests {
     fn fd_check(m: &Material, strain: &Voigt, old: &PointState) -> f64 {
         let r = m.update(strain, old);
         let mut worst: f64 = 0.0;
-        let scale = r
-            .tangent
-            .iter()
-            .flatten()
-            .fold(0.0f64, |a, b| a.max(b.abs()));
+        let scale = r.tangent.iter().flatten().fold(0.0f64, |a, b| a.max(b.abs()));
         for j in 0..6 {
             let h = 1e-8;
             let (mut ep, mut em) = (*strain, *strain);
@@ -326,19 +275,11 @@ mod tests {
             stresses: vec![29e6, 44.7e6, 55.3e6, 62.5e6, 71.1e6],
         };
         let laws = [
-            Hardening::Perfect {
-                yield_stress: 100e6,
-            },
-            Hardening::Linear {
-                yield_stress: 100e6,
-                modulus: 5e9,
-            },
+            Hardening::Perfect { yield_stress: 100e6 },
+            Hardening::Linear { yield_stress: 100e6, modulus: 5e9 },
             table,
         ];
-        let old = PointState {
-            plastic_strain: [4e-4, -1e-4, -3e-4, 2e-4, 0.0, -1e-4],
-            peeq: 5e-4,
-        };
+        let old = PointState { plastic_strain: [4e-4, -1e-4, -3e-4, 2e-4, 0.0, -1e-4], peeq: 5e-4 };
         // multiaxial strain states well inside segments (FD needs no kink within ±h)
         let strains = [
             [3e-3, -1e-3, 4e-4, 2e-3, -1.5e-3, 8e-4],
@@ -355,30 +296,14 @@ mod tests {
             }
         }
         // elastic branch too
-        let m = Material::new(
-            "m",
-            70e9,
-            0.3,
-            Some(Hardening::Perfect { yield_stress: 1e12 }),
-        );
+        let m = Material::new("m", 70e9, 0.3, Some(Hardening::Perfect { yield_stress: 1e12 }));
         assert!(fd_check(&m, &strains[0], &PointState::default()) < 1e-6);
     }
 
     #[test]
     fn returned_stress_lies_on_the_yield_surface() {
-        let m = Material::new(
-            "m",
-            200e9,
-            0.3,
-            Some(Hardening::Linear {
-                yield_stress: 242.2e6,
-                modulus: 2e9,
-            }),
-        );
-        let r = m.update(
-            &[5e-3, -2e-3, 1e-3, 4e-3, -2e-3, 1e-3],
-            &PointState::default(),
-        );
+        let m = Material::new("m", 200e9, 0.3, Some(Hardening::Linear { yield_stress: 242.2e6, modulus: 2e9 }));
+        let r = m.update(&[5e-3, -2e-3, 1e-3, 4e-3, -2e-3, 1e-3], &PointState::default());
         let (sy, _) = m.hardening.as_ref().unwrap().eval(r.state.peeq);
         assert!((voigt::von_mises(&r.stress) - sy).abs() < 1e-8 * sy);
         // plastic flow is isochoric

@@ -29,12 +29,7 @@ pub enum Division {
 impl Division {
     /// Uniform division of `[from, to]` into `elements` elements.
     pub fn uniform(from: f64, to: f64, elements: usize) -> Self {
-        Self::Segments(vec![Segment {
-            from,
-            to,
-            elements,
-            ratio: 1.0,
-        }])
+        Self::Segments(vec![Segment { from, to, elements, ratio: 1.0 }])
     }
 
     /// The element boundaries. `key` names the model-file key in errors.
@@ -46,11 +41,7 @@ impl Division {
                 for (k, s) in segs.iter().enumerate() {
                     let skey = format!("{key}.segments[{k}]");
                     if s.elements == 0 {
-                        return Err(MeshError::invalid(
-                            format!("{skey}.elements"),
-                            "0",
-                            "an integer ≥ 1",
-                        ));
+                        return Err(MeshError::invalid(format!("{skey}.elements"), "0", "an integer ≥ 1"));
                     }
                     if !(s.ratio.is_finite() && s.ratio > 0.0) {
                         return Err(MeshError::invalid(
@@ -70,11 +61,7 @@ impl Division {
                     }
                     let n = s.elements;
                     // geometric progression with q^(n-1) = ratio
-                    let q = if n > 1 {
-                        s.ratio.powf(1.0 / (n as f64 - 1.0))
-                    } else {
-                        1.0
-                    };
+                    let q = if n > 1 { s.ratio.powf(1.0 / (n as f64 - 1.0)) } else { 1.0 };
                     let weights: Vec<f64> = (0..n).map(|i| q.powi(i as i32)).collect();
                     let total: f64 = weights.iter().sum();
                     if out.is_empty() {
@@ -83,22 +70,14 @@ impl Division {
                     let mut acc = 0.0;
                     for (i, w) in weights.iter().enumerate() {
                         acc += w;
-                        out.push(if i + 1 == n {
-                            s.to
-                        } else {
-                            s.from + (s.to - s.from) * acc / total
-                        });
+                        out.push(if i + 1 == n { s.to } else { s.from + (s.to - s.from) * acc / total });
                     }
                 }
                 out
             }
         };
         if lines.len() < 2 {
-            return Err(MeshError::invalid(
-                key.to_string(),
-                format!("{lines:?}"),
-                "at least two element boundaries",
-            ));
+            return Err(MeshError::invalid(key.to_string(), format!("{lines:?}"), "at least two element boundaries"));
         }
         for w in lines.windows(2) {
             if !(w[1] > w[0]) || !w[0].is_finite() || !w[1].is_finite() {
@@ -122,18 +101,8 @@ mod tests {
         let d = Division::uniform(0.0, 1.0, 4);
         assert_eq!(d.lines("x").unwrap(), vec![0.0, 0.25, 0.5, 0.75, 1.0]);
         let d = Division::Segments(vec![
-            Segment {
-                from: 0.0,
-                to: 0.2,
-                elements: 2,
-                ratio: 1.0,
-            },
-            Segment {
-                from: 0.2,
-                to: 0.5,
-                elements: 3,
-                ratio: 4.0,
-            },
+            Segment { from: 0.0, to: 0.2, elements: 2, ratio: 1.0 },
+            Segment { from: 0.2, to: 0.5, elements: 3, ratio: 4.0 },
         ]);
         let l = d.lines("x").unwrap();
         assert_eq!(l.len(), 6);
@@ -145,9 +114,7 @@ mod tests {
 
     #[test]
     fn rejects_non_increasing_lines() {
-        let err = Division::Lines(vec![0.0, 0.3, 0.2])
-            .lines("bodies[0].section.x")
-            .unwrap_err();
+        let err = Division::Lines(vec![0.0, 0.3, 0.2]).lines("bodies[0].section.x").unwrap_err();
         assert!(err.to_string().contains("bodies[0].section.x"));
     }
 }

@@ -36,16 +36,8 @@ pub enum MeshError {
 
 impl MeshError {
     /// Shorthand for [`MeshError::Invalid`].
-    pub fn invalid(
-        key: impl Into<String>,
-        value: impl Into<String>,
-        allowed: impl Into<String>,
-    ) -> Self {
-        Self::Invalid {
-            key: key.into(),
-            value: value.into(),
-            allowed: allowed.into(),
-        }
+    pub fn invalid(key: impl Into<String>, value: impl Into<String>, allowed: impl Into<String>) -> Self {
+        Self::Invalid { key: key.into(), value: value.into(), allowed: allowed.into() }
     }
 }
 
@@ -65,11 +57,7 @@ impl BeamAxis {
         let mut nodes = vec![lines[0]];
         for w in lines.windows(2) {
             for k in 1..=p {
-                nodes.push(if k == p {
-                    w[1]
-                } else {
-                    w[0] + (w[1] - w[0]) * k as f64 / p as f64
-                });
+                nodes.push(if k == p { w[1] } else { w[0] + (w[1] - w[0]) * k as f64 / p as f64 });
             }
         }
         Self { kind, nodes }
@@ -101,8 +89,7 @@ impl BeamAxis {
         (0..self.n_elements())
             .filter_map(|e| {
                 let (a, b) = self.element_span(e);
-                (y >= a - tol && y <= b + tol)
-                    .then(|| (e, (2.0 * (y - a) / (b - a) - 1.0).clamp(-1.0, 1.0)))
+                (y >= a - tol && y <= b + tol).then(|| (e, (2.0 * (y - a) / (b - a) - 1.0).clamp(-1.0, 1.0)))
             })
             .collect()
     }
@@ -218,11 +205,7 @@ impl Mesh {
 
     /// Body owning a global node, and the node's body-local index.
     pub fn body_of(&self, node: usize) -> (usize, usize) {
-        let b = self
-            .bodies
-            .iter()
-            .rposition(|b| b.node_offset <= node)
-            .unwrap_or(0);
+        let b = self.bodies.iter().rposition(|b| b.node_offset <= node).unwrap_or(0);
         (b, node - self.bodies[b].node_offset)
     }
 
@@ -243,13 +226,7 @@ mod tests {
     use super::*;
     use crate::shape::SectionElementKind;
 
-    fn body(
-        kind: SectionElementKind,
-        nx: usize,
-        nz: usize,
-        beam: BeamElementKind,
-        ny: usize,
-    ) -> Body {
+    fn body(kind: SectionElementKind, nx: usize, nz: usize, beam: BeamElementKind, ny: usize) -> Body {
         let xl = Division::uniform(0.0, 0.01, nx).lines("x").unwrap();
         let zl = Division::uniform(0.0, 0.01, nz).lines("z").unwrap();
         let yl = Division::uniform(0.0, 0.25, ny).lines("y").unwrap();
@@ -272,27 +249,17 @@ mod tests {
         assert_eq!(block.n_dofs(), 5772);
         assert_eq!(Mesh::new(vec![body(L9, 2, 2, B4, 10)]).n_dofs(), 2325);
         assert_eq!(Mesh::new(vec![body(L9, 4, 4, B4, 10)]).n_dofs(), 7533);
-        assert_eq!(
-            Mesh::new(vec![body(L9, 4, 4, B4, 10), body(L9, 4, 4, B4, 10)]).n_dofs(),
-            15066
-        );
+        assert_eq!(Mesh::new(vec![body(L9, 4, 4, B4, 10), body(L9, 4, 4, B4, 10)]).n_dofs(), 15066);
         for (along, dofs) in [(4, 24120), (6, 33768)] {
             let mut b = body(L9, 1, 1, B4, 22);
-            b.section =
-                CrossSection::tube(L9, 0.0, 0.0, 0.03, 0.03, 0.0015, along, along, 1).unwrap();
+            b.section = CrossSection::tube(L9, 0.0, 0.0, 0.03, 0.03, 0.0015, along, along, 1).unwrap();
             assert_eq!(Mesh::new(vec![b]).n_dofs(), dofs);
         }
     }
 
     #[test]
     fn element_nodes_are_beam_outer_section_inner() {
-        let m = Mesh::new(vec![body(
-            SectionElementKind::L4,
-            2,
-            1,
-            BeamElementKind::B3,
-            2,
-        )]);
+        let m = Mesh::new(vec![body(SectionElementKind::L4, 2, 1, BeamElementKind::B3, 2)]);
         let b = &m.bodies[0];
         let mut nodes = Vec::new();
         b.element_nodes(3, &mut nodes); // section element 1, beam element 1

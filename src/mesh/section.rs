@@ -69,11 +69,7 @@ impl CrossSection {
         key: &str,
     ) -> Result<Self, MeshError> {
         if quads.is_empty() {
-            return Err(MeshError::invalid(
-                format!("{key}.quads"),
-                "[]",
-                "at least one quadrilateral",
-            ));
+            return Err(MeshError::invalid(format!("{key}.quads"), "[]", "at least one quadrilateral"));
         }
         let mut used = vec![false; corners.len()];
         for (q, quad) in quads.iter().enumerate() {
@@ -98,15 +94,9 @@ impl CrossSection {
             }
             let [a, b, c, d] = quad.map(|i| corners[i]);
             // Jacobian sign at the four corners: all positive for a convex CCW quad.
-            let cross = |o: [f64; 2], p: [f64; 2], r: [f64; 2]| {
-                (p[0] - o[0]) * (r[1] - o[1]) - (p[1] - o[1]) * (r[0] - o[0])
-            };
-            let dets = [
-                cross(a, b, d),
-                cross(b, c, a),
-                cross(c, d, b),
-                cross(d, a, c),
-            ];
+            let cross =
+                |o: [f64; 2], p: [f64; 2], r: [f64; 2]| (p[0] - o[0]) * (r[1] - o[1]) - (p[1] - o[1]) * (r[0] - o[0]);
+            let dets = [cross(a, b, d), cross(b, c, a), cross(c, d, b), cross(d, a, c)];
             if dets.iter().any(|&v| !(v > 0.0)) {
                 return Err(MeshError::invalid(
                     format!("{key}.quads[{q}]"),
@@ -180,10 +170,7 @@ impl CrossSection {
                                     (1..p)
                                         .map(|t| {
                                             let f = t as f64 / p as f64;
-                                            nodes.push([
-                                                a[0] + f * (b[0] - a[0]),
-                                                a[1] + f * (b[1] - a[1]),
-                                            ]);
+                                            nodes.push([a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])]);
                                             nodes.len() - 1
                                         })
                                         .collect()
@@ -200,19 +187,11 @@ impl CrossSection {
                 }
             }
         }
-        Ok(Self {
-            kind,
-            nodes,
-            connectivity,
-        })
+        Ok(Self { kind, nodes, connectivity })
     }
 
     /// A rectangle cut by the given element boundaries along x and along z.
-    pub fn rectangle(
-        kind: SectionElementKind,
-        x_lines: &[f64],
-        z_lines: &[f64],
-    ) -> Result<Self, MeshError> {
+    pub fn rectangle(kind: SectionElementKind, x_lines: &[f64], z_lines: &[f64]) -> Result<Self, MeshError> {
         let nx = x_lines.len();
         let mut corners = Vec::with_capacity(nx * z_lines.len());
         for &z in z_lines {
@@ -265,9 +244,7 @@ impl CrossSection {
         let xl = lines(x0, width, along_x);
         let zl = lines(z0, height, along_z);
         let (nx, nz) = (xl.len() - 1, zl.len() - 1);
-        let in_wall = |i: usize, j: usize| {
-            i < through || i >= nx - through || j < through || j >= nz - through
-        };
+        let in_wall = |i: usize, j: usize| i < through || i >= nx - through || j < through || j >= nz - through;
         // corner ids for used grid points only
         let mut id = vec![usize::MAX; (nx + 1) * (nz + 1)];
         let mut corners = Vec::new();
@@ -319,12 +296,7 @@ impl CrossSection {
 
     /// Bounding box `[xmin, xmax, zmin, zmax]`.
     pub fn bounds(&self) -> [f64; 4] {
-        let mut b = [
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-            f64::INFINITY,
-            f64::NEG_INFINITY,
-        ];
+        let mut b = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
         for n in &self.nodes {
             b[0] = b[0].min(n[0]);
             b[1] = b[1].max(n[0]);
@@ -356,18 +328,7 @@ mod tests {
     fn tube_ring_node_counts() {
         // A ring of n L9 elements, one through the wall, has 2n nodes per layer, 3 layers.
         for (along, n) in [(4, 20), (6, 28)] {
-            let s = CrossSection::tube(
-                SectionElementKind::L9,
-                0.0,
-                0.0,
-                0.03,
-                0.03,
-                0.0015,
-                along,
-                along,
-                1,
-            )
-            .unwrap();
+            let s = CrossSection::tube(SectionElementKind::L9, 0.0, 0.0, 0.03, 0.03, 0.0015, along, along, 1).unwrap();
             assert_eq!(s.n_elements(), n);
             assert_eq!(s.n_nodes(), 6 * n);
         }
@@ -376,27 +337,11 @@ mod tests {
     #[test]
     fn element_nodes_sit_where_the_basis_says() {
         // Every element's nodes must map to the bilinear image of its natural nodes.
-        let s = CrossSection::tube(
-            SectionElementKind::L16,
-            0.0,
-            0.0,
-            0.04,
-            0.03,
-            0.004,
-            3,
-            2,
-            2,
-        )
-        .unwrap();
+        let s = CrossSection::tube(SectionElementKind::L16, 0.0, 0.0, 0.04, 0.03, 0.004, 3, 2, 2).unwrap();
         let basis = Lagrange2d::new(3);
         for e in 0..s.n_elements() {
             let el = s.element(e);
-            let (c0, c1, c2, c3) = (
-                s.nodes[el[0]],
-                s.nodes[el[3]],
-                s.nodes[el[15]],
-                s.nodes[el[12]],
-            );
+            let (c0, c1, c2, c3) = (s.nodes[el[0]], s.nodes[el[3]], s.nodes[el[15]], s.nodes[el[12]]);
             for (k, &g) in el.iter().enumerate() {
                 let [xi, eta] = basis.node(k);
                 let w = [
@@ -419,17 +364,9 @@ mod tests {
     #[test]
     fn rejects_clockwise_quads() {
         let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
-        let err = CrossSection::from_quads(
-            SectionElementKind::L9,
-            &corners,
-            &[[0, 3, 2, 1]],
-            "bodies[0].section",
-        )
-        .unwrap_err()
-        .to_string();
-        assert!(
-            err.contains("bodies[0].section.quads[0]") && err.contains("counter-clockwise"),
-            "{err}"
-        );
+        let err = CrossSection::from_quads(SectionElementKind::L9, &corners, &[[0, 3, 2, 1]], "bodies[0].section")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("bodies[0].section.quads[0]") && err.contains("counter-clockwise"), "{err}");
     }
 }

@@ -62,9 +62,7 @@ pub struct Lagrange2d {
 impl Lagrange2d {
     /// The basis of order `p` per direction (`(p + 1)²` functions).
     pub fn new(order: usize) -> Self {
-        Self {
-            line: Lagrange1d::new(order),
-        }
+        Self { line: Lagrange1d::new(order) }
     }
 
     /// Number of basis functions.
@@ -132,13 +130,8 @@ mod tests {
         for p in 1..=3 {
             let l = Lagrange1d::new(p);
             let m = p + 1;
-            let (mut n, mut dn, mut np, mut nm, mut tmp) = (
-                vec![0.0; m],
-                vec![0.0; m],
-                vec![0.0; m],
-                vec![0.0; m],
-                vec![0.0; m],
-            );
+            let (mut n, mut dn, mut np, mut nm, mut tmp) =
+                (vec![0.0; m], vec![0.0; m], vec![0.0; m], vec![0.0; m], vec![0.0; m]);
             let x = 0.3141;
             l.eval(x, &mut n, &mut dn);
             l.eval(x + h, &mut np, &mut tmp);

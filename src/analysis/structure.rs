@@ -1,0 +1,418 @@
+//! The discretized structure as a nonlinear problem: residual
+//! `R(u) = f_int(u) − λ f_ext − f_c(u)` on the free DOFs, its tangent
+//! `K = K_tan + K_p` (paper eq. 18), prescribed displacements `λ ū`, and the
+//! committed/trial split of the Gauss-point history.
+
+use std::time::{Duration, Instant};
+
+use crate::assembly::{Assembler, Inputs, NO_EQ, Outputs};
+use crate::contact::{self, GapEval};
+use crate::elements::BodyGeometry;
+use crate::materials::PointState;
+use crate::model::Model;
+use crate::solver::linear::{Cholesky, LinearError};
+use crate::solver::newton::{Correction, Evaluation, NonlinearProblem};
+use crate::solver::stepping::Incremental;
+use crate::voigt::Voigt;
+
+/// Cumulative wall time per phase.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Timings {
+    /// Setup: numbering, ordering, pattern, scatter maps, symbolic analysis.
+    pub setup: Duration,
+    /// Part of `setup`: node graph and METIS nested dissection.
+    pub ordering: Duration,
+    /// Part of `setup`: sparse pattern, scatter maps, colours.
+    pub pattern: Duration,
+    /// Part of `setup`: symbolic Cholesky analysis.
+    pub symbolic: Duration,
+    /// Element loop with material updates and scatter.
+    pub assembly: Duration,
+    /// Contact search and penalty terms.
+    pub contact: Duration,
+    /// Numeric factorizations.
+    pub factorization: Duration,
+    /// Triangular solves.
+    pub solve: Duration,
+    /// Number of residual/tangent evaluations.
+    pub evaluations: usize,
+    /// Number of factorizations.
+    pub factorizations: usize,
+}
+
+/// State of one contact point after an evaluation.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ContactPoint {
+    /// Global node (the slave node for pairs).
+    pub node: usize,
+    /// Master node for pairs.
+    pub master: Option<usize>,
+    /// Normal gap (m), negative = penetration.
+    pub gap: f64,
+    /// Force on the (slave) node (N).
+    pub force: [f64; 3],
+    /// Tributary area (m²).
+    pub area: f64,
+    /// True if active.
+    pub active: bool,
+}
+
+/// The structure: model, discretization, state and linear algebra.
+pub struct Structure<'m> {
+    /// The model.
+    pub model: &'m Model,
+    /// Geometry caches per body.
+    pub geometry: Vec<BodyGeometry>,
+    /// First Gauss point of each body.
+    pub gp_offsets: Vec<usize>,
+    /// Numbering, pattern and scatter.
+    pub assembler: Assembler,
+    solver: Cholesky,
+    /// Displacements (3 per node).
+    pub u: Vec<f64>,
+    u_committed: Vec<f64>,
+    /// Committed Gauss-point states.
+    pub committed: Vec<PointState>,
+    trial: Vec<PointState>,
+    /// Gauss-point stresses of the last evaluation.
+    pub stress: Vec<Voigt>,
+    /// Internal forces of the last evaluation.
+    pub f_int: Vec<f64>,
+    /// External loads at λ = 1.
+    pub f_ext: Vec<f64>,
+    /// Contact forces of the last evaluation.
+    pub f_contact: Vec<f64>,
+    tangent: Vec<f64>,
+    residual: Vec<f64>,
+    prescribed: Vec<(usize, f64)>,
+    /// Current load factor.
+    pub lambda: f64,
+    lambda_committed: f64,
+    /// Contact points: all indenter candidates, then all pairs, in model order.
+    pub contact: Vec<ContactPoint>,
+    contact_ranges: Vec<std::ops::Range<usize>>,
+    /// Plastic Gauss points in the last evaluation.
+    pub plastic_points: usize,
+    /// Phase timings.
+    pub timings: Timings,
+    gap_tolerance: f64,
+}
+
+impl<'m> Structure<'m> {
+    /// Builds numbering, pattern, factorization structure and initial state.
+    pub fn new(model: &'m Model) -> Result<Self, super::AnalysisError> {
+        let t0 = Instant::now();
+        let mesh = &model.mesh;
+        let geometry: Vec<BodyGeometry> = mesh.bodies.iter().map(BodyGeometry::new).collect::<Result<_, _>>()?;
+        let mut gp_offsets = Vec::with_capacity(geometry.len());
+        let mut n_gp = 0;
+        for (b, g) in mesh.bodies.iter().zip(&geometry) {
+            gp_offsets.push(n_gp);
+            n_gp += b.n_elements() * g.gp_per_element();
+        }
+        let n_dofs = mesh.n_dofs();
+        let mut constrained = vec![false; n_dofs];
+        let mut prescribed = Vec::new();
+        for c in &model.constraints {
+            for &n in &c.nodes {
+                for (k, v) in c.values.iter().enumerate() {
+                    if let Some(v) = v {
+                        let d = 3 * n + k;
+                        if !constrained[d] {
+                            constrained[d] = true;
+                            if *v != 0.0 {
+                                prescribed.push((d, *v));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let couplings: Vec<(usize, usize)> =
+            model.contacts.iter().flat_map(|c| c.pairs.iter().map(|p| (p.slave, p.master))).collect();
+        let assembler = Assembler::new(mesh, &constrained, &couplings)?;
+        let t_sym = Instant::now();
+        let solver = Cholesky::analyze(&assembler.pattern)?;
+        let symbolic = t_sym.elapsed();
+
+        let mut f_ext = vec![0.0; n_dofs];
+        for l in &model.loads {
+            for (n, f) in &l.nodal_forces {
+                for k in 0..3 {
+                    f_ext[3 * n + k] += f[k];
+                }
+            }
+        }
+        let mut contact = Vec::new();
+        let mut contact_ranges = Vec::new();
+        for ind in &model.indenters {
+            let start = contact.len();
+            contact.extend(ind.nodes.iter().map(|c| ContactPoint { node: c.node, area: c.area, ..Default::default() }));
+            contact_ranges.push(start..contact.len());
+        }
+        for pc in &model.contacts {
+            let start = contact.len();
+            contact.extend(pc.pairs.iter().map(|p| ContactPoint {
+                node: p.slave,
+                master: Some(p.master),
+                area: p.area,
+                gap: p.gap0,
+                ..Default::default()
+            }));
+            contact_ranges.push(start..contact.len());
+        }
+        let size = mesh.bodies.iter().map(|b| b.size()).fold(0.0, f64::max);
+        let nnz = assembler.pattern.nnz();
+        let n_eq = assembler.dofs.n_eq;
+        let timings = Timings {
+            setup: t0.elapsed(),
+            ordering: assembler.ordering_time,
+            pattern: assembler.pattern_time,
+            symbolic,
+            ..Default::default()
+        };
+        Ok(Self {
+            model,
+            geometry,
+            gp_offsets,
+            assembler,
+            solver,
+            u: vec![0.0; n_dofs],
+            u_committed: vec![0.0; n_dofs],
+            committed: vec![PointState::default(); n_gp],
+            trial: vec![PointState::default(); n_gp],
+            stress: vec![[0.0; 6]; n_gp],
+            f_int: vec![0.0; n_dofs],
+            f_ext,
+            f_contact: vec![0.0; n_dofs],
+            tangent: vec![0.0; nnz],
+            residual: vec![0.0; n_eq],
+            prescribed,
+            lambda: 0.0,
+            lambda_committed: 0.0,
+            contact,
+            contact_ranges,
+            plastic_points: 0,
+            timings,
+            gap_tolerance: 1e-9 * size,
+        })
+    }
+
+    /// Number of equations (free DOFs).
+    pub fn n_equations(&self) -> usize {
+        self.assembler.dofs.n_eq
+    }
+
+    /// Stored entries of the factor `L`.
+    pub fn factor_nnz(&self) -> usize {
+        self.solver.factor_nnz()
+    }
+
+    /// Reaction at every DOF, `f_int − λ f_ext − f_c` (zero up to the
+    /// residual at free DOFs).
+    pub fn nodal_imbalance(&self, dof: usize) -> f64 {
+        self.f_int[dof] - self.lambda * self.f_ext[dof] - self.f_contact[dof]
+    }
+
+    /// Resultant reaction of each constraint set (force of the support on the body).
+    pub fn reactions(&self) -> Vec<[f64; 3]> {
+        self.model
+            .constraints
+            .iter()
+            .map(|c| {
+                let mut r = [0.0; 3];
+                for &n in &c.nodes {
+                    for (k, rk) in r.iter_mut().enumerate() {
+                        *rk += self.nodal_imbalance(3 * n + k);
+                    }
+                }
+                r
+            })
+            .collect()
+    }
+
+    /// Per indenter (then per pair contact): resultant force on the body
+    /// (on the slave body for pairs) and largest penetration.
+    pub fn contact_resultants(&self) -> Vec<([f64; 3], f64)> {
+        self.contact_ranges
+            .iter()
+            .map(|r| {
+                let mut f = [0.0; 3];
+                let mut pen: f64 = 0.0;
+                for p in &self.contact[r.clone()] {
+                    for k in 0..3 {
+                        f[k] += p.force[k];
+                    }
+                    if p.active {
+                        pen = pen.max(-p.gap);
+                    }
+                }
+                (f, pen)
+            })
+            .collect()
+    }
+
+    /// Committed load factor.
+    pub fn committed_lambda(&self) -> f64 {
+        self.lambda_committed
+    }
+
+    fn assemble_elements(&mut self) {
+        let t = Instant::now();
+        let model = self.model;
+        let inputs = Inputs {
+            mesh: &model.mesh,
+            geometry: &self.geometry,
+            materials: &model.materials,
+            u: &self.u,
+            committed: &self.committed,
+            gp_offsets: &self.gp_offsets,
+        };
+        self.plastic_points = self.assembler.assemble(
+            &inputs,
+            Outputs {
+                force: &mut self.f_int,
+                tangent: Some(&mut self.tangent),
+                trial: &mut self.trial,
+                stress: &mut self.stress,
+            },
+        );
+        self.timings.assembly += t.elapsed();
+    }
+
+    /// Penalty contact: forces into `f_contact`, stiffness into the tangent.
+    /// Returns the number of points whose active status changed.
+    fn assemble_contact(&mut self) -> usize {
+        let t = Instant::now();
+        self.f_contact.fill(0.0);
+        let model = self.model;
+        let mut changes = 0;
+        let mut k_ind = 0;
+        for ind in &model.indenters {
+            let offset = ind.displacement.map(|d| self.lambda * d);
+            for c in &ind.nodes {
+                let n = c.node;
+                let x0 = model.mesh.coords(n);
+                let x = [x0[0] + self.u[3 * n], x0[1] + self.u[3 * n + 1], x0[2] + self.u[3 * n + 2]];
+                let eval = ind.surface.gap(x, offset, self.gap_tolerance);
+                let resp = eval.as_ref().and_then(|g| contact::rigid_response(g, c.penalty));
+                let point = &mut self.contact[k_ind];
+                let active = resp.is_some();
+                changes += usize::from(active != point.active);
+                point.active = active;
+                point.gap = eval.map_or(f64::INFINITY, |g: GapEval| g.gap);
+                point.force = [0.0; 3];
+                if let Some((force, k)) = resp {
+                    point.force = force;
+                    for i in 0..3 {
+                        self.f_contact[3 * n + i] += force[i];
+                    }
+                    self.assembler.add_node_block(&mut self.tangent, n, n, &k);
+                }
+                k_ind += 1;
+            }
+        }
+        for pc in &model.contacts {
+            for p in &pc.pairs {
+                let (s, m) = (p.slave, p.master);
+                let du: f64 = (0..3).map(|k| (self.u[3 * s + k] - self.u[3 * m + k]) * p.normal[k]).sum();
+                let gap = p.gap0 + du;
+                let active = gap <= 0.0;
+                let point = &mut self.contact[k_ind];
+                changes += usize::from(active != point.active);
+                point.active = active;
+                point.gap = gap;
+                point.force = [0.0; 3];
+                if active {
+                    let f = p.normal.map(|v| -p.penalty * gap * v);
+                    point.force = f;
+                    let mut kb = [[0.0; 3]; 3];
+                    for i in 0..3 {
+                        self.f_contact[3 * s + i] += f[i];
+                        self.f_contact[3 * m + i] -= f[i];
+                        for j in 0..3 {
+                            kb[i][j] = p.penalty * p.normal[i] * p.normal[j];
+                        }
+                    }
+                    let neg = kb.map(|r| r.map(|v| -v));
+                    self.assembler.add_node_block(&mut self.tangent, s, s, &kb);
+                    self.assembler.add_node_block(&mut self.tangent, m, m, &kb);
+                    self.assembler.add_node_block(&mut self.tangent, s, m, &neg);
+                }
+                k_ind += 1;
+            }
+        }
+        self.timings.contact += t.elapsed();
+        changes
+    }
+}
+
+impl NonlinearProblem for Structure<'_> {
+    type Error = LinearError;
+
+    fn evaluate(&mut self) -> Result<Evaluation, LinearError> {
+        self.timings.evaluations += 1;
+        self.assemble_elements();
+        let changes = self.assemble_contact();
+        let eq = &self.assembler.dofs.eq;
+        let (mut res2, mut ext2, mut con2, mut reac2) = (0.0, 0.0, 0.0, 0.0);
+        for (d, &e) in eq.iter().enumerate() {
+            let ext = self.lambda * self.f_ext[d];
+            let r = self.f_int[d] - ext - self.f_contact[d];
+            ext2 += ext * ext;
+            con2 += self.f_contact[d] * self.f_contact[d];
+            if e == NO_EQ {
+                reac2 += r * r;
+            } else {
+                self.residual[e] = r;
+                res2 += r * r;
+            }
+        }
+        let scale = ext2.sqrt().max(con2.sqrt()).max(reac2.sqrt());
+        Ok(Evaluation { residual_norm: res2.sqrt(), force_scale: scale, settled: changes == 0 })
+    }
+
+    fn correct(&mut self) -> Result<Correction, LinearError> {
+        let t = Instant::now();
+        self.solver.factorize(&self.tangent)?;
+        self.timings.factorization += t.elapsed();
+        self.timings.factorizations += 1;
+        let t = Instant::now();
+        for r in &mut self.residual {
+            *r = -*r;
+        }
+        self.solver.solve_in_place(&mut self.residual)?;
+        self.timings.solve += t.elapsed();
+        let eq = &self.assembler.dofs.eq;
+        let mut norm2 = 0.0;
+        for (d, &e) in eq.iter().enumerate() {
+            if e != NO_EQ {
+                let du = self.residual[e];
+                self.u[d] += du;
+                norm2 += du * du;
+            }
+        }
+        let inc2: f64 = self.u.iter().zip(&self.u_committed).map(|(a, b)| (a - b) * (a - b)).sum();
+        Ok(Correction { norm: norm2.sqrt(), increment_norm: inc2.sqrt() })
+    }
+}
+
+impl Incremental for Structure<'_> {
+    fn set_load_factor(&mut self, lambda: f64) {
+        self.lambda = lambda;
+        for &(d, v) in &self.prescribed {
+            self.u[d] = lambda * v;
+        }
+    }
+
+    fn commit(&mut self) {
+        self.u_committed.copy_from_slice(&self.u);
+        self.committed.copy_from_slice(&self.trial);
+        self.lambda_committed = self.lambda;
+    }
+
+    fn restore(&mut self) {
+        self.u.copy_from_slice(&self.u_committed);
+        self.lambda = self.lambda_committed;
+    }
+}

@@ -1,0 +1,101 @@
+//! Boundary conditions: geometric node selections, boundary faces and their
+//! integrals, constraints (fixed or prescribed displacements) and loads
+//! (nodal forces, tractions, pressures).
+
+mod faces;
+
+pub use faces::{Face, FaceIntegral, FaceSide, boundary_faces, integrate_face, selected_faces};
+
+use crate::mesh::Body;
+
+/// One coordinate condition of a [`Selection`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Condition {
+    /// Coordinate equal to a value (within the tolerance).
+    Equal(f64),
+    /// Coordinate inside a closed range (widened by the tolerance).
+    Range(f64, f64),
+}
+
+impl Condition {
+    fn accepts(&self, v: f64, tol: f64) -> bool {
+        match *self {
+            Self::Equal(a) => (v - a).abs() <= tol,
+            Self::Range(a, b) => v >= a - tol && v <= b + tol,
+        }
+    }
+}
+
+/// A geometric selection of nodes: optional conditions on x, y and z, all of
+/// which must hold (e.g. the face `z = 0`, the line `y = 0.025, z = 0`, a point).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Selection {
+    /// Conditions on `(x, y, z)`; `None` accepts any value.
+    pub conditions: [Option<Condition>; 3],
+    /// Absolute tolerance (m).
+    pub tolerance: f64,
+}
+
+impl Selection {
+    /// True if the point satisfies every condition.
+    pub fn contains(&self, p: [f64; 3]) -> bool {
+        self.conditions.iter().zip(p).all(|(c, v)| c.is_none_or(|c| c.accepts(v, self.tolerance)))
+    }
+
+    /// Body-local indices of the selected nodes of `body`.
+    pub fn nodes(&self, body: &Body) -> Vec<usize> {
+        (0..body.n_nodes()).filter(|&n| self.contains(body.local_coords(n))).collect()
+    }
+}
+
+/// A constraint on the displacement of a node set: components fixed at zero
+/// or prescribed (scaled by the load factor).
+#[derive(Debug, Clone)]
+pub struct Constraint {
+    /// Name (used for reactions).
+    pub name: String,
+    /// Index of the body.
+    pub body: usize,
+    /// Global nodes.
+    pub nodes: Vec<usize>,
+    /// Prescribed total value per component (`Some(0.0)` = fixed, `None` = free).
+    pub values: [Option<f64>; 3],
+}
+
+/// A load on a node set.
+#[derive(Debug, Clone)]
+pub struct Load {
+    /// Name.
+    pub name: String,
+    /// Global nodes and the total force (N) on each, at load factor 1.
+    pub nodal_forces: Vec<(usize, [f64; 3])>,
+}
+
+impl Load {
+    /// Sum of the nodal forces.
+    pub fn resultant(&self) -> [f64; 3] {
+        let mut r = [0.0; 3];
+        for (_, f) in &self.nodal_forces {
+            for k in 0..3 {
+                r[k] += f[k];
+            }
+        }
+        r
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn selection_of_face_line_and_range() {
+        let s = Selection { conditions: [None, None, Some(Condition::Equal(0.0))], tolerance: 1e-9 };
+        assert!(s.contains([3.0, 2.0, 0.0]) && !s.contains([3.0, 2.0, 1e-6]));
+        let s = Selection {
+            conditions: [Some(Condition::Range(0.2, 0.3)), Some(Condition::Equal(0.025)), None],
+            tolerance: 1e-9,
+        };
+        assert!(s.contains([0.3, 0.025, 7.0]) && !s.contains([0.31, 0.025, 7.0]));
+    }
+}

@@ -1,0 +1,88 @@
+//! `cufem bench`: phase timings over repeated runs, medians reported.
+//!
+//! Default: one linear solve at the full load (setup split into ordering,
+//! pattern and symbolic analysis; then assembly, numeric factorization and
+//! solve). With `--full`: the whole analysis, with per-iteration averages.
+
+use std::time::Duration;
+
+use anyhow::Result;
+use cufem::analysis::{self, Silent, Structure};
+use cufem::model::Model;
+use cufem::solver::newton::NonlinearProblem;
+use cufem::solver::stepping::Incremental;
+
+fn median(mut v: Vec<Duration>) -> Duration {
+    v.sort();
+    v[v.len() / 2]
+}
+
+fn ms(d: Duration) -> String {
+    format!("{:9.1} ms", d.as_secs_f64() * 1e3)
+}
+
+/// Runs the benchmark and prints medians.
+pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
+    println!("{} — {} DOF, {} run(s), {} thread(s)", model.title, model.n_dofs(), repeat, rayon::current_num_threads());
+    if full {
+        let mut walls = Vec::new();
+        let mut rows: Vec<[Duration; 4]> = Vec::new();
+        let mut last = None;
+        for _ in 0..repeat {
+            let sol = analysis::run(model, &mut Silent)?;
+            let t = sol.timings;
+            walls.push(sol.wall_time);
+            rows.push([t.assembly, t.contact, t.factorization, t.solve]);
+            last = Some(sol);
+        }
+        let sol = last.expect("at least one run");
+        let t = sol.timings;
+        let iters: usize = sol.increments.iter().map(|i| i.newton.iterations).sum();
+        let col = |k: usize| median(rows.iter().map(|r| r[k]).collect());
+        println!(
+            "  increments {}, Newton iterations {}, evaluations {}, factorizations {}, cutbacks {}",
+            sol.increments.len(),
+            iters,
+            t.evaluations,
+            t.factorizations,
+            sol.cutbacks.len()
+        );
+        println!("  wall time (median)         {}", ms(median(walls)));
+        let per_eval = |d: Duration| d / t.evaluations.max(1) as u32;
+        let per_fact = |d: Duration| d / t.factorizations.max(1) as u32;
+        println!("  element loop + return map  {}   per evaluation {}", ms(col(0)), ms(per_eval(col(0))));
+        println!("  contact                    {}   per evaluation {}", ms(col(1)), ms(per_eval(col(1))));
+        println!("  numeric factorization      {}   per iteration  {}", ms(col(2)), ms(per_fact(col(2))));
+        println!("  triangular solves          {}   per iteration  {}", ms(col(3)), ms(per_fact(col(3))));
+        return Ok(());
+    }
+    let mut rows: Vec<[Duration; 7]> = Vec::new();
+    let mut nnz = (0, 0, 0);
+    for _ in 0..repeat {
+        let mut s = Structure::new(model)?;
+        s.set_load_factor(1.0);
+        s.evaluate()?;
+        s.correct()?;
+        let t = s.timings;
+        nnz = (s.n_equations(), s.assembler.pattern.nnz(), s.factor_nnz());
+        rows.push([
+            t.ordering,
+            t.pattern,
+            t.symbolic,
+            t.assembly + t.contact,
+            t.factorization,
+            t.solve,
+            t.setup + t.assembly + t.contact + t.factorization + t.solve,
+        ]);
+    }
+    let col = |k: usize| median(rows.iter().map(|r| r[k]).collect());
+    println!("  equations {}, nnz(K lower) {}, nnz(L) {}", nnz.0, nnz.1, nnz.2);
+    println!("  ordering (graph + METIS)   {}", ms(col(0)));
+    println!("  pattern + scatter maps     {}", ms(col(1)));
+    println!("  symbolic factorization     {}", ms(col(2)));
+    println!("  assembly (element loop)    {}", ms(col(3)));
+    println!("  numeric factorization      {}", ms(col(4)));
+    println!("  solve                      {}", ms(col(5)));
+    println!("  total                      {}", ms(col(6)));
+    Ok(())
+}

@@ -1,0 +1,232 @@
+//! Text reports printed by the CLI.
+
+use cufem::analysis::{IncrementLog, Solution};
+use cufem::model::Model;
+
+/// `12345` → `12,345`.
+fn thousands(n: usize) -> String {
+    let s = n.to_string();
+    let mut out = String::new();
+    for (i, c) in s.chars().enumerate() {
+        if i > 0 && (s.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+fn discretization(model: &Model) -> String {
+    let parts: Vec<String> = model
+        .mesh
+        .bodies
+        .iter()
+        .map(|b| {
+            format!(
+                "{} {}{:?} - {}{:?}",
+                b.name,
+                b.axis.n_elements(),
+                b.axis.kind,
+                b.section.n_elements(),
+                b.section.kind
+            )
+        })
+        .collect();
+    parts.join(", ")
+}
+
+/// `cufem check`: the model's size and what it contains.
+pub fn print_check(model: &Model) {
+    println!("{}", model.title);
+    if !model.description.is_empty() {
+        println!("{}", model.description.trim());
+    }
+    println!();
+    println!("bodies:");
+    for b in &model.mesh.bodies {
+        println!(
+            "  {:<12} material {:<12} section {} × {:?} ({} nodes), axis {} × {:?} ({} nodes): {} elements, {} nodes, {} DOF",
+            b.name,
+            model.materials[b.material].name,
+            b.section.n_elements(),
+            b.section.kind,
+            b.section.n_nodes(),
+            b.axis.n_elements(),
+            b.axis.kind,
+            b.axis.n_nodes(),
+            thousands(b.n_elements()),
+            thousands(b.n_nodes()),
+            thousands(3 * b.n_nodes())
+        );
+    }
+    println!(
+        "total: {} bodies, {} elements, {} nodes, {} DOF",
+        model.mesh.bodies.len(),
+        thousands(model.mesh.n_elements()),
+        thousands(model.mesh.n_nodes()),
+        thousands(model.n_dofs())
+    );
+    for m in &model.materials {
+        let plastic = match &m.hardening {
+            None => "elastic".to_string(),
+            Some(h) => format!("von Mises, σ_y0 = {:.4} MPa, {h:?}", h.initial_yield() * 1e-6),
+        };
+        println!("material {}: E = {:.4} GPa, ν = {}, {}", m.name, m.young * 1e-9, m.poisson, plastic);
+    }
+    for c in &model.constraints {
+        let comps: Vec<String> = c
+            .values
+            .iter()
+            .zip(["x", "y", "z"])
+            .filter_map(|(v, n)| v.map(|v| if v == 0.0 { format!("u_{n} = 0") } else { format!("u_{n} = {v:e} m") }))
+            .collect();
+        println!("constraint {}: {} nodes, {}", c.name, c.nodes.len(), comps.join(", "));
+    }
+    for l in &model.loads {
+        let r = l.resultant();
+        println!(
+            "load {}: {} nodes, resultant [{:.4e}, {:.4e}, {:.4e}] N",
+            l.name,
+            l.nodal_forces.len(),
+            r[0],
+            r[1],
+            r[2]
+        );
+    }
+    for i in &model.indenters {
+        let area: f64 = i.nodes.iter().map(|n| n.area).sum();
+        println!(
+            "indenter {}: {:?}, displacement {:?} m, {} candidate nodes (surface {:.4e} m²)",
+            i.name,
+            i.surface,
+            i.displacement,
+            i.nodes.len(),
+            area
+        );
+    }
+    for c in &model.contacts {
+        println!("contact {}: {} node pairs", c.name, c.pairs.len());
+    }
+    for p in &model.probes {
+        println!("probe {}: {:?}", p.name, p.point);
+    }
+    for l in &model.lines {
+        println!("line {}: {:?} → {:?}, {} points", l.name, l.from, l.to, l.points);
+    }
+    let s = &model.solver;
+    println!(
+        "solver: Δλ {} (max {}, min {:e}), ≤ {} Newton iterations, tolerances residual {:e}, displacement {:e}",
+        s.steps.initial,
+        s.steps.max,
+        s.steps.min,
+        s.newton.max_iterations,
+        s.newton.residual_tolerance,
+        s.newton.displacement_tolerance
+    );
+}
+
+/// Header of `cufem run`.
+pub fn print_header(model: &Model) {
+    println!("{}", model.title);
+    println!("{} — {} DOF", discretization(model), thousands(model.n_dofs()));
+}
+
+/// One log line per converged increment.
+pub fn increment_line(log: &IncrementLog) -> String {
+    let res: Vec<String> = log.residuals.iter().map(|r| format!("{r:.1e}")).collect();
+    let mut line = format!(
+        "increment {:>3}  λ = {:.4} (Δλ {:.3e})  {} iterations  residuals [{}]  plastic points {}",
+        log.index,
+        log.lambda,
+        log.dlambda,
+        log.iterations,
+        res.join(" "),
+        log.plastic_points
+    );
+    if log.max_penetration > 0.0 {
+        line.push_str(&format!("  max penetration {:.2e} m", log.max_penetration));
+    }
+    if log.cutbacks > 0 {
+        line.push_str(&format!("  (after {} cutbacks)", log.cutbacks));
+    }
+    line
+}
+
+/// Final report: a table like the paper's and the probe values.
+pub fn print_results(model: &Model, solution: &Solution) {
+    let iterations: usize = solution.increments.iter().map(|i| i.newton.iterations).sum();
+    println!();
+    println!("{:<40} {:>10} {:>12} {:>11} {:>10}", "Model", "DOF", "Time (s)", "Increments", "Newton it.");
+    println!(
+        "{:<40} {:>10} {:>12.2} {:>11} {:>10}",
+        format!("cufem 1D ({})", discretization(model)),
+        thousands(model.n_dofs()),
+        solution.wall_time.as_secs_f64(),
+        solution.increments.len(),
+        iterations
+    );
+    let summary = cufem::io::summary(model, solution);
+    if !summary.probes.is_empty() {
+        println!();
+        println!(
+            "{:<14} {:<26} {:>12} {:>12} {:>12} {:>12}",
+            "probe", "point [m]", "u_z [mm]", "s_yy [MPa]", "s_zz [MPa]", "peeq [-]"
+        );
+        for p in &summary.probes {
+            println!(
+                "{:<14} {:<26} {:>12.5} {:>12.3} {:>12.3} {:>12.4e}",
+                p.name,
+                format!("{:?}", p.point),
+                p.u[2] * 1e3,
+                p.stress[1] * 1e-6,
+                p.stress[2] * 1e-6,
+                p.peeq
+            );
+        }
+    }
+    if !model.references.is_empty() {
+        println!();
+        println!("{:<14} {:<16} {:>12} {:>12}  source", "probe", "quantity", "cufem", "reference");
+        for r in &model.references {
+            let ours = summary
+                .probes
+                .iter()
+                .find(|p| p.name == r.probe)
+                .map(|p| {
+                    let s = cufem::post::Sample {
+                        u: p.u,
+                        stress: p.stress,
+                        von_mises: p.von_mises,
+                        peeq: p.peeq,
+                        ..Default::default()
+                    };
+                    s.get(r.quantity)
+                })
+                .unwrap_or(f64::NAN);
+            let scale = r.quantity.display_scale();
+            let unit = r.quantity.label();
+            let unit = unit.split('[').nth(1).map(|u| format!("[{u}")).unwrap_or_default();
+            println!(
+                "{:<14} {:<16} {:>12.4} {:>12.4}  {}",
+                r.probe,
+                format!("{} {unit}", r.quantity.name()),
+                ours * scale,
+                r.value * scale,
+                r.source
+            );
+        }
+    }
+    for (c, f) in model.constraints.iter().zip(&summary.reactions) {
+        println!("reaction {:<12} [{:.5e}, {:.5e}, {:.5e}] N", c.name, f.force[0], f.force[1], f.force[2]);
+    }
+    for c in &summary.contact {
+        println!(
+            "contact  {:<12} force on body [{:.5e}, {:.5e}, {:.5e}] N, max penetration {:.3e} m",
+            c.name,
+            c.force[0],
+            c.force[1],
+            c.force[2],
+            c.max_penetration.unwrap_or(0.0)
+        );
+    }
+}

@@ -1,0 +1,116 @@
+//! CSV files: lines, load histories and contact points.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use super::{IoError, file_error};
+use crate::analysis::Solution;
+use crate::model::Model;
+use crate::post::{LineSample, Quantity};
+
+fn write(path: &Path, text: &str) -> Result<(), IoError> {
+    std::fs::write(path, text).map_err(|e| file_error(path, e))
+}
+
+/// `s,x,y,z,u_x,…,peeq,e_xx,…` — one row per sample; rows outside every
+/// body are omitted.
+pub fn write_line(path: &Path, samples: &[LineSample]) -> Result<(), IoError> {
+    let quantities = Quantity::all();
+    let mut text = String::from("s,x,y,z");
+    for q in &quantities {
+        text.push(',');
+        text.push_str(&q.name());
+    }
+    text.push('\n');
+    for s in samples {
+        let Some(v) = s.sample else { continue };
+        let _ = write!(text, "{:e},{:e},{:e},{:e}", s.s, s.point[0], s.point[1], s.point[2]);
+        for &q in &quantities {
+            let _ = write!(text, ",{:e}", v.get(q));
+        }
+        text.push('\n');
+    }
+    write(path, &text)
+}
+
+/// One CSV per constraint set (reaction against prescribed displacement)
+/// and per contact (resultant force against indenter displacement).
+pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
+    let mut out = Vec::new();
+    for (k, c) in model.constraints.iter().enumerate() {
+        let mut text = String::from("increment,lambda,iterations,u_x,u_y,u_z,r_x,r_y,r_z\n");
+        for row in &solution.history {
+            let u = c.values.map(|v| v.map_or(String::new(), |v| format!("{:e}", row.lambda * v)));
+            let r = row.reactions[k];
+            let _ = writeln!(
+                text,
+                "{},{:e},{},{},{},{},{:e},{:e},{:e}",
+                row.increment, row.lambda, row.iterations, u[0], u[1], u[2], r[0], r[1], r[2]
+            );
+        }
+        let path = dir.join(format!("history_{}.csv", c.name));
+        write(&path, &text)?;
+        out.push(path);
+    }
+    let names = model
+        .indenters
+        .iter()
+        .map(|i| (i.name.as_str(), Some(i.displacement)))
+        .chain(model.contacts.iter().map(|c| (c.name.as_str(), None)));
+    for (k, (name, disp)) in names.enumerate() {
+        let mut text =
+            String::from("increment,lambda,iterations,d_x,d_y,d_z,f_x,f_y,f_z,max_penetration,plastic_points\n");
+        for row in &solution.history {
+            let d = disp.map(|d| d.map(|v| format!("{:e}", row.lambda * v))).unwrap_or_default();
+            let (f, pen) = row.contact[k];
+            let _ = writeln!(
+                text,
+                "{},{:e},{},{},{},{},{:e},{:e},{:e},{:e},{}",
+                row.increment, row.lambda, row.iterations, d[0], d[1], d[2], f[0], f[1], f[2], pen, row.plastic_points
+            );
+        }
+        let path = dir.join(format!("history_{name}.csv"));
+        write(&path, &text)?;
+        out.push(path);
+    }
+    Ok(out)
+}
+
+/// Final state of each contact point, one CSV per indenter or contact.
+pub fn write_contact_points(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
+    let mut out = Vec::new();
+    let mut k = 0;
+    let sizes = model
+        .indenters
+        .iter()
+        .map(|i| (i.name.as_str(), i.nodes.len()))
+        .chain(model.contacts.iter().map(|c| (c.name.as_str(), c.pairs.len())));
+    for (name, n) in sizes {
+        let mut text = String::from("node,x,y,z,gap,f_x,f_y,f_z,area,pressure,active\n");
+        for p in &solution.contact_points[k..k + n] {
+            let x = model.mesh.coords(p.node);
+            let f = p.force;
+            let pressure = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt() / p.area;
+            let _ = writeln!(
+                text,
+                "{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{}",
+                p.node,
+                x[0],
+                x[1],
+                x[2],
+                p.gap,
+                f[0],
+                f[1],
+                f[2],
+                p.area,
+                pressure,
+                u8::from(p.active)
+            );
+        }
+        k += n;
+        let path = dir.join(format!("contact_{name}.csv"));
+        write(&path, &text)?;
+        out.push(path);
+    }
+    Ok(out)
+}

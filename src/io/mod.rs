@@ -1,0 +1,115 @@
+//! Output files: VTU for ParaView, CSV along lines and per increment,
+//! PNG plots and the JSON summary.
+//!
+//! | file | content |
+//! |------|---------|
+//! | `summary.json` | DOF, wall time, probes, reactions, contact resultants, solver statistics |
+//! | `result.vtu` | the whole 3D field (CUF elements split into linear hexahedra) |
+//! | `line_<name>.csv` | fields sampled along each `[[lines]]` entry |
+//! | `history_<name>.csv` | per increment: reaction of a constraint set, or force of a contact |
+//! | `contact_<name>.csv` | final gap, force and pressure of every contact point |
+//! | `line_<name>_<quantity>.png`, `history_<name>.png` | plots |
+
+mod csv;
+mod json;
+mod png;
+mod vtu;
+
+pub use json::{Summary, summary};
+pub use png::{Series, line_plot};
+pub use vtu::write_vtu;
+
+use std::path::{Path, PathBuf};
+
+use crate::analysis::Solution;
+use crate::model::Model;
+use crate::post;
+
+/// Errors while writing results.
+#[derive(Debug, thiserror::Error)]
+pub enum IoError {
+    /// File system error.
+    #[error("cannot write {path}: {source}")]
+    File {
+        /// Path.
+        path: String,
+        /// Cause.
+        source: std::io::Error,
+    },
+    /// VTK writer error.
+    #[error("cannot write VTU file {path}: {message}")]
+    Vtk {
+        /// Path.
+        path: String,
+        /// Cause.
+        message: String,
+    },
+    /// Plotting error.
+    #[error("cannot draw plot {path}: {message}")]
+    Plot {
+        /// Path.
+        path: String,
+        /// Cause.
+        message: String,
+    },
+}
+
+pub(crate) fn file_error(path: &Path, source: std::io::Error) -> IoError {
+    IoError::File { path: path.display().to_string(), source }
+}
+
+/// Writes every output of a solved model into `dir` (created if needed).
+/// Returns the paths written.
+pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
+    std::fs::create_dir_all(dir).map_err(|e| file_error(dir, e))?;
+    let mut written = Vec::new();
+    let view = solution.fields(model);
+
+    let path = dir.join("summary.json");
+    json::write(&path, &summary(model, solution))?;
+    written.push(path);
+
+    if model.output.vtu {
+        let path = dir.join("result.vtu");
+        write_vtu(&path, model, solution)?;
+        written.push(path);
+    }
+
+    for line in &model.lines {
+        let samples = post::sample_line(&view, line);
+        let path = dir.join(format!("line_{}.csv", line.name));
+        csv::write_line(&path, &samples)?;
+        written.push(path);
+        if model.output.plots {
+            for &q in &line.plot {
+                let points: Vec<(f64, f64)> = samples
+                    .iter()
+                    .filter_map(|s| s.sample.map(|v| (s.s * 1e3, v.get(q) * q.display_scale())))
+                    .collect();
+                let path = dir.join(format!("line_{}_{}.png", line.name, q.name()));
+                let title = format!(
+                    "{} along {} ({:?} → {:?} m)",
+                    q.label().split(" [").next().unwrap_or_default(),
+                    line.name,
+                    line.from,
+                    line.to
+                );
+                line_plot(
+                    &path,
+                    &title,
+                    "distance along the line [mm]",
+                    &q.label(),
+                    &[Series { name: "cufem".into(), points }],
+                )?;
+                written.push(path);
+            }
+        }
+    }
+
+    written.extend(csv::write_histories(model, solution, dir)?);
+    written.extend(csv::write_contact_points(model, solution, dir)?);
+    if model.output.plots {
+        written.extend(png::history_plots(model, solution, dir)?);
+    }
+    Ok(written)
+}

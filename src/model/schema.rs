@@ -1,0 +1,295 @@
+//! The model file as written by the user (TOML), before validation.
+//!
+//! Every table denies unknown keys, so a misspelt key is reported with its
+//! name and line instead of being silently ignored. The meaning, unit and
+//! default of every key are in `docs/model-format.md`.
+
+use serde::Deserialize;
+
+/// Root of a model file.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ModelFile {
+    /// Title printed in reports.
+    #[serde(default)]
+    pub title: Option<String>,
+    /// Free text.
+    #[serde(default)]
+    pub description: Option<String>,
+    /// Nonlinear solution controls.
+    #[serde(default)]
+    pub solver: SolverFile,
+    /// Materials.
+    #[serde(default)]
+    pub materials: Vec<MaterialFile>,
+    /// Bodies.
+    #[serde(default)]
+    pub bodies: Vec<BodyFile>,
+    /// Displacement constraints.
+    #[serde(default)]
+    pub constraints: Vec<ConstraintFile>,
+    /// Loads.
+    #[serde(default)]
+    pub loads: Vec<LoadFile>,
+    /// Rigid indenters.
+    #[serde(default)]
+    pub indenters: Vec<IndenterFile>,
+    /// Contacts between deformable bodies.
+    #[serde(default)]
+    pub contacts: Vec<ContactFile>,
+    /// Probe points.
+    #[serde(default)]
+    pub probes: Vec<ProbeFile>,
+    /// Sampled lines.
+    #[serde(default)]
+    pub lines: Vec<LineFile>,
+    /// Output controls.
+    #[serde(default)]
+    pub output: OutputFile,
+    /// Reference values (e.g. from the paper) printed beside the results.
+    #[serde(default)]
+    pub references: Vec<ReferenceFile>,
+}
+
+/// `[solver]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SolverFile {
+    pub increments: Option<usize>,
+    pub max_increment: Option<f64>,
+    pub min_increment: Option<f64>,
+    pub max_iterations: Option<usize>,
+    pub residual_tolerance: Option<f64>,
+    pub displacement_tolerance: Option<f64>,
+    pub cutback_factor: Option<f64>,
+    pub growth_factor: Option<f64>,
+    pub easy_iterations: Option<usize>,
+    pub threads: Option<usize>,
+}
+
+/// `[[materials]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialFile {
+    pub name: String,
+    pub young_modulus: f64,
+    pub poisson_ratio: f64,
+    pub plasticity: Option<PlasticityFile>,
+}
+
+/// `[materials.plasticity]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlasticityFile {
+    pub yield_stress: Option<f64>,
+    pub hardening: String,
+    pub hardening_modulus: Option<f64>,
+    pub table: Option<Vec<[f64; 2]>>,
+}
+
+/// `[[bodies]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BodyFile {
+    pub name: String,
+    pub material: String,
+    pub section: SectionFile,
+    pub axis: AxisFile,
+}
+
+/// An interval division: `{from, to, elements[, ratio]}`, `{lines}` or `{segments}`.
+#[derive(Debug, Default, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct DivisionFile {
+    pub from: Option<f64>,
+    pub to: Option<f64>,
+    pub elements: Option<usize>,
+    pub ratio: Option<f64>,
+    pub lines: Option<Vec<f64>>,
+    pub segments: Option<Vec<SegmentFile>>,
+}
+
+/// One graded segment.
+#[derive(Debug, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct SegmentFile {
+    pub from: f64,
+    pub to: f64,
+    pub elements: usize,
+    pub ratio: Option<f64>,
+}
+
+/// `[bodies.section]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SectionFile {
+    pub shape: String,
+    pub element: String,
+    // rectangle
+    pub x: Option<DivisionFile>,
+    pub z: Option<DivisionFile>,
+    // tube
+    pub origin: Option<[f64; 2]>,
+    pub width: Option<f64>,
+    pub height: Option<f64>,
+    pub thickness: Option<f64>,
+    pub around: Option<usize>,
+    pub along_x: Option<usize>,
+    pub along_z: Option<usize>,
+    pub through: Option<usize>,
+    // quads
+    pub points: Option<Vec<[f64; 2]>>,
+    pub quads: Option<Vec<[usize; 4]>>,
+}
+
+/// `[bodies.axis]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AxisFile {
+    pub element: String,
+    pub from: Option<f64>,
+    pub to: Option<f64>,
+    pub elements: Option<usize>,
+    pub ratio: Option<f64>,
+    pub lines: Option<Vec<f64>>,
+    pub segments: Option<Vec<SegmentFile>>,
+}
+
+/// A coordinate condition: a number (equality) or `[min, max]`.
+#[derive(Debug, Deserialize, Clone, Copy)]
+#[serde(untagged)]
+pub enum ConditionFile {
+    Value(f64),
+    Range([f64; 2]),
+}
+
+/// A node selection `{x = …, y = …, z = …, tolerance = …}`.
+#[derive(Debug, Default, Deserialize, Clone)]
+#[serde(deny_unknown_fields)]
+pub struct SelectionFile {
+    pub x: Option<ConditionFile>,
+    pub y: Option<ConditionFile>,
+    pub z: Option<ConditionFile>,
+    pub tolerance: Option<f64>,
+}
+
+/// Per-component prescribed values `{x = …, y = …, z = …}`.
+#[derive(Debug, Default, Deserialize, Clone, Copy)]
+#[serde(deny_unknown_fields)]
+pub struct ComponentsFile {
+    pub x: Option<f64>,
+    pub y: Option<f64>,
+    pub z: Option<f64>,
+}
+
+/// `[[constraints]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ConstraintFile {
+    pub name: String,
+    pub body: String,
+    #[serde(rename = "where")]
+    pub selection: SelectionFile,
+    pub fix: Option<Vec<String>>,
+    pub displacement: Option<ComponentsFile>,
+}
+
+/// `[[loads]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadFile {
+    pub name: String,
+    pub body: String,
+    #[serde(rename = "where")]
+    pub selection: SelectionFile,
+    pub force_per_node: Option<[f64; 3]>,
+    pub total_force: Option<[f64; 3]>,
+    pub traction: Option<[f64; 3]>,
+    pub pressure: Option<f64>,
+}
+
+/// `[[indenters]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct IndenterFile {
+    pub name: String,
+    pub body: String,
+    pub shape: String,
+    pub surface: SelectionFile,
+    pub displacement: [f64; 3],
+    // flat
+    pub normal: Option<String>,
+    pub position: Option<f64>,
+    pub x: Option<[f64; 2]>,
+    pub y: Option<[f64; 2]>,
+    pub z: Option<[f64; 2]>,
+    // cylinder
+    pub axis: Option<String>,
+    pub center: Option<[f64; 3]>,
+    pub radius: Option<f64>,
+    pub length: Option<[f64; 2]>,
+    // penalty
+    pub penalty: Option<f64>,
+    pub penalty_factor: Option<f64>,
+}
+
+/// One side of a deformable contact.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactSideFile {
+    pub body: String,
+    #[serde(rename = "where")]
+    pub selection: SelectionFile,
+}
+
+/// `[[contacts]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ContactFile {
+    pub name: String,
+    pub master: ContactSideFile,
+    pub slave: ContactSideFile,
+    pub penalty: Option<f64>,
+    pub penalty_factor: Option<f64>,
+    pub tolerance: Option<f64>,
+    pub pairs: Option<Vec<[[f64; 3]; 2]>>,
+}
+
+/// `[[probes]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ProbeFile {
+    pub name: String,
+    pub point: [f64; 3],
+    pub body: Option<String>,
+}
+
+/// `[[lines]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LineFile {
+    pub name: String,
+    pub from: [f64; 3],
+    pub to: [f64; 3],
+    pub points: Option<usize>,
+    pub body: Option<String>,
+    pub plot: Option<Vec<String>>,
+}
+
+/// `[output]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputFile {
+    pub vtu: Option<bool>,
+    pub plots: Option<bool>,
+}
+
+/// `[[references]]`: a published value to print beside ours.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ReferenceFile {
+    pub probe: String,
+    pub quantity: String,
+    pub value: f64,
+    pub source: String,
+}

@@ -1,0 +1,224 @@
+//! Incremental load stepping with automatic cutbacks, above Newton.
+//!
+//! The load factor λ goes from 0 to 1. Each increment sets λ, runs Newton
+//! from the last converged state and, on success, commits the state (so
+//! path-dependent material history only advances on converged increments).
+//! A failed increment is rolled back and retried with `Δλ · cutback_factor`;
+//! an increment that converged in at most `easy_iterations` iterations lets
+//! the next one grow by `growth_factor` (up to `max_increment`). When `Δλ`
+//! would fall below `min_increment`, the analysis stops with a report and the
+//! problem is left at its last converged increment.
+
+use super::newton::{self, NewtonSettings, NonlinearProblem, Report};
+
+/// A problem that can be driven incrementally.
+pub trait Incremental: NonlinearProblem {
+    /// Sets the load factor for the next solve (applying prescribed values).
+    fn set_load_factor(&mut self, lambda: f64);
+    /// Accepts the current (converged) state as the new start point.
+    fn commit(&mut self);
+    /// Returns to the last committed state.
+    fn restore(&mut self);
+}
+
+/// Controls of the load stepping.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct StepSettings {
+    /// First increment of λ.
+    pub initial: f64,
+    /// Largest increment.
+    pub max: f64,
+    /// Smallest increment before giving up.
+    pub min: f64,
+    /// Factor applied to Δλ after a failure (0 < f < 1).
+    pub cutback_factor: f64,
+    /// Factor applied to Δλ after an easy increment (≥ 1).
+    pub growth_factor: f64,
+    /// An increment converging within this many iterations is "easy".
+    pub easy_iterations: usize,
+}
+
+impl Default for StepSettings {
+    fn default() -> Self {
+        Self { initial: 0.1, max: 0.1, min: 1e-5, cutback_factor: 0.5, growth_factor: 1.5, easy_iterations: 4 }
+    }
+}
+
+/// One converged increment.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Increment {
+    /// 1-based index.
+    pub index: usize,
+    /// Load factor reached.
+    pub lambda: f64,
+    /// Its increment.
+    pub dlambda: f64,
+    /// Newton history of the converged attempt.
+    pub newton: Report,
+    /// Failed attempts (cutbacks) before it converged.
+    pub cutbacks: usize,
+}
+
+/// A failed attempt, for logs.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Cutback {
+    /// Index of the increment being attempted.
+    pub index: usize,
+    /// λ that was attempted.
+    pub lambda: f64,
+    /// Δλ that failed.
+    pub dlambda: f64,
+    /// The failed Newton history.
+    pub newton: Report,
+}
+
+/// Callbacks of the stepping loop.
+pub trait Observer<P> {
+    /// Called after each converged and committed increment.
+    fn converged(&mut self, problem: &P, increment: &Increment);
+    /// Called after each failed attempt (before the retry).
+    fn cut_back(&mut self, _cutback: &Cutback) {}
+}
+
+/// The analysis could not reach λ = 1.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error(
+    "increment {} did not converge at load factor {:.6} (Δλ = {:.3e} is below the minimum): {}",
+    .increment, .lambda, .dlambda, describe(.newton)
+)]
+pub struct SteppingError {
+    /// Index of the increment that failed.
+    pub increment: usize,
+    /// λ attempted.
+    pub lambda: f64,
+    /// Last Δλ tried.
+    pub dlambda: f64,
+    /// Last converged λ (the state the problem is left in).
+    pub last_converged: f64,
+    /// Newton history of the last attempt.
+    pub newton: Report,
+}
+
+fn describe(r: &Report) -> String {
+    let res: Vec<String> = r.residuals.iter().map(|v| format!("{v:.2e}")).collect();
+    format!(
+        "{:?} after {} iterations; relative residuals [{}]{}",
+        r.failure.unwrap_or(newton::Failure::MaxIterations),
+        r.iterations,
+        res.join(", "),
+        r.message.as_ref().map(|m| format!("; {m}")).unwrap_or_default()
+    )
+}
+
+/// Drives `problem` from λ = 0 to 1. Returns the converged increments.
+pub fn run<P: Incremental>(
+    problem: &mut P,
+    steps: &StepSettings,
+    newton_settings: &NewtonSettings,
+    observer: &mut dyn Observer<P>,
+) -> Result<Vec<Increment>, SteppingError> {
+    let mut history = Vec::new();
+    let mut lambda = 0.0;
+    let mut dlambda = steps.initial.min(steps.max);
+    let mut cutbacks = 0;
+    while lambda < 1.0 - 1e-12 {
+        dlambda = dlambda.min(1.0 - lambda);
+        let target = lambda + dlambda;
+        problem.set_load_factor(target);
+        let report = newton::solve(problem, newton_settings);
+        if report.converged() {
+            problem.commit();
+            lambda = target;
+            let inc = Increment { index: history.len() + 1, lambda, dlambda, newton: report, cutbacks };
+            observer.converged(problem, &inc);
+            let easy = inc.newton.iterations <= steps.easy_iterations;
+            history.push(inc);
+            cutbacks = 0;
+            if easy {
+                dlambda = (dlambda * steps.growth_factor).min(steps.max);
+            }
+        } else {
+            problem.restore();
+            let index = history.len() + 1;
+            observer.cut_back(&Cutback { index, lambda: target, dlambda, newton: report.clone() });
+            cutbacks += 1;
+            let next = dlambda * steps.cutback_factor;
+            if next < steps.min {
+                problem.set_load_factor(lambda);
+                return Err(SteppingError {
+                    increment: index,
+                    lambda: target,
+                    dlambda,
+                    last_converged: lambda,
+                    newton: report,
+                });
+            }
+            dlambda = next;
+        }
+    }
+    Ok(history)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solver::newton::{Correction, Evaluation};
+
+    /// Softening spring u + 0.5 sin(4u) = λ·F: Newton from the previous
+    /// solution fails for large Δλ near the flat part, cutbacks rescue it.
+    struct Spring {
+        lambda: f64,
+        u: f64,
+        u_committed: f64,
+        r: f64,
+        k: f64,
+    }
+
+    impl NonlinearProblem for Spring {
+        type Error = std::io::Error;
+        fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
+            self.r = self.u + 0.45 * (4.0 * self.u).sin() - 3.0 * self.lambda;
+            self.k = 1.0 + 1.8 * (4.0 * self.u).cos();
+            Ok(Evaluation { residual_norm: self.r.abs(), force_scale: 3.0 * self.lambda.max(1e-3), settled: true })
+        }
+        fn correct(&mut self) -> Result<Correction, Self::Error> {
+            let du = -self.r / self.k;
+            self.u += du;
+            Ok(Correction { norm: du.abs(), increment_norm: (self.u - self.u_committed).abs() })
+        }
+    }
+
+    impl Incremental for Spring {
+        fn set_load_factor(&mut self, lambda: f64) {
+            self.lambda = lambda;
+        }
+        fn commit(&mut self) {
+            self.u_committed = self.u;
+        }
+        fn restore(&mut self) {
+            self.u = self.u_committed;
+        }
+    }
+
+    struct Count(usize, usize);
+    impl Observer<Spring> for Count {
+        fn converged(&mut self, _: &Spring, _: &Increment) {
+            self.0 += 1;
+        }
+        fn cut_back(&mut self, _: &Cutback) {
+            self.1 += 1;
+        }
+    }
+
+    #[test]
+    fn a_too_large_first_increment_is_cut_back_and_the_run_finishes() {
+        let mut s = Spring { lambda: 0.0, u: 0.0, u_committed: 0.0, r: 0.0, k: 0.0 };
+        let steps = StepSettings { initial: 1.0, max: 1.0, ..Default::default() };
+        let newton = NewtonSettings { max_iterations: 8, ..Default::default() };
+        let mut obs = Count(0, 0);
+        let hist = run(&mut s, &steps, &newton, &mut obs).unwrap();
+        assert!(obs.1 >= 1, "expected at least one cutback");
+        assert!((hist.last().unwrap().lambda - 1.0).abs() < 1e-12);
+        assert!((s.u + 0.45 * (4.0 * s.u).sin() - 3.0).abs() < 1e-5);
+    }
+}

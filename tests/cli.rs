@@ -1,0 +1,181 @@
+//! The `cufem` binary: a shipped example through `run`, its outputs read
+//! back (JSON, CSV, and the VTU by a VTK reader), and clear errors on bad input.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use vtkio::model::{Attribute, DataSet, Piece, VertexNumbers};
+
+fn cufem() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_cufem"))
+}
+
+fn out_dir(name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+fn example(name: &str) -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name)
+}
+
+/// Signed volume of a linear hexahedron by splitting it into 6 tetrahedra.
+fn hex_volume(p: &[[f64; 3]; 8]) -> f64 {
+    let tet = |a: [f64; 3], b: [f64; 3], c: [f64; 3], d: [f64; 3]| {
+        let u = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+        let v = [c[0] - a[0], c[1] - a[1], c[2] - a[2]];
+        let w = [d[0] - a[0], d[1] - a[1], d[2] - a[2]];
+        (u[0] * (v[1] * w[2] - v[2] * w[1]) - u[1] * (v[0] * w[2] - v[2] * w[0]) + u[2] * (v[0] * w[1] - v[1] * w[0]))
+            / 6.0
+    };
+    // standard decomposition along the 0–6 diagonal
+    [[0, 1, 2, 6], [0, 2, 3, 6], [0, 3, 7, 6], [0, 7, 4, 6], [0, 4, 5, 6], [0, 5, 1, 6]]
+        .iter()
+        .map(|t| tet(p[t[0]], p[t[1]], p[t[2]], p[t[3]]))
+        .sum()
+}
+
+#[test]
+fn cantilever_example_runs_and_its_outputs_read_back() {
+    let out = out_dir("cantilever_cli");
+    let status = cufem()
+        .args([
+            "run",
+            example("cantilever_timoshenko.toml").to_str().unwrap(),
+            "--out",
+            out.to_str().unwrap(),
+            "--quiet",
+        ])
+        .status()
+        .unwrap();
+    assert!(status.success());
+
+    // summary.json contract
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["dof"], 1200);
+    assert!(summary["wall_time_s"].as_f64().unwrap() > 0.0);
+    let probe = &summary["probes"][0];
+    assert_eq!(probe["name"], "tip");
+    let uz = probe["u"][2].as_f64().unwrap();
+    // Timoshenko 5.759e-4 m (see the example's header); 2 % for 5 B4 × 2×2 L9
+    assert!((uz + 5.759e-4).abs() < 0.02 * 5.759e-4, "{uz}");
+    assert_eq!(probe["stress"].as_array().unwrap().len(), 6);
+    assert_eq!(probe["peeq"].as_f64().unwrap(), 0.0);
+    let r = &summary["reactions"][0];
+    assert_eq!(r["name"], "root");
+    assert!((r["force"][2].as_f64().unwrap() - 1000.0).abs() < 1e-9 * 1000.0);
+
+    // line CSV header contract
+    let csv = std::fs::read_to_string(out.join("line_top.csv")).unwrap();
+    assert!(csv.starts_with("s,x,y,z,u_x,u_y,u_z,s_xx,s_yy,s_zz,s_xy,s_xz,s_yz,von_mises,peeq"));
+    assert_eq!(csv.lines().count(), 102);
+    assert!(out.join("line_top_s_yy.png").exists());
+
+    // the VTU, read back by a VTK reader
+    let vtk = vtkio::Vtk::import(out.join("result.vtu")).unwrap();
+    let DataSet::UnstructuredGrid { pieces, .. } = vtk.data else { panic!("not an unstructured grid") };
+    let Piece::Inline(piece) = &pieces[0] else { panic!("piece not inline") };
+    // 20 elements (5 B4 × 4 L9), 36 points each, 2·2·3 hexahedra each
+    assert_eq!(piece.num_points(), 720);
+    let points: Vec<f64> = piece.points.clone().cast_into().unwrap();
+    let VertexNumbers::XML { connectivity, offsets } = &piece.cells.cell_verts else { panic!("legacy cells") };
+    assert_eq!(offsets.len(), 240);
+    let mut volume = 0.0;
+    for c in 0..offsets.len() {
+        let ids = &connectivity[8 * c..8 * c + 8];
+        let mut p = [[0.0; 3]; 8];
+        for (k, &id) in ids.iter().enumerate() {
+            p[k] = [points[3 * id as usize], points[3 * id as usize + 1], points[3 * id as usize + 2]];
+        }
+        let v = hex_volume(&p);
+        assert!(v > 0.0, "cell {c} has volume {v}");
+        volume += v;
+    }
+    assert!((volume - 0.01).abs() < 1e-12, "total volume {volume}");
+    let names: Vec<String> = piece
+        .data
+        .point
+        .iter()
+        .map(|a| match a {
+            Attribute::DataArray(d) => d.name.clone(),
+            Attribute::Field { name, .. } => name.clone(),
+        })
+        .collect();
+    for n in ["displacement", "s_yy", "von_mises", "peeq", "contact_pressure"] {
+        assert!(names.iter().any(|x| x == n), "missing array {n} in {names:?}");
+    }
+    // the largest downward displacement in the file is the tip deflection
+    let disp = piece
+        .data
+        .point
+        .iter()
+        .find_map(|a| match a {
+            Attribute::DataArray(d) if d.name == "displacement" => Some(d.data.clone().cast_into::<f64>().unwrap()),
+            _ => None,
+        })
+        .unwrap();
+    let min_uz = disp.iter().skip(2).step_by(3).fold(f64::INFINITY, |a, &b| a.min(b));
+    assert!((min_uz - uz).abs() < 0.01 * uz.abs(), "{min_uz} vs {uz}");
+}
+
+#[test]
+fn check_prints_the_model_size() {
+    let out = cufem().args(["check", example("cantilever_timoshenko.toml").to_str().unwrap()]).output().unwrap();
+    assert!(out.status.success());
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("1,200 DOF") && text.contains("20 elements") && text.contains("400 nodes"), "{text}");
+}
+
+/// Bad input: exit code 1 and a message naming the key, the value and what is allowed.
+#[test]
+fn bad_input_is_reported_with_key_value_and_allowed_values() {
+    let base = std::fs::read_to_string(example("cantilever_timoshenko.toml")).unwrap();
+    let dir = out_dir("bad_inputs");
+    std::fs::create_dir_all(&dir).unwrap();
+    let cases: Vec<(String, Vec<&str>)> = vec![
+        (
+            base.replace("poisson_ratio = 0.3", "poisson_ratio = 0.7"),
+            vec!["materials[0].poisson_ratio", "0.7", "(−1, 0.5)"],
+        ),
+        (
+            base.replace("element = \"L9\"", "element = \"L8\""),
+            vec!["bodies[0].section.element", "L8", "\"L4\", \"L9\" or \"L16\""],
+        ),
+        (base.replace("element = \"B4\"", "element = \"B5\""), vec!["bodies[0].axis.element", "B5", "B4"]),
+        (
+            base.replace("material = \"aluminium\"", "material = \"steel\""),
+            vec!["bodies[0].material", "steel", "aluminium"],
+        ),
+        (base.replace("where = { y = 0.0 }", "where = { y = -1.0 }"), vec!["constraints[0].where", "y = -1", "nodes"]),
+        (
+            base.replace("fix = [\"x\", \"y\", \"z\"]", "fix = [\"x\", \"w\"]"),
+            vec!["constraints[0].fix[1]", "\"w\"", "\"x\", \"y\" or \"z\""],
+        ),
+        (
+            base.replace("young_modulus = 70e9", "young_modulus = 70e9\ndensity = 2700"),
+            vec!["density", "unknown field"],
+        ),
+        (base.replace("elements = 5", "elements = 0"), vec!["bodies[0].axis.elements = 0", "≥ 1"]),
+        (
+            base.replace("point = [0.05, 1.0, 0.05]", "point = [0.05, 2.0, 0.05]"),
+            vec!["probes[0].point", "inside a body"],
+        ),
+        (base.replace("plot = [\"u_z\"]", "plot = [\"uz\"]"), vec!["lines[0].plot[0]", "\"uz\"", "u_z"]),
+    ];
+    for (k, (text, needles)) in cases.iter().enumerate() {
+        let path = dir.join(format!("bad{k}.toml"));
+        std::fs::write(&path, text).unwrap();
+        let out = cufem().args(["check", path.to_str().unwrap()]).output().unwrap();
+        assert_eq!(out.status.code(), Some(1), "case {k} should fail");
+        let err = String::from_utf8(out.stderr).unwrap();
+        for n in needles {
+            assert!(err.contains(n), "case {k}: {n:?} not in {err:?}");
+        }
+        assert!(!err.contains("panicked"), "case {k} panicked: {err}");
+    }
+    let out = cufem().args(["run", "/nonexistent/model.toml"]).output().unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    assert!(String::from_utf8(out.stderr).unwrap().contains("/nonexistent/model.toml"));
+}

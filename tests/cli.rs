@@ -163,6 +163,27 @@ fn bad_input_is_reported_with_key_value_and_allowed_values() {
             vec!["probes[0].point", "inside a body"],
         ),
         (base.replace("plot = [\"u_z\"]", "plot = [\"uz\"]"), vec!["lines[0].plot[0]", "\"uz\"", "u_z"]),
+        (
+            base.replace(
+                "z = { from = 0.0, to = 0.1, elements = 2 } }",
+                "z = { from = 0.0, to = 0.1, elements = 2 }, thickness = 0.01 }",
+            ),
+            vec!["bodies[0].section.thickness", "no `thickness` key with shape = \"rectangle\""],
+        ),
+        (
+            format!(
+                "{base}\n[[constraints]]\nname = \"root\"\nbody = \"beam\"\nwhere = {{ y = 1.0 }}\nfix = [\"x\"]\n"
+            ),
+            vec!["constraints[1].name", "\"root\"", "already used by constraints[0]"],
+        ),
+        (
+            format!(
+                "{base}\n[[constraints]]\nname = \"a\"\nbody = \"beam\"\nwhere = {{ y = 1.0 }}\ndisplacement = {{ z = 0.001 }}\n\
+                 [[constraints]]\nname = \"b\"\nbody = \"beam\"\nwhere = {{ y = 1.0 }}\ndisplacement = {{ z = 0.002 }}\n"
+            ),
+            vec!["constraints[2]", "u_z = 0.002", "constraints[1]"],
+        ),
+        (base.replace("name = \"tip\"\nbody", "name = \"tip/1\"\nbody"), vec!["loads[0].name", "tip/1", "file names"]),
     ];
     for (k, (text, needles)) in cases.iter().enumerate() {
         let path = dir.join(format!("bad{k}.toml"));

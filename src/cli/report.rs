@@ -188,21 +188,13 @@ pub fn print_results(model: &Model, solution: &Solution) {
         println!();
         println!("{:<14} {:<16} {:>12} {:>12}  source", "probe", "quantity", "cufem", "reference");
         for r in &model.references {
-            let ours = summary
+            let view = solution.fields(model);
+            let ours = model
                 .probes
                 .iter()
                 .find(|p| p.name == r.probe)
-                .map(|p| {
-                    let s = cufem::post::Sample {
-                        u: p.u,
-                        stress: p.stress,
-                        von_mises: p.von_mises,
-                        peeq: p.peeq,
-                        ..Default::default()
-                    };
-                    s.get(r.quantity)
-                })
-                .unwrap_or(f64::NAN);
+                .and_then(|p| view.sample_point(p.body, p.point))
+                .map_or(f64::NAN, |s| s.get(r.quantity));
             let scale = r.quantity.display_scale();
             let unit = r.quantity.label();
             let unit = unit.split('[').nth(1).map(|u| format!("[{u}")).unwrap_or_default();

@@ -8,7 +8,8 @@
 //! | `line_<name>.csv` | fields sampled along each `[[lines]]` entry |
 //! | `history_<name>.csv` | per increment: reaction of a constraint set, or force of a contact |
 //! | `contact_<name>.csv` | final gap, force and pressure of every contact point |
-//! | `line_<name>_<quantity>.png`, `history_<name>.png` | plots |
+//! | `line_<name>_<quantity>.png` | plots of the quantities listed in a line's `plot` |
+//! | `history_<indenter>.png` | force against displacement of each moving indenter |
 
 mod csv;
 mod json;

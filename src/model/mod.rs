@@ -163,9 +163,11 @@ impl Model {
         build(file)
     }
 
-    /// True if the problem is linear (no plasticity, no contact).
+    /// True if the problem is linear (no body yields, no contact).
     pub fn is_linear(&self) -> bool {
-        self.materials.iter().all(|m| !m.is_plastic()) && self.indenters.is_empty() && self.contacts.is_empty()
+        self.mesh.bodies.iter().all(|b| !self.materials[b.material].is_plastic())
+            && self.indenters.is_empty()
+            && self.contacts.is_empty()
     }
 
     /// Number of degrees of freedom (3 per node, constrained ones included).
@@ -186,31 +188,57 @@ fn finite3(key: &str, v: [f64; 3]) -> Result<[f64; 3], ModelError> {
     if v.iter().all(|x| x.is_finite()) { Ok(v) } else { Err(invalid(key, format!("{v:?}"), "three finite numbers")) }
 }
 
-fn unique_names<'a>(key: &str, names: impl Iterator<Item = &'a String>) -> Result<(), ModelError> {
-    let mut seen = std::collections::HashSet::new();
-    for (i, n) in names.enumerate() {
-        if n.trim().is_empty() {
-            return Err(invalid(format!("{key}[{i}].name"), format!("{n:?}"), "a non-empty name"));
+/// Checks that names are non-empty, usable in file names, and unique within
+/// `group` (entries given as `(key, name)`).
+fn unique_names<'a>(group: impl Iterator<Item = (String, &'a String)>) -> Result<(), ModelError> {
+    let mut seen: std::collections::HashMap<&String, String> = Default::default();
+    for (key, n) in group {
+        if n.is_empty() || !n.chars().all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c)) {
+            return Err(invalid(
+                format!("{key}.name"),
+                format!("{n:?}"),
+                "a non-empty name of letters, digits, '_', '-' or '.' (it is used in file names)",
+            ));
         }
-        if !seen.insert(n.clone()) {
-            return Err(invalid(format!("{key}[{i}].name"), format!("{n:?}"), "a name not used by another entry"));
+        if let Some(other) = seen.insert(n, key.clone()) {
+            return Err(invalid(
+                format!("{key}.name"),
+                format!("{n:?}"),
+                format!("a name not already used by {other}"),
+            ));
         }
     }
     Ok(())
 }
 
-fn build(file: ModelFile) -> Result<Model, ModelError> {
-    unique_names("materials", file.materials.iter().map(|m| &m.name))?;
-    unique_names("bodies", file.bodies.iter().map(|b| &b.name))?;
-    unique_names("constraints", file.constraints.iter().map(|c| &c.name))?;
-    unique_names("loads", file.loads.iter().map(|c| &c.name))?;
-    unique_names("probes", file.probes.iter().map(|c| &c.name))?;
-    unique_names("lines", file.lines.iter().map(|c| &c.name))?;
-    {
-        let mut contacts: Vec<&String> = file.indenters.iter().map(|c| &c.name).collect();
-        contacts.extend(file.contacts.iter().map(|c| &c.name));
-        unique_names("indenters/contacts", contacts.into_iter())?;
+fn keyed<'a, T>(
+    key: &'a str,
+    items: &'a [T],
+    name: impl Fn(&T) -> &String + 'a,
+) -> impl Iterator<Item = (String, &'a String)> + 'a {
+    items.iter().enumerate().map(move |(i, t)| (format!("{key}[{i}]"), name(t)))
+}
+
+/// Rejects keys that belong to another variant than the one chosen.
+fn reject_unused(key: &str, chosen: &str, keys: &[(&str, bool)]) -> Result<(), ModelError> {
+    match keys.iter().find(|(_, present)| *present) {
+        Some((name, _)) => Err(invalid(format!("{key}.{name}"), "(given)", format!("no `{name}` key with {chosen}"))),
+        None => Ok(()),
     }
+}
+
+fn build(file: ModelFile) -> Result<Model, ModelError> {
+    unique_names(keyed("materials", &file.materials, |m| &m.name))?;
+    unique_names(keyed("bodies", &file.bodies, |m| &m.name))?;
+    unique_names(keyed("loads", &file.loads, |m| &m.name))?;
+    unique_names(keyed("probes", &file.probes, |m| &m.name))?;
+    unique_names(keyed("lines", &file.lines, |m| &m.name))?;
+    // constraints, indenters and contacts all write history_<name>.csv
+    unique_names(
+        keyed("constraints", &file.constraints, |m| &m.name)
+            .chain(keyed("indenters", &file.indenters, |m| &m.name))
+            .chain(keyed("contacts", &file.contacts, |m| &m.name)),
+    )?;
     if file.bodies.is_empty() {
         return Err(invalid("bodies", "[]", "at least one [[bodies]] table"));
     }
@@ -220,8 +248,16 @@ fn build(file: ModelFile) -> Result<Model, ModelError> {
         bodies.push(body(i, b, &materials)?);
     }
     let mesh = Mesh::new(bodies);
-    let sections: Vec<SectionGeometry> =
-        mesh.bodies.iter().map(|b| SectionGeometry::new(&b.section, &b.name)).collect::<Result<_, _>>()?;
+    let mut sections = Vec::with_capacity(mesh.bodies.len());
+    for (i, b) in mesh.bodies.iter().enumerate() {
+        sections.push(SectionGeometry::new(&b.section, &b.name).map_err(|e| match e {
+            ElementError::Distorted { element, det, .. } => invalid(
+                format!("bodies[{i}].section"),
+                format!("element {element} with Jacobian determinant {det:e}"),
+                "convex quadrilaterals listed counter-clockwise in the x–z plane",
+            ),
+        })?);
+    }
 
     let body_index = |key: String, name: &str| {
         mesh.body_index(name).ok_or_else(|| {
@@ -269,6 +305,27 @@ fn build(file: ModelFile) -> Result<Model, ModelError> {
             ));
         }
         constraints.push(Constraint { name: c.name.clone(), body: b, nodes, values });
+    }
+    // one value per constrained DOF: overlapping sets must agree
+    let mut given: std::collections::HashMap<usize, (f64, usize)> = Default::default();
+    for (i, c) in constraints.iter().enumerate() {
+        for &n in &c.nodes {
+            for (k, v) in c.values.iter().enumerate() {
+                let Some(v) = *v else { continue };
+                if let Some(&(w, j)) = given.get(&(3 * n + k))
+                    && w != v
+                {
+                    return Err(invalid(
+                        format!("constraints[{i}]"),
+                        format!("u_{} = {v} at {:?}", ["x", "y", "z"][k], mesh.coords(n)),
+                        format!(
+                            "the value {w} that constraints[{j}] prescribes at the same node (overlapping sets must agree)"
+                        ),
+                    ));
+                }
+                given.insert(3 * n + k, (v, i));
+            }
+        }
     }
 
     let mut loads = Vec::new();
@@ -357,7 +414,8 @@ fn build(file: ModelFile) -> Result<Model, ModelError> {
         });
     }
 
-    let linear = materials.iter().all(|m| !m.is_plastic()) && indenters.is_empty() && contacts.is_empty();
+    let linear =
+        mesh.bodies.iter().all(|b| !materials[b.material].is_plastic()) && indenters.is_empty() && contacts.is_empty();
     let solver = solver_settings(&file.solver, linear)?;
     let output = OutputSettings { vtu: file.output.vtu.unwrap_or(true), plots: file.output.plots.unwrap_or(true) };
     Ok(Model {
@@ -406,6 +464,15 @@ fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelError> {
             let need_sy = || {
                 sy.ok_or_else(|| invalid(format!("{pk}.yield_stress"), "(missing)", "the initial yield stress in Pa"))
             };
+            let chosen = format!("hardening = {:?}", p.hardening);
+            let unused_modulus = ("hardening_modulus", p.hardening_modulus.is_some());
+            let unused_table = ("table", p.table.is_some());
+            match p.hardening.as_str() {
+                "perfect" => reject_unused(&pk, &chosen, &[unused_modulus, unused_table])?,
+                "linear" => reject_unused(&pk, &chosen, &[unused_table])?,
+                "table" => reject_unused(&pk, &chosen, &[unused_modulus])?,
+                _ => {}
+            }
             Some(match p.hardening.as_str() {
                 "perfect" => Hardening::Perfect { yield_stress: need_sy()? },
                 "linear" => {
@@ -490,6 +557,13 @@ fn division_parts(
     segments: Option<&Vec<SegmentFile>>,
 ) -> Result<Vec<f64>, ModelError> {
     let forms = [from.is_some() || to.is_some() || elements.is_some(), lines.is_some(), segments.is_some()];
+    if ratio.is_some() && !forms[0] {
+        return Err(invalid(
+            format!("{key}.ratio"),
+            "(given)",
+            "`ratio` only with {from, to, elements}; segments carry their own ratio",
+        ));
+    }
     if forms.iter().filter(|f| **f).count() != 1 {
         return Err(invalid(
             key,
@@ -536,6 +610,25 @@ fn body(i: usize, b: &BodyFile, materials: &[Material]) -> Result<Body, ModelErr
     let sk = format!("{key}.section");
     let kind = SectionElementKind::parse(&s.element)
         .ok_or_else(|| invalid(format!("{sk}.element"), format!("{:?}", s.element), "\"L4\", \"L9\" or \"L16\""))?;
+    let chosen = format!("shape = {:?}", s.shape);
+    let tube_keys = [
+        ("origin", s.origin.is_some()),
+        ("width", s.width.is_some()),
+        ("height", s.height.is_some()),
+        ("thickness", s.thickness.is_some()),
+        ("around", s.around.is_some()),
+        ("along_x", s.along_x.is_some()),
+        ("along_z", s.along_z.is_some()),
+        ("through", s.through.is_some()),
+    ];
+    let rect_keys = [("x", s.x.is_some()), ("z", s.z.is_some())];
+    let quad_keys = [("points", s.points.is_some()), ("quads", s.quads.is_some())];
+    match s.shape.as_str() {
+        "rectangle" => reject_unused(&sk, &chosen, &[&tube_keys[..], &quad_keys[..]].concat())?,
+        "tube" => reject_unused(&sk, &chosen, &[&rect_keys[..], &quad_keys[..]].concat())?,
+        "quads" => reject_unused(&sk, &chosen, &[&rect_keys[..], &tube_keys[..]].concat())?,
+        _ => {}
+    }
     let section = match s.shape.as_str() {
         "rectangle" => {
             let x = s.x.as_ref().ok_or_else(|| {
@@ -562,6 +655,9 @@ fn body(i: usize, b: &BodyFile, materials: &[Material]) -> Result<Body, ModelErr
                 ));
             }
             let origin = s.origin.unwrap_or([0.0, 0.0]);
+            if !origin.iter().all(|v| v.is_finite()) {
+                return Err(invalid(format!("{sk}.origin"), format!("{origin:?}"), "two finite numbers [x0, z0]"));
+            }
             let through = s.through.unwrap_or(1);
             if through == 0 {
                 return Err(invalid(format!("{sk}.through"), 0, "an integer ≥ 1"));
@@ -774,6 +870,25 @@ fn indenter(
             None => Ok(None),
         }
     };
+    let chosen = format!("shape = {:?}", d.shape);
+    let flat_keys = [
+        ("normal", d.normal.is_some()),
+        ("position", d.position.is_some()),
+        ("x", d.x.is_some()),
+        ("y", d.y.is_some()),
+        ("z", d.z.is_some()),
+    ];
+    let cyl_keys = [
+        ("axis", d.axis.is_some()),
+        ("center", d.center.is_some()),
+        ("radius", d.radius.is_some()),
+        ("length", d.length.is_some()),
+    ];
+    match d.shape.as_str() {
+        "flat" => reject_unused(key, &chosen, &cyl_keys)?,
+        "cylinder" => reject_unused(key, &chosen, &flat_keys)?,
+        _ => {}
+    }
     let shape = match d.shape.as_str() {
         "flat" => {
             let normal = d.normal.as_deref().unwrap_or("");
@@ -942,9 +1057,16 @@ fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSettings, Model
             Some(v) => Err(invalid(format!("solver.{name}"), v, "a number in (0, 1)")),
         }
     };
+    if min > max {
+        return Err(invalid("solver.min_increment", min, format!("at most max_increment ({max})")));
+    }
     let max_iterations = s.max_iterations.unwrap_or(25);
     if max_iterations == 0 {
         return Err(invalid("solver.max_iterations", 0, "an integer ≥ 1"));
+    }
+    let max_increments = s.max_increments.unwrap_or(1000);
+    if max_increments == 0 {
+        return Err(invalid("solver.max_increments", 0, "an integer ≥ 1"));
     }
     if s.threads == Some(0) {
         return Err(invalid("solver.threads", 0, "an integer ≥ 1 (or no key: all cores)"));
@@ -957,6 +1079,7 @@ fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSettings, Model
             cutback_factor: cutback,
             growth_factor: growth,
             easy_iterations: s.easy_iterations.unwrap_or(4),
+            max_increments,
         },
         newton: NewtonSettings {
             max_iterations,

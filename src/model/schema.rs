@@ -64,6 +64,7 @@ pub struct SolverFile {
     pub cutback_factor: Option<f64>,
     pub growth_factor: Option<f64>,
     pub easy_iterations: Option<usize>,
+    pub max_increments: Option<usize>,
     pub threads: Option<usize>,
 }
 

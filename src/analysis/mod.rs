@@ -172,7 +172,7 @@ pub fn run(model: &Model, progress: &mut dyn Progress) -> Result<Solution, Analy
     progress.start(model, structure.n_equations());
     let mut recorder = Recorder { history: Vec::new(), increments: Vec::new(), cutbacks: Vec::new(), progress };
     let outcome = stepping::run(&mut structure, &model.solver.steps, &model.solver.newton, &mut recorder);
-    let failure = outcome.err();
+    let failure = outcome.err().map(|e| *e);
     if failure.is_some() {
         // refresh forces at the last converged state for reactions and contact output
         structure.evaluate()?;

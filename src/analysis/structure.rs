@@ -2,6 +2,15 @@
 //! `R(u) = f_int(u) − λ f_ext − f_c(u)` on the free DOFs, its tangent
 //! `K = K_tan + K_p` (paper eq. 18), prescribed displacements `λ ū`, and the
 //! committed/trial split of the Gauss-point history.
+//!
+//! **Prescribed displacements.** DOFs fixed at zero have no equation. DOFs
+//! with a non-zero prescribed value keep their equation, and each solve
+//! eliminates them symmetrically: with `Δ_p = λ ū_p − u_p`,
+//! `K_ff δu_f = −R_f − K_fp Δ_p` and `δu_p = Δ_p`. The first Newton
+//! iteration of an increment therefore moves the free DOFs consistently
+//! with the prescribed ones (a linearized predictor) instead of jumping the
+//! constrained nodes alone, which would strain — and, in plasticity,
+//! spuriously yield — the elements next to them.
 
 use std::time::{Duration, Instant};
 
@@ -84,7 +93,12 @@ pub struct Structure<'m> {
     pub f_contact: Vec<f64>,
     tangent: Vec<f64>,
     residual: Vec<f64>,
-    prescribed: Vec<(usize, f64)>,
+    /// Non-zero prescribed DOFs: `(dof, equation, value at λ = 1)`.
+    prescribed: Vec<(usize, usize, f64)>,
+    /// Per equation: true for a prescribed DOF.
+    is_prescribed: Vec<bool>,
+    /// Matrix entries coupling a prescribed equation: `(position, row, col)`.
+    dirichlet_entries: Vec<(usize, usize, usize)>,
     /// Current load factor.
     pub lambda: f64,
     lambda_committed: f64,
@@ -111,26 +125,43 @@ impl<'m> Structure<'m> {
             n_gp += b.n_elements() * g.gp_per_element();
         }
         let n_dofs = mesh.n_dofs();
-        let mut constrained = vec![false; n_dofs];
-        let mut prescribed = Vec::new();
+        // value prescribed at each constrained DOF (validation rejects conflicts)
+        let mut value: Vec<Option<f64>> = vec![None; n_dofs];
         for c in &model.constraints {
             for &n in &c.nodes {
                 for (k, v) in c.values.iter().enumerate() {
-                    if let Some(v) = v {
-                        let d = 3 * n + k;
-                        if !constrained[d] {
-                            constrained[d] = true;
-                            if *v != 0.0 {
-                                prescribed.push((d, *v));
-                            }
-                        }
+                    if v.is_some() && value[3 * n + k].is_none() {
+                        value[3 * n + k] = *v;
                     }
                 }
             }
         }
+        let fixed: Vec<bool> = value.iter().map(|v| *v == Some(0.0)).collect();
         let couplings: Vec<(usize, usize)> =
             model.contacts.iter().flat_map(|c| c.pairs.iter().map(|p| (p.slave, p.master))).collect();
-        let assembler = Assembler::new(mesh, &constrained, &couplings)?;
+        let assembler = Assembler::new(mesh, &fixed, &couplings)?;
+        let n_eq = assembler.dofs.n_eq;
+        let mut prescribed = Vec::new();
+        let mut is_prescribed = vec![false; n_eq];
+        for (d, v) in value.iter().enumerate() {
+            if let Some(v) = *v
+                && v != 0.0
+            {
+                let e = assembler.dofs.eq[d];
+                prescribed.push((d, e, v));
+                is_prescribed[e] = true;
+            }
+        }
+        let pattern = &assembler.pattern;
+        let mut dirichlet_entries = Vec::new();
+        for c in 0..pattern.n {
+            for k in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
+                let r = pattern.row_idx[k];
+                if r != c && (is_prescribed[r] || is_prescribed[c]) {
+                    dirichlet_entries.push((k, r, c));
+                }
+            }
+        }
         let t_sym = Instant::now();
         let solver = Cholesky::analyze(&assembler.pattern)?;
         let symbolic = t_sym.elapsed();
@@ -163,7 +194,6 @@ impl<'m> Structure<'m> {
         }
         let size = mesh.bodies.iter().map(|b| b.size()).fold(0.0, f64::max);
         let nnz = assembler.pattern.nnz();
-        let n_eq = assembler.dofs.n_eq;
         let timings = Timings {
             setup: t0.elapsed(),
             ordering: assembler.ordering_time,
@@ -188,6 +218,8 @@ impl<'m> Structure<'m> {
             tangent: vec![0.0; nnz],
             residual: vec![0.0; n_eq],
             prescribed,
+            is_prescribed,
+            dirichlet_entries,
             lambda: 0.0,
             lambda_committed: 0.0,
             contact,
@@ -361,26 +393,53 @@ impl NonlinearProblem for Structure<'_> {
             let r = self.f_int[d] - ext - self.f_contact[d];
             ext2 += ext * ext;
             con2 += self.f_contact[d] * self.f_contact[d];
-            if e == NO_EQ {
+            if e == NO_EQ || self.is_prescribed[e] {
                 reac2 += r * r;
             } else {
-                self.residual[e] = r;
                 res2 += r * r;
             }
+            if e != NO_EQ {
+                self.residual[e] = r;
+            }
+        }
+        // prescribed values reached (exactly, after the first correction)
+        let mut off: f64 = 0.0;
+        let mut size: f64 = 0.0;
+        for &(d, _, v) in &self.prescribed {
+            off = off.max((self.lambda * v - self.u[d]).abs());
+            size = size.max(v.abs());
         }
         let scale = ext2.sqrt().max(con2.sqrt()).max(reac2.sqrt());
-        Ok(Evaluation { residual_norm: res2.sqrt(), force_scale: scale, settled: changes == 0 })
+        let settled = changes == 0 && off <= 1e-12 * size;
+        Ok(Evaluation { residual_norm: res2.sqrt(), force_scale: scale, settled })
     }
 
     fn correct(&mut self) -> Result<Correction, LinearError> {
+        for r in &mut self.residual {
+            *r = -*r;
+        }
+        // symmetric elimination of the prescribed equations (see module docs)
+        for &(d, e, v) in &self.prescribed {
+            self.residual[e] = self.lambda * v - self.u[d];
+        }
+        for &(k, r, c) in &self.dirichlet_entries {
+            let kv = self.tangent[k];
+            if !self.is_prescribed[r] {
+                self.residual[r] -= kv * self.residual[c];
+            } else if !self.is_prescribed[c] {
+                self.residual[c] -= kv * self.residual[r];
+            }
+            self.tangent[k] = 0.0;
+        }
+        for &(_, e, _) in &self.prescribed {
+            let diag = self.assembler.pattern.col_ptr[e];
+            self.residual[e] *= self.tangent[diag];
+        }
         let t = Instant::now();
         self.solver.factorize(&self.tangent)?;
         self.timings.factorization += t.elapsed();
         self.timings.factorizations += 1;
         let t = Instant::now();
-        for r in &mut self.residual {
-            *r = -*r;
-        }
         self.solver.solve_in_place(&mut self.residual)?;
         self.timings.solve += t.elapsed();
         let eq = &self.assembler.dofs.eq;
@@ -399,10 +458,8 @@ impl NonlinearProblem for Structure<'_> {
 
 impl Incremental for Structure<'_> {
     fn set_load_factor(&mut self, lambda: f64) {
+        // prescribed values are reached by the next correction (see module docs)
         self.lambda = lambda;
-        for &(d, v) in &self.prescribed {
-            self.u[d] = lambda * v;
-        }
     }
 
     fn commit(&mut self) {

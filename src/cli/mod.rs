@@ -180,13 +180,14 @@ impl Progress for Reporter {
     fn cutback(&mut self, c: &Cutback) {
         let res: Vec<String> = c.newton.residuals.iter().map(|r| format!("{r:.1e}")).collect();
         self.line(format!(
-            "  cutback: increment {} (λ = {:.4}, Δλ = {:.3e}) failed ({:?}) after {} iterations, residuals [{}]",
+            "  cutback: increment {} (λ = {:.4}, Δλ = {:.3e}) failed ({:?}) after {} iterations, residuals [{}]{}",
             c.index,
             c.lambda,
             c.dlambda,
             c.newton.failure.unwrap_or(cufem::solver::newton::Failure::MaxIterations),
             c.newton.iterations,
-            res.join(" ")
+            res.join(" "),
+            c.newton.message.as_ref().map(|m| format!(": {m}")).unwrap_or_default()
         ));
     }
 }

@@ -100,10 +100,20 @@ impl Material {
         let s_trial = voigt::deviator(&trial);
         let norm_s = voigt::norm_stress(&s_trial);
         let q_trial = 1.5f64.sqrt() * norm_s;
-        let (sigma_y0, _) = hardening.eval(old.peeq);
+        let (sigma_y0, slope0) = hardening.eval(old.peeq);
+        let overstress = q_trial - sigma_y0;
         // Relative tolerance so that a point sitting on the yield surface after
         // a converged plastic step is not re-yielded by round-off.
-        if q_trial - sigma_y0 <= 1e-12 * sigma_y0 {
+        if overstress <= 1e-12 * sigma_y0 {
+            // On the surface (to round-off) the tangent is not unique: elastic
+            // for unloading, elastoplastic for continued loading. Taking the
+            // loading branch (the Δγ → 0 limit of the consistent tangent) gives
+            // the first Newton iteration of an increment a plastic predictor
+            // instead of an elastic one.
+            if overstress >= -1e-10 * sigma_y0 && norm_s > 0.0 {
+                let n: Voigt = s_trial.map(|v| v / norm_s);
+                return Response { tangent: self.elastoplastic_tangent(&n, 0.0, q_trial, slope0), ..elastic };
+            }
             return elastic;
         }
 
@@ -126,11 +136,16 @@ impl Material {
         }
         state.peeq += dgamma;
 
-        // Consistent tangent (de Souza Neto et al., eq. 7.120):
-        // D = 2G (1 − 3GΔγ/q) I_dev + 6G² (Δγ/q − 1/(3G + H)) N̄⊗N̄ + K 1⊗1
+        Response { stress, tangent: self.elastoplastic_tangent(&n, dgamma, q_trial, slope), state, plastic: true }
+    }
+
+    /// Consistent tangent of the radial return (de Souza Neto et al., eq. 7.120):
+    /// `D = 2G (1 − 3GΔγ/q) I_dev + 6G² (Δγ/q − 1/(3G + H)) N̄⊗N̄ + K 1⊗1`.
+    fn elastoplastic_tangent(&self, n: &Voigt, dgamma: f64, q_trial: f64, slope: f64) -> Matrix6 {
+        let g = self.shear_modulus();
         let k_bulk = self.bulk_modulus();
         let idev = voigt::deviatoric_projector();
-        let a = 2.0 * g * factor;
+        let a = 2.0 * g * (1.0 - 3.0 * g * dgamma / q_trial);
         let b = 6.0 * g * g * (dgamma / q_trial - 1.0 / (3.0 * g + slope));
         let mut tangent = [[0.0; 6]; 6];
         for i in 0..6 {
@@ -139,7 +154,7 @@ impl Material {
                 tangent[i][j] = a * idev[i][j] + b * n[i] * n[j] + vol;
             }
         }
-        Response { stress, tangent, state, plastic: true }
+        tangent
     }
 }
 

@@ -36,11 +36,21 @@ pub struct StepSettings {
     pub growth_factor: f64,
     /// An increment converging within this many iterations is "easy".
     pub easy_iterations: usize,
+    /// Largest number of converged increments before the analysis is stopped.
+    pub max_increments: usize,
 }
 
 impl Default for StepSettings {
     fn default() -> Self {
-        Self { initial: 0.1, max: 0.1, min: 1e-5, cutback_factor: 0.5, growth_factor: 1.5, easy_iterations: 4 }
+        Self {
+            initial: 0.1,
+            max: 0.1,
+            min: 1e-5,
+            cutback_factor: 0.5,
+            growth_factor: 1.5,
+            easy_iterations: 4,
+            max_increments: 1000,
+        }
     }
 }
 
@@ -80,13 +90,29 @@ pub trait Observer<P> {
     fn cut_back(&mut self, _cutback: &Cutback) {}
 }
 
+/// Why the load stepping stopped before λ = 1.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum StopReason {
+    /// A cutback would take Δλ below the minimum increment.
+    IncrementTooSmall,
+    /// The limit on the number of increments was reached.
+    TooManyIncrements,
+}
+
 /// The analysis could not reach λ = 1.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 #[error(
-    "increment {} did not converge at load factor {:.6} (Δλ = {:.3e} is below the minimum): {}",
-    .increment, .lambda, .dlambda, describe(.newton)
+    "increment {} did not converge at load factor {:.6} ({}): {}",
+    .increment, .lambda,
+    match .reason {
+        StopReason::IncrementTooSmall => format!("Δλ = {:.3e} would fall below the minimum increment", .dlambda),
+        StopReason::TooManyIncrements => "the maximum number of increments was reached".to_string(),
+    },
+    describe(.newton)
 )]
 pub struct SteppingError {
+    /// Why it stopped.
+    pub reason: StopReason,
     /// Index of the increment that failed.
     pub increment: usize,
     /// λ attempted.
@@ -116,12 +142,22 @@ pub fn run<P: Incremental>(
     steps: &StepSettings,
     newton_settings: &NewtonSettings,
     observer: &mut dyn Observer<P>,
-) -> Result<Vec<Increment>, SteppingError> {
+) -> Result<Vec<Increment>, Box<SteppingError>> {
     let mut history = Vec::new();
     let mut lambda = 0.0;
     let mut dlambda = steps.initial.min(steps.max);
     let mut cutbacks = 0;
     while lambda < 1.0 - 1e-12 {
+        if history.len() >= steps.max_increments {
+            return Err(Box::new(SteppingError {
+                reason: StopReason::TooManyIncrements,
+                increment: history.len() + 1,
+                lambda,
+                dlambda,
+                last_converged: lambda,
+                newton: Report::default(),
+            }));
+        }
         dlambda = dlambda.min(1.0 - lambda);
         let target = lambda + dlambda;
         problem.set_load_factor(target);
@@ -145,13 +181,14 @@ pub fn run<P: Incremental>(
             let next = dlambda * steps.cutback_factor;
             if next < steps.min {
                 problem.set_load_factor(lambda);
-                return Err(SteppingError {
+                return Err(Box::new(SteppingError {
+                    reason: StopReason::IncrementTooSmall,
                     increment: index,
                     lambda: target,
                     dlambda,
                     last_converged: lambda,
                     newton: report,
-                });
+                }));
             }
             dlambda = next;
         }

@@ -21,6 +21,7 @@ use crate::model::Model;
 use crate::solver::linear::LinearError;
 use crate::solver::newton::NonlinearProblem;
 use crate::solver::stepping::{self, Cutback, Increment, Observer, SteppingError};
+use crate::voigt::Voigt;
 
 /// Errors that stop an analysis before it can start (a non-convergence is
 /// not an error: it is reported in [`Solution::failure`]).
@@ -93,6 +94,8 @@ pub struct Solution {
     pub u: Vec<f64>,
     /// Committed Gauss-point states.
     pub states: Vec<PointState>,
+    /// Gauss-point stresses of the final (converged) state.
+    pub stresses: Vec<Voigt>,
     /// Geometry caches per body.
     pub geometry: Vec<BodyGeometry>,
     /// First Gauss point of each body.
@@ -194,6 +197,7 @@ pub fn run(model: &Model, progress: &mut dyn Progress) -> Result<Solution, Analy
         timings: structure.timings,
         u: structure.u,
         states: structure.committed,
+        stresses: structure.stress,
         geometry: structure.geometry,
         gp_offsets: structure.gp_offsets,
         history: recorder.history,
@@ -213,6 +217,7 @@ impl Solution {
             materials: &model.materials,
             u: &self.u,
             states: &self.states,
+            stresses: &self.stresses,
             gp_offsets: &self.gp_offsets,
         }
     }

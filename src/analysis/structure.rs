@@ -15,7 +15,7 @@
 use std::time::{Duration, Instant};
 
 use crate::assembly::{Assembler, Inputs, NO_EQ, Outputs};
-use crate::contact::{self, GapEval};
+use crate::contact;
 use crate::elements::BodyGeometry;
 use crate::materials::PointState;
 use crate::model::Model;
@@ -109,7 +109,6 @@ pub struct Structure<'m> {
     pub plastic_points: usize,
     /// Phase timings.
     pub timings: Timings,
-    gap_tolerance: f64,
 }
 
 impl<'m> Structure<'m> {
@@ -192,7 +191,6 @@ impl<'m> Structure<'m> {
             }));
             contact_ranges.push(start..contact.len());
         }
-        let size = mesh.bodies.iter().map(|b| b.size()).fold(0.0, f64::max);
         let nnz = assembler.pattern.nnz();
         let timings = Timings {
             setup: t0.elapsed(),
@@ -226,7 +224,6 @@ impl<'m> Structure<'m> {
             contact_ranges,
             plastic_points: 0,
             timings,
-            gap_tolerance: 1e-9 * size,
         })
     }
 
@@ -324,15 +321,13 @@ impl<'m> Structure<'m> {
             let offset = ind.displacement.map(|d| self.lambda * d);
             for c in &ind.nodes {
                 let n = c.node;
-                let x0 = model.mesh.coords(n);
-                let x = [x0[0] + self.u[3 * n], x0[1] + self.u[3 * n + 1], x0[2] + self.u[3 * n + 2]];
-                let eval = ind.surface.gap(x, offset, self.gap_tolerance);
-                let resp = eval.as_ref().and_then(|g| contact::rigid_response(g, c.penalty));
+                let g = contact::gap(c.gap0, &c.normal, [self.u[3 * n], self.u[3 * n + 1], self.u[3 * n + 2]], offset);
+                let resp = contact::penalty_response(g, &c.normal, c.penalty);
                 let point = &mut self.contact[k_ind];
                 let active = resp.is_some();
                 changes += usize::from(active != point.active);
                 point.active = active;
-                point.gap = eval.map_or(f64::INFINITY, |g: GapEval| g.gap);
+                point.gap = g;
                 point.force = [0.0; 3];
                 if let Some((force, k)) = resp {
                     point.force = force;
@@ -347,28 +342,25 @@ impl<'m> Structure<'m> {
         for pc in &model.contacts {
             for p in &pc.pairs {
                 let (s, m) = (p.slave, p.master);
-                let du: f64 = (0..3).map(|k| (self.u[3 * s + k] - self.u[3 * m + k]) * p.normal[k]).sum();
-                let gap = p.gap0 + du;
-                let active = gap <= 0.0;
+                let us = [self.u[3 * s], self.u[3 * s + 1], self.u[3 * s + 2]];
+                let um = [self.u[3 * m], self.u[3 * m + 1], self.u[3 * m + 2]];
+                let g = contact::gap(p.gap0, &p.normal, us, um);
+                let resp = contact::penalty_response(g, &p.normal, p.penalty);
                 let point = &mut self.contact[k_ind];
+                let active = resp.is_some();
                 changes += usize::from(active != point.active);
                 point.active = active;
-                point.gap = gap;
+                point.gap = g;
                 point.force = [0.0; 3];
-                if active {
-                    let f = p.normal.map(|v| -p.penalty * gap * v);
+                if let Some((f, k)) = resp {
                     point.force = f;
-                    let mut kb = [[0.0; 3]; 3];
                     for i in 0..3 {
                         self.f_contact[3 * s + i] += f[i];
                         self.f_contact[3 * m + i] -= f[i];
-                        for j in 0..3 {
-                            kb[i][j] = p.penalty * p.normal[i] * p.normal[j];
-                        }
                     }
-                    let neg = kb.map(|r| r.map(|v| -v));
-                    self.assembler.add_node_block(&mut self.tangent, s, s, &kb);
-                    self.assembler.add_node_block(&mut self.tangent, m, m, &kb);
+                    let neg = k.map(|r| r.map(|v| -v));
+                    self.assembler.add_node_block(&mut self.tangent, s, s, &k);
+                    self.assembler.add_node_block(&mut self.tangent, m, m, &k);
                     self.assembler.add_node_block(&mut self.tangent, s, m, &neg);
                 }
                 k_ind += 1;

@@ -8,19 +8,24 @@
 //! * the penalty stiffness `k = ε_N n nᵀ` (eq. 19) in the slave–slave and
 //!   master–master blocks, `−ε_N n nᵀ` in the coupling blocks.
 //!
-//! Two kinds of contact are supported:
+//! Every contact point is a node pair in the sense of eq. (13):
+//! `g_N = g_init + (u_s − u_m)·n` with the normal `n` and the initial gap
+//! `g_init` (eq. 14) fixed in the reference configuration (small
+//! displacements). Two kinds are supported:
 //!
 //! * **rigid indenters** — a flat rectangular punch or a cylinder (roller)
 //!   whose axis is parallel to x, y or z, moved by a prescribed displacement
-//!   scaled by the load factor. Every node of the body's contact surface is a
-//!   candidate; its gap is measured to the rigid surface along the surface
-//!   normal. For the cylinder the normal turns with the contact point, which
-//!   adds the geometric term `ε_N (g_N/d)(P − n nᵀ)` to the tangent
-//!   (`d` = distance to the axis, `P` = projector normal to the axis);
+//!   `λ d` that plays the role of `u_m`. Each node of the body's contact
+//!   surface that faces the indenter is paired once, at the start, with the
+//!   closest point of the rigid surface: `g_init` is its distance along the
+//!   surface normal there, `n` that normal (pointing to the body). Keeping
+//!   the pair and its normal fixed is the paper's node-to-node formulation;
+//!   it also keeps a node that slides a few micrometres along a roller from
+//!   losing contact through the `s²/2R` rise of the exact gap, which
+//!   otherwise releases every support node at once in three-point bending;
 //! * **node pairs** between two deformable bodies — slave nodes paired with
 //!   master nodes on matching surfaces (or listed), normal from the master
-//!   surface and initial gap from the geometry (eq. 14), both in the
-//!   reference configuration (small displacements).
+//!   surface and initial gap from the geometry.
 //!
 //! **Active set.** A point is active when `g_N ≤ 0` (touching counts, so a
 //! body that only rests on its supports is restrained from the first
@@ -71,58 +76,41 @@ pub enum RigidSurface {
     },
 }
 
-/// Gap of a point to a rigid surface.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct GapEval {
-    /// Signed normal gap (m), negative when penetrating.
-    pub gap: f64,
-    /// Unit normal of the rigid surface at the closest point, pointing to the body.
-    pub normal: [f64; 3],
-    /// For curved surfaces, `(g/d, axis)`: the geometric tangent factor.
-    pub curvature: Option<(f64, usize)>,
-}
-
 impl RigidSurface {
-    /// Gap of the current point `x` to the surface moved by `offset`, or
-    /// `None` where the point is beyond the surface's extent.
-    pub fn gap(&self, x: [f64; 3], offset: [f64; 3], tol: f64) -> Option<GapEval> {
+    /// Pairs a node with the rigid surface in the reference configuration:
+    /// the initial gap to the closest surface point (along its normal) and
+    /// that normal, pointing to the body; `None` where the node does not face
+    /// the surface (beyond a punch's bounds or a cylinder's length).
+    pub fn reference_gap(&self, x0: [f64; 3], tol: f64) -> Option<(f64, [f64; 3])> {
         match self {
             Self::Flat { axis, sign, position, bounds } => {
-                for k in 0..3 {
-                    if k == *axis {
-                        continue;
-                    }
-                    if let Some([a, b]) = bounds[k] {
-                        let v = x[k] - offset[k];
-                        if v < a - tol || v > b + tol {
-                            return None;
-                        }
+                for k in (0..3).filter(|k| k != axis) {
+                    if let Some([a, b]) = bounds[k]
+                        && (x0[k] < a - tol || x0[k] > b + tol)
+                    {
+                        return None;
                     }
                 }
                 let mut normal = [0.0; 3];
                 normal[*axis] = *sign;
-                Some(GapEval { gap: sign * (x[*axis] - (position + offset[*axis])), normal, curvature: None })
+                Some((sign * (x0[*axis] - position), normal))
             }
             Self::Cylinder { axis, center, radius, length } => {
-                let mut r = [x[0] - center[0] - offset[0], x[1] - center[1] - offset[1], x[2] - center[2] - offset[2]];
                 if let Some([a, b]) = length
-                    && (x[*axis] - offset[*axis] < a - tol || x[*axis] - offset[*axis] > b + tol)
+                    && (x0[*axis] < a - tol || x0[*axis] > b + tol)
                 {
                     return None;
                 }
+                let mut r = [x0[0] - center[0], x0[1] - center[1], x0[2] - center[2]];
                 r[*axis] = 0.0;
                 let d = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
-                if d == 0.0 {
-                    return None;
-                }
-                let gap = d - radius;
-                Some(GapEval { gap, normal: r.map(|v| v / d), curvature: Some((gap / d, *axis)) })
+                (d > 0.0).then(|| (d - radius, r.map(|v| v / d)))
             }
         }
     }
 }
 
-/// A candidate contact node with its tributary area and penalty.
+/// A body node paired with a rigid indenter.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ContactNode {
     /// Global node.
@@ -131,6 +119,10 @@ pub struct ContactNode {
     pub area: f64,
     /// Penalty stiffness ε_N (N/m).
     pub penalty: f64,
+    /// Initial gap to the rigid surface (m).
+    pub gap0: f64,
+    /// Rigid-surface normal at the paired point, pointing to the body.
+    pub normal: [f64; 3],
 }
 
 /// A rigid indenter and its candidate nodes.
@@ -262,29 +254,19 @@ pub fn match_pairs(
     (pairs, unmatched)
 }
 
-/// Force on the body node and the 3×3 tangent block of one rigid contact
-/// point (for the residual `f_int − f_ext − f_c`). `None` if inactive.
-pub fn rigid_response(g: &GapEval, penalty: f64) -> Option<([f64; 3], [[f64; 3]; 3])> {
-    if g.gap > 0.0 {
+/// Gap `g = g_init + (u_s − u_m)·n` of a pair (eq. 13).
+pub fn gap(gap0: f64, normal: &[f64; 3], u_slave: [f64; 3], u_master: [f64; 3]) -> f64 {
+    gap0 + (0..3).map(|k| (u_slave[k] - u_master[k]) * normal[k]).sum::<f64>()
+}
+
+/// Force on the slave node `−ε g n` (eq. 20) and the block `ε n nᵀ` (eq. 19)
+/// of an active pair, `None` if the pair is open (`g > 0`).
+pub fn penalty_response(g: f64, normal: &[f64; 3], penalty: f64) -> Option<([f64; 3], [[f64; 3]; 3])> {
+    if g > 0.0 {
         return None;
     }
-    let n = g.normal;
-    let force = n.map(|v| -penalty * g.gap * v);
-    let mut k = [[0.0; 3]; 3];
-    for i in 0..3 {
-        for j in 0..3 {
-            k[i][j] = penalty * n[i] * n[j];
-        }
-    }
-    if let Some((factor, axis)) = g.curvature {
-        // ε (g/d) (P − n nᵀ), P = I − a aᵀ
-        for i in 0..3 {
-            for j in 0..3 {
-                let p = if i == j && i != axis { 1.0 } else { 0.0 };
-                k[i][j] += penalty * factor * (p - n[i] * n[j]);
-            }
-        }
-    }
+    let force = normal.map(|v| -penalty * g * v);
+    let k = normal.map(|a| normal.map(|b| penalty * a * b));
     Some((force, k))
 }
 
@@ -292,45 +274,32 @@ pub fn rigid_response(g: &GapEval, penalty: f64) -> Option<([f64; 3], [[f64; 3];
 mod tests {
     use super::*;
 
-    /// Central-difference check of the rigid contact tangent, flat and curved.
     #[test]
-    fn rigid_tangent_matches_finite_differences() {
-        let surfaces = [
-            RigidSurface::Flat { axis: 2, sign: -1.0, position: 0.3, bounds: [Some([0.2, 0.3]), None, None] },
-            RigidSurface::Cylinder { axis: 0, center: [0.0, 0.125, 0.02], radius: 0.01, length: None },
-            RigidSurface::Cylinder { axis: 1, center: [0.01, 0.0, -0.01], radius: 0.01, length: None },
-        ];
-        let points = [[0.25, 0.05, 0.3002], [0.003, 0.1262, 0.0101], [0.0105, 0.7, -0.0002]];
-        let eps = 1e9;
-        for (s, x) in surfaces.iter().zip(points) {
-            let off = [0.0, 0.0, 0.0];
-            let g = s.gap(x, off, 1e-12).unwrap();
-            let (_, k) = rigid_response(&g, eps).expect("penetrating point");
-            let h = 1e-9;
-            for j in 0..3 {
-                let (mut xp, mut xm) = (x, x);
-                xp[j] += h;
-                xm[j] -= h;
-                let fp = rigid_response(&s.gap(xp, off, 1e-12).unwrap(), eps).unwrap().0;
-                let fm = rigid_response(&s.gap(xm, off, 1e-12).unwrap(), eps).unwrap().0;
-                for i in 0..3 {
-                    // tangent of −f_c
-                    let fd = -(fp[i] - fm[i]) / (2.0 * h);
-                    assert!((fd - k[i][j]).abs() < 1e-6 * eps, "{s:?} ({i},{j}): {fd} vs {}", k[i][j]);
-                }
-            }
-        }
+    fn reference_gap_to_a_roller_and_to_a_punch() {
+        // node 3 mm beside the line where a roller of radius 10 mm touches a bottom face
+        let roller = RigidSurface::Cylinder { axis: 0, center: [0.005, 0.025, -0.01], radius: 0.01, length: None };
+        let (g, n) = roller.reference_gap([0.002, 0.028, 0.0], 1e-12).unwrap();
+        let d = (0.003f64.powi(2) + 0.01f64.powi(2)).sqrt();
+        assert!((g - (d - 0.01)).abs() < 1e-15);
+        assert!((n[1] - 0.003 / d).abs() < 1e-15 && (n[2] - 0.01 / d).abs() < 1e-15 && n[0] == 0.0);
+        let punch = RigidSurface::Flat { axis: 2, sign: -1.0, position: 0.3, bounds: [Some([0.2, 0.3]), None, None] };
+        assert_eq!(punch.reference_gap([0.25, 0.05, 0.3], 1e-9), Some((0.0, [0.0, 0.0, -1.0])));
+        assert!(punch.reference_gap([0.31, 0.05, 0.3], 1e-9).is_none());
     }
 
     #[test]
-    fn flat_punch_gap_and_extent() {
-        let s = RigidSurface::Flat { axis: 2, sign: -1.0, position: 0.3, bounds: [Some([0.2, 0.3]), None, None] };
-        // punch moved down 1 mm: a top node at z = 0.3 penetrates by 1 mm
-        let g = s.gap([0.25, 0.05, 0.3], [0.0, 0.0, -1e-3], 1e-9).unwrap();
-        assert!((g.gap + 1e-3).abs() < 1e-15 && g.normal == [0.0, 0.0, -1.0]);
-        assert!(s.gap([0.31, 0.05, 0.3], [0.0; 3], 1e-9).is_none());
-        let (f, _) = rigid_response(&g, 1e8).unwrap();
-        // pushes the body down (−z) with ε|g|
-        assert!((f[2] + 1e5).abs() < 1e-6);
+    fn penalty_force_and_stiffness() {
+        // punch moved down 1 mm onto a node at the punch face: g = −1 mm
+        let n = [0.0, 0.0, -1.0];
+        let g = gap(0.0, &n, [0.0; 3], [0.0, 0.0, -1e-3]);
+        assert!((g + 1e-3).abs() < 1e-18);
+        let (f, k) = penalty_response(g, &n, 1e8).unwrap();
+        // pushes the body down with ε|g|, stiffness ε n nᵀ
+        assert!((f[2] + 1e5).abs() < 1e-6 && k[2][2] == 1e8 && k[0][2] == 0.0);
+        // the tangent is the derivative of −f with respect to u_s
+        let h = 1e-9;
+        let fp = penalty_response(gap(0.0, &n, [0.0, 0.0, h], [0.0, 0.0, -1e-3]), &n, 1e8).unwrap().0;
+        assert!((-(fp[2] - f[2]) / h - k[2][2]).abs() < 1e-6 * 1e8);
+        assert!(penalty_response(1e-9, &n, 1e8).is_none());
     }
 }

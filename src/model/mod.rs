@@ -858,11 +858,7 @@ fn indenter(
     let young = materials[body.material].young;
     let surface = SurfaceNodes::from_faces(&faces, young);
     let pen = penalty(key, d.penalty, d.penalty_factor)?;
-    let nodes = surface
-        .nodes
-        .iter()
-        .map(|e| contact::ContactNode { node: e.0, area: e.1, penalty: SurfaceNodes::penalty(e, pen) })
-        .collect();
+    let tol = 1e-9 * body.size();
     let range = |name: &str, r: Option<[f64; 2]>| -> Result<Option<[f64; 2]>, ModelError> {
         match r {
             Some([a, b]) if a.is_finite() && b.is_finite() && a <= b => Ok(Some([a, b])),
@@ -945,6 +941,28 @@ fn indenter(
             return Err(invalid(format!("{key}.shape"), format!("{other:?}"), "\"flat\" or \"cylinder\""));
         }
     };
+    // pair each surface node facing the indenter with its closest point
+    let nodes: Vec<contact::ContactNode> = surface
+        .nodes
+        .iter()
+        .filter_map(|e| {
+            let x0 = body.local_coords(e.0 - body.node_offset);
+            shape.reference_gap(x0, tol).map(|(gap0, normal)| contact::ContactNode {
+                node: e.0,
+                area: e.1,
+                penalty: SurfaceNodes::penalty(e, pen),
+                gap0,
+                normal,
+            })
+        })
+        .collect();
+    if nodes.is_empty() {
+        return Err(invalid(
+            format!("{key}.surface"),
+            describe_selection(&d.surface),
+            "a surface with nodes facing the indenter (inside a punch's bounds or a cylinder's length)",
+        ));
+    }
     Ok(Indenter {
         name: d.name.clone(),
         body: b,

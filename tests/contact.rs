@@ -1,0 +1,243 @@
+//! Verification of the node-to-node penalty contact (issue #4).
+
+use cufem::analysis::{self, Silent};
+use cufem::model::Model;
+
+fn two_blocks(penalty: &str) -> String {
+    format!(
+        r#"
+[[materials]]
+name = "steel"
+young_modulus = 200e9
+poisson_ratio = 0.3
+
+[[bodies]]
+name = "lower"
+material = "steel"
+section = {{ shape = "rectangle", element = "L9", x = {{ from = 0.0, to = 0.02, elements = 2 }}, z = {{ from = 0.0, to = 0.01, elements = 2 }} }}
+axis = {{ element = "B3", from = 0.0, to = 0.03, elements = 2 }}
+
+[[bodies]]
+name = "upper"
+material = "steel"
+section = {{ shape = "rectangle", element = "L9", x = {{ from = 0.0, to = 0.02, elements = 2 }}, z = {{ from = 0.01, to = 0.025, elements = 2 }} }}
+axis = {{ element = "B3", from = 0.0, to = 0.03, elements = 2 }}
+
+# rollers: the uniform compression state is exact for both blocks
+[[constraints]]
+name = "lower_bottom"
+body = "lower"
+where = {{ z = 0.0 }}
+fix = ["z"]
+[[constraints]]
+name = "lower_x"
+body = "lower"
+where = {{ x = 0.0 }}
+fix = ["x"]
+[[constraints]]
+name = "lower_y"
+body = "lower"
+where = {{ y = 0.0 }}
+fix = ["y"]
+[[constraints]]
+name = "upper_x"
+body = "upper"
+where = {{ x = 0.0 }}
+fix = ["x"]
+[[constraints]]
+name = "upper_y"
+body = "upper"
+where = {{ y = 0.0 }}
+fix = ["y"]
+
+[[loads]]
+name = "pressure"
+body = "upper"
+where = {{ z = 0.025 }}
+pressure = 50e6
+
+[[contacts]]
+name = "interface"
+master = {{ body = "lower", where = {{ z = 0.01 }} }}
+slave = {{ body = "upper", where = {{ z = 0.01 }} }}
+{penalty}
+"#
+    )
+}
+
+/// Contact patch test: two stacked blocks with matching meshes under a
+/// uniform pressure transmit a uniform contact pressure (exact solution:
+/// uniaxial compression σ_zz = −p in both blocks), and each node's
+/// penetration is its force divided by its penalty.
+#[test]
+fn contact_patch_test_transmits_uniform_pressure() {
+    let p = 50e6;
+    let model = Model::parse(&two_blocks("penalty = 1e16")).unwrap();
+    let sol = analysis::run(&model, &mut Silent).unwrap();
+    assert!(sol.failure.is_none());
+    let pairs = &model.contacts[0].pairs;
+    assert_eq!(pairs.len(), 5 * 5, "every interface node paired");
+    let mut worst: f64 = 0.0;
+    for (pair, point) in pairs.iter().zip(&sol.contact_points) {
+        assert!(point.active);
+        let pressure = point.force[2] / point.area;
+        worst = worst.max((pressure - p).abs() / p);
+        // penetration = force / ε_N (eq. 20)
+        assert!((-point.gap - point.force[2] / pair.penalty).abs() < 1e-12 * point.gap.abs());
+    }
+    eprintln!("largest relative deviation of the contact pressure: {worst:e}");
+    assert!(worst < 1e-8, "contact pressure deviates by {worst}");
+    // the stress inside both blocks is the uniaxial compression
+    let view = sol.fields(&model);
+    for point in [[0.013, 0.011, 0.004], [0.007, 0.02, 0.018]] {
+        let s = view.sample_point(None, point).unwrap();
+        assert!((s.stress[2] + p).abs() < 1e-8 * p, "{:?}", s.stress);
+        assert!(s.stress[0].abs() < 1e-8 * p && s.stress[1].abs() < 1e-8 * p);
+    }
+    // contact force balances the applied load and the support reaction
+    let applied = 50e6 * 0.02 * 0.03;
+    assert!((sol.contact[0].0[2] - applied).abs() < 1e-9 * applied);
+    assert!((sol.reactions[0][2] - applied).abs() < 1e-8 * applied);
+}
+
+fn punch(extra: &str) -> String {
+    format!(
+        r#"
+[[materials]]
+name = "al"
+young_modulus = 70e9
+poisson_ratio = 0.3
+
+[[bodies]]
+name = "block"
+material = "al"
+section = {{ shape = "rectangle", element = "L9", x = {{ lines = [0.0, 0.02, 0.035, 0.04, 0.045, 0.05, 0.055, 0.06, 0.065, 0.08, 0.1] }}, z = {{ segments = [{{ from = 0.0, to = 0.05, elements = 3, ratio = 0.4 }}] }} }}
+axis = {{ element = "B3", from = 0.0, to = 0.02, elements = 1 }}
+
+[[constraints]]
+name = "bottom"
+body = "block"
+where = {{ z = 0.0 }}
+fix = ["x", "y", "z"]
+{extra}
+"#
+    )
+}
+
+/// A rigid flat punch on an elastic block: as ε_N grows, the punch force
+/// tends to that of the same model with u_z prescribed on the punched nodes
+/// (in-plane components free), with an error proportional to 1/ε_N.
+#[test]
+fn flat_punch_force_converges_to_the_prescribed_displacement_solution() {
+    let delta = 1e-5;
+    let direct = Model::parse(&punch(&format!(
+        "[[constraints]]\nname = \"punched\"\nbody = \"block\"\nwhere = {{ z = 0.05, x = [0.04, 0.06] }}\ndisplacement = {{ z = {} }}\n",
+        -delta
+    )))
+    .unwrap();
+    let reference = analysis::run(&direct, &mut Silent).unwrap().reactions[1][2];
+    assert!(reference < 0.0);
+    let mut errors = Vec::new();
+    for alpha in [1e2, 1e3, 1e4] {
+        let model = Model::parse(&punch(&format!(
+            "[[indenters]]\nname = \"punch\"\nbody = \"block\"\nshape = \"flat\"\nsurface = {{ z = 0.05 }}\n\
+             normal = \"-z\"\nposition = 0.05\nx = [0.04, 0.06]\ndisplacement = [0.0, 0.0, {}]\npenalty_factor = {alpha}\n",
+            -delta
+        )))
+        .unwrap();
+        let sol = analysis::run(&model, &mut Silent).unwrap();
+        let force = sol.contact[0].0[2];
+        // global equilibrium: punch force balances the support reaction
+        // global equilibrium: punch force balances the support reaction. The
+        // imbalance is round-off amplified by the penalty (3e-12 at α = 1e2,
+        // 5e-9 at α = 1e4), so the check uses the issue's 1e-6.
+        assert!((force + sol.reactions[0][2]).abs() < 1e-6 * force.abs());
+        errors.push((force - reference).abs() / reference.abs());
+    }
+    eprintln!("relative force errors for α = 1e2, 1e3, 1e4: {errors:?}");
+    // error ∝ 1/ε_N: each tenfold penalty divides the error by about ten
+    for w in errors.windows(2) {
+        let ratio = w[0] / w[1];
+        assert!((ratio - 10.0).abs() < 1.5, "error ratio {ratio} (errors {errors:?})");
+    }
+    assert!(errors[2] < 1e-3);
+}
+
+/// Hertz line contact: a rigid cylinder (R = 50 mm, axis along y) pressed
+/// into an elastic slice held in plane strain (u_y = 0), half model with
+/// u_x = 0 on x = 0. Block 20 × 20 mm (about 20 contact half-widths);
+/// L9 elements of 0.1 mm (nodes every 0.05 mm ≈ a/20) over the contact
+/// zone. Hertz (Johnson, *Contact Mechanics*, §5.6, rigid cylinder):
+/// a = √(4 P' R / (π E*)), p₀ = 2 P' / (π a), E* = E/(1 − ν²), with P' the
+/// computed force per unit length. The issue asks for 5 %; this mesh gives
+/// 0.3 % on a and 0.15 % on p₀, asserted at 2 %.
+#[test]
+fn rigid_cylinder_on_a_plane_strain_block_matches_hertz() {
+    let text = r#"
+[solver]
+increments = 4
+[[materials]]
+name = "steel"
+young_modulus = 200e9
+poisson_ratio = 0.3
+[[bodies]]
+name = "block"
+material = "steel"
+section = { shape = "rectangle", element = "L9", x = { segments = [{ from = 0.0, to = 0.0015, elements = 15 }, { from = 0.0015, to = 0.02, elements = 10, ratio = 20.0 }] }, z = { segments = [{ from = -0.02, to = -0.0015, elements = 10, ratio = 0.05 }, { from = -0.0015, to = 0.0, elements = 15 }] } }
+axis = { element = "B2", from = 0.0, to = 0.001, elements = 1 }
+[[constraints]]
+name = "plane_strain"
+body = "block"
+where = {}
+fix = ["y"]
+[[constraints]]
+name = "symmetry"
+body = "block"
+where = { x = 0.0 }
+fix = ["x"]
+[[constraints]]
+name = "bottom"
+body = "block"
+where = { z = -0.02 }
+fix = ["z"]
+[[indenters]]
+name = "cylinder"
+body = "block"
+shape = "cylinder"
+surface = { z = 0.0, x = [0.0, 0.003] }
+axis = "y"
+center = [0.0, 0.0, 0.05]
+radius = 0.05
+displacement = [0.0, 0.0, -4e-5]
+"#;
+    let model = Model::parse(text).unwrap();
+    let sol = analysis::run(&model, &mut Silent).unwrap();
+    assert!(sol.failure.is_none());
+    let (e, nu, r, t) = (200e9, 0.3, 0.05, 0.001);
+    let e_star = e / (1.0 - nu * nu);
+    let force = sol.contact[0].0[2].abs();
+    let per_length = 2.0 * force / t; // half model
+    let a_hertz = (4.0 * per_length * r / (std::f64::consts::PI * e_star)).sqrt();
+    let p0_hertz = 2.0 * per_length / (std::f64::consts::PI * a_hertz);
+    // nodal pressures on the y = 0 line
+    let pressures: Vec<(f64, f64)> = sol
+        .contact_points
+        .iter()
+        .filter(|p| p.active && model.mesh.coords(p.node)[1] < 1e-12)
+        .map(|p| (model.mesh.coords(p.node)[0], p.force[2].abs().hypot(p.force[0]) / p.area))
+        .collect();
+    let p_max = pressures.iter().map(|p| p.1).fold(0.0, f64::max);
+    // fit p² = p₀² (1 − x²/a²) over the points above 0.3 p_max
+    let fit: Vec<(f64, f64)> = pressures.iter().filter(|p| p.1 > 0.3 * p_max).map(|&(x, p)| (x * x, p * p)).collect();
+    let n = fit.len() as f64;
+    let (mx, my) = (fit.iter().map(|f| f.0).sum::<f64>() / n, fit.iter().map(|f| f.1).sum::<f64>() / n);
+    let slope =
+        fit.iter().map(|f| (f.0 - mx) * (f.1 - my)).sum::<f64>() / fit.iter().map(|f| (f.0 - mx).powi(2)).sum::<f64>();
+    let intercept = my - slope * mx;
+    let a_fit = (-intercept / slope).sqrt();
+    eprintln!(
+        "P' = {per_length:.4e} N/m: a = {a_fit:.5e} (Hertz {a_hertz:.5e}), p0 = {p_max:.5e} (Hertz {p0_hertz:.5e})"
+    );
+    assert!((a_fit / a_hertz - 1.0).abs() < 0.02);
+    assert!((p_max / p0_hertz - 1.0).abs() < 0.02);
+}

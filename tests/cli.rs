@@ -103,7 +103,7 @@ fn cantilever_example_runs_and_its_outputs_read_back() {
             Attribute::Field { name, .. } => name.clone(),
         })
         .collect();
-    for n in ["displacement", "s_yy", "von_mises", "peeq", "contact_pressure"] {
+    for n in ["displacement", "s_yy", "von_mises", "peeq", "contact_pressure", "contact_gap", "contact_force"] {
         assert!(names.iter().any(|x| x == n), "missing array {n} in {names:?}");
     }
     // the largest downward displacement in the file is the tip deflection

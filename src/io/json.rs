@@ -30,6 +30,11 @@ pub struct ProbeSummary {
 pub struct ForceSummary {
     /// Name.
     pub name: String,
+    /// `"indenter"` or `"pair"` for contacts (a pair's force is internal:
+    /// the force on the slave body, balanced by the opposite one on the
+    /// master); absent for reactions.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kind: Option<&'static str>,
     /// Force on the body (N).
     pub force: [f64; 3],
     /// Largest penetration (contacts only, m).
@@ -111,12 +116,16 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         .constraints
         .iter()
         .zip(&solution.reactions)
-        .map(|(c, r)| ForceSummary { name: c.name.clone(), force: *r, max_penetration: None })
+        .map(|(c, r)| ForceSummary { name: c.name.clone(), kind: None, force: *r, max_penetration: None })
         .collect();
-    let names = model.indenters.iter().map(|i| i.name.clone()).chain(model.contacts.iter().map(|c| c.name.clone()));
+    let names = model
+        .indenters
+        .iter()
+        .map(|i| (i.name.clone(), "indenter"))
+        .chain(model.contacts.iter().map(|c| (c.name.clone(), "pair")));
     let contact = names
         .zip(&solution.contact)
-        .map(|(name, (f, pen))| ForceSummary { name, force: *f, max_penetration: Some(*pen) })
+        .map(|((name, kind), (f, pen))| ForceSummary { name, kind: Some(kind), force: *f, max_penetration: Some(*pen) })
         .collect();
     let t = &solution.timings;
     Summary {

@@ -7,6 +7,10 @@
 //! jumps; the displacement is continuous by construction. Stress and strain
 //! components are written as separate scalar arrays named as in the CSV
 //! files (`s_xx`, …) to avoid any ambiguity about tensor component order.
+//! Contact results per node: `contact_force` (force on the body, N),
+//! `contact_pressure` (|force| / tributary area, Pa) and `contact_gap`
+//! (smallest gap over the node's contact points, m; NaN for nodes that are
+//! in no contact).
 
 use std::path::Path;
 
@@ -34,7 +38,16 @@ pub fn write_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), 
     let mut displacement: Vec<f64> = Vec::new();
     let mut contact_force: Vec<f64> = Vec::new();
     let mut contact_pressure: Vec<f64> = Vec::new();
+    let mut contact_gap: Vec<f64> = Vec::new();
 
+    // smallest contact gap per node (NaN where a node is in no contact)
+    let mut node_gap: std::collections::HashMap<usize, f64> = Default::default();
+    for p in &solution.contact_points {
+        for n in std::iter::once(p.node).chain(p.master) {
+            let g = node_gap.entry(n).or_insert(f64::INFINITY);
+            *g = g.min(p.gap);
+        }
+    }
     // contact force and pressure per node (summed over contacts)
     let mut node_contact: std::collections::HashMap<usize, ([f64; 3], f64)> = Default::default();
     let add = |map: &mut std::collections::HashMap<usize, ([f64; 3], f64)>, n: usize, f: [f64; 3], area: f64| {
@@ -75,6 +88,7 @@ pub fn write_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), 
                     let (f, p) = node_contact.get(&node).copied().unwrap_or_default();
                     contact_force.extend(f);
                     contact_pressure.push(p);
+                    contact_gap.push(node_gap.get(&node).copied().unwrap_or(f64::NAN));
                 }
             }
             // (ξ, η, ζ) is left-handed in (x, y, z): list each bottom face
@@ -107,6 +121,7 @@ pub fn write_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), 
         Attribute::vectors("displacement").with_data(displacement),
         Attribute::vectors("contact_force").with_data(contact_force),
         Attribute::scalars("contact_pressure", 1).with_data(contact_pressure),
+        Attribute::scalars("contact_gap", 1).with_data(contact_gap),
     ];
     for (data, q) in scalar_data.into_iter().zip(&scalars) {
         point_data.push(Attribute::scalars(q.name(), 1).with_data(data));

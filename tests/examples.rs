@@ -1,0 +1,169 @@
+//! Every shipped paper example runs through the CLI (issue #4): it must
+//! converge, reproduce the paper's DOF count, satisfy global equilibrium,
+//! and give probe values comparable with the paper's Tables 2, 5, 6 and 8.
+//!
+//! Exact agreement with the paper is not expected: its Figs. 3, 7, 13 and 18
+//! (mesh grading, bending span and rollers, ring mesh, the cantilever
+//! layout) are missing from our copy, so every example assumes them (see
+//! each file's header), and the probes sit at stress concentrations (a punch
+//! edge, a roller line) where values depend on mesh and recovery. Each
+//! tolerance below states its reason.
+
+use std::path::Path;
+use std::process::Command;
+
+use serde_json::Value;
+
+/// Runs `examples/<name>.toml` and returns its summary.
+fn run(name: &str) -> Value {
+    let model = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(format!("{name}.toml"));
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("example_{name}"));
+    let run = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{name}: {}", String::from_utf8_lossy(&run.stderr));
+    let summary: Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["converged"], true, "{name}");
+    summary
+}
+
+fn vec3(v: &Value) -> [f64; 3] {
+    [0, 1, 2].map(|k| v[k].as_f64().unwrap())
+}
+
+/// Global equilibrium: support reactions, indenter forces and applied loads
+/// sum to zero (pair contacts are internal and cancel), to 1e-6 of the
+/// largest of them (the Newton tolerance is 1e-6 on the residual norm).
+fn assert_equilibrium(name: &str, s: &Value) {
+    let mut forces: Vec<[f64; 3]> = s["reactions"].as_array().unwrap().iter().map(|r| vec3(&r["force"])).collect();
+    forces
+        .extend(s["contact"].as_array().unwrap().iter().filter(|c| c["kind"] == "indenter").map(|c| vec3(&c["force"])));
+    forces.push(vec3(&s["applied_load"]));
+    let scale = forces.iter().flat_map(|f| f.iter()).fold(0.0f64, |a, b| a.max(b.abs()));
+    for k in 0..3 {
+        let sum: f64 = forces.iter().map(|f| f[k]).sum();
+        assert!(sum.abs() <= 1e-6 * scale, "{name}: force balance {k} off by {sum:e} (scale {scale:e})");
+    }
+}
+
+/// Probe value (`s_xx`… by Voigt index, or `peeq`).
+fn probe(s: &Value, name: &str, quantity: &str) -> f64 {
+    let p = s["probes"].as_array().unwrap().iter().find(|p| p["name"] == name).unwrap();
+    match quantity {
+        "s_yy" => p["stress"][1].as_f64().unwrap(),
+        "s_zz" => p["stress"][2].as_f64().unwrap(),
+        "peeq" => p["peeq"].as_f64().unwrap(),
+        q => panic!("no accessor for {q}"),
+    }
+}
+
+fn assert_within(name: &str, what: &str, value: f64, reference: f64, relative: f64) {
+    let err = (value - reference).abs() / reference.abs();
+    eprintln!("{name}: {what} = {value:.4e} (reference {reference:.4e}, {:.1} %)", 100.0 * err);
+    assert!(
+        err <= relative,
+        "{name}: {what} = {value:e} is {:.1} % from {reference:e} (allowed {:.0} %)",
+        100.0 * err,
+        100.0 * relative
+    );
+}
+
+/// §4.1, Tables 1–2. Geometry, load and material are all in the paper's
+/// text; only the mesh grading is assumed.
+#[test]
+fn block_indentation() {
+    let s = run("block_indentation");
+    assert_eq!(s["dof"], 5772);
+    assert_equilibrium("block", &s);
+    let szz = probe(&s, "edge", "s_zz");
+    // Prandtl's plane-strain punch pressure (2 + π) k, k = σ_y/√3 (Hill 1950):
+    // the plastic field under the punch bounds |σ_zz| near it, and the
+    // paper's CUF value −296.1 MPa is that pressure. 10 %: the edge is a
+    // singular point of the elastic field, and the flow is 3D (free faces at
+    // y = 0 and 0.1).
+    let prandtl = -(2.0 + std::f64::consts::PI) * 100e6 / 3f64.sqrt();
+    assert_within("block", "σ_zz at the punch edge vs Prandtl", szz, prandtl, 0.10);
+    assert_within("block", "σ_zz at the punch edge vs paper CUF", szz, -296.1e6, 0.10);
+    // The paper's own models give 0.0404–0.0658 at this point (ABAQUS coarse
+    // to fine, CUF): its mesh dependence. We ask for that range ±25 % of its top.
+    let peeq = probe(&s, "edge", "peeq");
+    eprintln!("block: peeq at the punch edge {peeq:.4e} (paper 0.0404–0.0658)");
+    assert!((0.0404 - 0.25 * 0.0658..=0.0658 * 1.25).contains(&peeq), "peeq {peeq}");
+}
+
+/// §4.2, Tables 3 and 5: compact bar. The span, roller radius and section
+/// mesh are assumed (Fig. 7 missing); the probe sits on the loading-roller
+/// line, where a node-to-node contact concentrates the load.
+fn compact(name: &str, dof: u64, paper_syy: f64, paper_peeq: f64) {
+    let s = run(name);
+    assert_eq!(s["dof"], dof);
+    assert_equilibrium(name, &s);
+    // σ_yy at the contact centre: bending-dominated; the paper's own models
+    // span −38.8 to −49.8 MPa (±12 % around their mean). 20 %.
+    assert_within(name, "σ_yy at the contact centre", probe(&s, "contact_centre", "s_yy"), paper_syy, 0.20);
+    // peeq there is a local contact quantity, set by the unknown load
+    // introduction (span: force ∝ span⁻³ at fixed deflection; roller size):
+    // we obtain about half the paper's value. Only the order of magnitude is
+    // checked (a factor 2.5), and the gap is reported in the README.
+    let peeq = probe(&s, "contact_centre", "peeq");
+    eprintln!("{name}: peeq {peeq:.3e} vs paper {paper_peeq:.3e}");
+    assert!(peeq > paper_peeq / 2.5 && peeq < paper_peeq * 2.5);
+}
+
+#[test]
+fn bending_compact_4l9() {
+    compact("bending_compact_4L9", 2325, -45.30e6, 1.89e-3);
+}
+
+#[test]
+fn bending_compact_16l9() {
+    compact("bending_compact_16L9", 7533, -49.75e6, 1.98e-3);
+}
+
+/// §4.2, Tables 4 and 6: thin-walled tube. As for the compact bar, plus the
+/// ring mesh (Fig. 13) is assumed. The probe is at mid-width of the top wall
+/// under the roller, where the wall bends locally (in our model it lifts off
+/// the roller by ~0.02 mm): the paper's models spread from −38.7 to −60.6 MPa
+/// (σ_yy) and 2.1e-3 to 8.4e-3 (peeq) at this point. 30 % on σ_yy, a
+/// factor 2 on peeq.
+fn tube(name: &str, dof: u64, paper_syy: f64, paper_peeq: f64) {
+    let s = run(name);
+    assert_eq!(s["dof"], dof);
+    assert_equilibrium(name, &s);
+    assert_within(name, "σ_yy at the contact centre", probe(&s, "contact_centre", "s_yy"), paper_syy, 0.30);
+    let peeq = probe(&s, "contact_centre", "peeq");
+    eprintln!("{name}: peeq {peeq:.3e} vs paper {paper_peeq:.3e}");
+    assert!(peeq > paper_peeq / 2.0 && peeq < paper_peeq * 2.0);
+}
+
+#[test]
+fn bending_tube_20l9() {
+    tube("bending_tube_20L9", 24120, -51.50e6, 7.76e-3);
+}
+
+#[test]
+fn bending_tube_28l9() {
+    tube("bending_tube_28L9", 33768, -60.60e6, 8.38e-3);
+}
+
+/// §4.3, Tables 7–8. The layout is our assumption (no source found for
+/// Choi & Chung's dimensions), so only what does not depend on it is
+/// checked against the paper: both probes compressive and beyond the yield
+/// stress, i.e. under the triaxial compression of a plastic indentation, as
+/// the paper's −367.6 and −418.8 MPa are.
+#[test]
+fn cantilevers_contact() {
+    let s = run("cantilevers_contact");
+    assert_eq!(s["dof"], 15066);
+    assert_equilibrium("cantilevers", &s);
+    for p in ["y_177.8mm", "y_228.6mm"] {
+        let syy = probe(&s, p, "s_yy");
+        eprintln!("cantilevers: σ_yy at {p} = {:.1} MPa", syy * 1e-6);
+        assert!(syy < -242.2e6, "{p}: σ_yy = {syy}");
+        assert!(probe(&s, p, "peeq") > 0.0);
+    }
+    // the pair contact carries the load from one beam to the other
+    let pair = s["contact"].as_array().unwrap().iter().find(|c| c["kind"] == "pair").unwrap();
+    assert!(vec3(&pair["force"])[2] > 0.0);
+}

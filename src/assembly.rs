@@ -21,7 +21,7 @@ use std::collections::BTreeSet;
 
 use rayon::prelude::*;
 
-use crate::elements::{self, BodyGeometry, PointData, Workspace};
+use crate::elements::{self, BodyGeometry, PointData, TangentMode, Workspace};
 use crate::materials::{Material, PointState};
 use crate::mesh::Mesh;
 use crate::solver::linear::{LinearError, LowerCsc, nested_dissection};
@@ -59,6 +59,9 @@ pub struct Assembler {
     scatter_offsets: Vec<usize>,
     scatter: Vec<u32>,
     colors: Vec<Vec<usize>>,
+    /// Elastic element matrices packed like `scatter` (empty until
+    /// [`Assembler::cache_elastic`]).
+    elastic_cache: Vec<f64>,
     /// Time spent building the node graph and the METIS ordering.
     pub ordering_time: std::time::Duration,
     /// Time spent building the pattern, scatter maps and colours.
@@ -196,6 +199,7 @@ impl Assembler {
             scatter_offsets,
             scatter,
             colors,
+            elastic_cache: Vec::new(),
             ordering_time,
             pattern_time: t0.elapsed(),
         })
@@ -223,12 +227,63 @@ impl Assembler {
         }
     }
 
+    /// Computes and keeps the elastic stiffness of every element, packed in
+    /// the order of its scatter map. Later assemblies reuse it for elements
+    /// whose Gauss points all return the elastic tangent, so an element only
+    /// recomputes its nuclei while it is (or is about to be) plastic.
+    pub fn cache_elastic(&mut self, input: &Inputs<'_>) {
+        let cache: Vec<Vec<f64>> = self
+            .elements
+            .par_iter()
+            .map_init(
+                || (Workspace::default(), Vec::new()),
+                |(ws, nodes), r| {
+                    let body = &input.mesh.bodies[r.body];
+                    let geom = &input.geometry[r.body];
+                    body.element_nodes(r.element, nodes);
+                    let ngp = geom.gp_per_element();
+                    let zero = vec![0.0; 3 * nodes.len()];
+                    let (mut trial, mut stress) = (vec![PointState::default(); ngp], vec![[0.0; 6]; ngp]);
+                    let committed = vec![PointState::default(); ngp];
+                    // zero displacement and a virgin state: every point is elastic
+                    elements::element_response(
+                        geom,
+                        r.element,
+                        body.section.n_elements(),
+                        &zero,
+                        &input.materials[body.material],
+                        PointData { committed: &committed, trial: &mut trial, stress: &mut stress },
+                        TangentMode::Always,
+                        ws,
+                    );
+                    let n = 3 * nodes.len();
+                    let mut packed = Vec::with_capacity(n * (n + 1) / 2);
+                    for p in 0..n {
+                        packed.extend_from_slice(&ws.tangent[p * n + p..(p + 1) * n]);
+                    }
+                    packed
+                },
+            )
+            .collect();
+        self.elastic_cache = cache.concat();
+    }
+
+    /// Drops the elastic cache: every element then recomputes its tangent.
+    pub fn clear_elastic_cache(&mut self) {
+        self.elastic_cache.clear();
+    }
+
     /// Element loop: internal forces (and tangent) of all elements from the
     /// displacements, with trial states and Gauss-point stresses. Returns
     /// the number of plastic Gauss points.
     pub fn assemble(&self, input: &Inputs<'_>, out: Outputs<'_>) -> usize {
         out.force.fill(0.0);
         let with_tangent = out.tangent.is_some();
+        let mode = match (with_tangent, self.elastic_cache.is_empty()) {
+            (false, _) => TangentMode::None,
+            (true, true) => TangentMode::Always,
+            (true, false) => TangentMode::UnlessElastic,
+        };
         let mut empty: [f64; 0] = [];
         let tangent = out.tangent.unwrap_or(&mut empty);
         tangent.fill(0.0);
@@ -266,9 +321,10 @@ impl Assembler {
                             ue,
                             &input.materials[body.material],
                             points,
-                            with_tangent,
+                            mode,
                             ws,
                         );
+                        let range = self.scatter_offsets[ge]..self.scatter_offsets[ge + 1];
                         // SAFETY: elements of one colour share no node, hence
                         // no DOF and no matrix entry.
                         unsafe {
@@ -277,18 +333,23 @@ impl Assembler {
                                     *force.get(3 * n + c) += ws.force[3 * a + c];
                                 }
                             }
-                            if with_tangent {
-                                let map = &self.scatter[self.scatter_offsets[ge]..self.scatter_offsets[ge + 1]];
+                            let map = &self.scatter[range.clone()];
+                            if stats.tangent_computed {
                                 let n = 3 * nodes.len();
                                 let mut k = 0;
                                 for p in 0..n {
-                                    let row = &ws.tangent[p * n..(p + 1) * n];
-                                    for &v in &row[p..] {
+                                    for &v in &ws.tangent[p * n + p..(p + 1) * n] {
                                         let pos = map[k];
                                         if pos != u32::MAX {
                                             *tangent.get(pos as usize) += v;
                                         }
                                         k += 1;
+                                    }
+                                }
+                            } else if with_tangent {
+                                for (&pos, &v) in map.iter().zip(&self.elastic_cache[range]) {
+                                    if pos != u32::MAX {
+                                        *tangent.get(pos as usize) += v;
                                     }
                                 }
                             }

@@ -106,3 +106,49 @@ fn an_increment_that_cannot_converge_is_cut_back_and_the_run_finishes() {
     let p_ref = ref_sol.reactions[2][2].abs() / py;
     assert!((p - p_ref).abs() < 0.01 * p_ref, "{p} vs {p_ref}");
 }
+
+/// The elastic element matrices cached at setup give the same global
+/// tangent as recomputing every element, in a state where some elements
+/// are plastic and others elastic.
+#[test]
+fn cached_elastic_matrices_give_the_same_tangent() {
+    use cufem::assembly::{Assembler, Inputs, Outputs};
+    use cufem::materials::PointState;
+    use cufem::solver::stepping::Incremental;
+
+    let model = Model::from_file(Path::new(EXAMPLE)).unwrap();
+    let mut s = analysis::Structure::new(&model).unwrap();
+    // advance to a partly plastic state
+    s.set_load_factor(0.5);
+    for _ in 0..6 {
+        cufem::solver::newton::NonlinearProblem::evaluate(&mut s).unwrap();
+        cufem::solver::newton::NonlinearProblem::correct(&mut s).unwrap();
+    }
+    let n_gp = s.committed.len();
+    let inputs = Inputs {
+        mesh: &model.mesh,
+        geometry: &s.geometry,
+        materials: &model.materials,
+        u: &s.u,
+        committed: &s.committed,
+        gp_offsets: &s.gp_offsets,
+    };
+    let assemble = |a: &Assembler| {
+        let mut force = vec![0.0; model.mesh.n_dofs()];
+        let mut tangent = vec![0.0; a.pattern.nnz()];
+        let (mut trial, mut stress) = (vec![PointState::default(); n_gp], vec![[0.0; 6]; n_gp]);
+        let plastic = a.assemble(
+            &inputs,
+            Outputs { force: &mut force, tangent: Some(&mut tangent), trial: &mut trial, stress: &mut stress },
+        );
+        (tangent, plastic)
+    };
+    let (cached, plastic) = assemble(&s.assembler);
+    assert!(plastic > 0, "the state should be partly plastic");
+    let mut uncached = s.assembler.clone();
+    uncached.clear_elastic_cache();
+    let (full, _) = assemble(&uncached);
+    let scale = full.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let diff = cached.iter().zip(&full).fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
+    assert!(diff <= 1e-12 * scale, "largest difference {diff:e} (scale {scale:e})");
+}

@@ -138,7 +138,7 @@ impl<'m> Structure<'m> {
         let fixed: Vec<bool> = value.iter().map(|v| *v == Some(0.0)).collect();
         let couplings: Vec<(usize, usize)> =
             model.contacts.iter().flat_map(|c| c.pairs.iter().map(|p| (p.slave, p.master))).collect();
-        let assembler = Assembler::new(mesh, &fixed, &couplings)?;
+        let mut assembler = Assembler::new(mesh, &fixed, &couplings)?;
         let n_eq = assembler.dofs.n_eq;
         let mut prescribed = Vec::new();
         let mut is_prescribed = vec![false; n_eq];
@@ -161,6 +161,16 @@ impl<'m> Structure<'m> {
                 }
             }
         }
+        let states = vec![PointState::default(); n_gp];
+        let zero = vec![0.0; n_dofs];
+        assembler.cache_elastic(&Inputs {
+            mesh,
+            geometry: &geometry,
+            materials: &model.materials,
+            u: &zero,
+            committed: &states,
+            gp_offsets: &gp_offsets,
+        });
         let t_sym = Instant::now();
         let solver = Cholesky::analyze(&assembler.pattern)?;
         let symbolic = t_sym.elapsed();

@@ -32,7 +32,7 @@ mod geometry;
 pub use geometry::{AxisGeometry, BodyGeometry, SectionGeometry, SectionPoint, section_point};
 
 use crate::materials::{Material, PointState};
-use crate::voigt::Voigt;
+use crate::voigt::{Matrix6, Voigt};
 
 /// Errors of the element layer.
 #[derive(Debug, thiserror::Error)]
@@ -57,6 +57,7 @@ pub enum ElementError {
 pub struct Workspace {
     grads: Vec<[f64; 3]>,
     cb: Vec<[f64; 18]>,
+    tangents: Vec<Matrix6>,
     /// Element internal force, 3 entries per node (node-major).
     pub force: Vec<f64>,
     /// Element tangent, row-major `n × n` with `n = 3 · nodes`; only the
@@ -65,13 +66,26 @@ pub struct Workspace {
 }
 
 impl Workspace {
-    /// Sizes the buffers for elements with `nodes` nodes.
-    pub fn resize(&mut self, nodes: usize) {
+    /// Sizes the buffers for elements with `nodes` nodes and `points` Gauss points.
+    pub fn resize(&mut self, nodes: usize, points: usize) {
         self.grads.resize(nodes, [0.0; 3]);
         self.cb.resize(nodes, [0.0; 18]);
+        self.tangents.resize(points, [[0.0; 6]; 6]);
         self.force.resize(3 * nodes, 0.0);
         self.tangent.resize(9 * nodes * nodes, 0.0);
     }
+}
+
+/// Which tangent the kernel must compute.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum TangentMode {
+    /// Internal force only.
+    None,
+    /// Always compute the tangent.
+    Always,
+    /// Compute it unless every Gauss point returned the elastic tangent (the
+    /// caller then uses its cached elastic element matrix).
+    UnlessElastic,
 }
 
 /// What the kernel hands back besides the buffers.
@@ -79,6 +93,8 @@ impl Workspace {
 pub struct ElementStats {
     /// Gauss points whose update was plastic.
     pub plastic_points: usize,
+    /// True if `Workspace::tangent` was computed.
+    pub tangent_computed: bool,
 }
 
 /// Gauss-point data of one element that the kernel reads and writes.
@@ -91,9 +107,31 @@ pub struct PointData<'a> {
     pub stress: &'a mut [Voigt],
 }
 
-/// Computes the internal force (and, if `with_tangent`, the tangent) of body
+/// Gradients `∇(F_τ N_i)` of the 3D shape functions at Gauss point
+/// `(gb, gs)` of element `(es, eb)`, local node `a = i · n_sec + τ`.
+fn gradients(geom: &BodyGeometry, es: usize, eb: usize, gb: usize, gs: usize, grads: &mut [[f64; 3]]) -> f64 {
+    let (sg, ag) = (&geom.section, &geom.axis);
+    let (ns, nb) = (sg.n_fun, ag.n_fun);
+    let ab = (eb * ag.n_gp + gb) * nb;
+    let (n, ny) = (&ag.n[ab..ab + nb], &ag.ny[ab..ab + nb]);
+    let sb = (es * sg.n_gp + gs) * ns;
+    let (f, fx, fz) = (&sg.f[sb..sb + ns], &sg.fx[sb..sb + ns], &sg.fz[sb..sb + ns]);
+    for i in 0..nb {
+        for t in 0..ns {
+            grads[i * ns + t] = [fx[t] * n[i], f[t] * ny[i], fz[t] * n[i]];
+        }
+    }
+    ag.weight[eb * ag.n_gp + gb] * sg.weight[es * sg.n_gp + gs]
+}
+
+/// Computes the internal force (and the tangent, per `mode`) of body
 /// element `e` from its nodal displacements `u` (3 per node, node-major in
 /// the order of [`crate::mesh::Body::element_nodes`]).
+///
+/// Two passes over the Gauss points: the first evaluates strains, the
+/// material update and the internal force; the second — only when a
+/// tangent is needed — accumulates the fundamental nuclei with the tangents
+/// kept from the first.
 #[allow(clippy::too_many_arguments)] // the kernel's inputs are the terms of eq. (11); bundling them adds nothing
 pub fn element_response(
     geom: &BodyGeometry,
@@ -102,51 +140,38 @@ pub fn element_response(
     u: &[f64],
     material: &Material,
     points: PointData<'_>,
-    with_tangent: bool,
+    mode: TangentMode,
     ws: &mut Workspace,
 ) -> ElementStats {
     let (es, eb) = (e % n_section_elements, e / n_section_elements);
     let (sg, ag) = (&geom.section, &geom.axis);
-    let (ns, nb) = (sg.n_fun, ag.n_fun);
-    let nodes = ns * nb;
-    ws.resize(nodes);
+    let nodes = sg.n_fun * ag.n_fun;
+    let n_points = sg.n_gp * ag.n_gp;
+    ws.resize(nodes, n_points);
     ws.force.fill(0.0);
-    if with_tangent {
-        ws.tangent.fill(0.0);
-    }
     let ndof = 3 * nodes;
     let mut stats = ElementStats::default();
+    let mut all_elastic = true;
 
     for gb in 0..ag.n_gp {
-        let ab = (eb * ag.n_gp + gb) * nb;
-        let (n, ny) = (&ag.n[ab..ab + nb], &ag.ny[ab..ab + nb]);
-        let wb = ag.weight[eb * ag.n_gp + gb];
         for gs in 0..sg.n_gp {
-            let sb = (es * sg.n_gp + gs) * ns;
-            let (f, fx, fz) = (&sg.f[sb..sb + ns], &sg.fx[sb..sb + ns], &sg.fz[sb..sb + ns]);
-            let w = wb * sg.weight[es * sg.n_gp + gs];
-
-            // 3D gradients and strain
+            let w = gradients(geom, es, eb, gb, gs, &mut ws.grads[..nodes]);
             let mut eps = [0.0; 6];
-            for i in 0..nb {
-                for t in 0..ns {
-                    let a = i * ns + t;
-                    let g = [fx[t] * n[i], f[t] * ny[i], fz[t] * n[i]];
-                    ws.grads[a] = g;
-                    let (ux, uy, uz) = (u[3 * a], u[3 * a + 1], u[3 * a + 2]);
-                    eps[0] += g[0] * ux;
-                    eps[1] += g[1] * uy;
-                    eps[2] += g[2] * uz;
-                    eps[3] += g[1] * ux + g[0] * uy;
-                    eps[4] += g[2] * ux + g[0] * uz;
-                    eps[5] += g[2] * uy + g[1] * uz;
-                }
+            for (a, g) in ws.grads[..nodes].iter().enumerate() {
+                let (ux, uy, uz) = (u[3 * a], u[3 * a + 1], u[3 * a + 2]);
+                eps[0] += g[0] * ux;
+                eps[1] += g[1] * uy;
+                eps[2] += g[2] * uz;
+                eps[3] += g[1] * ux + g[0] * uy;
+                eps[4] += g[2] * ux + g[0] * uz;
+                eps[5] += g[2] * uy + g[1] * uz;
             }
-
             let q = gb * sg.n_gp + gs;
             let r = material.update(&eps, &points.committed[q]);
             points.trial[q] = r.state;
             points.stress[q] = r.stress;
+            ws.tangents[q] = r.tangent;
+            all_elastic &= r.elastic_tangent;
             stats.plastic_points += usize::from(r.plastic);
 
             // f_a += w B_aᵀ σ
@@ -156,12 +181,23 @@ pub fn element_response(
                 ws.force[3 * a + 1] += w * (g[1] * s[1] + g[0] * s[3] + g[2] * s[5]);
                 ws.force[3 * a + 2] += w * (g[2] * s[2] + g[0] * s[4] + g[1] * s[5]);
             }
-            if !with_tangent {
-                continue;
-            }
+        }
+    }
 
+    stats.tangent_computed = match mode {
+        TangentMode::None => false,
+        TangentMode::Always => true,
+        TangentMode::UnlessElastic => !all_elastic,
+    };
+    if !stats.tangent_computed {
+        return stats;
+    }
+    ws.tangent.fill(0.0);
+    for gb in 0..ag.n_gp {
+        for gs in 0..sg.n_gp {
+            let w = gradients(geom, es, eb, gb, gs, &mut ws.grads[..nodes]);
             // CB_b = w C B_b (6×3, stored column-major: [col x | col y | col z])
-            let c = &r.tangent;
+            let c = &ws.tangents[gb * sg.n_gp + gs];
             for (b, g) in ws.grads[..nodes].iter().enumerate() {
                 let cb = &mut ws.cb[b];
                 for row in 0..6 {
@@ -224,7 +260,7 @@ mod tests {
             u,
             mat,
             PointData { committed, trial: &mut trial, stress: &mut stress },
-            true,
+            TangentMode::Always,
             &mut ws,
         );
         (ws.force.clone(), ws.tangent.clone())

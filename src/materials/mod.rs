@@ -41,6 +41,9 @@ pub struct Response {
     pub state: PointState,
     /// True if the step was plastic (the return map was active).
     pub plastic: bool,
+    /// True if `tangent` is the elastic stiffness (lets the element reuse
+    /// its cached elastic matrix).
+    pub elastic_tangent: bool,
 }
 
 /// An isotropic material: linear elastic, optionally with J2 plasticity.
@@ -91,7 +94,8 @@ impl Material {
             *e -= p;
         }
         let trial = voigt::mat_vec(&self.elastic, &elastic_strain);
-        let elastic = Response { stress: trial, tangent: self.elastic, state: *old, plastic: false };
+        let elastic =
+            Response { stress: trial, tangent: self.elastic, state: *old, plastic: false, elastic_tangent: true };
         let Some(hardening) = &self.hardening else {
             return elastic;
         };
@@ -112,7 +116,11 @@ impl Material {
             // instead of an elastic one.
             if overstress >= -1e-10 * sigma_y0 && norm_s > 0.0 {
                 let n: Voigt = s_trial.map(|v| v / norm_s);
-                return Response { tangent: self.elastoplastic_tangent(&n, 0.0, q_trial, slope0), ..elastic };
+                return Response {
+                    tangent: self.elastoplastic_tangent(&n, 0.0, q_trial, slope0),
+                    elastic_tangent: false,
+                    ..elastic
+                };
             }
             return elastic;
         }
@@ -136,7 +144,13 @@ impl Material {
         }
         state.peeq += dgamma;
 
-        Response { stress, tangent: self.elastoplastic_tangent(&n, dgamma, q_trial, slope), state, plastic: true }
+        Response {
+            stress,
+            tangent: self.elastoplastic_tangent(&n, dgamma, q_trial, slope),
+            state,
+            plastic: true,
+            elastic_tangent: false,
+        }
     }
 
     /// Consistent tangent of the radial return (de Souza Neto et al., eq. 7.120):

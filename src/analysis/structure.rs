@@ -35,6 +35,8 @@ pub struct Timings {
     pub pattern: Duration,
     /// Part of `setup`: symbolic Cholesky analysis.
     pub symbolic: Duration,
+    /// Part of `setup`: elastic element matrices computed once for reuse.
+    pub element_cache: Duration,
     /// Element loop with material updates and scatter.
     pub assembly: Duration,
     /// Contact search and penalty terms.
@@ -161,6 +163,7 @@ impl<'m> Structure<'m> {
                 }
             }
         }
+        let t_cache = Instant::now();
         let states = vec![PointState::default(); n_gp];
         let zero = vec![0.0; n_dofs];
         assembler.cache_elastic(&Inputs {
@@ -171,6 +174,7 @@ impl<'m> Structure<'m> {
             committed: &states,
             gp_offsets: &gp_offsets,
         });
+        let element_cache = t_cache.elapsed();
         let t_sym = Instant::now();
         let solver = Cholesky::analyze(&assembler.pattern)?;
         let symbolic = t_sym.elapsed();
@@ -207,6 +211,7 @@ impl<'m> Structure<'m> {
             ordering: assembler.ordering_time,
             pattern: assembler.pattern_time,
             symbolic,
+            element_cache,
             ..Default::default()
         };
         Ok(Self {

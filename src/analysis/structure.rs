@@ -331,58 +331,67 @@ impl<'m> Structure<'m> {
         self.f_contact.fill(0.0);
         let model = self.model;
         let mut changes = 0;
-        let mut k_ind = 0;
+        let mut k = 0;
         for ind in &model.indenters {
+            // the rigid surface's displacement plays the master's part
             let offset = ind.displacement.map(|d| self.lambda * d);
             for c in &ind.nodes {
-                let n = c.node;
-                let g = contact::gap(c.gap0, &c.normal, [self.u[3 * n], self.u[3 * n + 1], self.u[3 * n + 2]], offset);
-                let resp = contact::penalty_response(g, &c.normal, c.penalty);
-                let point = &mut self.contact[k_ind];
-                let active = resp.is_some();
-                changes += usize::from(active != point.active);
-                point.active = active;
-                point.gap = g;
-                point.force = [0.0; 3];
-                if let Some((force, k)) = resp {
-                    point.force = force;
-                    for i in 0..3 {
-                        self.f_contact[3 * n + i] += force[i];
-                    }
-                    self.assembler.add_node_block(&mut self.tangent, n, n, &k);
-                }
-                k_ind += 1;
+                changes += usize::from(self.contact_pair(k, c.node, None, offset, c.gap0, &c.normal, c.penalty));
+                k += 1;
             }
         }
         for pc in &model.contacts {
             for p in &pc.pairs {
-                let (s, m) = (p.slave, p.master);
-                let us = [self.u[3 * s], self.u[3 * s + 1], self.u[3 * s + 2]];
-                let um = [self.u[3 * m], self.u[3 * m + 1], self.u[3 * m + 2]];
-                let g = contact::gap(p.gap0, &p.normal, us, um);
-                let resp = contact::penalty_response(g, &p.normal, p.penalty);
-                let point = &mut self.contact[k_ind];
-                let active = resp.is_some();
-                changes += usize::from(active != point.active);
-                point.active = active;
-                point.gap = g;
-                point.force = [0.0; 3];
-                if let Some((f, k)) = resp {
-                    point.force = f;
-                    for i in 0..3 {
-                        self.f_contact[3 * s + i] += f[i];
-                        self.f_contact[3 * m + i] -= f[i];
-                    }
-                    let neg = k.map(|r| r.map(|v| -v));
-                    self.assembler.add_node_block(&mut self.tangent, s, s, &k);
-                    self.assembler.add_node_block(&mut self.tangent, m, m, &k);
-                    self.assembler.add_node_block(&mut self.tangent, s, m, &neg);
-                }
-                k_ind += 1;
+                let um = [0, 1, 2].map(|i| self.u[3 * p.master + i]);
+                changes += usize::from(self.contact_pair(k, p.slave, Some(p.master), um, p.gap0, &p.normal, p.penalty));
+                k += 1;
             }
         }
         self.timings.contact += t.elapsed();
         changes
+    }
+}
+
+impl Structure<'_> {
+    /// One node pair of eq. (13): gap from the slave displacement and the
+    /// master's (`u_master`: a body node's, or a rigid indenter's), force
+    /// `−ε g n` on the slave and its opposite on the master node if any,
+    /// blocks `±ε n nᵀ` into the tangent. Records the point's state in
+    /// `self.contact[k]` and returns true if its active status changed.
+    #[allow(clippy::too_many_arguments)] // the terms of eq. (13) and (19)–(20)
+    fn contact_pair(
+        &mut self,
+        k: usize,
+        slave: usize,
+        master: Option<usize>,
+        u_master: [f64; 3],
+        gap0: f64,
+        normal: &[f64; 3],
+        penalty: f64,
+    ) -> bool {
+        let us = [0, 1, 2].map(|i| self.u[3 * slave + i]);
+        let g = contact::gap(gap0, normal, us, u_master);
+        let response = contact::penalty_response(g, normal, penalty);
+        let point = &mut self.contact[k];
+        let changed = response.is_some() != point.active;
+        point.active = response.is_some();
+        point.gap = g;
+        point.force = [0.0; 3];
+        if let Some((f, kb)) = response {
+            point.force = f;
+            for i in 0..3 {
+                self.f_contact[3 * slave + i] += f[i];
+            }
+            self.assembler.add_node_block(&mut self.tangent, slave, slave, &kb);
+            if let Some(m) = master {
+                for i in 0..3 {
+                    self.f_contact[3 * m + i] -= f[i];
+                }
+                self.assembler.add_node_block(&mut self.tangent, m, m, &kb);
+                self.assembler.add_node_block(&mut self.tangent, slave, m, &kb.map(|r| r.map(|v| -v)));
+            }
+        }
+        changed
     }
 }
 

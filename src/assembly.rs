@@ -96,19 +96,26 @@ pub struct Outputs<'a> {
     pub stress: &'a mut [Voigt],
 }
 
+thread_local! {
+    /// The element kernel's buffers, one set per worker thread, kept across
+    /// assemblies (no allocation in the element loop once warmed up).
+    static WORKSPACE: std::cell::RefCell<Workspace> = std::cell::RefCell::new(Workspace::default());
+}
+
 /// A slice shared between threads that write to disjoint indices.
-struct Disjoint<T> {
+struct Disjoint<'a, T> {
     ptr: *mut T,
     len: usize,
+    _borrow: std::marker::PhantomData<&'a mut [T]>,
 }
 
 // SAFETY: `Disjoint` hands out access only through the unsafe methods below,
 // whose callers guarantee that concurrent accesses touch disjoint indices.
-unsafe impl<T: Send> Sync for Disjoint<T> {}
+unsafe impl<T: Send> Sync for Disjoint<'_, T> {}
 
-impl<T> Disjoint<T> {
-    fn new(s: &mut [T]) -> Self {
-        Self { ptr: s.as_mut_ptr(), len: s.len() }
+impl<'a, T> Disjoint<'a, T> {
+    fn new(s: &'a mut [T]) -> Self {
+        Self { ptr: s.as_mut_ptr(), len: s.len(), _borrow: std::marker::PhantomData }
     }
 
     /// # Safety
@@ -155,6 +162,12 @@ impl Assembler {
         let ordering_time = t0.elapsed();
         let t0 = std::time::Instant::now();
         let pattern = lower_pattern(&dofs, &adjacency);
+        if pattern.nnz() >= u32::MAX as usize {
+            return Err(LinearError::Symbolic(format!(
+                "{} stored matrix entries exceed the scatter-map index range (u32)",
+                pattern.nnz()
+            )));
+        }
 
         let elements: Vec<ElementRef> = mesh
             .bodies
@@ -203,11 +216,6 @@ impl Assembler {
             ordering_time,
             pattern_time: t0.elapsed(),
         })
-    }
-
-    /// Number of colours (parallel phases).
-    pub fn n_colors(&self) -> usize {
-        self.colors.len()
     }
 
     /// Adds the 3×3 block `k` coupling nodes `a` (rows) and `b` (columns) of
@@ -296,8 +304,8 @@ impl Assembler {
             plastic += colour
                 .par_iter()
                 .map_init(
-                    || (Workspace::default(), Vec::new(), Vec::new()),
-                    |(ws, nodes, ue), &ge| {
+                    || (Vec::new(), Vec::new()),
+                    |(nodes, ue), &ge| {
                         let r = self.elements[ge];
                         let body = &input.mesh.bodies[r.body];
                         let geom = &input.geometry[r.body];
@@ -314,47 +322,49 @@ impl Assembler {
                                 stress: stress.range(g0, ngp),
                             }
                         };
-                        let stats = elements::element_response(
-                            geom,
-                            r.element,
-                            body.section.n_elements(),
-                            ue,
-                            &input.materials[body.material],
-                            points,
-                            mode,
-                            ws,
-                        );
-                        let range = self.scatter_offsets[ge]..self.scatter_offsets[ge + 1];
-                        // SAFETY: elements of one colour share no node, hence
-                        // no DOF and no matrix entry.
-                        unsafe {
-                            for (a, &n) in nodes.iter().enumerate() {
-                                for c in 0..3 {
-                                    *force.get(3 * n + c) += ws.force[3 * a + c];
+                        WORKSPACE.with_borrow_mut(|ws| {
+                            let stats = elements::element_response(
+                                geom,
+                                r.element,
+                                body.section.n_elements(),
+                                ue,
+                                &input.materials[body.material],
+                                points,
+                                mode,
+                                ws,
+                            );
+                            let range = self.scatter_offsets[ge]..self.scatter_offsets[ge + 1];
+                            // SAFETY: elements of one colour share no node, hence
+                            // no DOF and no matrix entry.
+                            unsafe {
+                                for (a, &n) in nodes.iter().enumerate() {
+                                    for c in 0..3 {
+                                        *force.get(3 * n + c) += ws.force[3 * a + c];
+                                    }
                                 }
-                            }
-                            let map = &self.scatter[range.clone()];
-                            if stats.tangent_computed {
-                                let n = 3 * nodes.len();
-                                let mut k = 0;
-                                for p in 0..n {
-                                    for &v in &ws.tangent[p * n + p..(p + 1) * n] {
-                                        let pos = map[k];
+                                let map = &self.scatter[range.clone()];
+                                if stats.tangent_computed {
+                                    let n = 3 * nodes.len();
+                                    let mut k = 0;
+                                    for p in 0..n {
+                                        for &v in &ws.tangent[p * n + p..(p + 1) * n] {
+                                            let pos = map[k];
+                                            if pos != u32::MAX {
+                                                *tangent.get(pos as usize) += v;
+                                            }
+                                            k += 1;
+                                        }
+                                    }
+                                } else if with_tangent {
+                                    for (&pos, &v) in map.iter().zip(&self.elastic_cache[range]) {
                                         if pos != u32::MAX {
                                             *tangent.get(pos as usize) += v;
                                         }
-                                        k += 1;
-                                    }
-                                }
-                            } else if with_tangent {
-                                for (&pos, &v) in map.iter().zip(&self.elastic_cache[range]) {
-                                    if pos != u32::MAX {
-                                        *tangent.get(pos as usize) += v;
                                     }
                                 }
                             }
-                        }
-                        stats.plastic_points
+                            stats.plastic_points
+                        })
                     },
                 )
                 .sum::<usize>();

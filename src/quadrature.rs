@@ -2,8 +2,10 @@
 //!
 //! An `n`-point rule integrates polynomials of degree `2n - 1` exactly. The
 //! CUF element of order `p` along a direction uses `p + 1` points there
-//! ("full" integration: the stiffness integrand `∂N ∂N` has degree `2p` in
-//! that direction for straight-sided elements and is integrated exactly).
+//! ("full" integration: for parallelogram sections and a straight axis the
+//! stiffness integrand `∂N ∂N` has degree at most `2p` per direction and is
+//! integrated exactly; for general quadrilaterals it is rational and the rule
+//! is the usual approximation).
 //!
 //! Points and weights are computed by Newton's method on the Legendre
 //! polynomial `P_n` (Press et al., *Numerical Recipes*, §4.6), accurate to

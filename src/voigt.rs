@@ -26,8 +26,18 @@ pub type Voigt = [f64; 6];
 /// A 6×6 material matrix acting on engineering-strain Voigt vectors.
 pub type Matrix6 = [[f64; 6]; 6];
 
-/// The second-order identity in Voigt form.
-pub const IDENTITY: Voigt = [1.0, 1.0, 1.0, 0.0, 0.0, 0.0];
+/// Adds the strain `B_a u_a` of one node (shape-function gradient `g`,
+/// nodal displacement `u`) to `eps`: the operator `D` of the paper's eq. (4)
+/// in this module's order and shear convention.
+#[inline]
+pub fn add_nodal_strain(eps: &mut Voigt, g: [f64; 3], u: [f64; 3]) {
+    eps[0] += g[0] * u[0];
+    eps[1] += g[1] * u[1];
+    eps[2] += g[2] * u[2];
+    eps[3] += g[1] * u[0] + g[0] * u[1];
+    eps[4] += g[2] * u[0] + g[0] * u[2];
+    eps[5] += g[2] * u[1] + g[1] * u[2];
+}
 
 /// Trace of a stress or strain tensor (shear convention does not matter).
 #[inline]

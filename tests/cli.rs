@@ -157,7 +157,10 @@ fn bad_input_is_reported_with_key_value_and_allowed_values() {
             base.replace("young_modulus = 70e9", "young_modulus = 70e9\ndensity = 2700"),
             vec!["density", "unknown field"],
         ),
-        (base.replace("elements = 5", "elements = 0"), vec!["bodies[0].axis.elements = 0", "≥ 1"]),
+        (
+            base.replace("elements = 5", "elements = 0"),
+            vec!["bodies[0].axis.elements = 0", "an integer from 1 to 100000"],
+        ),
         (
             base.replace("point = [0.05, 1.0, 0.05]", "point = [0.05, 2.0, 0.05]"),
             vec!["probes[0].point", "inside a body"],
@@ -184,6 +187,11 @@ fn bad_input_is_reported_with_key_value_and_allowed_values() {
             vec!["constraints[2]", "u_z = 0.002", "constraints[1]"],
         ),
         (base.replace("name = \"tip\"\nbody", "name = \"tip/1\"\nbody"), vec!["loads[0].name", "tip/1", "file names"]),
+        (
+            base.replace("elements = 5", "elements = 9000000000000000000"),
+            vec!["bodies[0].axis.elements", "an integer from 1 to 100000"],
+        ),
+        (base.replace("points = 51", "points = 9000000000000000000"), vec!["lines[0].points", "from 2 to 100000"]),
     ];
     for (k, (text, needles)) in cases.iter().enumerate() {
         let path = dir.join(format!("bad{k}.toml"));

@@ -63,7 +63,7 @@ fn patch_test_distorted_sections_all_beam_types() {
                 })
                 .collect();
             let sol = analysis::run(&model, &mut Silent).unwrap();
-            let scale = 1e-5_f64.max(3e-5);
+            let scale = 3e-5; // largest constant term of the field (m)
             let mut worst: f64 = 0.0;
             for n in 0..model.mesh.n_nodes() {
                 let exact = linear_field(model.mesh.coords(n));
@@ -72,6 +72,7 @@ fn patch_test_distorted_sections_all_beam_types() {
                 }
             }
             eprintln!("patch {sk} × {bk}: largest relative nodal error {worst:e}");
+            // issue #2 asks for 1e-10 relative; observed ≤ 6e-15 (round-off)
             assert!(worst < 1e-10, "{sk}{bk}: nodal error {worst:e}");
             // strain at interior points is the symmetric gradient
             let view = sol.fields(&model);
@@ -191,5 +192,6 @@ total_force = [0.0, 0.0, -10.0]
     let uz: f64 = pts.iter().map(|&x| view.sample_point(None, x).unwrap().u[2]).sum::<f64>() / 4.0;
     let err = (-uz - exact).abs() / exact;
     eprintln!("tube tip deflection {uz:e} m, Timoshenko {exact:e} m, relative error {err:.4}");
+    // issue #2 asks for 3 %; observed 0.56 %
     assert!(err < 0.03, "tube: {uz:e} vs {exact:e} (error {err})");
 }

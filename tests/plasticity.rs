@@ -46,6 +46,7 @@ fn epp_cantilever_follows_the_plastic_hinge_theory() {
         p_max = p_max.max(p);
         if p <= 1.4 {
             let err = (delta / dy - hinge_theory(p)) / hinge_theory(p);
+            // issue #3 asks for 3 %; observed ≤ 0.6 % on this mesh
             assert!(err.abs() < 0.03, "δ/δ_y = {} at p = {p}: theory {} (error {err})", delta / dy, hinge_theory(p));
             checked += usize::from(p > 1.0);
         }
@@ -83,6 +84,8 @@ fn newton_converges_quadratically_in_the_plastic_range() {
     }
     eprintln!("{pairs} residual pairs, largest r_(k+1)/r_k² = {worst:.3}");
     assert!(pairs >= 20, "only {pairs} pairs in the asymptotic range");
+    // observed ≤ 2.6; a linearly converging step at rate ρ gives ρ/r_k ≥ 100
+    // for r_k ≤ 1e-2 and ρ ≥ 1
     assert!(worst < 10.0, "r_(k+1)/r_k² reached {worst}");
 }
 

@@ -106,6 +106,7 @@ pub struct Structure<'m> {
     lambda_committed: f64,
     /// Contact points: all indenter candidates, then all pairs, in model order.
     pub contact: Vec<ContactPoint>,
+    contact_committed: Vec<ContactPoint>,
     contact_ranges: Vec<std::ops::Range<usize>>,
     /// Plastic Gauss points in the last evaluation.
     pub plastic_points: usize,
@@ -235,6 +236,7 @@ impl<'m> Structure<'m> {
             dirichlet_entries,
             lambda: 0.0,
             lambda_committed: 0.0,
+            contact_committed: contact.clone(),
             contact,
             contact_ranges,
             plastic_points: 0,
@@ -245,6 +247,17 @@ impl<'m> Structure<'m> {
     /// Number of equations (free DOFs).
     pub fn n_equations(&self) -> usize {
         self.assembler.dofs.n_eq
+    }
+
+    /// Tangent values of the last evaluation, in the order of
+    /// `assembler.pattern` (before any Dirichlet elimination).
+    pub fn tangent_values(&self) -> &[f64] {
+        &self.tangent
+    }
+
+    /// Residual `f_int − λ f_ext − f_c` per equation, from the last evaluation.
+    pub fn residual(&self) -> &[f64] {
+        &self.residual
     }
 
     /// Stored entries of the factor `L`.
@@ -294,11 +307,6 @@ impl<'m> Structure<'m> {
                 (f, pen)
             })
             .collect()
-    }
-
-    /// Committed load factor.
-    pub fn committed_lambda(&self) -> f64 {
-        self.lambda_committed
     }
 
     fn assemble_elements(&mut self) {
@@ -482,10 +490,12 @@ impl Incremental for Structure<'_> {
         self.u_committed.copy_from_slice(&self.u);
         self.committed.copy_from_slice(&self.trial);
         self.lambda_committed = self.lambda;
+        self.contact_committed.copy_from_slice(&self.contact);
     }
 
     fn restore(&mut self) {
         self.u.copy_from_slice(&self.u_committed);
+        self.contact.copy_from_slice(&self.contact_committed);
         self.lambda = self.lambda_committed;
     }
 }

@@ -105,7 +105,12 @@ pub fn print_check(model: &Model) {
         );
     }
     for c in &model.contacts {
-        println!("contact {}: {} node pairs", c.name, c.pairs.len());
+        println!(
+            "contact {}: {} node pairs, {} slave-surface nodes without a master node",
+            c.name,
+            c.pairs.len(),
+            c.unpaired
+        );
     }
     for p in &model.probes {
         println!("probe {}: {:?}", p.name, p.point);

@@ -164,6 +164,8 @@ pub struct PairContact {
     pub name: String,
     /// The pairs.
     pub pairs: Vec<NodePair>,
+    /// Slave-surface nodes that found no master node (not in contact).
+    pub unpaired: usize,
 }
 
 /// How ε_N is chosen for a contact.
@@ -238,8 +240,10 @@ pub fn match_pairs(
             let d = [xs[0] - xm[0], xs[1] - xm[1], xs[2] - xm[2]];
             let dn = d[0] * n[0] + d[1] * n[1] + d[2] * n[2];
             let t = ((d[0] - dn * n[0]).powi(2) + (d[1] - dn * n[1]).powi(2) + (d[2] - dn * n[2]).powi(2)).sqrt();
-            if t <= tol && best.is_none_or(|(bt, _)| t < bt) {
-                best = Some((t, k));
+            // among the masters on the slave's normal line, the nearest one
+            // along the normal (a thin master body has one on each face)
+            if t <= tol && best.is_none_or(|(bd, _)| dn.abs() < bd) {
+                best = Some((dn.abs(), k));
             }
         }
         match best {

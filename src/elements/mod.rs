@@ -32,7 +32,7 @@ mod geometry;
 pub use geometry::{AxisGeometry, BodyGeometry, SectionGeometry, SectionPoint, section_point};
 
 use crate::materials::{Material, PointState};
-use crate::voigt::{Matrix6, Voigt};
+use crate::voigt::{self, Matrix6, Voigt};
 
 /// Errors of the element layer.
 #[derive(Debug, thiserror::Error)]
@@ -60,8 +60,9 @@ pub struct Workspace {
     tangents: Vec<Matrix6>,
     /// Element internal force, 3 entries per node (node-major).
     pub force: Vec<f64>,
-    /// Element tangent, row-major `n × n` with `n = 3 · nodes`; only the
-    /// entries `(p, q)` with `p ≤ q` are written.
+    /// Element tangent, row-major `n × n` with `n = 3 · nodes`; the blocks of
+    /// node pairs `a ≤ b` are written (so every entry `(p, q)` with `p ≤ q`
+    /// is valid; the lower half of the diagonal blocks is written too).
     pub tangent: Vec<f64>,
 }
 
@@ -158,13 +159,7 @@ pub fn element_response(
             let w = gradients(geom, es, eb, gb, gs, &mut ws.grads[..nodes]);
             let mut eps = [0.0; 6];
             for (a, g) in ws.grads[..nodes].iter().enumerate() {
-                let (ux, uy, uz) = (u[3 * a], u[3 * a + 1], u[3 * a + 2]);
-                eps[0] += g[0] * ux;
-                eps[1] += g[1] * uy;
-                eps[2] += g[2] * uz;
-                eps[3] += g[1] * ux + g[0] * uy;
-                eps[4] += g[2] * ux + g[0] * uz;
-                eps[5] += g[2] * uy + g[1] * uz;
+                voigt::add_nodal_strain(&mut eps, *g, [u[3 * a], u[3 * a + 1], u[3 * a + 2]]);
             }
             let q = gb * sg.n_gp + gs;
             let r = material.update(&eps, &points.committed[q]);

@@ -105,6 +105,23 @@ impl CrossSection {
                 ));
             }
         }
+        // a conforming mesh uses each edge at most twice: more means
+        // overlapping or duplicated quads
+        let mut edge_use: HashMap<(usize, usize), usize> = HashMap::new();
+        for (q, quad) in quads.iter().enumerate() {
+            for k in 0..4 {
+                let (a, b) = (quad[k], quad[(k + 1) % 4]);
+                let uses = edge_use.entry((a.min(b), a.max(b))).or_default();
+                *uses += 1;
+                if *uses > 2 {
+                    return Err(MeshError::invalid(
+                        format!("{key}.quads[{q}]"),
+                        format!("{quad:?}"),
+                        format!("quads that do not overlap (the edge {a}–{b} is already shared by two quads)"),
+                    ));
+                }
+            }
+        }
         if let Some(i) = used.iter().position(|u| !u) {
             return Err(MeshError::invalid(
                 format!("{key}.points[{i}]"),
@@ -356,9 +373,19 @@ mod tests {
                 }
             }
         }
-        // boundary edges: outer + inner perimeter
-        let n_el = s.n_elements();
-        assert_eq!(n_el, 4 * 4 + 2 * 3 * 2 + 2 * 2 * 2);
+        // element count: four 2×2 corner blocks, 3 and 2 elements along the sides, 2 through
+        assert_eq!(s.n_elements(), 4 * 4 + 2 * 3 * 2 + 2 * 2 * 2);
+        // boundary edges: outer perimeter 2·(2+3+2) + 2·(2+2+2), inner 2·3 + 2·2
+        assert_eq!(s.boundary_edges().len(), 2 * (7 + 6) + 2 * (3 + 2));
+    }
+
+    #[test]
+    fn rejects_overlapping_quads() {
+        let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0]];
+        let err = CrossSection::from_quads(SectionElementKind::L9, &corners, &[[0, 1, 2, 3]; 3], "s")
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("s.quads[2]") && err.contains("do not overlap"), "{err}");
     }
 
     #[test]

@@ -165,15 +165,17 @@ impl Model {
 
     /// True if the problem is linear (no body yields, no contact).
     pub fn is_linear(&self) -> bool {
-        self.mesh.bodies.iter().all(|b| !self.materials[b.material].is_plastic())
-            && self.indenters.is_empty()
-            && self.contacts.is_empty()
+        is_linear(&self.mesh, &self.materials, &self.indenters, &self.contacts)
     }
 
     /// Number of degrees of freedom (3 per node, constrained ones included).
     pub fn n_dofs(&self) -> usize {
         self.mesh.n_dofs()
     }
+}
+
+fn is_linear(mesh: &Mesh, materials: &[Material], indenters: &[Indenter], contacts: &[PairContact]) -> bool {
+    mesh.bodies.iter().all(|b| !materials[b.material].is_plastic()) && indenters.is_empty() && contacts.is_empty()
 }
 
 fn finite_positive(key: &str, v: f64) -> Result<f64, ModelError> {
@@ -376,8 +378,8 @@ fn build(file: ModelFile) -> Result<Model, ModelError> {
     for (i, l) in file.lines.iter().enumerate() {
         let key = format!("lines[{i}]");
         let points = l.points.unwrap_or(101);
-        if points < 2 {
-            return Err(invalid(format!("{key}.points"), points, "an integer ≥ 2"));
+        if !(2..=MAX_COUNT).contains(&points) {
+            return Err(invalid(format!("{key}.points"), points, format!("an integer from 2 to {MAX_COUNT}")));
         }
         let plot = l
             .plot
@@ -547,6 +549,14 @@ fn division(key: &str, d: &DivisionFile) -> Result<Vec<f64>, ModelError> {
     division_parts(key, d.from, d.to, d.elements, d.ratio, d.lines.as_ref(), d.segments.as_ref())
 }
 
+/// Largest element count per division and per tube side, and sample count
+/// per line: far beyond any useful model, small enough to allocate.
+const MAX_COUNT: usize = 100_000;
+
+fn count(key: &str, n: usize) -> Result<usize, ModelError> {
+    if (1..=MAX_COUNT).contains(&n) { Ok(n) } else { Err(invalid(key, n, format!("an integer from 1 to {MAX_COUNT}"))) }
+}
+
 fn division_parts(
     key: &str,
     from: Option<f64>,
@@ -571,6 +581,18 @@ fn division_parts(
             "exactly one of {from, to, elements[, ratio]}, {lines = […]} or {segments = […]}",
         ));
     }
+    for (k, seg) in segments.iter().flat_map(|v| v.iter()).enumerate() {
+        count(&format!("{key}.segments[{k}].elements"), seg.elements)?;
+    }
+    if let Some(l) = lines
+        && l.len() > MAX_COUNT + 1
+    {
+        return Err(invalid(
+            format!("{key}.lines"),
+            format!("{} values", l.len()),
+            format!("at most {} values", MAX_COUNT + 1),
+        ));
+    }
     let div = if let Some(l) = lines {
         Division::Lines(l.clone())
     } else if let Some(s) = segments {
@@ -583,10 +605,7 @@ fn division_parts(
         let need = |name: &str| {
             invalid(format!("{key}.{name}"), "(missing)", "a value (uniform division needs from, to and elements)")
         };
-        let elements = elements.ok_or_else(|| need("elements"))?;
-        if elements == 0 {
-            return Err(invalid(format!("{key}.elements"), 0, "an integer ≥ 1"));
-        }
+        let elements = count(&format!("{key}.elements"), elements.ok_or_else(|| need("elements"))?)?;
         let ratio = ratio.unwrap_or(1.0);
         if !(ratio.is_finite() && ratio > 0.0) {
             return Err(invalid(format!("{key}.ratio"), ratio, "a positive number (last/first element length)"));
@@ -658,10 +677,7 @@ fn body(i: usize, b: &BodyFile, materials: &[Material]) -> Result<Body, ModelErr
             if !origin.iter().all(|v| v.is_finite()) {
                 return Err(invalid(format!("{sk}.origin"), format!("{origin:?}"), "two finite numbers [x0, z0]"));
             }
-            let through = s.through.unwrap_or(1);
-            if through == 0 {
-                return Err(invalid(format!("{sk}.through"), 0, "an integer ≥ 1"));
-            }
+            let through = count(&format!("{sk}.through"), s.through.unwrap_or(1))?;
             let (ax, az) = match (s.around, s.along_x, s.along_z) {
                 (Some(n), None, None) => {
                     if (w - h).abs() > 1e-12 * w {
@@ -671,7 +687,7 @@ fn body(i: usize, b: &BodyFile, materials: &[Material]) -> Result<Body, ModelErr
                             "`around` only for square tubes; give along_x and along_z for rectangular ones",
                         ));
                     }
-                    if through != 1 || n < 8 || (n - 4) % 4 != 0 {
+                    if through != 1 || !(8..=MAX_COUNT).contains(&n) || (n - 4) % 4 != 0 {
                         return Err(invalid(
                             format!("{sk}.around"),
                             n,
@@ -680,7 +696,7 @@ fn body(i: usize, b: &BodyFile, materials: &[Material]) -> Result<Body, ModelErr
                     }
                     ((n - 4) / 4, (n - 4) / 4)
                 }
-                (None, Some(a), Some(b)) if a > 0 && b > 0 => (a, b),
+                (None, Some(a), Some(b)) => (count(&format!("{sk}.along_x"), a)?, count(&format!("{sk}.along_z"), b)?),
                 _ => {
                     return Err(invalid(
                         sk.clone(),
@@ -956,6 +972,18 @@ fn indenter(
             })
         })
         .collect();
+    // a node starting inside the indenter means a wrongly placed or oriented indenter
+    if let Some(c) = nodes.iter().find(|c| c.gap0 < -tol) {
+        let which = match d.shape.as_str() {
+            "flat" => format!("{key}.position / {key}.normal"),
+            _ => format!("{key}.center / {key}.radius"),
+        };
+        return Err(invalid(
+            which,
+            format!("a surface node at {:?} starts {:.3e} m inside the indenter", model_coords(body, c.node), -c.gap0),
+            "an indenter that touches or clears the surface at the start (normal pointing from the indenter to the body)",
+        ));
+    }
     if nodes.is_empty() {
         return Err(invalid(
             format!("{key}.surface"),
@@ -970,6 +998,10 @@ fn indenter(
         displacement: finite3(&format!("{key}.displacement"), d.displacement)?,
         nodes,
     })
+}
+
+fn model_coords(body: &Body, node: usize) -> [f64; 3] {
+    body.local_coords(node - body.node_offset)
 }
 
 fn pair_contact(
@@ -994,10 +1026,12 @@ fn pair_contact(
         None => 1e-6 * master_body.size().max(slave_body.size()),
     };
     let coords = |n: usize| mesh.coords(n);
+    let mut unpaired = 0;
     let pairs = match &c.pairs {
         None => {
-            let (pairs, _unmatched) =
+            let (pairs, unmatched) =
                 contact::match_pairs(&slave, &master, coords, |e| SurfaceNodes::penalty(e, pen), tol);
+            unpaired = unmatched.len();
             pairs
         }
         Some(list) => {
@@ -1041,7 +1075,7 @@ fn pair_contact(
             "slave and master surfaces whose nodes face each other along the master normal (check the `where` selections or the matching tolerance)",
         ));
     }
-    Ok(PairContact { name: c.name.clone(), pairs })
+    Ok(PairContact { name: c.name.clone(), pairs, unpaired })
 }
 
 fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSettings, ModelError> {

@@ -189,12 +189,7 @@ impl FieldView<'_> {
                 for k in 0..3 {
                     s.u[k] += shape * ua[k];
                 }
-                s.strain[0] += g[0] * ua[0];
-                s.strain[1] += g[1] * ua[1];
-                s.strain[2] += g[2] * ua[2];
-                s.strain[3] += g[1] * ua[0] + g[0] * ua[1];
-                s.strain[4] += g[2] * ua[0] + g[0] * ua[2];
-                s.strain[5] += g[2] * ua[1] + g[1] * ua[2];
+                voigt::add_nodal_strain(&mut s.strain, g, ua);
             }
         }
 

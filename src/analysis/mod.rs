@@ -9,16 +9,21 @@
 //!     record reactions and contact forces      // Recorder
 //! ```
 
+mod results;
 pub mod structure;
 
-pub use structure::{ContactPoint, Structure, Timings};
+pub use structure::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Structure, Timings};
 
 use std::time::{Duration, Instant};
 
-use crate::elements::{BodyGeometry, ElementError};
+use crate::assembly::Numbering;
+use crate::elements::ElementError;
 use crate::materials::PointState;
 use crate::model::Model;
-use crate::solver::linear::LinearError;
+use crate::model::Warning;
+use crate::size::{MemoryEstimate, Sizes, human_bytes};
+use crate::solver::Interrupt;
+use crate::solver::linear::{Cholesky, LinearError};
 use crate::solver::newton::NonlinearProblem;
 use crate::solver::stepping::{self, Cutback, Increment, Observer, SteppingError};
 use crate::voigt::Voigt;
@@ -33,6 +38,86 @@ pub enum AnalysisError {
     /// Linear algebra.
     #[error(transparent)]
     Linear(#[from] LinearError),
+    /// The analysis would need more memory than allowed.
+    #[error(
+        "the analysis needs about {} of memory ({}) but {} is available; use a coarser mesh, or --max-memory \
+         to raise the limit",
+        human_bytes(.estimate.total()),
+        describe_memory(.estimate),
+        human_bytes(*.limit)
+    )]
+    TooLarge {
+        /// The estimate.
+        estimate: MemoryEstimate,
+        /// The limit (bytes).
+        limit: u64,
+    },
+}
+
+/// `what: size` list of the largest parts of an estimate.
+pub fn describe_memory(m: &MemoryEstimate) -> String {
+    let mut parts = m.parts.clone();
+    parts.sort_by_key(|p| std::cmp::Reverse(p.1));
+    parts.iter().take(3).map(|(w, b)| format!("{w} {}", human_bytes(*b))).collect::<Vec<_>>().join(", ")
+}
+
+/// Options of an analysis run.
+#[derive(Debug, Clone, Default)]
+pub struct RunOptions {
+    /// Stops the analysis at the next safe point when requested (the last
+    /// converged increment is kept, [`Solution::failure`] says why).
+    pub interrupt: Interrupt,
+    /// Refuse the analysis if its estimated memory exceeds this (bytes).
+    pub max_memory: Option<u64>,
+}
+
+/// The sizes that set the memory of `model`'s analysis, exact after the
+/// symbolic factorization.
+pub fn sizes(model: &Model, numbering: &Numbering, solver: &Cholesky) -> Sizes {
+    let mesh = &model.mesh;
+    let mut s = Sizes {
+        equations: numbering.dofs.n_eq as u64,
+        nodes: mesh.n_nodes() as u64,
+        dofs: mesh.n_dofs() as u64,
+        elements: mesh.n_elements() as u64,
+        node_pairs: numbering.node_pairs as u64,
+        pattern_nnz: numbering.pattern.nnz() as u64,
+        factor_nnz: solver.factor_nnz() as u64,
+        factor_scratch: solver.scratch_bytes() as u64,
+        exact: true,
+        ..Default::default()
+    };
+    for b in &mesh.bodies {
+        let per = (b.section.kind.nodes() * b.axis.kind.nodes()) as u64;
+        let n = 3 * per;
+        let e = b.n_elements() as u64;
+        s.gauss_points += e * per;
+        s.element_entries += e * n * (n + 1) / 2;
+        s.vtu_points += e * per;
+    }
+    s
+}
+
+/// Orders the equations and runs the symbolic factorization only (no
+/// element matrices, no factor): the exact size of the analysis, for
+/// `cufem check`.
+pub fn plan(model: &Model) -> Result<Sizes, AnalysisError> {
+    let n = model.mesh.n_dofs();
+    let mut fixed = vec![false; n];
+    for c in &model.constraints {
+        for &node in &c.nodes {
+            for (k, v) in c.values.iter().enumerate() {
+                if *v == Some(0.0) {
+                    fixed[3 * node + k] = true;
+                }
+            }
+        }
+    }
+    let couplings: Vec<(usize, usize)> =
+        model.contacts.iter().flat_map(|c| c.pairs.iter().map(|p| (p.slave, p.master))).collect();
+    let numbering = Numbering::new(&model.mesh, &fixed, &couplings)?;
+    let solver = Cholesky::analyze(&numbering.pattern)?;
+    Ok(sizes(model, &numbering, &solver))
 }
 
 /// One row of the load history (after a converged increment).
@@ -44,12 +129,24 @@ pub struct HistoryRow {
     pub lambda: f64,
     /// Newton iterations.
     pub iterations: usize,
-    /// Resultant reaction per constraint set (N).
-    pub reactions: Vec<[f64; 3]>,
-    /// Per indenter then pair contact: resultant force on the body (N) and largest penetration (m).
-    pub contact: Vec<([f64; 3], f64)>,
+    /// Resultant reaction of each constraint set.
+    pub reactions: Vec<Reaction>,
+    /// Resultant of each indenter, then of each pair contact.
+    pub contacts: Vec<ContactResultant>,
     /// Plastic Gauss points.
     pub plastic_points: usize,
+}
+
+impl HistoryRow {
+    /// The reaction of the constraint set `name`.
+    pub fn reaction(&self, name: &str) -> Option<&Reaction> {
+        self.reactions.iter().find(|r| r.name == name)
+    }
+
+    /// The resultant of the indenter or contact `name`.
+    pub fn contact(&self, name: &str) -> Option<&ContactResultant> {
+        self.contacts.iter().find(|c| c.name == name)
+    }
 }
 
 /// A log line per converged increment.
@@ -73,10 +170,22 @@ pub struct IncrementLog {
     pub max_penetration: f64,
 }
 
+/// The size of an analysis once it is set up.
+#[derive(Debug, Clone)]
+pub struct Setup {
+    /// Equations (free DOFs).
+    pub equations: usize,
+    /// Stored entries of the Cholesky factor.
+    pub factor_nnz: usize,
+    /// Memory estimate.
+    pub memory: MemoryEstimate,
+}
+
 /// Receives progress while the analysis runs.
 pub trait Progress {
-    /// Called once the structure is set up.
-    fn start(&mut self, _model: &Model, _equations: usize) {}
+    /// Called once the structure is set up (equations ordered, symbolic
+    /// factorization done).
+    fn start(&mut self, _model: &Model, _setup: &Setup) {}
     /// Called after each converged increment.
     fn increment(&mut self, _log: &IncrementLog) {}
     /// Called after each failed attempt.
@@ -96,18 +205,16 @@ pub struct Solution {
     pub states: Vec<PointState>,
     /// Gauss-point stresses of the final (converged) state.
     pub stresses: Vec<Voigt>,
-    /// Geometry caches per body.
-    pub geometry: Vec<BodyGeometry>,
     /// First Gauss point of each body.
     pub gp_offsets: Vec<usize>,
     /// Load factor reached.
     pub lambda: f64,
     /// Reactions per constraint set.
-    pub reactions: Vec<[f64; 3]>,
+    pub reactions: Vec<Reaction>,
     /// Per indenter then pair contact: force on the body and largest penetration.
-    pub contact: Vec<([f64; 3], f64)>,
+    pub contacts: Vec<ContactResultant>,
     /// Final state of every contact point.
-    pub contact_points: Vec<ContactPoint>,
+    pub contact_sets: Vec<ContactSet>,
     /// Sum of applied nodal loads at the final load factor (N).
     pub applied: [f64; 3],
     /// Load history.
@@ -128,6 +235,13 @@ pub struct Solution {
     pub timings: Timings,
     /// Wall time of the whole analysis.
     pub wall_time: Duration,
+    /// Memory estimate made before the analysis (after the symbolic factorization).
+    pub memory: MemoryEstimate,
+    /// What the results show to be suspicious (an indenter that never
+    /// touched, a probe in a region that carries no load).
+    pub warnings: Vec<Warning>,
+    /// Recovered (projected) nodal stress and peeq, when the model asks for them.
+    pub recovered: Option<crate::post::Recovered>,
 }
 
 struct Recorder<'a> {
@@ -140,7 +254,7 @@ struct Recorder<'a> {
 impl Observer<Structure<'_>> for Recorder<'_> {
     fn converged(&mut self, s: &Structure<'_>, inc: &Increment) {
         let contact = s.contact_resultants();
-        let max_penetration = contact.iter().map(|c| c.1).fold(0.0, f64::max);
+        let max_penetration = contact.iter().map(|c| c.max_penetration).fold(0.0, f64::max);
         self.progress.increment(&IncrementLog {
             index: inc.index,
             lambda: inc.lambda,
@@ -156,7 +270,7 @@ impl Observer<Structure<'_>> for Recorder<'_> {
             lambda: inc.lambda,
             iterations: inc.newton.iterations,
             reactions: s.reactions(),
-            contact,
+            contacts: contact,
             plastic_points: s.plastic_points,
         });
         self.increments.push(inc.clone());
@@ -169,12 +283,20 @@ impl Observer<Structure<'_>> for Recorder<'_> {
 }
 
 /// Runs the analysis of `model`.
-pub fn run(model: &Model, progress: &mut dyn Progress) -> Result<Solution, AnalysisError> {
+pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> Result<Solution, AnalysisError> {
     let start = Instant::now();
-    let mut structure = Structure::new(model)?;
-    progress.start(model, structure.n_equations());
+    let mut structure = Structure::new(model, options.max_memory)?;
+    progress.start(
+        model,
+        &Setup {
+            equations: structure.n_equations(),
+            factor_nnz: structure.factor_nnz(),
+            memory: structure.memory.clone(),
+        },
+    );
     let mut recorder = Recorder { history: Vec::new(), increments: Vec::new(), cutbacks: Vec::new(), progress };
-    let outcome = stepping::run(&mut structure, &model.solver.steps, &model.solver.newton, &mut recorder);
+    let outcome =
+        stepping::run(&mut structure, &model.solver.steps, &model.solver.newton, &mut recorder, &options.interrupt);
     let failure = outcome.err().map(|e| *e);
     if failure.is_some() {
         // refresh forces at the last converged state for reactions and contact output
@@ -185,10 +307,13 @@ pub fn run(model: &Model, progress: &mut dyn Progress) -> Result<Solution, Analy
     for (d, f) in structure.f_ext.iter().enumerate() {
         applied[d % 3] += lambda * f;
     }
-    Ok(Solution {
+    let mut solution = Solution {
         reactions: structure.reactions(),
-        contact: structure.contact_resultants(),
-        contact_points: structure.contact.clone(),
+        contacts: structure.contact_resultants(),
+        contact_sets: structure
+            .contact_sets()
+            .map(|(name, kind, points)| ContactSet { name: name.to_string(), kind, points: points.to_vec() })
+            .collect(),
         applied,
         lambda,
         equations: structure.n_equations(),
@@ -198,27 +323,109 @@ pub fn run(model: &Model, progress: &mut dyn Progress) -> Result<Solution, Analy
         u: structure.u,
         states: structure.committed,
         stresses: structure.stress,
-        geometry: structure.geometry,
         gp_offsets: structure.gp_offsets,
         history: recorder.history,
         increments: recorder.increments,
         cutbacks: recorder.cutbacks,
         failure,
         wall_time: start.elapsed(),
-    })
+        memory: structure.memory,
+        warnings: Vec::new(),
+        recovered: None,
+    };
+    if model.output.recovery == crate::model::Recovery::Projection {
+        solution.recovered = Some(crate::post::recovery::project(
+            &model.mesh,
+            &model.cells,
+            &solution.stresses,
+            &solution.states,
+            &solution.gp_offsets,
+        )?);
+    }
+    solution.warnings = result_warnings(model, &solution);
+    Ok(solution)
+}
+
+/// Warnings that only the results can give: an indenter that never touched
+/// its body, a probe where the model shows neither stress nor displacement
+/// (below 1e-6 of the largest anywhere: a part the load does not reach).
+fn result_warnings(model: &Model, solution: &Solution) -> Vec<Warning> {
+    let mut warnings = Vec::new();
+    for (k, ind) in model.indenters.iter().enumerate() {
+        let touched = solution
+            .history
+            .iter()
+            .flat_map(|r| r.contact(&ind.name))
+            .chain(solution.contact(&ind.name))
+            .any(|c| c.force != [0.0; 3]);
+        if !touched && !solution.history.is_empty() {
+            warnings.push(Warning {
+                key: format!("indenters[{k}]"),
+                message: format!(
+                    "indenter {:?} never touched body {:?}: its contact force stayed zero throughout",
+                    ind.name, model.mesh.bodies[ind.body].name
+                ),
+            });
+        }
+    }
+    let finite = |f: &[f64; 3]| f.iter().all(|v| v.is_finite());
+    if !(solution.reactions.iter().all(|r| finite(&r.force)) && solution.contacts.iter().all(|c| finite(&c.force))) {
+        warnings.push(Warning {
+            key: "materials".into(),
+            message: "the final state has non-finite reactions or contact forces: a material law or load produces \
+                      NaN there"
+                .into(),
+        });
+    }
+    let view = solution.fields(model);
+    let max_vm = solution.stresses.iter().map(crate::voigt::von_mises).fold(0.0, f64::max);
+    let max_u = solution.u.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    if max_vm > 0.0 || max_u > 0.0 {
+        for (i, p) in model.probes.iter().enumerate() {
+            let Some(v) = view.sample_probe(p) else { continue };
+            let u = v.u.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+            if v.von_mises <= 1e-6 * max_vm && u <= 1e-6 * max_u {
+                warnings.push(Warning {
+                    key: format!("probes[{i}]"),
+                    message: format!(
+                        "probe {:?} shows neither stress nor displacement (below 1e-6 of the largest in the model): \
+                         it may lie in a part the load does not reach",
+                        p.name
+                    ),
+                });
+            }
+        }
+    }
+    warnings
 }
 
 impl Solution {
+    /// The reaction of the constraint set `name`.
+    pub fn reaction(&self, name: &str) -> Option<&Reaction> {
+        self.reactions.iter().find(|r| r.name == name)
+    }
+
+    /// The resultant of the indenter or contact `name`.
+    pub fn contact(&self, name: &str) -> Option<&ContactResultant> {
+        self.contacts.iter().find(|c| c.name == name)
+    }
+
+    /// The points of the indenter or contact `name`.
+    pub fn contact_points(&self, name: &str) -> Option<&[ContactPoint]> {
+        self.contact_sets.iter().find(|c| c.name == name).map(|c| c.points.as_slice())
+    }
+
     /// A view for field evaluation.
     pub fn fields<'a>(&'a self, model: &'a Model) -> crate::post::FieldView<'a> {
         crate::post::FieldView {
             mesh: &model.mesh,
-            geometry: &self.geometry,
+            geometry: &model.cells,
             materials: &model.materials,
             u: &self.u,
             states: &self.states,
             stresses: &self.stresses,
             gp_offsets: &self.gp_offsets,
+            recovered: self.recovered.as_ref(),
         }
     }
 }

@@ -12,87 +12,42 @@
 //! constrained nodes alone, which would strain — and, in plasticity,
 //! spuriously yield — the elements next to them.
 
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
-use crate::assembly::{Assembler, Inputs, NO_EQ, Outputs};
+pub use super::results::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Timings};
+use crate::assembly::{Assembler, Inputs, NO_EQ, Numbering, Outputs};
 use crate::contact;
-use crate::elements::BodyGeometry;
 use crate::materials::PointState;
 use crate::model::Model;
+use crate::size::MemoryEstimate;
 use crate::solver::linear::{Cholesky, LinearError};
 use crate::solver::newton::{Correction, Evaluation, NonlinearProblem};
 use crate::solver::stepping::Incremental;
 use crate::voigt::Voigt;
 
-/// Cumulative wall time per phase.
-#[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct Timings {
-    /// Setup: numbering, ordering, pattern, scatter maps, symbolic analysis.
-    pub setup: Duration,
-    /// Part of `setup`: node graph and METIS nested dissection.
-    pub ordering: Duration,
-    /// Part of `setup`: sparse pattern, scatter maps, colours.
-    pub pattern: Duration,
-    /// Part of `setup`: symbolic Cholesky analysis.
-    pub symbolic: Duration,
-    /// Part of `setup`: elastic element matrices computed once for reuse.
-    pub element_cache: Duration,
-    /// Element loop with material updates and scatter.
-    pub assembly: Duration,
-    /// Contact search and penalty terms.
-    pub contact: Duration,
-    /// Numeric factorizations.
-    pub factorization: Duration,
-    /// Triangular solves.
-    pub solve: Duration,
-    /// Number of residual/tangent evaluations.
-    pub evaluations: usize,
-    /// Number of factorizations.
-    pub factorizations: usize,
-}
-
-/// State of one contact point after an evaluation.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct ContactPoint {
-    /// Global node (the slave node for pairs).
-    pub node: usize,
-    /// Master node for pairs.
-    pub master: Option<usize>,
-    /// Normal gap (m), negative = penetration.
-    pub gap: f64,
-    /// Force on the (slave) node (N).
-    pub force: [f64; 3],
-    /// Tributary area (m²).
-    pub area: f64,
-    /// True if active.
-    pub active: bool,
-}
-
 /// The structure: model, discretization, state and linear algebra.
 pub struct Structure<'m> {
     /// The model.
-    pub model: &'m Model,
-    /// Geometry caches per body.
-    pub geometry: Vec<BodyGeometry>,
+    pub(super) model: &'m Model,
     /// First Gauss point of each body.
-    pub gp_offsets: Vec<usize>,
+    pub(super) gp_offsets: Vec<usize>,
     /// Numbering, pattern and scatter.
-    pub assembler: Assembler,
+    pub(super) assembler: Assembler,
     solver: Cholesky,
     /// Displacements (3 per node).
-    pub u: Vec<f64>,
+    pub(super) u: Vec<f64>,
     u_committed: Vec<f64>,
     /// Committed Gauss-point states.
-    pub committed: Vec<PointState>,
+    pub(super) committed: Vec<PointState>,
     trial: Vec<PointState>,
     /// Gauss-point stresses of the last evaluation.
-    pub stress: Vec<Voigt>,
+    pub(super) stress: Vec<Voigt>,
     /// Internal forces of the last evaluation.
-    pub f_int: Vec<f64>,
+    pub(super) f_int: Vec<f64>,
     /// External loads at λ = 1.
-    pub f_ext: Vec<f64>,
+    pub(super) f_ext: Vec<f64>,
     /// Contact forces of the last evaluation.
-    pub f_contact: Vec<f64>,
+    pub(super) f_contact: Vec<f64>,
     tangent: Vec<f64>,
     residual: Vec<f64>,
     /// Non-zero prescribed DOFs: `(dof, equation, value at λ = 1)`.
@@ -102,27 +57,35 @@ pub struct Structure<'m> {
     /// Matrix entries coupling a prescribed equation: `(position, row, col)`.
     dirichlet_entries: Vec<(usize, usize, usize)>,
     /// Current load factor.
-    pub lambda: f64,
+    pub(super) lambda: f64,
     lambda_committed: f64,
     /// Contact points: all indenter candidates, then all pairs, in model order.
-    pub contact: Vec<ContactPoint>,
+    pub(super) contact: Vec<ContactPoint>,
     contact_committed: Vec<ContactPoint>,
     contact_ranges: Vec<std::ops::Range<usize>>,
     /// Plastic Gauss points in the last evaluation.
-    pub plastic_points: usize,
+    pub(super) plastic_points: usize,
     /// Phase timings.
-    pub timings: Timings,
+    pub(super) timings: Timings,
+    /// Memory estimate made after the symbolic factorization.
+    pub(super) memory: MemoryEstimate,
 }
 
 impl<'m> Structure<'m> {
     /// Builds numbering, pattern, factorization structure and initial state.
-    pub fn new(model: &'m Model) -> Result<Self, super::AnalysisError> {
+    ///
+    /// With `max_memory`, the memory of the analysis is estimated after the
+    /// symbolic factorization (exact factor size) and the structure is
+    /// refused with [`super::AnalysisError::TooLarge`] before the factor, the
+    /// scatter maps and the element cache are allocated.
+    pub fn new(model: &'m Model, max_memory: Option<u64>) -> Result<Self, super::AnalysisError> {
         let t0 = Instant::now();
         let mesh = &model.mesh;
-        let geometry: Vec<BodyGeometry> = mesh.bodies.iter().map(BodyGeometry::new).collect::<Result<_, _>>()?;
+        // Gauss-point values come from the model's preprocessing
+        let geometry = &model.cells;
         let mut gp_offsets = Vec::with_capacity(geometry.len());
         let mut n_gp = 0;
-        for (b, g) in mesh.bodies.iter().zip(&geometry) {
+        for (b, g) in mesh.bodies.iter().zip(geometry) {
             gp_offsets.push(n_gp);
             n_gp += b.n_elements() * g.gp_per_element();
         }
@@ -141,7 +104,17 @@ impl<'m> Structure<'m> {
         let fixed: Vec<bool> = value.iter().map(|v| *v == Some(0.0)).collect();
         let couplings: Vec<(usize, usize)> =
             model.contacts.iter().flat_map(|c| c.pairs.iter().map(|p| (p.slave, p.master))).collect();
-        let mut assembler = Assembler::new(mesh, &fixed, &couplings)?;
+        let numbering = Numbering::new(mesh, &fixed, &couplings)?;
+        let t_sym = Instant::now();
+        let solver = Cholesky::analyze(&numbering.pattern)?;
+        let symbolic = t_sym.elapsed();
+        let memory = super::sizes(model, &numbering, &solver).memory();
+        if let Some(limit) = max_memory
+            && memory.total() > limit
+        {
+            return Err(super::AnalysisError::TooLarge { estimate: memory, limit });
+        }
+        let mut assembler = Assembler::new(mesh, numbering);
         let n_eq = assembler.dofs.n_eq;
         let mut prescribed = Vec::new();
         let mut is_prescribed = vec![false; n_eq];
@@ -169,16 +142,13 @@ impl<'m> Structure<'m> {
         let zero = vec![0.0; n_dofs];
         assembler.cache_elastic(&Inputs {
             mesh,
-            geometry: &geometry,
+            geometry,
             materials: &model.materials,
             u: &zero,
             committed: &states,
             gp_offsets: &gp_offsets,
         });
         let element_cache = t_cache.elapsed();
-        let t_sym = Instant::now();
-        let solver = Cholesky::analyze(&assembler.pattern)?;
-        let symbolic = t_sym.elapsed();
 
         let mut f_ext = vec![0.0; n_dofs];
         for l in &model.loads {
@@ -217,7 +187,6 @@ impl<'m> Structure<'m> {
         };
         Ok(Self {
             model,
-            geometry,
             gp_offsets,
             assembler,
             solver,
@@ -241,7 +210,56 @@ impl<'m> Structure<'m> {
             contact_ranges,
             plastic_points: 0,
             timings,
+            memory,
         })
+    }
+
+    /// Displacements, 3 per node (`3 · node + component`).
+    pub fn displacements(&self) -> &[f64] {
+        &self.u
+    }
+
+    /// Mutable displacements (for finite-difference checks of the tangent;
+    /// the next [`NonlinearProblem::evaluate`] sees the change).
+    pub fn displacements_mut(&mut self) -> &mut [f64] {
+        &mut self.u
+    }
+
+    /// Current load factor.
+    pub fn load_factor(&self) -> f64 {
+        self.lambda
+    }
+
+    /// Plastic Gauss points in the last evaluation.
+    pub fn plastic_points(&self) -> usize {
+        self.plastic_points
+    }
+
+    /// Every contact point after the last evaluation (all indenter
+    /// candidates, then all node pairs, in model order).
+    pub fn contact_points(&self) -> &[ContactPoint] {
+        &self.contact
+    }
+
+    /// The tangent's lower-triangular pattern (equation numbering).
+    pub fn pattern(&self) -> &crate::solver::linear::LowerCsc {
+        &self.assembler.pattern
+    }
+
+    /// Equation of a DOF, `None` if it is fixed.
+    pub fn equation(&self, dof: usize) -> Option<usize> {
+        let e = self.assembler.dofs.eq[dof];
+        (e != NO_EQ).then_some(e)
+    }
+
+    /// Cumulative phase timings.
+    pub fn timings(&self) -> &Timings {
+        &self.timings
+    }
+
+    /// Memory estimate made after the symbolic factorization.
+    pub fn memory(&self) -> &MemoryEstimate {
+        &self.memory
     }
 
     /// Number of equations (free DOFs).
@@ -272,41 +290,51 @@ impl<'m> Structure<'m> {
     }
 
     /// Resultant reaction of each constraint set (force of the support on the body).
-    pub fn reactions(&self) -> Vec<[f64; 3]> {
+    pub fn reactions(&self) -> Vec<Reaction> {
         self.model
             .constraints
             .iter()
             .map(|c| {
-                let mut r = [0.0; 3];
+                let mut force = [0.0; 3];
                 for &n in &c.nodes {
-                    for (k, rk) in r.iter_mut().enumerate() {
-                        *rk += self.nodal_imbalance(3 * n + k);
+                    for (k, f) in force.iter_mut().enumerate() {
+                        *f += self.nodal_imbalance(3 * n + k);
                     }
                 }
-                r
+                Reaction { name: c.name.clone(), force }
             })
             .collect()
     }
 
-    /// Per indenter (then per pair contact): resultant force on the body
-    /// (on the slave body for pairs) and largest penetration.
-    pub fn contact_resultants(&self) -> Vec<([f64; 3], f64)> {
-        self.contact_ranges
-            .iter()
-            .map(|r| {
-                let mut f = [0.0; 3];
-                let mut pen: f64 = 0.0;
-                for p in &self.contact[r.clone()] {
+    /// Per indenter, then per pair contact: resultant force on the body (on
+    /// the slave body for pairs) and largest penetration.
+    pub fn contact_resultants(&self) -> Vec<ContactResultant> {
+        self.contact_sets()
+            .map(|(name, kind, points)| {
+                let mut force = [0.0; 3];
+                let mut max_penetration: f64 = 0.0;
+                for p in points {
                     for k in 0..3 {
-                        f[k] += p.force[k];
+                        force[k] += p.force[k];
                     }
                     if p.active {
-                        pen = pen.max(-p.gap);
+                        max_penetration = max_penetration.max(-p.gap);
                     }
                 }
-                (f, pen)
+                ContactResultant { name: name.to_string(), kind, force, max_penetration }
             })
             .collect()
+    }
+
+    /// The contact points of each indenter, then of each pair contact, by name.
+    pub fn contact_sets(&self) -> impl Iterator<Item = (&str, ContactKind, &[ContactPoint])> {
+        let names = self
+            .model
+            .indenters
+            .iter()
+            .map(|i| (i.name.as_str(), ContactKind::Indenter))
+            .chain(self.model.contacts.iter().map(|c| (c.name.as_str(), ContactKind::Pair)));
+        names.zip(&self.contact_ranges).map(|((name, kind), r)| (name, kind, &self.contact[r.clone()]))
     }
 
     fn assemble_elements(&mut self) {
@@ -314,7 +342,7 @@ impl<'m> Structure<'m> {
         let model = self.model;
         let inputs = Inputs {
             mesh: &model.mesh,
-            geometry: &self.geometry,
+            geometry: &model.cells,
             materials: &model.materials,
             u: &self.u,
             committed: &self.committed,

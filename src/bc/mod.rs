@@ -60,6 +60,38 @@ pub struct Constraint {
     pub nodes: Vec<usize>,
     /// Prescribed total value per component (`Some(0.0)` = fixed, `None` = free).
     pub values: [Option<f64>; 3],
+    /// The geometric selection the nodes came from (`None` for node lists
+    /// built in code), so the constraint can be applied to another mesh of
+    /// the same body (the 3D export).
+    pub selection: Option<Selection>,
+}
+
+/// What a load applies, as the model file gives it: kept beside the nodal
+/// forces so the same load can be discretized on another mesh.
+#[derive(Debug, Clone, PartialEq)]
+pub enum LoadKind {
+    /// The same force on every selected node.
+    PerNode {
+        /// The selection.
+        selection: Selection,
+        /// Force per node (N).
+        force: [f64; 3],
+    },
+    /// A traction (Pa) on boundary faces (`total_force` becomes the traction
+    /// total / area).
+    Traction {
+        /// The faces.
+        faces: Vec<Face>,
+        /// Traction vector (Pa).
+        traction: [f64; 3],
+    },
+    /// A pressure (Pa, positive pushing into the body) on boundary faces.
+    Pressure {
+        /// The faces.
+        faces: Vec<Face>,
+        /// Pressure (Pa).
+        pressure: f64,
+    },
 }
 
 /// A load on a node set.
@@ -69,6 +101,10 @@ pub struct Load {
     pub name: String,
     /// Global nodes and the total force (N) on each, at load factor 1.
     pub nodal_forces: Vec<(usize, [f64; 3])>,
+    /// Index of the loaded body.
+    pub body: usize,
+    /// The load as given.
+    pub kind: LoadKind,
 }
 
 impl Load {

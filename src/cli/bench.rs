@@ -29,7 +29,7 @@ pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
         let mut rows: Vec<[Duration; 4]> = Vec::new();
         let mut last = None;
         for _ in 0..repeat {
-            let sol = analysis::run(model, &mut Silent)?;
+            let sol = analysis::run(model, &analysis::RunOptions::default(), &mut Silent)?;
             let t = sol.timings;
             walls.push(sol.wall_time);
             rows.push([t.assembly, t.contact, t.factorization, t.solve]);
@@ -59,12 +59,12 @@ pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
     let mut rows: Vec<[Duration; 8]> = Vec::new();
     let mut nnz = (0, 0, 0);
     for _ in 0..repeat {
-        let mut s = Structure::new(model)?;
+        let mut s = Structure::new(model, None)?;
         s.set_load_factor(1.0);
         s.evaluate()?;
         s.correct()?;
-        let t = s.timings;
-        nnz = (s.n_equations(), s.assembler.pattern.nnz(), s.factor_nnz());
+        let t = *s.timings();
+        nnz = (s.n_equations(), s.pattern().nnz(), s.factor_nnz());
         rows.push([
             t.ordering,
             t.pattern,

@@ -1,19 +1,48 @@
-//! Command-line edge: argument parsing, progress and report printing.
-//! Library errors are typed; here they become `anyhow` messages.
+//! Command-line edge: argument parsing, progress, report printing, exit
+//! codes. Library errors are typed; here they become `anyhow` messages.
+//!
+//! Exit codes (also in the README):
+//!
+//! | code | meaning |
+//! |---:|---|
+//! | 0 | success |
+//! | 1 | invalid model file or command line (the message names the key, the value and what is allowed) |
+//! | 2 | the analysis stopped before the full load (not converged); the last converged increment is written |
+//! | 3 | a file could not be read or written (output folder unusable or locked, disk full) |
+//! | 4 | the model needs more memory than available (`--max-memory` raises the limit) |
+//! | 5 | `verify`: CalculiX is missing or did not finish (the cufem results, deck and log are written) |
+//! | 130 | interrupted (Ctrl-C or SIGTERM); the last converged increment is written |
 
 mod bench;
 mod report;
+mod verify;
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;
 
-use anyhow::{Context, Result};
+use anyhow::anyhow;
 use clap::{Parser, Subcommand};
-use cufem::analysis::{self, IncrementLog, Progress};
-use cufem::model::Model;
-use cufem::solver::stepping::Cutback;
+use cufem::analysis::{self, AnalysisError, IncrementLog, Progress, RunOptions};
+use cufem::io::output::OutputDir;
+use cufem::model::{Limits, Model, ModelError};
+use cufem::size;
+use cufem::solver::Interrupt;
+use cufem::solver::stepping::{Cutback, StopReason};
 use indicatif::{ProgressBar, ProgressStyle};
+
+/// Exit code: success.
+const OK: u8 = 0;
+/// Exit code: invalid model or command line.
+const INPUT: u8 = 1;
+/// Exit code: the analysis stopped before the full load.
+const NOT_CONVERGED: u8 = 2;
+/// Exit code: a file could not be read or written.
+const FILES: u8 = 3;
+/// Exit code: not enough memory.
+const TOO_LARGE: u8 = 4;
+/// Exit code: interrupted (128 + SIGINT, as shells report it).
+const INTERRUPTED: u8 = 130;
 
 /// Refined 1D (CUF) finite elements for elastoplastic contact.
 #[derive(Parser)]
@@ -23,26 +52,83 @@ struct Cli {
     command: Command,
 }
 
+#[derive(clap::Args)]
+struct Resources {
+    /// Worker threads (default: the model's `solver.threads`, else all logical cores; capped at the
+    /// machine's logical cores unless --force-threads).
+    #[arg(long)]
+    threads: Option<usize>,
+    /// Allow more threads than logical cores (at most 1024).
+    #[arg(long)]
+    force_threads: bool,
+    /// Largest memory the analysis may need, e.g. 8G or 512MiB (default: the memory available now).
+    #[arg(long, value_parser = parse_memory)]
+    max_memory: Option<u64>,
+}
+
 #[derive(Subcommand)]
 enum Command {
     /// Run the analysis of a model file and write results.
     Run {
         /// Model file (TOML).
         model: PathBuf,
-        /// Output directory (default: out/<model name>).
+        /// Output folder (default: out/<model name>). Replaced as a whole when the run ends.
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Worker threads (default: the model's `solver.threads`, else all cores).
+        /// Write into an output folder that holds files cufem did not write (they are left alone).
         #[arg(long)]
-        threads: Option<usize>,
+        force: bool,
         /// Print only the final report.
         #[arg(long)]
         quiet: bool,
+        #[command(flatten)]
+        resources: Resources,
     },
-    /// Validate a model file and print its size.
+    /// Validate a model file and print its size and memory estimate.
     Check {
         /// Model file (TOML).
         model: PathBuf,
+        #[command(flatten)]
+        resources: Resources,
+    },
+    /// Write a CalculiX deck (3D solid model) of the same problem.
+    ExportCcx {
+        /// Model file (TOML).
+        model: PathBuf,
+        /// Hexahedra per Lagrange interval of the CUF mesh, per direction.
+        #[arg(long, default_value_t = 2)]
+        refine: usize,
+        /// Solid element: C3D20R or C3D8I.
+        #[arg(long, default_value = "C3D20R")]
+        element: String,
+        /// Output folder (default: out/<model name>-ccx).
+        #[arg(long)]
+        out: Option<PathBuf>,
+    },
+    /// Run a model and its CalculiX twin (3D solids) and compare them at the probes, lines and resultants.
+    Verify {
+        /// Model file (TOML).
+        model: PathBuf,
+        /// Output folder (default: out/<model name>); the comparison goes to its verify/ folder.
+        #[arg(long)]
+        out: Option<PathBuf>,
+        /// Hexahedra per Lagrange interval of the CUF mesh, per direction.
+        #[arg(long, default_value_t = 2)]
+        refine: usize,
+        /// Solid element: C3D20R or C3D8I.
+        #[arg(long, default_value = "C3D20R")]
+        element: String,
+        /// The CalculiX program (default: ccx on the PATH).
+        #[arg(long)]
+        ccx: Option<PathBuf>,
+        /// Write into an output folder that holds files cufem did not write.
+        #[arg(long)]
+        force: bool,
+        /// Print only the final report.
+        #[arg(long)]
+        quiet: bool,
+        #[command(flatten)]
+        resources: Resources,
     },
     /// Time the phases of an analysis (setup, assembly, factorization, solve) over repeated runs.
     Bench {
@@ -51,83 +137,206 @@ enum Command {
         /// Number of timed repetitions (the median is reported).
         #[arg(long, default_value_t = 5)]
         repeat: usize,
-        /// Worker threads (default: all cores).
-        #[arg(long)]
-        threads: Option<usize>,
         /// Time the full analysis instead of one linear solve.
         #[arg(long)]
         full: bool,
+        #[command(flatten)]
+        resources: Resources,
     },
 }
 
-/// Entry point: exit code 0 on success, 1 on an input or I/O error, 2 when
-/// the analysis stopped before reaching the full load.
+fn parse_memory(s: &str) -> Result<u64, String> {
+    size::parse_bytes(s).ok_or_else(|| format!("{s:?}: expected a size such as 8G, 512MiB or 1000000000"))
+}
+
+/// An error with the exit code it maps to.
+struct Failure {
+    code: u8,
+    error: anyhow::Error,
+}
+
+fn fail(code: u8, error: impl Into<anyhow::Error>) -> Failure {
+    Failure { code, error: error.into() }
+}
+
+/// Entry point (see the module docs for the exit codes).
 pub fn main() -> ExitCode {
-    let cli = Cli::parse();
-    match dispatch(cli) {
-        Ok(code) => code,
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
         Err(e) => {
-            eprintln!("error: {e:#}");
-            ExitCode::from(1)
+            let _ = e.print();
+            // clap uses 2 for usage errors; ours is 1 (2 means "not converged")
+            return ExitCode::from(if e.use_stderr() { INPUT } else { OK });
+        }
+    };
+    match dispatch(cli) {
+        Ok(code) => ExitCode::from(code),
+        Err(f) => {
+            eprintln!("error: {:#}", f.error);
+            ExitCode::from(f.code)
         }
     }
 }
 
-fn dispatch(cli: Cli) -> Result<ExitCode> {
+fn dispatch(cli: Cli) -> Result<u8, Failure> {
     match cli.command {
-        Command::Run { model, out, threads, quiet } => run(&model, out, threads, quiet),
-        Command::Check { model } => {
-            let m = load(&model)?;
+        Command::Run { model, out, force, quiet, resources } => run(&model, out, force, quiet, &resources),
+        Command::Check { model, resources } => {
+            let m = load(&model, &resources)?;
             report::print_check(&m);
-            Ok(ExitCode::SUCCESS)
+            let sizes = analysis::plan(&m).map_err(|e| fail(INPUT, e))?;
+            report::print_memory(&sizes, limit(&resources));
+            print_warnings(m.warnings.iter());
+            Ok(OK)
         }
-        Command::Bench { model, repeat, threads, full } => {
-            let m = load(&model)?;
-            configure_threads(threads.or(m.solver.threads))?;
-            bench::run(&m, repeat.max(1), full)?;
-            Ok(ExitCode::SUCCESS)
+        Command::Verify { model, out, refine, element, ccx, force, quiet, resources } => {
+            verify::run(verify::Args { model, out, refine, element, ccx, force, quiet, resources })
+        }
+        Command::ExportCcx { model, refine, element, out } => {
+            let m = load(&model, &Resources { threads: None, force_threads: false, max_memory: None })?;
+            let kind = hex_kind(&element)?;
+            let refine = check_refine(refine)?;
+            let dir = out.unwrap_or_else(|| default_out(&model, "-ccx"));
+            let (mesh, path) = cufem::ccx::export(&m, kind, refine, &dir).map_err(|e| fail(FILES, e))?;
+            println!(
+                "wrote {} ({} nodes, {} {} body elements, {} tool elements)",
+                path.display(),
+                mesh.nodes.len(),
+                mesh.parts.iter().filter(|p| matches!(p, cufem::ccx::mesh::Part::Body(_))).count(),
+                kind.name(),
+                mesh.parts.iter().filter(|p| matches!(p, cufem::ccx::mesh::Part::Tool(_))).count()
+            );
+            Ok(OK)
+        }
+        Command::Bench { model, repeat, full, resources } => {
+            let m = load(&model, &resources)?;
+            configure_threads(resources.threads.or(m.solver.threads), resources.force_threads)?;
+            bench::run(&m, repeat.max(1), full).map_err(|e| fail(INPUT, e))?;
+            Ok(OK)
         }
     }
 }
 
-fn load(path: &Path) -> Result<Model> {
-    Model::from_file(path).with_context(|| format!("invalid model {}", path.display()))
+fn hex_kind(element: &str) -> Result<cufem::ccx::HexKind, Failure> {
+    cufem::ccx::HexKind::parse(element)
+        .ok_or_else(|| fail(INPUT, anyhow!("--element = {element:?}: expected \"C3D20R\" or \"C3D8I\"")))
 }
 
-fn configure_threads(threads: Option<usize>) -> Result<()> {
-    if let Some(n) = threads {
-        anyhow::ensure!(n >= 1, "--threads = {n}: expected an integer ≥ 1");
-        rayon::ThreadPoolBuilder::new().num_threads(n).build_global().context("cannot configure the thread pool")?;
+fn check_refine(refine: usize) -> Result<usize, Failure> {
+    if (1..=8).contains(&refine) {
+        Ok(refine)
+    } else {
+        Err(fail(
+            INPUT,
+            anyhow!("--refine = {refine}: expected an integer from 1 to 8 (hexahedra per Lagrange interval)"),
+        ))
     }
-    Ok(())
 }
 
-fn run(path: &Path, out: Option<PathBuf>, threads: Option<usize>, quiet: bool) -> Result<ExitCode> {
-    let model = load(path)?;
-    configure_threads(threads.or(model.solver.threads))?;
-    let out = out.unwrap_or_else(|| {
-        let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "model".into());
-        PathBuf::from("out").join(stem)
-    });
+/// `out/<model file stem><suffix>`.
+fn default_out(path: &Path, suffix: &str) -> PathBuf {
+    let stem = path.file_stem().map(|s| s.to_string_lossy().into_owned()).unwrap_or_else(|| "model".into());
+    PathBuf::from("out").join(format!("{stem}{suffix}"))
+}
+
+fn limit(r: &Resources) -> Option<u64> {
+    r.max_memory.or_else(size::available_memory)
+}
+
+fn load(path: &Path, resources: &Resources) -> Result<Model, Failure> {
+    Model::from_file_with(path, Limits { max_memory: limit(resources) }).map_err(|e| match e {
+        ModelError::Io { .. } | ModelError::NotText { .. } => fail(INPUT, e),
+        ModelError::TooLarge { .. } => fail(TOO_LARGE, anyhow!(e).context(format!("model {}", path.display()))),
+        e => fail(INPUT, anyhow!(e).context(format!("invalid model {}", path.display()))),
+    })
+}
+
+/// Sets the worker threads: at most the machine's logical cores unless
+/// forced (oversubscription only slows a solver down: 1000 threads turned a
+/// 0.4 s run into minutes), and never more than 1024.
+fn configure_threads(threads: Option<usize>, force: bool) -> Result<(), Failure> {
+    let Some(n) = threads else { return Ok(()) };
+    let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
+    if n == 0 || n > 1024 {
+        return Err(fail(
+            INPUT,
+            anyhow!("--threads = {n}: expected an integer from 1 to {cores} (this machine's logical cores)"),
+        ));
+    }
+    let n = if n > cores && !force {
+        eprintln!(
+            "warning: {n} threads requested but this machine has {cores} logical cores; using {cores} \
+             (--force-threads to insist)"
+        );
+        cores
+    } else {
+        n
+    };
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(n)
+        .build_global()
+        .map_err(|e| fail(INPUT, anyhow!("cannot configure {n} worker threads: {e}")))
+}
+
+fn print_warnings<'a>(warnings: impl Iterator<Item = &'a cufem::model::Warning>) {
+    for w in warnings {
+        eprintln!("warning: {w}");
+    }
+}
+
+/// Installs the Ctrl-C/SIGTERM handling: the first signal requests a stop
+/// at the next safe point, a second one exits at once with code 130.
+fn install_interrupt() -> Result<Interrupt, Failure> {
+    let interrupt = Interrupt::new();
+    for signal in [signal_hook::consts::SIGINT, signal_hook::consts::SIGTERM] {
+        // order matters: the conditional exit sees the flag as set only on a second signal
+        signal_hook::flag::register_conditional_shutdown(signal, i32::from(INTERRUPTED), interrupt.flag())
+            .and_then(|_| signal_hook::flag::register(signal, interrupt.flag()))
+            .map_err(|e| fail(INPUT, anyhow!("cannot install the Ctrl-C handler: {e}")))?;
+    }
+    Ok(interrupt)
+}
+
+fn run(path: &Path, out: Option<PathBuf>, force: bool, quiet: bool, resources: &Resources) -> Result<u8, Failure> {
+    let model = load(path, resources)?;
+    print_warnings(model.warnings.iter());
+    configure_threads(resources.threads.or(model.solver.threads), resources.force_threads)?;
+    let out = out.unwrap_or_else(|| default_out(path, ""));
+    // the output folder is checked and locked before any computing
+    let folder = OutputDir::prepare(&out, force).map_err(|e| fail(FILES, e))?;
+    let interrupt = install_interrupt()?;
     if !quiet {
         report::print_header(&model);
     }
     let mut progress = Reporter::new(quiet);
-    let solution = analysis::run(&model, &mut progress).context("analysis failed")?;
+    let options = RunOptions { interrupt: interrupt.clone(), max_memory: limit(resources) };
+    let solution = analysis::run(&model, &options, &mut progress).map_err(|e| match e {
+        AnalysisError::TooLarge { .. } => fail(TOO_LARGE, e),
+        e => fail(INPUT, anyhow!(e).context("analysis failed")),
+    })?;
     progress.finish();
-    let written = cufem::io::write_results(&model, &solution, &out).context("cannot write results")?;
+    let written = cufem::io::write_results(&model, &solution, folder.staging()).map_err(|e| fail(FILES, e))?;
+    folder.commit().map_err(|e| fail(FILES, e))?;
     report::print_results(&model, &solution);
+    print_warnings(solution.warnings.iter());
     println!("\nwrote {} files to {}", written.len(), out.display());
-    if let Some(f) = &solution.failure {
-        eprintln!("\nthe analysis stopped early: {f}");
-        eprintln!(
-            "results of the last converged increment (load factor {:.4}) are in {}",
-            solution.lambda,
-            out.display()
-        );
-        return Ok(ExitCode::from(2));
+    match &solution.failure {
+        None => {
+            if interrupt.is_requested() {
+                eprintln!("(the interrupt came after the analysis had finished: the results are complete)");
+            }
+            Ok(OK)
+        }
+        Some(f) => {
+            eprintln!("\nthe analysis stopped early: {f}");
+            eprintln!(
+                "results of the last converged increment (load factor {:.4}) are in {}",
+                solution.lambda,
+                out.display()
+            );
+            Ok(if f.reason == StopReason::Interrupted { INTERRUPTED } else { NOT_CONVERGED })
+        }
     }
-    Ok(ExitCode::SUCCESS)
 }
 
 /// Progress: a bar on a terminal, one plain line per increment otherwise.
@@ -165,8 +374,14 @@ impl Reporter {
 }
 
 impl Progress for Reporter {
-    fn start(&mut self, _model: &Model, equations: usize) {
-        self.line(format!("solving {equations} equations"));
+    fn start(&mut self, _model: &Model, setup: &analysis::Setup) {
+        self.line(format!(
+            "solving {} equations, nnz(L) = {}, memory estimate {} (Ctrl-C stops at the next safe point and keeps \
+             the results)",
+            setup.equations,
+            setup.factor_nnz,
+            size::human_bytes(setup.memory.total())
+        ));
     }
 
     fn increment(&mut self, log: &IncrementLog) {
@@ -180,12 +395,16 @@ impl Progress for Reporter {
     fn cutback(&mut self, c: &Cutback) {
         let res: Vec<String> = c.newton.residuals.iter().map(|r| format!("{r:.1e}")).collect();
         self.line(format!(
-            "  cutback: increment {} (λ = {:.4}, Δλ = {:.3e}) failed ({:?}) after {} iterations, residuals [{}]{}",
+            "  cutback: increment {} (λ = {:.4}, Δλ = {:.3e}) failed after {} iterations ({}), residuals [{}]{}",
             c.index,
             c.lambda,
             c.dlambda,
-            c.newton.failure.unwrap_or(cufem::solver::newton::Failure::MaxIterations),
             c.newton.iterations,
+            match c.newton.failure {
+                Some(cufem::solver::newton::Failure::Diverged) => "diverged",
+                Some(cufem::solver::newton::Failure::Problem) => "linear solve failed",
+                _ => "not converged",
+            },
             res.join(" "),
             c.newton.message.as_ref().map(|m| format!(": {m}")).unwrap_or_default()
         ));

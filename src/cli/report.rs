@@ -69,7 +69,7 @@ pub fn print_check(model: &Model) {
     for m in &model.materials {
         let plastic = match &m.hardening {
             None => "elastic".to_string(),
-            Some(h) => format!("von Mises, σ_y0 = {:.4} MPa, {h:?}", h.initial_yield() * 1e-6),
+            Some(h) => format!("von Mises, {h}"),
         };
         println!("material {}: E = {:.4} GPa, ν = {}, {}", m.name, m.young * 1e-9, m.poisson, plastic);
     }
@@ -96,7 +96,7 @@ pub fn print_check(model: &Model) {
     for i in &model.indenters {
         let area: f64 = i.nodes.iter().map(|n| n.area).sum();
         println!(
-            "indenter {}: {:?}, displacement {:?} m, {} candidate nodes (surface {:.4e} m²)",
+            "indenter {}: {}, displacement {:?} m, {} candidate nodes (surface {:.4e} m²)",
             i.name,
             i.surface,
             i.displacement,
@@ -128,6 +128,26 @@ pub fn print_check(model: &Model) {
         s.newton.residual_tolerance,
         s.newton.displacement_tolerance
     );
+}
+
+/// Size and memory estimate printed by `cufem check`.
+pub fn print_memory(s: &cufem::size::Sizes, limit: Option<u64>) {
+    use cufem::size::human_bytes;
+    let m = s.memory();
+    println!(
+        "size: {} equations, nnz(K, lower) {}, nnz(L) {} (symbolic factorization)",
+        thousands(s.equations as usize),
+        thousands(s.pattern_nnz as usize),
+        thousands(s.factor_nnz as usize)
+    );
+    println!("memory estimate: {} at peak", human_bytes(m.total()));
+    for (what, bytes) in &m.parts {
+        println!("  {what:<44} {:>12}", human_bytes(*bytes));
+    }
+    println!("  {:<44} {:>12}", "setup or output transients (larger of)", human_bytes(m.transient));
+    if let Some(l) = limit {
+        println!("  available: {}", human_bytes(l));
+    }
 }
 
 /// Header of `cufem run`.
@@ -198,7 +218,7 @@ pub fn print_results(model: &Model, solution: &Solution) {
                 .probes
                 .iter()
                 .find(|p| p.name == r.probe)
-                .and_then(|p| view.sample_point(p.body, p.point))
+                .and_then(|p| view.sample_probe(p))
                 .map_or(f64::NAN, |s| s.get(r.quantity));
             let scale = r.quantity.display_scale();
             let unit = r.quantity.label();

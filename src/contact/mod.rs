@@ -76,11 +76,39 @@ pub enum RigidSurface {
     },
 }
 
+impl std::fmt::Display for RigidSurface {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        const AXES: [&str; 3] = ["x", "y", "z"];
+        match self {
+            Self::Flat { axis, sign, position, bounds } => {
+                let sign = if *sign > 0.0 { "+" } else { "-" };
+                write!(f, "flat punch in the plane {} = {position} m facing {sign}{}", AXES[*axis], AXES[*axis])?;
+                for (k, b) in bounds.iter().enumerate() {
+                    if let Some([a, b]) = b
+                        && k != *axis
+                    {
+                        write!(f, ", {} ∈ [{a}, {b}] m", AXES[k])?;
+                    }
+                }
+                Ok(())
+            }
+            Self::Cylinder { axis, center, radius, length } => {
+                write!(f, "cylinder of radius {radius} m, axis along {} through {center:?} m", AXES[*axis])?;
+                if let Some([a, b]) = length {
+                    write!(f, ", {} ∈ [{a}, {b}] m", AXES[*axis])?;
+                }
+                Ok(())
+            }
+        }
+    }
+}
+
 impl RigidSurface {
     /// Pairs a node with the rigid surface in the reference configuration:
     /// the initial gap to the closest surface point (along its normal) and
     /// that normal, pointing to the body; `None` where the node does not face
-    /// the surface (beyond a punch's bounds or a cylinder's length).
+    /// the surface (beyond a punch's bounds or a cylinder's length). A node
+    /// on a cylinder's axis gets the gap `−radius` and a zero normal.
     pub fn reference_gap(&self, x0: [f64; 3], tol: f64) -> Option<(f64, [f64; 3])> {
         match self {
             Self::Flat { axis, sign, position, bounds } => {
@@ -104,7 +132,12 @@ impl RigidSurface {
                 let mut r = [x0[0] - center[0], x0[1] - center[1], x0[2] - center[2]];
                 r[*axis] = 0.0;
                 let d = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
-                (d > 0.0).then(|| (d - radius, r.map(|v| v / d)))
+                if d == 0.0 {
+                    // on the axis: inside the cylinder by its whole radius
+                    // (no normal exists; the caller rejects the placement)
+                    return Some((-radius, [0.0; 3]));
+                }
+                Some((d - radius, r.map(|v| v / d)))
             }
         }
     }
@@ -138,6 +171,17 @@ pub struct Indenter {
     pub displacement: [f64; 3],
     /// Candidate nodes.
     pub nodes: Vec<ContactNode>,
+    /// The body's boundary faces the indenter may touch.
+    pub faces: Vec<crate::bc::Face>,
+}
+
+/// The boundary faces of one side of a contact.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactSurface {
+    /// Body index.
+    pub body: usize,
+    /// Its boundary faces on this side.
+    pub faces: Vec<crate::bc::Face>,
 }
 
 /// A slave–master node pair between deformable bodies.
@@ -166,6 +210,10 @@ pub struct PairContact {
     pub pairs: Vec<NodePair>,
     /// Slave-surface nodes that found no master node (not in contact).
     pub unpaired: usize,
+    /// The master side's faces.
+    pub master: ContactSurface,
+    /// The slave side's faces.
+    pub slave: ContactSurface,
 }
 
 /// How ε_N is chosen for a contact.

@@ -34,14 +34,15 @@ pub fn write_line(path: &Path, samples: &[LineSample]) -> Result<(), IoError> {
 }
 
 /// One CSV per constraint set (reaction against prescribed displacement)
-/// and per contact (resultant force against indenter displacement).
+/// and per contact (resultant force against indenter displacement), each
+/// matched to its history entries by name.
 pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     let mut out = Vec::new();
-    for (k, c) in model.constraints.iter().enumerate() {
+    for c in &model.constraints {
         let mut text = String::from("increment,lambda,iterations,u_x,u_y,u_z,r_x,r_y,r_z\n");
         for row in &solution.history {
             let u = c.values.map(|v| v.map_or(String::new(), |v| format!("{:e}", row.lambda * v)));
-            let r = row.reactions[k];
+            let r = row.reaction(&c.name).map_or([f64::NAN; 3], |r| r.force);
             let _ = writeln!(
                 text,
                 "{},{:e},{},{},{},{},{:e},{:e},{:e}",
@@ -52,24 +53,31 @@ pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result
         write(&path, &text)?;
         out.push(path);
     }
-    let names = model
-        .indenters
-        .iter()
-        .map(|i| (i.name.as_str(), Some(i.displacement)))
-        .chain(model.contacts.iter().map(|c| (c.name.as_str(), None)));
-    for (k, (name, disp)) in names.enumerate() {
+    for set in &solution.contact_sets {
+        let disp = model.indenters.iter().find(|i| i.name == set.name).map(|i| i.displacement);
         let mut text =
             String::from("increment,lambda,iterations,d_x,d_y,d_z,f_x,f_y,f_z,max_penetration,plastic_points\n");
         for row in &solution.history {
             let d = disp.map(|d| d.map(|v| format!("{:e}", row.lambda * v))).unwrap_or_default();
-            let (f, pen) = row.contact[k];
+            let Some(c) = row.contact(&set.name) else { continue };
+            let f = c.force;
             let _ = writeln!(
                 text,
                 "{},{:e},{},{},{},{},{:e},{:e},{:e},{:e},{}",
-                row.increment, row.lambda, row.iterations, d[0], d[1], d[2], f[0], f[1], f[2], pen, row.plastic_points
+                row.increment,
+                row.lambda,
+                row.iterations,
+                d[0],
+                d[1],
+                d[2],
+                f[0],
+                f[1],
+                f[2],
+                c.max_penetration,
+                row.plastic_points
             );
         }
-        let path = dir.join(format!("history_{name}.csv"));
+        let path = dir.join(format!("history_{}.csv", set.name));
         write(&path, &text)?;
         out.push(path);
     }
@@ -79,15 +87,9 @@ pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result
 /// Final state of each contact point, one CSV per indenter or contact.
 pub fn write_contact_points(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     let mut out = Vec::new();
-    let mut k = 0;
-    let sizes = model
-        .indenters
-        .iter()
-        .map(|i| (i.name.as_str(), i.nodes.len()))
-        .chain(model.contacts.iter().map(|c| (c.name.as_str(), c.pairs.len())));
-    for (name, n) in sizes {
+    for set in &solution.contact_sets {
         let mut text = String::from("node,x,y,z,gap,f_x,f_y,f_z,area,pressure,active\n");
-        for p in &solution.contact_points[k..k + n] {
+        for p in &set.points {
             let x = model.mesh.coords(p.node);
             let f = p.force;
             let pressure = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt() / p.area;
@@ -107,8 +109,7 @@ pub fn write_contact_points(model: &Model, solution: &Solution, dir: &Path) -> R
                 u8::from(p.active)
             );
         }
-        k += n;
-        let path = dir.join(format!("contact_{name}.csv"));
+        let path = dir.join(format!("contact_{}.csv", set.name));
         write(&path, &text)?;
         out.push(path);
     }

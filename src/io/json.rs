@@ -70,6 +70,10 @@ pub struct Summary {
     pub wall_time_s: f64,
     /// True if λ = 1 was reached.
     pub converged: bool,
+    /// `"converged"`, `"not_converged"` (stopped by the load stepping) or
+    /// `"interrupted"` (Ctrl-C): in the last two cases the results are those
+    /// of the last converged increment.
+    pub status: &'static str,
     /// Load factor reached.
     pub load_factor: f64,
     /// Converged increments.
@@ -80,6 +84,8 @@ pub struct Summary {
     pub cutbacks: usize,
     /// Plastic Gauss points at the end.
     pub plastic_points: usize,
+    /// Largest equivalent plastic strain over all Gauss points.
+    pub max_peeq: f64,
     /// Why the analysis stopped early, if it did.
     pub failure: Option<String>,
     /// Probe values.
@@ -92,6 +98,22 @@ pub struct Summary {
     pub applied_load: [f64; 3],
     /// Phase timings.
     pub timings: TimingSummary,
+    /// Memory: estimate before the analysis and measured peak.
+    pub memory: MemorySummary,
+    /// Warnings of the model and of the results.
+    pub warnings: Vec<String>,
+    /// The other files of this result set (summary.json is written last and
+    /// lists them, so a complete set can be recognised).
+    pub files: Vec<String>,
+}
+
+/// Memory of the run.
+#[derive(Debug, Clone, Serialize)]
+pub struct MemorySummary {
+    /// Estimate made after the symbolic factorization (bytes).
+    pub estimated_bytes: u64,
+    /// Peak resident memory of the process when the summary was written (bytes).
+    pub peak_bytes: Option<u64>,
 }
 
 /// Builds the summary of a solution.
@@ -101,7 +123,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         .probes
         .iter()
         .map(|p| {
-            let s = view.sample_point(p.body, p.point).unwrap_or_default();
+            let s = view.sample_probe(p).unwrap_or_default();
             ProbeSummary {
                 name: p.name.clone(),
                 point: p.point,
@@ -112,20 +134,20 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
             }
         })
         .collect();
-    let reactions = model
-        .constraints
+    let reactions = solution
+        .reactions
         .iter()
-        .zip(&solution.reactions)
-        .map(|(c, r)| ForceSummary { name: c.name.clone(), kind: None, force: *r, max_penetration: None })
+        .map(|r| ForceSummary { name: r.name.clone(), kind: None, force: r.force, max_penetration: None })
         .collect();
-    let names = model
-        .indenters
+    let contact = solution
+        .contacts
         .iter()
-        .map(|i| (i.name.clone(), "indenter"))
-        .chain(model.contacts.iter().map(|c| (c.name.clone(), "pair")));
-    let contact = names
-        .zip(&solution.contact)
-        .map(|((name, kind), (f, pen))| ForceSummary { name, kind: Some(kind), force: *f, max_penetration: Some(*pen) })
+        .map(|c| ForceSummary {
+            name: c.name.clone(),
+            kind: Some(c.kind.name()),
+            force: c.force,
+            max_penetration: Some(c.max_penetration),
+        })
         .collect();
     let t = &solution.timings;
     Summary {
@@ -134,11 +156,17 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         equations: solution.equations,
         wall_time_s: solution.wall_time.as_secs_f64(),
         converged: solution.failure.is_none(),
+        status: match &solution.failure {
+            None => "converged",
+            Some(f) if f.reason == crate::solver::stepping::StopReason::Interrupted => "interrupted",
+            Some(_) => "not_converged",
+        },
         load_factor: solution.lambda,
         increments: solution.increments.len(),
         newton_iterations: solution.increments.iter().map(|i| i.newton.iterations).sum(),
         cutbacks: solution.cutbacks.len(),
         plastic_points: solution.plastic_points,
+        max_peeq: solution.states.iter().map(|s| s.peeq).fold(0.0, f64::max),
         failure: solution.failure.as_ref().map(|f| f.to_string()),
         probes,
         reactions,
@@ -151,11 +179,15 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
             factorization_s: t.factorization.as_secs_f64(),
             solve_s: t.solve.as_secs_f64(),
         },
+        memory: MemorySummary { estimated_bytes: solution.memory.total(), peak_bytes: crate::size::peak_memory() },
+        warnings: model.warnings.iter().chain(&solution.warnings).map(|w| w.to_string()).collect(),
+        files: Vec::new(),
     }
 }
 
 /// Writes a summary as pretty JSON.
 pub fn write(path: &Path, s: &Summary) -> Result<(), IoError> {
-    let text = serde_json::to_string_pretty(s).expect("summary serializes");
+    // plain data (strings, numbers, NaN-free options): serialization cannot fail
+    let text = serde_json::to_string_pretty(s).unwrap_or_default();
     std::fs::write(path, text).map_err(|e| file_error(path, e))
 }

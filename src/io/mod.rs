@@ -13,6 +13,7 @@
 
 mod csv;
 mod json;
+pub mod output;
 mod png;
 mod vtu;
 
@@ -55,20 +56,19 @@ pub enum IoError {
     },
 }
 
-pub(crate) fn file_error(path: &Path, source: std::io::Error) -> IoError {
+/// An I/O error on `path`.
+pub fn file_error(path: &Path, source: std::io::Error) -> IoError {
     IoError::File { path: path.display().to_string(), source }
 }
 
-/// Writes every output of a solved model into `dir` (created if needed).
-/// Returns the paths written.
+/// Writes every output of a solved model into `dir` (created if needed),
+/// `summary.json` last. Returns the paths written. The CLI writes into the
+/// staging folder of an [`output::OutputDir`], which makes the set appear
+/// as a whole.
 pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     std::fs::create_dir_all(dir).map_err(|e| file_error(dir, e))?;
     let mut written = Vec::new();
     let view = solution.fields(model);
-
-    let path = dir.join("summary.json");
-    json::write(&path, &summary(model, solution))?;
-    written.push(path);
 
     if model.output.vtu {
         let path = dir.join("result.vtu");
@@ -100,7 +100,7 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
                     &title,
                     "distance along the line [mm]",
                     &q.label(),
-                    &[Series { name: "cufem".into(), points }],
+                    &[Series { name: "cufem".into(), points, dashed: false }],
                 )?;
                 written.push(path);
             }
@@ -112,5 +112,11 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     if model.output.plots {
         written.extend(png::history_plots(model, solution, dir)?);
     }
+    // last: its presence and its list of files mark a complete result set
+    let mut s = summary(model, solution);
+    s.files = written.iter().filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())).collect();
+    let path = dir.join("summary.json");
+    json::write(&path, &s)?;
+    written.push(path);
     Ok(written)
 }

@@ -17,6 +17,8 @@ pub struct Series {
     pub name: String,
     /// `(x, y)` points in display units.
     pub points: Vec<(f64, f64)>,
+    /// Drawn dashed (e.g. a reference solution beside ours).
+    pub dashed: bool,
 }
 
 static FONT: Once = Once::new();
@@ -36,25 +38,38 @@ fn plot_error(path: &Path, e: impl std::fmt::Display) -> IoError {
     IoError::Plot { path: path.display().to_string(), message: e.to_string() }
 }
 
+/// Largest magnitude drawn on an axis: beyond it the padded range or the
+/// tick spacing can overflow (a range of ±∞ once made the tick generator
+/// loop forever).
+const MAX_AXIS: f64 = 1e200;
+
+/// Padded axis range of the finite values of magnitude ≤ [`MAX_AXIS`]:
+/// 5 % of the data span on each side, at least a relative 1e-9 of the
+/// values (a constant curve), and `[0, 1]` without data. Values smaller
+/// than 1e-200 in magnitude are treated as zero so the span never falls
+/// into subnormal numbers.
+fn axis_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
+    let (mut lo, mut hi) = (f64::INFINITY, f64::NEG_INFINITY);
+    for v in values.filter(|v| v.is_finite() && v.abs() <= MAX_AXIS) {
+        let v = if v.abs() < 1.0 / MAX_AXIS { 0.0 } else { v };
+        lo = lo.min(v);
+        hi = hi.max(v);
+    }
+    if lo > hi {
+        return (0.0, 1.0);
+    }
+    let scale = lo.abs().max(hi.abs());
+    let pad = (0.05 * (hi - lo)).max(1e-9 * scale).max(if scale == 0.0 { 1.0 } else { 0.0 });
+    (lo - pad, hi + pad)
+}
+
 /// Draws `series` as lines with markers into a 1000×640 PNG.
 pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, series: &[Series]) -> Result<(), IoError> {
     register_font();
-    let all = series.iter().flat_map(|s| s.points.iter()).filter(|p| p.0.is_finite() && p.1.is_finite());
-    let (mut x0, mut x1, mut y0, mut y1) = (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY);
-    for &(x, y) in all {
-        x0 = x0.min(x);
-        x1 = x1.max(x);
-        y0 = y0.min(y);
-        y1 = y1.max(y);
-    }
-    if !x0.is_finite() {
-        (x0, x1, y0, y1) = (0.0, 1.0, 0.0, 1.0);
-    }
-    if x1 - x0 <= 0.0 {
-        x1 = x0 + 1.0;
-    }
-    let pad = 0.05 * (y1 - y0).abs().max(1e-12 * y1.abs().max(1.0));
-    let (y0, y1) = (y0 - pad, y1 + pad);
+    let (x0, x1) = axis_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.0)));
+    let (y0, y1) = axis_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
+    // points that cannot be drawn are left out rather than derailing the axes
+    let drawable = |p: &(f64, f64)| (x0..=x1).contains(&p.0) && (y0..=y1).contains(&p.1);
 
     let root = BitMapBackend::new(path, (1000, 640)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_error(path, e))?;
@@ -62,7 +77,7 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, series:
         .caption(title, ("sans-serif", 22))
         .margin(18)
         .x_label_area_size(50)
-        .y_label_area_size(80)
+        .y_label_area_size(100)
         .build_cartesian_2d(x0..x1, y0..y1)
         .map_err(|e| plot_error(path, e))?;
     chart
@@ -74,14 +89,19 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, series:
         .map_err(|e| plot_error(path, e))?;
     for (k, s) in series.iter().enumerate() {
         let colour = Palette99::pick(k).to_rgba();
-        chart
-            .draw_series(LineSeries::new(s.points.iter().copied(), colour.stroke_width(2)))
+        let points = s.points.iter().copied().filter(drawable);
+        let drawn = if s.dashed {
+            chart.draw_series(DashedLineSeries::new(points, 8, 5, colour.stroke_width(2)))
+        } else {
+            chart.draw_series(LineSeries::new(points, colour.stroke_width(2)))
+        };
+        drawn
             .map_err(|e| plot_error(path, e))?
             .label(s.name.clone())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2)));
-        if s.points.len() <= 60 {
+        if s.points.len() <= 60 && !s.dashed {
             chart
-                .draw_series(s.points.iter().map(|&p| Circle::new(p, 3, colour.filled())))
+                .draw_series(s.points.iter().copied().filter(drawable).map(|p| Circle::new(p, 3, colour.filled())))
                 .map_err(|e| plot_error(path, e))?;
         }
     }
@@ -100,7 +120,7 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, series:
 /// applies along its direction of motion against its displacement.
 pub fn history_plots(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     let mut out = Vec::new();
-    for (k, ind) in model.indenters.iter().enumerate() {
+    for ind in &model.indenters {
         let d = ind.displacement;
         let norm = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
         if norm == 0.0 {
@@ -108,19 +128,61 @@ pub fn history_plots(model: &Model, solution: &Solution, dir: &Path) -> Result<V
         }
         let dir_unit = d.map(|v| v / norm);
         let mut points = vec![(0.0, 0.0)];
-        points.extend(solution.history.iter().map(|row| {
-            let f = row.contact[k].0;
-            (row.lambda * norm * 1e3, f[0] * dir_unit[0] + f[1] * dir_unit[1] + f[2] * dir_unit[2])
+        points.extend(solution.history.iter().filter_map(|row| {
+            let f = row.contact(&ind.name)?.force;
+            Some((row.lambda * norm * 1e3, f[0] * dir_unit[0] + f[1] * dir_unit[1] + f[2] * dir_unit[2]))
         }));
+        // short tick labels keep the axis label clear of them
+        let largest = points.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+        let (unit, scale) = match largest {
+            f if f >= 1e6 => ("MN", 1e-6),
+            f if f >= 1e3 => ("kN", 1e-3),
+            _ => ("N", 1.0),
+        };
+        for p in &mut points {
+            p.1 *= scale;
+        }
         let path = dir.join(format!("history_{}.png", ind.name));
         line_plot(
             &path,
             &format!("Indenter {}: force against displacement", ind.name),
             "indenter displacement [mm]",
-            "force along the motion [N]",
-            &[Series { name: "cufem".into(), points }],
+            &format!("force along the motion [{unit}]"),
+            &[Series { name: "cufem".into(), points, dashed: false }],
         )?;
         out.push(path);
     }
     Ok(out)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Issue 13, reproduction 1: values that overflow the padded range (and
+    /// subnormal or constant ones) are drawn in bounded time.
+    #[test]
+    fn extreme_values_plot_in_bounded_time() {
+        let dir = std::env::temp_dir().join(format!("cufem_png_{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let cases: Vec<Vec<(f64, f64)>> = vec![
+            vec![(0.0, -1e308), (1.0, 1e308)],
+            vec![(0.0, 1e-310), (1.0, 2e-310)],
+            vec![(0.0, f64::NAN), (1.0, f64::INFINITY)],
+            vec![(0.0, 5.0), (1.0, 5.0)],
+            vec![(1e300, 1.0), (1e300, 1.0)],
+            vec![],
+        ];
+        for (k, points) in cases.into_iter().enumerate() {
+            let path = dir.join(format!("p{k}.png"));
+            let t = std::time::Instant::now();
+            line_plot(&path, "t", "x", "y", &[Series { name: "s".into(), points, dashed: false }]).unwrap();
+            assert!(t.elapsed().as_secs_f64() < 5.0, "case {k} took {:?}", t.elapsed());
+            assert!(std::fs::metadata(&path).unwrap().len() > 0);
+        }
+        let _ = std::fs::remove_dir_all(&dir);
+        assert_eq!(axis_range([1e-310, 2e-310].into_iter()), (-1.0, 1.0));
+        let (a, b) = axis_range([5.0, 5.0].into_iter());
+        assert!(a < 5.0 && b > 5.0 && b - a < 1e-6);
+    }
 }

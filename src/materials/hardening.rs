@@ -26,6 +26,25 @@ pub enum Hardening {
     },
 }
 
+impl std::fmt::Display for Hardening {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Self::Perfect { yield_stress } => write!(f, "perfect plasticity, σ_y = {:.4} MPa", yield_stress * 1e-6),
+            Self::Linear { yield_stress, modulus } => {
+                write!(f, "linear hardening, σ_y0 = {:.4} MPa, H = {:.4} MPa", yield_stress * 1e-6, modulus * 1e-6)
+            }
+            Self::Table { strains, stresses } => write!(
+                f,
+                "tabulated hardening, {} points, σ_y from {:.4} MPa (peeq 0) to {:.4} MPa (peeq {})",
+                strains.len(),
+                stresses[0] * 1e-6,
+                stresses[stresses.len() - 1] * 1e-6,
+                strains[strains.len() - 1]
+            ),
+        }
+    }
+}
+
 impl Hardening {
     /// Initial yield stress `σ_y(0)`.
     pub fn initial_yield(&self) -> f64 {

@@ -11,7 +11,7 @@
 //! consistent (algorithmic) tangent — Simo & Hughes, *Computational
 //! Inelasticity* (1998), §3.3; de Souza Neto, Perić & Owen, *Computational
 //! Methods for Plasticity* (2008), Box 7.3 and eq. (7.120). The paper uses the
-//! same model (Nagaraj et al., eq. 5, and its ref. [21]).
+//! same model (Nagaraj et al., eq. 5, and its ref. \[21\]).
 //!
 //! Strains and stresses follow [`crate::voigt`] (engineering shear strains).
 

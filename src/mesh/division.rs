@@ -43,11 +43,12 @@ impl Division {
                     if s.elements == 0 {
                         return Err(MeshError::invalid(format!("{skey}.elements"), "0", "an integer ≥ 1"));
                     }
-                    if !(s.ratio.is_finite() && s.ratio > 0.0) {
+                    let (lo, hi) = super::GRADING_RATIO;
+                    if !(s.ratio >= lo && s.ratio <= hi) {
                         return Err(MeshError::invalid(
                             format!("{skey}.ratio"),
-                            s.ratio.to_string(),
-                            "a positive number (last/first element length)",
+                            crate::numbers::number(s.ratio),
+                            format!("a number from {lo:e} to {hi:e} (last/first element length)"),
                         ));
                     }
                     if let Some(&last) = out.last()
@@ -79,14 +80,41 @@ impl Division {
         if lines.len() < 2 {
             return Err(MeshError::invalid(key.to_string(), format!("{lines:?}"), "at least two element boundaries"));
         }
+        let shown = || {
+            if lines.len() <= 8 {
+                format!("{lines:?}")
+            } else {
+                format!("{} values from {} to {}", lines.len(), lines[0], lines[lines.len() - 1])
+            }
+        };
         for w in lines.windows(2) {
             if !(w[1] > w[0]) || !w[0].is_finite() || !w[1].is_finite() {
-                return Err(MeshError::invalid(
-                    key.to_string(),
-                    format!("{lines:?}"),
-                    "strictly increasing finite coordinates",
-                ));
+                return Err(MeshError::invalid(key.to_string(), shown(), "strictly increasing finite coordinates"));
             }
+        }
+        let (first, last) = (lines[0], lines[lines.len() - 1]);
+        if first.abs().max(last.abs()) > super::MAX_COORD {
+            return Err(MeshError::invalid(
+                key.to_string(),
+                shown(),
+                format!(
+                    "coordinates within ±{:e} m (a structure larger than 10 km is not plausible)",
+                    super::MAX_COORD
+                ),
+            ));
+        }
+        let span = last - first;
+        if let Some(w) = lines.windows(2).find(|w| w[1] - w[0] < super::MIN_RELATIVE_SIZE * span) {
+            return Err(MeshError::invalid(
+                key.to_string(),
+                shown(),
+                format!(
+                    "elements of at least {:e} of the divided span (the element from {} to {} is shorter)",
+                    super::MIN_RELATIVE_SIZE,
+                    w[0],
+                    w[1]
+                ),
+            ));
         }
         Ok(lines)
     }

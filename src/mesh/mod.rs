@@ -18,6 +18,14 @@ pub use section::{CrossSection, EDGES};
 
 use crate::shape::BeamElementKind;
 
+/// Largest absolute coordinate of a mesh (m): a 10 km structure.
+pub const MAX_COORD: f64 = 1e4;
+/// Smallest element length of a division relative to the divided span:
+/// below it round-off swamps the element's own size.
+pub const MIN_RELATIVE_SIZE: f64 = 1e-9;
+/// Accepted range of a grading ratio (last / first element length).
+pub const GRADING_RATIO: (f64, f64) = (1e-4, 1e4);
+
 /// Errors raised while building meshes. Every message names the model-file
 /// key, the offending value and what is allowed.
 #[derive(Debug, thiserror::Error)]

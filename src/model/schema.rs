@@ -4,7 +4,41 @@
 //! name and line instead of being silently ignored. The meaning, unit and
 //! default of every key are in `docs/model-format.md`.
 
+use std::fmt;
+
 use serde::Deserialize;
+use serde::de::{self, Deserializer, SeqAccess, Visitor};
+
+/// A fixed-length array read from the model file. Unlike serde's `[T; N]`,
+/// which silently drops extra elements, it rejects arrays of any length
+/// other than `N` (a hardening-table row `[peeq, stress, 7.0]` is an error,
+/// not a row of two numbers).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Exact<T, const N: usize>(pub [T; N]);
+
+impl<T, const N: usize> std::ops::Deref for Exact<T, N> {
+    type Target = [T; N];
+    fn deref(&self) -> &[T; N] {
+        &self.0
+    }
+}
+
+impl<T, const N: usize> From<Exact<T, N>> for [T; N] {
+    fn from(e: Exact<T, N>) -> [T; N] {
+        e.0
+    }
+}
+
+impl<'de, T: Deserialize<'de>, const N: usize> Deserialize<'de> for Exact<T, N> {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        let v = Vec::<T>::deserialize(d)?;
+        let n = v.len();
+        match <[T; N]>::try_from(v) {
+            Ok(a) => Ok(Exact(a)),
+            Err(_) => Err(de::Error::invalid_length(n, &format!("an array of length {N}").as_str())),
+        }
+    }
+}
 
 /// Root of a model file.
 #[derive(Debug, Deserialize)]
@@ -85,7 +119,7 @@ pub struct PlasticityFile {
     pub yield_stress: Option<f64>,
     pub hardening: String,
     pub hardening_modulus: Option<f64>,
-    pub table: Option<Vec<[f64; 2]>>,
+    pub table: Option<Vec<Exact<f64, 2>>>,
 }
 
 /// `[[bodies]]`.
@@ -96,6 +130,7 @@ pub struct BodyFile {
     pub material: String,
     pub section: SectionFile,
     pub axis: AxisFile,
+    pub formulation: Option<String>,
 }
 
 /// An interval division: `{from, to, elements[, ratio]}`, `{lines}` or `{segments}`.
@@ -130,7 +165,7 @@ pub struct SectionFile {
     pub x: Option<DivisionFile>,
     pub z: Option<DivisionFile>,
     // tube
-    pub origin: Option<[f64; 2]>,
+    pub origin: Option<Exact<f64, 2>>,
     pub width: Option<f64>,
     pub height: Option<f64>,
     pub thickness: Option<f64>,
@@ -139,8 +174,8 @@ pub struct SectionFile {
     pub along_z: Option<usize>,
     pub through: Option<usize>,
     // quads
-    pub points: Option<Vec<[f64; 2]>>,
-    pub quads: Option<Vec<[usize; 4]>>,
+    pub points: Option<Vec<Exact<f64, 2>>>,
+    pub quads: Option<Vec<Exact<usize, 4>>>,
 }
 
 /// `[bodies.axis]`.
@@ -157,11 +192,43 @@ pub struct AxisFile {
 }
 
 /// A coordinate condition: a number (equality) or `[min, max]`.
-#[derive(Debug, Deserialize, Clone, Copy)]
-#[serde(untagged)]
+#[derive(Debug, Clone, Copy)]
 pub enum ConditionFile {
     Value(f64),
     Range([f64; 2]),
+}
+
+impl<'de> Deserialize<'de> for ConditionFile {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+        struct V;
+        const EXPECTED: &str = "a number (the coordinate) or a range [min, max]";
+        impl<'de> Visitor<'de> for V {
+            type Value = ConditionFile;
+            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+                f.write_str(EXPECTED)
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<ConditionFile, E> {
+                Ok(ConditionFile::Value(v))
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<ConditionFile, E> {
+                Ok(ConditionFile::Value(v as f64))
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<ConditionFile, E> {
+                Ok(ConditionFile::Value(v as f64))
+            }
+            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<ConditionFile, A::Error> {
+                let mut v: Vec<f64> = Vec::new();
+                while let Some(x) = seq.next_element::<f64>()? {
+                    v.push(x);
+                }
+                match v[..] {
+                    [a, b] => Ok(ConditionFile::Range([a, b])),
+                    _ => Err(de::Error::invalid_length(v.len(), &EXPECTED)),
+                }
+            }
+        }
+        d.deserialize_any(V)
+    }
 }
 
 /// A node selection `{x = …, y = …, z = …, tolerance = …}`.
@@ -203,9 +270,9 @@ pub struct LoadFile {
     pub body: String,
     #[serde(rename = "where")]
     pub selection: SelectionFile,
-    pub force_per_node: Option<[f64; 3]>,
-    pub total_force: Option<[f64; 3]>,
-    pub traction: Option<[f64; 3]>,
+    pub force_per_node: Option<Exact<f64, 3>>,
+    pub total_force: Option<Exact<f64, 3>>,
+    pub traction: Option<Exact<f64, 3>>,
     pub pressure: Option<f64>,
 }
 
@@ -217,18 +284,18 @@ pub struct IndenterFile {
     pub body: String,
     pub shape: String,
     pub surface: SelectionFile,
-    pub displacement: [f64; 3],
+    pub displacement: Exact<f64, 3>,
     // flat
     pub normal: Option<String>,
     pub position: Option<f64>,
-    pub x: Option<[f64; 2]>,
-    pub y: Option<[f64; 2]>,
-    pub z: Option<[f64; 2]>,
+    pub x: Option<Exact<f64, 2>>,
+    pub y: Option<Exact<f64, 2>>,
+    pub z: Option<Exact<f64, 2>>,
     // cylinder
     pub axis: Option<String>,
-    pub center: Option<[f64; 3]>,
+    pub center: Option<Exact<f64, 3>>,
     pub radius: Option<f64>,
-    pub length: Option<[f64; 2]>,
+    pub length: Option<Exact<f64, 2>>,
     // penalty
     pub penalty: Option<f64>,
     pub penalty_factor: Option<f64>,
@@ -253,7 +320,7 @@ pub struct ContactFile {
     pub penalty: Option<f64>,
     pub penalty_factor: Option<f64>,
     pub tolerance: Option<f64>,
-    pub pairs: Option<Vec<[[f64; 3]; 2]>>,
+    pub pairs: Option<Vec<Exact<Exact<f64, 3>, 2>>>,
 }
 
 /// `[[probes]]`.
@@ -261,7 +328,7 @@ pub struct ContactFile {
 #[serde(deny_unknown_fields)]
 pub struct ProbeFile {
     pub name: String,
-    pub point: [f64; 3],
+    pub point: Exact<f64, 3>,
     pub body: Option<String>,
 }
 
@@ -270,8 +337,8 @@ pub struct ProbeFile {
 #[serde(deny_unknown_fields)]
 pub struct LineFile {
     pub name: String,
-    pub from: [f64; 3],
-    pub to: [f64; 3],
+    pub from: Exact<f64, 3>,
+    pub to: Exact<f64, 3>,
     pub points: Option<usize>,
     pub body: Option<String>,
     pub plot: Option<Vec<String>>,
@@ -283,6 +350,8 @@ pub struct LineFile {
 pub struct OutputFile {
     pub vtu: Option<bool>,
     pub plots: Option<bool>,
+    pub recovery: Option<String>,
+    pub gauss_points: Option<bool>,
 }
 
 /// `[[references]]`: a published value to print beside ours.

@@ -38,94 +38,19 @@
 //! belongs to several elements; the value reported is the mean of their
 //! values (fields such as stress are discontinuous there).
 
-mod quantity;
+pub mod recovery;
 
-pub use quantity::{Quantity, Sample};
+pub use crate::quantity::{Quantity, Sample};
+pub use recovery::Recovered;
 
-use crate::elements::{BodyGeometry, section_point};
 use crate::materials::{Material, PointState};
-use crate::mesh::{Body, Mesh};
-use crate::shape::{Lagrange1d, Lagrange2d};
+use crate::mesh::Mesh;
+use crate::values::{CellValues, PointValues};
 use crate::voigt::{self, Voigt};
 
-/// A point located in a body element.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Location {
-    /// Body index.
-    pub body: usize,
-    /// Body-local element index.
-    pub element: usize,
-    /// Natural coordinates `(ξ, η, ζ)`.
-    pub natural: [f64; 3],
-}
+pub use crate::values::Location;
 
-/// Every element of `body` (index `b`) containing `point`.
-pub fn locate_in_body(b: usize, body: &Body, point: [f64; 3]) -> Vec<Location> {
-    let tol = 1e-9 * body.size();
-    let beams = body.axis.locate(point[1], tol);
-    if beams.is_empty() {
-        return Vec::new();
-    }
-    let section = &body.section;
-    let basis = Lagrange2d::new(section.kind.order());
-    let m = basis.len();
-    let (mut f, mut dxi, mut deta) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
-    let mut found = Vec::new();
-    for es in 0..section.n_elements() {
-        let el = section.element(es);
-        let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for &n in el {
-            for d in 0..2 {
-                lo[d] = lo[d].min(section.nodes[n][d]);
-                hi[d] = hi[d].max(section.nodes[n][d]);
-            }
-        }
-        let target = [point[0], point[2]];
-        if (0..2).any(|d| target[d] < lo[d] - tol || target[d] > hi[d] + tol) {
-            continue;
-        }
-        // Newton on the isoparametric map
-        let (mut xi, mut eta) = (0.0, 0.0);
-        let mut ok = false;
-        for _ in 0..30 {
-            let sp = section_point(section, &basis, es, xi, eta, &mut f, &mut dxi, &mut deta);
-            let r = [target[0] - sp.position[0], target[1] - sp.position[1]];
-            let [[xi_x, xi_z], [eta_x, eta_z]] = sp.inverse;
-            let (dx, de) = (xi_x * r[0] + xi_z * r[1], eta_x * r[0] + eta_z * r[1]);
-            xi += dx;
-            eta += de;
-            if dx.abs() + de.abs() < 1e-13 {
-                ok = true;
-                break;
-            }
-        }
-        let slack = 1e-7;
-        if ok && xi.abs() <= 1.0 + slack && eta.abs() <= 1.0 + slack {
-            for &(eb, zeta) in &beams {
-                found.push(Location {
-                    body: b,
-                    element: eb * section.n_elements() + es,
-                    natural: [xi.clamp(-1.0, 1.0), eta.clamp(-1.0, 1.0), zeta],
-                });
-            }
-        }
-    }
-    found
-}
-
-/// Locations of `point` in the named body, or in the first body containing it.
-pub fn locate_in_model(mesh: &Mesh, body: Option<usize>, point: [f64; 3]) -> Vec<Location> {
-    match body {
-        Some(b) => locate_in_body(b, &mesh.bodies[b], point),
-        None => mesh
-            .bodies
-            .iter()
-            .enumerate()
-            .map(|(b, body)| locate_in_body(b, body, point))
-            .find(|l| !l.is_empty())
-            .unwrap_or_default(),
-    }
-}
+pub use crate::values::{locate as locate_in_body, locate_in_model};
 
 /// Lagrange basis through arbitrary abscissae, evaluated at `x`.
 fn lagrange_through(points: &[f64], x: f64, out: &mut [f64]) {
@@ -139,7 +64,7 @@ pub struct FieldView<'a> {
     /// Mesh.
     pub mesh: &'a Mesh,
     /// Geometry caches per body.
-    pub geometry: &'a [BodyGeometry],
+    pub geometry: &'a [CellValues],
     /// Materials.
     pub materials: &'a [Material],
     /// Displacements, 3 per global node.
@@ -150,6 +75,9 @@ pub struct FieldView<'a> {
     pub stresses: &'a [Voigt],
     /// First Gauss point of each body in `states`.
     pub gp_offsets: &'a [usize],
+    /// Recovered nodal stress and peeq: when present, stress and peeq at
+    /// points come from it (continuous); otherwise element by element.
+    pub recovered: Option<&'a Recovered>,
 }
 
 impl FieldView<'_> {
@@ -157,40 +85,21 @@ impl FieldView<'_> {
     pub fn sample(&self, loc: &Location) -> Sample {
         let body = &self.mesh.bodies[loc.body];
         let geom = &self.geometry[loc.body];
-        let (es, eb) = body.split_element(loc.element);
         let [xi, eta, zeta] = loc.natural;
-
-        let sbasis = Lagrange2d::new(body.section.kind.order());
-        let ns = sbasis.len();
-        let (mut f, mut dxi, mut deta) = (vec![0.0; ns], vec![0.0; ns], vec![0.0; ns]);
-        let sp = section_point(&body.section, &sbasis, es, xi, eta, &mut f, &mut dxi, &mut deta);
-        let [[xi_x, xi_z], [eta_x, eta_z]] = sp.inverse;
-        let bbasis = Lagrange1d::new(body.axis.kind.order());
-        let nb = bbasis.len();
-        let (mut n, mut dn) = (vec![0.0; nb], vec![0.0; nb]);
-        bbasis.eval(zeta, &mut n, &mut dn);
-        let (y0, y1) = body.axis.element_span(eb);
-        let jac = 0.5 * (y1 - y0);
-
-        let mut nodes = Vec::new();
-        body.element_nodes(loc.element, &mut nodes);
-        let mut s = Sample::default();
-        for i in 0..nb {
-            for t in 0..ns {
-                let a = i * ns + t;
-                let node = nodes[a];
-                let ua = [self.u[3 * node], self.u[3 * node + 1], self.u[3 * node + 2]];
-                let shape = f[t] * n[i];
-                let g = [
-                    (dxi[t] * xi_x + deta[t] * eta_x) * n[i],
-                    f[t] * dn[i] / jac,
-                    (dxi[t] * xi_z + deta[t] * eta_z) * n[i],
-                ];
-                for k in 0..3 {
-                    s.u[k] += shape * ua[k];
+        // the same shape values and strain as the element kernel
+        let pv = PointValues::new(body, loc);
+        let mut s = Sample { u: pv.displacement(self.u), strain: pv.strain(self.u), ..Default::default() };
+        if let Some(r) = self.recovered {
+            for (&n, &node) in pv.shapes.iter().zip(&pv.nodes) {
+                for k in 0..6 {
+                    s.stress[k] += n * r.stress[node][k];
                 }
-                voigt::add_nodal_strain(&mut s.strain, g, ua);
+                s.peeq += n * r.peeq[node];
             }
+            // a projection may undershoot zero next to a plastic zone
+            s.peeq = s.peeq.max(0.0);
+            s.von_mises = voigt::von_mises(&s.stress);
+            return s;
         }
 
         // Gauss-point history, interpolated through the Gauss points
@@ -240,12 +149,21 @@ impl FieldView<'_> {
 
     /// Fields at a point (mean over the elements holding it), or `None` outside.
     pub fn sample_point(&self, body: Option<usize>, point: [f64; 3]) -> Option<Sample> {
-        let locs = locate_in_model(self.mesh, body, point);
-        if locs.is_empty() {
+        self.sample_at(&locate_in_model(self.mesh, body, point))
+    }
+
+    /// Fields at a point already located (mean over its elements), `None` without a location.
+    pub fn sample_at(&self, locations: &[Location]) -> Option<Sample> {
+        if locations.is_empty() {
             return None;
         }
-        let samples: Vec<Sample> = locs.iter().map(|l| self.sample(l)).collect();
+        let samples: Vec<Sample> = locations.iter().map(|l| self.sample(l)).collect();
         Some(Sample::mean(&samples))
+    }
+
+    /// Fields at a probe (located during preprocessing).
+    pub fn sample_probe(&self, probe: &crate::model::Probe) -> Option<Sample> {
+        self.sample_at(&probe.locations)
     }
 }
 

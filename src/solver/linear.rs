@@ -12,7 +12,7 @@
 //! perfectly plastic mechanism or a rigid-body mode left free), the same
 //! symbolic structure is refactorized as `LDLᵀ`.
 
-use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::{
@@ -107,14 +107,15 @@ pub struct Cholesky {
     symbolic: SymbolicCholesky<usize>,
     pattern: LowerCsc,
     l_values: Vec<f64>,
-    mem: MemBuffer,
+    mem: Option<MemBuffer>,
+    req: StackReq,
     kind: Option<Kind>,
     par: Par,
 }
 
 impl std::fmt::Debug for Cholesky {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Cholesky").field("n", &self.pattern.n).field("nnz_l", &self.l_values.len()).finish()
+        f.debug_struct("Cholesky").field("n", &self.pattern.n).field("nnz_l", &self.factor_nnz()).finish()
     }
 }
 
@@ -139,13 +140,19 @@ impl Cholesky {
             .factorize_numeric_llt_scratch::<f64>(par, Default::default())
             .or(symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()))
             .or(symbolic.solve_in_place_scratch::<f64>(1, par));
-        let l_values = vec![0.0; symbolic.len_val()];
-        Ok(Self { symbolic, pattern: pattern.clone(), l_values, mem: MemBuffer::new(req), kind: None, par })
+        // the factor and the scratch are allocated at the first factorization,
+        // after the caller has checked that they fit (see `crate::size`)
+        Ok(Self { symbolic, pattern: pattern.clone(), l_values: Vec::new(), mem: None, req, kind: None, par })
     }
 
     /// Number of stored values of the factor `L`.
     pub fn factor_nnz(&self) -> usize {
-        self.l_values.len()
+        self.symbolic.len_val()
+    }
+
+    /// Bytes of scratch memory the numeric factorization needs.
+    pub fn scratch_bytes(&self) -> usize {
+        self.req.unaligned_bytes_required()
     }
 
     /// Numeric factorization of the matrix with these `values` (in the order
@@ -160,7 +167,12 @@ impl Cholesky {
         );
         let a = SparseColMatRef::new(sym, values);
         self.kind = None;
-        let stack = MemStack::new(&mut self.mem);
+        if self.l_values.len() != self.symbolic.len_val() {
+            self.l_values = vec![0.0; self.symbolic.len_val()];
+        }
+        let req = self.req;
+        let mem = self.mem.get_or_insert_with(|| MemBuffer::new(req));
+        let stack = MemStack::new(mem);
         let llt = self.symbolic.factorize_numeric_llt::<f64>(
             &mut self.l_values,
             a,
@@ -174,7 +186,7 @@ impl Cholesky {
             self.kind = Some(Kind::Llt);
             return Ok(());
         }
-        let stack = MemStack::new(&mut self.mem);
+        let stack = MemStack::new(mem);
         let ldlt = self.symbolic.factorize_numeric_ldlt::<f64>(
             &mut self.l_values,
             a,
@@ -195,7 +207,8 @@ impl Cholesky {
     /// Fails with [`LinearError::Singular`] if the factor produced non-finite values.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), LinearError> {
         let n = self.pattern.n;
-        let stack = MemStack::new(&mut self.mem);
+        let Some(mem) = self.mem.as_mut() else { return Err(LinearError::Singular) };
+        let stack = MemStack::new(mem);
         let x = MatMut::from_column_major_slice_mut(rhs, n, 1);
         match self.kind {
             Some(Kind::Llt) => {

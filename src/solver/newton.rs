@@ -12,7 +12,10 @@
 //!   not change in the last iteration).
 //!
 //! The iteration stops early when the residual becomes non-finite or grows
-//! by more than `divergence_ratio` over its starting value.
+//! by more than `divergence_ratio` over its starting value, and before any
+//! further correction once an [`Interrupt`] is requested.
+
+use super::Interrupt;
 
 /// What the problem reports after an evaluation.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -72,6 +75,8 @@ pub enum Failure {
     Diverged,
     /// The problem failed (e.g. a singular tangent).
     Problem,
+    /// A stop was requested through the [`Interrupt`].
+    Interrupted,
 }
 
 /// History of one Newton solve.
@@ -97,7 +102,7 @@ impl Report {
 }
 
 /// Runs Newton's method from the problem's current iterate.
-pub fn solve<P: NonlinearProblem>(problem: &mut P, settings: &NewtonSettings) -> Report {
+pub fn solve<P: NonlinearProblem>(problem: &mut P, settings: &NewtonSettings, interrupt: &Interrupt) -> Report {
     let mut report = Report::default();
     let mut last_correction: Option<f64> = None;
     loop {
@@ -120,6 +125,9 @@ pub fn solve<P: NonlinearProblem>(problem: &mut P, settings: &NewtonSettings) ->
         }
         if report.iterations >= settings.max_iterations {
             return fail(report, Failure::MaxIterations, None);
+        }
+        if interrupt.is_requested() {
+            return fail(report, Failure::Interrupted, None);
         }
         match problem.correct() {
             Ok(c) => {
@@ -168,7 +176,7 @@ mod tests {
     #[test]
     fn converges_quadratically_on_a_scalar_equation() {
         let mut p = Cubic { x: 3.0, x0: 3.0, r: 0.0, k: 0.0 };
-        let rep = solve(&mut p, &NewtonSettings { residual_tolerance: 1e-14, ..Default::default() });
+        let rep = solve(&mut p, &NewtonSettings { residual_tolerance: 1e-14, ..Default::default() }, &Interrupt::new());
         assert!(rep.converged());
         assert!((p.x - 2.0).abs() < 1e-14);
         // r_{k+1} / r_k² bounded (quadratic) once close: check the last ratios
@@ -180,8 +188,18 @@ mod tests {
     #[test]
     fn reports_non_convergence() {
         let mut p = Cubic { x: 3.0, x0: 3.0, r: 0.0, k: 0.0 };
-        let rep = solve(&mut p, &NewtonSettings { max_iterations: 1, ..Default::default() });
+        let rep = solve(&mut p, &NewtonSettings { max_iterations: 1, ..Default::default() }, &Interrupt::new());
         assert_eq!(rep.failure, Some(Failure::MaxIterations));
         assert_eq!(rep.residuals.len(), 2);
+    }
+
+    #[test]
+    fn stops_before_correcting_once_interrupted() {
+        let mut p = Cubic { x: 3.0, x0: 3.0, r: 0.0, k: 0.0 };
+        let stop = Interrupt::new();
+        stop.request();
+        let rep = solve(&mut p, &NewtonSettings::default(), &stop);
+        assert_eq!(rep.failure, Some(Failure::Interrupted));
+        assert_eq!((rep.iterations, p.x), (0, 3.0));
     }
 }

@@ -9,6 +9,7 @@
 //! would fall below `min_increment`, the analysis stops with a report and the
 //! problem is left at its last converged increment.
 
+use super::Interrupt;
 use super::newton::{self, NewtonSettings, NonlinearProblem, Report};
 
 /// A problem that can be driven incrementally.
@@ -97,23 +98,17 @@ pub enum StopReason {
     IncrementTooSmall,
     /// The limit on the number of increments was reached.
     TooManyIncrements,
+    /// A stop was requested through the [`Interrupt`].
+    Interrupted,
 }
 
-/// The analysis could not reach λ = 1.
+/// The analysis could not reach λ = 1 (the problem is left at its last
+/// converged increment).
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error(
-    "increment {} did not converge at load factor {:.6} ({}): {}",
-    .increment, .lambda,
-    match .reason {
-        StopReason::IncrementTooSmall => format!("Δλ = {:.3e} would fall below the minimum increment", .dlambda),
-        StopReason::TooManyIncrements => "the maximum number of increments was reached".to_string(),
-    },
-    describe(.newton)
-)]
 pub struct SteppingError {
     /// Why it stopped.
     pub reason: StopReason,
-    /// Index of the increment that failed.
+    /// Index of the increment that failed (or was not attempted).
     pub increment: usize,
     /// λ attempted.
     pub lambda: f64,
@@ -125,12 +120,42 @@ pub struct SteppingError {
     pub newton: Report,
 }
 
+impl std::fmt::Display for SteppingError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self.reason {
+            StopReason::IncrementTooSmall => write!(
+                f,
+                "increment {} did not converge at load factor {:.6} and a cutback would bring Δλ = {:.3e} below \
+                 solver.min_increment: {}",
+                self.increment,
+                self.lambda,
+                self.dlambda,
+                describe(&self.newton)
+            ),
+            StopReason::TooManyIncrements => write!(
+                f,
+                "stopped at load factor {:.6} after {} converged increments: the limit solver.max_increments = {} \
+                 was reached (raise it, or max_increment, to go on)",
+                self.last_converged,
+                self.increment - 1,
+                self.increment - 1
+            ),
+            StopReason::Interrupted => {
+                write!(f, "interrupted at load factor {:.6} (the last converged increment)", self.last_converged)
+            }
+        }
+    }
+}
+
 fn describe(r: &Report) -> String {
     let res: Vec<String> = r.residuals.iter().map(|v| format!("{v:.2e}")).collect();
+    let what = match r.failure {
+        Some(newton::Failure::Diverged) => format!("Newton diverged after {} iterations", r.iterations),
+        Some(newton::Failure::Problem) => format!("the linear solve failed after {} iterations", r.iterations),
+        _ => format!("Newton did not converge in {} iterations", r.iterations),
+    };
     format!(
-        "{:?} after {} iterations; relative residuals [{}]{}",
-        r.failure.unwrap_or(newton::Failure::MaxIterations),
-        r.iterations,
+        "{what}; relative residuals [{}]{}",
         res.join(", "),
         r.message.as_ref().map(|m| format!("; {m}")).unwrap_or_default()
     )
@@ -142,6 +167,7 @@ pub fn run<P: Incremental>(
     steps: &StepSettings,
     newton_settings: &NewtonSettings,
     observer: &mut dyn Observer<P>,
+    interrupt: &Interrupt,
 ) -> Result<Vec<Increment>, Box<SteppingError>> {
     let mut history = Vec::new();
     let mut lambda = 0.0;
@@ -158,10 +184,32 @@ pub fn run<P: Incremental>(
                 newton: Report::default(),
             }));
         }
+        if interrupt.is_requested() {
+            return Err(Box::new(SteppingError {
+                reason: StopReason::Interrupted,
+                increment: history.len() + 1,
+                lambda,
+                dlambda,
+                last_converged: lambda,
+                newton: Report::default(),
+            }));
+        }
         dlambda = dlambda.min(1.0 - lambda);
         let target = lambda + dlambda;
         problem.set_load_factor(target);
-        let report = newton::solve(problem, newton_settings);
+        let report = newton::solve(problem, newton_settings, interrupt);
+        if report.failure == Some(newton::Failure::Interrupted) {
+            problem.restore();
+            problem.set_load_factor(lambda);
+            return Err(Box::new(SteppingError {
+                reason: StopReason::Interrupted,
+                increment: history.len() + 1,
+                lambda: target,
+                dlambda,
+                last_converged: lambda,
+                newton: report,
+            }));
+        }
         if report.converged() {
             problem.commit();
             lambda = target;
@@ -247,13 +295,33 @@ mod tests {
         }
     }
 
+    /// Requests a stop after the first converged increment.
+    struct StopAfterFirst(Interrupt);
+    impl Observer<Spring> for StopAfterFirst {
+        fn converged(&mut self, _: &Spring, _: &Increment) {
+            self.0.request();
+        }
+    }
+
+    #[test]
+    fn an_interrupt_leaves_the_last_converged_increment() {
+        let mut s = Spring { lambda: 0.0, u: 0.0, u_committed: 0.0, r: 0.0, k: 0.0 };
+        let stop = Interrupt::new();
+        let steps = StepSettings { initial: 0.1, max: 0.1, ..Default::default() };
+        let e = run(&mut s, &steps, &NewtonSettings::default(), &mut StopAfterFirst(stop.clone()), &stop).unwrap_err();
+        assert_eq!(e.reason, StopReason::Interrupted);
+        assert!((e.last_converged - 0.1).abs() < 1e-15 && (s.lambda - 0.1).abs() < 1e-15);
+        assert_eq!(s.u, s.u_committed);
+        assert!(e.to_string().contains("interrupted at load factor 0.100000"));
+    }
+
     #[test]
     fn a_too_large_first_increment_is_cut_back_and_the_run_finishes() {
         let mut s = Spring { lambda: 0.0, u: 0.0, u_committed: 0.0, r: 0.0, k: 0.0 };
         let steps = StepSettings { initial: 1.0, max: 1.0, ..Default::default() };
         let newton = NewtonSettings { max_iterations: 8, ..Default::default() };
         let mut obs = Count(0, 0);
-        let hist = run(&mut s, &steps, &newton, &mut obs).unwrap();
+        let hist = run(&mut s, &steps, &newton, &mut obs, &Interrupt::new()).unwrap();
         assert!(obs.1 >= 1, "expected at least one cutback");
         assert!((hist.last().unwrap().lambda - 1.0).abs() < 1e-12);
         assert!((s.u + 0.45 * (4.0 * s.u).sin() - 3.0).abs() < 1e-5);

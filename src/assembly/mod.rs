@@ -1,4 +1,5 @@
-//! Equation numbering, sparse pattern and parallel assembly.
+//! Assembly: equation numbering and pattern ([`Numbering`]), scatter maps
+//! and colours ([`ScatterMaps`]), and the parallel element loop (here).
 //!
 //! * **Numbering.** Nodes are ordered by METIS nested dissection of the node
 //!   graph (two nodes are adjacent when they share an element or a contact
@@ -17,36 +18,21 @@
 //!   elements of a colour are processed in parallel and write to disjoint
 //!   entries.
 
-use std::collections::BTreeSet;
+mod numbering;
+mod scatter;
+
+pub(crate) use numbering::node_adjacency;
+pub use numbering::{DofMap, NO_EQ, Numbering};
+pub use scatter::{ElementRef, ScatterMaps};
 
 use rayon::prelude::*;
 
-use crate::elements::{self, BodyGeometry, PointData, TangentMode, Workspace};
+use crate::elements::{self, PointData, TangentMode, Workspace};
 use crate::materials::{Material, PointState};
 use crate::mesh::Mesh;
-use crate::solver::linear::{LinearError, LowerCsc, nested_dissection};
+use crate::solver::linear::LowerCsc;
+use crate::values::CellValues;
 use crate::voigt::Voigt;
-
-/// Marker for a DOF without an equation (constrained).
-pub const NO_EQ: usize = usize::MAX;
-
-/// Map from global DOFs (`3 · node + component`) to equations.
-#[derive(Debug, Clone)]
-pub struct DofMap {
-    /// Equation of each DOF, or [`NO_EQ`].
-    pub eq: Vec<usize>,
-    /// Number of equations (free DOFs).
-    pub n_eq: usize,
-}
-
-/// A body element in the global element list.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct ElementRef {
-    /// Body index.
-    pub body: usize,
-    /// Body-local element index.
-    pub element: usize,
-}
 
 /// Pattern, numbering and scatter maps of one model (built once).
 #[derive(Debug, Clone)]
@@ -55,11 +41,8 @@ pub struct Assembler {
     pub dofs: DofMap,
     /// Lower-triangular pattern in equation numbering.
     pub pattern: LowerCsc,
-    elements: Vec<ElementRef>,
-    scatter_offsets: Vec<usize>,
-    scatter: Vec<u32>,
-    colors: Vec<Vec<usize>>,
-    /// Elastic element matrices packed like `scatter` (empty until
+    scatter: ScatterMaps,
+    /// Elastic element matrices packed like the scatter maps (empty until
     /// [`Assembler::cache_elastic`]).
     elastic_cache: Vec<f64>,
     /// Time spent building the node graph and the METIS ordering.
@@ -73,7 +56,7 @@ pub struct Inputs<'a> {
     /// Mesh.
     pub mesh: &'a Mesh,
     /// Geometry caches per body.
-    pub geometry: &'a [BodyGeometry],
+    pub geometry: &'a [CellValues],
     /// Materials.
     pub materials: &'a [Material],
     /// Displacements (3 per node).
@@ -138,84 +121,19 @@ impl<'a, T> Disjoint<'a, T> {
 }
 
 impl Assembler {
-    /// Builds numbering, pattern, scatter maps and colours.
-    ///
-    /// `constrained[d]` marks DOFs without an equation; `couplings` lists
-    /// extra node pairs (contact between bodies) that must be in the pattern.
-    pub fn new(mesh: &Mesh, constrained: &[bool], couplings: &[(usize, usize)]) -> Result<Self, LinearError> {
+    /// Builds the scatter maps and colours on a numbering.
+    pub fn new(mesh: &Mesh, numbering: Numbering) -> Self {
         let t0 = std::time::Instant::now();
-        let adjacency = node_adjacency(mesh, couplings);
-        let graph: Vec<Vec<usize>> =
-            adjacency.iter().enumerate().map(|(n, l)| l.iter().copied().filter(|&m| m != n).collect()).collect();
-        let order = nested_dissection(&graph)?;
-        let mut eq = vec![NO_EQ; 3 * mesh.n_nodes()];
-        let mut n_eq = 0;
-        for &node in &order {
-            for c in 0..3 {
-                if !constrained[3 * node + c] {
-                    eq[3 * node + c] = n_eq;
-                    n_eq += 1;
-                }
-            }
-        }
-        let dofs = DofMap { eq, n_eq };
-        let ordering_time = t0.elapsed();
-        let t0 = std::time::Instant::now();
-        let pattern = lower_pattern(&dofs, &adjacency);
-        if pattern.nnz() >= u32::MAX as usize {
-            return Err(LinearError::Symbolic(format!(
-                "{} stored matrix entries exceed the scatter-map index range (u32)",
-                pattern.nnz()
-            )));
-        }
-
-        let elements: Vec<ElementRef> = mesh
-            .bodies
-            .iter()
-            .enumerate()
-            .flat_map(|(b, body)| (0..body.n_elements()).map(move |e| ElementRef { body: b, element: e }))
-            .collect();
-        let maps: Vec<Vec<u32>> = elements
-            .par_iter()
-            .map(|r| {
-                let mut nodes = Vec::new();
-                mesh.bodies[r.body].element_nodes(r.element, &mut nodes);
-                let eq = &dofs.eq;
-                let eqs: Vec<usize> = nodes.iter().flat_map(|&n| (0..3).map(move |c| eq[3 * n + c])).collect();
-                let n = eqs.len();
-                let mut map = Vec::with_capacity(n * (n + 1) / 2);
-                for p in 0..n {
-                    for q in p..n {
-                        let (a, b) = (eqs[p], eqs[q]);
-                        map.push(if a == NO_EQ || b == NO_EQ {
-                            u32::MAX
-                        } else {
-                            pattern.find(a.max(b), a.min(b)).expect("element entry in pattern") as u32
-                        });
-                    }
-                }
-                map
-            })
-            .collect();
-        let mut scatter_offsets = Vec::with_capacity(elements.len() + 1);
-        let mut scatter = Vec::with_capacity(maps.iter().map(Vec::len).sum());
-        for m in maps {
-            scatter_offsets.push(scatter.len());
-            scatter.extend(m);
-        }
-        scatter_offsets.push(scatter.len());
-        let colors = colour(mesh, &elements);
-        Ok(Self {
+        let Numbering { dofs, pattern, ordering_time, pattern_time, .. } = numbering;
+        let scatter = ScatterMaps::new(mesh, &dofs, &pattern);
+        Self {
             dofs,
             pattern,
-            elements,
-            scatter_offsets,
             scatter,
-            colors,
             elastic_cache: Vec::new(),
             ordering_time,
-            pattern_time: t0.elapsed(),
-        })
+            pattern_time: pattern_time + t0.elapsed(),
+        }
     }
 
     /// Adds the 3×3 block `k` coupling nodes `a` (rows) and `b` (columns) of
@@ -241,6 +159,7 @@ impl Assembler {
     /// recomputes its nuclei while it is (or is about to be) plastic.
     pub fn cache_elastic(&mut self, input: &Inputs<'_>) {
         let cache: Vec<Vec<f64>> = self
+            .scatter
             .elements
             .par_iter()
             .map_init(
@@ -276,11 +195,6 @@ impl Assembler {
         self.elastic_cache = cache.concat();
     }
 
-    /// Drops the elastic cache: every element then recomputes its tangent.
-    pub fn clear_elastic_cache(&mut self) {
-        self.elastic_cache.clear();
-    }
-
     /// Element loop: internal forces (and tangent) of all elements from the
     /// displacements, with trial states and Gauss-point stresses. Returns
     /// the number of plastic Gauss points.
@@ -300,13 +214,13 @@ impl Assembler {
         let trial = Disjoint::new(out.trial);
         let stress = Disjoint::new(out.stress);
         let mut plastic = 0;
-        for colour in &self.colors {
+        for colour in &self.scatter.colours {
             plastic += colour
                 .par_iter()
                 .map_init(
                     || (Vec::new(), Vec::new()),
                     |(nodes, ue), &ge| {
-                        let r = self.elements[ge];
+                        let r = self.scatter.elements[ge];
                         let body = &input.mesh.bodies[r.body];
                         let geom = &input.geometry[r.body];
                         body.element_nodes(r.element, nodes);
@@ -333,7 +247,7 @@ impl Assembler {
                                 mode,
                                 ws,
                             );
-                            let range = self.scatter_offsets[ge]..self.scatter_offsets[ge + 1];
+                            let range = self.scatter.offsets[ge]..self.scatter.offsets[ge + 1];
                             // SAFETY: elements of one colour share no node, hence
                             // no DOF and no matrix entry.
                             unsafe {
@@ -342,7 +256,7 @@ impl Assembler {
                                         *force.get(3 * n + c) += ws.force[3 * a + c];
                                     }
                                 }
-                                let map = &self.scatter[range.clone()];
+                                let map = &self.scatter.maps[range.clone()];
                                 if stats.tangent_computed {
                                     let n = 3 * nodes.len();
                                     let mut k = 0;
@@ -373,101 +287,114 @@ impl Assembler {
     }
 }
 
-/// Sorted node adjacency (including the node itself) of the whole mesh.
-fn node_adjacency(mesh: &Mesh, couplings: &[(usize, usize)]) -> Vec<Vec<usize>> {
-    let mut adjacency = Vec::with_capacity(mesh.n_nodes());
-    for body in &mesh.bodies {
-        let sec = &body.section;
-        let mut sec_adj = vec![BTreeSet::new(); sec.n_nodes()];
-        for e in 0..sec.n_elements() {
-            let el = sec.element(e);
-            for &a in el {
-                sec_adj[a].extend(el.iter().copied());
-            }
-        }
-        let p = body.axis.kind.order();
-        let mut ax_adj = vec![BTreeSet::new(); body.axis.n_nodes()];
-        for e in 0..body.axis.n_elements() {
-            let first = body.axis.first_node(e);
-            for i in first..=first + p {
-                ax_adj[i].extend(first..=first + p);
-            }
-        }
-        for ax in &ax_adj {
-            for sa in &sec_adj {
-                adjacency.push(ax.iter().flat_map(|&j| sa.iter().map(move |&s| body.node(j, s))).collect::<Vec<_>>());
-            }
-        }
-    }
-    for &(a, b) in couplings {
-        adjacency[a].push(b);
-        adjacency[b].push(a);
-    }
-    for l in &mut adjacency {
-        l.sort_unstable();
-        l.dedup();
-    }
-    adjacency
-}
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::assembly::numbering::tests::two_body_mesh;
+    use crate::materials::Hardening;
 
-/// Lower-triangular pattern in equation numbering.
-fn lower_pattern(dofs: &DofMap, adjacency: &[Vec<usize>]) -> LowerCsc {
-    let mut columns: Vec<Vec<usize>> = vec![Vec::new(); dofs.n_eq];
-    for (node, adj) in adjacency.iter().enumerate() {
-        for c in 0..3 {
-            let col = dofs.eq[3 * node + c];
-            if col == NO_EQ {
-                continue;
-            }
-            let rows = &mut columns[col];
-            for &m in adj {
-                for d in 0..3 {
-                    let r = dofs.eq[3 * m + d];
-                    if r != NO_EQ && r >= col {
-                        rows.push(r);
-                    }
-                }
-            }
-            rows.sort_unstable();
-        }
+    struct Setup {
+        mesh: Mesh,
+        geometry: Vec<CellValues>,
+        gp_offsets: Vec<usize>,
+        materials: Vec<Material>,
+        u: Vec<f64>,
+        committed: Vec<PointState>,
+        assembler: Assembler,
+        /// The same assembler before its elastic cache was built.
+        uncached: Assembler,
     }
-    let mut col_ptr = Vec::with_capacity(dofs.n_eq + 1);
-    let mut row_idx = Vec::with_capacity(columns.iter().map(Vec::len).sum());
-    col_ptr.push(0);
-    for c in columns {
-        row_idx.extend(c);
-        col_ptr.push(row_idx.len());
-    }
-    LowerCsc { n: dofs.n_eq, col_ptr, row_idx }
-}
 
-/// Colours: greedy colouring of section elements × parity of beam elements.
-fn colour(mesh: &Mesh, elements: &[ElementRef]) -> Vec<Vec<usize>> {
-    let mut section_colours: Vec<Vec<usize>> = Vec::new();
-    for body in &mesh.bodies {
-        let sec = &body.section;
-        let mut node_colours: Vec<Vec<usize>> = vec![Vec::new(); sec.n_nodes()];
-        let mut colours = Vec::with_capacity(sec.n_elements());
-        for e in 0..sec.n_elements() {
-            let el = sec.element(e);
-            let c = (0..).find(|c| el.iter().all(|&n| !node_colours[n].contains(c))).unwrap();
-            for &n in el {
-                node_colours[n].push(c);
-            }
-            colours.push(c);
+    /// The two-body mesh, elastoplastic, with `u_y = 0.2 y²` (so ε_yy =
+    /// 0.4 y): elements near y = 0 stay elastic, the others yield.
+    fn setup() -> Setup {
+        let mesh = two_body_mesh();
+        let geometry: Vec<CellValues> = mesh.bodies.iter().map(|b| CellValues::new(b).unwrap()).collect();
+        let mut gp_offsets = Vec::new();
+        let mut n_gp = 0;
+        for (b, g) in mesh.bodies.iter().zip(&geometry) {
+            gp_offsets.push(n_gp);
+            n_gp += b.n_elements() * g.gp_per_element();
         }
-        section_colours.push(colours);
-    }
-    let mut colors: Vec<Vec<usize>> = Vec::new();
-    for (ge, r) in elements.iter().enumerate() {
-        let body = &mesh.bodies[r.body];
-        let (es, eb) = body.split_element(r.element);
-        let c = 2 * section_colours[r.body][es] + eb % 2;
-        if colors.len() <= c {
-            colors.resize(c + 1, Vec::new());
+        let materials =
+            vec![Material::new("m", 70e9, 0.3, Some(Hardening::Linear { yield_stress: 100e6, modulus: 1e9 }))];
+        let mut u = vec![0.0; mesh.n_dofs()];
+        for node in 0..mesh.n_nodes() {
+            let [x, y, z] = mesh.coords(node);
+            u[3 * node] = 1e-4 * z;
+            u[3 * node + 1] = 0.2 * y * y;
+            u[3 * node + 2] = -3e-4 * x * y;
         }
-        colors[c].push(ge);
+        let constrained: Vec<bool> = (0..mesh.n_dofs()).map(|d| d < 9).collect();
+        let mut assembler = Assembler::new(&mesh, Numbering::new(&mesh, &constrained, &[]).unwrap());
+        let uncached = assembler.clone();
+        let committed = vec![PointState::default(); n_gp];
+        let zero = vec![0.0; mesh.n_dofs()];
+        let inputs = Inputs {
+            mesh: &mesh,
+            geometry: &geometry,
+            materials: &materials,
+            u: &zero,
+            committed: &committed,
+            gp_offsets: &gp_offsets,
+        };
+        assembler.cache_elastic(&inputs);
+        Setup { mesh, geometry, gp_offsets, materials, u, committed, assembler, uncached }
     }
-    colors.retain(|c| !c.is_empty());
-    colors
+
+    /// Internal forces, tangent values and plastic points, on `threads` threads.
+    fn assemble(s: &Setup, a: &Assembler, threads: usize) -> (Vec<f64>, Vec<f64>, usize) {
+        let n_gp = s.committed.len();
+        let inputs = Inputs {
+            mesh: &s.mesh,
+            geometry: &s.geometry,
+            materials: &s.materials,
+            u: &s.u,
+            committed: &s.committed,
+            gp_offsets: &s.gp_offsets,
+        };
+        let mut force = vec![0.0; s.mesh.n_dofs()];
+        let mut tangent = vec![0.0; a.pattern.nnz()];
+        let (mut trial, mut stress) = (vec![PointState::default(); n_gp], vec![[0.0; 6]; n_gp]);
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        let plastic = pool.install(|| {
+            a.assemble(
+                &inputs,
+                Outputs { force: &mut force, tangent: Some(&mut tangent), trial: &mut trial, stress: &mut stress },
+            )
+        });
+        (force, tangent, plastic)
+    }
+
+    fn largest_difference(a: &[f64], b: &[f64]) -> f64 {
+        let scale = a.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        a.iter().zip(b).fold(0.0f64, |m, (x, y)| m.max((x - y).abs())) / scale
+    }
+
+    /// The coloured parallel loop gives the serial result to round-off
+    /// (only the order of additions into an entry may differ).
+    #[test]
+    fn parallel_assembly_equals_serial() {
+        let s = setup();
+        let (f1, k1, p1) = assemble(&s, &s.assembler, 1);
+        let (f4, k4, p4) = assemble(&s, &s.assembler, 4);
+        assert!(p1 > 0 && p1 == p4);
+        assert!(largest_difference(&f1, &f4) < 1e-13);
+        assert!(largest_difference(&k1, &k4) < 1e-13);
+    }
+
+    /// The elastic element matrices cached at setup give the same global
+    /// tangent as recomputing every element, in a state where some
+    /// elements are plastic and others elastic.
+    #[test]
+    fn cached_elastic_matrices_give_the_same_tangent() {
+        let s = setup();
+        let (f_cached, k_cached, plastic) = assemble(&s, &s.assembler, 2);
+        let total: usize = s.committed.len();
+        assert!(plastic > 0 && plastic < total, "{plastic} of {total} points plastic: want a mixed state");
+        assert!(s.uncached.elastic_cache.is_empty() && !s.assembler.elastic_cache.is_empty());
+        let (f_full, k_full, _) = assemble(&s, &s.uncached, 2);
+        assert!(largest_difference(&k_full, &k_cached) < 1e-12);
+        assert_eq!(f_full, f_cached);
+    }
 }

@@ -1,0 +1,102 @@
+//! What an analysis reports: reactions and contact resultants by name, the
+//! contact points, and the phase timings.
+
+use std::time::Duration;
+
+/// Cumulative wall time per phase.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Timings {
+    /// Setup: numbering, ordering, pattern, scatter maps, symbolic analysis.
+    pub setup: Duration,
+    /// Part of `setup`: node graph and METIS nested dissection.
+    pub ordering: Duration,
+    /// Part of `setup`: sparse pattern, scatter maps, colours.
+    pub pattern: Duration,
+    /// Part of `setup`: symbolic Cholesky analysis.
+    pub symbolic: Duration,
+    /// Part of `setup`: elastic element matrices computed once for reuse.
+    pub element_cache: Duration,
+    /// Element loop with material updates and scatter.
+    pub assembly: Duration,
+    /// Contact search and penalty terms.
+    pub contact: Duration,
+    /// Numeric factorizations.
+    pub factorization: Duration,
+    /// Triangular solves.
+    pub solve: Duration,
+    /// Number of residual/tangent evaluations.
+    pub evaluations: usize,
+    /// Number of factorizations.
+    pub factorizations: usize,
+}
+
+/// The resultant reaction of a named constraint set (N): the force of the
+/// support on the body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Reaction {
+    /// Constraint name.
+    pub name: String,
+    /// Force (N).
+    pub force: [f64; 3],
+}
+
+/// What kind of contact a resultant belongs to.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ContactKind {
+    /// A rigid indenter: the force it applies to its body.
+    Indenter,
+    /// Node pairs between two bodies: the force on the slave body (the
+    /// master body gets its opposite).
+    Pair,
+}
+
+impl ContactKind {
+    /// `"indenter"` or `"pair"`.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Indenter => "indenter",
+            Self::Pair => "pair",
+        }
+    }
+}
+
+/// The resultant of a named contact.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactResultant {
+    /// Indenter or contact name.
+    pub name: String,
+    /// Indenter or pair contact.
+    pub kind: ContactKind,
+    /// Force on the body (on the slave body for pairs), N.
+    pub force: [f64; 3],
+    /// Largest penetration of its active points (m).
+    pub max_penetration: f64,
+}
+
+/// The points of one named contact after the last evaluation.
+#[derive(Debug, Clone, PartialEq)]
+pub struct ContactSet {
+    /// Indenter or contact name.
+    pub name: String,
+    /// Indenter or pair contact.
+    pub kind: ContactKind,
+    /// Its points (for pairs the slave node is `node`).
+    pub points: Vec<ContactPoint>,
+}
+
+/// State of one contact point after an evaluation.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct ContactPoint {
+    /// Global node (the slave node for pairs).
+    pub node: usize,
+    /// Master node for pairs.
+    pub master: Option<usize>,
+    /// Normal gap (m), negative = penetration.
+    pub gap: f64,
+    /// Force on the (slave) node (N).
+    pub force: [f64; 3],
+    /// Tributary area (m²).
+    pub area: f64,
+    /// True if active.
+    pub active: bool,
+}

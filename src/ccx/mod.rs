@@ -1,0 +1,169 @@
+//! CalculiX (`ccx`) as the 3D reference: export a model as a solid-element
+//! deck ([`deck`], on the hex mesh of [`mesh`]), run `ccx` on it, read its
+//! results back ([`results`]) and sample them at the model's probes and
+//! lines exactly where cufem samples its own fields.
+
+pub mod deck;
+pub mod mesh;
+pub mod results;
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+pub use mesh::{HexKind, HexMesh};
+pub use results::NodalResults;
+
+use crate::model::Model;
+use crate::values::Location;
+
+/// Errors of the CalculiX cross-check.
+#[derive(Debug, thiserror::Error)]
+pub enum CcxError {
+    /// A file could not be written or read.
+    #[error("{path}: {cause}")]
+    File {
+        /// Path.
+        path: String,
+        /// Cause.
+        cause: std::io::Error,
+    },
+    /// `ccx` is not installed or not at the given path.
+    #[error(
+        "CalculiX not found ({program}): install it with `apt-get install calculix-ccx` (Debian/Ubuntu), or give its \
+         path with --ccx"
+    )]
+    Missing {
+        /// The program looked for.
+        program: String,
+    },
+    /// `ccx` ran but did not finish the analysis.
+    #[error("CalculiX did not finish the analysis (reached load factor {reached:.4}); the end of its log:\n{tail}")]
+    Failed {
+        /// Step time of the last results written.
+        reached: f64,
+        /// Last lines of the log.
+        tail: String,
+    },
+    /// Results could not be read.
+    #[error("cannot read CalculiX results {path}: {message}")]
+    Results {
+        /// Path.
+        path: String,
+        /// What is wrong.
+        message: String,
+    },
+}
+
+fn file_error(path: &Path) -> impl FnOnce(std::io::Error) -> CcxError + '_ {
+    move |cause| CcxError::File { path: path.display().to_string(), cause }
+}
+
+/// Writes `dir/model.inp` and returns the mesh it was written on.
+pub fn export(model: &Model, kind: HexKind, refine: usize, dir: &Path) -> Result<(HexMesh, PathBuf), CcxError> {
+    std::fs::create_dir_all(dir).map_err(file_error(dir))?;
+    let mesh = HexMesh::new(model, kind, refine);
+    let path = dir.join("model.inp");
+    std::fs::write(&path, deck::write(model, &mesh)).map_err(file_error(&path))?;
+    Ok((mesh, path))
+}
+
+/// What a `ccx` run gave.
+#[derive(Debug, Clone)]
+pub struct CcxRun {
+    /// Nodal results of the last increment.
+    pub results: NodalResults,
+    /// Force totals per node set (reactions of constraints, tool forces).
+    pub totals: std::collections::HashMap<String, ([f64; 3], f64)>,
+    /// Wall time.
+    pub wall_time: Duration,
+    /// Peak resident memory of the ccx process (bytes), if known.
+    pub peak_memory: Option<u64>,
+}
+
+/// Runs `program -i model` in `dir` with `threads` threads; the log goes to
+/// `dir/ccx.log`.
+pub fn run(program: &str, dir: &Path, threads: usize) -> Result<CcxRun, CcxError> {
+    let log_path = dir.join("ccx.log");
+    let log = std::fs::File::create(&log_path).map_err(file_error(&log_path))?;
+    let err = log.try_clone().map_err(file_error(&log_path))?;
+    let start = Instant::now();
+    let status = std::process::Command::new(program)
+        .args(["-i", "model"])
+        .current_dir(dir)
+        .env("OMP_NUM_THREADS", threads.to_string())
+        .env("CCX_NPROC_EQUATION_SOLVER", threads.to_string())
+        .env("CCX_NPROC_RESULTS", threads.to_string())
+        .stdout(log)
+        .stderr(err)
+        .status()
+        .map_err(|e| match e.kind() {
+            std::io::ErrorKind::NotFound => CcxError::Missing { program: program.to_string() },
+            _ => CcxError::File { path: program.to_string(), cause: e },
+        })?;
+    let wall_time = start.elapsed();
+    let peak_memory = children_peak_memory();
+    let log_text = std::fs::read_to_string(&log_path).unwrap_or_default();
+    let frd_path = dir.join("model.frd");
+    let frd = std::fs::read_to_string(&frd_path).unwrap_or_default();
+    let results = read_or_fail(&frd, &frd_path, &log_text)?;
+    let failed = !status.success() || log_text.contains("*ERROR") || (results.time - 1.0).abs() > 1e-6;
+    if failed {
+        return Err(CcxError::Failed { reached: results.time, tail: tail(&log_text, 15) });
+    }
+    let dat = std::fs::read_to_string(dir.join("model.dat")).unwrap_or_default();
+    Ok(CcxRun { results, totals: results::read_dat(&dat), wall_time, peak_memory })
+}
+
+fn read_or_fail(frd: &str, path: &Path, log: &str) -> Result<NodalResults, CcxError> {
+    match results::read_frd(frd, &path.display().to_string()) {
+        Ok(r) => Ok(r),
+        Err(_) if !frd.contains(" -4") => Err(CcxError::Failed { reached: 0.0, tail: tail(log, 15) }),
+        Err(e) => Err(e),
+    }
+}
+
+fn tail(text: &str, n: usize) -> String {
+    let lines: Vec<&str> = text.lines().filter(|l| !l.trim().is_empty()).collect();
+    lines[lines.len().saturating_sub(n)..].join("\n")
+}
+
+/// Peak resident memory of the largest child process waited for (bytes).
+fn children_peak_memory() -> Option<u64> {
+    // SAFETY: getrusage writes into the zero-initialised struct we own.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    let r = unsafe { libc::getrusage(libc::RUSAGE_CHILDREN, &mut usage) };
+    (r == 0).then(|| usage.ru_maxrss as u64 * 1024)
+}
+
+/// 3D fields at a point located in the CUF mesh (mean over the elements
+/// holding it, as cufem reports it): displacement, stress (Voigt) and peeq.
+pub fn sample(
+    model: &Model,
+    mesh: &HexMesh,
+    r: &NodalResults,
+    locations: &[Location],
+) -> Option<([f64; 3], [f64; 6], f64)> {
+    if locations.is_empty() {
+        return None;
+    }
+    let mut n = [0.0; 20];
+    let (mut u, mut s, mut peeq) = ([0.0; 3], [0.0; 6], 0.0);
+    let w = 1.0 / locations.len() as f64;
+    for loc in locations {
+        let (e, p) = mesh.locate(model, loc);
+        mesh::hex_shapes(mesh.kind, p, &mut n);
+        for (a, &node) in mesh.elements[e].iter().enumerate() {
+            let id = node + 1;
+            let ua = r.u.get(&id).copied().unwrap_or_default();
+            let sa = r.stress.get(&id).copied().unwrap_or_default();
+            for k in 0..3 {
+                u[k] += w * n[a] * ua[k];
+            }
+            for k in 0..6 {
+                s[k] += w * n[a] * sa[k];
+            }
+            peeq += w * n[a] * r.peeq.get(&id).copied().unwrap_or(0.0);
+        }
+    }
+    Some((u, s, peeq.max(0.0)))
+}

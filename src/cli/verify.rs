@@ -1,0 +1,95 @@
+//! `cufem verify`: run a model and its CalculiX twin, compare them.
+
+use std::path::{Path, PathBuf};
+
+use anyhow::anyhow;
+use cufem::analysis::{self, RunOptions};
+use cufem::ccx::{self, CcxError};
+use cufem::io::output::OutputDir;
+use cufem::verify;
+
+use super::{FILES, Failure, INPUT, NOT_CONVERGED, OK, Reporter, Resources, TOO_LARGE, fail, report};
+
+/// Exit code: CalculiX is missing or did not finish.
+pub const CCX_FAILED: u8 = 5;
+
+/// Options of `cufem verify`.
+pub struct Args {
+    pub model: PathBuf,
+    pub out: Option<PathBuf>,
+    pub refine: usize,
+    pub element: String,
+    pub ccx: Option<PathBuf>,
+    pub force: bool,
+    pub quiet: bool,
+    pub resources: Resources,
+}
+
+/// `program` as given with a path, or found on `PATH`.
+fn find_program(program: &Path) -> Option<PathBuf> {
+    if program.components().count() > 1 {
+        return program.is_file().then(|| program.to_path_buf());
+    }
+    std::env::var_os("PATH")?.to_str()?.split(':').map(|d| Path::new(d).join(program)).find(|p| p.is_file())
+}
+
+pub fn run(a: Args) -> Result<u8, Failure> {
+    let model = super::load(&a.model, &a.resources)?;
+    let kind = super::hex_kind(&a.element)?;
+    let refine = super::check_refine(a.refine)?;
+    // CalculiX must be there before anything is computed
+    let requested = a.ccx.clone().unwrap_or_else(|| PathBuf::from("ccx"));
+    let program = find_program(&requested)
+        .ok_or_else(|| fail(CCX_FAILED, CcxError::Missing { program: requested.display().to_string() }))?;
+    super::print_warnings(model.warnings.iter());
+    let threads = a.resources.threads.or(model.solver.threads);
+    super::configure_threads(threads, a.resources.force_threads)?;
+    let out = a.out.clone().unwrap_or_else(|| super::default_out(&a.model, ""));
+    let folder = OutputDir::prepare(&out, a.force).map_err(|e| fail(FILES, e))?;
+    let interrupt = super::install_interrupt()?;
+    if !a.quiet {
+        report::print_header(&model);
+    }
+    let mut progress = Reporter::new(a.quiet);
+    let options = RunOptions { interrupt, max_memory: super::limit(&a.resources) };
+    let solution = analysis::run(&model, &options, &mut progress).map_err(|e| match e {
+        analysis::AnalysisError::TooLarge { .. } => fail(TOO_LARGE, e),
+        e => fail(INPUT, anyhow!(e).context("analysis failed")),
+    })?;
+    progress.finish();
+    let cufem_peak = cufem::size::peak_memory();
+    cufem::io::write_results(&model, &solution, folder.staging()).map_err(|e| fail(FILES, e))?;
+    if let Some(f) = &solution.failure {
+        folder.commit().map_err(|e| fail(FILES, e))?;
+        eprintln!("the cufem analysis stopped early ({f}); nothing to compare: results in {}", out.display());
+        return Ok(NOT_CONVERGED);
+    }
+    let dir = folder.staging().join("verify");
+    let ccx_dir = dir.join("ccx");
+    let (mesh, _) = ccx::export(&model, kind, refine, &ccx_dir).map_err(|e| fail(FILES, e))?;
+    if !a.quiet {
+        eprintln!(
+            "running CalculiX on {} {} hexahedra ({} nodes) in {}",
+            mesh.elements.len(),
+            kind.name(),
+            mesh.nodes.len(),
+            out.join("verify").join("ccx").display()
+        );
+    }
+    let n_threads = threads.unwrap_or_else(rayon::current_num_threads);
+    let ccx_run = match ccx::run(&program.display().to_string(), &ccx_dir, n_threads) {
+        Ok(r) => r,
+        Err(e) => {
+            let _ = std::fs::write(dir.join("ccx_failed.txt"), e.to_string());
+            folder.commit().map_err(|e| fail(FILES, e))?;
+            eprintln!("cufem results and the CalculiX deck and log are in {}", out.display());
+            return Err(fail(CCX_FAILED, e));
+        }
+    };
+    let (comparison, curves) = verify::compare(&model, &solution, &mesh, &ccx_run, cufem_peak);
+    comparison.write(&dir, &curves).map_err(|e| fail(FILES, e))?;
+    folder.commit().map_err(|e| fail(FILES, e))?;
+    println!("{}", comparison.table());
+    println!("wrote the comparison to {}", out.join("verify").display());
+    Ok(OK)
+}

@@ -1,0 +1,298 @@
+//! Preprocessing: what needs the meshes — node selections, constraints,
+//! face integrals of loads, probe and line locations. Runs once, after the
+//! bodies are built; the analysis consumes its results.
+
+use super::bounds;
+use super::schema::*;
+use super::validate::{MAX_COUNT, axis_index, describe_selection, quantity_names};
+use super::{Line, ModelError, Probe, Warning, invalid};
+use crate::bc::{self, Condition, Constraint, Load, LoadKind, Selection};
+use crate::mesh::{Body, Mesh};
+use crate::quantity::Quantity;
+use crate::values::locate_in_model;
+
+/// Index of the body named `name`, or an error listing the bodies.
+pub(super) fn body_index(mesh: &Mesh, key: String, name: &str) -> Result<usize, ModelError> {
+    mesh.body_index(name).ok_or_else(|| {
+        let names: Vec<&str> = mesh.bodies.iter().map(|b| b.name.as_str()).collect();
+        invalid(key, format!("{name:?}"), format!("one of the bodies {names:?}"))
+    })
+}
+
+pub(super) fn optional_body(mesh: &Mesh, key: String, name: &Option<String>) -> Result<Option<usize>, ModelError> {
+    name.as_ref().map(|n| body_index(mesh, key, n)).transpose()
+}
+
+/// `[[constraints]]`: node sets and their values; overlapping sets must agree.
+pub(super) fn constraints(file: &[ConstraintFile], mesh: &Mesh) -> Result<Vec<Constraint>, ModelError> {
+    let mut constraints = Vec::new();
+    for (i, c) in file.iter().enumerate() {
+        let key = format!("constraints[{i}]");
+        let b = body_index(mesh, format!("{key}.body"), &c.body)?;
+        let body = &mesh.bodies[b];
+        let sel = selection(&format!("{key}.where"), &c.selection, body)?;
+        let nodes: Vec<usize> = sel.nodes(body).into_iter().map(|n| n + body.node_offset).collect();
+        if nodes.is_empty() {
+            return Err(invalid(
+                format!("{key}.where"),
+                describe_selection(&c.selection),
+                format!("a selection that contains nodes of body {:?}", body.name),
+            ));
+        }
+        let mut values = [None; 3];
+        for (k, comp) in c.fix.iter().flatten().enumerate() {
+            let axis = axis_index(comp)
+                .ok_or_else(|| invalid(format!("{key}.fix[{k}]"), format!("{comp:?}"), "\"x\", \"y\" or \"z\""))?;
+            values[axis] = Some(0.0);
+        }
+        if let Some(d) = &c.displacement {
+            for (axis, v) in [d.x, d.y, d.z].into_iter().enumerate() {
+                if let Some(v) = v {
+                    let k = format!("{key}.displacement.{}", ["x", "y", "z"][axis]);
+                    if values[axis].is_some() {
+                        return Err(invalid(k, v, "a component not also listed in `fix`"));
+                    }
+                    let why = format!("a displacement in m of at most the size of body {:?}", body.name);
+                    values[axis] = Some(bounds::within(&k, v, -body.size(), body.size(), &why)?);
+                }
+            }
+        }
+        if values.iter().all(Option::is_none) {
+            return Err(invalid(
+                key,
+                "no `fix` or `displacement`",
+                "at least one constrained component (fix = [\"x\", …] or displacement = {z = …})",
+            ));
+        }
+        constraints.push(Constraint { name: c.name.clone(), body: b, nodes, values, selection: Some(sel) });
+    }
+    // one value per constrained DOF: overlapping sets must agree
+    let mut given: std::collections::HashMap<usize, (f64, usize)> = Default::default();
+    for (i, c) in constraints.iter().enumerate() {
+        for &n in &c.nodes {
+            for (k, v) in c.values.iter().enumerate() {
+                let Some(v) = *v else { continue };
+                if let Some(&(w, j)) = given.get(&(3 * n + k))
+                    && w != v
+                {
+                    return Err(invalid(
+                        format!("constraints[{i}]"),
+                        format!("u_{} = {v} at {:?}", ["x", "y", "z"][k], mesh.coords(n)),
+                        format!(
+                            "the value {w} that constraints[{j}] prescribes at the same node (overlapping sets must agree)"
+                        ),
+                    ));
+                }
+                given.insert(3 * n + k, (v, i));
+            }
+        }
+    }
+
+    Ok(constraints)
+}
+
+/// `[[loads]]`: nodal forces at load factor 1.
+pub(super) fn loads(
+    file: &[LoadFile],
+    mesh: &Mesh,
+    materials: &[crate::materials::Material],
+) -> Result<Vec<Load>, ModelError> {
+    let mut loads = Vec::new();
+    for (i, l) in file.iter().enumerate() {
+        let key = format!("loads[{i}]");
+        let b = body_index(mesh, format!("{key}.body"), &l.body)?;
+        let young = materials[mesh.bodies[b].material].young;
+        loads.push(load(&key, l, b, &mesh.bodies[b], young)?);
+    }
+
+    Ok(loads)
+}
+
+/// `[[probes]]`, located once.
+pub(super) fn probes(file: &[ProbeFile], mesh: &Mesh) -> Result<Vec<Probe>, ModelError> {
+    let mut probes = Vec::new();
+    for (i, p) in file.iter().enumerate() {
+        let key = format!("probes[{i}]");
+        let point = bounds::point(&format!("{key}.point"), p.point)?;
+        let body = optional_body(mesh, format!("{key}.body"), &p.body)?;
+        let locations = locate_in_model(mesh, body, point);
+        if locations.is_empty() {
+            return Err(invalid(
+                format!("{key}.point"),
+                format!("{point:?}"),
+                "a point inside a body (or inside the named body)",
+            ));
+        }
+        probes.push(Probe { name: p.name.clone(), point, body, locations });
+    }
+    Ok(probes)
+}
+
+/// `[[lines]]`; a line outside every body is an error, partly outside a warning.
+pub(super) fn lines(file: &[LineFile], mesh: &Mesh, warnings: &mut Vec<Warning>) -> Result<Vec<Line>, ModelError> {
+    let mut lines = Vec::new();
+    for (i, l) in file.iter().enumerate() {
+        let key = format!("lines[{i}]");
+        let points = l.points.unwrap_or(101);
+        if !(2..=MAX_COUNT).contains(&points) {
+            return Err(invalid(format!("{key}.points"), points, format!("an integer from 2 to {MAX_COUNT}")));
+        }
+        let plot = l
+            .plot
+            .iter()
+            .flatten()
+            .enumerate()
+            .map(|(k, q)| {
+                Quantity::parse(q)
+                    .ok_or_else(|| invalid(format!("{key}.plot[{k}]"), format!("{q:?}"), quantity_names()))
+            })
+            .collect::<Result<Vec<_>, _>>()?;
+        let line = Line {
+            name: l.name.clone(),
+            from: bounds::point(&format!("{key}.from"), l.from)?,
+            to: bounds::point(&format!("{key}.to"), l.to)?,
+            points,
+            body: optional_body(mesh, format!("{key}.body"), &l.body)?,
+            plot,
+        };
+        // a line outside every body would give an empty CSV and plot
+        let checked = points.min(1001);
+        let outside = (0..checked)
+            .filter(|&k| {
+                let t = k as f64 / (checked - 1) as f64;
+                let p = [0, 1, 2].map(|d| line.from[d] + t * (line.to[d] - line.from[d]));
+                locate_in_model(mesh, line.body, p).is_empty()
+            })
+            .count();
+        if outside == checked {
+            return Err(invalid(
+                key,
+                format!("from {:?} to {:?}", line.from, line.to),
+                "a line that passes through a body (or through the named body)",
+            ));
+        }
+        if outside > 0 {
+            warnings.push(Warning {
+                key: key.clone(),
+                message: format!(
+                    "about {:.0} % of the line lies outside every body; those samples are left out of its CSV and plots",
+                    100.0 * outside as f64 / checked as f64
+                ),
+            });
+        }
+        lines.push(line);
+    }
+    Ok(lines)
+}
+
+pub(super) fn selection(key: &str, s: &SelectionFile, body: &Body) -> Result<Selection, ModelError> {
+    let tol = match s.tolerance {
+        Some(t) => bounds::within(
+            &format!("{key}.tolerance"),
+            t,
+            f64::MIN_POSITIVE,
+            body.size(),
+            "a positive distance in m, at most the body's size",
+        )?,
+        None => 1e-6 * body.size(),
+    };
+    let cond = |name: &str, c: &Option<ConditionFile>| -> Result<Option<Condition>, ModelError> {
+        match c {
+            None => Ok(None),
+            Some(ConditionFile::Value(v)) => {
+                Ok(Some(Condition::Equal(bounds::coordinate(&format!("{key}.{name}"), *v)?)))
+            }
+            Some(ConditionFile::Range([a, b])) => {
+                if !(a.is_finite() && b.is_finite() && a <= b && a.abs().max(b.abs()) <= bounds::MAX_COORD) {
+                    return Err(invalid(format!("{key}.{name}"), format!("[{a}, {b}]"), "[min, max] with min ≤ max"));
+                }
+                Ok(Some(Condition::Range(*a, *b)))
+            }
+        }
+    };
+    Ok(Selection { conditions: [cond("x", &s.x)?, cond("y", &s.y)?, cond("z", &s.z)?], tolerance: tol })
+}
+
+/// The selected boundary faces of `body` and their integrals.
+pub(super) fn surface_faces(
+    key: &str,
+    s: &SelectionFile,
+    body: &Body,
+) -> Result<(Vec<bc::Face>, Vec<bc::FaceIntegral>), ModelError> {
+    let sel = selection(key, s, body)?;
+    let faces = bc::selected_faces(body, &sel);
+    if faces.is_empty() {
+        return Err(invalid(
+            key,
+            describe_selection(s),
+            format!("a selection containing whole boundary faces of body {:?}", body.name),
+        ));
+    }
+    let integrals = faces.iter().map(|f| bc::integrate_face(body, f)).collect();
+    Ok((faces, integrals))
+}
+
+pub(super) fn load(key: &str, l: &LoadFile, b: usize, body: &Body, young: f64) -> Result<Load, ModelError> {
+    // a stress of E is a strain of order one: far outside small-strain theory
+    let stress_why = format!("at most Young's modulus of body {:?} ({young:e} Pa) as a stress", body.name);
+    let given = [l.force_per_node.is_some(), l.total_force.is_some(), l.traction.is_some(), l.pressure.is_some()];
+    if given.iter().filter(|g| **g).count() != 1 {
+        return Err(invalid(key, "load kind", "exactly one of force_per_node, total_force, traction, pressure"));
+    }
+    let mut forces: std::collections::BTreeMap<usize, [f64; 3]> = Default::default();
+    let kind;
+    if let Some(f) = l.force_per_node {
+        let f = bounds::vector(&format!("{key}.force_per_node"), f, young * body.size().powi(2), &stress_why)?;
+        let sel = selection(&format!("{key}.where"), &l.selection, body)?;
+        let nodes = sel.nodes(body);
+        if nodes.is_empty() {
+            return Err(invalid(
+                format!("{key}.where"),
+                describe_selection(&l.selection),
+                format!("a selection that contains nodes of body {:?}", body.name),
+            ));
+        }
+        for n in nodes {
+            forces.insert(n + body.node_offset, f);
+        }
+        kind = LoadKind::PerNode { selection: sel, force: f };
+    } else {
+        let (face_list, faces) = surface_faces(&format!("{key}.where"), &l.selection, body)?;
+        let area: f64 = faces.iter().map(|f| f.area).sum();
+        let traction = |f: &bc::FaceIntegral| -> Result<[f64; 3], ModelError> {
+            Ok(if let Some(t) = l.traction {
+                bounds::vector(&format!("{key}.traction"), t, young, &stress_why)?
+            } else if let Some(p) = l.pressure {
+                let p = bounds::within(&format!("{key}.pressure"), p, -young, young, &stress_why)?;
+                f.normal.map(|n| -p * n)
+            } else {
+                let total = l.total_force.map_or([0.0; 3], Into::into);
+                bounds::vector(
+                    &format!("{key}.total_force"),
+                    total,
+                    young * area,
+                    &format!("{stress_why} over the loaded area {area:e} m²"),
+                )?
+                .map(|v| v / area)
+            })
+        };
+        for f in &faces {
+            let t = traction(f)?;
+            for (&n, &w) in f.nodes.iter().zip(&f.weights) {
+                let e = forces.entry(n).or_insert([0.0; 3]);
+                for k in 0..3 {
+                    e[k] += w * t[k];
+                }
+            }
+        }
+        kind = match (l.pressure, l.traction) {
+            (Some(p), _) => LoadKind::Pressure { faces: face_list, pressure: p },
+            (None, Some(t)) => LoadKind::Traction { faces: face_list, traction: t.into() },
+            (None, None) => {
+                let total: [f64; 3] = l.total_force.map_or([0.0; 3], Into::into);
+                LoadKind::Traction { faces: face_list, traction: total.map(|v| v / area) }
+            }
+        };
+    }
+    Ok(Load { name: l.name.clone(), nodal_forces: forces.into_iter().collect(), body: b, kind })
+}

@@ -1,0 +1,149 @@
+//! Rigid-body restraint: every body must be held against all six rigid
+//! motions, or the stiffness matrix is singular and Newton fails with
+//! nothing but cutbacks.
+//!
+//! Each body has six rigid modes: translations `e_k` and small rotations
+//! `θ × (x − c)` about its centroid `c`, scaled by the body's size so all
+//! modes have unit size. A *restraint row* is a linear form on the
+//! displacement that the model holds: a constrained component (fixed or
+//! prescribed), the normal `n·u_s` of a node touching a rigid indenter at the
+//! start, or `n·(u_s − u_m)` of a node pair touching at the start (contacts
+//! that only close later cannot hold the first iterations). With `R` the
+//! rows evaluated on the `6B` modes of all `B` bodies, the model is
+//! restrained iff `G = Rᵀ R` is positive definite. A null vector of `G` is a
+//! free motion; it is named in the error (which body, which translation or
+//! rotation).
+
+use faer::Mat;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::evd;
+
+use super::{ModelError, invalid};
+use crate::bc::Constraint;
+use crate::contact::{Indenter, PairContact};
+use crate::mesh::Mesh;
+
+/// Checks that no body (or group of bodies joined by contact) can move as a
+/// rigid body.
+pub fn check(
+    mesh: &Mesh,
+    constraints: &[Constraint],
+    indenters: &[Indenter],
+    contacts: &[PairContact],
+) -> Result<(), ModelError> {
+    let nb = mesh.bodies.len();
+    let centre: Vec<[f64; 3]> = mesh
+        .bodies
+        .iter()
+        .map(|b| {
+            let s = b.section.bounds();
+            let (y0, y1) = (b.axis.nodes[0], b.axis.nodes[b.axis.nodes.len() - 1]);
+            [0.5 * (s[0] + s[1]), 0.5 * (y0 + y1), 0.5 * (s[2] + s[3])]
+        })
+        .collect();
+    let size: Vec<f64> = mesh.bodies.iter().map(|b| b.size()).collect();
+    // mode values of a node: modes[j][k] = component k of mode j
+    let modes = |node: usize| -> (usize, [[f64; 3]; 6]) {
+        let (b, _) = mesh.body_of(node);
+        let x = mesh.coords(node);
+        let r = [0, 1, 2].map(|k| (x[k] - centre[b][k]) / size[b]);
+        let mut m = [[0.0; 3]; 6];
+        for k in 0..3 {
+            m[k][k] = 1.0;
+        }
+        // θ e_x × r, θ e_y × r, θ e_z × r
+        m[3] = [0.0, -r[2], r[1]];
+        m[4] = [r[2], 0.0, -r[0]];
+        m[5] = [-r[1], r[0], 0.0];
+        (b, m)
+    };
+    let n = 6 * nb;
+    let mut g = Mat::<f64>::zeros(n, n);
+    let mut add_row = |entries: &[(usize, f64)]| {
+        for &(i, a) in entries {
+            for &(j, b) in entries {
+                g[(i, j)] += a * b;
+            }
+        }
+    };
+    for c in constraints {
+        for &node in &c.nodes {
+            let (b, m) = modes(node);
+            for (k, v) in c.values.iter().enumerate() {
+                if v.is_some() {
+                    let row: Vec<(usize, f64)> = (0..6).map(|j| (6 * b + j, m[j][k])).collect();
+                    add_row(&row);
+                }
+            }
+        }
+    }
+    let touching = |gap0: f64, node: usize| gap0 <= 1e-9 * size[mesh.body_of(node).0];
+    for ind in indenters {
+        for c in ind.nodes.iter().filter(|c| touching(c.gap0, c.node)) {
+            let (b, m) = modes(c.node);
+            let row: Vec<(usize, f64)> =
+                (0..6).map(|j| (6 * b + j, (0..3).map(|k| c.normal[k] * m[j][k]).sum())).collect();
+            add_row(&row);
+        }
+    }
+    for pc in contacts {
+        for p in pc.pairs.iter().filter(|p| touching(p.gap0, p.slave)) {
+            let (bs, ms) = modes(p.slave);
+            let (bm, mm) = modes(p.master);
+            let dot = |m: &[[f64; 3]; 6], j: usize| (0..3).map(|k| p.normal[k] * m[j][k]).sum::<f64>();
+            let mut row: Vec<(usize, f64)> = (0..6).map(|j| (6 * bs + j, dot(&ms, j))).collect();
+            row.extend((0..6).map(|j| (6 * bm + j, -dot(&mm, j))));
+            add_row(&row);
+        }
+    }
+    // sequential: validation must not start the global thread pool, which
+    // the CLI sizes afterwards from the model's `solver.threads`
+    let mut u = Mat::<f64>::zeros(n, n);
+    let mut eigenvalues = faer::Col::<f64>::zeros(n);
+    let par = faer::Par::Seq;
+    let params = Default::default();
+    let mut mem = MemBuffer::new(evd::self_adjoint_evd_scratch::<f64>(n, evd::ComputeEigenvectors::Yes, par, params));
+    let stack = MemStack::new(&mut mem);
+    if evd::self_adjoint_evd(g.as_ref(), eigenvalues.as_diagonal_mut(), Some(u.as_mut()), par, stack, params).is_err() {
+        return Ok(()); // no verdict: leave it to the solver
+    }
+    let s = &eigenvalues;
+    let largest = (0..n).map(|i| s[i]).fold(0.0f64, f64::max);
+    // eigenvalues come sorted; the smallest tells whether a motion is free
+    if s[0] > 1e-9 * largest.max(1.0) {
+        return Ok(());
+    }
+    // every free motion (eigenvalue below the threshold), named by its
+    // dominant body and modes
+    const NAMES: [&str; 6] = [
+        "translation along x",
+        "translation along y",
+        "translation along z",
+        "rotation about x",
+        "rotation about y",
+        "rotation about z",
+    ];
+    let threshold = 1e-9 * largest.max(1.0);
+    let mut free: Vec<(usize, Vec<&str>)> = Vec::new();
+    for k in (0..n).take_while(|&k| s[k] <= threshold) {
+        let v = u.col(k);
+        let b = (0..nb)
+            .max_by(|&a, &c| {
+                let na: f64 = (0..6).map(|j| v[6 * a + j].powi(2)).sum();
+                let nc: f64 = (0..6).map(|j| v[6 * c + j].powi(2)).sum();
+                na.total_cmp(&nc)
+            })
+            .unwrap_or(0);
+        let big = (0..6).map(|j| v[6 * b + j].abs()).fold(0.0f64, f64::max);
+        let motion: Vec<&str> = (0..6).filter(|&j| v[6 * b + j].abs() > 0.3 * big).map(|j| NAMES[j]).collect();
+        free.push((b, motion));
+    }
+    let b = free[0].0;
+    let motions: Vec<String> = free.iter().filter(|f| f.0 == b).map(|f| f.1.join(" with ")).collect();
+    Err(invalid(
+        format!("bodies[{b}]"),
+        format!("{:?}, free to move as a rigid body ({})", mesh.bodies[b].name, motions.join("; ")),
+        "every body held against rigid motion by [[constraints]], or by indenters and contacts touching it at \
+         the start (frictionless contact only holds along its normal)",
+    ))
+}

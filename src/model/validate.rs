@@ -1,0 +1,551 @@
+//! Validation of the model file's values that needs no mesh: names,
+//! materials, divisions, penalties, solver controls, references. Pure
+//! functions of the schema, each error naming key, value and what is
+//! allowed.
+
+use super::bounds;
+use super::schema::*;
+use super::{ModelError, OutputSettings, Probe, Recovery, Reference, SolverSettings, invalid};
+use crate::contact::{self, Penalty};
+use crate::materials::{Hardening, Material};
+use crate::mesh::{Division, Segment};
+use crate::quantity::Quantity;
+use crate::solver::newton::NewtonSettings;
+use crate::solver::stepping::StepSettings;
+
+/// Names are unique per table; constraints, indenters and contacts share
+/// one name space (they all write `history_<name>.csv`).
+pub(super) fn names(file: &ModelFile) -> Result<(), ModelError> {
+    unique_names(keyed("materials", &file.materials, |m| &m.name))?;
+    unique_names(keyed("bodies", &file.bodies, |m| &m.name))?;
+    unique_names(keyed("loads", &file.loads, |m| &m.name))?;
+    unique_names(keyed("probes", &file.probes, |m| &m.name))?;
+    unique_names(keyed("lines", &file.lines, |m| &m.name))?;
+    unique_names(
+        keyed("constraints", &file.constraints, |m| &m.name)
+            .chain(keyed("indenters", &file.indenters, |m| &m.name))
+            .chain(keyed("contacts", &file.contacts, |m| &m.name)),
+    )?;
+    if file.bodies.is_empty() {
+        return Err(invalid("bodies", "[]", "at least one [[bodies]] table"));
+    }
+    Ok(())
+}
+
+/// `[[materials]]`.
+pub(super) fn materials(file: &[MaterialFile]) -> Result<Vec<Material>, ModelError> {
+    file.iter().enumerate().map(|(i, m)| material(i, m)).collect()
+}
+
+/// `[output]`.
+pub(super) fn output(o: &OutputFile) -> Result<OutputSettings, ModelError> {
+    let recovery = match o.recovery.as_deref() {
+        // element-wise recovery stays the default until the projection is
+        // validated against 3D under punches (issue 8)
+        None | Some("element") => Recovery::Element,
+        Some("projection") => Recovery::Projection,
+        Some(other) => {
+            return Err(invalid(
+                "output.recovery",
+                format!("{other:?}"),
+                "\"element\" (the default) or \"projection\"",
+            ));
+        }
+    };
+    Ok(OutputSettings {
+        vtu: o.vtu.unwrap_or(true),
+        plots: o.plots.unwrap_or(true),
+        recovery,
+        gauss_points: o.gauss_points.unwrap_or(false),
+    })
+}
+
+/// `[[references]]`: published values beside named probes.
+pub(super) fn references(file: &[ReferenceFile], probes: &[Probe]) -> Result<Vec<Reference>, ModelError> {
+    let mut references = Vec::new();
+    for (i, r) in file.iter().enumerate() {
+        let key = format!("references[{i}]");
+        if !probes.iter().any(|p| p.name == r.probe) {
+            return Err(invalid(format!("{key}.probe"), format!("{:?}", r.probe), "the name of a [[probes]] entry"));
+        }
+        let quantity = Quantity::parse(&r.quantity)
+            .ok_or_else(|| invalid(format!("{key}.quantity"), format!("{:?}", r.quantity), quantity_names()))?;
+        references.push(Reference {
+            probe: r.probe.clone(),
+            quantity,
+            value: finite(&format!("{key}.value"), r.value)?,
+            source: r.source.clone(),
+        });
+    }
+
+    Ok(references)
+}
+
+pub(super) fn finite_positive(key: &str, v: f64) -> Result<f64, ModelError> {
+    if v.is_finite() && v > 0.0 { Ok(v) } else { Err(invalid(key, v, "a positive finite number")) }
+}
+
+pub(super) fn finite(key: &str, v: f64) -> Result<f64, ModelError> {
+    if v.is_finite() { Ok(v) } else { Err(invalid(key, v, "a finite number")) }
+}
+
+/// Checks that names are non-empty, usable in file names, and unique within
+/// `group` (entries given as `(key, name)`).
+pub(super) fn unique_names<'a>(group: impl Iterator<Item = (String, &'a String)>) -> Result<(), ModelError> {
+    let mut seen: std::collections::HashMap<&String, String> = Default::default();
+    for (key, n) in group {
+        if n.is_empty() || !n.chars().all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c)) {
+            return Err(invalid(
+                format!("{key}.name"),
+                format!("{n:?}"),
+                "a non-empty name of letters, digits, '_', '-' or '.' (it is used in file names)",
+            ));
+        }
+        if let Some(other) = seen.insert(n, key.clone()) {
+            return Err(invalid(
+                format!("{key}.name"),
+                format!("{n:?}"),
+                format!("a name not already used by {other}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+pub(super) fn keyed<'a, T>(
+    key: &'a str,
+    items: &'a [T],
+    name: impl Fn(&T) -> &String + 'a,
+) -> impl Iterator<Item = (String, &'a String)> + 'a {
+    items.iter().enumerate().map(move |(i, t)| (format!("{key}[{i}]"), name(t)))
+}
+
+/// Rejects keys that belong to another variant than the one chosen.
+pub(super) fn reject_unused(key: &str, chosen: &str, keys: &[(&str, bool)]) -> Result<(), ModelError> {
+    match keys.iter().find(|(_, present)| *present) {
+        Some((name, _)) => Err(invalid(format!("{key}.{name}"), "(given)", format!("no `{name}` key with {chosen}"))),
+        None => Ok(()),
+    }
+}
+
+pub(super) fn quantity_names() -> String {
+    let names: Vec<String> = Quantity::all().into_iter().map(Quantity::name).collect();
+    format!("one of {}", names.join(", "))
+}
+
+pub(super) fn axis_index(s: &str) -> Option<usize> {
+    match s {
+        "x" => Some(0),
+        "y" => Some(1),
+        "z" => Some(2),
+        _ => None,
+    }
+}
+
+pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelError> {
+    let key = format!("materials[{i}]");
+    let young = bounds::within(
+        &format!("{key}.young_modulus"),
+        m.young_modulus,
+        bounds::MIN_YOUNG,
+        bounds::MAX_YOUNG,
+        "Young's modulus in Pa, from soft foams to ten times diamond",
+    )?;
+    let nu = m.poisson_ratio;
+    if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
+        return Err(invalid(format!("{key}.poisson_ratio"), nu, "a number in (−1, 0.5)"));
+    }
+    let hardening = match &m.plasticity {
+        None => None,
+        Some(p) => {
+            let pk = format!("{key}.plasticity");
+            let max_sy = bounds::MAX_YIELD_STRAIN * young;
+            let yield_why = "the yield stress in Pa, positive and at most 0.1 E: a larger yield strain is outside small-strain plasticity";
+            let sy = p
+                .yield_stress
+                .map(|v| bounds::within(&format!("{pk}.yield_stress"), v, f64::MIN_POSITIVE, max_sy, yield_why))
+                .transpose()?;
+            let need_sy = || {
+                sy.ok_or_else(|| invalid(format!("{pk}.yield_stress"), "(missing)", "the initial yield stress in Pa"))
+            };
+            let chosen = format!("hardening = {:?}", p.hardening);
+            let unused_modulus = ("hardening_modulus", p.hardening_modulus.is_some());
+            let unused_table = ("table", p.table.is_some());
+            match p.hardening.as_str() {
+                "perfect" => reject_unused(&pk, &chosen, &[unused_modulus, unused_table])?,
+                "linear" => reject_unused(&pk, &chosen, &[unused_table])?,
+                "table" => reject_unused(&pk, &chosen, &[unused_modulus])?,
+                _ => {}
+            }
+            Some(match p.hardening.as_str() {
+                "perfect" => Hardening::Perfect { yield_stress: need_sy()? },
+                "linear" => {
+                    let h = p.hardening_modulus.ok_or_else(|| {
+                        invalid(
+                            format!("{pk}.hardening_modulus"),
+                            "(missing)",
+                            "the plastic hardening modulus H in Pa (≥ 0) for hardening = \"linear\"",
+                        )
+                    })?;
+                    bounds::within(
+                        &format!("{pk}.hardening_modulus"),
+                        h,
+                        0.0,
+                        bounds::MAX_HARDENING * young,
+                        "the plastic hardening modulus H in Pa, from 0 to 100 E",
+                    )?;
+                    Hardening::Linear { yield_stress: need_sy()?, modulus: h }
+                }
+                "table" => {
+                    let t = p.table.as_ref().ok_or_else(|| {
+                        invalid(format!("{pk}.table"), "(missing)", "[[peeq, yield_stress], …] starting at peeq = 0")
+                    })?;
+                    if t.is_empty() || t[0][0] != 0.0 {
+                        return Err(invalid(
+                            format!("{pk}.table"),
+                            format!("{t:?}"),
+                            "a non-empty table whose first point has peeq = 0",
+                        ));
+                    }
+                    for (k, w) in t.windows(2).enumerate() {
+                        if !(w[1][0] > w[0][0]) || !(w[1][1] >= w[0][1]) || !w[1][0].is_finite() || !w[1][1].is_finite()
+                        {
+                            return Err(invalid(
+                                format!("{pk}.table[{}]", k + 1),
+                                format!("{:?}", w[1]),
+                                "strictly increasing peeq and non-decreasing (no softening), finite yield stress",
+                            ));
+                        }
+                        // the segment's slope is a hardening modulus: the same bound as
+                        // `hardening_modulus` (a near-vertical segment overflows it)
+                        let slope = (w[1][1] - w[0][1]) / (w[1][0] - w[0][0]);
+                        if !(slope <= bounds::MAX_HARDENING * young) {
+                            return Err(invalid(
+                                format!("{pk}.table[{}]", k + 1),
+                                format!("[{}, {}]", bounds::number(w[1][0]), bounds::number(w[1][1])),
+                                format!(
+                                    "a segment slope of at most 100 E = {} Pa (this one rises {} Pa over a peeq of {})",
+                                    bounds::limit(bounds::MAX_HARDENING * young),
+                                    bounds::number(w[1][1] - w[0][1]),
+                                    bounds::number(w[1][0] - w[0][0])
+                                ),
+                            ));
+                        }
+                    }
+                    if !(t[0][1] > 0.0 && t[0][1].is_finite()) {
+                        return Err(invalid(
+                            format!("{pk}.table[0]"),
+                            format!("{:?}", t[0]),
+                            "a positive initial yield stress",
+                        ));
+                    }
+                    bounds::within(&format!("{pk}.table[0][1]"), t[0][1], 0.0, max_sy, yield_why)?;
+                    let last = t.len() - 1;
+                    bounds::within(
+                        &format!("{pk}.table[{last}][0]"),
+                        t[last][0],
+                        0.0,
+                        bounds::MAX_TABLE_PEEQ,
+                        "an equivalent plastic strain of at most 10",
+                    )?;
+                    bounds::within(
+                        &format!("{pk}.table[{last}][1]"),
+                        t[last][1],
+                        0.0,
+                        young,
+                        "a yield stress of at most E",
+                    )?;
+                    if let Some(s) = sy
+                        && (s - t[0][1]).abs() > 1e-9 * s
+                    {
+                        return Err(invalid(
+                            format!("{pk}.yield_stress"),
+                            s,
+                            format!("the table's first stress ({}) or no yield_stress", t[0][1]),
+                        ));
+                    }
+                    Hardening::Table {
+                        strains: t.iter().map(|r| r[0]).collect(),
+                        stresses: t.iter().map(|r| r[1]).collect(),
+                    }
+                }
+                other => {
+                    return Err(invalid(
+                        format!("{pk}.hardening"),
+                        format!("{other:?}"),
+                        "\"perfect\", \"linear\" or \"table\"",
+                    ));
+                }
+            })
+        }
+    };
+    Ok(Material::new(m.name.clone(), young, nu, hardening))
+}
+
+pub(super) fn division(key: &str, d: &DivisionFile) -> Result<Vec<f64>, ModelError> {
+    division_parts(key, d.from, d.to, d.elements, d.ratio, d.lines.as_ref(), d.segments.as_ref())
+}
+
+/// Largest element count per division and per tube side, and sample count
+/// per line: far beyond any useful model, small enough to allocate.
+pub(super) const MAX_COUNT: usize = 100_000;
+
+pub(super) fn count(key: &str, n: usize) -> Result<usize, ModelError> {
+    if (1..=MAX_COUNT).contains(&n) { Ok(n) } else { Err(invalid(key, n, format!("an integer from 1 to {MAX_COUNT}"))) }
+}
+
+pub(super) fn division_parts(
+    key: &str,
+    from: Option<f64>,
+    to: Option<f64>,
+    elements: Option<usize>,
+    ratio: Option<f64>,
+    lines: Option<&Vec<f64>>,
+    segments: Option<&Vec<SegmentFile>>,
+) -> Result<Vec<f64>, ModelError> {
+    let forms = [from.is_some() || to.is_some() || elements.is_some(), lines.is_some(), segments.is_some()];
+    if ratio.is_some() && !forms[0] {
+        return Err(invalid(
+            format!("{key}.ratio"),
+            "(given)",
+            "`ratio` only with {from, to, elements}; segments carry their own ratio",
+        ));
+    }
+    if forms.iter().filter(|f| **f).count() != 1 {
+        return Err(invalid(
+            key,
+            "(ambiguous or missing division)",
+            "exactly one of {from, to, elements[, ratio]}, {lines = […]} or {segments = […]}",
+        ));
+    }
+    for (k, seg) in segments.iter().flat_map(|v| v.iter()).enumerate() {
+        count(&format!("{key}.segments[{k}].elements"), seg.elements)?;
+    }
+    if let Some(l) = lines
+        && l.len() > MAX_COUNT + 1
+    {
+        return Err(invalid(
+            format!("{key}.lines"),
+            format!("{} values", l.len()),
+            format!("at most {} values", MAX_COUNT + 1),
+        ));
+    }
+    let div = if let Some(l) = lines {
+        Division::Lines(l.clone())
+    } else if let Some(s) = segments {
+        Division::Segments(
+            s.iter()
+                .map(|s| Segment { from: s.from, to: s.to, elements: s.elements, ratio: s.ratio.unwrap_or(1.0) })
+                .collect(),
+        )
+    } else {
+        let need = |name: &str| {
+            invalid(format!("{key}.{name}"), "(missing)", "a value (uniform division needs from, to and elements)")
+        };
+        let elements = count(&format!("{key}.elements"), elements.ok_or_else(|| need("elements"))?)?;
+        let ratio = ratio.unwrap_or(1.0);
+        let (lo, hi) = bounds::GRADING_RATIO;
+        bounds::within(&format!("{key}.ratio"), ratio, lo, hi, "last/first element length")?;
+        let (from, to) = (from.ok_or_else(|| need("from"))?, to.ok_or_else(|| need("to"))?);
+        if !(from.is_finite() && to.is_finite() && to > from) {
+            return Err(invalid(format!("{key}.to"), to, format!("a finite number greater than from ({from})")));
+        }
+        Division::Segments(vec![Segment { from, to, elements, ratio }])
+    };
+    Ok(div.lines(key)?)
+}
+
+pub(super) fn penalty(key: &str, penalty: Option<f64>, factor: Option<f64>) -> Result<Penalty, ModelError> {
+    match (penalty, factor) {
+        (Some(_), Some(_)) => {
+            Err(invalid(format!("{key}.penalty"), "both penalty and penalty_factor", "at most one of them"))
+        }
+        (Some(p), None) => Ok(Penalty::PerArea(bounds::within(
+            &format!("{key}.penalty"),
+            p,
+            f64::MIN_POSITIVE,
+            f64::MAX.sqrt(),
+            "a positive penalty per area in Pa/m",
+        )?)),
+        (None, Some(a)) => {
+            let (lo, hi) = bounds::PENALTY_FACTOR;
+            Ok(Penalty::Factor(bounds::within(
+                &format!("{key}.penalty_factor"),
+                a,
+                lo,
+                hi,
+                "dimensionless: ε_N = α E A / h",
+            )?))
+        }
+        (None, None) => Ok(Penalty::Factor(contact::DEFAULT_PENALTY_FACTOR)),
+    }
+}
+
+pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSettings, ModelError> {
+    let increments = s.increments.unwrap_or(if linear { 1 } else { 10 });
+    if increments == 0 {
+        return Err(invalid("solver.increments", 0, "an integer ≥ 1"));
+    }
+    let initial = 1.0 / increments as f64;
+    let fraction = |name: &str, v: Option<f64>, default: f64| -> Result<f64, ModelError> {
+        match v {
+            None => Ok(default),
+            Some(v) if v.is_finite() && v > 0.0 && v <= 1.0 => Ok(v),
+            Some(v) => Err(invalid(format!("solver.{name}"), v, "a number in (0, 1]")),
+        }
+    };
+    let max = fraction("max_increment", s.max_increment, initial)?;
+    let min = fraction("min_increment", s.min_increment, 1e-4 * initial.min(max))?;
+    let cutback = fraction("cutback_factor", s.cutback_factor, 0.5)?;
+    if cutback >= 1.0 {
+        return Err(invalid("solver.cutback_factor", cutback, "a number in (0, 1)"));
+    }
+    let growth = match s.growth_factor {
+        None => 1.5,
+        Some(g) if g.is_finite() && g >= 1.0 => g,
+        Some(g) => return Err(invalid("solver.growth_factor", g, "a number ≥ 1")),
+    };
+    let tol = |name: &str, v: Option<f64>, default: f64| -> Result<f64, ModelError> {
+        match v {
+            None => Ok(default),
+            Some(v) if v.is_finite() && v > 0.0 && v < 1.0 => Ok(v),
+            Some(v) => Err(invalid(format!("solver.{name}"), v, "a number in (0, 1)")),
+        }
+    };
+    if min > max {
+        return Err(invalid("solver.min_increment", min, format!("at most max_increment ({max})")));
+    }
+    let max_iterations = s.max_iterations.unwrap_or(25);
+    if max_iterations == 0 {
+        return Err(invalid("solver.max_iterations", 0, "an integer ≥ 1"));
+    }
+    let max_increments = s.max_increments.unwrap_or(1000);
+    if max_increments == 0 {
+        return Err(invalid("solver.max_increments", 0, "an integer ≥ 1"));
+    }
+    if s.threads == Some(0) {
+        return Err(invalid("solver.threads", 0, "an integer ≥ 1 (or no key: all cores)"));
+    }
+    Ok(SolverSettings {
+        steps: StepSettings {
+            initial: initial.min(max),
+            max,
+            min: min.min(initial),
+            cutback_factor: cutback,
+            growth_factor: growth,
+            easy_iterations: s.easy_iterations.unwrap_or(4),
+            max_increments,
+        },
+        newton: NewtonSettings {
+            max_iterations,
+            residual_tolerance: tol("residual_tolerance", s.residual_tolerance, 1e-6)?,
+            displacement_tolerance: tol("displacement_tolerance", s.displacement_tolerance, 1e-6)?,
+            divergence_ratio: 1e6,
+        },
+        threads: s.threads,
+    })
+}
+
+pub(super) fn describe_selection(s: &SelectionFile) -> String {
+    let c = |v: &Option<ConditionFile>| match v {
+        None => None,
+        Some(ConditionFile::Value(a)) => Some(format!("{a}")),
+        Some(ConditionFile::Range([a, b])) => Some(format!("[{a}, {b}]")),
+    };
+    let parts: Vec<String> = [("x", c(&s.x)), ("y", c(&s.y)), ("z", c(&s.z))]
+        .into_iter()
+        .filter_map(|(n, v)| v.map(|v| format!("{n} = {v}")))
+        .collect();
+    format!("{{ {} }}", parts.join(", "))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn material_file(toml_text: &str) -> MaterialFile {
+        toml::from_str(toml_text).unwrap()
+    }
+
+    fn err(r: Result<impl std::fmt::Debug, ModelError>) -> String {
+        r.unwrap_err().to_string()
+    }
+
+    #[test]
+    fn materials_are_bounded_and_tables_checked() {
+        let ok = material(0, &material_file("name = \"s\"\nyoung_modulus = 200e9\npoisson_ratio = 0.3")).unwrap();
+        assert_eq!((ok.young, ok.poisson), (200e9, 0.3));
+        let e = err(material(2, &material_file("name = \"s\"\nyoung_modulus = 1e3\npoisson_ratio = 0.3")));
+        assert!(e.starts_with("materials[2].young_modulus = 1000: expected a number from 1e5 to 1e13"), "{e}");
+        let e = err(material(0, &material_file("name = \"s\"\nyoung_modulus = 200e9\npoisson_ratio = 0.5")));
+        assert!(e.contains("poisson_ratio = 0.5"), "{e}");
+        // a yield strain above 10 %
+        let e = err(material(
+            0,
+            &material_file(
+                "name = \"s\"\nyoung_modulus = 1e9\npoisson_ratio = 0.3\nplasticity = { yield_stress = 2e8, hardening = \"perfect\" }",
+            ),
+        ));
+        assert!(e.contains("plasticity.yield_stress = 2e8") && e.contains("0.1 E"), "{e}");
+        // softening and unsorted tables
+        let e = err(material(
+            0,
+            &material_file(
+                "name = \"s\"\nyoung_modulus = 70e9\npoisson_ratio = 0.3\nplasticity = { hardening = \"table\", table = [[0.0, 1e8], [0.01, 9e7]] }",
+            ),
+        ));
+        assert!(e.contains("table[1]") && e.contains("no softening"), "{e}");
+        let table = material(
+            0,
+            &material_file("name = \"s\"\nyoung_modulus = 70e9\npoisson_ratio = 0.3\nplasticity = { hardening = \"table\", table = [[0.0, 1e8], [0.01, 1.2e8]] }"),
+        )
+        .unwrap();
+        assert_eq!(table.hardening.unwrap().eval(0.005), (1.1e8, 2e9));
+    }
+
+    #[test]
+    fn divisions_take_exactly_one_form() {
+        assert_eq!(division_parts("d", Some(0.0), Some(1.0), Some(2), None, None, None).unwrap(), vec![0.0, 0.5, 1.0]);
+        let lines = vec![0.0, 0.2, 1.0];
+        assert_eq!(division_parts("d", None, None, None, None, Some(&lines), None).unwrap(), lines);
+        let e = err(division_parts("d", Some(0.0), Some(1.0), Some(2), None, Some(&lines), None));
+        assert!(e.contains("exactly one of"), "{e}");
+        let e = err(division_parts("d", None, None, None, Some(2.0), Some(&lines), None));
+        assert!(e.contains("d.ratio") && e.contains("only with"), "{e}");
+        let e = err(division_parts("d", Some(0.0), Some(1.0), Some(0), None, None, None));
+        assert!(e.contains("d.elements = 0"), "{e}");
+        let e = err(division_parts("d", Some(1.0), Some(0.0), Some(2), None, None, None));
+        assert!(e.contains("d.to = 0"), "{e}");
+    }
+
+    #[test]
+    fn solver_settings_defaults_and_limits() {
+        let s = solver_settings(&SolverFile::default(), false).unwrap();
+        assert_eq!((s.steps.initial, s.newton.max_iterations, s.steps.max_increments), (0.1, 25, 1000));
+        assert_eq!(solver_settings(&SolverFile::default(), true).unwrap().steps.initial, 1.0);
+        let e = err(solver_settings(&SolverFile { cutback_factor: Some(1.0), ..Default::default() }, false));
+        assert!(e.contains("solver.cutback_factor = 1"), "{e}");
+        let e = err(solver_settings(
+            &SolverFile { min_increment: Some(0.5), max_increment: Some(0.1), ..Default::default() },
+            false,
+        ));
+        assert!(e.contains("solver.min_increment"), "{e}");
+    }
+
+    #[test]
+    fn names_must_be_unique_and_usable_in_file_names() {
+        let names = [String::from("a"), String::from("b"), String::from("a")];
+        let e = err(unique_names(keyed("probes", &names, |n| n)));
+        assert!(e.contains("probes[2].name = \"a\"") && e.contains("already used by probes[0]"), "{e}");
+        let bad = [String::from("a/b")];
+        assert!(err(unique_names(keyed("lines", &bad, |n| n))).contains("file names"));
+    }
+
+    #[test]
+    fn penalties_are_one_of_two_forms() {
+        assert_eq!(penalty("c", None, None).unwrap(), Penalty::Factor(contact::DEFAULT_PENALTY_FACTOR));
+        assert_eq!(penalty("c", None, Some(1e3)).unwrap(), Penalty::Factor(1e3));
+        assert!(err(penalty("c", Some(1e12), Some(1e3))).contains("at most one of them"));
+        assert!(err(penalty("c", None, Some(1e12))).contains("c.penalty_factor"));
+    }
+}

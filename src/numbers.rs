@@ -1,0 +1,31 @@
+//! How numbers appear in messages: as a user would write them, never as
+//! 300 digits (`1e300` prints as 1 followed by 300 zeros with `{}`).
+
+/// Plain between 1e-4 and 1e6, otherwise in exponent notation.
+pub fn number(v: f64) -> String {
+    if v == 0.0 || (1e-4..1e6).contains(&v.abs()) { format!("{v}") } else { format!("{v:e}") }
+}
+
+/// A bound, to four significant digits in exponent notation (`7e8`, `2.5e-3`).
+pub fn limit(v: f64) -> String {
+    let s = format!("{v:.3e}");
+    match s.split_once('e') {
+        Some((m, e)) => format!("{}e{e}", m.trim_end_matches('0').trim_end_matches('.')),
+        None => s,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn numbers_read_as_written() {
+        assert_eq!(number(1e-300), "1e-300");
+        assert_eq!(number(1e300), "1e300");
+        assert_eq!(number(0.25), "0.25");
+        assert_eq!(number(-70e9), "-7e10");
+        assert_eq!(limit(6.999999999999996e8), "7e8");
+        assert_eq!(limit(2.5e-3), "2.5e-3");
+    }
+}

@@ -1,0 +1,191 @@
+//! Model size and memory: an estimate made before anything large is
+//! allocated, the machine's available memory, and the process's measured
+//! peak.
+//!
+//! The estimate is made twice. While the model file is validated, from
+//! element and node counts alone (the section mesh itself is not built yet,
+//! so a 1000 × 1000-element section along 1000 beam elements is refused
+//! before it takes gigabytes): the sparsity pattern is counted exactly and
+//! the factor is taken as large as the pattern — a *lower bound*, so this
+//! stage only refuses models that cannot fit whatever the fill. After the
+//! equations are ordered and the symbolic factorization is done, the factor
+//! size is exact and the estimate is a close one (measured against the peak
+//! resident memory of the shipped examples; see the README).
+//!
+//! Bytes per item, from the data structures of `assembly`, `solver::linear`
+//! and `analysis`: a stored matrix entry costs 8 (row index) + 8 (value),
+//! twice over for the pattern (the assembler's and the solver's copy); an
+//! element-matrix entry 4 (scatter index) + 8 (cached elastic value); a
+//! factor entry 8; a Gauss point 160 (two states of 56 and a stress of 48);
+//! a DOF 64 (eight vectors); the program itself about 8 MiB. Setup transients (node graph, METIS arrays, the
+//! transposed pattern) and output transients (VTU arrays) are freed before
+//! the factor is allocated, so the larger of them is added, not both.
+
+/// Memory of the program itself (code, libraries, thread stacks, buffers),
+/// measured as the peak of the smallest examples.
+const BASELINE: u64 = 8 << 20;
+
+/// Counts that set the memory of an analysis.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct Sizes {
+    /// Nodes.
+    pub nodes: u64,
+    /// Degrees of freedom (3 per node).
+    pub dofs: u64,
+    /// Equations (free DOFs; 0 until the numbering is known).
+    pub equations: u64,
+    /// 3D (CUF) elements.
+    pub elements: u64,
+    /// Gauss points.
+    pub gauss_points: u64,
+    /// Entries of the element matrices' upper triangles, summed.
+    pub element_entries: u64,
+    /// Node adjacency entries (node pairs sharing an element, both orders, with self).
+    pub node_pairs: u64,
+    /// Stored entries of the lower-triangular tangent.
+    pub pattern_nnz: u64,
+    /// Stored entries of the Cholesky factor (a lower bound until the symbolic analysis).
+    pub factor_nnz: u64,
+    /// Scratch of the numeric factorization (bytes).
+    pub factor_scratch: u64,
+    /// Sample points of the VTU output.
+    pub vtu_points: u64,
+    /// True once `factor_nnz` comes from the symbolic factorization.
+    pub exact: bool,
+}
+
+/// A memory estimate split by what holds it.
+#[derive(Debug, Clone, PartialEq)]
+pub struct MemoryEstimate {
+    /// `(what, bytes)` for the memory held during the solve.
+    pub parts: Vec<(&'static str, u64)>,
+    /// The larger transient (setup or output), bytes.
+    pub transient: u64,
+    /// True if it is a close estimate (after the symbolic factorization),
+    /// false for the lower bound of the validation stage.
+    pub exact: bool,
+}
+
+impl MemoryEstimate {
+    /// Estimated peak (bytes).
+    pub fn total(&self) -> u64 {
+        self.parts.iter().map(|p| p.1).sum::<u64>() + self.transient
+    }
+}
+
+impl Sizes {
+    /// The memory these counts take (see the module docs for the constants).
+    pub fn memory(&self) -> MemoryEstimate {
+        let s = self;
+        let parts = vec![
+            ("program and runtime", BASELINE),
+            ("tangent pattern and values", s.pattern_nnz.saturating_mul(24)),
+            ("scatter maps and cached element matrices", s.element_entries.saturating_mul(12)),
+            ("Cholesky factor", s.factor_nnz.saturating_mul(8).saturating_add(s.factor_scratch)),
+            ("Gauss-point states and stresses", s.gauss_points.saturating_mul(160)),
+            ("vectors", s.dofs.saturating_mul(64)),
+        ];
+        // node graph (adjacency, its copy, METIS arrays) + transposed pattern
+        let setup = s.node_pairs.saturating_mul(20).saturating_add(s.pattern_nnz.saturating_mul(8));
+        // VTU: about 30 values per sample point, plus connectivity
+        let output = s.vtu_points.saturating_mul(30 * 8 + 8);
+        MemoryEstimate { parts, transient: setup.max(output), exact: s.exact }
+    }
+}
+
+/// Sum over the nodes of a 1D Lagrange mesh (`elements` elements of order
+/// `p`) of the number of nodes sharing an element with each node.
+pub fn coupled_1d(elements: u64, p: u64) -> u64 {
+    if elements == 0 {
+        return 0;
+    }
+    // interior element nodes see their element; shared end nodes see both
+    let interior = elements * (p.saturating_sub(1)) * (p + 1);
+    let shared = (elements - 1) * (2 * p + 1);
+    interior + shared + 2 * (p + 1)
+}
+
+/// Memory the process may use: the smaller of the kernel's `MemAvailable`
+/// and a cgroup (container) limit, if they can be read.
+pub fn available_memory() -> Option<u64> {
+    let meminfo = std::fs::read_to_string("/proc/meminfo").ok().and_then(|t| {
+        t.lines().find(|l| l.starts_with("MemAvailable:")).and_then(|l| {
+            let kb: u64 = l.split_whitespace().nth(1)?.parse().ok()?;
+            Some(kb * 1024)
+        })
+    });
+    let cgroup = ["/sys/fs/cgroup/memory.max", "/sys/fs/cgroup/memory/memory.limit_in_bytes"]
+        .iter()
+        .find_map(|p| std::fs::read_to_string(p).ok().and_then(|t| t.trim().parse::<u64>().ok()));
+    match (meminfo, cgroup) {
+        (Some(a), Some(b)) => Some(a.min(b)),
+        (a, b) => a.or(b),
+    }
+}
+
+/// Peak resident memory of this process so far (bytes), from `getrusage`.
+pub fn peak_memory() -> Option<u64> {
+    // SAFETY: getrusage writes into the zero-initialised struct we own.
+    let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
+    let r = unsafe { libc::getrusage(libc::RUSAGE_SELF, &mut usage) };
+    // Linux reports kilobytes
+    (r == 0).then(|| usage.ru_maxrss as u64 * 1024)
+}
+
+/// `1234567890` → `1.15 GiB`.
+pub fn human_bytes(b: u64) -> String {
+    let units = ["B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
+    let mut v = b as f64;
+    let mut k = 0;
+    while v >= 1024.0 && k + 1 < units.len() {
+        v /= 1024.0;
+        k += 1;
+    }
+    if k == 0 { format!("{b} B") } else { format!("{v:.2} {}", units[k]) }
+}
+
+/// Parses `--max-memory` values: a byte count with an optional unit
+/// (`K`, `M`, `G`, `T`, with or without `iB`/`B`; powers of 1024).
+pub fn parse_bytes(text: &str) -> Option<u64> {
+    let t = text.trim();
+    let split = t.find(|c: char| !(c.is_ascii_digit() || c == '.')).unwrap_or(t.len());
+    let (num, unit) = t.split_at(split);
+    let v: f64 = num.parse().ok()?;
+    let scale = match unit.trim().to_ascii_uppercase().trim_end_matches('B').trim_end_matches('I') {
+        "" => 1.0,
+        "K" => 1024.0,
+        "M" => 1024f64.powi(2),
+        "G" => 1024f64.powi(3),
+        "T" => 1024f64.powi(4),
+        _ => return None,
+    };
+    let bytes = v * scale;
+    (1.0..1.8e19).contains(&bytes).then_some(bytes as u64)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn coupling_counts_of_a_beam_axis() {
+        // 2 B2 elements, nodes 0-1-2: node 0 sees 2, node 1 sees 3, node 2 sees 2
+        assert_eq!(coupled_1d(2, 1), 7);
+        // 1 B4 element: 4 nodes each see 4
+        assert_eq!(coupled_1d(1, 3), 16);
+        // 2 B3 elements (5 nodes): 3 + 3 + 5 + 3 + 3
+        assert_eq!(coupled_1d(2, 2), 17);
+    }
+
+    #[test]
+    fn byte_sizes_parse_and_print() {
+        assert_eq!(parse_bytes("2G"), Some(2 << 30));
+        assert_eq!(parse_bytes("512MiB"), Some(512 << 20));
+        assert_eq!(parse_bytes("1.5 GB"), Some(3 << 29));
+        assert_eq!(parse_bytes("100"), Some(100));
+        assert_eq!(parse_bytes("lots"), None);
+        assert_eq!(parse_bytes("-1G"), None);
+        assert_eq!(human_bytes(3 << 29), "1.50 GiB");
+        assert!(peak_memory().is_some_and(|b| b > 0));
+    }
+}

@@ -1,0 +1,368 @@
+//! `cufem verify`: a model's results against a 3D solid model of the same
+//! problem in CalculiX, at the same points.
+//!
+//! Probes and line stations are located once in the CUF mesh; cufem samples
+//! its fields there ([`crate::post`]) and the 3D fields are interpolated at
+//! the same points inside the hexahedra that subdivide the CUF elements
+//! ([`crate::ccx::sample`]). Differences are given in % of the 3D value; a
+//! value below 1e-3 of its scale (the largest displacement or von Mises
+//! stress of the 3D model) has no meaningful relative difference and is
+//! reported as such. Along lines the difference is in % of the line's 3D
+//! peak. Resultants compare the reactions of every constraint and the force
+//! of every indenter.
+
+use std::fmt::Write as _;
+use std::path::{Path, PathBuf};
+
+use serde::Serialize;
+
+use crate::analysis::Solution;
+use crate::ccx::{CcxRun, HexMesh, deck::set_name};
+use crate::io::{IoError, Series, line_plot};
+use crate::model::Model;
+use crate::quantity::{Quantity, Sample};
+
+/// One probe value, both ways.
+#[derive(Debug, Clone, Serialize)]
+pub struct ProbeRow {
+    /// Probe name.
+    pub probe: String,
+    /// Quantity name (`u_z`, `s_yy`, …).
+    pub quantity: String,
+    /// cufem (SI).
+    pub cufem: f64,
+    /// CalculiX (SI).
+    pub ccx: f64,
+    /// `100 (cufem − 3D) / 3D`, `None` where the 3D value is ≈ 0.
+    pub difference_percent: Option<f64>,
+}
+
+/// One line and quantity.
+#[derive(Debug, Clone, Serialize)]
+pub struct LineRow {
+    /// Line name.
+    pub line: String,
+    /// Quantity name.
+    pub quantity: String,
+    /// Largest `|cufem − 3D|` in % of the line's 3D peak.
+    pub max_difference_percent: f64,
+    /// Distance along the line where it occurs (m).
+    pub at: f64,
+    /// The 3D peak `max |value|` (SI).
+    pub peak: f64,
+    /// Mean `|cufem − 3D|` in % of the peak.
+    pub mean_difference_percent: f64,
+}
+
+/// A resultant force, both ways.
+#[derive(Debug, Clone, Serialize)]
+pub struct ResultantRow {
+    /// Constraint or indenter name.
+    pub name: String,
+    /// `"reaction"` or `"indenter"`.
+    pub kind: &'static str,
+    /// cufem (N).
+    pub cufem: [f64; 3],
+    /// CalculiX (N).
+    pub ccx: [f64; 3],
+    /// `100 |cufem − 3D| / |3D|` (vector norms), `None` if the 3D force is ≈ 0.
+    pub difference_percent: Option<f64>,
+}
+
+/// The cost of both analyses.
+#[derive(Debug, Clone, Serialize)]
+pub struct Cost {
+    /// cufem degrees of freedom.
+    pub cufem_dof: usize,
+    /// 3D degrees of freedom (3 per body node).
+    pub ccx_dof: usize,
+    /// cufem wall time (s).
+    pub cufem_time_s: f64,
+    /// ccx wall time (s).
+    pub ccx_time_s: f64,
+    /// cufem peak memory (bytes).
+    pub cufem_peak_bytes: Option<u64>,
+    /// ccx peak memory (bytes).
+    pub ccx_peak_bytes: Option<u64>,
+}
+
+/// The whole comparison.
+#[derive(Debug, Clone, Serialize)]
+pub struct Comparison {
+    /// Model title.
+    pub title: String,
+    /// Solid element and refinement of the 3D model.
+    pub solid: String,
+    /// Probe values.
+    pub probes: Vec<ProbeRow>,
+    /// Lines.
+    pub lines: Vec<LineRow>,
+    /// Resultants.
+    pub resultants: Vec<ResultantRow>,
+    /// DOF, time and memory of both.
+    pub cost: Cost,
+}
+
+/// One line overlay: line name, quantity and `(s, cufem, ccx)` samples.
+pub type Curve = (String, Quantity, Vec<(f64, f64, f64)>);
+
+fn quantities(model: &Model) -> Vec<Quantity> {
+    let plastic = model.materials.iter().any(|m| m.is_plastic());
+    Quantity::all()
+        .into_iter()
+        .filter(|q| !matches!(q, Quantity::Strain(_)) && (plastic || *q != Quantity::Peeq))
+        .collect()
+}
+
+fn ccx_sample(model: &Model, mesh: &HexMesh, run: &CcxRun, locations: &[crate::values::Location]) -> Option<Sample> {
+    let (u, stress, peeq) = crate::ccx::sample(model, mesh, &run.results, locations)?;
+    Some(Sample { u, stress, von_mises: crate::voigt::von_mises(&stress), peeq, ..Default::default() })
+}
+
+fn percent(ours: f64, reference: f64, scale: f64) -> Option<f64> {
+    (reference.abs() > 1e-3 * scale).then(|| 100.0 * (ours - reference) / reference.abs())
+}
+
+/// Compares `solution` with the CalculiX run on `mesh`.
+pub fn compare(
+    model: &Model,
+    solution: &Solution,
+    mesh: &HexMesh,
+    run: &CcxRun,
+    cufem_peak: Option<u64>,
+) -> (Comparison, Vec<Curve>) {
+    let view = solution.fields(model);
+    let u_scale = run.results.u.values().flat_map(|u| u.iter()).fold(0.0f64, |a, b| a.max(b.abs()));
+    let s_scale = run.results.stress.values().map(crate::voigt::von_mises).fold(0.0f64, f64::max);
+    let scale = |q: Quantity| match q {
+        Quantity::Displacement(_) => u_scale,
+        Quantity::Peeq => run.results.peeq.values().fold(0.0f64, |a, b| a.max(*b)),
+        _ => s_scale,
+    };
+    let qs = quantities(model);
+    let mut probes = Vec::new();
+    for p in &model.probes {
+        let (Some(ours), Some(theirs)) = (view.sample_probe(p), ccx_sample(model, mesh, run, &p.locations)) else {
+            continue;
+        };
+        for &q in &qs {
+            let (a, b) = (ours.get(q), theirs.get(q));
+            probes.push(ProbeRow {
+                probe: p.name.clone(),
+                quantity: q.name(),
+                cufem: a,
+                ccx: b,
+                difference_percent: percent(a, b, scale(q)),
+            });
+        }
+    }
+    let mut lines = Vec::new();
+    let mut curves = Vec::new();
+    for l in &model.lines {
+        let len = (0..3).map(|k| (l.to[k] - l.from[k]).powi(2)).sum::<f64>().sqrt();
+        let stations: Vec<(f64, Sample, Sample)> = (0..l.points)
+            .filter_map(|i| {
+                let t = i as f64 / (l.points - 1) as f64;
+                let x = [0, 1, 2].map(|k| l.from[k] + t * (l.to[k] - l.from[k]));
+                let locs = crate::values::locate_in_model(&model.mesh, l.body, x);
+                Some((t * len, view.sample_at(&locs)?, ccx_sample(model, mesh, run, &locs)?))
+            })
+            .collect();
+        let wanted: Vec<Quantity> = if l.plot.is_empty() { qs.clone() } else { l.plot.clone() };
+        for q in wanted {
+            let peak = stations.iter().map(|s| s.2.get(q).abs()).fold(0.0f64, f64::max);
+            if stations.is_empty() {
+                continue;
+            }
+            let diffs: Vec<f64> = stations
+                .iter()
+                .map(|s| if peak > 0.0 { 100.0 * (s.1.get(q) - s.2.get(q)).abs() / peak } else { 0.0 })
+                .collect();
+            let (k, max) = diffs.iter().enumerate().fold((0, 0.0f64), |m, (k, d)| if *d > m.1 { (k, *d) } else { m });
+            lines.push(LineRow {
+                line: l.name.clone(),
+                quantity: q.name(),
+                max_difference_percent: max,
+                at: stations[k].0,
+                peak,
+                mean_difference_percent: diffs.iter().sum::<f64>() / diffs.len() as f64,
+            });
+            curves.push((l.name.clone(), q, stations.iter().map(|s| (s.0, s.1.get(q), s.2.get(q))).collect()));
+        }
+    }
+    let mut resultants = Vec::new();
+    let norm = |f: [f64; 3]| (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
+    // a resultant below 1e-6 of the largest one is round-off (a symmetry plane's reaction)
+    let force_scale = run.totals.values().map(|t| norm(t.0)).fold(0.0f64, f64::max);
+    let mut push = |name: &str, kind: &'static str, ours: [f64; 3], set: String| {
+        if let Some((theirs, _)) = run.totals.get(&set) {
+            let d = [ours[0] - theirs[0], ours[1] - theirs[1], ours[2] - theirs[2]];
+            let big = norm(*theirs);
+            resultants.push(ResultantRow {
+                name: name.to_string(),
+                kind,
+                cufem: ours,
+                ccx: *theirs,
+                difference_percent: (big > 1e-6 * force_scale).then(|| 100.0 * norm(d) / big),
+            });
+        }
+    };
+    for r in &solution.reactions {
+        push(&r.name, "reaction", r.force, set_name("C", &r.name));
+    }
+    for c in solution.contacts.iter().filter(|c| c.kind == crate::analysis::ContactKind::Indenter) {
+        push(&c.name, "indenter", c.force, set_name("REF", &c.name));
+    }
+    let body_nodes: usize = (0..model.mesh.bodies.len()).map(|b| mesh.body_nodes(b).len()).sum();
+    let cost = Cost {
+        cufem_dof: model.n_dofs(),
+        ccx_dof: 3 * body_nodes,
+        cufem_time_s: solution.wall_time.as_secs_f64(),
+        ccx_time_s: run.wall_time.as_secs_f64(),
+        cufem_peak_bytes: cufem_peak,
+        ccx_peak_bytes: run.peak_memory,
+    };
+    let solid = format!("{} × refine {}", mesh.kind.name(), mesh.refine);
+    (Comparison { title: model.title.clone(), solid, probes, lines, resultants, cost }, curves)
+}
+
+fn show(v: Option<f64>) -> String {
+    v.map_or_else(|| "(≈ 0)".to_string(), |d| format!("{d:+.2} %"))
+}
+
+impl Comparison {
+    /// The table as text.
+    pub fn table(&self) -> String {
+        let mut t = String::new();
+        let c = &self.cost;
+        let _ = writeln!(t, "{} — cufem against CalculiX ({})", self.title, self.solid);
+        let _ = writeln!(
+            t,
+            "DOF {} vs {} ({:.1} %), wall time {:.2} s vs {:.2} s (×{:.1}), peak memory {} vs {}",
+            c.cufem_dof,
+            c.ccx_dof,
+            100.0 * c.cufem_dof as f64 / c.ccx_dof.max(1) as f64,
+            c.cufem_time_s,
+            c.ccx_time_s,
+            c.ccx_time_s / c.cufem_time_s.max(1e-9),
+            c.cufem_peak_bytes.map_or("?".into(), crate::size::human_bytes),
+            c.ccx_peak_bytes.map_or("?".into(), crate::size::human_bytes),
+        );
+        if !self.resultants.is_empty() {
+            let _ =
+                writeln!(t, "\n{:<18} {:<9} {:>38} {:>38} {:>10}", "resultant", "kind", "cufem [N]", "3D [N]", "diff");
+            for r in &self.resultants {
+                let f = |v: [f64; 3]| format!("[{:.4e}, {:.4e}, {:.4e}]", v[0], v[1], v[2]);
+                let _ = writeln!(
+                    t,
+                    "{:<18} {:<9} {:>38} {:>38} {:>10}",
+                    r.name,
+                    r.kind,
+                    f(r.cufem),
+                    f(r.ccx),
+                    show(r.difference_percent)
+                );
+            }
+        }
+        if !self.probes.is_empty() {
+            let _ = writeln!(t, "\n{:<16} {:<10} {:>14} {:>14} {:>10}", "probe", "quantity", "cufem", "3D", "diff");
+            for p in &self.probes {
+                let q = Quantity::parse(&p.quantity).unwrap_or(Quantity::VonMises);
+                let s = q.display_scale();
+                let _ = writeln!(
+                    t,
+                    "{:<16} {:<10} {:>14.5} {:>14.5} {:>10}",
+                    p.probe,
+                    q.label(),
+                    p.cufem * s,
+                    p.ccx * s,
+                    show(p.difference_percent)
+                );
+            }
+        }
+        if !self.lines.is_empty() {
+            let _ = writeln!(
+                t,
+                "\n{:<16} {:<10} {:>14} {:>12} {:>14} {:>14}",
+                "line", "quantity", "3D peak", "max diff", "at [mm]", "mean diff"
+            );
+            for l in &self.lines {
+                let q = Quantity::parse(&l.quantity).unwrap_or(Quantity::VonMises);
+                let _ = writeln!(
+                    t,
+                    "{:<16} {:<10} {:>14.5} {:>11.2}% {:>14.2} {:>13.2}%",
+                    l.line,
+                    l.quantity,
+                    l.peak * q.display_scale(),
+                    l.max_difference_percent,
+                    l.at * 1e3,
+                    l.mean_difference_percent
+                );
+            }
+        }
+        t
+    }
+
+    /// Writes `table.txt`, `table.csv`, `table.json` and the line overlays
+    /// into `dir`; returns the files written.
+    pub fn write(&self, dir: &Path, curves: &[Curve]) -> Result<Vec<PathBuf>, IoError> {
+        let file = |p: &Path, text: &str| std::fs::write(p, text).map_err(|e| crate::io::file_error(p, e));
+        std::fs::create_dir_all(dir).map_err(|e| crate::io::file_error(dir, e))?;
+        let mut written = Vec::new();
+        let p = dir.join("table.txt");
+        file(&p, &self.table())?;
+        written.push(p);
+        let mut csv = String::from("kind,name,quantity,cufem,ccx,difference_percent\n");
+        for r in &self.resultants {
+            for k in 0..3 {
+                let _ = writeln!(
+                    csv,
+                    "{},{},f_{},{:e},{:e},{}",
+                    r.kind,
+                    r.name,
+                    ["x", "y", "z"][k],
+                    r.cufem[k],
+                    r.ccx[k],
+                    r.difference_percent.map_or(String::new(), |d| format!("{d:e}"))
+                );
+            }
+        }
+        for p in &self.probes {
+            let _ = writeln!(
+                csv,
+                "probe,{},{},{:e},{:e},{}",
+                p.probe,
+                p.quantity,
+                p.cufem,
+                p.ccx,
+                p.difference_percent.map_or(String::new(), |d| format!("{d:e}"))
+            );
+        }
+        for l in &self.lines {
+            let _ = writeln!(csv, "line,{},{},,,{:e}", l.line, l.quantity, l.max_difference_percent);
+        }
+        let p = dir.join("table.csv");
+        file(&p, &csv)?;
+        written.push(p);
+        let p = dir.join("table.json");
+        file(&p, &serde_json::to_string_pretty(self).unwrap_or_default())?;
+        written.push(p);
+        for (line, q, points) in curves {
+            let ours: Vec<(f64, f64)> = points.iter().map(|(s, a, _)| (s * 1e3, a * q.display_scale())).collect();
+            let theirs: Vec<(f64, f64)> = points.iter().map(|(s, _, b)| (s * 1e3, b * q.display_scale())).collect();
+            let p = dir.join(format!("line_{line}_{}.png", q.name()));
+            line_plot(
+                &p,
+                &format!("{} along {line}: cufem and 3D", q.label().split(" [").next().unwrap_or_default()),
+                "distance along the line [mm]",
+                &q.label(),
+                &[
+                    Series { name: "cufem (CUF 1D)".into(), points: ours, dashed: false },
+                    Series { name: format!("CalculiX ({})", self.solid), points: theirs, dashed: true },
+                ],
+            )?;
+            written.push(p);
+        }
+        Ok(written)
+    }
+}

@@ -9,7 +9,10 @@
 //! * displacement `u = Σ F_τ N_i u_τi` and total strain `ε = D u` from the
 //!   element's CUF expansion, exactly;
 //! * in an element none of whose Gauss points has yielded, the stress is
-//!   `σ = C ε` from the expansion, exactly;
+//!   `σ = C ε` from the expansion, exactly — except in B-bar bodies, where
+//!   the stress uses the element's projected dilatation and is the
+//!   (unlimited) interpolation of the Gauss-point stresses, exact on affine
+//!   elements;
 //! * in an element with plastic Gauss points, stress and `peeq` are the
 //!   Lagrange interpolation of their Gauss-point values through the
 //!   element's Gauss points (the tensor grid of `p + 1` points per direction
@@ -140,6 +143,13 @@ impl FieldView<'_> {
                 s.stress[k] = sigma[k].clamp(lo[k], hi[k]);
             }
             s.peeq = peeq.clamp(lo[6], hi[6]);
+        } else if geom.volumetric.is_some() {
+            // B-bar: the stress depends on the projected dilatation, not on
+            // `div u` at the point (with ν → 0.5 the latter times λ is noise);
+            // the Gauss-point stresses are the kernel's, and the interpolation
+            // through them is exact on affine elements (the projected
+            // dilatation is linear, the deviatoric strain of degree ≤ p)
+            s.stress = sigma;
         } else {
             s.stress = voigt::mat_vec(self.materials[body.material].elastic_stiffness(), &s.strain);
         }

@@ -289,8 +289,13 @@ impl<'m> Structure<'m> {
         self.f_int[dof] - self.lambda * self.f_ext[dof] - self.f_contact[dof]
     }
 
-    /// Resultant reaction of each constraint set (force of the support on the body).
+    /// Resultant reaction of each constraint set (force of the support on
+    /// the body): the imbalance at the components the set prescribes. A DOF
+    /// prescribed by several sets (an edge shared by two faces) counts once,
+    /// for the first of them in the model file, so that the reactions sum
+    /// to the support force.
     pub fn reactions(&self) -> Vec<Reaction> {
+        let mut claimed = vec![false; self.f_int.len()];
         self.model
             .constraints
             .iter()
@@ -298,7 +303,11 @@ impl<'m> Structure<'m> {
                 let mut force = [0.0; 3];
                 for &n in &c.nodes {
                     for (k, f) in force.iter_mut().enumerate() {
-                        *f += self.nodal_imbalance(3 * n + k);
+                        let dof = 3 * n + k;
+                        if c.values[k].is_some() && !claimed[dof] {
+                            claimed[dof] = true;
+                            *f += self.nodal_imbalance(dof);
+                        }
                     }
                 }
                 Reaction { name: c.name.clone(), force }

@@ -223,3 +223,33 @@ fn cantilevers_contact() {
     let pair = s["contact"].as_array().unwrap().iter().find(|c| c["kind"] == "pair").unwrap();
     assert!(vec3(&pair["force"])[2] > 0.0);
 }
+
+/// Plane-strain twin of the block (issue 8): a flat punch on a block 10
+/// punch widths wide, B-bar, driven to full plastic flow. Prandtl's mean
+/// pressure (2 + π) k, k = σ_y/√3 (Hill 1950, §VIII.3), is the limit of the
+/// punch pressure and, with a smooth punch, the uniform σ_zz under it.
+#[test]
+fn punch_plane_strain() {
+    let s = run("punch_plane_strain");
+    assert_equilibrium("punch_plane_strain", &s);
+    let prandtl = -(2.0 + std::f64::consts::PI) * 100e6 / 3f64.sqrt();
+    let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
+    // measured +2.0 % (+3.0 % on a mesh half as fine: converging from above)
+    let pressure = vec3(&punch["force"])[2] / 0.01;
+    assert_within("punch_plane_strain", "mean punch pressure vs Prandtl", pressure, prandtl, 0.03);
+    // measured −0.2 %
+    assert_within("punch_plane_strain", "σ_zz at the centre vs Prandtl", probe(&s, "centre", "s_zz"), prandtl, 0.03);
+    // the profile under the punch, away from the edge elements: flat at
+    // Prandtl's pressure within 3 % (measured −294…−301 MPa); no plateaus and
+    // jumps, no oscillation between neighbouring stations
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("example_punch_plane_strain");
+    let csv = std::fs::read_to_string(out.join("line_top.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let (ix, izz) = (header.iter().position(|h| *h == "x").unwrap(), header.iter().position(|h| *h == "s_zz").unwrap());
+    for line in csv.lines().skip(1) {
+        let f: Vec<f64> = line.split(',').map(|v| v.parse().unwrap()).collect();
+        if (0.455..=0.545).contains(&f[ix]) {
+            assert_within("punch_plane_strain", &format!("σ_zz at x = {}", f[ix]), f[izz], prandtl, 0.03);
+        }
+    }
+}

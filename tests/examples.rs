@@ -203,22 +203,37 @@ fn bending_tube_28l9() {
     tube("bending_tube_28L9", 33768, -60.60e6, 8.38e-3);
 }
 
-/// §4.3, Tables 7–8. The layout is our assumption (no source found for
-/// Choi & Chung's dimensions), so only what does not depend on it is
-/// checked against the paper: both probes compressive and beyond the yield
-/// stress, i.e. under the triaxial compression of a plastic indentation, as
-/// the paper's −367.6 and −418.8 MPa are.
+/// §4.3, Tables 7–8. The layout is our choice (no source found for Choi &
+/// Chung's dimensions; see the example's header), so the paper's probes are
+/// not asserted; the forces are checked against a 3D CalculiX model of the
+/// same layout.
 #[test]
 fn cantilevers_contact() {
     let s = run("cantilevers_contact");
     assert_eq!(s["dof"], 15066);
     assert_equilibrium("cantilevers", &s);
-    for p in ["y_177.8mm", "y_228.6mm"] {
-        let syy = probe(&s, p, "s_yy");
-        eprintln!("cantilevers: σ_yy at {p} = {:.1} MPa", syy * 1e-6);
-        assert!(syy < -242.2e6, "{p}: σ_yy = {syy}");
-        assert!(probe(&s, p, "peeq") > 0.0);
-    }
+    // the layout's design claim (see the example's header): small plastic
+    // strains, far from the crushing of the first layout (0.3–1.5 in 3D)
+    let max_peeq = s["max_peeq"].as_f64().unwrap();
+    eprintln!("cantilevers: max peeq {max_peeq:.4}");
+    assert!(max_peeq > 0.0 && max_peeq < 0.05, "max peeq {max_peeq}");
+    // 3D reference: `cufem verify examples/cantilevers_contact.toml --refine 1`
+    // (CalculiX 2.20, 5,420 C3D20R, 56,430 DOF, frictionless surface-to-surface
+    // contact). 5 %: node-to-node against surface contact on a 3.7× coarser
+    // model; measured 1.9 % (7 in roller), 2.5 % and 3.6 % (roots).
+    let force = |name: &str| {
+        let c = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == name).unwrap();
+        vec3(&c["force"])[2]
+    };
+    let reaction = |name: &str| {
+        let r = s["reactions"].as_array().unwrap().iter().find(|r| r["name"] == name).unwrap();
+        vec3(&r["force"])[2]
+    };
+    assert_within("cantilevers", "7 in roller force vs CalculiX", force("indenter_7in"), -25_769.0, 0.05);
+    assert_within("cantilevers", "upper root reaction vs CalculiX", reaction("upper_root"), 12_619.0, 0.05);
+    assert_within("cantilevers", "lower root reaction vs CalculiX", reaction("lower_root"), 16_087.0, 0.05);
+    // both rollers bear (the 9 in one lightly: 3.4 kN here, 2.9 kN in 3D)
+    assert!(force("indenter_9in") < -1000.0);
     // the pair contact carries the load from one beam to the other
     let pair = s["contact"].as_array().unwrap().iter().find(|c| c["kind"] == "pair").unwrap();
     assert!(vec3(&pair["force"])[2] > 0.0);

@@ -19,7 +19,7 @@ mod vtu;
 
 pub use json::{Summary, summary};
 pub use png::{Series, line_plot};
-pub use vtu::write_vtu;
+pub use vtu::{write_gauss_vtu, write_vtu};
 
 use std::path::{Path, PathBuf};
 
@@ -73,6 +73,11 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     if model.output.vtu {
         let path = dir.join("result.vtu");
         write_vtu(&path, model, solution)?;
+        written.push(path);
+    }
+    if model.output.gauss_points {
+        let path = dir.join("gauss.vtu");
+        write_gauss_vtu(&path, model, solution)?;
         written.push(path);
     }
 

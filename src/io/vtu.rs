@@ -143,6 +143,66 @@ pub fn write_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), 
         n_cells,
         point_data: &point_data,
         cell_data: &cell_data,
+        cell_type: VTK_HEXAHEDRON,
+    };
+    let file = std::fs::File::create(path).map_err(|e| file_error(path, e))?;
+    let mut out = std::io::BufWriter::with_capacity(1 << 20, file);
+    write_grid(&mut out, &grid).and_then(|()| out.flush()).map_err(|e| file_error(path, e))
+}
+
+/// Writes the raw Gauss-point values (`output.gauss_points = true`): one
+/// VTK vertex per integration point at its physical position, with the
+/// stress of the return map (`s_xx`…`s_yz`, `von_mises`) and `peeq` as
+/// point data and `body`, `element` as cell data — the values every
+/// recovered field is built from, unsmoothed.
+pub fn write_gauss_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), IoError> {
+    let view = solution.fields(model);
+    let mut points: Vec<f64> = Vec::new();
+    let mut stress: [Vec<f64>; 6] = Default::default();
+    let (mut von_mises, mut peeq) = (Vec::new(), Vec::new());
+    let (mut cell_body, mut cell_element) = (Vec::new(), Vec::new());
+    for (b, body) in model.mesh.bodies.iter().enumerate() {
+        let cell = &model.cells[b];
+        let ngp = cell.gp_per_element();
+        for e in 0..body.n_elements() {
+            let (es, eb) = body.split_element(e);
+            for gb in 0..cell.axis.n_gp {
+                for gs in 0..cell.section.n_gp {
+                    let [x, z] = cell.section.position[es * cell.section.n_gp + gs];
+                    let y = cell.axis.position[eb * cell.axis.n_gp + gb];
+                    points.extend([x, y, z]);
+                    let g = view.gp_offsets[b] + e * ngp + gb * cell.section.n_gp + gs;
+                    let s = view.stresses[g];
+                    for k in 0..6 {
+                        stress[k].push(s[k]);
+                    }
+                    von_mises.push(crate::voigt::von_mises(&s));
+                    peeq.push(view.states[g].peeq);
+                    cell_body.push(b as i32);
+                    cell_element.push((body.element_offset + e) as i32);
+                }
+            }
+        }
+    }
+    let n_cells = cell_body.len();
+    let connectivity: Vec<u64> = (0..n_cells as u64).collect();
+    let offsets: Vec<u64> = (1..=n_cells as u64).collect();
+    let names = ["s_xx", "s_yy", "s_zz", "s_xy", "s_xz", "s_yz"];
+    let mut point_data: Vec<(String, usize, Array)> =
+        names.iter().zip(stress).map(|(n, v)| (n.to_string(), 1, Array::F64(v))).collect();
+    point_data.push(("von_mises".into(), 1, Array::F64(von_mises)));
+    point_data.push(("peeq".into(), 1, Array::F64(peeq)));
+    let cell_data =
+        vec![("body".to_string(), 1, Array::I32(cell_body)), ("element".to_string(), 1, Array::I32(cell_element))];
+    let grid = Grid {
+        title: &model.title,
+        points: &points,
+        connectivity: &connectivity,
+        offsets: &offsets,
+        n_cells,
+        point_data: &point_data,
+        cell_data: &cell_data,
+        cell_type: VTK_VERTEX,
     };
     let file = std::fs::File::create(path).map_err(|e| file_error(path, e))?;
     let mut out = std::io::BufWriter::with_capacity(1 << 20, file);
@@ -164,10 +224,14 @@ struct Grid<'a> {
     n_cells: usize,
     point_data: &'a [(String, usize, Array)],
     cell_data: &'a [(String, usize, Array)],
+    /// VTK cell type of every cell.
+    cell_type: u8,
 }
 
 /// VTK cell type of a linear hexahedron.
 const VTK_HEXAHEDRON: u8 = 12;
+/// VTK cell type of a single point.
+const VTK_VERTEX: u8 = 1;
 
 fn write_grid(w: &mut impl Write, g: &Grid<'_>) -> std::io::Result<()> {
     writeln!(w, "<?xml version=\"1.0\"?>")?;
@@ -197,7 +261,7 @@ fn write_grid(w: &mut impl Write, g: &Grid<'_>) -> std::io::Result<()> {
     binary_array(w, "Int64", Some("connectivity"), 1, conn.len(), conn.iter().flat_map(|&v| (v as i64).to_le_bytes()))?;
     let offs = g.offsets;
     binary_array(w, "Int64", Some("offsets"), 1, offs.len(), offs.iter().flat_map(|&v| (v as i64).to_le_bytes()))?;
-    binary_array(w, "UInt8", Some("types"), 1, g.n_cells, std::iter::repeat_n(VTK_HEXAHEDRON, g.n_cells))?;
+    binary_array(w, "UInt8", Some("types"), 1, g.n_cells, std::iter::repeat_n(g.cell_type, g.n_cells))?;
     writeln!(w, "      </Cells>")?;
     writeln!(w, "    </Piece>")?;
     writeln!(w, "  </UnstructuredGrid>")?;
@@ -291,6 +355,7 @@ mod tests {
             n_cells: 1,
             point_data: &data,
             cell_data: &[],
+            cell_type: VTK_HEXAHEDRON,
         };
         write_grid(w, &grid)
     }

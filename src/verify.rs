@@ -303,7 +303,9 @@ impl Comparison {
         t
     }
 
-    /// Writes `table.txt`, `table.csv`, `table.json` and the line overlays
+    /// Writes `table.txt`, `table.csv`, `table.json` and, per line and
+    /// quantity, the overlay plot and its numbers (`line_<name>_<q>.csv`:
+    /// distance along the line in m, cufem and CalculiX values in SI units)
     /// into `dir`; returns the files written.
     pub fn write(&self, dir: &Path, curves: &[Curve]) -> Result<Vec<PathBuf>, IoError> {
         let file = |p: &Path, text: &str| std::fs::write(p, text).map_err(|e| crate::io::file_error(p, e));
@@ -361,6 +363,14 @@ impl Comparison {
                     Series { name: format!("CalculiX ({})", self.solid), points: theirs, dashed: true },
                 ],
             )?;
+            written.push(p);
+            // the numbers behind the plot, for any other comparison
+            let p = dir.join(format!("line_{line}_{}.csv", q.name()));
+            let mut csv = format!("s,cufem_{0},ccx_{0}\n", q.name());
+            for (s, a, b) in points {
+                let _ = writeln!(csv, "{s:e},{a:e},{b:e}");
+            }
+            file(&p, &csv)?;
             written.push(p);
         }
         Ok(written)

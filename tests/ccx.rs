@@ -226,6 +226,45 @@ fn verify_compares_the_compact_bar_with_calculix() {
     assert!(line["max_difference_percent"].as_f64().unwrap() < 3.0, "{line}");
     assert!(out.join("verify/line_top_u_z.png").exists() && out.join("verify/ccx/model.inp").exists());
     assert!(out.join("summary.json").exists());
+    let csv = std::fs::read_to_string(out.join("verify/line_top_u_z.csv")).unwrap();
+    assert!(csv.starts_with("s,cufem_u_z,ccx_u_z\n"), "{csv}");
+
+    // the same deck, another formulation: the 3D results are reused, not rerun
+    let ccx_dir = dir.join("ccx_kept");
+    let _ = std::fs::remove_dir_all(&ccx_dir);
+    std::fs::rename(out.join("verify/ccx"), &ccx_dir).unwrap();
+    let bbar = dir.join("bar_bbar.toml");
+    let text = example("bending_compact_4L9.toml")
+        .replace("material = \"alloy\"\n", "material = \"alloy\"\nformulation = \"bbar\"\n");
+    assert!(text.contains("formulation = \"bbar\""));
+    std::fs::write(&bbar, text).unwrap();
+    let again = |model: &Path, refine: &str| {
+        cufem()
+            .args(["verify", model.to_str().unwrap(), "--out", dir.join("out2").to_str().unwrap(), "--force"])
+            .args([
+                "--refine",
+                refine,
+                "--quiet",
+                "--ccx",
+                "/nonexistent/ccx",
+                "--ccx-results",
+                ccx_dir.to_str().unwrap(),
+            ])
+            .output()
+            .unwrap()
+    };
+    let reused = again(&bbar, "1");
+    assert!(reused.status.success(), "{}", String::from_utf8_lossy(&reused.stderr));
+    let table2: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out2/verify/table.json")).unwrap()).unwrap();
+    let theirs = |t: &serde_json::Value| {
+        t["resultants"].as_array().unwrap().iter().find(|r| r["name"] == "load").unwrap()["ccx"].clone()
+    };
+    assert_eq!(theirs(&table), theirs(&table2), "the same 3D results");
+    // results of another deck (here: another refinement) are refused
+    let other = again(&bbar, "2");
+    assert_eq!(other.status.code(), Some(5));
+    assert!(String::from_utf8_lossy(&other.stderr).contains("different deck"));
 }
 
 /// Without CalculiX, `verify` says what to install, before computing anything.

@@ -44,6 +44,15 @@ pub enum CcxError {
         /// Last lines of the log.
         tail: String,
     },
+    /// `--ccx-results` points at results of another deck.
+    #[error(
+        "{from} holds CalculiX results of a different deck than this model exports (model.inp differs): \
+         --ccx-results needs an earlier verify of the same mesh, refine and element"
+    )]
+    OtherDeck {
+        /// The folder given.
+        from: String,
+    },
     /// Results could not be read.
     #[error("cannot read CalculiX results {path}: {message}")]
     Results {
@@ -111,6 +120,33 @@ pub fn run(program: &str, dir: &Path, threads: usize) -> Result<CcxRun, CcxError
         return Err(CcxError::Failed { reached: results.time, tail: tail(&log_text, 15) });
     }
     let dat = std::fs::read_to_string(dir.join("model.dat")).unwrap_or_default();
+    // kept so that a later `verify --ccx-results` reports the same cost
+    let cost = format!("{} {}\n", wall_time.as_secs_f64(), peak_memory.unwrap_or(0));
+    let _ = std::fs::write(dir.join("ccx.cost"), cost);
+    Ok(CcxRun { results, totals: results::read_dat(&dat), wall_time, peak_memory })
+}
+
+/// Reads the results of an earlier run of the same deck from `from` (a
+/// `verify/ccx` folder) and copies them into `dir`, which holds the deck
+/// just exported; refuses results of another deck.
+pub fn reuse(from: &Path, dir: &Path) -> Result<CcxRun, CcxError> {
+    let read = |p: PathBuf| std::fs::read_to_string(&p).map_err(file_error(&p));
+    if read(from.join("model.inp"))? != read(dir.join("model.inp"))? {
+        return Err(CcxError::OtherDeck { from: from.display().to_string() });
+    }
+    for name in ["model.frd", "model.dat", "ccx.log", "model.sta", "ccx.cost"] {
+        let src = from.join(name);
+        if src.exists() {
+            std::fs::copy(&src, dir.join(name)).map_err(file_error(&src))?;
+        }
+    }
+    let frd_path = dir.join("model.frd");
+    let results = read_or_fail(&read(frd_path.clone())?, &frd_path, &read(dir.join("ccx.log")).unwrap_or_default())?;
+    let dat = read(dir.join("model.dat")).unwrap_or_default();
+    let cost = read(dir.join("ccx.cost")).unwrap_or_default();
+    let mut cost = cost.split_whitespace().map(|v| v.parse::<f64>().ok());
+    let wall_time = Duration::from_secs_f64(cost.next().flatten().unwrap_or(f64::NAN).max(0.0));
+    let peak_memory = cost.next().flatten().filter(|&b| b > 0.0).map(|b| b as u64);
     Ok(CcxRun { results, totals: results::read_dat(&dat), wall_time, peak_memory })
 }
 

@@ -121,6 +121,10 @@ enum Command {
         /// The CalculiX program (default: ccx on the PATH).
         #[arg(long)]
         ccx: Option<PathBuf>,
+        /// Compare with the CalculiX results of an earlier verify of the same deck (its verify/ccx folder)
+        /// instead of running CalculiX again: e.g. another formulation or recovery on the same mesh.
+        #[arg(long)]
+        ccx_results: Option<PathBuf>,
         /// Write into an output folder that holds files cufem did not write.
         #[arg(long)]
         force: bool,
@@ -189,8 +193,8 @@ fn dispatch(cli: Cli) -> Result<u8, Failure> {
             print_warnings(m.warnings.iter());
             Ok(OK)
         }
-        Command::Verify { model, out, refine, element, ccx, force, quiet, resources } => {
-            verify::run(verify::Args { model, out, refine, element, ccx, force, quiet, resources })
+        Command::Verify { model, out, refine, element, ccx, ccx_results, force, quiet, resources } => {
+            verify::run(verify::Args { model, out, refine, element, ccx, ccx_results, force, quiet, resources })
         }
         Command::ExportCcx { model, refine, element, out } => {
             let m = load(&model, &Resources { threads: None, force_threads: false, max_memory: None })?;

@@ -20,6 +20,7 @@ pub struct Args {
     pub refine: usize,
     pub element: String,
     pub ccx: Option<PathBuf>,
+    pub ccx_results: Option<PathBuf>,
     pub force: bool,
     pub quiet: bool,
     pub resources: Resources,
@@ -39,8 +40,12 @@ pub fn run(a: Args) -> Result<u8, Failure> {
     let refine = super::check_refine(a.refine)?;
     // CalculiX must be there before anything is computed
     let requested = a.ccx.clone().unwrap_or_else(|| PathBuf::from("ccx"));
-    let program = find_program(&requested)
-        .ok_or_else(|| fail(CCX_FAILED, CcxError::Missing { program: requested.display().to_string() }))?;
+    let program = match &a.ccx_results {
+        // reusing earlier results needs no CalculiX
+        Some(_) => requested.clone(),
+        None => find_program(&requested)
+            .ok_or_else(|| fail(CCX_FAILED, CcxError::Missing { program: requested.display().to_string() }))?,
+    };
     super::print_warnings(model.warnings.iter());
     let threads = a.resources.threads.or(model.solver.threads);
     super::configure_threads(threads, a.resources.force_threads)?;
@@ -77,7 +82,11 @@ pub fn run(a: Args) -> Result<u8, Failure> {
         );
     }
     let n_threads = threads.unwrap_or_else(rayon::current_num_threads);
-    let ccx_run = match ccx::run(&program.display().to_string(), &ccx_dir, n_threads) {
+    let ccx_run = match &a.ccx_results {
+        Some(from) => ccx::reuse(from, &ccx_dir),
+        None => ccx::run(&program.display().to_string(), &ccx_dir, n_threads),
+    };
+    let ccx_run = match ccx_run {
         Ok(r) => r,
         Err(e) => {
             let _ = std::fs::write(dir.join("ccx_failed.txt"), e.to_string());

@@ -268,3 +268,96 @@ fn punch_plane_strain() {
         }
     }
 }
+
+/// The block with the B-bar formulation (issue 8) against a 3D solid model of
+/// the same problem: `cufem verify examples/block_indentation.toml --refine 2`
+/// (CalculiX 2.20, 10,368 C3D20R, 145,767 DOF) gives a punch force of
+/// 1.4102 MN. B-bar on the paper's mesh: 1.3954 MN (−1.05 %); the
+/// displacement-based element of the example, 1.5225 MN (+8.0 %: volumetric
+/// locking in the confined plastic flow under the punch). 2 %, the issue's
+/// tolerance.
+#[test]
+fn block_indentation_bbar_force_matches_calculix() {
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/block_indentation.toml"))
+        .unwrap()
+        .replace("material = \"alloy\"\naxis", "material = \"alloy\"\nformulation = \"bbar\"\naxis");
+    assert!(text.contains("formulation = \"bbar\""));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("block_bbar");
+    std::fs::create_dir_all(&dir).unwrap();
+    let model = dir.join("block_bbar.toml");
+    std::fs::write(&model, text).unwrap();
+    let out = dir.join("out");
+    let run = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet", "--force"])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let s: Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_equilibrium("block_bbar", &s);
+    let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
+    assert_within("block_bbar", "punch force vs CalculiX", vec3(&punch["force"])[2], -1.4102e6, 0.02);
+}
+
+/// Issue 8's field check (long: about 3 min; `cargo test --release --test
+/// examples -- --ignored`). The block with B-bar on a refined CUF mesh — the
+/// section twice as fine in both directions (36 × 12 L9, same gradings) and
+/// 2 B4 along y: 38,325 DOF — against the CalculiX solution of
+/// `tests/data/block_calculix_top.csv`: σ_zz and peeq along the top line
+/// within 10 % of the 3D peak at every station x ∈ [0.21, 0.29] m, and the
+/// punch force within 2 %. Measured: 3.9 % (σ_zz, x = 0.215), 2.7 % (peeq,
+/// x = 0.29), force +0.06 %. On the paper's 5,772-DOF mesh the same B-bar
+/// model gives 14.5 % and 11.6 % (one B4 along y is too coarse for the
+/// 3D flow towards the free faces y = 0 and 0.1), the displacement-based
+/// element 44 % and 9 %.
+#[test]
+#[ignore]
+fn block_bbar_refined_fields_match_calculix() {
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/block_indentation.toml"))
+        .unwrap()
+        .replace("material = \"alloy\"\naxis", "material = \"alloy\"\nformulation = \"bbar\"\naxis")
+        .replace("elements = 6, ratio", "elements = 12, ratio")
+        .replace("{ from = 0.2, to = 0.3, elements = 6 }", "{ from = 0.2, to = 0.3, elements = 12 }")
+        .replace("to = 0.1, elements = 1 }", "to = 0.1, elements = 2 }");
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("block_bbar_refined");
+    std::fs::create_dir_all(&dir).unwrap();
+    let model = dir.join("block.toml");
+    std::fs::write(&model, text).unwrap();
+    let out = dir.join("out");
+    let run = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet", "--force"])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let s: Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(s["dof"], 38325);
+    let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
+    assert_within("block_bbar_refined", "punch force vs CalculiX", vec3(&punch["force"])[2], -1.4102e6, 0.02);
+    let table = |text: &str| -> Vec<Vec<f64>> {
+        text.lines()
+            .filter(|l| !l.starts_with('#') && !l.starts_with(|c: char| c.is_alphabetic()))
+            .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+            .collect()
+    };
+    let reference = table(include_str!("data/block_calculix_top.csv"));
+    let csv = std::fs::read_to_string(out.join("line_top.csv")).unwrap();
+    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let ours = table(&csv);
+    for (k, q) in [(1, "s_zz"), (2, "peeq")] {
+        let peak = reference.iter().map(|r| r[k].abs()).fold(0.0f64, f64::max);
+        for (r, o) in reference.iter().zip(&ours) {
+            assert!((r[0] - o[col("s")]).abs() < 1e-9, "stations differ");
+            if (0.21 - 1e-9..=0.29 + 1e-9).contains(&r[0]) {
+                let d = (o[col(q)] - r[k]).abs() / peak;
+                assert!(
+                    d < 0.10,
+                    "{q} at x = {}: cufem {:e}, 3D {:e} ({:.1} % of the 3D peak)",
+                    r[0],
+                    o[col(q)],
+                    r[k],
+                    100.0 * d
+                );
+            }
+        }
+    }
+}

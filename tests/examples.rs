@@ -81,15 +81,15 @@ fn block_indentation() {
     let s = run("block_indentation");
     assert_eq!(s["dof"], 5772);
     assert_equilibrium("block", &s);
-    let szz = probe(&s, "edge", "s_zz");
-    // Prandtl's plane-strain punch pressure (2 + π) k, k = σ_y/√3 (Hill 1950):
-    // the plastic field under the punch bounds |σ_zz| near it, and the
-    // paper's CUF value −296.1 MPa is that pressure. 10 %: the edge is a
-    // singular point of the elastic field, and the flow is 3D (free faces at
-    // y = 0 and 0.1).
-    let prandtl = -(2.0 + std::f64::consts::PI) * 100e6 / 3f64.sqrt();
-    // (the paper's CUF value, −296.1 MPa, is the same pressure: not a second check)
-    assert_within("block", "σ_zz at the punch edge vs Prandtl", szz, prandtl, 0.10);
+    // The punch force against the 3D solid model of the same problem
+    // (`cufem verify … --refine 2`, CalculiX C3D20R, 145,767 DOF: 1.4102 MN).
+    // The paper's displacement-based element is 8.0 % stiffer (volumetric
+    // locking under the punch; B-bar: 1 %, see the test below), hence 10 %.
+    // (Prandtl's plane-strain pressure is no reference for the edge σ_zz: the
+    // flow is 3D, with free faces at y = 0 and 0.1, and the 3D model gives
+    // −214 MPa at this singular point against our −310.)
+    let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
+    assert_within("block", "punch force vs CalculiX", vec3(&punch["force"])[2], -1.4102e6, 0.10);
     // The paper's own models give 0.0404–0.0658 at this point (ABAQUS coarse
     // to fine, CUF): its mesh dependence. We ask for that range ±25 % of its top.
     let peeq = probe(&s, "edge", "peeq");

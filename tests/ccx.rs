@@ -282,3 +282,34 @@ fn a_missing_calculix_is_named_with_its_package() {
     let err = String::from_utf8_lossy(&out.stderr);
     assert!(err.contains("apt-get install calculix-ccx"), "{err}");
 }
+
+/// A CalculiX run that stops early is reported with the end of its log and
+/// exit code 5, and the cufem results are still written. (A stand-in `ccx`
+/// that writes a log and fails, as ccx does when increments are cut below
+/// the minimum.)
+#[test]
+fn a_failed_calculix_run_is_reported_and_cufem_results_are_kept() {
+    use std::os::unix::fs::PermissionsExt;
+    let dir = scratch("failed");
+    let fake = dir.join("ccx");
+    std::fs::write(
+        &fake,
+        "#!/bin/sh\necho ' increment 3 attempt 5'\necho ' *ERROR: increment size smaller than minimum'\nexit 1\n",
+    )
+    .unwrap();
+    std::fs::set_permissions(&fake, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let out = dir.join("out");
+    let run = cufem()
+        .args([
+            "verify",
+            Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/cantilever_timoshenko.toml").to_str().unwrap(),
+        ])
+        .args(["--ccx", fake.to_str().unwrap(), "--out", out.to_str().unwrap(), "--refine", "1", "--quiet"])
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(5));
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(err.contains("did not finish") && err.contains("smaller than minimum"), "{err}");
+    assert!(out.join("summary.json").exists() && out.join("verify/ccx/model.inp").exists());
+    assert!(out.join("verify/ccx/ccx.log").exists());
+}

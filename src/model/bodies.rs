@@ -38,17 +38,19 @@ pub(super) fn mesh(
                     "convex quadrilaterals listed counter-clockwise in the x–z plane",
                 ),
             })?;
-            // the displacement-based element stays the default until B-bar is
-            // validated against 3D under punches (issue 8)
+            // B-bar by default where the displacement-based element locks in
+            // elasticity (ν ≥ 0.45: tests/locking.rs); for plastic flow the
+            // choice stays the user's (README, "Cross-check against 3D")
             let bbar = match file[i].formulation.as_deref() {
-                None | Some("standard") => false,
+                None => materials[b.material].poisson >= 0.45,
+                Some("standard") => false,
                 Some("bbar") => true,
                 Some(other) => {
                     return Err(invalid(
                         format!("bodies[{i}].formulation"),
                         format!("{other:?}"),
-                        "\"standard\" (displacement-based, fully integrated; the default) or \"bbar\" (volumetric \
-                         strain projected per element)",
+                        "\"standard\" (displacement-based, fully integrated; the default for ν < 0.45) or \"bbar\" \
+                         (volumetric strain projected per element; the default for ν ≥ 0.45)",
                     ));
                 }
             };

@@ -236,15 +236,20 @@ impl Comparison {
         let mut t = String::new();
         let c = &self.cost;
         let _ = writeln!(t, "{} — cufem against CalculiX ({})", self.title, self.solid);
+        // a reused 3D run without its recorded cost (`--ccx-results`) has no time
+        let ccx_time = if c.ccx_time_s > 0.0 {
+            format!("{:.2} s (×{:.1})", c.ccx_time_s, c.ccx_time_s / c.cufem_time_s.max(1e-9))
+        } else {
+            "? s".to_string()
+        };
         let _ = writeln!(
             t,
-            "DOF {} vs {} ({:.1} %), wall time {:.2} s vs {:.2} s (×{:.1}), peak memory {} vs {}",
+            "DOF {} vs {} ({:.1} %), wall time {:.2} s vs {}, peak memory {} vs {}",
             c.cufem_dof,
             c.ccx_dof,
             100.0 * c.cufem_dof as f64 / c.ccx_dof.max(1) as f64,
             c.cufem_time_s,
-            c.ccx_time_s,
-            c.ccx_time_s / c.cufem_time_s.max(1e-9),
+            ccx_time,
             c.cufem_peak_bytes.map_or("?".into(), crate::size::human_bytes),
             c.ccx_peak_bytes.map_or("?".into(), crate::size::human_bytes),
         );

@@ -11,6 +11,7 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 shard=${1:-0/1}
+mkdir -p mutants.out
 cargo mutants --shard "$shard" --output "mutants.out/${shard//\//-of-}" \
   -f 'src/elements/**' -f 'src/materials/**' -f 'src/contact/**' -f 'src/assembly/**' -f 'src/solver/**' \
   -- --lib --test convergence --test plasticity --test contact --test linear_verification --test examples \

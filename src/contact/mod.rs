@@ -354,4 +354,27 @@ mod tests {
         assert!((-(fp[2] - f[2]) / h - k[2][2]).abs() < 1e-6 * 1e8);
         assert!(penalty_response(1e-9, &n, 1e8).is_none());
     }
+
+    /// Pairing across an inclined surface (normal sum (2, 3, 6)·area, along
+    /// no axis): the normal is normalized, the slave on the master's normal
+    /// line is paired with the exact gap, one off it is not. (cargo mutants:
+    /// axis-aligned surfaces alone left the normalization untested.)
+    #[test]
+    fn pairs_across_an_inclined_surface() {
+        let n = [2.0 / 7.0, 3.0 / 7.0, 6.0 / 7.0];
+        let xs = [[0.0, 0.0, 0.0], n.map(|v| 1e-3 * v), [n[0] * 1e-3 + 1e-3, n[1] * 1e-3, n[2] * 1e-3]];
+        let coords = |k: usize| xs[k];
+        let master = SurfaceNodes { nodes: vec![(0, 2.0, 1.0, [4.0, 6.0, 12.0])] };
+        let slave = SurfaceNodes { nodes: vec![(1, 1.0, 1.0, [0.0; 3]), (2, 1.0, 1.0, [0.0; 3])] };
+        let (pairs, unmatched) = match_pairs(&slave, &master, coords, |_| 5.0, 1e-9);
+        assert_eq!(unmatched, vec![2]);
+        assert_eq!(pairs.len(), 1);
+        let p = &pairs[0];
+        assert_eq!((p.slave, p.master), (1, 0));
+        for (a, b) in p.normal.iter().zip(n) {
+            assert!((a - b).abs() < 1e-15, "{:?}", p.normal);
+        }
+        assert!((p.gap0 - 1e-3).abs() < 1e-15, "{}", p.gap0);
+        assert_eq!((p.area, p.penalty), (1.0, 5.0));
+    }
 }

@@ -362,7 +362,10 @@ mod tests {
     #[test]
     fn pairs_across_an_inclined_surface() {
         let n = [2.0 / 7.0, 3.0 / 7.0, 6.0 / 7.0];
-        let xs = [[0.0, 0.0, 0.0], n.map(|v| 1e-3 * v), [n[0] * 1e-3 + 1e-3, n[1] * 1e-3, n[2] * 1e-3]];
+        // the master away from the origin, so that X_s − X_m differs from X_s + X_m
+        let m = [0.1, 0.2, 0.3];
+        let xs =
+            [m, [0, 1, 2].map(|k| m[k] + 1e-3 * n[k]), [0, 1, 2].map(|k| m[k] + 1e-3 * n[k] + [1e-3, 0.0, 0.0][k])];
         let coords = |k: usize| xs[k];
         let master = SurfaceNodes { nodes: vec![(0, 2.0, 1.0, [4.0, 6.0, 12.0])] };
         let slave = SurfaceNodes { nodes: vec![(1, 1.0, 1.0, [0.0; 3]), (2, 1.0, 1.0, [0.0; 3])] };
@@ -374,7 +377,7 @@ mod tests {
         for (a, b) in p.normal.iter().zip(n) {
             assert!((a - b).abs() < 1e-15, "{:?}", p.normal);
         }
-        assert!((p.gap0 - 1e-3).abs() < 1e-15, "{}", p.gap0);
+        assert!((p.gap0 - 1e-3).abs() < 1e-14, "{}", p.gap0);
         assert_eq!((p.area, p.penalty), (1.0, 5.0));
     }
 }

@@ -380,4 +380,27 @@ mod tests {
         assert!((p.gap0 - 1e-3).abs() < 1e-14, "{}", p.gap0);
         assert_eq!((p.area, p.penalty), (1.0, 5.0));
     }
+
+    /// A thin master body has a node on each face of the slave's normal
+    /// line: the nearest one is chosen (listed second here, so that keeping
+    /// the first would be wrong). And the tangential distance uses all its
+    /// components: an offset of 1.2·tol along (3, −2, 0), perpendicular to
+    /// the normal, is not paired.
+    #[test]
+    fn nearest_master_on_the_normal_line_and_the_tangential_distance() {
+        let n = [2.0 / 7.0, 3.0 / 7.0, 6.0 / 7.0];
+        let m = [0.1, 0.2, 0.3];
+        let at = |s: f64| [0, 1, 2].map(|k| m[k] + s * n[k]);
+        let xs = [at(2e-3), at(0.0), at(0.5e-3)];
+        let coords = |k: usize| xs[k];
+        let master = SurfaceNodes { nodes: vec![(0, 1.0, 1.0, [2.0, 3.0, 6.0]), (1, 1.0, 1.0, [2.0, 3.0, 6.0])] };
+        let slave = SurfaceNodes { nodes: vec![(2, 1.0, 1.0, [0.0; 3])] };
+        let (pairs, _) = match_pairs(&slave, &master, coords, |_| 1.0, 1e-9);
+        assert_eq!(pairs[0].master, 1, "the nearer master");
+        let k = 1.2e-3 / 13f64.sqrt();
+        let off = [0, 1, 2].map(|c| m[c] + 0.5e-3 * n[c] + [3.0 * k, -2.0 * k, 0.0][c]);
+        let coords = |i: usize| if i == 2 { off } else { xs[i] };
+        let (pairs, unmatched) = match_pairs(&slave, &master, coords, |_| 1.0, 1e-3);
+        assert!(pairs.is_empty() && unmatched == vec![2], "tangential offset 1.2e-3 > tol 1e-3");
+    }
 }

@@ -33,6 +33,23 @@ fn run(name: &str) -> Value {
     summary
 }
 
+/// Runs a model given as text (a variant of an example); its summary and
+/// output folder.
+fn run_text(name: &str, text: &str) -> (Value, std::path::PathBuf) {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    std::fs::create_dir_all(&dir).unwrap();
+    let model = dir.join(format!("{name}.toml"));
+    std::fs::write(&model, text).unwrap();
+    let out = dir.join("out");
+    let run = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet", "--force"])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{name}: {}", String::from_utf8_lossy(&run.stderr));
+    let summary = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    (summary, out)
+}
+
 fn vec3(v: &Value) -> [f64; 3] {
     [0, 1, 2].map(|k| v[k].as_f64().unwrap())
 }
@@ -289,17 +306,7 @@ fn block_indentation_bbar_force_matches_calculix() {
         .unwrap()
         .replace("material = \"alloy\"\naxis", "material = \"alloy\"\nformulation = \"bbar\"\naxis");
     assert!(text.contains("formulation = \"bbar\""));
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("block_bbar");
-    std::fs::create_dir_all(&dir).unwrap();
-    let model = dir.join("block_bbar.toml");
-    std::fs::write(&model, text).unwrap();
-    let out = dir.join("out");
-    let run = Command::new(env!("CARGO_BIN_EXE_cufem"))
-        .args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet", "--force"])
-        .output()
-        .unwrap();
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
-    let s: Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let (s, _) = run_text("block_bbar", &text);
     assert_equilibrium("block_bbar", &s);
     let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
     assert_within("block_bbar", "punch force vs CalculiX", vec3(&punch["force"])[2], -1.4102e6, 0.02);
@@ -325,17 +332,7 @@ fn block_bbar_refined_fields_match_calculix() {
         .replace("elements = 6, ratio", "elements = 12, ratio")
         .replace("{ from = 0.2, to = 0.3, elements = 6 }", "{ from = 0.2, to = 0.3, elements = 12 }")
         .replace("to = 0.1, elements = 1 }", "to = 0.1, elements = 2 }");
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("block_bbar_refined");
-    std::fs::create_dir_all(&dir).unwrap();
-    let model = dir.join("block.toml");
-    std::fs::write(&model, text).unwrap();
-    let out = dir.join("out");
-    let run = Command::new(env!("CARGO_BIN_EXE_cufem"))
-        .args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet", "--force"])
-        .output()
-        .unwrap();
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
-    let s: Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let (s, out) = run_text("block_bbar_refined", &text);
     assert_eq!(s["dof"], 38325);
     let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
     assert_within("block_bbar_refined", "punch force vs CalculiX", vec3(&punch["force"])[2], -1.4102e6, 0.02);

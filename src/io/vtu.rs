@@ -133,8 +133,7 @@ pub fn write_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), 
     for (data, q) in scalar_data.into_iter().zip(&scalars) {
         point_data.push((q.name(), 1, Array::F64(data)));
     }
-    let cell_data =
-        vec![("body".to_string(), 1, Array::I32(cell_body)), ("element".to_string(), 1, Array::I32(cell_element))];
+    let cell_data = body_element_data(cell_body, cell_element);
     let grid = Grid {
         title: &model.title,
         points: &points,
@@ -145,9 +144,7 @@ pub fn write_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), 
         cell_data: &cell_data,
         cell_type: VTK_HEXAHEDRON,
     };
-    let file = std::fs::File::create(path).map_err(|e| file_error(path, e))?;
-    let mut out = std::io::BufWriter::with_capacity(1 << 20, file);
-    write_grid(&mut out, &grid).and_then(|()| out.flush()).map_err(|e| file_error(path, e))
+    write_file(path, &grid)
 }
 
 /// Writes the raw Gauss-point values (`output.gauss_points = true`): one
@@ -192,8 +189,7 @@ pub fn write_gauss_vtu(path: &Path, model: &Model, solution: &Solution) -> Resul
         names.iter().zip(stress).map(|(n, v)| (n.to_string(), 1, Array::F64(v))).collect();
     point_data.push(("von_mises".into(), 1, Array::F64(von_mises)));
     point_data.push(("peeq".into(), 1, Array::F64(peeq)));
-    let cell_data =
-        vec![("body".to_string(), 1, Array::I32(cell_body)), ("element".to_string(), 1, Array::I32(cell_element))];
+    let cell_data = body_element_data(cell_body, cell_element);
     let grid = Grid {
         title: &model.title,
         points: &points,
@@ -204,9 +200,19 @@ pub fn write_gauss_vtu(path: &Path, model: &Model, solution: &Solution) -> Resul
         cell_data: &cell_data,
         cell_type: VTK_VERTEX,
     };
+    write_file(path, &grid)
+}
+
+/// Writes `grid` to `path` through one buffered stream; errors name the file.
+fn write_file(path: &Path, grid: &Grid<'_>) -> Result<(), IoError> {
     let file = std::fs::File::create(path).map_err(|e| file_error(path, e))?;
     let mut out = std::io::BufWriter::with_capacity(1 << 20, file);
-    write_grid(&mut out, &grid).and_then(|()| out.flush()).map_err(|e| file_error(path, e))
+    write_grid(&mut out, grid).and_then(|()| out.flush()).map_err(|e| file_error(path, e))
+}
+
+/// Cell data of both files: body and global element of every cell.
+fn body_element_data(cell_body: Vec<i32>, cell_element: Vec<i32>) -> Vec<(String, usize, Array)> {
+    vec![("body".to_string(), 1, Array::I32(cell_body)), ("element".to_string(), 1, Array::I32(cell_element))]
 }
 
 /// A data array of one of the types the file uses.

@@ -84,6 +84,28 @@ fn newton_converges_quadratically_with_bbar() {
     assert_quadratic("bbar", &Model::parse(&text).unwrap(), 2e-3, 10.0, 10);
 }
 
+/// The same with combined hardening (issue 10): Voce isotropic plus two
+/// Armstrong–Frederick back-stresses. The solver uses the symmetric part of
+/// the kinematic tangent, exact where a point loads proportionally; near the
+/// clamp, where bending and shear stresses turn the flow direction, it is
+/// not, and the constant grows: measured r_(k+1)/r_k² ≤ 26.6 for r_k ≤ 1e-2
+/// and ≤ 20.9 for r_k ≤ 2e-3 (e.g. 3.6e-3, 3.5e-4, 2.3e-8 in one increment),
+/// against 2.6 for the isotropic law. Asserted as for B-bar: for r_k ≤ 2e-3
+/// the constant stays < 25, while a linear rate ρ ≥ 0.05 would give
+/// ρ/r_k ≥ 25.
+#[test]
+fn newton_converges_quadratically_with_kinematic_hardening() {
+    let text = std::fs::read_to_string(EXAMPLE).unwrap();
+    let old = "plasticity = { yield_stress = 250e6, hardening = \"perfect\" }";
+    assert!(text.contains(old));
+    let text = text.replace(
+        old,
+        "plasticity = { yield_stress = 250e6, hardening = \"voce\", saturation_stress = 50e6, saturation_rate = 20.0, \
+         kinematic = [{ modulus = 60e9, recall = 600.0 }, { modulus = 5e9, recall = 20.0 }] }",
+    );
+    assert_quadratic("kinematic", &Model::parse(&text).unwrap(), 2e-3, 25.0, 10);
+}
+
 /// Over every plastic increment, `r_(k+1)/r_k² < limit` for all residual
 /// pairs with `r_k ≤ below` (and `r_(k+1)` above the round-off floor), with
 /// at least `min_pairs` such pairs.

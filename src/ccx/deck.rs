@@ -164,6 +164,12 @@ fn plastic_rows(h: &Hardening) -> Vec<(f64, f64)> {
             vec![(*yield_stress, 0.0), (yield_stress + modulus * 10.0, 10.0)]
         }
         Hardening::Table { strains, stresses } => stresses.iter().zip(strains).map(|(s, e)| (*s, *e)).collect(),
+        // sampled densely where the curve bends (41 points to ε̄ᵖ = 8/b, then
+        // the saturated value at 10): within 0.2 % of Q of the exponential
+        Hardening::Voce { rate, .. } => (0..=41)
+            .map(|k| if k == 41 { 10.0f64.max(9.0 / rate) } else { (k as f64 / 40.0).powi(2) * 8.0 / rate })
+            .map(|p| (h.eval(p).0, p))
+            .collect(),
     }
 }
 

@@ -53,6 +53,14 @@ pub enum CcxError {
         /// The folder given.
         from: String,
     },
+    /// The model uses a feature CalculiX has no equivalent for.
+    #[error("{key}: {what} has no CalculiX equivalent; the 3D cross-check needs a model without it")]
+    Unsupported {
+        /// The model-file key.
+        key: String,
+        /// What cannot be exported.
+        what: String,
+    },
     /// Results could not be read.
     #[error("cannot read CalculiX results {path}: {message}")]
     Results {
@@ -72,6 +80,12 @@ pub fn export(model: &Model, kind: HexKind, refine: usize, dir: &Path) -> Result
     std::fs::create_dir_all(dir).map_err(file_error(dir))?;
     let mesh = HexMesh::new(model, kind, refine);
     let path = dir.join("model.inp");
+    if let Some((k, m)) = model.materials.iter().enumerate().find(|(_, m)| !m.kinematic.is_empty()) {
+        return Err(CcxError::Unsupported {
+            key: format!("materials[{k}].plasticity.kinematic"),
+            what: format!("the Armstrong–Frederick kinematic hardening of material \"{}\"", m.name),
+        });
+    }
     std::fs::write(&path, deck::write(model, &mesh)).map_err(file_error(&path))?;
     Ok((mesh, path))
 }

@@ -149,6 +149,18 @@ pub fn element_response(
             points.trial[q] = r.state;
             points.stress[q] = r.stress;
             ws.tangents[q] = r.tangent;
+            if !material.kinematic.is_empty() {
+                // the symmetric part of the exact tangent, for the symmetric
+                // solver (materials::kinematic: exact under proportional loading)
+                let t = &mut ws.tangents[q];
+                for i in 0..6 {
+                    for j in 0..i {
+                        let m = 0.5 * (t[i][j] + t[j][i]);
+                        t[i][j] = m;
+                        t[j][i] = m;
+                    }
+                }
+            }
             all_elastic &= r.elastic_tangent;
             stats.plastic_points += usize::from(r.plastic);
 

@@ -1,5 +1,5 @@
-//! Isotropic hardening laws `σ_y(ε̄ᵖ)`: perfect, linear, and piecewise-linear
-//! tables (constant past the last point).
+//! Isotropic hardening laws `σ_y(ε̄ᵖ)`: perfect, linear, piecewise-linear
+//! tables (constant past the last point) and Voce's saturating exponential.
 
 /// A yield-stress curve as a function of the equivalent plastic strain.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,6 +24,16 @@ pub enum Hardening {
         /// Yield stresses (Pa) at those strains.
         stresses: Vec<f64>,
     },
+    /// Voce: `σ_y = σ_y0 + Q (1 − e^{−b ε̄ᵖ})` (Voce 1948), saturating at
+    /// `σ_y0 + Q`.
+    Voce {
+        /// Initial yield stress σ_y0 (Pa).
+        yield_stress: f64,
+        /// Saturation stress Q (Pa), ≥ 0.
+        saturation: f64,
+        /// Saturation rate b (−), > 0.
+        rate: f64,
+    },
 }
 
 impl std::fmt::Display for Hardening {
@@ -33,6 +43,12 @@ impl std::fmt::Display for Hardening {
             Self::Linear { yield_stress, modulus } => {
                 write!(f, "linear hardening, σ_y0 = {:.4} MPa, H = {:.4} MPa", yield_stress * 1e-6, modulus * 1e-6)
             }
+            Self::Voce { yield_stress, saturation, rate } => write!(
+                f,
+                "Voce hardening, σ_y0 = {:.4} MPa, Q = {:.4} MPa, b = {rate}",
+                yield_stress * 1e-6,
+                saturation * 1e-6
+            ),
             Self::Table { strains, stresses } => write!(
                 f,
                 "tabulated hardening, {} points, σ_y from {:.4} MPa (peeq 0) to {:.4} MPa (peeq {})",
@@ -49,7 +65,9 @@ impl Hardening {
     /// Initial yield stress `σ_y(0)`.
     pub fn initial_yield(&self) -> f64 {
         match self {
-            Self::Perfect { yield_stress } | Self::Linear { yield_stress, .. } => *yield_stress,
+            Self::Perfect { yield_stress } | Self::Linear { yield_stress, .. } | Self::Voce { yield_stress, .. } => {
+                *yield_stress
+            }
             Self::Table { stresses, .. } => stresses[0],
         }
     }
@@ -68,6 +86,10 @@ impl Hardening {
         match self {
             Self::Perfect { yield_stress } => (*yield_stress, 0.0),
             Self::Linear { yield_stress, modulus } => (yield_stress + modulus * peeq, *modulus),
+            Self::Voce { yield_stress, saturation, rate } => {
+                let decay = (-rate * peeq).exp();
+                (yield_stress + saturation * (1.0 - decay), saturation * rate * decay)
+            }
             Self::Table { strains, stresses } => {
                 if k + 1 >= strains.len() {
                     (*stresses.last().unwrap(), 0.0)

@@ -7,7 +7,9 @@
 //! and deal.II step-42).
 //!
 //! Models: isotropic linear elasticity, and von Mises (J2) plasticity with
-//! isotropic hardening integrated by the radial-return map with the
+//! isotropic hardening (perfect, linear, tabulated, Voce) and optional
+//! nonlinear kinematic hardening (Armstrong–Frederick / Chaboche back-stresses,
+//! [`kinematic`]) integrated by the radial-return map with the
 //! consistent (algorithmic) tangent — Simo & Hughes, *Computational
 //! Inelasticity* (1998), §3.3; de Souza Neto, Perić & Owen, *Computational
 //! Methods for Plasticity* (2008), Box 7.3 and eq. (7.120). The paper uses the
@@ -16,8 +18,10 @@
 //! Strains and stresses follow [`crate::voigt`] (engineering shear strains).
 
 mod hardening;
+pub mod kinematic;
 
 pub use hardening::Hardening;
+pub use kinematic::{BackStress, MAX_BACKSTRESSES};
 
 use crate::voigt::{self, Matrix6, Voigt};
 
@@ -28,6 +32,9 @@ pub struct PointState {
     pub plastic_strain: Voigt,
     /// Equivalent plastic strain `ε̄ᵖ = ∫ sqrt(2/3 ε̇ᵖ:ε̇ᵖ) dt` ("PEEQ").
     pub peeq: f64,
+    /// Back-stresses `X_i` (stress-like, deviatoric, Pa) of the material's
+    /// kinematic hardening terms, in their order; unused entries stay zero.
+    pub back_stress: [Voigt; MAX_BACKSTRESSES],
 }
 
 /// Result of a material-point update.
@@ -57,6 +64,9 @@ pub struct Material {
     pub poisson: f64,
     /// Von Mises plasticity, `None` for a purely elastic material.
     pub hardening: Option<Hardening>,
+    /// Kinematic hardening terms (at most [`MAX_BACKSTRESSES`]); empty for
+    /// purely isotropic hardening.
+    pub kinematic: Vec<BackStress>,
     elastic: Matrix6,
 }
 
@@ -64,7 +74,22 @@ impl Material {
     /// A material from E, ν and an optional hardening law. Inputs are assumed
     /// validated (E > 0, −1 < ν < 0.5, positive yield stress).
     pub fn new(name: impl Into<String>, young: f64, poisson: f64, hardening: Option<Hardening>) -> Self {
-        Self { name: name.into(), young, poisson, hardening, elastic: voigt::isotropic_stiffness(young, poisson) }
+        Self {
+            name: name.into(),
+            young,
+            poisson,
+            hardening,
+            kinematic: Vec::new(),
+            elastic: voigt::isotropic_stiffness(young, poisson),
+        }
+    }
+
+    /// The same material with kinematic hardening terms (validated: at most
+    /// [`MAX_BACKSTRESSES`], `C > 0`, `γ ≥ 0`; only with plasticity).
+    pub fn with_kinematic(mut self, kinematic: Vec<BackStress>) -> Self {
+        assert!(kinematic.len() <= MAX_BACKSTRESSES);
+        self.kinematic = kinematic;
+        self
     }
 
     /// Shear modulus G.
@@ -99,6 +124,11 @@ impl Material {
         let Some(hardening) = &self.hardening else {
             return elastic;
         };
+        if !self.kinematic.is_empty() || matches!(hardening, Hardening::Voce { .. }) {
+            // the general return (nonlinear in Δp): kinematic.rs
+            return kinematic::update(self.shear_modulus(), &self.elastic, hardening, &self.kinematic, &trial, old)
+                .unwrap_or(elastic);
+        }
 
         let g = self.shear_modulus();
         let s_trial = voigt::deviator(&trial);
@@ -308,7 +338,8 @@ mod tests {
             Hardening::Linear { yield_stress: 100e6, modulus: 5e9 },
             table,
         ];
-        let old = PointState { plastic_strain: [4e-4, -1e-4, -3e-4, 2e-4, 0.0, -1e-4], peeq: 5e-4 };
+        let old =
+            PointState { plastic_strain: [4e-4, -1e-4, -3e-4, 2e-4, 0.0, -1e-4], peeq: 5e-4, ..PointState::default() };
         // multiaxial strain states well inside segments (FD needs no kink within ±h)
         let strains = [
             [3e-3, -1e-3, 4e-4, 2e-3, -1.5e-3, 8e-4],

@@ -9,6 +9,7 @@
 mod bodies;
 mod bounds;
 mod contacts;
+mod material;
 mod preprocess;
 mod restraint;
 mod schema;
@@ -307,7 +308,7 @@ fn is_linear(mesh: &Mesh, materials: &[Material], indenters: &[Indenter], contac
 
 fn build(file: ModelFile, limits: Limits) -> Result<Model, ModelError> {
     validate::names(&file)?;
-    let materials = validate::materials(&file.materials)?;
+    let materials = material::materials(&file.materials)?;
     let (mesh, cells) = bodies::mesh(&file.bodies, &materials, limits)?;
     let mut warnings = Vec::new();
     let constraints = preprocess::constraints(&file.constraints, &mesh)?;

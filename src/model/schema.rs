@@ -120,6 +120,17 @@ pub struct PlasticityFile {
     pub hardening: String,
     pub hardening_modulus: Option<f64>,
     pub table: Option<Vec<Exact<f64, 2>>>,
+    pub saturation_stress: Option<f64>,
+    pub saturation_rate: Option<f64>,
+    pub kinematic: Option<Vec<KinematicFile>>,
+}
+
+/// One entry of `plasticity.kinematic`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct KinematicFile {
+    pub modulus: f64,
+    pub recall: f64,
 }
 
 /// `[[bodies]]`.

@@ -7,7 +7,6 @@ use super::bounds;
 use super::schema::*;
 use super::{ModelError, OutputSettings, Probe, Recovery, Reference, SolverSettings, invalid};
 use crate::contact::{self, Penalty};
-use crate::materials::{Hardening, Material};
 use crate::mesh::{Division, Segment};
 use crate::quantity::Quantity;
 use crate::solver::newton::NewtonSettings;
@@ -30,11 +29,6 @@ pub(super) fn names(file: &ModelFile) -> Result<(), ModelError> {
         return Err(invalid("bodies", "[]", "at least one [[bodies]] table"));
     }
     Ok(())
-}
-
-/// `[[materials]]`.
-pub(super) fn materials(file: &[MaterialFile]) -> Result<Vec<Material>, ModelError> {
-    file.iter().enumerate().map(|(i, m)| material(i, m)).collect()
 }
 
 /// `[output]`.
@@ -140,146 +134,6 @@ pub(super) fn axis_index(s: &str) -> Option<usize> {
         "z" => Some(2),
         _ => None,
     }
-}
-
-pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelError> {
-    let key = format!("materials[{i}]");
-    let young = bounds::within(
-        &format!("{key}.young_modulus"),
-        m.young_modulus,
-        bounds::MIN_YOUNG,
-        bounds::MAX_YOUNG,
-        "Young's modulus in Pa, from soft foams to ten times diamond",
-    )?;
-    let nu = m.poisson_ratio;
-    if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
-        return Err(invalid(format!("{key}.poisson_ratio"), nu, "a number in (−1, 0.5)"));
-    }
-    let hardening = match &m.plasticity {
-        None => None,
-        Some(p) => {
-            let pk = format!("{key}.plasticity");
-            let max_sy = bounds::MAX_YIELD_STRAIN * young;
-            let yield_why = "the yield stress in Pa, positive and at most 0.1 E: a larger yield strain is outside small-strain plasticity";
-            let sy = p
-                .yield_stress
-                .map(|v| bounds::within(&format!("{pk}.yield_stress"), v, f64::MIN_POSITIVE, max_sy, yield_why))
-                .transpose()?;
-            let need_sy = || {
-                sy.ok_or_else(|| invalid(format!("{pk}.yield_stress"), "(missing)", "the initial yield stress in Pa"))
-            };
-            let chosen = format!("hardening = {:?}", p.hardening);
-            let unused_modulus = ("hardening_modulus", p.hardening_modulus.is_some());
-            let unused_table = ("table", p.table.is_some());
-            match p.hardening.as_str() {
-                "perfect" => reject_unused(&pk, &chosen, &[unused_modulus, unused_table])?,
-                "linear" => reject_unused(&pk, &chosen, &[unused_table])?,
-                "table" => reject_unused(&pk, &chosen, &[unused_modulus])?,
-                _ => {}
-            }
-            Some(match p.hardening.as_str() {
-                "perfect" => Hardening::Perfect { yield_stress: need_sy()? },
-                "linear" => {
-                    let h = p.hardening_modulus.ok_or_else(|| {
-                        invalid(
-                            format!("{pk}.hardening_modulus"),
-                            "(missing)",
-                            "the plastic hardening modulus H in Pa (≥ 0) for hardening = \"linear\"",
-                        )
-                    })?;
-                    bounds::within(
-                        &format!("{pk}.hardening_modulus"),
-                        h,
-                        0.0,
-                        bounds::MAX_HARDENING * young,
-                        "the plastic hardening modulus H in Pa, from 0 to 100 E",
-                    )?;
-                    Hardening::Linear { yield_stress: need_sy()?, modulus: h }
-                }
-                "table" => {
-                    let t = p.table.as_ref().ok_or_else(|| {
-                        invalid(format!("{pk}.table"), "(missing)", "[[peeq, yield_stress], …] starting at peeq = 0")
-                    })?;
-                    if t.is_empty() || t[0][0] != 0.0 {
-                        return Err(invalid(
-                            format!("{pk}.table"),
-                            format!("{t:?}"),
-                            "a non-empty table whose first point has peeq = 0",
-                        ));
-                    }
-                    for (k, w) in t.windows(2).enumerate() {
-                        if !(w[1][0] > w[0][0]) || !(w[1][1] >= w[0][1]) || !w[1][0].is_finite() || !w[1][1].is_finite()
-                        {
-                            return Err(invalid(
-                                format!("{pk}.table[{}]", k + 1),
-                                format!("{:?}", w[1]),
-                                "strictly increasing peeq and non-decreasing (no softening), finite yield stress",
-                            ));
-                        }
-                        // the segment's slope is a hardening modulus: the same bound as
-                        // `hardening_modulus` (a near-vertical segment overflows it)
-                        let slope = (w[1][1] - w[0][1]) / (w[1][0] - w[0][0]);
-                        if !(slope <= bounds::MAX_HARDENING * young) {
-                            return Err(invalid(
-                                format!("{pk}.table[{}]", k + 1),
-                                format!("[{}, {}]", bounds::number(w[1][0]), bounds::number(w[1][1])),
-                                format!(
-                                    "a segment slope of at most 100 E = {} Pa (this one rises {} Pa over a peeq of {})",
-                                    bounds::limit(bounds::MAX_HARDENING * young),
-                                    bounds::number(w[1][1] - w[0][1]),
-                                    bounds::number(w[1][0] - w[0][0])
-                                ),
-                            ));
-                        }
-                    }
-                    if !(t[0][1] > 0.0 && t[0][1].is_finite()) {
-                        return Err(invalid(
-                            format!("{pk}.table[0]"),
-                            format!("{:?}", t[0]),
-                            "a positive initial yield stress",
-                        ));
-                    }
-                    bounds::within(&format!("{pk}.table[0][1]"), t[0][1], 0.0, max_sy, yield_why)?;
-                    let last = t.len() - 1;
-                    bounds::within(
-                        &format!("{pk}.table[{last}][0]"),
-                        t[last][0],
-                        0.0,
-                        bounds::MAX_TABLE_PEEQ,
-                        "an equivalent plastic strain of at most 10",
-                    )?;
-                    bounds::within(
-                        &format!("{pk}.table[{last}][1]"),
-                        t[last][1],
-                        0.0,
-                        young,
-                        "a yield stress of at most E",
-                    )?;
-                    if let Some(s) = sy
-                        && (s - t[0][1]).abs() > 1e-9 * s
-                    {
-                        return Err(invalid(
-                            format!("{pk}.yield_stress"),
-                            s,
-                            format!("the table's first stress ({}) or no yield_stress", t[0][1]),
-                        ));
-                    }
-                    Hardening::Table {
-                        strains: t.iter().map(|r| r[0]).collect(),
-                        stresses: t.iter().map(|r| r[1]).collect(),
-                    }
-                }
-                other => {
-                    return Err(invalid(
-                        format!("{pk}.hardening"),
-                        format!("{other:?}"),
-                        "\"perfect\", \"linear\" or \"table\"",
-                    ));
-                }
-            })
-        }
-    };
-    Ok(Material::new(m.name.clone(), young, nu, hardening))
 }
 
 pub(super) fn division(key: &str, d: &DivisionFile) -> Result<Vec<f64>, ModelError> {
@@ -463,44 +317,8 @@ pub(super) fn describe_selection(s: &SelectionFile) -> String {
 mod tests {
     use super::*;
 
-    fn material_file(toml_text: &str) -> MaterialFile {
-        toml::from_str(toml_text).unwrap()
-    }
-
     fn err(r: Result<impl std::fmt::Debug, ModelError>) -> String {
         r.unwrap_err().to_string()
-    }
-
-    #[test]
-    fn materials_are_bounded_and_tables_checked() {
-        let ok = material(0, &material_file("name = \"s\"\nyoung_modulus = 200e9\npoisson_ratio = 0.3")).unwrap();
-        assert_eq!((ok.young, ok.poisson), (200e9, 0.3));
-        let e = err(material(2, &material_file("name = \"s\"\nyoung_modulus = 1e3\npoisson_ratio = 0.3")));
-        assert!(e.starts_with("materials[2].young_modulus = 1000: expected a number from 1e5 to 1e13"), "{e}");
-        let e = err(material(0, &material_file("name = \"s\"\nyoung_modulus = 200e9\npoisson_ratio = 0.5")));
-        assert!(e.contains("poisson_ratio = 0.5"), "{e}");
-        // a yield strain above 10 %
-        let e = err(material(
-            0,
-            &material_file(
-                "name = \"s\"\nyoung_modulus = 1e9\npoisson_ratio = 0.3\nplasticity = { yield_stress = 2e8, hardening = \"perfect\" }",
-            ),
-        ));
-        assert!(e.contains("plasticity.yield_stress = 2e8") && e.contains("0.1 E"), "{e}");
-        // softening and unsorted tables
-        let e = err(material(
-            0,
-            &material_file(
-                "name = \"s\"\nyoung_modulus = 70e9\npoisson_ratio = 0.3\nplasticity = { hardening = \"table\", table = [[0.0, 1e8], [0.01, 9e7]] }",
-            ),
-        ));
-        assert!(e.contains("table[1]") && e.contains("no softening"), "{e}");
-        let table = material(
-            0,
-            &material_file("name = \"s\"\nyoung_modulus = 70e9\npoisson_ratio = 0.3\nplasticity = { hardening = \"table\", table = [[0.0, 1e8], [0.01, 1.2e8]] }"),
-        )
-        .unwrap();
-        assert_eq!(table.hardening.unwrap().eval(0.005), (1.1e8, 2e9));
     }
 
     #[test]

@@ -1,0 +1,307 @@
+//! Validation of `[[materials]]`: elastic constants, the isotropic hardening
+//! law (perfect, linear, table, Voce) and the kinematic back-stresses, each
+//! bounded to physically sensible magnitudes.
+
+use super::bounds;
+use super::schema::*;
+use super::validate::reject_unused;
+use super::{ModelError, invalid};
+use crate::materials::{BackStress, Hardening, MAX_BACKSTRESSES, Material};
+
+/// `[[materials]]`.
+pub(super) fn materials(file: &[MaterialFile]) -> Result<Vec<Material>, ModelError> {
+    file.iter().enumerate().map(|(i, m)| material(i, m)).collect()
+}
+
+pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelError> {
+    let key = format!("materials[{i}]");
+    let young = bounds::within(
+        &format!("{key}.young_modulus"),
+        m.young_modulus,
+        bounds::MIN_YOUNG,
+        bounds::MAX_YOUNG,
+        "Young's modulus in Pa, from soft foams to ten times diamond",
+    )?;
+    let nu = m.poisson_ratio;
+    if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
+        return Err(invalid(format!("{key}.poisson_ratio"), nu, "a number in (−1, 0.5)"));
+    }
+    let hardening = match &m.plasticity {
+        None => None,
+        Some(p) => {
+            let pk = format!("{key}.plasticity");
+            let max_sy = bounds::MAX_YIELD_STRAIN * young;
+            let yield_why = "the yield stress in Pa, positive and at most 0.1 E: a larger yield strain is outside small-strain plasticity";
+            let sy = p
+                .yield_stress
+                .map(|v| bounds::within(&format!("{pk}.yield_stress"), v, f64::MIN_POSITIVE, max_sy, yield_why))
+                .transpose()?;
+            let need_sy = || {
+                sy.ok_or_else(|| invalid(format!("{pk}.yield_stress"), "(missing)", "the initial yield stress in Pa"))
+            };
+            let chosen = format!("hardening = {:?}", p.hardening);
+            let unused_modulus = ("hardening_modulus", p.hardening_modulus.is_some());
+            let unused_table = ("table", p.table.is_some());
+            let unused_voce = [
+                ("saturation_stress", p.saturation_stress.is_some()),
+                ("saturation_rate", p.saturation_rate.is_some()),
+            ];
+            match p.hardening.as_str() {
+                "perfect" => {
+                    reject_unused(&pk, &chosen, &[unused_modulus, unused_table, unused_voce[0], unused_voce[1]])?
+                }
+                "linear" => reject_unused(&pk, &chosen, &[unused_table, unused_voce[0], unused_voce[1]])?,
+                "table" => reject_unused(&pk, &chosen, &[unused_modulus, unused_voce[0], unused_voce[1]])?,
+                "voce" => reject_unused(&pk, &chosen, &[unused_modulus, unused_table])?,
+                _ => {}
+            }
+            Some(match p.hardening.as_str() {
+                "perfect" => Hardening::Perfect { yield_stress: need_sy()? },
+                "linear" => {
+                    let h = p.hardening_modulus.ok_or_else(|| {
+                        invalid(
+                            format!("{pk}.hardening_modulus"),
+                            "(missing)",
+                            "the plastic hardening modulus H in Pa (≥ 0) for hardening = \"linear\"",
+                        )
+                    })?;
+                    bounds::within(
+                        &format!("{pk}.hardening_modulus"),
+                        h,
+                        0.0,
+                        bounds::MAX_HARDENING * young,
+                        "the plastic hardening modulus H in Pa, from 0 to 100 E",
+                    )?;
+                    Hardening::Linear { yield_stress: need_sy()?, modulus: h }
+                }
+                "voce" => {
+                    let q = p.saturation_stress.ok_or_else(|| {
+                        invalid(
+                            format!("{pk}.saturation_stress"),
+                            "(missing)",
+                            "the Voce saturation stress Q in Pa (≥ 0) for hardening = \"voce\"",
+                        )
+                    })?;
+                    bounds::within(
+                        &format!("{pk}.saturation_stress"),
+                        q,
+                        0.0,
+                        young,
+                        "the Voce saturation stress Q in Pa, from 0 to E",
+                    )?;
+                    let b = p.saturation_rate.ok_or_else(|| {
+                        invalid(
+                            format!("{pk}.saturation_rate"),
+                            "(missing)",
+                            "the Voce saturation rate b (dimensionless, > 0) for hardening = \"voce\"",
+                        )
+                    })?;
+                    bounds::within(
+                        &format!("{pk}.saturation_rate"),
+                        b,
+                        1e-6,
+                        1e6,
+                        "the Voce saturation rate b, from 1e-6 to 1e6 (dimensionless)",
+                    )?;
+                    // the initial slope Q b is a hardening modulus: the same bound
+                    bounds::within(
+                        &format!("{pk}.saturation_rate"),
+                        b,
+                        0.0,
+                        bounds::MAX_HARDENING * young / q.max(f64::MIN_POSITIVE),
+                        "a rate whose initial slope Q b is at most 100 E",
+                    )?;
+                    Hardening::Voce { yield_stress: need_sy()?, saturation: q, rate: b }
+                }
+                "table" => {
+                    let t = p.table.as_ref().ok_or_else(|| {
+                        invalid(format!("{pk}.table"), "(missing)", "[[peeq, yield_stress], …] starting at peeq = 0")
+                    })?;
+                    if t.is_empty() || t[0][0] != 0.0 {
+                        return Err(invalid(
+                            format!("{pk}.table"),
+                            format!("{t:?}"),
+                            "a non-empty table whose first point has peeq = 0",
+                        ));
+                    }
+                    for (k, w) in t.windows(2).enumerate() {
+                        if !(w[1][0] > w[0][0]) || !(w[1][1] >= w[0][1]) || !w[1][0].is_finite() || !w[1][1].is_finite()
+                        {
+                            return Err(invalid(
+                                format!("{pk}.table[{}]", k + 1),
+                                format!("{:?}", w[1]),
+                                "strictly increasing peeq and non-decreasing (no softening), finite yield stress",
+                            ));
+                        }
+                        // the segment's slope is a hardening modulus: the same bound as
+                        // `hardening_modulus` (a near-vertical segment overflows it)
+                        let slope = (w[1][1] - w[0][1]) / (w[1][0] - w[0][0]);
+                        if !(slope <= bounds::MAX_HARDENING * young) {
+                            return Err(invalid(
+                                format!("{pk}.table[{}]", k + 1),
+                                format!("[{}, {}]", bounds::number(w[1][0]), bounds::number(w[1][1])),
+                                format!(
+                                    "a segment slope of at most 100 E = {} Pa (this one rises {} Pa over a peeq of {})",
+                                    bounds::limit(bounds::MAX_HARDENING * young),
+                                    bounds::number(w[1][1] - w[0][1]),
+                                    bounds::number(w[1][0] - w[0][0])
+                                ),
+                            ));
+                        }
+                    }
+                    if !(t[0][1] > 0.0 && t[0][1].is_finite()) {
+                        return Err(invalid(
+                            format!("{pk}.table[0]"),
+                            format!("{:?}", t[0]),
+                            "a positive initial yield stress",
+                        ));
+                    }
+                    bounds::within(&format!("{pk}.table[0][1]"), t[0][1], 0.0, max_sy, yield_why)?;
+                    let last = t.len() - 1;
+                    bounds::within(
+                        &format!("{pk}.table[{last}][0]"),
+                        t[last][0],
+                        0.0,
+                        bounds::MAX_TABLE_PEEQ,
+                        "an equivalent plastic strain of at most 10",
+                    )?;
+                    bounds::within(
+                        &format!("{pk}.table[{last}][1]"),
+                        t[last][1],
+                        0.0,
+                        young,
+                        "a yield stress of at most E",
+                    )?;
+                    if let Some(s) = sy
+                        && (s - t[0][1]).abs() > 1e-9 * s
+                    {
+                        return Err(invalid(
+                            format!("{pk}.yield_stress"),
+                            s,
+                            format!("the table's first stress ({}) or no yield_stress", t[0][1]),
+                        ));
+                    }
+                    Hardening::Table {
+                        strains: t.iter().map(|r| r[0]).collect(),
+                        stresses: t.iter().map(|r| r[1]).collect(),
+                    }
+                }
+                other => {
+                    return Err(invalid(
+                        format!("{pk}.hardening"),
+                        format!("{other:?}"),
+                        "\"perfect\", \"linear\", \"table\" or \"voce\"",
+                    ));
+                }
+            })
+        }
+    };
+    let mut kinematic = Vec::new();
+    if let Some(p) = &m.plasticity
+        && let Some(list) = &p.kinematic
+    {
+        let kk = format!("{key}.plasticity.kinematic");
+        if list.len() > MAX_BACKSTRESSES {
+            return Err(invalid(kk, list.len(), format!("at most {MAX_BACKSTRESSES} back-stresses")));
+        }
+        for (i, k) in list.iter().enumerate() {
+            bounds::within(
+                &format!("{kk}[{i}].modulus"),
+                k.modulus,
+                f64::MIN_POSITIVE,
+                bounds::MAX_HARDENING * young,
+                "the kinematic hardening modulus C in Pa, positive and at most 100 E",
+            )?;
+            bounds::within(
+                &format!("{kk}[{i}].recall"),
+                k.recall,
+                0.0,
+                1e6,
+                "the recall rate γ (dimensionless), from 0 (linear kinematic hardening) to 1e6",
+            )?;
+            kinematic.push(BackStress { modulus: k.modulus, recall: k.recall });
+        }
+    }
+    Ok(Material::new(m.name.clone(), young, nu, hardening).with_kinematic(kinematic))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn material_file(toml_text: &str) -> MaterialFile {
+        toml::from_str(toml_text).unwrap()
+    }
+
+    fn err(r: Result<impl std::fmt::Debug, ModelError>) -> String {
+        format!("{}", r.unwrap_err())
+    }
+
+    #[test]
+    fn materials_are_bounded_and_tables_checked() {
+        let ok = material(0, &material_file("name = \"s\"\nyoung_modulus = 200e9\npoisson_ratio = 0.3")).unwrap();
+        assert_eq!((ok.young, ok.poisson), (200e9, 0.3));
+        let e = err(material(2, &material_file("name = \"s\"\nyoung_modulus = 1e3\npoisson_ratio = 0.3")));
+        assert!(e.starts_with("materials[2].young_modulus = 1000: expected a number from 1e5 to 1e13"), "{e}");
+        let e = err(material(0, &material_file("name = \"s\"\nyoung_modulus = 200e9\npoisson_ratio = 0.5")));
+        assert!(e.contains("poisson_ratio = 0.5"), "{e}");
+        // a yield strain above 10 %
+        let e = err(material(
+            0,
+            &material_file(
+                "name = \"s\"\nyoung_modulus = 1e9\npoisson_ratio = 0.3\nplasticity = { yield_stress = 2e8, hardening = \"perfect\" }",
+            ),
+        ));
+        assert!(e.contains("plasticity.yield_stress = 2e8") && e.contains("0.1 E"), "{e}");
+        // softening and unsorted tables
+        let e = err(material(
+            0,
+            &material_file(
+                "name = \"s\"\nyoung_modulus = 70e9\npoisson_ratio = 0.3\nplasticity = { hardening = \"table\", table = [[0.0, 1e8], [0.01, 9e7]] }",
+            ),
+        ));
+        assert!(e.contains("table[1]") && e.contains("no softening"), "{e}");
+        let table = material(
+            0,
+            &material_file("name = \"s\"\nyoung_modulus = 70e9\npoisson_ratio = 0.3\nplasticity = { hardening = \"table\", table = [[0.0, 1e8], [0.01, 1.2e8]] }"),
+        )
+        .unwrap();
+        assert_eq!(table.hardening.unwrap().eval(0.005), (1.1e8, 2e9));
+    }
+
+    #[test]
+    fn voce_and_kinematic_hardening_are_checked() {
+        let base = "name = \"s\"\nyoung_modulus = 200e9\npoisson_ratio = 0.3\n";
+        let m = material(
+            0,
+            &material_file(&format!(
+                "{base}plasticity = {{ yield_stress = 2e8, hardening = \"voce\", saturation_stress = 5e7, saturation_rate = 20.0, \
+                 kinematic = [{{ modulus = 6e10, recall = 600.0 }}, {{ modulus = 5e9, recall = 0.0 }}] }}"
+            )),
+        )
+        .unwrap();
+        assert_eq!(
+            m.kinematic,
+            vec![BackStress { modulus: 6e10, recall: 600.0 }, BackStress { modulus: 5e9, recall: 0.0 }]
+        );
+        let (sy, h) = m.hardening.unwrap().eval(0.0);
+        assert_eq!((sy, h), (2e8, 5e7 * 20.0));
+        // a missing Voce parameter, a Voce key with another law, a negative
+        // recall rate, too many back-stresses: each names its key
+        let cases = [
+            ("hardening = \"voce\", saturation_stress = 5e7", "plasticity.saturation_rate = (missing)"),
+            ("hardening = \"perfect\", saturation_rate = 5.0", "saturation_rate"),
+            ("hardening = \"perfect\", kinematic = [{ modulus = 6e10, recall = -1.0 }]", "kinematic[0].recall = -1"),
+            ("hardening = \"perfect\", kinematic = [{ modulus = 0.0, recall = 1.0 }]", "kinematic[0].modulus = 0"),
+            (
+                "hardening = \"perfect\", kinematic = [{ modulus = 1e9, recall = 1.0 }, { modulus = 1e9, recall = 1.0 }, \
+                 { modulus = 1e9, recall = 1.0 }, { modulus = 1e9, recall = 1.0 }, { modulus = 1e9, recall = 1.0 }]",
+                "at most 4 back-stresses",
+            ),
+        ];
+        for (p, expect) in cases {
+            let e = err(material(3, &material_file(&format!("{base}plasticity = {{ yield_stress = 2e8, {p} }}"))));
+            assert!(e.contains(expect) && e.starts_with("materials[3].plasticity"), "{p}: {e}");
+        }
+    }
+}

@@ -16,7 +16,7 @@
 //! and `analysis`: a stored matrix entry costs 8 (row index) + 8 (value),
 //! twice over for the pattern (the assembler's and the solver's copy); an
 //! element-matrix entry 4 (scatter index) + 8 (cached elastic value); a
-//! factor entry 8; a Gauss point 160 (two states of 56 and a stress of 48);
+//! factor entry 8; a Gauss point two states (200 bytes each with three back-stresses) and a stress of 48;
 //! a DOF 64 (eight vectors); the program itself about 8 MiB. Setup transients (node graph, METIS arrays, the
 //! transposed pattern) and output transients (VTU arrays) are freed before
 //! the factor is allocated, so the larger of them is added, not both.
@@ -73,6 +73,10 @@ impl MemoryEstimate {
     }
 }
 
+/// Bytes per Gauss point: committed and trial states and a stress.
+const GAUSS_POINT_BYTES: u64 =
+    (2 * std::mem::size_of::<crate::materials::PointState>() + std::mem::size_of::<crate::voigt::Voigt>()) as u64;
+
 impl Sizes {
     /// The memory these counts take (see the module docs for the constants).
     pub fn memory(&self) -> MemoryEstimate {
@@ -82,7 +86,8 @@ impl Sizes {
             ("tangent pattern and values", s.pattern_nnz.saturating_mul(24)),
             ("scatter maps and cached element matrices", s.element_entries.saturating_mul(12)),
             ("Cholesky factor", s.factor_nnz.saturating_mul(8).saturating_add(s.factor_scratch)),
-            ("Gauss-point states and stresses", s.gauss_points.saturating_mul(160)),
+            // committed and trial states, and the stress
+            ("Gauss-point states and stresses", s.gauss_points.saturating_mul(GAUSS_POINT_BYTES)),
             ("vectors", s.dofs.saturating_mul(64)),
         ];
         // node graph (adjacency, its copy, METIS arrays) + transposed pattern

@@ -242,6 +242,37 @@ pub struct Solution {
     pub warnings: Vec<Warning>,
     /// Recovered (projected) nodal stress and peeq, when the model asks for them.
     pub recovered: Option<crate::post::Recovered>,
+    /// The end of every completed step of the load history, in order.
+    pub steps: Vec<StepEnd>,
+}
+
+/// The state at the end of one step of the load history.
+#[derive(Debug, Clone)]
+pub struct StepEnd {
+    /// Step name.
+    pub name: String,
+    /// Analysis time λ at the end of the step.
+    pub lambda: f64,
+    /// Index of the step's last increment (0 if it had none).
+    pub increment: usize,
+    /// Reactions per constraint set.
+    pub reactions: Vec<Reaction>,
+    /// Per indenter then pair contact: force and largest penetration.
+    pub contacts: Vec<ContactResultant>,
+    /// Displacements, Gauss-point states and stresses (kept when the model
+    /// has more than one step, for per-step output).
+    pub fields: Option<StepFields>,
+}
+
+/// The fields of a [`StepEnd`].
+#[derive(Debug, Clone)]
+pub struct StepFields {
+    /// Displacements, 3 per node.
+    pub u: Vec<f64>,
+    /// Committed Gauss-point states.
+    pub states: Vec<PointState>,
+    /// Gauss-point stresses.
+    pub stresses: Vec<Voigt>,
 }
 
 struct Recorder<'a> {
@@ -295,9 +326,34 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         },
     );
     let mut recorder = Recorder { history: Vec::new(), increments: Vec::new(), cutbacks: Vec::new(), progress };
-    let outcome =
-        stepping::run(&mut structure, &model.solver.steps, &model.solver.newton, &mut recorder, &options.interrupt);
-    let failure = outcome.err().map(|e| *e);
+    // the load history: each step drives λ over [k, k + 1] from the state the
+    // previous one left (displacements, plastic history, contact)
+    let mut failure = None;
+    let mut step_ends = Vec::new();
+    for (k, step) in model.steps.iter().enumerate() {
+        let span = (k as f64, (k + 1) as f64);
+        let first = recorder.increments.len() + 1;
+        let newton = &model.solver.newton;
+        match stepping::run_span(&mut structure, span, first, &step.settings, newton, &mut recorder, &options.interrupt)
+        {
+            Ok(_) => step_ends.push(StepEnd {
+                name: step.name.clone(),
+                lambda: span.1,
+                increment: recorder.increments.len(),
+                reactions: structure.reactions(),
+                contacts: structure.contact_resultants(),
+                fields: (model.steps.len() > 1).then(|| StepFields {
+                    u: structure.u.clone(),
+                    states: structure.committed.clone(),
+                    stresses: structure.stress.clone(),
+                }),
+            }),
+            Err(e) => {
+                failure = Some(*e);
+                break;
+            }
+        }
+    }
     if failure.is_some() {
         // refresh forces at the last converged state for reactions and contact output
         structure.evaluate()?;
@@ -305,7 +361,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
     let lambda = structure.lambda;
     let mut applied = [0.0; 3];
     for (d, f) in structure.f_ext.iter().enumerate() {
-        applied[d % 3] += lambda * f;
+        applied[d % 3] += f;
     }
     let mut solution = Solution {
         reactions: structure.reactions(),
@@ -332,6 +388,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         memory: structure.memory,
         warnings: Vec::new(),
         recovered: None,
+        steps: step_ends,
     };
     if model.output.recovery == crate::model::Recovery::Projection {
         solution.recovered = Some(crate::post::recovery::project(
@@ -413,6 +470,30 @@ impl Solution {
     /// The points of the indenter or contact `name`.
     pub fn contact_points(&self, name: &str) -> Option<&[ContactPoint]> {
         self.contact_sets.iter().find(|c| c.name == name).map(|c| c.points.as_slice())
+    }
+
+    /// The solution as it was at the end of step `k` (fields, reactions and
+    /// contact resultants of that moment; histories and timings of the whole
+    /// run), or `None` if the step did not complete or kept no fields.
+    pub fn at_step(&self, model: &Model, k: usize) -> Result<Option<Solution>, AnalysisError> {
+        let Some(end) = self.steps.get(k) else { return Ok(None) };
+        let Some(fields) = &end.fields else { return Ok(None) };
+        let mut s = Solution {
+            u: fields.u.clone(),
+            states: fields.states.clone(),
+            stresses: fields.stresses.clone(),
+            lambda: end.lambda,
+            reactions: end.reactions.clone(),
+            contacts: end.contacts.clone(),
+            recovered: None,
+            steps: Vec::new(),
+            ..self.clone()
+        };
+        if model.output.recovery == crate::model::Recovery::Projection {
+            s.recovered =
+                Some(crate::post::recovery::project(&model.mesh, &model.cells, &s.stresses, &s.states, &s.gp_offsets)?);
+        }
+        Ok(Some(s))
     }
 
     /// A view for field evaluation.

@@ -17,8 +17,9 @@ use std::time::Instant;
 pub use super::results::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Timings};
 use crate::assembly::{Assembler, Inputs, NO_EQ, Numbering, Outputs};
 use crate::contact;
-use crate::materials::PointState;
+use crate::materials::{PointState, Predictor};
 use crate::model::Model;
+use crate::model::steps::{self, Item};
 use crate::size::MemoryEstimate;
 use crate::solver::linear::{Cholesky, LinearError};
 use crate::solver::newton::{Correction, Evaluation, NonlinearProblem};
@@ -44,14 +45,16 @@ pub struct Structure<'m> {
     pub(super) stress: Vec<Voigt>,
     /// Internal forces of the last evaluation.
     pub(super) f_int: Vec<f64>,
-    /// External loads at λ = 1.
+    /// External loads at the current λ (each load times its factor).
     pub(super) f_ext: Vec<f64>,
     /// Contact forces of the last evaluation.
     pub(super) f_contact: Vec<f64>,
     tangent: Vec<f64>,
     residual: Vec<f64>,
-    /// Non-zero prescribed DOFs: `(dof, equation, value at λ = 1)`.
-    prescribed: Vec<(usize, usize, f64)>,
+    /// Non-zero prescribed DOFs: `(dof, equation, value at factor 1, constraint)`.
+    prescribed: Vec<(usize, usize, f64, usize)>,
+    /// Their values at the current λ.
+    prescribed_now: Vec<f64>,
     /// Per equation: true for a prescribed DOF.
     is_prescribed: Vec<bool>,
     /// Matrix entries coupling a prescribed equation: `(position, row, col)`.
@@ -65,6 +68,9 @@ pub struct Structure<'m> {
     contact_ranges: Vec<std::ops::Range<usize>>,
     /// Plastic Gauss points in the last evaluation.
     pub(super) plastic_points: usize,
+    /// Tangent branch of Gauss points on their yield surface (elastic after
+    /// a failed attempt: [`Incremental::cautious`]).
+    predictor: Predictor,
     /// Phase timings.
     pub(super) timings: Timings,
     /// Memory estimate made after the symbolic factorization.
@@ -92,11 +98,13 @@ impl<'m> Structure<'m> {
         let n_dofs = mesh.n_dofs();
         // value prescribed at each constrained DOF (validation rejects conflicts)
         let mut value: Vec<Option<f64>> = vec![None; n_dofs];
-        for c in &model.constraints {
+        let mut source = vec![0; n_dofs];
+        for (ci, c) in model.constraints.iter().enumerate() {
             for &n in &c.nodes {
                 for (k, v) in c.values.iter().enumerate() {
                     if v.is_some() && value[3 * n + k].is_none() {
                         value[3 * n + k] = *v;
+                        source[3 * n + k] = ci;
                     }
                 }
             }
@@ -123,7 +131,7 @@ impl<'m> Structure<'m> {
                 && v != 0.0
             {
                 let e = assembler.dofs.eq[d];
-                prescribed.push((d, e, v));
+                prescribed.push((d, e, v, source[d]));
                 is_prescribed[e] = true;
             }
         }
@@ -147,17 +155,11 @@ impl<'m> Structure<'m> {
             u: &zero,
             committed: &states,
             gp_offsets: &gp_offsets,
+            predictor: Default::default(),
         });
         let element_cache = t_cache.elapsed();
 
-        let mut f_ext = vec![0.0; n_dofs];
-        for l in &model.loads {
-            for (n, f) in &l.nodal_forces {
-                for k in 0..3 {
-                    f_ext[3 * n + k] += f[k];
-                }
-            }
-        }
+        let f_ext = vec![0.0; n_dofs];
         let mut contact = Vec::new();
         let mut contact_ranges = Vec::new();
         for ind in &model.indenters {
@@ -200,6 +202,7 @@ impl<'m> Structure<'m> {
             f_contact: vec![0.0; n_dofs],
             tangent: vec![0.0; nnz],
             residual: vec![0.0; n_eq],
+            prescribed_now: vec![0.0; prescribed.len()],
             prescribed,
             is_prescribed,
             dirichlet_entries,
@@ -209,6 +212,7 @@ impl<'m> Structure<'m> {
             contact,
             contact_ranges,
             plastic_points: 0,
+            predictor: Predictor::Loading,
             timings,
             memory,
         })
@@ -286,7 +290,7 @@ impl<'m> Structure<'m> {
     /// Reaction at every DOF, `f_int − λ f_ext − f_c` (zero up to the
     /// residual at free DOFs).
     pub fn nodal_imbalance(&self, dof: usize) -> f64 {
-        self.f_int[dof] - self.lambda * self.f_ext[dof] - self.f_contact[dof]
+        self.f_int[dof] - self.f_ext[dof] - self.f_contact[dof]
     }
 
     /// Resultant reaction of each constraint set (force of the support on
@@ -356,6 +360,7 @@ impl<'m> Structure<'m> {
             u: &self.u,
             committed: &self.committed,
             gp_offsets: &self.gp_offsets,
+            predictor: self.predictor,
         };
         self.plastic_points = self.assembler.assemble(
             &inputs,
@@ -377,9 +382,10 @@ impl<'m> Structure<'m> {
         let model = self.model;
         let mut changes = 0;
         let mut k = 0;
-        for ind in &model.indenters {
+        for (k_ind, ind) in model.indenters.iter().enumerate() {
             // the rigid surface's displacement plays the master's part
-            let offset = ind.displacement.map(|d| self.lambda * d);
+            let a = steps::factor(&model.steps, Item::Indenter(k_ind), self.lambda);
+            let offset = ind.displacement.map(|d| a * d);
             for c in &ind.nodes {
                 changes += usize::from(self.contact_pair(k, c.node, None, offset, c.gap0, &c.normal, c.penalty));
                 k += 1;
@@ -450,7 +456,7 @@ impl NonlinearProblem for Structure<'_> {
         let eq = &self.assembler.dofs.eq;
         let (mut res2, mut ext2, mut con2, mut reac2) = (0.0, 0.0, 0.0, 0.0);
         for (d, &e) in eq.iter().enumerate() {
-            let ext = self.lambda * self.f_ext[d];
+            let ext = self.f_ext[d];
             let r = self.f_int[d] - ext - self.f_contact[d];
             ext2 += ext * ext;
             con2 += self.f_contact[d] * self.f_contact[d];
@@ -466,8 +472,8 @@ impl NonlinearProblem for Structure<'_> {
         // prescribed values reached (exactly, after the first correction)
         let mut off: f64 = 0.0;
         let mut size: f64 = 0.0;
-        for &(d, _, v) in &self.prescribed {
-            off = off.max((self.lambda * v - self.u[d]).abs());
+        for (&(d, _, v, _), now) in self.prescribed.iter().zip(&self.prescribed_now) {
+            off = off.max((now - self.u[d]).abs());
             size = size.max(v.abs());
         }
         let scale = ext2.sqrt().max(con2.sqrt()).max(reac2.sqrt());
@@ -480,8 +486,8 @@ impl NonlinearProblem for Structure<'_> {
             *r = -*r;
         }
         // symmetric elimination of the prescribed equations (see module docs)
-        for &(d, e, v) in &self.prescribed {
-            self.residual[e] = self.lambda * v - self.u[d];
+        for (&(d, e, _, _), now) in self.prescribed.iter().zip(&self.prescribed_now) {
+            self.residual[e] = now - self.u[d];
         }
         for &(k, r, c) in &self.dirichlet_entries {
             let kv = self.tangent[k];
@@ -492,7 +498,7 @@ impl NonlinearProblem for Structure<'_> {
             }
             self.tangent[k] = 0.0;
         }
-        for &(_, e, _) in &self.prescribed {
+        for &(_, e, _, _) in &self.prescribed {
             let diag = self.assembler.pattern.col_ptr[e];
             self.residual[e] *= self.tangent[diag];
         }
@@ -521,6 +527,14 @@ impl Incremental for Structure<'_> {
     fn set_load_factor(&mut self, lambda: f64) {
         // prescribed values are reached by the next correction (see module docs)
         self.lambda = lambda;
+        self.apply_factors();
+    }
+
+    fn cautious(&mut self, on: bool) -> bool {
+        let wanted = if on { Predictor::Elastic } else { Predictor::Loading };
+        let changed = self.predictor != wanted;
+        self.predictor = wanted;
+        changed
     }
 
     fn commit(&mut self) {
@@ -534,5 +548,26 @@ impl Incremental for Structure<'_> {
         self.u.copy_from_slice(&self.u_committed);
         self.contact.copy_from_slice(&self.contact_committed);
         self.lambda = self.lambda_committed;
+        self.apply_factors();
+    }
+}
+
+impl Structure<'_> {
+    /// Loads and prescribed values at the current λ: each item times its
+    /// factor in the load history (`model::steps`).
+    fn apply_factors(&mut self) {
+        let model = self.model;
+        self.f_ext.fill(0.0);
+        for (i, l) in model.loads.iter().enumerate() {
+            let a = steps::factor(&model.steps, Item::Load(i), self.lambda);
+            for (n, f) in &l.nodal_forces {
+                for k in 0..3 {
+                    self.f_ext[3 * n + k] += a * f[k];
+                }
+            }
+        }
+        for (&(_, _, v, c), now) in self.prescribed.iter().zip(&mut self.prescribed_now) {
+            *now = steps::factor(&model.steps, Item::Constraint(c), self.lambda) * v;
+        }
     }
 }

@@ -28,7 +28,7 @@ pub use scatter::{ElementRef, ScatterMaps};
 use rayon::prelude::*;
 
 use crate::elements::{self, PointData, TangentMode, Workspace};
-use crate::materials::{Material, PointState};
+use crate::materials::{Material, PointState, Predictor};
 use crate::mesh::Mesh;
 use crate::solver::linear::LowerCsc;
 use crate::values::CellValues;
@@ -65,6 +65,8 @@ pub struct Inputs<'a> {
     pub committed: &'a [PointState],
     /// First Gauss point of each body.
     pub gp_offsets: &'a [usize],
+    /// Tangent branch of points on their yield surface.
+    pub predictor: Predictor,
 }
 
 /// Outputs of an assembly pass.
@@ -179,7 +181,12 @@ impl Assembler {
                         body.section.n_elements(),
                         &zero,
                         &input.materials[body.material],
-                        PointData { committed: &committed, trial: &mut trial, stress: &mut stress },
+                        PointData {
+                            committed: &committed,
+                            trial: &mut trial,
+                            stress: &mut stress,
+                            predictor: Predictor::Loading,
+                        },
                         TangentMode::Always,
                         ws,
                     );
@@ -234,6 +241,7 @@ impl Assembler {
                                 committed: &input.committed[g0..g0 + ngp],
                                 trial: trial.range(g0, ngp),
                                 stress: stress.range(g0, ngp),
+                                predictor: input.predictor,
                             }
                         };
                         WORKSPACE.with_borrow_mut(|ws| {
@@ -337,6 +345,7 @@ mod tests {
             u: &zero,
             committed: &committed,
             gp_offsets: &gp_offsets,
+            predictor: Default::default(),
         };
         assembler.cache_elastic(&inputs);
         Setup { mesh, geometry, gp_offsets, materials, u, committed, assembler, uncached }
@@ -352,6 +361,7 @@ mod tests {
             u: &s.u,
             committed: &s.committed,
             gp_offsets: &s.gp_offsets,
+            predictor: Default::default(),
         };
         let mut force = vec![0.0; s.mesh.n_dofs()];
         let mut tangent = vec![0.0; a.pattern.nnz()];

@@ -80,6 +80,12 @@ pub fn export(model: &Model, kind: HexKind, refine: usize, dir: &Path) -> Result
     std::fs::create_dir_all(dir).map_err(file_error(dir))?;
     let mesh = HexMesh::new(model, kind, refine);
     let path = dir.join("model.inp");
+    if model.steps.len() > 1 {
+        return Err(CcxError::Unsupported {
+            key: "steps".into(),
+            what: format!("a load history of {} steps", model.steps.len()),
+        });
+    }
     if let Some((k, m)) = model.materials.iter().enumerate().find(|(_, m)| !m.kinematic.is_empty()) {
         return Err(CcxError::Unsupported {
             key: format!("materials[{k}].plasticity.kinematic"),

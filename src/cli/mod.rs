@@ -378,7 +378,11 @@ impl Reporter {
 }
 
 impl Progress for Reporter {
-    fn start(&mut self, _model: &Model, setup: &analysis::Setup) {
+    fn start(&mut self, model: &Model, setup: &analysis::Setup) {
+        if let Some(b) = &self.bar {
+            // λ runs over [0, number of steps]
+            b.set_length(1000 * model.steps.len() as u64);
+        }
         self.line(format!(
             "solving {} equations, nnz(L) = {}, memory estimate {} (Ctrl-C stops at the next safe point and keeps \
              the results)",

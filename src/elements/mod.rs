@@ -29,7 +29,7 @@
 //! into a reusable [`Workspace`] and never allocates; the assembly only
 //! scatters what it computes.
 
-use crate::materials::{Material, PointState};
+use crate::materials::{Material, PointState, Predictor};
 use crate::values::CellValues;
 pub use crate::values::ElementError;
 use crate::voigt::{Matrix6, Voigt};
@@ -94,6 +94,8 @@ pub struct PointData<'a> {
     pub trial: &'a mut [PointState],
     /// Stresses (written).
     pub stress: &'a mut [Voigt],
+    /// Tangent branch of points on their yield surface.
+    pub predictor: Predictor,
 }
 
 /// Computes the internal force (and the tangent, per `mode`) of body
@@ -145,7 +147,7 @@ pub fn element_response(
                     *e += shift / 3.0;
                 }
             }
-            let r = material.update(&eps, &points.committed[q]);
+            let r = material.update_with(&eps, &points.committed[q], points.predictor);
             points.trial[q] = r.state;
             points.stress[q] = r.stress;
             ws.tangents[q] = r.tangent;
@@ -361,7 +363,7 @@ mod tests {
             1,
             u,
             mat,
-            PointData { committed, trial: &mut trial, stress: &mut stress },
+            PointData { committed, trial: &mut trial, stress: &mut stress, predictor: Predictor::Loading },
             TangentMode::Always,
             &mut ws,
         );

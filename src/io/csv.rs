@@ -6,6 +6,7 @@ use std::path::{Path, PathBuf};
 use super::{IoError, file_error};
 use crate::analysis::Solution;
 use crate::model::Model;
+use crate::model::steps::{self, Item};
 use crate::post::{LineSample, Quantity};
 
 fn write(path: &Path, text: &str) -> Result<(), IoError> {
@@ -38,10 +39,11 @@ pub fn write_line(path: &Path, samples: &[LineSample]) -> Result<(), IoError> {
 /// matched to its history entries by name.
 pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     let mut out = Vec::new();
-    for c in &model.constraints {
+    for (ci, c) in model.constraints.iter().enumerate() {
         let mut text = String::from("increment,lambda,iterations,u_x,u_y,u_z,r_x,r_y,r_z\n");
         for row in &solution.history {
-            let u = c.values.map(|v| v.map_or(String::new(), |v| format!("{:e}", row.lambda * v)));
+            let a = steps::factor(&model.steps, Item::Constraint(ci), row.lambda);
+            let u = c.values.map(|v| v.map_or(String::new(), |v| format!("{:e}", a * v)));
             let r = row.reaction(&c.name).map_or([f64::NAN; 3], |r| r.force);
             let _ = writeln!(
                 text,
@@ -54,11 +56,17 @@ pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result
         out.push(path);
     }
     for set in &solution.contact_sets {
-        let disp = model.indenters.iter().find(|i| i.name == set.name).map(|i| i.displacement);
+        let disp =
+            model.indenters.iter().position(|i| i.name == set.name).map(|i| (i, model.indenters[i].displacement));
         let mut text =
             String::from("increment,lambda,iterations,d_x,d_y,d_z,f_x,f_y,f_z,max_penetration,plastic_points\n");
         for row in &solution.history {
-            let d = disp.map(|d| d.map(|v| format!("{:e}", row.lambda * v))).unwrap_or_default();
+            let d = disp
+                .map(|(i, d)| {
+                    let a = steps::factor(&model.steps, Item::Indenter(i), row.lambda);
+                    d.map(|v| format!("{:e}", a * v))
+                })
+                .unwrap_or_default();
             let Some(c) = row.contact(&set.name) else { continue };
             let f = c.force;
             let _ = writeln!(

@@ -102,9 +102,32 @@ pub struct Summary {
     pub memory: MemorySummary,
     /// Warnings of the model and of the results.
     pub warnings: Vec<String>,
+    /// The end of every completed step of the load history.
+    pub steps: Vec<StepSummary>,
     /// The other files of this result set (summary.json is written last and
     /// lists them, so a complete set can be recognised).
     pub files: Vec<String>,
+}
+
+/// The results at the end of one step.
+#[derive(Debug, Clone, Serialize)]
+pub struct StepSummary {
+    /// Step name.
+    pub name: String,
+    /// Analysis time λ at its end (step k ends at λ = k + 1).
+    pub load_factor: f64,
+    /// Index of its last increment.
+    pub increment: usize,
+    /// Largest equivalent plastic strain at its end.
+    pub max_peeq: f64,
+    /// Probe values at its end.
+    pub probes: Vec<ProbeSummary>,
+    /// Reactions at its end.
+    pub reactions: Vec<ForceSummary>,
+    /// Contact resultants at its end.
+    pub contact: Vec<ForceSummary>,
+    /// Its VTU file, when the history has several steps.
+    pub vtu: Option<String>,
 }
 
 /// Memory of the run.
@@ -116,10 +139,10 @@ pub struct MemorySummary {
     pub peak_bytes: Option<u64>,
 }
 
-/// Builds the summary of a solution.
-pub fn summary(model: &Model, solution: &Solution) -> Summary {
+/// Probe values of a solution.
+fn probes(model: &Model, solution: &Solution) -> Vec<ProbeSummary> {
     let view = solution.fields(model);
-    let probes = model
+    model
         .probes
         .iter()
         .map(|p| {
@@ -133,22 +156,54 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
                 peeq: s.peeq,
             }
         })
-        .collect();
-    let reactions = solution
-        .reactions
-        .iter()
+        .collect()
+}
+
+fn reactions(list: &[crate::analysis::Reaction]) -> Vec<ForceSummary> {
+    list.iter()
         .map(|r| ForceSummary { name: r.name.clone(), kind: None, force: r.force, max_penetration: None })
-        .collect();
-    let contact = solution
-        .contacts
-        .iter()
+        .collect()
+}
+
+fn contacts(list: &[crate::analysis::ContactResultant]) -> Vec<ForceSummary> {
+    list.iter()
         .map(|c| ForceSummary {
             name: c.name.clone(),
             kind: Some(c.kind.name()),
             force: c.force,
             max_penetration: Some(c.max_penetration),
         })
-        .collect();
+        .collect()
+}
+
+/// The summary of step `k` of `solution`, its probes and peak peeq from
+/// `at_end` (the solution as it was at the end of that step).
+pub fn step_summary(
+    model: &Model,
+    solution: &Solution,
+    k: usize,
+    at_end: &Solution,
+    vtu: Option<String>,
+) -> StepSummary {
+    let end = &solution.steps[k];
+    StepSummary {
+        name: end.name.clone(),
+        load_factor: end.lambda,
+        increment: end.increment,
+        max_peeq: at_end.states.iter().map(|s| s.peeq).fold(0.0, f64::max),
+        probes: probes(model, at_end),
+        reactions: reactions(&end.reactions),
+        contact: contacts(&end.contacts),
+        vtu,
+    }
+}
+
+/// Builds the summary of a solution (per-step entries from the final state
+/// for the last step only; `io::write_results` fills the others).
+pub fn summary(model: &Model, solution: &Solution) -> Summary {
+    let probes = probes(model, solution);
+    let reactions = reactions(&solution.reactions);
+    let contact = contacts(&solution.contacts);
     let t = &solution.timings;
     Summary {
         title: model.title.clone(),
@@ -181,6 +236,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         },
         memory: MemorySummary { estimated_bytes: solution.memory.total(), peak_bytes: crate::size::peak_memory() },
         warnings: model.warnings.iter().chain(&solution.warnings).map(|w| w.to_string()).collect(),
+        steps: Vec::new(),
         files: Vec::new(),
     }
 }

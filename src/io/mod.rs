@@ -54,6 +54,9 @@ pub enum IoError {
         /// Cause.
         message: String,
     },
+    /// The stress recovery of a step's fields failed.
+    #[error("cannot recover the stresses of a step: {0}")]
+    Recovery(String),
 }
 
 /// An I/O error on `path`.
@@ -117,11 +120,47 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     if model.output.plots {
         written.extend(png::history_plots(model, solution, dir)?);
     }
+    // the end of every step: a VTU per step and a .pvd series when the
+    // history has several steps; probes and resultants per step in the summary
+    let mut steps = Vec::new();
+    let mut series = Vec::new();
+    for k in 0..solution.steps.len() {
+        let snapshot = solution.at_step(model, k).map_err(|e| IoError::Recovery(e.to_string()))?;
+        let at_end = snapshot.as_ref().unwrap_or(solution);
+        let mut vtu = None;
+        if model.output.vtu && snapshot.is_some() {
+            let name = format!("result_{}_{}.vtu", k + 1, solution.steps[k].name);
+            let path = dir.join(&name);
+            write_vtu(&path, model, at_end)?;
+            written.push(path);
+            series.push((solution.steps[k].lambda, name.clone()));
+            vtu = Some(name);
+        }
+        steps.push(json::step_summary(model, solution, k, at_end, vtu));
+    }
+    if !series.is_empty() {
+        let path = dir.join("result.pvd");
+        write_pvd(&path, &series)?;
+        written.push(path);
+    }
     // last: its presence and its list of files mark a complete result set
     let mut s = summary(model, solution);
+    s.steps = steps;
     s.files = written.iter().filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())).collect();
     let path = dir.join("summary.json");
     json::write(&path, &s)?;
     written.push(path);
     Ok(written)
+}
+
+/// A ParaView collection: one dataset per step end, its time the analysis
+/// time λ (ParaView plays the steps in order).
+fn write_pvd(path: &Path, series: &[(f64, String)]) -> Result<(), IoError> {
+    let mut text =
+        String::from("<?xml version=\"1.0\"?>\n<VTKFile type=\"Collection\" version=\"0.1\">\n<Collection>\n");
+    for (t, file) in series {
+        text.push_str(&format!("  <DataSet timestep=\"{t}\" part=\"0\" file=\"{file}\"/>\n"));
+    }
+    text.push_str("</Collection>\n</VTKFile>\n");
+    std::fs::write(path, text).map_err(|e| file_error(path, e))
 }

@@ -9,6 +9,7 @@ use plotters::style::FontStyle;
 use super::IoError;
 use crate::analysis::Solution;
 use crate::model::Model;
+use crate::model::steps::{self, Item};
 
 /// One curve of a plot.
 #[derive(Debug, Clone)]
@@ -120,7 +121,7 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, series:
 /// applies along its direction of motion against its displacement.
 pub fn history_plots(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     let mut out = Vec::new();
-    for ind in &model.indenters {
+    for (i, ind) in model.indenters.iter().enumerate() {
         let d = ind.displacement;
         let norm = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
         if norm == 0.0 {
@@ -130,7 +131,8 @@ pub fn history_plots(model: &Model, solution: &Solution, dir: &Path) -> Result<V
         let mut points = vec![(0.0, 0.0)];
         points.extend(solution.history.iter().filter_map(|row| {
             let f = row.contact(&ind.name)?.force;
-            Some((row.lambda * norm * 1e3, f[0] * dir_unit[0] + f[1] * dir_unit[1] + f[2] * dir_unit[2]))
+            let a = steps::factor(&model.steps, Item::Indenter(i), row.lambda);
+            Some((a * norm * 1e3, f[0] * dir_unit[0] + f[1] * dir_unit[1] + f[2] * dir_unit[2]))
         }));
         // short tick labels keep the axis label clear of them
         let largest = points.iter().map(|p| p.1.abs()).fold(0.0, f64::max);

@@ -42,11 +42,11 @@
 //! (finite-difference checked); the element kernel uses its symmetric part,
 //! which keeps Newton's convergence quadratic under proportional loading.
 
-use super::{Hardening, PointState, Response};
+use super::{Hardening, PointState, Predictor, Response};
 use crate::voigt::{self, Matrix6, Voigt};
 
-/// Most back-stresses a material may have (Chaboche models use 2–4).
-pub const MAX_BACKSTRESSES: usize = 4;
+/// Most back-stresses a material may have (Chaboche models use 2–3).
+pub const MAX_BACKSTRESSES: usize = 3;
 
 /// One Armstrong–Frederick back-stress.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -125,6 +125,7 @@ pub(super) fn update(
     kinematic: &[BackStress],
     trial: &Voigt,
     old: &PointState,
+    predictor: Predictor,
 ) -> Option<Response> {
     let three_g = 3.0 * g;
     let s_trial = voigt::deviator(trial);
@@ -132,7 +133,7 @@ pub(super) fn update(
     let sy0 = hardening.eval(old.peeq).0;
     // same round-off guards as the isotropic return (see `Material::update`)
     if f0 <= 1e-12 * sy0 {
-        if f0 >= -1e-10 * sy0 {
+        if predictor == Predictor::Loading && f0 >= -1e-10 * sy0 {
             // on the surface: the loading branch of the tangent (Δp → 0)
             let tangent = tangent(g, elastic, &s_trial, kinematic, old, 0.0, d0)?;
             return Some(Response { stress: *trial, tangent, state: *old, plastic: false, elastic_tangent: false });

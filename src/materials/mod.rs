@@ -53,6 +53,20 @@ pub struct Response {
     pub elastic_tangent: bool,
 }
 
+/// The tangent a point returns when it sits on its yield surface (the
+/// committed state itself, as at the first iteration of an increment), where
+/// loading and unloading tangents differ.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
+pub enum Predictor {
+    /// The elastoplastic (loading) branch: the best predictor while the load
+    /// keeps growing (fewer iterations).
+    #[default]
+    Loading,
+    /// The elastic branch: the safe predictor when the load reverses (the
+    /// loading branch of a perfectly plastic zone is a mechanism).
+    Elastic,
+}
+
 /// An isotropic material: linear elastic, optionally with J2 plasticity.
 #[derive(Debug, Clone)]
 pub struct Material {
@@ -112,8 +126,15 @@ impl Material {
         self.hardening.is_some()
     }
 
-    /// The material-point update (a pure function of its arguments).
+    /// The material-point update (a pure function of its arguments), with
+    /// the loading branch on the yield surface.
     pub fn update(&self, strain: &Voigt, old: &PointState) -> Response {
+        self.update_with(strain, old, Predictor::Loading)
+    }
+
+    /// The material-point update with the chosen tangent branch on the
+    /// yield surface (see [`Predictor`]).
+    pub fn update_with(&self, strain: &Voigt, old: &PointState, predictor: Predictor) -> Response {
         let mut elastic_strain = *strain;
         for (e, p) in elastic_strain.iter_mut().zip(&old.plastic_strain) {
             *e -= p;
@@ -126,7 +147,8 @@ impl Material {
         };
         if !self.kinematic.is_empty() || matches!(hardening, Hardening::Voce { .. }) {
             // the general return (nonlinear in Δp): kinematic.rs
-            return kinematic::update(self.shear_modulus(), &self.elastic, hardening, &self.kinematic, &trial, old)
+            let g = self.shear_modulus();
+            return kinematic::update(g, &self.elastic, hardening, &self.kinematic, &trial, old, predictor)
                 .unwrap_or(elastic);
         }
 
@@ -144,7 +166,7 @@ impl Material {
             // loading branch (the Δγ → 0 limit of the consistent tangent) gives
             // the first Newton iteration of an increment a plastic predictor
             // instead of an elastic one.
-            if overstress >= -1e-10 * sigma_y0 && norm_s > 0.0 {
+            if predictor == Predictor::Loading && overstress >= -1e-10 * sigma_y0 && norm_s > 0.0 {
                 let n: Voigt = s_trial.map(|v| v / norm_s);
                 return Response {
                     tangent: self.elastoplastic_tangent(&n, 0.0, q_trial, slope0),

@@ -295,8 +295,8 @@ mod tests {
             ("hardening = \"perfect\", kinematic = [{ modulus = 0.0, recall = 1.0 }]", "kinematic[0].modulus = 0"),
             (
                 "hardening = \"perfect\", kinematic = [{ modulus = 1e9, recall = 1.0 }, { modulus = 1e9, recall = 1.0 }, \
-                 { modulus = 1e9, recall = 1.0 }, { modulus = 1e9, recall = 1.0 }, { modulus = 1e9, recall = 1.0 }]",
-                "at most 4 back-stresses",
+                 { modulus = 1e9, recall = 1.0 }, { modulus = 1e9, recall = 1.0 }]",
+                "at most 3 back-stresses",
             ),
         ];
         for (p, expect) in cases {

@@ -13,6 +13,7 @@ mod material;
 mod preprocess;
 mod restraint;
 mod schema;
+pub mod steps;
 mod validate;
 
 use std::path::Path;
@@ -238,6 +239,8 @@ pub struct Model {
     pub references: Vec<Reference>,
     /// Solver controls.
     pub solver: SolverSettings,
+    /// The load history: at least one step ([`steps`]).
+    pub steps: Vec<steps::Step>,
     /// Output controls.
     pub output: OutputSettings,
     /// What validation found suspicious but legal.
@@ -321,6 +324,12 @@ fn build(file: ModelFile, limits: Limits) -> Result<Model, ModelError> {
     let references = validate::references(&file.references, &probes)?;
     let solver = validate::solver_settings(&file.solver, is_linear(&mesh, &materials, &indenters, &contacts))?;
     let output = validate::output(&file.output)?;
+    let item_names = steps::ItemNames {
+        indenters: indenters.iter().map(|i| i.name.as_str()).collect(),
+        constraints: constraints.iter().map(|c| c.name.as_str()).collect(),
+        loads: loads.iter().map(|l| l.name.as_str()).collect(),
+    };
+    let steps = steps::steps(&file.steps, &item_names, &solver.steps)?;
     Ok(Model {
         title: file.title.unwrap_or_else(|| "cufem model".into()),
         description: file.description.unwrap_or_default(),
@@ -335,6 +344,7 @@ fn build(file: ModelFile, limits: Limits) -> Result<Model, ModelError> {
         lines,
         references,
         solver,
+        steps,
         output,
         warnings,
     })

@@ -77,6 +77,9 @@ pub struct ModelFile {
     /// Sampled lines.
     #[serde(default)]
     pub lines: Vec<LineFile>,
+    /// Load history: an ordered list of steps (default: one step to factor 1).
+    #[serde(default)]
+    pub steps: Vec<StepFile>,
     /// Output controls.
     #[serde(default)]
     pub output: OutputFile,
@@ -373,4 +376,16 @@ pub struct ReferenceFile {
     pub quantity: String,
     pub value: f64,
     pub source: String,
+}
+
+/// `[[steps]]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StepFile {
+    pub name: String,
+    pub factor: Option<f64>,
+    pub factors: Option<std::collections::BTreeMap<String, f64>>,
+    pub increments: Option<usize>,
+    pub max_increment: Option<f64>,
+    pub min_increment: Option<f64>,
 }

@@ -5,7 +5,9 @@
 //! path-dependent material history only advances on converged increments).
 //! A failed increment is rolled back and retried with `Δλ · cutback_factor`;
 //! an increment that converged in at most `easy_iterations` iterations lets
-//! the next one grow by `growth_factor` (up to `max_increment`). When `Δλ`
+//! the next one grow by `growth_factor` (up to `max_increment`). Before the
+//! first cutback of an increment, the same `Δλ` is retried once with the
+//! problem's cautious linearization ([`Incremental::cautious`]). When `Δλ`
 //! would fall below `min_increment`, the analysis stops with a report and the
 //! problem is left at its last converged increment.
 
@@ -20,6 +22,13 @@ pub trait Incremental: NonlinearProblem {
     fn commit(&mut self);
     /// Returns to the last committed state.
     fn restore(&mut self);
+    /// Switches to (or back from) a more cautious linearization for a retry
+    /// of a failed increment — e.g. elastic tangents at points on their
+    /// yield surface when the load reverses. Returns true if that changed
+    /// anything (the default: nothing to switch).
+    fn cautious(&mut self, _on: bool) -> bool {
+        false
+    }
 }
 
 /// Controls of the load stepping.
@@ -169,15 +178,31 @@ pub fn run<P: Incremental>(
     observer: &mut dyn Observer<P>,
     interrupt: &Interrupt,
 ) -> Result<Vec<Increment>, Box<SteppingError>> {
+    run_span(problem, (0.0, 1.0), 1, steps, newton_settings, observer, interrupt)
+}
+
+/// Drives `problem` from λ = `span.0` to `span.1` (one step of a load
+/// history; the problem starts from its committed state at `span.0`), the
+/// increments numbered from `first_index`. The increment controls are
+/// lengths in λ. Returns the converged increments.
+pub fn run_span<P: Incremental>(
+    problem: &mut P,
+    span: (f64, f64),
+    first_index: usize,
+    steps: &StepSettings,
+    newton_settings: &NewtonSettings,
+    observer: &mut dyn Observer<P>,
+    interrupt: &Interrupt,
+) -> Result<Vec<Increment>, Box<SteppingError>> {
+    let (mut lambda, end) = span;
     let mut history = Vec::new();
-    let mut lambda = 0.0;
     let mut dlambda = steps.initial.min(steps.max);
     let mut cutbacks = 0;
-    while lambda < 1.0 - 1e-12 {
+    while lambda < end - 1e-12 * end.abs().max(1.0) {
         if history.len() >= steps.max_increments {
             return Err(Box::new(SteppingError {
                 reason: StopReason::TooManyIncrements,
-                increment: history.len() + 1,
+                increment: first_index + history.len(),
                 lambda,
                 dlambda,
                 last_converged: lambda,
@@ -187,15 +212,15 @@ pub fn run<P: Incremental>(
         if interrupt.is_requested() {
             return Err(Box::new(SteppingError {
                 reason: StopReason::Interrupted,
-                increment: history.len() + 1,
+                increment: first_index + history.len(),
                 lambda,
                 dlambda,
                 last_converged: lambda,
                 newton: Report::default(),
             }));
         }
-        dlambda = dlambda.min(1.0 - lambda);
-        let target = lambda + dlambda;
+        dlambda = dlambda.min(end - lambda);
+        let target = if dlambda >= end - lambda { end } else { lambda + dlambda };
         problem.set_load_factor(target);
         let report = newton::solve(problem, newton_settings, interrupt);
         if report.failure == Some(newton::Failure::Interrupted) {
@@ -203,7 +228,7 @@ pub fn run<P: Incremental>(
             problem.set_load_factor(lambda);
             return Err(Box::new(SteppingError {
                 reason: StopReason::Interrupted,
-                increment: history.len() + 1,
+                increment: first_index + history.len(),
                 lambda: target,
                 dlambda,
                 last_converged: lambda,
@@ -211,9 +236,10 @@ pub fn run<P: Incremental>(
             }));
         }
         if report.converged() {
+            problem.cautious(false);
             problem.commit();
             lambda = target;
-            let inc = Increment { index: history.len() + 1, lambda, dlambda, newton: report, cutbacks };
+            let inc = Increment { index: first_index + history.len(), lambda, dlambda, newton: report, cutbacks };
             observer.converged(problem, &inc);
             let easy = inc.newton.iterations <= steps.easy_iterations;
             history.push(inc);
@@ -223,9 +249,13 @@ pub fn run<P: Incremental>(
             }
         } else {
             problem.restore();
-            let index = history.len() + 1;
+            let index = first_index + history.len();
             observer.cut_back(&Cutback { index, lambda: target, dlambda, newton: report.clone() });
             cutbacks += 1;
+            if problem.cautious(true) {
+                // retry the same Δλ with the cautious linearization first
+                continue;
+            }
             let next = dlambda * steps.cutback_factor;
             if next < steps.min {
                 problem.set_load_factor(lambda);

@@ -160,7 +160,8 @@ pub struct SegmentFile {
 #[serde(deny_unknown_fields)]
 pub struct SectionFile {
     pub shape: String,
-    pub element: String,
+    /// Required except for `shape = "gmsh"` (the file says it).
+    pub element: Option<String>,
     // rectangle
     pub x: Option<DivisionFile>,
     pub z: Option<DivisionFile>,
@@ -176,6 +177,20 @@ pub struct SectionFile {
     // quads
     pub points: Option<Vec<Exact<f64, 2>>>,
     pub quads: Option<Vec<Exact<usize, 4>>>,
+    // profiles (i_beam, channel, z_section, angle, hat, box)
+    pub web_thickness: Option<f64>,
+    pub flange_thickness: Option<f64>,
+    pub lip: Option<f64>,
+    pub cells: Option<usize>,
+    pub along_flange: Option<usize>,
+    pub along_web: Option<usize>,
+    pub along_lip: Option<usize>,
+    // circular_tube, circle
+    pub center: Option<Exact<f64, 2>>,
+    pub radius: Option<f64>,
+    // gmsh
+    pub file: Option<String>,
+    pub scale: Option<f64>,
 }
 
 /// `[bodies.axis]`.

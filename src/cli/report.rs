@@ -130,6 +130,24 @@ pub fn print_check(model: &Model) {
     );
 }
 
+/// Each body's section properties, integrated over its mesh (`cufem check`).
+pub fn print_sections(model: &Model) {
+    println!();
+    println!("sections (about the centroid; Ixx = ∫ z̄² dA, Izz = ∫ x̄² dA, Ixz = ∫ x̄ z̄ dA):");
+    for b in &model.mesh.bodies {
+        let p = b.section.properties();
+        println!(
+            "  {:<12} A = {:.6e} m², centroid (x, z) = ({:.6e}, {:.6e}) m, Ixx = {:.6e} m⁴, Izz = {:.6e} m⁴, Ixz = {:.6e} m⁴",
+            b.name, p.area, p.centroid[0], p.centroid[1], p.ixx, p.izz, p.ixz
+        );
+        if !b.section.regions.is_empty() {
+            let regions: Vec<String> =
+                b.section.regions.iter().map(|r| format!("{} ({} elements)", r.name, r.elements.len())).collect();
+            println!("  {:<12} regions: {}", "", regions.join(", "));
+        }
+    }
+}
+
 /// Size and memory estimate printed by `cufem check`.
 pub fn print_memory(s: &cufem::size::Sizes, limit: Option<u64>) {
     use cufem::size::human_bytes;

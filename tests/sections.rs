@@ -346,3 +346,73 @@ fn gmsh_ipe100_matches_the_tables() {
     assert!((p.izz / 15.92e-8 - 1.0).abs() < 1e-3, "Izz {}", p.izz);
     assert!((p.centroid[1] - 0.05).abs() < 1e-12 && p.centroid[0].abs() < 1e-12);
 }
+
+/// Every mistake in a section table is refused with the key, the value and
+/// what is allowed (never a panic).
+#[test]
+fn section_errors_name_key_value_and_allowed() {
+    let dims = "width = 0.1, height = 0.2, web_thickness = 0.006, flange_thickness = 0.01";
+    let cases: Vec<(String, &[&str])> = vec![
+        ("shape = \"octagon\", element = \"L9\"".into(), &["bodies[0].section.shape = \"octagon\"", "\"i_beam\""]),
+        (
+            format!("shape = \"i_beam\", element = \"L9\", {dims}, radius = 0.1"),
+            &["bodies[0].section.radius", "no `radius` key with shape = \"i_beam\"", "web_thickness"],
+        ),
+        (
+            "shape = \"channel\", element = \"L9\", width = 0.1, height = 0.2, web_thickness = 0.006".into(),
+            &["bodies[0].section.flange_thickness = (missing)", "the flange thickness in m"],
+        ),
+        (
+            "shape = \"i_beam\", element = \"L9\", width = 0.1, height = 0.2, web_thickness = 0.006, flange_thickness = 0.1"
+                .into(),
+            &["bodies[0].section.flange_thickness = 0.1", "less than 1/2 of the height"],
+        ),
+        (
+            "shape = \"i_beam\", element = \"L9\", width = 0.1, height = 0.2, web_thickness = 0.2, flange_thickness = 0.01"
+                .into(),
+            &["bodies[0].section.web_thickness = 0.2", "positive clear width"],
+        ),
+        (format!("shape = \"hat\", element = \"L9\", {dims}"), &["bodies[0].section.lip = (missing)"]),
+        (format!("shape = \"box\", element = \"L9\", {dims}, cells = 0"), &["bodies[0].section.cells = 0", "1 to 1000"]),
+        (
+            format!("shape = \"box\", element = \"L9\", {dims}, along_web = 0"),
+            &["bodies[0].section.along_web = 0", "an integer from 1"],
+        ),
+        (
+            "shape = \"circular_tube\", element = \"L9\", radius = 0.02, thickness = 0.03".into(),
+            &["bodies[0].section.thickness = 0.03", "less than the outer radius"],
+        ),
+        (
+            "shape = \"circle\", element = \"L9\", radius = 0.02, around = 10".into(),
+            &["bodies[0].section.around = 10", "a multiple of 4"],
+        ),
+        (
+            "shape = \"circle\", element = \"L9\", radius = -0.02".into(),
+            &["bodies[0].section.radius = -0.02", "positive"],
+        ),
+        ("shape = \"circle\", radius = 0.02".into(), &["bodies[0].section.element = (missing)", "\"L16\""]),
+        (
+            "shape = \"gmsh\", file = \"no_such.msh\"".into(),
+            &["bodies[0].section.file = ", "no_such.msh", "the path of a readable gmsh .msh file"],
+        ),
+        (
+            "shape = \"gmsh\", file = \"ipe100.msh\", element = \"L16\"".into(),
+            &["bodies[0].section.element = \"L16\"", "L9 (the elements of \"ipe100.msh\")"],
+        ),
+        (
+            "shape = \"gmsh\", file = \"ipe100.msh\", scale = 0.0".into(),
+            &["bodies[0].section.scale = 0", "e.g. 1e-3 for a mesh in mm"],
+        ),
+        ("shape = \"gmsh\"".into(), &["bodies[0].section.file = (missing)"]),
+        ("shape = \"gmsh\", file = \"ipe100.geo\"".into(), &["bodies[0].section.file", "ipe100.geo\" line 1"]),
+    ];
+    for (section, expected) in &cases {
+        let e = Model::parse_in(&model(section, 1.0, 2), cufem::model::Limits::none(), &sections_dir())
+            .err()
+            .unwrap_or_else(|| panic!("accepted: {section}"))
+            .to_string();
+        for x in *expected {
+            assert!(e.contains(x), "{section}:\n{e}\nshould contain {x:?}");
+        }
+    }
+}

@@ -194,7 +194,6 @@ fn dispatch(cli: Cli) -> Result<u8, Failure> {
         Command::Check { model, plot, out, resources } => {
             let m = load(&model, &resources)?;
             report::print_check(&m);
-            report::print_sections(&m);
             if plot {
                 plot_sections(&m, &model, out)?;
             }

@@ -66,6 +66,7 @@ pub fn print_check(model: &Model) {
         thousands(model.mesh.n_nodes()),
         thousands(model.n_dofs())
     );
+    print_sections(model);
     for m in &model.materials {
         let plastic = match &m.hardening {
             None => "elastic".to_string(),
@@ -132,7 +133,6 @@ pub fn print_check(model: &Model) {
 
 /// Each body's section properties, integrated over its mesh (`cufem check`).
 pub fn print_sections(model: &Model) {
-    println!();
     println!("sections (about the centroid; Ixx = ∫ z̄² dA, Izz = ∫ x̄² dA, Ixz = ∫ x̄ z̄ dA):");
     for b in &model.mesh.bodies {
         let p = b.section.properties();

@@ -373,6 +373,15 @@ fn section_errors_name_key_value_and_allowed() {
             &["bodies[0].section.web_thickness = 0.2", "positive clear width"],
         ),
         (format!("shape = \"hat\", element = \"L9\", {dims}"), &["bodies[0].section.lip = (missing)"]),
+        (
+            "shape = \"box\", element = \"L9\", width = 0.1, height = 0.2, web_thickness = 1e-9, flange_thickness = 0.01"
+                .into(),
+            &["bodies[0].section.web_thickness = 0.000000001", "at least 1e-6 of the profile's size"],
+        ),
+        (
+            "shape = \"circular_tube\", element = \"L9\", radius = 0.02, thickness = 1e-10".into(),
+            &["bodies[0].section.thickness = 0.0000000001", "at least 1e-6"],
+        ),
         (format!("shape = \"box\", element = \"L9\", {dims}, cells = 0"), &["bodies[0].section.cells = 0", "1 to 1000"]),
         (
             format!("shape = \"box\", element = \"L9\", {dims}, along_web = 0"),

@@ -64,6 +64,22 @@ pub enum Family {
     Box,
 }
 
+/// Smallest wall thickness relative to the profile's size: thinner walls
+/// would fall below the node-merging tolerance of [`super::blocks`].
+pub const MIN_RELATIVE_THICKNESS: f64 = 1e-6;
+
+fn thick_enough(key: &str, t: f64, size: f64) -> Result<(), MeshError> {
+    if t >= MIN_RELATIVE_THICKNESS * size {
+        Ok(())
+    } else {
+        Err(MeshError::invalid(
+            key,
+            t.to_string(),
+            format!("at least {MIN_RELATIVE_THICKNESS:e} of the profile's size ({size} m)"),
+        ))
+    }
+}
+
 fn positive(key: &str, v: f64, allowed: &str) -> Result<f64, MeshError> {
     if v.is_finite() && v > 0.0 { Ok(v) } else { Err(MeshError::invalid(key, v.to_string(), allowed)) }
 }
@@ -101,6 +117,9 @@ pub fn straight(family: Family, origin: [f64; 2], d: &Walls, n: &Counts) -> Resu
     let height = positive("section.height", d.height, "a positive height in m")?;
     let tw = positive("section.web_thickness", d.web, "a positive web thickness in m")?;
     let tf = positive("section.flange_thickness", d.flange, "a positive flange thickness in m")?;
+    for (key, v) in [("section.web_thickness", tw), ("section.flange_thickness", tf)] {
+        thick_enough(key, v, width.max(height))?;
+    }
     let t = n.through;
     let web_clear = |flanges: f64| {
         clear(
@@ -214,6 +233,7 @@ pub fn circular_tube(
     if around < 3 {
         return Err(MeshError::invalid("section.around", around.to_string(), "at least 3 elements around the tube"));
     }
+    thick_enough("section.thickness", t, ro)?;
     let ri = ro - t;
     Ok(vec![Block {
         counts: [through, around],

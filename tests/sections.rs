@@ -425,3 +425,37 @@ fn section_errors_name_key_value_and_allowed() {
         }
     }
 }
+
+/// Regions select nodes: `where = { y = …, region = "web" }` takes the
+/// nodes of the web's elements only (the web of the parametric I excludes
+/// the junction blocks, which belong to the flanges: 4 L9 along the web,
+/// one through it, are 3 × 9 = 27 section nodes), the same for the
+/// parametric I and its gmsh twin (physical group "web").
+#[test]
+fn regions_select_nodes() {
+    let parametric = "shape = \"i_beam\", element = \"L9\", width = 0.1, height = 0.2, web_thickness = 0.006, \
+                      flange_thickness = 0.01, along_flange = 2, along_web = 4, through = 1";
+    let imported = "shape = \"gmsh\", file = \"i_beam_twin.msh\"";
+    for section in [parametric, imported] {
+        let text = model(section, 2.0, 4)
+            .replace("where = { y = 2 }\ntotal_force", "where = { y = 2, region = \"web\" }\ntotal_force");
+        assert!(text.contains("region"));
+        let m = Model::parse_in(&text, cufem::model::Limits::none(), &sections_dir()).unwrap();
+        let nodes: std::collections::BTreeSet<usize> = m.loads[0].nodal_forces.iter().map(|(n, _)| *n).collect();
+        assert_eq!(nodes.len(), 27, "{section}");
+        for &n in &nodes {
+            let [x, y, z] = m.mesh.coords(n);
+            assert!((x - 0.05).abs() <= 0.003 + 1e-12 && (0.01 - 1e-12..=0.19 + 1e-12).contains(&z) && y == 2.0);
+        }
+        let r = m.loads[0].resultant();
+        assert!((r[2] + 100.0).abs() < 1e-9, "{r:?}");
+    }
+    // an unknown region names the ones there are
+    let text = model(parametric, 2.0, 4).replace("where = { y = 0.0 }", "where = { y = 0.0, region = \"flange\" }");
+    let e = Model::parse_in(&text, cufem::model::Limits::none(), &sections_dir()).unwrap_err().to_string();
+    assert!(
+        e.contains("constraints[0].where.region = \"flange\"")
+            && e.contains("[\"bottom_flange\", \"web\", \"top_flange\"]"),
+        "{e}"
+    );
+}

@@ -44,6 +44,58 @@ impl CrossSection {
         x
     }
 
+    /// True if the point `p = (x, z)` lies in one of `elements` or within
+    /// `tol` (m) of them. The point is mapped back to each candidate
+    /// element's natural coordinates (Newton on the isoparametric map, so
+    /// curved edges count as they are integrated), clamped to the element,
+    /// and accepted if the clamped point is within `tol` of `p`.
+    pub fn covers(&self, elements: &[usize], p: [f64; 2], tol: f64) -> bool {
+        let basis = Lagrange2d::new(self.kind.order());
+        let m = basis.len();
+        let (mut f, mut dxi, mut deta) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
+        let mut map = |e: usize, xi: f64, eta: f64| {
+            basis.eval(xi, eta, &mut f, &mut dxi, &mut deta);
+            let (mut x, mut j) = ([0.0; 2], [[0.0; 2]; 2]);
+            for (k, &n) in self.element(e).iter().enumerate() {
+                let c = self.nodes[n];
+                for d in 0..2 {
+                    x[d] += f[k] * c[d];
+                    j[d][0] += dxi[k] * c[d];
+                    j[d][1] += deta[k] * c[d];
+                }
+            }
+            (x, j)
+        };
+        elements.iter().any(|&e| {
+            // bounding box of the nodes, widened by a tenth (curved edges) and tol
+            let mut b = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
+            for &n in self.element(e) {
+                let c = self.nodes[n];
+                b = [b[0].min(c[0]), b[1].max(c[0]), b[2].min(c[1]), b[3].max(c[1])];
+            }
+            let pad = 0.1 * (b[1] - b[0]).max(b[3] - b[2]) + tol;
+            if p[0] < b[0] - pad || p[0] > b[1] + pad || p[1] < b[2] - pad || p[1] > b[3] + pad {
+                return false;
+            }
+            let mut xi = [0.0, 0.0];
+            for _ in 0..25 {
+                let (x, j) = map(e, xi[0], xi[1]);
+                let r = [p[0] - x[0], p[1] - x[1]];
+                let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+                if !(det.abs() > 0.0) {
+                    break;
+                }
+                let d = [(j[1][1] * r[0] - j[0][1] * r[1]) / det, (-j[1][0] * r[0] + j[0][0] * r[1]) / det];
+                xi = [(xi[0] + d[0]).clamp(-1.5, 1.5), (xi[1] + d[1]).clamp(-1.5, 1.5)];
+                if d[0].abs().max(d[1].abs()) < 1e-12 {
+                    break;
+                }
+            }
+            let (x, _) = map(e, xi[0].clamp(-1.0, 1.0), xi[1].clamp(-1.0, 1.0));
+            (x[0] - p[0]).hypot(x[1] - p[1]) <= tol
+        })
+    }
+
     /// The outline of element `e` through the isoparametric map,
     /// counter-clockwise, `per_edge` segments per edge (curved edges drawn
     /// as they are integrated).
@@ -112,6 +164,25 @@ mod tests {
     use crate::shape::SectionElementKind;
 
     use super::*;
+
+    #[test]
+    fn covers_points_of_curved_elements() {
+        use crate::mesh::{blocks, profiles};
+        let ring = profiles::circular_tube([0.0, 0.0], 1.0, 0.1, 8, 1).unwrap();
+        let s = blocks::from_blocks(SectionElementKind::L9, &ring).unwrap();
+        let all: Vec<usize> = (0..s.n_elements()).collect();
+        // on the curved outer edge between nodes (outside the chord), inside the wall, in the hole, outside
+        let a = 0.3f64;
+        let on_edge = s.map_point(0, 1.0, 0.5);
+        assert!(on_edge[0].hypot(on_edge[1]) > 0.99);
+        assert!(!s.covers(&[3], on_edge, 1e-3) && s.covers(&all, on_edge, 1e-12));
+        assert!(s.covers(&all, [0.95 * a.cos(), 0.95 * a.sin()], 1e-9));
+        assert!(!s.covers(&all, [0.5, 0.0], 1e-6));
+        assert!(!s.covers(&all, [1.01, 0.0], 1e-6));
+        // only the first element (angles 0 to 45°)
+        assert!(s.covers(&[0], [0.95 * a.cos(), 0.95 * a.sin()], 1e-9));
+        assert!(!s.covers(&[0], [0.0, 0.95], 1e-9));
+    }
 
     #[test]
     fn rectangle_properties_are_exact() {

@@ -246,7 +246,7 @@ impl<'de> Deserialize<'de> for ConditionFile {
     }
 }
 
-/// A node selection `{x = …, y = …, z = …, tolerance = …}`.
+/// A node selection `{x = …, y = …, z = …, tolerance = …, region = …}`.
 #[derive(Debug, Default, Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
 pub struct SelectionFile {
@@ -254,6 +254,8 @@ pub struct SelectionFile {
     pub y: Option<ConditionFile>,
     pub z: Option<ConditionFile>,
     pub tolerance: Option<f64>,
+    /// A named section region (profile wall, gmsh physical group).
+    pub region: Option<String>,
 }
 
 /// Per-component prescribed values `{x = …, y = …, z = …}`.

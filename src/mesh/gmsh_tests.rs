@@ -26,11 +26,11 @@ fn quad4_file(elements: &str) -> String {
 
 const QUAD4: &str = "2 1 3 2\n1 1 2 5 4\n2 2 3 6 5\n";
 
-/// Node coordinates of every element in local order, elements sorted: two
+/// Node coordinates (to 1e-9) of every element in local order, elements sorted: two
 /// sections with equal keys are the same mesh up to node numbering.
 fn key(s: &CrossSection) -> Vec<Vec<[i64; 2]>> {
     let mut k: Vec<Vec<[i64; 2]>> = (0..s.n_elements())
-        .map(|e| s.element(e).iter().map(|&n| s.nodes[n].map(|c| (c * 1e12).round() as i64)).collect())
+        .map(|e| s.element(e).iter().map(|&n| s.nodes[n].map(|c| (c * 1e9).round() as i64)).collect())
         .collect();
     k.sort();
     k
@@ -62,6 +62,17 @@ fn quad9_file_is_the_parametric_rectangle() {
     assert_eq!(s.kind, SectionElementKind::L9);
     assert_eq!(s.n_nodes(), 15);
     assert_eq!(key(&s), key(&rectangle(SectionElementKind::L9)));
+}
+
+#[test]
+fn gmsh_quad16_file_is_the_parametric_rectangle() {
+    // written by gmsh 4.15 from tests/data/rect_quad16.geo: the node order
+    // table of the 16-node quadrilateral checked against gmsh itself
+    let text = include_str!("../../tests/data/rect_quad16.msh");
+    let s = parse(text, "rect_quad16.msh", 1.0, "section.file").unwrap();
+    assert_eq!(s.kind, SectionElementKind::L16);
+    assert_eq!(s.n_nodes(), 7 * 4);
+    assert_eq!(key(&s), key(&rectangle(SectionElementKind::L16)));
 }
 
 #[test]

@@ -280,3 +280,24 @@ fn gauss_point_vtu_holds_the_kernel_stresses() {
     }
     assert!(checked > 100);
 }
+
+/// `cufem check` prints each section's integrated properties; `--plot`
+/// draws every section mesh to a PNG in `--out`.
+#[test]
+fn check_prints_section_properties_and_plots_them() {
+    let out = out_dir("check_plot");
+    let run = cufem()
+        .args(["check", example("ibeam_roller.toml").to_str().unwrap(), "--plot", "--out", out.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let text = String::from_utf8_lossy(&run.stdout);
+    // 40 × 60 mm I, web 2 mm, flanges 3 mm: A = 2·40·3 + 54·2 = 348 mm²,
+    // Ixx = (40·60³ − 38·54³)/12 = 221,364 mm⁴, centroid at mid-height
+    assert!(text.contains("A = 3.480000e-4 m²"), "{text}");
+    assert!(text.contains("Ixx = 2.213640e-7 m⁴"), "{text}");
+    assert!(text.contains("regions: bottom_flange (5 elements), web (6 elements), top_flange (5 elements)"), "{text}");
+    let png = out.join("ibeam_roller_section_beam.png");
+    let bytes = std::fs::read(&png).unwrap();
+    assert_eq!(&bytes[1..4], b"PNG", "{}", png.display());
+}

@@ -6,7 +6,9 @@ mod faces;
 
 pub use faces::{Face, FaceIntegral, FaceSide, boundary_faces, integrate_face, selected_faces};
 
-use crate::mesh::Body;
+use std::sync::Arc;
+
+use crate::mesh::{Body, CrossSection};
 
 /// One coordinate condition of a [`Selection`].
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -27,19 +29,42 @@ impl Condition {
 }
 
 /// A geometric selection of nodes: optional conditions on x, y and z, all of
-/// which must hold (e.g. the face `z = 0`, the line `y = 0.025, z = 0`, a point).
+/// which must hold (e.g. the face `z = 0`, the line `y = 0.025, z = 0`, a
+/// point), and optionally a named section region (the point's `(x, z)` in
+/// one of its elements).
 #[derive(Debug, Clone, PartialEq)]
 pub struct Selection {
     /// Conditions on `(x, y, z)`; `None` accepts any value.
     pub conditions: [Option<Condition>; 3],
     /// Absolute tolerance (m).
     pub tolerance: f64,
+    /// A section region the point must lie in (`None`: anywhere).
+    pub region: Option<RegionFilter>,
+}
+
+/// The elements of a named section region, as a geometric condition on
+/// `(x, z)` (so it applies to any mesh of the same body, e.g. the 3D export).
+#[derive(Debug, Clone)]
+pub struct RegionFilter {
+    /// Region name.
+    pub name: String,
+    /// The section holding the region.
+    pub section: Arc<CrossSection>,
+    /// The region's elements.
+    pub elements: Vec<usize>,
+}
+
+impl PartialEq for RegionFilter {
+    fn eq(&self, other: &Self) -> bool {
+        self.name == other.name && self.elements == other.elements && Arc::ptr_eq(&self.section, &other.section)
+    }
 }
 
 impl Selection {
     /// True if the point satisfies every condition.
     pub fn contains(&self, p: [f64; 3]) -> bool {
         self.conditions.iter().zip(p).all(|(c, v)| c.is_none_or(|c| c.accepts(v, self.tolerance)))
+            && self.region.as_ref().is_none_or(|r| r.section.covers(&r.elements, [p[0], p[2]], self.tolerance))
     }
 
     /// Body-local indices of the selected nodes of `body`.
@@ -126,11 +151,12 @@ mod tests {
 
     #[test]
     fn selection_of_face_line_and_range() {
-        let s = Selection { conditions: [None, None, Some(Condition::Equal(0.0))], tolerance: 1e-9 };
+        let s = Selection { conditions: [None, None, Some(Condition::Equal(0.0))], tolerance: 1e-9, region: None };
         assert!(s.contains([3.0, 2.0, 0.0]) && !s.contains([3.0, 2.0, 1e-6]));
         let s = Selection {
             conditions: [Some(Condition::Range(0.2, 0.3)), Some(Condition::Equal(0.025)), None],
             tolerance: 1e-9,
+            region: None,
         };
         assert!(s.contains([0.3, 0.025, 7.0]) && !s.contains([0.31, 0.025, 7.0]));
     }

@@ -84,10 +84,16 @@ enum Command {
         #[command(flatten)]
         resources: Resources,
     },
-    /// Validate a model file and print its size and memory estimate.
+    /// Validate a model file; print its sections' properties, size and memory estimate.
     Check {
         /// Model file (TOML).
         model: PathBuf,
+        /// Also draw every body's section mesh to `<model>_section_<body>.png`.
+        #[arg(long)]
+        plot: bool,
+        /// Folder for the --plot drawings (default: the model file's folder).
+        #[arg(long)]
+        out: Option<PathBuf>,
         #[command(flatten)]
         resources: Resources,
     },
@@ -185,9 +191,12 @@ pub fn main() -> ExitCode {
 fn dispatch(cli: Cli) -> Result<u8, Failure> {
     match cli.command {
         Command::Run { model, out, force, quiet, resources } => run(&model, out, force, quiet, &resources),
-        Command::Check { model, resources } => {
+        Command::Check { model, plot, out, resources } => {
             let m = load(&model, &resources)?;
             report::print_check(&m);
+            if plot {
+                plot_sections(&m, &model, out)?;
+            }
             let sizes = analysis::plan(&m).map_err(|e| fail(INPUT, e))?;
             report::print_memory(&sizes, limit(&resources));
             print_warnings(m.warnings.iter());
@@ -219,6 +228,28 @@ fn dispatch(cli: Cli) -> Result<u8, Failure> {
             Ok(OK)
         }
     }
+}
+
+/// `cufem check --plot`: one PNG per body, `<model stem>_section_<body>.png`.
+fn plot_sections(m: &Model, model: &Path, out: Option<PathBuf>) -> Result<(), Failure> {
+    let dir = out.unwrap_or_else(|| model.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf));
+    std::fs::create_dir_all(&dir).map_err(|e| fail(FILES, anyhow!("cannot create {}: {e}", dir.display())))?;
+    let stem = model.file_stem().map_or_else(|| "model".into(), |s| s.to_string_lossy().into_owned());
+    for b in &m.mesh.bodies {
+        let path = dir.join(format!("{stem}_section_{}.png", b.name));
+        let p = b.section.properties();
+        let title = format!(
+            "{}: {} × {:?}, {} nodes, A = {:.4} mm²",
+            b.name,
+            b.section.n_elements(),
+            b.section.kind,
+            b.section.n_nodes(),
+            p.area * 1e6
+        );
+        cufem::io::section_plot(&path, &title, &b.section).map_err(|e| fail(FILES, e))?;
+        println!("wrote {}", path.display());
+    }
+    Ok(())
 }
 
 fn hex_kind(element: &str) -> Result<cufem::ccx::HexKind, Failure> {

@@ -66,6 +66,7 @@ pub fn print_check(model: &Model) {
         thousands(model.mesh.n_nodes()),
         thousands(model.n_dofs())
     );
+    print_sections(model);
     for m in &model.materials {
         let plastic = match &m.hardening {
             None => "elastic".to_string(),
@@ -128,6 +129,23 @@ pub fn print_check(model: &Model) {
         s.newton.residual_tolerance,
         s.newton.displacement_tolerance
     );
+}
+
+/// Each body's section properties, integrated over its mesh (`cufem check`).
+pub fn print_sections(model: &Model) {
+    println!("sections (about the centroid; Ixx = ∫ z̄² dA, Izz = ∫ x̄² dA, Ixz = ∫ x̄ z̄ dA):");
+    for b in &model.mesh.bodies {
+        let p = b.section.properties();
+        println!(
+            "  {:<12} A = {:.6e} m², centroid (x, z) = ({:.6e}, {:.6e}) m, Ixx = {:.6e} m⁴, Izz = {:.6e} m⁴, Ixz = {:.6e} m⁴",
+            b.name, p.area, p.centroid[0], p.centroid[1], p.ixx, p.izz, p.ixz
+        );
+        if !b.section.regions.is_empty() {
+            let regions: Vec<String> =
+                b.section.regions.iter().map(|r| format!("{} ({} elements)", r.name, r.elements.len())).collect();
+            println!("  {:<12} regions: {}", "", regions.join(", "));
+        }
+    }
 }
 
 /// Size and memory estimate printed by `cufem check`.

@@ -15,10 +15,12 @@ mod csv;
 mod json;
 pub mod output;
 mod png;
+mod section_plot;
 mod vtu;
 
 pub use json::{Summary, summary};
 pub use png::{Series, line_plot};
+pub use section_plot::section_plot;
 pub use vtu::{write_gauss_vtu, write_vtu};
 
 use std::path::{Path, PathBuf};

@@ -24,7 +24,7 @@ pub struct Series {
 
 static FONT: Once = Once::new();
 
-fn register_font() {
+pub(super) fn register_font() {
     FONT.call_once(|| {
         // The font is compiled in, so registration cannot fail on user input.
         let _ = plotters::style::register_font(
@@ -35,7 +35,7 @@ fn register_font() {
     });
 }
 
-fn plot_error(path: &Path, e: impl std::fmt::Display) -> IoError {
+pub(super) fn plot_error(path: &Path, e: impl std::fmt::Display) -> IoError {
     IoError::Plot { path: path.display().to_string(), message: e.to_string() }
 }
 

@@ -10,11 +10,16 @@
 //! Degrees of freedom are `3 · node + c` with `c = 0, 1, 2` for `u_x, u_y, u_z`
 //! (the equation numbering for the solver is in [`crate::assembly`]).
 
+pub mod blocks;
 mod division;
+pub mod gmsh;
+pub mod profiles;
+mod properties;
 mod section;
 
 pub use division::{Division, Segment};
-pub use section::{CrossSection, EDGES};
+pub use properties::SectionProperties;
+pub use section::{CrossSection, EDGES, Region};
 
 use crate::shape::BeamElementKind;
 

@@ -22,6 +22,18 @@ pub struct CrossSection {
     /// Connectivity, `kind.nodes()` entries per element, in the lexicographic
     /// local order of [`crate::shape`].
     pub connectivity: Vec<usize>,
+    /// Named groups of elements (the walls of a parametric profile, the
+    /// physical groups of a gmsh file); empty for the other builders.
+    pub regions: Vec<Region>,
+}
+
+/// A named group of section elements.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Region {
+    /// Name (a profile's wall, or a gmsh physical group).
+    pub name: String,
+    /// Section element indices, increasing.
+    pub elements: Vec<usize>,
 }
 
 /// Local edge `k` of a quadrilateral as seen from its natural coordinates:
@@ -205,7 +217,7 @@ impl CrossSection {
                 }
             }
         }
-        Ok(Self { kind, nodes, connectivity })
+        Ok(Self { kind, nodes, connectivity, regions: Vec::new() })
     }
 
     /// A rectangle cut by the given element boundaries along x and along z.

@@ -2,9 +2,12 @@
 //! against the memory limit before each section is built, and their
 //! Gauss-point values (computed once, for validation and the analysis).
 
+use std::path::Path;
+
 use super::bounds;
 use super::schema::*;
-use super::validate::{MAX_COUNT, count, division, division_parts, reject_unused};
+use super::sections;
+use super::validate::{MAX_COUNT, count, division, division_parts};
 use super::{Limits, ModelError, invalid};
 use crate::elements::ElementError;
 use crate::materials::Material;
@@ -15,15 +18,17 @@ use crate::values::CellValues;
 
 /// `[[bodies]]`: the mesh and the Gauss-point values of every body (a
 /// distorted section element is rejected here).
+/// Files named by a section (gmsh) are relative to `base`.
 pub(super) fn mesh(
     file: &[BodyFile],
     materials: &[Material],
     limits: Limits,
+    base: &Path,
 ) -> Result<(Mesh, Vec<CellValues>), ModelError> {
     let mut bodies = Vec::new();
     let mut budget = Budget { limit: limits.max_memory, sizes: Sizes::default() };
     for (i, b) in file.iter().enumerate() {
-        bodies.push(body(i, b, materials, &mut budget)?);
+        bodies.push(body(i, b, materials, &mut budget, base)?);
     }
     let mesh = Mesh::new(bodies);
     let cells = mesh
@@ -72,7 +77,7 @@ impl Budget {
     /// nodes and `sec_pairs` coupled node pairs) swept along `axis_elements`
     /// beam elements; fails if the lower-bound memory exceeds the limit.
     #[allow(clippy::too_many_arguments)] // the counts of a section × axis body
-    fn add(
+    pub(super) fn add(
         &mut self,
         key: &str,
         section: SectionElementKind,
@@ -114,7 +119,13 @@ impl Budget {
     }
 }
 
-pub(super) fn body(i: usize, b: &BodyFile, materials: &[Material], budget: &mut Budget) -> Result<Body, ModelError> {
+pub(super) fn body(
+    i: usize,
+    b: &BodyFile,
+    materials: &[Material],
+    budget: &mut Budget,
+    base: &Path,
+) -> Result<Body, ModelError> {
     let key = format!("bodies[{i}]");
     // the axis first: its size is needed to budget the body before the
     // section mesh is built
@@ -130,27 +141,23 @@ pub(super) fn body(i: usize, b: &BodyFile, materials: &[Material], budget: &mut 
     })?;
     let s = &b.section;
     let sk = format!("{key}.section");
-    let kind = SectionElementKind::parse(&s.element)
-        .ok_or_else(|| invalid(format!("{sk}.element"), format!("{:?}", s.element), "\"L4\", \"L9\" or \"L16\""))?;
-    let chosen = format!("shape = {:?}", s.shape);
-    let tube_keys = [
-        ("origin", s.origin.is_some()),
-        ("width", s.width.is_some()),
-        ("height", s.height.is_some()),
-        ("thickness", s.thickness.is_some()),
-        ("around", s.around.is_some()),
-        ("along_x", s.along_x.is_some()),
-        ("along_z", s.along_z.is_some()),
-        ("through", s.through.is_some()),
-    ];
-    let rect_keys = [("x", s.x.is_some()), ("z", s.z.is_some())];
-    let quad_keys = [("points", s.points.is_some()), ("quads", s.quads.is_some())];
-    match s.shape.as_str() {
-        "rectangle" => reject_unused(&sk, &chosen, &[&tube_keys[..], &quad_keys[..]].concat())?,
-        "tube" => reject_unused(&sk, &chosen, &[&rect_keys[..], &quad_keys[..]].concat())?,
-        "quads" => reject_unused(&sk, &chosen, &[&rect_keys[..], &tube_keys[..]].concat())?,
-        _ => {}
+    sections::check_keys(&sk, s)?;
+    let axis = |section| Body {
+        name: b.name.clone(),
+        section,
+        axis: BeamAxis::from_lines(beam, &axis_lines),
+        material,
+        node_offset: 0,
+        element_offset: 0,
+    };
+    if s.shape == "gmsh" {
+        return Ok(axis(sections::gmsh_section(&key, s, base, beam, axis_elements, budget)?));
     }
+    let element = s.element.as_deref().ok_or_else(|| {
+        invalid(format!("{sk}.element"), "(missing)", "\"L4\", \"L9\" or \"L16\" (the section element)")
+    })?;
+    let kind = SectionElementKind::parse(element)
+        .ok_or_else(|| invalid(format!("{sk}.element"), format!("{element:?}"), "\"L4\", \"L9\" or \"L16\""))?;
     let section = match s.shape.as_str() {
         "rectangle" => {
             let x = s.x.as_ref().ok_or_else(|| {
@@ -268,18 +275,12 @@ pub(super) fn body(i: usize, b: &BodyFile, materials: &[Material], budget: &mut 
             budget.add(&key, kind, beam, elements, nodes, pairs, axis_elements)?;
             CrossSection::from_quads(kind, &pts, &quads, &sk)?
         }
-        other => {
-            return Err(invalid(format!("{sk}.shape"), format!("{other:?}"), "\"rectangle\", \"tube\" or \"quads\""));
-        }
+        _ => match sections::profile(&key, s, kind, beam, axis_elements, budget)? {
+            Some(section) => section,
+            None => return Err(invalid(format!("{sk}.shape"), format!("{:?}", s.shape), "a known shape")),
+        },
     };
-    Ok(Body {
-        name: b.name.clone(),
-        section,
-        axis: BeamAxis::from_lines(beam, &axis_lines),
-        material,
-        node_offset: 0,
-        element_offset: 0,
-    })
+    Ok(axis(section))
 }
 
 /// Prefixes the key of a mesh error raised by a builder that does not know its path.

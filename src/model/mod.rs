@@ -13,6 +13,7 @@ mod material;
 mod preprocess;
 mod restraint;
 mod schema;
+mod sections;
 pub mod steps;
 mod validate;
 
@@ -279,7 +280,8 @@ impl Model {
             let column = offset - before.iter().rposition(|&b| b == b'\n').map_or(0, |p| p + 1) + 1;
             ModelError::NotText { path: path.display().to_string(), line, column, offset }
         })?;
-        Self::parse_with(&text, limits)
+        let base = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
+        Self::parse_in(&text, limits, base)
     }
 
     /// Parses and validates model-file text, refusing a model that cannot
@@ -289,9 +291,16 @@ impl Model {
     }
 
     /// Parses and validates model-file text under explicit limits.
+    /// Files named in the model (gmsh sections) are relative to the current folder.
     pub fn parse_with(text: &str, limits: Limits) -> Result<Self, ModelError> {
+        Self::parse_in(text, limits, Path::new("."))
+    }
+
+    /// Parses and validates model-file text whose relative file paths
+    /// (gmsh sections) start at the folder `base`.
+    pub fn parse_in(text: &str, limits: Limits, base: &Path) -> Result<Self, ModelError> {
         let file: ModelFile = toml::from_str(text).map_err(|e| ModelError::Parse(shorten_lines(&e.to_string())))?;
-        build(file, limits)
+        build(file, limits, base)
     }
 
     /// True if the problem is linear (no body yields, no contact).
@@ -309,10 +318,10 @@ fn is_linear(mesh: &Mesh, materials: &[Material], indenters: &[Indenter], contac
     mesh.bodies.iter().all(|b| !materials[b.material].is_plastic()) && indenters.is_empty() && contacts.is_empty()
 }
 
-fn build(file: ModelFile, limits: Limits) -> Result<Model, ModelError> {
+fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelError> {
     validate::names(&file)?;
     let materials = material::materials(&file.materials)?;
-    let (mesh, cells) = bodies::mesh(&file.bodies, &materials, limits)?;
+    let (mesh, cells) = bodies::mesh(&file.bodies, &materials, limits, base)?;
     let mut warnings = Vec::new();
     let constraints = preprocess::constraints(&file.constraints, &mesh)?;
     let loads = preprocess::loads(&file.loads, &mesh, &materials)?;

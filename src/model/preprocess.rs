@@ -210,7 +210,26 @@ pub(super) fn selection(key: &str, s: &SelectionFile, body: &Body) -> Result<Sel
             }
         }
     };
-    Ok(Selection { conditions: [cond("x", &s.x)?, cond("y", &s.y)?, cond("z", &s.z)?], tolerance: tol })
+    let region = match &s.region {
+        None => None,
+        Some(name) => {
+            let r = body.section.regions.iter().find(|r| &r.name == name).ok_or_else(|| {
+                let names: Vec<&str> = body.section.regions.iter().map(|r| r.name.as_str()).collect();
+                let allowed = if names.is_empty() {
+                    format!("no `region` key: the section of body {:?} has no named regions", body.name)
+                } else {
+                    format!("one of the regions of body {:?}: {names:?}", body.name)
+                };
+                invalid(format!("{key}.region"), format!("{name:?}"), allowed)
+            })?;
+            Some(bc::RegionFilter {
+                name: name.clone(),
+                section: std::sync::Arc::new(body.section.clone()),
+                elements: r.elements.clone(),
+            })
+        }
+    };
+    Ok(Selection { conditions: [cond("x", &s.x)?, cond("y", &s.y)?, cond("z", &s.z)?], tolerance: tol, region })
 }
 
 /// The selected boundary faces of `body` and their integrals.

@@ -174,7 +174,8 @@ pub struct SegmentFile {
 #[serde(deny_unknown_fields)]
 pub struct SectionFile {
     pub shape: String,
-    pub element: String,
+    /// Required except for `shape = "gmsh"` (the file says it).
+    pub element: Option<String>,
     // rectangle
     pub x: Option<DivisionFile>,
     pub z: Option<DivisionFile>,
@@ -190,6 +191,20 @@ pub struct SectionFile {
     // quads
     pub points: Option<Vec<Exact<f64, 2>>>,
     pub quads: Option<Vec<Exact<usize, 4>>>,
+    // profiles (i_beam, channel, z_section, angle, hat, box)
+    pub web_thickness: Option<f64>,
+    pub flange_thickness: Option<f64>,
+    pub lip: Option<f64>,
+    pub cells: Option<usize>,
+    pub along_flange: Option<usize>,
+    pub along_web: Option<usize>,
+    pub along_lip: Option<usize>,
+    // circular_tube, circle
+    pub center: Option<Exact<f64, 2>>,
+    pub radius: Option<f64>,
+    // gmsh
+    pub file: Option<String>,
+    pub scale: Option<f64>,
 }
 
 /// `[bodies.axis]`.
@@ -245,7 +260,7 @@ impl<'de> Deserialize<'de> for ConditionFile {
     }
 }
 
-/// A node selection `{x = …, y = …, z = …, tolerance = …}`.
+/// A node selection `{x = …, y = …, z = …, tolerance = …, region = …}`.
 #[derive(Debug, Default, Deserialize, Clone)]
 #[serde(deny_unknown_fields)]
 pub struct SelectionFile {
@@ -253,6 +268,8 @@ pub struct SelectionFile {
     pub y: Option<ConditionFile>,
     pub z: Option<ConditionFile>,
     pub tolerance: Option<f64>,
+    /// A named section region (profile wall, gmsh physical group).
+    pub region: Option<String>,
 }
 
 /// Per-component prescribed values `{x = …, y = …, z = …}`.

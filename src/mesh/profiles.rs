@@ -1,0 +1,289 @@
+//! Parametric profiles: the thin-walled sections of real structures (I/H,
+//! channel, Z, angle, hat, rectangular tubes with one or several cells,
+//! circular tubes, solid circles) as lists of mapped [`Block`]s.
+//!
+//! Straight-walled profiles are unions of axis-aligned rectangles on a grid:
+//! a wall's junction with another wall is its own block of `through ×
+//! through` elements, so every wall is meshed conformingly with its
+//! neighbours. Curved profiles are mapped exactly: a circular tube is the
+//! polar map `(r, θ)` of a rectangle; a solid circle is an O-grid (a
+//! central square and four blocks blending its sides into quarter arcs).
+//!
+//! Keys in errors are relative to `section` (the model layer prefixes the
+//! body's path).
+
+use std::f64::consts::{FRAC_PI_2, FRAC_PI_4, TAU};
+
+use super::MeshError;
+use super::blocks::Block;
+
+/// Dimensions of a straight-walled profile (m).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Walls {
+    /// Overall width along x (see each family for what it spans).
+    pub width: f64,
+    /// Overall height along z.
+    pub height: f64,
+    /// Thickness of the vertical walls (webs), along x.
+    pub web: f64,
+    /// Thickness of the horizontal walls (flanges, lips), along z.
+    pub flange: f64,
+    /// Width of a hat's lips (brims), along x.
+    pub lip: f64,
+    /// Cells of a box (webs = cells + 1).
+    pub cells: usize,
+}
+
+/// Element counts of a straight-walled profile.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Counts {
+    /// Along each flange part between webs (an outstand, or a box cell's flange).
+    pub flange: usize,
+    /// Along each web between the flanges.
+    pub web: usize,
+    /// Along each lip of a hat.
+    pub lip: usize,
+    /// Through each wall thickness.
+    pub through: usize,
+}
+
+/// The families of straight-walled profiles.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Family {
+    /// I or H: two flanges of `width`, a central web; `height` overall.
+    I,
+    /// Channel (U): a web at x = x0, flanges of `width` (web included) towards +x.
+    Channel,
+    /// Z: bottom flange towards +x, top flange towards −x, each `width` wide (web included).
+    Z,
+    /// Angle (L): a vertical leg of `height` (thickness `web`) and a horizontal leg of `width` (thickness `flange`).
+    Angle,
+    /// Hat (top-hat): a top flange of `width` on two webs, lips of `lip` outwards at the bottom.
+    Hat,
+    /// Rectangular tube with `cells` cells side by side (cells + 1 equally spaced webs).
+    Box,
+}
+
+/// Smallest wall thickness relative to the profile's size: thinner walls
+/// would fall below the node-merging tolerance of [`super::blocks`].
+pub const MIN_RELATIVE_THICKNESS: f64 = 1e-6;
+
+fn thick_enough(key: &str, t: f64, size: f64) -> Result<(), MeshError> {
+    if t >= MIN_RELATIVE_THICKNESS * size {
+        Ok(())
+    } else {
+        Err(MeshError::invalid(
+            key,
+            t.to_string(),
+            format!("at least {MIN_RELATIVE_THICKNESS:e} of the profile's size ({size} m)"),
+        ))
+    }
+}
+
+fn positive(key: &str, v: f64, allowed: &str) -> Result<f64, MeshError> {
+    if v.is_finite() && v > 0.0 { Ok(v) } else { Err(MeshError::invalid(key, v.to_string(), allowed)) }
+}
+
+/// A clear length between walls that must stay positive.
+fn clear(key: &str, value: f64, clear: f64, what: &str) -> Result<f64, MeshError> {
+    if clear > 1e-9 * value.abs().max(clear.abs()) {
+        Ok(clear)
+    } else {
+        Err(MeshError::invalid(key, value.to_string(), what))
+    }
+}
+
+/// Blocks of a grid whose columns are `xs` (length, elements) from `x0`,
+/// rows `zs` from `z0`; `cells` lists the filled `(column, row, region)`.
+fn grid(origin: [f64; 2], xs: &[(f64, usize)], zs: &[(f64, usize)], cells: &[(usize, usize, &str)]) -> Vec<Block> {
+    let lines = |start: f64, parts: &[(f64, usize)]| {
+        let mut l = vec![start];
+        for (len, _) in parts {
+            l.push(l.last().unwrap() + len);
+        }
+        l
+    };
+    let (xl, zl) = (lines(origin[0], xs), lines(origin[1], zs));
+    cells
+        .iter()
+        .map(|&(i, j, region)| Block::rectangle([xl[i], xl[i + 1]], [zl[j], zl[j + 1]], xs[i].1, zs[j].1, region))
+        .collect()
+}
+
+/// The blocks of a straight-walled profile with its bottom-left bounding-box
+/// corner at `origin`.
+pub fn straight(family: Family, origin: [f64; 2], d: &Walls, n: &Counts) -> Result<Vec<Block>, MeshError> {
+    let width = positive("section.width", d.width, "a positive width in m")?;
+    let height = positive("section.height", d.height, "a positive height in m")?;
+    let tw = positive("section.web_thickness", d.web, "a positive web thickness in m")?;
+    let tf = positive("section.flange_thickness", d.flange, "a positive flange thickness in m")?;
+    for (key, v) in [("section.web_thickness", tw), ("section.flange_thickness", tf)] {
+        thick_enough(key, v, width.max(height))?;
+    }
+    let t = n.through;
+    let web_clear = |flanges: f64| {
+        clear(
+            "section.flange_thickness",
+            tf,
+            height - flanges * tf,
+            &format!("less than 1/{flanges} of the height ({height} m): the web needs a positive clear height"),
+        )
+    };
+    let flange_clear = |webs: f64, extra: f64| {
+        clear(
+            "section.web_thickness",
+            tw,
+            width - webs * tw - extra,
+            &format!("a web thickness leaving the flanges a positive clear width (width {width} m)"),
+        )
+    };
+    let (bf, bw, bt) = ("bottom_flange", "web", "top_flange");
+    Ok(match family {
+        Family::I => {
+            let out = flange_clear(1.0, 0.0)? / 2.0;
+            let h = web_clear(2.0)?;
+            let xs = [(out, n.flange), (tw, t), (out, n.flange)];
+            let zs = [(tf, t), (h, n.web), (tf, t)];
+            let cells = [(0, 0, bf), (1, 0, bf), (2, 0, bf), (1, 1, bw), (0, 2, bt), (1, 2, bt), (2, 2, bt)];
+            grid(origin, &xs, &zs, &cells)
+        }
+        Family::Channel => {
+            let out = flange_clear(1.0, 0.0)?;
+            let h = web_clear(2.0)?;
+            let xs = [(tw, t), (out, n.flange)];
+            let zs = [(tf, t), (h, n.web), (tf, t)];
+            grid(origin, &xs, &zs, &[(0, 0, bf), (1, 0, bf), (0, 1, bw), (0, 2, bt), (1, 2, bt)])
+        }
+        Family::Z => {
+            let out = flange_clear(1.0, 0.0)?;
+            let h = web_clear(2.0)?;
+            let xs = [(out, n.flange), (tw, t), (out, n.flange)];
+            let zs = [(tf, t), (h, n.web), (tf, t)];
+            grid(origin, &xs, &zs, &[(1, 0, bf), (2, 0, bf), (1, 1, bw), (0, 2, bt), (1, 2, bt)])
+        }
+        Family::Angle => {
+            let out = flange_clear(1.0, 0.0)?;
+            let h = web_clear(1.0)?;
+            let xs = [(tw, t), (out, n.flange)];
+            let zs = [(tf, t), (h, n.web)];
+            grid(origin, &xs, &zs, &[(0, 0, "leg_x"), (1, 0, "leg_x"), (0, 1, "leg_z")])
+        }
+        Family::Hat => {
+            let lip = positive("section.lip", d.lip, "a positive lip width in m")?;
+            let top = flange_clear(2.0, 0.0)?;
+            let h = web_clear(2.0)?;
+            let xs = [(lip, n.lip), (tw, t), (top, n.flange), (tw, t), (lip, n.lip)];
+            let zs = [(tf, t), (h, n.web), (tf, t)];
+            let cells = [
+                (0, 0, "lips"),
+                (1, 0, "lips"),
+                (3, 0, "lips"),
+                (4, 0, "lips"),
+                (1, 1, "webs"),
+                (3, 1, "webs"),
+                (1, 2, bt),
+                (2, 2, bt),
+                (3, 2, bt),
+            ];
+            grid(origin, &xs, &zs, &cells)
+        }
+        Family::Box => {
+            let cells = d.cells;
+            if !(1..=1000).contains(&cells) {
+                return Err(MeshError::invalid("section.cells", cells.to_string(), "1 to 1000 cells side by side"));
+            }
+            let cell = flange_clear(cells as f64 + 1.0, 0.0)? / cells as f64;
+            let h = web_clear(2.0)?;
+            let mut xs = vec![(tw, t)];
+            for _ in 0..cells {
+                xs.extend([(cell, n.flange), (tw, t)]);
+            }
+            let zs = [(tf, t), (h, n.web), (tf, t)];
+            let mut filled = Vec::new();
+            for i in 0..xs.len() {
+                filled.extend([(i, 0, bf), (i, 2, bt)]);
+                if i % 2 == 0 {
+                    filled.push((i, 1, "webs"));
+                }
+            }
+            grid(origin, &xs, &zs, &filled)
+        }
+    })
+}
+
+/// A circular tube about `center`: outer `radius`, wall `thickness`,
+/// `around` elements around and `through` through the wall, every node on
+/// its circle (polar map; ξ radial, η counter-clockwise from +x).
+pub fn circular_tube(
+    center: [f64; 2],
+    radius: f64,
+    thickness: f64,
+    around: usize,
+    through: usize,
+) -> Result<Vec<Block>, MeshError> {
+    let ro = positive("section.radius", radius, "a positive outer radius in m")?;
+    let t = positive("section.thickness", thickness, "a positive wall thickness in m")?;
+    if t >= ro {
+        return Err(MeshError::invalid(
+            "section.thickness",
+            t.to_string(),
+            format!("less than the outer radius ({ro} m)"),
+        ));
+    }
+    if around < 3 {
+        return Err(MeshError::invalid("section.around", around.to_string(), "at least 3 elements around the tube"));
+    }
+    thick_enough("section.thickness", t, ro)?;
+    let ri = ro - t;
+    Ok(vec![Block {
+        counts: [through, around],
+        map: Box::new(move |u, v| {
+            let (r, th) = (ri + u * (ro - ri), TAU * v);
+            [center[0] + r * th.cos(), center[1] + r * th.sin()]
+        }),
+        region: "wall".into(),
+    }])
+}
+
+/// Half-width of the O-grid's central square relative to the radius.
+pub const OGRID_SQUARE: f64 = 0.5;
+
+/// A solid circle about `center`: an O-grid of a central square
+/// (`around/4 × around/4` elements, half-width [`OGRID_SQUARE`] · radius)
+/// and four blocks of `around/4 × through` elements blending its sides
+/// linearly into quarter arcs (transfinite: their other sides are straight
+/// radial segments). Every node of the outer edge lies on the circle.
+pub fn circle(center: [f64; 2], radius: f64, around: usize, through: usize) -> Result<Vec<Block>, MeshError> {
+    let r = positive("section.radius", radius, "a positive radius in m")?;
+    if around < 4 || !around.is_multiple_of(4) {
+        return Err(MeshError::invalid(
+            "section.around",
+            around.to_string(),
+            "a multiple of 4 (elements around the circle; around/4 per side of the central square)",
+        ));
+    }
+    let n = around / 4;
+    let a = OGRID_SQUARE * r;
+    let mut blocks = vec![Block {
+        counts: [n, n],
+        map: Box::new(move |u, v| [center[0] - a + 2.0 * a * u, center[1] - a + 2.0 * a * v]),
+        region: "core".into(),
+    }];
+    for k in 0..4 {
+        let rot = k as f64 * FRAC_PI_2;
+        let (c, s) = (rot.cos(), rot.sin());
+        blocks.push(Block {
+            counts: [through, n],
+            map: Box::new(move |u, v| {
+                // the block on the +x side, rotated by k quarter turns
+                let inner = [a, a * (2.0 * v - 1.0)];
+                let phi = -FRAC_PI_4 + v * FRAC_PI_2;
+                let outer = [r * phi.cos(), r * phi.sin()];
+                let p = [(1.0 - u) * inner[0] + u * outer[0], (1.0 - u) * inner[1] + u * outer[1]];
+                [center[0] + c * p[0] - s * p[1], center[1] + s * p[0] + c * p[1]]
+            }),
+            region: "rim".into(),
+        });
+    }
+    Ok(blocks)
+}

@@ -191,3 +191,53 @@ fn indentation_unloading_starts_elastically_with_the_loaded_stiffness() {
     );
     assert!(largest <= 1e-4 * peak, "peeq changes by {largest:e} on unloading");
 }
+
+/// The block example made elastic, its punch either pushed `depth` down
+/// (displacement control) or loaded by `force` (force control).
+fn elastic_block(control: &str) -> String {
+    let text = example("block_indentation.toml")
+        .replace("plasticity = { yield_stress = 100e6, hardening = \"perfect\" }\n", "")
+        .replace("displacement = [0.0, 0.0, -1.0e-3]", control);
+    assert!(!text.contains("plasticity = ") && text.contains(control));
+    text
+}
+
+/// Force control (issue 10): an elastic punch loaded to the force F that a
+/// prescribed depth produced gives the same state as that prescribed depth
+/// (1e-8), its solved displacement is that depth, and a load history that
+/// loads and unloads by force ends where it started.
+#[test]
+fn force_control_reproduces_displacement_control() {
+    let (model_d, by_depth) = solve(&elastic_block("displacement = [0.0, 0.0, -0.1e-3]"));
+    let punch = |s: &Solution| s.contact("punch").unwrap().clone();
+    let f = punch(&by_depth).force;
+    assert!(f[2] < -1e5, "{f:?}");
+    let (_, by_force) = solve(&elastic_block(&format!("force = [0.0, 0.0, {:e}]", f[2])));
+    let umax = by_depth.u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let du = by_depth.u.iter().zip(&by_force.u).fold(0.0f64, |m, (a, b)| m.max((a - b).abs()));
+    eprintln!(
+        "force control: largest difference {du:e} m (max {umax:e} m); punch at {:?}",
+        punch(&by_force).displacement
+    );
+    assert!(du <= 1e-8 * umax, "states differ by {du:e}");
+    assert!((punch(&by_force).displacement[2] + 0.1e-3).abs() <= 1e-8 * 0.1e-3);
+    assert!((punch(&by_force).force[2] / f[2] - 1.0).abs() < 1e-8);
+    assert_eq!(model_d.indenters[0].force, None);
+}
+
+/// A target force above the limit load is refused with a clear reason, and
+/// the last converged increment is kept: the block's punch (limit ≈ 1.41 MN,
+/// the plateau of the displacement-controlled example) asked for 2 MN.
+#[test]
+fn force_above_the_limit_load_stops_with_a_collapse_message() {
+    let text =
+        example("block_indentation.toml").replace("displacement = [0.0, 0.0, -1.0e-3]", "force = [0.0, 0.0, -2.0e6]");
+    let model = Model::parse(&text).unwrap();
+    let sol = analysis::run(&model, &Default::default(), &mut Silent).unwrap();
+    let failure = sol.failure.as_ref().expect("2 MN cannot be carried");
+    let message = failure.to_string();
+    assert!(message.contains("\"punch\"") && message.contains("collapses before this force"), "{message}");
+    let reached = -sol.contact("punch").unwrap().force[2];
+    eprintln!("largest force reached {reached:.4e} N");
+    assert!((1.3e6..1.45e6).contains(&reached), "{reached:e}");
+}

@@ -71,6 +71,9 @@ pub struct ContactResultant {
     pub force: [f64; 3],
     /// Largest penetration of its active points (m).
     pub max_penetration: f64,
+    /// Rigid displacement of an indenter (m; prescribed, or solved for
+    /// under force control); zero for pair contacts.
+    pub displacement: [f64; 3],
 }
 
 /// The points of one named contact after the last evaluation.

@@ -14,6 +14,8 @@
 
 use std::time::Instant;
 
+mod force;
+
 pub use super::results::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Timings};
 use crate::assembly::{Assembler, Inputs, NO_EQ, Numbering, Outputs};
 use crate::contact;
@@ -68,6 +70,8 @@ pub struct Structure<'m> {
     contact_ranges: Vec<std::ops::Range<usize>>,
     /// Plastic Gauss points in the last evaluation.
     pub(super) plastic_points: usize,
+    /// Force-controlled indenters (their displacement is an unknown).
+    driven: Vec<force::Driven>,
     /// Tangent branch of Gauss points on their yield surface (elastic after
     /// a failed attempt: [`Incremental::cautious`]).
     predictor: Predictor,
@@ -212,6 +216,7 @@ impl<'m> Structure<'m> {
             contact,
             contact_ranges,
             plastic_points: 0,
+            driven: force::Driven::of(model, n_eq),
             predictor: Predictor::Loading,
             timings,
             memory,
@@ -323,7 +328,8 @@ impl<'m> Structure<'m> {
     /// the slave body for pairs) and largest penetration.
     pub fn contact_resultants(&self) -> Vec<ContactResultant> {
         self.contact_sets()
-            .map(|(name, kind, points)| {
+            .enumerate()
+            .map(|(k, (name, kind, points))| {
                 let mut force = [0.0; 3];
                 let mut max_penetration: f64 = 0.0;
                 for p in points {
@@ -334,7 +340,8 @@ impl<'m> Structure<'m> {
                         max_penetration = max_penetration.max(-p.gap);
                     }
                 }
-                ContactResultant { name: name.to_string(), kind, force, max_penetration }
+                let displacement = if kind == ContactKind::Indenter { self.indenter_offset(k) } else { [0.0; 3] };
+                ContactResultant { name: name.to_string(), kind, force, max_penetration, displacement }
             })
             .collect()
     }
@@ -384,8 +391,7 @@ impl<'m> Structure<'m> {
         let mut k = 0;
         for (k_ind, ind) in model.indenters.iter().enumerate() {
             // the rigid surface's displacement plays the master's part
-            let a = steps::factor(&model.steps, Item::Indenter(k_ind), self.lambda);
-            let offset = ind.displacement.map(|d| a * d);
+            let offset = self.indenter_offset(k_ind);
             for c in &ind.nodes {
                 changes += usize::from(self.contact_pair(k, c.node, None, offset, c.gap0, &c.normal, c.penalty));
                 k += 1;
@@ -476,7 +482,9 @@ impl NonlinearProblem for Structure<'_> {
             off = off.max((now - self.u[d]).abs());
             size = size.max(v.abs());
         }
-        let scale = ext2.sqrt().max(con2.sqrt()).max(reac2.sqrt());
+        let (driven_res2, driven_target2) = self.evaluate_driven();
+        res2 += driven_res2;
+        let scale = ext2.sqrt().max(con2.sqrt()).max(reac2.sqrt()).max(driven_target2.sqrt());
         let settled = changes == 0 && off <= 1e-12 * size;
         Ok(Evaluation { residual_norm: res2.sqrt(), force_scale: scale, settled })
     }
@@ -507,7 +515,7 @@ impl NonlinearProblem for Structure<'_> {
         self.timings.factorization += t.elapsed();
         self.timings.factorizations += 1;
         let t = Instant::now();
-        self.solver.solve_in_place(&mut self.residual)?;
+        let da2 = self.solve_bordered()?;
         self.timings.solve += t.elapsed();
         let eq = &self.assembler.dofs.eq;
         let mut norm2 = 0.0;
@@ -518,8 +526,9 @@ impl NonlinearProblem for Structure<'_> {
                 norm2 += du * du;
             }
         }
-        let inc2: f64 = self.u.iter().zip(&self.u_committed).map(|(a, b)| (a - b) * (a - b)).sum();
-        Ok(Correction { norm: norm2.sqrt(), increment_norm: inc2.sqrt() })
+        let mut inc2: f64 = self.u.iter().zip(&self.u_committed).map(|(a, b)| (a - b) * (a - b)).sum();
+        inc2 += self.driven.iter().map(|d| (d.a - d.a_committed).powi(2)).sum::<f64>();
+        Ok(Correction { norm: (norm2 + da2).sqrt(), increment_norm: inc2.sqrt() })
     }
 }
 
@@ -542,12 +551,18 @@ impl Incremental for Structure<'_> {
         self.committed.copy_from_slice(&self.trial);
         self.lambda_committed = self.lambda;
         self.contact_committed.copy_from_slice(&self.contact);
+        for d in &mut self.driven {
+            d.a_committed = d.a;
+        }
     }
 
     fn restore(&mut self) {
         self.u.copy_from_slice(&self.u_committed);
         self.contact.copy_from_slice(&self.contact_committed);
         self.lambda = self.lambda_committed;
+        for d in &mut self.driven {
+            d.a = d.a_committed;
+        }
         self.apply_factors();
     }
 }

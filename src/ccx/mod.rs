@@ -80,6 +80,12 @@ pub fn export(model: &Model, kind: HexKind, refine: usize, dir: &Path) -> Result
     std::fs::create_dir_all(dir).map_err(file_error(dir))?;
     let mesh = HexMesh::new(model, kind, refine);
     let path = dir.join("model.inp");
+    if let Some(k) = model.indenters.iter().position(|i| i.force.is_some()) {
+        return Err(CcxError::Unsupported {
+            key: format!("indenters[{k}].force"),
+            what: "a force-controlled indenter".into(),
+        });
+    }
     if model.steps.len() > 1 {
         return Err(CcxError::Unsupported {
             key: "steps".into(),

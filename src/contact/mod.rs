@@ -167,8 +167,12 @@ pub struct Indenter {
     pub body: usize,
     /// Geometry in the reference position.
     pub surface: RigidSurface,
-    /// Rigid displacement at load factor 1 (m).
+    /// Rigid displacement at load factor 1 (m); zero under force control.
     pub displacement: [f64; 3],
+    /// Force control: the force (N) the indenter applies to the body at
+    /// load factor 1. Its rigid displacement along this force is then an
+    /// unknown of the analysis; `None`: displacement control.
+    pub force: Option<[f64; 3]>,
     /// Candidate nodes.
     pub nodes: Vec<ContactNode>,
     /// The body's boundary faces the indenter may touch.

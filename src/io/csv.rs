@@ -56,18 +56,12 @@ pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result
         out.push(path);
     }
     for set in &solution.contact_sets {
-        let disp =
-            model.indenters.iter().position(|i| i.name == set.name).map(|i| (i, model.indenters[i].displacement));
+        let is_indenter = model.indenters.iter().any(|i| i.name == set.name);
         let mut text =
             String::from("increment,lambda,iterations,d_x,d_y,d_z,f_x,f_y,f_z,max_penetration,plastic_points\n");
         for row in &solution.history {
-            let d = disp
-                .map(|(i, d)| {
-                    let a = steps::factor(&model.steps, Item::Indenter(i), row.lambda);
-                    d.map(|v| format!("{:e}", a * v))
-                })
-                .unwrap_or_default();
             let Some(c) = row.contact(&set.name) else { continue };
+            let d = if is_indenter { c.displacement.map(|v| format!("{v:e}")) } else { Default::default() };
             let f = c.force;
             let _ = writeln!(
                 text,

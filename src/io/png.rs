@@ -9,7 +9,6 @@ use plotters::style::FontStyle;
 use super::IoError;
 use crate::analysis::Solution;
 use crate::model::Model;
-use crate::model::steps::{self, Item};
 
 /// One curve of a plot.
 #[derive(Debug, Clone)]
@@ -121,18 +120,19 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, series:
 /// applies along its direction of motion against its displacement.
 pub fn history_plots(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     let mut out = Vec::new();
-    for (i, ind) in model.indenters.iter().enumerate() {
-        let d = ind.displacement;
+    for ind in &model.indenters {
+        // the direction of motion: the prescribed displacement, or the force
+        let d = ind.force.unwrap_or(ind.displacement);
         let norm = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
         if norm == 0.0 {
             continue;
         }
         let dir_unit = d.map(|v| v / norm);
+        let along = |v: [f64; 3]| v[0] * dir_unit[0] + v[1] * dir_unit[1] + v[2] * dir_unit[2];
         let mut points = vec![(0.0, 0.0)];
         points.extend(solution.history.iter().filter_map(|row| {
-            let f = row.contact(&ind.name)?.force;
-            let a = steps::factor(&model.steps, Item::Indenter(i), row.lambda);
-            Some((a * norm * 1e3, f[0] * dir_unit[0] + f[1] * dir_unit[1] + f[2] * dir_unit[2]))
+            let c = row.contact(&ind.name)?;
+            Some((along(c.displacement) * 1e3, along(c.force)))
         }));
         // short tick labels keep the axis label clear of them
         let largest = points.iter().map(|p| p.1.abs()).fold(0.0, f64::max);

@@ -24,7 +24,7 @@ pub(super) fn indenters(
         let ind = indenter(&key, d, b, &mesh.bodies[b], materials)?;
         // how far the indenter's own motion brings it towards each node
         let reach = |c: &contact::ContactNode| (0..3).map(|k| ind.displacement[k] * c.normal[k]).sum::<f64>() - c.gap0;
-        if ind.nodes.iter().all(|c| reach(c) < 0.0) {
+        if ind.force.is_none() && ind.nodes.iter().all(|c| reach(c) < 0.0) {
             warnings.push(Warning {
                 key: format!("{key}.displacement"),
                 message: format!(
@@ -233,13 +233,53 @@ pub(super) fn indenter(
             ));
         }
     }
-    let displacement = bounds::vector(
-        &format!("{key}.displacement"),
-        d.displacement,
-        body.size(),
-        &format!("a rigid motion in m of at most the size of body {:?}", body.name),
-    )?;
-    Ok(Indenter { name: d.name.clone(), body: b, surface: shape, displacement, nodes, faces: face_list })
+    let (displacement, force) = match (d.displacement, d.force) {
+        (Some(u), None) => {
+            let u = bounds::vector(
+                &format!("{key}.displacement"),
+                u,
+                body.size(),
+                &format!("a rigid motion in m of at most the size of body {:?}", body.name),
+            )?;
+            (u, None)
+        }
+        (None, Some(f)) => {
+            let young = materials[body.material].young;
+            let f = bounds::vector(
+                &format!("{key}.force"),
+                f,
+                young * body.size().powi(2),
+                "a force in N of at most E × (body size)² (a stress of E over the whole body)",
+            )?;
+            // the force must push the body: along the normals of the nodes it may touch
+            let n = nodes.first().map(|c| c.normal).unwrap_or_default();
+            if !(f.iter().zip(&n).map(|(a, b)| a * b).sum::<f64>() > 0.0) {
+                return Err(invalid(
+                    format!("{key}.force"),
+                    format!("{f:?}"),
+                    format!(
+                        "a non-zero force that pushes the body (towards it: along {n:?}); a pull has no contact to act through"
+                    ),
+                ));
+            }
+            ([0.0; 3], Some(f))
+        }
+        (Some(_), Some(_)) => {
+            return Err(invalid(
+                format!("{key}.force"),
+                "(given with displacement)",
+                "exactly one of displacement (displacement control) and force (force control)",
+            ));
+        }
+        (None, None) => {
+            return Err(invalid(
+                format!("{key}.displacement"),
+                "(missing)",
+                "the indenter's rigid motion [x, y, z] in m, or force = [x, y, z] in N for force control",
+            ));
+        }
+    };
+    Ok(Indenter { name: d.name.clone(), body: b, surface: shape, displacement, force, nodes, faces: face_list })
 }
 
 pub(super) fn model_coords(body: &Body, node: usize) -> [f64; 3] {

@@ -315,7 +315,8 @@ pub struct IndenterFile {
     pub body: String,
     pub shape: String,
     pub surface: SelectionFile,
-    pub displacement: Exact<f64, 3>,
+    pub displacement: Option<Exact<f64, 3>>,
+    pub force: Option<Exact<f64, 3>>,
     // flat
     pub normal: Option<String>,
     pub position: Option<f64>,

@@ -33,6 +33,10 @@ pub enum LinearError {
     /// METIS failed.
     #[error("METIS nested dissection failed with status {0}")]
     Metis(i32),
+    /// The problem rejected the correction (it left the range where the
+    /// model means anything); the message says why.
+    #[error("{0}")]
+    Rejected(String),
 }
 
 /// Lower triangle of a symmetric sparse matrix in compressed-column form

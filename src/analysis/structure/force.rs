@@ -1,0 +1,214 @@
+//! Force-controlled rigid indenters: the indenter's rigid displacement
+//! `a d̂` along its force direction `d̂` is an unknown, and one equation per
+//! indenter asks that the contact force it applies along `d̂` equal its
+//! target `F(λ)` (the indenter's `force` times its step factor).
+//!
+//! With penalty contact the gap of a candidate node is
+//! `g = g₀ + (u_s − a d̂)·n`; the force on the body `f = −ε g n` when
+//! `g ≤ 0`. The extra residual is `r = Σ f·d̂ − F`, and the Newton system
+//! borders the structural tangent:
+//!
+//! ```text
+//! [ K   B ] [Δu]     [R]      B_s = ∂R/∂a = −ε (d̂·n) n   (each active node s)
+//! [ Bᵀ  C ] [Δa] = − [r],     C   = ∂r/∂a =  ε Σ (d̂·n)²
+//! ```
+//!
+//! the Hessian of the potential `Π(u, a) − F a` (symmetric, positive
+//! definite while the indenter touches). It is solved by bordering with the
+//! one factorization of `K`: `K x₁ = −R`, `K X₂ = B`, then the small system
+//! `(C − Bᵀ X₂) Δa = −r − Bᵀ x₁` and `Δu = x₁ − X₂ Δa` (Keller's bordering
+//! algorithm, as in arc-length methods). While an indenter touches nothing,
+//! the Jacobian of its nearest candidate node stands in, so that Newton
+//! moves it into contact.
+
+use super::{NO_EQ, Structure};
+use crate::model::steps::{self, Item};
+use crate::solver::linear::LinearError;
+
+/// One force-controlled indenter.
+#[derive(Debug, Clone)]
+pub(super) struct Driven {
+    /// Index in `model.indenters`.
+    pub indenter: usize,
+    /// Unit direction of its force.
+    pub dir: [f64; 3],
+    /// Force magnitude at factor 1 (N).
+    pub magnitude: f64,
+    /// Current and committed displacement along `dir` (m).
+    pub a: f64,
+    pub a_committed: f64,
+    /// Border column `B` (equation space) and corner `C` of the last evaluation.
+    b: Vec<f64>,
+    c: f64,
+    /// Residual `r` of the last evaluation (N).
+    pub r: f64,
+}
+
+impl Driven {
+    /// The force-controlled indenters of `model`.
+    pub fn of(model: &crate::model::Model, n_eq: usize) -> Vec<Driven> {
+        model
+            .indenters
+            .iter()
+            .enumerate()
+            .filter_map(|(i, ind)| {
+                let f = ind.force?;
+                let m = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
+                Some(Driven {
+                    indenter: i,
+                    dir: f.map(|v| v / m),
+                    magnitude: m,
+                    a: 0.0,
+                    a_committed: 0.0,
+                    b: vec![0.0; n_eq],
+                    c: 0.0,
+                    r: 0.0,
+                })
+            })
+            .collect()
+    }
+}
+
+impl Structure<'_> {
+    /// Rigid displacement of indenter `k` at the current state.
+    pub(super) fn indenter_offset(&self, k: usize) -> [f64; 3] {
+        if let Some(d) = self.driven.iter().find(|d| d.indenter == k) {
+            return d.dir.map(|v| d.a * v);
+        }
+        let a = steps::factor(&self.model.steps, Item::Indenter(k), self.lambda);
+        self.model.indenters[k].displacement.map(|d| a * d)
+    }
+
+    /// After the contact assembly: the force residual, border column and
+    /// corner of every force-controlled indenter. Returns `(Σ r², Σ F²)`.
+    pub(super) fn evaluate_driven(&mut self) -> (f64, f64) {
+        let model = self.model;
+        let (mut res2, mut target2) = (0.0, 0.0);
+        for di in 0..self.driven.len() {
+            let k = self.driven[di].indenter;
+            let ind = &model.indenters[k];
+            let range = self.contact_ranges[k].clone();
+            let d = self.driven[di].dir;
+            let target = steps::factor(&model.steps, Item::Indenter(k), self.lambda) * self.driven[di].magnitude;
+            let dot = |a: &[f64; 3], b: &[f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
+            let mut pushed = 0.0;
+            let mut any = false;
+            let mut nearest = (f64::INFINITY, 0);
+            for (j, p) in self.contact[range.clone()].iter().enumerate() {
+                pushed += dot(&p.force, &d);
+                any |= p.active;
+                if p.gap < nearest.0 {
+                    nearest = (p.gap, j);
+                }
+            }
+            let dofs = &self.assembler.dofs.eq;
+            let drv = &mut self.driven[di];
+            drv.b.fill(0.0);
+            drv.c = 0.0;
+            for (j, (p, c)) in self.contact[range].iter().zip(&ind.nodes).enumerate() {
+                if !(p.active || (!any && j == nearest.1)) {
+                    continue;
+                }
+                let dn = dot(&d, &c.normal);
+                drv.c += c.penalty * dn * dn;
+                for m in 0..3 {
+                    let e = dofs[3 * c.node + m];
+                    if e != NO_EQ && !self.is_prescribed[e] {
+                        drv.b[e] -= c.penalty * dn * c.normal[m];
+                    }
+                }
+            }
+            drv.r = pushed - target;
+            res2 += drv.r * drv.r;
+            target2 += target * target;
+        }
+        (res2, target2)
+    }
+
+    /// Bordered solve (module docs): `self.residual` holds `−R` (after the
+    /// Dirichlet elimination) and `K` is factored; on return it holds `Δu`.
+    /// Updates each indenter's `a` and returns `Σ Δa²`.
+    pub(super) fn solve_bordered(&mut self) -> Result<f64, LinearError> {
+        let m = self.driven.len();
+        self.solver.solve_in_place(&mut self.residual)?;
+        if m == 0 {
+            return Ok(0.0);
+        }
+        let mut x2 = Vec::with_capacity(m);
+        for d in &self.driven {
+            let mut x = d.b.clone();
+            self.solver.solve_in_place(&mut x)?;
+            x2.push(x);
+        }
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        // S = C − Bᵀ X₂ (C diagonal: each contact point belongs to one indenter)
+        let mut s = vec![vec![0.0; m]; m];
+        let mut rhs = vec![0.0; m];
+        for i in 0..m {
+            for j in 0..m {
+                s[i][j] = -dot(&self.driven[i].b, &x2[j]);
+            }
+            s[i][i] += self.driven[i].c;
+            rhs[i] = -self.driven[i].r - dot(&self.driven[i].b, &self.residual);
+        }
+        let da = solve_dense(s, rhs).ok_or(LinearError::Singular)?;
+        for (j, x) in x2.iter().enumerate() {
+            for (r, v) in self.residual.iter_mut().zip(x) {
+                *r -= v * da[j];
+            }
+        }
+        let mut sum = 0.0;
+        for (d, v) in self.driven.iter_mut().zip(&da) {
+            d.a += v;
+            sum += v * v;
+        }
+        // a target force beyond the limit load: under perfect plasticity
+        // the solution runs away (small strains allow any displacement), so
+        // a motion beyond a tenth of the body is a collapse, not an answer
+        for d in &self.driven {
+            let ind = &self.model.indenters[d.indenter];
+            let size = self.model.mesh.bodies[ind.body].size();
+            if !(d.a.abs() <= 0.1 * size) {
+                let target = steps::factor(&self.model.steps, Item::Indenter(d.indenter), self.lambda) * d.magnitude;
+                return Err(LinearError::Rejected(format!(
+                    "force-controlled indenter {:?} would have to move {:.3e} m, more than a tenth of the size of \
+                     body {:?} ({:.3e} m), to carry {:.4e} N: the body collapses before this force (the last \
+                     converged increment holds the largest force reached)",
+                    ind.name,
+                    d.a.abs(),
+                    self.model.mesh.bodies[ind.body].name,
+                    size,
+                    target
+                )));
+            }
+        }
+        Ok(sum)
+    }
+}
+
+/// Gaussian elimination with partial pivoting of a small dense system;
+/// `None` if it is singular.
+fn solve_dense(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {
+    let n = b.len();
+    for col in 0..n {
+        let p = (col..n).max_by(|&i, &j| a[i][col].abs().total_cmp(&a[j][col].abs()))?;
+        if !(a[p][col].abs() > 0.0) {
+            return None;
+        }
+        a.swap(col, p);
+        b.swap(col, p);
+        for row in col + 1..n {
+            let f = a[row][col] / a[col][col];
+            for k in col..n {
+                a[row][k] -= f * a[col][k];
+            }
+            b[row] -= f * b[col];
+        }
+    }
+    let mut x = vec![0.0; n];
+    for i in (0..n).rev() {
+        let s: f64 = (i + 1..n).map(|k| a[i][k] * x[k]).sum();
+        x[i] = (b[i] - s) / a[i][i];
+    }
+    Some(x)
+}

@@ -425,6 +425,27 @@ fn result_warnings(model: &Model, solution: &Solution) -> Vec<Warning> {
             });
         }
     }
+    // augmented contacts left above their tolerance (MAX_AUGMENTATIONS reached)
+    let tolerances = model
+        .indenters
+        .iter()
+        .map(|i| (&i.name, i.penetration_tolerance, "indenters"))
+        .chain(model.contacts.iter().map(|c| (&c.name, c.penetration_tolerance, "contacts")));
+    for (k, (name, tol, group)) in tolerances.enumerate() {
+        let (Some(tol), Some(c)) = (tol, solution.contacts.get(k)) else { continue };
+        if c.max_penetration > tol {
+            let index = if group == "indenters" { k } else { k - model.indenters.len() };
+            warnings.push(Warning {
+                key: format!("{group}[{index}].penetration_tolerance"),
+                message: format!(
+                    "contact {name:?} ends with a penetration of {:.3e} m, above its tolerance {tol:.3e} m after {} \
+                     augmentations: raise the penalty or refine the increments",
+                    c.max_penetration,
+                    crate::solver::stepping::MAX_AUGMENTATIONS
+                ),
+            });
+        }
+    }
     let finite = |f: &[f64; 3]| f.iter().all(|v| v.is_finite());
     if !(solution.reactions.iter().all(|r| finite(&r.force)) && solution.contacts.iter().all(|c| finite(&c.force))) {
         warnings.push(Warning {

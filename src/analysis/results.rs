@@ -102,4 +102,7 @@ pub struct ContactPoint {
     pub area: f64,
     /// True if active.
     pub active: bool,
+    /// Augmented-Lagrangian multiplier (N): the contact force carried over
+    /// from the last augmentation (0 for pure penalty).
+    pub multiplier: f64,
 }

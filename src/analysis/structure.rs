@@ -14,6 +14,7 @@
 
 use std::time::Instant;
 
+mod augment;
 mod force;
 
 pub use super::results::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Timings};
@@ -428,7 +429,7 @@ impl Structure<'_> {
     ) -> bool {
         let us = [0, 1, 2].map(|i| self.u[3 * slave + i]);
         let g = contact::gap(gap0, normal, us, u_master);
-        let response = contact::penalty_response(g, normal, penalty);
+        let response = contact::augmented_response(g, normal, penalty, self.contact[k].multiplier);
         let point = &mut self.contact[k];
         let changed = response.is_some() != point.active;
         point.active = response.is_some();
@@ -537,6 +538,10 @@ impl Incremental for Structure<'_> {
         // prescribed values are reached by the next correction (see module docs)
         self.lambda = lambda;
         self.apply_factors();
+    }
+
+    fn augment(&mut self) -> bool {
+        self.augment_contacts()
     }
 
     fn cautious(&mut self, on: bool) -> bool {

@@ -175,6 +175,9 @@ pub struct Indenter {
     pub force: Option<[f64; 3]>,
     /// Candidate nodes.
     pub nodes: Vec<ContactNode>,
+    /// Augmented Lagrangian: the largest penetration (m) accepted; `None`
+    /// for pure penalty (the paper's method).
+    pub penetration_tolerance: Option<f64>,
     /// The body's boundary faces the indenter may touch.
     pub faces: Vec<crate::bc::Face>,
 }
@@ -212,6 +215,9 @@ pub struct PairContact {
     pub name: String,
     /// The pairs.
     pub pairs: Vec<NodePair>,
+    /// Augmented Lagrangian: the largest penetration (m) accepted; `None`
+    /// for pure penalty (the paper's method).
+    pub penetration_tolerance: Option<f64>,
     /// Slave-surface nodes that found no master node (not in contact).
     pub unpaired: usize,
     /// The master side's faces.
@@ -318,10 +324,26 @@ pub fn gap(gap0: f64, normal: &[f64; 3], u_slave: [f64; 3], u_master: [f64; 3]) 
 /// Force on the slave node `−ε g n` (eq. 20) and the block `ε n nᵀ` (eq. 19)
 /// of an active pair, `None` if the pair is open (`g > 0`).
 pub fn penalty_response(g: f64, normal: &[f64; 3], penalty: f64) -> Option<([f64; 3], [[f64; 3]; 3])> {
-    if g > 0.0 {
+    augmented_response(g, normal, penalty, 0.0)
+}
+
+/// The augmented-Lagrangian form (Simo & Laursen 1992): with the multiplier
+/// `λ ≥ 0` (N) of the point, force `(λ − ε g) n` while positive, block
+/// `ε n nᵀ`; `λ = 0` is the pure penalty of [`penalty_response`]. Between
+/// Newton solves the multiplier is updated to the force, `λ ← λ − ε g`
+/// (Uzawa), until the penetration is below the contact's tolerance: the
+/// answer then no longer depends on `ε`.
+pub fn augmented_response(
+    g: f64,
+    normal: &[f64; 3],
+    penalty: f64,
+    multiplier: f64,
+) -> Option<([f64; 3], [[f64; 3]; 3])> {
+    let p = multiplier - penalty * g;
+    if p < 0.0 || (multiplier == 0.0 && g > 0.0) {
         return None;
     }
-    let force = normal.map(|v| -penalty * g * v);
+    let force = normal.map(|v| p * v);
     let k = normal.map(|a| normal.map(|b| penalty * a * b));
     Some((force, k))
 }

@@ -279,7 +279,17 @@ pub(super) fn indenter(
             ));
         }
     };
-    Ok(Indenter { name: d.name.clone(), body: b, surface: shape, displacement, force, nodes, faces: face_list })
+    let penetration_tolerance = tolerance(key, d.penetration_tolerance, body.size())?;
+    Ok(Indenter {
+        name: d.name.clone(),
+        body: b,
+        surface: shape,
+        displacement,
+        force,
+        nodes,
+        penetration_tolerance,
+        faces: face_list,
+    })
 }
 
 pub(super) fn model_coords(body: &Body, node: usize) -> [f64; 3] {
@@ -357,11 +367,28 @@ pub(super) fn pair_contact(
             "slave and master surfaces whose nodes face each other along the master normal (check the `where` selections or the matching tolerance)",
         ));
     }
+    let penetration_tolerance = tolerance(key, c.penetration_tolerance, mesh.bodies[bs].size())?;
     Ok(PairContact {
         name: c.name.clone(),
         pairs,
+        penetration_tolerance,
         unpaired,
         master: ContactSurface { body: bm, faces: master_faces },
         slave: ContactSurface { body: bs, faces: slave_faces },
     })
+}
+
+/// `penetration_tolerance` (augmented Lagrangian): positive, at most a
+/// thousandth of the body's size.
+fn tolerance(key: &str, t: Option<f64>, size: f64) -> Result<Option<f64>, ModelError> {
+    t.map(|t| {
+        bounds::within(
+            &format!("{key}.penetration_tolerance"),
+            t,
+            f64::MIN_POSITIVE,
+            1e-3 * size,
+            "the largest penetration in m that the augmented Lagrangian accepts, positive and at most 1e-3 of the body's size",
+        )
+    })
+    .transpose()
 }

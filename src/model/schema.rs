@@ -331,6 +331,7 @@ pub struct IndenterFile {
     // penalty
     pub penalty: Option<f64>,
     pub penalty_factor: Option<f64>,
+    pub penetration_tolerance: Option<f64>,
 }
 
 /// One side of a deformable contact.
@@ -351,6 +352,7 @@ pub struct ContactFile {
     pub slave: ContactSideFile,
     pub penalty: Option<f64>,
     pub penalty_factor: Option<f64>,
+    pub penetration_tolerance: Option<f64>,
     pub tolerance: Option<f64>,
     pub pairs: Option<Vec<Exact<Exact<f64, 3>, 2>>>,
 }

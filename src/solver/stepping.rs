@@ -22,6 +22,12 @@ pub trait Incremental: NonlinearProblem {
     fn commit(&mut self);
     /// Returns to the last committed state.
     fn restore(&mut self);
+    /// After a converged solve: updates the problem's constraint
+    /// multipliers (augmented Lagrangian); true if it changed them and the
+    /// increment must be solved again (the default: nothing to update).
+    fn augment(&mut self) -> bool {
+        false
+    }
     /// Switches to (or back from) a more cautious linearization for a retry
     /// of a failed increment — e.g. elastic tangents at points on their
     /// yield surface when the load reverses. Returns true if that changed
@@ -170,6 +176,10 @@ fn describe(r: &Report) -> String {
     )
 }
 
+/// Most multiplier updates per increment (augmented Lagrangian); the
+/// contact's penetration check then reports what is left.
+pub const MAX_AUGMENTATIONS: usize = 50;
+
 /// Drives `problem` from λ = 0 to 1. Returns the converged increments.
 pub fn run<P: Incremental>(
     problem: &mut P,
@@ -222,7 +232,19 @@ pub fn run_span<P: Incremental>(
         dlambda = dlambda.min(end - lambda);
         let target = if dlambda >= end - lambda { end } else { lambda + dlambda };
         problem.set_load_factor(target);
-        let report = newton::solve(problem, newton_settings, interrupt);
+        let mut report = newton::solve(problem, newton_settings, interrupt);
+        // augmented Lagrangian: re-solve the increment after each multiplier
+        // update until the problem is satisfied (or Newton fails)
+        let mut augmentations = 0;
+        while report.converged() && augmentations < MAX_AUGMENTATIONS && problem.augment() {
+            augmentations += 1;
+            let again = newton::solve(problem, newton_settings, interrupt);
+            report.iterations += again.iterations;
+            report.residuals.extend(again.residuals);
+            report.corrections.extend(again.corrections);
+            report.failure = again.failure;
+            report.message = again.message;
+        }
         if report.failure == Some(newton::Failure::Interrupted) {
             problem.restore();
             problem.set_load_factor(lambda);

@@ -105,4 +105,9 @@ pub struct ContactPoint {
     /// Augmented-Lagrangian multiplier (N): the contact force carried over
     /// from the last augmentation (0 for pure penalty).
     pub multiplier: f64,
+    /// Accumulated tangential slip (m, slave relative to master) of a
+    /// frictional point, committed with the increment.
+    pub slip: [f64; 3],
+    /// True if the frictional point slides (on the Coulomb cone).
+    pub sliding: bool,
 }

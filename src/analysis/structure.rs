@@ -15,11 +15,11 @@
 use std::time::Instant;
 
 mod augment;
+mod contacts;
 mod force;
 
 pub use super::results::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Timings};
 use crate::assembly::{Assembler, Inputs, NO_EQ, Numbering, Outputs};
-use crate::contact;
 use crate::materials::{PointState, Predictor};
 use crate::model::Model;
 use crate::model::steps::{self, Item};
@@ -380,76 +380,6 @@ impl<'m> Structure<'m> {
             },
         );
         self.timings.assembly += t.elapsed();
-    }
-
-    /// Penalty contact: forces into `f_contact`, stiffness into the tangent.
-    /// Returns the number of points whose active status changed.
-    fn assemble_contact(&mut self) -> usize {
-        let t = Instant::now();
-        self.f_contact.fill(0.0);
-        let model = self.model;
-        let mut changes = 0;
-        let mut k = 0;
-        for (k_ind, ind) in model.indenters.iter().enumerate() {
-            // the rigid surface's displacement plays the master's part
-            let offset = self.indenter_offset(k_ind);
-            for c in &ind.nodes {
-                changes += usize::from(self.contact_pair(k, c.node, None, offset, c.gap0, &c.normal, c.penalty));
-                k += 1;
-            }
-        }
-        for pc in &model.contacts {
-            for p in &pc.pairs {
-                let um = [0, 1, 2].map(|i| self.u[3 * p.master + i]);
-                changes += usize::from(self.contact_pair(k, p.slave, Some(p.master), um, p.gap0, &p.normal, p.penalty));
-                k += 1;
-            }
-        }
-        self.timings.contact += t.elapsed();
-        changes
-    }
-}
-
-impl Structure<'_> {
-    /// One node pair of eq. (13): gap from the slave displacement and the
-    /// master's (`u_master`: a body node's, or a rigid indenter's), force
-    /// `−ε g n` on the slave and its opposite on the master node if any,
-    /// blocks `±ε n nᵀ` into the tangent. Records the point's state in
-    /// `self.contact[k]` and returns true if its active status changed.
-    #[allow(clippy::too_many_arguments)] // the terms of eq. (13) and (19)–(20)
-    fn contact_pair(
-        &mut self,
-        k: usize,
-        slave: usize,
-        master: Option<usize>,
-        u_master: [f64; 3],
-        gap0: f64,
-        normal: &[f64; 3],
-        penalty: f64,
-    ) -> bool {
-        let us = [0, 1, 2].map(|i| self.u[3 * slave + i]);
-        let g = contact::gap(gap0, normal, us, u_master);
-        let response = contact::augmented_response(g, normal, penalty, self.contact[k].multiplier);
-        let point = &mut self.contact[k];
-        let changed = response.is_some() != point.active;
-        point.active = response.is_some();
-        point.gap = g;
-        point.force = [0.0; 3];
-        if let Some((f, kb)) = response {
-            point.force = f;
-            for i in 0..3 {
-                self.f_contact[3 * slave + i] += f[i];
-            }
-            self.assembler.add_node_block(&mut self.tangent, slave, slave, &kb);
-            if let Some(m) = master {
-                for i in 0..3 {
-                    self.f_contact[3 * m + i] -= f[i];
-                }
-                self.assembler.add_node_block(&mut self.tangent, m, m, &kb);
-                self.assembler.add_node_block(&mut self.tangent, slave, m, &kb.map(|r| r.map(|v| -v)));
-            }
-        }
-        changed
     }
 }
 

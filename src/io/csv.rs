@@ -90,14 +90,15 @@ pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result
 pub fn write_contact_points(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     let mut out = Vec::new();
     for set in &solution.contact_sets {
-        let mut text = String::from("node,x,y,z,gap,f_x,f_y,f_z,area,pressure,active\n");
+        let mut text = String::from("node,x,y,z,gap,f_x,f_y,f_z,area,pressure,active,slip,sliding\n");
         for p in &set.points {
             let x = model.mesh.coords(p.node);
             let f = p.force;
             let pressure = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt() / p.area;
+            let slip = (p.slip[0] * p.slip[0] + p.slip[1] * p.slip[1] + p.slip[2] * p.slip[2]).sqrt();
             let _ = writeln!(
                 text,
-                "{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{}",
+                "{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{}",
                 p.node,
                 x[0],
                 x[1],
@@ -108,7 +109,9 @@ pub fn write_contact_points(model: &Model, solution: &Solution, dir: &Path) -> R
                 f[2],
                 p.area,
                 pressure,
-                u8::from(p.active)
+                u8::from(p.active),
+                slip,
+                u8::from(p.sliding)
             );
         }
         let path = dir.join(format!("contact_{}.csv", set.name));

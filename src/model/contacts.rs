@@ -288,6 +288,7 @@ pub(super) fn indenter(
         force,
         nodes,
         penetration_tolerance,
+        friction: friction(key, d.friction)?,
         faces: face_list,
     })
 }
@@ -372,6 +373,7 @@ pub(super) fn pair_contact(
         name: c.name.clone(),
         pairs,
         penetration_tolerance,
+        friction: friction(key, c.friction)?,
         unpaired,
         master: ContactSurface { body: bm, faces: master_faces },
         slave: ContactSurface { body: bs, faces: slave_faces },
@@ -389,6 +391,16 @@ fn tolerance(key: &str, t: Option<f64>, size: f64) -> Result<Option<f64>, ModelE
             1e-3 * size,
             "the largest penetration in m that the augmented Lagrangian accepts, positive and at most 1e-3 of the body's size",
         )
+    })
+    .transpose()
+}
+
+/// `friction`: Coulomb's coefficient μ in [0, 10]; the tangential penalty
+/// equals the normal one (elastic slip of the order of the penetration).
+fn friction(key: &str, mu: Option<f64>) -> Result<Option<contact::Friction>, ModelError> {
+    mu.map(|m| {
+        bounds::within(&format!("{key}.friction"), m, 0.0, 10.0, "Coulomb's coefficient of friction μ")
+            .map(|coefficient| contact::Friction { coefficient, penalty_ratio: 1.0 })
     })
     .transpose()
 }

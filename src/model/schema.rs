@@ -332,6 +332,7 @@ pub struct IndenterFile {
     pub penalty: Option<f64>,
     pub penalty_factor: Option<f64>,
     pub penetration_tolerance: Option<f64>,
+    pub friction: Option<f64>,
 }
 
 /// One side of a deformable contact.
@@ -353,6 +354,7 @@ pub struct ContactFile {
     pub penalty: Option<f64>,
     pub penalty_factor: Option<f64>,
     pub penetration_tolerance: Option<f64>,
+    pub friction: Option<f64>,
     pub tolerance: Option<f64>,
     pub pairs: Option<Vec<Exact<Exact<f64, 3>, 2>>>,
 }

@@ -1,0 +1,100 @@
+//! Contact assembly: every indenter point and node pair, penalty or
+//! augmented Lagrangian in the normal direction, Coulomb friction in the
+//! tangent plane (`contact::friction_response`).
+
+use std::time::Instant;
+
+use super::Structure;
+use crate::contact;
+
+impl Structure<'_> {
+    /// Penalty contact: forces into `f_contact`, stiffness into the tangent.
+    /// Returns the number of points whose active status changed.
+    pub(super) fn assemble_contact(&mut self) -> usize {
+        let t = Instant::now();
+        self.f_contact.fill(0.0);
+        let model = self.model;
+        let mut changes = 0;
+        let mut k = 0;
+        for (k_ind, ind) in model.indenters.iter().enumerate() {
+            // the rigid surface's displacement plays the master's part
+            let offset = self.indenter_offset(k_ind);
+            for c in &ind.nodes {
+                let pair = (c.node, None, offset, c.gap0, c.normal, c.penalty);
+                changes += usize::from(self.contact_pair(k, pair, ind.friction.as_ref()));
+                k += 1;
+            }
+        }
+        for pc in &model.contacts {
+            for p in &pc.pairs {
+                let um = [0, 1, 2].map(|i| self.u[3 * p.master + i]);
+                let pair = (p.slave, Some(p.master), um, p.gap0, p.normal, p.penalty);
+                changes += usize::from(self.contact_pair(k, pair, pc.friction.as_ref()));
+                k += 1;
+            }
+        }
+        self.timings.contact += t.elapsed();
+        changes
+    }
+}
+
+/// One contact point's terms: slave node, master node (pairs), the master's
+/// displacement (a body node's or the rigid indenter's), initial gap, normal
+/// and penalty.
+type PairTerms = (usize, Option<usize>, [f64; 3], f64, [f64; 3], f64);
+
+impl Structure<'_> {
+    /// One node pair of eq. (13): gap from the slave displacement and the
+    /// master's (`u_master`: a body node's, or a rigid indenter's), force
+    /// `−ε g n` on the slave and its opposite on the master node if any,
+    /// blocks `±ε n nᵀ` into the tangent. Records the point's state in
+    /// `self.contact[k]` and returns true if its active status changed.
+    ///
+    /// With Coulomb friction an active point adds its tangential force and
+    /// block (`contact::friction_response`, from the committed slip).
+    fn contact_pair(&mut self, k: usize, pair: PairTerms, friction: Option<&contact::Friction>) -> bool {
+        let (slave, master, u_master, gap0, normal, penalty) = pair;
+        let normal = &normal;
+        let us = [0, 1, 2].map(|i| self.u[3 * slave + i]);
+        let g = contact::gap(gap0, normal, us, u_master);
+        let mut response = contact::augmented_response(g, normal, penalty, self.contact[k].multiplier);
+        let committed_slip = self.contact_committed[k].slip;
+        let point = &mut self.contact[k];
+        let changed = response.is_some() != point.active;
+        point.active = response.is_some();
+        point.gap = g;
+        point.force = [0.0; 3];
+        point.sliding = false;
+        point.slip = committed_slip;
+        if let (Some((f, kb)), Some(fr)) = (response.as_mut(), friction) {
+            let rel: [f64; 3] = std::array::from_fn(|i| us[i] - u_master[i]);
+            let dn: f64 = (0..3).map(|i| rel[i] * normal[i]).sum();
+            let d_t: [f64; 3] = std::array::from_fn(|i| rel[i] - dn * normal[i]);
+            let p_n: f64 = (0..3).map(|i| f[i] * normal[i]).sum();
+            let (ft, slip, sliding, kt) = contact::friction_response(d_t, committed_slip, normal, p_n, penalty, fr);
+            point.slip = slip;
+            point.sliding = sliding;
+            for i in 0..3 {
+                f[i] += ft[i];
+                for j in 0..3 {
+                    kb[i][j] += kt[i][j];
+                }
+            }
+        }
+        if let Some((f, kb)) = response {
+            point.force = f;
+            for i in 0..3 {
+                self.f_contact[3 * slave + i] += f[i];
+            }
+            self.assembler.add_node_block(&mut self.tangent, slave, slave, &kb);
+            if let Some(m) = master {
+                for i in 0..3 {
+                    self.f_contact[3 * m + i] -= f[i];
+                }
+                self.assembler.add_node_block(&mut self.tangent, m, m, &kb);
+                self.assembler.add_node_block(&mut self.tangent, slave, m, &kb.map(|r| r.map(|v| -v)));
+            }
+        }
+        changed
+    }
+}

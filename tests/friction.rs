@@ -89,6 +89,10 @@ fn a_pushed_block_slides_at_mu_times_the_normal_force() {
         let push = sol.reaction("push").unwrap().force[0];
         eprintln!("μ = {mu}: push reaction {push:.6e} N, μ N = {:.6e} N", mu * 2000.0);
         assert!((push.abs() / (mu * 2000.0) - 1.0).abs() < 1e-6, "push {push} vs μN {}", mu * 2000.0);
+        // the floor's resultant split: normal N, tangential μ N
+        let floor = sol.contact("floor").unwrap();
+        assert!((floor.normal_force[2] / 2000.0 - 1.0).abs() < 1e-9);
+        assert!((floor.tangential_force[0].abs() / (mu * 2000.0) - 1.0).abs() < 1e-6, "{:?}", floor.tangential_force);
         let points = sol.contact_points("floor").unwrap();
         assert!(points.iter().filter(|p| p.active).all(|p| p.sliding), "all active points slide");
         // at the end of "press" the held face x = 0 resists the floor's

@@ -69,6 +69,10 @@ pub struct ContactResultant {
     pub kind: ContactKind,
     /// Force on the body (on the slave body for pairs), N.
     pub force: [f64; 3],
+    /// Its part along the contact normals (Σ (f·n) n over the points), N.
+    pub normal_force: [f64; 3],
+    /// Its tangential (friction) part, `force − normal_force`, N.
+    pub tangential_force: [f64; 3],
     /// Largest penetration of its active points (m).
     pub max_penetration: f64,
     /// Rigid displacement of an indenter (m; prescribed, or solved for

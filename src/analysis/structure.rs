@@ -332,17 +332,35 @@ impl<'m> Structure<'m> {
             .enumerate()
             .map(|(k, (name, kind, points))| {
                 let mut force = [0.0; 3];
+                let mut normal_force = [0.0; 3];
                 let mut max_penetration: f64 = 0.0;
-                for p in points {
-                    for k in 0..3 {
-                        force[k] += p.force[k];
+                let ni = self.model.indenters.len();
+                for (j, p) in points.iter().enumerate() {
+                    let n = if k < ni {
+                        self.model.indenters[k].nodes[j].normal
+                    } else {
+                        self.model.contacts[k - ni].pairs[j].normal
+                    };
+                    let fn_ = p.force[0] * n[0] + p.force[1] * n[1] + p.force[2] * n[2];
+                    for c in 0..3 {
+                        force[c] += p.force[c];
+                        normal_force[c] += fn_ * n[c];
                     }
                     if p.active {
                         max_penetration = max_penetration.max(-p.gap);
                     }
                 }
+                let tangential_force = std::array::from_fn(|c| force[c] - normal_force[c]);
                 let displacement = if kind == ContactKind::Indenter { self.indenter_offset(k) } else { [0.0; 3] };
-                ContactResultant { name: name.to_string(), kind, force, max_penetration, displacement }
+                ContactResultant {
+                    name: name.to_string(),
+                    kind,
+                    force,
+                    normal_force,
+                    tangential_force,
+                    max_penetration,
+                    displacement,
+                }
             })
             .collect()
     }

@@ -57,15 +57,16 @@ pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result
     }
     for set in &solution.contact_sets {
         let is_indenter = model.indenters.iter().any(|i| i.name == set.name);
-        let mut text =
-            String::from("increment,lambda,iterations,d_x,d_y,d_z,f_x,f_y,f_z,max_penetration,plastic_points\n");
+        let mut text = String::from(
+            "increment,lambda,iterations,d_x,d_y,d_z,f_x,f_y,f_z,max_penetration,plastic_points,f_n,f_t\n",
+        );
         for row in &solution.history {
             let Some(c) = row.contact(&set.name) else { continue };
             let d = if is_indenter { c.displacement.map(|v| format!("{v:e}")) } else { Default::default() };
             let f = c.force;
             let _ = writeln!(
                 text,
-                "{},{:e},{},{},{},{},{:e},{:e},{:e},{:e},{}",
+                "{},{:e},{},{},{},{},{:e},{:e},{:e},{:e},{},{:e},{:e}",
                 row.increment,
                 row.lambda,
                 row.iterations,
@@ -76,7 +77,9 @@ pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result
                 f[1],
                 f[2],
                 c.max_penetration,
-                row.plastic_points
+                row.plastic_points,
+                norm(c.normal_force),
+                norm(c.tangential_force)
             );
         }
         let path = dir.join(format!("history_{}.csv", set.name));
@@ -119,4 +122,8 @@ pub fn write_contact_points(model: &Model, solution: &Solution, dir: &Path) -> R
         out.push(path);
     }
     Ok(out)
+}
+
+fn norm(v: [f64; 3]) -> f64 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }

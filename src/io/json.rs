@@ -40,6 +40,12 @@ pub struct ForceSummary {
     /// Largest penetration (contacts only, m).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_penetration: Option<f64>,
+    /// Normal and tangential (friction) parts of `force` (contacts only, N).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub normal_force: Option<[f64; 3]>,
+    /// See `normal_force`.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub tangential_force: Option<[f64; 3]>,
 }
 
 /// Phase timings in seconds.
@@ -161,7 +167,14 @@ fn probes(model: &Model, solution: &Solution) -> Vec<ProbeSummary> {
 
 fn reactions(list: &[crate::analysis::Reaction]) -> Vec<ForceSummary> {
     list.iter()
-        .map(|r| ForceSummary { name: r.name.clone(), kind: None, force: r.force, max_penetration: None })
+        .map(|r| ForceSummary {
+            name: r.name.clone(),
+            kind: None,
+            force: r.force,
+            max_penetration: None,
+            normal_force: None,
+            tangential_force: None,
+        })
         .collect()
 }
 
@@ -172,6 +185,8 @@ fn contacts(list: &[crate::analysis::ContactResultant]) -> Vec<ForceSummary> {
             kind: Some(c.kind.name()),
             force: c.force,
             max_penetration: Some(c.max_penetration),
+            normal_force: Some(c.normal_force),
+            tangential_force: Some(c.tangential_force),
         })
         .collect()
 }

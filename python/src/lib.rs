@@ -286,10 +286,10 @@ impl NativeModel {
         progress: bool,
     ) -> PyResult<NativeResults> {
         let threads = threads.or(self.model.solver.threads);
-        if let Some(n) = threads {
-            if n == 0 || n > 1024 {
-                return Err(PyValueError::new_err(format!("threads = {n}: expected an integer from 1 to 1024")));
-            }
+        if let Some(n) = threads
+            && (n == 0 || n > 1024)
+        {
+            return Err(PyValueError::new_err(format!("threads = {n}: expected an integer from 1 to 1024")));
         }
         // the output folder is checked and locked before any computing
         let folder = match &out {

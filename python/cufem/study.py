@@ -95,10 +95,17 @@ def run_variant(model: dict, base: str, variant: Dict[str, Any], outputs: Sequen
         for spec in outputs:
             row[spec] = output_value(summary, spec)
     except Exception as e:  # a failed variant is a row, not a crashed study
-        row["error"] = str(e) if isinstance(e, (_native.ModelError, KeyError)) and str(e) else f"{type(e).__name__}: {e}"
-        if isinstance(e, KeyError) and e.args:
-            row["error"] = str(e.args[0])
+        row["error"] = _message(e)
     return row
+
+
+def _message(e: Exception) -> str:
+    """A model error's own message (the CLI's), a bad key path's text, else `Type: message`."""
+    if isinstance(e, _native.ModelError):
+        return str(e)
+    if isinstance(e, KeyError) and e.args:
+        return str(e.args[0])
+    return f"{type(e).__name__}: {e}"
 
 
 def _model_dict(model) -> tuple:

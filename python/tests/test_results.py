@@ -1,6 +1,5 @@
 """Python results against the CLI's files, to the last digit."""
 
-
 import numpy as np
 import pandas as pd
 import pytest

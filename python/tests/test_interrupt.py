@@ -8,8 +8,12 @@ import time
 
 from conftest import EXAMPLES
 
+# Python's own Ctrl-C handler, as in a terminal: a process started in the
+# background of a non-interactive shell (CI) inherits SIGINT ignored, and
+# Python then leaves it ignored
 SCRIPT = """
-import sys, cufem
+import signal, sys, cufem
+signal.signal(signal.SIGINT, signal.default_int_handler)
 r = cufem.Model.from_file(sys.argv[1]).run(out=sys.argv[2], threads=1)
 print("status", r.summary["status"], r.summary["increments"], flush=True)
 """

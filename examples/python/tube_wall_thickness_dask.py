@@ -2,7 +2,7 @@
 run through cufem.study on a local Dask cluster.
 
 Each variant is the tube of examples/bending_tube_20L9.toml with another
-wall thickness, solved in 5 increments (a short sweep: about a minute on
+wall thickness, solved in 5 increments (a short sweep: 1.5 minutes on
 two cores). The same call with the Client of a real cluster runs it there.
 
     pip install ./python "dask[distributed]" matplotlib

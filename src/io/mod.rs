@@ -131,7 +131,7 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
         let at_end = snapshot.as_ref().unwrap_or(solution);
         let mut vtu = None;
         if model.output.vtu && snapshot.is_some() {
-            let name = format!("result_{}_{}.vtu", k + 1, solution.steps[k].name);
+            let name = step_vtu_name(solution, k);
             let path = dir.join(&name);
             write_vtu(&path, model, at_end)?;
             written.push(path);
@@ -153,6 +153,24 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     json::write(&path, &s)?;
     written.push(path);
     Ok(written)
+}
+
+/// The file name of step `k`'s VTU.
+fn step_vtu_name(solution: &Solution, k: usize) -> String {
+    format!("result_{}_{}.vtu", k + 1, solution.steps[k].name)
+}
+
+/// The content of `summary.json` for results kept in memory (the Python
+/// package): what [`write_results`] writes, per-step entries included,
+/// with an empty `files` list.
+pub fn full_summary(model: &Model, solution: &Solution) -> Result<Summary, IoError> {
+    let mut s = summary(model, solution);
+    for k in 0..solution.steps.len() {
+        let snapshot = solution.at_step(model, k).map_err(|e| IoError::Recovery(e.to_string()))?;
+        let vtu = (model.output.vtu && snapshot.is_some()).then(|| step_vtu_name(solution, k));
+        s.steps.push(json::step_summary(model, solution, k, snapshot.as_ref().unwrap_or(solution), vtu));
+    }
+    Ok(s)
 }
 
 /// A ParaView collection: one dataset per step end, its time the analysis

@@ -1,0 +1,125 @@
+"""`cufem.Model`: a validated model, from a file, TOML text or a dict."""
+
+from __future__ import annotations
+
+import copy
+import os
+from typing import Any, Optional
+
+from . import _native
+from .results import Results
+
+
+class Model:
+    """A validated cufem model (docs/model-format.md).
+
+    Build it with :meth:`from_file`, :meth:`from_toml` or :meth:`from_dict`;
+    all three go through the CLI's parser and validation, so an invalid
+    model raises :class:`cufem.ModelError` with the CLI's message (key,
+    value, what is allowed).
+    """
+
+    def __init__(self, native, text: str, base: str, path: Optional[str] = None):
+        self._native = native
+        self._text = text
+        self._base = base
+        #: the model file, when read from one
+        self.path = path
+
+    @classmethod
+    def from_file(cls, path, max_memory: Optional[int] = None) -> "Model":
+        """Reads a model file; relative paths in it (gmsh sections) start at its folder."""
+        path = os.fspath(path)
+        native = _native.parse_file(path, max_memory)
+        with open(path, encoding="utf-8") as f:
+            text = f.read()
+        base = os.path.dirname(os.path.abspath(path))
+        return cls(native, text, base, path)
+
+    @classmethod
+    def from_toml(cls, text: str, base=None, max_memory: Optional[int] = None) -> "Model":
+        """Parses model-file text; relative paths start at `base` (default: the current folder)."""
+        base = os.path.abspath(os.fspath(base) if base is not None else os.getcwd())
+        return cls(_native.parse_toml(text, base, max_memory), text, base)
+
+    @classmethod
+    def from_dict(cls, d: dict, base=None, max_memory: Optional[int] = None) -> "Model":
+        """A model from nested dicts and lists with the model file's keys
+        (``{"materials": [{"name": "steel", ...}], "bodies": [...]}``):
+        written as TOML text and parsed like a file. numpy numbers and arrays
+        are accepted; ``None`` is refused (TOML has no null)."""
+        return cls.from_toml(_native.object_to_toml(d), base, max_memory)
+
+    def to_dict(self) -> dict:
+        """The model file's keys as nested dicts and lists (a deep copy:
+        change it and pass it to :meth:`from_dict`)."""
+        return _native.toml_to_object(self._text)
+
+    def to_toml(self) -> str:
+        """The model-file text this model was read from."""
+        return self._text
+
+    @property
+    def base(self) -> str:
+        """The folder relative paths in the model start at."""
+        return self._base
+
+    def check(self) -> dict:
+        """Sizes: ``bodies`` (per body: elements, nodes, dof, section and
+        axis elements), total ``elements``, ``nodes``, ``dof``, the
+        ``equations`` after the symbolic factorization, and the warnings."""
+        return self._native.check()
+
+    def run(self, out=None, threads: Optional[int] = None, progress: bool = True, force: bool = False) -> Results:
+        """Solves the model and returns its :class:`Results`.
+
+        The GIL is released during the solve. Ctrl-C (SIGINT) stops the
+        analysis at the next safe point: the results of the last converged
+        increment are returned (``summary["status"] == "interrupted"``) and,
+        with `out`, written; a second Ctrl-C raises ``KeyboardInterrupt``.
+
+        out: a folder to write the CLI's files into (``cufem run --out``:
+        locked, replaced atomically; `force` as ``--force``).
+        threads: worker threads (default: the model's ``solver.threads``,
+        else all cores). progress: print a line per increment to stderr.
+        """
+        out = os.fspath(out) if out is not None else None
+        native = self._native.run(out, force, threads, progress)
+        return Results(native, out)
+
+    def __repr__(self) -> str:
+        c = self._native.check()
+        return f"<cufem.Model {self.path or c['title']!r}: {len(c['bodies'])} bodies, {c['dof']} DOF>"
+
+
+def set_path(d: dict, path: str, value: Any) -> dict:
+    """A copy of model dict `d` with the dotted key path set to `value`
+    (``"indenters.0.displacement.2"``: list indices are numbers). The last
+    key may be new; every key before it must exist."""
+    d = copy.deepcopy(d)
+    keys = path.split(".")
+    node: Any = d
+    for i, k in enumerate(keys):
+        last = i == len(keys) - 1
+        where = ".".join(keys[: i + 1])
+        if isinstance(node, list):
+            try:
+                idx = int(k)
+            except ValueError:
+                raise KeyError(f"{path}: {where} is a list index, expected an integer") from None
+            if not -len(node) <= idx < len(node):
+                raise KeyError(f"{path}: {where} is past the end of a list of {len(node)}")
+            if last:
+                node[idx] = value
+            else:
+                node = node[idx]
+        elif isinstance(node, dict):
+            if last:
+                node[k] = value
+            elif k not in node:
+                raise KeyError(f"{path}: the model has no key {where}")
+            else:
+                node = node[k]
+        else:
+            raise KeyError(f"{path}: {'.'.join(keys[:i])} is a value, not a table or list")
+    return d

@@ -1,0 +1,164 @@
+"""`cufem.Results`: the solution of a run, read by name."""
+
+from __future__ import annotations
+
+import base64
+import json
+import os
+import tempfile
+import xml.etree.ElementTree as ET
+from typing import Dict, Optional
+
+import numpy as np
+
+_DTYPES = {"Float64": "<f8", "Float32": "<f4", "Int64": "<i8", "Int32": "<i4", "UInt8": "u1", "UInt64": "<u8"}
+
+
+def _table(columns):
+    """A pandas DataFrame if pandas is installed, else a dict of numpy arrays."""
+    data = {name: np.asarray(values, dtype=float) for name, values in columns}
+    for k in ("increment", "iterations", "plastic_points"):
+        if k in data and np.all(np.isfinite(data[k])):
+            data[k] = data[k].astype(np.int64)
+    try:
+        import pandas as pd
+    except ImportError:
+        return data
+    return pd.DataFrame(data)
+
+
+def read_vtu(path) -> dict:
+    """Reads a cufem VTU file (binary base64 arrays with a UInt64 header):
+    ``points`` (n, 3), ``connectivity`` (cells, 8), ``cell_types``,
+    ``point_data`` and ``cell_data`` (name → array, (n,) or (n, components))."""
+    root = ET.parse(path).getroot()
+    if root.get("header_type", "UInt32") != "UInt64" or root.get("compressor"):
+        raise ValueError(f"{path}: not a cufem VTU file (expected uncompressed arrays with UInt64 headers)")
+
+    def array(node):
+        raw = base64.b64decode("".join((node.text or "").split()))
+        size = int(np.frombuffer(raw[:8], "<u8")[0])
+        values = np.frombuffer(raw[8 : 8 + size], _DTYPES[node.get("type")]).copy()
+        comps = int(node.get("NumberOfComponents", "1"))
+        return values.reshape(-1, comps) if comps > 1 else values
+
+    piece = root.find("UnstructuredGrid/Piece")
+    points = array(piece.find("Points/DataArray"))
+    cells = {a.get("Name"): array(a) for a in piece.findall("Cells/DataArray")}
+    offsets = cells["offsets"]
+    nodes_per_cell = int(offsets[0]) if len(offsets) else 8
+    return {
+        "points": points,
+        "connectivity": cells["connectivity"].reshape(-1, nodes_per_cell),
+        "cell_types": cells["types"],
+        "point_data": {a.get("Name"): array(a) for a in piece.findall("PointData/DataArray")},
+        "cell_data": {a.get("Name"): array(a) for a in piece.findall("CellData/DataArray")},
+    }
+
+
+class Results:
+    """The results of :meth:`cufem.Model.run` (the last converged increment
+    if the analysis stopped early: see ``summary["status"]``)."""
+
+    def __init__(self, native, out: Optional[str] = None):
+        self._native = native
+        #: the folder the CLI's files were written to, if any
+        self.out = out
+        self._summary = None
+        self._vtu = None
+
+    @property
+    def summary(self) -> dict:
+        """The content of ``summary.json`` (``files``: those written by
+        ``run(out=…)``, else empty)."""
+        if self._summary is None:
+            self._summary = json.loads(self._native.summary_json())
+        return self._summary
+
+    @property
+    def status(self) -> str:
+        """``"converged"``, ``"not_converged"`` or ``"interrupted"``."""
+        return self.summary["status"]
+
+    @property
+    def files(self):
+        """The files written by ``run(out=…)`` (None if nothing was written)."""
+        return self._native.files
+
+    def probe(self, name: str) -> Dict[str, float]:
+        """Every quantity at probe `name`: ``x, y, z`` (the point), ``u_x`` …
+        ``u_z``, ``s_xx`` … ``s_yz``, ``von_mises``, ``peeq``, ``e_xx`` …
+        (the values of summary.json, strains included)."""
+        return dict(self._native.probe(name))
+
+    def line(self, name: str):
+        """The samples of ``[[lines]]`` entry `name` as ``line_<name>.csv``
+        has them (columns ``s, x, y, z, u_x, …, peeq, e_xx, …``): a pandas
+        DataFrame, or a dict of numpy arrays without pandas."""
+        return _table(self._native.line(name))
+
+    def history(self, name: str):
+        """Per converged increment, as ``history_<name>.csv``: for a
+        constraint set the prescribed displacement ``u_*`` and reaction
+        ``r_*``; for an indenter or contact its displacement ``d_*``, force
+        ``f_*``, ``max_penetration`` and ``plastic_points``."""
+        return _table(self._native.history(name))
+
+    def _vtu_data(self) -> dict:
+        if self._vtu is None:
+            path = os.path.join(self.out, "result.vtu") if self.out else None
+            if path and os.path.exists(path):
+                self._vtu = read_vtu(path)
+            else:
+                with tempfile.TemporaryDirectory(prefix="cufem-vtu-") as d:
+                    path = os.path.join(d, "result.vtu")
+                    self._native.write_vtu(path)
+                    self._vtu = read_vtu(path)
+        return self._vtu
+
+    @property
+    def points(self) -> np.ndarray:
+        """The points of ``result.vtu`` (n, 3), m."""
+        return self._vtu_data()["points"]
+
+    def field(self, name: str) -> np.ndarray:
+        """Point field `name` of ``result.vtu`` at :attr:`points`:
+        ``displacement`` (n, 3), ``s_yy``, ``von_mises``, ``peeq``,
+        ``contact_force`` …"""
+        data = self._vtu_data()["point_data"]
+        if name not in data:
+            raise KeyError(f"field {name!r}: expected one of {sorted(data)}")
+        return data[name]
+
+    @property
+    def field_names(self):
+        """The point fields of ``result.vtu``."""
+        return list(self._vtu_data()["point_data"])
+
+    def to_meshio(self):
+        """The fields of ``result.vtu`` as a ``meshio.Mesh`` (hexahedra;
+        point data and the ``body``/``element`` cell data, each (n,
+        components) like ``meshio.read`` gives them). Needs meshio."""
+        import meshio
+
+        d = self._vtu_data()
+
+        # as meshio.read gives them: (n, components), also for one component
+        def column(v):
+            return v.reshape(len(v), -1)
+
+        return meshio.Mesh(
+            d["points"],
+            [("hexahedron", d["connectivity"])],
+            point_data={k: column(v) for k, v in d["point_data"].items()},
+            cell_data={k: [column(v)] for k, v in d["cell_data"].items()},
+        )
+
+    def write(self, dir, force: bool = False):
+        """Writes the CLI's files (summary.json, result.vtu, CSV, PNG) into
+        `dir` as ``cufem run --out dir`` does; returns their names."""
+        return self._native.write(os.fspath(dir), force)
+
+    def __repr__(self) -> str:
+        s = self.summary
+        return f"<cufem.Results {s['title']!r}: {s['status']}, load factor {s['load_factor']:.4g}, {s['increments']} increments>"

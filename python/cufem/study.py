@@ -1,0 +1,166 @@
+"""Parameter studies: many variants of one model, locally or on Dask.
+
+>>> from cufem import study
+>>> df = study.run("examples/block_indentation.toml",
+...                {"indenters.0.displacement.2": [-0.5e-3, -1e-3]},
+...                outputs=["probe.edge.peeq", "contact.punch.f_z"])
+
+A variant is a dict of dotted key paths into the model dict
+(``"indenters.0.displacement.2"``: list indices are numbers) and values.
+``variants`` is a list of such dicts, or one dict of value lists: their
+product grid (:func:`grid`). Each variant is built with
+:meth:`cufem.Model.from_dict` (the CLI's validation) and solved; the result
+is a pandas DataFrame with a row per variant: the variant's values, an
+``error`` column (None, or the message of the variant that failed: an
+invalid model, a missing key) and the requested outputs (NaN where it
+failed). A variant that does not converge is not an error: its ``status``
+says so and its values are those of the last converged increment.
+
+Outputs are read from the summary (summary.json):
+
+* ``probe.<name>.<quantity>``: ``u_x`` … ``u_z``, ``s_xx`` … ``s_yz``,
+  ``von_mises``, ``peeq``;
+* ``reaction.<name>.f_x|f_y|f_z``, ``contact.<name>.f_x|f_y|f_z`` or
+  ``contact.<name>.max_penetration``;
+* any scalar of the summary: ``status``, ``load_factor``, ``max_peeq``,
+  ``increments``, ``newton_iterations``, ``plastic_points``, ``dof`` …
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import os
+from typing import Any, Dict, Iterable, List, Optional, Sequence, Union
+
+from . import _native
+from .model import Model, set_path
+
+_QUANTITIES = {"u_x": ("u", 0), "u_y": ("u", 1), "u_z": ("u", 2)}
+_QUANTITIES.update({f"s_{c}": ("stress", k) for k, c in enumerate(["xx", "yy", "zz", "xy", "xz", "yz"])})
+_QUANTITIES.update({"von_mises": ("von_mises", None), "peeq": ("peeq", None)})
+_FORCE = {"f_x": 0, "f_y": 1, "f_z": 2}
+
+DEFAULT_OUTPUTS = ("status", "load_factor", "max_peeq")
+
+
+def grid(variants: Dict[str, Sequence[Any]]) -> List[Dict[str, Any]]:
+    """The product grid of value lists: ``{"a": [1, 2], "b": [3, 4]}`` →
+    four variants, the last key varying fastest."""
+    keys = list(variants)
+    return [dict(zip(keys, values)) for values in itertools.product(*(list(variants[k]) for k in keys))]
+
+
+def output_value(summary: dict, spec: str) -> Any:
+    """The value of output `spec` (module docs) in a summary dict."""
+    parts = spec.split(".")
+    if parts[0] in ("probe", "reaction", "contact") and len(parts) == 3:
+        kind, name, what = parts
+        table = {"probe": "probes", "reaction": "reactions", "contact": "contact"}[kind]
+        entry = next((e for e in summary[table] if e["name"] == name), None)
+        if entry is None:
+            names = [e["name"] for e in summary[table]]
+            raise KeyError(f"output {spec!r}: no {kind} {name!r} (the model has {names})")
+        if kind == "probe":
+            if what not in _QUANTITIES:
+                raise KeyError(f"output {spec!r}: expected a quantity of {sorted(_QUANTITIES)}")
+            key, k = _QUANTITIES[what]
+            return entry[key] if k is None else entry[key][k]
+        if what in _FORCE:
+            return entry["force"][_FORCE[what]]
+        if what == "max_penetration" and kind == "contact":
+            return entry["max_penetration"]
+        raise KeyError(f"output {spec!r}: expected f_x, f_y, f_z" + (" or max_penetration" if kind == "contact" else ""))
+    if len(parts) == 1 and parts[0] in summary and not isinstance(summary[parts[0]], (list, dict)):
+        return summary[parts[0]]
+    raise KeyError(
+        f"output {spec!r}: expected probe.<name>.<quantity>, reaction.<name>.f_x|f_y|f_z, "
+        "contact.<name>.f_x|f_y|f_z|max_penetration or a scalar of the summary (status, load_factor, max_peeq, …)"
+    )
+
+
+def run_variant(model: dict, base: str, variant: Dict[str, Any], outputs: Sequence[str], threads: Optional[int]) -> dict:
+    """Builds and solves one variant; never raises: a failure is the row's
+    ``error``. (The task that the process pool or Dask runs.)"""
+    row: Dict[str, Any] = dict(variant)
+    row["error"] = None
+    for spec in outputs:
+        row[spec] = math.nan
+    try:
+        d = model
+        for path, value in variant.items():
+            d = set_path(d, path, value)
+        results = Model.from_dict(d, base=base).run(threads=threads, progress=False)
+        summary = results.summary
+        for spec in outputs:
+            row[spec] = output_value(summary, spec)
+    except Exception as e:  # a failed variant is a row, not a crashed study
+        row["error"] = _message(e)
+    return row
+
+
+def _message(e: Exception) -> str:
+    """A model error's own message (the CLI's), a bad key path's text, else `Type: message`."""
+    if isinstance(e, _native.ModelError):
+        return str(e)
+    if isinstance(e, KeyError) and e.args:
+        return str(e.args[0])
+    return f"{type(e).__name__}: {e}"
+
+
+def _model_dict(model) -> tuple:
+    if isinstance(model, Model):
+        return model.to_dict(), model.base
+    if isinstance(model, dict):
+        return model, os.getcwd()
+    m = Model.from_file(model)
+    return m.to_dict(), m.base
+
+
+def run(
+    model: Union[Model, dict, str, os.PathLike],
+    variants: Union[Iterable[Dict[str, Any]], Dict[str, Sequence[Any]]],
+    outputs: Sequence[str] = DEFAULT_OUTPUTS,
+    *,
+    client=None,
+    max_workers: Optional[int] = None,
+    threads: Optional[int] = 1,
+    mp_context: Optional[str] = None,
+):
+    """Runs every variant of `model` and returns a pandas DataFrame, one row
+    per variant in the given order (module docs).
+
+    model: a :class:`cufem.Model`, a model dict or a model file path.
+    variants: a list of ``{dotted path: value}`` dicts, or one dict of value
+    lists (their product grid).
+    client: a ``dask.distributed.Client``: the variants run as Dask tasks on
+    its cluster; otherwise in a local process pool of `max_workers`
+    processes (default: the CPU count) started with `mp_context` (default
+    ``"forkserver"`` where available: scripts need the usual
+    ``if __name__ == "__main__":`` guard).
+    threads: solver threads per variant (default 1: the parallelism is
+    across variants).
+    """
+    import pandas as pd
+
+    base_dict, base = _model_dict(model)
+    variants = grid(variants) if isinstance(variants, dict) else [dict(v) for v in variants]
+    outputs = list(outputs)
+    tasks = [(base_dict, base, v, outputs, threads) for v in variants]
+    if client is not None:
+        futures = [client.submit(run_variant, *t, pure=False) for t in tasks]
+        rows = client.gather(futures)
+    elif max_workers == 0 or len(tasks) <= 1:
+        rows = [run_variant(*t) for t in tasks]
+    else:
+        import multiprocessing
+        from concurrent.futures import ProcessPoolExecutor
+
+        if mp_context is None:
+            mp_context = "forkserver" if "forkserver" in multiprocessing.get_all_start_methods() else "spawn"
+        ctx = multiprocessing.get_context(mp_context)
+        workers = min(max_workers or os.cpu_count() or 1, len(tasks))
+        with ProcessPoolExecutor(max_workers=workers, mp_context=ctx) as pool:
+            rows = list(pool.map(run_variant, *zip(*tasks)))
+    columns = list(dict.fromkeys(k for v in variants for k in v)) + ["error"] + outputs
+    return pd.DataFrame(rows, columns=columns)

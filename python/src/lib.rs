@@ -1,0 +1,513 @@
+//! `cufem._native`: the Rust side of the Python package `cufem`.
+//!
+//! A thin layer over the library: models are read by the CLI's parser
+//! ([`Model::parse_in`], so the schema and every validation message are the
+//! CLI's), solved by [`analysis::run`] in a thread of their own with the GIL
+//! released, and written by [`cufem::io::write_results`] through
+//! [`OutputDir`] (the same files, the same atomic replacement as
+//! `cufem run`). The pure-Python package (`python/cufem/`) wraps these
+//! classes into `cufem.Model` and `cufem.Results`.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+use std::sync::mpsc;
+use std::time::Duration;
+
+use cufem::analysis::{self, IncrementLog, Progress, RunOptions, Solution};
+use cufem::io::output::OutputDir;
+use cufem::model::steps::{self, Item};
+use cufem::model::{Limits, Model, ModelError as RustModelError};
+use cufem::post::{self, Quantity};
+use cufem::solver::Interrupt;
+use cufem::solver::stepping::Cutback;
+use pyo3::create_exception;
+use pyo3::exceptions::{PyKeyError, PyOSError, PyRuntimeError, PyValueError};
+use pyo3::prelude::*;
+use pyo3::types::{PyBool, PyDict, PyFloat, PyInt, PyList, PyString, PyTuple};
+
+create_exception!(
+    cufem,
+    ModelError,
+    PyValueError,
+    "An invalid model: the message names the model-file key, the value and what is allowed (the CLI's message)."
+);
+
+fn model_error(e: RustModelError) -> PyErr {
+    match e {
+        RustModelError::Io { .. } => PyOSError::new_err(e.to_string()),
+        e => ModelError::new_err(e.to_string()),
+    }
+}
+
+fn limits(max_memory: Option<u64>) -> Limits {
+    Limits { max_memory: max_memory.or_else(cufem::size::available_memory) }
+}
+
+/// A validated model (immutable; shared with the analysis thread).
+#[pyclass(module = "cufem._native", frozen)]
+struct NativeModel {
+    model: Arc<Model>,
+}
+
+/// Reads and validates a model file (relative paths in it start at its folder).
+#[pyfunction]
+#[pyo3(signature = (path, max_memory=None))]
+fn parse_file(py: Python<'_>, path: PathBuf, max_memory: Option<u64>) -> PyResult<NativeModel> {
+    let model = py.allow_threads(|| Model::from_file_with(&path, limits(max_memory))).map_err(model_error)?;
+    Ok(NativeModel { model: Arc::new(model) })
+}
+
+/// Parses and validates model-file text; relative paths start at `base`.
+#[pyfunction]
+#[pyo3(signature = (text, base=None, max_memory=None))]
+fn parse_toml(py: Python<'_>, text: String, base: Option<PathBuf>, max_memory: Option<u64>) -> PyResult<NativeModel> {
+    let base = base.unwrap_or_else(|| PathBuf::from("."));
+    let model = py.allow_threads(|| Model::parse_in(&text, limits(max_memory), &base)).map_err(model_error)?;
+    Ok(NativeModel { model: Arc::new(model) })
+}
+
+/// TOML text → nested dicts and lists (a TOML syntax error is a `ModelError`
+/// with the parser's message, as `cufem run` prints it).
+#[pyfunction]
+fn toml_to_object(py: Python<'_>, text: &str) -> PyResult<PyObject> {
+    let value: toml::Table =
+        toml::from_str(text).map_err(|e| ModelError::new_err(RustModelError::Parse(e.to_string()).to_string()))?;
+    value_to_py(py, &toml::Value::Table(value))
+}
+
+/// Nested dicts and lists → TOML text (numpy scalars and arrays accepted;
+/// `None` refused: TOML has no null).
+#[pyfunction]
+fn object_to_toml(obj: &Bound<'_, PyAny>) -> PyResult<String> {
+    let value = py_to_value(obj, "")?;
+    let toml::Value::Table(table) = value else {
+        return Err(ModelError::new_err("model: expected a dict of model-file keys (a TOML table)"));
+    };
+    toml::to_string(&table).map_err(|e| ModelError::new_err(format!("model: cannot write as TOML: {e}")))
+}
+
+fn value_to_py(py: Python<'_>, v: &toml::Value) -> PyResult<PyObject> {
+    Ok(match v {
+        toml::Value::String(s) => s.into_pyobject(py)?.into_any().unbind(),
+        toml::Value::Integer(i) => i.into_pyobject(py)?.into_any().unbind(),
+        toml::Value::Float(f) => f.into_pyobject(py)?.into_any().unbind(),
+        toml::Value::Boolean(b) => PyBool::new(py, *b).to_owned().into_any().unbind(),
+        toml::Value::Datetime(d) => d.to_string().into_pyobject(py)?.into_any().unbind(),
+        toml::Value::Array(a) => {
+            let items = a.iter().map(|x| value_to_py(py, x)).collect::<PyResult<Vec<_>>>()?;
+            PyList::new(py, items)?.into_any().unbind()
+        }
+        toml::Value::Table(t) => {
+            let d = PyDict::new(py);
+            for (k, x) in t {
+                d.set_item(k, value_to_py(py, x)?)?;
+            }
+            d.into_any().unbind()
+        }
+    })
+}
+
+fn child(key: &str, name: impl std::fmt::Display) -> String {
+    if key.is_empty() { name.to_string() } else { format!("{key}.{name}") }
+}
+
+fn py_to_value(obj: &Bound<'_, PyAny>, key: &str) -> PyResult<toml::Value> {
+    let shown = || if key.is_empty() { "model".to_string() } else { key.to_string() };
+    if obj.is_none() {
+        return Err(ModelError::new_err(format!(
+            "{} = None: expected a value (TOML has no null: leave the key out for its default)",
+            shown()
+        )));
+    }
+    if let Ok(b) = obj.downcast::<PyBool>() {
+        return Ok(toml::Value::Boolean(b.is_true()));
+    }
+    if obj.is_instance_of::<PyInt>() {
+        let i: i64 = obj
+            .extract()
+            .map_err(|_| ModelError::new_err(format!("{} = {}: expected an integer within ±9.2e18", shown(), obj)))?;
+        return Ok(toml::Value::Integer(i));
+    }
+    if obj.is_instance_of::<PyFloat>() {
+        return Ok(toml::Value::Float(obj.extract()?));
+    }
+    if let Ok(s) = obj.downcast::<PyString>() {
+        return Ok(toml::Value::String(s.extract::<String>()?));
+    }
+    if let Ok(d) = obj.downcast::<PyDict>() {
+        let mut t = toml::Table::new();
+        for (k, v) in d.iter() {
+            let Ok(k) = k.downcast::<PyString>() else {
+                return Err(ModelError::new_err(format!(
+                    "{} has the key {}: expected string keys (model-file names)",
+                    shown(),
+                    k.repr()?
+                )));
+            };
+            let k = k.extract::<String>()?;
+            let v = py_to_value(&v, &child(key, &k))?;
+            t.insert(k, v);
+        }
+        return Ok(toml::Value::Table(t));
+    }
+    if obj.is_instance_of::<PyList>() || obj.is_instance_of::<PyTuple>() {
+        let mut a = Vec::new();
+        for (i, v) in obj.try_iter()?.enumerate() {
+            a.push(py_to_value(&v?, &child(key, i))?);
+        }
+        return Ok(toml::Value::Array(a));
+    }
+    // numpy scalars and arrays
+    if obj.hasattr("tolist")? {
+        return py_to_value(&obj.call_method0("tolist")?, key);
+    }
+    Err(ModelError::new_err(format!(
+        "{} = {}: expected a number, string, bool, list or dict (type {})",
+        shown(),
+        obj.repr()?,
+        obj.get_type().name()?
+    )))
+}
+
+/// What the analysis thread tells the caller's thread.
+enum Message {
+    Line(String),
+    Done(Box<Result<Solution, String>>),
+}
+
+/// Progress lines sent to the caller's thread (printed there through
+/// Python's `sys.stderr`, so Jupyter shows them).
+struct Channel {
+    tx: mpsc::Sender<Message>,
+    print: bool,
+}
+
+impl Progress for Channel {
+    fn start(&mut self, _model: &Model, setup: &analysis::Setup) {
+        if self.print {
+            let _ = self.tx.send(Message::Line(format!(
+                "solving {} equations, nnz(L) = {}, memory estimate {} (Ctrl-C stops at the next safe point and \
+                 keeps the results)",
+                setup.equations,
+                setup.factor_nnz,
+                cufem::size::human_bytes(setup.memory.total())
+            )));
+        }
+    }
+
+    fn increment(&mut self, log: &IncrementLog) {
+        if self.print {
+            let _ = self.tx.send(Message::Line(format!(
+                "increment {:>3}: λ = {:.4} (Δλ = {:.3e}), {} iterations, {} plastic points, max penetration {:.3e} m",
+                log.index, log.lambda, log.dlambda, log.iterations, log.plastic_points, log.max_penetration
+            )));
+        }
+    }
+
+    fn cutback(&mut self, c: &Cutback) {
+        if self.print {
+            let _ = self.tx.send(Message::Line(format!(
+                "  cutback: increment {} (λ = {:.4}, Δλ = {:.3e}) failed after {} iterations",
+                c.index, c.lambda, c.dlambda, c.newton.iterations
+            )));
+        }
+    }
+}
+
+fn write_stderr(py: Python<'_>, text: &str) -> PyResult<()> {
+    let stderr = py.import("sys")?.getattr("stderr")?;
+    stderr.call_method1("write", (format!("{text}\n"),))?;
+    Ok(())
+}
+
+fn output_error(e: impl std::fmt::Display) -> PyErr {
+    PyOSError::new_err(e.to_string())
+}
+
+/// Writes every result file into `dir` as `cufem run --out dir [--force]` does.
+fn write_folder(model: &Model, solution: &Solution, dir: &Path, force: bool) -> PyResult<Vec<String>> {
+    let folder = OutputDir::prepare(dir, force).map_err(output_error)?;
+    let written = cufem::io::write_results(model, solution, folder.staging()).map_err(output_error)?;
+    folder.commit().map_err(output_error)?;
+    Ok(written.iter().filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())).collect())
+}
+
+#[pymethods]
+impl NativeModel {
+    /// Sizes of the model: per body and in total, and the equations after
+    /// the symbolic factorization.
+    fn check<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
+        let m = &self.model;
+        let d = PyDict::new(py);
+        d.set_item("title", &m.title)?;
+        let bodies = PyList::empty(py);
+        for b in &m.mesh.bodies {
+            let e = PyDict::new(py);
+            e.set_item("name", &b.name)?;
+            e.set_item("material", &m.materials[b.material].name)?;
+            e.set_item("section_elements", b.section.n_elements())?;
+            e.set_item("section_element", format!("{:?}", b.section.kind))?;
+            e.set_item("section_nodes", b.section.n_nodes())?;
+            e.set_item("axis_elements", b.axis.n_elements())?;
+            e.set_item("axis_element", format!("{:?}", b.axis.kind))?;
+            e.set_item("axis_nodes", b.axis.n_nodes())?;
+            e.set_item("elements", b.n_elements())?;
+            e.set_item("nodes", b.n_nodes())?;
+            e.set_item("dof", 3 * b.n_nodes())?;
+            bodies.append(e)?;
+        }
+        d.set_item("bodies", bodies)?;
+        d.set_item("elements", m.mesh.n_elements())?;
+        d.set_item("nodes", m.mesh.n_nodes())?;
+        d.set_item("dof", m.n_dofs())?;
+        let model = self.model.clone();
+        let sizes = py.allow_threads(|| analysis::plan(&model)).map_err(|e| ModelError::new_err(e.to_string()))?;
+        d.set_item("equations", sizes.equations)?;
+        d.set_item("factor_nnz", sizes.factor_nnz)?;
+        d.set_item("steps", m.steps.iter().map(|s| s.name.clone()).collect::<Vec<_>>())?;
+        d.set_item("probes", m.probes.iter().map(|p| p.name.clone()).collect::<Vec<_>>())?;
+        d.set_item("lines", m.lines.iter().map(|p| p.name.clone()).collect::<Vec<_>>())?;
+        d.set_item("warnings", m.warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>())?;
+        Ok(d)
+    }
+
+    /// Solves the model in a thread of its own (GIL released); the caller's
+    /// thread prints progress and watches for Ctrl-C: a first one stops the
+    /// analysis at the next safe point (the last converged increment is
+    /// kept and, with `out`, written), a second one raises
+    /// `KeyboardInterrupt` at once.
+    #[pyo3(signature = (out=None, force=false, threads=None, progress=true))]
+    fn run(
+        &self,
+        py: Python<'_>,
+        out: Option<PathBuf>,
+        force: bool,
+        threads: Option<usize>,
+        progress: bool,
+    ) -> PyResult<NativeResults> {
+        let threads = threads.or(self.model.solver.threads);
+        if let Some(n) = threads
+            && (n == 0 || n > 1024)
+        {
+            return Err(PyValueError::new_err(format!("threads = {n}: expected an integer from 1 to 1024")));
+        }
+        // the output folder is checked and locked before any computing
+        let folder = match &out {
+            Some(dir) => Some(OutputDir::prepare(dir, force).map_err(output_error)?),
+            None => None,
+        };
+        let mut builder = rayon::ThreadPoolBuilder::new();
+        if let Some(n) = threads {
+            builder = builder.num_threads(n);
+        }
+        let pool = builder.build().map_err(|e| PyRuntimeError::new_err(format!("cannot start threads: {e}")))?;
+        let interrupt = Interrupt::new();
+        let options = RunOptions { interrupt: interrupt.clone(), max_memory: cufem::size::available_memory() };
+        let (tx, mut rx) = mpsc::channel();
+        let model = self.model.clone();
+        let worker = std::thread::Builder::new()
+            .name("cufem-analysis".into())
+            .spawn(move || {
+                let mut sink = Channel { tx: tx.clone(), print: progress };
+                let result = pool.install(|| analysis::run(&model, &options, &mut sink)).map_err(|e| e.to_string());
+                let _ = tx.send(Message::Done(Box::new(result)));
+            })
+            .map_err(|e| PyRuntimeError::new_err(format!("cannot start the analysis thread: {e}")))?;
+        let result = loop {
+            // the receiver goes into the GIL-free closure and back (it is Send, not Sync)
+            let (back, message) = py.allow_threads(move || {
+                let m = rx.recv_timeout(Duration::from_millis(50));
+                (rx, m)
+            });
+            rx = back;
+            match message {
+                Ok(Message::Line(text)) => write_stderr(py, &text)?,
+                Ok(Message::Done(result)) => break *result,
+                Err(mpsc::RecvTimeoutError::Timeout) => {}
+                Err(mpsc::RecvTimeoutError::Disconnected) => {
+                    break Err("the analysis thread ended without a result".to_string());
+                }
+            }
+            // signals reach Python handlers in the main thread only; elsewhere this is a no-op
+            if let Err(e) = py.check_signals() {
+                if interrupt.is_requested() || !e.is_instance_of::<pyo3::exceptions::PyKeyboardInterrupt>(py) {
+                    interrupt.request();
+                    return Err(e);
+                }
+                interrupt.request();
+                if progress {
+                    write_stderr(py, "interrupted: stopping at the next safe point (Ctrl-C again to abandon the run)")?;
+                }
+            }
+        };
+        let _ = worker.join();
+        let solution = result.map_err(|e| PyRuntimeError::new_err(format!("analysis failed: {e}")))?;
+        let mut files = None;
+        if let Some(folder) = folder {
+            let model = self.model.clone();
+            let written = py.allow_threads(|| -> Result<Vec<String>, String> {
+                let w = cufem::io::write_results(&model, &solution, folder.staging()).map_err(|e| e.to_string())?;
+                folder.commit().map_err(|e| e.to_string())?;
+                Ok(w.iter().filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())).collect())
+            });
+            files = Some(written.map_err(PyOSError::new_err)?);
+        }
+        Ok(NativeResults { model: self.model.clone(), solution: Arc::new(solution), files })
+    }
+}
+
+/// The solution of a run, with its model.
+#[pyclass(module = "cufem._native", frozen)]
+struct NativeResults {
+    model: Arc<Model>,
+    solution: Arc<Solution>,
+    /// The files written by `run(out=…)`, if any.
+    files: Option<Vec<String>>,
+}
+
+#[pymethods]
+impl NativeResults {
+    /// The content of `summary.json` as JSON text (`files`: those written
+    /// by `run(out=…)`, else empty).
+    fn summary_json(&self, py: Python<'_>) -> PyResult<String> {
+        let (model, solution) = (self.model.clone(), self.solution.clone());
+        let mut s = py
+            .allow_threads(|| cufem::io::full_summary(&model, &solution))
+            .map_err(|e| PyRuntimeError::new_err(e.to_string()))?;
+        if let Some(files) = &self.files {
+            s.files = files.iter().filter(|f| *f != "summary.json").cloned().collect();
+        }
+        serde_json::to_string(&s).map_err(|e| PyRuntimeError::new_err(e.to_string()))
+    }
+
+    /// The files written by `run(out=…)` (None if nothing was written).
+    #[getter]
+    fn files(&self) -> Option<Vec<String>> {
+        self.files.clone()
+    }
+
+    /// Every quantity at probe `name` (`u_x` … `peeq`, `e_xx` …), as in summary.json.
+    fn probe(&self, name: &str) -> PyResult<Vec<(String, f64)>> {
+        let p = self.model.probes.iter().find(|p| p.name == name).ok_or_else(|| {
+            let names: Vec<&str> = self.model.probes.iter().map(|p| p.name.as_str()).collect();
+            PyKeyError::new_err(format!("probe {name:?}: expected one of {names:?}"))
+        })?;
+        let s = self.solution.fields(&self.model).sample_probe(p).unwrap_or_default();
+        let mut v = vec![("x".into(), p.point[0]), ("y".into(), p.point[1]), ("z".into(), p.point[2])];
+        v.extend(Quantity::all().into_iter().map(|q| (q.name(), s.get(q))));
+        Ok(v)
+    }
+
+    /// The columns of `line_<name>.csv`: `s, x, y, z` and every quantity
+    /// (points outside every body left out).
+    fn line(&self, py: Python<'_>, name: &str) -> PyResult<Vec<(String, Vec<f64>)>> {
+        let line = self.model.lines.iter().find(|l| l.name == name).ok_or_else(|| {
+            let names: Vec<&str> = self.model.lines.iter().map(|p| p.name.as_str()).collect();
+            PyKeyError::new_err(format!("line {name:?}: expected one of {names:?}"))
+        })?;
+        let (model, solution) = (self.model.clone(), self.solution.clone());
+        let samples = py.allow_threads(|| post::sample_line(&solution.fields(&model), line));
+        let quantities = Quantity::all();
+        let mut cols: Vec<(String, Vec<f64>)> = ["s", "x", "y", "z"]
+            .iter()
+            .map(|c| (c.to_string(), Vec::new()))
+            .chain(quantities.iter().map(|q| (q.name(), Vec::new())))
+            .collect();
+        for s in &samples {
+            let Some(v) = s.sample else { continue };
+            cols[0].1.push(s.s);
+            for k in 0..3 {
+                cols[1 + k].1.push(s.point[k]);
+            }
+            for (i, &q) in quantities.iter().enumerate() {
+                cols[4 + i].1.push(v.get(q));
+            }
+        }
+        Ok(cols)
+    }
+
+    /// The columns of `history_<name>.csv` (a constraint set: prescribed
+    /// displacement and reaction; an indenter or contact: displacement,
+    /// force, penetration, plastic points), one row per converged increment.
+    fn history(&self, name: &str) -> PyResult<Vec<(String, Vec<f64>)>> {
+        let m = &self.model;
+        let rows = &self.solution.history;
+        let col = |n: &str, v: Vec<f64>| (n.to_string(), v);
+        let mut cols = vec![
+            col("increment", rows.iter().map(|r| r.increment as f64).collect()),
+            col("lambda", rows.iter().map(|r| r.lambda).collect()),
+            col("iterations", rows.iter().map(|r| r.iterations as f64).collect()),
+        ];
+        if let Some(ci) = m.constraints.iter().position(|c| c.name == name) {
+            let c = &m.constraints[ci];
+            for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+                let u = rows
+                    .iter()
+                    .map(|r| {
+                        c.values[k].map_or(f64::NAN, |v| steps::factor(&m.steps, Item::Constraint(ci), r.lambda) * v)
+                    })
+                    .collect();
+                cols.push(col(&format!("u_{axis}"), u));
+            }
+            for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+                cols.push(col(
+                    &format!("r_{axis}"),
+                    rows.iter().map(|r| r.reaction(name).map_or(f64::NAN, |r| r.force[k])).collect(),
+                ));
+            }
+            return Ok(cols);
+        }
+        if self.solution.contact_sets.iter().any(|s| s.name == name) {
+            let is_indenter = m.indenters.iter().any(|i| i.name == name);
+            let rows: Vec<_> = rows.iter().filter_map(|r| r.contact(name).map(|c| (r, c))).collect();
+            let mut cols = vec![
+                col("increment", rows.iter().map(|(r, _)| r.increment as f64).collect()),
+                col("lambda", rows.iter().map(|(r, _)| r.lambda).collect()),
+                col("iterations", rows.iter().map(|(r, _)| r.iterations as f64).collect()),
+            ];
+            for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+                let d = rows.iter().map(|(_, c)| if is_indenter { c.displacement[k] } else { f64::NAN }).collect();
+                cols.push(col(&format!("d_{axis}"), d));
+            }
+            for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+                cols.push(col(&format!("f_{axis}"), rows.iter().map(|(_, c)| c.force[k]).collect()));
+            }
+            cols.push(col("max_penetration", rows.iter().map(|(_, c)| c.max_penetration).collect()));
+            cols.push(col("plastic_points", rows.iter().map(|(r, _)| r.plastic_points as f64).collect()));
+            return Ok(cols);
+        }
+        let mut names: Vec<&str> = m.constraints.iter().map(|c| c.name.as_str()).collect();
+        names.extend(self.solution.contact_sets.iter().map(|s| s.name.as_str()));
+        Err(PyKeyError::new_err(format!(
+            "history {name:?}: expected a constraint, indenter or contact, one of {names:?}"
+        )))
+    }
+
+    /// Writes `result.vtu` (the CLI's file) to `path`.
+    fn write_vtu(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+        let (model, solution) = (self.model.clone(), self.solution.clone());
+        py.allow_threads(|| cufem::io::write_vtu(&path, &model, &solution)).map_err(output_error)
+    }
+
+    /// Writes every result file into `dir` as `cufem run --out dir` does;
+    /// returns the file names.
+    #[pyo3(signature = (dir, force=false))]
+    fn write(&self, py: Python<'_>, dir: PathBuf, force: bool) -> PyResult<Vec<String>> {
+        let (model, solution) = (self.model.clone(), self.solution.clone());
+        py.allow_threads(|| write_folder(&model, &solution, &dir, force).map_err(|e| e.to_string()))
+            .map_err(PyOSError::new_err)
+    }
+}
+
+/// The native module.
+#[pymodule]
+fn _native(m: &Bound<'_, PyModule>) -> PyResult<()> {
+    m.add("ModelError", m.py().get_type::<ModelError>())?;
+    m.add_class::<NativeModel>()?;
+    m.add_class::<NativeResults>()?;
+    m.add_function(wrap_pyfunction!(parse_file, m)?)?;
+    m.add_function(wrap_pyfunction!(parse_toml, m)?)?;
+    m.add_function(wrap_pyfunction!(toml_to_object, m)?)?;
+    m.add_function(wrap_pyfunction!(object_to_toml, m)?)?;
+    Ok(())
+}

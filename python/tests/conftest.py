@@ -1,0 +1,53 @@
+"""Shared fixtures: the repository, the CLI binary, CLI runs."""
+
+import json
+import os
+import subprocess
+from pathlib import Path
+
+import pytest
+
+ROOT = Path(__file__).resolve().parents[2]
+EXAMPLES = ROOT / "examples"
+
+
+def cli_binary() -> Path:
+    """`target/release/cufem` of this checkout (built if missing)."""
+    target = Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target"))
+    exe = target / "release" / "cufem"
+    if not exe.exists():
+        subprocess.run(["cargo", "build", "--release", "--bin", "cufem"], cwd=ROOT, check=True)
+    return exe
+
+
+@pytest.fixture(scope="session")
+def cli():
+    exe = cli_binary()
+
+    def run(*args, check=True):
+        p = subprocess.run([str(exe), *map(str, args)], capture_output=True, text=True)
+        if check and p.returncode != 0:
+            raise AssertionError(f"cufem {' '.join(map(str, args))} exited {p.returncode}: {p.stderr}")
+        return p
+
+    return run
+
+
+@pytest.fixture(scope="session")
+def cli_runs(cli, tmp_path_factory):
+    """The CLI's output folder of an example (run once per session, threads=1)."""
+    cache = {}
+
+    def get(name):
+        if name not in cache:
+            out = tmp_path_factory.mktemp("cli") / name
+            cli("run", EXAMPLES / f"{name}.toml", "--out", out, "--threads", "1", "--quiet")
+            cache[name] = out
+        return cache[name]
+
+    return get
+
+
+def load_summary(folder) -> dict:
+    with open(Path(folder) / "summary.json") as f:
+        return json.load(f)

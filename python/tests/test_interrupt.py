@@ -1,0 +1,49 @@
+"""SIGINT to a Python process running a long model keeps the last converged increment."""
+
+import json
+import signal
+import subprocess
+import sys
+import time
+
+from conftest import EXAMPLES
+
+# Python's own Ctrl-C handler, as in a terminal: a process started in the
+# background of a non-interactive shell (CI) inherits SIGINT ignored, and
+# Python then leaves it ignored
+SCRIPT = """
+import signal, sys, cufem
+signal.signal(signal.SIGINT, signal.default_int_handler)
+r = cufem.Model.from_file(sys.argv[1]).run(out=sys.argv[2], threads=1)
+print("status", r.summary["status"], r.summary["increments"], flush=True)
+"""
+
+
+def test_sigint_stops_the_run_and_keeps_the_last_increment(tmp_path):
+    out = tmp_path / "out"
+    p = subprocess.Popen(
+        [sys.executable, "-c", SCRIPT, str(EXAMPLES / "bending_tube_20L9.toml"), str(out)],
+        stderr=subprocess.PIPE,
+        stdout=subprocess.PIPE,
+        text=True,
+    )
+    lines = []
+    deadline = time.time() + 120
+    # wait for two converged increments, then Ctrl-C
+    while time.time() < deadline:
+        line = p.stderr.readline()
+        if not line:
+            break
+        lines.append(line)
+        if line.startswith("increment   2"):
+            p.send_signal(signal.SIGINT)
+            break
+    stdout, stderr = p.communicate(timeout=120)
+    assert p.returncode == 0, "".join(lines) + stderr
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["status"] == "interrupted"
+    assert 2 <= summary["increments"] < 15
+    assert 0 < summary["load_factor"] < 1
+    assert stdout.split() == ["status", "interrupted", str(summary["increments"])]
+    assert "interrupted: stopping at the next safe point" in stderr
+    assert "result.vtu" in summary["files"]

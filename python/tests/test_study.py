@@ -1,0 +1,74 @@
+"""cufem.study: a process pool and a Dask cluster give the same DataFrame."""
+
+import math
+
+import pandas as pd
+import pytest
+
+import cufem
+from cufem import study
+from conftest import EXAMPLES
+
+MODEL = EXAMPLES / "bending_compact_4L9.toml"
+OUTPUTS = ["status", "load_factor", "max_peeq", "probe.contact_centre.s_yy", "contact.load.f_z", "reaction.symmetry_y.f_y"]
+
+
+def small_model():
+    d = cufem.Model.from_file(MODEL).to_dict()
+    d["solver"]["increments"] = 4
+    return d
+
+
+# three depths and one deliberately invalid variant (a negative Young's modulus)
+VARIANTS = [
+    {"indenters.2.displacement.2": -0.25e-3, "materials.0.young_modulus": 68e9},
+    {"indenters.2.displacement.2": -0.5e-3, "materials.0.young_modulus": 68e9},
+    {"indenters.2.displacement.2": -0.5e-3, "materials.0.young_modulus": -68e9},
+    {"indenters.2.displacement.2": -0.75e-3, "materials.0.young_modulus": 68e9},
+]
+
+
+@pytest.fixture(scope="module")
+def local():
+    return study.run(small_model(), VARIANTS, OUTPUTS, max_workers=2)
+
+
+def test_a_failed_variant_is_a_row_with_its_message(local):
+    assert list(local.columns) == ["indenters.2.displacement.2", "materials.0.young_modulus", "error", *OUTPUTS]
+    assert len(local) == 4
+    bad = local.iloc[2]
+    d = cufem.study.set_path(small_model(), "materials.0.young_modulus", -68e9)
+    with pytest.raises(cufem.ModelError) as e:
+        cufem.Model.from_dict(d)
+    assert bad["error"] == str(e.value)
+    assert "young_modulus" in bad["error"]
+    assert math.isnan(bad["max_peeq"])
+    ok = local.drop(index=2)
+    assert ok["error"].isna().all()
+    assert (ok["status"] == "converged").all()
+    # deeper indentation: larger force and plastic strain
+    assert (-ok["contact.load.f_z"]).is_monotonic_increasing
+    assert ok["max_peeq"].is_monotonic_increasing
+
+
+def test_rows_equal_single_runs(local):
+    d = cufem.study.set_path(small_model(), "indenters.2.displacement.2", -0.5e-3)
+    d = cufem.study.set_path(d, "materials.0.young_modulus", 68e9)
+    s = cufem.Model.from_dict(d).run(threads=1, progress=False).summary
+    assert local.iloc[1]["probe.contact_centre.s_yy"] == s["probes"][0]["stress"][1]
+    assert local.iloc[1]["max_peeq"] == s["max_peeq"]
+
+
+def test_dask_local_cluster_gives_the_same_dataframe(local):
+    distributed = pytest.importorskip("dask.distributed")
+    with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None) as cluster:
+        with distributed.Client(cluster) as client:
+            on_dask = study.run(small_model(), VARIANTS, OUTPUTS, client=client)
+    pd.testing.assert_frame_equal(on_dask, local, check_exact=True)
+
+
+def test_grid_and_bad_paths():
+    assert study.grid({"a": [1, 2], "b": [3, 4]}) == [{"a": 1, "b": 3}, {"a": 1, "b": 4}, {"a": 2, "b": 3}, {"a": 2, "b": 4}]
+    df = study.run(small_model(), [{"indenters.9.displacement.2": -1e-3}, {"nothing.here": 1}], ["max_peeq"], max_workers=0)
+    assert "past the end" in df["error"][0]
+    assert "no key nothing" in df["error"][1]

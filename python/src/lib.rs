@@ -474,6 +474,10 @@ impl NativeResults {
             }
             cols.push(col("max_penetration", rows.iter().map(|(_, c)| c.max_penetration).collect()));
             cols.push(col("plastic_points", rows.iter().map(|(r, _)| r.plastic_points as f64).collect()));
+            // magnitudes of the normal and tangential parts, as the CSV writes them
+            let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+            cols.push(col("f_n", rows.iter().map(|(_, c)| norm(c.normal_force)).collect()));
+            cols.push(col("f_t", rows.iter().map(|(_, c)| norm(c.tangential_force)).collect()));
             return Ok(cols);
         }
         let mut names: Vec<&str> = m.constraints.iter().map(|c| c.name.as_str()).collect();

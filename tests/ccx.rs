@@ -313,3 +313,28 @@ fn a_failed_calculix_run_is_reported_and_cufem_results_are_kept() {
     assert!(out.join("summary.json").exists() && out.join("verify/ccx/model.inp").exists());
     assert!(out.join("verify/ccx/ccx.log").exists());
 }
+
+/// What CalculiX cannot take is refused with the model-file key, before any
+/// file is written: a load history of several steps, a force-controlled
+/// indenter, Armstrong–Frederick back-stresses.
+#[test]
+fn features_without_a_calculix_twin_are_refused_by_key() {
+    let unload = example("block_indentation_unload.toml");
+    let force =
+        example("block_indentation.toml").replace("displacement = [0.0, 0.0, -1.0e-3]", "force = [0.0, 0.0, -1.0e6]");
+    let kinematic = example("block_indentation.toml").replace(
+        "hardening = \"perfect\" }",
+        "hardening = \"perfect\", kinematic = [{ modulus = 1e10, recall = 100.0 }] }",
+    );
+    for (name, text, key) in [
+        ("steps", unload, "steps"),
+        ("force", force, "indenters[0].force"),
+        ("kinematic", kinematic, "materials[0].plasticity.kinematic"),
+    ] {
+        let model = Model::parse(&text).unwrap();
+        let dir = scratch(&format!("refuse_{name}"));
+        let e = ccx::export(&model, HexKind::C3D20R, 1, &dir).unwrap_err().to_string();
+        assert!(e.starts_with(key) && e.contains("no CalculiX equivalent"), "{name}: {e}");
+        assert!(!dir.join("model.inp").exists(), "{name}: a deck was written");
+    }
+}

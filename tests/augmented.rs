@@ -21,14 +21,14 @@ fn punch(keys: &str) -> (Model, Solution) {
     (model, sol)
 }
 
-/// Pure penalty: the punch force depends on the penalty (measured with 20
+/// Pure penalty: the punch force depends on the penalty (measured, two
 /// increments: 4.4306e5 N at penalty_factor 1, 5.3050e5 N at 100, i.e.
-/// −16.7 % and −0.22 %). Augmented Lagrangian with a penetration tolerance
-/// of 1e-10 m: 5.3168069e5 and 5.3168074e5 N (8e-8 apart; asserted 1e-6),
-/// penetration 8.8e-11 and 4.0e-12 m, the pure-penalty forces approaching it
-/// from below. Cost: 460 and 60 Newton iterations against 20 (the soft
-/// penalty needs ~23 augmentations per increment): the penalty now sets the
-/// cost, not the answer.
+/// −16.7 % and −0.22 % of the augmented answer). Augmented Lagrangian with
+/// a penetration tolerance of 1e-10 m: 5.31680691e5 and 5.31680707e5 N (3e-8
+/// apart; asserted 1e-6), penetration 9.1e-11 and 4.0e-11 m, the
+/// pure-penalty forces approaching it from below. Cost: 60 and 6 Newton
+/// iterations against 2 (the soft penalty needs ~30 augmentations per
+/// increment): the penalty now sets the cost, not the answer.
 #[test]
 fn augmented_lagrangian_makes_the_answer_independent_of_the_penalty() {
     let force = |s: &Solution| -s.contact("punch").unwrap().force[2];

@@ -18,7 +18,7 @@ fn solve(text: &str) -> (Model, Solution) {
     (model, sol)
 }
 
-/// u_z at a point of the solution at the end of step `k`.
+/// The fields at a point of the solution as it was at the end of step `k`.
 fn probe_at(model: &Model, sol: &Solution, k: usize, point: [f64; 3]) -> cufem::post::Sample {
     let s = sol.at_step(model, k).unwrap().unwrap();
     s.fields(model).sample_point(None, point).unwrap()

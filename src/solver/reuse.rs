@@ -23,8 +23,9 @@
 //! `[ReuseSettings::min_iterations, ReuseSettings::max_iterations]`. If PCG does not converge within them,
 //! or breaks down (`pᵀ K p ≤ 0`: the tangent is not positive definite), the
 //! present tangent is factorized and solved directly (the *fallback*). A solve
-//! that needed more than half its allowance marks the factor as worn: the
-//! next solve refactors at once instead of trying. An `LDLᵀ` factor
+//! that needed more than half its allowance marks the factor as worn, and a
+//! fallback marks the tangent as changing fast: in both cases the next solve
+//! refactors at once instead of trying. An `LDLᵀ` factor
 //! (indefinite tangent) is never reused.
 //!
 //! The converged Newton solution does not depend on the path: each
@@ -100,6 +101,8 @@ pub struct ReusingSolver {
     stats: ReuseStats,
     has_factor: bool,
     worn: bool,
+    /// Set by a fallback: the next solve factorizes without trying PCG.
+    skip: bool,
     /// PCG iterations allowed per solve (fixed by the pattern: computed once).
     allowed: Option<usize>,
     work: [Vec<f64>; 5],
@@ -114,6 +117,7 @@ impl ReusingSolver {
             stats: ReuseStats::default(),
             has_factor: false,
             worn: false,
+            skip: false,
             allowed: None,
             work: Default::default(),
         }
@@ -149,7 +153,9 @@ impl ReusingSolver {
         forcing: f64,
         must_factor: bool,
     ) -> Result<SolveKind, LinearError> {
-        let try_pcg = self.settings.enabled && self.has_factor && !self.worn && !must_factor && self.chol.is_llt();
+        let try_pcg =
+            self.settings.enabled && self.has_factor && !self.worn && !self.skip && !must_factor && self.chol.is_llt();
+        self.skip = false;
         let mut kind = SolveKind::Factorized;
         if try_pcg {
             let allowed = self.allowed_iterations(pattern);
@@ -181,6 +187,10 @@ impl ReusingSolver {
         self.stats.factorizations += 1;
         self.has_factor = true;
         self.worn = false;
+        // a factor one iteration old did not precondition: the tangent is
+        // changing fast (contact status, spreading plastic zone), so the
+        // next solve factorizes directly rather than risk another fallback
+        self.skip = matches!(kind, SolveKind::FellBack(_));
         let t = Instant::now();
         self.chol.solve_in_place(rhs)?;
         self.stats.solve_time += t.elapsed();

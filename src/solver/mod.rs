@@ -2,6 +2,7 @@
 //! stepping with cutbacks.
 
 pub mod linear;
+pub mod lu;
 pub mod newton;
 pub mod stepping;
 

@@ -17,6 +17,7 @@ use std::time::Instant;
 mod augment;
 mod contacts;
 mod force;
+mod unsymmetric;
 
 pub use super::results::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Timings};
 use crate::assembly::{Assembler, Inputs, NO_EQ, Numbering, Outputs};
@@ -38,6 +39,9 @@ pub struct Structure<'m> {
     /// Numbering, pattern and scatter.
     pub(super) assembler: Assembler,
     solver: Cholesky,
+    /// LU of the unsymmetric tangent, for a model with friction (then used
+    /// instead of `solver`).
+    lu: Option<Box<unsymmetric::Unsymmetric>>,
     /// Displacements (3 per node).
     pub(super) u: Vec<f64>,
     u_committed: Vec<f64>,
@@ -150,6 +154,7 @@ impl<'m> Structure<'m> {
                 }
             }
         }
+        let lu = unsymmetric::Unsymmetric::for_model(model, &assembler.pattern, &is_prescribed)?;
         let t_cache = Instant::now();
         let states = vec![PointState::default(); n_gp];
         let zero = vec![0.0; n_dofs];
@@ -197,6 +202,7 @@ impl<'m> Structure<'m> {
             gp_offsets,
             assembler,
             solver,
+            lu,
             u: vec![0.0; n_dofs],
             u_committed: vec![0.0; n_dofs],
             committed: vec![PointState::default(); n_gp],
@@ -439,6 +445,9 @@ impl NonlinearProblem for Structure<'_> {
     }
 
     fn correct(&mut self) -> Result<Correction, LinearError> {
+        if self.lu.is_some() {
+            return self.correct_unsymmetric();
+        }
         for r in &mut self.residual {
             *r = -*r;
         }

@@ -130,14 +130,14 @@ impl Structure<'_> {
     /// Updates each indenter's `a` and returns `Σ Δa²`.
     pub(super) fn solve_bordered(&mut self) -> Result<f64, LinearError> {
         let m = self.driven.len();
-        self.solver.solve_in_place(&mut self.residual)?;
+        super::unsymmetric::solve_with(&mut self.solver, &mut self.lu, &mut self.residual)?;
         if m == 0 {
             return Ok(0.0);
         }
         let mut x2 = Vec::with_capacity(m);
         for d in &self.driven {
             let mut x = d.b.clone();
-            self.solver.solve_in_place(&mut x)?;
+            super::unsymmetric::solve_with(&mut self.solver, &mut self.lu, &mut x)?;
             x2.push(x);
         }
         let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();

@@ -80,6 +80,9 @@ pub struct Structure<'m> {
     /// Tangent branch of Gauss points on their yield surface (elastic after
     /// a failed attempt: [`Incremental::cautious`]).
     predictor: Predictor,
+    /// The next evaluation is the first of an increment (frictional points
+    /// then get the stick tangent: `structure/contacts.rs`).
+    first_evaluation: bool,
     /// Phase timings.
     pub(super) timings: Timings,
     /// Memory estimate made after the symbolic factorization.
@@ -225,6 +228,7 @@ impl<'m> Structure<'m> {
             plastic_points: 0,
             driven: force::Driven::of(model, n_eq),
             predictor: Predictor::Loading,
+            first_evaluation: false,
             timings,
             memory,
         })
@@ -494,6 +498,7 @@ impl Incremental for Structure<'_> {
     fn set_load_factor(&mut self, lambda: f64) {
         // prescribed values are reached by the next correction (see module docs)
         self.lambda = lambda;
+        self.first_evaluation = true;
         self.apply_factors();
     }
 

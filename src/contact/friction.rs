@@ -75,7 +75,12 @@ pub fn friction_response(
     let proj: [[f64; 3]; 3] =
         std::array::from_fn(|i| std::array::from_fn(|j| f64::from(u8::from(i == j)) - normal[i] * normal[j]));
     if norm <= limit || norm == 0.0 {
-        return FrictionResponse { force: trial, slip, sliding: false, block: proj.map(|r| r.map(|v| eps_t * v)) };
+        return FrictionResponse {
+            force: trial,
+            slip,
+            sliding: false,
+            block: stick_block(normal, normal_penalty, friction),
+        };
     }
     let t_hat = trial.map(|v| v / norm);
     let force = t_hat.map(|v| limit * v);
@@ -88,6 +93,13 @@ pub fn friction_response(
         std::array::from_fn(|j| coupling * t_hat[i] * normal[j] + scale * (proj[i][j] - t_hat[i] * t_hat[j]))
     });
     FrictionResponse { force, slip: new_slip, sliding: true, block }
+}
+
+/// The stick block `ε_T P` (`P = I − n nᵀ`): the tangent of a sticking
+/// point, and the predictor of a sliding one at the start of an increment.
+pub fn stick_block(normal: &[f64; 3], normal_penalty: f64, friction: &Friction) -> [[f64; 3]; 3] {
+    let eps_t = friction.penalty_ratio * normal_penalty;
+    std::array::from_fn(|i| std::array::from_fn(|j| eps_t * (f64::from(u8::from(i == j)) - normal[i] * normal[j])))
 }
 
 #[cfg(test)]

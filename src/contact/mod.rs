@@ -46,7 +46,7 @@
 use crate::bc::FaceIntegral;
 
 mod friction;
-pub use friction::{Friction, FrictionResponse, friction_response};
+pub use friction::{Friction, FrictionResponse, friction_response, stick_block};
 
 /// Default dimensionless penalty factor α.
 pub const DEFAULT_PENALTY_FACTOR: f64 = 100.0;

@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use super::Structure;
 use crate::contact;
+use crate::materials::Predictor;
 
 impl Structure<'_> {
     /// Penalty contact: forces into `f_contact`, stiffness into the tangent.
@@ -34,6 +35,7 @@ impl Structure<'_> {
                 k += 1;
             }
         }
+        self.first_evaluation = false;
         self.timings.contact += t.elapsed();
         changes
     }
@@ -58,6 +60,17 @@ impl Structure<'_> {
     /// `[K_ss, K_sm; K_ms, K_mm] = [K, −K; −K, K]`, its skew part
     /// `(K − Kᵀ)/2` with the same signs into the unsymmetric terms
     /// (`structure/unsymmetric.rs`).
+    ///
+    /// A sliding point gets the stick tangent `ε_T P` instead of its
+    /// consistent one in the first evaluation of an increment and in the
+    /// cautious retry of a failed one (`Incremental::cautious`). At the
+    /// start of an increment a point that slid sits on the cone to
+    /// round-off, so its branch there is arbitrary; the stick tangent
+    /// predicts an elastic unloading, which is exact when the sliding
+    /// reverses (the consistent slip tangent, without stiffness along the
+    /// sliding direction, sends every point across its tiny stick range —
+    /// `μ p / ε_T` — and Newton chatters between forward and reverse slip).
+    /// From the second iteration on the tangent is consistent.
     fn contact_pair(&mut self, k: usize, pair: PairTerms, friction: Option<&contact::Friction>) -> bool {
         let (slave, master, u_master, gap0, normal, penalty) = pair;
         let normal = &normal;
@@ -72,12 +85,15 @@ impl Structure<'_> {
         point.force = [0.0; 3];
         point.sliding = false;
         point.slip = committed_slip;
-        if let (Some((f, kb)), Some(fr)) = (response.as_mut(), friction) {
+        if let (Some((f, kb)), Some(friction_law)) = (response.as_mut(), friction) {
             let rel: [f64; 3] = std::array::from_fn(|i| us[i] - u_master[i]);
             let dn: f64 = (0..3).map(|i| rel[i] * normal[i]).sum();
             let d_t: [f64; 3] = std::array::from_fn(|i| rel[i] - dn * normal[i]);
             let p_n: f64 = (0..3).map(|i| f[i] * normal[i]).sum();
-            let fr = contact::friction_response(d_t, committed_slip, normal, p_n, penalty, fr);
+            let mut fr = contact::friction_response(d_t, committed_slip, normal, p_n, penalty, friction_law);
+            if fr.sliding && (self.first_evaluation || self.predictor == Predictor::Elastic) {
+                fr.block = contact::stick_block(normal, penalty, friction_law);
+            }
             point.slip = fr.slip;
             point.sliding = fr.sliding;
             for i in 0..3 {

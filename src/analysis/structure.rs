@@ -73,6 +73,8 @@ pub struct Structure<'m> {
     pub(super) contact: Vec<ContactPoint>,
     contact_committed: Vec<ContactPoint>,
     contact_ranges: Vec<std::ops::Range<usize>>,
+    /// Each contact point's assembled block of the last evaluation.
+    contact_blocks: Vec<[[f64; 3]; 3]>,
     /// Plastic Gauss points in the last evaluation.
     pub(super) plastic_points: usize,
     /// Force-controlled indenters (their displacement is an unknown).
@@ -222,6 +224,7 @@ impl<'m> Structure<'m> {
             dirichlet_entries,
             lambda: 0.0,
             lambda_committed: 0.0,
+            contact_blocks: vec![[[0.0; 3]; 3]; contact.len()],
             contact_committed: contact.clone(),
             contact,
             contact_ranges,

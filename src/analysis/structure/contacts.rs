@@ -103,6 +103,7 @@ impl Structure<'_> {
                 }
             }
         }
+        self.contact_blocks[k] = response.map_or([[0.0; 3]; 3], |r| r.1);
         if let Some((f, kb)) = response {
             point.force = f;
             for i in 0..3 {

@@ -1,4 +1,6 @@
-//! Frictionless node-to-node contact enforced by a penalty (paper §3).
+//! Node-to-node contact enforced by a penalty (paper §3), frictionless
+//! unless Coulomb friction is given (module `friction`: return map and its
+//! unsymmetric tangent).
 //!
 //! For a contact point with gap `g_N` (eq. 13, negative when penetrating)
 //! and unit normal `n`, the penalty energy `½ ε_N ⟨−g_N⟩²` (eq. 16) gives

@@ -17,7 +17,7 @@
 use std::time::Instant;
 
 use super::{NO_EQ, Structure};
-use crate::solver::linear::{Cholesky, LinearError, LowerCsc};
+use crate::solver::linear::{LinearError, LowerCsc};
 use crate::solver::lu::SparseLu;
 use crate::solver::newton::Correction;
 
@@ -62,15 +62,11 @@ impl Unsymmetric {
     }
 }
 
-/// Solves with whichever factorization the structure uses.
-pub(super) fn solve_with(
-    cholesky: &mut Cholesky,
-    lu: &mut Option<Box<Unsymmetric>>,
-    x: &mut [f64],
-) -> Result<(), LinearError> {
+/// Solves with the LU factorization (a model with friction).
+pub(super) fn lu_solve(lu: &mut Option<Box<Unsymmetric>>, x: &mut [f64]) -> Result<(), LinearError> {
     match lu {
         Some(u) => u.lu.solve_in_place(x),
-        None => cholesky.solve_in_place(x),
+        None => Err(LinearError::Singular),
     }
 }
 

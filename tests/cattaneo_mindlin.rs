@@ -74,7 +74,8 @@ name = "shear"
 /// +2.0 %), the contact half-width within 2 % of Hertz (measured +0.5 %
 /// while shearing, +1.7 % at the end of pressing: one more node touching),
 /// each increment converging in one Newton solve without cutbacks (3–4
-/// iterations per shear increment). 32,522 equations; about 25 s. The
+/// iterations per shear increment). 32,522 equations; 25–45 s on the
+/// shared 2-core machine. The
 /// zone widths are measured on the y = 0 line with each node standing for
 /// its tributary length h = 0.025 mm: `(x_last − x_first + h)/2` over the
 /// sticking (active, not sliding) nodes, and over the active ones for a.

@@ -316,7 +316,8 @@ fn a_failed_calculix_run_is_reported_and_cufem_results_are_kept() {
 
 /// What CalculiX cannot take is refused with the model-file key, before any
 /// file is written: a load history of several steps, a force-controlled
-/// indenter, Armstrong–Frederick back-stresses.
+/// indenter, Armstrong–Frederick back-stresses, Coulomb friction (the
+/// deck's contact pairs are frictionless).
 #[test]
 fn features_without_a_calculix_twin_are_refused_by_key() {
     let unload = example("block_indentation_unload.toml");
@@ -326,8 +327,11 @@ fn features_without_a_calculix_twin_are_refused_by_key() {
         "hardening = \"perfect\" }",
         "hardening = \"perfect\", kinematic = [{ modulus = 1e10, recall = 100.0 }] }",
     );
+    let friction = example("block_indentation.toml")
+        .replace("displacement = [0.0, 0.0, -1.0e-3]", "displacement = [0.0, 0.0, -1.0e-3]\nfriction = 0.2");
     for (name, text, key) in [
         ("steps", unload, "steps"),
+        ("friction", friction, "indenters[0].friction"),
         ("force", force, "indenters[0].force"),
         ("kinematic", kinematic, "materials[0].plasticity.kinematic"),
     ] {

@@ -17,6 +17,7 @@ use std::time::Instant;
 mod augment;
 mod contacts;
 mod force;
+mod unsymmetric;
 
 pub use super::results::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Timings};
 use crate::assembly::{Assembler, Inputs, NO_EQ, Numbering, Outputs};
@@ -39,6 +40,9 @@ pub struct Structure<'m> {
     /// Numbering, pattern and scatter.
     pub(super) assembler: Assembler,
     solver: ReusingSolver,
+    /// LU of the unsymmetric tangent, for a model with friction (then used
+    /// instead of `solver`).
+    lu: Option<Box<unsymmetric::Unsymmetric>>,
     /// Displacements (3 per node).
     pub(super) u: Vec<f64>,
     u_committed: Vec<f64>,
@@ -73,6 +77,8 @@ pub struct Structure<'m> {
     pub(super) contact: Vec<ContactPoint>,
     contact_committed: Vec<ContactPoint>,
     contact_ranges: Vec<std::ops::Range<usize>>,
+    /// Each contact point's assembled block of the last evaluation.
+    contact_blocks: Vec<[[f64; 3]; 3]>,
     /// `‖R‖ / F` of the last evaluation (the forcing term of a reused
     /// factorization's PCG solve).
     relative_residual: f64,
@@ -83,6 +89,9 @@ pub struct Structure<'m> {
     /// Tangent branch of Gauss points on their yield surface (elastic after
     /// a failed attempt: [`Incremental::cautious`]).
     predictor: Predictor,
+    /// The next evaluation is the first of an increment (frictional points
+    /// then get the stick tangent: `structure/contacts.rs`).
+    first_evaluation: bool,
     /// Phase timings.
     pub(super) timings: Timings,
     /// Memory estimate made after the symbolic factorization.
@@ -157,6 +166,7 @@ impl<'m> Structure<'m> {
                 }
             }
         }
+        let lu = unsymmetric::Unsymmetric::for_model(model, &assembler.pattern, &is_prescribed)?;
         let t_cache = Instant::now();
         let states = vec![PointState::default(); n_gp];
         let zero = vec![0.0; n_dofs];
@@ -204,6 +214,7 @@ impl<'m> Structure<'m> {
             gp_offsets,
             assembler,
             solver: ReusingSolver::new(chol, model.solver.reuse),
+            lu,
             u: vec![0.0; n_dofs],
             u_committed: vec![0.0; n_dofs],
             u_step: vec![0.0; n_dofs],
@@ -221,6 +232,7 @@ impl<'m> Structure<'m> {
             dirichlet_entries,
             lambda: 0.0,
             lambda_committed: 0.0,
+            contact_blocks: vec![[[0.0; 3]; 3]; contact.len()],
             contact_committed: contact.clone(),
             contact,
             contact_ranges,
@@ -228,6 +240,7 @@ impl<'m> Structure<'m> {
             relative_residual: 1.0,
             driven: force::Driven::of(model, n_eq),
             predictor: Predictor::Loading,
+            first_evaluation: false,
             timings,
             memory,
         })
@@ -449,6 +462,9 @@ impl NonlinearProblem for Structure<'_> {
     }
 
     fn correct(&mut self) -> Result<Correction, LinearError> {
+        if self.lu.is_some() {
+            return self.correct_unsymmetric();
+        }
         for r in &mut self.residual {
             *r = -*r;
         }
@@ -496,6 +512,7 @@ impl Incremental for Structure<'_> {
     fn set_load_factor(&mut self, lambda: f64) {
         // prescribed values are reached by the next correction (see module docs)
         self.lambda = lambda;
+        self.first_evaluation = true;
         self.apply_factors();
     }
 

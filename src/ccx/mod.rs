@@ -98,6 +98,16 @@ pub fn export(model: &Model, kind: HexKind, refine: usize, dir: &Path) -> Result
             what: format!("the Armstrong–Frederick kinematic hardening of material \"{}\"", m.name),
         });
     }
+    // the deck's contact pairs are frictionless: a frictional model has no twin
+    let friction = model
+        .indenters
+        .iter()
+        .position(|i| i.friction.is_some())
+        .map(|k| format!("indenters[{k}]"))
+        .or_else(|| model.contacts.iter().position(|c| c.friction.is_some()).map(|k| format!("contacts[{k}]")));
+    if let Some(key) = friction {
+        return Err(CcxError::Unsupported { key: format!("{key}.friction"), what: "Coulomb friction".into() });
+    }
     std::fs::write(&path, deck::write(model, &mesh)).map_err(file_error(&path))?;
     Ok((mesh, path))
 }

@@ -1,4 +1,6 @@
-//! Frictionless node-to-node contact enforced by a penalty (paper §3).
+//! Node-to-node contact enforced by a penalty (paper §3), frictionless
+//! unless Coulomb friction is given (module `friction`: return map and its
+//! unsymmetric tangent).
 //!
 //! For a contact point with gap `g_N` (eq. 13, negative when penetrating)
 //! and unit normal `n`, the penalty energy `½ ε_N ⟨−g_N⟩²` (eq. 16) gives
@@ -44,6 +46,9 @@
 //! makes a uniform pressure produce a uniform penetration `p A_i / ε_i`.
 
 use crate::bc::FaceIntegral;
+
+mod friction;
+pub use friction::{Friction, FrictionResponse, friction_response, stick_block};
 
 /// Default dimensionless penalty factor α.
 pub const DEFAULT_PENALTY_FACTOR: f64 = 100.0;
@@ -352,52 +357,6 @@ pub fn augmented_response(
     Some((force, k))
 }
 
-/// Coulomb friction of one contact point: the coefficient μ and the
-/// tangential penalty ε_T (N/m) of the elastic-slip regularisation.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Friction {
-    /// Coefficient of friction μ (−).
-    pub coefficient: f64,
-    /// Tangential penalty ε_T (N/m) per unit of the point's normal penalty.
-    pub penalty_ratio: f64,
-}
-
-/// The tangential response of an active point: from the tangential
-/// relative displacement `d_t` (slave minus master, in the tangent plane)
-/// and the committed slip `slip`, the trial force `t = −ε_T (d_t − slip)`;
-/// stick if `|t| ≤ μ p_N`, else slip with `t` scaled back onto the Coulomb
-/// cone (return map; Wriggers, *Computational Contact Mechanics*, §5.2).
-/// Returns the tangential force on the slave, its new slip, whether it
-/// slides, and the tangent block — the symmetric part of the consistent
-/// one: the slip block `ε_T (μ p_N/|t|)(P − t̂ t̂ᵀ)` without the
-/// unsymmetric normal–tangential coupling `μ ε_N t̂ nᵀ` (a quasi-Newton
-/// step; its cost is measured in tests/friction.rs).
-pub fn friction_response(
-    d_t: [f64; 3],
-    slip: [f64; 3],
-    normal: &[f64; 3],
-    normal_force: f64,
-    normal_penalty: f64,
-    friction: &Friction,
-) -> ([f64; 3], [f64; 3], bool, [[f64; 3]; 3]) {
-    let eps_t = friction.penalty_ratio * normal_penalty;
-    let trial: [f64; 3] = std::array::from_fn(|k| -eps_t * (d_t[k] - slip[k]));
-    let norm = (trial[0] * trial[0] + trial[1] * trial[1] + trial[2] * trial[2]).sqrt();
-    let limit = friction.coefficient * normal_force.max(0.0);
-    let proj: [[f64; 3]; 3] =
-        std::array::from_fn(|i| std::array::from_fn(|j| f64::from(u8::from(i == j)) - normal[i] * normal[j]));
-    if norm <= limit || norm == 0.0 {
-        return (trial, slip, false, proj.map(|r| r.map(|v| eps_t * v)));
-    }
-    let t_hat = trial.map(|v| v / norm);
-    let force = t_hat.map(|v| limit * v);
-    // slip so that the elastic part carries exactly the Coulomb force
-    let new_slip: [f64; 3] = std::array::from_fn(|k| d_t[k] + force[k] / eps_t);
-    let scale = eps_t * limit / norm;
-    let block = std::array::from_fn(|i| std::array::from_fn(|j| scale * (proj[i][j] - t_hat[i] * t_hat[j])));
-    (force, new_slip, true, block)
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -478,25 +437,5 @@ mod tests {
         let coords = |i: usize| if i == 2 { off } else { xs[i] };
         let (pairs, unmatched) = match_pairs(&slave, &master, coords, |_| 1.0, 1e-3);
         assert!(pairs.is_empty() && unmatched == vec![2], "tangential offset 1.2e-3 > tol 1e-3");
-    }
-
-    #[test]
-    fn friction_sticks_inside_the_cone_and_slides_on_it() {
-        let n = [0.0, 0.0, 1.0];
-        let fr = Friction { coefficient: 0.3, penalty_ratio: 1.0 };
-        // small tangential motion: stick, force −ε_T d_t, no new slip
-        let (f, slip, sliding, k) = friction_response([1e-9, 0.0, 0.0], [0.0; 3], &n, 100.0, 1e9, &fr);
-        assert!(!sliding && (f[0] + 1.0).abs() < 1e-12 && slip == [0.0; 3] && k[0][0] == 1e9 && k[2][2] == 0.0);
-        // large motion: slide with |f| = μ p_N against the motion, the slip
-        // taking up all but the elastic part f/ε_T
-        let (f, slip, sliding, k) = friction_response([1e-6, 0.0, 0.0], [0.0; 3], &n, 100.0, 1e9, &fr);
-        assert!(sliding && (f[0] + 30.0).abs() < 1e-9 && f[1] == 0.0);
-        assert!((slip[0] - (1e-6 - 30.0 / 1e9)).abs() < 1e-18);
-        // no stiffness along the sliding direction, ε_T μ p_N/|t| across it
-        assert!(k[0][0].abs() < 1e-6 && (k[1][1] - 1e9 * 30.0 / 1000.0).abs() < 1e-3);
-        // the committed slip shifts the elastic reference: the same motion
-        // from that slip sticks
-        let (_, _, again, _) = friction_response([1e-6, 0.0, 0.0], slip, &n, 100.0, 1e9, &fr);
-        assert!(!again || (slip[0] - (1e-6 - 30.0 / 1e9)).abs() < 1e-18);
     }
 }

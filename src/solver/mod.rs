@@ -2,6 +2,7 @@
 //! preconditioner), Newton–Raphson, and load stepping with cutbacks.
 
 pub mod linear;
+pub mod lu;
 pub mod newton;
 pub mod reuse;
 pub mod stepping;

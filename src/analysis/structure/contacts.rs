@@ -6,6 +6,7 @@ use std::time::Instant;
 
 use super::Structure;
 use crate::contact;
+use crate::materials::Predictor;
 
 impl Structure<'_> {
     /// Penalty contact: forces into `f_contact`, stiffness into the tangent.
@@ -13,6 +14,7 @@ impl Structure<'_> {
     pub(super) fn assemble_contact(&mut self) -> usize {
         let t = Instant::now();
         self.f_contact.fill(0.0);
+        self.clear_skew();
         let model = self.model;
         let mut changes = 0;
         let mut k = 0;
@@ -33,6 +35,7 @@ impl Structure<'_> {
                 k += 1;
             }
         }
+        self.first_evaluation = false;
         self.timings.contact += t.elapsed();
         changes
     }
@@ -51,7 +54,23 @@ impl Structure<'_> {
     /// `self.contact[k]` and returns true if its active status changed.
     ///
     /// With Coulomb friction an active point adds its tangential force and
-    /// block (`contact::friction_response`, from the committed slip).
+    /// block (`contact::friction_response`, from the committed slip). The
+    /// point's block `K = ε n nᵀ + K_T` may be unsymmetric (sliding): its
+    /// symmetric part goes into the lower-triangle tangent as
+    /// `[K_ss, K_sm; K_ms, K_mm] = [K, −K; −K, K]`, its skew part
+    /// `(K − Kᵀ)/2` with the same signs into the unsymmetric terms
+    /// (`structure/unsymmetric.rs`).
+    ///
+    /// A sliding point gets the stick tangent `ε_T P` instead of its
+    /// consistent one in the first evaluation of an increment and in the
+    /// cautious retry of a failed one (`Incremental::cautious`). At the
+    /// start of an increment a point that slid sits on the cone to
+    /// round-off, so its branch there is arbitrary; the stick tangent
+    /// predicts an elastic unloading, which is exact when the sliding
+    /// reverses (the consistent slip tangent, without stiffness along the
+    /// sliding direction, sends every point across its tiny stick range —
+    /// `μ p / ε_T` — and Newton chatters between forward and reverse slip).
+    /// From the second iteration on the tangent is consistent.
     fn contact_pair(&mut self, k: usize, pair: PairTerms, friction: Option<&contact::Friction>) -> bool {
         let (slave, master, u_master, gap0, normal, penalty) = pair;
         let normal = &normal;
@@ -66,33 +85,45 @@ impl Structure<'_> {
         point.force = [0.0; 3];
         point.sliding = false;
         point.slip = committed_slip;
-        if let (Some((f, kb)), Some(fr)) = (response.as_mut(), friction) {
+        if let (Some((f, kb)), Some(friction_law)) = (response.as_mut(), friction) {
             let rel: [f64; 3] = std::array::from_fn(|i| us[i] - u_master[i]);
             let dn: f64 = (0..3).map(|i| rel[i] * normal[i]).sum();
             let d_t: [f64; 3] = std::array::from_fn(|i| rel[i] - dn * normal[i]);
             let p_n: f64 = (0..3).map(|i| f[i] * normal[i]).sum();
-            let (ft, slip, sliding, kt) = contact::friction_response(d_t, committed_slip, normal, p_n, penalty, fr);
-            point.slip = slip;
-            point.sliding = sliding;
+            let mut fr = contact::friction_response(d_t, committed_slip, normal, p_n, penalty, friction_law);
+            if fr.sliding && (self.first_evaluation || self.predictor == Predictor::Elastic) {
+                fr.block = contact::stick_block(normal, penalty, friction_law);
+            }
+            point.slip = fr.slip;
+            point.sliding = fr.sliding;
             for i in 0..3 {
-                f[i] += ft[i];
+                f[i] += fr.force[i];
                 for j in 0..3 {
-                    kb[i][j] += kt[i][j];
+                    kb[i][j] += fr.block[i][j];
                 }
             }
         }
+        self.contact_blocks[k] = response.map_or([[0.0; 3]; 3], |r| r.1);
         if let Some((f, kb)) = response {
             point.force = f;
             for i in 0..3 {
                 self.f_contact[3 * slave + i] += f[i];
             }
-            self.assembler.add_node_block(&mut self.tangent, slave, slave, &kb);
+            // the symmetric part into the lower-triangle tangent, the rest
+            // (sliding friction) into the unsymmetric terms
+            let sym: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (kb[i][j] + kb[j][i])));
+            let skew: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (kb[i][j] - kb[j][i])));
+            self.assembler.add_node_block(&mut self.tangent, slave, slave, &sym);
+            self.add_skew(slave, slave, &skew, 1.0);
             if let Some(m) = master {
                 for i in 0..3 {
                     self.f_contact[3 * m + i] -= f[i];
                 }
-                self.assembler.add_node_block(&mut self.tangent, m, m, &kb);
-                self.assembler.add_node_block(&mut self.tangent, slave, m, &kb.map(|r| r.map(|v| -v)));
+                self.assembler.add_node_block(&mut self.tangent, m, m, &sym);
+                self.assembler.add_node_block(&mut self.tangent, slave, m, &sym.map(|r| r.map(|v| -v)));
+                self.add_skew(m, m, &skew, 1.0);
+                self.add_skew(slave, m, &skew, -1.0);
+                self.add_skew(m, slave, &skew, -1.0);
             }
         }
         changed

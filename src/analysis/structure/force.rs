@@ -14,7 +14,11 @@
 //! ```
 //!
 //! the Hessian of the potential `Π(u, a) − F a` (symmetric, positive
-//! definite while the indenter touches). It is solved by bordering with the
+//! definite while the indenter touches). With Coulomb friction each active
+//! point's block `K` (normal penalty plus the friction block, possibly
+//! unsymmetric: `contact::friction`) replaces `ε n nᵀ`: column
+//! `B_s = −K d̂`, row `∂r/∂u_s = −Kᵀ d̂`, corner `C = Σ d̂ᵀ K d̂`, and the
+//! bordered system uses the row where `Bᵀ` stood. It is solved by bordering with the
 //! one factorization of `K`: `K x₁ = −R`, `K X₂ = B`, then the small system
 //! `(C − Bᵀ X₂) Δa = −r − Bᵀ x₁` and `Δu = x₁ − X₂ Δa` (Keller's bordering
 //! algorithm, as in arc-length methods). While an indenter touches nothing,
@@ -39,8 +43,10 @@ pub(super) struct Driven {
     pub a_committed: f64,
     /// Its change over the last converged increment.
     pub a_step: f64,
-    /// Border column `B` (equation space) and corner `C` of the last evaluation.
+    /// Border column `B = ∂R/∂a` (equation space) and corner `C` of the last evaluation.
     b: Vec<f64>,
+    /// Border row `∂r/∂u` (equals `B` without friction).
+    b_row: Vec<f64>,
     c: f64,
     /// Residual `r` of the last evaluation (N).
     pub r: f64,
@@ -64,6 +70,7 @@ impl Driven {
                     a_committed: 0.0,
                     a_step: 0.0,
                     b: vec![0.0; n_eq],
+                    b_row: vec![0.0; n_eq],
                     c: 0.0,
                     r: 0.0,
                 })
@@ -107,17 +114,27 @@ impl Structure<'_> {
             let dofs = &self.assembler.dofs.eq;
             let drv = &mut self.driven[di];
             drv.b.fill(0.0);
+            drv.b_row.fill(0.0);
             drv.c = 0.0;
-            for (j, (p, c)) in self.contact[range].iter().zip(&ind.nodes).enumerate() {
+            for (j, (p, c)) in self.contact[range.clone()].iter().zip(&ind.nodes).enumerate() {
                 if !(p.active || (!any && j == nearest.1)) {
                     continue;
                 }
-                let dn = dot(&d, &c.normal);
-                drv.c += c.penalty * dn * dn;
+                // the point's assembled block K (ε n nᵀ, plus friction);
+                // while nothing touches, the nearest point's ε n nᵀ
+                let kb = if p.active {
+                    self.contact_blocks[range.start + j]
+                } else {
+                    c.normal.map(|a| c.normal.map(|b| c.penalty * a * b))
+                };
+                let col: [f64; 3] = std::array::from_fn(|m| dot(&kb[m], &d));
+                let row: [f64; 3] = std::array::from_fn(|m| (0..3).map(|i| kb[i][m] * d[i]).sum());
+                drv.c += dot(&d, &col);
                 for m in 0..3 {
                     let e = dofs[3 * c.node + m];
                     if e != NO_EQ && !self.is_prescribed[e] {
-                        drv.b[e] -= c.penalty * dn * c.normal[m];
+                        drv.b[e] -= col[m];
+                        drv.b_row[e] -= row[m];
                     }
                 }
             }
@@ -133,17 +150,25 @@ impl Structure<'_> {
     /// Updates each indenter's `a` and returns `Σ Δa²`.
     pub(super) fn solve_bordered(&mut self) -> Result<f64, LinearError> {
         let m = self.driven.len();
-        // the bordering solves further right-hand sides with the factor of
-        // the present tangent: no reuse of an earlier one
-        let pattern = &self.assembler.pattern;
-        self.solver.solve(pattern, &self.tangent, &mut self.residual, self.relative_residual, m > 0)?;
+        if self.lu.is_some() {
+            super::unsymmetric::lu_solve(&mut self.lu, &mut self.residual)?;
+        } else {
+            // the bordering solves further right-hand sides with the factor of
+            // the present tangent: no reuse of an earlier one
+            let pattern = &self.assembler.pattern;
+            self.solver.solve(pattern, &self.tangent, &mut self.residual, self.relative_residual, m > 0)?;
+        }
         if m == 0 {
             return Ok(0.0);
         }
         let mut x2 = Vec::with_capacity(m);
         for d in &self.driven {
             let mut x = d.b.clone();
-            self.solver.solve_again(&mut x)?;
+            if self.lu.is_some() {
+                super::unsymmetric::lu_solve(&mut self.lu, &mut x)?;
+            } else {
+                self.solver.solve_again(&mut x)?;
+            }
             x2.push(x);
         }
         let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
@@ -152,10 +177,10 @@ impl Structure<'_> {
         let mut rhs = vec![0.0; m];
         for i in 0..m {
             for j in 0..m {
-                s[i][j] = -dot(&self.driven[i].b, &x2[j]);
+                s[i][j] = -dot(&self.driven[i].b_row, &x2[j]);
             }
             s[i][i] += self.driven[i].c;
-            rhs[i] = -self.driven[i].r - dot(&self.driven[i].b, &self.residual);
+            rhs[i] = -self.driven[i].r - dot(&self.driven[i].b_row, &self.residual);
         }
         let da = solve_dense(s, rhs).ok_or(LinearError::Singular)?;
         for (j, x) in x2.iter().enumerate() {

@@ -17,6 +17,7 @@ use std::time::Instant;
 mod augment;
 mod contacts;
 mod force;
+mod surface;
 
 pub use super::results::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Timings};
 use crate::assembly::{Assembler, Inputs, NO_EQ, Numbering, Outputs};
@@ -69,6 +70,8 @@ pub struct Structure<'m> {
     pub(super) contact: Vec<ContactPoint>,
     contact_committed: Vec<ContactPoint>,
     contact_ranges: Vec<std::ops::Range<usize>>,
+    /// Projection of each surface-contact point (`None` for node points).
+    projections: Vec<Option<crate::contact::surface::Projection>>,
     /// Plastic Gauss points in the last evaluation.
     pub(super) plastic_points: usize,
     /// Force-controlled indenters (their displacement is an unknown).
@@ -115,8 +118,7 @@ impl<'m> Structure<'m> {
             }
         }
         let fixed: Vec<bool> = value.iter().map(|v| *v == Some(0.0)).collect();
-        let couplings: Vec<(usize, usize)> =
-            model.contacts.iter().flat_map(|c| c.pairs.iter().map(|p| (p.slave, p.master))).collect();
+        let couplings: Vec<(usize, usize)> = model.contacts.iter().flat_map(|c| c.couplings(mesh)).collect();
         let numbering = Numbering::new(mesh, &fixed, &couplings)?;
         let t_sym = Instant::now();
         let solver = Cholesky::analyze(&numbering.pattern)?;
@@ -181,6 +183,7 @@ impl<'m> Structure<'m> {
                 gap: p.gap0,
                 ..Default::default()
             }));
+            contact.extend(surface::initial_points(pc));
             contact_ranges.push(start..contact.len());
         }
         let nnz = assembler.pattern.nnz();
@@ -192,7 +195,7 @@ impl<'m> Structure<'m> {
             element_cache,
             ..Default::default()
         };
-        Ok(Self {
+        let mut structure = Self {
             model,
             gp_offsets,
             assembler,
@@ -214,6 +217,7 @@ impl<'m> Structure<'m> {
             lambda: 0.0,
             lambda_committed: 0.0,
             contact_committed: contact.clone(),
+            projections: vec![None; contact.len()],
             contact,
             contact_ranges,
             plastic_points: 0,
@@ -221,7 +225,9 @@ impl<'m> Structure<'m> {
             predictor: Predictor::Loading,
             timings,
             memory,
-        })
+        };
+        structure.update_projections();
+        Ok(structure)
     }
 
     /// Displacements, 3 per node (`3 · node + component`).
@@ -334,13 +340,8 @@ impl<'m> Structure<'m> {
                 let mut force = [0.0; 3];
                 let mut normal_force = [0.0; 3];
                 let mut max_penetration: f64 = 0.0;
-                let ni = self.model.indenters.len();
-                for (j, p) in points.iter().enumerate() {
-                    let n = if k < ni {
-                        self.model.indenters[k].nodes[j].normal
-                    } else {
-                        self.model.contacts[k - ni].pairs[j].normal
-                    };
+                for p in points {
+                    let n = p.normal;
                     let fn_ = p.force[0] * n[0] + p.force[1] * n[1] + p.force[2] * n[2];
                     for c in 0..3 {
                         force[c] += p.force[c];
@@ -507,6 +508,7 @@ impl Incremental for Structure<'_> {
         for d in &mut self.driven {
             d.a_committed = d.a;
         }
+        self.update_projections();
     }
 
     fn restore(&mut self) {

@@ -48,7 +48,8 @@ pub fn write_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), 
 
     // smallest contact gap per node (NaN where a node is in no contact)
     let mut node_gap: std::collections::HashMap<usize, f64> = Default::default();
-    let contact_points = || solution.contact_sets.iter().flat_map(|c| &c.points);
+    // (node contacts only: surface-contact points are not nodes; contact_<name>.vtu has them)
+    let contact_points = || solution.contact_sets.iter().flat_map(|c| &c.points).filter(|p| p.position.is_none());
     for p in contact_points() {
         for n in std::iter::once(p.node).chain(p.master) {
             let g = node_gap.entry(n).or_insert(f64::INFINITY);

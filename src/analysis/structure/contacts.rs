@@ -32,6 +32,10 @@ impl Structure<'_> {
                 changes += usize::from(self.contact_pair(k, pair, pc.friction.as_ref()));
                 k += 1;
             }
+            if let Some(s) = &pc.surface {
+                changes += self.assemble_surface(k, s);
+                k += s.points.len();
+            }
         }
         self.timings.contact += t.elapsed();
         changes
@@ -63,6 +67,7 @@ impl Structure<'_> {
         let changed = response.is_some() != point.active;
         point.active = response.is_some();
         point.gap = g;
+        point.normal = *normal;
         point.force = [0.0; 3];
         point.sliding = false;
         point.slip = committed_slip;

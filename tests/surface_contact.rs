@@ -159,8 +159,10 @@ fn surface_contact_tangent_matches_finite_differences() {
     s.evaluate().unwrap();
     assert!(s.plastic_points() > 0, "the state should be plastic");
     let nl = model.mesh.bodies[0].n_nodes();
-    let active: Vec<usize> =
-        s.contact_points().iter().filter(|c| c.active && c.position.is_some()).map(|c| c.node).collect();
+    let interface = |s: &analysis::Structure| -> Vec<cufem::analysis::ContactPoint> {
+        s.contact_sets().find(|(n, _, _)| *n == "interface").unwrap().2.to_vec()
+    };
+    let active: Vec<usize> = interface(&s).iter().filter(|c| c.active).map(|c| c.node).collect();
     assert!(active.len() > 10, "{} active points", active.len());
     let k = s.tangent_values().to_vec();
     let pattern = s.pattern().clone();
@@ -230,11 +232,58 @@ fn newton_converges_quadratically_with_surface_contact() {
             }
         }
         s.evaluate().unwrap();
-        let active = s.contact_points().iter().filter(|c| c.active && c.position.is_some()).count();
+        let active =
+            s.contact_sets().find(|(n, _, _)| *n == "interface").unwrap().2.iter().filter(|c| c.active).count();
         if lambda == 1.0 {
             assert_eq!(active, active_before, "the active set changed");
         }
         active_before = active;
         s.commit();
     }
+}
+
+/// Issue 9's non-matching cantilevers: `examples/cantilevers_contact_nonmatching.toml`
+/// (lower beam's section 5 × 3 L9 instead of 4 × 4) against the same model
+/// on the matching mesh, both with `method = "surface"`, frictionless.
+/// Measured: pair contact force −0.7 %, 7 in roller +0.2 %, σ_yy at the
+/// probes +0.05 % and −1.8 %; asserted 2 % (the issue's bound). The 9 in
+/// roller carries 942 N against 1,106 N (−15 %; 0.6 % of the rollers'
+/// total, asserted below 1 %): a line contact at the upper beam's free end
+/// whose share depends on the mesh under it. Long (two plastic runs of
+/// about 30 s each on one core): `cargo test --release --test
+/// surface_contact -- --ignored`.
+#[test]
+#[ignore]
+fn non_matching_cantilevers_match_the_matching_mesh() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let nonmatching = std::fs::read_to_string(path.join("cantilevers_contact_nonmatching.toml")).unwrap();
+    let matching = std::fs::read_to_string(path.join("cantilevers_contact.toml")).unwrap().replace(
+        "slave = { body = \"upper\", where = { z = 0.0254 } }",
+        "slave = { body = \"upper\", where = { z = 0.0254 } }\nmethod = \"surface\"",
+    );
+    assert!(matching.contains("method = \"surface\""));
+    let (model_n, n) = run(&nonmatching);
+    let (model_m, m) = run(&matching);
+    let fz = |s: &Solution, name: &str| s.contact(name).unwrap().force[2];
+    let probe = |model: &Model, s: &Solution, name: &str| {
+        let p = model.probes.iter().find(|p| p.name == name).unwrap();
+        s.fields(model).sample_probe(p).unwrap().stress[1]
+    };
+    let mut rows = Vec::new();
+    for name in ["beams", "indenter_7in"] {
+        rows.push((name.to_string(), fz(&n, name), fz(&m, name)));
+    }
+    for name in ["y_177.8mm", "y_228.6mm"] {
+        rows.push((format!("s_yy {name}"), probe(&model_n, &n, name), probe(&model_m, &m, name)));
+    }
+    for (what, a, b) in &rows {
+        eprintln!("{what}: non-matching {a:.6e}, matching {b:.6e}, {:+.2} %", 100.0 * (a / b - 1.0));
+    }
+    for (what, a, b) in &rows {
+        assert!((a / b - 1.0).abs() < 0.02, "{what}: {a} against {b}");
+    }
+    let total = fz(&m, "indenter_7in") + fz(&m, "indenter_9in");
+    let d9 = fz(&n, "indenter_9in") - fz(&m, "indenter_9in");
+    eprintln!("9 in roller: {:.1} N against {:.1} N", fz(&n, "indenter_9in"), fz(&m, "indenter_9in"));
+    assert!((d9 / total).abs() < 0.01, "9 in roller moved by {d9} N of {total} N");
 }

@@ -70,8 +70,8 @@ pub struct Structure<'m> {
     pub(super) contact: Vec<ContactPoint>,
     contact_committed: Vec<ContactPoint>,
     contact_ranges: Vec<std::ops::Range<usize>>,
-    /// Projection of each surface-contact point (`None` for node points).
-    projections: Vec<Option<crate::contact::surface::Projection>>,
+    /// Per pair contact: the projections and weighted gaps of a surface contact.
+    surface_state: Vec<surface::State>,
     /// Plastic Gauss points in the last evaluation.
     pub(super) plastic_points: usize,
     /// Force-controlled indenters (their displacement is an unknown).
@@ -217,7 +217,7 @@ impl<'m> Structure<'m> {
             lambda: 0.0,
             lambda_committed: 0.0,
             contact_committed: contact.clone(),
-            projections: vec![None; contact.len()],
+            surface_state: vec![Default::default(); model.contacts.len()],
             contact,
             contact_ranges,
             plastic_points: 0,

@@ -247,7 +247,7 @@ impl PairContact {
     /// Penalty ε (N/m) of point `j`.
     pub fn point_penalty(&self, j: usize) -> f64 {
         match &self.surface {
-            Some(s) => s.points[j].penalty,
+            Some(s) => s.penalties[j],
             None => self.pairs[j].penalty,
         }
     }

@@ -165,6 +165,59 @@ pub struct SurfaceContact {
     pub search_distance: f64,
     /// Slave integration points with no master face within the search distance.
     pub unpaired: usize,
+    /// The slave face nodes (sorted): one contact constraint each.
+    pub slave_nodes: Vec<usize>,
+    /// Their tributary areas `A_a = Σ_q w_q N_a(q)` (m²).
+    pub areas: Vec<f64>,
+    /// Their penalties `ε_a = Σ_q ε_q N_a(q)` (N/m).
+    pub penalties: Vec<f64>,
+}
+
+/// The weighted (mortar) gap of one slave node `a` at fixed projections:
+/// `g̃_a = Σ_q w_q N_a(q) g_q = gap0 + Σ_b grad_b · u_b` (m³).
+#[derive(Debug, Clone, PartialEq, Default)]
+pub struct NodeGap {
+    /// `Σ_q w_q N_a(q) (X_s − X_m)·n` (m³).
+    pub gap0: f64,
+    /// `∂g̃_a/∂u_b` per node `b` (m²), slave and master nodes.
+    pub grad: Vec<(usize, [f64; 3])>,
+    /// `m_a = Σ_q w_q N_a(q) n_q` (m²): the force of the node is `P_a m_a / A_a`.
+    pub moment: [f64; 3],
+}
+
+impl SurfaceContact {
+    /// The weighted gaps of all slave nodes from the points' projections
+    /// (points without a projection contribute nothing).
+    pub fn node_gaps(&self, projections: &[Option<Projection>]) -> Vec<NodeGap> {
+        let mut out: Vec<std::collections::BTreeMap<usize, [f64; 3]>> =
+            vec![Default::default(); self.slave_nodes.len()];
+        let mut gaps = vec![NodeGap::default(); self.slave_nodes.len()];
+        for (p, proj) in self.points.iter().zip(projections) {
+            let Some(proj) = proj else { continue };
+            for (&a, &na) in p.nodes.iter().zip(&p.shapes) {
+                let ia = self.slave_nodes.binary_search(&a).expect("slave node listed");
+                let w = p.weight * na;
+                let g = &mut gaps[ia];
+                g.gap0 += w * proj.gap0;
+                for k in 0..3 {
+                    g.moment[k] += w * proj.normal[k];
+                }
+                let sides = [(&p.nodes, &p.shapes, 1.0), (&proj.nodes, &proj.shapes, -1.0)];
+                for (nodes, shapes, sign) in sides {
+                    for (&b, &nb) in nodes.iter().zip(shapes.iter()) {
+                        let e = out[ia].entry(b).or_insert([0.0; 3]);
+                        for k in 0..3 {
+                            e[k] += sign * w * nb * proj.normal[k];
+                        }
+                    }
+                }
+            }
+        }
+        for (g, map) in gaps.iter_mut().zip(out) {
+            g.grad = map.into_iter().filter(|(_, v)| v.iter().any(|x| *x != 0.0)).collect();
+        }
+        gaps
+    }
 }
 
 /// The projection of a slave point onto the master surface.
@@ -427,22 +480,44 @@ pub fn build(
             }
         }
     }
-    SurfaceContact { master_body, master_faces, points, search_distance, unpaired }
+    let mut slave_nodes: Vec<usize> = points.iter().flat_map(|p| p.nodes.iter().copied()).collect();
+    slave_nodes.sort_unstable();
+    slave_nodes.dedup();
+    let mut areas = vec![0.0; slave_nodes.len()];
+    let mut penalties = vec![0.0; slave_nodes.len()];
+    for p in &points {
+        for (&a, &na) in p.nodes.iter().zip(&p.shapes) {
+            let ia = slave_nodes.binary_search(&a).expect("slave node listed");
+            areas[ia] += p.weight * na;
+            penalties[ia] += p.penalty * na;
+        }
+    }
+    SurfaceContact { master_body, master_faces, points, search_distance, unpaired, slave_nodes, areas, penalties }
 }
 
 impl SurfaceContact {
-    /// Node pairs the matrix pattern must hold: every slave face node of a
-    /// point with every node of its candidate master faces.
+    /// Node pairs the matrix pattern must hold: the weighted gap of a slave
+    /// node couples every node of its points' slave faces and candidate
+    /// master faces with each other.
     pub fn couplings(&self, master: &Body) -> Vec<(usize, usize)> {
         let face_nodes: Vec<Vec<usize>> =
             self.master_faces.iter().map(|f| face_point(master, f, 0.0, 0.0).nodes).collect();
-        let mut set = std::collections::BTreeSet::new();
+        let mut support: Vec<std::collections::BTreeSet<usize>> = vec![Default::default(); self.slave_nodes.len()];
         for p in &self.points {
-            for &c in &p.candidates {
-                for &m in &face_nodes[c] {
-                    for &s in &p.nodes {
-                        set.insert((s, m));
-                    }
+            for &a in &p.nodes {
+                let ia = self.slave_nodes.binary_search(&a).expect("slave node listed");
+                support[ia].extend(p.nodes.iter().copied());
+                for &c in &p.candidates {
+                    support[ia].extend(face_nodes[c].iter().copied());
+                }
+            }
+        }
+        let mut set = std::collections::BTreeSet::new();
+        for s in &support {
+            let v: Vec<usize> = s.iter().copied().collect();
+            for (i, &a) in v.iter().enumerate() {
+                for &b in &v[i + 1..] {
+                    set.insert((a, b));
                 }
             }
         }

@@ -25,7 +25,7 @@ impl Structure<'_> {
                 k += 1;
             }
         }
-        for pc in &model.contacts {
+        for (c, pc) in model.contacts.iter().enumerate() {
             for p in &pc.pairs {
                 let um = [0, 1, 2].map(|i| self.u[3 * p.master + i]);
                 let pair = (p.slave, Some(p.master), um, p.gap0, p.normal, p.penalty);
@@ -33,8 +33,8 @@ impl Structure<'_> {
                 k += 1;
             }
             if let Some(s) = &pc.surface {
-                changes += self.assemble_surface(k, s);
-                k += s.points.len();
+                changes += self.assemble_surface(k, c, s);
+                k += s.slave_nodes.len();
             }
         }
         self.timings.contact += t.elapsed();

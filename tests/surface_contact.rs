@@ -73,6 +73,17 @@ slave = {{ body = "upper", where = {{ z = 0.01 }} }}
 }
 
 const P: f64 = 50e6;
+
+/// A Float64 array of a VTU written by cufem (binary: base64 of a UInt64
+/// byte count and the little-endian values).
+fn vtu_array(text: &str, name: &str) -> Vec<f64> {
+    use base64::Engine;
+    let start = text.find(&format!("Name=\"{name}\"")).unwrap();
+    let body = &text[start..];
+    let body = &body[body.find('>').unwrap() + 1..body.find("</DataArray>").unwrap()];
+    let bytes = base64::engine::general_purpose::STANDARD.decode(body.trim()).unwrap();
+    bytes[8..].chunks(8).map(|c| f64::from_le_bytes(c.try_into().unwrap())).collect()
+}
 const PRESSURE: &str = "[[loads]]\nname = \"pressure\"\nbody = \"upper\"\nwhere = { z = 0.025 }\npressure = 50e6\n";
 
 fn run(text: &str) -> (Model, Solution) {
@@ -118,6 +129,16 @@ fn patch_test_transmits_a_uniform_pressure_across_non_matching_meshes() {
         if !keys.is_empty() {
             assert!(pen <= 1e-9, "{pen:e}");
         }
+        // contact_<name>.vtu: one vertex per slave node with its pressure p
+        let k = sol.contact_sets.iter().position(|c| c.name == "interface").unwrap();
+        let path = std::path::Path::new(env!("CARGO_TARGET_TMPDIR")).join("surface_patch_contact.vtu");
+        cufem::io::write_contact_vtu(&path, &model, &sol, k).unwrap();
+        let vtu = std::fs::read_to_string(&path).unwrap();
+        assert!(vtu.contains(&format!("NumberOfPoints=\"{n}\" NumberOfCells=\"{n}\"")));
+        let pressure = vtu_array(&vtu, "pressure");
+        assert_eq!(pressure.len(), n);
+        assert!(pressure.iter().all(|v| (v / P - 1.0).abs() < 1e-6), "{pressure:?}");
+        assert!(vtu_array(&vtu, "traction").iter().all(|v| v.abs() < 1e-6 * P), "frictionless: no traction");
         // the support reaction under the lower block is p A (equilibrium)
         let r = sol.reaction("lower_bottom").unwrap().force[2];
         assert!((r / (P * 0.02 * 0.03) - 1.0).abs() < 1e-9, "{r}");

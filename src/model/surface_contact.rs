@@ -11,8 +11,9 @@ use crate::materials::Material;
 use crate::mesh::Mesh;
 
 /// Builds a surface contact: slave integration points on the slave faces,
-/// candidate master faces within `search_distance` (default: the largest
-/// master face's bounding-box diagonal, one element of sliding).
+/// candidate master faces within `search_distance` (default: a quarter of
+/// the largest master face's bounding-box diagonal — sliding of a fraction
+/// of an element, the small-displacement setting).
 pub(super) fn surface_contact(
     key: &str,
     c: &ContactFile,
@@ -57,7 +58,7 @@ pub(super) fn surface_contact(
             size,
             "a distance in m (how far a slave point may slide or start from the master faces it can touch), at most the bodies' size",
         )?,
-        None => largest_face,
+        None => 0.25 * largest_face,
     };
     let depths: Vec<f64> = sf.iter().map(|f| f.depth).collect();
     let contact = surface::build(

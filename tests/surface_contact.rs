@@ -308,3 +308,88 @@ fn non_matching_cantilevers_match_the_matching_mesh() {
     eprintln!("9 in roller: {:.1} N against {:.1} N", fz(&n, "indenter_9in"), fz(&m, "indenter_9in"));
     assert!((d9 / total).abs() < 0.01, "9 in roller moved by {d9} N of {total} N");
 }
+
+/// Coulomb friction on surface contact, non-matching meshes: the upper
+/// block (2 × 1 L16, 1 B4) pressed by 10 MPa onto the lower one (3 × 1 L9,
+/// 2 B3; clamped at its base) and pushed 0.1 mm along +x by its face
+/// x = 0. Once the interface slides, the push reaction is μ N with
+/// N = 10 MPa × 200 mm² = 2,000 N (vertical equilibrium; Coulomb), and
+/// every contact node is sliding. Measured: 600.000000 N (asserted 1e-6,
+/// as tests/friction.rs on node-to-node), 28 of 28 nodes sliding, 182
+/// Newton iterations over 12 increments (the symmetric slip tangent of
+/// `contact::friction_response`: a quasi-Newton step).
+#[test]
+fn surface_friction_slides_at_mu_n() {
+    let text = r#"
+[[materials]]
+name = "steel"
+young_modulus = 200e9
+poisson_ratio = 0.3
+
+[[bodies]]
+name = "lower"
+material = "steel"
+section = { shape = "rectangle", element = "L9", x = { from = -0.005, to = 0.025, elements = 3 }, z = { from = -0.01, to = 0.0, elements = 1 } }
+axis = { element = "B3", from = 0.0, to = 0.01, elements = 2 }
+
+[[bodies]]
+name = "upper"
+material = "steel"
+section = { shape = "rectangle", element = "L16", x = { from = 0.0, to = 0.02, elements = 2 }, z = { from = 0.0, to = 0.01, elements = 1 } }
+axis = { element = "B4", from = 0.0, to = 0.01, elements = 1 }
+
+[[constraints]]
+name = "base"
+body = "lower"
+where = { z = -0.01 }
+fix = ["x", "y", "z"]
+
+[[constraints]]
+name = "symmetry"
+body = "upper"
+where = { y = 0.0 }
+fix = ["y"]
+
+[[constraints]]
+name = "push"
+body = "upper"
+where = { x = 0.0 }
+displacement = { x = 1e-4 }
+
+[[loads]]
+name = "press"
+body = "upper"
+where = { z = 0.01 }
+pressure = 10e6
+
+[[contacts]]
+name = "interface"
+method = "surface"
+master = { body = "lower", where = { z = 0.0 } }
+slave = { body = "upper", where = { z = 0.0 } }
+friction = 0.3
+
+[[steps]]
+name = "press"
+increments = 2
+factors = { push = 0.0 }
+
+[[steps]]
+name = "slide"
+increments = 10
+"#;
+    let (_, sol) = run(text);
+    let push = sol.reaction("push").unwrap().force[0];
+    let points = sol.contact_points("interface").unwrap();
+    let sliding = points.iter().filter(|c| c.active && c.sliding).count();
+    let active = points.iter().filter(|c| c.active).count();
+    let c = sol.contact("interface").unwrap();
+    eprintln!(
+        "push reaction {push:.6e} N (μN = 600 N), {sliding} of {active} active nodes sliding, normal {:?}, tangential {:?}, iterations {}",
+        c.normal_force,
+        c.tangential_force,
+        sol.increments.iter().map(|i| i.newton.iterations).sum::<usize>()
+    );
+    assert!((push / 600.0 - 1.0).abs() < 1e-6, "push reaction {push}");
+    assert_eq!(sliding, active);
+}

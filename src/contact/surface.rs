@@ -181,6 +181,10 @@ pub struct NodeGap {
     pub gap0: f64,
     /// `∂g̃_a/∂u_b` per node `b` (m²), slave and master nodes.
     pub grad: Vec<(usize, [f64; 3])>,
+    /// The tangential counterpart `Σ_q w_q N_a(q) c_b(q) (I − n_q n_qᵀ)`
+    /// per node `b` of `grad` (m²): the weighted tangential relative
+    /// displacement is `Σ_b T_b u_b` (for friction).
+    pub tangential: Vec<[[f64; 3]; 3]>,
     /// `m_a = Σ_q w_q N_a(q) n_q` (m²): the force of the node is `P_a m_a / A_a`.
     pub moment: [f64; 3],
 }
@@ -189,8 +193,8 @@ impl SurfaceContact {
     /// The weighted gaps of all slave nodes from the points' projections
     /// (points without a projection contribute nothing).
     pub fn node_gaps(&self, projections: &[Option<Projection>]) -> Vec<NodeGap> {
-        let mut out: Vec<std::collections::BTreeMap<usize, [f64; 3]>> =
-            vec![Default::default(); self.slave_nodes.len()];
+        type Entry = ([f64; 3], [[f64; 3]; 3]);
+        let mut out: Vec<std::collections::BTreeMap<usize, Entry>> = vec![Default::default(); self.slave_nodes.len()];
         let mut gaps = vec![NodeGap::default(); self.slave_nodes.len()];
         for (p, proj) in self.points.iter().zip(projections) {
             let Some(proj) = proj else { continue };
@@ -205,16 +209,26 @@ impl SurfaceContact {
                 let sides = [(&p.nodes, &p.shapes, 1.0), (&proj.nodes, &proj.shapes, -1.0)];
                 for (nodes, shapes, sign) in sides {
                     for (&b, &nb) in nodes.iter().zip(shapes.iter()) {
-                        let e = out[ia].entry(b).or_insert([0.0; 3]);
+                        let e = out[ia].entry(b).or_insert(([0.0; 3], [[0.0; 3]; 3]));
+                        let c = sign * w * nb;
+                        let n = proj.normal;
                         for k in 0..3 {
-                            e[k] += sign * w * nb * proj.normal[k];
+                            e.0[k] += c * n[k];
+                            for l in 0..3 {
+                                e.1[k][l] += c * (f64::from(u8::from(k == l)) - n[k] * n[l]);
+                            }
                         }
                     }
                 }
             }
         }
         for (g, map) in gaps.iter_mut().zip(out) {
-            g.grad = map.into_iter().filter(|(_, v)| v.iter().any(|x| *x != 0.0)).collect();
+            let kept: Vec<(usize, Entry)> = map
+                .into_iter()
+                .filter(|(_, v)| v.0.iter().any(|x| *x != 0.0) || v.1.iter().flatten().any(|x| *x != 0.0))
+                .collect();
+            g.grad = kept.iter().map(|(b, v)| (*b, v.0)).collect();
+            g.tangential = kept.iter().map(|(_, v)| v.1).collect();
         }
         gaps
     }

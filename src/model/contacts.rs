@@ -416,7 +416,7 @@ pub(super) fn tolerance(key: &str, t: Option<f64>, size: f64) -> Result<Option<f
 
 /// `friction`: Coulomb's coefficient μ in [0, 10]; the tangential penalty
 /// equals the normal one (elastic slip of the order of the penetration).
-fn friction(key: &str, mu: Option<f64>) -> Result<Option<contact::Friction>, ModelError> {
+pub(super) fn friction(key: &str, mu: Option<f64>) -> Result<Option<contact::Friction>, ModelError> {
     mu.map(|m| {
         bounds::within(&format!("{key}.friction"), m, 0.0, 10.0, "Coulomb's coefficient of friction μ")
             .map(|coefficient| contact::Friction { coefficient, penalty_ratio: 1.0 })

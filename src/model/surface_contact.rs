@@ -1,7 +1,7 @@
 //! `[[contacts]]` with `method = "surface"`: segment-to-segment contact on
 //! non-matching meshes (`contact::surface`).
 
-use super::contacts::tolerance;
+use super::contacts::{friction, tolerance};
 use super::preprocess::surface_faces;
 use super::schema::ContactFile;
 use super::validate::{penalty, reject_unused};
@@ -24,13 +24,6 @@ pub(super) fn surface_contact(
 ) -> Result<PairContact, ModelError> {
     let chosen = "method = \"surface\"";
     reject_unused(key, chosen, &[("pairs", c.pairs.is_some()), ("tolerance", c.tolerance.is_some())])?;
-    if c.friction.is_some() {
-        return Err(invalid(
-            format!("{key}.friction"),
-            "(given)",
-            "no friction with method = \"surface\" yet (frictionless only; friction is available with method = \"node_to_node\")",
-        ));
-    }
     let (master_body, slave_body) = (&mesh.bodies[bm], &mesh.bodies[bs]);
     let (master_faces, _) = surface_faces(&format!("{key}.master.where"), &c.master.selection, master_body)?;
     let (slave_faces, sf) = surface_faces(&format!("{key}.slave.where"), &c.slave.selection, slave_body)?;
@@ -83,7 +76,7 @@ pub(super) fn surface_contact(
         name: c.name.clone(),
         pairs: Vec::new(),
         penetration_tolerance: tolerance(key, c.penetration_tolerance, slave_body.size())?,
-        friction: None,
+        friction: friction(key, c.friction)?,
         unpaired: contact.unpaired,
         master: ContactSurface { body: bm, faces: master_faces },
         slave: ContactSurface { body: bs, faces: slave_faces },

@@ -33,7 +33,7 @@ impl Structure<'_> {
                 k += 1;
             }
             if let Some(s) = &pc.surface {
-                changes += self.assemble_surface(k, c, s);
+                changes += self.assemble_surface(k, c, s, pc.friction.as_ref());
                 k += s.slave_nodes.len();
             }
         }

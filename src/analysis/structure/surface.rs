@@ -14,7 +14,7 @@
 use std::time::Instant;
 
 use super::{ContactPoint, Structure};
-use crate::contact::{PairContact, surface};
+use crate::contact::{self, PairContact, surface};
 
 /// Projections and weighted gaps of one surface contact.
 #[derive(Debug, Clone, Default)]
@@ -56,7 +56,13 @@ impl Structure<'_> {
     /// Forces and tangent of surface contact `c` (data `s`), whose first
     /// contact point is `k0`; returns the number of slave nodes whose
     /// active status changed.
-    pub(super) fn assemble_surface(&mut self, k0: usize, c: usize, s: &surface::SurfaceContact) -> usize {
+    pub(super) fn assemble_surface(
+        &mut self,
+        k0: usize,
+        c: usize,
+        s: &surface::SurfaceContact,
+        friction: Option<&contact::Friction>,
+    ) -> usize {
         let mut changes = 0;
         let state = std::mem::take(&mut self.surface_state[c]);
         for (j, g) in state.gaps.iter().enumerate() {
@@ -88,6 +94,8 @@ impl Structure<'_> {
                 continue;
             }
             point.force = g.moment.map(|v| force * v / area);
+            point.sliding = false;
+            point.slip = self.contact_committed[k0 + j].slip;
             for (b, v) in &g.grad {
                 for k in 0..3 {
                     self.f_contact[3 * b + k] += force / area * v[k];
@@ -100,8 +108,72 @@ impl Structure<'_> {
                     self.assembler.add_node_block(&mut self.tangent, *a, *b, &block);
                 }
             }
+            if let Some(fr) = friction {
+                self.surface_friction(k0 + j, g, area, eps, force, fr);
+            }
         }
         self.surface_state[c] = state;
         changes
+    }
+}
+
+impl Structure<'_> {
+    /// Coulomb friction of slave-node point `k` (weighted gap `g`, area,
+    /// normal penalty and force), incremental from the committed state: the
+    /// weighted tangential relative displacement of the increment
+    /// `d_t = Σ_b T_b (u_b − u_b,n) / A` and the committed tangential force
+    /// `t_n` give the trial `t_n − ε_T d_t`, returned onto the Coulomb cone
+    /// by `contact::friction_response` (its symmetric tangent `k_t`). Nodal
+    /// forces `T_b t / A`, blocks `T_b k_t T_c / A²` (`T_b` symmetric); the
+    /// accumulated slip grows by `d_t + (t − t_n)/ε_T`.
+    fn surface_friction(
+        &mut self,
+        k: usize,
+        g: &surface::NodeGap,
+        area: f64,
+        eps: f64,
+        normal_force: f64,
+        fr: &contact::Friction,
+    ) {
+        let eps_t = fr.penalty_ratio * eps;
+        let n = self.contact[k].normal;
+        let committed = self.contact_committed[k];
+        let fcn: f64 = (0..3).map(|i| committed.force[i] * n[i]).sum();
+        let t_n: [f64; 3] = std::array::from_fn(|i| committed.force[i] - fcn * n[i]);
+        let mut d_t = [0.0; 3];
+        for ((b, _), t) in g.grad.iter().zip(&g.tangential) {
+            for i in 0..3 {
+                for l in 0..3 {
+                    d_t[i] += t[i][l] * (self.u[3 * b + l] - self.u_committed[3 * b + l]) / area;
+                }
+            }
+        }
+        let (ft, _, sliding, kt) = contact::friction_response(d_t, t_n.map(|v| v / eps_t), &n, normal_force, eps, fr);
+        let point = &mut self.contact[k];
+        point.sliding = sliding;
+        point.slip = std::array::from_fn(|i| committed.slip[i] + d_t[i] + (ft[i] - t_n[i]) / eps_t);
+        for i in 0..3 {
+            point.force[i] += ft[i];
+        }
+        for ((b, _), t) in g.grad.iter().zip(&g.tangential) {
+            for i in 0..3 {
+                self.f_contact[3 * b + i] += (0..3).map(|l| t[i][l] * ft[l]).sum::<f64>() / area;
+            }
+        }
+        // k_t T_c per node c, then T_b (k_t T_c) / A²
+        let kt_t: Vec<[[f64; 3]; 3]> = g
+            .tangential
+            .iter()
+            .map(|t| std::array::from_fn(|i| std::array::from_fn(|l| (0..3).map(|m| kt[i][m] * t[m][l]).sum::<f64>())))
+            .collect();
+        let scale = 1.0 / (area * area);
+        for (x, ((a, _), ta)) in g.grad.iter().zip(&g.tangential).enumerate() {
+            for ((b, _), kb) in g.grad[x..].iter().zip(&kt_t[x..]) {
+                let block: [[f64; 3]; 3] = std::array::from_fn(|i| {
+                    std::array::from_fn(|l| scale * (0..3).map(|m| ta[i][m] * kb[m][l]).sum::<f64>())
+                });
+                self.assembler.add_node_block(&mut self.tangent, *a, *b, &block);
+            }
+        }
     }
 }

@@ -71,6 +71,8 @@ impl Structure<'_> {
             let was = point.active;
             point.force = [0.0; 3];
             point.active = false;
+            point.sliding = false;
+            point.slip = self.contact_committed[k0 + j].slip;
             if g.grad.is_empty() || !(area > 0.0) {
                 point.gap = f64::NAN;
                 changes += usize::from(was);
@@ -94,8 +96,6 @@ impl Structure<'_> {
                 continue;
             }
             point.force = g.moment.map(|v| force * v / area);
-            point.sliding = false;
-            point.slip = self.contact_committed[k0 + j].slip;
             for (b, v) in &g.grad {
                 for k in 0..3 {
                     self.f_contact[3 * b + k] += force / area * v[k];

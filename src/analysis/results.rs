@@ -116,7 +116,4 @@ pub struct ContactPoint {
     pub sliding: bool,
     /// Contact normal (pointing to the slave body or body under an indenter).
     pub normal: [f64; 3],
-    /// Reference position of a surface-contact integration point (its
-    /// `node` is then the nearest slave node); `None` for node contacts.
-    pub position: Option<[f64; 3]>,
 }

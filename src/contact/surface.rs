@@ -148,8 +148,6 @@ pub struct SlavePoint {
     pub penalty: f64,
     /// Candidate master faces (indices into [`SurfaceContact::master_faces`]).
     pub candidates: Vec<usize>,
-    /// The slave node nearest the point (for tables keyed by node).
-    pub nearest_node: usize,
 }
 
 /// Segment-to-segment contact data of one `[[contacts]]` entry.
@@ -468,18 +466,6 @@ pub fn build(
                             unpaired += 1;
                             continue;
                         }
-                        let nearest_node = fp
-                            .nodes
-                            .iter()
-                            .copied()
-                            .min_by(|&m, &n| {
-                                let d = |n: usize| {
-                                    let y = body.local_coords(n - body.node_offset);
-                                    (0..3).map(|k| (y[k] - x[k]).powi(2)).sum::<f64>()
-                                };
-                                d(m).total_cmp(&d(n))
-                            })
-                            .unwrap_or(0);
                         points.push(SlavePoint {
                             nodes: fp.nodes,
                             shapes: fp.shapes,
@@ -487,7 +473,6 @@ pub fn build(
                             weight,
                             penalty: eps_a * weight,
                             candidates,
-                            nearest_node,
                         });
                     }
                 }

@@ -95,7 +95,7 @@ pub fn write_contact_points(model: &Model, solution: &Solution, dir: &Path) -> R
     for set in &solution.contact_sets {
         let mut text = String::from("node,x,y,z,gap,f_x,f_y,f_z,area,pressure,active,slip,sliding\n");
         for p in &set.points {
-            let x = p.position.unwrap_or_else(|| model.mesh.coords(p.node));
+            let x = model.mesh.coords(p.node);
             let f = p.force;
             let pressure = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt() / p.area;
             let slip = (p.slip[0] * p.slip[0] + p.slip[1] * p.slip[1] + p.slip[2] * p.slip[2]).sqrt();

@@ -48,9 +48,9 @@ pub fn write_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), 
 
     // smallest contact gap per node (NaN where a node is in no contact)
     let mut node_gap: std::collections::HashMap<usize, f64> = Default::default();
-    // (node contacts only: surface-contact points are not nodes; contact_<name>.vtu has them)
-    let contact_points = || solution.contact_sets.iter().flat_map(|c| &c.points).filter(|p| p.position.is_none());
-    for p in contact_points() {
+    let contact_points = || solution.contact_sets.iter().flat_map(|c| &c.points);
+    // (a surface-contact node without a master face under it has no gap)
+    for p in contact_points().filter(|p| !p.gap.is_nan()) {
         for n in std::iter::once(p.node).chain(p.master) {
             let g = node_gap.entry(n).or_insert(f64::INFINITY);
             *g = g.min(p.gap);
@@ -205,8 +205,9 @@ pub fn write_gauss_vtu(path: &Path, model: &Model, solution: &Solution) -> Resul
 }
 
 /// Writes the points of one contact (`solution.contact_sets[set]`) as a
-/// point cloud of VTK vertices at their reference positions (the slave
-/// node, or the indenter's node): `u` (displacement, m, to warp by),
+/// point cloud of VTK vertices at the reference positions of their nodes
+/// (the slave node of a pair or surface contact, the body node under an
+/// indenter): `u` (displacement, m, to warp by),
 /// `force` (on the slave body or the body under the indenter, N), `normal`,
 /// `pressure` (normal force / tributary area, Pa), `traction` (tangential
 /// force / area, Pa), `gap` (m, negative = penetration; NaN for a
@@ -220,7 +221,7 @@ pub fn write_contact_vtu(path: &Path, model: &Model, solution: &Solution, set: u
     let (mut pressure, mut traction, mut gap, mut slip, mut status) =
         (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
     for p in points_of {
-        let x = p.position.unwrap_or_else(|| model.mesh.coords(p.node));
+        let x = model.mesh.coords(p.node);
         points.extend(x);
         u.extend((0..3).map(|k| solution.u[3 * p.node + k]));
         force.extend(p.force);

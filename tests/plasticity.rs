@@ -67,7 +67,10 @@ fn newton_converges_quadratically_in_the_plastic_range() {
     let model = Model::from_file(Path::new(EXAMPLE)).unwrap();
     // observed ≤ 2.6 (README); a linearly converging step at rate ρ gives
     // ρ/r_k ≥ 100 for r_k ≤ 1e-2 and ρ ≥ 1, so 4 separates the two clearly
-    assert_quadratic("standard", &model, 1e-2, 4.0, 20);
+    // at least 10 pairs: 12 measured since each increment starts on the
+    // secant of the last (issue 14: 3 iterations per increment instead of
+    // more before, so fewer pairs reach the asymptotic range)
+    assert_quadratic("standard", &model, 1e-2, 4.0, 10);
 }
 
 /// The same with the B-bar formulation (issue 8): its consistent tangent
@@ -81,7 +84,8 @@ fn newton_converges_quadratically_with_bbar() {
     let text = std::fs::read_to_string(EXAMPLE).unwrap();
     let text = text.replacen("material = \"steel\"\n", "material = \"steel\"\nformulation = \"bbar\"\n", 1);
     assert!(text.contains("formulation = \"bbar\""));
-    assert_quadratic("bbar", &Model::parse(&text).unwrap(), 2e-3, 10.0, 10);
+    // at least 6 pairs (8 measured with the extrapolated increment start)
+    assert_quadratic("bbar", &Model::parse(&text).unwrap(), 2e-3, 10.0, 6);
 }
 
 /// The same with combined hardening (issue 10): Voce isotropic plus two
@@ -109,8 +113,14 @@ fn newton_converges_quadratically_with_kinematic_hardening() {
 /// Over every plastic increment, `r_(k+1)/r_k² < limit` for all residual
 /// pairs with `r_k ≤ below` (and `r_(k+1)` above the round-off floor), with
 /// at least `min_pairs` such pairs.
+///
+/// The tangent is what is tested, so every correction is a direct solve
+/// with it (`reuse_factorization = false`: PCG with an older factor solves
+/// only to the forcing term, see `solver::reuse`).
 fn assert_quadratic(name: &str, model: &Model, below: f64, limit: f64, min_pairs: usize) {
-    let sol = analysis::run(model, &Default::default(), &mut Silent).unwrap();
+    let mut model = model.clone();
+    model.solver.reuse.enabled = false;
+    let sol = analysis::run(&model, &Default::default(), &mut Silent).unwrap();
     assert!(sol.failure.is_none());
     let mut pairs = 0;
     let mut worst: f64 = 0.0;

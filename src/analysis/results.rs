@@ -28,6 +28,12 @@ pub struct Timings {
     pub evaluations: usize,
     /// Number of factorizations.
     pub factorizations: usize,
+    /// Solves that reused an earlier factorization as PCG preconditioner.
+    pub reused: usize,
+    /// PCG iterations over all solves.
+    pub krylov_iterations: usize,
+    /// Solves where PCG was tried, did not converge, and a factorization followed.
+    pub fallbacks: usize,
 }
 
 /// The resultant reaction of a named constraint set (N): the force of the

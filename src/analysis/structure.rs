@@ -27,6 +27,7 @@ use crate::model::steps::{self, Item};
 use crate::size::MemoryEstimate;
 use crate::solver::linear::{Cholesky, LinearError};
 use crate::solver::newton::{Correction, Evaluation, NonlinearProblem};
+use crate::solver::reuse::ReusingSolver;
 use crate::solver::stepping::Incremental;
 use crate::voigt::Voigt;
 
@@ -38,10 +39,13 @@ pub struct Structure<'m> {
     pub(super) gp_offsets: Vec<usize>,
     /// Numbering, pattern and scatter.
     pub(super) assembler: Assembler,
-    solver: Cholesky,
+    solver: ReusingSolver,
     /// Displacements (3 per node).
     pub(super) u: Vec<f64>,
     u_committed: Vec<f64>,
+    /// Displacement change of the last converged increment (for the
+    /// extrapolated start of the next: [`Incremental::extrapolate`]).
+    u_step: Vec<f64>,
     /// Committed Gauss-point states.
     pub(super) committed: Vec<PointState>,
     trial: Vec<PointState>,
@@ -72,6 +76,9 @@ pub struct Structure<'m> {
     contact_ranges: Vec<std::ops::Range<usize>>,
     /// Per pair contact: the projections and weighted gaps of a surface contact.
     surface_state: Vec<surface::State>,
+    /// `‖R‖ / F` of the last evaluation (the forcing term of a reused
+    /// factorization's PCG solve).
+    relative_residual: f64,
     /// Plastic Gauss points in the last evaluation.
     pub(super) plastic_points: usize,
     /// Force-controlled indenters (their displacement is an unknown).
@@ -121,9 +128,9 @@ impl<'m> Structure<'m> {
         let couplings: Vec<(usize, usize)> = model.contacts.iter().flat_map(|c| c.couplings(mesh)).collect();
         let numbering = Numbering::new(mesh, &fixed, &couplings)?;
         let t_sym = Instant::now();
-        let solver = Cholesky::analyze(&numbering.pattern)?;
+        let chol = Cholesky::analyze(&numbering.pattern)?;
         let symbolic = t_sym.elapsed();
-        let memory = super::sizes(model, &numbering, &solver).memory();
+        let memory = super::sizes(model, &numbering, &chol).memory();
         if let Some(limit) = max_memory
             && memory.total() > limit
         {
@@ -199,9 +206,10 @@ impl<'m> Structure<'m> {
             model,
             gp_offsets,
             assembler,
-            solver,
+            solver: ReusingSolver::new(chol, model.solver.reuse),
             u: vec![0.0; n_dofs],
             u_committed: vec![0.0; n_dofs],
+            u_step: vec![0.0; n_dofs],
             committed: vec![PointState::default(); n_gp],
             trial: vec![PointState::default(); n_gp],
             stress: vec![[0.0; 6]; n_gp],
@@ -221,6 +229,7 @@ impl<'m> Structure<'m> {
             contact,
             contact_ranges,
             plastic_points: 0,
+            relative_residual: 1.0,
             driven: force::Driven::of(model, n_eq),
             predictor: Predictor::Loading,
             timings,
@@ -436,6 +445,7 @@ impl NonlinearProblem for Structure<'_> {
         res2 += driven_res2;
         let scale = ext2.sqrt().max(con2.sqrt()).max(reac2.sqrt()).max(driven_target2.sqrt());
         let settled = changes == 0 && off <= 1e-12 * size;
+        self.relative_residual = if scale > 0.0 { res2.sqrt() / scale } else { 1.0 };
         Ok(Evaluation { residual_norm: res2.sqrt(), force_scale: scale, settled })
     }
 
@@ -460,13 +470,14 @@ impl NonlinearProblem for Structure<'_> {
             let diag = self.assembler.pattern.col_ptr[e];
             self.residual[e] *= self.tangent[diag];
         }
-        let t = Instant::now();
-        self.solver.factorize(&self.tangent)?;
-        self.timings.factorization += t.elapsed();
-        self.timings.factorizations += 1;
-        let t = Instant::now();
         let da2 = self.solve_bordered()?;
-        self.timings.solve += t.elapsed();
+        let stats = *self.solver.stats();
+        self.timings.factorization = stats.factorization_time;
+        self.timings.factorizations = stats.factorizations;
+        self.timings.solve = stats.solve_time;
+        self.timings.reused = stats.reused;
+        self.timings.krylov_iterations = stats.krylov_iterations;
+        self.timings.fallbacks = stats.fallbacks;
         let eq = &self.assembler.dofs.eq;
         let mut norm2 = 0.0;
         for (d, &e) in eq.iter().enumerate() {
@@ -500,12 +511,25 @@ impl Incremental for Structure<'_> {
         changed
     }
 
+    fn extrapolate(&mut self, ratio: f64) {
+        for ((u, c), s) in self.u.iter_mut().zip(&self.u_committed).zip(&self.u_step) {
+            *u = c + ratio * s;
+        }
+        for d in &mut self.driven {
+            d.a = d.a_committed + ratio * d.a_step;
+        }
+    }
+
     fn commit(&mut self) {
+        for ((s, u), c) in self.u_step.iter_mut().zip(&self.u).zip(&self.u_committed) {
+            *s = u - c;
+        }
         self.u_committed.copy_from_slice(&self.u);
         self.committed.copy_from_slice(&self.trial);
         self.lambda_committed = self.lambda;
         self.contact_committed.copy_from_slice(&self.contact);
         for d in &mut self.driven {
+            d.a_step = d.a - d.a_committed;
             d.a_committed = d.a;
         }
         self.update_projections();

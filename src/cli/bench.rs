@@ -40,20 +40,29 @@ pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
         let iters: usize = sol.increments.iter().map(|i| i.newton.iterations).sum();
         let col = |k: usize| median(rows.iter().map(|r| r[k]).collect());
         println!(
-            "  increments {}, Newton iterations {}, evaluations {}, factorizations {}, cutbacks {}",
+            "  increments {}, Newton iterations {}, evaluations {}, cutbacks {}",
             sol.increments.len(),
             iters,
             t.evaluations,
-            t.factorizations,
             sol.cutbacks.len()
+        );
+        let solves = (t.factorizations + t.reused).max(1);
+        println!(
+            "  factorizations {}, solves reusing a factorization {} ({:.0} %), PCG iterations {}, fallbacks {}",
+            t.factorizations,
+            t.reused,
+            100.0 * t.reused as f64 / solves as f64,
+            t.krylov_iterations,
+            t.fallbacks
         );
         println!("  wall time (median)         {}", ms(median(walls)));
         let per_eval = |d: Duration| d / t.evaluations.max(1) as u32;
         let per_fact = |d: Duration| d / t.factorizations.max(1) as u32;
         println!("  element loop + return map  {}   per evaluation {}", ms(col(0)), ms(per_eval(col(0))));
         println!("  contact                    {}   per evaluation {}", ms(col(1)), ms(per_eval(col(1))));
-        println!("  numeric factorization      {}   per iteration  {}", ms(col(2)), ms(per_fact(col(2))));
-        println!("  triangular solves          {}   per iteration  {}", ms(col(3)), ms(per_fact(col(3))));
+        println!("  numeric factorization      {}   per factor.    {}", ms(col(2)), ms(per_fact(col(2))));
+        let per_solve = |d: Duration| d / solves as u32;
+        println!("  solves (triangular + PCG)  {}   per solve      {}", ms(col(3)), ms(per_solve(col(3))));
         return Ok(());
     }
     let mut rows: Vec<[Duration; 8]> = Vec::new();

@@ -59,8 +59,18 @@ pub struct TimingSummary {
     pub contact_s: f64,
     /// Numeric factorizations.
     pub factorization_s: f64,
-    /// Triangular solves.
+    /// Triangular solves and preconditioned conjugate gradients.
     pub solve_s: f64,
+    /// Residual and tangent evaluations.
+    pub evaluations: usize,
+    /// Numeric factorizations.
+    pub factorizations: usize,
+    /// Linear solves that reused an earlier factorization (PCG converged).
+    pub reused_factorizations: usize,
+    /// PCG iterations over all solves.
+    pub krylov_iterations: usize,
+    /// Solves where PCG did not converge and the tangent was factorized.
+    pub fallbacks: usize,
 }
 
 /// The summary file.
@@ -248,6 +258,11 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
             contact_s: t.contact.as_secs_f64(),
             factorization_s: t.factorization.as_secs_f64(),
             solve_s: t.solve.as_secs_f64(),
+            evaluations: t.evaluations,
+            factorizations: t.factorizations,
+            reused_factorizations: t.reused,
+            krylov_iterations: t.krylov_iterations,
+            fallbacks: t.fallbacks,
         },
         memory: MemorySummary { estimated_bytes: solution.memory.total(), peak_bytes: crate::size::peak_memory() },
         warnings: model.warnings.iter().chain(&solution.warnings).map(|w| w.to_string()).collect(),

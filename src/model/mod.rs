@@ -184,6 +184,8 @@ pub struct SolverSettings {
     pub newton: NewtonSettings,
     /// Worker threads (`None`: all cores).
     pub threads: Option<usize>,
+    /// Reuse of a factorization as the preconditioner of later solves.
+    pub reuse: crate::solver::reuse::ReuseSettings,
 }
 
 /// Output controls.

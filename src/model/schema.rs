@@ -103,6 +103,8 @@ pub struct SolverFile {
     pub easy_iterations: Option<usize>,
     pub max_increments: Option<usize>,
     pub threads: Option<usize>,
+    pub reuse_factorization: Option<bool>,
+    pub krylov_tolerance: Option<f64>,
 }
 
 /// `[[materials]]`.

@@ -10,6 +10,7 @@ use crate::contact::{self, Penalty};
 use crate::mesh::{Division, Segment};
 use crate::quantity::Quantity;
 use crate::solver::newton::NewtonSettings;
+use crate::solver::reuse::ReuseSettings;
 use crate::solver::stepping::StepSettings;
 
 /// Names are unique per table; constraints, indenters and contacts share
@@ -297,6 +298,11 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
             divergence_ratio: 1e6,
         },
         threads: s.threads,
+        reuse: ReuseSettings {
+            enabled: s.reuse_factorization.unwrap_or(true),
+            tolerance: tol("krylov_tolerance", s.krylov_tolerance, ReuseSettings::default().tolerance)?,
+            ..ReuseSettings::default()
+        },
     })
 }
 
@@ -349,6 +355,13 @@ mod tests {
             false,
         ));
         assert!(e.contains("solver.min_increment"), "{e}");
+        // reuse of factorizations: on by default, PCG stop at most 1e-2
+        assert!(s.reuse.enabled && s.reuse.tolerance == 1e-2);
+        let off = SolverFile { reuse_factorization: Some(false), krylov_tolerance: Some(1e-6), ..Default::default() };
+        let off = solver_settings(&off, false).unwrap();
+        assert!(!off.reuse.enabled && off.reuse.tolerance == 1e-6);
+        let e = err(solver_settings(&SolverFile { krylov_tolerance: Some(1.5), ..Default::default() }, false));
+        assert!(e.contains("solver.krylov_tolerance = 1.5") && e.contains("(0, 1)"), "{e}");
     }
 
     #[test]

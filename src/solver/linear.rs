@@ -16,7 +16,8 @@ use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::{
-    CholeskySymbolicParams, LdltRef, LltRef, SymbolicCholesky, SymmetricOrdering, factorize_symbolic_cholesky,
+    CholeskySymbolicParams, LdltRef, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
+    factorize_symbolic_cholesky,
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
@@ -139,7 +140,10 @@ impl Cholesky {
             CholeskySymbolicParams::default(),
         )
         .map_err(|e| LinearError::Symbolic(format!("{e:?}")))?;
-        let par = if rayon::current_num_threads() > 1 { Par::rayon(0) } else { Par::Seq };
+        // faer's parallel supernodal factorization lost to the sequential one on
+        // the 2-thread CI machine (tube 28 L9: 234 vs 202 ms quiet, 351 vs
+        // 226 ms busy, `cufem bench`): parallel only from four threads on
+        let par = if rayon::current_num_threads() >= 4 { Par::rayon(0) } else { Par::Seq };
         let req = symbolic
             .factorize_numeric_llt_scratch::<f64>(par, Default::default())
             .or(symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()))
@@ -147,6 +151,34 @@ impl Cholesky {
         // the factor and the scratch are allocated at the first factorization,
         // after the caller has checked that they fit (see `crate::size`)
         Ok(Self { symbolic, pattern: pattern.clone(), l_values: Vec::new(), mem: None, req, kind: None, par })
+    }
+
+    /// True if the present factor is `LLᵀ` (positive definite matrix).
+    pub fn is_llt(&self) -> bool {
+        self.kind == Some(Kind::Llt)
+    }
+
+    /// Floating-point operations of one numeric factorization, from the
+    /// symbolic structure: per supernode of `w` columns with `h` rows below
+    /// its diagonal block, `w³/3 + w² h + w h²` (the dense Cholesky of the
+    /// block, the triangular solve below it, the update of the ancestors);
+    /// per column of a simplicial factor with `c` entries, `c²`.
+    pub fn factor_flops(&self) -> f64 {
+        match self.symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(sn) => {
+                let (begin, end, ptr) = (sn.supernode_begin(), sn.supernode_end(), sn.col_ptr_for_row_idx());
+                (0..sn.n_supernodes())
+                    .map(|s| {
+                        let w = (end[s] - begin[s]) as f64;
+                        let h = (ptr[s + 1] - ptr[s]) as f64;
+                        w * w * w / 3.0 + w * w * h + w * h * h
+                    })
+                    .sum()
+            }
+            SymbolicCholeskyRaw::Simplicial(sp) => {
+                sp.col_ptr().windows(2).map(|c| ((c[1] - c[0]) as f64).powi(2)).sum()
+            }
+        }
     }
 
     /// Number of stored values of the factor `L`.

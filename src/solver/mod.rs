@@ -1,8 +1,9 @@
-//! Solvers: the sparse direct linear solver, Newton–Raphson, and load
-//! stepping with cutbacks.
+//! Solvers: the sparse direct linear solver (and its reuse as a
+//! preconditioner), Newton–Raphson, and load stepping with cutbacks.
 
 pub mod linear;
 pub mod newton;
+pub mod reuse;
 pub mod stepping;
 
 use std::sync::Arc;

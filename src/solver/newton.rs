@@ -7,7 +7,9 @@
 //!   (applied loads, reactions and contact forces);
 //! * `‖Δx‖ ≤ tol_x · ‖x − x_n‖`, the last correction small against the
 //!   increment so far (not checked before the first correction, nor when
-//!   the residual is already a thousand times below its tolerance);
+//!   the residual is already a thousand times below its tolerance, nor when
+//!   the next correction, predicted from the contraction of the residual
+//!   `‖Δx_k‖ · r_k / r_(k−1)`, is below tolerance);
 //! * the problem reports itself *settled* (for contact: the active set did
 //!   not change in the last iteration).
 //!
@@ -117,8 +119,18 @@ pub fn solve<P: NonlinearProblem>(problem: &mut P, settings: &NewtonSettings, in
             return fail(report, Failure::Diverged, None);
         }
         // A residual a thousand times below its tolerance needs no further
-        // correction check (e.g. a linear problem after its one solve).
+        // correction check (e.g. a linear problem after its one solve). Nor
+        // does one whose *next* correction is predicted below tolerance: the
+        // correction is K⁻¹R, so while the residual contracts it shrinks with
+        // it, ‖Δx_(k+1)‖ ≈ ‖Δx_k‖ · r_k / r_(k−1) — this saves the iteration
+        // that would only confirm convergence.
+        let n = report.residuals.len();
+        let predicted = match (last_correction, n >= 2) {
+            (Some(c), true) if r < report.residuals[n - 2] => Some(c * r / report.residuals[n - 2]),
+            _ => None,
+        };
         let small_correction = last_correction.is_none_or(|c| c <= settings.displacement_tolerance)
+            || predicted.is_some_and(|c| c <= settings.displacement_tolerance)
             || r <= 1e-3 * settings.residual_tolerance;
         if ev.settled && r <= settings.residual_tolerance && small_correction {
             return report;
@@ -183,6 +195,45 @@ mod tests {
         let r = &rep.residuals;
         let n = r.len();
         assert!(r[n - 2] / (r[n - 3] * r[n - 3]) < 10.0, "{r:?}");
+    }
+
+    /// Linear contraction by one half per iteration (a stale tangent): the
+    /// correction halves with the residual.
+    struct Halving {
+        x: f64,
+    }
+
+    impl NonlinearProblem for Halving {
+        type Error = std::io::Error;
+        fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
+            Ok(Evaluation { residual_norm: 1e3 * (self.x - 2.0).abs(), force_scale: 1.0, settled: true })
+        }
+        fn correct(&mut self) -> Result<Correction, Self::Error> {
+            let dx = -0.5 * (self.x - 2.0);
+            self.x += dx;
+            Ok(Correction { norm: dx.abs(), increment_norm: (self.x - 3.0).abs() })
+        }
+    }
+
+    /// From x₀ = 3 the k-th correction is 2⁻ᵏ of an increment ≈ 1: the plain
+    /// rule stops after the 20th (2⁻²⁰ ≤ 10⁻⁶); the predicted next
+    /// correction 2⁻ᵏ · r_k/r_(k−1) = 2⁻ᵏ⁻¹ is below 10⁻⁶ one iteration
+    /// earlier, and the 20th correction, not made, is indeed below it. The
+    /// residual tolerance (0.5, i.e. 1e-3 · 0.5 reached only at k = 21) does
+    /// not decide here.
+    #[test]
+    fn stops_when_the_predicted_next_correction_is_below_tolerance() {
+        let mut p = Halving { x: 3.0 };
+        let settings = NewtonSettings {
+            max_iterations: 100,
+            residual_tolerance: 0.5,
+            displacement_tolerance: 1e-6,
+            ..Default::default()
+        };
+        let rep = solve(&mut p, &settings, &Interrupt::new());
+        assert!(rep.converged());
+        assert_eq!(rep.iterations, 19);
+        assert!(0.5 * (p.x - 2.0).abs() <= 1e-6 * (p.x - 3.0).abs() * 1.000_01);
     }
 
     #[test]

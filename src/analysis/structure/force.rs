@@ -37,6 +37,8 @@ pub(super) struct Driven {
     /// Current and committed displacement along `dir` (m).
     pub a: f64,
     pub a_committed: f64,
+    /// Its change over the last converged increment.
+    pub a_step: f64,
     /// Border column `B` (equation space) and corner `C` of the last evaluation.
     b: Vec<f64>,
     c: f64,
@@ -60,6 +62,7 @@ impl Driven {
                     magnitude: m,
                     a: 0.0,
                     a_committed: 0.0,
+                    a_step: 0.0,
                     b: vec![0.0; n_eq],
                     c: 0.0,
                     r: 0.0,
@@ -130,14 +133,17 @@ impl Structure<'_> {
     /// Updates each indenter's `a` and returns `Σ Δa²`.
     pub(super) fn solve_bordered(&mut self) -> Result<f64, LinearError> {
         let m = self.driven.len();
-        self.solver.solve_in_place(&mut self.residual)?;
+        // the bordering solves further right-hand sides with the factor of
+        // the present tangent: no reuse of an earlier one
+        let pattern = &self.assembler.pattern;
+        self.solver.solve(pattern, &self.tangent, &mut self.residual, self.relative_residual, m > 0)?;
         if m == 0 {
             return Ok(0.0);
         }
         let mut x2 = Vec::with_capacity(m);
         for d in &self.driven {
             let mut x = d.b.clone();
-            self.solver.solve_in_place(&mut x)?;
+            self.solver.solve_again(&mut x)?;
             x2.push(x);
         }
         let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();

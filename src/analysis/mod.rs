@@ -113,8 +113,7 @@ pub fn plan(model: &Model) -> Result<Sizes, AnalysisError> {
             }
         }
     }
-    let couplings: Vec<(usize, usize)> =
-        model.contacts.iter().flat_map(|c| c.pairs.iter().map(|p| (p.slave, p.master))).collect();
+    let couplings: Vec<(usize, usize)> = model.contacts.iter().flat_map(|c| c.couplings(&model.mesh)).collect();
     let numbering = Numbering::new(&model.mesh, &fixed, &couplings)?;
     let solver = Cholesky::analyze(&numbering.pattern)?;
     Ok(sizes(model, &numbering, &solver))

@@ -120,4 +120,6 @@ pub struct ContactPoint {
     pub slip: [f64; 3],
     /// True if the frictional point slides (on the Coulomb cone).
     pub sliding: bool,
+    /// Contact normal (pointing to the slave body or body under an indenter).
+    pub normal: [f64; 3],
 }

@@ -17,6 +17,7 @@ use std::time::Instant;
 mod augment;
 mod contacts;
 mod force;
+mod surface;
 mod unsymmetric;
 
 pub use super::results::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Timings};
@@ -79,6 +80,8 @@ pub struct Structure<'m> {
     contact_ranges: Vec<std::ops::Range<usize>>,
     /// Each contact point's assembled block of the last evaluation.
     contact_blocks: Vec<[[f64; 3]; 3]>,
+    /// Per pair contact: the projections and weighted gaps of a surface contact.
+    surface_state: Vec<surface::State>,
     /// `‖R‖ / F` of the last evaluation (the forcing term of a reused
     /// factorization's PCG solve).
     relative_residual: f64,
@@ -131,8 +134,7 @@ impl<'m> Structure<'m> {
             }
         }
         let fixed: Vec<bool> = value.iter().map(|v| *v == Some(0.0)).collect();
-        let couplings: Vec<(usize, usize)> =
-            model.contacts.iter().flat_map(|c| c.pairs.iter().map(|p| (p.slave, p.master))).collect();
+        let couplings: Vec<(usize, usize)> = model.contacts.iter().flat_map(|c| c.couplings(mesh)).collect();
         let numbering = Numbering::new(mesh, &fixed, &couplings)?;
         let t_sym = Instant::now();
         let chol = Cholesky::analyze(&numbering.pattern)?;
@@ -198,6 +200,7 @@ impl<'m> Structure<'m> {
                 gap: p.gap0,
                 ..Default::default()
             }));
+            contact.extend(surface::initial_points(pc));
             contact_ranges.push(start..contact.len());
         }
         let nnz = assembler.pattern.nnz();
@@ -209,7 +212,7 @@ impl<'m> Structure<'m> {
             element_cache,
             ..Default::default()
         };
-        Ok(Self {
+        let mut structure = Self {
             model,
             gp_offsets,
             assembler,
@@ -234,6 +237,7 @@ impl<'m> Structure<'m> {
             lambda_committed: 0.0,
             contact_blocks: vec![[[0.0; 3]; 3]; contact.len()],
             contact_committed: contact.clone(),
+            surface_state: vec![Default::default(); model.contacts.len()],
             contact,
             contact_ranges,
             plastic_points: 0,
@@ -243,7 +247,9 @@ impl<'m> Structure<'m> {
             first_evaluation: false,
             timings,
             memory,
-        })
+        };
+        structure.update_projections();
+        Ok(structure)
     }
 
     /// Displacements, 3 per node (`3 · node + component`).
@@ -356,13 +362,8 @@ impl<'m> Structure<'m> {
                 let mut force = [0.0; 3];
                 let mut normal_force = [0.0; 3];
                 let mut max_penetration: f64 = 0.0;
-                let ni = self.model.indenters.len();
-                for (j, p) in points.iter().enumerate() {
-                    let n = if k < ni {
-                        self.model.indenters[k].nodes[j].normal
-                    } else {
-                        self.model.contacts[k - ni].pairs[j].normal
-                    };
+                for p in points {
+                    let n = p.normal;
                     let fn_ = p.force[0] * n[0] + p.force[1] * n[1] + p.force[2] * n[2];
                     for c in 0..3 {
                         force[c] += p.force[c];
@@ -548,6 +549,7 @@ impl Incremental for Structure<'_> {
             d.a_step = d.a - d.a_committed;
             d.a_committed = d.a;
         }
+        self.update_projections();
     }
 
     fn restore(&mut self) {

@@ -106,6 +106,17 @@ pub fn print_check(model: &Model) {
         );
     }
     for c in &model.contacts {
+        if let Some(s) = &c.surface {
+            println!(
+                "contact {} (surface): {} slave nodes, {} slave integration points, {} points without a master face within {:e} m",
+                c.name,
+                s.slave_nodes.len(),
+                s.points.len(),
+                s.unpaired,
+                s.search_distance
+            );
+            continue;
+        }
         println!(
             "contact {}: {} node pairs, {} slave-surface nodes without a master node",
             c.name,

@@ -49,6 +49,7 @@ use crate::bc::FaceIntegral;
 
 mod friction;
 pub use friction::{Friction, FrictionResponse, friction_response, stick_block};
+pub mod surface;
 
 /// Default dimensionless penalty factor α.
 pub const DEFAULT_PENALTY_FACTOR: f64 = 100.0;
@@ -233,6 +234,27 @@ pub struct PairContact {
     pub master: ContactSurface,
     /// The slave side's faces.
     pub slave: ContactSurface,
+    /// `method = "surface"`: segment-to-segment contact (then `pairs` is empty).
+    pub surface: Option<surface::SurfaceContact>,
+}
+
+impl PairContact {
+    /// Node pairs the matrix pattern must couple: the node pairs, or the
+    /// slave–master couplings of a surface contact's candidate faces.
+    pub fn couplings(&self, mesh: &crate::mesh::Mesh) -> Vec<(usize, usize)> {
+        match &self.surface {
+            Some(s) => s.couplings(&mesh.bodies[s.master_body]),
+            None => self.pairs.iter().map(|p| (p.slave, p.master)).collect(),
+        }
+    }
+
+    /// Penalty ε (N/m) of point `j`.
+    pub fn point_penalty(&self, j: usize) -> f64 {
+        match &self.surface {
+            Some(s) => s.penalties[j],
+            None => self.pairs[j].penalty,
+        }
+    }
 }
 
 /// How ε_N is chosen for a contact.

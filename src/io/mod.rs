@@ -21,7 +21,7 @@ mod vtu;
 pub use json::{Summary, summary};
 pub use png::{Series, line_plot};
 pub use section_plot::section_plot;
-pub use vtu::{write_gauss_vtu, write_vtu};
+pub use vtu::{write_contact_vtu, write_gauss_vtu, write_vtu};
 
 use std::path::{Path, PathBuf};
 
@@ -119,6 +119,13 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
 
     written.extend(csv::write_histories(model, solution, dir)?);
     written.extend(csv::write_contact_points(model, solution, dir)?);
+    if model.output.vtu {
+        for (k, set) in solution.contact_sets.iter().enumerate() {
+            let path = dir.join(format!("contact_{}.vtu", set.name));
+            write_contact_vtu(&path, model, solution, k)?;
+            written.push(path);
+        }
+    }
     if model.output.plots {
         written.extend(png::history_plots(model, solution, dir)?);
     }

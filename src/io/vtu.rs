@@ -49,7 +49,8 @@ pub fn write_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), 
     // smallest contact gap per node (NaN where a node is in no contact)
     let mut node_gap: std::collections::HashMap<usize, f64> = Default::default();
     let contact_points = || solution.contact_sets.iter().flat_map(|c| &c.points);
-    for p in contact_points() {
+    // (a surface-contact node without a master face under it has no gap)
+    for p in contact_points().filter(|p| !p.gap.is_nan()) {
         for n in std::iter::once(p.node).chain(p.master) {
             let g = node_gap.entry(n).or_insert(f64::INFINITY);
             *g = g.min(p.gap);
@@ -198,6 +199,68 @@ pub fn write_gauss_vtu(path: &Path, model: &Model, solution: &Solution) -> Resul
         n_cells,
         point_data: &point_data,
         cell_data: &cell_data,
+        cell_type: VTK_VERTEX,
+    };
+    write_file(path, &grid)
+}
+
+/// Writes the points of one contact (`solution.contact_sets[set]`) as a
+/// point cloud of VTK vertices at the reference positions of their nodes
+/// (the slave node of a pair or surface contact, the body node under an
+/// indenter): `u` (displacement, m, to warp by),
+/// `force` (on the slave body or the body under the indenter, N), `normal`,
+/// `pressure` (normal force / tributary area, Pa), `traction` (tangential
+/// force / area, Pa), `gap` (m, negative = penetration; NaN for a
+/// surface-contact node without a master face under it), `slip` (|slip|,
+/// m) and `status` (0 open, 1 in contact and sticking or frictionless,
+/// 2 sliding).
+pub fn write_contact_vtu(path: &Path, model: &Model, solution: &Solution, set: usize) -> Result<(), IoError> {
+    let points_of = &solution.contact_sets[set].points;
+    let mut points = Vec::with_capacity(3 * points_of.len());
+    let (mut u, mut force, mut normal) = (Vec::new(), Vec::new(), Vec::new());
+    let (mut pressure, mut traction, mut gap, mut slip, mut status) =
+        (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for p in points_of {
+        let x = model.mesh.coords(p.node);
+        points.extend(x);
+        u.extend((0..3).map(|k| solution.u[3 * p.node + k]));
+        force.extend(p.force);
+        normal.extend(p.normal);
+        let fn_: f64 = (0..3).map(|k| p.force[k] * p.normal[k]).sum();
+        let ft: f64 = (0..3).map(|k| (p.force[k] - fn_ * p.normal[k]).powi(2)).sum::<f64>().sqrt();
+        pressure.push(fn_ / p.area);
+        traction.push(ft / p.area);
+        gap.push(p.gap);
+        slip.push((p.slip[0].powi(2) + p.slip[1].powi(2) + p.slip[2].powi(2)).sqrt());
+        status.push(if !p.active {
+            0
+        } else if p.sliding {
+            2
+        } else {
+            1
+        });
+    }
+    let n_cells = points_of.len();
+    let connectivity: Vec<u64> = (0..n_cells as u64).collect();
+    let offsets: Vec<u64> = (1..=n_cells as u64).collect();
+    let point_data: Vec<(String, usize, Array)> = vec![
+        ("u".into(), 3, Array::F64(u)),
+        ("force".into(), 3, Array::F64(force)),
+        ("normal".into(), 3, Array::F64(normal)),
+        ("pressure".into(), 1, Array::F64(pressure)),
+        ("traction".into(), 1, Array::F64(traction)),
+        ("gap".into(), 1, Array::F64(gap)),
+        ("slip".into(), 1, Array::F64(slip)),
+        ("status".into(), 1, Array::I32(status)),
+    ];
+    let grid = Grid {
+        title: &model.title,
+        points: &points,
+        connectivity: &connectivity,
+        offsets: &offsets,
+        n_cells,
+        point_data: &point_data,
+        cell_data: &[],
         cell_type: VTK_VERTEX,
     };
     write_file(path, &grid)

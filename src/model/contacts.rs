@@ -305,6 +305,24 @@ pub(super) fn pair_contact(
     bs: usize,
     materials: &[Material],
 ) -> Result<PairContact, ModelError> {
+    match c.method.as_deref() {
+        None | Some("node_to_node") => {}
+        Some("surface") => return super::surface_contact::surface_contact(key, c, mesh, bm, bs, materials),
+        Some(other) => {
+            return Err(invalid(
+                format!("{key}.method"),
+                format!("{other:?}"),
+                "\"node_to_node\" (default: the paper's matched node pairs) or \"surface\" (segment-to-segment, non-matching meshes)",
+            ));
+        }
+    }
+    if c.search_distance.is_some() {
+        return Err(invalid(
+            format!("{key}.search_distance"),
+            "(given)",
+            "no `search_distance` key with method = \"node_to_node\" (it belongs to method = \"surface\")",
+        ));
+    }
     let (master_body, slave_body) = (&mesh.bodies[bm], &mesh.bodies[bs]);
     let (master_faces, mf) = surface_faces(&format!("{key}.master.where"), &c.master.selection, master_body)?;
     let (slave_faces, sf) = surface_faces(&format!("{key}.slave.where"), &c.slave.selection, slave_body)?;
@@ -377,12 +395,13 @@ pub(super) fn pair_contact(
         unpaired,
         master: ContactSurface { body: bm, faces: master_faces },
         slave: ContactSurface { body: bs, faces: slave_faces },
+        surface: None,
     })
 }
 
 /// `penetration_tolerance` (augmented Lagrangian): positive, at most a
 /// thousandth of the body's size.
-fn tolerance(key: &str, t: Option<f64>, size: f64) -> Result<Option<f64>, ModelError> {
+pub(super) fn tolerance(key: &str, t: Option<f64>, size: f64) -> Result<Option<f64>, ModelError> {
     t.map(|t| {
         bounds::within(
             &format!("{key}.penetration_tolerance"),
@@ -397,7 +416,7 @@ fn tolerance(key: &str, t: Option<f64>, size: f64) -> Result<Option<f64>, ModelE
 
 /// `friction`: Coulomb's coefficient μ in [0, 10]; the tangential penalty
 /// equals the normal one (elastic slip of the order of the penetration).
-fn friction(key: &str, mu: Option<f64>) -> Result<Option<contact::Friction>, ModelError> {
+pub(super) fn friction(key: &str, mu: Option<f64>) -> Result<Option<contact::Friction>, ModelError> {
     mu.map(|m| {
         bounds::within(&format!("{key}.friction"), m, 0.0, 10.0, "Coulomb's coefficient of friction μ")
             .map(|coefficient| contact::Friction { coefficient, penalty_ratio: 1.0 })

@@ -15,6 +15,7 @@ mod restraint;
 mod schema;
 mod sections;
 pub mod steps;
+mod surface_contact;
 mod validate;
 
 use std::path::Path;

@@ -7,7 +7,8 @@
 //! modes have unit size. A *restraint row* is a linear form on the
 //! displacement that the model holds: a constrained component (fixed or
 //! prescribed), the normal `n·u_s` of a node touching a rigid indenter at the
-//! start, or `n·(u_s − u_m)` of a node pair touching at the start (contacts
+//! start, or `n·(u_s − u_m)` of a node pair or surface-contact point touching
+//! at the start (contacts
 //! that only close later cannot hold the first iterations). With `R` the
 //! rows evaluated on the `6B` modes of all `B` bodies, the model is
 //! restrained iff `G = Rᵀ R` is positive definite. A null vector of `G` is a
@@ -93,6 +94,27 @@ pub fn check(
             let dot = |m: &[[f64; 3]; 6], j: usize| (0..3).map(|k| p.normal[k] * m[j][k]).sum::<f64>();
             let mut row: Vec<(usize, f64)> = (0..6).map(|j| (6 * bs + j, dot(&ms, j))).collect();
             row.extend((0..6).map(|j| (6 * bm + j, -dot(&mm, j))));
+            add_row(&row);
+        }
+    }
+    // surface contacts: n·(u_s − u_m) at the slave points touching at the start
+    let zero = vec![0.0; mesh.n_dofs()];
+    for s in contacts.iter().filter_map(|pc| pc.surface.as_ref()) {
+        for p in &s.points {
+            let Some(proj) = crate::contact::surface::project(s, mesh, p, &zero) else { continue };
+            if proj.gap0 > 1e-9 * size[s.master_body] {
+                continue;
+            }
+            let mut row: Vec<(usize, f64)> = Vec::new();
+            let sides = [(&p.nodes, &p.shapes, 1.0), (&proj.nodes, &proj.shapes, -1.0)];
+            for (nodes, shapes, sign) in sides {
+                for (&node, &sh) in nodes.iter().zip(shapes.iter()) {
+                    let (b, m) = modes(node);
+                    row.extend(
+                        (0..6).map(|j| (6 * b + j, sign * sh * (0..3).map(|k| proj.normal[k] * m[j][k]).sum::<f64>())),
+                    );
+                }
+            }
             add_row(&row);
         }
     }

@@ -359,6 +359,8 @@ pub struct ContactFile {
     pub friction: Option<f64>,
     pub tolerance: Option<f64>,
     pub pairs: Option<Vec<Exact<Exact<f64, 3>, 2>>>,
+    pub method: Option<String>,
+    pub search_distance: Option<f64>,
 }
 
 /// `[[probes]]`.

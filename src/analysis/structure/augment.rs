@@ -22,7 +22,7 @@ impl Structure<'_> {
             .chain(model.contacts.iter().map(|c| c.penetration_tolerance));
         let penalties = |k: usize, j: usize| -> f64 {
             let ni = model.indenters.len();
-            if k < ni { model.indenters[k].nodes[j].penalty } else { model.contacts[k - ni].pairs[j].penalty }
+            if k < ni { model.indenters[k].nodes[j].penalty } else { model.contacts[k - ni].point_penalty(j) }
         };
         let mut changed = false;
         for (k, tol) in tolerances.enumerate() {

@@ -27,12 +27,16 @@ impl Structure<'_> {
                 k += 1;
             }
         }
-        for pc in &model.contacts {
+        for (c, pc) in model.contacts.iter().enumerate() {
             for p in &pc.pairs {
                 let um = [0, 1, 2].map(|i| self.u[3 * p.master + i]);
                 let pair = (p.slave, Some(p.master), um, p.gap0, p.normal, p.penalty);
                 changes += usize::from(self.contact_pair(k, pair, pc.friction.as_ref()));
                 k += 1;
+            }
+            if let Some(s) = &pc.surface {
+                changes += self.assemble_surface(k, c, s, pc.friction.as_ref());
+                k += s.slave_nodes.len();
             }
         }
         self.first_evaluation = false;
@@ -82,6 +86,7 @@ impl Structure<'_> {
         let changed = response.is_some() != point.active;
         point.active = response.is_some();
         point.gap = g;
+        point.normal = *normal;
         point.force = [0.0; 3];
         point.sliding = false;
         point.slip = committed_slip;

@@ -1,0 +1,185 @@
+//! Assembly of surface (segment-to-segment, mortar-weighted) contact
+//! (`contact::surface`): one constraint per slave node on its weighted gap,
+//! the projections of the slave integration points updated after every
+//! converged increment.
+//!
+//! With the weighted gap `g̃_a = gap0_a + G_a·u` (fixed projections), the
+//! tributary area `A_a` and penalty `ε_a` of slave node `a`, its normal gap
+//! is `ĝ_a = g̃_a / A_a` and its force `P_a = λ_a − ε_a ĝ_a ≥ 0` (N; `λ_a`
+//! the augmented-Lagrangian multiplier). The energy `½ ε_a ĝ_a²` gives the
+//! nodal contact forces `(P_a / A_a) G_a` and the tangent
+//! `(ε_a / A_a²) G_a G_aᵀ` — exact, since `ĝ_a` is linear in `u` within an
+//! increment.
+
+use std::time::Instant;
+
+use super::{ContactPoint, Structure};
+use crate::contact::{self, PairContact, surface};
+
+/// Projections and weighted gaps of one surface contact.
+#[derive(Debug, Clone, Default)]
+pub(super) struct State {
+    /// Per slave node.
+    gaps: Vec<surface::NodeGap>,
+}
+
+/// The contact points (one per slave node) of a surface contact before the
+/// first evaluation.
+pub(super) fn initial_points(pc: &PairContact) -> impl Iterator<Item = ContactPoint> + '_ {
+    pc.surface.iter().flat_map(|s| {
+        s.slave_nodes.iter().zip(&s.areas).map(|(&node, &area)| ContactPoint {
+            node,
+            area,
+            gap: f64::NAN,
+            ..Default::default()
+        })
+    })
+}
+
+impl Structure<'_> {
+    /// Projects every surface-contact point from the committed
+    /// displacements (at setup: the reference configuration) and forms the
+    /// weighted gaps.
+    pub(super) fn update_projections(&mut self) {
+        let t = Instant::now();
+        let model = self.model;
+        for (c, pc) in model.contacts.iter().enumerate() {
+            let Some(s) = &pc.surface else { continue };
+            let projections: Vec<_> =
+                s.points.iter().map(|p| surface::project(s, &model.mesh, p, &self.u_committed)).collect();
+            let gaps = s.node_gaps(&projections);
+            self.surface_state[c] = State { gaps };
+        }
+        self.timings.contact += t.elapsed();
+    }
+
+    /// Forces and tangent of surface contact `c` (data `s`), whose first
+    /// contact point is `k0`; returns the number of slave nodes whose
+    /// active status changed.
+    pub(super) fn assemble_surface(
+        &mut self,
+        k0: usize,
+        c: usize,
+        s: &surface::SurfaceContact,
+        friction: Option<&contact::Friction>,
+    ) -> usize {
+        let mut changes = 0;
+        let state = std::mem::take(&mut self.surface_state[c]);
+        for (j, g) in state.gaps.iter().enumerate() {
+            let (area, eps) = (s.areas[j], s.penalties[j]);
+            let point = &mut self.contact[k0 + j];
+            let was = point.active;
+            point.force = [0.0; 3];
+            point.active = false;
+            point.sliding = false;
+            point.slip = self.contact_committed[k0 + j].slip;
+            if g.grad.is_empty() || !(area > 0.0) {
+                point.gap = f64::NAN;
+                changes += usize::from(was);
+                continue;
+            }
+            let mut gt = g.gap0;
+            for (b, v) in &g.grad {
+                gt += (0..3).map(|k| v[k] * self.u[3 * b + k]).sum::<f64>();
+            }
+            let gap = gt / area;
+            let m = (g.moment[0].powi(2) + g.moment[1].powi(2) + g.moment[2].powi(2)).sqrt();
+            point.gap = gap;
+            point.normal = g.moment.map(|v| v / m.max(f64::MIN_POSITIVE));
+            // as contact::augmented_response: touching counts, a released
+            // multiplier with an open gap does not
+            let force = point.multiplier - eps * gap;
+            let active = !(force < 0.0 || (point.multiplier == 0.0 && gap > 0.0));
+            point.active = active;
+            changes += usize::from(active != was);
+            if !active {
+                continue;
+            }
+            point.force = g.moment.map(|v| force * v / area);
+            for (b, v) in &g.grad {
+                for k in 0..3 {
+                    self.f_contact[3 * b + k] += force / area * v[k];
+                }
+            }
+            let scale = eps / (area * area);
+            for (x, (a, va)) in g.grad.iter().enumerate() {
+                for (b, vb) in &g.grad[x..] {
+                    let block: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|k| scale * va[i] * vb[k]));
+                    self.assembler.add_node_block(&mut self.tangent, *a, *b, &block);
+                }
+            }
+            if let Some(fr) = friction {
+                self.surface_friction(k0 + j, g, area, eps, force, fr);
+            }
+        }
+        self.surface_state[c] = state;
+        changes
+    }
+}
+
+impl Structure<'_> {
+    /// Coulomb friction of slave-node point `k` (weighted gap `g`, area,
+    /// normal penalty and force), incremental from the committed state: the
+    /// weighted tangential relative displacement of the increment
+    /// `d_t = Σ_b T_b (u_b − u_b,n) / A` and the committed tangential force
+    /// `t_n` give the trial `t_n − ε_T d_t`, returned onto the Coulomb cone
+    /// by `contact::friction_response` (its symmetric tangent `k_t`). Nodal
+    /// forces `T_b t / A`, blocks `T_b k_t T_c / A²` (`T_b` symmetric); the
+    /// accumulated slip grows by `d_t + (t − t_n)/ε_T`.
+    fn surface_friction(
+        &mut self,
+        k: usize,
+        g: &surface::NodeGap,
+        area: f64,
+        eps: f64,
+        normal_force: f64,
+        fr: &contact::Friction,
+    ) {
+        let eps_t = fr.penalty_ratio * eps;
+        let n = self.contact[k].normal;
+        let committed = self.contact_committed[k];
+        let fcn: f64 = (0..3).map(|i| committed.force[i] * n[i]).sum();
+        let t_n: [f64; 3] = std::array::from_fn(|i| committed.force[i] - fcn * n[i]);
+        let mut d_t = [0.0; 3];
+        for ((b, _), t) in g.grad.iter().zip(&g.tangential) {
+            for i in 0..3 {
+                for l in 0..3 {
+                    d_t[i] += t[i][l] * (self.u[3 * b + l] - self.u_committed[3 * b + l]) / area;
+                }
+            }
+        }
+        let r = contact::friction_response(d_t, t_n.map(|v| v / eps_t), &n, normal_force, eps, fr);
+        let (ft, sliding) = (r.force, r.sliding);
+        // the symmetric part of the return map's tangent: surface friction
+        // assembles into the symmetric (lower-triangle) tangent only; the
+        // skew coupling of sliding points is not assembled here (unlike
+        // node-to-node friction, structure/unsymmetric.rs)
+        let kt: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|l| 0.5 * (r.block[i][l] + r.block[l][i])));
+        let point = &mut self.contact[k];
+        point.sliding = sliding;
+        point.slip = std::array::from_fn(|i| committed.slip[i] + d_t[i] + (ft[i] - t_n[i]) / eps_t);
+        for i in 0..3 {
+            point.force[i] += ft[i];
+        }
+        for ((b, _), t) in g.grad.iter().zip(&g.tangential) {
+            for i in 0..3 {
+                self.f_contact[3 * b + i] += (0..3).map(|l| t[i][l] * ft[l]).sum::<f64>() / area;
+            }
+        }
+        // k_t T_c per node c, then T_b (k_t T_c) / A²
+        let kt_t: Vec<[[f64; 3]; 3]> = g
+            .tangential
+            .iter()
+            .map(|t| std::array::from_fn(|i| std::array::from_fn(|l| (0..3).map(|m| kt[i][m] * t[m][l]).sum::<f64>())))
+            .collect();
+        let scale = 1.0 / (area * area);
+        for (x, ((a, _), ta)) in g.grad.iter().zip(&g.tangential).enumerate() {
+            for ((b, _), kb) in g.grad[x..].iter().zip(&kt_t[x..]) {
+                let block: [[f64; 3]; 3] = std::array::from_fn(|i| {
+                    std::array::from_fn(|l| scale * (0..3).map(|m| ta[i][m] * kb[m][l]).sum::<f64>())
+                });
+                self.assembler.add_node_block(&mut self.tangent, *a, *b, &block);
+            }
+        }
+    }
+}

@@ -1,0 +1,85 @@
+//! `[[contacts]]` with `method = "surface"`: segment-to-segment contact on
+//! non-matching meshes (`contact::surface`).
+
+use super::contacts::{friction, tolerance};
+use super::preprocess::surface_faces;
+use super::schema::ContactFile;
+use super::validate::{penalty, reject_unused};
+use super::{ModelError, bounds, invalid};
+use crate::contact::{ContactSurface, PairContact, Penalty, surface};
+use crate::materials::Material;
+use crate::mesh::Mesh;
+
+/// Builds a surface contact: slave integration points on the slave faces,
+/// candidate master faces within `search_distance` (default: a quarter of
+/// the largest master face's bounding-box diagonal — sliding of a fraction
+/// of an element, the small-displacement setting).
+pub(super) fn surface_contact(
+    key: &str,
+    c: &ContactFile,
+    mesh: &Mesh,
+    bm: usize,
+    bs: usize,
+    materials: &[Material],
+) -> Result<PairContact, ModelError> {
+    let chosen = "method = \"surface\"";
+    reject_unused(key, chosen, &[("pairs", c.pairs.is_some()), ("tolerance", c.tolerance.is_some())])?;
+    let (master_body, slave_body) = (&mesh.bodies[bm], &mesh.bodies[bs]);
+    let (master_faces, _) = surface_faces(&format!("{key}.master.where"), &c.master.selection, master_body)?;
+    let (slave_faces, sf) = surface_faces(&format!("{key}.slave.where"), &c.slave.selection, slave_body)?;
+    let young = materials[master_body.material].young.min(materials[slave_body.material].young);
+    let pen = penalty(key, c.penalty, c.penalty_factor)?;
+    let largest_face = master_faces
+        .iter()
+        .map(|f| {
+            let fp = surface::face_point(master_body, f, 0.0, 0.0);
+            let xs: Vec<[f64; 3]> = fp.nodes.iter().map(|&n| mesh.coords(n)).collect();
+            let ext = |k: usize| {
+                let (lo, hi) =
+                    xs.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), x| (a.min(x[k]), b.max(x[k])));
+                hi - lo
+            };
+            (ext(0).powi(2) + ext(1).powi(2) + ext(2).powi(2)).sqrt()
+        })
+        .fold(0.0, f64::max);
+    let size = master_body.size().max(slave_body.size());
+    let search_distance = match c.search_distance {
+        Some(d) => bounds::within(
+            &format!("{key}.search_distance"),
+            d,
+            bounds::MIN_RELATIVE_SIZE * size,
+            size,
+            "a distance in m (how far a slave point may slide or start from the master faces it can touch), at most the bodies' size",
+        )?,
+        None => 0.25 * largest_face,
+    };
+    let depths: Vec<f64> = sf.iter().map(|f| f.depth).collect();
+    let contact = surface::build(
+        surface::SlaveSide { body: slave_body, faces: &slave_faces, depths: &depths },
+        bm,
+        master_body,
+        master_faces.clone(),
+        search_distance,
+        |h| match pen {
+            Penalty::Factor(a) => a * young / h,
+            Penalty::PerArea(p) => p,
+        },
+    );
+    if contact.points.is_empty() {
+        return Err(invalid(
+            format!("{key}.search_distance"),
+            format!("{search_distance:e} m"),
+            "a distance within which the slave faces find master faces (no slave point has a master face this close)",
+        ));
+    }
+    Ok(PairContact {
+        name: c.name.clone(),
+        pairs: Vec::new(),
+        penetration_tolerance: tolerance(key, c.penetration_tolerance, slave_body.size())?,
+        friction: friction(key, c.friction)?,
+        unpaired: contact.unpaired,
+        master: ContactSurface { body: bm, faces: master_faces },
+        slave: ContactSurface { body: bs, faces: slave_faces },
+        surface: Some(contact),
+    })
+}

@@ -494,18 +494,7 @@ impl NonlinearProblem for Structure<'_> {
         self.timings.reused = stats.reused;
         self.timings.krylov_iterations = stats.krylov_iterations;
         self.timings.fallbacks = stats.fallbacks;
-        let eq = &self.assembler.dofs.eq;
-        let mut norm2 = 0.0;
-        for (d, &e) in eq.iter().enumerate() {
-            if e != NO_EQ {
-                let du = self.residual[e];
-                self.u[d] += du;
-                norm2 += du * du;
-            }
-        }
-        let mut inc2: f64 = self.u.iter().zip(&self.u_committed).map(|(a, b)| (a - b) * (a - b)).sum();
-        inc2 += self.driven.iter().map(|d| (d.a - d.a_committed).powi(2)).sum::<f64>();
-        Ok(Correction { norm: (norm2 + da2).sqrt(), increment_norm: inc2.sqrt() })
+        Ok(self.apply_correction(da2))
     }
 }
 
@@ -564,6 +553,24 @@ impl Incremental for Structure<'_> {
 }
 
 impl Structure<'_> {
+    /// Adds the solved correction (in `residual`, by equation) to `u` and
+    /// reports its norm (with `da2`, the squared correction of the
+    /// force-controlled indenters) and the norm of the increment so far.
+    pub(super) fn apply_correction(&mut self, da2: f64) -> Correction {
+        let eq = &self.assembler.dofs.eq;
+        let mut norm2 = 0.0;
+        for (d, &e) in eq.iter().enumerate() {
+            if e != NO_EQ {
+                let du = self.residual[e];
+                self.u[d] += du;
+                norm2 += du * du;
+            }
+        }
+        let mut inc2: f64 = self.u.iter().zip(&self.u_committed).map(|(a, b)| (a - b) * (a - b)).sum();
+        inc2 += self.driven.iter().map(|d| (d.a - d.a_committed).powi(2)).sum::<f64>();
+        Correction { norm: (norm2 + da2).sqrt(), increment_norm: inc2.sqrt() }
+    }
+
     /// Loads and prescribed values at the current λ: each item times its
     /// factor in the load history (`model::steps`).
     fn apply_factors(&mut self) {

@@ -123,11 +123,6 @@ impl ReusingSolver {
         }
     }
 
-    /// The underlying factorization (for solves with the present factor).
-    pub fn cholesky(&mut self) -> &mut Cholesky {
-        &mut self.chol
-    }
-
     /// Number of stored values of the factor `L`.
     pub fn factor_nnz(&self) -> usize {
         self.chol.factor_nnz()

@@ -146,17 +146,6 @@ impl Structure<'_> {
         let t = Instant::now();
         let da2 = self.solve_bordered()?;
         self.timings.solve += t.elapsed();
-        let eq = &self.assembler.dofs.eq;
-        let mut norm2 = 0.0;
-        for (d, &e) in eq.iter().enumerate() {
-            if e != NO_EQ {
-                let du = self.residual[e];
-                self.u[d] += du;
-                norm2 += du * du;
-            }
-        }
-        let mut inc2: f64 = self.u.iter().zip(&self.u_committed).map(|(a, b)| (a - b) * (a - b)).sum();
-        inc2 += self.driven.iter().map(|d| (d.a - d.a_committed).powi(2)).sum::<f64>();
-        Ok(Correction { norm: (norm2 + da2).sqrt(), increment_norm: inc2.sqrt() })
+        Ok(self.apply_correction(da2))
     }
 }

@@ -15,6 +15,7 @@ use std::time::Instant;
 
 use super::{ContactPoint, Structure};
 use crate::contact::{self, PairContact, surface};
+use crate::materials::Predictor;
 
 /// Projections and weighted gaps of one surface contact.
 #[derive(Debug, Clone, Default)]
@@ -123,9 +124,13 @@ impl Structure<'_> {
     /// weighted tangential relative displacement of the increment
     /// `d_t = Σ_b T_b (u_b − u_b,n) / A` and the committed tangential force
     /// `t_n` give the trial `t_n − ε_T d_t`, returned onto the Coulomb cone
-    /// by `contact::friction_response` (its symmetric tangent `k_t`). Nodal
-    /// forces `T_b t / A`, blocks `T_b k_t T_c / A²` (`T_b` symmetric); the
-    /// accumulated slip grows by `d_t + (t − t_n)/ε_T`.
+    /// by `contact::friction_response`. Nodal forces `T_b t / A` (`T_b`
+    /// symmetric); the accumulated slip grows by `d_t + (t − t_n)/ε_T`. The
+    /// consistent tangent `(T_b K_tt T_c + μ ε (T_b t̂) G_cᵀ) / A²` (`K_tt`
+    /// the return map's tangential block; the second term, from
+    /// `∂P/∂u_c = −ε G_c / A` while sliding, is unsymmetric and goes to
+    /// the LU path's skew terms). A sliding point's first iteration of an
+    /// increment uses the stick block, as node-to-node friction does.
     fn surface_friction(
         &mut self,
         k: usize,
@@ -148,13 +153,23 @@ impl Structure<'_> {
                 }
             }
         }
-        let r = contact::friction_response(d_t, t_n.map(|v| v / eps_t), &n, normal_force, eps, fr);
+        let mut r = contact::friction_response(d_t, t_n.map(|v| v / eps_t), &n, normal_force, eps, fr);
+        let predicted = r.sliding && (self.first_evaluation || self.predictor == Predictor::Elastic);
+        if predicted {
+            // as node-to-node friction (structure/contacts.rs): the stick
+            // tangent predicts the first iteration of an increment
+            r.block = contact::stick_block(&n, eps, fr);
+        }
         let (ft, sliding) = (r.force, r.sliding);
-        // the symmetric part of the return map's tangent: surface friction
-        // assembles into the symmetric (lower-triangle) tangent only; the
-        // skew coupling of sliding points is not assembled here (unlike
-        // node-to-node friction, structure/unsymmetric.rs)
-        let kt: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|l| 0.5 * (r.block[i][l] + r.block[l][i])));
+        // r.block = K_tt + μ ε_N t̂ nᵀ (while sliding and pressed): the
+        // second term is the pressure coupling of a node pair, whose ∂p/∂d
+        // is −ε nᵀ; here ∂P/∂u_c = −ε G_c / A, so it is rebuilt below with G_c.
+        let f_norm = (ft[0] * ft[0] + ft[1] * ft[1] + ft[2] * ft[2]).sqrt();
+        let coupling =
+            if sliding && !predicted && normal_force > 0.0 && f_norm > 0.0 { fr.coefficient * eps } else { 0.0 };
+        let t_hat = ft.map(|v| v / f_norm.max(f64::MIN_POSITIVE));
+        let kt: [[f64; 3]; 3] =
+            std::array::from_fn(|i| std::array::from_fn(|l| r.block[i][l] - coupling * t_hat[i] * n[l]));
         let point = &mut self.contact[k];
         point.sliding = sliding;
         point.slip = std::array::from_fn(|i| committed.slip[i] + d_t[i] + (ft[i] - t_n[i]) / eps_t);
@@ -166,19 +181,42 @@ impl Structure<'_> {
                 self.f_contact[3 * b + i] += (0..3).map(|l| t[i][l] * ft[l]).sum::<f64>() / area;
             }
         }
-        // k_t T_c per node c, then T_b (k_t T_c) / A²
-        let kt_t: Vec<[[f64; 3]; 3]> = g
+        // M_bc = −∂F_b/∂u_c = (T_b K_tt T_c + μ ε (T_b t̂) G_cᵀ) / A²: its
+        // symmetric part into the lower-triangle tangent, the skew part
+        // (the pressure coupling) into the unsymmetric terms
+        let scale = 1.0 / (area * area);
+        let blocks: Vec<Vec<[[f64; 3]; 3]>> = g
             .tangential
             .iter()
-            .map(|t| std::array::from_fn(|i| std::array::from_fn(|l| (0..3).map(|m| kt[i][m] * t[m][l]).sum::<f64>())))
+            .map(|tb| {
+                let tb_t: [f64; 3] = std::array::from_fn(|i| (0..3).map(|m| tb[i][m] * t_hat[m]).sum());
+                let tb_kt: [[f64; 3]; 3] =
+                    std::array::from_fn(|i| std::array::from_fn(|l| (0..3).map(|m| tb[i][m] * kt[m][l]).sum()));
+                g.grad
+                    .iter()
+                    .zip(&g.tangential)
+                    .map(|((_, gc), tc)| {
+                        std::array::from_fn(|i| {
+                            std::array::from_fn(|l| {
+                                let tkt: f64 = (0..3).map(|m| tb_kt[i][m] * tc[m][l]).sum();
+                                scale * (tkt + coupling * tb_t[i] * gc[l])
+                            })
+                        })
+                    })
+                    .collect()
+            })
             .collect();
-        let scale = 1.0 / (area * area);
-        for (x, ((a, _), ta)) in g.grad.iter().zip(&g.tangential).enumerate() {
-            for ((b, _), kb) in g.grad[x..].iter().zip(&kt_t[x..]) {
-                let block: [[f64; 3]; 3] = std::array::from_fn(|i| {
-                    std::array::from_fn(|l| scale * (0..3).map(|m| ta[i][m] * kb[m][l]).sum::<f64>())
-                });
-                self.assembler.add_node_block(&mut self.tangent, *a, *b, &block);
+        for (x, (a, _)) in g.grad.iter().enumerate() {
+            for (y, (b, _)) in g.grad.iter().enumerate() {
+                let (m_ab, m_ba) = (&blocks[x][y], &blocks[y][x]);
+                if y >= x {
+                    let sym = std::array::from_fn(|i| std::array::from_fn(|l| 0.5 * (m_ab[i][l] + m_ba[l][i])));
+                    self.assembler.add_node_block(&mut self.tangent, *a, *b, &sym);
+                }
+                if coupling != 0.0 {
+                    let skew = std::array::from_fn(|i| std::array::from_fn(|l| 0.5 * (m_ab[i][l] - m_ba[l][i])));
+                    self.add_skew(*a, *b, &skew, 1.0);
+                }
             }
         }
     }

@@ -25,8 +25,9 @@ fn punch(keys: &str) -> (Model, Solution) {
 /// increments: 4.4306e5 N at penalty_factor 1, 5.3050e5 N at 100, i.e.
 /// −16.7 % and −0.22 % of the augmented answer). Augmented Lagrangian with
 /// a penetration tolerance of 1e-10 m: 5.31680691e5 and 5.31680707e5 N (3e-8
-/// apart; asserted 1e-6), penetration 9.1e-11 and 4.0e-11 m, the
-/// pure-penalty forces approaching it from below. Cost: 60 and 6 Newton
+/// apart; asserted 1e-6) and 5.31680711e5 N at 1000 (three decades),
+/// penetration 9.1e-11, 4.0e-11 and 2.3e-11 m, the
+/// pure-penalty forces approaching it from below. Cost: 60, 6 and 4 Newton
 /// iterations against 2 (the soft penalty needs ~30 augmentations per
 /// increment): the penalty now sets the cost, not the answer.
 #[test]
@@ -37,6 +38,8 @@ fn augmented_lagrangian_makes_the_answer_independent_of_the_penalty() {
     let (_, stiff) = punch("penalty_factor = 100.0");
     let (_, soft_al) = punch("penalty_factor = 1.0\npenetration_tolerance = 1e-10");
     let (_, stiff_al) = punch("penalty_factor = 100.0\npenetration_tolerance = 1e-10");
+    // three decades: also a penalty ten times the default
+    let (_, stiffest_al) = punch("penalty_factor = 1000.0\npenetration_tolerance = 1e-10");
     eprintln!(
         "penalty: {:.6e} N (pen {:.2e} m) / {:.6e} N (pen {:.2e} m); augmented: {:.8e} / {:.8e} N (pen {:.2e} / {:.2e} m); iterations {} {} {} {}",
         force(&soft),
@@ -55,8 +58,15 @@ fn augmented_lagrangian_makes_the_answer_independent_of_the_penalty() {
     // the penalty moves the pure-penalty answer
     assert!((force(&soft) / force(&stiff) - 1.0).abs() > 1e-3, "pure penalty did not depend on ε");
     // and not the augmented one
+    eprintln!(
+        "penalty factor 1000, augmented: {:.8e} N (pen {:.2e} m), {} iterations",
+        force(&stiffest_al),
+        pen(&stiffest_al),
+        stiffest_al.increments.iter().map(|i| i.newton.iterations).sum::<usize>()
+    );
     assert!((force(&soft_al) / force(&stiff_al) - 1.0).abs() < 1e-6);
-    assert!(pen(&soft_al) <= 1e-10 && pen(&stiff_al) <= 1e-10);
+    assert!((force(&soft_al) / force(&stiffest_al) - 1.0).abs() < 1e-6);
+    assert!(pen(&soft_al) <= 1e-10 && pen(&stiff_al) <= 1e-10 && pen(&stiffest_al) <= 1e-10);
     // penalty forces approach the augmented (rigid-contact) one from below
     assert!(force(&soft) < force(&stiff) && force(&stiff) < force(&stiff_al) * (1.0 + 1e-9));
 }

@@ -645,4 +645,67 @@ fn cantilevers_contact_nonmatching_friction() {
     );
     assert!((rise7 - 0.036).abs() < 0.01, "7 in roller rises {rise7} with friction (matching mesh: +3.6 %)");
     assert!((rise_n - 0.061).abs() < 0.01, "interface normal force rises {rise_n} (matching mesh: +6.1 %)");
+    // contact_beams.csv: at every sliding point the tangential traction is
+    // μ times the normal pressure (Coulomb), and pressure × area sums to the
+    // interface's normal resultant
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("example_cantilevers_contact_nonmatching_friction");
+    let csv = std::fs::read_to_string(out.join("contact_beams.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (area, pressure, traction, sliding) = (col("area"), col("pressure"), col("traction"), col("sliding"));
+    let (mut total, mut slid) = (0.0, 0);
+    for line in lines {
+        let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        if v[area] > 0.0 && v[pressure].is_finite() {
+            total += v[pressure] * v[area];
+        }
+        if v[sliding] == 1.0 {
+            slid += 1;
+            assert!((v[traction] - 0.3 * v[pressure]).abs() <= 1e-6 * v[pressure], "{line}");
+        }
+    }
+    assert!(slid >= 5, "{slid} sliding points (measured 9: the upper beam's end line)");
+    assert!((total / normal - 1.0).abs() < 1e-6, "Σ pressure × area {total} against the normal resultant {normal}");
+}
+
+/// `examples/hertz_ball.toml`: a rigid ball (R = 10 mm) pressed δ = 0.05 mm
+/// into a block with `method = "surface"` (exact closest point on the
+/// sphere). Hertz (Johnson, *Contact Mechanics*, eqs. 4.22–4.23):
+/// P = (4/3) E* √R δ^{3/2}, E* = E/(1 − ν²), on the quarter model P/4 at
+/// each of the four increments (δ/4 … δ: the 3/2 power, not a linear
+/// spring), and the peak pressure p₀ = 3P/(2πa²), a = √(Rδ), as −σ_zz at
+/// the centre of the contact. Measured: force +1.9, +2.4, +1.6, +2.9 %,
+/// σ_zz +3.6 % (the clamped 30 mm block is a little stiffer than the
+/// half-space). Asserted 4 % and 5 %: a 10 % stiffness error, a wrong
+/// radius (P ∝ √R) or a linearized gap fails.
+#[test]
+fn hertz_ball() {
+    let s = run("hertz_ball");
+    assert_eq!(s["dof"], 41013);
+    let (e_star, r, delta) = (200e9 / (1.0 - 0.09), 0.01f64, 5e-5f64);
+    let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("example_hertz_ball");
+    let history = std::fs::read_to_string(out.join("history_ball.csv")).unwrap();
+    let mut lines = history.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let col = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (lambda, f_z) = (col("lambda"), col("f_z"));
+    let mut rows = 0;
+    for line in lines {
+        let v: Vec<f64> = line.split(',').map(|x| x.parse().unwrap()).collect();
+        let d = v[lambda] * delta;
+        let hertz = 4.0 / 3.0 * e_star * r.sqrt() * d.powf(1.5) / 4.0;
+        assert_within("hertz_ball", &format!("ball force at δ = {d:e} m vs Hertz"), -v[f_z], hertz, 0.04);
+        rows += 1;
+    }
+    assert_eq!(rows, 4);
+    let p = 4.0 / 3.0 * e_star * r.sqrt() * delta.powf(1.5);
+    let a2 = r * delta;
+    let p0 = 3.0 * p / (2.0 * std::f64::consts::PI * a2);
+    let csv = std::fs::read_to_string(out.join("line_surface_x.csv")).unwrap();
+    let mut lines = csv.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let szz = header.iter().position(|h| *h == "s_zz").unwrap();
+    let centre: f64 = lines.next().unwrap().split(',').nth(szz).unwrap().parse().unwrap();
+    assert_within("hertz_ball", "σ_zz at the contact centre vs −p₀", centre, -p0, 0.05);
 }

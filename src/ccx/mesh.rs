@@ -520,6 +520,44 @@ impl HexMesh {
                 let (r, f) = self.add_block(n, map, part);
                 (r, f, center)
             }
+            RigidSurface::Sphere { center, radius } => {
+                let (center, radius) = (*center, *radius);
+                let unit = |v: [f64; 3]| {
+                    let l = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+                    v.map(|x| x / l)
+                };
+                // a cap around the mean direction to the nodes it may touch
+                let dirs: Vec<[f64; 3]> =
+                    coords.iter().map(|p| unit(std::array::from_fn(|k| p[k] - center[k]))).collect();
+                let pole = unit(dirs.iter().fold([0.0; 3], |a, d| std::array::from_fn(|k| a[k] + d[k])));
+                let spread = dirs
+                    .iter()
+                    .map(|d| (d[0] * pole[0] + d[1] * pole[1] + d[2] * pole[2]).clamp(-1.0, 1.0).acos())
+                    .fold(0.0f64, f64::max);
+                let half = (spread + 15f64.to_radians()).min(75f64.to_radians());
+                // two directions across the pole
+                let k = (0..3).min_by(|&a, &b| pole[a].abs().total_cmp(&pole[b].abs())).unwrap_or(0);
+                let mut e = [0.0; 3];
+                e[k] = 1.0;
+                let dot = e[0] * pole[0] + e[1] * pole[1] + e[2] * pole[2];
+                let e1 = unit(std::array::from_fn(|i| e[i] - dot * pole[i]));
+                let e2 = [
+                    pole[1] * e1[2] - pole[2] * e1[1],
+                    pole[2] * e1[0] - pole[0] * e1[2],
+                    pole[0] * e1[1] - pole[1] * e1[0],
+                ];
+                let span = half.tan();
+                let map = move |u: f64, v: f64, w: f64| {
+                    let (a, b) = (span * (2.0 * u - 1.0), span * (2.0 * v - 1.0));
+                    let d = unit(std::array::from_fn(|i| pole[i] + a * e1[i] + b * e2[i]));
+                    let r = radius * (0.8 + 0.2 * w);
+                    std::array::from_fn(|i| center[i] + r * d[i])
+                };
+                // facets of about 0.02 rad, as for the cylinder
+                let m = ((2.0 * half / 0.02).ceil() as usize).clamp(8, 150);
+                let (r, f) = self.add_block([m, m], map, part);
+                (r, f, center)
+            }
         };
         let faces = range.clone().map(|e| (e, face)).collect();
         self.nodes.push(centre);

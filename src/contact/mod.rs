@@ -80,6 +80,13 @@ pub enum RigidSurface {
         /// Optional extent along the axis.
         length: Option<[f64; 2]>,
     },
+    /// A sphere (ball indenter) of `radius` around `center`.
+    Sphere {
+        /// Centre (m).
+        center: [f64; 3],
+        /// Radius (m).
+        radius: f64,
+    },
 }
 
 impl std::fmt::Display for RigidSurface {
@@ -105,6 +112,7 @@ impl std::fmt::Display for RigidSurface {
                 }
                 Ok(())
             }
+            Self::Sphere { center, radius } => write!(f, "sphere of radius {radius} m centred at {center:?} m"),
         }
     }
 }
@@ -116,35 +124,73 @@ impl RigidSurface {
     /// the surface (beyond a punch's bounds or a cylinder's length). A node
     /// on a cylinder's axis gets the gap `−radius` and a zero normal.
     pub fn reference_gap(&self, x0: [f64; 3], tol: f64) -> Option<(f64, [f64; 3])> {
+        self.current_gap(x0, tol).map(|(g, n, _)| (g, n))
+    }
+
+    /// Radius of a cylinder or sphere (0 for a flat punch).
+    fn radius(&self) -> f64 {
+        match self {
+            Self::Flat { .. } => 0.0,
+            Self::Cylinder { radius, .. } | Self::Sphere { radius, .. } => *radius,
+        }
+    }
+
+    /// Exact gap of a point `y` (the body point's current position minus
+    /// the indenter's rigid displacement, i.e. in the indenter's reference
+    /// frame) to the surface, the unit normal `n` at its closest point
+    /// (pointing to the body) and the normal's derivative `∂n/∂y` (for
+    /// `method = "surface"`: the projection follows the deformation). The
+    /// gap is the signed distance, so `∂g/∂y = n`, and
+    ///
+    /// * flat: `g = s (y_a − position)`, `n = s e_a`, `∂n/∂y = 0`;
+    /// * cylinder: `g = ρ − R` with `ρ = ‖P⊥ (y − c)‖`, `n = P⊥ (y − c)/ρ`,
+    ///   `∂n/∂y = (P⊥ − n nᵀ)/ρ` (`P⊥` removes the axis component);
+    /// * sphere: `g = ρ − R` with `ρ = ‖y − c‖`, `n = (y − c)/ρ`,
+    ///   `∂n/∂y = (I − n nᵀ)/ρ`.
+    ///
+    /// `None` outside a punch's bounds or a cylinder's length (the point
+    /// has left the indenter); on a cylinder's axis or a sphere's centre the
+    /// gap `−R` with a zero normal.
+    pub fn current_gap(&self, y: [f64; 3], tol: f64) -> Option<(f64, [f64; 3], [[f64; 3]; 3])> {
+        let curved = |r: [f64; 3], keep: [f64; 3]| {
+            let d = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
+            if d == 0.0 {
+                // on the axis / at the centre: inside by the whole radius,
+                // no normal (the model rejects such a placement)
+                return Some((-self.radius(), [0.0; 3], [[0.0; 3]; 3]));
+            }
+            let n = r.map(|v| v / d);
+            let dn = std::array::from_fn(|i| {
+                std::array::from_fn(|j| (keep[i] * f64::from(u8::from(i == j)) - n[i] * n[j]) / d)
+            });
+            Some((d - self.radius(), n, dn))
+        };
         match self {
             Self::Flat { axis, sign, position, bounds } => {
                 for k in (0..3).filter(|k| k != axis) {
                     if let Some([a, b]) = bounds[k]
-                        && (x0[k] < a - tol || x0[k] > b + tol)
+                        && (y[k] < a - tol || y[k] > b + tol)
                     {
                         return None;
                     }
                 }
                 let mut normal = [0.0; 3];
                 normal[*axis] = *sign;
-                Some((sign * (x0[*axis] - position), normal))
+                Some((sign * (y[*axis] - position), normal, [[0.0; 3]; 3]))
             }
-            Self::Cylinder { axis, center, radius, length } => {
+            Self::Cylinder { axis, center, length, .. } => {
                 if let Some([a, b]) = length
-                    && (x0[*axis] < a - tol || x0[*axis] > b + tol)
+                    && (y[*axis] < a - tol || y[*axis] > b + tol)
                 {
                     return None;
                 }
-                let mut r = [x0[0] - center[0], x0[1] - center[1], x0[2] - center[2]];
+                let mut r = [y[0] - center[0], y[1] - center[1], y[2] - center[2]];
                 r[*axis] = 0.0;
-                let d = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
-                if d == 0.0 {
-                    // on the axis: inside the cylinder by its whole radius
-                    // (no normal exists; the caller rejects the placement)
-                    return Some((-radius, [0.0; 3]));
-                }
-                Some((d - radius, r.map(|v| v / d)))
+                let mut keep = [1.0; 3];
+                keep[*axis] = 0.0;
+                curved(r, keep)
             }
+            Self::Sphere { center, .. } => curved([y[0] - center[0], y[1] - center[1], y[2] - center[2]], [1.0; 3]),
         }
     }
 }
@@ -188,6 +234,11 @@ pub struct Indenter {
     pub friction: Option<Friction>,
     /// The body's boundary faces the indenter may touch.
     pub faces: Vec<crate::bc::Face>,
+    /// `method = "surface"`: gap and normal from the exact closest point of
+    /// the current configuration at every evaluation
+    /// ([`RigidSurface::current_gap`]); `false`: node-to-node, fixed at the
+    /// reference configuration (the paper's method).
+    pub updated: bool,
 }
 
 /// The boundary faces of one side of a contact.
@@ -394,6 +445,42 @@ mod tests {
         let punch = RigidSurface::Flat { axis: 2, sign: -1.0, position: 0.3, bounds: [Some([0.2, 0.3]), None, None] };
         assert_eq!(punch.reference_gap([0.25, 0.05, 0.3], 1e-9), Some((0.0, [0.0, 0.0, -1.0])));
         assert!(punch.reference_gap([0.31, 0.05, 0.3], 1e-9).is_none());
+    }
+
+    /// `current_gap`: the gap's gradient is the normal and the normal's
+    /// derivative is `∂n/∂y`, by central differences at an oblique point of
+    /// a sphere and of a cylinder (axis y), and a punch's edge ends contact.
+    #[test]
+    fn the_exact_gap_its_normal_and_their_derivatives() {
+        let shapes = [
+            RigidSurface::Sphere { center: [0.1, 0.2, 0.3], radius: 0.05 },
+            RigidSurface::Cylinder { axis: 1, center: [0.1, 0.0, 0.3], radius: 0.05, length: None },
+        ];
+        let y = [0.13, 0.19, 0.34];
+        let h = 1e-7;
+        for s in &shapes {
+            let (g, n, dn) = s.current_gap(y, 1e-12).unwrap();
+            let rho = match s {
+                RigidSurface::Sphere { .. } => (0.03f64.powi(2) + 0.01f64.powi(2) + 0.04f64.powi(2)).sqrt(),
+                _ => 0.05,
+            };
+            assert!((g - (rho - 0.05)).abs() < 1e-15, "{s}: gap {g}");
+            for j in 0..3 {
+                let mut yp = y;
+                yp[j] += h;
+                let mut ym = y;
+                ym[j] -= h;
+                let (gp, np, _) = s.current_gap(yp, 1e-12).unwrap();
+                let (gm, nm, _) = s.current_gap(ym, 1e-12).unwrap();
+                assert!(((gp - gm) / (2.0 * h) - n[j]).abs() < 1e-8, "{s}: ∂g/∂y_{j}");
+                for i in 0..3 {
+                    assert!(((np[i] - nm[i]) / (2.0 * h) - dn[i][j]).abs() < 1e-6, "{s}: ∂n_{i}/∂y_{j}");
+                }
+            }
+        }
+        let punch = RigidSurface::Flat { axis: 2, sign: -1.0, position: 0.3, bounds: [Some([0.2, 0.3]), None, None] };
+        assert!(punch.current_gap([0.29, 0.0, 0.2999], 1e-9).is_some());
+        assert!(punch.current_gap([0.31, 0.0, 0.2999], 1e-9).is_none(), "beyond the punch's edge");
     }
 
     #[test]

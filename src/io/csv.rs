@@ -93,15 +93,19 @@ pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result
 pub fn write_contact_points(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     let mut out = Vec::new();
     for set in &solution.contact_sets {
-        let mut text = String::from("node,x,y,z,gap,f_x,f_y,f_z,area,pressure,active,slip,sliding\n");
+        let mut text = String::from("node,x,y,z,gap,f_x,f_y,f_z,area,pressure,traction,active,slip,sliding\n");
         for p in &set.points {
             let x = model.mesh.coords(p.node);
             let f = p.force;
-            let pressure = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt() / p.area;
+            // normal and tangential parts of the force, per tributary area
+            // (as the contact VTU)
+            let f_n: f64 = (0..3).map(|k| f[k] * p.normal[k]).sum();
+            let f_t = (0..3).map(|k| (f[k] - f_n * p.normal[k]).powi(2)).sum::<f64>().sqrt();
+            let (pressure, traction) = (f_n / p.area, f_t / p.area);
             let slip = (p.slip[0] * p.slip[0] + p.slip[1] * p.slip[1] + p.slip[2] * p.slip[2]).sqrt();
             let _ = writeln!(
                 text,
-                "{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{}",
+                "{},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e},{},{:e},{}",
                 p.node,
                 x[0],
                 x[1],
@@ -112,6 +116,7 @@ pub fn write_contact_points(model: &Model, solution: &Solution, dir: &Path) -> R
                 f[2],
                 p.area,
                 pressure,
+                traction,
                 u8::from(p.active),
                 slip,
                 u8::from(p.sliding)

@@ -103,7 +103,38 @@ pub(super) fn indenter(
     match d.shape.as_str() {
         "flat" => reject_unused(key, &chosen, &cyl_keys)?,
         "cylinder" => reject_unused(key, &chosen, &flat_keys)?,
+        "sphere" => {
+            reject_unused(key, &chosen, &flat_keys)?;
+            reject_unused(key, &chosen, &[cyl_keys[0], cyl_keys[3]])?;
+        }
         _ => {}
+    }
+    let updated = match d.method.as_deref() {
+        None | Some("node_to_node") => false,
+        Some("surface") => true,
+        Some(other) => {
+            return Err(invalid(
+                format!("{key}.method"),
+                format!("{other:?}"),
+                "\"node_to_node\" (default: each node paired once with the closest point at the start, the paper's \
+                 method) or \"surface\" (the exact closest point of the current configuration)",
+            ));
+        }
+    };
+    if updated && d.friction.is_some() {
+        return Err(invalid(
+            format!("{key}.friction"),
+            "(given with method = \"surface\")",
+            "no friction on an indenter with method = \"surface\" (not built: its tangent plane turns with the \
+             projection); friction works with method = \"node_to_node\"",
+        ));
+    }
+    if updated && d.force.is_some() {
+        return Err(invalid(
+            format!("{key}.force"),
+            "(given with method = \"surface\")",
+            "displacement control with method = \"surface\" (force control is built for node_to_node only)",
+        ));
     }
     let shape = match d.shape.as_str() {
         "flat" => {
@@ -167,8 +198,24 @@ pub(super) fn indenter(
                 length: range("length", d.length.map(Into::into))?,
             }
         }
+        "sphere" => {
+            let center = d
+                .center
+                .ok_or_else(|| invalid(format!("{key}.center"), "(missing)", "the sphere's centre [x, y, z]"))?;
+            let radius = d.radius.ok_or_else(|| invalid(format!("{key}.radius"), "(missing)", "the radius in m"))?;
+            RigidSurface::Sphere {
+                center: bounds::point(&format!("{key}.center"), center)?,
+                radius: bounds::within(
+                    &format!("{key}.radius"),
+                    radius,
+                    bounds::MIN_RELATIVE_SIZE * body.size(),
+                    bounds::MAX_COORD,
+                    "a radius in m, not vanishingly small against the body",
+                )?,
+            }
+        }
         other => {
-            return Err(invalid(format!("{key}.shape"), format!("{other:?}"), "\"flat\" or \"cylinder\""));
+            return Err(invalid(format!("{key}.shape"), format!("{other:?}"), "\"flat\", \"cylinder\" or \"sphere\""));
         }
     };
     // pair each surface node facing the indenter with its closest point
@@ -290,6 +337,7 @@ pub(super) fn indenter(
         penetration_tolerance,
         friction: friction(key, d.friction)?,
         faces: face_list,
+        updated,
     })
 }
 

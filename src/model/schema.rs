@@ -335,6 +335,7 @@ pub struct IndenterFile {
     pub penalty_factor: Option<f64>,
     pub penetration_tolerance: Option<f64>,
     pub friction: Option<f64>,
+    pub method: Option<String>,
 }
 
 /// One side of a deformable contact.

@@ -21,6 +21,13 @@ impl Structure<'_> {
         for (k_ind, ind) in model.indenters.iter().enumerate() {
             // the rigid surface's displacement plays the master's part
             let offset = self.indenter_offset(k_ind);
+            if ind.updated {
+                for c in &ind.nodes {
+                    changes += usize::from(self.contact_rigid_surface(k, c, &ind.surface, offset));
+                    k += 1;
+                }
+                continue;
+            }
             for c in &ind.nodes {
                 let pair = (c.node, None, offset, c.gap0, c.normal, c.penalty);
                 changes += usize::from(self.contact_pair(k, pair, ind.friction.as_ref()));
@@ -42,6 +49,55 @@ impl Structure<'_> {
         self.first_evaluation = false;
         self.timings.contact += t.elapsed();
         changes
+    }
+}
+
+impl Structure<'_> {
+    /// A node against a rigid indenter with `method = "surface"`: the exact
+    /// gap `g(y)` and normal `n(y)` at the current position `y = X + u − d`
+    /// (`d` the indenter's displacement; `RigidSurface::current_gap`), the
+    /// force `p n` with `p = λ − ε g ≥ 0`, and its consistent tangent
+    /// `K = −∂(p n)/∂u = ε n nᵀ − p ∂n/∂y` — the second (curvature) term
+    /// lets the force turn with the normal as the node slides over a
+    /// roller or ball. Returns true if the point's active status changed.
+    fn contact_rigid_surface(
+        &mut self,
+        k: usize,
+        c: &contact::ContactNode,
+        surface: &contact::RigidSurface,
+        offset: [f64; 3],
+    ) -> bool {
+        let x0 = self.model.mesh.coords(c.node);
+        let y: [f64; 3] = std::array::from_fn(|i| x0[i] + self.u[3 * c.node + i] - offset[i]);
+        let current = surface.current_gap(y, 1e-9 * self.model.mesh.bodies[self.model.mesh.body_of(c.node).0].size());
+        let point = &mut self.contact[k];
+        let was = point.active;
+        point.force = [0.0; 3];
+        point.active = false;
+        point.sliding = false;
+        let Some((g, n, dn)) = current else {
+            // beyond a punch's edge or a roller's end: out of contact
+            point.gap = f64::NAN;
+            self.contact_blocks[k] = [[0.0; 3]; 3];
+            return was;
+        };
+        point.gap = g;
+        point.normal = n;
+        let response = contact::augmented_response(g, &n, c.penalty, point.multiplier);
+        point.active = response.is_some();
+        let Some((f, kb)) = response else {
+            self.contact_blocks[k] = [[0.0; 3]; 3];
+            return was;
+        };
+        let p = (0..3).map(|i| f[i] * n[i]).sum::<f64>();
+        let block: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| kb[i][j] - p * dn[i][j]));
+        point.force = f;
+        for i in 0..3 {
+            self.f_contact[3 * c.node + i] += f[i];
+        }
+        self.contact_blocks[k] = block;
+        self.assembler.add_node_block(&mut self.tangent, c.node, c.node, &block);
+        !was
     }
 }
 

@@ -122,4 +122,8 @@ pub struct ContactPoint {
     pub sliding: bool,
     /// Contact normal (pointing to the slave body or body under an indenter).
     pub normal: [f64; 3],
+    /// Position relative to a rigid indenter, `X + u − d` (m), at the last
+    /// evaluation of an indenter with `method = "surface"` (its friction
+    /// measures the slip increment from the committed one); zero otherwise.
+    pub position: [f64; 3],
 }

@@ -188,7 +188,12 @@ impl<'m> Structure<'m> {
         let mut contact_ranges = Vec::new();
         for ind in &model.indenters {
             let start = contact.len();
-            contact.extend(ind.nodes.iter().map(|c| ContactPoint { node: c.node, area: c.area, ..Default::default() }));
+            contact.extend(ind.nodes.iter().map(|c| ContactPoint {
+                node: c.node,
+                area: c.area,
+                position: mesh.coords(c.node),
+                ..Default::default()
+            }));
             contact_ranges.push(start..contact.len());
         }
         for pc in &model.contacts {

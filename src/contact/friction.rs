@@ -102,6 +102,60 @@ pub fn stick_block(normal: &[f64; 3], normal_penalty: f64, friction: &Friction) 
     std::array::from_fn(|i| std::array::from_fn(|j| eps_t * (f64::from(u8::from(i == j)) - normal[i] * normal[j])))
 }
 
+/// Coulomb friction of a node on a rigid surface whose normal turns with
+/// the node (`indenters[].method = "surface"`): `v = t_c − ε_T Δy` (the
+/// committed tangential force less the tangential penalty times the
+/// position increment `Δy` relative to the indenter), the trial
+/// `t* = P v` in the current tangent plane (`P = I − n nᵀ`), and the
+/// return map of [`friction_response`]. Returns the force `t`, whether it
+/// slides, and `∂t/∂y` (row: force component) for the consistent tangent:
+///
+/// ```text
+/// ∂t*/∂y = −ε_T P − (n·v) ∂n/∂y − n (vᵀ ∂n/∂y)
+/// stick  ∂t/∂y = ∂t*/∂y
+/// slip   ∂t/∂y = −μ ε_N t̂ nᵀ + (μ p/‖t*‖)(I − t̂ t̂ᵀ) ∂t*/∂y
+/// ```
+///
+/// (`∂p/∂y = −ε_N n`). `stick_tangent`: the stick derivative even where it
+/// slides (the first iteration of an increment, as for node pairs).
+pub fn turning_friction(
+    v: [f64; 3],
+    normal: &[f64; 3],
+    dn: &[[f64; 3]; 3],
+    normal_force: f64,
+    normal_penalty: f64,
+    friction: &Friction,
+    stick_tangent: bool,
+) -> ([f64; 3], bool, [[f64; 3]; 3]) {
+    let n = normal;
+    let eps_t = friction.penalty_ratio * normal_penalty;
+    let nv: f64 = (0..3).map(|k| n[k] * v[k]).sum();
+    let trial: [f64; 3] = std::array::from_fn(|i| v[i] - n[i] * nv);
+    let v_dn: [f64; 3] = std::array::from_fn(|j| (0..3).map(|k| v[k] * dn[k][j]).sum());
+    let d_trial: [[f64; 3]; 3] = std::array::from_fn(|i| {
+        std::array::from_fn(|j| -eps_t * (f64::from(u8::from(i == j)) - n[i] * n[j]) - dn[i][j] * nv - n[i] * v_dn[j])
+    });
+    let norm = (trial[0] * trial[0] + trial[1] * trial[1] + trial[2] * trial[2]).sqrt();
+    let limit = friction.coefficient * normal_force.max(0.0);
+    if norm <= limit || norm == 0.0 {
+        return (trial, false, d_trial);
+    }
+    let t_hat = trial.map(|x| x / norm);
+    let force = t_hat.map(|x| limit * x);
+    if stick_tangent {
+        return (force, true, d_trial);
+    }
+    let coupling = if normal_force > 0.0 { friction.coefficient * normal_penalty } else { 0.0 };
+    let scale = limit / norm;
+    let d_force = std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            let rotate: f64 = (0..3).map(|k| (f64::from(u8::from(i == k)) - t_hat[i] * t_hat[k]) * d_trial[k][j]).sum();
+            -coupling * t_hat[i] * n[j] + scale * rotate
+        })
+    });
+    (force, true, d_force)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

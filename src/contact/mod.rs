@@ -48,7 +48,7 @@
 use crate::bc::FaceIntegral;
 
 mod friction;
-pub use friction::{Friction, FrictionResponse, friction_response, stick_block};
+pub use friction::{Friction, FrictionResponse, friction_response, stick_block, turning_friction};
 pub mod surface;
 
 /// Default dimensionless penalty factor α.

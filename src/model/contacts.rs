@@ -121,21 +121,7 @@ pub(super) fn indenter(
             ));
         }
     };
-    if updated && d.friction.is_some() {
-        return Err(invalid(
-            format!("{key}.friction"),
-            "(given with method = \"surface\")",
-            "no friction on an indenter with method = \"surface\" (not built: its tangent plane turns with the \
-             projection); friction works with method = \"node_to_node\"",
-        ));
-    }
-    if updated && d.force.is_some() {
-        return Err(invalid(
-            format!("{key}.force"),
-            "(given with method = \"surface\")",
-            "displacement control with method = \"surface\" (force control is built for node_to_node only)",
-        ));
-    }
+
     let shape = match d.shape.as_str() {
         "flat" => {
             let normal = d.normal.as_deref().unwrap_or("");

@@ -23,7 +23,8 @@ impl Structure<'_> {
             let offset = self.indenter_offset(k_ind);
             if ind.updated {
                 for c in &ind.nodes {
-                    changes += usize::from(self.contact_rigid_surface(k, c, &ind.surface, offset));
+                    changes +=
+                        usize::from(self.contact_rigid_surface(k, c, &ind.surface, offset, ind.friction.as_ref()));
                     k += 1;
                 }
                 continue;
@@ -59,13 +60,18 @@ impl Structure<'_> {
     /// force `p n` with `p = λ − ε g ≥ 0`, and its consistent tangent
     /// `K = −∂(p n)/∂u = ε n nᵀ − p ∂n/∂y` — the second (curvature) term
     /// lets the force turn with the normal as the node slides over a
-    /// roller or ball. Returns true if the point's active status changed.
+    /// roller or ball. With Coulomb friction, the tangential force of
+    /// `contact::turning_friction` from the committed force and position
+    /// (its derivative makes the block unsymmetric while sliding: the skew
+    /// part goes to the LU path). Returns true if the point's active status
+    /// changed.
     fn contact_rigid_surface(
         &mut self,
         k: usize,
         c: &contact::ContactNode,
         surface: &contact::RigidSurface,
         offset: [f64; 3],
+        friction: Option<&contact::Friction>,
     ) -> bool {
         let x0 = self.model.mesh.coords(c.node);
         let y: [f64; 3] = std::array::from_fn(|i| x0[i] + self.u[3 * c.node + i] - offset[i]);
@@ -75,6 +81,7 @@ impl Structure<'_> {
         point.force = [0.0; 3];
         point.active = false;
         point.sliding = false;
+        point.position = y;
         let Some((g, n, dn)) = current else {
             // beyond a punch's edge or a roller's end: out of contact
             point.gap = f64::NAN;
@@ -83,6 +90,8 @@ impl Structure<'_> {
         };
         point.gap = g;
         point.normal = n;
+        point.position = y;
+        point.slip = self.contact_committed[k].slip;
         let response = contact::augmented_response(g, &n, c.penalty, point.multiplier);
         point.active = response.is_some();
         let Some((f, kb)) = response else {
@@ -90,13 +99,41 @@ impl Structure<'_> {
             return was;
         };
         let p = (0..3).map(|i| f[i] * n[i]).sum::<f64>();
-        let block: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| kb[i][j] - p * dn[i][j]));
-        point.force = f;
+        let mut f = f;
+        let mut block: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| kb[i][j] - p * dn[i][j]));
+        if let Some(fr) = friction {
+            // the committed tangential force and position (contact_committed)
+            let committed = self.contact_committed[k];
+            let cn: f64 = (0..3).map(|i| committed.force[i] * committed.normal[i]).sum();
+            let eps_t = fr.penalty_ratio * c.penalty;
+            let v: [f64; 3] = std::array::from_fn(|i| {
+                committed.force[i] - cn * committed.normal[i] - eps_t * (y[i] - committed.position[i])
+            });
+            let stick_tangent = self.first_evaluation || self.predictor == Predictor::Elastic;
+            let (t, sliding, dt) = contact::turning_friction(v, &n, &dn, p, c.penalty, fr, stick_tangent);
+            let trial: [f64; 3] = {
+                let nv: f64 = (0..3).map(|i| n[i] * v[i]).sum();
+                std::array::from_fn(|i| v[i] - n[i] * nv)
+            };
+            let point = &mut self.contact[k];
+            point.sliding = sliding;
+            point.slip = std::array::from_fn(|i| committed.slip[i] + (t[i] - trial[i]) / eps_t);
+            for i in 0..3 {
+                f[i] += t[i];
+                for j in 0..3 {
+                    block[i][j] -= dt[i][j];
+                }
+            }
+        }
+        self.contact[k].force = f;
         for i in 0..3 {
             self.f_contact[3 * c.node + i] += f[i];
         }
         self.contact_blocks[k] = block;
-        self.assembler.add_node_block(&mut self.tangent, c.node, c.node, &block);
+        let sym: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (block[i][j] + block[j][i])));
+        let skew: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (block[i][j] - block[j][i])));
+        self.assembler.add_node_block(&mut self.tangent, c.node, c.node, &sym);
+        self.add_skew(c.node, c.node, &skew, 1.0);
         !was
     }
 }

@@ -14,7 +14,8 @@
 //!
 //! Bytes per item, from the data structures of `assembly`, `solver::linear`
 //! and `analysis`: a stored matrix entry costs 8 (row index) + 8 (value),
-//! twice over for the pattern (the assembler's and the solver's copy); an
+//! twice over for the pattern (the assembler's and the solver's copy), and 8
+//! more for the assembled elastic tangent; an
 //! element-matrix entry 4 (scatter index) + 8 (cached elastic value); a
 //! factor entry 8; a Gauss point two states (200 bytes each with three back-stresses) and a stress of 48;
 //! a DOF 64 (eight vectors); the program itself about 8 MiB. Setup transients (node graph, METIS arrays, the
@@ -83,7 +84,9 @@ impl Sizes {
         let s = self;
         let parts = vec![
             ("program and runtime", BASELINE),
-            ("tangent pattern and values", s.pattern_nnz.saturating_mul(24)),
+            // row index + value of the assembler and of the solver, and the
+            // assembled elastic tangent an assembly starts from
+            ("tangent pattern and values", s.pattern_nnz.saturating_mul(32)),
             ("scatter maps and cached element matrices", s.element_entries.saturating_mul(12)),
             ("Cholesky factor", s.factor_nnz.saturating_mul(8).saturating_add(s.factor_scratch)),
             // committed and trial states, and the stress

@@ -45,6 +45,10 @@ pub struct Assembler {
     /// Elastic element matrices packed like the scatter maps (empty until
     /// [`Assembler::cache_elastic`]).
     elastic_cache: Vec<f64>,
+    /// Their sum, the elastic tangent of the whole model in pattern order
+    /// (empty until [`Assembler::cache_elastic`]): an assembly starts from
+    /// it and corrects only the elements that are not elastic.
+    elastic_global: Vec<f64>,
     /// Time spent building the node graph and the METIS ordering.
     pub ordering_time: std::time::Duration,
     /// Time spent building the pattern, scatter maps and colours.
@@ -133,6 +137,7 @@ impl Assembler {
             pattern,
             scatter,
             elastic_cache: Vec::new(),
+            elastic_global: Vec::new(),
             ordering_time,
             pattern_time: pattern_time + t0.elapsed(),
         }
@@ -200,6 +205,13 @@ impl Assembler {
             )
             .collect();
         self.elastic_cache = cache.concat();
+        let mut global = vec![0.0; self.pattern.nnz()];
+        for (map, v) in self.scatter.maps.iter().zip(&self.elastic_cache) {
+            if *map != u32::MAX {
+                global[*map as usize] += v;
+            }
+        }
+        self.elastic_global = global;
     }
 
     /// Element loop: internal forces (and tangent) of all elements from the
@@ -215,7 +227,13 @@ impl Assembler {
         };
         let mut empty: [f64; 0] = [];
         let tangent = out.tangent.unwrap_or(&mut empty);
-        tangent.fill(0.0);
+        if mode == TangentMode::UnlessElastic {
+            // the elastic tangent of every element at once; an element that
+            // is not elastic adds its tangent minus its elastic matrix below
+            tangent.copy_from_slice(&self.elastic_global);
+        } else {
+            tangent.fill(0.0);
+        }
         let force = Disjoint::new(out.force);
         let tangent = Disjoint::new(tangent);
         let trial = Disjoint::new(out.trial);
@@ -266,21 +284,23 @@ impl Assembler {
                                 }
                                 let map = &self.scatter.maps[range.clone()];
                                 if stats.tangent_computed {
+                                    // minus the elastic matrix already in the
+                                    // global elastic tangent (UnlessElastic)
+                                    let elastic = if mode == TangentMode::UnlessElastic {
+                                        &self.elastic_cache[range]
+                                    } else {
+                                        &[][..]
+                                    };
                                     let n = 3 * nodes.len();
                                     let mut k = 0;
                                     for p in 0..n {
                                         for &v in &ws.tangent[p * n + p..(p + 1) * n] {
                                             let pos = map[k];
                                             if pos != u32::MAX {
-                                                *tangent.get(pos as usize) += v;
+                                                *tangent.get(pos as usize) +=
+                                                    v - elastic.get(k).copied().unwrap_or(0.0);
                                             }
                                             k += 1;
-                                        }
-                                    }
-                                } else if with_tangent {
-                                    for (&pos, &v) in map.iter().zip(&self.elastic_cache[range]) {
-                                        if pos != u32::MAX {
-                                            *tangent.get(pos as usize) += v;
                                         }
                                     }
                                 }

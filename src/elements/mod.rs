@@ -220,19 +220,31 @@ pub fn element_response(
                 }
             }
             // Fundamental nucleus K_ab += B_aᵀ (C B_b) for a ≤ b (upper blocks).
-            for b in 0..nodes {
-                let cb = &ws.cb[b];
-                for a in 0..=b {
-                    let [gx, gy, gz] = ws.grads[a];
-                    let base = 3 * a * ndof + 3 * b;
-                    // B̄_aᵀ = B_aᵀ + d_a mᵀ / 3
-                    let da = if bbar.is_some() { ws.bbar[q * nodes + a] } else { [0.0; 3] };
+            // Slices hoisted out of the loops and the three rows of a block
+            // formed in registers: the compiler then keeps the buffers'
+            // pointers and drops the bounds checks of the inner loop.
+            let tangent = &mut ws.tangent[..ndof * ndof];
+            let grads = &ws.grads[..nodes];
+            let cbs = &ws.cb[..nodes];
+            let dbar = if bbar.is_some() { Some(&ws.bbar[q * nodes..(q + 1) * nodes]) } else { None };
+            for (b, cb) in cbs.iter().enumerate() {
+                // (C B̄_b)ᵀ m / 3 per column, for the B̄_aᵀ = B_aᵀ + d_a mᵀ/3 term
+                let mv: [f64; 3] = std::array::from_fn(|col| (cb[6 * col] + cb[6 * col + 1] + cb[6 * col + 2]) / 3.0);
+                for (a, &[gx, gy, gz]) in grads[..=b].iter().enumerate() {
+                    let da = dbar.map_or([0.0; 3], |d| d[a]);
+                    let mut k = [[0.0; 3]; 3];
                     for col in 0..3 {
-                        let v = &cb[6 * col..6 * col + 6];
-                        let mv = (v[0] + v[1] + v[2]) / 3.0;
-                        ws.tangent[base + col] += gx * v[0] + gy * v[3] + gz * v[4] + da[0] * mv;
-                        ws.tangent[base + ndof + col] += gy * v[1] + gx * v[3] + gz * v[5] + da[1] * mv;
-                        ws.tangent[base + 2 * ndof + col] += gz * v[2] + gx * v[4] + gy * v[5] + da[2] * mv;
+                        let v: &[f64; 6] = cb[6 * col..6 * col + 6].try_into().expect("six rows");
+                        k[0][col] = gx * v[0] + gy * v[3] + gz * v[4] + da[0] * mv[col];
+                        k[1][col] = gy * v[1] + gx * v[3] + gz * v[5] + da[1] * mv[col];
+                        k[2][col] = gz * v[2] + gx * v[4] + gy * v[5] + da[2] * mv[col];
+                    }
+                    let base = 3 * a * ndof + 3 * b;
+                    for (r, kr) in k.iter().enumerate() {
+                        let row = &mut tangent[base + r * ndof..base + r * ndof + 3];
+                        row[0] += kr[0];
+                        row[1] += kr[1];
+                        row[2] += kr[2];
                     }
                 }
             }

@@ -16,7 +16,7 @@
 //! and `analysis`: a stored matrix entry costs 8 (row index) + 8 (value),
 //! twice over for the pattern (the assembler's and the solver's copy), and 8
 //! more for the assembled elastic tangent; an
-//! element-matrix entry 4 (scatter index) + 8 (cached elastic value); a
+//! element-matrix entry 4 (scatter index); a
 //! factor entry 8; a Gauss point two states (200 bytes each with three back-stresses) and a stress of 48;
 //! a DOF 64 (eight vectors); the program itself about 8 MiB. Setup transients (node graph, METIS arrays, the
 //! transposed pattern) and output transients (VTU arrays) are freed before
@@ -87,7 +87,7 @@ impl Sizes {
             // row index + value of the assembler and of the solver, and the
             // assembled elastic tangent an assembly starts from
             ("tangent pattern and values", s.pattern_nnz.saturating_mul(32)),
-            ("scatter maps and cached element matrices", s.element_entries.saturating_mul(12)),
+            ("scatter maps", s.element_entries.saturating_mul(4)),
             ("Cholesky factor", s.factor_nnz.saturating_mul(8).saturating_add(s.factor_scratch)),
             // committed and trial states, and the stress
             ("Gauss-point states and stresses", s.gauss_points.saturating_mul(GAUSS_POINT_BYTES)),

@@ -42,9 +42,6 @@ pub struct Assembler {
     /// Lower-triangular pattern in equation numbering.
     pub pattern: LowerCsc,
     scatter: ScatterMaps,
-    /// Elastic element matrices packed like the scatter maps (empty until
-    /// [`Assembler::cache_elastic`]).
-    elastic_cache: Vec<f64>,
     /// Their sum, the elastic tangent of the whole model in pattern order
     /// (empty until [`Assembler::cache_elastic`]): an assembly starts from
     /// it and corrects only the elements that are not elastic.
@@ -136,7 +133,6 @@ impl Assembler {
             dofs,
             pattern,
             scatter,
-            elastic_cache: Vec::new(),
             elastic_global: Vec::new(),
             ordering_time,
             pattern_time: pattern_time + t0.elapsed(),
@@ -160,10 +156,13 @@ impl Assembler {
         }
     }
 
-    /// Computes and keeps the elastic stiffness of every element, packed in
-    /// the order of its scatter map. Later assemblies reuse it for elements
-    /// whose Gauss points all return the elastic tangent, so an element only
-    /// recomputes its nuclei while it is (or is about to be) plastic.
+    /// Assembles the elastic stiffness of the whole model once (every
+    /// element's matrix at zero displacement from a virgin state, summed in
+    /// pattern order). Later assemblies start from it and add, per element,
+    /// only the correction `Σ w B̄ᵀ (C − C^el) B̄` of the Gauss points whose
+    /// tangent is not elastic (`TangentMode::UnlessElastic`): in localized
+    /// plasticity most elements add nothing and a plastic element only its
+    /// plastic points.
     pub fn cache_elastic(&mut self, input: &Inputs<'_>) {
         let cache: Vec<Vec<f64>> = self
             .scatter
@@ -204,9 +203,8 @@ impl Assembler {
                 },
             )
             .collect();
-        self.elastic_cache = cache.concat();
         let mut global = vec![0.0; self.pattern.nnz()];
-        for (map, v) in self.scatter.maps.iter().zip(&self.elastic_cache) {
+        for (map, v) in self.scatter.maps.iter().zip(cache.iter().flatten()) {
             if *map != u32::MAX {
                 global[*map as usize] += v;
             }
@@ -220,7 +218,7 @@ impl Assembler {
     pub fn assemble(&self, input: &Inputs<'_>, out: Outputs<'_>) -> usize {
         out.force.fill(0.0);
         let with_tangent = out.tangent.is_some();
-        let mode = match (with_tangent, self.elastic_cache.is_empty()) {
+        let mode = match (with_tangent, self.elastic_global.is_empty()) {
             (false, _) => TangentMode::None,
             (true, true) => TangentMode::Always,
             (true, false) => TangentMode::UnlessElastic,
@@ -282,23 +280,18 @@ impl Assembler {
                                         *force.get(3 * n + c) += ws.force[3 * a + c];
                                     }
                                 }
-                                let map = &self.scatter.maps[range.clone()];
+                                let map = &self.scatter.maps[range];
+                                // the element's tangent (Always) or its
+                                // correction to the assembled elastic tangent
+                                // (UnlessElastic)
                                 if stats.tangent_computed {
-                                    // minus the elastic matrix already in the
-                                    // global elastic tangent (UnlessElastic)
-                                    let elastic = if mode == TangentMode::UnlessElastic {
-                                        &self.elastic_cache[range]
-                                    } else {
-                                        &[][..]
-                                    };
                                     let n = 3 * nodes.len();
                                     let mut k = 0;
                                     for p in 0..n {
                                         for &v in &ws.tangent[p * n + p..(p + 1) * n] {
                                             let pos = map[k];
                                             if pos != u32::MAX {
-                                                *tangent.get(pos as usize) +=
-                                                    v - elastic.get(k).copied().unwrap_or(0.0);
+                                                *tangent.get(pos as usize) += v;
                                             }
                                             k += 1;
                                         }
@@ -422,7 +415,7 @@ mod tests {
         let (f_cached, k_cached, plastic) = assemble(&s, &s.assembler, 2);
         let total: usize = s.committed.len();
         assert!(plastic > 0 && plastic < total, "{plastic} of {total} points plastic: want a mixed state");
-        assert!(s.uncached.elastic_cache.is_empty() && !s.assembler.elastic_cache.is_empty());
+        assert!(s.uncached.elastic_global.is_empty() && !s.assembler.elastic_global.is_empty());
         let (f_full, k_full, _) = assemble(&s, &s.uncached, 2);
         assert!(largest_difference(&k_full, &k_cached) < 1e-12);
         assert_eq!(f_full, f_cached);

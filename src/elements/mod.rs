@@ -72,8 +72,10 @@ pub enum TangentMode {
     None,
     /// Always compute the tangent.
     Always,
-    /// Compute it unless every Gauss point returned the elastic tangent (the
-    /// caller then uses its cached elastic element matrix).
+    /// Only the correction `K_e − K_e^el` to the element's elastic matrix,
+    /// `Σ_q w_q B̄_qᵀ (C_q − C^el) B̄_q` over the Gauss points whose tangent
+    /// is not the elastic one (the caller holds the elastic matrices
+    /// assembled); nothing when every point is elastic.
     UnlessElastic,
 }
 
@@ -194,11 +196,26 @@ pub fn element_response(
         return stats;
     }
     ws.tangent.fill(0.0);
+    let correction = mode == TangentMode::UnlessElastic;
+    let elastic = material.elastic_stiffness();
     for gb in 0..ag.n_gp {
         for gs in 0..sg.n_gp {
+            let q = gb * sg.n_gp + gs;
+            if correction {
+                // the nucleus is linear in C: a point contributes C − C^el,
+                // and an elastic point nothing
+                let t = &mut ws.tangents[q];
+                if t == elastic {
+                    continue;
+                }
+                for (row, er) in t.iter_mut().zip(elastic) {
+                    for (v, e) in row.iter_mut().zip(er) {
+                        *v -= e;
+                    }
+                }
+            }
             let w = geom.gradients(es, eb, gb, gs, &mut ws.grads[..nodes]);
             // CB_b = w C B̄_b (6×3, stored column-major: [col x | col y | col z])
-            let q = gb * sg.n_gp + gs;
             let c = &ws.tangents[q];
             // C m / 3 (m = [1, 1, 1, 0, 0, 0]) for the B-bar correction
             let cm: [f64; 6] = std::array::from_fn(|row| (c[row][0] + c[row][1] + c[row][2]) / 3.0);

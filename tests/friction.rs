@@ -2,7 +2,9 @@
 //! pressed on a rigid floor and pushed sideways slides when, and with the
 //! force that, Coulomb's law says.
 
-use cufem::analysis::{self, Silent, Solution, Structure};
+mod common;
+
+use cufem::analysis::{self, Structure};
 use cufem::model::Model;
 use cufem::solver::newton::{self, NewtonSettings};
 use cufem::solver::stepping::Incremental;
@@ -73,13 +75,6 @@ increments = {increments}
     )
 }
 
-fn solve(text: &str) -> Solution {
-    let model = Model::parse(text).unwrap();
-    let sol = analysis::run(&model, &Default::default(), &mut Silent).unwrap();
-    assert!(sol.failure.is_none(), "{:?}", sol.failure);
-    sol
-}
-
 /// Sliding: once the whole contact slides, the push reaction is μ N
 /// (Coulomb; N = 10 MPa × 200 mm² = 2,000 N by vertical equilibrium) to
 /// 1e-6, and every point is on the cone; before the push the reaction is
@@ -89,7 +84,7 @@ fn solve(text: &str) -> Solution {
 #[test]
 fn a_pushed_block_slides_at_mu_times_the_normal_force() {
     for mu in [0.1, 0.3] {
-        let sol = solve(&block(mu));
+        let sol = common::run(&block(mu));
         let n = sol.contact("floor").unwrap().force[2];
         assert!((n / 2000.0 - 1.0).abs() < 1e-9, "normal force {n}");
         let push = sol.reaction("push").unwrap().force[0];
@@ -365,30 +360,13 @@ fn the_frictional_tangent_matches_finite_differences_sticking_and_sliding() {
     let (sliding, sticking) =
         (points.iter().filter(|p| p.sliding).count(), points.iter().filter(|p| !p.sliding).count());
     assert!(sliding > 0 && sticking > 0, "partial slip: {sliding} sliding, {sticking} sticking");
-    let n_eq = s.n_equations();
     let columns: Vec<(usize, usize)> = points
         .iter()
         .flat_map(|p| (0..3).map(move |c| 3 * p.node + c))
         .filter_map(|d| s.equation(d).map(|e| (d, e)))
         .collect();
     let penalty = model.indenters[0].nodes.iter().map(|c| c.penalty).fold(0.0, f64::max);
-    let h = 1e-12;
-    let (mut worst, mut skew): (f64, f64) = (0.0, 0.0);
-    for &(d, e) in &columns {
-        s.displacements_mut()[d] += h;
-        s.evaluate().unwrap();
-        let rp = s.residual().to_vec();
-        s.displacements_mut()[d] -= 2.0 * h;
-        s.evaluate().unwrap();
-        let rm = s.residual().to_vec();
-        s.displacements_mut()[d] += h;
-        s.evaluate().unwrap();
-        for r in 0..n_eq {
-            let fd = (rp[r] - rm[r]) / (2.0 * h);
-            worst = worst.max((fd - s.tangent_entry(r, e)).abs() / penalty);
-            skew = skew.max((s.tangent_entry(r, e) - s.tangent_entry(e, r)).abs() / penalty);
-        }
-    }
+    let (worst, skew) = common::tangent_vs_differences(&mut s, &columns, 1e-12, penalty);
     eprintln!(
         "{} columns ({sliding} sliding, {sticking} sticking points): largest difference {worst:.2e} ε_N, \
          largest asymmetry {skew:.2e} ε_N",
@@ -511,14 +489,7 @@ name = "slide"
     assert!(s.is_unsymmetric());
     // pressed and committed, then a tenth of the push solved but not
     // committed (points that slide are strictly outside their cone)
-    for (l, commit) in [(0.5, true), (1.0, true), (1.1, false)] {
-        s.set_load_factor(l);
-        let r = newton::solve(&mut s, &NewtonSettings::default(), &Default::default());
-        assert!(r.converged(), "λ = {l}: {r:?}");
-        if commit {
-            s.commit();
-        }
-    }
+    common::solve_path(&mut s, &[(0.5, true), (1.0, true), (1.1, false)]);
     s.evaluate().unwrap();
     let points = s.contact_points().to_vec();
     let sliding = points.iter().filter(|p| p.active && p.sliding).count();
@@ -531,22 +502,7 @@ name = "slide"
         .filter_map(|d| s.equation(d).map(|e| (d, e)))
         .collect();
     let penalty = model.contacts[0].pairs.iter().map(|p| p.penalty).fold(0.0, f64::max);
-    let n_eq = s.n_equations();
-    let h = 1e-12;
-    let mut worst: f64 = 0.0;
-    for &(d, e) in &columns {
-        s.displacements_mut()[d] += h;
-        s.evaluate().unwrap();
-        let rp = s.residual().to_vec();
-        s.displacements_mut()[d] -= 2.0 * h;
-        s.evaluate().unwrap();
-        let rm = s.residual().to_vec();
-        s.displacements_mut()[d] += h;
-        s.evaluate().unwrap();
-        for r in 0..n_eq {
-            worst = worst.max(((rp[r] - rm[r]) / (2.0 * h) - s.tangent_entry(r, e)).abs() / penalty);
-        }
-    }
+    let (worst, _) = common::tangent_vs_differences(&mut s, &columns, 1e-12, penalty);
     eprintln!(
         "{} columns ({sliding} sliding, {sticking} sticking pairs): largest difference {worst:.2e} ε_N",
         columns.len()

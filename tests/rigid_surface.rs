@@ -3,10 +3,11 @@
 //! 1): finite sliding of a roller over a block, and a finite-difference
 //! check of the tangent with its curvature term.
 
-use cufem::analysis::{self, Silent, Solution, Structure};
+mod common;
+
+use cufem::analysis::Structure;
 use cufem::model::Model;
-use cufem::solver::newton::{self, NewtonSettings, NonlinearProblem};
-use cufem::solver::stepping::Incremental;
+use cufem::solver::newton::NonlinearProblem;
 
 /// A plane-strain slice (1 mm thick, x held on both faces) of a block
 /// 12 mm long (y, 32 B4) and 10 mm deep (z, 8 L9 graded to the top),
@@ -69,13 +70,6 @@ increments = 8
     )
 }
 
-fn run(text: &str) -> Solution {
-    let model = Model::parse(text).unwrap();
-    let sol = analysis::run(&model, &Default::default(), &mut Silent).unwrap();
-    assert!(sol.failure.is_none(), "{:?}", sol.failure);
-    sol
-}
-
 /// Finite sliding: the roller travels 4 mm (about 13 contact half-widths:
 /// Hertz b = √(4 P' R / (π E*)) = 0.30 mm at the measured 1.53 kN/mm) over
 /// the block. By the mirror symmetry of the block the force at the end
@@ -89,7 +83,7 @@ fn run(text: &str) -> Solution {
 /// checks to show what `method = "surface"` is for.
 #[test]
 fn a_roller_slides_over_a_block_with_the_exact_gap() {
-    let sol = run(&rolled("surface"));
+    let sol = common::run(&rolled("surface"));
     let forces: Vec<[f64; 3]> = sol.history.iter().map(|h| h.contact("roller").unwrap().force).collect();
     assert_eq!(forces.len(), 10);
     let (start, end) = (forces[1], forces[9]);
@@ -100,7 +94,7 @@ fn a_roller_slides_over_a_block_with_the_exact_gap() {
         assert!((f[2] / start[2] - 1.0).abs() < 0.04, "vertical force {f:?} against {start:?}");
         assert!(f[1].abs() < 0.01 * f[2].abs(), "sideways force {f:?}");
     }
-    let fixed = run(&rolled("node_to_node"));
+    let fixed = common::run(&rolled("node_to_node"));
     let f = fixed.contact("roller").unwrap().force;
     eprintln!("node-to-node after the slide: {f:?}");
     assert!(f[1].abs() > 0.1 * f[2].abs() || f[2] / end[2] > 2.0, "node-to-node followed the slide: {f:?}");
@@ -121,14 +115,7 @@ fn a_roller_slides_over_a_block_with_the_exact_gap() {
 fn tangent_error(text: &str, path: &[(f64, bool)], h: f64) -> (f64, usize, usize) {
     let model = Model::parse(text).unwrap();
     let mut s = Structure::new(&model, None).unwrap();
-    for &(l, commit) in path {
-        s.set_load_factor(l);
-        let r = newton::solve(&mut s, &NewtonSettings::default(), &Default::default());
-        assert!(r.converged(), "λ = {l}: {r:?}");
-        if commit {
-            s.commit();
-        }
-    }
+    common::solve_path(&mut s, path);
     s.evaluate().unwrap();
     let points = s.contact_points().to_vec();
     let active: Vec<usize> = points.iter().filter(|p| p.active).map(|p| p.node).collect();
@@ -139,21 +126,7 @@ fn tangent_error(text: &str, path: &[(f64, bool)], h: f64) -> (f64, usize, usize
         .filter_map(|d| s.equation(d).map(|e| (d, e)))
         .collect();
     let penalty = model.indenters[0].nodes.iter().map(|c| c.penalty).fold(0.0, f64::max);
-    let n_eq = s.n_equations();
-    let mut worst: f64 = 0.0;
-    for &(d, e) in &columns {
-        s.displacements_mut()[d] += h;
-        s.evaluate().unwrap();
-        let rp = s.residual().to_vec();
-        s.displacements_mut()[d] -= 2.0 * h;
-        s.evaluate().unwrap();
-        let rm = s.residual().to_vec();
-        s.displacements_mut()[d] += h;
-        s.evaluate().unwrap();
-        for r in 0..n_eq {
-            worst = worst.max(((rp[r] - rm[r]) / (2.0 * h) - s.tangent_entry(r, e)).abs() / penalty);
-        }
-    }
+    let (worst, _) = common::tangent_vs_differences(&mut s, &columns, h, penalty);
     let sliding = points.iter().filter(|p| p.active && p.sliding).count();
     eprintln!(
         "{} columns, {} active ({sliding} sliding): largest difference {worst:.2e} ε",
@@ -207,7 +180,7 @@ fn a_roller_dragged_with_friction_resists_with_mu_times_the_normal_force() {
         .replace("displacement = [0.0, 0.0, -2e-5]", "displacement = [0.0, 0.0, -2e-5]\nfriction = 0.3")
         .replace("elements = 32", "elements = 16");
     assert!(text.contains("elements = 16"));
-    let sol = run(&text);
+    let sol = common::run(&text);
     let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
     for h in &sol.history[3..] {
         let c = h.contact("roller").unwrap();
@@ -236,9 +209,10 @@ fn a_ball_under_force_control_reaches_the_displacement_controlled_state() {
             )
             .replace("where = { z = -0.03 }", "where = { z = -0.01 }");
     assert!(text.contains("elements = 6, ratio = 0.05") && text.contains("z = -0.01 }"));
-    let displaced = run(&text);
+    let displaced = common::run(&text);
     let force = displaced.contact("ball").unwrap().force;
-    let pushed = run(&text.replace("displacement = [0.0, 0.0, -5e-5]", &format!("force = [0.0, 0.0, {:e}]", force[2])));
+    let pushed =
+        common::run(&text.replace("displacement = [0.0, 0.0, -5e-5]", &format!("force = [0.0, 0.0, {:e}]", force[2])));
     let d = pushed.history.last().unwrap().contact("ball").unwrap().displacement[2];
     eprintln!("force {:.6e} N: displacement {d:e} m (displacement control: -5e-5 m)", -force[2]);
     assert!((d / -5e-5 - 1.0).abs() < 1e-6, "force control reached {d} m");

@@ -3,6 +3,8 @@
 //! finite-difference check of the assembled contact tangent and Newton's
 //! convergence rate.
 
+mod common;
+
 use cufem::analysis::{self, Silent, Solution};
 use cufem::model::Model;
 
@@ -186,9 +188,7 @@ fn surface_contact_tangent_matches_finite_differences() {
     let active: Vec<usize> = interface(&s).iter().filter(|c| c.active).map(|c| c.node).collect();
     assert!(active.len() > 10, "{} active points", active.len());
     let k = s.tangent_values().to_vec();
-    let pattern = s.pattern().clone();
     let eq: Vec<usize> = (0..s.displacements().len()).map(|d| s.equation(d).unwrap_or(usize::MAX)).collect();
-    let entry = |r: usize, c: usize| pattern.find(r.max(c), r.min(c)).map_or(0.0, |p| k[p]);
     let scale = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));
     // slave nodes of active points, and lower-block (master) nodes on the interface z = 0.01
     let mut nodes: Vec<usize> = active.clone();
@@ -200,25 +200,11 @@ fn surface_contact_tangent_matches_finite_differences() {
     nodes.extend(&master);
     let dofs: Vec<usize> =
         nodes.iter().flat_map(|&n| [3 * n, 3 * n + 1, 3 * n + 2]).filter(|&d| eq[d] != usize::MAX).collect();
-    let h = 1e-11;
-    let mut worst: f64 = 0.0;
-    let mut contact_columns = 0;
-    for &d in &dofs {
-        s.displacements_mut()[d] += h;
-        s.evaluate().unwrap();
-        let rp = s.residual().to_vec();
-        s.displacements_mut()[d] -= 2.0 * h;
-        s.evaluate().unwrap();
-        let rm = s.residual().to_vec();
-        s.displacements_mut()[d] += h;
-        for r in 0..rp.len() {
-            let fd = (rp[r] - rm[r]) / (2.0 * h);
-            worst = worst.max((fd - entry(r, eq[d])).abs() / scale);
-        }
-        contact_columns += 1;
-    }
+    let columns: Vec<(usize, usize)> = dofs.iter().map(|&d| (d, eq[d])).collect();
+    let contact_columns = columns.len();
+    let (worst, _) = common::tangent_vs_differences(&mut s, &columns, 1e-11, scale);
     eprintln!("{contact_columns} columns checked, largest relative difference {worst:e}");
-    // measured 7e-12 (35 columns, h = 1e-11 m); a wrong block (sign, factor,
+    // measured 2.2e-11 (35 columns, h = 1e-11 m); a wrong block (sign, factor,
     // missing coupling) gives O(1e-3..1); the bound leaves room for
     // round-off as in tests/contact.rs
     assert!(worst < 1e-8, "tangent differs from finite differences by {worst:e} of its largest entry");
@@ -457,20 +443,12 @@ fn an_initial_gap_closes_and_then_transmits_a_uniform_pressure() {
 /// relative displacements of 1e-7 m: the differencing error).
 #[test]
 fn the_frictional_surface_tangent_matches_finite_differences() {
-    use cufem::solver::newton::{self, NewtonSettings, NonlinearProblem};
-    use cufem::solver::stepping::Incremental;
+    use cufem::solver::newton::NonlinearProblem;
     let model = Model::parse(&sliding_blocks(3e-7)).unwrap();
     let mut s = analysis::Structure::new(&model, None).unwrap();
     assert!(s.is_unsymmetric());
     // press (steps: λ ∈ [0, 1] presses, [1, 2] pushes), then part of the push
-    for (l, commit) in [(0.5, true), (1.0, true), (1.5, true), (1.7, false)] {
-        s.set_load_factor(l);
-        let r = newton::solve(&mut s, &NewtonSettings::default(), &Default::default());
-        assert!(r.converged(), "λ = {l}: {r:?}");
-        if commit {
-            s.commit();
-        }
-    }
+    common::solve_path(&mut s, &[(0.5, true), (1.0, true), (1.5, true), (1.7, false)]);
     s.evaluate().unwrap();
     let points = s.contact_points().to_vec();
     let sliding = points.iter().filter(|p| p.active && p.sliding).count();
@@ -486,24 +464,7 @@ fn the_frictional_surface_tangent_matches_finite_differences() {
         .filter_map(|d| s.equation(d).map(|e| (d, e)))
         .collect();
     let penalty = (0..points.len()).map(|j| model.contacts[0].point_penalty(j)).fold(0.0, f64::max);
-    let n_eq = s.n_equations();
-    let h = 1e-12;
-    let mut worst: f64 = 0.0;
-    let mut skew: f64 = 0.0;
-    for &(d, e) in &columns {
-        s.displacements_mut()[d] += h;
-        s.evaluate().unwrap();
-        let rp = s.residual().to_vec();
-        s.displacements_mut()[d] -= 2.0 * h;
-        s.evaluate().unwrap();
-        let rm = s.residual().to_vec();
-        s.displacements_mut()[d] += h;
-        s.evaluate().unwrap();
-        for r in 0..n_eq {
-            worst = worst.max(((rp[r] - rm[r]) / (2.0 * h) - s.tangent_entry(r, e)).abs() / penalty);
-            skew = skew.max((s.tangent_entry(r, e) - s.tangent_entry(e, r)).abs() / penalty);
-        }
-    }
+    let (worst, skew) = common::tangent_vs_differences(&mut s, &columns, 1e-12, penalty);
     eprintln!(
         "{} columns ({sliding} sliding, {sticking} sticking points): largest difference {worst:.2e} ε, asymmetry {skew:.2e} ε",
         columns.len()

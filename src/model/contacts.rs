@@ -167,38 +167,12 @@ pub(super) fn indenter(
                     "\"x\", \"y\" or \"z\" (direction of the cylinder axis)",
                 )
             })?;
-            let center = d.center.ok_or_else(|| {
-                invalid(format!("{key}.center"), "(missing)", "a point [x, y, z] on the cylinder axis")
-            })?;
-            let radius = d.radius.ok_or_else(|| invalid(format!("{key}.radius"), "(missing)", "the radius in m"))?;
-            RigidSurface::Cylinder {
-                axis,
-                center: bounds::point(&format!("{key}.center"), center)?,
-                radius: bounds::within(
-                    &format!("{key}.radius"),
-                    radius,
-                    bounds::MIN_RELATIVE_SIZE * body.size(),
-                    bounds::MAX_COORD,
-                    "a radius in m, not vanishingly small against the body",
-                )?,
-                length: range("length", d.length.map(Into::into))?,
-            }
+            let (center, radius) = round(key, d, body, "a point [x, y, z] on the cylinder axis")?;
+            RigidSurface::Cylinder { axis, center, radius, length: range("length", d.length.map(Into::into))? }
         }
         "sphere" => {
-            let center = d
-                .center
-                .ok_or_else(|| invalid(format!("{key}.center"), "(missing)", "the sphere's centre [x, y, z]"))?;
-            let radius = d.radius.ok_or_else(|| invalid(format!("{key}.radius"), "(missing)", "the radius in m"))?;
-            RigidSurface::Sphere {
-                center: bounds::point(&format!("{key}.center"), center)?,
-                radius: bounds::within(
-                    &format!("{key}.radius"),
-                    radius,
-                    bounds::MIN_RELATIVE_SIZE * body.size(),
-                    bounds::MAX_COORD,
-                    "a radius in m, not vanishingly small against the body",
-                )?,
-            }
+            let (center, radius) = round(key, d, body, "the sphere's centre [x, y, z]")?;
+            RigidSurface::Sphere { center, radius }
         }
         other => {
             return Err(invalid(format!("{key}.shape"), format!("{other:?}"), "\"flat\", \"cylinder\" or \"sphere\""));
@@ -325,6 +299,23 @@ pub(super) fn indenter(
         faces: face_list,
         updated,
     })
+}
+
+/// `center` and `radius` of a cylinder or sphere (`center_is`: what the
+/// point is, for the message when it is missing).
+fn round(key: &str, d: &IndenterFile, body: &Body, center_is: &str) -> Result<([f64; 3], f64), ModelError> {
+    let center = d.center.ok_or_else(|| invalid(format!("{key}.center"), "(missing)", center_is))?;
+    let radius = d.radius.ok_or_else(|| invalid(format!("{key}.radius"), "(missing)", "the radius in m"))?;
+    Ok((
+        bounds::point(&format!("{key}.center"), center)?,
+        bounds::within(
+            &format!("{key}.radius"),
+            radius,
+            bounds::MIN_RELATIVE_SIZE * body.size(),
+            bounds::MAX_COORD,
+            "a radius in m, not vanishingly small against the body",
+        )?,
+    ))
 }
 
 pub(super) fn model_coords(body: &Body, node: usize) -> [f64; 3] {

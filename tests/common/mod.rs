@@ -1,0 +1,55 @@
+//! Helpers shared by the integration tests (each test binary uses a part).
+#![allow(dead_code)]
+
+use cufem::analysis::Structure;
+use cufem::solver::newton::NonlinearProblem;
+
+/// Central differences of the residual against the assembled tangent
+/// (`Structure::tangent_entry`: the symmetric part plus the skew terms of
+/// the LU path) in the given `(dof, equation)` columns, over every row:
+/// the largest `|ΔR/2h − K|` and the largest asymmetry `|K_re − K_er|`,
+/// both divided by `scale`. The structure is left evaluated at the
+/// displacements it had.
+pub fn tangent_vs_differences(s: &mut Structure, columns: &[(usize, usize)], h: f64, scale: f64) -> (f64, f64) {
+    let n_eq = s.n_equations();
+    let (mut worst, mut skew): (f64, f64) = (0.0, 0.0);
+    for &(d, e) in columns {
+        s.displacements_mut()[d] += h;
+        s.evaluate().unwrap();
+        let rp = s.residual().to_vec();
+        s.displacements_mut()[d] -= 2.0 * h;
+        s.evaluate().unwrap();
+        let rm = s.residual().to_vec();
+        s.displacements_mut()[d] += h;
+        s.evaluate().unwrap();
+        for r in 0..n_eq {
+            let k = s.tangent_entry(r, e);
+            worst = worst.max(((rp[r] - rm[r]) / (2.0 * h) - k).abs() / scale);
+            skew = skew.max((k - s.tangent_entry(e, r)).abs() / scale);
+        }
+    }
+    (worst, skew)
+}
+
+/// Parses and runs a model given as text; the run must converge.
+pub fn run(text: &str) -> cufem::analysis::Solution {
+    let model = cufem::model::Model::parse(text).unwrap();
+    let sol = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
+    assert!(sol.failure.is_none(), "{:?}", sol.failure);
+    sol
+}
+
+/// Newton at each load factor of `path` in turn, committing the converged
+/// state where the flag says so (the last one is usually left uncommitted,
+/// so that sliding points sit strictly outside their cone).
+pub fn solve_path(s: &mut Structure, path: &[(f64, bool)]) {
+    use cufem::solver::stepping::Incremental;
+    for &(l, commit) in path {
+        s.set_load_factor(l);
+        let r = cufem::solver::newton::solve(s, &Default::default(), &Default::default());
+        assert!(r.converged(), "λ = {l}: {r:?}");
+        if commit {
+            s.commit();
+        }
+    }
+}

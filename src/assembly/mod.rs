@@ -163,52 +163,21 @@ impl Assembler {
     /// tangent is not elastic (`TangentMode::UnlessElastic`): in localized
     /// plasticity most elements add nothing and a plastic element only its
     /// plastic points.
+    ///
+    /// `input` holds zero displacements and virgin states (every point
+    /// elastic); the element loop itself, without a global elastic tangent
+    /// yet, computes and scatters every element's full matrix.
     pub fn cache_elastic(&mut self, input: &Inputs<'_>) {
-        let cache: Vec<Vec<f64>> = self
-            .scatter
-            .elements
-            .par_iter()
-            .map_init(
-                || (Workspace::default(), Vec::new()),
-                |(ws, nodes), r| {
-                    let body = &input.mesh.bodies[r.body];
-                    let geom = &input.geometry[r.body];
-                    body.element_nodes(r.element, nodes);
-                    let ngp = geom.gp_per_element();
-                    let zero = vec![0.0; 3 * nodes.len()];
-                    let (mut trial, mut stress) = (vec![PointState::default(); ngp], vec![[0.0; 6]; ngp]);
-                    let committed = vec![PointState::default(); ngp];
-                    // zero displacement and a virgin state: every point is elastic
-                    elements::element_response(
-                        geom,
-                        r.element,
-                        body.section.n_elements(),
-                        &zero,
-                        &input.materials[body.material],
-                        PointData {
-                            committed: &committed,
-                            trial: &mut trial,
-                            stress: &mut stress,
-                            predictor: Predictor::Loading,
-                        },
-                        TangentMode::Always,
-                        ws,
-                    );
-                    let n = 3 * nodes.len();
-                    let mut packed = Vec::with_capacity(n * (n + 1) / 2);
-                    for p in 0..n {
-                        packed.extend_from_slice(&ws.tangent[p * n + p..(p + 1) * n]);
-                    }
-                    packed
-                },
-            )
-            .collect();
+        debug_assert!(input.u.iter().all(|&v| v == 0.0), "the elastic tangent is taken at zero displacement");
+        let n_gp = input.committed.len();
+        let (mut force, mut trial, mut stress) =
+            (vec![0.0; input.u.len()], vec![PointState::default(); n_gp], vec![[0.0; 6]; n_gp]);
         let mut global = vec![0.0; self.pattern.nnz()];
-        for (map, v) in self.scatter.maps.iter().zip(cache.iter().flatten()) {
-            if *map != u32::MAX {
-                global[*map as usize] += v;
-            }
-        }
+        self.elastic_global.clear();
+        self.assemble(
+            input,
+            Outputs { force: &mut force, tangent: Some(&mut global), trial: &mut trial, stress: &mut stress },
+        );
         self.elastic_global = global;
     }
 

@@ -118,15 +118,20 @@ pub fn stick_block(normal: &[f64; 3], normal_penalty: f64, friction: &Friction) 
 ///
 /// (`∂p/∂y = −ε_N n`). `stick_tangent`: the stick derivative even where it
 /// slides (the first iteration of an increment, as for node pairs).
+///
+/// Returned as a [`FrictionResponse`]: `block = −∂t/∂y`, and `slip` the
+/// committed `slip` plus the increment `(t − t*)/ε_T` (zero while sticking).
+#[allow(clippy::too_many_arguments)] // the terms of the return map above; bundling them adds nothing
 pub fn turning_friction(
     v: [f64; 3],
+    slip: [f64; 3],
     normal: &[f64; 3],
     dn: &[[f64; 3]; 3],
     normal_force: f64,
     normal_penalty: f64,
     friction: &Friction,
     stick_tangent: bool,
-) -> ([f64; 3], bool, [[f64; 3]; 3]) {
+) -> FrictionResponse {
     let n = normal;
     let eps_t = friction.penalty_ratio * normal_penalty;
     let nv: f64 = (0..3).map(|k| n[k] * v[k]).sum();
@@ -137,13 +142,15 @@ pub fn turning_friction(
     });
     let norm = (trial[0] * trial[0] + trial[1] * trial[1] + trial[2] * trial[2]).sqrt();
     let limit = friction.coefficient * normal_force.max(0.0);
+    let negated = |m: [[f64; 3]; 3]| m.map(|r| r.map(|x| -x));
     if norm <= limit || norm == 0.0 {
-        return (trial, false, d_trial);
+        return FrictionResponse { force: trial, slip, sliding: false, block: negated(d_trial) };
     }
     let t_hat = trial.map(|x| x / norm);
     let force = t_hat.map(|x| limit * x);
+    let slip = std::array::from_fn(|i| slip[i] + (force[i] - trial[i]) / eps_t);
     if stick_tangent {
-        return (force, true, d_trial);
+        return FrictionResponse { force, slip, sliding: true, block: negated(d_trial) };
     }
     let coupling = if normal_force > 0.0 { friction.coefficient * normal_penalty } else { 0.0 };
     let scale = limit / norm;
@@ -153,7 +160,7 @@ pub fn turning_friction(
             -coupling * t_hat[i] * n[j] + scale * rotate
         })
     });
-    (force, true, d_force)
+    FrictionResponse { force, slip, sliding: true, block: negated(d_force) }
 }
 
 #[cfg(test)]

@@ -82,27 +82,22 @@ impl Structure<'_> {
         point.active = false;
         point.sliding = false;
         point.position = y;
+        point.slip = self.contact_committed[k].slip;
+        self.contact_blocks[k] = [[0.0; 3]; 3];
         let Some((g, n, dn)) = current else {
             // beyond a punch's edge or a roller's end: out of contact
             point.gap = f64::NAN;
-            self.contact_blocks[k] = [[0.0; 3]; 3];
             return was;
         };
         point.gap = g;
         point.normal = n;
-        point.position = y;
-        point.slip = self.contact_committed[k].slip;
         let response = contact::augmented_response(g, &n, c.penalty, point.multiplier);
         point.active = response.is_some();
-        let Some((f, kb)) = response else {
-            self.contact_blocks[k] = [[0.0; 3]; 3];
-            return was;
-        };
+        let Some((mut f, kb)) = response else { return was };
         let p = (0..3).map(|i| f[i] * n[i]).sum::<f64>();
-        let mut f = f;
         let mut block: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| kb[i][j] - p * dn[i][j]));
         if let Some(fr) = friction {
-            // the committed tangential force and position (contact_committed)
+            // from the committed tangential force and position
             let committed = self.contact_committed[k];
             let cn: f64 = (0..3).map(|i| committed.force[i] * committed.normal[i]).sum();
             let eps_t = fr.penalty_ratio * c.penalty;
@@ -110,18 +105,14 @@ impl Structure<'_> {
                 committed.force[i] - cn * committed.normal[i] - eps_t * (y[i] - committed.position[i])
             });
             let stick_tangent = self.first_evaluation || self.predictor == Predictor::Elastic;
-            let (t, sliding, dt) = contact::turning_friction(v, &n, &dn, p, c.penalty, fr, stick_tangent);
-            let trial: [f64; 3] = {
-                let nv: f64 = (0..3).map(|i| n[i] * v[i]).sum();
-                std::array::from_fn(|i| v[i] - n[i] * nv)
-            };
+            let r = contact::turning_friction(v, committed.slip, &n, &dn, p, c.penalty, fr, stick_tangent);
             let point = &mut self.contact[k];
-            point.sliding = sliding;
-            point.slip = std::array::from_fn(|i| committed.slip[i] + (t[i] - trial[i]) / eps_t);
+            point.sliding = r.sliding;
+            point.slip = r.slip;
             for i in 0..3 {
-                f[i] += t[i];
+                f[i] += r.force[i];
                 for j in 0..3 {
-                    block[i][j] -= dt[i][j];
+                    block[i][j] += r.block[i][j];
                 }
             }
         }
@@ -130,12 +121,21 @@ impl Structure<'_> {
             self.f_contact[3 * c.node + i] += f[i];
         }
         self.contact_blocks[k] = block;
-        let sym: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (block[i][j] + block[j][i])));
-        let skew: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (block[i][j] - block[j][i])));
+        let (sym, skew) = split(&block);
         self.assembler.add_node_block(&mut self.tangent, c.node, c.node, &sym);
         self.add_skew(c.node, c.node, &skew, 1.0);
         !was
     }
+}
+
+/// The symmetric and skew parts `(K + Kᵀ)/2`, `(K − Kᵀ)/2` of a contact
+/// block: the first goes into the lower-triangle tangent, the second (a
+/// sliding point's) into the unsymmetric terms of the LU path.
+fn split(k: &[[f64; 3]; 3]) -> ([[f64; 3]; 3], [[f64; 3]; 3]) {
+    (
+        std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (k[i][j] + k[j][i]))),
+        std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (k[i][j] - k[j][i]))),
+    )
 }
 
 /// One contact point's terms: slave node, master node (pairs), the master's
@@ -209,8 +209,7 @@ impl Structure<'_> {
             }
             // the symmetric part into the lower-triangle tangent, the rest
             // (sliding friction) into the unsymmetric terms
-            let sym: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (kb[i][j] + kb[j][i])));
-            let skew: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (kb[i][j] - kb[j][i])));
+            let (sym, skew) = split(&kb);
             self.assembler.add_node_block(&mut self.tangent, slave, slave, &sym);
             self.add_skew(slave, slave, &skew, 1.0);
             if let Some(m) = master {

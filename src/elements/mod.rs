@@ -29,15 +29,24 @@
 //! into a reusable [`Workspace`] and never allocates; the assembly only
 //! scatters what it computes.
 
+mod bbar;
+
 use crate::materials::{Material, PointState, Predictor};
 use crate::values::CellValues;
 pub use crate::values::ElementError;
 use crate::voigt::{Matrix6, Voigt};
+use bbar::volumetric_projection;
 
 /// Reusable buffers of the element kernel (one per thread).
 #[derive(Debug, Clone, Default)]
 pub struct Workspace {
     grads: Vec<[f64; 3]>,
+    /// The gradients as three arrays (x, y, z components).
+    grads_soa: Vec<f64>,
+    /// Element tangent being accumulated, laid out `[col][b][r][a]`.
+    kc: Vec<f64>,
+    /// Sum factorization: `v_τ, v'_τ, h_τ, h'_τ` at one axis point (3 each).
+    contracted: Vec<[f64; 3]>,
     cb: Vec<[f64; 18]>,
     tangents: Vec<Matrix6>,
     /// B-bar: `(b̄_a − g_a)` per Gauss point and node (the correction of
@@ -62,6 +71,8 @@ impl Workspace {
         self.proj_g.resize(4 * 3 * nodes, 0.0);
         self.force.resize(3 * nodes, 0.0);
         self.tangent.resize(9 * nodes * nodes, 0.0);
+        self.kc.resize(9 * nodes * nodes, 0.0);
+        self.grads_soa.resize(3 * nodes, 0.0);
     }
 }
 
@@ -133,10 +144,55 @@ pub fn element_response(
         volumetric_projection(geom, ps, es, eb, nodes, ws);
     }
 
+    // Sum factorization (the tensor-product structure of N_a = F_τ N_i):
+    // the beam direction is contracted first, once per axis point, so that
+    // a Gauss point costs O(n_section) instead of O(n_section · n_beam).
+    //   v_τ = Σ_i N_i u_(i,τ),  v'_τ = Σ_i N_i,y u_(i,τ)  at the axis point;
+    //   ∂u/∂x = Σ_τ F_τ,x v_τ,  ∂u/∂y = Σ_τ F_τ v'_τ,  ∂u/∂z = Σ_τ F_τ,z v_τ;
+    // and the force f_(i,τ) = Σ_q w σ g_a splits the same way:
+    //   h_τ = Σ_gs w (σ_·x F_τ,x + σ_·z F_τ,z),  h'_τ = Σ_gs w σ_·y F_τ,
+    //   f_(i,τ) = Σ_gb N_i h_τ + N_i,y h'_τ.
+    let (ns, nb) = (sg.n_fun, ag.n_fun);
+    ws.contracted.resize(4 * ns, [0.0; 3]);
     for gb in 0..ag.n_gp {
+        let at = ag.point(eb, gb);
+        let (v, rest) = ws.contracted.split_at_mut(ns);
+        let (vy, rest) = rest.split_at_mut(ns);
+        let (h, hy) = rest.split_at_mut(ns);
+        v.fill([0.0; 3]);
+        vy.fill([0.0; 3]);
+        h.fill([0.0; 3]);
+        hy.fill([0.0; 3]);
+        for (i, (&n, &ny)) in at.n.iter().zip(at.ny).enumerate() {
+            let ui = &u[3 * i * ns..3 * (i + 1) * ns];
+            for ((vt, vyt), ua) in v.iter_mut().zip(vy.iter_mut()).zip(ui.chunks_exact(3)) {
+                for k in 0..3 {
+                    vt[k] += n * ua[k];
+                    vyt[k] += ny * ua[k];
+                }
+            }
+        }
         for gs in 0..sg.n_gp {
-            let w = geom.gradients(es, eb, gb, gs, &mut ws.grads[..nodes]);
-            let mut eps = crate::values::strain(&ws.grads[..nodes], u);
+            let sp = sg.point(es, gs);
+            let w = sp.weight * at.weight;
+            // grad[k][d] = ∂u_k/∂x_d
+            let mut grad = [[0.0; 3]; 3];
+            for t in 0..ns {
+                let (fx, f, fz) = (sp.fx[t], sp.f[t], sp.fz[t]);
+                for k in 0..3 {
+                    grad[k][0] += fx * v[t][k];
+                    grad[k][1] += f * vy[t][k];
+                    grad[k][2] += fz * v[t][k];
+                }
+            }
+            let mut eps = [
+                grad[0][0],
+                grad[1][1],
+                grad[2][2],
+                grad[0][1] + grad[1][0],
+                grad[0][2] + grad[2][0],
+                grad[1][2] + grad[2][1],
+            ];
             let q = gb * sg.n_gp + gs;
             if bbar.is_some() {
                 // ε̄ = ε + (θ̄ − θ)/3 · 1 with θ̄ − θ = Σ_a (b̄_a − g_a)·u_a
@@ -168,20 +224,33 @@ pub fn element_response(
             all_elastic &= r.elastic_tangent;
             stats.plastic_points += usize::from(r.plastic);
 
-            // f_a += w B̄_aᵀ σ = w (B_aᵀ σ + d_a tr σ / 3)
+            // rows of the stress tensor times w: σ_k· = (σ_kx, σ_ky, σ_kz)
             let s = r.stress;
-            for (a, g) in ws.grads[..nodes].iter().enumerate() {
-                ws.force[3 * a] += w * (g[0] * s[0] + g[1] * s[3] + g[2] * s[4]);
-                ws.force[3 * a + 1] += w * (g[1] * s[1] + g[0] * s[3] + g[2] * s[5]);
-                ws.force[3 * a + 2] += w * (g[2] * s[2] + g[0] * s[4] + g[1] * s[5]);
+            let sig = [[s[0], s[3], s[4]], [s[3], s[1], s[5]], [s[4], s[5], s[2]]].map(|row| row.map(|x| w * x));
+            for t in 0..ns {
+                let (fx, f, fz) = (sp.fx[t], sp.f[t], sp.fz[t]);
+                for k in 0..3 {
+                    h[t][k] += sig[k][0] * fx + sig[k][2] * fz;
+                    hy[t][k] += sig[k][1] * f;
+                }
             }
             if bbar.is_some() {
+                // f_a += w d_a tr σ / 3
                 let tr = (s[0] + s[1] + s[2]) / 3.0;
                 for a in 0..nodes {
                     let da = ws.bbar[q * nodes + a];
                     for k in 0..3 {
                         ws.force[3 * a + k] += w * tr * da[k];
                     }
+                }
+            }
+        }
+        for i in 0..nb {
+            let (n, ny) = (at.n[i], at.ny[i]);
+            let fi = &mut ws.force[3 * i * ns..3 * (i + 1) * ns];
+            for ((fa, ht), hyt) in fi.chunks_exact_mut(3).zip(h.iter()).zip(hy.iter()) {
+                for k in 0..3 {
+                    fa[k] += n * ht[k] + ny * hyt[k];
                 }
             }
         }
@@ -195,7 +264,7 @@ pub fn element_response(
     if !stats.tangent_computed {
         return stats;
     }
-    ws.tangent.fill(0.0);
+    ws.kc.fill(0.0);
     let correction = mode == TangentMode::UnlessElastic;
     let elastic = material.elastic_stiffness();
     for gb in 0..ag.n_gp {
@@ -236,124 +305,63 @@ pub fn element_response(
                     }
                 }
             }
-            // Fundamental nucleus K_ab += B_aᵀ (C B_b) for a ≤ b (upper blocks).
-            // Slices hoisted out of the loops and the three rows of a block
-            // formed in registers: the compiler then keeps the buffers'
-            // pointers and drops the bounds checks of the inner loop.
-            let tangent = &mut ws.tangent[..ndof * ndof];
-            let grads = &ws.grads[..nodes];
-            let cbs = &ws.cb[..nodes];
+            // Fundamental nucleus K_ab += B̄_aᵀ (C B̄_b) for a ≤ b (upper
+            // blocks), accumulated in `kc` laid out [col][b][r][a] so that the
+            // innermost loop runs over the nodes a with unit stride (it
+            // vectorizes); `ws.tangent` is filled from it once per element.
+            // Row r of B_aᵀ reads the stress rows (xx, xy, xz), (xy, yy, yz),
+            // (xz, yz, zz) with the gradient components (x, y, z).
+            const ROWS: [[usize; 3]; 3] = [[0, 3, 4], [3, 1, 5], [4, 5, 2]];
+            let soa = &mut ws.grads_soa[..3 * nodes];
+            let (gx, rest) = soa.split_at_mut(nodes);
+            let (gy, gz) = rest.split_at_mut(nodes);
+            for (a, g) in ws.grads[..nodes].iter().enumerate() {
+                gx[a] = g[0];
+                gy[a] = g[1];
+                gz[a] = g[2];
+            }
             let dbar = if bbar.is_some() { Some(&ws.bbar[q * nodes..(q + 1) * nodes]) } else { None };
-            for (b, cb) in cbs.iter().enumerate() {
-                // (C B̄_b)ᵀ m / 3 per column, for the B̄_aᵀ = B_aᵀ + d_a mᵀ/3 term
-                let mv: [f64; 3] = std::array::from_fn(|col| (cb[6 * col] + cb[6 * col + 1] + cb[6 * col + 2]) / 3.0);
-                for (a, &[gx, gy, gz]) in grads[..=b].iter().enumerate() {
-                    let da = dbar.map_or([0.0; 3], |d| d[a]);
-                    let mut k = [[0.0; 3]; 3];
-                    for col in 0..3 {
-                        let v: &[f64; 6] = cb[6 * col..6 * col + 6].try_into().expect("six rows");
-                        k[0][col] = gx * v[0] + gy * v[3] + gz * v[4] + da[0] * mv[col];
-                        k[1][col] = gy * v[1] + gx * v[3] + gz * v[5] + da[1] * mv[col];
-                        k[2][col] = gz * v[2] + gx * v[4] + gy * v[5] + da[2] * mv[col];
+            let kc = &mut ws.kc[..ndof * ndof];
+            for (b, cb) in ws.cb[..nodes].iter().enumerate() {
+                for col in 0..3 {
+                    let v: &[f64; 6] = cb[6 * col..6 * col + 6].try_into().expect("six rows");
+                    // (C B̄_b)ᵀ m / 3, for the B̄_aᵀ = B_aᵀ + d_a mᵀ/3 term
+                    let mv = (v[0] + v[1] + v[2]) / 3.0;
+                    let c: [[f64; 3]; 3] = ROWS.map(|rows| rows.map(|i| v[i]));
+                    let blk = &mut kc[(col * nodes + b) * 3 * nodes..][..3 * nodes];
+                    let (o0, rest) = blk.split_at_mut(nodes);
+                    let (o1, o2) = rest.split_at_mut(nodes);
+                    // the three rows r of the blocks share the gradient loads
+                    let outs = o0[..=b].iter_mut().zip(&mut o1[..=b]).zip(&mut o2[..=b]);
+                    for (((k0, k1), k2), ((x, y), z)) in outs.zip(gx[..=b].iter().zip(&gy[..=b]).zip(&gz[..=b])) {
+                        *k0 += x * c[0][0] + y * c[0][1] + z * c[0][2];
+                        *k1 += x * c[1][0] + y * c[1][1] + z * c[1][2];
+                        *k2 += x * c[2][0] + y * c[2][1] + z * c[2][2];
                     }
-                    let base = 3 * a * ndof + 3 * b;
-                    for (r, kr) in k.iter().enumerate() {
-                        let row = &mut tangent[base + r * ndof..base + r * ndof + 3];
-                        row[0] += kr[0];
-                        row[1] += kr[1];
-                        row[2] += kr[2];
+                    if let Some(d) = dbar {
+                        for (r, o) in [o0, o1, o2].into_iter().enumerate() {
+                            for (a, k) in o[..=b].iter_mut().enumerate() {
+                                *k += d[a][r] * mv;
+                            }
+                        }
                     }
+                }
+            }
+        }
+    }
+    // kc → ws.tangent (row-major, node-major DOFs 3a + r, blocks a ≤ b)
+    let nodes3 = 3 * nodes;
+    for b in 0..nodes {
+        for col in 0..3 {
+            for r in 0..3 {
+                let src = &ws.kc[((col * nodes + b) * 3 + r) * nodes..][..=b];
+                for (a, &v) in src.iter().enumerate() {
+                    ws.tangent[(3 * a + r) * nodes3 + 3 * b + col] = v;
                 }
             }
         }
     }
     stats
-}
-
-/// B-bar: fills `ws.bbar` with `d_a(q) = b̄_a(q) − g_a(q)`, where
-/// `b̄_a(q) = Σ_kl ψ_k(q) (M⁻¹)_kl ∫ ψ_l ∇N_a dV` is the gradient whose dot
-/// product with `u_a` gives the projected volumetric strain
-/// `θ̄ = Π div u` on the element's pressure space, `M_kl = ∫ ψ_k ψ_l dV`.
-fn volumetric_projection(
-    geom: &CellValues,
-    ps: &crate::values::PressureSpace,
-    es: usize,
-    eb: usize,
-    nodes: usize,
-    ws: &mut Workspace,
-) {
-    let (sg, ag) = (&geom.section, &geom.axis);
-    let n = ps.n;
-    let mut m = [[0.0; 4]; 4];
-    // G_{k,(a,c)} = ∫ ψ_k ∂N_a/∂x_c
-    let g_mat = &mut ws.proj_g[..n * 3 * nodes];
-    g_mat.fill(0.0);
-    for gb in 0..ag.n_gp {
-        for gs in 0..sg.n_gp {
-            let q = gb * sg.n_gp + gs;
-            let w = geom.gradients(es, eb, gb, gs, &mut ws.grads[..nodes]);
-            let psi = &ps.psi[q * n..(q + 1) * n];
-            for k in 0..n {
-                for l in 0..n {
-                    m[k][l] += w * psi[k] * psi[l];
-                }
-                for (a, g) in ws.grads[..nodes].iter().enumerate() {
-                    for c in 0..3 {
-                        g_mat[k * 3 * nodes + 3 * a + c] += w * psi[k] * g[c];
-                    }
-                }
-            }
-        }
-    }
-    let inv = invert_spd(&m, n);
-    for gb in 0..ag.n_gp {
-        for gs in 0..sg.n_gp {
-            let q = gb * sg.n_gp + gs;
-            geom.gradients(es, eb, gb, gs, &mut ws.grads[..nodes]);
-            let psi = &ps.psi[q * n..(q + 1) * n];
-            // coefficients of θ̄ at q: c_l = Σ_k ψ_k (M⁻¹)_kl
-            let mut cq = [0.0; 4];
-            for l in 0..n {
-                cq[l] = (0..n).map(|k| psi[k] * inv[k][l]).sum();
-            }
-            for a in 0..nodes {
-                let g = ws.grads[a];
-                let mut d = [0.0; 3];
-                for c in 0..3 {
-                    let bbar: f64 = (0..n).map(|l| cq[l] * ws.proj_g[l * 3 * nodes + 3 * a + c]).sum();
-                    d[c] = bbar - g[c];
-                }
-                ws.bbar[q * nodes + a] = d;
-            }
-        }
-    }
-}
-
-/// Inverse of a small symmetric positive definite matrix (the `n × n`
-/// leading block of `m`, n ≤ 4) by Gauss–Jordan elimination.
-fn invert_spd(m: &[[f64; 4]; 4], n: usize) -> [[f64; 4]; 4] {
-    let mut a = *m;
-    let mut inv = [[0.0; 4]; 4];
-    for (i, row) in inv.iter_mut().enumerate().take(n) {
-        row[i] = 1.0;
-    }
-    for i in 0..n {
-        let p = a[i][i];
-        for j in 0..n {
-            a[i][j] /= p;
-            inv[i][j] /= p;
-        }
-        for r in 0..n {
-            if r != i {
-                let f = a[r][i];
-                for j in 0..n {
-                    a[r][j] -= f * a[i][j];
-                    inv[r][j] -= f * inv[i][j];
-                }
-            }
-        }
-    }
-    inv
 }
 
 #[cfg(test)]

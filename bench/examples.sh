@@ -3,13 +3,14 @@
 # build, with increments, Newton iterations, numeric factorizations, solves
 # that reused an earlier factorization (PCG), PCG iterations, the reuse ratio
 # (reused / all solves) and the phase split of the last run; then the peak
-# memory. Usage: bench/examples.sh [N] [CUFEM_BINARY]
+# memory. "f32": factorizations stored in single precision
+# (solver.factor_precision). Usage: bench/examples.sh [N] [CUFEM_BINARY]
 set -euo pipefail
 cd "$(dirname "$0")/.."
 n=${1:-3}
 bin=${2:-./target/release/cufem}
 [ "$bin" = ./target/release/cufem ] && cargo build --release --quiet
-printf "%-24s %7s %9s %5s %5s %5s %6s %6s %6s %8s %8s %8s %8s\n" example DOF "median s" incr iters facts reused krylov reuse% assembly factor solve "peak MiB"
+printf "%-24s %7s %9s %5s %5s %5s %5s %6s %6s %6s %8s %8s %8s %8s\n" example DOF "median s" incr iters facts f32 reused krylov reuse% assembly factor solve "peak MiB"
 for ex in block_indentation bending_compact_4L9 bending_compact_16L9 bending_tube_20L9 bending_tube_28L9 cantilevers_contact; do
   times=()
   for _ in $(seq "$n"); do
@@ -22,7 +23,7 @@ ex, path, *t = sys.argv[1:]
 s = json.load(open(path)); tm = s["timings"]
 facts, reused = tm.get("factorizations", s["newton_iterations"]), tm.get("reused_factorizations", 0)
 print(f"{ex:<24} {s['dof']:>7} {statistics.median(map(float, t)):>9.2f} {s['increments']:>5} {s['newton_iterations']:>5} "
-      f"{facts:>5} {reused:>6} {tm.get('krylov_iterations', 0):>6} {100 * reused / max(facts + reused, 1):>6.0f} "
+      f"{facts:>5} {tm.get('single_factorizations', 0):>5} {reused:>6} {tm.get('krylov_iterations', 0):>6} {100 * reused / max(facts + reused, 1):>6.0f} "
       f"{tm['assembly_s'] + tm['contact_s']:>8.2f} {tm['factorization_s']:>8.2f} {tm['solve_s']:>8.2f} "
       f"{s['memory']['peak_bytes'] / 2**20:>8.0f}")
 PY

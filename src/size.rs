@@ -17,7 +17,8 @@
 //! twice over for the pattern (the assembler's and the solver's copy), and 8
 //! more for the assembled elastic tangent; an
 //! element-matrix entry 4 (scatter index); a
-//! factor entry 8; a Gauss point two states (200 bytes each with three back-stresses) and a stress of 48;
+//! factor entry 8 (in both precisions: a single-precision factor shares
+//! those bytes with the rounded matrix, see `solver::linear`); a Gauss point two states (200 bytes each with three back-stresses) and a stress of 48;
 //! a DOF 64 (eight vectors); the program itself about 8 MiB. Setup transients (node graph, METIS arrays, the
 //! transposed pattern) and output transients (VTU arrays) are freed before
 //! the factor is allocated, so the larger of them is added, not both.

@@ -55,7 +55,10 @@ fn reused_factorization_converges_to_the_full_newton_solution() {
     // small model a factorization costs only ~5 PCG iterations, so the
     // allowance is small and 3 solves fell back)
     assert!(tr.reused >= 5, "reuse path not taken: {tr:?}");
+    // mixed precision (the default): every factor in f32, none fell back
+    assert_eq!((tr.single_factorizations, tr.precision_fallbacks), (tr.factorizations, 0), "{tr:?}");
     assert_eq!(tr.factorizations + tr.reused, iterations(&reuse));
+    assert_eq!(tf.single_factorizations, 0);
 
     let scale = full.u.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let diff = full.u.iter().zip(&reuse.u).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
@@ -66,6 +69,23 @@ fn reused_factorization_converges_to_the_full_newton_solution() {
     let peeq = |s: &Solution| s.states.iter().fold(0.0_f64, |m, p| m.max(p.peeq));
     assert!(peeq(&full) > 1e-4, "the bar must yield");
     assert!((peeq(&full) / peeq(&reuse) - 1.0).abs() < 1e-4, "{} vs {}", peeq(&full), peeq(&reuse));
+}
+
+/// The reuse with double-precision factors (`factor_precision = "double"`)
+/// reaches the same state as the mixed-precision default, within Newton's
+/// tolerance (the same bounds and reasoning as above).
+#[test]
+fn double_and_single_precision_factors_converge_to_the_same_solution() {
+    let double = compact("factor_precision = \"double\"");
+    let single = compact("");
+    assert_eq!(double.timings.single_factorizations, 0);
+    assert!(single.timings.single_factorizations > 0);
+    let scale = double.u.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
+    let diff = double.u.iter().zip(&single.u).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
+    eprintln!("max |u_double − u_single| = {:.2e} of max |u|", diff / scale);
+    assert!(diff <= 1e-6 * scale, "{diff:e} vs {scale:e}");
+    let peeq = |s: &Solution| s.states.iter().fold(0.0_f64, |m, p| m.max(p.peeq));
+    assert!((peeq(&double) / peeq(&single) - 1.0).abs() < 1e-4, "{} vs {}", peeq(&double), peeq(&single));
 }
 
 /// The extrapolated start saves Newton iterations on a smooth loading path:

@@ -34,6 +34,11 @@ pub struct Timings {
     pub krylov_iterations: usize,
     /// Solves where PCG was tried, did not converge, and a factorization followed.
     pub fallbacks: usize,
+    /// Factorizations stored in single precision (mixed precision).
+    pub single_factorizations: usize,
+    /// Single-precision factors that did not precondition their own tangent
+    /// (double precision from then on).
+    pub precision_fallbacks: usize,
 }
 
 /// The resultant reaction of a named constraint set (N): the force of the

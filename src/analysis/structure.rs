@@ -499,6 +499,8 @@ impl NonlinearProblem for Structure<'_> {
         self.timings.reused = stats.reused;
         self.timings.krylov_iterations = stats.krylov_iterations;
         self.timings.fallbacks = stats.fallbacks;
+        self.timings.single_factorizations = stats.single_factorizations;
+        self.timings.precision_fallbacks = stats.precision_fallbacks;
         Ok(self.apply_correction(da2))
     }
 }

@@ -55,6 +55,10 @@ pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
             t.krylov_iterations,
             t.fallbacks
         );
+        println!(
+            "  single-precision factorizations {}, precision fallbacks {}",
+            t.single_factorizations, t.precision_fallbacks
+        );
         println!("  wall time (median)         {}", ms(median(walls)));
         let per_eval = |d: Duration| d / t.evaluations.max(1) as u32;
         let per_fact = |d: Duration| d / t.factorizations.max(1) as u32;

@@ -71,6 +71,11 @@ pub struct TimingSummary {
     pub krylov_iterations: usize,
     /// Solves where PCG did not converge and the tangent was factorized.
     pub fallbacks: usize,
+    /// Factorizations stored in single precision (`solver.factor_precision`).
+    pub single_factorizations: usize,
+    /// Single-precision factors that did not precondition their own tangent
+    /// (the run went on in double precision).
+    pub precision_fallbacks: usize,
 }
 
 /// The summary file.
@@ -263,6 +268,8 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
             reused_factorizations: t.reused,
             krylov_iterations: t.krylov_iterations,
             fallbacks: t.fallbacks,
+            single_factorizations: t.single_factorizations,
+            precision_fallbacks: t.precision_fallbacks,
         },
         memory: MemorySummary { estimated_bytes: solution.memory.total(), peak_bytes: crate::size::peak_memory() },
         warnings: model.warnings.iter().chain(&solution.warnings).map(|w| w.to_string()).collect(),

@@ -105,6 +105,7 @@ pub struct SolverFile {
     pub threads: Option<usize>,
     pub reuse_factorization: Option<bool>,
     pub krylov_tolerance: Option<f64>,
+    pub factor_precision: Option<String>,
 }
 
 /// `[[materials]]`.

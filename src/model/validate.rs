@@ -278,6 +278,17 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
     if max_increments == 0 {
         return Err(invalid("solver.max_increments", 0, "an integer ≥ 1"));
     }
+    let single_precision = match s.factor_precision.as_deref() {
+        None | Some("single") => true,
+        Some("double") => false,
+        Some(other) => {
+            return Err(invalid(
+                "solver.factor_precision",
+                format!("\"{other}\""),
+                "\"single\" (factor in f32, refine by PCG in f64) or \"double\"",
+            ));
+        }
+    };
     if s.threads == Some(0) {
         return Err(invalid("solver.threads", 0, "an integer ≥ 1 (or no key: all cores)"));
     }
@@ -301,6 +312,9 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
         reuse: ReuseSettings {
             enabled: s.reuse_factorization.unwrap_or(true),
             tolerance: tol("krylov_tolerance", s.krylov_tolerance, ReuseSettings::default().tolerance)?,
+            // a linear model factorizes once: in double, solved to round-off
+            // rather than to Newton's tolerance (solver::reuse, mixed precision)
+            single_precision: single_precision && !linear,
             ..ReuseSettings::default()
         },
     })
@@ -362,6 +376,15 @@ mod tests {
         assert!(!off.reuse.enabled && off.reuse.tolerance == 1e-6);
         let e = err(solver_settings(&SolverFile { krylov_tolerance: Some(1.5), ..Default::default() }, false));
         assert!(e.contains("solver.krylov_tolerance = 1.5") && e.contains("(0, 1)"), "{e}");
+        // mixed precision: single by default (in a nonlinear model), "double"
+        // turns it off, other words are named
+        assert!(s.reuse.single_precision);
+        assert!(!solver_settings(&SolverFile::default(), true).unwrap().reuse.single_precision);
+        let double = SolverFile { factor_precision: Some("double".into()), ..Default::default() };
+        assert!(!solver_settings(&double, false).unwrap().reuse.single_precision);
+        let half = SolverFile { factor_precision: Some("half".into()), ..Default::default() };
+        let e = err(solver_settings(&half, false));
+        assert!(e.contains("solver.factor_precision = \"half\"") && e.contains("\"double\""), "{e}");
     }
 
     #[test]

@@ -19,7 +19,7 @@ use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LdltRef, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
     factorize_symbolic_cholesky,
 };
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMatRef};
+use faer::sparse::{SparseColMatRef, SymbolicSparseColMat, SymbolicSparseColMatRef};
 use faer::{Conj, MatMut, Par, Side};
 
 /// Errors of the linear solver.
@@ -34,6 +34,9 @@ pub enum LinearError {
     /// METIS failed.
     #[error("METIS nested dissection failed with status {0}")]
     Metis(i32),
+    /// The factor could not be allocated (bytes).
+    #[error("out of memory: the Cholesky factor needs {0} more bytes than are free")]
+    OutOfMemory(usize),
     /// The problem rejected the correction (it left the range where the
     /// model means anything); the message says why.
     #[error("{0}")]
@@ -89,14 +92,21 @@ impl LowerCsc {
     /// `y = A x` using the lower triangle as a symmetric matrix.
     pub fn mul_symmetric(&self, values: &[f64], x: &[f64], y: &mut [f64]) {
         y.fill(0.0);
-        for c in 0..self.n {
-            for k in self.col_ptr[c]..self.col_ptr[c + 1] {
-                let r = self.row_idx[k];
-                y[r] += values[k] * x[c];
-                if r != c {
-                    y[c] += values[k] * x[r];
+        for (c, cols) in self.col_ptr.windows(2).enumerate() {
+            let (rows, vals) = (&self.row_idx[cols[0]..cols[1]], &values[cols[0]..cols[1]]);
+            let xc = x[c];
+            // the diagonal comes first; the column's own row is accumulated
+            // in a register (the other rows are below it, so never `c`)
+            let mut acc = 0.0;
+            for (&r, &v) in rows.iter().zip(vals) {
+                if r == c {
+                    acc += v * xc;
+                } else {
+                    y[r] += v * xc;
+                    acc += v * x[r];
                 }
             }
+            y[c] += acc;
         }
     }
 }
@@ -104,14 +114,22 @@ impl LowerCsc {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 enum Kind {
     Llt,
+    /// `LLᵀ` stored in single precision (a preconditioner, not a solver).
+    Llt32,
     Ldlt,
 }
 
 /// A reusable sparse Cholesky factorization for a fixed pattern.
 pub struct Cholesky {
     symbolic: SymbolicCholesky<usize>,
-    pattern: LowerCsc,
+    /// The pattern in faer's form, checked once (not at every factorization).
+    pattern: SymbolicSparseColMat<usize>,
+    /// The factor's values: `f64`, or in single precision the `f32` factor
+    /// in the first half of the same bytes and the rounded matrix in the
+    /// second (`nnz(L) ≥ nnz(A)`), so both precisions take the same memory.
     l_values: Vec<f64>,
+    /// Right-hand side rounded to `f32` (single-precision solves).
+    x_single: Vec<f32>,
     mem: Option<MemBuffer>,
     req: StackReq,
     kind: Option<Kind>,
@@ -120,7 +138,7 @@ pub struct Cholesky {
 
 impl std::fmt::Debug for Cholesky {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        f.debug_struct("Cholesky").field("n", &self.pattern.n).field("nnz_l", &self.factor_nnz()).finish()
+        f.debug_struct("Cholesky").field("n", &self.pattern.nrows()).field("nnz_l", &self.factor_nnz()).finish()
     }
 }
 
@@ -147,15 +165,38 @@ impl Cholesky {
         let req = symbolic
             .factorize_numeric_llt_scratch::<f64>(par, Default::default())
             .or(symbolic.factorize_numeric_ldlt_scratch::<f64>(par, Default::default()))
-            .or(symbolic.solve_in_place_scratch::<f64>(1, par));
+            .or(symbolic.solve_in_place_scratch::<f64>(1, par))
+            .or(symbolic.factorize_numeric_llt_scratch::<f32>(par, Default::default()))
+            .or(symbolic.solve_in_place_scratch::<f32>(1, par));
         // the factor and the scratch are allocated at the first factorization,
         // after the caller has checked that they fit (see `crate::size`)
-        Ok(Self { symbolic, pattern: pattern.clone(), l_values: Vec::new(), mem: None, req, kind: None, par })
+        Ok(Self {
+            symbolic,
+            pattern: SymbolicSparseColMat::new_checked(
+                pattern.n,
+                pattern.n,
+                pattern.col_ptr.clone(),
+                None,
+                pattern.row_idx.clone(),
+            ),
+            l_values: Vec::new(),
+            x_single: Vec::new(),
+            mem: None,
+            req,
+            kind: None,
+            par,
+        })
     }
 
     /// True if the present factor is `LLᵀ` (positive definite matrix).
     pub fn is_llt(&self) -> bool {
-        self.kind == Some(Kind::Llt)
+        matches!(self.kind, Some(Kind::Llt | Kind::Llt32))
+    }
+
+    /// True if the present factor is single precision: its solves are
+    /// approximate (relative error about `κ · 6e-8`), a preconditioner.
+    pub fn is_single(&self) -> bool {
+        self.kind == Some(Kind::Llt32)
     }
 
     /// Floating-point operations of one numeric factorization, from the
@@ -194,28 +235,50 @@ impl Cholesky {
     /// Numeric factorization of the matrix with these `values` (in the order
     /// of the pattern's entries). Tries `LLᵀ`, then `LDLᵀ`.
     pub fn factorize(&mut self, values: &[f64]) -> Result<(), LinearError> {
-        let sym = SymbolicSparseColMatRef::new_checked(
-            self.pattern.n,
-            self.pattern.n,
-            &self.pattern.col_ptr,
-            None,
-            &self.pattern.row_idx,
-        );
-        let a = SparseColMatRef::new(sym, values);
+        self.factorize_with(values, false)
+    }
+
+    /// As [`Self::factorize`]; with `single`, first tries `LLᵀ` of the
+    /// values rounded to single precision (half the memory traffic of the
+    /// factorization and of every solve), and factorizes in double only if
+    /// that breaks down.
+    pub fn factorize_with(&mut self, values: &[f64], single: bool) -> Result<(), LinearError> {
+        let sym = self.pattern.as_ref();
         self.kind = None;
-        if self.l_values.len() != self.symbolic.len_val() {
-            self.l_values = vec![0.0; self.symbolic.len_val()];
+        let len = self.symbolic.len_val();
+        if self.l_values.len() != len {
+            self.l_values = zeroed(len)?;
         }
         let req = self.req;
         let mem = self.mem.get_or_insert_with(|| MemBuffer::new(req));
-        let stack = MemStack::new(mem);
+        if single {
+            let (l, a) = bytemuck::cast_slice_mut::<f64, f32>(&mut self.l_values).split_at_mut(len);
+            for (x, &v) in a.iter_mut().zip(values) {
+                *x = v as f32;
+            }
+            let a = SparseColMatRef::new(sym, &a[..values.len()]);
+            let llt = self.symbolic.factorize_numeric_llt::<f32>(
+                l,
+                a,
+                Side::Lower,
+                LltRegularization::default(),
+                self.par,
+                MemStack::new(mem),
+                Default::default(),
+            );
+            if llt.is_ok() {
+                self.kind = Some(Kind::Llt32);
+                return Ok(());
+            }
+        }
+        let a = SparseColMatRef::new(sym, values);
         let llt = self.symbolic.factorize_numeric_llt::<f64>(
             &mut self.l_values,
             a,
             Side::Lower,
             LltRegularization::default(),
             self.par,
-            stack,
+            MemStack::new(mem),
             Default::default(),
         );
         if llt.is_ok() {
@@ -242,21 +305,42 @@ impl Cholesky {
     /// Solves `A x = b` in place (`rhs` holds `b` on entry, `x` on exit).
     /// Fails with [`LinearError::Singular`] if the factor produced non-finite values.
     pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), LinearError> {
-        let n = self.pattern.n;
+        let n = self.pattern.nrows();
         let Some(mem) = self.mem.as_mut() else { return Err(LinearError::Singular) };
         let stack = MemStack::new(mem);
-        let x = MatMut::from_column_major_slice_mut(rhs, n, 1);
         match self.kind {
             Some(Kind::Llt) => {
+                let x = MatMut::from_column_major_slice_mut(rhs, n, 1);
                 LltRef::new(&self.symbolic, &self.l_values).solve_in_place_with_conj(Conj::No, x, self.par, stack)
             }
             Some(Kind::Ldlt) => {
+                let x = MatMut::from_column_major_slice_mut(rhs, n, 1);
                 LdltRef::new(&self.symbolic, &self.l_values).solve_in_place_with_conj(Conj::No, x, self.par, stack)
+            }
+            Some(Kind::Llt32) => {
+                self.x_single.clear();
+                self.x_single.extend(rhs.iter().map(|&v| v as f32));
+                let xs = MatMut::from_column_major_slice_mut(&mut self.x_single, n, 1);
+                let l = &bytemuck::cast_slice::<f64, f32>(&self.l_values)[..self.symbolic.len_val()];
+                LltRef::new(&self.symbolic, l).solve_in_place_with_conj(Conj::No, xs, self.par, stack);
+                for (r, &v) in rhs.iter_mut().zip(&self.x_single) {
+                    *r = v as f64;
+                }
             }
             None => return Err(LinearError::Singular),
         }
         if rhs.iter().all(|v| v.is_finite()) { Ok(()) } else { Err(LinearError::Singular) }
     }
+}
+
+/// A zeroed vector of `n` values, or [`LinearError::OutOfMemory`] rather
+/// than an abort (the factor is allocated at the first factorization, after
+/// the memory check, which other processes may have made stale).
+fn zeroed<T: Clone + Default>(n: usize) -> Result<Vec<T>, LinearError> {
+    let mut v = Vec::new();
+    v.try_reserve_exact(n).map_err(|_| LinearError::OutOfMemory(n.saturating_mul(std::mem::size_of::<T>())))?;
+    v.resize(n, T::default());
+    Ok(v)
 }
 
 /// METIS nested-dissection ordering of a graph given by sorted adjacency

@@ -41,10 +41,6 @@ use bbar::volumetric_projection;
 #[derive(Debug, Clone, Default)]
 pub struct Workspace {
     grads: Vec<[f64; 3]>,
-    /// The gradients as three arrays (x, y, z components).
-    grads_soa: Vec<f64>,
-    /// Element tangent being accumulated, laid out `[col][b][r][a]`.
-    kc: Vec<f64>,
     /// Sum factorization: `v_τ, v'_τ, h_τ, h'_τ` at one axis point (3 each).
     contracted: Vec<[f64; 3]>,
     cb: Vec<[f64; 18]>,
@@ -71,8 +67,6 @@ impl Workspace {
         self.proj_g.resize(4 * 3 * nodes, 0.0);
         self.force.resize(3 * nodes, 0.0);
         self.tangent.resize(9 * nodes * nodes, 0.0);
-        self.kc.resize(9 * nodes * nodes, 0.0);
-        self.grads_soa.resize(3 * nodes, 0.0);
     }
 }
 
@@ -264,7 +258,7 @@ pub fn element_response(
     if !stats.tangent_computed {
         return stats;
     }
-    ws.kc.fill(0.0);
+    ws.tangent.fill(0.0);
     let correction = mode == TangentMode::UnlessElastic;
     let elastic = material.elastic_stiffness();
     for gb in 0..ag.n_gp {
@@ -305,58 +299,33 @@ pub fn element_response(
                     }
                 }
             }
-            // Fundamental nucleus K_ab += B̄_aᵀ (C B̄_b) for a ≤ b (upper
-            // blocks), accumulated in `kc` laid out [col][b][r][a] so that the
-            // innermost loop runs over the nodes a with unit stride (it
-            // vectorizes); `ws.tangent` is filled from it once per element.
-            // Row r of B_aᵀ reads the stress rows (xx, xy, xz), (xy, yy, yz),
-            // (xz, yz, zz) with the gradient components (x, y, z).
-            const ROWS: [[usize; 3]; 3] = [[0, 3, 4], [3, 1, 5], [4, 5, 2]];
-            let soa = &mut ws.grads_soa[..3 * nodes];
-            let (gx, rest) = soa.split_at_mut(nodes);
-            let (gy, gz) = rest.split_at_mut(nodes);
-            for (a, g) in ws.grads[..nodes].iter().enumerate() {
-                gx[a] = g[0];
-                gy[a] = g[1];
-                gz[a] = g[2];
-            }
+            // Fundamental nucleus K_ab += B_aᵀ (C B_b) for a ≤ b (upper blocks).
+            // Slices hoisted out of the loops and the three rows of a block
+            // formed in registers: the compiler then keeps the buffers'
+            // pointers and drops the bounds checks of the inner loop.
+            let tangent = &mut ws.tangent[..ndof * ndof];
+            let grads = &ws.grads[..nodes];
+            let cbs = &ws.cb[..nodes];
             let dbar = if bbar.is_some() { Some(&ws.bbar[q * nodes..(q + 1) * nodes]) } else { None };
-            let kc = &mut ws.kc[..ndof * ndof];
-            for (b, cb) in ws.cb[..nodes].iter().enumerate() {
-                for col in 0..3 {
-                    let v: &[f64; 6] = cb[6 * col..6 * col + 6].try_into().expect("six rows");
-                    // (C B̄_b)ᵀ m / 3, for the B̄_aᵀ = B_aᵀ + d_a mᵀ/3 term
-                    let mv = (v[0] + v[1] + v[2]) / 3.0;
-                    let c: [[f64; 3]; 3] = ROWS.map(|rows| rows.map(|i| v[i]));
-                    let blk = &mut kc[(col * nodes + b) * 3 * nodes..][..3 * nodes];
-                    let (o0, rest) = blk.split_at_mut(nodes);
-                    let (o1, o2) = rest.split_at_mut(nodes);
-                    // the three rows r of the blocks share the gradient loads
-                    let outs = o0[..=b].iter_mut().zip(&mut o1[..=b]).zip(&mut o2[..=b]);
-                    for (((k0, k1), k2), ((x, y), z)) in outs.zip(gx[..=b].iter().zip(&gy[..=b]).zip(&gz[..=b])) {
-                        *k0 += x * c[0][0] + y * c[0][1] + z * c[0][2];
-                        *k1 += x * c[1][0] + y * c[1][1] + z * c[1][2];
-                        *k2 += x * c[2][0] + y * c[2][1] + z * c[2][2];
+            for (b, cb) in cbs.iter().enumerate() {
+                // (C B̄_b)ᵀ m / 3 per column, for the B̄_aᵀ = B_aᵀ + d_a mᵀ/3 term
+                let mv: [f64; 3] = std::array::from_fn(|col| (cb[6 * col] + cb[6 * col + 1] + cb[6 * col + 2]) / 3.0);
+                for (a, &[gx, gy, gz]) in grads[..=b].iter().enumerate() {
+                    let da = dbar.map_or([0.0; 3], |d| d[a]);
+                    let mut k = [[0.0; 3]; 3];
+                    for col in 0..3 {
+                        let v: &[f64; 6] = cb[6 * col..6 * col + 6].try_into().expect("six rows");
+                        k[0][col] = gx * v[0] + gy * v[3] + gz * v[4] + da[0] * mv[col];
+                        k[1][col] = gy * v[1] + gx * v[3] + gz * v[5] + da[1] * mv[col];
+                        k[2][col] = gz * v[2] + gx * v[4] + gy * v[5] + da[2] * mv[col];
                     }
-                    if let Some(d) = dbar {
-                        for (r, o) in [o0, o1, o2].into_iter().enumerate() {
-                            for (a, k) in o[..=b].iter_mut().enumerate() {
-                                *k += d[a][r] * mv;
-                            }
-                        }
+                    let base = 3 * a * ndof + 3 * b;
+                    for (r, kr) in k.iter().enumerate() {
+                        let row = &mut tangent[base + r * ndof..base + r * ndof + 3];
+                        row[0] += kr[0];
+                        row[1] += kr[1];
+                        row[2] += kr[2];
                     }
-                }
-            }
-        }
-    }
-    // kc → ws.tangent (row-major, node-major DOFs 3a + r, blocks a ≤ b)
-    let nodes3 = 3 * nodes;
-    for b in 0..nodes {
-        for col in 0..3 {
-            for r in 0..3 {
-                let src = &ws.kc[((col * nodes + b) * 3 + r) * nodes..][..=b];
-                for (a, &v) in src.iter().enumerate() {
-                    ws.tangent[(3 * a + r) * nodes3 + 3 * b + col] = v;
                 }
             }
         }

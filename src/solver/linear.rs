@@ -256,32 +256,13 @@ impl Cholesky {
             for (x, &v) in a.iter_mut().zip(values) {
                 *x = v as f32;
             }
-            let a = SparseColMatRef::new(sym, &a[..values.len()]);
-            let llt = self.symbolic.factorize_numeric_llt::<f32>(
-                l,
-                a,
-                Side::Lower,
-                LltRegularization::default(),
-                self.par,
-                MemStack::new(mem),
-                Default::default(),
-            );
-            if llt.is_ok() {
+            if llt(&self.symbolic, l, SparseColMatRef::new(sym, &a[..values.len()]), self.par, mem) {
                 self.kind = Some(Kind::Llt32);
                 return Ok(());
             }
         }
         let a = SparseColMatRef::new(sym, values);
-        let llt = self.symbolic.factorize_numeric_llt::<f64>(
-            &mut self.l_values,
-            a,
-            Side::Lower,
-            LltRegularization::default(),
-            self.par,
-            MemStack::new(mem),
-            Default::default(),
-        );
-        if llt.is_ok() {
+        if llt(&self.symbolic, &mut self.l_values, a, self.par, mem) {
             self.kind = Some(Kind::Llt);
             return Ok(());
         }
@@ -331,6 +312,21 @@ impl Cholesky {
         }
         if rhs.iter().all(|v| v.is_finite()) { Ok(()) } else { Err(LinearError::Singular) }
     }
+}
+
+/// Numeric `LLᵀ` of `a` into `l`: true if `a` is positive definite in the
+/// precision of `T`.
+fn llt<T: faer::traits::ComplexField>(
+    symbolic: &SymbolicCholesky<usize>,
+    l: &mut [T],
+    a: SparseColMatRef<'_, usize, T>,
+    par: Par,
+    mem: &mut MemBuffer,
+) -> bool {
+    let stack = MemStack::new(mem);
+    symbolic
+        .factorize_numeric_llt::<T>(l, a, Side::Lower, LltRegularization::default(), par, stack, Default::default())
+        .is_ok()
 }
 
 /// A zeroed vector of `n` values, or [`LinearError::OutOfMemory`] rather

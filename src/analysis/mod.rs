@@ -498,16 +498,31 @@ impl Solution {
     pub fn at_step(&self, model: &Model, k: usize) -> Result<Option<Solution>, AnalysisError> {
         let Some(end) = self.steps.get(k) else { return Ok(None) };
         let Some(fields) = &end.fields else { return Ok(None) };
+        // field by field: `..self.clone()` would copy every step's fields
+        // (and the final ones) only to drop them
         let mut s = Solution {
             u: fields.u.clone(),
             states: fields.states.clone(),
             stresses: fields.stresses.clone(),
+            gp_offsets: self.gp_offsets.clone(),
             lambda: end.lambda,
             reactions: end.reactions.clone(),
             contacts: end.contacts.clone(),
+            contact_sets: self.contact_sets.clone(),
+            applied: self.applied,
+            history: self.history.clone(),
+            increments: self.increments.clone(),
+            cutbacks: self.cutbacks.clone(),
+            failure: self.failure.clone(),
+            equations: self.equations,
+            factor_nnz: self.factor_nnz,
+            plastic_points: self.plastic_points,
+            timings: self.timings,
+            wall_time: self.wall_time,
+            memory: self.memory.clone(),
+            warnings: self.warnings.clone(),
             recovered: None,
             steps: Vec::new(),
-            ..self.clone()
         };
         if model.output.recovery == crate::model::Recovery::Projection {
             s.recovered =

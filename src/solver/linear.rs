@@ -35,7 +35,7 @@ pub enum LinearError {
     #[error("METIS nested dissection failed with status {0}")]
     Metis(i32),
     /// The factor could not be allocated (bytes).
-    #[error("out of memory: the Cholesky factor needs {0} more bytes than are free")]
+    #[error("out of memory: allocating the Cholesky factor ({0} bytes) failed")]
     OutOfMemory(usize),
     /// The problem rejected the correction (it left the range where the
     /// model means anything); the message says why.

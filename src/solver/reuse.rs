@@ -45,8 +45,11 @@
 //! in `f64` for the rest of the run (a *precision fallback*); if `LLᵀ`
 //! breaks down in `f32`, the `f64` factorization follows at once. A solve
 //! whose factor serves further right-hand sides (`must_factor`) factorizes
-//! in `f64`, and so does a linear model (`analysis::structure`: its one
-//! factorization then solves it to round-off, not to Newton's tolerance).
+//! in `f64`, and so does a linear model (the model's settings turn single
+//! precision off there: its one factorization then solves it to round-off,
+//! not to Newton's tolerance). A tangent that is not positive definite but
+//! whose `f32` factorization happens to succeed makes PCG break down: that
+//! too is a precision fallback.
 //!
 //! The converged Newton solution does not depend on the path: each
 //! correction solves the same tangent system to `η` (relative), so Newton

@@ -311,22 +311,35 @@ mod tests {
     use super::*;
     use crate::solver::newton::{Correction, Evaluation};
 
-    /// Softening spring u + 0.5 sin(4u) = λ·F: Newton from the previous
-    /// solution fails for large Δλ near the flat part, cutbacks rescue it.
+    /// A one-DOF spring with internal force `law(u) = (f, ∂f/∂u)` under the
+    /// load `λ · load`.
     struct Spring {
         lambda: f64,
         u: f64,
         u_committed: f64,
         r: f64,
         k: f64,
+        law: fn(f64) -> (f64, f64),
+        load: f64,
+    }
+
+    impl Spring {
+        fn new(law: fn(f64) -> (f64, f64), load: f64) -> Self {
+            Self { lambda: 0.0, u: 0.0, u_committed: 0.0, r: 0.0, k: 0.0, law, load }
+        }
     }
 
     impl NonlinearProblem for Spring {
         type Error = std::io::Error;
         fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
-            self.r = self.u + 0.45 * (4.0 * self.u).sin() - 3.0 * self.lambda;
-            self.k = 1.0 + 1.8 * (4.0 * self.u).cos();
-            Ok(Evaluation { residual_norm: self.r.abs(), force_scale: 3.0 * self.lambda.max(1e-3), settled: true })
+            let (f, k) = (self.law)(self.u);
+            self.r = f - self.load * self.lambda;
+            self.k = k;
+            Ok(Evaluation {
+                residual_norm: self.r.abs(),
+                force_scale: self.load * self.lambda.max(1e-3),
+                settled: true,
+            })
         }
         fn correct(&mut self) -> Result<Correction, Self::Error> {
             let du = -self.r / self.k;
@@ -347,6 +360,11 @@ mod tests {
         }
     }
 
+    /// Softening: u + 0.45 sin(4u) = 3 λ.
+    fn softening(u: f64) -> (f64, f64) {
+        (u + 0.45 * (4.0 * u).sin(), 1.0 + 1.8 * (4.0 * u).cos())
+    }
+
     /// Requests a stop after the first converged increment.
     struct StopAfterFirst(Interrupt);
     impl Observer<Spring> for StopAfterFirst {
@@ -357,7 +375,7 @@ mod tests {
 
     #[test]
     fn an_interrupt_leaves_the_last_converged_increment() {
-        let mut s = Spring { lambda: 0.0, u: 0.0, u_committed: 0.0, r: 0.0, k: 0.0 };
+        let mut s = Spring::new(softening, 3.0);
         let stop = Interrupt::new();
         let steps = StepSettings { initial: 0.1, max: 0.1, ..Default::default() };
         let e = run(&mut s, &steps, &NewtonSettings::default(), &mut StopAfterFirst(stop.clone()), &stop).unwrap_err();
@@ -372,50 +390,20 @@ mod tests {
     /// residual 3e-2 after 8), so with at most 8 the first increment fails
     /// and is cut back; the smaller increments converge and the run reaches
     /// λ = 1 on the exact root.
-    struct Stiffening {
-        lambda: f64,
-        u: f64,
-        u_committed: f64,
-        r: f64,
-        k: f64,
-    }
-
-    impl NonlinearProblem for Stiffening {
-        type Error = std::io::Error;
-        fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
-            self.r = self.u.powi(3) + self.u - 30.0 * self.lambda;
-            self.k = 3.0 * self.u * self.u + 1.0;
-            Ok(Evaluation { residual_norm: self.r.abs(), force_scale: 30.0 * self.lambda.max(1e-3), settled: true })
-        }
-        fn correct(&mut self) -> Result<Correction, Self::Error> {
-            let du = -self.r / self.k;
-            self.u += du;
-            Ok(Correction { norm: du.abs(), increment_norm: (self.u - self.u_committed).abs() })
-        }
-    }
-
-    impl Incremental for Stiffening {
-        fn set_load_factor(&mut self, lambda: f64) {
-            self.lambda = lambda;
-        }
-        fn commit(&mut self) {
-            self.u_committed = self.u;
-        }
-        fn restore(&mut self) {
-            self.u = self.u_committed;
-        }
+    fn stiffening(u: f64) -> (f64, f64) {
+        (u.powi(3) + u, 3.0 * u * u + 1.0)
     }
 
     #[test]
     fn a_too_large_first_increment_is_cut_back_and_the_run_finishes() {
         struct Cuts(usize);
-        impl Observer<Stiffening> for Cuts {
-            fn converged(&mut self, _: &Stiffening, _: &Increment) {}
+        impl Observer<Spring> for Cuts {
+            fn converged(&mut self, _: &Spring, _: &Increment) {}
             fn cut_back(&mut self, _: &Cutback) {
                 self.0 += 1;
             }
         }
-        let mut s = Stiffening { lambda: 0.0, u: 0.0, u_committed: 0.0, r: 0.0, k: 0.0 };
+        let mut s = Spring::new(stiffening, 30.0);
         let steps = StepSettings { initial: 1.0, max: 1.0, ..Default::default() };
         let newton = NewtonSettings { max_iterations: 8, ..Default::default() };
         let mut obs = Cuts(0);

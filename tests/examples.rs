@@ -37,6 +37,9 @@ fn run(name: &str) -> Value {
     } else {
         assert!((0.9..1.25).contains(&(estimated / peak)), "{name}: estimate {estimated:e} B, peak {peak:e} B");
     }
+    // no shipped example needs double-precision factors (README,
+    // "Mixed precision": a fallback would keep the answer but lose the speed)
+    assert_eq!(summary["timings"]["precision_fallbacks"], 0, "{name}: {}", summary["timings"]);
     summary
 }
 

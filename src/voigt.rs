@@ -39,6 +39,20 @@ pub fn add_nodal_strain(eps: &mut Voigt, g: [f64; 3], u: [f64; 3]) {
     eps[5] += g[2] * u[1] + g[1] * u[2];
 }
 
+/// The strain of a displacement gradient `h[k][d] = ∂u_k/∂x_d` (its
+/// symmetric part, engineering shear): the sum of [`add_nodal_strain`] over
+/// nodes, when the gradient is assembled first.
+#[inline]
+pub fn strain_from_gradient(h: &[[f64; 3]; 3]) -> Voigt {
+    [h[0][0], h[1][1], h[2][2], h[0][1] + h[1][0], h[0][2] + h[2][0], h[1][2] + h[2][1]]
+}
+
+/// A stress in Voigt form as the symmetric 3×3 tensor `σ[i][j]`.
+#[inline]
+pub fn stress_tensor(s: &Voigt) -> [[f64; 3]; 3] {
+    [[s[0], s[3], s[4]], [s[3], s[1], s[5]], [s[4], s[5], s[2]]]
+}
+
 /// Trace of a stress or strain tensor (shear convention does not matter).
 #[inline]
 pub fn trace(v: &Voigt) -> f64 {
@@ -117,6 +131,23 @@ pub fn deviatoric_projector() -> Matrix6 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The gradient form agrees with the nodal form it sums (one node with
+    /// gradient g and displacement u has ∂u_k/∂x_d = u_k g_d), and the
+    /// tensor of a stress puts each shear in both of its places.
+    #[test]
+    fn gradient_and_tensor_forms_follow_the_convention() {
+        let (g, u) = ([0.3, -1.1, 2.0], [0.7, 0.2, -0.5]);
+        let mut nodal = [0.0; 6];
+        add_nodal_strain(&mut nodal, g, u);
+        let h: [[f64; 3]; 3] = std::array::from_fn(|k| std::array::from_fn(|d| u[k] * g[d]));
+        let from_gradient = strain_from_gradient(&h);
+        for i in 0..6 {
+            assert!((nodal[i] - from_gradient[i]).abs() < 1e-15, "{nodal:?} {from_gradient:?}");
+        }
+        let t = stress_tensor(&[1.0, 2.0, 3.0, 4.0, 5.0, 6.0]);
+        assert_eq!(t, [[1.0, 4.0, 5.0], [4.0, 2.0, 6.0], [5.0, 6.0, 3.0]]);
+    }
 
     #[test]
     fn uniaxial_stress_von_mises_is_the_stress() {

@@ -122,7 +122,11 @@ fn pressure_error(sol: &Solution) -> (f64, f64, usize) {
 /// below 1e-5 at the end.
 #[test]
 fn patch_test_transmits_a_uniform_pressure_across_non_matching_meshes() {
-    let double = |text: String| text.replace("[solver]\n", "[solver]\nfactor_precision = \"double\"\n");
+    let double = |text: String| {
+        let t = text.replace("[solver]\n", "[solver]\nfactor_precision = \"double\"\n");
+        assert!(t.contains("factor_precision"), "the model has no [solver] table to put the key in");
+        t
+    };
     for keys in ["", "penetration_tolerance = 1e-9"] {
         let (model, sol) = run(&double(stacked_blocks(keys, "") + PRESSURE));
         let (worst, total, active) = pressure_error(&sol);

@@ -179,14 +179,7 @@ pub fn element_response(
                     grad[k][2] += fz * v[t][k];
                 }
             }
-            let mut eps = [
-                grad[0][0],
-                grad[1][1],
-                grad[2][2],
-                grad[0][1] + grad[1][0],
-                grad[0][2] + grad[2][0],
-                grad[1][2] + grad[2][1],
-            ];
+            let mut eps = crate::voigt::strain_from_gradient(&grad);
             let q = gb * sg.n_gp + gs;
             if bbar.is_some() {
                 // ε̄ = ε + (θ̄ − θ)/3 · 1 with θ̄ − θ = Σ_a (b̄_a − g_a)·u_a
@@ -220,7 +213,7 @@ pub fn element_response(
 
             // rows of the stress tensor times w: σ_k· = (σ_kx, σ_ky, σ_kz)
             let s = r.stress;
-            let sig = [[s[0], s[3], s[4]], [s[3], s[1], s[5]], [s[4], s[5], s[2]]].map(|row| row.map(|x| w * x));
+            let sig = crate::voigt::stress_tensor(&s).map(|row| row.map(|x| w * x));
             for t in 0..ns {
                 let (fx, f, fz) = (sp.fx[t], sp.f[t], sp.fz[t]);
                 for k in 0..3 {

@@ -95,8 +95,8 @@ impl LowerCsc {
         for (c, cols) in self.col_ptr.windows(2).enumerate() {
             let (rows, vals) = (&self.row_idx[cols[0]..cols[1]], &values[cols[0]..cols[1]]);
             let xc = x[c];
-            // the diagonal comes first; the column's own row is accumulated
-            // in a register (the other rows are below it, so never `c`)
+            // the column's own row `c` (its diagonal) is accumulated in a
+            // register: every other row of the lower triangle is below it
             let mut acc = 0.0;
             for (&r, &v) in rows.iter().zip(vals) {
                 if r == c {

@@ -13,9 +13,9 @@
 //! resident memory of the shipped examples; see the README).
 //!
 //! Bytes per item, from the data structures of `assembly`, `solver::linear`
-//! and `analysis`: a stored matrix entry costs 8 (row index) + 8 (value),
-//! twice over for the pattern (the assembler's and the solver's copy), and 8
-//! more for the assembled elastic tangent; an
+//! and `analysis`: a stored matrix entry costs 4 (the assembler's row index),
+//! 8 (value), 8 (the solver's row index) and 8 (the assembled elastic
+//! tangent); an
 //! element-matrix entry 4 (scatter index); a
 //! factor entry 8 (in both precisions: a single-precision factor shares
 //! those bytes with the rounded matrix, see `solver::linear`); a Gauss point two states (200 bytes each with three back-stresses) and a stress of 48;
@@ -85,9 +85,9 @@ impl Sizes {
         let s = self;
         let parts = vec![
             ("program and runtime", BASELINE),
-            // row index + value of the assembler and of the solver, and the
-            // assembled elastic tangent an assembly starts from
-            ("tangent pattern and values", s.pattern_nnz.saturating_mul(32)),
+            // the assembler's 32-bit row index and value, the solver's row
+            // index, and the assembled elastic tangent an assembly starts from
+            ("tangent pattern and values", s.pattern_nnz.saturating_mul(28)),
             ("scatter maps", s.element_entries.saturating_mul(4)),
             ("Cholesky factor", s.factor_nnz.saturating_mul(8).saturating_add(s.factor_scratch)),
             // committed and trial states, and the stress

@@ -162,7 +162,7 @@ impl<'m> Structure<'m> {
         let mut dirichlet_entries = Vec::new();
         for c in 0..pattern.n {
             for k in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
-                let r = pattern.row_idx[k];
+                let r = pattern.row_idx[k] as usize;
                 if r != c && (is_prescribed[r] || is_prescribed[c]) {
                     dirichlet_entries.push((k, r, c));
                 }

@@ -138,14 +138,7 @@ fn lower_pattern(dofs: &DofMap, adjacency: &[Vec<usize>]) -> LowerCsc {
             rows.sort_unstable();
         }
     }
-    let mut col_ptr = Vec::with_capacity(dofs.n_eq + 1);
-    let mut row_idx = Vec::with_capacity(columns.iter().map(Vec::len).sum());
-    col_ptr.push(0);
-    for c in columns {
-        row_idx.extend(c);
-        col_ptr.push(row_idx.len());
-    }
-    LowerCsc { n: dofs.n_eq, col_ptr, row_idx }
+    LowerCsc::from_columns(dofs.n_eq, &columns)
 }
 
 #[cfg(test)]

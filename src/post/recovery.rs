@@ -53,14 +53,10 @@ pub fn project(
         let c = eq[a];
         columns[c].extend(adj.iter().map(|&b| eq[b]).filter(|&r| r >= c));
     }
-    let mut col_ptr = vec![0];
-    let mut row_idx = Vec::new();
-    for mut c in columns {
+    for c in &mut columns {
         c.sort_unstable();
-        row_idx.extend(c);
-        col_ptr.push(row_idx.len());
     }
-    let pattern = LowerCsc { n, col_ptr, row_idx };
+    let pattern = LowerCsc::from_columns(n, &columns);
     let mut m = vec![0.0; pattern.nnz()];
     let mut rhs = vec![[0.0; 7]; n];
     let mut nodes = Vec::new();

@@ -51,14 +51,34 @@ pub struct LowerCsc {
     pub n: usize,
     /// Column pointers (`n + 1`).
     pub col_ptr: Vec<usize>,
-    /// Row indices, `row ≥ col`.
-    pub row_idx: Vec<usize>,
+    /// Row indices, `row ≥ col` (32 bits: the product of conjugate gradients
+    /// reads them at every iteration, and a quarter less memory traffic is a
+    /// quarter less time there; equations are far fewer than 2³²).
+    pub row_idx: Vec<u32>,
 }
 
 impl LowerCsc {
+    /// The pattern with these sorted row lists per column.
+    ///
+    /// # Panics
+    /// With 2³² equations or more (a model far beyond any memory: the
+    /// model's size check refuses it first).
+    pub fn from_columns(n: usize, columns: &[Vec<usize>]) -> Self {
+        assert!(u32::try_from(n).is_ok(), "{n} equations: row indices are 32-bit");
+        let mut col_ptr = Vec::with_capacity(n + 1);
+        let mut row_idx = Vec::with_capacity(columns.iter().map(Vec::len).sum());
+        col_ptr.push(0);
+        for c in columns {
+            row_idx.extend(c.iter().map(|&r| r as u32));
+            col_ptr.push(row_idx.len());
+        }
+        Self { n, col_ptr, row_idx }
+    }
+
     /// Position of entry `(row, col)` with `row ≥ col`, if stored.
     pub fn find(&self, row: usize, col: usize) -> Option<usize> {
         let (a, b) = (self.col_ptr[col], self.col_ptr[col + 1]);
+        let row = u32::try_from(row).ok()?;
         self.row_idx[a..b].binary_search(&row).ok().map(|k| a + k)
     }
 
@@ -66,7 +86,7 @@ impl LowerCsc {
     pub fn transpose(&self) -> (Vec<usize>, Vec<usize>) {
         let mut count = vec![0usize; self.n + 1];
         for &r in &self.row_idx {
-            count[r + 1] += 1;
+            count[r as usize + 1] += 1;
         }
         for i in 0..self.n {
             count[i + 1] += count[i];
@@ -76,7 +96,7 @@ impl LowerCsc {
         let mut row_idx = vec![0; self.row_idx.len()];
         for c in 0..self.n {
             for k in self.col_ptr[c]..self.col_ptr[c + 1] {
-                let r = self.row_idx[k];
+                let r = self.row_idx[k] as usize;
                 row_idx[next[r]] = c;
                 next[r] += 1;
             }
@@ -93,20 +113,32 @@ impl LowerCsc {
     pub fn mul_symmetric(&self, values: &[f64], x: &[f64], y: &mut [f64]) {
         y.fill(0.0);
         for (c, cols) in self.col_ptr.windows(2).enumerate() {
-            let (rows, vals) = (&self.row_idx[cols[0]..cols[1]], &values[cols[0]..cols[1]]);
+            if cols[0] == cols[1] {
+                continue;
+            }
+            // the diagonal comes first (rows sorted, row ≥ col)
+            debug_assert_eq!(self.row_idx[cols[0]] as usize, c, "column {c} without its diagonal");
+            let (rows, vals) = (&self.row_idx[cols[0] + 1..cols[1]], &values[cols[0] + 1..cols[1]]);
             let xc = x[c];
-            // the column's own row `c` (its diagonal) is accumulated in a
-            // register: every other row of the lower triangle is below it
-            let mut acc = 0.0;
-            for (&r, &v) in rows.iter().zip(vals) {
-                if r == c {
-                    acc += v * xc;
-                } else {
-                    y[r] += v * xc;
-                    acc += v * x[r];
+            // the column's dot product with x below the diagonal in four
+            // independent sums: one running sum would wait on the latency
+            // of each addition (4 cycles per entry) instead of on memory
+            let mut acc = [0.0; 4];
+            let (rows4, rows_rest) = rows.split_at(rows.len() - rows.len() % 4);
+            let (vals4, vals_rest) = vals.split_at(rows4.len());
+            for (r, v) in rows4.chunks_exact(4).zip(vals4.chunks_exact(4)) {
+                for k in 0..4 {
+                    let r = r[k] as usize;
+                    y[r] += v[k] * xc;
+                    acc[k] += v[k] * x[r];
                 }
             }
-            y[c] += acc;
+            for (&r, &v) in rows_rest.iter().zip(vals_rest) {
+                let r = r as usize;
+                y[r] += v * xc;
+                acc[0] += v * x[r];
+            }
+            y[c] += values[cols[0]] * xc + (acc[0] + acc[1]) + (acc[2] + acc[3]);
         }
     }
 }
@@ -177,7 +209,7 @@ impl Cholesky {
                 pattern.n,
                 pattern.col_ptr.clone(),
                 None,
-                pattern.row_idx.clone(),
+                pattern.row_idx.iter().map(|&r| r as usize).collect(),
             ),
             l_values: Vec::new(),
             x_single: Vec::new(),
@@ -403,7 +435,7 @@ mod tests {
             }
             col_ptr.push(row_idx.len());
         }
-        let pat = LowerCsc { n, col_ptr, row_idx };
+        let pat = LowerCsc { n, col_ptr, row_idx: row_idx.into_iter().map(|r: usize| r as u32).collect() };
         let mut chol = Cholesky::analyze(&pat).unwrap();
         chol.factorize(&vals).unwrap();
         let x_exact: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).sin()).collect();

@@ -64,7 +64,7 @@ impl SparseLu {
         col_ptr.push(0);
         for c in 0..n {
             row_idx.extend(up_idx[up_ptr[c]..up_ptr[c + 1]].iter().copied().filter(|&r| r != c));
-            row_idx.extend_from_slice(&lower.row_idx[lower.col_ptr[c]..lower.col_ptr[c + 1]]);
+            row_idx.extend(lower.row_idx[lower.col_ptr[c]..lower.col_ptr[c + 1]].iter().map(|&r| r as usize));
             col_ptr.push(row_idx.len());
         }
         let find = |r: usize, c: usize| -> Option<usize> {
@@ -74,7 +74,7 @@ impl SparseLu {
         let mut mirror = Vec::with_capacity(lower.nnz());
         for c in 0..n {
             for k in lower.col_ptr[c]..lower.col_ptr[c + 1] {
-                let r = lower.row_idx[k];
+                let r = lower.row_idx[k] as usize;
                 let (Some(p), Some(q)) = (find(r, c), find(c, r)) else {
                     return Err(LinearError::Symbolic(format!("entry ({r}, {c}) missing from the full pattern")));
                 };
@@ -211,7 +211,7 @@ mod tests {
             }
             col_ptr.push(row_idx.len());
         }
-        LowerCsc { n, col_ptr, row_idx }
+        LowerCsc { n, col_ptr, row_idx: row_idx.into_iter().map(|r: usize| r as u32).collect() }
     }
 
     /// An unsymmetric matrix (convection–diffusion-like: −1.5 below, −0.5
@@ -263,7 +263,7 @@ mod tests {
         lu.fill_symmetric(&lower);
         for c in 0..pat.n {
             for k in pat.col_ptr[c]..pat.col_ptr[c + 1] {
-                let r = pat.row_idx[k];
+                let r = pat.row_idx[k] as usize;
                 assert_eq!(lu.values()[lu.find(r, c).unwrap()], lower[k]);
                 assert_eq!(lu.values()[lu.find(c, r).unwrap()], lower[k]);
             }

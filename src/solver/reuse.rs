@@ -371,7 +371,7 @@ mod tests {
             }
             col_ptr.push(row_idx.len());
         }
-        (LowerCsc { n, col_ptr, row_idx }, values)
+        (LowerCsc { n, col_ptr, row_idx: row_idx.into_iter().map(|r: usize| r as u32).collect() }, values)
     }
 
     fn residual(p: &LowerCsc, v: &[f64], x: &[f64], b: &[f64]) -> f64 {
@@ -447,7 +447,10 @@ mod tests {
             values.push(1.0 + d);
             col_ptr.push(row_idx.len());
         }
-        (LowerCsc { n: 2 * deltas.len(), col_ptr, row_idx }, values)
+        (
+            LowerCsc { n: 2 * deltas.len(), col_ptr, row_idx: row_idx.into_iter().map(|r: usize| r as u32).collect() },
+            values,
+        )
     }
 
     /// Mixed precision: the `f32` factor of the present matrix alone solves

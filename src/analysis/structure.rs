@@ -82,8 +82,8 @@ pub struct Structure<'m> {
     contact_blocks: Vec<[[f64; 3]; 3]>,
     /// Per pair contact: the projections and weighted gaps of a surface contact.
     surface_state: Vec<surface::State>,
-    /// `‖R‖ / F` of the last evaluation (the forcing term of a reused
-    /// factorization's PCG solve).
+    /// `‖R‖ / F` of the last evaluation, at most `contacts::UNSETTLED_FORCING` while
+    /// not settled: the forcing term of the next PCG solve.
     relative_residual: f64,
     /// Plastic Gauss points in the last evaluation.
     pub(super) plastic_points: usize,
@@ -463,7 +463,8 @@ impl NonlinearProblem for Structure<'_> {
         res2 += driven_res2;
         let scale = ext2.sqrt().max(con2.sqrt()).max(reac2.sqrt()).max(driven_target2.sqrt());
         let settled = changes == 0 && off <= 1e-12 * size;
-        self.relative_residual = if scale > 0.0 { res2.sqrt() / scale } else { 1.0 };
+        let r = if scale > 0.0 { res2.sqrt() / scale } else { 1.0 };
+        self.relative_residual = if settled { r } else { r.min(contacts::UNSETTLED_FORCING) };
         Ok(Evaluation { residual_norm: res2.sqrt(), force_scale: scale, settled })
     }
 

@@ -369,8 +369,9 @@ mod tests {
             false,
         ));
         assert!(e.contains("solver.min_increment"), "{e}");
-        // reuse of factorizations: on by default, PCG stop at most 1e-2
-        assert!(s.reuse.enabled && s.reuse.tolerance == 1e-2);
+        // reuse of factorizations: on by default, PCG stop at most 0.1
+        // (docs/model-format.md)
+        assert!(s.reuse.enabled && s.reuse.tolerance == 0.1);
         let off = SolverFile { reuse_factorization: Some(false), krylov_tolerance: Some(1e-6), ..Default::default() };
         let off = solver_settings(&off, false).unwrap();
         assert!(!off.reuse.enabled && off.reuse.tolerance == 1e-6);

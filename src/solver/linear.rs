@@ -456,6 +456,32 @@ mod tests {
         }
     }
 
+    /// The symmetric product against a dense one, on columns with 0 to 12
+    /// entries below the diagonal (the four-way split and its remainder
+    /// of 0–3 entries all occur).
+    #[test]
+    fn symmetric_product_equals_the_dense_product() {
+        let n = 13;
+        let entry = |r: usize, c: usize| 1.0 + (r * 7 + c * 3) as f64 / 10.0;
+        // column c holds the diagonal and every row r > c with (r + c) % 3 != 1,
+        // and every row of the first four (12, 11, 10 and 9 entries below)
+        let keep = |r: usize, c: usize| r == c || c < 4 || (r + c) % 3 != 1;
+        let columns: Vec<Vec<usize>> = (0..n).map(|c| (c..n).filter(|&r| keep(r, c)).collect()).collect();
+        let pat = LowerCsc::from_columns(n, &columns);
+        let values: Vec<f64> =
+            columns.iter().enumerate().flat_map(|(c, rows)| rows.iter().map(move |&r| entry(r, c))).collect();
+        let x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).sin() + 0.5).collect();
+        let mut y = vec![f64::NAN; n];
+        pat.mul_symmetric(&values, &x, &mut y);
+        for (i, yi) in y.iter().enumerate() {
+            let dense: f64 =
+                (0..n).filter(|&j| keep(i.max(j), i.min(j))).map(|j| entry(i.max(j), i.min(j)) * x[j]).sum();
+            assert!((yi - dense).abs() <= 1e-13 * dense.abs().max(1.0), "row {i}: {yi} against {dense}");
+        }
+        let below: Vec<usize> = columns.iter().map(|c| c.len() - 1).collect();
+        assert!((0..4).all(|m| below.iter().any(|&b| b >= 4 && b % 4 == m)), "{below:?}");
+    }
+
     #[test]
     fn nested_dissection_is_a_permutation() {
         // 10×10 grid graph

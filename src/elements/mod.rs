@@ -292,15 +292,18 @@ pub fn element_response(
             let c = &ws.tangents[q];
             let dbar = if bbar.is_some() { Some(&ws.bbar[q * nodes..(q + 1) * nodes]) } else { None };
             let col0 = 6 * contributing;
-            for (b, &[gx, gy, gz]) in ws.grads[..nodes].iter().enumerate() {
-                // B̄_b (6×3, Voigt rows of the module docs) plus the B-bar
-                // term m d_bᵀ / 3 on the normal rows
+            for (b, &g) in ws.grads[..nodes].iter().enumerate() {
+                // column k of B̄_b: the strain of a unit displacement u_k of
+                // node b (crate::voigt's order and shear convention) plus the
+                // B-bar term m d_b[k] / 3 on the normal rows
                 let d = dbar.map_or([0.0; 3], |d| d[b]);
-                let bb: [[f64; 6]; 3] = [
-                    [gx + d[0] / 3.0, d[0] / 3.0, d[0] / 3.0, gy, gz, 0.0],
-                    [d[1] / 3.0, gy + d[1] / 3.0, d[1] / 3.0, gx, 0.0, gz],
-                    [d[2] / 3.0, d[2] / 3.0, gz + d[2] / 3.0, 0.0, gx, gy],
-                ];
+                let bb: [Voigt; 3] = std::array::from_fn(|k| {
+                    let mut col = [d[k] / 3.0, d[k] / 3.0, d[k] / 3.0, 0.0, 0.0, 0.0];
+                    let mut unit = [0.0; 3];
+                    unit[k] = 1.0;
+                    crate::voigt::add_nodal_strain(&mut col, g, unit);
+                    col
+                });
                 for (k, col) in bb.iter().enumerate() {
                     let p = (3 * b + k) * stride + col0;
                     ws.bt[p..p + 6].copy_from_slice(col);

@@ -52,20 +52,7 @@ impl ScatterMaps {
                 mesh.bodies[r.body].element_nodes(r.element, &mut nodes);
                 let eq = &dofs.eq;
                 let eqs: Vec<usize> = nodes.iter().flat_map(|&n| (0..3).map(move |c| eq[3 * n + c])).collect();
-                let n = eqs.len();
-                let mut map = Vec::with_capacity(n * (n + 1) / 2);
-                for p in 0..n {
-                    for q in p..n {
-                        let (a, b) = (eqs[p], eqs[q]);
-                        map.push(if a == NO_EQ || b == NO_EQ {
-                            u32::MAX
-                        } else {
-                            // the pattern holds every element coupling by construction (tested)
-                            pattern.find(a.max(b), a.min(b)).expect("element entry in pattern") as u32
-                        });
-                    }
-                }
-                map
+                element_map(&eqs, pattern)
             })
             .collect();
         let mut offsets = Vec::with_capacity(elements.len() + 1);
@@ -83,6 +70,37 @@ impl ScatterMaps {
     pub fn map(&self, ge: usize) -> &[u32] {
         &self.maps[self.offsets[ge]..self.offsets[ge + 1]]
     }
+}
+
+/// The scatter map of one element with equations `eqs` (`NO_EQ` for a
+/// constrained DOF): for each local pair `p ≤ q`, row by row, the position
+/// of entry `(max, min)` of their equations in the pattern, `u32::MAX` for
+/// a constrained DOF. The element's equations are visited in increasing
+/// order, so each global column is walked once, merged with the element's
+/// rows below it (instead of a binary search per entry).
+fn element_map(eqs: &[usize], pattern: &LowerCsc) -> Vec<u32> {
+    let n = eqs.len();
+    // upper-triangle packing, row by row: (p, q ≥ p) ↦ p n − p(p−1)/2 + q − p
+    let packed = |p: usize, q: usize| p * n - p * p.saturating_sub(1) / 2 + q - p;
+    let mut map = vec![u32::MAX; n * (n + 1) / 2];
+    let mut order: Vec<usize> = (0..n).filter(|&p| eqs[p] != NO_EQ).collect();
+    order.sort_unstable_by_key(|&p| eqs[p]);
+    for (i, &a) in order.iter().enumerate() {
+        let col = eqs[a];
+        let (start, end) = (pattern.col_ptr[col], pattern.col_ptr[col + 1]);
+        let rows = &pattern.row_idx[start..end];
+        let mut k = 0;
+        for &b in &order[i..] {
+            let row = eqs[b] as u32;
+            // the pattern holds every element coupling by construction (tested)
+            while rows[k] < row {
+                k += 1;
+            }
+            debug_assert_eq!(rows[k], row, "element entry ({row}, {col}) in pattern");
+            map[packed(a.min(b), a.max(b))] = (start + k) as u32;
+        }
+    }
+    map
 }
 
 /// Colours: greedy colouring of section elements × parity of beam elements.
@@ -123,11 +141,14 @@ mod tests {
 
     /// Elements of one colour share no node (the parallel scatter writes
     /// disjoint entries), every element has exactly one colour, and every
-    /// map entry points at the entry of its own DOF pair.
+    /// map entry points at the entry of its own DOF pair (found by binary
+    /// search here, by a merge walk in `element_map`), or is `u32::MAX` for
+    /// a constrained DOF.
     #[test]
     fn colours_never_share_a_node_and_maps_point_at_their_entries() {
         let mesh = two_body_mesh();
-        let constrained = vec![false; mesh.n_dofs()];
+        // every seventh DOF constrained: the maps mark those entries
+        let constrained: Vec<bool> = (0..mesh.n_dofs()).map(|d| d % 7 == 3).collect();
         let num = crate::assembly::Numbering::new(&mesh, &constrained, &[]).unwrap();
         let s = ScatterMaps::new(&mesh, &num.dofs, &num.pattern);
         let mut coloured = vec![0; s.elements.len()];
@@ -152,7 +173,11 @@ mod tests {
             for p in 0..eqs.len() {
                 for q in p..eqs.len() {
                     let (a, b) = (eqs[p].max(eqs[q]), eqs[p].min(eqs[q]));
-                    assert_eq!(s.map(ge)[k] as usize, num.pattern.find(a, b).unwrap());
+                    if eqs[p] == NO_EQ || eqs[q] == NO_EQ {
+                        assert_eq!(s.map(ge)[k], u32::MAX);
+                    } else {
+                        assert_eq!(s.map(ge)[k] as usize, num.pattern.find(a, b).unwrap());
+                    }
                     k += 1;
                 }
             }

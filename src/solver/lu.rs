@@ -199,19 +199,16 @@ mod tests {
 
     /// Tridiagonal lower pattern with an extra far entry (row 7, col 2).
     fn pattern(n: usize) -> LowerCsc {
-        let mut col_ptr = vec![0];
-        let mut row_idx = Vec::new();
-        for c in 0..n {
-            row_idx.push(c);
-            if c + 1 < n {
-                row_idx.push(c + 1);
-            }
-            if c == 2 && n > 7 {
-                row_idx.push(7);
-            }
-            col_ptr.push(row_idx.len());
-        }
-        LowerCsc { n, col_ptr, row_idx: row_idx.into_iter().map(|r: usize| r as u32).collect() }
+        let columns: Vec<Vec<usize>> = (0..n)
+            .map(|c| {
+                let mut rows: Vec<usize> = (c..(c + 2).min(n)).collect();
+                if c == 2 && n > 7 {
+                    rows.push(7);
+                }
+                rows
+            })
+            .collect();
+        LowerCsc::from_columns(n, &columns)
     }
 
     /// An unsymmetric matrix (convection–diffusion-like: −1.5 below, −0.5

@@ -18,8 +18,10 @@
 //! the solution, are not oversolved. `η_max = 0.1` (the cap matters only
 //! while `r > η_max`, i.e. in the first iteration of an increment): against
 //! `10⁻²` the paper examples need the same Newton iterations within one and
-//! 4–5 fewer factorizations on the tubes (tube 28 L9: 21 → 17, 5.29 →
-//! 4.82 s, one run each; probes equal within 2e-8), because a PCG solve
+//! 4–5 fewer factorizations on the tubes (tube 28 L9, `cufem run` with
+//! `krylov_tolerance` set in the example's `[solver]`, one run each: 21 → 17
+//! factorizations, 5.29 → 4.82 s; probes equal within 2e-8 by
+//! `bench/compare_summaries.py`), because a PCG solve
 //! that stops earlier marks its factor worn less often. (The structure caps
 //! the forcing term at `10⁻²` while contact has not settled:
 //! `analysis::structure`.) PCG may take at most as many iterations
@@ -368,17 +370,10 @@ mod tests {
     /// with diagonal `d[i]` and off-diagonal −1.
     fn tridiagonal(d: &[f64]) -> (LowerCsc, Vec<f64>) {
         let n = d.len();
-        let (mut col_ptr, mut row_idx, mut values) = (vec![0], Vec::new(), Vec::new());
-        for c in 0..n {
-            row_idx.push(c);
-            values.push(d[c]);
-            if c + 1 < n {
-                row_idx.push(c + 1);
-                values.push(-1.0);
-            }
-            col_ptr.push(row_idx.len());
-        }
-        (LowerCsc { n, col_ptr, row_idx: row_idx.into_iter().map(|r: usize| r as u32).collect() }, values)
+        let columns: Vec<Vec<usize>> = (0..n).map(|c| (c..(c + 2).min(n)).collect()).collect();
+        let values: Vec<f64> =
+            columns.iter().zip(d).flat_map(|(rows, &dc)| [dc, -1.0].into_iter().take(rows.len())).collect();
+        (LowerCsc::from_columns(n, &columns), values)
     }
 
     fn residual(p: &LowerCsc, v: &[f64], x: &[f64], b: &[f64]) -> f64 {
@@ -445,19 +440,10 @@ mod tests {
     /// 2×2 blocks `[[1 + δ, −1], [−1, 1 + δ]]` (eigenvalues `δ` and `2 + δ`):
     /// lower pattern and values.
     fn pairs(deltas: &[f64]) -> (LowerCsc, Vec<f64>) {
-        let (mut col_ptr, mut row_idx, mut values) = (vec![0], Vec::new(), Vec::new());
-        for (i, d) in deltas.iter().enumerate() {
-            row_idx.extend([2 * i, 2 * i + 1]);
-            values.extend([1.0 + d, -1.0]);
-            col_ptr.push(row_idx.len());
-            row_idx.push(2 * i + 1);
-            values.push(1.0 + d);
-            col_ptr.push(row_idx.len());
-        }
-        (
-            LowerCsc { n: 2 * deltas.len(), col_ptr, row_idx: row_idx.into_iter().map(|r: usize| r as u32).collect() },
-            values,
-        )
+        let columns: Vec<Vec<usize>> =
+            (0..deltas.len()).flat_map(|i| [vec![2 * i, 2 * i + 1], vec![2 * i + 1]]).collect();
+        let values: Vec<f64> = deltas.iter().flat_map(|d| [1.0 + d, -1.0, 1.0 + d]).collect();
+        (LowerCsc::from_columns(2 * deltas.len(), &columns), values)
     }
 
     /// Mixed precision: the `f32` factor of the present matrix alone solves

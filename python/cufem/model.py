@@ -79,13 +79,16 @@ class Model:
         with `out`, written; a second Ctrl-C raises ``KeyboardInterrupt``.
 
         out: a folder to write the CLI's files into (``cufem run --out``:
-        locked, replaced atomically; `force` as ``--force``).
+        locked, replaced atomically; `force` as ``--force``). A run that
+        stops early never replaces a converged result set there: it writes
+        to ``<out>.partial`` instead (``Results.out`` says where).
         threads: worker threads (default: the model's ``solver.threads``,
         else all cores). progress: print a line per increment to stderr.
         """
         out = os.fspath(out) if out is not None else None
         native = self._native.run(out, force, threads, progress)
-        return Results(native, out)
+        # a run that stopped early beside a converged set writes to out.partial
+        return Results(native, native.written_to or out)
 
     def __repr__(self) -> str:
         c = self._native.check()

@@ -343,16 +343,35 @@ impl NativeModel {
         let _ = worker.join();
         let solution = result.map_err(|e| PyRuntimeError::new_err(format!("analysis failed: {e}")))?;
         let mut files = None;
+        let mut written_to = None;
         if let Some(folder) = folder {
             let model = self.model.clone();
-            let written = py.allow_threads(|| -> Result<Vec<String>, String> {
+            let kept = folder.holds_converged();
+            let target = folder.target().to_path_buf();
+            let written = py.allow_threads(|| -> Result<(Vec<String>, PathBuf), String> {
                 let w = cufem::io::write_results(&model, &solution, folder.staging()).map_err(|e| e.to_string())?;
-                folder.commit().map_err(|e| e.to_string())?;
-                Ok(w.iter().filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())).collect())
+                // a converged set in the folder is never replaced by less
+                let dest = match &solution.failure {
+                    None => folder.commit().map(|()| target),
+                    Some(_) => folder.commit_partial(),
+                }
+                .map_err(|e| e.to_string())?;
+                Ok((w.iter().filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())).collect(), dest))
             });
-            files = Some(written.map_err(PyOSError::new_err)?);
+            let (names, dest) = written.map_err(PyOSError::new_err)?;
+            if solution.failure.is_some() && kept && progress {
+                write_stderr(
+                    py,
+                    &format!(
+                        "the run stopped early: its results are in {} (the converged results were kept)",
+                        dest.display()
+                    ),
+                )?;
+            }
+            files = Some(names);
+            written_to = Some(dest.display().to_string());
         }
-        Ok(NativeResults { model: self.model.clone(), solution: Arc::new(solution), files })
+        Ok(NativeResults { model: self.model.clone(), solution: Arc::new(solution), files, written_to })
     }
 }
 
@@ -363,6 +382,9 @@ struct NativeResults {
     solution: Arc<Solution>,
     /// The files written by `run(out=…)`, if any.
     files: Option<Vec<String>>,
+    /// The folder they went to (`out`, or `out.partial` beside a converged
+    /// set the run did not replace).
+    written_to: Option<String>,
 }
 
 #[pymethods]
@@ -384,6 +406,12 @@ impl NativeResults {
     #[getter]
     fn files(&self) -> Option<Vec<String>> {
         self.files.clone()
+    }
+
+    /// The folder `run(out=…)` wrote to (None if nothing was written).
+    #[getter]
+    fn written_to(&self) -> Option<String> {
+        self.written_to.clone()
     }
 
     /// Every quantity at probe `name` (`u_x` … `peeq`, `e_xx` …), as in summary.json.

@@ -320,26 +320,51 @@ fn print_warnings<'a>(warnings: impl Iterator<Item = &'a cufem::model::Warning>)
 }
 
 /// Installs the Ctrl-C/SIGTERM handling: the first signal requests a stop
-/// at the next safe point, a second one exits at once with code 130.
+/// at the next safe point; a second one removes the staging folders and
+/// lock files of the output folders being written
+/// (`io::output::remove_unfinished`) and exits at once with code 130 — the
+/// output folders keep their previous results.
 fn install_interrupt() -> Result<Interrupt, Failure> {
+    use signal_hook::consts::{SIGINT, SIGTERM};
     let interrupt = Interrupt::new();
-    for signal in [signal_hook::consts::SIGINT, signal_hook::consts::SIGTERM] {
-        // order matters: the conditional exit sees the flag as set only on a second signal
-        signal_hook::flag::register_conditional_shutdown(signal, i32::from(INTERRUPTED), interrupt.flag())
-            .and_then(|_| signal_hook::flag::register(signal, interrupt.flag()))
-            .map_err(|e| fail(INPUT, anyhow!("cannot install the Ctrl-C handler: {e}")))?;
-    }
+    let mut signals = signal_hook::iterator::Signals::new([SIGINT, SIGTERM])
+        .map_err(|e| fail(INPUT, anyhow!("cannot install the Ctrl-C handler: {e}")))?;
+    let flag = interrupt.clone();
+    std::thread::spawn(move || {
+        for _ in signals.forever() {
+            if flag.is_requested() {
+                cufem::io::output::remove_unfinished();
+                eprintln!("\ninterrupted again: stopped at once; the output folder keeps its previous results");
+                std::process::exit(i32::from(INTERRUPTED));
+            }
+            flag.request();
+            eprintln!("\ninterrupt: stopping at the next safe point (Ctrl-C again stops at once, writing nothing)");
+        }
+    });
     Ok(interrupt)
 }
 
+/// Exit for an interrupt that came before the analysis started: nothing
+/// was computed, so nothing is written and any earlier results stay.
+fn interrupted_before_start() -> Result<u8, Failure> {
+    eprintln!("interrupted before the analysis started: nothing written");
+    Ok(INTERRUPTED)
+}
+
 fn run(path: &Path, out: Option<PathBuf>, force: bool, quiet: bool, resources: &Resources) -> Result<u8, Failure> {
+    // first: a Ctrl-C from now on is ours (a signal that killed the process
+    // between preparing the folder and installing the handler would leave
+    // its lock and staging folder behind)
+    let interrupt = install_interrupt()?;
     let model = load(path, resources)?;
     print_warnings(model.warnings.iter());
     configure_threads(resources.threads.or(model.solver.threads), resources.force_threads)?;
     let out = out.unwrap_or_else(|| default_out(path, ""));
+    if interrupt.is_requested() {
+        return interrupted_before_start();
+    }
     // the output folder is checked and locked before any computing
     let folder = OutputDir::prepare(&out, force).map_err(|e| fail(FILES, e))?;
-    let interrupt = install_interrupt()?;
     if !quiet {
         report::print_header(&model);
     }
@@ -351,10 +376,16 @@ fn run(path: &Path, out: Option<PathBuf>, force: bool, quiet: bool, resources: &
     })?;
     progress.finish();
     let written = cufem::io::write_results(&model, &solution, folder.staging()).map_err(|e| fail(FILES, e))?;
-    folder.commit().map_err(|e| fail(FILES, e))?;
+    let kept = folder.holds_converged();
+    let dest = match &solution.failure {
+        None => folder.commit().map(|()| out.clone()),
+        // a converged set in the folder is never replaced by less
+        Some(_) => folder.commit_partial(),
+    }
+    .map_err(|e| fail(FILES, e))?;
     report::print_results(&model, &solution);
     print_warnings(solution.warnings.iter());
-    println!("\nwrote {} files to {}", written.len(), out.display());
+    println!("\nwrote {} files to {}", written.len(), dest.display());
     match &solution.failure {
         None => {
             if interrupt.is_requested() {
@@ -367,8 +398,11 @@ fn run(path: &Path, out: Option<PathBuf>, force: bool, quiet: bool, resources: &
             eprintln!(
                 "results of the last converged increment (load factor {:.4}) are in {}",
                 solution.lambda,
-                out.display()
+                dest.display()
             );
+            if kept {
+                eprintln!("the converged results already in {} were kept as they were", out.display());
+            }
             Ok(if f.reason == StopReason::Interrupted { INTERRUPTED } else { NOT_CONVERGED })
         }
     }

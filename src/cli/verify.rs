@@ -35,6 +35,7 @@ fn find_program(program: &Path) -> Option<PathBuf> {
 }
 
 pub fn run(a: Args) -> Result<u8, Failure> {
+    let interrupt = super::install_interrupt()?;
     let model = super::load(&a.model, &a.resources)?;
     let kind = super::hex_kind(&a.element)?;
     let refine = super::check_refine(a.refine)?;
@@ -50,8 +51,10 @@ pub fn run(a: Args) -> Result<u8, Failure> {
     let threads = a.resources.threads.or(model.solver.threads);
     super::configure_threads(threads, a.resources.force_threads)?;
     let out = a.out.clone().unwrap_or_else(|| super::default_out(&a.model, ""));
+    if interrupt.is_requested() {
+        return super::interrupted_before_start();
+    }
     let folder = OutputDir::prepare(&out, a.force).map_err(|e| fail(FILES, e))?;
-    let interrupt = super::install_interrupt()?;
     if !a.quiet {
         report::print_header(&model);
     }
@@ -65,9 +68,14 @@ pub fn run(a: Args) -> Result<u8, Failure> {
     let cufem_peak = cufem::size::peak_memory();
     cufem::io::write_results(&model, &solution, folder.staging()).map_err(|e| fail(FILES, e))?;
     if let Some(f) = &solution.failure {
-        folder.commit().map_err(|e| fail(FILES, e))?;
-        eprintln!("the cufem analysis stopped early ({f}); nothing to compare: results in {}", out.display());
-        return Ok(NOT_CONVERGED);
+        // a converged set in the folder is never replaced by less
+        let dest = folder.commit_partial().map_err(|e| fail(FILES, e))?;
+        eprintln!("the cufem analysis stopped early ({f}); nothing to compare: results in {}", dest.display());
+        return Ok(if f.reason == cufem::solver::stepping::StopReason::Interrupted {
+            super::INTERRUPTED
+        } else {
+            NOT_CONVERGED
+        });
     }
     let dir = folder.staging().join("verify");
     let ccx_dir = dir.join("ccx");

@@ -18,6 +18,15 @@
 //!   renamed aside, the new one renamed in, the old one deleted: the window
 //!   without a folder is two renames wide, and the old set survives under
 //!   its temporary name.
+//! * **A converged set is never replaced by less.** A run that stopped
+//!   early (not converged, interrupted) commits with
+//!   [`OutputDir::commit_partial`]: if the folder holds a converged result
+//!   set (its summary.json says `"converged": true`), that set is kept byte
+//!   for byte and the partial one goes beside it, into `NAME.partial`
+//!   (replaced as a whole like the folder itself); the caller says where.
+//! * **Nothing left behind.** A second Ctrl-C exits at once, without
+//!   unwinding: [`remove_unfinished`], called by the signal handler first,
+//!   removes the staging folders and lock files of every prepared folder.
 //! * **No stale files, no foreign files touched.** A folder that holds only
 //!   an earlier cufem result (the files named in its summary.json) is
 //!   replaced as a whole, so nothing of the earlier run remains. A folder
@@ -106,7 +115,51 @@ pub struct OutputDir {
     mode: Mode,
     /// Files of the earlier result set (from its summary.json).
     previous: Vec<String>,
+    /// The folder holds a converged result set.
+    holds_converged: bool,
     committed: bool,
+}
+
+/// Staging folders and lock files of the prepared, uncommitted output
+/// folders of this process (for [`remove_unfinished`]).
+static UNFINISHED: std::sync::Mutex<Vec<PathBuf>> = std::sync::Mutex::new(Vec::new());
+
+fn track(paths: &[&Path]) {
+    if let Ok(mut u) = UNFINISHED.lock() {
+        u.extend(paths.iter().map(|p| p.to_path_buf()));
+    }
+}
+
+fn untrack(paths: &[&Path]) {
+    if let Ok(mut u) = UNFINISHED.lock() {
+        u.retain(|p| !paths.contains(&p.as_path()));
+    }
+}
+
+/// Removes the staging folder and lock file of every output folder this
+/// process has prepared and not yet committed or dropped: for a process
+/// about to exit without unwinding (a second Ctrl-C). The output folders
+/// themselves are left as they are (each holds its previous set, or — if
+/// the exchange already happened — the new one).
+pub fn remove_unfinished() {
+    // a poisoned or busy lock only means the main thread is inside a
+    // commit; never block a process that was asked to exit
+    let Ok(paths) = UNFINISHED.try_lock() else { return };
+    for p in paths.iter() {
+        if p.is_dir() {
+            let _ = std::fs::remove_dir_all(p);
+        } else {
+            let _ = std::fs::remove_file(p);
+        }
+    }
+}
+
+/// True if `dir/summary.json` records a converged run.
+fn holds_converged(dir: &Path) -> bool {
+    std::fs::read_to_string(dir.join("summary.json"))
+        .ok()
+        .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+        .is_some_and(|v| v.get("converged").and_then(serde_json::Value::as_bool) == Some(true))
 }
 
 /// The files of the cufem result set in `dir`: those listed in its
@@ -198,7 +251,18 @@ impl OutputDir {
             Mode::InPlace => absolute.join(format!(".cufem-staging-{}", std::process::id())),
         };
         std::fs::create_dir(&staging).map_err(fs_error("cannot create a folder in", &staging))?;
-        Ok(Self { target: absolute, staging, lock_path, _lock: lock, mode, previous, committed: false })
+        track(&[&staging, &lock_path]);
+        let holds_converged = holds_converged(&absolute);
+        Ok(Self {
+            target: absolute,
+            staging,
+            lock_path,
+            _lock: lock,
+            mode,
+            previous,
+            holds_converged,
+            committed: false,
+        })
     }
 
     /// The folder to write the results into.
@@ -215,29 +279,41 @@ impl OutputDir {
     /// docs), then releases the lock.
     pub fn commit(mut self) -> Result<(), OutputError> {
         match self.mode {
-            Mode::Exchange => self.exchange()?,
+            Mode::Exchange => replace(&self.staging, &self.target)?,
             Mode::InPlace => self.in_place()?,
         }
         self.committed = true;
         Ok(())
     }
 
-    fn exchange(&self) -> Result<(), OutputError> {
-        if !self.target.exists() {
-            return std::fs::rename(&self.staging, &self.target)
-                .map_err(fs_error("cannot move results into", &self.target));
+    /// Commits the result set of a run that stopped early: into the output
+    /// folder like [`Self::commit`], unless that folder holds a converged
+    /// result set, which is then kept as it is while the staged set goes
+    /// beside it into `NAME.partial` (module docs). Returns the folder the
+    /// set went to.
+    pub fn commit_partial(mut self) -> Result<PathBuf, OutputError> {
+        if !self.holds_converged {
+            let target = self.target.clone();
+            self.commit()?;
+            return Ok(target);
         }
-        if exchange_paths(&self.staging, &self.target).is_err() {
-            // no atomic exchange here: old aside, new in, old out
-            let aside = self.staging.with_extension("old");
-            std::fs::rename(&self.target, &aside).map_err(fs_error("cannot move aside", &self.target))?;
-            std::fs::rename(&self.staging, &self.target).map_err(fs_error("cannot move results into", &self.target))?;
-            let _ = std::fs::remove_dir_all(&aside);
-            return Ok(());
+        let beside = partial_path(&self.target);
+        if beside.exists() && !(beside.is_dir() && manifest(&beside).is_some()) {
+            // something that is not a cufem result set: never replaced
+            return Err(OutputError::Foreign {
+                dir: beside.display().to_string(),
+                entry: "(not a cufem result set)".into(),
+            });
         }
-        // the staging path now holds the previous result set
-        let _ = std::fs::remove_dir_all(&self.staging);
-        Ok(())
+        replace(&self.staging, &beside)?;
+        self.committed = true;
+        Ok(beside)
+    }
+
+    /// True if the output folder held a converged result set when it was
+    /// prepared.
+    pub fn holds_converged(&self) -> bool {
+        self.holds_converged
     }
 
     fn in_place(&self) -> Result<(), OutputError> {
@@ -267,7 +343,34 @@ impl Drop for OutputDir {
         }
         // removed while still locked: a waiting run re-checks the file it locked
         let _ = std::fs::remove_file(&self.lock_path);
+        untrack(&[&self.staging, &self.lock_path]);
     }
+}
+
+/// `NAME.partial` beside the folder `NAME`.
+pub fn partial_path(target: &Path) -> PathBuf {
+    let mut name = target.file_name().map(|n| n.to_os_string()).unwrap_or_default();
+    name.push(".partial");
+    target.with_file_name(name)
+}
+
+/// Puts the folder `staged` in place of `dest` (module docs: one atomic
+/// exchange where the file system offers it) and deletes what `dest` held.
+fn replace(staged: &Path, dest: &Path) -> Result<(), OutputError> {
+    if !dest.exists() {
+        return std::fs::rename(staged, dest).map_err(fs_error("cannot move results into", dest));
+    }
+    if exchange_paths(staged, dest).is_err() {
+        // no atomic exchange here: old aside, new in, old out
+        let aside = staged.with_extension("old");
+        std::fs::rename(dest, &aside).map_err(fs_error("cannot move aside", dest))?;
+        std::fs::rename(staged, dest).map_err(fs_error("cannot move results into", dest))?;
+        let _ = std::fs::remove_dir_all(&aside);
+        return Ok(());
+    }
+    // the staged path now holds the previous result set
+    let _ = std::fs::remove_dir_all(staged);
+    Ok(())
 }
 
 /// Takes the advisory lock on `path`, making sure the locked file is still

@@ -2,7 +2,7 @@
 """Compares the summary.json of two runs of the shipped paper examples
 (README "Performance": before/after a change must agree within 0.5 %).
 
-Usage: bench/compare_summaries.py PREFIX_A PREFIX_B — the output folder of
+Usage: bench/compare_summaries.py PREFIX_A PREFIX_B [EXAMPLE ...] — the output folder of
 example E is PREFIX + E (bench/examples.sh leaves its last run of each in
 `out/bench_E`; run the other binary with `--out /tmp/ob_E` and pass
 `/tmp/ob_ out/bench_`). Prints per example
@@ -10,7 +10,7 @@ the largest difference of probe values, contact forces and the largest
 peeq, each vector compared against its largest component, and the largest
 difference of the reactions in newtons."""
 import json, sys
-exs="block_indentation bending_compact_4L9 bending_compact_16L9 bending_tube_20L9 bending_tube_28L9 cantilevers_contact".split()
+exs=sys.argv[3:] or "block_indentation bending_compact_4L9 bending_compact_16L9 bending_tube_20L9 bending_tube_28L9 cantilevers_contact".split()
 da, db = sys.argv[1], sys.argv[2]
 def flat(x, pre=""):
     out={}

@@ -19,7 +19,8 @@
 //! element-matrix entry 4 (scatter index); a
 //! factor entry 8 (in both precisions: a single-precision factor shares
 //! those bytes with the rounded matrix, see `solver::linear`); a Gauss point two states (200 bytes each with three back-stresses) and a stress of 48;
-//! a DOF 64 (eight vectors); the program itself about 8 MiB. Setup transients (node graph, METIS arrays, the
+//! a DOF 64 (eight vectors); in a model with friction, the GMRES basis
+//! (`solver::krylov::GmresWork::vectors` of 8 bytes per equation); the program itself about 8 MiB. Setup transients (node graph, METIS arrays, the
 //! transposed pattern) and output transients (VTU arrays) are freed before
 //! the factor is allocated, so the larger of them is added, not both.
 
@@ -52,6 +53,8 @@ pub struct Sizes {
     pub factor_scratch: u64,
     /// Sample points of the VTU output.
     pub vtu_points: u64,
+    /// Vectors of the equations' size held by GMRES (a model with friction; 0 otherwise).
+    pub krylov_vectors: u64,
     /// True once `factor_nnz` comes from the symbolic factorization.
     pub exact: bool,
 }
@@ -93,6 +96,7 @@ impl Sizes {
             // committed and trial states, and the stress
             ("Gauss-point states and stresses", s.gauss_points.saturating_mul(GAUSS_POINT_BYTES)),
             ("vectors", s.dofs.saturating_mul(64)),
+            ("GMRES basis (friction)", s.equations.saturating_mul(8).saturating_mul(s.krylov_vectors)),
         ];
         // node graph (adjacency, its copy, METIS arrays) + transposed pattern
         let setup = s.node_pairs.saturating_mul(20).saturating_add(s.pattern_nnz.saturating_mul(8));

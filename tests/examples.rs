@@ -26,17 +26,16 @@ fn run(name: &str) -> Value {
     let summary: Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["converged"], true, "{name}");
     // the memory estimate made before the analysis against the measured peak
-    // (README: "2 % below to 22 % above"; the band allows for allocator and platform noise)
+    // resident memory, frictional models included (their GMRES basis is in
+    // the estimate). Measured (every shipped example, three runs: two on 2
+    // threads, one on 1; docs/performance.md): estimate / peak from 0.978
+    // to 1.25, one example varying by 5 % between runs (glibc's per-thread
+    // arenas). The band is the issue's −10 % … +30 %: the lower bound is the
+    // guard (an estimate below the peak lets a model through that does not
+    // fit); the old upper bound of 1.25 failed at 1.253 on a busy machine.
     let estimated = summary["memory"]["estimated_bytes"].as_f64().unwrap();
     let peak = summary["memory"]["peak_bytes"].as_f64().unwrap();
-    if name.contains("friction") {
-        // a frictional model factorizes by sparse LU, which the estimate does
-        // not cover (README, Known limitations): measured 1.58e8 against a
-        // peak of 5.88e8 B on the frictional cantilevers
-        eprintln!("{name}: memory estimate {estimated:e} B, peak {peak:e} B (LU not estimated)");
-    } else {
-        assert!((0.9..1.25).contains(&(estimated / peak)), "{name}: estimate {estimated:e} B, peak {peak:e} B");
-    }
+    assert!((0.9..1.3).contains(&(estimated / peak)), "{name}: estimate {estimated:e} B, peak {peak:e} B");
     // no shipped example needs double-precision factors (README,
     // "Mixed precision": a fallback would keep the answer but lose the speed)
     assert_eq!(summary["timings"]["precision_fallbacks"], 0, "{name}: {}", summary["timings"]);
@@ -596,7 +595,8 @@ fn ibeam_roller_elastic_matches_timoshenko() {
 }
 
 /// The two cantilevers with Coulomb friction μ = 0.3 between the beams
-/// (issue 9, item 5; node-to-node contact, sparse LU). Coulomb's law bounds
+/// (issue 9, item 5; node-to-node contact, GMRES on the unsymmetric
+/// tangent). Coulomb's law bounds
 /// the tangential resultant of the interface by μ times its normal
 /// resultant; the interface slides wherever it touches here (measured:
 /// 5.31 kN against 0.300 × 17.68 kN), so the bound is met with equality to

@@ -143,6 +143,9 @@ fn drive(model: &Model, lambdas: &[f64], push: impl Fn(f64) -> f64) -> Vec<State
         assert!(r.converged(), "λ = {l}: {r:?}");
         s.commit();
         let reaction = s.reactions().iter().find(|r| r.name == "push").unwrap().force[0];
+        if std::env::var("DBG").is_ok() {
+            eprintln!("λ {l:.3} {:?}", r.residuals.iter().map(|v| format!("{v:.1e}")).collect::<Vec<_>>());
+        }
         out.push(State { u: push(l), reaction, points: s.contact_points().to_vec(), residuals: r.residuals });
     }
     out
@@ -260,8 +263,11 @@ fn a_pushed_block_unloads_reverses_and_returns_with_the_right_slip() {
 /// The same path with the normal force from a force-controlled floor (top
 /// face held in z): the bordered system now carries the sliding points'
 /// unsymmetric blocks in its border column and row (`structure/force.rs`).
-/// Measured: 82 increments, 165 Newton iterations, as with the pressure;
-/// with the frictionless border (`ε n nᵀ` alone) Newton does not converge
+/// Measured: 82 increments, 168 Newton iterations (the bordered solves are
+/// made to 1e-12, as exact as a direct solve; the pressure-loaded block, whose
+/// solves stop at the forcing term, takes 233 — one more iteration per
+/// increment where an exact solve lands on the solution at once, these
+/// increments being linear); with the frictionless border (`ε n nᵀ` alone) Newton does not converge
 /// in the first press increment (25 iterations, residual growing).
 #[test]
 fn a_pushed_block_on_a_force_controlled_floor_unloads_and_reverses() {
@@ -295,9 +301,15 @@ fn unloads_reverses_and_returns(text: &str, mu: f64, a: f64, n: usize) {
     eprintln!("{} increments, {iterations} Newton iterations", states.len());
     let mut first_forward: Option<&State> = None;
     let mut plateaus = [0, 0];
+    // the reaction is μN up to the equilibrium residual Newton leaves:
+    // below its tolerance (1e-6) times the force scale (the 2,000 N load).
+    // (With the exact LU solves this test was written for, the last step
+    // landed at round-off and 1e-9 of μN held; the iterative solves stop at
+    // the forcing term: measured 2.7e-9 of μN above it.)
+    let slack = NewtonSettings::default().residual_tolerance * 2000.0;
     for (k, st) in states.iter().enumerate() {
         let all = st.points.iter().filter(|p| p.active).all(|p| p.sliding);
-        assert!(st.reaction.abs() <= limit * (1.0 + 1e-9), "U = {:e}: {}", st.u, st.reaction);
+        assert!(st.reaction.abs() <= limit + slack, "U = {:e}: {}", st.u, st.reaction);
         if !all {
             assert!(st.reaction.abs() < limit * (1.0 - 1e-6), "sticking points: below μN");
             continue;
@@ -344,7 +356,7 @@ fn the_frictional_tangent_matches_finite_differences_sticking_and_sliding() {
     use cufem::solver::newton::NonlinearProblem;
     let model = Model::parse(&block_with(0.3, "{ y = 0.0 }", "{ x = 0.0 }", 2e-6, 20, "")).unwrap();
     let mut s = Structure::new(&model, None).unwrap();
-    assert!(s.is_unsymmetric(), "a model with friction solves with LU");
+    assert!(s.is_unsymmetric(), "a model with friction keeps an unsymmetric part");
     // converged at λ = 1.05 but not committed: a point that slid in this
     // increment is strictly outside the cone of its committed slip (after a
     // commit it would sit on the cone, where the derivative is one-sided)
@@ -381,9 +393,12 @@ fn the_frictional_tangent_matches_finite_differences_sticking_and_sliding() {
 /// y, so the return map is nonlinear) the stick/slip set stays the same in
 /// every iteration of an increment, and from the second iteration on (the
 /// first uses the stick predictor) the relative residual falls as
-/// `r_{k+1} ≤ C r_k²`. Observed: 1.4e-1, 2.0e-2, 3.9e-4, 7.5e-7, 5.4e-12
-/// (ratios r_{k+1}/r_k² = 1.0, 1.0, 4.9, 9.6; the round-off floor is
-/// 2e-15). C = 100 bounds ½‖∂²R‖‖K⁻¹‖² in these units with room, and still
+/// `r_{k+1} ≤ C r_k²`. Observed with the exact (LU) solves this test was
+/// written for: 1.4e-1, 2.0e-2, 3.9e-4, 7.5e-7, 5.4e-12 (ratios
+/// r_{k+1}/r_k² = 1.0, 1.0, 4.9, 9.6; the round-off floor is 2e-15); with
+/// GMRES solved to the forcing term η = r (`solver::reuse`, inexact Newton
+/// keeps the order): 1.4e-1, 1.9e-2, 1.4e-3, 7.5e-6, 1.1e-9, 2.5e-15
+/// (ratios 1.0, 3.8, 3.9, 20). C = 100 bounds ½‖∂²R‖‖K⁻¹‖² in these units with room, and still
 /// tells quadratic from linear: a linear rate of even 0.1 at r = 7.5e-7
 /// would give a ratio of 1.3e5.
 #[test]
@@ -413,7 +428,9 @@ fn newton_converges_quadratically_on_the_sliding_plateau() {
     eprintln!("relative residuals {:?}", residuals.iter().map(|v| format!("{v:.2e}")).collect::<Vec<_>>());
     let r = &residuals;
     assert!(r.last().unwrap() < &1e-11, "converged");
-    for k in 1..r.len() - 1 {
+    // below 1e-13 the residual is round-off (floor 2e-15), not Newton's
+    // rate: a step from r = 1.1e-9 lands on the floor, not on 100 r² = 1e-16
+    for k in (1..r.len() - 1).filter(|&k| r[k + 1] > 1e-13) {
         assert!(r[k + 1] <= 100.0 * r[k] * r[k], "r_{} = {:.2e} > 100 r_{}² ({:.2e})", k + 1, r[k + 1], k, r[k]);
     }
 }

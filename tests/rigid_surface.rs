@@ -175,7 +175,7 @@ fn the_exact_gap_friction_tangent_matches_finite_differences() {
 #[test]
 fn a_roller_dragged_with_friction_resists_with_mu_times_the_normal_force() {
     // 16 B4 along the block instead of 32: the resultants, not the pressure
-    // profile, are checked, and the LU path is ten times a Cholesky
+    // profile, are checked
     let text = rolled("surface")
         .replace("displacement = [0.0, 0.0, -2e-5]", "displacement = [0.0, 0.0, -2e-5]\nfriction = 0.3")
         .replace("elements = 32", "elements = 16");

@@ -444,7 +444,7 @@ fn an_initial_gap_closes_and_then_transmits_a_uniform_pressure() {
 
 /// Finite-difference check of the frictional surface-contact tangent
 /// (central differences of the residual against `Structure::tangent_entry`,
-/// symmetric part plus the skew terms of the LU path) at the slave and
+/// symmetric part plus the unsymmetric terms of the GMRES path) at the slave and
 /// master nodes of the non-matching sliding blocks, pushed 0.2 µm so that
 /// the interface partly sticks and partly slides (asserted), solved but not
 /// committed so that sliding points are strictly on their cone. The

@@ -84,6 +84,11 @@ pub fn sizes(model: &Model, numbering: &Numbering, solver: &Cholesky) -> Sizes {
         pattern_nnz: numbering.pattern.nnz() as u64,
         factor_nnz: solver.factor_nnz() as u64,
         factor_scratch: solver.scratch_bytes() as u64,
+        krylov_vectors: if model.has_friction() {
+            crate::solver::krylov::GmresWork::vectors(crate::solver::reuse::GMRES_RESTART) as u64
+        } else {
+            0
+        },
         exact: true,
         ..Default::default()
     };

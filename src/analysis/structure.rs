@@ -28,6 +28,7 @@ use crate::model::steps::{self, Item};
 use crate::size::MemoryEstimate;
 use crate::solver::linear::{Cholesky, LinearError};
 use crate::solver::newton::{Correction, Evaluation, NonlinearProblem};
+use crate::solver::nonsymmetric::NonSymmetric;
 use crate::solver::reuse::ReusingSolver;
 use crate::solver::stepping::Incremental;
 use crate::voigt::Voigt;
@@ -41,9 +42,9 @@ pub struct Structure<'m> {
     /// Numbering, pattern and scatter.
     pub(super) assembler: Assembler,
     solver: ReusingSolver,
-    /// LU of the unsymmetric tangent, for a model with friction (then used
-    /// instead of `solver`).
-    lu: Option<Box<unsymmetric::Unsymmetric>>,
+    /// A model with friction: the unsymmetric rest of the tangent of the
+    /// last evaluation (`structure/unsymmetric.rs`).
+    skew: Option<NonSymmetric>,
     /// Displacements (3 per node).
     pub(super) u: Vec<f64>,
     u_committed: Vec<f64>,
@@ -168,7 +169,7 @@ impl<'m> Structure<'m> {
                 }
             }
         }
-        let lu = unsymmetric::Unsymmetric::for_model(model, &assembler.pattern, &is_prescribed)?;
+        let frictional = model.has_friction();
         let t_cache = Instant::now();
         let states = vec![PointState::default(); n_gp];
         let zero = vec![0.0; n_dofs];
@@ -222,7 +223,7 @@ impl<'m> Structure<'m> {
             gp_offsets,
             assembler,
             solver: ReusingSolver::new(chol, model.solver.reuse),
-            lu,
+            skew: frictional.then(NonSymmetric::default),
             u: vec![0.0; n_dofs],
             u_committed: vec![0.0; n_dofs],
             u_step: vec![0.0; n_dofs],
@@ -469,9 +470,6 @@ impl NonlinearProblem for Structure<'_> {
     }
 
     fn correct(&mut self) -> Result<Correction, LinearError> {
-        if self.lu.is_some() {
-            return self.correct_unsymmetric();
-        }
         for r in &mut self.residual {
             *r = -*r;
         }
@@ -488,6 +486,7 @@ impl NonlinearProblem for Structure<'_> {
             }
             self.tangent[k] = 0.0;
         }
+        self.eliminate_skew();
         for &(_, e, _, _) in &self.prescribed {
             let diag = self.assembler.pattern.col_ptr[e];
             self.residual[e] *= self.tangent[diag];
@@ -528,6 +527,19 @@ impl Incremental for Structure<'_> {
     fn extrapolate(&mut self, ratio: f64) {
         for ((u, c), s) in self.u.iter_mut().zip(&self.u_committed).zip(&self.u_step) {
             *u = c + ratio * s;
+        }
+        // Started on the secant of the last increment, a point that slid is
+        // beyond its cone in the direction it slid, not on it to round-off:
+        // its consistent tangent applies from the first iteration, and the
+        // stick predictor (`structure/contacts.rs`) is kept for increments
+        // that start at the committed state (the first of a load step, where
+        // the loading may reverse). Measured on
+        // examples/cantilevers_contact_friction.toml: the same Newton
+        // iterations (66 against 67), 21 factorizations against 52 (the
+        // predictor's tangent differs from the sliding one at every sliding
+        // point, so no factor served both).
+        if ratio > 0.0 && self.u_step.iter().any(|&s| s != 0.0) {
+            self.first_evaluation = false;
         }
         for d in &mut self.driven {
             d.a = d.a_committed + ratio * d.a_step;

@@ -48,7 +48,8 @@ pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
         );
         let solves = (t.factorizations + t.reused).max(1);
         println!(
-            "  factorizations {}, solves reusing a factorization {} ({:.0} %), PCG iterations {}, fallbacks {}",
+            "  factorizations {}, solves reusing a factorization {} ({:.0} %), Krylov (PCG/GMRES) iterations {}, \
+             fallbacks {}",
             t.factorizations,
             t.reused,
             100.0 * t.reused as f64 / solves as f64,
@@ -67,6 +68,14 @@ pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
         println!("  numeric factorization      {}   per factor.    {}", ms(col(2)), ms(per_fact(col(2))));
         let per_solve = |d: Duration| d / solves as u32;
         println!("  solves (triangular + PCG)  {}   per solve      {}", ms(col(3)), ms(per_solve(col(3))));
+        if let Some(peak) = cufem::size::peak_memory() {
+            let estimate = sol.memory.total();
+            println!(
+                "  peak resident memory       {:>9.1} MiB (estimate {:.1} MiB)",
+                peak as f64 / 1048576.0,
+                estimate as f64 / 1048576.0
+            );
+        }
         return Ok(());
     }
     let mut rows: Vec<[Duration; 8]> = Vec::new();

@@ -27,8 +27,9 @@
 //!
 //! The first slip term (`∂p/∂d = −ε_N nᵀ`: pressing harder raises the
 //! friction force) has no transposed partner: the contact tangent of a
-//! sliding point is unsymmetric, and the structure solves it with
-//! [`crate::solver::lu::SparseLu`]. The second is the rotation of the
+//! sliding point is unsymmetric (returned also on its own as
+//! [`FrictionResponse::coupling`]), and the structure solves it by GMRES
+//! preconditioned with the factor of the rest (`solver::krylov`). The second is the rotation of the
 //! friction force with the trial direction (zero along `t̂`: a sliding
 //! point offers no resistance to more sliding beyond `μ p`).
 
@@ -54,6 +55,12 @@ pub struct FrictionResponse {
     /// `K_T = −∂t/∂d`, row = force component, column = displacement
     /// component; unsymmetric while sliding.
     pub block: [[f64; 3]; 3],
+    /// The pressure coupling `μ ε_N t̂ nᵀ` included in `block` (zero while
+    /// sticking or when the stick tangent is asked for): the term that makes
+    /// the block unsymmetric and its symmetric part indefinite. The
+    /// structure keeps it out of the factorized (symmetric, positive) part
+    /// of the tangent (`analysis::structure::unsymmetric`).
+    pub coupling: [[f64; 3]; 3],
 }
 
 /// Return map of one point (module docs): `d_t = P d` the tangential
@@ -80,6 +87,7 @@ pub fn friction_response(
             slip,
             sliding: false,
             block: stick_block(normal, normal_penalty, friction),
+            coupling: [[0.0; 3]; 3],
         };
     }
     let t_hat = trial.map(|v| v / norm);
@@ -89,10 +97,10 @@ pub fn friction_response(
     let scale = eps_t * limit / norm;
     // ∂p/∂d = −ε_N nᵀ only while p > 0 (p is clamped at zero)
     let coupling = if normal_force > 0.0 { friction.coefficient * normal_penalty } else { 0.0 };
-    let block = std::array::from_fn(|i| {
-        std::array::from_fn(|j| coupling * t_hat[i] * normal[j] + scale * (proj[i][j] - t_hat[i] * t_hat[j]))
-    });
-    FrictionResponse { force, slip: new_slip, sliding: true, block }
+    let coupling: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| coupling * t_hat[i] * normal[j]));
+    let block =
+        std::array::from_fn(|i| std::array::from_fn(|j| coupling[i][j] + scale * (proj[i][j] - t_hat[i] * t_hat[j])));
+    FrictionResponse { force, slip: new_slip, sliding: true, block, coupling }
 }
 
 /// The stick block `ε_T P` (`P = I − n nᵀ`): the tangent of a sticking
@@ -144,13 +152,19 @@ pub fn turning_friction(
     let limit = friction.coefficient * normal_force.max(0.0);
     let negated = |m: [[f64; 3]; 3]| m.map(|r| r.map(|x| -x));
     if norm <= limit || norm == 0.0 {
-        return FrictionResponse { force: trial, slip, sliding: false, block: negated(d_trial) };
+        return FrictionResponse {
+            force: trial,
+            slip,
+            sliding: false,
+            block: negated(d_trial),
+            coupling: [[0.0; 3]; 3],
+        };
     }
     let t_hat = trial.map(|x| x / norm);
     let force = t_hat.map(|x| limit * x);
     let slip = std::array::from_fn(|i| slip[i] + (force[i] - trial[i]) / eps_t);
     if stick_tangent {
-        return FrictionResponse { force, slip, sliding: true, block: negated(d_trial) };
+        return FrictionResponse { force, slip, sliding: true, block: negated(d_trial), coupling: [[0.0; 3]; 3] };
     }
     let coupling = if normal_force > 0.0 { friction.coefficient * normal_penalty } else { 0.0 };
     let scale = limit / norm;
@@ -160,7 +174,8 @@ pub fn turning_friction(
             -coupling * t_hat[i] * n[j] + scale * rotate
         })
     });
-    FrictionResponse { force, slip, sliding: true, block: negated(d_force) }
+    let coupling = std::array::from_fn(|i| std::array::from_fn(|j| coupling * t_hat[i] * n[j]));
+    FrictionResponse { force, slip, sliding: true, block: negated(d_force), coupling }
 }
 
 #[cfg(test)]

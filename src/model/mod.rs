@@ -268,6 +268,11 @@ impl std::fmt::Display for Warning {
 }
 
 impl Model {
+    /// True if any contact has Coulomb friction (its tangent is unsymmetric).
+    pub fn has_friction(&self) -> bool {
+        self.indenters.iter().any(|i| i.friction.is_some()) || self.contacts.iter().any(|c| c.friction.is_some())
+    }
+
     /// Reads and validates a model file.
     pub fn from_file(path: &Path) -> Result<Self, ModelError> {
         Self::from_file_with(path, Limits::machine())

@@ -37,6 +37,14 @@ pub enum LinearError {
     /// The factor could not be allocated (bytes).
     #[error("out of memory: allocating the Cholesky factor ({0} bytes) failed")]
     OutOfMemory(usize),
+    /// GMRES (a model with friction) did not converge within this many
+    /// iterations with the factor of the present tangent's symmetric part.
+    #[error(
+        "the unsymmetric (frictional) tangent was not solved within {0} GMRES iterations preconditioned by its \
+         symmetric part: the friction coupling dominates the structure's stiffness at the sliding points (a lower \
+         contact penalty or friction coefficient, or smaller increments, may help)"
+    )]
+    KrylovStalled(usize),
     /// The problem rejected the correction (it left the range where the
     /// model means anything); the message says why.
     #[error("{0}")]

@@ -1,9 +1,10 @@
 //! Solvers: the sparse direct linear solver (and its reuse as a
 //! preconditioner), Newton–Raphson, and load stepping with cutbacks.
 
+pub mod krylov;
 pub mod linear;
-pub mod lu;
 pub mod newton;
+pub mod nonsymmetric;
 pub mod reuse;
 pub mod stepping;
 

@@ -66,7 +66,9 @@
 
 use std::time::{Duration, Instant};
 
+use super::krylov::{self, GmresWork, Krylov, pcg};
 use super::linear::{Cholesky, LinearError, LowerCsc};
+use super::nonsymmetric::NonSymmetric;
 
 /// How many times faster (in flops per second) the dense kernels of a
 /// supernodal factorization run than the memory-bound triangular solves and
@@ -75,6 +77,30 @@ use super::linear::{Cholesky, LinearError, LowerCsc};
 /// against their flop ratio): tube 28 L9 11.6, cantilevers 13, block 8.3,
 /// compact bar 4 L9 2–4 (small supernodes run slower).
 pub const FLOP_RATE_RATIO: f64 = 10.0;
+
+/// GMRES restart length (a model with friction): the basis holds this many
+/// vectors of the equations' size (counted in the memory estimate).
+pub const GMRES_RESTART: usize = 30;
+
+/// Most GMRES iterations with the factor of the present symmetric part
+/// before the solve is reported as failed (`LinearError::KrylovStalled`;
+/// Newton then cuts the increment back).
+pub const GMRES_MAX_FRESH: usize = 200;
+
+/// Relative residual of the GMRES solves that stand in for exact ones (the
+/// bordered solves of force control).
+pub const EXACT: f64 = 1e-12;
+
+/// Largest forcing term of a GMRES solve (a model whose points slide with
+/// friction): below the symmetric path's `η_max`. Sliding makes the
+/// residual only piecewise smooth, and steps solved to 0.1 or 1e-2 cost
+/// Newton iterations that cost more (an assembly each, with surface
+/// contact) than the GMRES iterations they save: measured (`cufem run`, one
+/// run each) on examples/cantilevers_contact_nonmatching_friction.toml 90
+/// Newton iterations with no cap below η_max, 76 with 1e-2, 66 with 1e-3
+/// (the frictionless twin: 72), and 67 → 63 on
+/// examples/cantilevers_contact_friction.toml, at equal or lower time.
+pub const UNSYMMETRIC_FORCING: f64 = 1e-3;
 
 /// Controls of the reuse.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -146,6 +172,11 @@ pub struct ReusingSolver {
     /// PCG iterations allowed per solve (fixed by the pattern: computed once).
     allowed: Option<usize>,
     work: [Vec<f64>; 5],
+    /// GMRES storage (a model with friction).
+    gmres: GmresWork,
+    /// GMRES iterations of the last solve with a fresh factor: what the
+    /// skew part alone costs (the reuse allowance comes on top).
+    fresh_iterations: usize,
     /// Factorize in single precision (until a single factor fails to precondition).
     single: bool,
 }
@@ -162,6 +193,8 @@ impl ReusingSolver {
             skip: false,
             allowed: None,
             work: Default::default(),
+            gmres: GmresWork::default(),
+            fresh_iterations: 0,
             single: settings.enabled && settings.single_precision,
         }
     }
@@ -203,16 +236,16 @@ impl ReusingSolver {
             let elapsed = t.elapsed();
             self.stats.solve_time += elapsed;
             let its = match outcome {
-                Pcg::Converged(k) | Pcg::NotConverged(k) => k,
+                Krylov::Converged(k) | Krylov::NotConverged(k) => k,
             };
             self.stats.krylov_iterations += its;
             match outcome {
-                Pcg::Converged(k) => {
+                Krylov::Converged(k) => {
                     self.stats.reused += 1;
                     self.worn = 2 * k > allowed;
                     return Ok(SolveKind::Reused(k));
                 }
-                Pcg::NotConverged(k) => {
+                Krylov::NotConverged(k) => {
                     self.stats.fallbacks += 1;
                     kind = SolveKind::FellBack(k);
                 }
@@ -233,12 +266,12 @@ impl ReusingSolver {
             let outcome = pcg(pattern, values, &mut self.chol, rhs, eta, allowed, &mut self.work)?;
             self.stats.solve_time += t.elapsed();
             match outcome {
-                Pcg::Converged(k) => {
+                Krylov::Converged(k) => {
                     self.stats.krylov_iterations += k;
                     self.worn = 2 * k > allowed;
                     return Ok(kind);
                 }
-                Pcg::NotConverged(k) => {
+                Krylov::NotConverged(k) => {
                     // too ill-conditioned for single precision: double from now on
                     self.stats.krylov_iterations += k;
                     self.stats.precision_fallbacks += 1;
@@ -272,6 +305,115 @@ impl ReusingSolver {
         Ok(())
     }
 
+    /// Solves `(A + S) x = b` for the symmetric `A` (lower-triangle
+    /// `values` on `pattern`) plus the unsymmetric entries `skew` (a model
+    /// with friction, `solver::krylov`): GMRES preconditioned by the factor
+    /// of a symmetric part, with the reuse policy of [`Self::solve`]. A
+    /// solve with the last factor may take the iterations its fresh factor
+    /// needed plus the cost of a factorization; if it does not converge, the
+    /// present `A` is factorized and GMRES runs with it (at most
+    /// [`GMRES_MAX_FRESH`] iterations; a single-precision factor that fails
+    /// is replaced by a double one). Without skew entries this is
+    /// [`Self::solve`]. With `must_factor` the factor is of the present `A`
+    /// in double precision, for [`Self::solve_again_unsymmetric`].
+    pub fn solve_unsymmetric(
+        &mut self,
+        pattern: &LowerCsc,
+        values: &[f64],
+        skew: &NonSymmetric,
+        rhs: &mut [f64],
+        forcing: f64,
+        must_factor: bool,
+    ) -> Result<SolveKind, LinearError> {
+        if skew.is_empty() {
+            return self.solve(pattern, values, rhs, forcing, must_factor);
+        }
+        let try_reuse = self.settings.enabled && self.has_factor && !self.worn && !self.skip && !must_factor;
+        self.skip = false;
+        // the bordering (`must_factor`) combines this solution with further
+        // ones of the same matrix: all of them as exact as the direct solves
+        // of the symmetric path
+        let eta = if must_factor { EXACT } else { self.stop(forcing).min(UNSYMMETRIC_FORCING) };
+        let mut kind = SolveKind::Factorized;
+        if try_reuse {
+            let allowed = self.allowed_iterations(pattern);
+            let budget = allowed + self.fresh_iterations;
+            let outcome = self.gmres(pattern, values, skew, rhs, eta, budget)?;
+            match outcome {
+                Krylov::Converged(k) => {
+                    self.stats.reused += 1;
+                    self.worn = k > self.fresh_iterations + allowed / 2;
+                    return Ok(SolveKind::Reused(k));
+                }
+                Krylov::NotConverged(k) => {
+                    self.stats.fallbacks += 1;
+                    kind = SolveKind::FellBack(k);
+                }
+            }
+        }
+        self.skip = matches!(kind, SolveKind::FellBack(_));
+        self.factorize(values, self.single && !must_factor)?;
+        loop {
+            match self.gmres(pattern, values, skew, rhs, eta, GMRES_MAX_FRESH)? {
+                Krylov::Converged(k) => {
+                    self.fresh_iterations = k;
+                    return Ok(kind);
+                }
+                Krylov::NotConverged(_) if self.chol.is_single() => {
+                    self.stats.precision_fallbacks += 1;
+                    self.single = false;
+                    self.factorize(values, false)?;
+                }
+                Krylov::NotConverged(k) => return Err(LinearError::KrylovStalled(k)),
+            }
+        }
+    }
+
+    /// After [`Self::solve_unsymmetric`] with `must_factor`: solves a further
+    /// right-hand side of the same system to [`EXACT`] (relative).
+    pub fn solve_again_unsymmetric(
+        &mut self,
+        pattern: &LowerCsc,
+        values: &[f64],
+        skew: &NonSymmetric,
+        rhs: &mut [f64],
+    ) -> Result<(), LinearError> {
+        if skew.is_empty() {
+            return self.solve_again(rhs);
+        }
+        match self.gmres(pattern, values, skew, rhs, EXACT, GMRES_MAX_FRESH)? {
+            Krylov::Converged(_) => Ok(()),
+            Krylov::NotConverged(k) => Err(LinearError::KrylovStalled(k)),
+        }
+    }
+
+    /// One GMRES solve with the present factor, counted and timed.
+    fn gmres(
+        &mut self,
+        pattern: &LowerCsc,
+        values: &[f64],
+        skew: &NonSymmetric,
+        rhs: &mut [f64],
+        eta: f64,
+        max_iterations: usize,
+    ) -> Result<Krylov, LinearError> {
+        let t = Instant::now();
+        let outcome = krylov::gmres(
+            pattern,
+            values,
+            skew,
+            &mut self.chol,
+            rhs,
+            eta,
+            max_iterations,
+            GMRES_RESTART,
+            &mut self.gmres,
+        )?;
+        self.stats.solve_time += t.elapsed();
+        self.stats.krylov_iterations += outcome.iterations();
+        Ok(outcome)
+    }
+
     /// Solves with the factor of the last [`Self::solve`] that factorized
     /// (call it after `solve(.., must_factor = true)` for further
     /// right-hand sides of the same matrix).
@@ -293,233 +435,6 @@ impl ReusingSolver {
     }
 }
 
-/// Result of [`pcg`].
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Pcg {
-    /// Converged after this many iterations (`rhs` holds the solution).
-    Converged(usize),
-    /// Stopped after this many iterations (`rhs` holds `b` again).
-    NotConverged(usize),
-}
-
-/// Preconditioned conjugate gradients for the symmetric matrix (`pattern`,
-/// lower-triangle `values`) with the factor in `precond`, from `x₀ = 0`, to
-/// `‖b − A x‖ ≤ tol ‖b‖` within `max_iterations`. `rhs` holds `b` on entry;
-/// on convergence it holds `x`, otherwise `b` unchanged. Stops early on a
-/// breakdown (`pᵀ A p ≤ 0`).
-pub fn pcg(
-    pattern: &LowerCsc,
-    values: &[f64],
-    precond: &mut Cholesky,
-    rhs: &mut [f64],
-    tol: f64,
-    max_iterations: usize,
-    work: &mut [Vec<f64>; 5],
-) -> Result<Pcg, LinearError> {
-    let n = rhs.len();
-    for w in work.iter_mut() {
-        w.resize(n, 0.0);
-    }
-    let [x, r, z, p, q] = work;
-    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(u, v)| u * v).sum::<f64>();
-    let b_norm = dot(rhs, rhs).sqrt();
-    if b_norm == 0.0 {
-        return Ok(Pcg::Converged(0));
-    }
-    x.fill(0.0);
-    r.copy_from_slice(rhs);
-    z.copy_from_slice(r);
-    precond.solve_in_place(z)?;
-    p.copy_from_slice(z);
-    let mut rz = dot(r, z);
-    for k in 1..=max_iterations {
-        pattern.mul_symmetric(values, p, q);
-        let pq = dot(p, q);
-        if !(pq > 0.0) || !(rz > 0.0) {
-            return Ok(Pcg::NotConverged(k - 1));
-        }
-        let alpha = rz / pq;
-        for i in 0..n {
-            x[i] += alpha * p[i];
-            r[i] -= alpha * q[i];
-        }
-        if dot(r, r).sqrt() <= tol * b_norm {
-            rhs.copy_from_slice(x);
-            return Ok(Pcg::Converged(k));
-        }
-        if k == max_iterations {
-            return Ok(Pcg::NotConverged(k));
-        }
-        z.copy_from_slice(r);
-        precond.solve_in_place(z)?;
-        let rz_new = dot(r, z);
-        let beta = rz_new / rz;
-        rz = rz_new;
-        for i in 0..n {
-            p[i] = z[i] + beta * p[i];
-        }
-    }
-    Ok(Pcg::NotConverged(max_iterations))
-}
-
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Lower pattern of a 1D Laplacian-like tridiagonal SPD matrix of size n
-    /// with diagonal `d[i]` and off-diagonal −1.
-    fn tridiagonal(d: &[f64]) -> (LowerCsc, Vec<f64>) {
-        let n = d.len();
-        let columns: Vec<Vec<usize>> = (0..n).map(|c| (c..(c + 2).min(n)).collect()).collect();
-        let values: Vec<f64> =
-            columns.iter().zip(d).flat_map(|(rows, &dc)| [dc, -1.0].into_iter().take(rows.len())).collect();
-        (LowerCsc::from_columns(n, &columns), values)
-    }
-
-    fn residual(p: &LowerCsc, v: &[f64], x: &[f64], b: &[f64]) -> f64 {
-        let mut y = vec![0.0; b.len()];
-        p.mul_symmetric(v, x, &mut y);
-        y.iter().zip(b).map(|(a, c)| (a - c) * (a - c)).sum::<f64>().sqrt()
-    }
-
-    /// A local change of the matrix (a "plastic zone" of 3 rows of 200) is
-    /// solved by PCG with the old factor in a few iterations (at most one per
-    /// changed row plus one, in exact arithmetic) to the requested tolerance.
-    #[test]
-    fn local_change_is_solved_by_the_old_factor_in_a_few_iterations() {
-        let n = 200;
-        let d0 = vec![2.5; n];
-        let (pattern, v0) = tridiagonal(&d0);
-        // a tridiagonal factorization costs less than two PCG iterations, so
-        // the cost rule alone would allow only the minimum: raise it
-        let settings = ReuseSettings { min_iterations: 10, ..Default::default() };
-        let mut solver = ReusingSolver::new(Cholesky::analyze(&pattern).unwrap(), settings);
-        let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.1).sin() + 1.0).collect();
-        let mut x = b.clone();
-        assert_eq!(solver.solve(&pattern, &v0, &mut x, 1e-8, false).unwrap(), SolveKind::Factorized);
-        // soften three rows (as plastic flow would)
-        let mut d1 = d0.clone();
-        for d in &mut d1[100..103] {
-            *d = 2.1;
-        }
-        let (_, v1) = tridiagonal(&d1);
-        let mut x = b.clone();
-        let kind = solver.solve(&pattern, &v1, &mut x, 1e-8, false).unwrap();
-        let SolveKind::Reused(k) = kind else { panic!("expected reuse, got {kind:?}") };
-        assert!(k <= 4, "{k} iterations");
-        let bn = b.iter().map(|v| v * v).sum::<f64>().sqrt();
-        assert!(residual(&pattern, &v1, &x, &b) <= 1e-8 * bn);
-        assert_eq!(solver.stats().factorizations, 1);
-    }
-
-    /// A matrix far from the factored one (every diagonal changed by a
-    /// factor 50: no low-rank structure) defeats PCG within its allowance:
-    /// the solver must fall back to a factorization and still solve exactly.
-    #[test]
-    fn a_factor_that_no_longer_preconditions_is_replaced() {
-        let n = 400;
-        let (pattern, v0) = tridiagonal(&vec![2.0001; n]);
-        // double precision: the factorization after the fallback solves exactly
-        let settings =
-            ReuseSettings { min_iterations: 5, max_iterations: 5, single_precision: false, ..Default::default() };
-        let mut solver = ReusingSolver::new(Cholesky::analyze(&pattern).unwrap(), settings);
-        let b: Vec<f64> = (0..n).map(|i| ((i * 7919) % 13) as f64 - 6.0).collect();
-        let mut x = b.clone();
-        solver.solve(&pattern, &v0, &mut x, 1e-8, false).unwrap();
-        let d1: Vec<f64> = (0..n).map(|i| if i % 2 == 0 { 100.0 } else { 2.0001 }).collect();
-        let (_, v1) = tridiagonal(&d1);
-        let mut x = b.clone();
-        let kind = solver.solve(&pattern, &v1, &mut x, 1e-8, false).unwrap();
-        assert_eq!(kind, SolveKind::FellBack(5));
-        assert_eq!(solver.stats().factorizations, 2);
-        assert_eq!(solver.stats().fallbacks, 1);
-        let bn = b.iter().map(|v| v * v).sum::<f64>().sqrt();
-        assert!(residual(&pattern, &v1, &x, &b) <= 1e-12 * bn);
-    }
-
-    /// 2×2 blocks `[[1 + δ, −1], [−1, 1 + δ]]` (eigenvalues `δ` and `2 + δ`):
-    /// lower pattern and values.
-    fn pairs(deltas: &[f64]) -> (LowerCsc, Vec<f64>) {
-        let columns: Vec<Vec<usize>> =
-            (0..deltas.len()).flat_map(|i| [vec![2 * i, 2 * i + 1], vec![2 * i + 1]]).collect();
-        let values: Vec<f64> = deltas.iter().flat_map(|d| [1.0 + d, -1.0, 1.0 + d]).collect();
-        (LowerCsc::from_columns(2 * deltas.len(), &columns), values)
-    }
-
-    /// Mixed precision: the `f32` factor of the present matrix alone solves
-    /// it with a relative error of about `κ · 6e-8` only (κ = 4e4 here:
-    /// measured residual 3.0e-4 of ‖b‖, printed by the assertion message if
-    /// it ever reaches 1e-9); the PCG refinement in `f64` must bring the
-    /// residual to `η`.
-    #[test]
-    fn a_single_precision_factor_is_refined_to_the_requested_tolerance() {
-        let n = 200;
-        let (pattern, v) = tridiagonal(&vec![2.0001; n]);
-        let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.1).sin() + 1.0).collect();
-        let bn = b.iter().map(|v| v * v).sum::<f64>().sqrt();
-        let mut alone = Cholesky::analyze(&pattern).unwrap();
-        alone.factorize_with(&v, true).unwrap();
-        assert!(alone.is_single());
-        let mut y = b.clone();
-        alone.solve_in_place(&mut y).unwrap();
-        let unrefined = residual(&pattern, &v, &y, &b) / bn;
-        assert!(unrefined > 1e-9, "the f32 solve alone reached {unrefined:e}: the test proves nothing");
-
-        let settings = ReuseSettings { min_iterations: 10, ..Default::default() };
-        let mut solver = ReusingSolver::new(Cholesky::analyze(&pattern).unwrap(), settings);
-        let mut x = b.clone();
-        assert_eq!(solver.solve(&pattern, &v, &mut x, 1e-11, false).unwrap(), SolveKind::Factorized);
-        assert!(residual(&pattern, &v, &x, &b) <= 1e-11 * bn, "{unrefined:e}");
-        let st = solver.stats();
-        assert_eq!((st.factorizations, st.single_factorizations, st.precision_fallbacks), (1, 1, 0));
-        assert!(st.krylov_iterations >= 1);
-    }
-
-    /// A matrix too ill-conditioned for `f32`: 2×2 blocks whose small
-    /// eigenvalues `δ ∈ [3e-7, 1e-6]` are of the size of the rounding of
-    /// `1 + δ` (1.2e-7), so the `f32` factor (which still exists) gets each
-    /// of them wrong by up to ~20 %, differently per block; PCG needs more
-    /// than the 5 iterations allowed. The solver must fall back to an `f64`
-    /// factor, solve exactly, and stay in `f64`.
-    #[test]
-    fn a_single_precision_factor_that_does_not_precondition_falls_back_to_double() {
-        let deltas: Vec<f64> = (0..100).map(|i| 3e-7 + 7e-7 * ((i * 37) % 100) as f64 / 100.0).collect();
-        let (pattern, v) = pairs(&deltas);
-        let settings = ReuseSettings { min_iterations: 5, max_iterations: 5, ..Default::default() };
-        let mut solver = ReusingSolver::new(Cholesky::analyze(&pattern).unwrap(), settings);
-        let b: Vec<f64> = (0..pattern.n).map(|i| ((i * 7919) % 13) as f64 - 6.0).collect();
-        let bn = b.iter().map(|v| v * v).sum::<f64>().sqrt();
-        let mut x = b.clone();
-        assert_eq!(solver.solve(&pattern, &v, &mut x, 1e-10, false).unwrap(), SolveKind::Factorized);
-        let st = *solver.stats();
-        assert_eq!((st.factorizations, st.single_factorizations, st.precision_fallbacks), (2, 1, 1), "{st:?}");
-        // a backward-stable f64 solve leaves ε ‖A‖ ‖x‖ ≈ 1e-16 · 2 · ‖b‖ / 3e-7
-        // ≈ 7e-10 ‖b‖ (measured 2.2e-10; the f32 factor alone leaves 0.12)
-        let r = residual(&pattern, &v, &x, &b) / bn;
-        let mut alone = Cholesky::analyze(&pattern).unwrap();
-        alone.factorize_with(&v, true).unwrap();
-        let mut y = b.clone();
-        alone.solve_in_place(&mut y).unwrap();
-        eprintln!("residual {r:e}, f32 alone {:e}", residual(&pattern, &v, &y, &b) / bn);
-        assert!(r <= 1e-8, "{r:e}");
-        // the next factorization is in f64 (a matrix changed everywhere)
-        let (_, v2) = pairs(&deltas.iter().map(|d| 2.0 * d).collect::<Vec<_>>());
-        let mut x = b.clone();
-        solver.solve(&pattern, &v2, &mut x, 1e-10, false).unwrap();
-        assert_eq!(solver.stats().single_factorizations, 1);
-        assert!(residual(&pattern, &v2, &x, &b) <= 1e-8 * bn);
-    }
-
-    /// Disabled reuse factorizes every time.
-    #[test]
-    fn disabled_reuse_factorizes_every_solve() {
-        let (pattern, v0) = tridiagonal(&[3.0; 10]);
-        let settings = ReuseSettings { enabled: false, ..Default::default() };
-        let mut solver = ReusingSolver::new(Cholesky::analyze(&pattern).unwrap(), settings);
-        for _ in 0..3 {
-            let mut x = vec![1.0; 10];
-            assert_eq!(solver.solve(&pattern, &v0, &mut x, 1e-8, false).unwrap(), SolveKind::Factorized);
-        }
-        assert_eq!((solver.stats().factorizations, solver.stats().reused), (3, 0));
-    }
-}
+#[path = "reuse_tests.rs"]
+mod tests;

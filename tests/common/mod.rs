@@ -6,7 +6,7 @@ use cufem::solver::newton::NonlinearProblem;
 
 /// Central differences of the residual against the assembled tangent
 /// (`Structure::tangent_entry`: the symmetric part plus the skew terms of
-/// the LU path) in the given `(dof, equation)` columns, over every row:
+/// the GMRES path) in the given `(dof, equation)` columns, over every row:
 /// the largest `|ΔR/2h − K|` and the largest asymmetry `|K_re − K_er|`,
 /// both divided by `scale`. The structure is left evaluated at the
 /// displacements it had.

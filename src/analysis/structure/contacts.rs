@@ -16,7 +16,8 @@ use crate::materials::Predictor;
 /// in its last increment (two cutbacks, 12.1 s) where solves to 1e-2 converge
 /// in 4 increments (5.0 s). Once settled, the looser stop applies (the tubes
 /// need 4–5 fewer factorizations with it). tests/examples.rs `hertz_ball`
-/// asserts the 4 increments.
+/// asserts the 4 increments. With friction, points switching between stick
+/// and slip count as unsettled too.
 pub(super) const UNSETTLED_FORCING: f64 = 1e-2;
 
 impl Structure<'_> {
@@ -28,6 +29,10 @@ impl Structure<'_> {
         self.clear_skew();
         let model = self.model;
         let mut changes = 0;
+        // with friction a point switching between stick and slip is a change
+        // of the active set too (the forcing cap above)
+        let was_sliding: Vec<bool> =
+            if model.has_friction() { self.contact.iter().map(|p| p.sliding).collect() } else { Vec::new() };
         let mut k = 0;
         for (k_ind, ind) in model.indenters.iter().enumerate() {
             // the rigid surface's displacement plays the master's part
@@ -58,6 +63,7 @@ impl Structure<'_> {
                 k += s.slave_nodes.len();
             }
         }
+        changes += was_sliding.iter().zip(&self.contact).filter(|(w, p)| **w != p.sliding).count();
         self.first_evaluation = false;
         self.timings.contact += t.elapsed();
         changes
@@ -73,8 +79,8 @@ impl Structure<'_> {
     /// lets the force turn with the normal as the node slides over a
     /// roller or ball. With Coulomb friction, the tangential force of
     /// `contact::turning_friction` from the committed force and position
-    /// (its derivative makes the block unsymmetric while sliding: the skew
-    /// part goes to the LU path). Returns true if the point's active status
+    /// (its derivative makes the block unsymmetric while sliding: the part
+    /// beyond [`split`]'s symmetric one goes to the unsymmetric terms). Returns true if the point's active status
     /// changed.
     fn contact_rigid_surface(
         &mut self,
@@ -107,6 +113,7 @@ impl Structure<'_> {
         let Some((mut f, kb)) = response else { return was };
         let p = (0..3).map(|i| f[i] * n[i]).sum::<f64>();
         let mut block: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| kb[i][j] - p * dn[i][j]));
+        let mut coupling = [[0.0; 3]; 3];
         if let Some(fr) = friction {
             // from the committed tangential force and position
             let committed = self.contact_committed[k];
@@ -120,6 +127,7 @@ impl Structure<'_> {
             let point = &mut self.contact[k];
             point.sliding = r.sliding;
             point.slip = r.slip;
+            coupling = r.coupling;
             for i in 0..3 {
                 f[i] += r.force[i];
                 for j in 0..3 {
@@ -132,21 +140,23 @@ impl Structure<'_> {
             self.f_contact[3 * c.node + i] += f[i];
         }
         self.contact_blocks[k] = block;
-        let (sym, skew) = split(&block);
+        let (sym, rest) = split(&block, &coupling);
         self.assembler.add_node_block(&mut self.tangent, c.node, c.node, &sym);
-        self.add_skew(c.node, c.node, &skew, 1.0);
+        self.add_skew(c.node, c.node, &rest, 1.0);
         !was
     }
 }
 
-/// The symmetric and skew parts `(K + Kᵀ)/2`, `(K − Kᵀ)/2` of a contact
-/// block: the first goes into the lower-triangle tangent, the second (a
-/// sliding point's) into the unsymmetric terms of the LU path.
-fn split(k: &[[f64; 3]; 3]) -> ([[f64; 3]; 3], [[f64; 3]; 3]) {
-    (
-        std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (k[i][j] + k[j][i]))),
-        std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (k[i][j] - k[j][i]))),
-    )
+/// A contact block `K` split into `S = sym(K − C)`, which goes into the
+/// lower-triangle (factorized) tangent, and the rest `K − S`, which goes
+/// into the unsymmetric terms: `C` is a sliding point's pressure coupling
+/// `μ ε_N t̂ nᵀ` (`FrictionResponse::coupling`), whose symmetric part
+/// would make the factorized matrix indefinite; without it the rest is the
+/// skew part `(K − Kᵀ)/2` (zero in a frictionless model).
+fn split(k: &[[f64; 3]; 3], coupling: &[[f64; 3]; 3]) -> ([[f64; 3]; 3], [[f64; 3]; 3]) {
+    let d: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| k[i][j] - coupling[i][j]));
+    let sym: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (d[i][j] + d[j][i])));
+    (sym, std::array::from_fn(|i| std::array::from_fn(|j| k[i][j] - sym[i][j])))
 }
 
 /// One contact point's terms: slave node, master node (pairs), the master's
@@ -165,9 +175,9 @@ impl Structure<'_> {
     /// block (`contact::friction_response`, from the committed slip). The
     /// point's block `K = ε n nᵀ + K_T` may be unsymmetric (sliding): its
     /// symmetric part goes into the lower-triangle tangent as
-    /// `[K_ss, K_sm; K_ms, K_mm] = [K, −K; −K, K]`, its skew part
-    /// `(K − Kᵀ)/2` with the same signs into the unsymmetric terms
-    /// (`structure/unsymmetric.rs`).
+    /// `[K_ss, K_sm; K_ms, K_mm] = [K, −K; −K, K]`, the rest (the
+    /// pressure coupling, [`split`]) with the same signs into the
+    /// unsymmetric terms (`structure/unsymmetric.rs`).
     ///
     /// A sliding point gets the stick tangent `ε_T P` instead of its
     /// consistent one in the first evaluation of an increment and in the
@@ -178,7 +188,9 @@ impl Structure<'_> {
     /// reverses (the consistent slip tangent, without stiffness along the
     /// sliding direction, sends every point across its tiny stick range —
     /// `μ p / ε_T` — and Newton chatters between forward and reverse slip).
-    /// From the second iteration on the tangent is consistent.
+    /// From the second iteration on the tangent is consistent, and from the
+    /// first when the increment starts on the secant of the last one
+    /// (`Incremental::extrapolate`: the point is then past the cone).
     fn contact_pair(&mut self, k: usize, pair: PairTerms, friction: Option<&contact::Friction>) -> bool {
         let (slave, master, u_master, gap0, normal, penalty) = pair;
         let normal = &normal;
@@ -194,6 +206,7 @@ impl Structure<'_> {
         point.force = [0.0; 3];
         point.sliding = false;
         point.slip = committed_slip;
+        let mut coupling = [[0.0; 3]; 3];
         if let (Some((f, kb)), Some(friction_law)) = (response.as_mut(), friction) {
             let rel: [f64; 3] = std::array::from_fn(|i| us[i] - u_master[i]);
             let dn: f64 = (0..3).map(|i| rel[i] * normal[i]).sum();
@@ -202,7 +215,9 @@ impl Structure<'_> {
             let mut fr = contact::friction_response(d_t, committed_slip, normal, p_n, penalty, friction_law);
             if fr.sliding && (self.first_evaluation || self.predictor == Predictor::Elastic) {
                 fr.block = contact::stick_block(normal, penalty, friction_law);
+                fr.coupling = [[0.0; 3]; 3];
             }
+            coupling = fr.coupling;
             point.slip = fr.slip;
             point.sliding = fr.sliding;
             for i in 0..3 {
@@ -220,18 +235,18 @@ impl Structure<'_> {
             }
             // the symmetric part into the lower-triangle tangent, the rest
             // (sliding friction) into the unsymmetric terms
-            let (sym, skew) = split(&kb);
+            let (sym, rest) = split(&kb, &coupling);
             self.assembler.add_node_block(&mut self.tangent, slave, slave, &sym);
-            self.add_skew(slave, slave, &skew, 1.0);
+            self.add_skew(slave, slave, &rest, 1.0);
             if let Some(m) = master {
                 for i in 0..3 {
                     self.f_contact[3 * m + i] -= f[i];
                 }
                 self.assembler.add_node_block(&mut self.tangent, m, m, &sym);
                 self.assembler.add_node_block(&mut self.tangent, slave, m, &sym.map(|r| r.map(|v| -v)));
-                self.add_skew(m, m, &skew, 1.0);
-                self.add_skew(slave, m, &skew, -1.0);
-                self.add_skew(m, slave, &skew, -1.0);
+                self.add_skew(m, m, &rest, 1.0);
+                self.add_skew(slave, m, &rest, -1.0);
+                self.add_skew(m, slave, &rest, -1.0);
             }
         }
         changed

@@ -28,6 +28,7 @@
 use super::{NO_EQ, Structure};
 use crate::model::steps::{self, Item};
 use crate::solver::linear::LinearError;
+use crate::solver::nonsymmetric::NonSymmetric;
 
 /// One force-controlled indenter.
 #[derive(Debug, Clone)]
@@ -150,25 +151,26 @@ impl Structure<'_> {
     /// Updates each indenter's `a` and returns `Σ Δa²`.
     pub(super) fn solve_bordered(&mut self) -> Result<f64, LinearError> {
         let m = self.driven.len();
-        if self.lu.is_some() {
-            super::unsymmetric::lu_solve(&mut self.lu, &mut self.residual)?;
-        } else {
-            // the bordering solves further right-hand sides with the factor of
-            // the present tangent: no reuse of an earlier one
-            let pattern = &self.assembler.pattern;
-            self.solver.solve(pattern, &self.tangent, &mut self.residual, self.relative_residual, m > 0)?;
-        }
+        // the bordering solves further right-hand sides with the factor of
+        // the present tangent: no reuse of an earlier one
+        let pattern = &self.assembler.pattern;
+        let empty = NonSymmetric::default();
+        let skew = self.skew.as_ref().unwrap_or(&empty);
+        self.solver.solve_unsymmetric(
+            pattern,
+            &self.tangent,
+            skew,
+            &mut self.residual,
+            self.relative_residual,
+            m > 0,
+        )?;
         if m == 0 {
             return Ok(0.0);
         }
         let mut x2 = Vec::with_capacity(m);
         for d in &self.driven {
             let mut x = d.b.clone();
-            if self.lu.is_some() {
-                super::unsymmetric::lu_solve(&mut self.lu, &mut x)?;
-            } else {
-                self.solver.solve_again(&mut x)?;
-            }
+            self.solver.solve_again_unsymmetric(pattern, &self.tangent, skew, &mut x)?;
             x2.push(x);
         }
         let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();

@@ -129,7 +129,7 @@ impl Structure<'_> {
     /// consistent tangent `(T_b K_tt T_c + μ ε (T_b t̂) G_cᵀ) / A²` (`K_tt`
     /// the return map's tangential block; the second term, from
     /// `∂P/∂u_c = −ε G_c / A` while sliding, is unsymmetric and goes to
-    /// the LU path's skew terms). A sliding point's first iteration of an
+    /// the unsymmetric terms). A sliding point's first iteration of an
     /// increment uses the stick block, as node-to-node friction does.
     fn surface_friction(
         &mut self,
@@ -181,43 +181,35 @@ impl Structure<'_> {
                 self.f_contact[3 * b + i] += (0..3).map(|l| t[i][l] * ft[l]).sum::<f64>() / area;
             }
         }
-        // M_bc = −∂F_b/∂u_c = (T_b K_tt T_c + μ ε (T_b t̂) G_cᵀ) / A²: its
-        // symmetric part into the lower-triangle tangent, the skew part
-        // (the pressure coupling) into the unsymmetric terms
+        // M_bc = −∂F_b/∂u_c = (T_b K_tt T_c + μ ε (T_b t̂) G_cᵀ) / A²: the
+        // symmetric first term into the lower-triangle (factorized) tangent,
+        // the pressure coupling — one outer product over the point's nodes —
+        // into the unsymmetric terms
         let scale = 1.0 / (area * area);
-        let blocks: Vec<Vec<[[f64; 3]; 3]>> = g
+        let tb_kt: Vec<[[f64; 3]; 3]> = g
             .tangential
             .iter()
-            .map(|tb| {
-                let tb_t: [f64; 3] = std::array::from_fn(|i| (0..3).map(|m| tb[i][m] * t_hat[m]).sum());
-                let tb_kt: [[f64; 3]; 3] =
-                    std::array::from_fn(|i| std::array::from_fn(|l| (0..3).map(|m| tb[i][m] * kt[m][l]).sum()));
-                g.grad
-                    .iter()
-                    .zip(&g.tangential)
-                    .map(|((_, gc), tc)| {
-                        std::array::from_fn(|i| {
-                            std::array::from_fn(|l| {
-                                let tkt: f64 = (0..3).map(|m| tb_kt[i][m] * tc[m][l]).sum();
-                                scale * (tkt + coupling * tb_t[i] * gc[l])
-                            })
-                        })
-                    })
-                    .collect()
-            })
+            .map(|tb| std::array::from_fn(|i| std::array::from_fn(|l| (0..3).map(|m| tb[i][m] * kt[m][l]).sum())))
             .collect();
         for (x, (a, _)) in g.grad.iter().enumerate() {
-            for (y, (b, _)) in g.grad.iter().enumerate() {
-                let (m_ab, m_ba) = (&blocks[x][y], &blocks[y][x]);
-                if y >= x {
-                    let sym = std::array::from_fn(|i| std::array::from_fn(|l| 0.5 * (m_ab[i][l] + m_ba[l][i])));
-                    self.assembler.add_node_block(&mut self.tangent, *a, *b, &sym);
-                }
-                if coupling != 0.0 {
-                    let skew = std::array::from_fn(|i| std::array::from_fn(|l| 0.5 * (m_ab[i][l] - m_ba[l][i])));
-                    self.add_skew(*a, *b, &skew, 1.0);
-                }
+            for ((b, _), tc) in g.grad.iter().zip(&g.tangential).skip(x) {
+                let sym: [[f64; 3]; 3] = std::array::from_fn(|i| {
+                    std::array::from_fn(|l| scale * (0..3).map(|m| tb_kt[x][i][m] * tc[m][l]).sum::<f64>())
+                });
+                self.assembler.add_node_block(&mut self.tangent, *a, *b, &sym);
             }
+        }
+        if coupling != 0.0 {
+            let u: Vec<(usize, [f64; 3])> = g
+                .grad
+                .iter()
+                .zip(&g.tangential)
+                .map(|((b, _), tb)| {
+                    (*b, std::array::from_fn(|i| scale * coupling * (0..3).map(|m| tb[i][m] * t_hat[m]).sum::<f64>()))
+                })
+                .collect();
+            let v: Vec<(usize, [f64; 3])> = g.grad.iter().map(|(c, gc)| (*c, *gc)).collect();
+            self.add_outer(&u, &v);
         }
     }
 }

@@ -1,80 +1,28 @@
-//! The unsymmetric tangent of a model with Coulomb friction, solved by
-//! sparse LU (`solver::lu`).
+//! The unsymmetric tangent of a model with Coulomb friction.
 //!
 //! The tangent is `K = K_sym + K_skew`: `K_sym` is everything the structure
 //! assembles into its lower-triangle pattern (elements, normal contact, the
 //! symmetric part of every frictional block), `K_skew` the skew parts
 //! `(K_c − K_cᵀ)/2` of the sliding points' blocks (`contact::friction`:
-//! the coupling `μ ε_N t̂ nᵀ`), kept as a list of `(row, column, value)`
-//! entries per evaluation. A model with friction on any contact factorizes
-//! `K` on the full pattern `L ∪ Lᵀ` with LU instead of Cholesky (chosen once
-//! in `Structure::new`); a frictionless model never comes here.
+//! the coupling `μ ε_N t̂ nᵀ`), kept as entries and outer products per
+//! evaluation (`solver::nonsymmetric`). The solver reuses the factorization of `K_sym`
+//! (single precision, reused across iterations like the frictionless
+//! path) as the preconditioner of GMRES on `K` (`solver::krylov`,
+//! `ReusingSolver::solve_unsymmetric`): no second factorization, no second
+//! pattern, and the memory of the frictionless model plus the GMRES basis.
 //!
-//! Prescribed displacements are eliminated as in the symmetric path, with
-//! `Δ_p = λ ū_p − u_p`: `K_ff δu_f = −R_f − K_fp Δ_p`, the prescribed rows
-//! and columns zeroed, their diagonal kept and `δu_p = Δ_p`.
-
-use std::time::Instant;
+//! Prescribed displacements are eliminated as in the symmetric path
+//! (`Structure::correct`): a skew entry in a free row and a prescribed
+//! column moves `v Δ_p` to the right-hand side, every skew entry in a
+//! prescribed row or column is dropped.
 
 use super::{NO_EQ, Structure};
-use crate::solver::linear::{LinearError, LowerCsc};
-use crate::solver::lu::SparseLu;
-use crate::solver::newton::Correction;
-
-/// LU factorization and the skew terms of the current evaluation.
-pub(super) struct Unsymmetric {
-    lu: SparseLu,
-    /// `(row, column, value)` in equation numbering.
-    skew: Vec<(usize, usize, f64)>,
-    /// Full-pattern entries in a prescribed row or column, off the
-    /// diagonal: `(position, row, column)`.
-    dirichlet: Vec<(usize, usize, usize)>,
-    /// Full-pattern position of each diagonal entry.
-    diagonal: Vec<usize>,
-}
-
-impl Unsymmetric {
-    /// The LU path if any contact of `model` has friction, else `None`.
-    pub fn for_model(
-        model: &crate::model::Model,
-        pattern: &LowerCsc,
-        is_prescribed: &[bool],
-    ) -> Result<Option<Box<Self>>, LinearError> {
-        let frictional =
-            model.indenters.iter().any(|i| i.friction.is_some()) || model.contacts.iter().any(|c| c.friction.is_some());
-        if !frictional {
-            return Ok(None);
-        }
-        let lu = SparseLu::analyze(pattern)?;
-        let (col_ptr, row_idx) = lu.structure();
-        let mut dirichlet = Vec::new();
-        let mut diagonal = vec![0; lu.n()];
-        for c in 0..lu.n() {
-            for (p, &r) in row_idx.iter().enumerate().take(col_ptr[c + 1]).skip(col_ptr[c]) {
-                if r == c {
-                    diagonal[c] = p;
-                } else if is_prescribed[r] || is_prescribed[c] {
-                    dirichlet.push((p, r, c));
-                }
-            }
-        }
-        Ok(Some(Box::new(Self { lu, skew: Vec::new(), dirichlet, diagonal })))
-    }
-}
-
-/// Solves with the LU factorization (a model with friction).
-pub(super) fn lu_solve(lu: &mut Option<Box<Unsymmetric>>, x: &mut [f64]) -> Result<(), LinearError> {
-    match lu {
-        Some(u) => u.lu.solve_in_place(x),
-        None => Err(LinearError::Singular),
-    }
-}
 
 impl Structure<'_> {
     /// Forgets the skew terms of the previous evaluation.
     pub(super) fn clear_skew(&mut self) {
-        if let Some(u) = self.lu.as_mut() {
-            u.skew.clear();
+        if let Some(s) = self.skew.as_mut() {
+            s.clear();
         }
     }
 
@@ -82,21 +30,35 @@ impl Structure<'_> {
     /// (columns) to the skew terms (nothing in a frictionless model, whose
     /// blocks are symmetric).
     pub(super) fn add_skew(&mut self, a: usize, b: usize, block: &[[f64; 3]; 3], sign: f64) {
-        let Some(u) = self.lu.as_mut() else { return };
+        let Some(skew) = self.skew.as_mut() else { return };
         let eq = &self.assembler.dofs.eq;
         for (i, row) in block.iter().enumerate() {
             for (j, &v) in row.iter().enumerate() {
                 let (r, c) = (eq[3 * a + i], eq[3 * b + j]);
                 if v != 0.0 && r != NO_EQ && c != NO_EQ {
-                    u.skew.push((r, c, sign * v));
+                    skew.push_entry(r, c, sign * v);
                 }
             }
         }
     }
 
-    /// True if the structure solves with LU (a model with friction).
+    /// Adds the outer product `u vᵀ` of two nodal vectors (`(node, [x, y,
+    /// z])`) to the unsymmetric terms (nothing in a frictionless model).
+    pub(super) fn add_outer(&mut self, u: &[(usize, [f64; 3])], v: &[(usize, [f64; 3])]) {
+        let Some(skew) = self.skew.as_mut() else { return };
+        let eq = &self.assembler.dofs.eq;
+        let sparse = |w: &[(usize, [f64; 3])]| -> Vec<(usize, f64)> {
+            w.iter()
+                .flat_map(|(n, c)| (0..3).map(move |i| (3 * n + i, c[i])))
+                .filter_map(|(d, x)| (eq[d] != NO_EQ && x != 0.0).then_some((eq[d], x)))
+                .collect()
+        };
+        skew.push_outer(sparse(u), sparse(v));
+    }
+
+    /// True if the tangent may be unsymmetric (a model with friction).
     pub fn is_unsymmetric(&self) -> bool {
-        self.lu.is_some()
+        self.skew.is_some()
     }
 
     /// Entry `(row, col)` (equations) of the full tangent of the last
@@ -105,47 +67,14 @@ impl Structure<'_> {
     /// finite-difference checks of the unsymmetric tangent).
     pub fn tangent_entry(&self, row: usize, col: usize) -> f64 {
         let sym = self.assembler.pattern.find(row.max(col), row.min(col)).map_or(0.0, |p| self.tangent[p]);
-        let skew: f64 =
-            self.lu.as_ref().map_or(0.0, |u| u.skew.iter().filter(|e| e.0 == row && e.1 == col).map(|e| e.2).sum());
-        sym + skew
+        sym + self.skew.as_ref().map_or(0.0, |s| s.entry(row, col))
     }
 
-    /// `correct` for the unsymmetric tangent (module docs).
-    pub(super) fn correct_unsymmetric(&mut self) -> Result<Correction, LinearError> {
-        let Some(un) = self.lu.as_mut() else { return Err(LinearError::Singular) };
-        for r in &mut self.residual {
-            *r = -*r;
+    /// The Dirichlet elimination of the skew terms (module docs); `residual`
+    /// holds `Δ_p` at the prescribed equations.
+    pub(super) fn eliminate_skew(&mut self) {
+        if let Some(skew) = self.skew.as_mut() {
+            skew.eliminate(&self.is_prescribed, &mut self.residual);
         }
-        for (&(d, e, _, _), now) in self.prescribed.iter().zip(&self.prescribed_now) {
-            self.residual[e] = now - self.u[d];
-        }
-        un.lu.fill_symmetric(&self.tangent);
-        for &(r, c, v) in &un.skew {
-            if !un.lu.add(r, c, v) {
-                return Err(LinearError::Rejected(format!(
-                    "internal: friction term ({r}, {c}) outside the tangent's pattern"
-                )));
-            }
-        }
-        let values = un.lu.values_mut();
-        for &(p, r, c) in &un.dirichlet {
-            if !self.is_prescribed[r] {
-                self.residual[r] -= values[p] * self.residual[c];
-            }
-        }
-        for &(p, _, _) in &un.dirichlet {
-            values[p] = 0.0;
-        }
-        for &(_, e, _, _) in &self.prescribed {
-            self.residual[e] *= values[un.diagonal[e]];
-        }
-        let t = Instant::now();
-        un.lu.factorize()?;
-        self.timings.factorization += t.elapsed();
-        self.timings.factorizations += 1;
-        let t = Instant::now();
-        let da2 = self.solve_bordered()?;
-        self.timings.solve += t.elapsed();
-        Ok(self.apply_correction(da2))
     }
 }

@@ -11,6 +11,7 @@
 
 mod results;
 pub mod structure;
+mod warnings;
 
 pub use structure::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Structure, Timings};
 
@@ -403,82 +404,8 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
             &solution.gp_offsets,
         )?);
     }
-    solution.warnings = result_warnings(model, &solution);
+    solution.warnings = warnings::result_warnings(model, &solution);
     Ok(solution)
-}
-
-/// Warnings that only the results can give: an indenter that never touched
-/// its body, a probe where the model shows neither stress nor displacement
-/// (below 1e-6 of the largest anywhere: a part the load does not reach).
-fn result_warnings(model: &Model, solution: &Solution) -> Vec<Warning> {
-    let mut warnings = Vec::new();
-    for (k, ind) in model.indenters.iter().enumerate() {
-        let touched = solution
-            .history
-            .iter()
-            .flat_map(|r| r.contact(&ind.name))
-            .chain(solution.contact(&ind.name))
-            .any(|c| c.force != [0.0; 3]);
-        if !touched && !solution.history.is_empty() {
-            warnings.push(Warning {
-                key: format!("indenters[{k}]"),
-                message: format!(
-                    "indenter {:?} never touched body {:?}: its contact force stayed zero throughout",
-                    ind.name, model.mesh.bodies[ind.body].name
-                ),
-            });
-        }
-    }
-    // augmented contacts left above their tolerance (MAX_AUGMENTATIONS reached)
-    let tolerances = model
-        .indenters
-        .iter()
-        .map(|i| (&i.name, i.penetration_tolerance, "indenters"))
-        .chain(model.contacts.iter().map(|c| (&c.name, c.penetration_tolerance, "contacts")));
-    for (k, (name, tol, group)) in tolerances.enumerate() {
-        let (Some(tol), Some(c)) = (tol, solution.contacts.get(k)) else { continue };
-        if c.max_penetration > tol {
-            let index = if group == "indenters" { k } else { k - model.indenters.len() };
-            warnings.push(Warning {
-                key: format!("{group}[{index}].penetration_tolerance"),
-                message: format!(
-                    "contact {name:?} ends with a penetration of {:.3e} m, above its tolerance {tol:.3e} m after {} \
-                     augmentations: raise the penalty or refine the increments",
-                    c.max_penetration,
-                    crate::solver::stepping::MAX_AUGMENTATIONS
-                ),
-            });
-        }
-    }
-    let finite = |f: &[f64; 3]| f.iter().all(|v| v.is_finite());
-    if !(solution.reactions.iter().all(|r| finite(&r.force)) && solution.contacts.iter().all(|c| finite(&c.force))) {
-        warnings.push(Warning {
-            key: "materials".into(),
-            message: "the final state has non-finite reactions or contact forces: a material law or load produces \
-                      NaN there"
-                .into(),
-        });
-    }
-    let view = solution.fields(model);
-    let max_vm = solution.stresses.iter().map(crate::voigt::von_mises).fold(0.0, f64::max);
-    let max_u = solution.u.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-    if max_vm > 0.0 || max_u > 0.0 {
-        for (i, p) in model.probes.iter().enumerate() {
-            let Some(v) = view.sample_probe(p) else { continue };
-            let u = v.u.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-            if v.von_mises <= 1e-6 * max_vm && u <= 1e-6 * max_u {
-                warnings.push(Warning {
-                    key: format!("probes[{i}]"),
-                    message: format!(
-                        "probe {:?} shows neither stress nor displacement (below 1e-6 of the largest in the model): \
-                         it may lie in a part the load does not reach",
-                        p.name
-                    ),
-                });
-            }
-        }
-    }
-    warnings
 }
 
 impl Solution {

@@ -139,7 +139,12 @@ mod tests {
         let exact = 2.0 * (0.5 * 0.3 + 0.5 * 0.1 + 0.3 * 0.1);
         assert!((total - exact).abs() < 1e-12);
         // the top face z = 0.3 has normal +z
-        let top = Selection { conditions: [None, None, Some(Condition::Equal(0.3))], tolerance: 1e-9, region: None };
+        let top = Selection {
+            conditions: [None, None, Some(Condition::Equal(0.3))],
+            tolerance: 1e-9,
+            region: None,
+            radial: None,
+        };
         let sel = selected_faces(&b, &top);
         assert_eq!(sel.len(), 3 * 2);
         for f in &sel {

@@ -40,6 +40,9 @@ pub struct Selection {
     pub tolerance: f64,
     /// A section region the point must lie in (`None`: anywhere).
     pub region: Option<RegionFilter>,
+    /// A condition on the distance from the axis parallel to y through
+    /// `[x, z]` (`None`: any distance).
+    pub radial: Option<(Condition, [f64; 2])>,
 }
 
 /// The elements of a named section region, as a geometric condition on
@@ -64,6 +67,7 @@ impl Selection {
     /// True if the point satisfies every condition.
     pub fn contains(&self, p: [f64; 3]) -> bool {
         self.conditions.iter().zip(p).all(|(c, v)| c.is_none_or(|c| c.accepts(v, self.tolerance)))
+            && self.radial.is_none_or(|(c, o)| c.accepts((p[0] - o[0]).hypot(p[2] - o[1]), self.tolerance))
             && self.region.as_ref().is_none_or(|r| r.section.covers(&r.elements, [p[0], p[2]], self.tolerance))
     }
 
@@ -151,13 +155,29 @@ mod tests {
 
     #[test]
     fn selection_of_face_line_and_range() {
-        let s = Selection { conditions: [None, None, Some(Condition::Equal(0.0))], tolerance: 1e-9, region: None };
+        let s = Selection {
+            conditions: [None, None, Some(Condition::Equal(0.0))],
+            tolerance: 1e-9,
+            region: None,
+            radial: None,
+        };
         assert!(s.contains([3.0, 2.0, 0.0]) && !s.contains([3.0, 2.0, 1e-6]));
         let s = Selection {
             conditions: [Some(Condition::Range(0.2, 0.3)), Some(Condition::Equal(0.025)), None],
             tolerance: 1e-9,
             region: None,
+            radial: None,
         };
         assert!(s.contains([0.3, 0.025, 7.0]) && !s.contains([0.31, 0.025, 7.0]));
+        // a cylinder of radius 0.03 about the axis (x, z) = (0.1, −0.2):
+        // measured in the x–z plane, whatever y (a slip to (x, y) fails)
+        let s = Selection {
+            conditions: [None; 3],
+            tolerance: 1e-9,
+            region: None,
+            radial: Some((Condition::Equal(0.03), [0.1, -0.2])),
+        };
+        assert!(s.contains([0.13, 5.0, -0.2]) && s.contains([0.1, -1.0, -0.17]));
+        assert!(!s.contains([0.13, 5.0, -0.19]) && !s.contains([0.1, -0.17, -0.2]));
     }
 }

@@ -287,9 +287,23 @@ pub struct PairContact {
     pub slave: ContactSurface,
     /// `method = "surface"`: segment-to-segment contact (then `pairs` is empty).
     pub surface: Option<surface::SurfaceContact>,
+    /// An interference fit (`interference = true`): the initial overlap (m,
+    /// ≥ 0) of each contact point (pair, or slave node of a surface
+    /// contact), removed gradually over the first load step
+    /// ([`PairContact::overlap_relief`]); empty otherwise.
+    pub initial_overlap: Vec<f64>,
 }
 
 impl PairContact {
+    /// What is added to the gap of point `j` at load factor `λ`: the part of
+    /// its initial overlap not yet imposed, `(1 − min(λ, 1)) · overlap`, so
+    /// that an interference fit starts just touching and is fully
+    /// overlapped from the end of the first step on (small increments and
+    /// cutbacks then apply to it as to any load).
+    pub fn overlap_relief(&self, j: usize, lambda: f64) -> f64 {
+        self.initial_overlap.get(j).map_or(0.0, |o| (1.0 - lambda.clamp(0.0, 1.0)) * o)
+    }
+
     /// Node pairs the matrix pattern must couple: the node pairs, or the
     /// slave–master couplings of a surface contact's candidate faces.
     pub fn couplings(&self, mesh: &crate::mesh::Mesh) -> Vec<(usize, usize)> {

@@ -41,11 +41,13 @@ pub(super) fn indenters(
     Ok(indenters)
 }
 
-/// `[[contacts]]` between two bodies.
+/// `[[contacts]]` between two bodies, with a warning for explicit pairs
+/// whose nodes do not face each other.
 pub(super) fn pair_contacts(
     file: &[ContactFile],
     mesh: &Mesh,
     materials: &[Material],
+    warnings: &mut Vec<Warning>,
 ) -> Result<Vec<PairContact>, ModelError> {
     let mut contacts = Vec::new();
     for (i, c) in file.iter().enumerate() {
@@ -59,10 +61,41 @@ pub(super) fn pair_contacts(
                 "a body other than the master body",
             ));
         }
-        contacts.push(pair_contact(&key, c, mesh, bm, bs, materials)?);
+        let contact = pair_contact(&key, c, mesh, bm, bs, materials)?;
+        if c.pairs.is_some() {
+            offset_pairs(&key, &contact, mesh, warnings);
+        }
+        contacts.push(contact);
     }
 
     Ok(contacts)
+}
+
+/// Explicit `pairs` are taken as given; node-to-node contact then acts
+/// along the master normal as if the two nodes faced each other. A pair
+/// whose nodes lie apart *along* the surface by more than half the slave
+/// node's spacing (the square root of its tributary area) does not: warned
+/// about, naming the pair, the offset and the spacing.
+fn offset_pairs(key: &str, contact: &PairContact, mesh: &Mesh, warnings: &mut Vec<Warning>) {
+    for (k, p) in contact.pairs.iter().enumerate() {
+        let (xs, xm) = (mesh.coords(p.slave), mesh.coords(p.master));
+        let d: [f64; 3] = std::array::from_fn(|i| xs[i] - xm[i]);
+        let along = (d.iter().map(|v| v * v).sum::<f64>() - p.gap0 * p.gap0).max(0.0).sqrt();
+        let spacing = p.area.sqrt();
+        if along > 0.5 * spacing {
+            warnings.push(Warning {
+                key: format!("{key}.pairs[{k}]"),
+                message: format!(
+                    "the slave node at {xs:?} and the master node at {xm:?} are {} m apart along the contact surface \
+                     (normal gap {} m; node spacing about {} m): node-to-node contact presses them together as if \
+                     they faced each other",
+                    crate::numbers::limit(along),
+                    crate::numbers::limit(p.gap0),
+                    crate::numbers::limit(spacing)
+                ),
+            });
+        }
+    }
 }
 
 pub(super) fn indenter(
@@ -412,6 +445,8 @@ pub(super) fn pair_contact(
         ));
     }
     let penetration_tolerance = tolerance(key, c.penetration_tolerance, mesh.bodies[bs].size())?;
+    let gaps: Vec<(usize, f64)> = pairs.iter().map(|p| (p.slave, p.gap0)).collect();
+    let initial_overlap = overlap(key, c, mesh, bm, bs, &gaps)?;
     Ok(PairContact {
         name: c.name.clone(),
         pairs,
@@ -421,7 +456,51 @@ pub(super) fn pair_contact(
         master: ContactSurface { body: bm, faces: master_faces },
         slave: ContactSurface { body: bs, faces: slave_faces },
         surface: None,
+        initial_overlap,
     })
+}
+
+/// Deformable bodies that start inside each other: `gaps` holds each
+/// contact point's slave node and initial gap (m, negative inside). An
+/// overlap deeper than 1e-6 of the bodies' size is refused, naming both
+/// bodies, the depth and where, unless the contact asks for an interference
+/// fit (`interference = true`); then each point's overlap is returned (for
+/// [`PairContact::overlap_relief`]), else an empty list. (Penalty contact
+/// would otherwise push the bodies apart with the force of the whole
+/// overlap at the first evaluation and report it as a contact force: the
+/// overlapping cantilevers of issue 24 converged silently to 14 times the
+/// contact force, with the root reaction's sign reversed.)
+pub(super) fn overlap(
+    key: &str,
+    c: &ContactFile,
+    mesh: &Mesh,
+    bm: usize,
+    bs: usize,
+    gaps: &[(usize, f64)],
+) -> Result<Vec<f64>, ModelError> {
+    let (master, slave) = (&mesh.bodies[bm], &mesh.bodies[bs]);
+    let tol = 1e-6 * master.size().max(slave.size());
+    let inside = gaps.iter().filter(|g| g.1 < -tol).count();
+    if c.interference == Some(true) {
+        return Ok(gaps.iter().map(|g| (-g.1).max(0.0)).collect());
+    }
+    let Some(&(node, gap)) = gaps.iter().min_by(|a, b| a.1.total_cmp(&b.1)) else { return Ok(Vec::new()) };
+    if inside == 0 {
+        return Ok(Vec::new());
+    }
+    Err(invalid(
+        format!("{key}.slave.where"),
+        format!(
+            "body {:?} starting {} m inside body {:?} at {:?} (the deepest of {inside} overlapping slave nodes)",
+            slave.name,
+            crate::numbers::limit(-gap),
+            master.name,
+            model_coords(slave, node).map(|v| (v * 1e9).round() / 1e9),
+        ),
+        "bodies that touch or stand apart at the start (move one, or check the `where` selections); a deliberate \
+         interference (shrink or press) fit needs `interference = true` on this contact: its overlap is then \
+         pressed out over the first load step",
+    ))
 }
 
 /// `penetration_tolerance` (augmented Lagrangian): positive, at most a

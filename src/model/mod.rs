@@ -334,7 +334,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let constraints = preprocess::constraints(&file.constraints, &mesh)?;
     let loads = preprocess::loads(&file.loads, &mesh, &materials)?;
     let indenters = contacts::indenters(&file.indenters, &mesh, &materials, &mut warnings)?;
-    let contacts = contacts::pair_contacts(&file.contacts, &mesh, &materials)?;
+    let contacts = contacts::pair_contacts(&file.contacts, &mesh, &materials, &mut warnings)?;
     restraint::check(&mesh, &constraints, &indenters, &contacts)?;
     let probes = preprocess::probes(&file.probes, &mesh)?;
     let lines = preprocess::lines(&file.lines, &mesh, &mut warnings)?;

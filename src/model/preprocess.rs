@@ -229,7 +229,38 @@ pub(super) fn selection(key: &str, s: &SelectionFile, body: &Body) -> Result<Sel
             })
         }
     };
-    Ok(Selection { conditions: [cond("x", &s.x)?, cond("y", &s.y)?, cond("z", &s.z)?], tolerance: tol, region })
+    let radial = match (&s.radius, s.center) {
+        (None, None) => None,
+        (None, Some(_)) => {
+            return Err(invalid(
+                format!("{key}.center"),
+                "(given without radius)",
+                "`center` only with `radius` (the axis the distance is measured from)",
+            ));
+        }
+        (Some(r), center) => {
+            let center = match center {
+                Some(Exact(c)) => {
+                    let name = format!("{key}.center");
+                    [bounds::coordinate(&name, c[0])?, bounds::coordinate(&name, c[1])?]
+                }
+                None => [0.0, 0.0],
+            };
+            let c = cond("radius", &Some(*r))?.filter(|c| match *c {
+                Condition::Equal(v) => v >= 0.0,
+                Condition::Range(a, _) => a >= 0.0,
+            });
+            let c = c.ok_or_else(|| {
+                invalid(
+                    format!("{key}.radius"),
+                    describe_selection(s),
+                    "a distance ≥ 0 in m from the axis parallel to y through `center` (a number or [min, max])",
+                )
+            })?;
+            Some((c, center))
+        }
+    };
+    Ok(Selection { conditions: [cond("x", &s.x)?, cond("y", &s.y)?, cond("z", &s.z)?], tolerance: tol, region, radial })
 }
 
 /// The selected boundary faces of `body` and their integrals.

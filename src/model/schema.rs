@@ -273,6 +273,11 @@ pub struct SelectionFile {
     pub tolerance: Option<f64>,
     /// A named section region (profile wall, gmsh physical group).
     pub region: Option<String>,
+    /// Distance from the axis (parallel to y) through `center` (default
+    /// the y axis): a cylindrical surface or a ring.
+    pub radius: Option<ConditionFile>,
+    /// `[x, z]` of the axis of `radius`.
+    pub center: Option<Exact<f64, 2>>,
 }
 
 /// Per-component prescribed values `{x = …, y = …, z = …}`.
@@ -363,6 +368,8 @@ pub struct ContactFile {
     pub pairs: Option<Vec<Exact<Exact<f64, 3>, 2>>>,
     pub method: Option<String>,
     pub search_distance: Option<f64>,
+    /// A deliberate interference fit: the bodies may start overlapping.
+    pub interference: Option<bool>,
 }
 
 /// `[[probes]]`.

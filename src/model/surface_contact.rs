@@ -6,7 +6,7 @@ use super::preprocess::surface_faces;
 use super::schema::ContactFile;
 use super::validate::{penalty, reject_unused};
 use super::{ModelError, bounds, invalid};
-use crate::contact::{ContactSurface, PairContact, Penalty, surface};
+use crate::contact::{ContactSurface, PairContact, Penalty, SurfaceNodes, surface};
 use crate::materials::Material;
 use crate::mesh::Mesh;
 
@@ -25,7 +25,7 @@ pub(super) fn surface_contact(
     let chosen = "method = \"surface\"";
     reject_unused(key, chosen, &[("pairs", c.pairs.is_some()), ("tolerance", c.tolerance.is_some())])?;
     let (master_body, slave_body) = (&mesh.bodies[bm], &mesh.bodies[bs]);
-    let (master_faces, _) = surface_faces(&format!("{key}.master.where"), &c.master.selection, master_body)?;
+    let (master_faces, mf) = surface_faces(&format!("{key}.master.where"), &c.master.selection, master_body)?;
     let (slave_faces, sf) = surface_faces(&format!("{key}.slave.where"), &c.slave.selection, slave_body)?;
     let young = materials[master_body.material].young.min(materials[slave_body.material].young);
     let pen = penalty(key, c.penalty, c.penalty_factor)?;
@@ -66,13 +66,52 @@ pub(super) fn surface_contact(
         },
     );
     if contact.points.is_empty() {
+        // slave faces deep inside the master body find no master face either:
+        // say that, from the nearest master node along its outward normal
+        let master_nodes = SurfaceNodes::from_faces(&mf, young);
+        let slave_nodes = SurfaceNodes::from_faces(&sf, young);
+        let gaps: Vec<(usize, f64)> = slave_nodes
+            .nodes
+            .iter()
+            .filter_map(|s| {
+                let xs = mesh.coords(s.0);
+                let dist = |m: &&(usize, f64, f64, [f64; 3])| {
+                    let xm = mesh.coords(m.0);
+                    (0..3).map(|k| (xs[k] - xm[k]).powi(2)).sum::<f64>()
+                };
+                let m = master_nodes.nodes.iter().min_by(|a, b| dist(a).total_cmp(&dist(b)))?;
+                let (xm, n) = (mesh.coords(m.0), m.3);
+                let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+                let d: [f64; 3] = std::array::from_fn(|k| xs[k] - xm[k]);
+                let normal = (0..3).map(|k| d[k] * n[k]).sum::<f64>() / len;
+                // facing the master node: off its normal by less than its spacing
+                let off = (dist(&m) - normal * normal).max(0.0).sqrt();
+                (off <= m.1.sqrt()).then_some((s.0, normal))
+            })
+            .collect();
+        if c.interference != Some(true) {
+            super::contacts::overlap(key, c, mesh, bm, bs, &gaps)?;
+        }
         return Err(invalid(
             format!("{key}.search_distance"),
             format!("{search_distance:e} m"),
             "a distance within which the slave faces find master faces (no slave point has a master face this close)",
         ));
     }
+    // the weighted gap of each slave node at the start (projections of the
+    // undeformed bodies), for the overlap check
+    let zero = vec![0.0; mesh.n_dofs()];
+    let projections: Vec<_> = contact.points.iter().map(|p| surface::project(&contact, mesh, p, &zero)).collect();
+    let gaps: Vec<(usize, f64)> = contact
+        .node_gaps(&projections)
+        .iter()
+        .zip(&contact.slave_nodes)
+        .zip(&contact.areas)
+        .map(|((g, &n), &a)| (n, if g.grad.is_empty() || !(a > 0.0) { 0.0 } else { g.gap0 / a }))
+        .collect();
+    let initial_overlap = super::contacts::overlap(key, c, mesh, bm, bs, &gaps)?;
     Ok(PairContact {
+        initial_overlap,
         name: c.name.clone(),
         pairs: Vec::new(),
         penetration_tolerance: tolerance(key, c.penetration_tolerance, slave_body.size())?,

@@ -326,11 +326,17 @@ pub(super) fn describe_selection(s: &SelectionFile) -> String {
         Some(ConditionFile::Value(a)) => Some(format!("{a}")),
         Some(ConditionFile::Range([a, b])) => Some(format!("[{a}, {b}]")),
     };
-    let parts: Vec<String> =
-        [("x", c(&s.x)), ("y", c(&s.y)), ("z", c(&s.z)), ("region", s.region.as_ref().map(|r| format!("{r:?}")))]
-            .into_iter()
-            .filter_map(|(n, v)| v.map(|v| format!("{n} = {v}")))
-            .collect();
+    let parts: Vec<String> = [
+        ("x", c(&s.x)),
+        ("y", c(&s.y)),
+        ("z", c(&s.z)),
+        ("radius", c(&s.radius)),
+        ("center", s.center.map(|Exact(v)| format!("{v:?}"))),
+        ("region", s.region.as_ref().map(|r| format!("{r:?}"))),
+    ]
+    .into_iter()
+    .filter_map(|(n, v)| v.map(|v| format!("{n} = {v}")))
+    .collect();
     format!("{{ {} }}", parts.join(", "))
 }
 

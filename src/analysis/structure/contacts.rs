@@ -52,9 +52,11 @@ impl Structure<'_> {
             }
         }
         for (c, pc) in model.contacts.iter().enumerate() {
-            for p in &pc.pairs {
+            for (j, p) in pc.pairs.iter().enumerate() {
                 let um = [0, 1, 2].map(|i| self.u[3 * p.master + i]);
-                let pair = (p.slave, Some(p.master), um, p.gap0, p.normal, p.penalty);
+                // an interference fit's overlap is imposed over the first step
+                let gap0 = p.gap0 + pc.overlap_relief(j, self.lambda);
+                let pair = (p.slave, Some(p.master), um, gap0, p.normal, p.penalty);
                 changes += usize::from(self.contact_pair(k, pair, pc.friction.as_ref()));
                 k += 1;
             }

@@ -83,7 +83,8 @@ impl Structure<'_> {
             for (b, v) in &g.grad {
                 gt += (0..3).map(|k| v[k] * self.u[3 * b + k]).sum::<f64>();
             }
-            let gap = gt / area;
+            // an interference fit's overlap is imposed over the first step
+            let gap = gt / area + self.model.contacts[c].overlap_relief(j, self.lambda);
             let m = (g.moment[0].powi(2) + g.moment[1].powi(2) + g.moment[2].powi(2)).sqrt();
             point.gap = gap;
             point.normal = g.moment.map(|v| v / m.max(f64::MIN_POSITIVE));

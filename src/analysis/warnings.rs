@@ -1,0 +1,148 @@
+//! Warnings that only the results can give: an indenter or a contact that
+//! never touched, a penalty too soft to hold its contact, an augmented
+//! contact left above its tolerance, non-finite forces, a probe in a part
+//! the load does not reach.
+
+use super::Solution;
+use crate::model::{Model, Warning};
+
+/// Warnings that only the results can give: an indenter that never touched
+/// its body, a probe where the model shows neither stress nor displacement
+/// (below 1e-6 of the largest anywhere: a part the load does not reach).
+pub(super) fn result_warnings(model: &Model, solution: &Solution) -> Vec<Warning> {
+    let mut warnings = Vec::new();
+    for (k, ind) in model.indenters.iter().enumerate() {
+        let touched = solution
+            .history
+            .iter()
+            .flat_map(|r| r.contact(&ind.name))
+            .chain(solution.contact(&ind.name))
+            .any(|c| c.force != [0.0; 3]);
+        if !touched && !solution.history.is_empty() {
+            warnings.push(Warning {
+                key: format!("indenters[{k}]"),
+                message: format!(
+                    "indenter {:?} never touched body {:?}: its contact force stayed zero throughout",
+                    ind.name, model.mesh.bodies[ind.body].name
+                ),
+            });
+        }
+    }
+    contact_warnings(model, solution, &mut warnings);
+    // augmented contacts left above their tolerance (MAX_AUGMENTATIONS reached)
+    let tolerances = model
+        .indenters
+        .iter()
+        .map(|i| (&i.name, i.penetration_tolerance, "indenters"))
+        .chain(model.contacts.iter().map(|c| (&c.name, c.penetration_tolerance, "contacts")));
+    for (k, (name, tol, group)) in tolerances.enumerate() {
+        let (Some(tol), Some(c)) = (tol, solution.contacts.get(k)) else { continue };
+        if c.max_penetration > tol {
+            let index = if group == "indenters" { k } else { k - model.indenters.len() };
+            warnings.push(Warning {
+                key: format!("{group}[{index}].penetration_tolerance"),
+                message: format!(
+                    "contact {name:?} ends with a penetration of {:.3e} m, above its tolerance {tol:.3e} m after {} \
+                     augmentations: raise the penalty or refine the increments",
+                    c.max_penetration,
+                    crate::solver::stepping::MAX_AUGMENTATIONS
+                ),
+            });
+        }
+    }
+    let finite = |f: &[f64; 3]| f.iter().all(|v| v.is_finite());
+    if !(solution.reactions.iter().all(|r| finite(&r.force)) && solution.contacts.iter().all(|c| finite(&c.force))) {
+        warnings.push(Warning {
+            key: "materials".into(),
+            message: "the final state has non-finite reactions or contact forces: a material law or load produces \
+                      NaN there"
+                .into(),
+        });
+    }
+    let view = solution.fields(model);
+    let max_vm = solution.stresses.iter().map(crate::voigt::von_mises).fold(0.0, f64::max);
+    let max_u = solution.u.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    if max_vm > 0.0 || max_u > 0.0 {
+        for (i, p) in model.probes.iter().enumerate() {
+            let Some(v) = view.sample_probe(p) else { continue };
+            let u = v.u.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+            if v.von_mises <= 1e-6 * max_vm && u <= 1e-6 * max_u {
+                warnings.push(Warning {
+                    key: format!("probes[{i}]"),
+                    message: format!(
+                        "probe {:?} shows neither stress nor displacement (below 1e-6 of the largest in the model): \
+                         it may lie in a part the load does not reach",
+                        p.name
+                    ),
+                });
+            }
+        }
+    }
+    warnings
+}
+
+/// Fraction of the motion at the contact that the penetration may reach
+/// before the penalty is called too soft: with the default penalty factor
+/// the shipped examples stay below 1e-3 of it.
+const SOFT_PENALTY: f64 = 0.1;
+
+/// Pair contacts that never closed (as `result_warnings` says of
+/// indenters), and contacts whose penetration is a large part of the motion
+/// that closed them — the indenter's travel, or the largest displacement of
+/// a pair's slave nodes: a penalty so soft that the contact hardly holds.
+fn contact_warnings(model: &Model, solution: &Solution, warnings: &mut Vec<Warning>) {
+    let n_ind = model.indenters.len();
+    for (k, c) in model.contacts.iter().enumerate() {
+        let touched = solution
+            .history
+            .iter()
+            .flat_map(|r| r.contact(&c.name))
+            .chain(solution.contact(&c.name))
+            .any(|r| r.force != [0.0; 3]);
+        if touched || solution.history.is_empty() {
+            continue;
+        }
+        let gap = solution
+            .contact_points(&c.name)
+            .into_iter()
+            .flatten()
+            .map(|p| p.gap)
+            .filter(|g| g.is_finite())
+            .fold(f64::INFINITY, f64::min);
+        warnings.push(Warning {
+            key: format!("contacts[{k}]"),
+            message: format!(
+                "contact {:?} between bodies {:?} and {:?} never closed: no point touched in any increment (smallest \
+                 gap at the end {} m); check the bodies' positions and the `where` selections",
+                c.name,
+                model.mesh.bodies[c.master.body].name,
+                model.mesh.bodies[c.slave.body].name,
+                crate::numbers::limit(gap)
+            ),
+        });
+    }
+    let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    for (k, r) in solution.contacts.iter().enumerate() {
+        let motion = if k < n_ind {
+            norm(r.displacement)
+        } else {
+            let points = solution.contact_points(&r.name).unwrap_or_default();
+            points.iter().map(|p| norm(std::array::from_fn(|i| solution.u[3 * p.node + i]))).fold(0.0, f64::max)
+        };
+        if motion > 0.0 && r.max_penetration > SOFT_PENALTY * motion {
+            let key = if k < n_ind { format!("indenters[{k}]") } else { format!("contacts[{}]", k - n_ind) };
+            let what = if k < n_ind { "the indenter's travel" } else { "the largest displacement of its slave nodes" };
+            warnings.push(Warning {
+                key: format!("{key}.penalty_factor"),
+                message: format!(
+                    "contact {:?} ends with a penetration of {} m, {:.0} % of {what} ({} m): its penalty is too soft \
+                     to hold the contact; raise `penalty_factor` (or `penalty`), or set `penetration_tolerance`",
+                    r.name,
+                    crate::numbers::limit(r.max_penetration),
+                    100.0 * r.max_penetration / motion,
+                    crate::numbers::limit(motion)
+                ),
+            });
+        }
+    }
+}

@@ -301,3 +301,52 @@ fn check_prints_section_properties_and_plots_them() {
     let bytes = std::fs::read(&png).unwrap();
     assert_eq!(&bytes[1..4], b"PNG", "{}", png.display());
 }
+
+/// A section in two parts — touching at a corner only (a hinge line along
+/// the axis) or not at all, listed as quads or read from a gmsh file — was
+/// accepted and the run failed at λ = 0 after 25 iterations. It is refused
+/// at validation, naming the section, the number of parts and a point of
+/// each, and what is allowed.
+#[test]
+fn sections_in_separate_parts_are_refused() {
+    let base = std::fs::read_to_string(example("cantilever_timoshenko.toml")).unwrap();
+    let base =
+        base.split("[[lines]]").next().unwrap().replace("point = [0.05, 1.0, 0.05]", "point = [0.025, 1.0, 0.025]");
+    let rectangle = "section = { shape = \"rectangle\", element = \"L9\", x = { from = 0.0, to = 0.1, elements = 2 }, z = { from = 0.0, to = 0.1, elements = 2 } }";
+    assert!(base.contains(rectangle));
+    let dir = out_dir("separate_parts");
+    std::fs::create_dir_all(&dir).unwrap();
+    // two 5 cm squares 1 cm apart, as a gmsh 2.2 file of two quad4
+    let msh = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n8\n1 0 0 0\n2 0.05 0 0\n3 0.05 0.05 0\n4 0 0.05 0\n\
+               5 0.06 0 0\n6 0.1 0 0\n7 0.1 0.05 0\n8 0.06 0.05 0\n$EndNodes\n$Elements\n2\n\
+               1 3 2 1 1 1 2 3 4\n2 3 2 1 1 5 6 7 8\n$EndElements\n";
+    std::fs::write(dir.join("apart.msh"), msh).unwrap();
+    let cases = [
+        (
+            "corner",
+            "section = { shape = \"quads\", element = \"L9\", points = [[0.0, 0.0], [0.05, 0.0], [0.05, 0.05], [0.0, 0.05], \
+             [0.1, 0.05], [0.1, 0.1], [0.05, 0.1]], quads = [[0, 1, 2, 3], [2, 4, 5, 6]] }",
+            "element 1 at x = 0.075, z = 0.075",
+        ),
+        (
+            "apart",
+            "section = { shape = \"quads\", element = \"L4\", points = [[0.0, 0.0], [0.05, 0.0], [0.05, 0.05], [0.0, 0.05], \
+             [0.06, 0.0], [0.1, 0.0], [0.1, 0.05], [0.06, 0.05]], quads = [[0, 1, 2, 3], [4, 5, 6, 7]] }",
+            "element 1 at x = 0.08, z = 0.025",
+        ),
+        ("gmsh", "section = { shape = \"gmsh\", file = \"apart.msh\" }", "element 1 at x = 0.08, z = 0.025"),
+    ];
+    for (name, section, point) in cases {
+        let path = dir.join(format!("{name}.toml"));
+        std::fs::write(&path, base.replace(rectangle, section)).unwrap();
+        let out = cufem().args(["check", path.to_str().unwrap()]).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{name}: {err}");
+        for needle in
+            ["bodies[0].section = 2 separate parts", "1 element (first: element 0 at x = 0.025, z = 0.025)", point]
+        {
+            assert!(err.contains(needle), "{name}: {needle:?} not in {err}");
+        }
+        assert!(err.contains("connected through shared edges") && err.contains("separate bodies"), "{name}: {err}");
+    }
+}

@@ -335,3 +335,51 @@ fn mutated_examples_give_a_clean_error_or_finite_results() {
         panic!("seed {seed}: {e}");
     }
 }
+
+/// The Timoshenko cantilever with its section, axis, load point and probe
+/// replaced: a small model for the validation tests below.
+fn cantilever(section: &str, axis_to: f64, probe: [f64; 3]) -> String {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let text = std::fs::read_to_string(dir.join("cantilever_timoshenko.toml")).unwrap();
+    let text = text.split("[[lines]]").next().unwrap();
+    let rectangle = "x = { from = 0.0, to = 0.1, elements = 2 }, z = { from = 0.0, to = 0.1, elements = 2 }";
+    assert!(text.contains(rectangle) && text.contains("where = { y = 1.0 }"));
+    text.replace(rectangle, section)
+        .replace("from = 0.0, to = 1.0, elements = 5", &format!("from = 0.0, to = {axis_to:?}, elements = 5"))
+        .replace("where = { y = 1.0 }", &format!("where = {{ y = {axis_to:?} }}"))
+        .replace("point = [0.05, 1.0, 0.05]", &format!("point = {probe:?}"))
+}
+
+/// The rigid-body check judged restraint against the body's size: a flat
+/// body (a 100 m × 5 mm section) or a long thin one (100 m of 5 × 5 mm)
+/// clamped at its root was refused as "free to move as a rigid body". It
+/// must accept them and still catch the same bodies held along a line only
+/// (free to rotate about it) or held in y and z only (free along x).
+#[test]
+fn thin_bodies_are_judged_by_their_shape_not_their_size() {
+    let flat = cantilever(
+        "x = { from = 0.0, to = 100.0, elements = 4 }, z = { from = 0.0, to = 0.005, elements = 1 }",
+        1.0,
+        [50.0, 1.0, 0.0025],
+    );
+    let long = cantilever(
+        "x = { from = 0.0, to = 0.005, elements = 1 }, z = { from = 0.0, to = 0.005, elements = 1 }",
+        100.0,
+        [0.0025, 100.0, 0.0025],
+    );
+    for (name, text) in [("flat", &flat), ("long", &long)] {
+        if let Err(e) = Model::parse(text) {
+            panic!("{name}: a clamped body refused: {e}");
+        }
+    }
+    let clamp = "where = { y = 0.0 }";
+    let cases = [
+        (flat.replace(clamp, "where = { y = 0.0, z = 0.0 }"), "(rotation about x)"),
+        (flat.replace("fix = [\"x\", \"y\", \"z\"]", "fix = [\"y\", \"z\"]"), "(translation along x)"),
+        (long.replace(clamp, "where = { y = 0.0, x = 0.0, z = 0.0 }"), "rotation about y"),
+    ];
+    for (text, motion) in cases {
+        let e = Model::parse(&text).map(|_| ()).unwrap_err().to_string();
+        assert!(e.contains("bodies[0] = \"beam\", free to move as a rigid body") && e.contains(motion), "{e}");
+    }
+}

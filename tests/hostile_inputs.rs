@@ -383,3 +383,22 @@ fn thin_bodies_are_judged_by_their_shape_not_their_size() {
         assert!(e.contains("bodies[0] = \"beam\", free to move as a rigid body") && e.contains(motion), "{e}");
     }
 }
+
+/// A sphere whose centre lies inside the body was told about "the
+/// cylinder's axis": the message must name the sphere's centre.
+#[test]
+fn a_buried_sphere_is_told_about_its_centre() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let ball = std::fs::read_to_string(dir.join("hertz_ball.toml")).unwrap();
+    let buried = ball
+        .replace("center = [0.0, 0.0, 0.01]", "center = [0.0, 0.0, -0.002]")
+        .replace("radius = 0.01\ndisplacement", "radius = 0.001\ndisplacement");
+    assert_ne!(buried, ball);
+    let e = Model::parse(&buried).map(|_| ()).unwrap_err().to_string();
+    assert!(
+        e.contains("indenters[0].center = an indenter on the inner side of the surface")
+            && e.contains("expected the sphere's centre on the outer side of the selected surface")
+            && !e.contains("cylinder"),
+        "{e}"
+    );
+}

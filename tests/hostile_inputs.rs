@@ -402,3 +402,28 @@ fn a_buried_sphere_is_told_about_its_centre() {
         "{e}"
     );
 }
+
+/// A constraint `tolerance` as large as the body selected every node and
+/// clamped the whole body without a word (the probe warning is skipped when
+/// nothing moves). The model warns, naming the key and the value; a clamp
+/// of the root face alone does not.
+#[test]
+fn a_constraint_holding_every_node_is_warned_about() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let cant = std::fs::read_to_string(dir.join("cantilever_timoshenko.toml")).unwrap();
+    let root = "where = { y = 0.0 }";
+    assert!(cant.contains(root));
+    let warnings = |text: &str| -> Vec<String> {
+        Model::parse(text).unwrap().warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>()
+    };
+    assert_eq!(warnings(&cant), Vec::<String>::new());
+    let cases = [
+        ("where = { y = 0.0, tolerance = 1.0 }", "constraints[0].where.tolerance: tolerance = 1 m selects every node"),
+        ("where = { y = [-1.0, 5.0] }", "constraints[0].where: where = { y = [-1, 5] } selects every node"),
+        ("where = {}", "constraints[0]: every node of body \"beam\" is fixed or prescribed in x, y and z"),
+    ];
+    for (selection, expect) in cases {
+        let w = warnings(&cant.replace(root, selection));
+        assert!(w.len() == 1 && w[0].starts_with(expect) && w[0].contains("\"beam\""), "{selection}: {w:?}");
+    }
+}

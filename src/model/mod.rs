@@ -326,7 +326,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let materials = material::materials(&file.materials)?;
     let (mesh, cells) = bodies::mesh(&file.bodies, &materials, limits, base)?;
     let mut warnings = Vec::new();
-    let constraints = preprocess::constraints(&file.constraints, &mesh)?;
+    let constraints = preprocess::constraints(&file.constraints, &mesh, &mut warnings)?;
     let loads = preprocess::loads(&file.loads, &mesh, &materials)?;
     let indenters = contacts::indenters(&file.indenters, &mesh, &materials, &mut warnings)?;
     let contacts = contacts::pair_contacts(&file.contacts, &mesh, &materials)?;

@@ -350,3 +350,44 @@ fn sections_in_separate_parts_are_refused() {
         assert!(err.contains("connected through shared edges") && err.contains("separate bodies"), "{name}: {err}");
     }
 }
+
+/// `export-ccx` refusals of what the CalculiX deck cannot hold (load steps,
+/// friction, force control) exited 3 (file error); they are invalid input
+/// for the command: exit 1, naming the key, before any folder is created.
+/// `verify` refuses them before its analysis. A real file error stays 3.
+#[test]
+fn export_ccx_refusals_are_input_errors() {
+    let dir = out_dir("ccx_refusals");
+    let block = std::fs::read_to_string(example("block_indentation.toml")).unwrap();
+    std::fs::create_dir_all(&dir).unwrap();
+    let force = dir.join("force.toml");
+    std::fs::write(&force, block.replace("displacement = [0.0, 0.0, -1.0e-3]", "force = [0.0, 0.0, -1.0e6]")).unwrap();
+    let cases = [
+        (example("cantilevers_contact_friction.toml"), "contacts[0].friction: Coulomb friction"),
+        (example("block_indentation_unload.toml"), "steps: a load history of 2 [[steps]]"),
+        (force, "indenters[0].force: a force-controlled indenter"),
+    ];
+    for (k, (model, key)) in cases.iter().enumerate() {
+        let out = dir.join(format!("out{k}"));
+        let r = cufem()
+            .args(["export-ccx", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--refine", "1"])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(1), "{key}: {err}");
+        assert!(err.contains(key) && err.contains("export-ccx and verify need a model without it"), "{err}");
+        assert!(!out.exists(), "{key}: the refusal created {}", out.display());
+    }
+    let r = cufem()
+        .args(["verify", cases[0].0.to_str().unwrap(), "--out", dir.join("v").to_str().unwrap(), "--quiet"])
+        .output()
+        .unwrap();
+    assert_eq!(r.status.code(), Some(1), "{}", String::from_utf8_lossy(&r.stderr));
+    assert!(!dir.join("v").exists(), "verify ran the analysis before refusing");
+    // an unwritable folder is still a file error
+    let r = cufem()
+        .args(["export-ccx", example("cantilever_timoshenko.toml").to_str().unwrap(), "--out", "/dev/null/ccx"])
+        .output()
+        .unwrap();
+    assert_eq!(r.status.code(), Some(3), "{}", String::from_utf8_lossy(&r.stderr));
+}

@@ -210,7 +210,7 @@ fn dispatch(cli: Cli) -> Result<u8, Failure> {
             let kind = hex_kind(&element)?;
             let refine = check_refine(refine)?;
             let dir = out.unwrap_or_else(|| default_out(&model, "-ccx"));
-            let (mesh, path) = cufem::ccx::export(&m, kind, refine, &dir).map_err(|e| fail(FILES, e))?;
+            let (mesh, path) = cufem::ccx::export(&m, kind, refine, &dir).map_err(ccx_failure)?;
             println!(
                 "wrote {} ({} nodes, {} {} body elements, {} tool elements)",
                 path.display(),
@@ -250,6 +250,15 @@ fn plot_sections(m: &Model, model: &Path, out: Option<PathBuf>) -> Result<(), Fa
         println!("wrote {}", path.display());
     }
     Ok(())
+}
+
+/// An export error: a model the deck cannot represent is invalid input for
+/// this command (exit 1); anything else is a file error (exit 3).
+fn ccx_failure(e: cufem::ccx::CcxError) -> Failure {
+    match e {
+        cufem::ccx::CcxError::Unsupported { .. } => fail(INPUT, e),
+        e => fail(FILES, e),
+    }
 }
 
 fn hex_kind(element: &str) -> Result<cufem::ccx::HexKind, Failure> {

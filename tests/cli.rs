@@ -391,3 +391,41 @@ fn export_ccx_refusals_are_input_errors() {
         .unwrap();
     assert_eq!(r.status.code(), Some(3), "{}", String::from_utf8_lossy(&r.stderr));
 }
+
+/// Option values: negative numbers got clap's "unexpected argument '-1'",
+/// `bench --repeat 0` silently ran once, `--threads 100000` was refused
+/// although the help says it is capped at the logical cores, and with
+/// --force-threads the refusal stated "1..<cores>" instead of the 1024 it
+/// applies. Each bad value: exit 1 naming the option, the value and the range.
+#[test]
+fn option_values_are_checked_by_name() {
+    let cant = example("cantilever_timoshenko.toml");
+    let m = cant.to_str().unwrap();
+    let cases: [(&[&str], &[&str]); 7] = [
+        (&["bench", m, "--repeat", "0"], &["'0' for '--repeat", "an integer from 1 to 1000"]),
+        (&["bench", m, "--repeat", "-1"], &["'-1' for '--repeat", "an integer from 1 to 1000"]),
+        (&["bench", m, "--threads", "-1"], &["'-1' for '--threads", "an integer ≥ 1"]),
+        (&["bench", m, "--threads", "0"], &["'0' for '--threads", "an integer ≥ 1"]),
+        (&["export-ccx", m, "--refine", "-1"], &["'-1' for '--refine", "an integer from 1 to 8"]),
+        (&["bench", m, "--max-memory", "-1"], &["'-1' for '--max-memory", "a size such as 8G"]),
+        (
+            &["bench", m, "--repeat", "1", "--threads", "5000", "--force-threads"],
+            &["--threads = 5000", "with --force-threads: expected an integer from 1 to 1024"],
+        ),
+    ];
+    for (args, needles) in cases {
+        let r = cufem().args(args).output().unwrap();
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(1), "{args:?}: {err}");
+        for n in needles {
+            assert!(err.contains(n), "{args:?}: {n:?} not in {err}");
+        }
+        assert!(!err.contains("unexpected argument"), "{args:?}: {err}");
+    }
+    // more threads than cores: capped with a warning, whatever the number
+    let r = cufem().args(["bench", m, "--repeat", "1", "--threads", "100000"]).output().unwrap();
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(r.status.success(), "{err}");
+    let cores = std::thread::available_parallelism().unwrap().get();
+    assert!(err.contains(&format!("100000 threads requested but this machine has {cores} logical cores")), "{err}");
+}

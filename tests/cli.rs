@@ -429,3 +429,37 @@ fn option_values_are_checked_by_name() {
     let cores = std::thread::available_parallelism().unwrap().get();
     assert!(err.contains(&format!("100000 threads requested but this machine has {cores} logical cores")), "{err}");
 }
+
+/// `cufem check /dev/zero` allocated until memory ran out: a model file is
+/// read up to 64 MiB, and a larger or endless one refused (exit 1) with the
+/// file, the cap and what is allowed. A gmsh mesh has its own cap (2 GiB).
+#[test]
+fn endless_and_huge_model_files_are_refused() {
+    let dir = out_dir("huge_files");
+    std::fs::create_dir_all(&dir).unwrap();
+    let big = dir.join("big.toml");
+    std::fs::File::create(&big).unwrap().set_len(100 << 20).unwrap();
+    for path in [Path::new("/dev/zero"), big.as_path()] {
+        let start = std::time::Instant::now();
+        let r = cufem().args(["check", path.to_str().unwrap()]).output().unwrap();
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(1), "{err}");
+        assert!(
+            err.contains(&format!("model file {} holds more than 64.00 MiB", path.display()))
+                && err.contains("expected a model file of at most 64.00 MiB"),
+            "{err}"
+        );
+        assert!(start.elapsed().as_secs() < 30, "{}", path.display());
+    }
+    let big_mesh = dir.join("big.msh");
+    std::fs::File::create(&big_mesh).unwrap().set_len(3 << 30).unwrap();
+    let model = dir.join("gmsh.toml");
+    let text = std::fs::read_to_string(example("cantilever_timoshenko.toml")).unwrap();
+    let rectangle = "section = { shape = \"rectangle\", element = \"L9\", x = { from = 0.0, to = 0.1, elements = 2 }, z = { from = 0.0, to = 0.1, elements = 2 } }";
+    std::fs::write(&model, text.replace(rectangle, "section = { shape = \"gmsh\", file = \"big.msh\" }")).unwrap();
+    let r = cufem().args(["check", model.to_str().unwrap()]).output().unwrap();
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert_eq!(r.status.code(), Some(1), "{err}");
+    assert!(err.contains("bodies[0].section.file") && err.contains("a gmsh .msh file of at most 2.00 GiB"), "{err}");
+    let _ = std::fs::remove_file(&big_mesh);
+}

@@ -329,7 +329,7 @@ fn limit(r: &Resources) -> Option<u64> {
 
 fn load(path: &Path, resources: &Resources) -> Result<Model, Failure> {
     Model::from_file_with(path, Limits { max_memory: limit(resources) }).map_err(|e| match e {
-        ModelError::Io { .. } | ModelError::NotText { .. } => fail(INPUT, e),
+        ModelError::Io { .. } | ModelError::NotText { .. } | ModelError::TooBig { .. } => fail(INPUT, e),
         ModelError::TooLarge { .. } => fail(TOO_LARGE, anyhow!(e).context(format!("model {}", path.display()))),
         e => fail(INPUT, anyhow!(e).context(format!("invalid model {}", path.display()))),
     })

@@ -463,3 +463,46 @@ fn endless_and_huge_model_files_are_refused() {
     assert!(err.contains("bodies[0].section.file") && err.contains("a gmsh .msh file of at most 2.00 GiB"), "{err}");
     let _ = std::fs::remove_file(&big_mesh);
 }
+
+/// A title with control characters (`title = "bell \u0007 only"` gave a
+/// result.vtu that expat, VTK and ParaView reject), markup, `-->` and
+/// non-ASCII text is accepted and escaped: the VTU parses as XML and
+/// summary.json as JSON, with the title intact there. Names may use only
+/// letters, digits, `_`, `-` and `.` (they become file names): a control
+/// character or a `/` in a name is refused with its key.
+#[test]
+fn any_title_gives_outputs_their_readers_accept() {
+    let dir = out_dir("hostile_title");
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(example("cantilever_timoshenko.toml")).unwrap();
+    let title = "bell \u{7} nul \u{0} esc \u{1b} \u{c} quote \" apos ' <tag> & --> --- end- \u{ffff} ü 日本";
+    let toml_title =
+        "\"bell \\u0007 nul \\u0000 esc \\u001b \\f quote \\\" apos ' <tag> & --> --- end- \\uFFFF ü 日本\"";
+    let start = text.find("title = ").unwrap();
+    let end = start + text[start..].find('\n').unwrap();
+    let model = text[..start].to_string() + "title = " + toml_title + &text[end..];
+    let model = model
+        .replace("name = \"tip\"\nbody", "name = \"tip-1.a\"\nbody")
+        .replace("name = \"top\"", "name = \"top_2.x\"");
+    let path = dir.join("model.toml");
+    std::fs::write(&path, &model).unwrap();
+    let out = dir.join("out");
+    let r = cufem().args(["run", path.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"]).output().unwrap();
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let vtu = std::fs::read_to_string(out.join("result.vtu")).unwrap();
+    if let Err(e) = roxmltree::Document::parse(&vtu) {
+        panic!("result.vtu is not XML: {e}\n{}", &vtu[..300.min(vtu.len())]);
+    }
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["title"], title);
+    assert!(out.join("line_top_2.x.csv").exists());
+    for bad in ["tip\\u0007", "tip/1", "tip\\\\1"] {
+        let p = dir.join("bad.toml");
+        std::fs::write(&p, model.replace("name = \"tip-1.a\"", &format!("name = \"{bad}\""))).unwrap();
+        let r = cufem().args(["check", p.to_str().unwrap()]).output().unwrap();
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(1), "{bad}: {err}");
+        assert!(err.contains("loads[0].name") && err.contains("letters, digits"), "{bad}: {err}");
+    }
+}

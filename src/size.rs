@@ -136,6 +136,30 @@ pub fn available_memory() -> Option<u64> {
     }
 }
 
+/// Largest model file read (bytes). Model files are a few kilobytes (gmsh
+/// meshes are separate files); without a cap `cufem check /dev/zero`
+/// allocated until memory ran out.
+pub const MAX_MODEL_FILE: u64 = 64 << 20;
+
+/// Largest gmsh `.msh` file read (bytes): a 2D section mesh of millions of
+/// elements fits; the text and its parse are held in memory at once.
+pub const MAX_MESH_FILE: u64 = 2 << 30;
+
+/// The bytes of `path` if it holds at most `cap` of them, `Ok(None)` if it
+/// holds more — also an endless stream such as `/dev/zero`, which is read up
+/// to `cap + 1` bytes only (a larger regular file is not read at all).
+pub fn read_at_most(path: &std::path::Path, cap: u64) -> std::io::Result<Option<Vec<u8>>> {
+    use std::io::Read;
+    let file = std::fs::File::open(path)?;
+    let meta = file.metadata()?;
+    if meta.is_file() && meta.len() > cap {
+        return Ok(None);
+    }
+    let mut bytes = Vec::with_capacity(if meta.is_file() { meta.len() as usize } else { 0 });
+    file.take(cap + 1).read_to_end(&mut bytes)?;
+    Ok((bytes.len() as u64 <= cap).then_some(bytes))
+}
+
 /// Peak resident memory of this process so far (bytes), from `getrusage`.
 pub fn peak_memory() -> Option<u64> {
     // SAFETY: getrusage writes into the zero-initialised struct we own.

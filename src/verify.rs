@@ -18,6 +18,7 @@ use serde::Serialize;
 
 use crate::analysis::Solution;
 use crate::ccx::{CcxRun, HexMesh, deck::set_name};
+use crate::io::csv_field as field;
 use crate::io::{IoError, Series, line_plot};
 use crate::model::Model;
 use crate::quantity::{Quantity, Sample};
@@ -325,8 +326,8 @@ impl Comparison {
                 let _ = writeln!(
                     csv,
                     "{},{},f_{},{:e},{:e},{}",
-                    r.kind,
-                    r.name,
+                    field(r.kind),
+                    field(&r.name),
                     ["x", "y", "z"][k],
                     r.cufem[k],
                     r.ccx[k],
@@ -338,15 +339,15 @@ impl Comparison {
             let _ = writeln!(
                 csv,
                 "probe,{},{},{:e},{:e},{}",
-                p.probe,
-                p.quantity,
+                field(&p.probe),
+                field(&p.quantity),
                 p.cufem,
                 p.ccx,
                 p.difference_percent.map_or(String::new(), |d| format!("{d:e}"))
             );
         }
         for l in &self.lines {
-            let _ = writeln!(csv, "line,{},{},,,{:e}", l.line, l.quantity, l.max_difference_percent);
+            let _ = writeln!(csv, "line,{},{},,,{:e}", field(&l.line), field(&l.quantity), l.max_difference_percent);
         }
         let p = dir.join("table.csv");
         file(&p, &csv)?;

@@ -338,7 +338,7 @@ fn features_without_a_calculix_twin_are_refused_by_key() {
         let model = Model::parse(&text).unwrap();
         let dir = scratch(&format!("refuse_{name}"));
         let e = ccx::export(&model, HexKind::C3D20R, 1, &dir).unwrap_err().to_string();
-        assert!(e.starts_with(key) && e.contains("no CalculiX equivalent"), "{name}: {e}");
+        assert!(e.starts_with(key) && e.contains("no equivalent in the CalculiX deck"), "{name}: {e}");
         assert!(!dir.join("model.inp").exists(), "{name}: a deck was written");
     }
 }

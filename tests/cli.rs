@@ -301,3 +301,208 @@ fn check_prints_section_properties_and_plots_them() {
     let bytes = std::fs::read(&png).unwrap();
     assert_eq!(&bytes[1..4], b"PNG", "{}", png.display());
 }
+
+/// A section in two parts — touching at a corner only (a hinge line along
+/// the axis) or not at all, listed as quads or read from a gmsh file — was
+/// accepted and the run failed at λ = 0 after 25 iterations. It is refused
+/// at validation, naming the section, the number of parts and a point of
+/// each, and what is allowed.
+#[test]
+fn sections_in_separate_parts_are_refused() {
+    let base = std::fs::read_to_string(example("cantilever_timoshenko.toml")).unwrap();
+    let base =
+        base.split("[[lines]]").next().unwrap().replace("point = [0.05, 1.0, 0.05]", "point = [0.025, 1.0, 0.025]");
+    let rectangle = "section = { shape = \"rectangle\", element = \"L9\", x = { from = 0.0, to = 0.1, elements = 2 }, z = { from = 0.0, to = 0.1, elements = 2 } }";
+    assert!(base.contains(rectangle));
+    let dir = out_dir("separate_parts");
+    std::fs::create_dir_all(&dir).unwrap();
+    // two 5 cm squares 1 cm apart, as a gmsh 2.2 file of two quad4
+    let msh = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n8\n1 0 0 0\n2 0.05 0 0\n3 0.05 0.05 0\n4 0 0.05 0\n\
+               5 0.06 0 0\n6 0.1 0 0\n7 0.1 0.05 0\n8 0.06 0.05 0\n$EndNodes\n$Elements\n2\n\
+               1 3 2 1 1 1 2 3 4\n2 3 2 1 1 5 6 7 8\n$EndElements\n";
+    std::fs::write(dir.join("apart.msh"), msh).unwrap();
+    let cases = [
+        (
+            "corner",
+            "section = { shape = \"quads\", element = \"L9\", points = [[0.0, 0.0], [0.05, 0.0], [0.05, 0.05], [0.0, 0.05], \
+             [0.1, 0.05], [0.1, 0.1], [0.05, 0.1]], quads = [[0, 1, 2, 3], [2, 4, 5, 6]] }",
+            "element 1 at x = 0.075, z = 0.075",
+        ),
+        (
+            "apart",
+            "section = { shape = \"quads\", element = \"L4\", points = [[0.0, 0.0], [0.05, 0.0], [0.05, 0.05], [0.0, 0.05], \
+             [0.06, 0.0], [0.1, 0.0], [0.1, 0.05], [0.06, 0.05]], quads = [[0, 1, 2, 3], [4, 5, 6, 7]] }",
+            "element 1 at x = 0.08, z = 0.025",
+        ),
+        ("gmsh", "section = { shape = \"gmsh\", file = \"apart.msh\" }", "element 1 at x = 0.08, z = 0.025"),
+    ];
+    for (name, section, point) in cases {
+        let path = dir.join(format!("{name}.toml"));
+        std::fs::write(&path, base.replace(rectangle, section)).unwrap();
+        let out = cufem().args(["check", path.to_str().unwrap()]).output().unwrap();
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{name}: {err}");
+        for needle in
+            ["bodies[0].section = 2 separate parts", "1 element (first: element 0 at x = 0.025, z = 0.025)", point]
+        {
+            assert!(err.contains(needle), "{name}: {needle:?} not in {err}");
+        }
+        assert!(err.contains("connected through shared edges") && err.contains("separate bodies"), "{name}: {err}");
+    }
+}
+
+/// `export-ccx` refusals of what the CalculiX deck cannot hold (load steps,
+/// friction, force control) exited 3 (file error); they are invalid input
+/// for the command: exit 1, naming the key, before any folder is created.
+/// `verify` refuses them before its analysis. A real file error stays 3.
+#[test]
+fn export_ccx_refusals_are_input_errors() {
+    let dir = out_dir("ccx_refusals");
+    let block = std::fs::read_to_string(example("block_indentation.toml")).unwrap();
+    std::fs::create_dir_all(&dir).unwrap();
+    let force = dir.join("force.toml");
+    std::fs::write(&force, block.replace("displacement = [0.0, 0.0, -1.0e-3]", "force = [0.0, 0.0, -1.0e6]")).unwrap();
+    let cases = [
+        (example("cantilevers_contact_friction.toml"), "contacts[0].friction: Coulomb friction"),
+        (example("block_indentation_unload.toml"), "steps: a load history of 2 [[steps]]"),
+        (force, "indenters[0].force: a force-controlled indenter"),
+    ];
+    for (k, (model, key)) in cases.iter().enumerate() {
+        let out = dir.join(format!("out{k}"));
+        let r = cufem()
+            .args(["export-ccx", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--refine", "1"])
+            .output()
+            .unwrap();
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(1), "{key}: {err}");
+        assert!(err.contains(key) && err.contains("export-ccx and verify need a model without it"), "{err}");
+        assert!(!out.exists(), "{key}: the refusal created {}", out.display());
+    }
+    let r = cufem()
+        .args(["verify", cases[0].0.to_str().unwrap(), "--out", dir.join("v").to_str().unwrap(), "--quiet"])
+        .output()
+        .unwrap();
+    assert_eq!(r.status.code(), Some(1), "{}", String::from_utf8_lossy(&r.stderr));
+    assert!(!dir.join("v").exists(), "verify ran the analysis before refusing");
+    // an unwritable folder is still a file error
+    let r = cufem()
+        .args(["export-ccx", example("cantilever_timoshenko.toml").to_str().unwrap(), "--out", "/dev/null/ccx"])
+        .output()
+        .unwrap();
+    assert_eq!(r.status.code(), Some(3), "{}", String::from_utf8_lossy(&r.stderr));
+}
+
+/// Option values: negative numbers got clap's "unexpected argument '-1'",
+/// `bench --repeat 0` silently ran once, `--threads 100000` was refused
+/// although the help says it is capped at the logical cores, and with
+/// --force-threads the refusal stated "1..<cores>" instead of the 1024 it
+/// applies. Each bad value: exit 1 naming the option, the value and the range.
+#[test]
+fn option_values_are_checked_by_name() {
+    let cant = example("cantilever_timoshenko.toml");
+    let m = cant.to_str().unwrap();
+    let cases: [(&[&str], &[&str]); 7] = [
+        (&["bench", m, "--repeat", "0"], &["'0' for '--repeat", "an integer from 1 to 1000"]),
+        (&["bench", m, "--repeat", "-1"], &["'-1' for '--repeat", "an integer from 1 to 1000"]),
+        (&["bench", m, "--threads", "-1"], &["'-1' for '--threads", "an integer ≥ 1"]),
+        (&["bench", m, "--threads", "0"], &["'0' for '--threads", "an integer ≥ 1"]),
+        (&["export-ccx", m, "--refine", "-1"], &["'-1' for '--refine", "an integer from 1 to 8"]),
+        (&["bench", m, "--max-memory", "-1"], &["'-1' for '--max-memory", "a size such as 8G"]),
+        (
+            &["bench", m, "--repeat", "1", "--threads", "5000", "--force-threads"],
+            &["--threads = 5000", "with --force-threads: expected an integer from 1 to 1024"],
+        ),
+    ];
+    for (args, needles) in cases {
+        let r = cufem().args(args).output().unwrap();
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(1), "{args:?}: {err}");
+        for n in needles {
+            assert!(err.contains(n), "{args:?}: {n:?} not in {err}");
+        }
+        assert!(!err.contains("unexpected argument"), "{args:?}: {err}");
+    }
+    // more threads than cores: capped with a warning, whatever the number
+    let r = cufem().args(["bench", m, "--repeat", "1", "--threads", "100000"]).output().unwrap();
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert!(r.status.success(), "{err}");
+    let cores = std::thread::available_parallelism().unwrap().get();
+    assert!(err.contains(&format!("100000 threads requested but this machine has {cores} logical cores")), "{err}");
+}
+
+/// `cufem check /dev/zero` allocated until memory ran out: a model file is
+/// read up to 64 MiB, and a larger or endless one refused (exit 1) with the
+/// file, the cap and what is allowed. A gmsh mesh has its own cap (2 GiB).
+#[test]
+fn endless_and_huge_model_files_are_refused() {
+    let dir = out_dir("huge_files");
+    std::fs::create_dir_all(&dir).unwrap();
+    let big = dir.join("big.toml");
+    std::fs::File::create(&big).unwrap().set_len(100 << 20).unwrap();
+    for path in [Path::new("/dev/zero"), big.as_path()] {
+        let start = std::time::Instant::now();
+        let r = cufem().args(["check", path.to_str().unwrap()]).output().unwrap();
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(1), "{err}");
+        assert!(
+            err.contains(&format!("model file {} holds more than 64.00 MiB", path.display()))
+                && err.contains("expected a model file of at most 64.00 MiB"),
+            "{err}"
+        );
+        assert!(start.elapsed().as_secs() < 30, "{}", path.display());
+    }
+    let big_mesh = dir.join("big.msh");
+    std::fs::File::create(&big_mesh).unwrap().set_len(3 << 30).unwrap();
+    let model = dir.join("gmsh.toml");
+    let text = std::fs::read_to_string(example("cantilever_timoshenko.toml")).unwrap();
+    let rectangle = "section = { shape = \"rectangle\", element = \"L9\", x = { from = 0.0, to = 0.1, elements = 2 }, z = { from = 0.0, to = 0.1, elements = 2 } }";
+    std::fs::write(&model, text.replace(rectangle, "section = { shape = \"gmsh\", file = \"big.msh\" }")).unwrap();
+    let r = cufem().args(["check", model.to_str().unwrap()]).output().unwrap();
+    let err = String::from_utf8_lossy(&r.stderr);
+    assert_eq!(r.status.code(), Some(1), "{err}");
+    assert!(err.contains("bodies[0].section.file") && err.contains("a gmsh .msh file of at most 2.00 GiB"), "{err}");
+    let _ = std::fs::remove_file(&big_mesh);
+}
+
+/// A title with control characters (`title = "bell \u0007 only"` gave a
+/// result.vtu that expat, VTK and ParaView reject), markup, `-->` and
+/// non-ASCII text is accepted and escaped: the VTU parses as XML and
+/// summary.json as JSON, with the title intact there. Names may use only
+/// letters, digits, `_`, `-` and `.` (they become file names): a control
+/// character or a `/` in a name is refused with its key.
+#[test]
+fn any_title_gives_outputs_their_readers_accept() {
+    let dir = out_dir("hostile_title");
+    std::fs::create_dir_all(&dir).unwrap();
+    let text = std::fs::read_to_string(example("cantilever_timoshenko.toml")).unwrap();
+    let title = "bell \u{7} nul \u{0} esc \u{1b} \u{c} quote \" apos ' <tag> & --> --- end- \u{ffff} ü 日本";
+    let toml_title =
+        "\"bell \\u0007 nul \\u0000 esc \\u001b \\f quote \\\" apos ' <tag> & --> --- end- \\uFFFF ü 日本\"";
+    let start = text.find("title = ").unwrap();
+    let end = start + text[start..].find('\n').unwrap();
+    let model = text[..start].to_string() + "title = " + toml_title + &text[end..];
+    let model = model
+        .replace("name = \"tip\"\nbody", "name = \"tip-1.a\"\nbody")
+        .replace("name = \"top\"", "name = \"top_2.x\"");
+    let path = dir.join("model.toml");
+    std::fs::write(&path, &model).unwrap();
+    let out = dir.join("out");
+    let r = cufem().args(["run", path.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"]).output().unwrap();
+    assert!(r.status.success(), "{}", String::from_utf8_lossy(&r.stderr));
+    let vtu = std::fs::read_to_string(out.join("result.vtu")).unwrap();
+    if let Err(e) = roxmltree::Document::parse(&vtu) {
+        panic!("result.vtu is not XML: {e}\n{}", &vtu[..300.min(vtu.len())]);
+    }
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["title"], title);
+    assert!(out.join("line_top_2.x.csv").exists());
+    for bad in ["tip\\u0007", "tip/1", "tip\\\\1"] {
+        let p = dir.join("bad.toml");
+        std::fs::write(&p, model.replace("name = \"tip-1.a\"", &format!("name = \"{bad}\""))).unwrap();
+        let r = cufem().args(["check", p.to_str().unwrap()]).output().unwrap();
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(1), "{bad}: {err}");
+        assert!(err.contains("loads[0].name") && err.contains("letters, digits"), "{bad}: {err}");
+    }
+}

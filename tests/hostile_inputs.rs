@@ -335,3 +335,95 @@ fn mutated_examples_give_a_clean_error_or_finite_results() {
         panic!("seed {seed}: {e}");
     }
 }
+
+/// The Timoshenko cantilever with its section, axis, load point and probe
+/// replaced: a small model for the validation tests below.
+fn cantilever(section: &str, axis_to: f64, probe: [f64; 3]) -> String {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let text = std::fs::read_to_string(dir.join("cantilever_timoshenko.toml")).unwrap();
+    let text = text.split("[[lines]]").next().unwrap();
+    let rectangle = "x = { from = 0.0, to = 0.1, elements = 2 }, z = { from = 0.0, to = 0.1, elements = 2 }";
+    assert!(text.contains(rectangle) && text.contains("where = { y = 1.0 }"));
+    text.replace(rectangle, section)
+        .replace("from = 0.0, to = 1.0, elements = 5", &format!("from = 0.0, to = {axis_to:?}, elements = 5"))
+        .replace("where = { y = 1.0 }", &format!("where = {{ y = {axis_to:?} }}"))
+        .replace("point = [0.05, 1.0, 0.05]", &format!("point = {probe:?}"))
+}
+
+/// The rigid-body check judged restraint against the body's size: a flat
+/// body (a 100 m × 5 mm section) or a long thin one (100 m of 5 × 5 mm)
+/// clamped at its root was refused as "free to move as a rigid body". It
+/// must accept them and still catch the same bodies held along a line only
+/// (free to rotate about it) or held in y and z only (free along x).
+#[test]
+fn thin_bodies_are_judged_by_their_shape_not_their_size() {
+    let flat = cantilever(
+        "x = { from = 0.0, to = 100.0, elements = 4 }, z = { from = 0.0, to = 0.005, elements = 1 }",
+        1.0,
+        [50.0, 1.0, 0.0025],
+    );
+    let long = cantilever(
+        "x = { from = 0.0, to = 0.005, elements = 1 }, z = { from = 0.0, to = 0.005, elements = 1 }",
+        100.0,
+        [0.0025, 100.0, 0.0025],
+    );
+    for (name, text) in [("flat", &flat), ("long", &long)] {
+        if let Err(e) = Model::parse(text) {
+            panic!("{name}: a clamped body refused: {e}");
+        }
+    }
+    let clamp = "where = { y = 0.0 }";
+    let cases = [
+        (flat.replace(clamp, "where = { y = 0.0, z = 0.0 }"), "(rotation about x)"),
+        (flat.replace("fix = [\"x\", \"y\", \"z\"]", "fix = [\"y\", \"z\"]"), "(translation along x)"),
+        (long.replace(clamp, "where = { y = 0.0, x = 0.0, z = 0.0 }"), "rotation about y"),
+    ];
+    for (text, motion) in cases {
+        let e = Model::parse(&text).map(|_| ()).unwrap_err().to_string();
+        assert!(e.contains("bodies[0] = \"beam\", free to move as a rigid body") && e.contains(motion), "{e}");
+    }
+}
+
+/// A sphere whose centre lies inside the body was told about "the
+/// cylinder's axis": the message must name the sphere's centre.
+#[test]
+fn a_buried_sphere_is_told_about_its_centre() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let ball = std::fs::read_to_string(dir.join("hertz_ball.toml")).unwrap();
+    let buried = ball
+        .replace("center = [0.0, 0.0, 0.01]", "center = [0.0, 0.0, -0.002]")
+        .replace("radius = 0.01\ndisplacement", "radius = 0.001\ndisplacement");
+    assert_ne!(buried, ball);
+    let e = Model::parse(&buried).map(|_| ()).unwrap_err().to_string();
+    assert!(
+        e.contains("indenters[0].center = an indenter on the inner side of the surface")
+            && e.contains("expected the sphere's centre on the outer side of the selected surface")
+            && !e.contains("cylinder"),
+        "{e}"
+    );
+}
+
+/// A constraint `tolerance` as large as the body selected every node and
+/// clamped the whole body without a word (the probe warning is skipped when
+/// nothing moves). The model warns, naming the key and the value; a clamp
+/// of the root face alone does not.
+#[test]
+fn a_constraint_holding_every_node_is_warned_about() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let cant = std::fs::read_to_string(dir.join("cantilever_timoshenko.toml")).unwrap();
+    let root = "where = { y = 0.0 }";
+    assert!(cant.contains(root));
+    let warnings = |text: &str| -> Vec<String> {
+        Model::parse(text).unwrap().warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>()
+    };
+    assert_eq!(warnings(&cant), Vec::<String>::new());
+    let cases = [
+        ("where = { y = 0.0, tolerance = 1.0 }", "constraints[0].where.tolerance: tolerance = 1 m selects every node"),
+        ("where = { y = [-1.0, 5.0] }", "constraints[0].where: where = { y = [-1, 5] } selects every node"),
+        ("where = {}", "constraints[0]: every node of body \"beam\" is fixed or prescribed in x, y and z"),
+    ];
+    for (selection, expect) in cases {
+        let w = warnings(&cant.replace(root, selection));
+        assert!(w.len() == 1 && w[0].starts_with(expect) && w[0].contains("\"beam\""), "{selection}: {w:?}");
+    }
+}

@@ -53,8 +53,11 @@ pub enum CcxError {
         /// The folder given.
         from: String,
     },
-    /// The model uses a feature CalculiX has no equivalent for.
-    #[error("{key}: {what} has no CalculiX equivalent; the 3D cross-check needs a model without it")]
+    /// The model uses a feature the CalculiX twin has no equivalent for.
+    #[error(
+        "{key}: {what} has no equivalent in the CalculiX deck, which holds one static step, displacement-controlled \
+         rigid tools, frictionless contact and isotropic hardening; export-ccx and verify need a model without it"
+    )]
     Unsupported {
         /// The model-file key.
         key: String,
@@ -75,11 +78,21 @@ fn file_error(path: &Path) -> impl FnOnce(std::io::Error) -> CcxError + '_ {
     move |cause| CcxError::File { path: path.display().to_string(), cause }
 }
 
-/// Writes `dir/model.inp` and returns the mesh it was written on.
+/// Writes `dir/model.inp` and returns the mesh it was written on; refuses
+/// (before writing anything) a model the deck cannot represent.
 pub fn export(model: &Model, kind: HexKind, refine: usize, dir: &Path) -> Result<(HexMesh, PathBuf), CcxError> {
+    check_supported(model)?;
     std::fs::create_dir_all(dir).map_err(file_error(dir))?;
     let mesh = HexMesh::new(model, kind, refine);
     let path = dir.join("model.inp");
+    std::fs::write(&path, deck::write(model, &mesh)).map_err(file_error(&path))?;
+    Ok((mesh, path))
+}
+
+/// [`CcxError::Unsupported`] for the first feature of `model` that the
+/// CalculiX deck cannot represent (checked before any work by `export` and
+/// by `cufem verify` before its analysis).
+pub fn check_supported(model: &Model) -> Result<(), CcxError> {
     if let Some(k) = model.indenters.iter().position(|i| i.force.is_some()) {
         return Err(CcxError::Unsupported {
             key: format!("indenters[{k}].force"),
@@ -89,7 +102,7 @@ pub fn export(model: &Model, kind: HexKind, refine: usize, dir: &Path) -> Result
     if model.steps.len() > 1 {
         return Err(CcxError::Unsupported {
             key: "steps".into(),
-            what: format!("a load history of {} steps", model.steps.len()),
+            what: format!("a load history of {} [[steps]] (one at most)", model.steps.len()),
         });
     }
     if let Some((k, m)) = model.materials.iter().enumerate().find(|(_, m)| !m.kinematic.is_empty()) {
@@ -108,8 +121,7 @@ pub fn export(model: &Model, kind: HexKind, refine: usize, dir: &Path) -> Result
     if let Some(key) = friction {
         return Err(CcxError::Unsupported { key: format!("{key}.friction"), what: "Coulomb friction".into() });
     }
-    std::fs::write(&path, deck::write(model, &mesh)).map_err(file_error(&path))?;
-    Ok((mesh, path))
+    Ok(())
 }
 
 /// What a `ccx` run gave.

@@ -54,15 +54,15 @@ struct Cli {
 
 #[derive(clap::Args)]
 struct Resources {
-    /// Worker threads (default: the model's `solver.threads`, else all logical cores; capped at the
-    /// machine's logical cores unless --force-threads).
-    #[arg(long)]
+    /// Worker threads (default: the model's `solver.threads`, else all logical cores; more than the
+    /// machine's logical cores are capped at them, with a warning, unless --force-threads).
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_threads)]
     threads: Option<usize>,
     /// Allow more threads than logical cores (at most 1024).
     #[arg(long)]
     force_threads: bool,
     /// Largest memory the analysis may need, e.g. 8G or 512MiB (default: the memory available now).
-    #[arg(long, value_parser = parse_memory)]
+    #[arg(long, allow_negative_numbers = true, value_parser = parse_memory)]
     max_memory: Option<u64>,
 }
 
@@ -101,8 +101,8 @@ enum Command {
     ExportCcx {
         /// Model file (TOML).
         model: PathBuf,
-        /// Hexahedra per Lagrange interval of the CUF mesh, per direction.
-        #[arg(long, default_value_t = 2)]
+        /// Hexahedra per Lagrange interval of the CUF mesh, per direction (1 to 8).
+        #[arg(long, default_value_t = 2, allow_negative_numbers = true, value_parser = parse_refine)]
         refine: usize,
         /// Solid element: C3D20R or C3D8I.
         #[arg(long, default_value = "C3D20R")]
@@ -118,8 +118,8 @@ enum Command {
         /// Output folder (default: out/<model name>); the comparison goes to its verify/ folder.
         #[arg(long)]
         out: Option<PathBuf>,
-        /// Hexahedra per Lagrange interval of the CUF mesh, per direction.
-        #[arg(long, default_value_t = 2)]
+        /// Hexahedra per Lagrange interval of the CUF mesh, per direction (1 to 8).
+        #[arg(long, default_value_t = 2, allow_negative_numbers = true, value_parser = parse_refine)]
         refine: usize,
         /// Solid element: C3D20R or C3D8I.
         #[arg(long, default_value = "C3D20R")]
@@ -144,8 +144,8 @@ enum Command {
     Bench {
         /// Model file (TOML).
         model: PathBuf,
-        /// Number of timed repetitions (the median is reported).
-        #[arg(long, default_value_t = 5)]
+        /// Number of timed repetitions (the median is reported; 1 to 1000).
+        #[arg(long, default_value_t = 5, allow_negative_numbers = true, value_parser = parse_repeat)]
         repeat: usize,
         /// Time the full analysis instead of one linear solve.
         #[arg(long)]
@@ -153,6 +153,46 @@ enum Command {
         #[command(flatten)]
         resources: Resources,
     },
+}
+
+/// Most worker threads, also with --force-threads.
+const MAX_THREADS: usize = 1024;
+
+/// An integer option from `lo` to `hi` (`None`: no upper limit). Negative
+/// values reach this parser (`allow_negative_numbers`) so that the message
+/// names what is allowed instead of clap's "unexpected argument '-1'"; clap
+/// prefixes it with the option and the value.
+fn integer_in(s: &str, lo: usize, hi: Option<usize>, what: &str) -> Result<usize, String> {
+    let range = match hi {
+        Some(hi) => format!("an integer from {lo} to {hi}"),
+        None => format!("an integer ≥ {lo}"),
+    };
+    match s.trim().parse::<i128>() {
+        Ok(v) if v >= lo as i128 && hi.is_none_or(|hi| v <= hi as i128) => {
+            usize::try_from(v).map_err(|_| format!("expected {range} ({what})"))
+        }
+        _ => Err(format!("expected {range} ({what})")),
+    }
+}
+
+fn parse_threads(s: &str) -> Result<usize, String> {
+    integer_in(
+        s,
+        1,
+        None,
+        &format!(
+            "worker threads; more than the logical cores are capped at them unless --force-threads, which allows up \
+             to {MAX_THREADS}"
+        ),
+    )
+}
+
+fn parse_refine(s: &str) -> Result<usize, String> {
+    integer_in(s, 1, Some(8), "hexahedra per Lagrange interval")
+}
+
+fn parse_repeat(s: &str) -> Result<usize, String> {
+    integer_in(s, 1, Some(1000), "timed repetitions")
 }
 
 fn parse_memory(s: &str) -> Result<u64, String> {
@@ -210,7 +250,7 @@ fn dispatch(cli: Cli) -> Result<u8, Failure> {
             let kind = hex_kind(&element)?;
             let refine = check_refine(refine)?;
             let dir = out.unwrap_or_else(|| default_out(&model, "-ccx"));
-            let (mesh, path) = cufem::ccx::export(&m, kind, refine, &dir).map_err(|e| fail(FILES, e))?;
+            let (mesh, path) = cufem::ccx::export(&m, kind, refine, &dir).map_err(ccx_failure)?;
             println!(
                 "wrote {} ({} nodes, {} {} body elements, {} tool elements)",
                 path.display(),
@@ -224,7 +264,7 @@ fn dispatch(cli: Cli) -> Result<u8, Failure> {
         Command::Bench { model, repeat, full, resources } => {
             let m = load(&model, &resources)?;
             configure_threads(resources.threads.or(m.solver.threads), resources.force_threads)?;
-            bench::run(&m, repeat.max(1), full).map_err(|e| fail(INPUT, e))?;
+            bench::run(&m, repeat, full).map_err(|e| fail(INPUT, e))?;
             Ok(OK)
         }
     }
@@ -250,6 +290,15 @@ fn plot_sections(m: &Model, model: &Path, out: Option<PathBuf>) -> Result<(), Fa
         println!("wrote {}", path.display());
     }
     Ok(())
+}
+
+/// An export error: a model the deck cannot represent is invalid input for
+/// this command (exit 1); anything else is a file error (exit 3).
+fn ccx_failure(e: cufem::ccx::CcxError) -> Failure {
+    match e {
+        cufem::ccx::CcxError::Unsupported { .. } => fail(INPUT, e),
+        e => fail(FILES, e),
+    }
 }
 
 fn hex_kind(element: &str) -> Result<cufem::ccx::HexKind, Failure> {
@@ -280,28 +329,39 @@ fn limit(r: &Resources) -> Option<u64> {
 
 fn load(path: &Path, resources: &Resources) -> Result<Model, Failure> {
     Model::from_file_with(path, Limits { max_memory: limit(resources) }).map_err(|e| match e {
-        ModelError::Io { .. } | ModelError::NotText { .. } => fail(INPUT, e),
+        ModelError::Io { .. } | ModelError::NotText { .. } | ModelError::TooBig { .. } => fail(INPUT, e),
         ModelError::TooLarge { .. } => fail(TOO_LARGE, anyhow!(e).context(format!("model {}", path.display()))),
         e => fail(INPUT, anyhow!(e).context(format!("invalid model {}", path.display()))),
     })
 }
 
-/// Sets the worker threads: at most the machine's logical cores unless
-/// forced (oversubscription only slows a solver down: 1000 threads turned a
-/// 0.4 s run into minutes), and never more than 1024.
+/// Sets the worker threads (`--threads`, else the model's
+/// `solver.threads`): more than the machine's logical cores are capped at
+/// them with a warning (oversubscription only slows a solver down: 1000
+/// threads turned a 0.4 s run into minutes), unless forced, and never more
+/// than [`MAX_THREADS`].
 fn configure_threads(threads: Option<usize>, force: bool) -> Result<(), Failure> {
     let Some(n) = threads else { return Ok(()) };
     let cores = std::thread::available_parallelism().map_or(1, |c| c.get());
-    if n == 0 || n > 1024 {
-        return Err(fail(
-            INPUT,
-            anyhow!("--threads = {n}: expected an integer from 1 to {cores} (this machine's logical cores)"),
-        ));
+    if n == 0 {
+        return Err(fail(INPUT, anyhow!("--threads = 0: expected an integer ≥ 1 (worker threads)")));
     }
-    let n = if n > cores && !force {
+    let n = if force {
+        if n > MAX_THREADS {
+            return Err(fail(
+                INPUT,
+                anyhow!(
+                    "--threads = {n} (or the model's solver.threads) with --force-threads: expected an integer from 1 \
+                     to {MAX_THREADS} (--force-threads allows more threads than the {cores} logical cores, up to \
+                     {MAX_THREADS})"
+                ),
+            ));
+        }
+        n
+    } else if n > cores {
         eprintln!(
             "warning: {n} threads requested but this machine has {cores} logical cores; using {cores} \
-             (--force-threads to insist)"
+             (--force-threads to insist, up to {MAX_THREADS})"
         );
         cores
     } else {

@@ -39,6 +39,8 @@ pub fn run(a: Args) -> Result<u8, Failure> {
     let model = super::load(&a.model, &a.resources)?;
     let kind = super::hex_kind(&a.element)?;
     let refine = super::check_refine(a.refine)?;
+    // a model without a CalculiX twin is refused before the analysis
+    ccx::check_supported(&model).map_err(super::ccx_failure)?;
     // CalculiX must be there before anything is computed
     let requested = a.ccx.clone().unwrap_or_else(|| PathBuf::from("ccx"));
     let program = match &a.ccx_results {
@@ -79,7 +81,7 @@ pub fn run(a: Args) -> Result<u8, Failure> {
     }
     let dir = folder.staging().join("verify");
     let ccx_dir = dir.join("ccx");
-    let (mesh, _) = ccx::export(&model, kind, refine, &ccx_dir).map_err(|e| fail(FILES, e))?;
+    let (mesh, _) = ccx::export(&model, kind, refine, &ccx_dir).map_err(super::ccx_failure)?;
     if !a.quiet {
         eprintln!(
             "running CalculiX on {} {} hexahedra ({} nodes) in {}",

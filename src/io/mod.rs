@@ -18,6 +18,7 @@ mod png;
 mod section_plot;
 mod vtu;
 
+pub use csv::field as csv_field;
 pub use json::{Summary, summary};
 pub use png::{Series, line_plot};
 pub use section_plot::section_plot;

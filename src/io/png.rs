@@ -63,9 +63,24 @@ fn axis_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     (lo - pad, hi + pad)
 }
 
+/// Text as drawn on a plot: control characters (which a font has no glyph
+/// for, a line break included: captions are one line) as visible `\u{7}`.
+pub(super) fn printable(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        if c.is_control() {
+            out.extend(c.escape_unicode());
+        } else {
+            out.push(c);
+        }
+    }
+    out
+}
+
 /// Draws `series` as lines with markers into a 1000×640 PNG.
 pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, series: &[Series]) -> Result<(), IoError> {
     register_font();
+    let (title, x_label, y_label) = (printable(title), printable(x_label), printable(y_label));
     let (x0, x1) = axis_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.0)));
     let (y0, y1) = axis_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.1)));
     // points that cannot be drawn are left out rather than derailing the axes
@@ -74,7 +89,7 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, series:
     let root = BitMapBackend::new(path, (1000, 640)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_error(path, e))?;
     let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 22))
+        .caption(&title, ("sans-serif", 22))
         .margin(18)
         .x_label_area_size(50)
         .y_label_area_size(100)
@@ -82,8 +97,8 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, series:
         .map_err(|e| plot_error(path, e))?;
     chart
         .configure_mesh()
-        .x_desc(x_label)
-        .y_desc(y_label)
+        .x_desc(&x_label)
+        .y_desc(&y_label)
         .label_style(("sans-serif", 16))
         .draw()
         .map_err(|e| plot_error(path, e))?;
@@ -97,7 +112,7 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, series:
         };
         drawn
             .map_err(|e| plot_error(path, e))?
-            .label(s.name.clone())
+            .label(printable(&s.name))
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], colour.stroke_width(2)));
         if s.points.len() <= 60 && !s.dashed {
             chart
@@ -186,5 +201,20 @@ mod tests {
         assert_eq!(axis_range([1e-310, 2e-310].into_iter()), (-1.0, 1.0));
         let (a, b) = axis_range([5.0, 5.0].into_iter());
         assert!(a < 5.0 && b > 5.0 && b - a < 1e-6);
+    }
+
+    /// Titles, labels and legends with control characters, markup and
+    /// non-ASCII text are drawn (shown as `\u{7}`), never a failure or a panic.
+    #[test]
+    fn any_text_is_drawn() {
+        let dir = std::env::temp_dir().join(format!("cufem_png_text_{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join("t.png");
+        let text = "bell \u{7} nul \u{0} esc \u{1b}\nnew line \r\t <&> \"'--> ü 日本 \u{FFFF} \u{202E}";
+        let points = vec![(0.0, 1.0), (1.0, 2.0)];
+        line_plot(&path, text, text, text, &[Series { name: text.into(), points, dashed: false }]).unwrap();
+        assert_eq!(&std::fs::read(&path).unwrap()[1..4], b"PNG");
+        assert_eq!(printable("a\u{7}b\nc ü"), "a\\u{7}b\\u{a}c ü");
+        let _ = std::fs::remove_dir_all(&dir);
     }
 }

@@ -21,7 +21,7 @@ pub fn section_plot(path: &Path, title: &str, section: &CrossSection) -> Result<
     let root = BitMapBackend::new(path, (1000, 1000)).into_drawing_area();
     root.fill(&WHITE).map_err(|e| plot_error(path, e))?;
     let mut chart = ChartBuilder::on(&root)
-        .caption(title, ("sans-serif", 20))
+        .caption(super::png::printable(title), ("sans-serif", 20))
         .margin(18)
         .x_label_area_size(50)
         .y_label_area_size(70)

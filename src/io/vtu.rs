@@ -304,8 +304,7 @@ const VTK_VERTEX: u8 = 1;
 
 fn write_grid(w: &mut impl Write, g: &Grid<'_>) -> std::io::Result<()> {
     writeln!(w, "<?xml version=\"1.0\"?>")?;
-    // "--" may not appear inside an XML comment
-    writeln!(w, "<!-- {} -->", xml_text(g.title).replace("--", "- -"))?;
+    writeln!(w, "<!-- {} -->", xml_comment(g.title))?;
     writeln!(
         w,
         "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">"
@@ -382,9 +381,36 @@ fn type_size(ty: &str) -> usize {
     }
 }
 
-/// Escapes text for an XML attribute or comment.
+/// Escapes text for an XML attribute or comment: the five markup
+/// characters as entities, and the characters XML 1.0 forbids even as
+/// character references (controls other than tab, newline and carriage
+/// return; U+FFFE, U+FFFF) as visible `\u{7}` text. A bell in the title made
+/// expat, and so VTK and ParaView, reject the file.
 fn xml_text(s: &str) -> String {
-    s.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;").replace('"', "&quot;")
+    let mut out = String::with_capacity(s.len());
+    for c in s.chars() {
+        match c {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            '\t' | '\n' | '\r' => out.push(c),
+            c if c < ' ' || c == '\u{FFFE}' || c == '\u{FFFF}' => out.extend(c.escape_unicode()),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// Text for an XML comment: escaped as [`xml_text`], with every `--` (not
+/// allowed inside a comment, `---` included) broken by a space.
+fn xml_comment(s: &str) -> String {
+    let mut out = xml_text(s);
+    while out.contains("--") {
+        out = out.replace("--", "- -");
+    }
+    out
 }
 
 #[cfg(test)]
@@ -427,6 +453,36 @@ mod tests {
             cell_type: VTK_HEXAHEDRON,
         };
         write_grid(w, &grid)
+    }
+
+    /// Every string written into the VTU must stay well-formed XML: control
+    /// characters (a bell in the title), markup characters and `---` in a
+    /// comment once gave a file expat rejects.
+    #[test]
+    fn text_is_escaped_for_xml() {
+        assert_eq!(xml_text("a\u{7}b\u{0}<&>\"'\t\u{FFFF}ü"), "a\\u{7}b\\u{0}&lt;&amp;&gt;&quot;&apos;\t\\u{ffff}ü");
+        // written as `<!-- {c} -->`: a trailing `-` is kept apart by the space
+        for title in ["a --- b", "--> end -", "----"] {
+            let c = xml_comment(title);
+            assert!(!c.contains("--"), "{title:?} → {c:?}");
+        }
+        let mut out = Vec::new();
+        let data = vec![("p\u{7}<\"".to_string(), 1, Array::F64(vec![0.0]))];
+        let grid = Grid {
+            title: "bell \u{7} -->---<!-- & \"'",
+            points: &[0.0, 0.0, 0.0],
+            connectivity: &[0],
+            offsets: &[1],
+            n_cells: 1,
+            point_data: &data,
+            cell_data: &[],
+            cell_type: VTK_VERTEX,
+        };
+        write_grid(&mut out, &grid).unwrap();
+        let text = String::from_utf8(out).unwrap();
+        let doc = roxmltree::Document::parse(&text).unwrap();
+        let a = doc.descendants().find(|n| n.has_tag_name("DataArray")).unwrap();
+        assert_eq!(a.attribute("Name"), Some("p\\u{7}<\""));
     }
 
     #[test]

@@ -68,8 +68,16 @@ const ALLOWED: &str = "a planar gmsh mesh (ASCII format 4.1 or 2.2) of quadrilat
 /// naming the file.
 pub fn read(path: &Path, scale: f64, key: &str) -> Result<CrossSection, MeshError> {
     let name = path.display().to_string();
-    let bytes = std::fs::read(path)
-        .map_err(|e| MeshError::invalid(key, format!("{name:?} ({e})"), "the path of a readable gmsh .msh file"))?;
+    let cap = crate::size::MAX_MESH_FILE;
+    let bytes = crate::size::read_at_most(path, cap)
+        .map_err(|e| MeshError::invalid(key, format!("{name:?} ({e})"), "the path of a readable gmsh .msh file"))?
+        .ok_or_else(|| {
+            MeshError::invalid(
+                key,
+                format!("{name:?} (more than {})", crate::size::human_bytes(cap)),
+                format!("a gmsh .msh file of at most {}", crate::size::human_bytes(cap)),
+            )
+        })?;
     let text = String::from_utf8(bytes).map_err(|_| {
         MeshError::invalid(key, format!("{name:?} (not text: binary .msh?)"), format!("{ALLOWED}; save as ASCII"))
     })?;

@@ -324,6 +324,44 @@ impl CrossSection {
         out
     }
 
+    /// The section's parts: groups of elements connected through shared
+    /// edges (two elements sharing only a corner node are not connected: swept
+    /// along the axis, that node is a hinge line). Each part lists its
+    /// elements in increasing order; parts are ordered by their first element.
+    pub fn parts(&self) -> Vec<Vec<usize>> {
+        let n = self.n_elements();
+        let mut parent: Vec<usize> = (0..n).collect();
+        fn root(parent: &mut [usize], mut e: usize) -> usize {
+            while parent[e] != e {
+                parent[e] = parent[parent[e]];
+                e = parent[e];
+            }
+            e
+        }
+        let mut first_user: HashMap<(usize, usize), usize> = HashMap::new();
+        for e in 0..n {
+            for k in 0..EDGES {
+                let loc = self.edge_local_nodes(k);
+                let el = self.element(e);
+                let (a, b) = (el[loc[0]], el[*loc.last().unwrap()]);
+                let other = *first_user.entry((a.min(b), a.max(b))).or_insert(e);
+                let (ra, rb) = (root(&mut parent, e), root(&mut parent, other));
+                parent[ra.max(rb)] = ra.min(rb);
+            }
+        }
+        let mut parts: Vec<Vec<usize>> = Vec::new();
+        let mut index: HashMap<usize, usize> = HashMap::new();
+        for e in 0..n {
+            let r = root(&mut parent, e);
+            let k = *index.entry(r).or_insert_with(|| {
+                parts.push(Vec::new());
+                parts.len() - 1
+            });
+            parts[k].push(e);
+        }
+        parts
+    }
+
     /// Bounding box `[xmin, xmax, zmin, zmax]`.
     pub fn bounds(&self) -> [f64; 4] {
         let mut b = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
@@ -499,6 +537,18 @@ mod tests {
         // neighbours sharing an edge are fine
         let corners = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [2.0, 0.0], [2.0, 1.0]];
         CrossSection::from_quads(SectionElementKind::L9, &corners, &[[0, 1, 2, 3], [1, 4, 5, 2]], "s").unwrap();
+    }
+
+    /// Elements touching only at a corner, or not at all, are separate
+    /// parts; a shared edge joins them.
+    #[test]
+    fn parts_are_joined_by_edges_only() {
+        let pts = [[0.0, 0.0], [1.0, 0.0], [1.0, 1.0], [0.0, 1.0], [2.0, 1.0], [2.0, 2.0], [1.0, 2.0], [2.0, 0.0]];
+        let corner = CrossSection::from_quads(SectionElementKind::L9, &pts[..7], &[[0, 1, 2, 3], [2, 4, 5, 6]], "s");
+        assert_eq!(corner.unwrap().parts(), vec![vec![0], vec![1]]);
+        let edge =
+            CrossSection::from_quads(SectionElementKind::L4, &pts, &[[0, 1, 2, 3], [2, 4, 5, 6], [1, 7, 4, 2]], "s");
+        assert_eq!(edge.unwrap().parts(), vec![vec![0, 1, 2]]);
     }
 
     #[test]

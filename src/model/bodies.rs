@@ -142,16 +142,19 @@ pub(super) fn body(
     let s = &b.section;
     let sk = format!("{key}.section");
     sections::check_keys(&sk, s)?;
-    let axis = |section| Body {
-        name: b.name.clone(),
-        section,
-        axis: BeamAxis::from_lines(beam, &axis_lines),
-        material,
-        node_offset: 0,
-        element_offset: 0,
+    let axis = |section: CrossSection| -> Result<Body, ModelError> {
+        connected(&sk, &section)?;
+        Ok(Body {
+            name: b.name.clone(),
+            section,
+            axis: BeamAxis::from_lines(beam, &axis_lines),
+            material,
+            node_offset: 0,
+            element_offset: 0,
+        })
     };
     if s.shape == "gmsh" {
-        return Ok(axis(sections::gmsh_section(&key, s, base, beam, axis_elements, budget)?));
+        return axis(sections::gmsh_section(&key, s, base, beam, axis_elements, budget)?);
     }
     let element = s.element.as_deref().ok_or_else(|| {
         invalid(format!("{sk}.element"), "(missing)", "\"L4\", \"L9\" or \"L16\" (the section element)")
@@ -280,7 +283,49 @@ pub(super) fn body(
             None => return Err(invalid(format!("{sk}.shape"), format!("{:?}", s.shape), "a known shape")),
         },
     };
-    Ok(axis(section))
+    axis(section)
+}
+
+/// A section must be one region connected through shared element edges: a
+/// part touching the rest at a corner only (a hinge line once swept along
+/// the axis) or not at all is free to move against it, and the analysis
+/// used to fail at λ = 0 after its iterations.
+fn connected(sk: &str, section: &CrossSection) -> Result<(), ModelError> {
+    let parts = section.parts();
+    if parts.len() <= 1 {
+        return Ok(());
+    }
+    const SHOWN: usize = 4;
+    let mut list: Vec<String> = parts
+        .iter()
+        .take(SHOWN)
+        .map(|part| {
+            // a point of the part: the centre of its first element's nodes
+            let el = section.element(part[0]);
+            let mut c = [0.0; 2];
+            for &n in el {
+                c[0] += section.nodes[n][0] / el.len() as f64;
+                c[1] += section.nodes[n][1] / el.len() as f64;
+            }
+            let plural = if part.len() == 1 { "" } else { "s" };
+            format!(
+                "{} element{plural} (first: element {} at x = {}, z = {})",
+                part.len(),
+                part[0],
+                crate::numbers::short(c[0]),
+                crate::numbers::short(c[1])
+            )
+        })
+        .collect();
+    if parts.len() > SHOWN {
+        list.push(format!("and {} more", parts.len() - SHOWN));
+    }
+    Err(invalid(
+        sk,
+        format!("{} separate parts: {}", parts.len(), list.join("; ")),
+        "one region whose elements are connected through shared edges (elements touching only at a corner form a \
+         hinge, and a separate piece is free to move); model separate pieces as separate bodies",
+    ))
 }
 
 /// Prefixes the key of a mesh error raised by a builder that does not know its path.

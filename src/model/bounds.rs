@@ -22,7 +22,7 @@
 //! | penalty factor α | 1e-3 … 1e8 | |
 
 use super::{ModelError, invalid};
-pub use crate::numbers::{limit, number};
+pub use crate::numbers::{limit, list, number};
 
 /// Smallest accepted Young's modulus (Pa).
 pub const MIN_YOUNG: f64 = 1e5;

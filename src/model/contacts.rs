@@ -260,6 +260,7 @@ pub(super) fn indenter(
                     format!("{key}.normal"),
                     "the punch on the outer side of the surface, its normal pointing into the body (e.g. normal = \"-z\" for a punch above a top face)",
                 ),
+                "sphere" => (format!("{key}.center"), "the sphere's centre on the outer side of the selected surface"),
                 _ => (format!("{key}.center"), "the cylinder's axis on the outer side of the selected surface"),
             };
             return Err(invalid(

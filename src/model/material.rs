@@ -117,11 +117,18 @@ pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelErro
                     let t = p.table.as_ref().ok_or_else(|| {
                         invalid(format!("{pk}.table"), "(missing)", "[[peeq, yield_stress], …] starting at peeq = 0")
                     })?;
-                    if t.is_empty() || t[0][0] != 0.0 {
+                    if t.is_empty() {
                         return Err(invalid(
                             format!("{pk}.table"),
-                            format!("{t:?}"),
+                            "[]",
                             "a non-empty table whose first point has peeq = 0",
+                        ));
+                    }
+                    if t[0][0] != 0.0 {
+                        return Err(invalid(
+                            format!("{pk}.table[0]"),
+                            bounds::list(&t[0][..]),
+                            "a first point [0.0, initial yield stress]: the table starts at peeq = 0",
                         ));
                     }
                     for (k, w) in t.windows(2).enumerate() {
@@ -129,7 +136,7 @@ pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelErro
                         {
                             return Err(invalid(
                                 format!("{pk}.table[{}]", k + 1),
-                                format!("{:?}", w[1]),
+                                bounds::list(&w[1][..]),
                                 "strictly increasing peeq and non-decreasing (no softening), finite yield stress",
                             ));
                         }
@@ -139,7 +146,7 @@ pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelErro
                         if !(slope <= bounds::MAX_HARDENING * young) {
                             return Err(invalid(
                                 format!("{pk}.table[{}]", k + 1),
-                                format!("[{}, {}]", bounds::number(w[1][0]), bounds::number(w[1][1])),
+                                bounds::list(&w[1][..]),
                                 format!(
                                     "a segment slope of at most 100 E = {} Pa (this one rises {} Pa over a peeq of {})",
                                     bounds::limit(bounds::MAX_HARDENING * young),
@@ -152,7 +159,7 @@ pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelErro
                     if !(t[0][1] > 0.0 && t[0][1].is_finite()) {
                         return Err(invalid(
                             format!("{pk}.table[0]"),
-                            format!("{:?}", t[0]),
+                            bounds::list(&t[0][..]),
                             "a positive initial yield stress",
                         ));
                     }
@@ -177,8 +184,8 @@ pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelErro
                     {
                         return Err(invalid(
                             format!("{pk}.yield_stress"),
-                            s,
-                            format!("the table's first stress ({}) or no yield_stress", t[0][1]),
+                            bounds::number(s),
+                            format!("the table's first stress ({}) or no yield_stress", bounds::number(t[0][1])),
                         ));
                     }
                     Hardening::Table {
@@ -267,6 +274,31 @@ mod tests {
         )
         .unwrap();
         assert_eq!(table.hardening.unwrap().eval(0.005), (1.1e8, 2e9));
+    }
+
+    /// Hardening-table errors once printed Rust debug text
+    /// (`table[2] = Exact([0.02, 310000000.0])`): every value must read as
+    /// the model file writes it.
+    #[test]
+    fn table_errors_print_the_values_as_written() {
+        let base = "name = \"s\"\nyoung_modulus = 70e9\npoisson_ratio = 0.3\nplasticity = { hardening = \"table\"";
+        let cases = [
+            (
+                ", table = [[0.0, 2.5e8], [0.01, 3.2e8], [0.02, 3.1e8]] }",
+                "plasticity.table[2] = [0.02, 3.1e8]: expected",
+            ),
+            (", table = [[0.01, 2.5e8], [0.02, 3.2e8]] }", "plasticity.table[0] = [0.01, 2.5e8]: expected"),
+            (", table = [] }", "plasticity.table = []: expected"),
+            (", table = [[0.0, -1e8]] }", "plasticity.table[0] = [0, -1e8]: expected"),
+            (
+                ", yield_stress = 2e8, table = [[0.0, 2.5e8], [0.02, 3.2e8]] }",
+                "plasticity.yield_stress = 2e8: expected the table's first stress (2.5e8)",
+            ),
+        ];
+        for (table, expect) in cases {
+            let e = err(material(0, &material_file(&format!("{base}{table}"))));
+            assert!(e.contains(expect) && !e.contains("Exact") && !e.contains("00000"), "{table}: {e}");
+        }
     }
 
     #[test]

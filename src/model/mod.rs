@@ -41,6 +41,18 @@ pub enum ModelError {
         /// Cause (kept out of the error chain: the message already says it).
         cause: std::io::Error,
     },
+    /// The file is larger than a model file can be (or endless).
+    #[error(
+        "model file {path} holds more than {}: expected a model file of at most {} (model files are a few kB; \
+         gmsh meshes are separate files, named by a section's `file` key)",
+        crate::size::human_bytes(*.cap), crate::size::human_bytes(*.cap)
+    )]
+    TooBig {
+        /// File path.
+        path: String,
+        /// The largest size read (bytes).
+        cap: u64,
+    },
     /// The file is not UTF-8 text.
     #[error("model file {path} is not UTF-8 text: invalid byte at line {line}, column {column} (byte {offset})")]
     NotText {
@@ -280,7 +292,10 @@ impl Model {
 
     /// Reads and validates a model file under explicit limits.
     pub fn from_file_with(path: &Path, limits: Limits) -> Result<Self, ModelError> {
-        let bytes = std::fs::read(path).map_err(|cause| ModelError::Io { path: path.display().to_string(), cause })?;
+        let cap = crate::size::MAX_MODEL_FILE;
+        let bytes = crate::size::read_at_most(path, cap)
+            .map_err(|cause| ModelError::Io { path: path.display().to_string(), cause })?
+            .ok_or_else(|| ModelError::TooBig { path: path.display().to_string(), cap })?;
         let text = String::from_utf8(bytes).map_err(|e| {
             let offset = e.utf8_error().valid_up_to();
             let before = &e.as_bytes()[..offset];
@@ -331,7 +346,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let materials = material::materials(&file.materials)?;
     let (mesh, cells) = bodies::mesh(&file.bodies, &materials, limits, base)?;
     let mut warnings = Vec::new();
-    let constraints = preprocess::constraints(&file.constraints, &mesh)?;
+    let constraints = preprocess::constraints(&file.constraints, &mesh, &mut warnings)?;
     let loads = preprocess::loads(&file.loads, &mesh, &materials)?;
     let indenters = contacts::indenters(&file.indenters, &mesh, &materials, &mut warnings)?;
     let contacts = contacts::pair_contacts(&file.contacts, &mesh, &materials, &mut warnings)?;

@@ -24,8 +24,19 @@ pub(super) fn optional_body(mesh: &Mesh, key: String, name: &Option<String>) -> 
 }
 
 /// `[[constraints]]`: node sets and their values; overlapping sets must agree.
-pub(super) fn constraints(file: &[ConstraintFile], mesh: &Mesh) -> Result<Vec<Constraint>, ModelError> {
+/// A constraint whose selection holds every node of its body although its
+/// `where` asks for a part of it (a `tolerance` as large as the body, or
+/// ranges around all of it), and a body every node of which is fixed in all
+/// three directions, are warned about: such a body cannot deform, the
+/// analysis runs and shows nothing (the probe warning needs some motion).
+pub(super) fn constraints(
+    file: &[ConstraintFile],
+    mesh: &Mesh,
+    warnings: &mut Vec<Warning>,
+) -> Result<Vec<Constraint>, ModelError> {
     let mut constraints = Vec::new();
+    // bodies already warned about a selection holding all their nodes
+    let mut whole = vec![false; mesh.bodies.len()];
     for (i, c) in file.iter().enumerate() {
         let key = format!("constraints[{i}]");
         let b = body_index(mesh, format!("{key}.body"), &c.body)?;
@@ -64,7 +75,63 @@ pub(super) fn constraints(file: &[ConstraintFile], mesh: &Mesh) -> Result<Vec<Co
                 "at least one constrained component (fix = [\"x\", …] or displacement = {z = …})",
             ));
         }
+        let s = &c.selection;
+        let asks_for_part = s.x.is_some() || s.y.is_some() || s.z.is_some() || s.region.is_some();
+        if asks_for_part && nodes.len() == body.n_nodes() {
+            whole[b] = true;
+            let (k, message) = match s.tolerance {
+                Some(t) => (
+                    format!("{key}.where.tolerance"),
+                    format!(
+                        "tolerance = {} m selects every node of body {:?} ({} nodes), not only those at where = {}: \
+                         the constraint holds the whole body; give a tolerance well below the element size (the \
+                         default is 1e-6 of the body's size)",
+                        bounds::number(t),
+                        body.name,
+                        nodes.len(),
+                        describe_selection(s)
+                    ),
+                ),
+                None => (
+                    format!("{key}.where"),
+                    format!(
+                        "where = {} selects every node of body {:?} ({} nodes): the constraint holds the whole body; \
+                         give coordinates or a region that select only the supports",
+                        describe_selection(s),
+                        body.name,
+                        nodes.len()
+                    ),
+                ),
+            };
+            warnings.push(Warning { key: k, message });
+        }
         constraints.push(Constraint { name: c.name.clone(), body: b, nodes, values, selection: Some(sel) });
+    }
+    // a body fixed in x, y and z at every node (by one or several constraints)
+    for (b, body) in mesh.bodies.iter().enumerate() {
+        let mut fixed = vec![[false; 3]; body.n_nodes()];
+        let mut last = None;
+        for (i, c) in constraints.iter().enumerate().filter(|(_, c)| c.body == b) {
+            for &n in &c.nodes {
+                for k in 0..3 {
+                    fixed[n - body.node_offset][k] |= c.values[k].is_some();
+                }
+            }
+            last = Some(i);
+        }
+        if let Some(i) = last
+            && !whole[b]
+            && fixed.iter().all(|f| f.iter().all(|&v| v))
+        {
+            warnings.push(Warning {
+                key: format!("constraints[{i}]"),
+                message: format!(
+                    "every node of body {:?} is fixed or prescribed in x, y and z (by this and earlier constraints): \
+                     the body cannot deform and shows no stress; constrain only the supports",
+                    body.name
+                ),
+            });
+        }
     }
     // one value per constrained DOF: overlapping sets must agree
     let mut given: std::collections::HashMap<usize, (f64, usize)> = Default::default();

@@ -3,17 +3,20 @@
 //! nothing but cutbacks.
 //!
 //! Each body has six rigid modes: translations `e_k` and small rotations
-//! `θ × (x − c)` about its centroid `c`, scaled by the body's size so all
-//! modes have unit size. A *restraint row* is a linear form on the
+//! `θ × (x − c)` about the centroid `c` of its restrained nodes, scaled by
+//! the body's size. A *restraint row* is a linear form on the
 //! displacement that the model holds: a constrained component (fixed or
 //! prescribed), the normal `n·u_s` of a node touching a rigid indenter at the
 //! start, or `n·(u_s − u_m)` of a node pair or surface-contact point touching
 //! at the start (contacts
 //! that only close later cannot hold the first iterations). With `R` the
 //! rows evaluated on the `6B` modes of all `B` bodies, the model is
-//! restrained iff `G = Rᵀ R` is positive definite. A null vector of `G` is a
-//! free motion; it is named in the error (which body, which translation or
-//! rotation).
+//! restrained iff `G = Rᵀ R` is positive definite. `G` is judged with unit
+//! diagonal (each mode measured against its own restraint), so a thin body
+//! held over its 5 mm thickness is as restrained as a thick one; a mode
+//! whose diagonal is at the round-off of the coordinates is held by nothing.
+//! A null vector of `G` is a free motion; it is named in the error (which
+//! body, which translation or rotation).
 
 use faer::Mat;
 use faer::dyn_stack::{MemBuffer, MemStack};
@@ -33,7 +36,54 @@ pub fn check(
     contacts: &[PairContact],
 ) -> Result<(), ModelError> {
     let nb = mesh.bodies.len();
-    let centre: Vec<[f64; 3]> = mesh
+    let size: Vec<f64> = mesh.bodies.iter().map(|b| b.size()).collect();
+    // every restraint row as (node, weight vector): the row is Σ w · u_node
+    let mut rows: Vec<Vec<(usize, [f64; 3])>> = Vec::new();
+    for c in constraints {
+        for &node in &c.nodes {
+            for (k, v) in c.values.iter().enumerate() {
+                if v.is_some() {
+                    let mut w = [0.0; 3];
+                    w[k] = 1.0;
+                    rows.push(vec![(node, w)]);
+                }
+            }
+        }
+    }
+    let touching = |gap0: f64, node: usize| gap0 <= 1e-9 * size[mesh.body_of(node).0];
+    for ind in indenters {
+        for c in ind.nodes.iter().filter(|c| touching(c.gap0, c.node)) {
+            rows.push(vec![(c.node, c.normal)]);
+        }
+    }
+    for pc in contacts {
+        for p in pc.pairs.iter().filter(|p| touching(p.gap0, p.slave)) {
+            rows.push(vec![(p.slave, p.normal), (p.master, p.normal.map(|v| -v))]);
+        }
+    }
+    // surface contacts: n·(u_s − u_m) at the slave points touching at the start
+    let zero = vec![0.0; mesh.n_dofs()];
+    for s in contacts.iter().filter_map(|pc| pc.surface.as_ref()) {
+        for p in &s.points {
+            let Some(proj) = crate::contact::surface::project(s, mesh, p, &zero) else { continue };
+            if proj.gap0 > 1e-9 * size[s.master_body] {
+                continue;
+            }
+            let mut row = Vec::new();
+            let sides = [(&p.nodes, &p.shapes, 1.0), (&proj.nodes, &proj.shapes, -1.0)];
+            for (nodes, shapes, sign) in sides {
+                for (&node, &sh) in nodes.iter().zip(shapes.iter()) {
+                    row.push((node, proj.normal.map(|v| sign * sh * v)));
+                }
+            }
+            rows.push(row);
+        }
+    }
+    // Rotations about the centroid of each body's restrained nodes (the body's
+    // centre if none): about any other centre a rotation moves the restrained
+    // nodes nearly like a translation, and a body restrained over a thin
+    // face (a 100 m × 5 mm section clamped at its root) looked free.
+    let mut centre: Vec<[f64; 3]> = mesh
         .bodies
         .iter()
         .map(|b| {
@@ -42,7 +92,24 @@ pub fn check(
             [0.5 * (s[0] + s[1]), 0.5 * (y0 + y1), 0.5 * (s[2] + s[3])]
         })
         .collect();
-    let size: Vec<f64> = mesh.bodies.iter().map(|b| b.size()).collect();
+    let mut sum = vec![([0.0; 3], 0usize); nb];
+    // the coordinates' magnitude per body: their round-off bounds what a
+    // restraint's lever arm can resolve
+    let mut reach = vec![0.0f64; nb];
+    for &(node, _) in rows.iter().flatten() {
+        let b = mesh.body_of(node).0;
+        let x = mesh.coords(node);
+        for k in 0..3 {
+            sum[b].0[k] += x[k];
+            reach[b] = reach[b].max(x[k].abs());
+        }
+        sum[b].1 += 1;
+    }
+    for (b, (s, count)) in sum.iter().enumerate() {
+        if *count > 0 {
+            centre[b] = s.map(|v| v / *count as f64);
+        }
+    }
     // mode values of a node: modes[j][k] = component k of mode j
     let modes = |node: usize| -> (usize, [[f64; 3]; 6]) {
         let (b, _) = mesh.body_of(node);
@@ -60,62 +127,38 @@ pub fn check(
     };
     let n = 6 * nb;
     let mut g = Mat::<f64>::zeros(n, n);
-    let mut add_row = |entries: &[(usize, f64)]| {
-        for &(i, a) in entries {
-            for &(j, b) in entries {
+    let mut rows_of = vec![0usize; nb];
+    let mut entries: Vec<(usize, f64)> = Vec::new();
+    for row in &rows {
+        entries.clear();
+        for &(node, w) in row {
+            let (b, m) = modes(node);
+            rows_of[b] += 1;
+            entries.extend((0..6).map(|j| (6 * b + j, (0..3).map(|k| w[k] * m[j][k]).sum::<f64>())));
+        }
+        for &(i, a) in &entries {
+            for &(j, b) in &entries {
                 g[(i, j)] += a * b;
             }
         }
-    };
-    for c in constraints {
-        for &node in &c.nodes {
-            let (b, m) = modes(node);
-            for (k, v) in c.values.iter().enumerate() {
-                if v.is_some() {
-                    let row: Vec<(usize, f64)> = (0..6).map(|j| (6 * b + j, m[j][k])).collect();
-                    add_row(&row);
-                }
+    }
+    // Each mode scaled to a unit diagonal, so a mode held only over a short
+    // lever arm (a thin face) counts as much as one held over a long one; a
+    // mode whose diagonal is at the round-off of the coordinates is held by
+    // nothing (its row and column zeroed: a zero eigenvalue).
+    let mut scale = vec![0.0; n];
+    for b in 0..nb {
+        let noise = 1e-12 * (1.0 + reach[b] / size[b]);
+        let floor = rows_of[b] as f64 * noise * noise;
+        for j in 6 * b..6 * b + 6 {
+            if g[(j, j)] > floor {
+                scale[j] = 1.0 / g[(j, j)].sqrt();
             }
         }
     }
-    let touching = |gap0: f64, node: usize| gap0 <= 1e-9 * size[mesh.body_of(node).0];
-    for ind in indenters {
-        for c in ind.nodes.iter().filter(|c| touching(c.gap0, c.node)) {
-            let (b, m) = modes(c.node);
-            let row: Vec<(usize, f64)> =
-                (0..6).map(|j| (6 * b + j, (0..3).map(|k| c.normal[k] * m[j][k]).sum())).collect();
-            add_row(&row);
-        }
-    }
-    for pc in contacts {
-        for p in pc.pairs.iter().filter(|p| touching(p.gap0, p.slave)) {
-            let (bs, ms) = modes(p.slave);
-            let (bm, mm) = modes(p.master);
-            let dot = |m: &[[f64; 3]; 6], j: usize| (0..3).map(|k| p.normal[k] * m[j][k]).sum::<f64>();
-            let mut row: Vec<(usize, f64)> = (0..6).map(|j| (6 * bs + j, dot(&ms, j))).collect();
-            row.extend((0..6).map(|j| (6 * bm + j, -dot(&mm, j))));
-            add_row(&row);
-        }
-    }
-    // surface contacts: n·(u_s − u_m) at the slave points touching at the start
-    let zero = vec![0.0; mesh.n_dofs()];
-    for s in contacts.iter().filter_map(|pc| pc.surface.as_ref()) {
-        for p in &s.points {
-            let Some(proj) = crate::contact::surface::project(s, mesh, p, &zero) else { continue };
-            if proj.gap0 > 1e-9 * size[s.master_body] {
-                continue;
-            }
-            let mut row: Vec<(usize, f64)> = Vec::new();
-            let sides = [(&p.nodes, &p.shapes, 1.0), (&proj.nodes, &proj.shapes, -1.0)];
-            for (nodes, shapes, sign) in sides {
-                for (&node, &sh) in nodes.iter().zip(shapes.iter()) {
-                    let (b, m) = modes(node);
-                    row.extend(
-                        (0..6).map(|j| (6 * b + j, sign * sh * (0..3).map(|k| proj.normal[k] * m[j][k]).sum::<f64>())),
-                    );
-                }
-            }
-            add_row(&row);
+    for i in 0..n {
+        for j in 0..n {
+            g[(i, j)] *= scale[i] * scale[j];
         }
     }
     // sequential: validation must not start the global thread pool, which
@@ -148,7 +191,8 @@ pub fn check(
     let threshold = 1e-9 * largest.max(1.0);
     let mut free: Vec<(usize, Vec<&str>)> = Vec::new();
     for k in (0..n).take_while(|&k| s[k] <= threshold) {
-        let v = u.col(k);
+        // back to unit-size modes (a mode held by nothing keeps its value)
+        let v: Vec<f64> = (0..n).map(|i| if scale[i] > 0.0 { u[(i, k)] * scale[i] } else { u[(i, k)] }).collect();
         let b = (0..nb)
             .max_by(|&a, &c| {
                 let na: f64 = (0..6).map(|j| v[6 * a + j].powi(2)).sum();

@@ -3,7 +3,7 @@
 //! functions of the schema, each error naming key, value and what is
 //! allowed.
 
-use super::bounds;
+use super::bounds::{self, number};
 use super::schema::*;
 use super::{ModelError, OutputSettings, Probe, Recovery, Reference, SolverSettings, invalid};
 use crate::contact::{self, Penalty};
@@ -246,15 +246,24 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
         match v {
             None => Ok(default),
             Some(v) if v.is_finite() && v > 0.0 && v <= 1.0 => Ok(v),
-            Some(v) => Err(invalid(format!("solver.{name}"), v, "a number in (0, 1]")),
+            Some(v) => Err(invalid(format!("solver.{name}"), number(v), "a number in (0, 1]")),
         }
     };
     let max = fraction("max_increment", s.max_increment, initial)?;
     let min = fraction("min_increment", s.min_increment, 1e-4 * initial.min(max))?;
-    let cutback = fraction("cutback_factor", s.cutback_factor, 0.5)?;
-    if cutback >= 1.0 {
-        return Err(invalid("solver.cutback_factor", cutback, "a number in (0, 1)"));
-    }
+    // open at both ends: 0 would stop at the first cutback, 1 would retry the
+    // same increment forever
+    let cutback = match s.cutback_factor {
+        None => 0.5,
+        Some(c) if c.is_finite() && c > 0.0 && c < 1.0 => c,
+        Some(c) => {
+            return Err(invalid(
+                "solver.cutback_factor",
+                number(c),
+                "a number in (0, 1), both ends excluded: the failed increment Δλ is retried as Δλ × cutback_factor, so 1 would retry the same increment",
+            ));
+        }
+    };
     let growth = match s.growth_factor {
         None => 1.5,
         Some(g) if g.is_finite() && g >= 1.0 => g,
@@ -264,7 +273,7 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
         match v {
             None => Ok(default),
             Some(v) if v.is_finite() && v > 0.0 && v < 1.0 => Ok(v),
-            Some(v) => Err(invalid(format!("solver.{name}"), v, "a number in (0, 1)")),
+            Some(v) => Err(invalid(format!("solver.{name}"), number(v), "a number in (0, 1)")),
         }
     };
     if min > max {
@@ -368,8 +377,20 @@ mod tests {
         let s = solver_settings(&SolverFile::default(), false).unwrap();
         assert_eq!((s.steps.initial, s.newton.max_iterations, s.steps.max_increments), (0.1, 25, 1000));
         assert_eq!(solver_settings(&SolverFile::default(), true).unwrap().steps.initial, 1.0);
-        let e = err(solver_settings(&SolverFile { cutback_factor: Some(1.0), ..Default::default() }, false));
-        assert!(e.contains("solver.cutback_factor = 1"), "{e}");
+        // cutback_factor: the message states the range the check applies
+        // (0 and 1.5 were told "(0, 1]" while 1 was refused as outside "(0, 1)")
+        for c in [0.0, 1.0, 1.5, f64::NAN] {
+            let e = err(solver_settings(&SolverFile { cutback_factor: Some(c), ..Default::default() }, false));
+            assert!(
+                e.contains(&format!(
+                    "solver.cutback_factor = {}: expected a number in (0, 1), both ends excluded",
+                    number(c)
+                )),
+                "{c}: {e}"
+            );
+        }
+        let ok = solver_settings(&SolverFile { cutback_factor: Some(0.999), ..Default::default() }, false).unwrap();
+        assert_eq!(ok.steps.cutback_factor, 0.999);
         let e = err(solver_settings(
             &SolverFile { min_increment: Some(0.5), max_increment: Some(0.1), ..Default::default() },
             false,

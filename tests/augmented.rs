@@ -17,7 +17,13 @@ fn punch(keys: &str) -> (Model, Solution) {
     assert!(!text.contains("plasticity = ") && text.contains("-0.1e-3"));
     let model = Model::parse(&text).unwrap();
     let sol = analysis::run(&model, &Default::default(), &mut Silent).unwrap();
-    assert!(sol.failure.is_none() && sol.warnings.is_empty(), "{:?} {:?}", sol.failure, sol.warnings);
+    // the pure penalty at a factor of 1 lets the punch sink 23 % of its
+    // 0.1 mm travel into the block (16.7 % low in force): the one case the
+    // soft-penalty warning must name
+    let soft = keys == "penalty_factor = 1.0";
+    let named = sol.warnings.iter().map(|w| w.key.as_str()).collect::<Vec<_>>();
+    let expected: &[&str] = if soft { &["indenters[0].penalty_factor"] } else { &[] };
+    assert!(sol.failure.is_none() && named == expected, "{keys}: {:?} {:?}", sol.failure, sol.warnings);
     (model, sol)
 }
 

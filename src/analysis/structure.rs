@@ -17,6 +17,7 @@ use std::time::Instant;
 mod augment;
 mod contacts;
 mod force;
+mod resultants;
 mod surface;
 mod unsymmetric;
 
@@ -331,78 +332,6 @@ impl<'m> Structure<'m> {
     /// residual at free DOFs).
     pub fn nodal_imbalance(&self, dof: usize) -> f64 {
         self.f_int[dof] - self.f_ext[dof] - self.f_contact[dof]
-    }
-
-    /// Resultant reaction of each constraint set (force of the support on
-    /// the body): the imbalance at the components the set prescribes. A DOF
-    /// prescribed by several sets (an edge shared by two faces) counts once,
-    /// for the first of them in the model file, so that the reactions sum
-    /// to the support force.
-    pub fn reactions(&self) -> Vec<Reaction> {
-        let mut claimed = vec![false; self.f_int.len()];
-        self.model
-            .constraints
-            .iter()
-            .map(|c| {
-                let mut force = [0.0; 3];
-                for &n in &c.nodes {
-                    for (k, f) in force.iter_mut().enumerate() {
-                        let dof = 3 * n + k;
-                        if c.values[k].is_some() && !claimed[dof] {
-                            claimed[dof] = true;
-                            *f += self.nodal_imbalance(dof);
-                        }
-                    }
-                }
-                Reaction { name: c.name.clone(), force }
-            })
-            .collect()
-    }
-
-    /// Per indenter, then per pair contact: resultant force on the body (on
-    /// the slave body for pairs) and largest penetration.
-    pub fn contact_resultants(&self) -> Vec<ContactResultant> {
-        self.contact_sets()
-            .enumerate()
-            .map(|(k, (name, kind, points))| {
-                let mut force = [0.0; 3];
-                let mut normal_force = [0.0; 3];
-                let mut max_penetration: f64 = 0.0;
-                for p in points {
-                    let n = p.normal;
-                    let fn_ = p.force[0] * n[0] + p.force[1] * n[1] + p.force[2] * n[2];
-                    for c in 0..3 {
-                        force[c] += p.force[c];
-                        normal_force[c] += fn_ * n[c];
-                    }
-                    if p.active {
-                        max_penetration = max_penetration.max(-p.gap);
-                    }
-                }
-                let tangential_force = std::array::from_fn(|c| force[c] - normal_force[c]);
-                let displacement = if kind == ContactKind::Indenter { self.indenter_offset(k) } else { [0.0; 3] };
-                ContactResultant {
-                    name: name.to_string(),
-                    kind,
-                    force,
-                    normal_force,
-                    tangential_force,
-                    max_penetration,
-                    displacement,
-                }
-            })
-            .collect()
-    }
-
-    /// The contact points of each indenter, then of each pair contact, by name.
-    pub fn contact_sets(&self) -> impl Iterator<Item = (&str, ContactKind, &[ContactPoint])> {
-        let names = self
-            .model
-            .indenters
-            .iter()
-            .map(|i| (i.name.as_str(), ContactKind::Indenter))
-            .chain(self.model.contacts.iter().map(|c| (c.name.as_str(), ContactKind::Pair)));
-        names.zip(&self.contact_ranges).map(|((name, kind), r)| (name, kind, &self.contact[r.clone()]))
     }
 
     fn assemble_elements(&mut self) {

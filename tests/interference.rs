@@ -108,6 +108,9 @@ fn a_shrink_fit_gives_lames_interference_pressure() {
         eprintln!("{method}: pressure {measured:.6e} Pa, Lamé {p:.6e} Pa");
         assert!((measured / p - 1.0).abs() < 0.01, "{method}: pressure {measured:e} Pa against Lamé's {p:e} Pa");
         let s: Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+        // the memory estimate's band of every shipped example (tests/examples.rs; measured 1.14 here)
+        let ratio = s["memory"]["estimated_bytes"].as_f64().unwrap() / s["memory"]["peak_bytes"].as_f64().unwrap();
+        assert!((0.9..1.3).contains(&ratio), "{method}: memory estimate / peak {ratio}");
         for (probe, expected) in [("hub_bore", u_hub), ("shaft_surface", u_shaft)] {
             let uz =
                 s["probes"].as_array().unwrap().iter().find(|x| x["name"] == probe).unwrap()["u"][2].as_f64().unwrap();

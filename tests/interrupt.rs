@@ -5,7 +5,7 @@
 //! lock file and the staging folder behind.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Stdio};
+use std::process::{Child, Command, Stdio};
 use std::time::Duration;
 
 fn cufem() -> Command {
@@ -64,6 +64,16 @@ fn setup(dir: &Path) -> (PathBuf, PathBuf) {
     (long, res)
 }
 
+/// `cufem run model --out res`, its messages on a pipe.
+fn start(model: &Path, res: &Path) -> Child {
+    cufem()
+        .args(["run", model.to_str().unwrap(), "--out", res.to_str().unwrap(), "--quiet"])
+        .stdout(Stdio::null())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap()
+}
+
 /// SIGINT 0.05, 0.5 and 2 s into a run into a folder holding a converged
 /// set: exit 130, the converged set byte for byte as it was, the partial
 /// result where the message says (beside the folder, `res.partial`) or —
@@ -75,12 +85,7 @@ fn an_interrupted_run_never_replaces_a_converged_set() {
         let dir = scratch(&format!("once_{delay}"));
         let (long, res) = setup(&dir);
         let before = contents(&res);
-        let child = cufem()
-            .args(["run", long.to_str().unwrap(), "--out", res.to_str().unwrap(), "--quiet"])
-            .stdout(Stdio::null())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
+        let child = start(&long, &res);
         std::thread::sleep(Duration::from_secs_f64(delay));
         sigint(child.id());
         let out = child.wait_with_output().unwrap();
@@ -112,12 +117,7 @@ fn a_double_ctrl_c_leaves_no_lock_or_staging_folder() {
     let dir = scratch("twice");
     let (long, res) = setup(&dir);
     let before = contents(&res);
-    let child = cufem()
-        .args(["run", long.to_str().unwrap(), "--out", res.to_str().unwrap(), "--quiet"])
-        .stdout(Stdio::null())
-        .stderr(Stdio::piped())
-        .spawn()
-        .unwrap();
+    let child = start(&long, &res);
     std::thread::sleep(Duration::from_millis(700));
     // the staging folder exists while the run goes on
     assert!(names(&dir).iter().any(|n| n.contains("cufem-staging")), "{:?}", names(&dir));

@@ -6,19 +6,25 @@
 use super::Solution;
 use crate::model::{Model, Warning};
 
+/// True if the indenter or contact `name` carried a force in some increment
+/// (or if no increment converged: nothing to judge).
+fn touched(solution: &Solution, name: &str) -> bool {
+    solution.history.is_empty()
+        || solution
+            .history
+            .iter()
+            .flat_map(|r| r.contact(name))
+            .chain(solution.contact(name))
+            .any(|c| c.force != [0.0; 3])
+}
+
 /// Warnings that only the results can give: an indenter that never touched
 /// its body, a probe where the model shows neither stress nor displacement
 /// (below 1e-6 of the largest anywhere: a part the load does not reach).
 pub(super) fn result_warnings(model: &Model, solution: &Solution) -> Vec<Warning> {
     let mut warnings = Vec::new();
     for (k, ind) in model.indenters.iter().enumerate() {
-        let touched = solution
-            .history
-            .iter()
-            .flat_map(|r| r.contact(&ind.name))
-            .chain(solution.contact(&ind.name))
-            .any(|c| c.force != [0.0; 3]);
-        if !touched && !solution.history.is_empty() {
+        if !touched(solution, &ind.name) {
             warnings.push(Warning {
                 key: format!("indenters[{k}]"),
                 message: format!(
@@ -93,13 +99,7 @@ const SOFT_PENALTY: f64 = 0.1;
 fn contact_warnings(model: &Model, solution: &Solution, warnings: &mut Vec<Warning>) {
     let n_ind = model.indenters.len();
     for (k, c) in model.contacts.iter().enumerate() {
-        let touched = solution
-            .history
-            .iter()
-            .flat_map(|r| r.contact(&c.name))
-            .chain(solution.contact(&c.name))
-            .any(|r| r.force != [0.0; 3]);
-        if touched || solution.history.is_empty() {
+        if touched(solution, &c.name) {
             continue;
         }
         let gap = solution

@@ -284,12 +284,12 @@ pub fn gmres(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// Lower pattern and values of a tridiagonal SPD matrix (diagonal `d`,
     /// off-diagonal −1).
-    fn tridiagonal(d: &[f64]) -> (LowerCsc, Vec<f64>) {
+    pub(crate) fn tridiagonal(d: &[f64]) -> (LowerCsc, Vec<f64>) {
         let n = d.len();
         let columns: Vec<Vec<usize>> = (0..n).map(|c| (c..(c + 2).min(n)).collect()).collect();
         let values: Vec<f64> =
@@ -297,7 +297,8 @@ mod tests {
         (LowerCsc::from_columns(n, &columns), values)
     }
 
-    fn residual(p: &LowerCsc, v: &[f64], s: &NonSymmetric, x: &[f64], b: &[f64]) -> f64 {
+    /// `‖(A + S) x − b‖` for the symmetric `A` (lower `v` on `p`) and `S`.
+    pub(crate) fn residual(p: &LowerCsc, v: &[f64], s: &NonSymmetric, x: &[f64], b: &[f64]) -> f64 {
         let mut y = vec![0.0; b.len()];
         mul_unsymmetric(p, v, s, x, &mut y);
         y.iter().zip(b).map(|(a, c)| (a - c) * (a - c)).sum::<f64>().sqrt()

@@ -233,22 +233,11 @@ impl ReusingSolver {
             let t = Instant::now();
             let eta = self.stop(forcing);
             let outcome = pcg(pattern, values, &mut self.chol, rhs, eta, allowed, &mut self.work)?;
-            let elapsed = t.elapsed();
-            self.stats.solve_time += elapsed;
-            let its = match outcome {
-                Krylov::Converged(k) | Krylov::NotConverged(k) => k,
-            };
-            self.stats.krylov_iterations += its;
-            match outcome {
-                Krylov::Converged(k) => {
-                    self.stats.reused += 1;
-                    self.worn = 2 * k > allowed;
-                    return Ok(SolveKind::Reused(k));
-                }
-                Krylov::NotConverged(k) => {
-                    self.stats.fallbacks += 1;
-                    kind = SolveKind::FellBack(k);
-                }
+            self.stats.solve_time += t.elapsed();
+            self.stats.krylov_iterations += outcome.iterations();
+            kind = self.reused(outcome, allowed / 2);
+            if let SolveKind::Reused(_) = kind {
+                return Ok(kind);
             }
         }
         // a factor one iteration old did not precondition: the tangent is
@@ -339,16 +328,9 @@ impl ReusingSolver {
             let allowed = self.allowed_iterations(pattern);
             let budget = allowed + self.fresh_iterations;
             let outcome = self.gmres(pattern, values, skew, rhs, eta, budget)?;
-            match outcome {
-                Krylov::Converged(k) => {
-                    self.stats.reused += 1;
-                    self.worn = k > self.fresh_iterations + allowed / 2;
-                    return Ok(SolveKind::Reused(k));
-                }
-                Krylov::NotConverged(k) => {
-                    self.stats.fallbacks += 1;
-                    kind = SolveKind::FellBack(k);
-                }
+            kind = self.reused(outcome, self.fresh_iterations + allowed / 2);
+            if let SolveKind::Reused(_) = kind {
+                return Ok(kind);
             }
         }
         self.skip = matches!(kind, SolveKind::FellBack(_));
@@ -384,6 +366,23 @@ impl ReusingSolver {
         match self.gmres(pattern, values, skew, rhs, EXACT, GMRES_MAX_FRESH)? {
             Krylov::Converged(_) => Ok(()),
             Krylov::NotConverged(k) => Err(LinearError::KrylovStalled(k)),
+        }
+    }
+
+    /// Counts a Krylov solve with an earlier factor: `Reused` — the solve
+    /// is done, the factor marked worn if it took more than `worn_after`
+    /// iterations — or `FellBack`: the caller factorizes.
+    fn reused(&mut self, outcome: Krylov, worn_after: usize) -> SolveKind {
+        match outcome {
+            Krylov::Converged(k) => {
+                self.stats.reused += 1;
+                self.worn = k > worn_after;
+                SolveKind::Reused(k)
+            }
+            Krylov::NotConverged(k) => {
+                self.stats.fallbacks += 1;
+                SolveKind::FellBack(k)
+            }
         }
     }
 

@@ -3,20 +3,11 @@
 
 use super::*;
 
-/// Lower pattern of a 1D Laplacian-like tridiagonal SPD matrix of size n
-/// with diagonal `d[i]` and off-diagonal −1.
-fn tridiagonal(d: &[f64]) -> (LowerCsc, Vec<f64>) {
-    let n = d.len();
-    let columns: Vec<Vec<usize>> = (0..n).map(|c| (c..(c + 2).min(n)).collect()).collect();
-    let values: Vec<f64> =
-        columns.iter().zip(d).flat_map(|(rows, &dc)| [dc, -1.0].into_iter().take(rows.len())).collect();
-    (LowerCsc::from_columns(n, &columns), values)
-}
+use super::super::krylov::tests::{residual as residual_unsymmetric, tridiagonal};
 
+/// `‖A x − b‖` for the symmetric `A` (lower `v` on `p`).
 fn residual(p: &LowerCsc, v: &[f64], x: &[f64], b: &[f64]) -> f64 {
-    let mut y = vec![0.0; b.len()];
-    p.mul_symmetric(v, x, &mut y);
-    y.iter().zip(b).map(|(a, c)| (a - c) * (a - c)).sum::<f64>().sqrt()
+    residual_unsymmetric(p, v, &NonSymmetric::default(), x, b)
 }
 
 /// A local change of the matrix (a "plastic zone" of 3 rows of 200) is
@@ -157,13 +148,6 @@ fn disabled_reuse_factorizes_every_solve() {
         assert_eq!(solver.solve(&pattern, &v0, &mut x, 1e-8, false).unwrap(), SolveKind::Factorized);
     }
     assert_eq!((solver.stats().factorizations, solver.stats().reused), (3, 0));
-}
-
-/// `(A + S) x − b` for the symmetric `A` and the unsymmetric rest `S`.
-fn residual_unsymmetric(p: &LowerCsc, v: &[f64], s: &NonSymmetric, x: &[f64], b: &[f64]) -> f64 {
-    let mut y = vec![0.0; b.len()];
-    super::krylov::mul_unsymmetric(p, v, s, x, &mut y);
-    y.iter().zip(b).map(|(a, c)| (a - c) * (a - c)).sum::<f64>().sqrt()
 }
 
 /// Friction couplings `σ t nᵀ` (outer products) at pairs of neighbouring

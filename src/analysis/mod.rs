@@ -297,7 +297,7 @@ impl Observer<Structure<'_>> for Recorder<'_> {
             dlambda: inc.dlambda,
             iterations: inc.newton.iterations,
             residuals: inc.newton.residuals.clone(),
-            plastic_points: s.plastic_points,
+            plastic_points: s.plastic_points(),
             cutbacks: inc.cutbacks,
             max_penetration,
         });
@@ -307,7 +307,7 @@ impl Observer<Structure<'_>> for Recorder<'_> {
             iterations: inc.newton.iterations,
             reactions: s.reactions(),
             contacts: contact,
-            plastic_points: s.plastic_points,
+            plastic_points: s.plastic_points(),
         });
         self.increments.push(inc.clone());
     }
@@ -327,7 +327,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         &Setup {
             equations: structure.n_equations(),
             factor_nnz: structure.factor_nnz(),
-            memory: structure.memory.clone(),
+            memory: structure.memory().clone(),
         },
     );
     let mut recorder = Recorder { history: Vec::new(), increments: Vec::new(), cutbacks: Vec::new(), progress };
@@ -348,9 +348,9 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
                 reactions: structure.reactions(),
                 contacts: structure.contact_resultants(),
                 fields: (model.steps.len() > 1).then(|| StepFields {
-                    u: structure.u.clone(),
-                    states: structure.committed.clone(),
-                    stresses: structure.stress.clone(),
+                    u: structure.displacements().to_vec(),
+                    states: structure.elements().committed.clone(),
+                    stresses: structure.elements().stress.clone(),
                 }),
             }),
             Err(e) => {
@@ -363,34 +363,40 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         // refresh forces at the last converged state for reactions and contact output
         structure.evaluate()?;
     }
-    let lambda = structure.lambda;
+    let lambda = structure.load_factor();
     let mut applied = [0.0; 3];
-    for (d, f) in structure.f_ext.iter().enumerate() {
+    for (d, f) in structure.external_loads().iter().enumerate() {
         applied[d % 3] += f;
     }
+    let reactions = structure.reactions();
+    let contacts = structure.contact_resultants();
+    let contact_sets = structure
+        .contact_sets()
+        .map(|(name, kind, points)| ContactSet { name: name.to_string(), kind, points: points.to_vec() })
+        .collect();
+    let (equations, factor_nnz, plastic_points) =
+        (structure.n_equations(), structure.factor_nnz(), structure.plastic_points());
+    let (u, elements, timings, memory) = structure.into_parts();
     let mut solution = Solution {
-        reactions: structure.reactions(),
-        contacts: structure.contact_resultants(),
-        contact_sets: structure
-            .contact_sets()
-            .map(|(name, kind, points)| ContactSet { name: name.to_string(), kind, points: points.to_vec() })
-            .collect(),
+        reactions,
+        contacts,
+        contact_sets,
         applied,
         lambda,
-        equations: structure.n_equations(),
-        factor_nnz: structure.factor_nnz(),
-        plastic_points: structure.plastic_points,
-        timings: structure.timings,
-        u: structure.u,
-        states: structure.committed,
-        stresses: structure.stress,
-        gp_offsets: structure.gp_offsets,
+        equations,
+        factor_nnz,
+        plastic_points,
+        timings,
+        u,
+        states: elements.committed,
+        stresses: elements.stress,
+        gp_offsets: elements.gp_offsets,
         history: recorder.history,
         increments: recorder.increments,
         cutbacks: recorder.cutbacks,
         failure,
         wall_time: start.elapsed(),
-        memory: structure.memory,
+        memory,
         warnings: Vec::new(),
         recovered: None,
         steps: step_ends,

@@ -102,33 +102,4 @@ pub struct ContactSet {
     pub points: Vec<ContactPoint>,
 }
 
-/// State of one contact point after an evaluation.
-#[derive(Debug, Clone, Copy, PartialEq, Default)]
-pub struct ContactPoint {
-    /// Global node (the slave node for pairs).
-    pub node: usize,
-    /// Master node for pairs.
-    pub master: Option<usize>,
-    /// Normal gap (m), negative = penetration.
-    pub gap: f64,
-    /// Force on the (slave) node (N).
-    pub force: [f64; 3],
-    /// Tributary area (m²).
-    pub area: f64,
-    /// True if active.
-    pub active: bool,
-    /// Augmented-Lagrangian multiplier (N): the contact force carried over
-    /// from the last augmentation (0 for pure penalty).
-    pub multiplier: f64,
-    /// Accumulated tangential slip (m, slave relative to master) of a
-    /// frictional point, committed with the increment.
-    pub slip: [f64; 3],
-    /// True if the frictional point slides (on the Coulomb cone).
-    pub sliding: bool,
-    /// Contact normal (pointing to the slave body or body under an indenter).
-    pub normal: [f64; 3],
-    /// Position relative to a rigid indenter, `X + u − d` (m), at the last
-    /// evaluation of an indenter with `method = "surface"` (its friction
-    /// measures the slip increment from the committed one); zero otherwise.
-    pub position: [f64; 3],
-}
+pub use crate::contact::ContactPoint;

@@ -1,106 +1,67 @@
 //! The discretized structure as a nonlinear problem: residual
-//! `R(u) = f_int(u) − λ f_ext − f_c(u)` on the free DOFs, its tangent
-//! `K = K_tan + K_p` (paper eq. 18), prescribed displacements `λ ū`, and the
-//! committed/trial split of the Gauss-point history.
+//! `R(u) = f_int(u) − λ f_ext − f_c(u)` on the free DOFs and its tangent
+//! `K = K_tan + K_p` (paper eq. 18), for the solvers of `solver::newton`
+//! and `solver::stepping`.
 //!
-//! **Prescribed displacements.** DOFs fixed at zero have no equation. DOFs
-//! with a non-zero prescribed value keep their equation, and each solve
-//! eliminates them symmetrically: with `Δ_p = λ ū_p − u_p`,
-//! `K_ff δu_f = −R_f − K_fp Δ_p` and `δu_p = Δ_p`. The first Newton
-//! iteration of an increment therefore moves the free DOFs consistently
-//! with the prescribed ones (a linearized predictor) instead of jumping the
-//! constrained nodes alone, which would strain — and, in plasticity,
-//! spuriously yield — the elements next to them.
+//! The structure is a composition of parts with one job each:
+//!
+//! * the **contributions** ([`crate::assembly::Contribution`]), evaluated
+//!   in order into the tangent, their forces summed into the residual —
+//!   `structure/elements.rs` (internal forces, element tangents, the
+//!   Gauss-point history; first: it writes the whole tangent),
+//!   `structure/loads.rs` (the external loads at λ) and
+//!   [`crate::contact::Contacts`] (every contact kind);
+//! * `structure/dirichlet.rs`: prescribed displacements and their
+//!   elimination from each linear system (symmetric and unsymmetric alike);
+//! * `structure/force.rs`: force-controlled indenters, whose displacement is
+//!   an extra unknown bordering the linear system;
+//! * `structure/system.rs`: the tangent, the right-hand side and the solver;
+//! * `structure/kinematics.rs`: the displacements and λ.
+//!
+//! A new capability is a new part: inertia would be a contribution (its
+//! forces `M a` and stiffness `c M`), a new contact kind a file of
+//! `contact::assembly`.
 
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
-mod augment;
-mod contacts;
+mod dirichlet;
+pub(crate) mod elements;
 mod force;
+mod kinematics;
+mod loads;
 mod resultants;
-mod surface;
-mod unsymmetric;
+mod system;
 
 pub use super::results::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Timings};
-use crate::assembly::{Assembler, Inputs, NO_EQ, Numbering, Outputs};
-use crate::materials::{PointState, Predictor};
+use crate::assembly::{Assembler, Contribution, NO_EQ, Numbering, Phase};
+use crate::contact::Contacts;
+use crate::contact::assembly::UNSETTLED_FORCING;
+use crate::materials::Predictor;
 use crate::model::Model;
-use crate::model::steps::{self, Item};
 use crate::size::MemoryEstimate;
 use crate::solver::linear::{Cholesky, LinearError};
 use crate::solver::newton::{Correction, Evaluation, NonlinearProblem};
-use crate::solver::nonsymmetric::NonSymmetric;
-use crate::solver::reuse::ReusingSolver;
 use crate::solver::stepping::Incremental;
-use crate::voigt::Voigt;
+use dirichlet::Dirichlet;
+use elements::Elements;
+use force::ForceControl;
+use kinematics::Kinematics;
+use loads::Loads;
+use system::LinearSystem;
 
-/// The structure: model, discretization, state and linear algebra.
+/// The structure: the model's parts (module docs), its unknowns and its
+/// linear system.
 pub struct Structure<'m> {
-    /// The model.
-    pub(super) model: &'m Model,
-    /// First Gauss point of each body.
-    pub(super) gp_offsets: Vec<usize>,
-    /// Numbering, pattern and scatter.
-    pub(super) assembler: Assembler,
-    solver: ReusingSolver,
-    /// A model with friction: the unsymmetric rest of the tangent of the
-    /// last evaluation (`structure/unsymmetric.rs`).
-    skew: Option<NonSymmetric>,
-    /// Displacements (3 per node).
-    pub(super) u: Vec<f64>,
-    u_committed: Vec<f64>,
-    /// Displacement change of the last converged increment (for the
-    /// extrapolated start of the next: [`Incremental::extrapolate`]).
-    u_step: Vec<f64>,
-    /// Committed Gauss-point states.
-    pub(super) committed: Vec<PointState>,
-    trial: Vec<PointState>,
-    /// Gauss-point stresses of the last evaluation.
-    pub(super) stress: Vec<Voigt>,
-    /// Internal forces of the last evaluation.
-    pub(super) f_int: Vec<f64>,
-    /// External loads at the current λ (each load times its factor).
-    pub(super) f_ext: Vec<f64>,
-    /// Contact forces of the last evaluation.
-    pub(super) f_contact: Vec<f64>,
-    tangent: Vec<f64>,
-    residual: Vec<f64>,
-    /// Non-zero prescribed DOFs: `(dof, equation, value at factor 1, constraint)`.
-    prescribed: Vec<(usize, usize, f64, usize)>,
-    /// Their values at the current λ.
-    prescribed_now: Vec<f64>,
-    /// Per equation: true for a prescribed DOF.
-    is_prescribed: Vec<bool>,
-    /// Matrix entries coupling a prescribed equation: `(position, row, col)`.
-    dirichlet_entries: Vec<(usize, usize, usize)>,
-    /// Current load factor.
-    pub(super) lambda: f64,
-    lambda_committed: f64,
-    /// Contact points: all indenter candidates, then all pairs, in model order.
-    pub(super) contact: Vec<ContactPoint>,
-    contact_committed: Vec<ContactPoint>,
-    contact_ranges: Vec<std::ops::Range<usize>>,
-    /// Each contact point's assembled block of the last evaluation.
-    contact_blocks: Vec<[[f64; 3]; 3]>,
-    /// Per pair contact: the projections and weighted gaps of a surface contact.
-    surface_state: Vec<surface::State>,
-    /// `‖R‖ / F` of the last evaluation, at most `contacts::UNSETTLED_FORCING` while
-    /// not settled: the forcing term of the next PCG solve.
-    relative_residual: f64,
-    /// Plastic Gauss points in the last evaluation.
-    pub(super) plastic_points: usize,
-    /// Force-controlled indenters (their displacement is an unknown).
-    driven: Vec<force::Driven>,
-    /// Tangent branch of Gauss points on their yield surface (elastic after
-    /// a failed attempt: [`Incremental::cautious`]).
-    predictor: Predictor,
-    /// The next evaluation is the first of an increment (frictional points
-    /// then get the stick tangent: `structure/contacts.rs`).
-    first_evaluation: bool,
-    /// Phase timings.
-    pub(super) timings: Timings,
-    /// Memory estimate made after the symbolic factorization.
-    pub(super) memory: MemoryEstimate,
+    model: &'m Model,
+    state: Kinematics,
+    elements: Elements<'m>,
+    loads: Loads<'m>,
+    contacts: Contacts<'m>,
+    dirichlet: Dirichlet,
+    force: ForceControl<'m>,
+    system: LinearSystem,
+    timings: Timings,
+    memory: MemoryEstimate,
 }
 
 impl<'m> Structure<'m> {
@@ -113,28 +74,7 @@ impl<'m> Structure<'m> {
     pub fn new(model: &'m Model, max_memory: Option<u64>) -> Result<Self, super::AnalysisError> {
         let t0 = Instant::now();
         let mesh = &model.mesh;
-        // Gauss-point values come from the model's preprocessing
-        let geometry = &model.cells;
-        let mut gp_offsets = Vec::with_capacity(geometry.len());
-        let mut n_gp = 0;
-        for (b, g) in mesh.bodies.iter().zip(geometry) {
-            gp_offsets.push(n_gp);
-            n_gp += b.n_elements() * g.gp_per_element();
-        }
-        let n_dofs = mesh.n_dofs();
-        // value prescribed at each constrained DOF (validation rejects conflicts)
-        let mut value: Vec<Option<f64>> = vec![None; n_dofs];
-        let mut source = vec![0; n_dofs];
-        for (ci, c) in model.constraints.iter().enumerate() {
-            for &n in &c.nodes {
-                for (k, v) in c.values.iter().enumerate() {
-                    if v.is_some() && value[3 * n + k].is_none() {
-                        value[3 * n + k] = *v;
-                        source[3 * n + k] = ci;
-                    }
-                }
-            }
-        }
+        let (value, source) = dirichlet::prescribed_values(model);
         let fixed: Vec<bool> = value.iter().map(|v| *v == Some(0.0)).collect();
         let couplings: Vec<(usize, usize)> = model.contacts.iter().flat_map(|c| c.couplings(mesh)).collect();
         let numbering = Numbering::new(mesh, &fixed, &couplings)?;
@@ -148,69 +88,11 @@ impl<'m> Structure<'m> {
             return Err(super::AnalysisError::TooLarge { estimate: memory, limit });
         }
         let mut assembler = Assembler::new(mesh, numbering);
-        let n_eq = assembler.dofs.n_eq;
-        let mut prescribed = Vec::new();
-        let mut is_prescribed = vec![false; n_eq];
-        for (d, v) in value.iter().enumerate() {
-            if let Some(v) = *v
-                && v != 0.0
-            {
-                let e = assembler.dofs.eq[d];
-                prescribed.push((d, e, v, source[d]));
-                is_prescribed[e] = true;
-            }
-        }
-        let pattern = &assembler.pattern;
-        let mut dirichlet_entries = Vec::new();
-        for c in 0..pattern.n {
-            for k in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
-                let r = pattern.row_idx[k] as usize;
-                if r != c && (is_prescribed[r] || is_prescribed[c]) {
-                    dirichlet_entries.push((k, r, c));
-                }
-            }
-        }
-        let frictional = model.has_friction();
+        let dirichlet = Dirichlet::new(&value, &source, &assembler);
+        let elements = Elements::new(model);
         let t_cache = Instant::now();
-        let states = vec![PointState::default(); n_gp];
-        let zero = vec![0.0; n_dofs];
-        assembler.cache_elastic(&Inputs {
-            mesh,
-            geometry,
-            materials: &model.materials,
-            u: &zero,
-            committed: &states,
-            gp_offsets: &gp_offsets,
-            predictor: Default::default(),
-        });
+        assembler.cache_elastic(&elements.inputs(&vec![0.0; mesh.n_dofs()]));
         let element_cache = t_cache.elapsed();
-
-        let f_ext = vec![0.0; n_dofs];
-        let mut contact = Vec::new();
-        let mut contact_ranges = Vec::new();
-        for ind in &model.indenters {
-            let start = contact.len();
-            contact.extend(ind.nodes.iter().map(|c| ContactPoint {
-                node: c.node,
-                area: c.area,
-                position: mesh.coords(c.node),
-                ..Default::default()
-            }));
-            contact_ranges.push(start..contact.len());
-        }
-        for pc in &model.contacts {
-            let start = contact.len();
-            contact.extend(pc.pairs.iter().map(|p| ContactPoint {
-                node: p.slave,
-                master: Some(p.master),
-                area: p.area,
-                gap: p.gap0,
-                ..Default::default()
-            }));
-            contact.extend(surface::initial_points(pc));
-            contact_ranges.push(start..contact.len());
-        }
-        let nnz = assembler.pattern.nnz();
         let timings = Timings {
             setup: t0.elapsed(),
             ordering: assembler.ordering_time,
@@ -219,81 +101,62 @@ impl<'m> Structure<'m> {
             element_cache,
             ..Default::default()
         };
-        let mut structure = Self {
+        let n_eq = assembler.dofs.n_eq;
+        Ok(Self {
             model,
-            gp_offsets,
-            assembler,
-            solver: ReusingSolver::new(chol, model.solver.reuse),
-            skew: frictional.then(NonSymmetric::default),
-            u: vec![0.0; n_dofs],
-            u_committed: vec![0.0; n_dofs],
-            u_step: vec![0.0; n_dofs],
-            committed: vec![PointState::default(); n_gp],
-            trial: vec![PointState::default(); n_gp],
-            stress: vec![[0.0; 6]; n_gp],
-            f_int: vec![0.0; n_dofs],
-            f_ext,
-            f_contact: vec![0.0; n_dofs],
-            tangent: vec![0.0; nnz],
-            residual: vec![0.0; n_eq],
-            prescribed_now: vec![0.0; prescribed.len()],
-            prescribed,
-            is_prescribed,
-            dirichlet_entries,
-            lambda: 0.0,
-            lambda_committed: 0.0,
-            contact_blocks: vec![[[0.0; 3]; 3]; contact.len()],
-            contact_committed: contact.clone(),
-            surface_state: vec![Default::default(); model.contacts.len()],
-            contact,
-            contact_ranges,
-            plastic_points: 0,
-            relative_residual: 1.0,
-            driven: force::Driven::of(model, n_eq),
-            predictor: Predictor::Loading,
-            first_evaluation: false,
+            state: Kinematics::new(mesh.n_dofs()),
+            elements,
+            loads: Loads::new(model),
+            contacts: Contacts::new(mesh, &model.indenters, &model.contacts),
+            dirichlet,
+            force: ForceControl::new(model, n_eq),
+            system: LinearSystem::new(assembler, chol, model.solver.reuse, model.has_friction(), mesh.n_dofs()),
             timings,
             memory,
-        };
-        structure.update_projections();
-        Ok(structure)
+        })
+    }
+
+    /// The contributions in the order they are evaluated and summed (the
+    /// elements first: they write the whole tangent).
+    fn contributions(&mut self) -> [&mut dyn Contribution; 3] {
+        [&mut self.elements, &mut self.loads, &mut self.contacts]
     }
 
     /// Displacements, 3 per node (`3 · node + component`).
     pub fn displacements(&self) -> &[f64] {
-        &self.u
+        &self.state.u
     }
 
     /// Mutable displacements (for finite-difference checks of the tangent;
     /// the next [`NonlinearProblem::evaluate`] sees the change).
     pub fn displacements_mut(&mut self) -> &mut [f64] {
-        &mut self.u
+        &mut self.state.u
     }
 
     /// Current load factor.
     pub fn load_factor(&self) -> f64 {
-        self.lambda
+        self.state.lambda
     }
 
     /// Plastic Gauss points in the last evaluation.
     pub fn plastic_points(&self) -> usize {
-        self.plastic_points
+        self.elements.plastic_points
     }
 
     /// Every contact point after the last evaluation (all indenter
     /// candidates, then all node pairs, in model order).
     pub fn contact_points(&self) -> &[ContactPoint] {
-        &self.contact
+        self.contacts.points()
     }
 
     /// The tangent's lower-triangular pattern (equation numbering).
     pub fn pattern(&self) -> &crate::solver::linear::LowerCsc {
-        &self.assembler.pattern
+        &self.system.assembler.pattern
     }
 
     /// Equation of a DOF, `None` if it is fixed.
     pub fn equation(&self, dof: usize) -> Option<usize> {
-        let e = self.assembler.dofs.eq[dof];
+        let e = self.system.assembler.dofs.eq[dof];
         (e != NO_EQ).then_some(e)
     }
 
@@ -309,53 +172,88 @@ impl<'m> Structure<'m> {
 
     /// Number of equations (free DOFs).
     pub fn n_equations(&self) -> usize {
-        self.assembler.dofs.n_eq
+        self.system.assembler.dofs.n_eq
     }
 
-    /// Tangent values of the last evaluation, in the order of
-    /// `assembler.pattern` (before any Dirichlet elimination).
+    /// Tangent values of the last evaluation, in the order of the pattern
+    /// (before any Dirichlet elimination).
     pub fn tangent_values(&self) -> &[f64] {
-        &self.tangent
+        &self.system.tangent
+    }
+
+    /// True if the tangent may be unsymmetric (a model with friction).
+    pub fn is_unsymmetric(&self) -> bool {
+        self.system.rest.is_some()
+    }
+
+    /// Entry `(row, col)` (equations) of the full tangent of the last
+    /// evaluation, before any Dirichlet elimination: the lower-triangle
+    /// values plus the unsymmetric rest (for finite-difference checks).
+    pub fn tangent_entry(&self, row: usize, col: usize) -> f64 {
+        let sym = self.pattern().find(row.max(col), row.min(col)).map_or(0.0, |p| self.system.tangent[p]);
+        sym + self.system.rest.as_ref().map_or(0.0, |s| s.entry(row, col))
     }
 
     /// Residual `f_int − λ f_ext − f_c` per equation, from the last evaluation.
     pub fn residual(&self) -> &[f64] {
-        &self.residual
+        &self.system.rhs
     }
 
     /// Stored entries of the factor `L`.
     pub fn factor_nnz(&self) -> usize {
-        self.solver.factor_nnz()
+        self.system.factor_nnz()
     }
 
     /// Reaction at every DOF, `f_int − λ f_ext − f_c` (zero up to the
     /// residual at free DOFs).
     pub fn nodal_imbalance(&self, dof: usize) -> f64 {
-        self.f_int[dof] - self.f_ext[dof] - self.f_contact[dof]
+        self.system.imbalance[dof]
     }
 
-    fn assemble_elements(&mut self) {
-        let t = Instant::now();
-        let model = self.model;
-        let inputs = Inputs {
-            mesh: &model.mesh,
-            geometry: &model.cells,
-            materials: &model.materials,
-            u: &self.u,
-            committed: &self.committed,
-            gp_offsets: &self.gp_offsets,
-            predictor: self.predictor,
-        };
-        self.plastic_points = self.assembler.assemble(
-            &inputs,
-            Outputs {
-                force: &mut self.f_int,
-                tangent: Some(&mut self.tangent),
-                trial: &mut self.trial,
-                stress: &mut self.stress,
-            },
-        );
-        self.timings.assembly += t.elapsed();
+    /// External loads at the current λ (per DOF).
+    pub fn external_loads(&self) -> &[f64] {
+        &self.loads.f_ext
+    }
+
+    /// The elements' part: Gauss-point states, stresses and offsets.
+    pub(crate) fn elements(&self) -> &Elements<'m> {
+        &self.elements
+    }
+
+    /// The parts the solution keeps: displacements, elements, timings, memory.
+    pub(crate) fn into_parts(self) -> (Vec<f64>, Elements<'m>, Timings, MemoryEstimate) {
+        (self.state.u, self.elements, self.timings, self.memory)
+    }
+
+    /// Adds the solved correction (in `system.rhs`, by equation) to `u` and
+    /// reports its norm (with `da2`, the squared correction of the
+    /// force-controlled indenters) and the norm of the increment so far.
+    fn apply_correction(&mut self, da2: f64) -> Correction {
+        let eq = &self.system.assembler.dofs.eq;
+        let mut norm2 = 0.0;
+        for (d, &e) in eq.iter().enumerate() {
+            if e != NO_EQ {
+                let du = self.system.rhs[e];
+                self.state.u[d] += du;
+                norm2 += du * du;
+            }
+        }
+        let inc2 = self.state.increment2() + self.force.increment2();
+        Correction { norm: (norm2 + da2).sqrt(), increment_norm: inc2.sqrt() }
+    }
+
+    /// Copies the solver's counters into the timings.
+    fn record_solver(&mut self) {
+        let stats = *self.system.stats();
+        let t = &mut self.timings;
+        t.factorization = stats.factorization_time;
+        t.factorizations = stats.factorizations;
+        t.solve = stats.solve_time;
+        t.reused = stats.reused;
+        t.krylov_iterations = stats.krylov_iterations;
+        t.fallbacks = stats.fallbacks;
+        t.single_factorizations = stats.single_factorizations;
+        t.precision_fallbacks = stats.precision_fallbacks;
     }
 }
 
@@ -364,177 +262,131 @@ impl NonlinearProblem for Structure<'_> {
 
     fn evaluate(&mut self) -> Result<Evaluation, LinearError> {
         self.timings.evaluations += 1;
-        self.assemble_elements();
-        let changes = self.assemble_contact();
-        let eq = &self.assembler.dofs.eq;
-        let (mut res2, mut ext2, mut con2, mut reac2) = (0.0, 0.0, 0.0, 0.0);
+        self.contacts.move_indenters(self.force.offsets(self.state.lambda));
+        // every contribution into the tangent, in order
+        let mut changes = 0;
+        let mut elapsed = [Duration::ZERO; 2];
+        {
+            let at = self.state.at();
+            let mut tangent = self.system.tangent();
+            let parts: [&mut dyn Contribution; 3] = [&mut self.elements, &mut self.loads, &mut self.contacts];
+            for part in parts {
+                let t = Instant::now();
+                changes += part.evaluate(&at, &mut tangent);
+                elapsed[usize::from(part.phase() == Phase::Contact)] += t.elapsed();
+            }
+        }
+        self.timings.assembly += elapsed[0];
+        self.timings.contact += elapsed[1];
+        // their forces summed into the residual, per DOF
+        let imbalance = &mut self.system.imbalance;
+        imbalance.fill(0.0);
+        let mut scale: f64 = 0.0;
+        for part in [&self.elements as &dyn Contribution, &self.loads, &self.contacts] {
+            let f = part.forces();
+            let mut size2 = 0.0;
+            for (r, &v) in imbalance.iter_mut().zip(f.values) {
+                *r += f.sign * v;
+                size2 += v * v;
+            }
+            if f.scale {
+                scale = scale.max(size2.sqrt());
+            }
+        }
+        let eq = &self.system.assembler.dofs.eq;
+        let (mut res2, mut reac2) = (0.0, 0.0);
         for (d, &e) in eq.iter().enumerate() {
-            let ext = self.f_ext[d];
-            let r = self.f_int[d] - ext - self.f_contact[d];
-            ext2 += ext * ext;
-            con2 += self.f_contact[d] * self.f_contact[d];
-            if e == NO_EQ || self.is_prescribed[e] {
+            let r = imbalance[d];
+            if e == NO_EQ || self.dirichlet.is_prescribed(e) {
                 reac2 += r * r;
             } else {
                 res2 += r * r;
             }
             if e != NO_EQ {
-                self.residual[e] = r;
+                self.system.rhs[e] = r;
             }
         }
         // prescribed values reached (exactly, after the first correction)
-        let mut off: f64 = 0.0;
-        let mut size: f64 = 0.0;
-        for (&(d, _, v, _), now) in self.prescribed.iter().zip(&self.prescribed_now) {
-            off = off.max((now - self.u[d]).abs());
-            size = size.max(v.abs());
-        }
-        let (driven_res2, driven_target2) = self.evaluate_driven();
+        let (off, size) = self.dirichlet.offset(&self.state.u);
+        let (driven_res2, driven_target2) = self.force.evaluate(&self.contacts, eq, &self.dirichlet, self.state.lambda);
         res2 += driven_res2;
-        let scale = ext2.sqrt().max(con2.sqrt()).max(reac2.sqrt()).max(driven_target2.sqrt());
+        let scale = scale.max(reac2.sqrt()).max(driven_target2.sqrt());
         let settled = changes == 0 && off <= 1e-12 * size;
         let r = if scale > 0.0 { res2.sqrt() / scale } else { 1.0 };
-        self.relative_residual = if settled { r } else { r.min(contacts::UNSETTLED_FORCING) };
+        self.system.forcing = if settled { r } else { r.min(UNSETTLED_FORCING) };
         Ok(Evaluation { residual_norm: res2.sqrt(), force_scale: scale, settled })
     }
 
     fn correct(&mut self) -> Result<Correction, LinearError> {
-        for r in &mut self.residual {
+        let system = &mut self.system;
+        for r in &mut system.rhs {
             *r = -*r;
         }
-        // symmetric elimination of the prescribed equations (see module docs)
-        for (&(d, e, _, _), now) in self.prescribed.iter().zip(&self.prescribed_now) {
-            self.residual[e] = now - self.u[d];
-        }
-        for &(k, r, c) in &self.dirichlet_entries {
-            let kv = self.tangent[k];
-            if !self.is_prescribed[r] {
-                self.residual[r] -= kv * self.residual[c];
-            } else if !self.is_prescribed[c] {
-                self.residual[c] -= kv * self.residual[r];
-            }
-            self.tangent[k] = 0.0;
-        }
-        self.eliminate_skew();
-        for &(_, e, _, _) in &self.prescribed {
-            let diag = self.assembler.pattern.col_ptr[e];
-            self.residual[e] *= self.tangent[diag];
-        }
-        let da2 = self.solve_bordered()?;
-        let stats = *self.solver.stats();
-        self.timings.factorization = stats.factorization_time;
-        self.timings.factorizations = stats.factorizations;
-        self.timings.solve = stats.solve_time;
-        self.timings.reused = stats.reused;
-        self.timings.krylov_iterations = stats.krylov_iterations;
-        self.timings.fallbacks = stats.fallbacks;
-        self.timings.single_factorizations = stats.single_factorizations;
-        self.timings.precision_fallbacks = stats.precision_fallbacks;
+        let col_ptr = &system.assembler.pattern.col_ptr;
+        self.dirichlet.eliminate(
+            &self.state.u,
+            |e| col_ptr[e],
+            &mut system.tangent,
+            system.rest.as_mut(),
+            &mut system.rhs,
+        );
+        let da2 = self.force.solve(system, self.state.lambda)?;
+        self.record_solver();
         Ok(self.apply_correction(da2))
     }
 }
 
 impl Incremental for Structure<'_> {
     fn set_load_factor(&mut self, lambda: f64) {
-        // prescribed values are reached by the next correction (see module docs)
-        self.lambda = lambda;
-        self.first_evaluation = true;
-        self.apply_factors();
+        // prescribed values are reached by the next correction (dirichlet.rs)
+        self.state.lambda = lambda;
+        self.contacts.start_increment();
+        self.dirichlet.set_load_factor(self.model, lambda);
     }
 
     fn augment(&mut self) -> bool {
-        self.augment_contacts()
+        self.contacts.augment()
     }
 
     fn cautious(&mut self, on: bool) -> bool {
         let wanted = if on { Predictor::Elastic } else { Predictor::Loading };
-        let changed = self.predictor != wanted;
-        self.predictor = wanted;
+        let changed = self.state.predictor != wanted;
+        self.state.predictor = wanted;
         changed
     }
 
     fn extrapolate(&mut self, ratio: f64) {
-        for ((u, c), s) in self.u.iter_mut().zip(&self.u_committed).zip(&self.u_step) {
-            *u = c + ratio * s;
-        }
         // Started on the secant of the last increment, a point that slid is
         // beyond its cone in the direction it slid, not on it to round-off:
         // its consistent tangent applies from the first iteration, and the
-        // stick predictor (`structure/contacts.rs`) is kept for increments
-        // that start at the committed state (the first of a load step, where
-        // the loading may reverse). Measured on
+        // stick predictor (`contact::assembly`) is kept for increments that
+        // start at the committed state (the first of a load step, where the
+        // loading may reverse). Measured on
         // examples/cantilevers_contact_friction.toml: the same Newton
         // iterations (66 against 67), 21 factorizations against 52 (the
         // predictor's tangent differs from the sliding one at every sliding
         // point, so no factor served both).
-        if ratio > 0.0 && self.u_step.iter().any(|&s| s != 0.0) {
-            self.first_evaluation = false;
+        if self.state.extrapolate(ratio) {
+            self.contacts.start_extrapolated();
         }
-        for d in &mut self.driven {
-            d.a = d.a_committed + ratio * d.a_step;
-        }
+        self.force.extrapolate(ratio);
     }
 
     fn commit(&mut self) {
-        for ((s, u), c) in self.u_step.iter_mut().zip(&self.u).zip(&self.u_committed) {
-            *s = u - c;
+        self.state.commit();
+        let at = self.state.at();
+        for part in [&mut self.elements as &mut dyn Contribution, &mut self.loads, &mut self.contacts] {
+            part.commit(&at);
         }
-        self.u_committed.copy_from_slice(&self.u);
-        self.committed.copy_from_slice(&self.trial);
-        self.lambda_committed = self.lambda;
-        self.contact_committed.copy_from_slice(&self.contact);
-        for d in &mut self.driven {
-            d.a_step = d.a - d.a_committed;
-            d.a_committed = d.a;
-        }
-        self.update_projections();
+        self.force.commit();
     }
 
     fn restore(&mut self) {
-        self.u.copy_from_slice(&self.u_committed);
-        self.contact.copy_from_slice(&self.contact_committed);
-        self.lambda = self.lambda_committed;
-        for d in &mut self.driven {
-            d.a = d.a_committed;
+        self.state.restore();
+        for part in self.contributions() {
+            part.restore();
         }
-        self.apply_factors();
-    }
-}
-
-impl Structure<'_> {
-    /// Adds the solved correction (in `residual`, by equation) to `u` and
-    /// reports its norm (with `da2`, the squared correction of the
-    /// force-controlled indenters) and the norm of the increment so far.
-    pub(super) fn apply_correction(&mut self, da2: f64) -> Correction {
-        let eq = &self.assembler.dofs.eq;
-        let mut norm2 = 0.0;
-        for (d, &e) in eq.iter().enumerate() {
-            if e != NO_EQ {
-                let du = self.residual[e];
-                self.u[d] += du;
-                norm2 += du * du;
-            }
-        }
-        let mut inc2: f64 = self.u.iter().zip(&self.u_committed).map(|(a, b)| (a - b) * (a - b)).sum();
-        inc2 += self.driven.iter().map(|d| (d.a - d.a_committed).powi(2)).sum::<f64>();
-        Correction { norm: (norm2 + da2).sqrt(), increment_norm: inc2.sqrt() }
-    }
-
-    /// Loads and prescribed values at the current λ: each item times its
-    /// factor in the load history (`model::steps`).
-    fn apply_factors(&mut self) {
-        let model = self.model;
-        self.f_ext.fill(0.0);
-        for (i, l) in model.loads.iter().enumerate() {
-            let a = steps::factor(&model.steps, Item::Load(i), self.lambda);
-            for (n, f) in &l.nodal_forces {
-                for k in 0..3 {
-                    self.f_ext[3 * n + k] += a * f[k];
-                }
-            }
-        }
-        for (&(_, _, v, c), now) in self.prescribed.iter().zip(&mut self.prescribed_now) {
-            *now = steps::factor(&model.steps, Item::Constraint(c), self.lambda) * v;
-        }
+        self.force.restore();
+        self.dirichlet.set_load_factor(self.model, self.state.lambda);
     }
 }

@@ -18,9 +18,11 @@
 //!   elements of a colour are processed in parallel and write to disjoint
 //!   entries.
 
+mod contribution;
 mod numbering;
 mod scatter;
 
+pub use contribution::{At, Contribution, Forces, Phase, Tangent};
 pub(crate) use numbering::node_adjacency;
 pub use numbering::{DofMap, NO_EQ, Numbering};
 pub use scatter::{ElementRef, ScatterMaps};

@@ -47,7 +47,9 @@
 
 use crate::bc::FaceIntegral;
 
+pub mod assembly;
 mod friction;
+pub use assembly::{ContactPoint, Contacts};
 pub use friction::{Friction, FrictionResponse, friction_response, stick_block, turning_friction};
 pub mod surface;
 

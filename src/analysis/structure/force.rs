@@ -25,38 +25,48 @@
 //! the Jacobian of its nearest candidate node stands in, so that Newton
 //! moves it into contact.
 
-use super::{NO_EQ, Structure};
+use super::dirichlet::Dirichlet;
+use super::system::LinearSystem;
+use crate::assembly::NO_EQ;
+use crate::contact::Contacts;
+use crate::model::Model;
 use crate::model::steps::{self, Item};
 use crate::solver::linear::LinearError;
-use crate::solver::nonsymmetric::NonSymmetric;
 
 /// One force-controlled indenter.
 #[derive(Debug, Clone)]
-pub(super) struct Driven {
+struct Driven {
     /// Index in `model.indenters`.
-    pub indenter: usize,
+    indenter: usize,
     /// Unit direction of its force.
-    pub dir: [f64; 3],
+    dir: [f64; 3],
     /// Force magnitude at factor 1 (N).
-    pub magnitude: f64,
+    magnitude: f64,
     /// Current and committed displacement along `dir` (m).
-    pub a: f64,
-    pub a_committed: f64,
+    a: f64,
+    a_committed: f64,
     /// Its change over the last converged increment.
-    pub a_step: f64,
+    a_step: f64,
     /// Border column `B = ∂R/∂a` (equation space) and corner `C` of the last evaluation.
     b: Vec<f64>,
     /// Border row `∂r/∂u` (equals `B` without friction).
     b_row: Vec<f64>,
     c: f64,
     /// Residual `r` of the last evaluation (N).
-    pub r: f64,
+    r: f64,
 }
 
-impl Driven {
-    /// The force-controlled indenters of `model`.
-    pub fn of(model: &crate::model::Model, n_eq: usize) -> Vec<Driven> {
-        model
+/// The force-controlled indenters of a model.
+#[derive(Debug)]
+pub(crate) struct ForceControl<'m> {
+    model: &'m Model,
+    driven: Vec<Driven>,
+}
+
+impl<'m> ForceControl<'m> {
+    /// The force-controlled indenters of `model` (`n_eq` equations).
+    pub fn new(model: &'m Model, n_eq: usize) -> Self {
+        let driven = model
             .indenters
             .iter()
             .enumerate()
@@ -76,55 +86,62 @@ impl Driven {
                     r: 0.0,
                 })
             })
-            .collect()
-    }
-}
-
-impl Structure<'_> {
-    /// Rigid displacement of indenter `k` at the current state.
-    pub(super) fn indenter_offset(&self, k: usize) -> [f64; 3] {
-        if let Some(d) = self.driven.iter().find(|d| d.indenter == k) {
-            return d.dir.map(|v| d.a * v);
-        }
-        let a = steps::factor(&self.model.steps, Item::Indenter(k), self.lambda);
-        self.model.indenters[k].displacement.map(|d| a * d)
+            .collect();
+        Self { model, driven }
     }
 
-    /// After the contact assembly: the force residual, border column and
+    /// Rigid displacement of every indenter at load factor `lambda`: the
+    /// prescribed motion times its factor, or the solved one.
+    pub fn offsets(&self, lambda: f64) -> impl Iterator<Item = [f64; 3]> + '_ {
+        self.model.indenters.iter().enumerate().map(move |(k, ind)| {
+            if let Some(d) = self.driven.iter().find(|d| d.indenter == k) {
+                return d.dir.map(|v| d.a * v);
+            }
+            let a = steps::factor(&self.model.steps, Item::Indenter(k), lambda);
+            ind.displacement.map(|d| a * d)
+        })
+    }
+
+    /// After the contact evaluation: the force residual, border column and
     /// corner of every force-controlled indenter. Returns `(Σ r², Σ F²)`.
-    pub(super) fn evaluate_driven(&mut self) -> (f64, f64) {
+    pub fn evaluate(
+        &mut self,
+        contacts: &Contacts<'_>,
+        eq: &[usize],
+        dirichlet: &Dirichlet,
+        lambda: f64,
+    ) -> (f64, f64) {
         let model = self.model;
+        let (points, blocks) = (contacts.points(), contacts.blocks());
         let (mut res2, mut target2) = (0.0, 0.0);
-        for di in 0..self.driven.len() {
-            let k = self.driven[di].indenter;
+        for drv in &mut self.driven {
+            let k = drv.indenter;
             let ind = &model.indenters[k];
-            let range = self.contact_ranges[k].clone();
-            let d = self.driven[di].dir;
-            let target = steps::factor(&model.steps, Item::Indenter(k), self.lambda) * self.driven[di].magnitude;
+            let range = contacts.ranges()[k].clone();
+            let d = drv.dir;
+            let target = steps::factor(&model.steps, Item::Indenter(k), lambda) * drv.magnitude;
             let dot = |a: &[f64; 3], b: &[f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
             let mut pushed = 0.0;
             let mut any = false;
             let mut nearest = (f64::INFINITY, 0);
-            for (j, p) in self.contact[range.clone()].iter().enumerate() {
+            for (j, p) in points[range.clone()].iter().enumerate() {
                 pushed += dot(&p.force, &d);
                 any |= p.active;
                 if p.gap < nearest.0 {
                     nearest = (p.gap, j);
                 }
             }
-            let dofs = &self.assembler.dofs.eq;
-            let drv = &mut self.driven[di];
             drv.b.fill(0.0);
             drv.b_row.fill(0.0);
             drv.c = 0.0;
-            for (j, (p, c)) in self.contact[range.clone()].iter().zip(&ind.nodes).enumerate() {
+            for (j, (p, c)) in points[range.clone()].iter().zip(&ind.nodes).enumerate() {
                 if !(p.active || (!any && j == nearest.1)) {
                     continue;
                 }
                 // the point's assembled block K (ε n nᵀ, plus friction);
                 // while nothing touches, the nearest point's ε n nᵀ
                 let kb = if p.active {
-                    self.contact_blocks[range.start + j]
+                    blocks[range.start + j]
                 } else {
                     c.normal.map(|a| c.normal.map(|b| c.penalty * a * b))
                 };
@@ -132,8 +149,8 @@ impl Structure<'_> {
                 let row: [f64; 3] = std::array::from_fn(|m| (0..3).map(|i| kb[i][m] * d[i]).sum());
                 drv.c += dot(&d, &col);
                 for m in 0..3 {
-                    let e = dofs[3 * c.node + m];
-                    if e != NO_EQ && !self.is_prescribed[e] {
+                    let e = eq[3 * c.node + m];
+                    if e != NO_EQ && !dirichlet.is_prescribed(e) {
                         drv.b[e] -= col[m];
                         drv.b_row[e] -= row[m];
                     }
@@ -146,31 +163,21 @@ impl Structure<'_> {
         (res2, target2)
     }
 
-    /// Bordered solve (module docs): `self.residual` holds `−R` (after the
-    /// Dirichlet elimination) and `K` is factored; on return it holds `Δu`.
-    /// Updates each indenter's `a` and returns `Σ Δa²`.
-    pub(super) fn solve_bordered(&mut self) -> Result<f64, LinearError> {
+    /// Bordered solve (module docs): `system.rhs` holds `−R` (after the
+    /// Dirichlet elimination); on return it holds `Δu`. Updates each
+    /// indenter's `a` and returns `Σ Δa²`.
+    pub fn solve(&mut self, system: &mut LinearSystem, lambda: f64) -> Result<f64, LinearError> {
         let m = self.driven.len();
         // the bordering solves further right-hand sides with the factor of
         // the present tangent: no reuse of an earlier one
-        let pattern = &self.assembler.pattern;
-        let empty = NonSymmetric::default();
-        let skew = self.skew.as_ref().unwrap_or(&empty);
-        self.solver.solve_unsymmetric(
-            pattern,
-            &self.tangent,
-            skew,
-            &mut self.residual,
-            self.relative_residual,
-            m > 0,
-        )?;
+        system.solve(m > 0)?;
         if m == 0 {
             return Ok(0.0);
         }
         let mut x2 = Vec::with_capacity(m);
         for d in &self.driven {
             let mut x = d.b.clone();
-            self.solver.solve_again_unsymmetric(pattern, &self.tangent, skew, &mut x)?;
+            system.solve_again(&mut x)?;
             x2.push(x);
         }
         let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
@@ -182,11 +189,11 @@ impl Structure<'_> {
                 s[i][j] = -dot(&self.driven[i].b_row, &x2[j]);
             }
             s[i][i] += self.driven[i].c;
-            rhs[i] = -self.driven[i].r - dot(&self.driven[i].b_row, &self.residual);
+            rhs[i] = -self.driven[i].r - dot(&self.driven[i].b_row, &system.rhs);
         }
         let da = solve_dense(s, rhs).ok_or(LinearError::Singular)?;
         for (j, x) in x2.iter().enumerate() {
-            for (r, v) in self.residual.iter_mut().zip(x) {
+            for (r, v) in system.rhs.iter_mut().zip(x) {
                 *r -= v * da[j];
             }
         }
@@ -195,27 +202,59 @@ impl Structure<'_> {
             d.a += v;
             sum += v * v;
         }
-        // a target force beyond the limit load: under perfect plasticity
-        // the solution runs away (small strains allow any displacement), so
-        // a motion beyond a tenth of the body is a collapse, not an answer
+        self.check_collapse(lambda)?;
+        Ok(sum)
+    }
+
+    /// A target force beyond the limit load: under perfect plasticity the
+    /// solution runs away (small strains allow any displacement), so a
+    /// motion beyond a tenth of the body is a collapse, not an answer.
+    fn check_collapse(&self, lambda: f64) -> Result<(), LinearError> {
         for d in &self.driven {
             let ind = &self.model.indenters[d.indenter];
-            let size = self.model.mesh.bodies[ind.body].size();
-            if !(d.a.abs() <= 0.1 * size) {
-                let target = steps::factor(&self.model.steps, Item::Indenter(d.indenter), self.lambda) * d.magnitude;
+            let body = &self.model.mesh.bodies[ind.body];
+            if !(d.a.abs() <= 0.1 * body.size()) {
+                let target = steps::factor(&self.model.steps, Item::Indenter(d.indenter), lambda) * d.magnitude;
                 return Err(LinearError::Rejected(format!(
                     "force-controlled indenter {:?} would have to move {:.3e} m, more than a tenth of the size of \
                      body {:?} ({:.3e} m), to carry {:.4e} N: the body collapses before this force (the last \
                      converged increment holds the largest force reached)",
                     ind.name,
                     d.a.abs(),
-                    self.model.mesh.bodies[ind.body].name,
-                    size,
+                    body.name,
+                    body.size(),
                     target
                 )));
             }
         }
-        Ok(sum)
+        Ok(())
+    }
+
+    /// Starts the next solve on the secant of the last increment.
+    pub fn extrapolate(&mut self, ratio: f64) {
+        for d in &mut self.driven {
+            d.a = d.a_committed + ratio * d.a_step;
+        }
+    }
+
+    /// The increment converged.
+    pub fn commit(&mut self) {
+        for d in &mut self.driven {
+            d.a_step = d.a - d.a_committed;
+            d.a_committed = d.a;
+        }
+    }
+
+    /// Back to the committed displacements.
+    pub fn restore(&mut self) {
+        for d in &mut self.driven {
+            d.a = d.a_committed;
+        }
+    }
+
+    /// Squared norm of the change since the committed state.
+    pub fn increment2(&self) -> f64 {
+        self.driven.iter().map(|d| (d.a - d.a_committed).powi(2)).sum()
     }
 }
 

@@ -10,7 +10,7 @@ impl Structure<'_> {
     /// for the first of them in the model file, so that the reactions sum
     /// to the support force.
     pub fn reactions(&self) -> Vec<Reaction> {
-        let mut claimed = vec![false; self.f_int.len()];
+        let mut claimed = vec![false; self.model.mesh.n_dofs()];
         self.model
             .constraints
             .iter()
@@ -33,6 +33,7 @@ impl Structure<'_> {
     /// Per indenter, then per pair contact: resultant force on the body (on
     /// the slave body for pairs) and largest penetration.
     pub fn contact_resultants(&self) -> Vec<ContactResultant> {
+        let offsets: Vec<[f64; 3]> = self.force.offsets(self.state.lambda).collect();
         self.contact_sets()
             .enumerate()
             .map(|(k, (name, kind, points))| {
@@ -51,7 +52,7 @@ impl Structure<'_> {
                     }
                 }
                 let tangential_force = std::array::from_fn(|c| force[c] - normal_force[c]);
-                let displacement = if kind == ContactKind::Indenter { self.indenter_offset(k) } else { [0.0; 3] };
+                let displacement = if kind == ContactKind::Indenter { offsets[k] } else { [0.0; 3] };
                 ContactResultant {
                     name: name.to_string(),
                     kind,
@@ -73,6 +74,7 @@ impl Structure<'_> {
             .iter()
             .map(|i| (i.name.as_str(), ContactKind::Indenter))
             .chain(self.model.contacts.iter().map(|c| (c.name.as_str(), ContactKind::Pair)));
-        names.zip(&self.contact_ranges).map(|((name, kind), r)| (name, kind, &self.contact[r.clone()]))
+        let points = self.contacts.points();
+        names.zip(self.contacts.ranges()).map(move |((name, kind), r)| (name, kind, &points[r.clone()]))
     }
 }

@@ -11,9 +11,8 @@
 //! `(ε_a / A_a²) G_a G_aᵀ` — exact, since `ĝ_a` is linear in `u` within an
 //! increment.
 
-use std::time::Instant;
-
-use super::{ContactPoint, Structure};
+use super::{ContactPoint, Contacts};
+use crate::assembly::{At, Tangent};
 use crate::contact::{self, PairContact, surface};
 use crate::materials::Predictor;
 
@@ -37,21 +36,17 @@ pub(super) fn initial_points(pc: &PairContact) -> impl Iterator<Item = ContactPo
     })
 }
 
-impl Structure<'_> {
+impl Contacts<'_> {
     /// Projects every surface-contact point from the committed
     /// displacements (at setup: the reference configuration) and forms the
     /// weighted gaps.
-    pub(super) fn update_projections(&mut self) {
-        let t = Instant::now();
-        let model = self.model;
-        for (c, pc) in model.contacts.iter().enumerate() {
+    pub(super) fn update_projections(&mut self, u_committed: &[f64]) {
+        for (c, pc) in self.pairs.iter().enumerate() {
             let Some(s) = &pc.surface else { continue };
-            let projections: Vec<_> =
-                s.points.iter().map(|p| surface::project(s, &model.mesh, p, &self.u_committed)).collect();
+            let projections: Vec<_> = s.points.iter().map(|p| surface::project(s, self.mesh, p, u_committed)).collect();
             let gaps = s.node_gaps(&projections);
-            self.surface_state[c] = State { gaps };
+            self.surface[c] = State { gaps };
         }
-        self.timings.contact += t.elapsed();
     }
 
     /// Forces and tangent of surface contact `c` (data `s`), whose first
@@ -59,21 +54,23 @@ impl Structure<'_> {
     /// active status changed.
     pub(super) fn assemble_surface(
         &mut self,
+        at: &At<'_>,
+        tangent: &mut Tangent<'_>,
         k0: usize,
         c: usize,
         s: &surface::SurfaceContact,
         friction: Option<&contact::Friction>,
     ) -> usize {
         let mut changes = 0;
-        let state = std::mem::take(&mut self.surface_state[c]);
+        let state = std::mem::take(&mut self.surface[c]);
         for (j, g) in state.gaps.iter().enumerate() {
             let (area, eps) = (s.areas[j], s.penalties[j]);
-            let point = &mut self.contact[k0 + j];
+            let point = &mut self.points[k0 + j];
             let was = point.active;
             point.force = [0.0; 3];
             point.active = false;
             point.sliding = false;
-            point.slip = self.contact_committed[k0 + j].slip;
+            point.slip = self.committed[k0 + j].slip;
             if g.grad.is_empty() || !(area > 0.0) {
                 point.gap = f64::NAN;
                 changes += usize::from(was);
@@ -81,10 +78,10 @@ impl Structure<'_> {
             }
             let mut gt = g.gap0;
             for (b, v) in &g.grad {
-                gt += (0..3).map(|k| v[k] * self.u[3 * b + k]).sum::<f64>();
+                gt += (0..3).map(|k| v[k] * at.u[3 * b + k]).sum::<f64>();
             }
             // an interference fit's overlap is imposed over the first step
-            let gap = gt / area + self.model.contacts[c].overlap_relief(j, self.lambda);
+            let gap = gt / area + self.pairs[c].overlap_relief(j, at.lambda);
             let m = (g.moment[0].powi(2) + g.moment[1].powi(2) + g.moment[2].powi(2)).sqrt();
             point.gap = gap;
             point.normal = g.moment.map(|v| v / m.max(f64::MIN_POSITIVE));
@@ -107,19 +104,19 @@ impl Structure<'_> {
             for (x, (a, va)) in g.grad.iter().enumerate() {
                 for (b, vb) in &g.grad[x..] {
                     let block: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|k| scale * va[i] * vb[k]));
-                    self.assembler.add_node_block(&mut self.tangent, *a, *b, &block);
+                    tangent.add_node_block(*a, *b, &block);
                 }
             }
             if let Some(fr) = friction {
-                self.surface_friction(k0 + j, g, area, eps, force, fr);
+                self.surface_friction(at, tangent, k0 + j, (g, area, eps, force), fr);
             }
         }
-        self.surface_state[c] = state;
+        self.surface[c] = state;
         changes
     }
 }
 
-impl Structure<'_> {
+impl Contacts<'_> {
     /// Coulomb friction of slave-node point `k` (weighted gap `g`, area,
     /// normal penalty and force), incremental from the committed state: the
     /// weighted tangential relative displacement of the increment
@@ -134,28 +131,27 @@ impl Structure<'_> {
     /// increment uses the stick block, as node-to-node friction does.
     fn surface_friction(
         &mut self,
+        at: &At<'_>,
+        tangent: &mut Tangent<'_>,
         k: usize,
-        g: &surface::NodeGap,
-        area: f64,
-        eps: f64,
-        normal_force: f64,
+        (g, area, eps, normal_force): (&surface::NodeGap, f64, f64, f64),
         fr: &contact::Friction,
     ) {
         let eps_t = fr.penalty_ratio * eps;
-        let n = self.contact[k].normal;
-        let committed = self.contact_committed[k];
+        let n = self.points[k].normal;
+        let committed = self.committed[k];
         let fcn: f64 = (0..3).map(|i| committed.force[i] * n[i]).sum();
         let t_n: [f64; 3] = std::array::from_fn(|i| committed.force[i] - fcn * n[i]);
         let mut d_t = [0.0; 3];
         for ((b, _), t) in g.grad.iter().zip(&g.tangential) {
             for i in 0..3 {
                 for l in 0..3 {
-                    d_t[i] += t[i][l] * (self.u[3 * b + l] - self.u_committed[3 * b + l]) / area;
+                    d_t[i] += t[i][l] * (at.u[3 * b + l] - at.u_committed[3 * b + l]) / area;
                 }
             }
         }
         let mut r = contact::friction_response(d_t, t_n.map(|v| v / eps_t), &n, normal_force, eps, fr);
-        let predicted = r.sliding && (self.first_evaluation || self.predictor == Predictor::Elastic);
+        let predicted = r.sliding && (self.first_evaluation || at.predictor == Predictor::Elastic);
         if predicted {
             // as node-to-node friction (structure/contacts.rs): the stick
             // tangent predicts the first iteration of an increment
@@ -171,7 +167,7 @@ impl Structure<'_> {
         let t_hat = ft.map(|v| v / f_norm.max(f64::MIN_POSITIVE));
         let kt: [[f64; 3]; 3] =
             std::array::from_fn(|i| std::array::from_fn(|l| r.block[i][l] - coupling * t_hat[i] * n[l]));
-        let point = &mut self.contact[k];
+        let point = &mut self.points[k];
         point.sliding = sliding;
         point.slip = std::array::from_fn(|i| committed.slip[i] + d_t[i] + (ft[i] - t_n[i]) / eps_t);
         for i in 0..3 {
@@ -197,7 +193,7 @@ impl Structure<'_> {
                 let sym: [[f64; 3]; 3] = std::array::from_fn(|i| {
                     std::array::from_fn(|l| scale * (0..3).map(|m| tb_kt[x][i][m] * tc[m][l]).sum::<f64>())
                 });
-                self.assembler.add_node_block(&mut self.tangent, *a, *b, &sym);
+                tangent.add_node_block(*a, *b, &sym);
             }
         }
         if coupling != 0.0 {
@@ -210,7 +206,7 @@ impl Structure<'_> {
                 })
                 .collect();
             let v: Vec<(usize, [f64; 3])> = g.grad.iter().map(|(c, gc)| (*c, *gc)).collect();
-            self.add_outer(&u, &v);
+            tangent.add_rest_outer(&u, &v);
         }
     }
 }

@@ -7,32 +7,29 @@
 //! penetration is below the tolerance, whatever the penalty `ε`: the
 //! penalty sets how many augmentations it takes, not the answer.
 
-use super::Structure;
+use super::Contacts;
 
-impl Structure<'_> {
+impl Contacts<'_> {
     /// One Uzawa update of every augmented contact whose penetration exceeds
     /// its tolerance; true if any multiplier changed (another Newton solve
     /// is needed).
-    pub(super) fn augment_contacts(&mut self) -> bool {
-        let model = self.model;
-        let tolerances = model
-            .indenters
-            .iter()
-            .map(|i| i.penetration_tolerance)
-            .chain(model.contacts.iter().map(|c| c.penetration_tolerance));
+    pub fn augment(&mut self) -> bool {
+        let (indenters, pairs) = (self.indenters, self.pairs);
+        let tolerances =
+            indenters.iter().map(|i| i.penetration_tolerance).chain(pairs.iter().map(|c| c.penetration_tolerance));
         let penalties = |k: usize, j: usize| -> f64 {
-            let ni = model.indenters.len();
-            if k < ni { model.indenters[k].nodes[j].penalty } else { model.contacts[k - ni].point_penalty(j) }
+            let ni = indenters.len();
+            if k < ni { indenters[k].nodes[j].penalty } else { pairs[k - ni].point_penalty(j) }
         };
         let mut changed = false;
         for (k, tol) in tolerances.enumerate() {
             let Some(tol) = tol else { continue };
-            let range = self.contact_ranges[k].clone();
-            let worst = self.contact[range.clone()].iter().filter(|p| p.active).map(|p| -p.gap).fold(0.0, f64::max);
+            let range = self.ranges[k].clone();
+            let worst = self.points[range.clone()].iter().filter(|p| p.active).map(|p| -p.gap).fold(0.0, f64::max);
             if worst <= tol {
                 continue;
             }
-            for (j, p) in self.contact[range].iter_mut().enumerate() {
+            for (j, p) in self.points[range].iter_mut().enumerate() {
                 let next = (p.multiplier - penalties(k, j) * p.gap).max(0.0);
                 changed |= next != p.multiplier;
                 p.multiplier = next;

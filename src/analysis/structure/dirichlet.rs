@@ -1,0 +1,134 @@
+//! Prescribed displacements. DOFs fixed at zero have no equation (the
+//! numbering leaves them out). DOFs with a non-zero prescribed value keep
+//! their equation, and each solve eliminates them symmetrically: with
+//! `Δ_p = λ ū_p − u_p`, `K_ff δu_f = −R_f − K_fp Δ_p` and `δu_p = Δ_p`. The
+//! first Newton iteration of an increment therefore moves the free DOFs
+//! consistently with the prescribed ones (a linearized predictor) instead
+//! of jumping the constrained nodes alone, which would strain — and, in
+//! plasticity, spuriously yield — the elements next to them. The
+//! elimination is the same for the symmetric tangent and for the
+//! unsymmetric rest of a model with friction (`solver::nonsymmetric`).
+
+use crate::assembly::Assembler;
+use crate::model::Model;
+use crate::model::steps::{self, Item};
+use crate::solver::nonsymmetric::NonSymmetric;
+
+/// The value prescribed at each constrained DOF (`None`: free) and the
+/// constraint that prescribes it (the first in the model file; validation
+/// rejects conflicting values).
+pub(crate) fn prescribed_values(model: &Model) -> (Vec<Option<f64>>, Vec<usize>) {
+    let n_dofs = model.mesh.n_dofs();
+    let mut value: Vec<Option<f64>> = vec![None; n_dofs];
+    let mut source = vec![0; n_dofs];
+    for (ci, c) in model.constraints.iter().enumerate() {
+        for &n in &c.nodes {
+            for (k, v) in c.values.iter().enumerate() {
+                if v.is_some() && value[3 * n + k].is_none() {
+                    value[3 * n + k] = *v;
+                    source[3 * n + k] = ci;
+                }
+            }
+        }
+    }
+    (value, source)
+}
+
+/// The non-zero prescribed DOFs and the matrix entries they couple.
+#[derive(Debug)]
+pub(crate) struct Dirichlet {
+    /// `(dof, equation, value at factor 1, constraint)`.
+    prescribed: Vec<(usize, usize, f64, usize)>,
+    /// Their values at the current λ.
+    now: Vec<f64>,
+    /// Per equation: true for a prescribed DOF.
+    is_prescribed: Vec<bool>,
+    /// Matrix entries coupling a prescribed equation: `(position, row, col)`.
+    entries: Vec<(usize, usize, usize)>,
+}
+
+impl Dirichlet {
+    /// The prescribed DOFs of `value` (from [`prescribed_values`]) on the
+    /// assembler's numbering and pattern.
+    pub fn new(value: &[Option<f64>], source: &[usize], assembler: &Assembler) -> Self {
+        let mut prescribed = Vec::new();
+        let mut is_prescribed = vec![false; assembler.dofs.n_eq];
+        for (d, v) in value.iter().enumerate() {
+            if let Some(v) = *v
+                && v != 0.0
+            {
+                let e = assembler.dofs.eq[d];
+                prescribed.push((d, e, v, source[d]));
+                is_prescribed[e] = true;
+            }
+        }
+        let pattern = &assembler.pattern;
+        let mut entries = Vec::new();
+        for c in 0..pattern.n {
+            for k in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
+                let r = pattern.row_idx[k] as usize;
+                if r != c && (is_prescribed[r] || is_prescribed[c]) {
+                    entries.push((k, r, c));
+                }
+            }
+        }
+        Self { now: vec![0.0; prescribed.len()], prescribed, is_prescribed, entries }
+    }
+
+    /// True if equation `e` is prescribed.
+    pub fn is_prescribed(&self, e: usize) -> bool {
+        self.is_prescribed[e]
+    }
+
+    /// The prescribed values at load factor `lambda` (each constraint times
+    /// its factor in the load history).
+    pub fn set_load_factor(&mut self, model: &Model, lambda: f64) {
+        for (&(_, _, v, c), now) in self.prescribed.iter().zip(&mut self.now) {
+            *now = steps::factor(&model.steps, Item::Constraint(c), lambda) * v;
+        }
+    }
+
+    /// How far `u` is from the prescribed values, and their size:
+    /// `(max |λ ū − u|, max |ū|)`.
+    pub fn offset(&self, u: &[f64]) -> (f64, f64) {
+        let (mut off, mut size): (f64, f64) = (0.0, 0.0);
+        for (&(d, _, v, _), now) in self.prescribed.iter().zip(&self.now) {
+            off = off.max((now - u[d]).abs());
+            size = size.max(v.abs());
+        }
+        (off, size)
+    }
+
+    /// Symmetric elimination (module docs) of the system `K δu = b` held in
+    /// `tangent` (lower-triangle values), `rest` (the unsymmetric part, if
+    /// any) and `rhs` (`−R` per equation on entry; on exit with `Δ_p` moved
+    /// to the right-hand side and each prescribed row reading
+    /// `k_pp δu_p = k_pp Δ_p`).
+    pub fn eliminate(
+        &self,
+        u: &[f64],
+        diagonal: impl Fn(usize) -> usize,
+        tangent: &mut [f64],
+        rest: Option<&mut NonSymmetric>,
+        rhs: &mut [f64],
+    ) {
+        for (&(d, e, _, _), now) in self.prescribed.iter().zip(&self.now) {
+            rhs[e] = now - u[d];
+        }
+        for &(k, r, c) in &self.entries {
+            let kv = tangent[k];
+            if !self.is_prescribed[r] {
+                rhs[r] -= kv * rhs[c];
+            } else if !self.is_prescribed[c] {
+                rhs[c] -= kv * rhs[r];
+            }
+            tangent[k] = 0.0;
+        }
+        if let Some(rest) = rest {
+            rest.eliminate(&self.is_prescribed, rhs);
+        }
+        for &(_, e, _, _) in &self.prescribed {
+            rhs[e] *= tangent[diagonal(e)];
+        }
+    }
+}

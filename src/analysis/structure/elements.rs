@@ -1,0 +1,102 @@
+//! The elements' part of the residual and tangent: internal forces and the
+//! element tangents of every body (`assembly::Assembler`, the kernel of
+//! `elements`, the material point of `materials`), and the Gauss-point
+//! history, committed only after an increment converges.
+
+use crate::assembly::{At, Contribution, Forces, Inputs, Outputs, Phase, Tangent};
+use crate::materials::PointState;
+use crate::model::Model;
+use crate::voigt::Voigt;
+
+/// Internal forces, Gauss-point states and stresses of all bodies.
+#[derive(Debug)]
+pub(crate) struct Elements<'m> {
+    model: &'m Model,
+    /// First Gauss point of each body.
+    pub gp_offsets: Vec<usize>,
+    /// Committed Gauss-point states.
+    pub committed: Vec<PointState>,
+    trial: Vec<PointState>,
+    /// Gauss-point stresses of the last evaluation.
+    pub stress: Vec<Voigt>,
+    /// Internal forces of the last evaluation (per DOF).
+    f_int: Vec<f64>,
+    /// Plastic Gauss points in the last evaluation.
+    pub plastic_points: usize,
+}
+
+impl<'m> Elements<'m> {
+    /// Virgin states for every Gauss point of `model`.
+    pub fn new(model: &'m Model) -> Self {
+        let mut gp_offsets = Vec::with_capacity(model.cells.len());
+        let mut n_gp = 0;
+        for (b, g) in model.mesh.bodies.iter().zip(&model.cells) {
+            gp_offsets.push(n_gp);
+            n_gp += b.n_elements() * g.gp_per_element();
+        }
+        Self {
+            model,
+            gp_offsets,
+            committed: vec![PointState::default(); n_gp],
+            trial: vec![PointState::default(); n_gp],
+            stress: vec![[0.0; 6]; n_gp],
+            f_int: vec![0.0; model.mesh.n_dofs()],
+            plastic_points: 0,
+        }
+    }
+
+    /// The assembly inputs at displacements `u` from the committed states
+    /// (for the elastic tangent cached at setup).
+    pub fn inputs<'a>(&'a self, u: &'a [f64]) -> Inputs<'a> {
+        Inputs {
+            mesh: &self.model.mesh,
+            geometry: &self.model.cells,
+            materials: &self.model.materials,
+            u,
+            committed: &self.committed,
+            gp_offsets: &self.gp_offsets,
+            predictor: Default::default(),
+        }
+    }
+}
+
+impl Contribution for Elements<'_> {
+    fn phase(&self) -> Phase {
+        Phase::Elements
+    }
+
+    /// Overwrites the whole tangent (the assembler starts from the elastic
+    /// tangent and corrects the non-elastic elements): the elements are
+    /// evaluated first.
+    fn evaluate(&mut self, at: &At<'_>, tangent: &mut Tangent<'_>) -> usize {
+        let inputs = Inputs {
+            mesh: &self.model.mesh,
+            geometry: &self.model.cells,
+            materials: &self.model.materials,
+            u: at.u,
+            committed: &self.committed,
+            gp_offsets: &self.gp_offsets,
+            predictor: at.predictor,
+        };
+        self.plastic_points = tangent.assembler.assemble(
+            &inputs,
+            Outputs {
+                force: &mut self.f_int,
+                tangent: Some(&mut *tangent.values),
+                trial: &mut self.trial,
+                stress: &mut self.stress,
+            },
+        );
+        0
+    }
+
+    fn forces(&self) -> Forces<'_> {
+        Forces { values: &self.f_int, sign: 1.0, scale: false }
+    }
+
+    fn commit(&mut self, _at: &At<'_>) {
+        self.committed.copy_from_slice(&self.trial);
+    }
+
+    fn restore(&mut self) {}
+}

@@ -1,0 +1,72 @@
+//! The unknowns and the load factor: displacements (current, committed,
+//! and the last converged increment's change, for the extrapolated start
+//! of the next), λ, and the tangent branch the increment is solved with.
+
+use crate::assembly::At;
+use crate::materials::Predictor;
+
+/// Displacements and load factor.
+#[derive(Debug)]
+pub(crate) struct Kinematics {
+    /// Displacements (3 per node).
+    pub u: Vec<f64>,
+    /// Those of the last converged increment.
+    pub u_committed: Vec<f64>,
+    /// Displacement change of the last converged increment.
+    pub u_step: Vec<f64>,
+    /// Current load factor.
+    pub lambda: f64,
+    /// That of the last converged increment.
+    pub lambda_committed: f64,
+    /// Tangent branch of points on their yield surface or Coulomb cone
+    /// (elastic/sticking after a failed attempt: `Incremental::cautious`).
+    pub predictor: Predictor,
+}
+
+impl Kinematics {
+    /// Zero displacements at λ = 0.
+    pub fn new(n_dofs: usize) -> Self {
+        Self {
+            u: vec![0.0; n_dofs],
+            u_committed: vec![0.0; n_dofs],
+            u_step: vec![0.0; n_dofs],
+            lambda: 0.0,
+            lambda_committed: 0.0,
+            predictor: Predictor::Loading,
+        }
+    }
+
+    /// The state the contributions are evaluated at.
+    pub fn at(&self) -> At<'_> {
+        At { u: &self.u, u_committed: &self.u_committed, lambda: self.lambda, predictor: self.predictor }
+    }
+
+    /// Starts the next solve at `u_committed + ratio · u_step`; true if that
+    /// moved anything (a secant start rather than the committed state).
+    pub fn extrapolate(&mut self, ratio: f64) -> bool {
+        for ((u, c), s) in self.u.iter_mut().zip(&self.u_committed).zip(&self.u_step) {
+            *u = c + ratio * s;
+        }
+        ratio > 0.0 && self.u_step.iter().any(|&s| s != 0.0)
+    }
+
+    /// The increment converged: its state becomes the committed one.
+    pub fn commit(&mut self) {
+        for ((s, u), c) in self.u_step.iter_mut().zip(&self.u).zip(&self.u_committed) {
+            *s = u - c;
+        }
+        self.u_committed.copy_from_slice(&self.u);
+        self.lambda_committed = self.lambda;
+    }
+
+    /// Back to the committed state.
+    pub fn restore(&mut self) {
+        self.u.copy_from_slice(&self.u_committed);
+        self.lambda = self.lambda_committed;
+    }
+
+    /// Squared norm of the change since the committed state.
+    pub fn increment2(&self) -> f64 {
+        self.u.iter().zip(&self.u_committed).map(|(a, b)| (a - b) * (a - b)).sum()
+    }
+}

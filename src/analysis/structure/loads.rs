@@ -1,0 +1,50 @@
+//! The external loads' part of the residual: each load's consistent nodal
+//! forces times its factor in the load history at λ (no stiffness: the
+//! loads do not follow the deformation).
+
+use crate::assembly::{At, Contribution, Forces, Phase, Tangent};
+use crate::model::Model;
+use crate::model::steps::{self, Item};
+
+/// `λ`-scaled external loads.
+#[derive(Debug)]
+pub(crate) struct Loads<'m> {
+    model: &'m Model,
+    /// External loads at the λ of the last evaluation (per DOF).
+    pub f_ext: Vec<f64>,
+}
+
+impl<'m> Loads<'m> {
+    /// No load yet (λ = 0).
+    pub fn new(model: &'m Model) -> Self {
+        Self { model, f_ext: vec![0.0; model.mesh.n_dofs()] }
+    }
+}
+
+impl Contribution for Loads<'_> {
+    fn phase(&self) -> Phase {
+        Phase::Loads
+    }
+
+    fn evaluate(&mut self, at: &At<'_>, _tangent: &mut Tangent<'_>) -> usize {
+        let model = self.model;
+        self.f_ext.fill(0.0);
+        for (i, l) in model.loads.iter().enumerate() {
+            let a = steps::factor(&model.steps, Item::Load(i), at.lambda);
+            for (n, f) in &l.nodal_forces {
+                for k in 0..3 {
+                    self.f_ext[3 * n + k] += a * f[k];
+                }
+            }
+        }
+        0
+    }
+
+    fn forces(&self) -> Forces<'_> {
+        Forces { values: &self.f_ext, sign: -1.0, scale: true }
+    }
+
+    fn commit(&mut self, _at: &At<'_>) {}
+
+    fn restore(&mut self) {}
+}

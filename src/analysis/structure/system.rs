@@ -1,0 +1,81 @@
+//! The linear system of a Newton correction: the tangent in the
+//! assembler's lower-triangle pattern, the unsymmetric rest beside it (a
+//! model with friction), the right-hand side, and the solver that
+//! factorizes and reuses (`solver::reuse`).
+
+use crate::assembly::{Assembler, Tangent};
+use crate::solver::linear::{Cholesky, LinearError};
+use crate::solver::nonsymmetric::NonSymmetric;
+use crate::solver::reuse::{ReuseSettings, ReuseStats, ReusingSolver};
+
+/// Tangent, right-hand side and solver.
+#[derive(Debug)]
+pub(crate) struct LinearSystem {
+    /// Numbering, pattern and scatter maps.
+    pub assembler: Assembler,
+    /// Tangent values of the last evaluation (pattern order).
+    pub tangent: Vec<f64>,
+    /// The unsymmetric rest of the tangent (a model with friction).
+    pub rest: Option<NonSymmetric>,
+    /// Per equation: the residual of the last evaluation; in a correction
+    /// the right-hand side, then the solution.
+    pub rhs: Vec<f64>,
+    /// Per DOF: the residual `Σ` of the parts' forces of the last
+    /// evaluation (at a constrained DOF: its reaction).
+    pub imbalance: Vec<f64>,
+    solver: ReusingSolver,
+    /// Forcing term of the next solve (relative residual, capped while
+    /// contact has not settled).
+    pub forcing: f64,
+}
+
+impl LinearSystem {
+    /// The system of `assembler`'s pattern, factorized by `chol`.
+    pub fn new(assembler: Assembler, chol: Cholesky, reuse: ReuseSettings, unsymmetric: bool, n_dofs: usize) -> Self {
+        Self {
+            tangent: vec![0.0; assembler.pattern.nnz()],
+            rhs: vec![0.0; assembler.dofs.n_eq],
+            assembler,
+            rest: unsymmetric.then(NonSymmetric::default),
+            imbalance: vec![0.0; n_dofs],
+            solver: ReusingSolver::new(chol, reuse),
+            forcing: 1.0,
+        }
+    }
+
+    /// Where the contributions add their stiffness (the rest cleared).
+    pub fn tangent(&mut self) -> Tangent<'_> {
+        if let Some(rest) = self.rest.as_mut() {
+            rest.clear();
+        }
+        Tangent { assembler: &self.assembler, values: &mut self.tangent, rest: self.rest.as_mut() }
+    }
+
+    /// Solves `K x = rhs` in place (`must_factor`: with the present tangent's
+    /// own factor, for further right-hand sides).
+    pub fn solve(&mut self, must_factor: bool) -> Result<(), LinearError> {
+        let empty = NonSymmetric::default();
+        let rest = self.rest.as_ref().unwrap_or(&empty);
+        let pattern = &self.assembler.pattern;
+        self.solver.solve_unsymmetric(pattern, &self.tangent, rest, &mut self.rhs, self.forcing, must_factor)?;
+        Ok(())
+    }
+
+    /// After [`Self::solve`] with `must_factor`: solves `K x = b` for a
+    /// further right-hand side (`x` holds `b` on entry).
+    pub fn solve_again(&mut self, x: &mut [f64]) -> Result<(), LinearError> {
+        let empty = NonSymmetric::default();
+        let rest = self.rest.as_ref().unwrap_or(&empty);
+        self.solver.solve_again_unsymmetric(&self.assembler.pattern, &self.tangent, rest, x)
+    }
+
+    /// The solver's counters.
+    pub fn stats(&self) -> &ReuseStats {
+        self.solver.stats()
+    }
+
+    /// Stored entries of the factor `L`.
+    pub fn factor_nnz(&self) -> usize {
+        self.solver.factor_nnz()
+    }
+}

@@ -1,0 +1,87 @@
+//! A node against a rigid indenter with `method = "surface"`: the exact gap
+//! and normal of the current configuration (finite sliding over a roller
+//! or ball), with the curvature term in the tangent.
+
+use super::Contacts;
+use super::pairs::split;
+use crate::assembly::{At, Tangent};
+use crate::contact;
+use crate::materials::Predictor;
+
+impl Contacts<'_> {
+    /// A node against a rigid indenter with `method = "surface"`: the exact
+    /// gap `g(y)` and normal `n(y)` at the current position `y = X + u − d`
+    /// (`d` the indenter's displacement; `RigidSurface::current_gap`), the
+    /// force `p n` with `p = λ − ε g ≥ 0`, and its consistent tangent
+    /// `K = −∂(p n)/∂u = ε n nᵀ − p ∂n/∂y` — the second (curvature) term
+    /// lets the force turn with the normal as the node slides over a
+    /// roller or ball. With Coulomb friction, the tangential force of
+    /// `contact::turning_friction` from the committed force and position
+    /// (its derivative makes the block unsymmetric while sliding: the part
+    /// beyond [`split`]'s symmetric one goes to the unsymmetric rest).
+    /// Returns true if the point's active status changed.
+    pub(super) fn rigid_surface(
+        &mut self,
+        at: &At<'_>,
+        tangent: &mut Tangent<'_>,
+        k: usize,
+        c: &contact::ContactNode,
+        (indenter, offset): (&contact::Indenter, [f64; 3]),
+    ) -> bool {
+        let (surface, friction) = (&indenter.surface, indenter.friction.as_ref());
+        let x0 = self.mesh.coords(c.node);
+        let y: [f64; 3] = std::array::from_fn(|i| x0[i] + at.u[3 * c.node + i] - offset[i]);
+        let current = surface.current_gap(y, 1e-9 * self.mesh.bodies[self.mesh.body_of(c.node).0].size());
+        let point = &mut self.points[k];
+        let was = point.active;
+        point.force = [0.0; 3];
+        point.active = false;
+        point.sliding = false;
+        point.position = y;
+        point.slip = self.committed[k].slip;
+        self.blocks[k] = [[0.0; 3]; 3];
+        let Some((g, n, dn)) = current else {
+            // beyond a punch's edge or a roller's end: out of contact
+            point.gap = f64::NAN;
+            return was;
+        };
+        point.gap = g;
+        point.normal = n;
+        let response = contact::augmented_response(g, &n, c.penalty, point.multiplier);
+        point.active = response.is_some();
+        let Some((mut f, kb)) = response else { return was };
+        let p = (0..3).map(|i| f[i] * n[i]).sum::<f64>();
+        let mut block: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| kb[i][j] - p * dn[i][j]));
+        let mut coupling = [[0.0; 3]; 3];
+        if let Some(fr) = friction {
+            // from the committed tangential force and position
+            let committed = self.committed[k];
+            let cn: f64 = (0..3).map(|i| committed.force[i] * committed.normal[i]).sum();
+            let eps_t = fr.penalty_ratio * c.penalty;
+            let v: [f64; 3] = std::array::from_fn(|i| {
+                committed.force[i] - cn * committed.normal[i] - eps_t * (y[i] - committed.position[i])
+            });
+            let stick_tangent = self.first_evaluation || at.predictor == Predictor::Elastic;
+            let r = contact::turning_friction(v, committed.slip, &n, &dn, p, c.penalty, fr, stick_tangent);
+            let point = &mut self.points[k];
+            point.sliding = r.sliding;
+            point.slip = r.slip;
+            coupling = r.coupling;
+            for i in 0..3 {
+                f[i] += r.force[i];
+                for j in 0..3 {
+                    block[i][j] += r.block[i][j];
+                }
+            }
+        }
+        self.points[k].force = f;
+        for i in 0..3 {
+            self.f_contact[3 * c.node + i] += f[i];
+        }
+        self.blocks[k] = block;
+        let (sym, rest) = split(&block, &coupling);
+        tangent.add_node_block(c.node, c.node, &sym);
+        tangent.add_rest_block(c.node, c.node, &rest, 1.0);
+        !was
+    }
+}

@@ -135,64 +135,90 @@ pub fn element_response(
     mode: TangentMode,
     ws: &mut Workspace,
 ) -> ElementStats {
-    let (es, eb) = (e % n_section_elements, e / n_section_elements);
-    let (sg, ag) = (&geom.section, &geom.axis);
-    let nodes = sg.n_fun * ag.n_fun;
-    let n_points = sg.n_gp * ag.n_gp;
-    ws.resize(nodes, n_points);
+    let el = Element::new(geom, e, n_section_elements);
+    ws.resize(el.nodes, el.n_points);
     ws.force.fill(0.0);
-    let ndof = 3 * nodes;
-    let mut stats = ElementStats::default();
-    let mut all_elastic = true;
-    let bbar = geom.volumetric.as_ref();
-    if let Some(ps) = bbar {
-        volumetric_projection(geom, ps, es, eb, nodes, ws);
+    if let Some(ps) = geom.volumetric.as_ref() {
+        volumetric_projection(geom, ps, el.es, el.eb, el.nodes, ws);
     }
+    let (all_elastic, plastic_points) = stresses_and_forces(geom, &el, u, material, points, ws);
+    let tangent_computed = match mode {
+        TangentMode::None => false,
+        TangentMode::Always => true,
+        TangentMode::UnlessElastic => !all_elastic,
+    };
+    if tangent_computed {
+        let contributing = gather_operators(geom, &el, material, mode == TangentMode::UnlessElastic, ws);
+        tangent_product(&el, contributing, ws);
+    }
+    ElementStats { plastic_points, tangent_computed }
+}
 
-    // Sum factorization (the tensor-product structure of N_a = F_τ N_i):
-    // the beam direction is contracted first, once per axis point, so that
-    // a Gauss point costs O(n_section) instead of O(n_section · n_beam).
-    //   v_τ = Σ_i N_i u_(i,τ),  v'_τ = Σ_i N_i,y u_(i,τ)  at the axis point;
-    //   ∂u/∂x = Σ_τ F_τ,x v_τ,  ∂u/∂y = Σ_τ F_τ v'_τ,  ∂u/∂z = Σ_τ F_τ,z v_τ;
-    // and the force f_(i,τ) = Σ_q w σ g_a splits the same way:
-    //   h_τ = Σ_gs w (σ_·x F_τ,x + σ_·z F_τ,z),  h'_τ = Σ_gs w σ_·y F_τ,
-    //   f_(i,τ) = Σ_gb N_i h_τ + N_i,y h'_τ.
-    let (ns, nb) = (sg.n_fun, ag.n_fun);
+/// Where an element sits and how big it is.
+struct Element {
+    /// Section and beam element.
+    es: usize,
+    eb: usize,
+    /// Nodes (section functions × beam functions) and Gauss points.
+    nodes: usize,
+    n_points: usize,
+}
+
+impl Element {
+    fn new(geom: &CellValues, e: usize, n_section_elements: usize) -> Self {
+        let (sg, ag) = (&geom.section, &geom.axis);
+        Self {
+            es: e % n_section_elements,
+            eb: e / n_section_elements,
+            nodes: sg.n_fun * ag.n_fun,
+            n_points: sg.n_gp * ag.n_gp,
+        }
+    }
+}
+
+/// First pass: at every Gauss point the strain, the material update (trial
+/// state, stress and the tangent the element uses, kept in `ws.tangents`)
+/// and the point's share of the internal force, by sum factorization (the
+/// tensor-product structure of `N_a = F_τ N_i`): the beam direction is
+/// contracted first, once per axis point, so that a Gauss point costs
+/// `O(n_section)` instead of `O(n_section · n_beam)`.
+///
+/// ```text
+/// v_τ = Σ_i N_i u_(i,τ),  v'_τ = Σ_i N_i,y u_(i,τ)          at the axis point
+/// ∂u/∂x = Σ_τ F_τ,x v_τ,  ∂u/∂y = Σ_τ F_τ v'_τ,  ∂u/∂z = Σ_τ F_τ,z v_τ
+/// h_τ = Σ_gs w (σ_·x F_τ,x + σ_·z F_τ,z),  h'_τ = Σ_gs w σ_·y F_τ
+/// f_(i,τ) = Σ_gb N_i h_τ + N_i,y h'_τ
+/// ```
+///
+/// Returns whether every point's tangent is the elastic one, and the number
+/// of plastic points.
+fn stresses_and_forces(
+    geom: &CellValues,
+    el: &Element,
+    u: &[f64],
+    material: &Material,
+    points: PointData<'_>,
+    ws: &mut Workspace,
+) -> (bool, usize) {
+    let (sg, ag) = (&geom.section, &geom.axis);
+    let bbar = geom.volumetric.is_some();
+    let (ns, nb, nodes) = (sg.n_fun, ag.n_fun, el.nodes);
+    let (mut all_elastic, mut plastic_points) = (true, 0);
     ws.contracted.resize(4 * ns, [0.0; 3]);
     for gb in 0..ag.n_gp {
-        let at = ag.point(eb, gb);
+        let at = ag.point(el.eb, gb);
         let (v, rest) = ws.contracted.split_at_mut(ns);
         let (vy, rest) = rest.split_at_mut(ns);
         let (h, hy) = rest.split_at_mut(ns);
-        v.fill([0.0; 3]);
-        vy.fill([0.0; 3]);
+        contract_axis(&at, u, v, vy);
         h.fill([0.0; 3]);
         hy.fill([0.0; 3]);
-        for (i, (&n, &ny)) in at.n.iter().zip(at.ny).enumerate() {
-            let ui = &u[3 * i * ns..3 * (i + 1) * ns];
-            for ((vt, vyt), ua) in v.iter_mut().zip(vy.iter_mut()).zip(ui.chunks_exact(3)) {
-                for k in 0..3 {
-                    vt[k] += n * ua[k];
-                    vyt[k] += ny * ua[k];
-                }
-            }
-        }
         for gs in 0..sg.n_gp {
-            let sp = sg.point(es, gs);
+            let sp = sg.point(el.es, gs);
             let w = sp.weight * at.weight;
-            // grad[k][d] = ∂u_k/∂x_d
-            let mut grad = [[0.0; 3]; 3];
-            for t in 0..ns {
-                let (fx, f, fz) = (sp.fx[t], sp.f[t], sp.fz[t]);
-                for k in 0..3 {
-                    grad[k][0] += fx * v[t][k];
-                    grad[k][1] += f * vy[t][k];
-                    grad[k][2] += fz * v[t][k];
-                }
-            }
-            let mut eps = crate::voigt::strain_from_gradient(&grad);
             let q = gb * sg.n_gp + gs;
-            if bbar.is_some() {
+            let mut eps = point_strain(&sp, v, vy);
+            if bbar {
                 // ε̄ = ε + (θ̄ − θ)/3 · 1 with θ̄ − θ = Σ_a (b̄_a − g_a)·u_a
                 let d = &ws.bbar[q * nodes..(q + 1) * nodes];
                 let mut shift = 0.0;
@@ -203,37 +229,16 @@ pub fn element_response(
                     *e += shift / 3.0;
                 }
             }
-            let r = material.update_with(&eps, &points.committed[q], points.predictor);
+            let r = material.update_for_element(&eps, &points.committed[q], points.predictor);
             points.trial[q] = r.state;
             points.stress[q] = r.stress;
             ws.tangents[q] = r.tangent;
-            if !material.kinematic.is_empty() {
-                // the symmetric part of the exact tangent, for the symmetric
-                // solver (materials::kinematic: exact under proportional loading)
-                let t = &mut ws.tangents[q];
-                for i in 0..6 {
-                    for j in 0..i {
-                        let m = 0.5 * (t[i][j] + t[j][i]);
-                        t[i][j] = m;
-                        t[j][i] = m;
-                    }
-                }
-            }
             all_elastic &= r.elastic_tangent;
-            stats.plastic_points += usize::from(r.plastic);
-
-            // rows of the stress tensor times w: σ_k· = (σ_kx, σ_ky, σ_kz)
-            let s = r.stress;
-            let sig = crate::voigt::stress_tensor(&s).map(|row| row.map(|x| w * x));
-            for t in 0..ns {
-                let (fx, f, fz) = (sp.fx[t], sp.f[t], sp.fz[t]);
-                for k in 0..3 {
-                    h[t][k] += sig[k][0] * fx + sig[k][2] * fz;
-                    hy[t][k] += sig[k][1] * f;
-                }
-            }
-            if bbar.is_some() {
+            plastic_points += usize::from(r.plastic);
+            add_point_force(&sp, w, &r.stress, h, hy);
+            if bbar {
                 // f_a += w d_a tr σ / 3
+                let s = r.stress;
                 let tr = (s[0] + s[1] + s[2]) / 3.0;
                 for a in 0..nodes {
                     let da = ws.bbar[q * nodes + a];
@@ -253,22 +258,69 @@ pub fn element_response(
             }
         }
     }
+    (all_elastic, plastic_points)
+}
 
-    stats.tangent_computed = match mode {
-        TangentMode::None => false,
-        TangentMode::Always => true,
-        TangentMode::UnlessElastic => !all_elastic,
-    };
-    if !stats.tangent_computed {
-        return stats;
+/// `v_τ = Σ_i N_i u_(i,τ)` and `v'_τ = Σ_i N_i,y u_(i,τ)` at one axis point.
+fn contract_axis(at: &crate::values::AxisAt<'_>, u: &[f64], v: &mut [[f64; 3]], vy: &mut [[f64; 3]]) {
+    let ns = v.len();
+    v.fill([0.0; 3]);
+    vy.fill([0.0; 3]);
+    for (i, (&n, &ny)) in at.n.iter().zip(at.ny).enumerate() {
+        let ui = &u[3 * i * ns..3 * (i + 1) * ns];
+        for ((vt, vyt), ua) in v.iter_mut().zip(vy.iter_mut()).zip(ui.chunks_exact(3)) {
+            for k in 0..3 {
+                vt[k] += n * ua[k];
+                vyt[k] += ny * ua[k];
+            }
+        }
     }
-    let correction = mode == TangentMode::UnlessElastic;
+}
+
+/// The strain at a section point from the contracted `v_τ`, `v'_τ`.
+fn point_strain(sp: &crate::values::SectionAt<'_>, v: &[[f64; 3]], vy: &[[f64; 3]]) -> Voigt {
+    // grad[k][d] = ∂u_k/∂x_d
+    let mut grad = [[0.0; 3]; 3];
+    for t in 0..v.len() {
+        let (fx, f, fz) = (sp.fx[t], sp.f[t], sp.fz[t]);
+        for k in 0..3 {
+            grad[k][0] += fx * v[t][k];
+            grad[k][1] += f * vy[t][k];
+            grad[k][2] += fz * v[t][k];
+        }
+    }
+    crate::voigt::strain_from_gradient(&grad)
+}
+
+/// A section point's share of `h_τ` and `h'_τ` (the rows of the stress
+/// tensor times `w`: `σ_k· = (σ_kx, σ_ky, σ_kz)`).
+fn add_point_force(sp: &crate::values::SectionAt<'_>, w: f64, s: &Voigt, h: &mut [[f64; 3]], hy: &mut [[f64; 3]]) {
+    let sig = crate::voigt::stress_tensor(s).map(|row| row.map(|x| w * x));
+    for t in 0..h.len() {
+        let (fx, f, fz) = (sp.fx[t], sp.f[t], sp.fz[t]);
+        for k in 0..3 {
+            h[t][k] += sig[k][0] * fx + sig[k][2] * fz;
+            hy[t][k] += sig[k][1] * f;
+        }
+    }
+}
+
+/// Second pass: for every contributing Gauss point `j` (all, or with
+/// `correction` only those whose tangent is not the elastic one, with
+/// `C − C^el` — the nucleus is linear in `C`), the operator `B̄_j` (its six
+/// rows as columns `6j..6j+6` of `ws.bt`, one row per element DOF) and
+/// `w C B̄_j` likewise in `ws.cbt`. Returns the number of points gathered.
+fn gather_operators(
+    geom: &CellValues,
+    el: &Element,
+    material: &Material,
+    correction: bool,
+    ws: &mut Workspace,
+) -> usize {
+    let (sg, ag) = (&geom.section, &geom.axis);
+    let (nodes, ndof, stride) = (el.nodes, 3 * el.nodes, 6 * el.n_points);
+    let bbar = geom.volumetric.is_some();
     let elastic = material.elastic_stiffness();
-    // Gather, for every contributing Gauss point j, the operator B̄_j (its
-    // six rows as columns 6j..6j+6 of `bt`, one row per element DOF) and
-    // w C B̄_j likewise in `cbt`; then K = Σ_j B̄_jᵀ (w C B̄_j) = bt · cbtᵀ is
-    // one dense product over the points (module docs).
-    let stride = 6 * n_points;
     ws.bt.resize(ndof * stride, 0.0);
     ws.cbt.resize(ndof * stride, 0.0);
     let mut contributing = 0;
@@ -276,8 +328,6 @@ pub fn element_response(
         for gs in 0..sg.n_gp {
             let q = gb * sg.n_gp + gs;
             if correction {
-                // the nucleus is linear in C: a point contributes C − C^el,
-                // and an elastic point nothing
                 let t = &mut ws.tangents[q];
                 if t == elastic {
                     continue;
@@ -288,9 +338,9 @@ pub fn element_response(
                     }
                 }
             }
-            let w = geom.gradients(es, eb, gb, gs, &mut ws.grads[..nodes]);
+            let w = geom.gradients(el.es, el.eb, gb, gs, &mut ws.grads[..nodes]);
             let c = &ws.tangents[q];
-            let dbar = if bbar.is_some() { Some(&ws.bbar[q * nodes..(q + 1) * nodes]) } else { None };
+            let dbar = if bbar { Some(&ws.bbar[q * nodes..(q + 1) * nodes]) } else { None };
             let col0 = 6 * contributing;
             for (b, &g) in ws.grads[..nodes].iter().enumerate() {
                 // column k of B̄_b: the strain of a unit displacement u_k of
@@ -322,6 +372,13 @@ pub fn element_response(
             contributing += 1;
         }
     }
+    contributing
+}
+
+/// `K = Σ_j B̄_jᵀ (w C B̄_j) = bt · cbtᵀ` over the `contributing` points, one
+/// dense product (faer GEMM, upper triangle) into `ws.tangent`.
+fn tangent_product(el: &Element, contributing: usize, ws: &mut Workspace) {
+    let (ndof, stride) = (3 * el.nodes, 6 * el.n_points);
     let k = 6 * contributing;
     let lhs = faer::MatRef::from_row_major_slice_with_stride(&ws.bt[..], ndof, k, stride);
     let rhs = faer::MatRef::from_row_major_slice_with_stride(&ws.cbt[..], ndof, k, stride);
@@ -338,7 +395,6 @@ pub fn element_response(
         1.0,
         faer::Par::Seq,
     );
-    stats
 }
 
 #[cfg(test)]

@@ -132,6 +132,26 @@ impl Material {
         self.update_with(strain, old, Predictor::Loading)
     }
 
+    /// The material-point update as the element kernel uses it: as
+    /// [`Material::update_with`], with the tangent made symmetric where the
+    /// exact one is not (kinematic hardening: its symmetric part, exact
+    /// under proportional loading — `kinematic.rs`), since the structure
+    /// factorizes a symmetric tangent.
+    pub fn update_for_element(&self, strain: &Voigt, old: &PointState, predictor: Predictor) -> Response {
+        let mut r = self.update_with(strain, old, predictor);
+        if !self.kinematic.is_empty() {
+            let t = &mut r.tangent;
+            for i in 0..6 {
+                for j in 0..i {
+                    let m = 0.5 * (t[i][j] + t[j][i]);
+                    t[i][j] = m;
+                    t[j][i] = m;
+                }
+            }
+        }
+        r
+    }
+
     /// The material-point update with the chosen tangent branch on the
     /// yield surface (see [`Predictor`]).
     pub fn update_with(&self, strain: &Voigt, old: &PointState, predictor: Predictor) -> Response {

@@ -2,17 +2,11 @@
 
 from __future__ import annotations
 
-import base64
 import json
 import os
-import tempfile
-import xml.etree.ElementTree as ET
 from typing import Dict, Optional
 
 import numpy as np
-
-_DTYPES = {"Float64": "<f8", "Float32": "<f4", "Int64": "<i8", "Int32": "<i4", "UInt8": "u1", "UInt64": "<u8"}
-
 
 def _table(columns):
     """A pandas DataFrame if pandas is installed, else a dict of numpy arrays."""
@@ -25,35 +19,6 @@ def _table(columns):
     except ImportError:
         return data
     return pd.DataFrame(data)
-
-
-def read_vtu(path) -> dict:
-    """Reads a cufem VTU file (binary base64 arrays with a UInt64 header):
-    ``points`` (n, 3), ``connectivity`` (cells, 8), ``cell_types``,
-    ``point_data`` and ``cell_data`` (name → array, (n,) or (n, components))."""
-    root = ET.parse(path).getroot()
-    if root.get("header_type", "UInt32") != "UInt64" or root.get("compressor"):
-        raise ValueError(f"{path}: not a cufem VTU file (expected uncompressed arrays with UInt64 headers)")
-
-    def array(node):
-        raw = base64.b64decode("".join((node.text or "").split()))
-        size = int(np.frombuffer(raw[:8], "<u8")[0])
-        values = np.frombuffer(raw[8 : 8 + size], _DTYPES[node.get("type")]).copy()
-        comps = int(node.get("NumberOfComponents", "1"))
-        return values.reshape(-1, comps) if comps > 1 else values
-
-    piece = root.find("UnstructuredGrid/Piece")
-    points = array(piece.find("Points/DataArray"))
-    cells = {a.get("Name"): array(a) for a in piece.findall("Cells/DataArray")}
-    offsets = cells["offsets"]
-    nodes_per_cell = int(offsets[0]) if len(offsets) else 8
-    return {
-        "points": points,
-        "connectivity": cells["connectivity"].reshape(-1, nodes_per_cell),
-        "cell_types": cells["types"],
-        "point_data": {a.get("Name"): array(a) for a in piece.findall("PointData/DataArray")},
-        "cell_data": {a.get("Name"): array(a) for a in piece.findall("CellData/DataArray")},
-    }
 
 
 class Results:
@@ -105,15 +70,9 @@ class Results:
         return _table(self._native.history(name))
 
     def _vtu_data(self) -> dict:
+        # the arrays result.vtu holds, computed by the native module
         if self._vtu is None:
-            path = os.path.join(self.out, "result.vtu") if self.out else None
-            if path and os.path.exists(path):
-                self._vtu = read_vtu(path)
-            else:
-                with tempfile.TemporaryDirectory(prefix="cufem-vtu-") as d:
-                    path = os.path.join(d, "result.vtu")
-                    self._native.write_vtu(path)
-                    self._vtu = read_vtu(path)
+            self._vtu = self._native.fields()
         return self._vtu
 
     @property

@@ -3,9 +3,9 @@
 //! A thin layer over the library: models are read by the CLI's parser
 //! ([`Model::parse_in`], so the schema and every validation message are the
 //! CLI's), solved by [`analysis::run`] in a thread of their own with the GIL
-//! released, and written by [`cufem::io::write_results`] through
-//! [`OutputDir`] (the same files, the same atomic replacement as
-//! `cufem run`). The pure-Python package (`python/cufem/`) wraps these
+//! released, and written by [`cufem::io::write_into`] (the same files,
+//! the same atomic replacement as `cufem run`); fields reach Python as
+//! numpy arrays. The pure-Python package (`python/cufem/`) wraps these
 //! classes into `cufem.Model` and `cufem.Results`.
 
 use std::path::{Path, PathBuf};
@@ -20,6 +20,7 @@ use cufem::model::{Limits, Model, ModelError as RustModelError};
 use cufem::post::{self, Quantity};
 use cufem::solver::Interrupt;
 use cufem::solver::stepping::Cutback;
+use numpy::{IntoPyArray, PyArrayMethods};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyKeyError, PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
@@ -227,9 +228,7 @@ fn output_error(e: impl std::fmt::Display) -> PyErr {
 /// Writes every result file into `dir` as `cufem run --out dir [--force]` does.
 fn write_folder(model: &Model, solution: &Solution, dir: &Path, force: bool) -> PyResult<Vec<String>> {
     let folder = OutputDir::prepare(dir, force).map_err(output_error)?;
-    let written = cufem::io::write_results(model, solution, folder.staging()).map_err(output_error)?;
-    folder.commit().map_err(output_error)?;
-    Ok(written.iter().filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())).collect())
+    Ok(cufem::io::write_into(model, solution, folder, |_| ()).map_err(output_error)?.files)
 }
 
 #[pymethods]
@@ -346,30 +345,19 @@ impl NativeModel {
         let mut written_to = None;
         if let Some(folder) = folder {
             let model = self.model.clone();
-            let kept = folder.holds_converged();
-            let target = folder.target().to_path_buf();
-            let written = py.allow_threads(|| -> Result<(Vec<String>, PathBuf), String> {
-                let w = cufem::io::write_results(&model, &solution, folder.staging()).map_err(|e| e.to_string())?;
-                // a converged set in the folder is never replaced by less
-                let dest = match &solution.failure {
-                    None => folder.commit().map(|()| target),
-                    Some(_) => folder.commit_partial(),
-                }
-                .map_err(|e| e.to_string())?;
-                Ok((w.iter().filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())).collect(), dest))
-            });
-            let (names, dest) = written.map_err(PyOSError::new_err)?;
-            if solution.failure.is_some() && kept && progress {
+            let written =
+                py.allow_threads(|| cufem::io::write_into(&model, &solution, folder, |_| ())).map_err(output_error)?;
+            if written.kept_converged && progress {
                 write_stderr(
                     py,
                     &format!(
                         "the run stopped early: its results are in {} (the converged results were kept)",
-                        dest.display()
+                        written.folder.display()
                     ),
                 )?;
             }
-            files = Some(names);
-            written_to = Some(dest.display().to_string());
+            files = Some(written.files);
+            written_to = Some(written.folder.display().to_string());
         }
         Ok(NativeResults { model: self.model.clone(), solution: Arc::new(solution), files, written_to })
     }
@@ -515,10 +503,33 @@ impl NativeResults {
         )))
     }
 
-    /// Writes `result.vtu` (the CLI's file) to `path`.
-    fn write_vtu(&self, py: Python<'_>, path: PathBuf) -> PyResult<()> {
+    /// The 3D field of `result.vtu` as numpy arrays, computed here rather
+    /// than read back from a file: `points` (n, 3), `connectivity` (cells,
+    /// 8, VTK hexahedra), `point_data` (name → (n,) or (n, components)) and
+    /// `cell_data` (`body`, `element`: (cells,)).
+    fn fields<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let (model, solution) = (self.model.clone(), self.solution.clone());
-        py.allow_threads(|| cufem::io::write_vtu(&path, &model, &solution)).map_err(output_error)
+        let g = py.allow_threads(|| cufem::io::field_grid(&model, &solution));
+        let n = g.points.len() / 3;
+        let table = |values: Vec<f64>, columns: usize| -> PyResult<Bound<'py, PyAny>> {
+            let a = values.into_pyarray(py);
+            Ok(if columns == 1 { a.into_any() } else { a.reshape([n, columns])?.into_any() })
+        };
+        let d = PyDict::new(py);
+        d.set_item("points", table(g.points, 3)?)?;
+        let cells = g.cell_body.len();
+        let connectivity: Vec<i64> = g.connectivity.iter().map(|&i| i as i64).collect();
+        d.set_item("connectivity", connectivity.into_pyarray(py).reshape([cells, 8])?)?;
+        let point_data = PyDict::new(py);
+        for a in g.point_data {
+            point_data.set_item(a.name, table(a.values, a.components)?)?;
+        }
+        d.set_item("point_data", point_data)?;
+        let cell_data = PyDict::new(py);
+        cell_data.set_item("body", g.cell_body.into_pyarray(py))?;
+        cell_data.set_item("element", g.cell_element.into_pyarray(py))?;
+        d.set_item("cell_data", cell_data)?;
+        Ok(d)
     }
 
     /// Writes every result file into `dir` as `cufem run --out dir` does;

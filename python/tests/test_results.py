@@ -106,7 +106,7 @@ def test_meshio_reads_the_cli_vtu_and_to_meshio_agrees(name, cli_runs, py_runs):
     assert sorted(ours.cell_data) == sorted(theirs.cell_data)
     for k, v in theirs.cell_data.items():
         np.testing.assert_array_equal(ours.cell_data[k][0], v[0], err_msg=k)
-    # the fields without a written folder: the same VTU, in a temporary file
+    # the fields without a written folder: the same arrays, from memory
     mem = cufem.Model.from_file(EXAMPLES / f"{name}.toml").run(threads=1, progress=False)
     np.testing.assert_array_equal(mem.field("s_yy"), theirs.point_data["s_yy"][:, 0])
     np.testing.assert_array_equal(mem.points, theirs.points)

@@ -430,22 +430,12 @@ fn run(path: &Path, out: Option<PathBuf>, force: bool, quiet: bool, resources: &
     }
     let mut progress = Reporter::new(quiet);
     let options = RunOptions { interrupt: interrupt.clone(), max_memory: limit(resources) };
-    let solution = analysis::run(&model, &options, &mut progress).map_err(|e| match e {
-        AnalysisError::TooLarge { .. } => fail(TOO_LARGE, e),
-        e => fail(INPUT, anyhow!(e).context("analysis failed")),
-    })?;
+    let run = cufem::io::run_into(&model, folder, &options, &mut progress, |_| ()).map_err(run_failure)?;
     progress.finish();
-    let written = cufem::io::write_results(&model, &solution, folder.staging()).map_err(|e| fail(FILES, e))?;
-    let kept = folder.holds_converged();
-    let dest = match &solution.failure {
-        None => folder.commit().map(|()| out.clone()),
-        // a converged set in the folder is never replaced by less
-        Some(_) => folder.commit_partial(),
-    }
-    .map_err(|e| fail(FILES, e))?;
-    report::print_results(&model, &solution);
+    let (solution, dest) = (&run.solution, &run.folder);
+    report::print_results(&model, solution);
     print_warnings(solution.warnings.iter());
-    println!("\nwrote {} files to {}", written.len(), dest.display());
+    println!("\nwrote {} files to {}", run.files.len(), dest.display());
     match &solution.failure {
         None => {
             if interrupt.is_requested() {
@@ -460,11 +450,22 @@ fn run(path: &Path, out: Option<PathBuf>, force: bool, quiet: bool, resources: &
                 solution.lambda,
                 dest.display()
             );
-            if kept {
+            if run.kept_converged {
                 eprintln!("the converged results already in {} were kept as they were", out.display());
             }
             Ok(if f.reason == StopReason::Interrupted { INTERRUPTED } else { NOT_CONVERGED })
         }
+    }
+}
+
+/// The exit code of a run into a folder that failed: too large (4), a file
+/// (3), or the analysis refused the model (1).
+fn run_failure(e: cufem::io::RunError) -> Failure {
+    use cufem::io::RunError;
+    match e {
+        RunError::Analysis(e @ AnalysisError::TooLarge { .. }) => fail(TOO_LARGE, e),
+        RunError::Analysis(e) => fail(INPUT, anyhow!(e).context("analysis failed")),
+        e @ (RunError::Io(_) | RunError::Output(_)) => fail(FILES, e),
     }
 }
 

@@ -2,13 +2,13 @@
 
 use std::path::{Path, PathBuf};
 
-use anyhow::anyhow;
-use cufem::analysis::{self, RunOptions};
+use cufem::analysis::RunOptions;
 use cufem::ccx::{self, CcxError};
+use cufem::io::Finished;
 use cufem::io::output::OutputDir;
 use cufem::verify;
 
-use super::{FILES, Failure, INPUT, NOT_CONVERGED, OK, Reporter, Resources, TOO_LARGE, fail, report};
+use super::{FILES, Failure, NOT_CONVERGED, OK, Reporter, Resources, fail, report};
 
 /// Exit code: CalculiX is missing or did not finish.
 pub const CCX_FAILED: u8 = 5;
@@ -62,53 +62,56 @@ pub fn run(a: Args) -> Result<u8, Failure> {
     }
     let mut progress = Reporter::new(a.quiet);
     let options = RunOptions { interrupt, max_memory: super::limit(&a.resources) };
-    let solution = analysis::run(&model, &options, &mut progress).map_err(|e| match e {
-        analysis::AnalysisError::TooLarge { .. } => fail(TOO_LARGE, e),
-        e => fail(INPUT, anyhow!(e).context("analysis failed")),
-    })?;
-    progress.finish();
-    let cufem_peak = cufem::size::peak_memory();
-    cufem::io::write_results(&model, &solution, folder.staging()).map_err(|e| fail(FILES, e))?;
-    if let Some(f) = &solution.failure {
-        // a converged set in the folder is never replaced by less
-        let dest = folder.commit_partial().map_err(|e| fail(FILES, e))?;
-        eprintln!("the cufem analysis stopped early ({f}); nothing to compare: results in {}", dest.display());
-        return Ok(if f.reason == cufem::solver::stepping::StopReason::Interrupted {
-            super::INTERRUPTED
-        } else {
-            NOT_CONVERGED
-        });
-    }
-    let dir = folder.staging().join("verify");
-    let ccx_dir = dir.join("ccx");
-    let (mesh, _) = ccx::export(&model, kind, refine, &ccx_dir).map_err(super::ccx_failure)?;
-    if !a.quiet {
-        eprintln!(
-            "running CalculiX on {} {} hexahedra ({} nodes) in {}",
-            mesh.elements.len(),
-            kind.name(),
-            mesh.nodes.len(),
-            out.join("verify").join("ccx").display()
-        );
-    }
     let n_threads = threads.unwrap_or_else(rayon::current_num_threads);
-    let ccx_run = match &a.ccx_results {
-        Some(from) => ccx::reuse(from, &ccx_dir),
-        None => ccx::run(&program.display().to_string(), &ccx_dir, n_threads),
-    };
-    let ccx_run = match ccx_run {
-        Ok(r) => r,
-        Err(e) => {
-            let _ = std::fs::write(dir.join("ccx_failed.txt"), e.to_string());
-            folder.commit().map_err(|e| fail(FILES, e))?;
-            eprintln!("cufem results and the CalculiX deck and log are in {}", out.display());
-            return Err(fail(CCX_FAILED, e));
+    // the comparison goes into the staging folder's verify/ before the
+    // cufem results are committed (with them, whether CalculiX ran or not)
+    let compare = |done: Finished<'_>| -> Result<String, Failure> {
+        let dir = done.staging.join("verify");
+        let ccx_dir = dir.join("ccx");
+        let (mesh, _) = ccx::export(&model, kind, refine, &ccx_dir).map_err(super::ccx_failure)?;
+        if !a.quiet {
+            eprintln!(
+                "running CalculiX on {} {} hexahedra ({} nodes) in {}",
+                mesh.elements.len(),
+                kind.name(),
+                mesh.nodes.len(),
+                out.join("verify").join("ccx").display()
+            );
         }
+        let ccx_run = match &a.ccx_results {
+            Some(from) => ccx::reuse(from, &ccx_dir),
+            None => ccx::run(&program.display().to_string(), &ccx_dir, n_threads),
+        };
+        let ccx_run = ccx_run.map_err(|e| {
+            let _ = std::fs::write(dir.join("ccx_failed.txt"), e.to_string());
+            fail(CCX_FAILED, e)
+        })?;
+        let (comparison, curves) = verify::compare(&model, done.solution, &mesh, &ccx_run, done.analysis_peak);
+        comparison.write(&dir, &curves).map_err(|e| fail(FILES, e))?;
+        Ok(comparison.table())
     };
-    let (comparison, curves) = verify::compare(&model, &solution, &mesh, &ccx_run, cufem_peak);
-    comparison.write(&dir, &curves).map_err(|e| fail(FILES, e))?;
-    folder.commit().map_err(|e| fail(FILES, e))?;
-    println!("{}", comparison.table());
-    println!("wrote the comparison to {}", out.join("verify").display());
-    Ok(OK)
+    let run = cufem::io::run_into(&model, folder, &options, &mut progress, compare).map_err(super::run_failure)?;
+    progress.finish();
+    match run.extra {
+        Some(Ok(table)) => {
+            println!("{table}");
+            println!("wrote the comparison to {}", out.join("verify").display());
+            Ok(OK)
+        }
+        Some(Err(e)) => {
+            eprintln!("cufem results and the CalculiX deck and log are in {}", out.display());
+            Err(e)
+        }
+        // `extra` runs for every finished analysis: this one stopped early
+        None => {
+            let f = run.solution.failure.as_ref();
+            let why = f.map(ToString::to_string).unwrap_or_default();
+            eprintln!(
+                "the cufem analysis stopped early ({why}); nothing to compare: results in {}",
+                run.folder.display()
+            );
+            let interrupted = f.is_some_and(|f| f.reason == cufem::solver::stepping::StopReason::Interrupted);
+            Ok(if interrupted { super::INTERRUPTED } else { NOT_CONVERGED })
+        }
+    }
 }

@@ -30,12 +30,59 @@ use crate::model::Model;
 use crate::post::{Location, Quantity};
 use crate::shape::Lagrange2d;
 
-/// Writes the whole 3D field of every body.
+/// The whole 3D field of every body as `result.vtu` holds it: linear
+/// hexahedra over each element's own nodes, points duplicated per element.
+#[derive(Debug, Clone)]
+pub struct FieldGrid {
+    /// Point coordinates, 3 per point (m).
+    pub points: Vec<f64>,
+    /// The 8 points of every hexahedron, in VTK's order.
+    pub connectivity: Vec<u64>,
+    /// Point data: `displacement`, `contact_force` (3 components each),
+    /// `contact_pressure`, `contact_gap`, then every scalar of
+    /// [`Quantity::all`] but the displacement (1 component).
+    pub point_data: Vec<FieldArray>,
+    /// The body of every cell.
+    pub cell_body: Vec<i32>,
+    /// The global element of every cell.
+    pub cell_element: Vec<i32>,
+}
+
+/// A named point-data array of a [`FieldGrid`].
+#[derive(Debug, Clone)]
+pub struct FieldArray {
+    /// The name, as in the CSV files (`s_xx`, `peeq`, …).
+    pub name: String,
+    /// Components per point.
+    pub components: usize,
+    /// The values, `components` per point.
+    pub values: Vec<f64>,
+}
+
+/// Writes the whole 3D field of every body ([`field_grid`]).
 pub fn write_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), IoError> {
+    let g = field_grid(model, solution);
+    let offsets: Vec<u64> = (1..=g.cell_body.len() as u64).map(|c| 8 * c).collect();
+    let point_data: Vec<(String, usize, Array)> =
+        g.point_data.into_iter().map(|a| (a.name, a.components, Array::F64(a.values))).collect();
+    let grid = Grid {
+        title: &model.title,
+        points: &g.points,
+        connectivity: &g.connectivity,
+        offsets: &offsets,
+        n_cells: offsets.len(),
+        point_data: &point_data,
+        cell_data: &body_element_data(g.cell_body, g.cell_element),
+        cell_type: VTK_HEXAHEDRON,
+    };
+    write_file(path, &grid)
+}
+
+/// The whole 3D field of every body, as [`write_vtu`] writes it.
+pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
     let view = solution.fields(model);
     let mut points: Vec<f64> = Vec::new();
     let mut connectivity: Vec<u64> = Vec::new();
-    let mut offsets: Vec<u64> = Vec::new();
     let mut cell_body: Vec<i32> = Vec::new();
     let mut cell_element: Vec<i32> = Vec::new();
     let scalars: Vec<Quantity> =
@@ -116,7 +163,6 @@ pub fn write_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), 
                             id(1, 1, 1),
                             id(1, 0, 1),
                         ]);
-                        offsets.push(connectivity.len() as u64);
                         cell_body.push(b as i32);
                         cell_element.push((body.element_offset + e) as i32);
                     }
@@ -124,28 +170,16 @@ pub fn write_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), 
             }
         }
     }
-    let n_cells = offsets.len();
-    let mut point_data: Vec<(String, usize, Array)> = vec![
-        ("displacement".into(), 3, Array::F64(displacement)),
-        ("contact_force".into(), 3, Array::F64(contact_force)),
-        ("contact_pressure".into(), 1, Array::F64(contact_pressure)),
-        ("contact_gap".into(), 1, Array::F64(contact_gap)),
+    let mut point_data = vec![
+        FieldArray { name: "displacement".into(), components: 3, values: displacement },
+        FieldArray { name: "contact_force".into(), components: 3, values: contact_force },
+        FieldArray { name: "contact_pressure".into(), components: 1, values: contact_pressure },
+        FieldArray { name: "contact_gap".into(), components: 1, values: contact_gap },
     ];
-    for (data, q) in scalar_data.into_iter().zip(&scalars) {
-        point_data.push((q.name(), 1, Array::F64(data)));
+    for (values, q) in scalar_data.into_iter().zip(&scalars) {
+        point_data.push(FieldArray { name: q.name(), components: 1, values });
     }
-    let cell_data = body_element_data(cell_body, cell_element);
-    let grid = Grid {
-        title: &model.title,
-        points: &points,
-        connectivity: &connectivity,
-        offsets: &offsets,
-        n_cells,
-        point_data: &point_data,
-        cell_data: &cell_data,
-        cell_type: VTK_HEXAHEDRON,
-    };
-    write_file(path, &grid)
+    FieldGrid { points, connectivity, point_data, cell_body, cell_element }
 }
 
 /// Writes the raw Gauss-point values (`output.gauss_points = true`): one

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The README's "Refinement of the block" table: the block example (B-bar,
+"""The "Refinement of the block" table of docs/cross-check.md: the block example (B-bar,
 projected fields) on refined section and axis meshes, against the CalculiX
 solution of tests/data/block_calculix_top.csv along the top line,
 x in [0.21, 0.29] m. Usage: bench/block_refinement.py [ROWS]  (ROWS: how many

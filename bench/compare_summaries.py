@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """Compares the summary.json of two runs of the shipped paper examples
-(README "Performance": before/after a change must agree within 0.5 %).
+(docs/performance.md: before/after a change must agree within 0.5 %).
 
 Usage: bench/compare_summaries.py PREFIX_A PREFIX_B [EXAMPLE ...] — the output folder of
 example E is PREFIX + E (bench/examples.sh leaves its last run of each in

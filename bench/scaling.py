@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""How the cost grows with the model (README "Scaling"): the thin-walled tube
+"""How the cost grows with the model (docs/performance.md, "Scaling"): the thin-walled tube
 refined along the axis (11, 22, 44, 88, 176 B4; 28 L9 ring) and around the
 ring (12, 28, 60, 124 L9; 22 B4), elastic (bench/tube_28L9_elastic.toml, one
 linear solve) and plastic (examples/bending_tube_28L9.toml, its first 5 of 15

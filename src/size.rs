@@ -10,7 +10,7 @@
 //! stage only refuses models that cannot fit whatever the fill. After the
 //! equations are ordered and the symbolic factorization is done, the factor
 //! size is exact and the estimate is a close one (measured against the peak
-//! resident memory of the shipped examples; see the README).
+//! resident memory of the shipped examples; see docs/performance.md).
 //!
 //! Bytes per item, from the data structures of `assembly`, `solver::linear`
 //! and `analysis`: a stored matrix entry costs 4 (the assembler's row index),
@@ -119,8 +119,13 @@ pub fn coupled_1d(elements: u64, p: u64) -> u64 {
 }
 
 /// Memory the process may use: the smaller of the kernel's `MemAvailable`
-/// and a cgroup (container) limit, if they can be read.
+/// and a cgroup (container) limit, if they can be read. `None` off Linux
+/// (no `/proc/meminfo`): no model is then refused for its size unless a
+/// limit is given (`--max-memory`).
 pub fn available_memory() -> Option<u64> {
+    if !cfg!(target_os = "linux") {
+        return None;
+    }
     let meminfo = std::fs::read_to_string("/proc/meminfo").ok().and_then(|t| {
         t.lines().find(|l| l.starts_with("MemAvailable:")).and_then(|l| {
             let kb: u64 = l.split_whitespace().nth(1)?.parse().ok()?;
@@ -165,9 +170,12 @@ pub fn peak_memory() -> Option<u64> {
     // SAFETY: getrusage writes into the zero-initialised struct we own.
     let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
     let r = unsafe { libc::getrusage(libc::RUSAGE_SELF, &mut usage) };
-    // Linux reports kilobytes
-    (r == 0).then(|| usage.ru_maxrss as u64 * 1024)
+    (r == 0).then(|| usage.ru_maxrss as u64 * MAXRSS_UNIT)
 }
+
+/// Bytes per unit of `ru_maxrss`: kilobytes on Linux and the BSDs, bytes on
+/// Apple's systems.
+pub const MAXRSS_UNIT: u64 = if cfg!(target_vendor = "apple") { 1 } else { 1024 };
 
 /// `1234567890` → `1.15 GiB`.
 pub fn human_bytes(b: u64) -> String {
@@ -212,6 +220,22 @@ mod tests {
         assert_eq!(coupled_1d(1, 3), 16);
         // 2 B3 elements (5 nodes): 3 + 3 + 5 + 3 + 3
         assert_eq!(coupled_1d(2, 2), 17);
+    }
+
+    #[test]
+    fn memory_probes_answer_in_bytes_where_the_platform_has_them() {
+        // a touched 64 MiB block must show in the peak: a wrong ru_maxrss
+        // unit would read 64 KiB or 64 GiB
+        let block = std::hint::black_box(vec![1u8; 64 << 20]);
+        let peak = peak_memory().expect("getrusage");
+        assert!((64 << 20..64 << 30).contains(&peak), "peak {peak} B");
+        drop(block);
+        let available = available_memory();
+        if cfg!(target_os = "linux") {
+            assert!(available.is_some_and(|b| b >= 1 << 20), "{available:?}");
+        } else {
+            assert_eq!(available, None);
+        }
     }
 
     #[test]

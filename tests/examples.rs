@@ -36,8 +36,8 @@ fn run(name: &str) -> Value {
     let estimated = summary["memory"]["estimated_bytes"].as_f64().unwrap();
     let peak = summary["memory"]["peak_bytes"].as_f64().unwrap();
     assert!((0.9..1.3).contains(&(estimated / peak)), "{name}: estimate {estimated:e} B, peak {peak:e} B");
-    // no shipped example needs double-precision factors (README,
-    // "Mixed precision": a fallback would keep the answer but lose the speed)
+    // no shipped example needs double-precision factors (docs/performance.md:
+    // a fallback would keep the answer but lose the speed)
     assert_eq!(summary["timings"]["precision_fallbacks"], 0, "{name}: {}", summary["timings"]);
     summary
 }
@@ -453,7 +453,7 @@ fn punch_plane_strain() {
 /// centre (2 % of the 3D peak), and the two meshes' σ_zz within 3 % of the
 /// 3D peak of each other. Measured (3 B4 / 4 B4): σ_zz 8.4 % / 6.8 %, peeq
 /// 5.9 % / 5.8 %, force +0.32 % / +0.45 %, no reversal, σ_zz 3 ↔ 4 B4
-/// 1.5 %. The README's table lists the whole refinement sequence.
+/// 1.5 %. docs/cross-check.md lists the whole refinement sequence.
 #[test]
 #[ignore]
 fn block_refined_fields_match_calculix() {

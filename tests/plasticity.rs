@@ -23,7 +23,7 @@ fn hinge_theory(p: f64) -> f64 {
 
 /// The example's load–deflection history against the plastic-hinge theory
 /// (at least five points between first yield and p = 1.4, each within the
-/// README's 1 %) and its collapse load against P_c = M_p/L = 1.5 P_y. The
+/// 1 % of docs/verification.md) and its collapse load against P_c = M_p/L = 1.5 P_y. The
 /// example takes 30 increments of 0.2 δ_y; here 60, so that five converged
 /// points fall in the plastic range before p = 1.4.
 #[test]
@@ -44,7 +44,7 @@ fn epp_cantilever_follows_the_plastic_hinge_theory() {
         if p <= 1.4 {
             let err = (delta / dy - hinge_theory(p)) / hinge_theory(p);
             worst = worst.max(err.abs());
-            // README: "within 1 % for p ≤ 1.4"; observed ≤ 0.6 %
+            // docs/verification.md: "within 1 % for p ≤ 1.4"; observed ≤ 0.6 %
             assert!(err.abs() < 0.01, "δ/δ_y = {} at p = {p}: theory {} (error {err})", delta / dy, hinge_theory(p));
             plastic_points += usize::from(p > 1.0);
         }
@@ -65,7 +65,7 @@ fn epp_cantilever_follows_the_plastic_hinge_theory() {
 #[test]
 fn newton_converges_quadratically_in_the_plastic_range() {
     let model = Model::from_file(Path::new(EXAMPLE)).unwrap();
-    // observed ≤ 2.6 (README); a linearly converging step at rate ρ gives
+    // observed ≤ 2.6 (docs/verification.md); a linearly converging step at rate ρ gives
     // ρ/r_k ≥ 100 for r_k ≤ 1e-2 and ρ ≥ 1, so 4 separates the two clearly
     // at least 10 pairs: 12 measured since each increment starts on the
     // secant of the last (issue 14: 3 iterations per increment instead of

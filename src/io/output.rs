@@ -373,6 +373,17 @@ fn replace(staged: &Path, dest: &Path) -> Result<(), OutputError> {
     Ok(())
 }
 
+// The lock's identity check below (device and inode), the CLI's Ctrl-C
+// handling (signal-hook's iterator) and the memory probes (`getrusage`) are
+// POSIX: other targets are refused with this message rather than with
+// unresolved imports.
+#[cfg(not(unix))]
+compile_error!(
+    "cufem builds on Unix only (tested on Linux x86_64; macOS and the BSDs are expected to work): \
+     the output folder's lock is checked by device and inode, and Ctrl-C handling and the memory \
+     probes use POSIX calls. On Windows, build and run it in WSL."
+);
+
 /// Takes the advisory lock on `path`, making sure the locked file is still
 /// the one at `path` (a run that finishes deletes its lock file).
 fn acquire(path: &Path, shown: &str) -> Result<File, OutputError> {
@@ -409,7 +420,8 @@ fn acquire(path: &Path, shown: &str) -> Result<File, OutputError> {
     Err(OutputError::Locked { dir: shown.to_string(), lock: path.display().to_string(), pid: String::new() })
 }
 
-/// Atomically swaps two paths (Linux `renameat2` with `RENAME_EXCHANGE`).
+/// Atomically swaps two paths (Linux `renameat2` with `RENAME_EXCHANGE`;
+/// elsewhere `Unsupported`, and [`replace`] renames twice instead).
 #[cfg(target_os = "linux")]
 fn exchange_paths(a: &Path, b: &Path) -> std::io::Result<()> {
     use std::ffi::CString;

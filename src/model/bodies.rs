@@ -45,7 +45,7 @@ pub(super) fn mesh(
             })?;
             // B-bar by default where the displacement-based element locks in
             // elasticity (ν ≥ 0.45: tests/locking.rs); for plastic flow the
-            // choice stays the user's (README, "Cross-check against 3D")
+            // choice stays the user's (docs/cross-check.md, docs/limitations.md)
             let bbar = match file[i].formulation.as_deref() {
                 None => materials[b.material].poisson >= 0.45,
                 Some("standard") => false,

@@ -4,7 +4,6 @@
 
 use super::bounds;
 use super::schema::*;
-use super::validate::reject_unused;
 use super::{ModelError, invalid};
 use crate::materials::{BackStress, Hardening, MAX_BACKSTRESSES, Material};
 
@@ -26,210 +25,177 @@ pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelErro
     if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
         return Err(invalid(format!("{key}.poisson_ratio"), nu, "a number in (−1, 0.5)"));
     }
-    let hardening = match &m.plasticity {
-        None => None,
+    let (hardening, kinematic) = match &m.plasticity {
+        None => (None, Vec::new()),
         Some(p) => {
             let pk = format!("{key}.plasticity");
-            let max_sy = bounds::MAX_YIELD_STRAIN * young;
-            let yield_why = "the yield stress in Pa, positive and at most 0.1 E: a larger yield strain is outside small-strain plasticity";
-            let sy = p
-                .yield_stress
-                .map(|v| bounds::within(&format!("{pk}.yield_stress"), v, f64::MIN_POSITIVE, max_sy, yield_why))
-                .transpose()?;
-            let need_sy = || {
-                sy.ok_or_else(|| invalid(format!("{pk}.yield_stress"), "(missing)", "the initial yield stress in Pa"))
-            };
-            let chosen = format!("hardening = {:?}", p.hardening);
-            let unused_modulus = ("hardening_modulus", p.hardening_modulus.is_some());
-            let unused_table = ("table", p.table.is_some());
-            let unused_voce = [
-                ("saturation_stress", p.saturation_stress.is_some()),
-                ("saturation_rate", p.saturation_rate.is_some()),
-            ];
-            match p.hardening.as_str() {
-                "perfect" => {
-                    reject_unused(&pk, &chosen, &[unused_modulus, unused_table, unused_voce[0], unused_voce[1]])?
-                }
-                "linear" => reject_unused(&pk, &chosen, &[unused_table, unused_voce[0], unused_voce[1]])?,
-                "table" => reject_unused(&pk, &chosen, &[unused_modulus, unused_voce[0], unused_voce[1]])?,
-                "voce" => reject_unused(&pk, &chosen, &[unused_modulus, unused_table])?,
-                _ => {}
-            }
-            Some(match p.hardening.as_str() {
-                "perfect" => Hardening::Perfect { yield_stress: need_sy()? },
-                "linear" => {
-                    let h = p.hardening_modulus.ok_or_else(|| {
-                        invalid(
-                            format!("{pk}.hardening_modulus"),
-                            "(missing)",
-                            "the plastic hardening modulus H in Pa (≥ 0) for hardening = \"linear\"",
-                        )
-                    })?;
-                    bounds::within(
-                        &format!("{pk}.hardening_modulus"),
-                        h,
-                        0.0,
-                        bounds::MAX_HARDENING * young,
-                        "the plastic hardening modulus H in Pa, from 0 to 100 E",
-                    )?;
-                    Hardening::Linear { yield_stress: need_sy()?, modulus: h }
-                }
-                "voce" => {
-                    let q = p.saturation_stress.ok_or_else(|| {
-                        invalid(
-                            format!("{pk}.saturation_stress"),
-                            "(missing)",
-                            "the Voce saturation stress Q in Pa (≥ 0) for hardening = \"voce\"",
-                        )
-                    })?;
-                    bounds::within(
-                        &format!("{pk}.saturation_stress"),
-                        q,
-                        0.0,
-                        young,
-                        "the Voce saturation stress Q in Pa, from 0 to E",
-                    )?;
-                    let b = p.saturation_rate.ok_or_else(|| {
-                        invalid(
-                            format!("{pk}.saturation_rate"),
-                            "(missing)",
-                            "the Voce saturation rate b (dimensionless, > 0) for hardening = \"voce\"",
-                        )
-                    })?;
-                    bounds::within(
-                        &format!("{pk}.saturation_rate"),
-                        b,
-                        1e-6,
-                        1e6,
-                        "the Voce saturation rate b, from 1e-6 to 1e6 (dimensionless)",
-                    )?;
-                    // the initial slope Q b is a hardening modulus: the same bound
-                    bounds::within(
-                        &format!("{pk}.saturation_rate"),
-                        b,
-                        0.0,
-                        bounds::MAX_HARDENING * young / q.max(f64::MIN_POSITIVE),
-                        "a rate whose initial slope Q b is at most 100 E",
-                    )?;
-                    Hardening::Voce { yield_stress: need_sy()?, saturation: q, rate: b }
-                }
-                "table" => {
-                    let t = p.table.as_ref().ok_or_else(|| {
-                        invalid(format!("{pk}.table"), "(missing)", "[[peeq, yield_stress], …] starting at peeq = 0")
-                    })?;
-                    if t.is_empty() {
-                        return Err(invalid(
-                            format!("{pk}.table"),
-                            "[]",
-                            "a non-empty table whose first point has peeq = 0",
-                        ));
-                    }
-                    if t[0][0] != 0.0 {
-                        return Err(invalid(
-                            format!("{pk}.table[0]"),
-                            bounds::list(&t[0][..]),
-                            "a first point [0.0, initial yield stress]: the table starts at peeq = 0",
-                        ));
-                    }
-                    for (k, w) in t.windows(2).enumerate() {
-                        if !(w[1][0] > w[0][0]) || !(w[1][1] >= w[0][1]) || !w[1][0].is_finite() || !w[1][1].is_finite()
-                        {
-                            return Err(invalid(
-                                format!("{pk}.table[{}]", k + 1),
-                                bounds::list(&w[1][..]),
-                                "strictly increasing peeq and non-decreasing (no softening), finite yield stress",
-                            ));
-                        }
-                        // the segment's slope is a hardening modulus: the same bound as
-                        // `hardening_modulus` (a near-vertical segment overflows it)
-                        let slope = (w[1][1] - w[0][1]) / (w[1][0] - w[0][0]);
-                        if !(slope <= bounds::MAX_HARDENING * young) {
-                            return Err(invalid(
-                                format!("{pk}.table[{}]", k + 1),
-                                bounds::list(&w[1][..]),
-                                format!(
-                                    "a segment slope of at most 100 E = {} Pa (this one rises {} Pa over a peeq of {})",
-                                    bounds::limit(bounds::MAX_HARDENING * young),
-                                    bounds::number(w[1][1] - w[0][1]),
-                                    bounds::number(w[1][0] - w[0][0])
-                                ),
-                            ));
-                        }
-                    }
-                    if !(t[0][1] > 0.0 && t[0][1].is_finite()) {
-                        return Err(invalid(
-                            format!("{pk}.table[0]"),
-                            bounds::list(&t[0][..]),
-                            "a positive initial yield stress",
-                        ));
-                    }
-                    bounds::within(&format!("{pk}.table[0][1]"), t[0][1], 0.0, max_sy, yield_why)?;
-                    let last = t.len() - 1;
-                    bounds::within(
-                        &format!("{pk}.table[{last}][0]"),
-                        t[last][0],
-                        0.0,
-                        bounds::MAX_TABLE_PEEQ,
-                        "an equivalent plastic strain of at most 10",
-                    )?;
-                    bounds::within(
-                        &format!("{pk}.table[{last}][1]"),
-                        t[last][1],
-                        0.0,
-                        young,
-                        "a yield stress of at most E",
-                    )?;
-                    if let Some(s) = sy
-                        && (s - t[0][1]).abs() > 1e-9 * s
-                    {
-                        return Err(invalid(
-                            format!("{pk}.yield_stress"),
-                            bounds::number(s),
-                            format!("the table's first stress ({}) or no yield_stress", bounds::number(t[0][1])),
-                        ));
-                    }
-                    Hardening::Table {
-                        strains: t.iter().map(|r| r[0]).collect(),
-                        stresses: t.iter().map(|r| r[1]).collect(),
-                    }
-                }
-                other => {
-                    return Err(invalid(
-                        format!("{pk}.hardening"),
-                        format!("{other:?}"),
-                        "\"perfect\", \"linear\", \"table\" or \"voce\"",
-                    ));
-                }
-            })
+            (Some(hardening(&pk, p, young)?), kinematic(&pk, p.kinematic.as_deref().unwrap_or(&[]), young)?)
         }
     };
-    let mut kinematic = Vec::new();
-    if let Some(p) = &m.plasticity
-        && let Some(list) = &p.kinematic
-    {
-        let kk = format!("{key}.plasticity.kinematic");
-        if list.len() > MAX_BACKSTRESSES {
-            return Err(invalid(kk, list.len(), format!("at most {MAX_BACKSTRESSES} back-stresses")));
-        }
-        for (i, k) in list.iter().enumerate() {
-            bounds::within(
-                &format!("{kk}[{i}].modulus"),
-                k.modulus,
-                f64::MIN_POSITIVE,
-                bounds::MAX_HARDENING * young,
-                "the kinematic hardening modulus C in Pa, positive and at most 100 E",
+    Ok(Material::new(m.name.clone(), young, nu, hardening).with_kinematic(kinematic))
+}
+
+/// What `yield_stress` may be, for the messages.
+const YIELD_WHY: &str =
+    "the yield stress in Pa, positive and at most 0.1 E: a larger yield strain is outside small-strain plasticity";
+
+/// The isotropic hardening law of `plasticity` (key `pk`). Which keys each
+/// law has is the schema's ([`HardeningLaw`]); the values are checked here.
+/// A required key is an `Option` there so that its absence is reported
+/// here with the key's path, unit and meaning (serde would say only
+/// `missing field`).
+fn hardening(pk: &str, p: &PlasticityFile, young: f64) -> Result<Hardening, ModelError> {
+    let max_sy = bounds::MAX_YIELD_STRAIN * young;
+    let sy = p
+        .yield_stress
+        .map(|v| bounds::within(&format!("{pk}.yield_stress"), v, f64::MIN_POSITIVE, max_sy, YIELD_WHY))
+        .transpose()?;
+    let need_sy =
+        || sy.ok_or_else(|| invalid(format!("{pk}.yield_stress"), "(missing)", "the initial yield stress in Pa"));
+    let required = |name: &str, v: Option<f64>, what: &str| {
+        v.ok_or_else(|| invalid(format!("{pk}.{name}"), "(missing)", what.to_string()))
+    };
+    Ok(match &p.hardening {
+        HardeningLaw::Perfect {} => Hardening::Perfect { yield_stress: need_sy()? },
+        HardeningLaw::Linear { hardening_modulus } => {
+            let h = required(
+                "hardening_modulus",
+                *hardening_modulus,
+                "the plastic hardening modulus H in Pa (≥ 0) for hardening = \"linear\"",
             )?;
             bounds::within(
-                &format!("{kk}[{i}].recall"),
-                k.recall,
+                &format!("{pk}.hardening_modulus"),
+                h,
                 0.0,
-                1e6,
-                "the recall rate γ (dimensionless), from 0 (linear kinematic hardening) to 1e6",
+                bounds::MAX_HARDENING * young,
+                "the plastic hardening modulus H in Pa, from 0 to 100 E",
             )?;
-            kinematic.push(BackStress { modulus: k.modulus, recall: k.recall });
+            Hardening::Linear { yield_stress: need_sy()?, modulus: h }
+        }
+        HardeningLaw::Voce { saturation_stress, saturation_rate } => {
+            let q = required(
+                "saturation_stress",
+                *saturation_stress,
+                "the Voce saturation stress Q in Pa (≥ 0) for hardening = \"voce\"",
+            )?;
+            bounds::within(
+                &format!("{pk}.saturation_stress"),
+                q,
+                0.0,
+                young,
+                "the Voce saturation stress Q in Pa, from 0 to E",
+            )?;
+            let b = required(
+                "saturation_rate",
+                *saturation_rate,
+                "the Voce saturation rate b (dimensionless, > 0) for hardening = \"voce\"",
+            )?;
+            let rate = format!("{pk}.saturation_rate");
+            bounds::within(&rate, b, 1e-6, 1e6, "the Voce saturation rate b, from 1e-6 to 1e6 (dimensionless)")?;
+            // the initial slope Q b is a hardening modulus: the same bound
+            let max_rate = bounds::MAX_HARDENING * young / q.max(f64::MIN_POSITIVE);
+            bounds::within(&rate, b, 0.0, max_rate, "a rate whose initial slope Q b is at most 100 E")?;
+            Hardening::Voce { yield_stress: need_sy()?, saturation: q, rate: b }
+        }
+        HardeningLaw::Table { table } => {
+            let t = table.as_ref().ok_or_else(|| {
+                invalid(format!("{pk}.table"), "(missing)", "[[peeq, yield_stress], …] starting at peeq = 0")
+            })?;
+            let t: Vec<[f64; 2]> = t.iter().map(|r| r.0).collect();
+            table_law(pk, &t, sy, young)?
+        }
+    })
+}
+
+/// `hardening = "table"`: points of increasing peeq from 0, no softening,
+/// each segment's slope bounded like a hardening modulus; `sy` (if given)
+/// must be the first stress.
+fn table_law(pk: &str, t: &[[f64; 2]], sy: Option<f64>, young: f64) -> Result<Hardening, ModelError> {
+    if t.is_empty() {
+        return Err(invalid(format!("{pk}.table"), "[]", "a non-empty table whose first point has peeq = 0"));
+    }
+    if t[0][0] != 0.0 {
+        return Err(invalid(
+            format!("{pk}.table[0]"),
+            bounds::list(&t[0][..]),
+            "a first point [0.0, initial yield stress]: the table starts at peeq = 0",
+        ));
+    }
+    for (k, w) in t.windows(2).enumerate() {
+        if !(w[1][0] > w[0][0]) || !(w[1][1] >= w[0][1]) || !w[1][0].is_finite() || !w[1][1].is_finite() {
+            return Err(invalid(
+                format!("{pk}.table[{}]", k + 1),
+                bounds::list(&w[1][..]),
+                "strictly increasing peeq and non-decreasing (no softening), finite yield stress",
+            ));
+        }
+        // the segment's slope is a hardening modulus: the same bound as
+        // `hardening_modulus` (a near-vertical segment overflows it)
+        let slope = (w[1][1] - w[0][1]) / (w[1][0] - w[0][0]);
+        if !(slope <= bounds::MAX_HARDENING * young) {
+            return Err(invalid(
+                format!("{pk}.table[{}]", k + 1),
+                bounds::list(&w[1][..]),
+                format!(
+                    "a segment slope of at most 100 E = {} Pa (this one rises {} Pa over a peeq of {})",
+                    bounds::limit(bounds::MAX_HARDENING * young),
+                    bounds::number(w[1][1] - w[0][1]),
+                    bounds::number(w[1][0] - w[0][0])
+                ),
+            ));
         }
     }
-    Ok(Material::new(m.name.clone(), young, nu, hardening).with_kinematic(kinematic))
+    if !(t[0][1] > 0.0 && t[0][1].is_finite()) {
+        return Err(invalid(format!("{pk}.table[0]"), bounds::list(&t[0][..]), "a positive initial yield stress"));
+    }
+    let max_sy = bounds::MAX_YIELD_STRAIN * young;
+    bounds::within(&format!("{pk}.table[0][1]"), t[0][1], 0.0, max_sy, YIELD_WHY)?;
+    let last = t.len() - 1;
+    bounds::within(
+        &format!("{pk}.table[{last}][0]"),
+        t[last][0],
+        0.0,
+        bounds::MAX_TABLE_PEEQ,
+        "an equivalent plastic strain of at most 10",
+    )?;
+    bounds::within(&format!("{pk}.table[{last}][1]"), t[last][1], 0.0, young, "a yield stress of at most E")?;
+    if let Some(s) = sy
+        && (s - t[0][1]).abs() > 1e-9 * s
+    {
+        return Err(invalid(
+            format!("{pk}.yield_stress"),
+            bounds::number(s),
+            format!("the table's first stress ({}) or no yield_stress", bounds::number(t[0][1])),
+        ));
+    }
+    Ok(Hardening::Table { strains: t.iter().map(|r| r[0]).collect(), stresses: t.iter().map(|r| r[1]).collect() })
+}
+
+/// `plasticity.kinematic`: at most [`MAX_BACKSTRESSES`] back-stresses.
+fn kinematic(pk: &str, list: &[KinematicFile], young: f64) -> Result<Vec<BackStress>, ModelError> {
+    let kk = format!("{pk}.kinematic");
+    if list.len() > MAX_BACKSTRESSES {
+        return Err(invalid(kk, list.len(), format!("at most {MAX_BACKSTRESSES} back-stresses")));
+    }
+    let mut kinematic = Vec::new();
+    for (i, k) in list.iter().enumerate() {
+        bounds::within(
+            &format!("{kk}[{i}].modulus"),
+            k.modulus,
+            f64::MIN_POSITIVE,
+            bounds::MAX_HARDENING * young,
+            "the kinematic hardening modulus C in Pa, positive and at most 100 E",
+        )?;
+        bounds::within(
+            &format!("{kk}[{i}].recall"),
+            k.recall,
+            0.0,
+            1e6,
+            "the recall rate γ (dimensionless), from 0 (linear kinematic hardening) to 1e6",
+        )?;
+        kinematic.push(BackStress { modulus: k.modulus, recall: k.recall });
+    }
+    Ok(kinematic)
 }
 
 #[cfg(test)]
@@ -318,11 +284,10 @@ mod tests {
         );
         let (sy, h) = m.hardening.unwrap().eval(0.0);
         assert_eq!((sy, h), (2e8, 5e7 * 20.0));
-        // a missing Voce parameter, a Voce key with another law, a negative
-        // recall rate, too many back-stresses: each names its key
+        // a missing Voce parameter, a negative recall rate, too many
+        // back-stresses: each names its key
         let cases = [
             ("hardening = \"voce\", saturation_stress = 5e7", "plasticity.saturation_rate = (missing)"),
-            ("hardening = \"perfect\", saturation_rate = 5.0", "saturation_rate"),
             ("hardening = \"perfect\", kinematic = [{ modulus = 6e10, recall = -1.0 }]", "kinematic[0].recall = -1"),
             ("hardening = \"perfect\", kinematic = [{ modulus = 0.0, recall = 1.0 }]", "kinematic[0].modulus = 0"),
             (
@@ -335,5 +300,15 @@ mod tests {
             let e = err(material(3, &material_file(&format!("{base}plasticity = {{ yield_stress = 2e8, {p} }}"))));
             assert!(e.contains(expect) && e.starts_with("materials[3].plasticity"), "{p}: {e}");
         }
+        // a Voce key with another law is refused by the reader, which lists
+        // the keys of the law given
+        let text =
+            format!("{base}plasticity = {{ yield_stress = 2e8, hardening = \"perfect\", saturation_rate = 5.0 }}");
+        let e = toml::from_str::<MaterialFile>(&text).unwrap_err().to_string();
+        assert!(
+            e.contains("line 4")
+                && e.contains("unknown field `saturation_rate`, expected `yield_stress` or `kinematic`"),
+            "{e}"
+        );
     }
 }

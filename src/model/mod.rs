@@ -8,8 +8,11 @@
 
 mod bodies;
 mod bounds;
+mod budget;
 mod contacts;
+mod indenters;
 mod material;
+mod overlap;
 mod preprocess;
 mod restraint;
 mod schema;
@@ -121,16 +124,22 @@ impl Limits {
     }
 }
 
-/// Cuts every line of a parser message to at most 200 characters: the TOML
-/// parser quotes the offending source line, which may be huge (a
-/// 100,000-deep nested array is one 200 KB line).
+/// Cuts the lines of a parser message: the TOML parser quotes the offending
+/// source line, which may be huge (a 100,000-deep nested array is one
+/// 200 KB line), cut to 200 characters with its `^^^` marker; the message
+/// itself, which names what is allowed (`unknown field `x`, expected one
+/// of …` lists every key of the table), is kept whole up to 1,000
+/// characters (it quotes the value given, which may be huge too).
 fn shorten_lines(message: &str) -> String {
-    const MAX: usize = 200;
     message
         .lines()
         .map(|l| {
-            if l.chars().count() > MAX {
-                format!("{}…", l.chars().take(MAX).collect::<String>())
+            let quoted = l.trim_start().starts_with('|')
+                || l.split_once(" | ")
+                    .is_some_and(|(n, _)| !n.is_empty() && n.trim().chars().all(|c| c.is_ascii_digit()));
+            let max = if quoted { 200 } else { 1000 };
+            if l.chars().count() > max {
+                format!("{}…", l.chars().take(max).collect::<String>())
             } else {
                 l.to_string()
             }
@@ -213,8 +222,9 @@ pub struct OutputSettings {
     pub gauss_points: bool,
 }
 
-/// How stress and peeq are evaluated at arbitrary points.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+/// How stress and peeq are evaluated at arbitrary points (`output.recovery`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
 pub enum Recovery {
     /// L2 projection of the Gauss-point values onto the CUF basis: a
     /// continuous field ([`crate::post::recovery`]).
@@ -348,14 +358,14 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let mut warnings = Vec::new();
     let constraints = preprocess::constraints(&file.constraints, &mesh, &mut warnings)?;
     let loads = preprocess::loads(&file.loads, &mesh, &materials)?;
-    let indenters = contacts::indenters(&file.indenters, &mesh, &materials, &mut warnings)?;
+    let indenters = indenters::indenters(&file.indenters, &mesh, &materials, &mut warnings)?;
     let contacts = contacts::pair_contacts(&file.contacts, &mesh, &materials, &mut warnings)?;
     restraint::check(&mesh, &constraints, &indenters, &contacts)?;
     let probes = preprocess::probes(&file.probes, &mesh)?;
     let lines = preprocess::lines(&file.lines, &mesh, &mut warnings)?;
     let references = validate::references(&file.references, &probes)?;
     let solver = validate::solver_settings(&file.solver, is_linear(&mesh, &materials, &indenters, &contacts))?;
-    let output = validate::output(&file.output)?;
+    let output = validate::output(&file.output);
     let item_names = steps::ItemNames {
         indenters: indenters.iter().map(|i| i.name.as_str()).collect(),
         constraints: constraints.iter().map(|c| c.name.as_str()).collect(),

@@ -4,11 +4,10 @@
 
 use super::bounds;
 use super::schema::*;
-use super::validate::{MAX_COUNT, axis_index, describe_selection, quantity_names};
+use super::validate::{MAX_COUNT, describe_selection};
 use super::{Line, ModelError, Probe, Warning, invalid};
 use crate::bc::{self, Condition, Constraint, Load, LoadKind, Selection};
 use crate::mesh::{Body, Mesh};
-use crate::quantity::Quantity;
 use crate::values::locate_in_model;
 
 /// Index of the body named `name`, or an error listing the bodies.
@@ -17,6 +16,11 @@ pub(super) fn body_index(mesh: &Mesh, key: String, name: &str) -> Result<usize, 
         let names: Vec<&str> = mesh.bodies.iter().map(|b| b.name.as_str()).collect();
         invalid(key, format!("{name:?}"), format!("one of the bodies {names:?}"))
     })
+}
+
+/// The coordinates of global node `node` of `body`.
+pub(super) fn model_coords(body: &Body, node: usize) -> [f64; 3] {
+    body.local_coords(node - body.node_offset)
 }
 
 pub(super) fn optional_body(mesh: &Mesh, key: String, name: &Option<String>) -> Result<Option<usize>, ModelError> {
@@ -51,10 +55,8 @@ pub(super) fn constraints(
             ));
         }
         let mut values = [None; 3];
-        for (k, comp) in c.fix.iter().flatten().enumerate() {
-            let axis = axis_index(comp)
-                .ok_or_else(|| invalid(format!("{key}.fix[{k}]"), format!("{comp:?}"), "\"x\", \"y\" or \"z\""))?;
-            values[axis] = Some(0.0);
+        for axis in c.fix.iter().flatten() {
+            values[axis.index()] = Some(0.0);
         }
         if let Some(d) = &c.displacement {
             for (axis, v) in [d.x, d.y, d.z].into_iter().enumerate() {
@@ -204,16 +206,7 @@ pub(super) fn lines(file: &[LineFile], mesh: &Mesh, warnings: &mut Vec<Warning>)
         if !(2..=MAX_COUNT).contains(&points) {
             return Err(invalid(format!("{key}.points"), points, format!("an integer from 2 to {MAX_COUNT}")));
         }
-        let plot = l
-            .plot
-            .iter()
-            .flatten()
-            .enumerate()
-            .map(|(k, q)| {
-                Quantity::parse(q)
-                    .ok_or_else(|| invalid(format!("{key}.plot[{k}]"), format!("{q:?}"), quantity_names()))
-            })
-            .collect::<Result<Vec<_>, _>>()?;
+        let plot = l.plot.iter().flatten().map(|q| q.0).collect();
         let line = Line {
             name: l.name.clone(),
             from: bounds::point(&format!("{key}.from"), l.from)?,

@@ -1,13 +1,26 @@
 //! The model file as written by the user (TOML), before validation.
 //!
-//! Every table denies unknown keys, so a misspelt key is reported with its
-//! name and line instead of being silently ignored. The meaning, unit and
-//! default of every key are in `docs/model-format.md`.
+//! Every table denies unknown keys and every word-valued key is an enum, so
+//! a misspelt key or value is refused by the TOML reader with its line and
+//! the keys or values allowed there, instead of being silently ignored.
+//! Where one key chooses what the others mean (`hardening`, a section's
+//! `shape`, an indenter's `shape`, a contact's `method`) the table is an
+//! enum with exactly the keys of each variant ([`tagged`]). The meaning,
+//! unit and default of every key are in `docs/model-format.md`; the values
+//! are checked in the other files of `model`.
 
 use std::fmt;
 
 use serde::Deserialize;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
+
+mod section;
+pub(crate) mod tagged;
+mod words;
+
+pub use section::*;
+use tagged::tagged_table;
+pub use words::*;
 
 /// A fixed-length array read from the model file. Unlike serde's `[T; N]`,
 /// which silently drops extra elements, it rejects arrays of any length
@@ -105,7 +118,7 @@ pub struct SolverFile {
     pub threads: Option<usize>,
     pub reuse_factorization: Option<bool>,
     pub krylov_tolerance: Option<f64>,
-    pub factor_precision: Option<String>,
+    pub factor_precision: Option<FactorPrecision>,
 }
 
 /// `[[materials]]`.
@@ -118,17 +131,37 @@ pub struct MaterialFile {
     pub plasticity: Option<PlasticityFile>,
 }
 
-/// `[materials.plasticity]`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct PlasticityFile {
-    pub yield_stress: Option<f64>,
-    pub hardening: String,
-    pub hardening_modulus: Option<f64>,
-    pub table: Option<Vec<Exact<f64, 2>>>,
-    pub saturation_stress: Option<f64>,
-    pub saturation_rate: Option<f64>,
-    pub kinematic: Option<Vec<KinematicFile>>,
+tagged_table! {
+    /// `[materials.plasticity]`.
+    pub struct PlasticityFile {
+        /// Initial yield stress (Pa); for a table, its first stress.
+        yield_stress: Option<f64>,
+        /// Armstrong–Frederick back-stresses.
+        kinematic: Option<Vec<KinematicFile>>,
+    }
+    /// The isotropic hardening law and its own keys.
+    pub hardening: enum HardeningLaw by "hardening" {
+        /// σ_y constant.
+        Perfect = "perfect" {}
+        /// σ_y + H peeq.
+        Linear = "linear" {
+            /// H (Pa).
+            hardening_modulus: Option<f64>,
+        }
+        /// Piecewise linear `[[peeq, stress], …]`.
+        Table = "table" {
+            /// The points.
+            table: Option<Vec<Exact<f64, 2>>>,
+        }
+        /// σ_y + Q (1 − exp(−b peeq)).
+        Voce = "voce" {
+            /// Q (Pa).
+            saturation_stress: Option<f64>,
+            /// b.
+            saturation_rate: Option<f64>,
+        }
+    }
+    mirror plasticity_file;
 }
 
 /// One entry of `plasticity.kinematic`.
@@ -145,9 +178,10 @@ pub struct KinematicFile {
 pub struct BodyFile {
     pub name: String,
     pub material: String,
+    #[serde(deserialize_with = "section::read")]
     pub section: SectionFile,
     pub axis: AxisFile,
-    pub formulation: Option<String>,
+    pub formulation: Option<Formulation>,
 }
 
 /// An interval division: `{from, to, elements[, ratio]}`, `{lines}` or `{segments}`.
@@ -172,49 +206,11 @@ pub struct SegmentFile {
     pub ratio: Option<f64>,
 }
 
-/// `[bodies.section]`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct SectionFile {
-    pub shape: String,
-    /// Required except for `shape = "gmsh"` (the file says it).
-    pub element: Option<String>,
-    // rectangle
-    pub x: Option<DivisionFile>,
-    pub z: Option<DivisionFile>,
-    // tube
-    pub origin: Option<Exact<f64, 2>>,
-    pub width: Option<f64>,
-    pub height: Option<f64>,
-    pub thickness: Option<f64>,
-    pub around: Option<usize>,
-    pub along_x: Option<usize>,
-    pub along_z: Option<usize>,
-    pub through: Option<usize>,
-    // quads
-    pub points: Option<Vec<Exact<f64, 2>>>,
-    pub quads: Option<Vec<Exact<usize, 4>>>,
-    // profiles (i_beam, channel, z_section, angle, hat, box)
-    pub web_thickness: Option<f64>,
-    pub flange_thickness: Option<f64>,
-    pub lip: Option<f64>,
-    pub cells: Option<usize>,
-    pub along_flange: Option<usize>,
-    pub along_web: Option<usize>,
-    pub along_lip: Option<usize>,
-    // circular_tube, circle
-    pub center: Option<Exact<f64, 2>>,
-    pub radius: Option<f64>,
-    // gmsh
-    pub file: Option<String>,
-    pub scale: Option<f64>,
-}
-
 /// `[bodies.axis]`.
 #[derive(Debug, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct AxisFile {
-    pub element: String,
+    pub element: BeamElement,
     pub from: Option<f64>,
     pub to: Option<f64>,
     pub elements: Option<usize>,
@@ -297,7 +293,7 @@ pub struct ConstraintFile {
     pub body: String,
     #[serde(rename = "where")]
     pub selection: SelectionFile,
-    pub fix: Option<Vec<String>>,
+    pub fix: Option<Vec<Axis>>,
     pub displacement: Option<ComponentsFile>,
 }
 
@@ -315,33 +311,44 @@ pub struct LoadFile {
     pub pressure: Option<f64>,
 }
 
-/// `[[indenters]]`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct IndenterFile {
-    pub name: String,
-    pub body: String,
-    pub shape: String,
-    pub surface: SelectionFile,
-    pub displacement: Option<Exact<f64, 3>>,
-    pub force: Option<Exact<f64, 3>>,
-    // flat
-    pub normal: Option<String>,
-    pub position: Option<f64>,
-    pub x: Option<Exact<f64, 2>>,
-    pub y: Option<Exact<f64, 2>>,
-    pub z: Option<Exact<f64, 2>>,
-    // cylinder
-    pub axis: Option<String>,
-    pub center: Option<Exact<f64, 3>>,
-    pub radius: Option<f64>,
-    pub length: Option<Exact<f64, 2>>,
-    // penalty
-    pub penalty: Option<f64>,
-    pub penalty_factor: Option<f64>,
-    pub penetration_tolerance: Option<f64>,
-    pub friction: Option<f64>,
-    pub method: Option<String>,
+tagged_table! {
+    /// `[[indenters]]`.
+    pub struct IndenterFile {
+        name: String,
+        body: String,
+        surface: SelectionFile,
+        displacement: Option<Exact<f64, 3>>,
+        force: Option<Exact<f64, 3>>,
+        penalty: Option<f64>,
+        penalty_factor: Option<f64>,
+        penetration_tolerance: Option<f64>,
+        friction: Option<f64>,
+        method: Option<IndenterMethod>,
+    }
+    /// The indenter's shape and its own keys.
+    pub shape: enum IndenterShape by "shape" {
+        /// A flat punch.
+        Flat = "flat" {
+            normal: Option<Normal>,
+            position: Option<f64>,
+            x: Option<Exact<f64, 2>>,
+            y: Option<Exact<f64, 2>>,
+            z: Option<Exact<f64, 2>>,
+        }
+        /// A cylinder (roller).
+        Cylinder = "cylinder" {
+            axis: Option<Axis>,
+            center: Option<Exact<f64, 3>>,
+            radius: Option<f64>,
+            length: Option<Exact<f64, 2>>,
+        }
+        /// A sphere (ball).
+        Sphere = "sphere" {
+            center: Option<Exact<f64, 3>>,
+            radius: Option<f64>,
+        }
+    }
+    mirror indenter_file;
 }
 
 /// One side of a deformable contact.
@@ -353,23 +360,32 @@ pub struct ContactSideFile {
     pub selection: SelectionFile,
 }
 
-/// `[[contacts]]`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ContactFile {
-    pub name: String,
-    pub master: ContactSideFile,
-    pub slave: ContactSideFile,
-    pub penalty: Option<f64>,
-    pub penalty_factor: Option<f64>,
-    pub penetration_tolerance: Option<f64>,
-    pub friction: Option<f64>,
-    pub tolerance: Option<f64>,
-    pub pairs: Option<Vec<Exact<Exact<f64, 3>, 2>>>,
-    pub method: Option<String>,
-    pub search_distance: Option<f64>,
-    /// A deliberate interference fit: the bodies may start overlapping.
-    pub interference: Option<bool>,
+tagged_table! {
+    /// `[[contacts]]`.
+    pub struct ContactFile {
+        name: String,
+        master: ContactSideFile,
+        slave: ContactSideFile,
+        penalty: Option<f64>,
+        penalty_factor: Option<f64>,
+        penetration_tolerance: Option<f64>,
+        friction: Option<f64>,
+        /// A deliberate interference fit: the bodies may start overlapping.
+        interference: Option<bool>,
+    }
+    /// How the surfaces are paired, and its own keys.
+    pub method: enum ContactMethod by "method" or "node_to_node" {
+        /// Matched node pairs (the paper's method; the default).
+        NodeToNode = "node_to_node" {
+            tolerance: Option<f64>,
+            pairs: Option<Vec<Exact<Exact<f64, 3>, 2>>>,
+        }
+        /// Segment-to-segment contact on non-matching meshes.
+        Surface = "surface" {
+            search_distance: Option<f64>,
+        }
+    }
+    mirror contact_file;
 }
 
 /// `[[probes]]`.
@@ -390,7 +406,7 @@ pub struct LineFile {
     pub to: Exact<f64, 3>,
     pub points: Option<usize>,
     pub body: Option<String>,
-    pub plot: Option<Vec<String>>,
+    pub plot: Option<Vec<QuantityName>>,
 }
 
 /// `[output]`.
@@ -399,7 +415,7 @@ pub struct LineFile {
 pub struct OutputFile {
     pub vtu: Option<bool>,
     pub plots: Option<bool>,
-    pub recovery: Option<String>,
+    pub recovery: Option<super::Recovery>,
     pub gauss_points: Option<bool>,
 }
 
@@ -408,7 +424,7 @@ pub struct OutputFile {
 #[serde(deny_unknown_fields)]
 pub struct ReferenceFile {
     pub probe: String,
-    pub quantity: String,
+    pub quantity: QuantityName,
     pub value: f64,
     pub source: String,
 }

@@ -1,111 +1,289 @@
-//! `[bodies.section]` beyond the rectangle, tube and listed quads: the
-//! parametric profiles of [`crate::mesh::profiles`] and gmsh files
-//! ([`crate::mesh::gmsh`]). Which keys belong to which shape is stated once
-//! here ([`SHAPES`]), and a key of another shape is an error.
+//! `[bodies.section]`: the cross-section of a body, built from the shape the
+//! schema read ([`SectionFile`], one variant per `shape` with exactly its
+//! own keys): rectangles, thin-walled tubes and listed quads directly, the
+//! parametric profiles through [`crate::mesh::profiles`], gmsh files through
+//! [`crate::mesh::gmsh`]. Each section is budgeted against the memory limit
+//! before it is built.
 
 use std::path::Path;
 
-use super::bodies::{Budget, rekey};
 use super::bounds;
-use super::schema::SectionFile;
-use super::validate::count;
+use super::budget::Budget;
+use super::schema::*;
+use super::validate::{MAX_COUNT, count, division};
 use super::{ModelError, invalid};
 use crate::mesh::blocks::{self, Block};
 use crate::mesh::profiles::{self, Counts, Family, Walls};
-use crate::mesh::{CrossSection, gmsh};
+use crate::mesh::{CrossSection, MeshError, gmsh};
 use crate::shape::{BeamElementKind, SectionElementKind};
 
-const STRAIGHT: &[&str] =
-    &["origin", "width", "height", "web_thickness", "flange_thickness", "along_flange", "along_web", "through"];
-
-/// Every shape with the keys it reads (besides `shape` and `element`).
-pub(super) const SHAPES: &[(&str, &[&str])] = &[
-    ("rectangle", &["x", "z"]),
-    ("tube", &["origin", "width", "height", "thickness", "around", "along_x", "along_z", "through"]),
-    ("quads", &["points", "quads"]),
-    ("i_beam", STRAIGHT),
-    ("channel", STRAIGHT),
-    ("z_section", STRAIGHT),
-    ("angle", STRAIGHT),
-    (
-        "hat",
-        &[
-            "origin",
-            "width",
-            "height",
-            "web_thickness",
-            "flange_thickness",
-            "lip",
-            "along_flange",
-            "along_web",
-            "along_lip",
-            "through",
-        ],
-    ),
-    (
-        "box",
-        &[
-            "origin",
-            "width",
-            "height",
-            "web_thickness",
-            "flange_thickness",
-            "cells",
-            "along_flange",
-            "along_web",
-            "through",
-        ],
-    ),
-    ("circular_tube", &["center", "radius", "thickness", "around", "through"]),
-    ("circle", &["center", "radius", "around", "through"]),
-    ("gmsh", &["file", "scale"]),
-];
-
-/// The optional keys of a section table and whether each is given.
-fn given(s: &SectionFile) -> [(&'static str, bool); 23] {
-    [
-        ("x", s.x.is_some()),
-        ("z", s.z.is_some()),
-        ("origin", s.origin.is_some()),
-        ("width", s.width.is_some()),
-        ("height", s.height.is_some()),
-        ("thickness", s.thickness.is_some()),
-        ("around", s.around.is_some()),
-        ("along_x", s.along_x.is_some()),
-        ("along_z", s.along_z.is_some()),
-        ("through", s.through.is_some()),
-        ("points", s.points.is_some()),
-        ("quads", s.quads.is_some()),
-        ("web_thickness", s.web_thickness.is_some()),
-        ("flange_thickness", s.flange_thickness.is_some()),
-        ("lip", s.lip.is_some()),
-        ("cells", s.cells.is_some()),
-        ("along_flange", s.along_flange.is_some()),
-        ("along_web", s.along_web.is_some()),
-        ("along_lip", s.along_lip.is_some()),
-        ("center", s.center.is_some()),
-        ("radius", s.radius.is_some()),
-        ("file", s.file.is_some()),
-        ("scale", s.scale.is_some()),
-    ]
+/// Builds the sections of one body (`key`: `bodies[i]`), swept along
+/// `axis_elements` beam elements of kind `beam`.
+pub(super) struct Sections<'a> {
+    /// `bodies[i]`.
+    pub key: &'a str,
+    /// The beam element.
+    pub beam: BeamElementKind,
+    /// Number of beam elements.
+    pub axis_elements: u64,
+    /// The model's memory budget.
+    pub budget: &'a mut Budget,
 }
 
-/// Checks the shape's name and that no key of another shape is given.
-pub(super) fn check_keys(sk: &str, s: &SectionFile) -> Result<(), ModelError> {
-    let names: Vec<&str> = SHAPES.iter().map(|(n, _)| *n).collect();
-    let Some((_, keys)) = SHAPES.iter().find(|(n, _)| *n == s.shape) else {
-        return Err(invalid(format!("{sk}.shape"), format!("{:?}", s.shape), format!("one of {names:?}")));
-    };
-    for (name, present) in given(s) {
-        if present && !keys.contains(&name) {
-            return Err(invalid(
-                format!("{sk}.{name}"),
-                "(given)",
-                format!("no `{name}` key with shape = {:?} (its keys: {})", s.shape, keys.join(", ")),
-            ));
+impl Sections<'_> {
+    /// The section `s`; files (gmsh) relative to `base`.
+    pub(super) fn section(&mut self, s: &SectionFile, base: &Path) -> Result<CrossSection, ModelError> {
+        let sk = format!("{}.section", self.key);
+        if let SectionFile::Gmsh(g) = s {
+            return self.gmsh(&sk, g, base);
+        }
+        let kind = s
+            .element()
+            .ok_or_else(|| {
+                invalid(format!("{sk}.element"), "(missing)", "\"L4\", \"L9\" or \"L16\" (the section element)")
+            })?
+            .kind();
+        match s {
+            SectionFile::Rectangle(r) => self.rectangle(&sk, kind, r),
+            SectionFile::Tube(t) => self.tube(&sk, kind, t),
+            SectionFile::Quads(q) => self.quads(&sk, kind, q),
+            SectionFile::IBeam(p) => self.straight(&sk, kind, Family::I, p, None, None),
+            SectionFile::Channel(p) => self.straight(&sk, kind, Family::Channel, p, None, None),
+            SectionFile::ZSection(p) => self.straight(&sk, kind, Family::Z, p, None, None),
+            SectionFile::Angle(p) => self.straight(&sk, kind, Family::Angle, p, None, None),
+            SectionFile::Hat(h) => {
+                self.straight(&sk, kind, Family::Hat, &h.profile(), Some((h.lip, h.along_lip)), None)
+            }
+            SectionFile::Box(b) => self.straight(&sk, kind, Family::Box, &b.profile(), None, b.cells),
+            SectionFile::CircularTube(c) => {
+                let center = point(format!("{sk}.center"), c.center.map(Into::into))?;
+                let n =
+                    |name: &str, v: Option<usize>, default: usize| count(&format!("{sk}.{name}"), v.unwrap_or(default));
+                let blocks = profiles::circular_tube(
+                    center,
+                    length(format!("{sk}.radius"), c.radius, "the outer radius")?,
+                    length(format!("{sk}.thickness"), c.thickness, "the wall thickness")?,
+                    n("around", c.around, 16)?,
+                    n("through", c.through, 1)?,
+                );
+                self.blocks(&sk, kind, blocks)
+            }
+            SectionFile::Circle(c) => {
+                let center = point(format!("{sk}.center"), c.center.map(Into::into))?;
+                let around = count(&format!("{sk}.around"), c.around.unwrap_or(16))?;
+                let radius = length(format!("{sk}.radius"), c.radius, "the radius")?;
+                let through = count(&format!("{sk}.through"), c.through.unwrap_or((around / 8).max(1)))?;
+                self.blocks(&sk, kind, profiles::circle(center, radius, around, through))
+            }
+            SectionFile::Gmsh(g) => self.gmsh(&sk, g, base),
         }
     }
-    Ok(())
+
+    fn add(&mut self, kind: SectionElementKind, elements: u64, nodes: u64, pairs: u64) -> Result<(), ModelError> {
+        self.budget.add(self.key, kind, self.beam, elements, nodes, pairs, self.axis_elements)
+    }
+
+    /// `shape = "rectangle"`.
+    fn rectangle(&mut self, sk: &str, kind: SectionElementKind, s: &RectangleFile) -> Result<CrossSection, ModelError> {
+        let x = s.x.as_ref().ok_or_else(|| {
+            invalid(format!("{sk}.x"), "(missing)", "a division of x, e.g. {from = 0.0, to = 0.5, elements = 18}")
+        })?;
+        let z = s.z.as_ref().ok_or_else(|| {
+            invalid(format!("{sk}.z"), "(missing)", "a division of z, e.g. {from = 0.0, to = 0.3, elements = 6}")
+        })?;
+        let xl = division(&format!("{sk}.x"), x)?;
+        let zl = division(&format!("{sk}.z"), z)?;
+        let (nx, nz, p) = ((xl.len() - 1) as u64, (zl.len() - 1) as u64, kind.order() as u64);
+        let pairs = crate::size::coupled_1d(nx, p).saturating_mul(crate::size::coupled_1d(nz, p));
+        self.add(kind, nx * nz, (p * nx + 1) * (p * nz + 1), pairs)?;
+        CrossSection::rectangle(kind, &xl, &zl).map_err(|e| rekey(e, sk))
+    }
+
+    /// `shape = "tube"`: a thin-walled rectangular tube.
+    fn tube(&mut self, sk: &str, kind: SectionElementKind, s: &TubeFile) -> Result<CrossSection, ModelError> {
+        let need = |name: &str, v: Option<f64>| {
+            v.ok_or_else(|| invalid(format!("{sk}.{name}"), "(missing)", "a positive length in m")).and_then(|v| {
+                bounds::within(
+                    &format!("{sk}.{name}"),
+                    v,
+                    f64::MIN_POSITIVE,
+                    bounds::MAX_COORD,
+                    "a positive length in m",
+                )
+            })
+        };
+        let (w, h, t) = (need("width", s.width)?, need("height", s.height)?, need("thickness", s.thickness)?);
+        if 2.0 * t >= w.min(h) {
+            return Err(invalid(
+                format!("{sk}.thickness"),
+                t,
+                format!("less than half the smaller outer dimension ({})", 0.5 * w.min(h)),
+            ));
+        }
+        let origin: [f64; 2] = s.origin.map_or([0.0, 0.0], Into::into);
+        if !origin.iter().all(|v| v.is_finite() && v.abs() <= bounds::MAX_COORD) {
+            return Err(invalid(
+                format!("{sk}.origin"),
+                format!("{origin:?}"),
+                format!("two finite coordinates [x0, z0] within ±{:e} m", bounds::MAX_COORD),
+            ));
+        }
+        if t < bounds::MIN_RELATIVE_SIZE * w.max(h) {
+            return Err(invalid(
+                format!("{sk}.thickness"),
+                t,
+                format!("at least {:e} of the outer size (round-off would swamp the wall)", bounds::MIN_RELATIVE_SIZE),
+            ));
+        }
+        let through = count(&format!("{sk}.through"), s.through.unwrap_or(1))?;
+        // `around` and `along_x`/`along_z` are two ways of dividing the same
+        // tube: which one is given is a value check, not a key of another shape
+        let (ax, az) = match (s.around, s.along_x, s.along_z) {
+            (Some(n), None, None) => {
+                if (w - h).abs() > 1e-12 * w {
+                    return Err(invalid(
+                        format!("{sk}.around"),
+                        n,
+                        "`around` only for square tubes; give along_x and along_z for rectangular ones",
+                    ));
+                }
+                if through != 1 || !(8..=MAX_COUNT).contains(&n) || (n - 4) % 4 != 0 {
+                    return Err(invalid(
+                        format!("{sk}.around"),
+                        n,
+                        "4 + 4k elements (k ≥ 1: four corner blocks and k per side), with through = 1",
+                    ));
+                }
+                ((n - 4) / 4, (n - 4) / 4)
+            }
+            (None, Some(a), Some(b)) => (count(&format!("{sk}.along_x"), a)?, count(&format!("{sk}.along_z"), b)?),
+            _ => {
+                return Err(invalid(
+                    sk,
+                    "tube division",
+                    "either `around` (square tubes) or both `along_x` and `along_z` (≥ 1)",
+                ));
+            }
+        };
+        let (t64, ax64, az64, p) = (through as u64, ax as u64, az as u64, kind.order() as u64);
+        let (nx, nz) = (2 * t64 + ax64, 2 * t64 + az64);
+        let elements = nx * nz - ax64 * az64;
+        let nodes = (p * nx + 1) * (p * nz + 1) - (p * ax64 - 1) * (p * az64 - 1);
+        // each element's nodes are coupled pairwise: a lower bound
+        let pairs = elements.saturating_mul((p + 1).pow(4)) / 4;
+        self.add(kind, elements, nodes, pairs)?;
+        CrossSection::tube(kind, origin[0], origin[1], w, h, t, ax, az, through).map_err(|e| rekey(e, sk))
+    }
+
+    /// `shape = "quads"`: listed corner points and quadrilaterals.
+    fn quads(&mut self, sk: &str, kind: SectionElementKind, s: &QuadsFile) -> Result<CrossSection, ModelError> {
+        let pts = s
+            .points
+            .as_ref()
+            .ok_or_else(|| invalid(format!("{sk}.points"), "(missing)", "a list of [x, z] corner points"))?;
+        let quads = s.quads.as_ref().ok_or_else(|| {
+            invalid(format!("{sk}.quads"), "(missing)", "a list of [i, j, k, l] counter-clockwise corner indices")
+        })?;
+        for (k, p) in pts.iter().enumerate() {
+            if !p.iter().all(|v| v.is_finite() && v.abs() <= bounds::MAX_COORD) {
+                return Err(invalid(
+                    format!("{sk}.points[{k}]"),
+                    format!("{:?}", p.0),
+                    format!("two finite coordinates within ±{:e} m", bounds::MAX_COORD),
+                ));
+            }
+        }
+        let pts: Vec<[f64; 2]> = pts.iter().map(|p| p.0).collect();
+        let quads: Vec<[usize; 4]> = quads.iter().map(|q| q.0).collect();
+        let p = kind.order() as u64;
+        let elements = quads.len() as u64;
+        // corners plus edge and interior nodes, shared edges counted once: at least
+        let nodes = pts.len() as u64 + elements * (p * p).saturating_sub(1) / 2;
+        let pairs = elements.saturating_mul((p + 1).pow(4)) / 4;
+        self.add(kind, elements, nodes, pairs)?;
+        Ok(CrossSection::from_quads(kind, &pts, &quads, sk)?)
+    }
+
+    /// The straight-walled profiles (I, channel, Z, angle, hat, box); a hat
+    /// has `lip` (its `lip` and `along_lip` keys), a box `cells`.
+    fn straight(
+        &mut self,
+        sk: &str,
+        kind: SectionElementKind,
+        family: Family,
+        s: &ProfileFile,
+        lip: Option<(Option<f64>, Option<usize>)>,
+        cells: Option<usize>,
+    ) -> Result<CrossSection, ModelError> {
+        let n = |name: &str, v: Option<usize>, default: usize| count(&format!("{sk}.{name}"), v.unwrap_or(default));
+        let walls = Walls {
+            width: length(format!("{sk}.width"), s.width, "the overall width")?,
+            height: length(format!("{sk}.height"), s.height, "the overall height")?,
+            web: length(format!("{sk}.web_thickness"), s.web_thickness, "the web thickness")?,
+            flange: length(format!("{sk}.flange_thickness"), s.flange_thickness, "the flange thickness")?,
+            lip: match lip {
+                Some((width, _)) => length(format!("{sk}.lip"), width, "the lip width")?,
+                None => 0.0,
+            },
+            cells: cells.unwrap_or(1),
+        };
+        let counts = Counts {
+            flange: n("along_flange", s.along_flange, 2)?,
+            web: n("along_web", s.along_web, 4)?,
+            lip: n("along_lip", lip.and_then(|l| l.1), 1)?,
+            through: n("through", s.through, 1)?,
+        };
+        let origin = point(format!("{sk}.origin"), s.origin.map(Into::into))?;
+        let blocks = profiles::straight(family, origin, &walls, &counts);
+        self.blocks(sk, kind, blocks)
+    }
+
+    /// A section of mapped blocks (the profiles), budgeted first.
+    fn blocks(
+        &mut self,
+        sk: &str,
+        kind: SectionElementKind,
+        blocks: Result<Vec<Block>, MeshError>,
+    ) -> Result<CrossSection, ModelError> {
+        let blocks = blocks.map_err(|e| rekey(e, sk))?;
+        let p = kind.order() as u64;
+        let elements = blocks.iter().fold(0u64, |a, b| a.saturating_add(b.n_elements() as u64));
+        // nodes: at least p² per element; pairs: each element's nodes pairwise
+        let nodes = elements.saturating_mul(p * p);
+        let pairs = elements.saturating_mul((p + 1).pow(4)) / 4;
+        self.add(kind, elements, nodes, pairs)?;
+        blocks::from_blocks(kind, &blocks).map_err(|e| rekey(e, sk))
+    }
+
+    /// `shape = "gmsh"`: the mesh of `file` (relative to the model file's folder).
+    fn gmsh(&mut self, sk: &str, s: &GmshFile, base: &Path) -> Result<CrossSection, ModelError> {
+        let file = s.file.as_ref().ok_or_else(|| {
+            invalid(format!("{sk}.file"), "(missing)", "the path of a gmsh .msh file, relative to the model file")
+        })?;
+        let scale = s.scale.unwrap_or(1.0);
+        if !(scale.is_finite() && scale > 0.0 && (1e-9..=1e9).contains(&scale)) {
+            return Err(invalid(
+                format!("{sk}.scale"),
+                scale,
+                "a factor from 1e-9 to 1e9 (e.g. 1e-3 for a mesh in mm)",
+            ));
+        }
+        let section = gmsh::read(&base.join(file), scale, &format!("{sk}.file"))?;
+        if let Some(e) = s.element
+            && e.kind() != section.kind
+        {
+            return Err(invalid(
+                format!("{sk}.element"),
+                format!("{:?}", format!("{e:?}")),
+                format!("{:?} (the elements of {file:?}), or no `element` key", section.kind),
+            ));
+        }
+        let p = section.kind.order() as u64;
+        let elements = section.n_elements() as u64;
+        let pairs = elements.saturating_mul((p + 1).pow(4)) / 4;
+        self.add(section.kind, elements, section.n_nodes() as u64, pairs)?;
+        Ok(section)
+    }
 }
 
 fn length(key: String, v: Option<f64>, what: &str) -> Result<f64, ModelError> {
@@ -122,106 +300,15 @@ fn point(key: String, v: Option<[f64; 2]>) -> Result<[f64; 2], ModelError> {
     }
 }
 
-/// Builds a parametric profile (`None` for the shapes handled elsewhere).
-pub(super) fn profile(
-    key: &str,
-    s: &SectionFile,
-    kind: SectionElementKind,
-    beam: BeamElementKind,
-    axis_elements: u64,
-    budget: &mut Budget,
-) -> Result<Option<CrossSection>, ModelError> {
-    let sk = format!("{key}.section");
-    let n = |name: &str, v: Option<usize>, default: usize| count(&format!("{sk}.{name}"), v.unwrap_or(default));
-    let family = match s.shape.as_str() {
-        "i_beam" => Some(Family::I),
-        "channel" => Some(Family::Channel),
-        "z_section" => Some(Family::Z),
-        "angle" => Some(Family::Angle),
-        "hat" => Some(Family::Hat),
-        "box" => Some(Family::Box),
-        _ => None,
-    };
-    let blocks: Vec<Block> = if let Some(family) = family {
-        let walls = Walls {
-            width: length(format!("{sk}.width"), s.width, "the overall width")?,
-            height: length(format!("{sk}.height"), s.height, "the overall height")?,
-            web: length(format!("{sk}.web_thickness"), s.web_thickness, "the web thickness")?,
-            flange: length(format!("{sk}.flange_thickness"), s.flange_thickness, "the flange thickness")?,
-            lip: if family == Family::Hat { length(format!("{sk}.lip"), s.lip, "the lip width")? } else { 0.0 },
-            cells: s.cells.unwrap_or(1),
-        };
-        let counts = Counts {
-            flange: n("along_flange", s.along_flange, 2)?,
-            web: n("along_web", s.along_web, 4)?,
-            lip: n("along_lip", s.along_lip, 1)?,
-            through: n("through", s.through, 1)?,
-        };
-        let origin = point(format!("{sk}.origin"), s.origin.map(Into::into))?;
-        profiles::straight(family, origin, &walls, &counts).map_err(|e| rekey(e, &sk))?
-    } else {
-        let center = point(format!("{sk}.center"), s.center.map(Into::into))?;
-        match s.shape.as_str() {
-            "circular_tube" => profiles::circular_tube(
-                center,
-                length(format!("{sk}.radius"), s.radius, "the outer radius")?,
-                length(format!("{sk}.thickness"), s.thickness, "the wall thickness")?,
-                n("around", s.around, 16)?,
-                n("through", s.through, 1)?,
-            ),
-            "circle" => {
-                let around = n("around", s.around, 16)?;
-                profiles::circle(
-                    center,
-                    length(format!("{sk}.radius"), s.radius, "the radius")?,
-                    around,
-                    n("through", s.through, (around / 8).max(1))?,
-                )
-            }
-            _ => return Ok(None),
+/// Prefixes the key of a mesh error raised by a builder that does not know its path.
+fn rekey(e: MeshError, prefix: &str) -> ModelError {
+    match e {
+        MeshError::Invalid { key, value, allowed } => {
+            let key = match key.strip_prefix("section") {
+                Some(rest) => format!("{prefix}{rest}"),
+                None => key,
+            };
+            ModelError::Invalid { key, value, allowed }
         }
-        .map_err(|e| rekey(e, &sk))?
-    };
-    let p = kind.order() as u64;
-    let elements = blocks.iter().fold(0u64, |a, b| a.saturating_add(b.n_elements() as u64));
-    // nodes: at least p² per element; pairs: each element's nodes pairwise
-    let nodes = elements.saturating_mul(p * p);
-    let pairs = elements.saturating_mul((p + 1).pow(4)) / 4;
-    budget.add(key, kind, beam, elements, nodes, pairs, axis_elements)?;
-    let section = blocks::from_blocks(kind, &blocks).map_err(|e| rekey(e, &sk))?;
-    Ok(Some(section))
-}
-
-/// `shape = "gmsh"`: the mesh of `file` (relative to the model file's folder).
-pub(super) fn gmsh_section(
-    key: &str,
-    s: &SectionFile,
-    base: &Path,
-    beam: BeamElementKind,
-    axis_elements: u64,
-    budget: &mut Budget,
-) -> Result<CrossSection, ModelError> {
-    let sk = format!("{key}.section");
-    let file = s.file.as_ref().ok_or_else(|| {
-        invalid(format!("{sk}.file"), "(missing)", "the path of a gmsh .msh file, relative to the model file")
-    })?;
-    let scale = s.scale.unwrap_or(1.0);
-    if !(scale.is_finite() && scale > 0.0 && (1e-9..=1e9).contains(&scale)) {
-        return Err(invalid(format!("{sk}.scale"), scale, "a factor from 1e-9 to 1e9 (e.g. 1e-3 for a mesh in mm)"));
     }
-    let section = gmsh::read(&base.join(file), scale, &format!("{sk}.file"))?;
-    if let Some(e) = &s.element
-        && SectionElementKind::parse(e) != Some(section.kind)
-    {
-        return Err(invalid(
-            format!("{sk}.element"),
-            format!("{e:?}"),
-            format!("{:?} (the elements of {file:?}), or no `element` key", section.kind),
-        ));
-    }
-    let p = section.kind.order() as u64;
-    let elements = section.n_elements() as u64;
-    let pairs = elements.saturating_mul((p + 1).pow(4)) / 4;
-    budget.add(key, section.kind, beam, elements, section.n_nodes() as u64, pairs, axis_elements)?;
-    Ok(section)
 }

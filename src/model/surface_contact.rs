@@ -1,10 +1,10 @@
 //! `[[contacts]]` with `method = "surface"`: segment-to-segment contact on
 //! non-matching meshes (`contact::surface`).
 
-use super::contacts::{friction, tolerance};
+use super::overlap::overlap;
 use super::preprocess::surface_faces;
 use super::schema::ContactFile;
-use super::validate::{penalty, reject_unused};
+use super::validate::{friction, penalty, tolerance};
 use super::{ModelError, bounds, invalid};
 use crate::contact::{ContactSurface, PairContact, Penalty, SurfaceNodes, surface};
 use crate::materials::Material;
@@ -17,13 +17,12 @@ use crate::mesh::Mesh;
 pub(super) fn surface_contact(
     key: &str,
     c: &ContactFile,
+    search_distance: Option<f64>,
     mesh: &Mesh,
     bm: usize,
     bs: usize,
     materials: &[Material],
 ) -> Result<PairContact, ModelError> {
-    let chosen = "method = \"surface\"";
-    reject_unused(key, chosen, &[("pairs", c.pairs.is_some()), ("tolerance", c.tolerance.is_some())])?;
     let (master_body, slave_body) = (&mesh.bodies[bm], &mesh.bodies[bs]);
     let (master_faces, mf) = surface_faces(&format!("{key}.master.where"), &c.master.selection, master_body)?;
     let (slave_faces, sf) = surface_faces(&format!("{key}.slave.where"), &c.slave.selection, slave_body)?;
@@ -43,7 +42,7 @@ pub(super) fn surface_contact(
         })
         .fold(0.0, f64::max);
     let size = master_body.size().max(slave_body.size());
-    let search_distance = match c.search_distance {
+    let search_distance = match search_distance {
         Some(d) => bounds::within(
             &format!("{key}.search_distance"),
             d,
@@ -90,7 +89,7 @@ pub(super) fn surface_contact(
             })
             .collect();
         if c.interference != Some(true) {
-            super::contacts::overlap(key, c, mesh, bm, bs, &gaps)?;
+            overlap(key, c, mesh, bm, bs, &gaps)?;
         }
         return Err(invalid(
             format!("{key}.search_distance"),
@@ -109,7 +108,7 @@ pub(super) fn surface_contact(
         .zip(&contact.areas)
         .map(|((g, &n), &a)| (n, if g.grad.is_empty() || !(a > 0.0) { 0.0 } else { g.gap0 / a }))
         .collect();
-    let initial_overlap = super::contacts::overlap(key, c, mesh, bm, bs, &gaps)?;
+    let initial_overlap = overlap(key, c, mesh, bm, bs, &gaps)?;
     Ok(PairContact {
         initial_overlap,
         name: c.name.clone(),

@@ -8,7 +8,6 @@ use super::schema::*;
 use super::{ModelError, OutputSettings, Probe, Recovery, Reference, SolverSettings, invalid};
 use crate::contact::{self, Penalty};
 use crate::mesh::{Division, Segment};
-use crate::quantity::Quantity;
 use crate::solver::newton::NewtonSettings;
 use crate::solver::reuse::ReuseSettings;
 use crate::solver::stepping::StepSettings;
@@ -33,26 +32,16 @@ pub(super) fn names(file: &ModelFile) -> Result<(), ModelError> {
 }
 
 /// `[output]`.
-pub(super) fn output(o: &OutputFile) -> Result<OutputSettings, ModelError> {
-    let recovery = match o.recovery.as_deref() {
-        // element-wise recovery stays the default until the projection is
-        // validated against 3D under punches (issue 8)
-        None | Some("element") => Recovery::Element,
-        Some("projection") => Recovery::Projection,
-        Some(other) => {
-            return Err(invalid(
-                "output.recovery",
-                format!("{other:?}"),
-                "\"element\" (the default) or \"projection\"",
-            ));
-        }
-    };
-    Ok(OutputSettings {
+pub(super) fn output(o: &OutputFile) -> OutputSettings {
+    // element-wise recovery stays the default until the projection is
+    // validated against 3D under punches (issue 8)
+    let recovery = o.recovery.unwrap_or(Recovery::Element);
+    OutputSettings {
         vtu: o.vtu.unwrap_or(true),
         plots: o.plots.unwrap_or(true),
         recovery,
         gauss_points: o.gauss_points.unwrap_or(false),
-    })
+    }
 }
 
 /// `[[references]]`: published values beside named probes.
@@ -63,11 +52,9 @@ pub(super) fn references(file: &[ReferenceFile], probes: &[Probe]) -> Result<Vec
         if !probes.iter().any(|p| p.name == r.probe) {
             return Err(invalid(format!("{key}.probe"), format!("{:?}", r.probe), "the name of a [[probes]] entry"));
         }
-        let quantity = Quantity::parse(&r.quantity)
-            .ok_or_else(|| invalid(format!("{key}.quantity"), format!("{:?}", r.quantity), quantity_names()))?;
         references.push(Reference {
             probe: r.probe.clone(),
-            quantity,
+            quantity: r.quantity.0,
             value: finite(&format!("{key}.value"), r.value)?,
             source: r.source.clone(),
         });
@@ -115,28 +102,6 @@ pub(super) fn keyed<'a, T>(
     items.iter().enumerate().map(move |(i, t)| (format!("{key}[{i}]"), name(t)))
 }
 
-/// Rejects keys that belong to another variant than the one chosen.
-pub(super) fn reject_unused(key: &str, chosen: &str, keys: &[(&str, bool)]) -> Result<(), ModelError> {
-    match keys.iter().find(|(_, present)| *present) {
-        Some((name, _)) => Err(invalid(format!("{key}.{name}"), "(given)", format!("no `{name}` key with {chosen}"))),
-        None => Ok(()),
-    }
-}
-
-pub(super) fn quantity_names() -> String {
-    let names: Vec<String> = Quantity::all().into_iter().map(Quantity::name).collect();
-    format!("one of {}", names.join(", "))
-}
-
-pub(super) fn axis_index(s: &str) -> Option<usize> {
-    match s {
-        "x" => Some(0),
-        "y" => Some(1),
-        "z" => Some(2),
-        _ => None,
-    }
-}
-
 pub(super) fn division(key: &str, d: &DivisionFile) -> Result<Vec<f64>, ModelError> {
     division_parts(key, d.from, d.to, d.elements, d.ratio, d.lines.as_ref(), d.segments.as_ref())
 }
@@ -149,6 +114,10 @@ pub(super) fn count(key: &str, n: usize) -> Result<usize, ModelError> {
     if (1..=MAX_COUNT).contains(&n) { Ok(n) } else { Err(invalid(key, n, format!("an integer from 1 to {MAX_COUNT}"))) }
 }
 
+/// An interval division in one of its three forms. Which form is meant is
+/// checked here, not by serde: an untagged enum of the three would answer a
+/// mistake with "data did not match any variant", naming neither the key
+/// nor the forms.
 pub(super) fn division_parts(
     key: &str,
     from: Option<f64>,
@@ -236,6 +205,31 @@ pub(super) fn penalty(key: &str, penalty: Option<f64>, factor: Option<f64>) -> R
     }
 }
 
+/// `penetration_tolerance` (augmented Lagrangian): positive, at most a
+/// thousandth of the body's size.
+pub(super) fn tolerance(key: &str, t: Option<f64>, size: f64) -> Result<Option<f64>, ModelError> {
+    t.map(|t| {
+        bounds::within(
+            &format!("{key}.penetration_tolerance"),
+            t,
+            f64::MIN_POSITIVE,
+            1e-3 * size,
+            "the largest penetration in m that the augmented Lagrangian accepts, positive and at most 1e-3 of the body's size",
+        )
+    })
+    .transpose()
+}
+
+/// `friction`: Coulomb's coefficient μ in [0, 10]; the tangential penalty
+/// equals the normal one (elastic slip of the order of the penetration).
+pub(super) fn friction(key: &str, mu: Option<f64>) -> Result<Option<contact::Friction>, ModelError> {
+    mu.map(|m| {
+        bounds::within(&format!("{key}.friction"), m, 0.0, 10.0, "Coulomb's coefficient of friction μ")
+            .map(|coefficient| contact::Friction { coefficient, penalty_ratio: 1.0 })
+    })
+    .transpose()
+}
+
 pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSettings, ModelError> {
     let increments = s.increments.unwrap_or(if linear { 1 } else { 10 });
     if increments == 0 {
@@ -287,17 +281,7 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
     if max_increments == 0 {
         return Err(invalid("solver.max_increments", 0, "an integer ≥ 1"));
     }
-    let single_precision = match s.factor_precision.as_deref() {
-        None | Some("single") => true,
-        Some("double") => false,
-        Some(other) => {
-            return Err(invalid(
-                "solver.factor_precision",
-                format!("\"{other}\""),
-                "\"single\" (factor in f32, refine by PCG in f64) or \"double\"",
-            ));
-        }
-    };
+    let single_precision = s.factor_precision != Some(FactorPrecision::Double);
     if s.threads == Some(0) {
         return Err(invalid("solver.threads", 0, "an integer ≥ 1 (or no key: all cores)"));
     }
@@ -408,11 +392,11 @@ mod tests {
         // turns it off, other words are named
         assert!(s.reuse.single_precision);
         assert!(!solver_settings(&SolverFile::default(), true).unwrap().reuse.single_precision);
-        let double = SolverFile { factor_precision: Some("double".into()), ..Default::default() };
+        let double = SolverFile { factor_precision: Some(FactorPrecision::Double), ..Default::default() };
         assert!(!solver_settings(&double, false).unwrap().reuse.single_precision);
-        let half = SolverFile { factor_precision: Some("half".into()), ..Default::default() };
-        let e = err(solver_settings(&half, false));
-        assert!(e.contains("solver.factor_precision = \"half\"") && e.contains("\"double\""), "{e}");
+        // another word is refused by the reader, with its line and the two allowed
+        let e = toml::from_str::<SolverFile>("factor_precision = \"half\"").unwrap_err().to_string();
+        assert!(e.contains("line 1") && e.contains("unknown variant `half`, expected `single` or `double`"), "{e}");
     }
 
     #[test]

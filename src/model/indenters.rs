@@ -1,0 +1,278 @@
+//! `[[indenters]]`: rigid flat punches, cylinders and spheres paired with the
+//! nodes of the body surface they face, with their penalties and motion
+//! (displacement or force control).
+
+use super::bounds;
+use super::preprocess::{body_index, model_coords, surface_faces};
+use super::schema::*;
+use super::validate::{describe_selection, friction, penalty, tolerance};
+use super::{ModelError, Warning, invalid};
+use crate::contact::{self, Indenter, RigidSurface, SurfaceNodes};
+use crate::materials::Material;
+use crate::mesh::{Body, Mesh};
+
+/// `[[indenters]]`, with a warning for one whose motion cannot reach its surface.
+pub(super) fn indenters(
+    file: &[IndenterFile],
+    mesh: &Mesh,
+    materials: &[Material],
+    warnings: &mut Vec<Warning>,
+) -> Result<Vec<Indenter>, ModelError> {
+    let mut indenters = Vec::new();
+    for (i, d) in file.iter().enumerate() {
+        let key = format!("indenters[{i}]");
+        let b = body_index(mesh, format!("{key}.body"), &d.body)?;
+        let ind = indenter(&key, d, b, &mesh.bodies[b], materials)?;
+        // how far the indenter's own motion brings it towards each node
+        let reach = |c: &contact::ContactNode| (0..3).map(|k| ind.displacement[k] * c.normal[k]).sum::<f64>() - c.gap0;
+        if ind.force.is_none() && ind.nodes.iter().all(|c| reach(c) < 0.0) {
+            warnings.push(Warning {
+                key: format!("{key}.displacement"),
+                message: format!(
+                    "the indenter's motion {:?} m does not close its initial gap (at least {:.3e} m) to any node of \
+                     the surface: it touches only if the body moves into it",
+                    ind.displacement,
+                    ind.nodes.iter().map(|c| c.gap0).fold(f64::INFINITY, f64::min)
+                ),
+            });
+        }
+        indenters.push(ind);
+    }
+
+    Ok(indenters)
+}
+
+pub(super) fn indenter(
+    key: &str,
+    d: &IndenterFile,
+    b: usize,
+    body: &Body,
+    materials: &[Material],
+) -> Result<Indenter, ModelError> {
+    let (face_list, faces) = surface_faces(&format!("{key}.surface"), &d.surface, body)?;
+    let young = materials[body.material].young;
+    let surface = SurfaceNodes::from_faces(&faces, young);
+    let pen = penalty(key, d.penalty, d.penalty_factor)?;
+    let tol = 1e-9 * body.size();
+    let shape = rigid_surface(key, &d.shape, body)?;
+    // pair each surface node facing the indenter with its closest point
+    let nodes: Vec<contact::ContactNode> = surface
+        .nodes
+        .iter()
+        .filter_map(|e| {
+            let x0 = body.local_coords(e.0 - body.node_offset);
+            shape.reference_gap(x0, tol).map(|(gap0, normal)| contact::ContactNode {
+                node: e.0,
+                area: e.1,
+                penalty: SurfaceNodes::penalty(e, pen),
+                gap0,
+                normal,
+            })
+        })
+        .collect();
+    // a node starting inside the indenter means a wrongly placed or oriented indenter
+    if let Some(c) = nodes.iter().find(|c| c.gap0 < -tol) {
+        let which = match d.shape {
+            IndenterShape::Flat { .. } => format!("{key}.position / {key}.normal"),
+            _ => format!("{key}.center / {key}.radius"),
+        };
+        return Err(invalid(
+            which,
+            format!("a surface node at {:?} starts {:.3e} m inside the indenter", model_coords(body, c.node), -c.gap0),
+            "an indenter that touches or clears the surface at the start (normal pointing from the indenter to the body)",
+        ));
+    }
+    if nodes.is_empty() {
+        return Err(invalid(
+            format!("{key}.surface"),
+            describe_selection(&d.surface),
+            "a surface with nodes facing the indenter (inside a punch's bounds or a cylinder's length)",
+        ));
+    }
+    facing(key, d, body, &surface, &nodes)?;
+    let (displacement, force) = motion(key, d, body, young, &nodes)?;
+    let penetration_tolerance = tolerance(key, d.penetration_tolerance, body.size())?;
+    Ok(Indenter {
+        name: d.name.clone(),
+        body: b,
+        surface: shape,
+        displacement,
+        force,
+        nodes,
+        penetration_tolerance,
+        friction: friction(key, d.friction)?,
+        faces: face_list,
+        updated: d.method.unwrap_or_default() == IndenterMethod::Surface,
+    })
+}
+
+/// The indenter's rigid surface from its shape's own keys.
+fn rigid_surface(key: &str, shape: &IndenterShape, body: &Body) -> Result<RigidSurface, ModelError> {
+    let range = |name: &str, r: Option<Exact<f64, 2>>| -> Result<Option<[f64; 2]>, ModelError> {
+        match r.map(<[f64; 2]>::from) {
+            Some([a, b]) if a.is_finite() && b.is_finite() && a <= b && a.abs().max(b.abs()) <= bounds::MAX_COORD => {
+                Ok(Some([a, b]))
+            }
+            Some(r) => Err(invalid(format!("{key}.{name}"), format!("{r:?}"), "[min, max] with min ≤ max")),
+            None => Ok(None),
+        }
+    };
+    Ok(match shape {
+        IndenterShape::Flat { normal, position, x, y, z } => {
+            // required keys are `Option`s in the schema so that a missing
+            // one is reported here with what it means
+            let (sign, axis) = normal
+                .ok_or_else(|| {
+                    invalid(
+                        format!("{key}.normal"),
+                        "(missing)",
+                        "the direction the punch face looks towards the body: \"+x\", \"-x\", \"+y\", \"-y\", \"+z\" or \"-z\"",
+                    )
+                })?
+                .sign_and_axis();
+            let position = position.ok_or_else(|| {
+                invalid(
+                    format!("{key}.position"),
+                    "(missing)",
+                    "the coordinate of the punch face along its normal axis (m)",
+                )
+            })?;
+            RigidSurface::Flat {
+                axis,
+                sign,
+                position: bounds::coordinate(&format!("{key}.position"), position)?,
+                bounds: [range("x", *x)?, range("y", *y)?, range("z", *z)?],
+            }
+        }
+        IndenterShape::Cylinder { axis, center, radius, length } => {
+            let axis = axis.ok_or_else(|| {
+                invalid(format!("{key}.axis"), "(missing)", "\"x\", \"y\" or \"z\" (direction of the cylinder axis)")
+            })?;
+            let (center, radius) = round(key, *center, *radius, body, "a point [x, y, z] on the cylinder axis")?;
+            RigidSurface::Cylinder { axis: axis.index(), center, radius, length: range("length", *length)? }
+        }
+        IndenterShape::Sphere { center, radius } => {
+            let (center, radius) = round(key, *center, *radius, body, "the sphere's centre [x, y, z]")?;
+            RigidSurface::Sphere { center, radius }
+        }
+    })
+}
+
+/// The indenter must lie outside the body, facing its surface: at every
+/// paired node the direction from the indenter to the node opposes the
+/// surface's outward normal. Otherwise the body sits inside a punch, or a
+/// roller is buried under the surface, and contact would never engage.
+fn facing(
+    key: &str,
+    d: &IndenterFile,
+    body: &Body,
+    surface: &SurfaceNodes,
+    nodes: &[contact::ContactNode],
+) -> Result<(), ModelError> {
+    let outward: std::collections::HashMap<usize, [f64; 3]> = surface.nodes.iter().map(|e| (e.0, e.3)).collect();
+    for c in nodes {
+        let m = outward[&c.node];
+        let len = (m[0] * m[0] + m[1] * m[1] + m[2] * m[2]).sqrt();
+        let facing = (0..3).map(|k| c.normal[k] * m[k]).sum::<f64>() / len;
+        if !(facing < -1e-6) {
+            let (which, fix) = match d.shape {
+                IndenterShape::Flat { .. } => (
+                    format!("{key}.normal"),
+                    "the punch on the outer side of the surface, its normal pointing into the body (e.g. normal = \"-z\" for a punch above a top face)",
+                ),
+                IndenterShape::Sphere { .. } => {
+                    (format!("{key}.center"), "the sphere's centre on the outer side of the selected surface")
+                }
+                IndenterShape::Cylinder { .. } => {
+                    (format!("{key}.center"), "the cylinder's axis on the outer side of the selected surface")
+                }
+            };
+            return Err(invalid(
+                which,
+                format!(
+                    "an indenter on the inner side of the surface at {:?} (outward normal {:?})",
+                    model_coords(body, c.node),
+                    m.map(|v| (v / len * 1e6).round() / 1e6)
+                ),
+                fix,
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Displacement control (`displacement`: the rigid motion at factor 1) or
+/// force control (`force`, which must push the body), exactly one of them.
+/// Both are keys of every shape: which one is given is a value check.
+fn motion(
+    key: &str,
+    d: &IndenterFile,
+    body: &Body,
+    young: f64,
+    nodes: &[contact::ContactNode],
+) -> Result<([f64; 3], Option<[f64; 3]>), ModelError> {
+    match (d.displacement, d.force) {
+        (Some(u), None) => {
+            let u = bounds::vector(
+                &format!("{key}.displacement"),
+                u,
+                body.size(),
+                &format!("a rigid motion in m of at most the size of body {:?}", body.name),
+            )?;
+            Ok((u, None))
+        }
+        (None, Some(f)) => {
+            let f = bounds::vector(
+                &format!("{key}.force"),
+                f,
+                young * body.size().powi(2),
+                "a force in N of at most E × (body size)² (a stress of E over the whole body)",
+            )?;
+            // the force must push the body: along the normals of the nodes it may touch
+            let n = nodes.first().map(|c| c.normal).unwrap_or_default();
+            if !(f.iter().zip(&n).map(|(a, b)| a * b).sum::<f64>() > 0.0) {
+                return Err(invalid(
+                    format!("{key}.force"),
+                    format!("{f:?}"),
+                    format!(
+                        "a non-zero force that pushes the body (towards it: along {n:?}); a pull has no contact to act through"
+                    ),
+                ));
+            }
+            Ok(([0.0; 3], Some(f)))
+        }
+        (Some(_), Some(_)) => Err(invalid(
+            format!("{key}.force"),
+            "(given with displacement)",
+            "exactly one of displacement (displacement control) and force (force control)",
+        )),
+        (None, None) => Err(invalid(
+            format!("{key}.displacement"),
+            "(missing)",
+            "the indenter's rigid motion [x, y, z] in m, or force = [x, y, z] in N for force control",
+        )),
+    }
+}
+
+/// `center` and `radius` of a cylinder or sphere (`center_is`: what the
+/// point is, for the message when it is missing).
+fn round(
+    key: &str,
+    center: Option<Exact<f64, 3>>,
+    radius: Option<f64>,
+    body: &Body,
+    center_is: &str,
+) -> Result<([f64; 3], f64), ModelError> {
+    let center = center.ok_or_else(|| invalid(format!("{key}.center"), "(missing)", center_is))?;
+    let radius = radius.ok_or_else(|| invalid(format!("{key}.radius"), "(missing)", "the radius in m"))?;
+    Ok((
+        bounds::point(&format!("{key}.center"), center)?,
+        bounds::within(
+            &format!("{key}.radius"),
+            radius,
+            bounds::MIN_RELATIVE_SIZE * body.size(),
+            bounds::MAX_COORD,
+            "a radius in m, not vanishingly small against the body",
+        )?,
+    ))
+}

@@ -189,6 +189,18 @@ pub fn write(model: &Model, mesh: &HexMesh) -> String {
     for (i, p) in mesh.nodes.iter().enumerate() {
         let _ = writeln!(d, "{}, {:.12e}, {:.12e}, {:.12e}", i + 1, p[0], p[1], p[2]);
     }
+    elements(&mut d, model, mesh);
+    materials(&mut d, model, mesh);
+    node_sets(&mut d, model, mesh);
+    contact_pairs(&mut d, model, mesh);
+    step(&mut d, model, mesh);
+    let _ = writeln!(d, "*END STEP");
+    d
+}
+
+/// `*ELEMENT` blocks: one set per body, one per rigid tool (with its
+/// reference node set).
+fn elements(d: &mut String, model: &Model, mesh: &HexMesh) {
     for (b, body) in model.mesh.bodies.iter().enumerate() {
         let _ = writeln!(d, "*ELEMENT, TYPE={}, ELSET={}", mesh.kind.name(), set_name("B", &body.name));
         for (e, (el, _)) in mesh.elements.iter().zip(&mesh.parts).enumerate().filter(|(_, (_, p))| **p == Part::Body(b))
@@ -204,6 +216,11 @@ pub fn write(model: &Model, mesh: &HexMesh) -> String {
         }
         let _ = writeln!(d, "*NSET, NSET={}\n{}", set_name("REF", name), tool.reference + 1);
     }
+}
+
+/// `*MATERIAL`s, the rigid tools' stiff elastic material, `*SOLID SECTION`s
+/// and `*RIGID BODY`s.
+fn materials(d: &mut String, model: &Model, mesh: &HexMesh) {
     // materials
     for m in &model.materials {
         let _ = writeln!(d, "*MATERIAL, NAME={}", set_name("M", &m.name));
@@ -234,6 +251,10 @@ pub fn write(model: &Model, mesh: &HexMesh) -> String {
             tool.rotation + 1
         );
     }
+}
+
+/// Node sets of the constraints, probes and lines.
+fn node_sets(d: &mut String, model: &Model, mesh: &HexMesh) {
     // node sets of the constraints
     for c in &model.constraints {
         let Some(sel) = &c.selection else { continue };
@@ -249,7 +270,7 @@ pub fn write(model: &Model, mesh: &HexMesh) -> String {
         let _ = writeln!(d, "*NSET, NSET={name}\n{}", list(nodes.into_iter()));
     };
     for p in &model.probes {
-        holding(&mut d, set_name("P", &p.name), &p.locations);
+        holding(d, set_name("P", &p.name), &p.locations);
     }
     for l in &model.lines {
         let locations: Vec<crate::values::Location> = (0..l.points)
@@ -260,9 +281,14 @@ pub fn write(model: &Model, mesh: &HexMesh) -> String {
             })
             .collect();
         if !locations.is_empty() {
-            holding(&mut d, set_name("L", &l.name), &locations);
+            holding(d, set_name("L", &l.name), &locations);
         }
     }
+}
+
+/// Contact surfaces and interactions: each indenter against its tool,
+/// each deformable pair.
+fn contact_pairs(d: &mut String, model: &Model, mesh: &HexMesh) {
     // contact surfaces and interactions
     let surface = |d: &mut String, name: &str, faces: &[(usize, usize)]| {
         let _ = writeln!(d, "*SURFACE, NAME={name}, TYPE=ELEMENT");
@@ -275,8 +301,8 @@ pub fn write(model: &Model, mesh: &HexMesh) -> String {
         let slave = mesh.body_faces(model, ind.body, &ind.faces);
         let h = mesh.element_size(ind.body);
         let e = model.materials[model.mesh.bodies[ind.body].material].young;
-        surface(&mut d, &set_name("SS", &ind.name), &slave);
-        surface(&mut d, &set_name("SM", &ind.name), &tool.faces);
+        surface(d, &set_name("SS", &ind.name), &slave);
+        surface(d, &set_name("SM", &ind.name), &tool.faces);
         let _ = writeln!(d, "*SURFACE INTERACTION, NAME={}", set_name("SI", &ind.name));
         let _ = writeln!(d, "*SURFACE BEHAVIOR, PRESSURE-OVERCLOSURE=LINEAR\n{:.6e}", 10.0 * e / h);
         let _ = writeln!(
@@ -294,8 +320,8 @@ pub fn write(model: &Model, mesh: &HexMesh) -> String {
         let e = model.materials[model.mesh.bodies[pc.slave.body].material]
             .young
             .min(model.materials[model.mesh.bodies[pc.master.body].material].young);
-        surface(&mut d, &set_name("SS", &pc.name), &slave);
-        surface(&mut d, &set_name("SM", &pc.name), &master);
+        surface(d, &set_name("SS", &pc.name), &slave);
+        surface(d, &set_name("SM", &pc.name), &master);
         let _ = writeln!(d, "*SURFACE INTERACTION, NAME={}", set_name("SI", &pc.name));
         // between two deformable bodies 10·E/h made the contact state flip
         // every iteration in ccx 2.20 on the two-cantilever model; E/h converges
@@ -308,6 +334,11 @@ pub fn write(model: &Model, mesh: &HexMesh) -> String {
             set_name("SM", &pc.name)
         );
     }
+}
+
+/// The analysis step: increments, controls, boundary conditions, loads and
+/// requested output (`*END STEP` is the caller's).
+fn step(d: &mut String, model: &Model, mesh: &HexMesh) {
     // the analysis step
     let s = &model.solver;
     let nonlinear = !model.is_linear();
@@ -363,6 +394,4 @@ pub fn write(model: &Model, mesh: &HexMesh) -> String {
     for tool in &mesh.tools {
         let _ = writeln!(d, "*NODE PRINT, NSET={}\nRF, U", set_name("REF", &model.indenters[tool.indenter].name));
     }
-    let _ = writeln!(d, "*END STEP");
-    d
 }

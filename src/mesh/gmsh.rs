@@ -175,47 +175,11 @@ pub fn parse(text: &str, file: &str, scale: f64, key: &str) -> Result<CrossSecti
                 }
                 r.expect("$EndPhysicalNames")?;
             }
-            "$Entities" if version == Some(4) => {
-                let (m, c) = r.numbers::<usize>("four entity counts")?;
-                let skip = get(&r, m, &c, 0, "point count")? + get(&r, m, &c, 1, "curve count")?;
-                for _ in 0..skip {
-                    r.next()?;
-                }
-                for _ in 0..get(&r, m, &c, 2, "surface count")? {
-                    let (s, v) = r.numbers::<f64>("a surface entity")?;
-                    let np = get(&r, s, &v, 7, "number of physical tags")? as usize;
-                    let tags: Vec<i64> = v.iter().skip(8).take(np).map(|&t| t as i64).collect();
-                    surface_physicals.insert(get(&r, s, &v, 0, "surface tag")? as i64, tags);
-                }
-                for _ in 0..get(&r, m, &c, 3, "volume count")? {
-                    r.next()?;
-                }
-                r.expect("$EndEntities")?;
-            }
+            "$Entities" if version == Some(4) => entities(&mut r, &mut surface_physicals)?,
             "$Nodes" | "$Elements" if version.is_none() => {
                 return Err(r.error(n, format!("{l} before $MeshFormat")));
             }
-            "$Nodes" if version == Some(4) => {
-                let (m, c) = r.numbers::<u64>("`blocks nodes minTag maxTag`")?;
-                for _ in 0..get(&r, m, &c, 0, "block count")? {
-                    let (b, h) = r.numbers::<u64>("`dimension entity parametric count`")?;
-                    let count = get(&r, b, &h, 3, "node count")? as usize;
-                    let mut tags = Vec::with_capacity(count.min(1 << 20));
-                    for _ in 0..count {
-                        let (t, v) = r.numbers::<u64>("a node tag")?;
-                        tags.push((get(&r, t, &v, 0, "node tag")?, t));
-                    }
-                    for (tag, _) in tags {
-                        let (t, v) = r.numbers::<f64>("node coordinates x y z")?;
-                        let x = [0, 1, 2].map(|k| v.get(k).copied().unwrap_or(f64::NAN));
-                        if !x.iter().all(|c| c.is_finite()) {
-                            return Err(r.error(t, "expected three finite coordinates x y z"));
-                        }
-                        nodes.insert(tag, (x, t));
-                    }
-                }
-                r.expect("$EndNodes")?;
-            }
+            "$Nodes" if version == Some(4) => nodes_v4(&mut r, &mut nodes)?,
             "$Nodes" => {
                 let (m, c) = r.numbers::<usize>("the number of nodes")?;
                 for _ in 0..get(&r, m, &c, 0, "node count")? {
@@ -227,42 +191,8 @@ pub fn parse(text: &str, file: &str, scale: f64, key: &str) -> Result<CrossSecti
                 }
                 r.expect("$EndNodes")?;
             }
-            "$Elements" if version == Some(4) => {
-                let (m, c) = r.numbers::<u64>("`blocks elements minTag maxTag`")?;
-                for _ in 0..get(&r, m, &c, 0, "block count")? {
-                    let (b, h) = r.numbers::<i64>("`dimension entity type count`")?;
-                    let (dim, entity) = (get(&r, b, &h, 0, "dimension")?, get(&r, b, &h, 1, "entity tag")?);
-                    let (kind, count) = (get(&r, b, &h, 2, "element type")?, get(&r, b, &h, 3, "element count")?);
-                    for _ in 0..count {
-                        let (t, v) = r.numbers::<u64>("`tag node node …`")?;
-                        if dim == 2 {
-                            let physical = surface_physicals.get(&entity).cloned().unwrap_or_default();
-                            let nodes = v.get(1..).unwrap_or_default().to_vec();
-                            elements.push(RawElement { kind: kind as u32, nodes, line: t, physical });
-                        } else if dim == 3 {
-                            return Err(
-                                r.error(t, format!("{} (type {kind}) in a section mesh", type_name(kind as u32)))
-                            );
-                        }
-                    }
-                }
-                r.expect("$EndElements")?;
-            }
-            "$Elements" => {
-                let (m, c) = r.numbers::<usize>("the number of elements")?;
-                for _ in 0..get(&r, m, &c, 0, "element count")? {
-                    let (t, v) = r.numbers::<i64>("`tag type ntags tags… nodes…`")?;
-                    let kind = get(&r, t, &v, 1, "element type")? as u32;
-                    let ntags = get(&r, t, &v, 2, "number of tags")?.max(0) as usize;
-                    let physical = v.get(3).copied().filter(|_| ntags > 0).into_iter().filter(|&p| p != 0).collect();
-                    let nodes = v.get(3 + ntags..).unwrap_or_default().iter().map(|&n| n.max(0) as u64).collect();
-                    match kind {
-                        1 | 8 | 26 | 27 | 28 | 15 => {}
-                        _ => elements.push(RawElement { kind, nodes, line: t, physical }),
-                    }
-                }
-                r.expect("$EndElements")?;
-            }
+            "$Elements" if version == Some(4) => elements_v4(&mut r, &surface_physicals, &mut elements)?,
+            "$Elements" => elements_v2(&mut r, &mut elements)?,
             other if other.starts_with("$End") => return Err(r.error(n, format!("unexpected {other}"))),
             other if other.starts_with('$') => {
                 // a section we do not need ($Periodic, $NodeData, …): skip it
@@ -276,6 +206,95 @@ pub fn parse(text: &str, file: &str, scale: f64, key: &str) -> Result<CrossSecti
         return Err(r.error(1, "no $MeshFormat section: not a gmsh .msh file"));
     }
     build(&r, &nodes, &elements, &names, scale)
+}
+
+/// `$Entities` (4.1): the physical tags of every surface.
+fn entities(r: &mut Reader, surface_physicals: &mut HashMap<i64, Vec<i64>>) -> Result<(), MeshError> {
+    let (m, c) = r.numbers::<usize>("four entity counts")?;
+    let skip = get(r, m, &c, 0, "point count")? + get(r, m, &c, 1, "curve count")?;
+    for _ in 0..skip {
+        r.next()?;
+    }
+    for _ in 0..get(r, m, &c, 2, "surface count")? {
+        let (s, v) = r.numbers::<f64>("a surface entity")?;
+        let np = get(r, s, &v, 7, "number of physical tags")? as usize;
+        let tags: Vec<i64> = v.iter().skip(8).take(np).map(|&t| t as i64).collect();
+        surface_physicals.insert(get(r, s, &v, 0, "surface tag")? as i64, tags);
+    }
+    for _ in 0..get(r, m, &c, 3, "volume count")? {
+        r.next()?;
+    }
+    r.expect("$EndEntities")?;
+    Ok(())
+}
+
+/// `$Nodes` (4.1): blocks of tags, then their coordinates.
+fn nodes_v4(r: &mut Reader, nodes: &mut HashMap<u64, ([f64; 3], usize)>) -> Result<(), MeshError> {
+    let (m, c) = r.numbers::<u64>("`blocks nodes minTag maxTag`")?;
+    for _ in 0..get(r, m, &c, 0, "block count")? {
+        let (b, h) = r.numbers::<u64>("`dimension entity parametric count`")?;
+        let count = get(r, b, &h, 3, "node count")? as usize;
+        let mut tags = Vec::with_capacity(count.min(1 << 20));
+        for _ in 0..count {
+            let (t, v) = r.numbers::<u64>("a node tag")?;
+            tags.push((get(r, t, &v, 0, "node tag")?, t));
+        }
+        for (tag, _) in tags {
+            let (t, v) = r.numbers::<f64>("node coordinates x y z")?;
+            let x = [0, 1, 2].map(|k| v.get(k).copied().unwrap_or(f64::NAN));
+            if !x.iter().all(|c| c.is_finite()) {
+                return Err(r.error(t, "expected three finite coordinates x y z"));
+            }
+            nodes.insert(tag, (x, t));
+        }
+    }
+    r.expect("$EndNodes")?;
+    Ok(())
+}
+
+/// `$Elements` (4.1): blocks per entity; surfaces' elements kept with
+/// their entity's physical tags, volumes refused.
+fn elements_v4(
+    r: &mut Reader,
+    surface_physicals: &HashMap<i64, Vec<i64>>,
+    elements: &mut Vec<RawElement>,
+) -> Result<(), MeshError> {
+    let (m, c) = r.numbers::<u64>("`blocks elements minTag maxTag`")?;
+    for _ in 0..get(r, m, &c, 0, "block count")? {
+        let (b, h) = r.numbers::<i64>("`dimension entity type count`")?;
+        let (dim, entity) = (get(r, b, &h, 0, "dimension")?, get(r, b, &h, 1, "entity tag")?);
+        let (kind, count) = (get(r, b, &h, 2, "element type")?, get(r, b, &h, 3, "element count")?);
+        for _ in 0..count {
+            let (t, v) = r.numbers::<u64>("`tag node node …`")?;
+            if dim == 2 {
+                let physical = surface_physicals.get(&entity).cloned().unwrap_or_default();
+                let nodes = v.get(1..).unwrap_or_default().to_vec();
+                elements.push(RawElement { kind: kind as u32, nodes, line: t, physical });
+            } else if dim == 3 {
+                return Err(r.error(t, format!("{} (type {kind}) in a section mesh", type_name(kind as u32))));
+            }
+        }
+    }
+    r.expect("$EndElements")?;
+    Ok(())
+}
+
+/// `$Elements` (2.2): one line per element; points and lines skipped.
+fn elements_v2(r: &mut Reader, elements: &mut Vec<RawElement>) -> Result<(), MeshError> {
+    let (m, c) = r.numbers::<usize>("the number of elements")?;
+    for _ in 0..get(r, m, &c, 0, "element count")? {
+        let (t, v) = r.numbers::<i64>("`tag type ntags tags… nodes…`")?;
+        let kind = get(r, t, &v, 1, "element type")? as u32;
+        let ntags = get(r, t, &v, 2, "number of tags")?.max(0) as usize;
+        let physical = v.get(3).copied().filter(|_| ntags > 0).into_iter().filter(|&p| p != 0).collect();
+        let nodes = v.get(3 + ntags..).unwrap_or_default().iter().map(|&n| n.max(0) as u64).collect();
+        match kind {
+            1 | 8 | 26 | 27 | 28 | 15 => {}
+            _ => elements.push(RawElement { kind, nodes, line: t, physical }),
+        }
+    }
+    r.expect("$EndElements")?;
+    Ok(())
 }
 
 fn build(

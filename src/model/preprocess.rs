@@ -109,7 +109,14 @@ pub(super) fn constraints(
         }
         constraints.push(Constraint { name: c.name.clone(), body: b, nodes, values, selection: Some(sel) });
     }
-    // a body fixed in x, y and z at every node (by one or several constraints)
+    warn_fully_fixed(&constraints, mesh, &whole, warnings);
+    check_agreement(&constraints, mesh)?;
+    Ok(constraints)
+}
+
+/// Warns about a body fixed in x, y and z at every node (by one or several
+/// constraints; not again for a body already warned about in `whole`).
+fn warn_fully_fixed(constraints: &[Constraint], mesh: &Mesh, whole: &[bool], warnings: &mut Vec<Warning>) {
     for (b, body) in mesh.bodies.iter().enumerate() {
         let mut fixed = vec![[false; 3]; body.n_nodes()];
         let mut last = None;
@@ -135,7 +142,10 @@ pub(super) fn constraints(
             });
         }
     }
-    // one value per constrained DOF: overlapping sets must agree
+}
+
+/// One value per constrained DOF: overlapping sets must agree.
+fn check_agreement(constraints: &[Constraint], mesh: &Mesh) -> Result<(), ModelError> {
     let mut given: std::collections::HashMap<usize, (f64, usize)> = Default::default();
     for (i, c) in constraints.iter().enumerate() {
         for &n in &c.nodes {
@@ -156,8 +166,7 @@ pub(super) fn constraints(
             }
         }
     }
-
-    Ok(constraints)
+    Ok(())
 }
 
 /// `[[loads]]`: nodal forces at load factor 1.

@@ -27,6 +27,9 @@ use crate::bc::Constraint;
 use crate::contact::{Indenter, PairContact};
 use crate::mesh::Mesh;
 
+/// A restraint row `Σ w · u_node`, as (node, weight vector) terms.
+type Row = Vec<(usize, [f64; 3])>;
+
 /// Checks that no body (or group of bodies joined by contact) can move as a
 /// rigid body.
 pub fn check(
@@ -35,10 +38,23 @@ pub fn check(
     indenters: &[Indenter],
     contacts: &[PairContact],
 ) -> Result<(), ModelError> {
-    let nb = mesh.bodies.len();
     let size: Vec<f64> = mesh.bodies.iter().map(|b| b.size()).collect();
-    // every restraint row as (node, weight vector): the row is Σ w · u_node
-    let mut rows: Vec<Vec<(usize, [f64; 3])>> = Vec::new();
+    let rows = restraint_rows(mesh, constraints, indenters, contacts, &size);
+    let (centre, reach) = centres(mesh, &rows);
+    let (mut g, rows_of) = gram(mesh, &rows, &centre, &size);
+    let scale = unit_diagonal(&mut g, &rows_of, &reach, &size);
+    free_motions(mesh, &g, &scale)
+}
+
+/// Every displacement form the model holds (module docs).
+fn restraint_rows(
+    mesh: &Mesh,
+    constraints: &[Constraint],
+    indenters: &[Indenter],
+    contacts: &[PairContact],
+    size: &[f64],
+) -> Vec<Row> {
+    let mut rows: Vec<Row> = Vec::new();
     for c in constraints {
         for &node in &c.nodes {
             for (k, v) in c.values.iter().enumerate() {
@@ -79,6 +95,13 @@ pub fn check(
             rows.push(row);
         }
     }
+    rows
+}
+
+/// The centre of each body's rotations and the magnitude of its restrained
+/// nodes' coordinates.
+fn centres(mesh: &Mesh, rows: &[Row]) -> (Vec<[f64; 3]>, Vec<f64>) {
+    let nb = mesh.bodies.len();
     // Rotations about the centroid of each body's restrained nodes (the body's
     // centre if none): about any other centre a rotation moves the restrained
     // nodes nearly like a translation, and a body restrained over a thin
@@ -110,6 +133,13 @@ pub fn check(
             centre[b] = s.map(|v| v / *count as f64);
         }
     }
+    (centre, reach)
+}
+
+/// `G = Rᵀ R` over the six rigid modes of every body, and how many row
+/// terms fall on each body.
+fn gram(mesh: &Mesh, rows: &[Row], centre: &[[f64; 3]], size: &[f64]) -> (Mat<f64>, Vec<usize>) {
+    let nb = mesh.bodies.len();
     // mode values of a node: modes[j][k] = component k of mode j
     let modes = |node: usize| -> (usize, [[f64; 3]; 6]) {
         let (b, _) = mesh.body_of(node);
@@ -129,7 +159,7 @@ pub fn check(
     let mut g = Mat::<f64>::zeros(n, n);
     let mut rows_of = vec![0usize; nb];
     let mut entries: Vec<(usize, f64)> = Vec::new();
-    for row in &rows {
+    for row in rows {
         entries.clear();
         for &(node, w) in row {
             let (b, m) = modes(node);
@@ -142,6 +172,13 @@ pub fn check(
             }
         }
     }
+    (g, rows_of)
+}
+
+/// Scales `g` to a unit diagonal; returns the scale of every mode (0 for a
+/// mode held by nothing).
+fn unit_diagonal(g: &mut Mat<f64>, rows_of: &[usize], reach: &[f64], size: &[f64]) -> Vec<f64> {
+    let (n, nb) = (g.nrows(), rows_of.len());
     // Each mode scaled to a unit diagonal, so a mode held only over a short
     // lever arm (a thin face) counts as much as one held over a long one; a
     // mode whose diagonal is at the round-off of the coordinates is held by
@@ -161,6 +198,13 @@ pub fn check(
             g[(i, j)] *= scale[i] * scale[j];
         }
     }
+    scale
+}
+
+/// `Ok` if `g` is positive definite; else the free motions, named by body
+/// and mode.
+fn free_motions(mesh: &Mesh, g: &Mat<f64>, scale: &[f64]) -> Result<(), ModelError> {
+    let (n, nb) = (g.nrows(), mesh.bodies.len());
     // sequential: validation must not start the global thread pool, which
     // the CLI sizes afterwards from the model's `solver.threads`
     let mut u = Mat::<f64>::zeros(n, n);

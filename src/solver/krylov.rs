@@ -171,22 +171,8 @@ pub fn gmres(
         return Ok(Krylov::Converged(0));
     }
     let m = restart.max(1);
+    work.size(n, m);
     let GmresWork { basis, z, x, h, cs, sn, g } = work;
-    for (vs, count) in [(&mut *basis, m + 1), (&mut *z, m)] {
-        vs.resize_with(count, Vec::new);
-        for v in vs.iter_mut() {
-            v.resize(n, 0.0);
-        }
-    }
-    h.resize_with(m, Vec::new);
-    for (j, col) in h.iter_mut().enumerate() {
-        col.resize(j + 2, 0.0);
-    }
-    cs.resize(m, 0.0);
-    sn.resize(m, 0.0);
-    g.resize(m + 1, 0.0);
-    x.resize(n, 0.0);
-    x.fill(0.0);
     // r₀ = b (x₀ = 0)
     basis[0].copy_from_slice(rhs);
     let mut beta = b_norm;
@@ -247,17 +233,7 @@ pub fn gmres(
         if k == 0 {
             return Ok(Krylov::NotConverged(total));
         }
-        // y = H⁻¹ g (upper triangular), x += Z y
-        let mut y = vec![0.0; k];
-        for i in (0..k).rev() {
-            let s: f64 = (i + 1..k).map(|j| h[j][i] * y[j]).sum();
-            y[i] = (g[i] - s) / h[i][i];
-        }
-        for (yi, zi) in y.iter().zip(z.iter()) {
-            for (a, b) in x.iter_mut().zip(zi) {
-                *a += yi * b;
-            }
-        }
+        add_correction(&h[..k], &g[..k], z, x);
         if !x.iter().all(|v| v.is_finite()) {
             return Ok(Krylov::NotConverged(total));
         }
@@ -279,6 +255,44 @@ pub fn gmres(
         if beta <= tol * b_norm {
             rhs.copy_from_slice(x);
             return Ok(Krylov::Converged(total));
+        }
+    }
+}
+
+impl GmresWork {
+    /// Sizes the buffers for `n` unknowns and restart length `m`; `x = 0`.
+    fn size(&mut self, n: usize, m: usize) {
+        let GmresWork { basis, z, x, h, cs, sn, g } = self;
+        for (vs, count) in [(&mut *basis, m + 1), (&mut *z, m)] {
+            vs.resize_with(count, Vec::new);
+            for v in vs.iter_mut() {
+                v.resize(n, 0.0);
+            }
+        }
+        h.resize_with(m, Vec::new);
+        for (j, col) in h.iter_mut().enumerate() {
+            col.resize(j + 2, 0.0);
+        }
+        cs.resize(m, 0.0);
+        sn.resize(m, 0.0);
+        g.resize(m + 1, 0.0);
+        x.resize(n, 0.0);
+        x.fill(0.0);
+    }
+}
+
+/// `x += Z y` with `y = H⁻¹ g`, `H` the rotated (upper triangular)
+/// Hessenberg columns of the cycle.
+fn add_correction(h: &[Vec<f64>], g: &[f64], z: &[Vec<f64>], x: &mut [f64]) {
+    let k = h.len();
+    let mut y = vec![0.0; k];
+    for i in (0..k).rev() {
+        let s: f64 = (i + 1..k).map(|j| h[j][i] * y[j]).sum();
+        y[i] = (g[i] - s) / h[i][i];
+    }
+    for (yi, zi) in y.iter().zip(z.iter()) {
+        for (a, b) in x.iter_mut().zip(zi) {
+            *a += yi * b;
         }
     }
 }

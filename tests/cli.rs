@@ -63,6 +63,7 @@ fn hex_volume(p: &[[f64; 3]; 8]) -> f64 {
 #[test]
 fn cantilever_example_runs_and_its_outputs_read_back() {
     let out = out_dir("cantilever_cli");
+    let started = std::time::Instant::now();
     let status = cufem()
         .args([
             "run",
@@ -73,13 +74,18 @@ fn cantilever_example_runs_and_its_outputs_read_back() {
         ])
         .status()
         .unwrap();
+    let elapsed = started.elapsed().as_secs_f64();
     assert!(status.success());
 
     // summary.json contract
     let summary: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(summary["dof"], 1200);
-    assert!(summary["wall_time_s"].as_f64().unwrap() > 0.0);
+    // the run's own wall time, in seconds: positive and within the time the
+    // process took as seen from here (milliseconds or a clock read twice
+    // from the wrong start would fail one or the other)
+    let wall = summary["wall_time_s"].as_f64().unwrap();
+    assert!(wall > 0.0 && wall <= elapsed, "wall_time_s {wall} s, process {elapsed} s");
     let probe = &summary["probes"][0];
     assert_eq!(probe["name"], "tip");
     let uz = probe["u"][2].as_f64().unwrap();

@@ -228,6 +228,21 @@ fn verify_compares_the_compact_bar_with_calculix() {
     assert!(out.join("summary.json").exists());
     let csv = std::fs::read_to_string(out.join("verify/line_top_u_z.csv")).unwrap();
     assert!(csv.starts_with("s,cufem_u_z,ccx_u_z\n"), "{csv}");
+    // the whole field: every roller's contact line left out by one 3D
+    // element and said so; a plastic zone under the loading roller; each
+    // roller's surface compared
+    let zones = table["excluded"].as_array().unwrap();
+    assert_eq!(zones.len(), 3, "{zones:?}");
+    for z in zones {
+        assert!(z["place"] == "the roller's contact line" && z["points"].as_u64().unwrap() > 0, "{z}");
+    }
+    let fields = table["fields"].as_array().unwrap();
+    let regions: Vec<&str> = fields.iter().map(|r| r["region"].as_str().unwrap()).collect();
+    for r in ["body bar", "plastic zone bar", "surface load", "surface support_left"] {
+        assert!(regions.contains(&r), "{r} not in {regions:?}");
+    }
+    let u = fields.iter().find(|r| r["region"] == "body bar" && r["quantity"] == "u").unwrap();
+    assert!(u["l2_percent"].as_f64().unwrap() < 3.0, "{u}");
 
     // the same deck, another formulation: the 3D results are reused, not rerun
     let ccx_dir = dir.join("ccx_kept");
@@ -265,6 +280,47 @@ fn verify_compares_the_compact_bar_with_calculix() {
     let other = again(&bbar, "2");
     assert_eq!(other.status.code(), Some(5));
     assert!(String::from_utf8_lossy(&other.stderr).contains("different deck"));
+}
+
+/// The whole-field comparison of `cufem verify` on the Timoshenko
+/// cantilever (5 B4 × 2×2 L9 against 3D at refine 2): both solutions at
+/// every CUF Gauss point (720), the displacement within 2 % (relative L2)
+/// and the von Mises stress within 5 % over the whole beam — a 10 % error
+/// in the element stiffness moves u by 10 % and fails. The differences are
+/// in a VTU (one vertex per point) and in summary.json as in the table.
+#[test]
+fn verify_compares_the_whole_field() {
+    let dir = scratch("verify_field");
+    let model = dir.join("cantilever.toml");
+    std::fs::write(&model, example("cantilever_timoshenko.toml")).unwrap();
+    let out = dir.join("out");
+    let run = cufem()
+        .args(["verify", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--refine", "2", "--quiet"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&run.stderr));
+    eprintln!("{stdout}");
+    let table: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("verify/table.json")).unwrap()).unwrap();
+    let row = |region: &str, q: &str| {
+        table["fields"].as_array().unwrap().iter().find(|r| r["region"] == region && r["quantity"] == q).cloned()
+    };
+    let u = row("body beam", "u").expect("a displacement row");
+    assert_eq!(u["points"], 5 * 4 * 9 * 4);
+    assert_eq!(u["excluded"], 0, "no indenter, nothing left out");
+    let l2 = u["l2_percent"].as_f64().unwrap();
+    assert!(l2 > 0.0 && l2 < 2.0, "u: {u}");
+    let vm = row("body beam", "von_mises").expect("a von Mises row");
+    assert!(vm["l2_percent"].as_f64().unwrap() < 5.0, "von Mises: {vm}");
+    // elastic: no plastic zone
+    assert!(row("plastic zone beam", "peeq").is_none());
+    assert!(stdout.contains("whole field") && stdout.contains("body beam"));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["verify"]["fields"], table["fields"]);
+    let vtu = std::fs::read_to_string(out.join("verify/field_difference.vtu")).unwrap();
+    assert!(vtu.contains("NumberOfPoints=\"720\"") && vtu.contains("Name=\"u_difference\""), "{}", &vtu[..400]);
 }
 
 /// Without CalculiX, `verify` says what to install, before computing anything.

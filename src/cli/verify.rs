@@ -34,6 +34,16 @@ fn find_program(program: &Path) -> Option<PathBuf> {
     std::env::var_os("PATH")?.to_str()?.split(':').map(|d| Path::new(d).join(program)).find(|p| p.is_file())
 }
 
+/// Adds the whole-field rows and the zones left out to the run's
+/// `summary.json` (key `verify`), beside the table in `verify/`.
+fn add_to_summary(path: &Path, c: &verify::Comparison) -> Result<(), cufem::io::IoError> {
+    let error = |e: std::io::Error| cufem::io::file_error(path, e);
+    let text = std::fs::read_to_string(path).map_err(error)?;
+    let mut summary: serde_json::Value = serde_json::from_str(&text).map_err(|e| error(e.into()))?;
+    summary["verify"] = serde_json::json!({ "solid": c.solid, "fields": c.fields, "excluded": c.excluded });
+    std::fs::write(path, serde_json::to_string_pretty(&summary).unwrap_or_default()).map_err(error)
+}
+
 pub fn run(a: Args) -> Result<u8, Failure> {
     let interrupt = super::install_interrupt()?;
     let model = super::load(&a.model, &a.resources)?;
@@ -86,8 +96,9 @@ pub fn run(a: Args) -> Result<u8, Failure> {
             let _ = std::fs::write(dir.join("ccx_failed.txt"), e.to_string());
             fail(CCX_FAILED, e)
         })?;
-        let (comparison, curves) = verify::compare(&model, done.solution, &mesh, &ccx_run, done.analysis_peak);
-        comparison.write(&dir, &curves).map_err(|e| fail(FILES, e))?;
+        let (comparison, curves, whole) = verify::compare(&model, done.solution, &mesh, &ccx_run, done.analysis_peak);
+        comparison.write(&dir, &curves, &whole).map_err(|e| fail(FILES, e))?;
+        add_to_summary(&done.staging.join("summary.json"), &comparison).map_err(|e| fail(FILES, e))?;
         Ok(comparison.table())
     };
     let run = cufem::io::run_into(&model, folder, &options, &mut progress, compare).map_err(super::run_failure)?;

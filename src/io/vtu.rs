@@ -300,6 +300,27 @@ pub fn write_contact_vtu(path: &Path, model: &Model, solution: &Solution, set: u
     write_file(path, &grid)
 }
 
+/// Writes a cloud of points (one VTK vertex each) with point data: `points`
+/// holds 3 coordinates per point (m).
+pub fn write_point_cloud(path: &Path, title: &str, points: &[f64], data: Vec<FieldArray>) -> Result<(), IoError> {
+    let n = points.len() / 3;
+    let connectivity: Vec<u64> = (0..n as u64).collect();
+    let offsets: Vec<u64> = (1..=n as u64).collect();
+    let point_data: Vec<(String, usize, Array)> =
+        data.into_iter().map(|a| (a.name, a.components, Array::F64(a.values))).collect();
+    let grid = Grid {
+        title,
+        points,
+        connectivity: &connectivity,
+        offsets: &offsets,
+        n_cells: n,
+        point_data: &point_data,
+        cell_data: &[],
+        cell_type: VTK_VERTEX,
+    };
+    write_file(path, &grid)
+}
+
 /// Writes `grid` to `path` through one buffered stream; errors name the file.
 fn write_file(path: &Path, grid: &Grid<'_>) -> Result<(), IoError> {
     let file = std::fs::File::create(path).map_err(|e| file_error(path, e))?;

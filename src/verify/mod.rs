@@ -9,7 +9,11 @@
 //! stress of the 3D model) has no meaningful relative difference and is
 //! reported as such. Along lines the difference is in % of the line's 3D
 //! peak. Resultants compare the reactions of every constraint and the force
-//! of every indenter.
+//! of every indenter. Over the whole field ([`field`]): relative L2 and
+//! largest differences of the displacement, von Mises stress and peeq over
+//! each body, its plastic zone and its contact surfaces, singular places
+//! left out by a stated neighbourhood, and a VTU of the point-wise
+//! differences.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -18,10 +22,14 @@ use serde::Serialize;
 
 use crate::analysis::Solution;
 use crate::ccx::{CcxRun, HexMesh, deck::set_name};
-use crate::io::csv_field as field;
+use crate::io::csv_field as csv_text;
 use crate::io::{IoError, Series, line_plot};
 use crate::model::Model;
 use crate::quantity::{Quantity, Sample};
+
+pub mod field;
+
+pub use field::{FieldComparison, FieldRow, SingularZone};
 
 /// One probe value, both ways.
 #[derive(Debug, Clone, Serialize)]
@@ -100,6 +108,10 @@ pub struct Comparison {
     pub lines: Vec<LineRow>,
     /// Resultants.
     pub resultants: Vec<ResultantRow>,
+    /// Whole-field norms per body, plastic zone and contact surface.
+    pub fields: Vec<FieldRow>,
+    /// The neighbourhoods of singular places left out of `fields`.
+    pub excluded: Vec<SingularZone>,
     /// DOF, time and memory of both.
     pub cost: Cost,
 }
@@ -124,14 +136,15 @@ fn percent(ours: f64, reference: f64, scale: f64) -> Option<f64> {
     (reference.abs() > 1e-3 * scale).then(|| 100.0 * (ours - reference) / reference.abs())
 }
 
-/// Compares `solution` with the CalculiX run on `mesh`.
+/// Compares `solution` with the CalculiX run on `mesh`: the table, the
+/// line overlays and the sample points of the whole-field comparison.
 pub fn compare(
     model: &Model,
     solution: &Solution,
     mesh: &HexMesh,
     run: &CcxRun,
     cufem_peak: Option<u64>,
-) -> (Comparison, Vec<Curve>) {
+) -> (Comparison, Vec<Curve>, FieldComparison) {
     let view = solution.fields(model);
     let u_scale = run.results.u.values().flat_map(|u| u.iter()).fold(0.0f64, |a, b| a.max(b.abs()));
     let s_scale = run.results.stress.values().map(crate::voigt::von_mises).fold(0.0f64, f64::max);
@@ -224,7 +237,18 @@ pub fn compare(
         ccx_peak_bytes: run.peak_memory,
     };
     let solid = format!("{} × refine {}", mesh.kind.name(), mesh.refine);
-    (Comparison { title: model.title.clone(), solid, probes, lines, resultants, cost }, curves)
+    let whole = field::compare_fields(model, &view, mesh, run);
+    let comparison = Comparison {
+        title: model.title.clone(),
+        solid,
+        probes,
+        lines,
+        resultants,
+        fields: whole.rows.clone(),
+        excluded: whole.zones.clone(),
+        cost,
+    };
+    (comparison, curves, whole)
 }
 
 fn show(v: Option<f64>) -> String {
@@ -306,14 +330,58 @@ impl Comparison {
                 );
             }
         }
+        self.field_table(&mut t);
         t
     }
 
-    /// Writes `table.txt`, `table.csv`, `table.json` and, per line and
+    /// The whole-field rows of [`Comparison::table`].
+    fn field_table(&self, t: &mut String) {
+        if self.fields.is_empty() {
+            return;
+        }
+        let _ = writeln!(
+            t,
+            "\n{:<32} {:<10} {:>8} {:>9} {:>9} {:>10}  {}",
+            "whole field", "quantity", "points", "excluded", "L2 diff", "max diff", "max at [mm]"
+        );
+        for r in &self.fields {
+            let _ = writeln!(
+                t,
+                "{:<32} {:<10} {:>8} {:>9} {:>8.2}% {:>9.2}%  ({:.2}, {:.2}, {:.2})",
+                r.region,
+                r.quantity,
+                r.points,
+                r.excluded,
+                r.l2_percent,
+                r.max_percent,
+                r.at[0] * 1e3,
+                r.at[1] * 1e3,
+                r.at[2] * 1e3
+            );
+        }
+        for z in &self.excluded {
+            let _ = writeln!(
+                t,
+                "excluded: {} points within {:.2} mm (one 3D element) of {} ({})",
+                z.points,
+                z.distance * 1e3,
+                z.place,
+                z.indenter
+            );
+        }
+        let _ = writeln!(
+            t,
+            "(max diff: % of the body's largest 3D value; plastic zone: peeq above {} of the largest 3D peeq)",
+            field::PLASTIC_ZONE
+        );
+    }
+
+    /// Writes `table.txt`, `table.csv`, `table.json`, the whole-field
+    /// differences (`field_difference.vtu`, [`FieldComparison::write_vtu`]) and, per line and
     /// quantity, the overlay plot and its numbers (`line_<name>_<q>.csv`:
     /// distance along the line in m, cufem and CalculiX values in SI units)
     /// into `dir`; returns the files written.
-    pub fn write(&self, dir: &Path, curves: &[Curve]) -> Result<Vec<PathBuf>, IoError> {
+    pub fn write(&self, dir: &Path, curves: &[Curve], whole: &FieldComparison) -> Result<Vec<PathBuf>, IoError> {
         let file = |p: &Path, text: &str| std::fs::write(p, text).map_err(|e| crate::io::file_error(p, e));
         std::fs::create_dir_all(dir).map_err(|e| crate::io::file_error(dir, e))?;
         let mut written = Vec::new();
@@ -326,8 +394,8 @@ impl Comparison {
                 let _ = writeln!(
                     csv,
                     "{},{},f_{},{:e},{:e},{}",
-                    field(r.kind),
-                    field(&r.name),
+                    csv_text(r.kind),
+                    csv_text(&r.name),
                     ["x", "y", "z"][k],
                     r.cufem[k],
                     r.ccx[k],
@@ -339,21 +407,29 @@ impl Comparison {
             let _ = writeln!(
                 csv,
                 "probe,{},{},{:e},{:e},{}",
-                field(&p.probe),
-                field(&p.quantity),
+                csv_text(&p.probe),
+                csv_text(&p.quantity),
                 p.cufem,
                 p.ccx,
                 p.difference_percent.map_or(String::new(), |d| format!("{d:e}"))
             );
         }
         for l in &self.lines {
-            let _ = writeln!(csv, "line,{},{},,,{:e}", field(&l.line), field(&l.quantity), l.max_difference_percent);
+            let _ =
+                writeln!(csv, "line,{},{},,,{:e}", csv_text(&l.line), csv_text(&l.quantity), l.max_difference_percent);
+        }
+        for r in &self.fields {
+            let _ = writeln!(csv, "field_l2,{},{},,,{:e}", csv_text(&r.region), csv_text(&r.quantity), r.l2_percent);
+            let _ = writeln!(csv, "field_max,{},{},,,{:e}", csv_text(&r.region), csv_text(&r.quantity), r.max_percent);
         }
         let p = dir.join("table.csv");
         file(&p, &csv)?;
         written.push(p);
         let p = dir.join("table.json");
         file(&p, &serde_json::to_string_pretty(self).unwrap_or_default())?;
+        written.push(p);
+        let p = dir.join("field_difference.vtu");
+        whole.write_vtu(&p, &self.title)?;
         written.push(p);
         for (line, q, points) in curves {
             let ours: Vec<(f64, f64)> = points.iter().map(|(s, a, _)| (s * 1e3, a * q.display_scale())).collect();

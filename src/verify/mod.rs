@@ -341,8 +341,8 @@ impl Comparison {
         }
         let _ = writeln!(
             t,
-            "\n{:<32} {:<10} {:>8} {:>9} {:>9} {:>10}  {}",
-            "whole field", "quantity", "points", "excluded", "L2 diff", "max diff", "max at [mm]"
+            "\n{:<32} {:<10} {:>8} {:>9} {:>9} {:>10}  max at [mm]",
+            "whole field", "quantity", "points", "excluded", "L2 diff", "max diff"
         );
         for r in &self.fields {
             let _ = writeln!(

@@ -321,6 +321,22 @@ fn verify_compares_the_whole_field() {
     assert_eq!(summary["verify"]["fields"], table["fields"]);
     let vtu = std::fs::read_to_string(out.join("verify/field_difference.vtu")).unwrap();
     assert!(vtu.contains("NumberOfPoints=\"720\"") && vtu.contains("Name=\"u_difference\""), "{}", &vtu[..400]);
+    // the stored 3D side gives the same rows for the same cufem solution
+    // (what tests/fidelity.rs relies on)
+    let csv = std::fs::read_to_string(out.join("verify/field_points.csv")).unwrap();
+    let parsed = cufem::model::Model::from_file(&model).unwrap();
+    let solution = cufem::analysis::run(&parsed, &Default::default(), &mut cufem::analysis::Silent).unwrap();
+    let rows = cufem::verify::compare_stored(&parsed, &solution.fields(&parsed), &csv).unwrap();
+    let stored = serde_json::to_value(&rows).unwrap();
+    for (a, b) in stored.as_array().unwrap().iter().zip(table["fields"].as_array().unwrap()) {
+        assert_eq!((&a["region"], &a["points"]), (&b["region"], &b["points"]));
+        for k in ["l2_percent", "max_percent"] {
+            let (x, y) = (a[k].as_f64().unwrap(), b[k].as_f64().unwrap());
+            // the CSV keeps 8 significant digits
+            assert!((x - y).abs() <= 1e-5 * y.abs().max(1e-6), "{k}: {x} stored vs {y} verify");
+        }
+    }
+    assert_eq!(rows.len(), table["fields"].as_array().unwrap().len());
 }
 
 /// Without CalculiX, `verify` says what to install, before computing anything.

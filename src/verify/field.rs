@@ -77,6 +77,8 @@ pub struct SingularZone {
 /// One sample point, both ways.
 #[derive(Debug, Clone)]
 pub struct FieldPoint {
+    /// Where it is in the CUF mesh.
+    pub location: Location,
     /// Position (m).
     pub x: [f64; 3],
     /// Volume or area weight.
@@ -121,6 +123,7 @@ pub fn compare_fields(model: &Model, view: &FieldView<'_>, mesh: &HexMesh, run: 
         if let Some(t) = theirs(std::slice::from_ref(&loc)) {
             let excluded = zones.iter().any(|z| z.body == loc.body && z.contains(x));
             points.push(FieldPoint {
+                location: loc,
                 x,
                 weight,
                 body: loc.body,
@@ -183,6 +186,85 @@ impl FieldComparison {
         ];
         crate::io::write_point_cloud(path, title, &coords, data)
     }
+}
+
+impl FieldComparison {
+    /// The 3D side of every sample point as CSV (`field_points.csv`), enough
+    /// to compare another cufem run of the same mesh without CalculiX
+    /// ([`compare_stored`]): `body, element, xi, eta, zeta` (the CUF
+    /// location), `weight` (m³, or m² on a surface), `surface` (−1: volume,
+    /// else the contact surface's index), `excluded` (0/1), then the 3D
+    /// `u_x, u_y, u_z` (m), `von_mises` (Pa) and `peeq`.
+    pub fn points_csv(&self) -> String {
+        use std::fmt::Write as _;
+        let mut csv = String::from("body,element,xi,eta,zeta,weight,surface,excluded,u_x,u_y,u_z,von_mises,peeq\n");
+        for p in &self.points {
+            let l = &p.location;
+            let t = &p.theirs;
+            let _ = write!(csv, "{},{}", l.body, l.element);
+            // 8 significant digits: far below the 3D model's own error
+            for v in [l.natural[0], l.natural[1], l.natural[2], p.weight] {
+                let _ = write!(csv, ",{v:.7e}");
+            }
+            let _ = write!(csv, ",{},{}", p.surface.map_or(-1, |k| k as i64), u8::from(p.excluded));
+            for v in [t.u[0], t.u[1], t.u[2], t.von_mises, t.peeq] {
+                let _ = write!(csv, ",{v:.7e}");
+            }
+            csv.push('\n');
+        }
+        csv
+    }
+}
+
+/// Errors of a stored comparison.
+#[derive(Debug, thiserror::Error)]
+pub enum StoredError {
+    /// A line of the CSV could not be read.
+    #[error("field points line {line}: {reason}")]
+    Line {
+        /// 1-based line.
+        line: usize,
+        /// What is wrong.
+        reason: String,
+    },
+}
+
+/// Compares `view` (a cufem solution of the mesh the CSV was made on) with
+/// the 3D fields stored by [`FieldComparison::points_csv`] (lines starting
+/// with `#` before the column names are a comment); the rows are those of
+/// `cufem verify`.
+pub fn compare_stored(model: &Model, view: &FieldView<'_>, csv: &str) -> Result<Vec<FieldRow>, StoredError> {
+    let mut points = Vec::new();
+    // `#` lines (a provenance header) and the column names are skipped
+    let rows = csv.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.starts_with('#')).skip(1);
+    for (i, line) in rows {
+        let bad = |reason: String| StoredError::Line { line: i + 1, reason };
+        let v: Vec<f64> = line
+            .split(',')
+            .map(|c| c.trim().parse::<f64>())
+            .collect::<Result<_, _>>()
+            .map_err(|e| bad(e.to_string()))?;
+        if v.len() != 13 {
+            return Err(bad(format!("{} columns, expected 13", v.len())));
+        }
+        let (body, element) = (v[0] as usize, v[1] as usize);
+        if body >= model.mesh.bodies.len() || element >= model.mesh.bodies[body].n_elements() {
+            return Err(bad(format!("body {body}, element {element}: not in this model's mesh")));
+        }
+        let location = Location { body, element, natural: [v[2], v[3], v[4]] };
+        let theirs = Sample { u: [v[8], v[9], v[10]], von_mises: v[11], peeq: v[12], ..Default::default() };
+        points.push(FieldPoint {
+            location,
+            x: position(model, &location),
+            weight: v[5],
+            body,
+            surface: (v[6] >= 0.0).then_some(v[6] as usize),
+            excluded: v[7] != 0.0,
+            ours: view.sample(&location),
+            theirs,
+        });
+    }
+    Ok(norms(model, &points, &contact_surfaces(model)))
 }
 
 /// One 3D element per body: `(V / n)^{1/3}`.
@@ -422,6 +504,7 @@ mod tests {
 
     fn point(weight: f64, ours: [f64; 3], theirs: [f64; 3], excluded: bool) -> FieldPoint {
         FieldPoint {
+            location: Location { body: 0, element: 0, natural: [0.0; 3] },
             x: [weight, 0.0, 0.0],
             weight,
             body: 0,

@@ -29,7 +29,7 @@ use crate::quantity::{Quantity, Sample};
 
 pub mod field;
 
-pub use field::{FieldComparison, FieldRow, SingularZone};
+pub use field::{FieldComparison, FieldRow, SingularZone, StoredError, compare_stored};
 
 /// One probe value, both ways.
 #[derive(Debug, Clone, Serialize)]
@@ -430,6 +430,9 @@ impl Comparison {
         written.push(p);
         let p = dir.join("field_difference.vtu");
         whole.write_vtu(&p, &self.title)?;
+        written.push(p);
+        let p = dir.join("field_points.csv");
+        file(&p, &whole.points_csv())?;
         written.push(p);
         for (line, q, points) in curves {
             let ours: Vec<(f64, f64)> = points.iter().map(|(s, a, _)| (s * 1e3, a * q.display_scale())).collect();

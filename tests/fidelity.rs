@@ -1,0 +1,73 @@
+//! Whole-field fidelity of the shipped examples against stored 3D fields.
+//!
+//! Each `tests/data/<example>_field_3d.csv` holds CalculiX's displacement,
+//! von Mises stress and peeq at the CUF Gauss points and contact-face
+//! points of the shipped mesh (with their weights and the singular zones
+//! left out), made by the `cufem verify` command in its header. The test
+//! runs the example and compares over the whole field with the same norms
+//! as `verify` (`cufem::verify::compare_stored`). Tolerances: issue 23's —
+//! relative L2 difference of u over the body ≤ 2 %, the largest difference
+//! of u on every contact surface ≤ 5 % of the body's largest |u|, von Mises
+//! relative L2 difference over the plastic zone ≤ 10 % — where the shipped
+//! model meets them; where it does not yet, the measured value with a
+//! margin, named as such (a regression guard until the element or the
+//! contact improves).
+
+use std::path::PathBuf;
+
+use cufem::verify::FieldRow;
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// Runs `examples/<name>.toml` and compares it with the stored 3D fields.
+fn whole_field(name: &str) -> Vec<FieldRow> {
+    let model = cufem::model::Model::from_file(&root().join("examples").join(format!("{name}.toml"))).unwrap();
+    let solution = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
+    assert!(solution.failure.is_none(), "{:?}", solution.failure);
+    let csv = std::fs::read_to_string(root().join("tests/data").join(format!("{name}_field_3d.csv"))).unwrap();
+    let rows = cufem::verify::compare_stored(&model, &solution.fields(&model), &csv).unwrap();
+    for r in &rows {
+        eprintln!(
+            "{name}: {:<28} {:<10} L2 {:6.2} %  max {:6.2} %  ({} points, {} excluded)",
+            r.region, r.quantity, r.l2_percent, r.max_percent, r.points, r.excluded
+        );
+    }
+    rows
+}
+
+fn row<'a>(rows: &'a [FieldRow], region: &str, quantity: &str) -> &'a FieldRow {
+    rows.iter()
+        .find(|r| r.region == region && r.quantity == quantity)
+        .unwrap_or_else(|| panic!("no row {region} {quantity}"))
+}
+
+/// Issue 23's whole-field criteria for one body.
+fn assert_issue_criteria(rows: &[FieldRow], body: &str) {
+    let u = row(rows, &format!("body {body}"), "u");
+    assert!(u.points > 100 && u.l2_percent <= 2.0, "u over the body: {u:?}");
+    let vm = row(rows, &format!("plastic zone {body}"), "von_mises");
+    assert!(vm.points > 0 && vm.l2_percent <= 10.0, "von Mises over the plastic zone: {vm:?}");
+    for s in rows.iter().filter(|r| r.region.starts_with("surface ") && r.quantity == "u") {
+        assert!(s.points > 0 && s.max_percent <= 5.0, "u on {}: {s:?}", s.region);
+    }
+}
+
+/// §4.2 compact bar, 10 B4 × 4 L9 against 3D at refine 2 (C3D20R, 55,755
+/// DOF), the roller lines left out by one 3D element (1.87 mm). Measured:
+/// u 0.24 % over the bar and at most 0.20 % on the roller surfaces, von
+/// Mises 1.87 % over the plastic zone — issue 23's criteria with room. The
+/// rollers impose the displacement, so u barely moves with the stiffness:
+/// with E 10 % too high u stays at 0.49 %, but von Mises over the bar goes
+/// from 2.16 % to 3.31 % and peeq over the plastic zone from 6.2 % to
+/// 18.7 %; the bounds 3 % and 10 % catch that.
+#[test]
+fn bending_compact_4l9_whole_field_agrees_with_3d() {
+    let rows = whole_field("bending_compact_4L9");
+    assert_issue_criteria(&rows, "bar");
+    let vm = row(&rows, "body bar", "von_mises");
+    assert!(vm.l2_percent <= 3.0, "von Mises over the bar: {vm:?}");
+    let peeq = row(&rows, "plastic zone bar", "peeq");
+    assert!(peeq.l2_percent <= 10.0, "peeq over the plastic zone: {peeq:?}");
+}

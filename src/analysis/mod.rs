@@ -247,6 +247,10 @@ pub struct Solution {
     pub warnings: Vec<Warning>,
     /// Recovered (projected) nodal stress and peeq, when the model asks for them.
     pub recovered: Option<crate::post::Recovered>,
+    /// The estimated discretization error of the final state
+    /// ([`crate::post::estimate`]); `None` for the states of
+    /// [`Solution::at_step`].
+    pub error_estimate: Option<crate::post::ErrorEstimate>,
     /// The end of every completed step of the load history, in order.
     pub steps: Vec<StepEnd>,
 }
@@ -399,16 +403,28 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         memory,
         warnings: Vec::new(),
         recovered: None,
+        error_estimate: None,
         steps: step_ends,
     };
+    let projected = crate::post::recovery::project(
+        &model.mesh,
+        &model.cells,
+        &solution.stresses,
+        &solution.states,
+        &solution.gp_offsets,
+    )?;
+    // the estimate compares the raw stresses with their projection, which
+    // the fields then show only if the model asks for it
+    solution.error_estimate = Some(crate::post::estimate::estimate(
+        &model.mesh,
+        &model.cells,
+        &model.materials,
+        &solution.stresses,
+        &solution.gp_offsets,
+        &projected,
+    ));
     if model.output.recovery == crate::model::Recovery::Projection {
-        solution.recovered = Some(crate::post::recovery::project(
-            &model.mesh,
-            &model.cells,
-            &solution.stresses,
-            &solution.states,
-            &solution.gp_offsets,
-        )?);
+        solution.recovered = Some(projected);
     }
     solution.warnings = warnings::result_warnings(model, &solution);
     Ok(solution)
@@ -460,6 +476,7 @@ impl Solution {
             memory: self.memory.clone(),
             warnings: self.warnings.clone(),
             recovered: None,
+            error_estimate: None,
             steps: Vec::new(),
         };
         if model.output.recovery == crate::model::Recovery::Projection {

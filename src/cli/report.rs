@@ -275,4 +275,13 @@ pub fn print_results(model: &Model, solution: &Solution) {
             c.max_penetration.unwrap_or(0.0)
         );
     }
+    if let Some(e) = &summary.error_estimate {
+        let largest: Vec<String> =
+            e.largest.iter().take(3).map(|l| format!("{} #{} ({:.0} %)", l.body, l.element, 100.0 * l.share)).collect();
+        println!(
+            "estimated error {:.2} % (energy norm, raw against recovered stresses); largest in {}",
+            100.0 * e.relative_energy_norm,
+            largest.join(", ")
+        );
+    }
 }

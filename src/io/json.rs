@@ -125,9 +125,54 @@ pub struct Summary {
     pub warnings: Vec<String>,
     /// The end of every completed step of the load history.
     pub steps: Vec<StepSummary>,
+    /// The estimated discretization error (`post::estimate`), if computed.
+    pub error_estimate: Option<EstimateSummary>,
     /// The other files of this result set (summary.json is written last and
     /// lists them, so a complete set can be recognised).
     pub files: Vec<String>,
+}
+
+/// The estimated discretization error of a run.
+#[derive(Debug, Clone, Serialize)]
+pub struct EstimateSummary {
+    /// How it is estimated.
+    pub method: &'static str,
+    /// Estimated relative error in the energy norm (0–1).
+    pub relative_energy_norm: f64,
+    /// The elements holding most of it: body, element within the body, and
+    /// share of the squared error.
+    pub largest: Vec<ElementShare>,
+}
+
+/// An element's share of the estimated error.
+#[derive(Debug, Clone, Serialize)]
+pub struct ElementShare {
+    /// Body name.
+    pub body: String,
+    /// Element index within the body (section element + section elements ×
+    /// beam element).
+    pub element: usize,
+    /// Share of `Σ η_e²`.
+    pub share: f64,
+}
+
+/// The estimate of `solution`, with its five largest elements.
+pub fn estimate_summary(model: &Model, solution: &Solution) -> Option<EstimateSummary> {
+    let est = solution.error_estimate.as_ref()?;
+    let largest = est
+        .largest(5)
+        .into_iter()
+        .map(|(e, share)| {
+            // bodies are numbered in order: the last one starting at or before e
+            let body = model.mesh.bodies.iter().rfind(|b| b.element_offset <= e).unwrap_or(&model.mesh.bodies[0]);
+            ElementShare { body: body.name.clone(), element: e - body.element_offset, share }
+        })
+        .collect();
+    Some(EstimateSummary {
+        method: "Zienkiewicz-Zhu: raw Gauss-point stresses against their L2 projection, energy norm",
+        relative_energy_norm: est.relative(),
+        largest,
+    })
 }
 
 /// The results at the end of one step.
@@ -274,6 +319,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         memory: MemorySummary { estimated_bytes: solution.memory.total(), peak_bytes: crate::size::peak_memory() },
         warnings: model.warnings.iter().chain(&solution.warnings).map(|w| w.to_string()).collect(),
         steps: Vec::new(),
+        error_estimate: estimate_summary(model, solution),
         files: Vec::new(),
     }
 }

@@ -39,7 +39,9 @@ pub struct FieldGrid {
     /// The 8 points of every hexahedron, in VTK's order.
     pub connectivity: Vec<u64>,
     /// Point data: `displacement`, `contact_force` (3 components each),
-    /// `contact_pressure`, `contact_gap`, then every scalar of
+    /// `contact_pressure`, `contact_gap`, `error` (the element's part of the
+    /// estimated relative error, `post::ErrorEstimate::relative_element`,
+    /// constant over the element), then every scalar of
     /// [`Quantity::all`] but the displacement (1 component).
     pub point_data: Vec<FieldArray>,
     /// The body of every cell.
@@ -92,6 +94,7 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
     let mut contact_force: Vec<f64> = Vec::new();
     let mut contact_pressure: Vec<f64> = Vec::new();
     let mut contact_gap: Vec<f64> = Vec::new();
+    let mut error: Vec<f64> = Vec::new();
 
     // smallest contact gap per node (NaN where a node is in no contact)
     let mut node_gap: std::collections::HashMap<usize, f64> = Default::default();
@@ -144,6 +147,12 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
                     contact_force.extend(f);
                     contact_pressure.push(p);
                     contact_gap.push(node_gap.get(&node).copied().unwrap_or(f64::NAN));
+                    error.push(
+                        solution
+                            .error_estimate
+                            .as_ref()
+                            .map_or(f64::NAN, |x| x.relative_element(body.element_offset + e)),
+                    );
                 }
             }
             // (ξ, η, ζ) is left-handed in (x, y, z): list each bottom face
@@ -175,6 +184,7 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
         FieldArray { name: "contact_force".into(), components: 3, values: contact_force },
         FieldArray { name: "contact_pressure".into(), components: 1, values: contact_pressure },
         FieldArray { name: "contact_gap".into(), components: 1, values: contact_gap },
+        FieldArray { name: "error".into(), components: 1, values: error },
     ];
     for (values, q) in scalar_data.into_iter().zip(&scalars) {
         point_data.push(FieldArray { name: q.name(), components: 1, values });

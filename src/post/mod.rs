@@ -41,9 +41,11 @@
 //! belongs to several elements; the value reported is the mean of their
 //! values (fields such as stress are discontinuous there).
 
+pub mod estimate;
 pub mod recovery;
 
 pub use crate::quantity::{Quantity, Sample};
+pub use estimate::ErrorEstimate;
 pub use recovery::Recovered;
 
 use crate::materials::{Material, PointState};

@@ -1,0 +1,143 @@
+//! A posteriori error estimate of the Zienkiewicz–Zhu type: the distance,
+//! in the energy norm, between the raw Gauss-point stresses and their
+//! continuous recovery.
+//!
+//! With `σ_h` the stresses at the Gauss points and `σ*` the L2 projection
+//! of them onto the CUF basis ([`super::recovery`]), each element gets
+//!
+//! ```text
+//! η_e² = Σ_gp w |J| (σ* − σ_h)ᵀ C⁻¹ (σ* − σ_h)
+//! ```
+//!
+//! (`C⁻¹` the elastic compliance of the body's material; for plastic points
+//! this measures the stress jump with the elastic energy, as an indicator),
+//! and the global estimate is the relative error in the energy norm
+//! `η = √(Σ η_e² / (Σ η_e² + ‖σ_h‖²))`, `‖σ_h‖² = Σ w |J| σ_hᵀ C⁻¹ σ_h`
+//! (Zienkiewicz & Zhu, *Int. J. Numer. Methods Eng.* 24, 1987, eq. 9–13).
+//! A field the basis represents exactly (a patch test's constant stress)
+//! gives `η = 0`. Voigt order and engineering shear as in [`crate::voigt`].
+
+use super::Recovered;
+use crate::materials::Material;
+use crate::mesh::Mesh;
+use crate::values::{CellValues, shape_values};
+use crate::voigt::Voigt;
+
+/// The estimate of one solution.
+#[derive(Debug, Clone, Default)]
+pub struct ErrorEstimate {
+    /// `η_e` per element (global element index), √J.
+    pub element: Vec<f64>,
+    /// `√(Σ η_e²)`, √J.
+    pub error: f64,
+    /// `‖σ_h‖` in the energy norm, √J.
+    pub energy: f64,
+}
+
+impl ErrorEstimate {
+    /// The relative error in the energy norm (module docs).
+    pub fn relative(&self) -> f64 {
+        let total = self.error * self.error + self.energy * self.energy;
+        if total > 0.0 { (self.error * self.error / total).sqrt() } else { 0.0 }
+    }
+
+    /// An element's part of the relative error: `η_e / √(Σ η² + ‖σ_h‖²)`
+    /// (they add up in quadrature to [`ErrorEstimate::relative`]).
+    pub fn relative_element(&self, e: usize) -> f64 {
+        let total = (self.error * self.error + self.energy * self.energy).sqrt();
+        if total > 0.0 { self.element[e] / total } else { 0.0 }
+    }
+
+    /// The `k` elements with the largest `η_e`, with their share of `Σ η²`.
+    pub fn largest(&self, k: usize) -> Vec<(usize, f64)> {
+        let mut order: Vec<usize> = (0..self.element.len()).collect();
+        order.sort_by(|&a, &b| self.element[b].total_cmp(&self.element[a]));
+        let total = self.error * self.error;
+        order
+            .into_iter()
+            .take(k)
+            .map(|e| (e, if total > 0.0 { self.element[e].powi(2) / total } else { 0.0 }))
+            .collect()
+    }
+}
+
+/// `σᵀ C⁻¹ σ` for an isotropic material (engineering shear: `γ = τ / G`).
+fn complementary(s: &Voigt, young: f64, poisson: f64) -> f64 {
+    let normal = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] - 2.0 * poisson * (s[0] * s[1] + s[1] * s[2] + s[2] * s[0]);
+    let shear = s[3] * s[3] + s[4] * s[4] + s[5] * s[5];
+    normal / young + 2.0 * (1.0 + poisson) * shear / young
+}
+
+/// Estimates the error of the stresses `stresses` (Gauss points, first of
+/// each body at `gp_offsets`) against their recovery `recovered`.
+pub fn estimate(
+    mesh: &Mesh,
+    cells: &[CellValues],
+    materials: &[Material],
+    stresses: &[Voigt],
+    gp_offsets: &[usize],
+    recovered: &Recovered,
+) -> ErrorEstimate {
+    let mut out = ErrorEstimate { element: vec![0.0; mesh.n_elements()], ..Default::default() };
+    let (mut error2, mut energy2) = (0.0, 0.0);
+    let mut nodes = Vec::new();
+    for (b, body) in mesh.bodies.iter().enumerate() {
+        let cell = &cells[b];
+        let m = &materials[body.material];
+        let mut shapes = vec![0.0; body.nodes_per_element()];
+        let ngp = cell.gp_per_element();
+        for e in 0..body.n_elements() {
+            let (es, eb) = body.split_element(e);
+            body.element_nodes(e, &mut nodes);
+            let mut eta2 = 0.0;
+            for gb in 0..cell.axis.n_gp {
+                for gs in 0..cell.section.n_gp {
+                    let (s, a) = (cell.section.point(es, gs), cell.axis.point(eb, gb));
+                    shape_values(s, a, &mut shapes);
+                    let w = s.weight * a.weight;
+                    let raw = stresses[gp_offsets[b] + e * ngp + gb * cell.section.n_gp + gs];
+                    let mut star = [0.0; 6];
+                    for (&n, &node) in shapes.iter().zip(&nodes) {
+                        for k in 0..6 {
+                            star[k] += n * recovered.stress[node][k];
+                        }
+                    }
+                    let d: Voigt = std::array::from_fn(|k| star[k] - raw[k]);
+                    eta2 += w * complementary(&d, m.young, m.poisson);
+                    energy2 += w * complementary(&raw, m.young, m.poisson);
+                }
+            }
+            out.element[body.element_offset + e] = eta2.max(0.0).sqrt();
+            error2 += eta2.max(0.0);
+        }
+    }
+    out.error = error2.sqrt();
+    out.energy = energy2.max(0.0).sqrt();
+    out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn complementary_energy_is_the_compliance_form() {
+        // uniaxial σ: σ²/E; pure shear τ: τ²/G
+        let (e, nu) = (200e9, 0.3);
+        assert!((complementary(&[1e8, 0.0, 0.0, 0.0, 0.0, 0.0], e, nu) - 1e16 / e).abs() < 1e-12 * 1e16 / e);
+        let g = e / (2.0 * (1.0 + nu));
+        assert!((complementary(&[0.0, 0.0, 0.0, 0.0, 5e7, 0.0], e, nu) - 25e14 / g).abs() < 1e-12 * 25e14 / g);
+        // hydrostatic p: 3 p² (1 − 2ν) / E
+        let p = 1e8;
+        let hydro = complementary(&[p, p, p, 0.0, 0.0, 0.0], e, nu);
+        assert!((hydro - 3.0 * p * p * (1.0 - 2.0 * nu) / e).abs() < 1e-12 * hydro);
+    }
+
+    #[test]
+    fn relative_and_largest() {
+        let est = ErrorEstimate { element: vec![3.0, 4.0, 0.0], error: 5.0, energy: 12.0 };
+        assert!((est.relative() - 5.0 / 13.0).abs() < 1e-15);
+        assert!((est.relative_element(1) - 4.0 / 13.0).abs() < 1e-15);
+        assert_eq!(est.largest(2), vec![(1, 16.0 / 25.0), (0, 9.0 / 25.0)]);
+    }
+}

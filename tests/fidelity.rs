@@ -71,3 +71,27 @@ fn bending_compact_4l9_whole_field_agrees_with_3d() {
     let peeq = row(&rows, "plastic zone bar", "peeq");
     assert!(peeq.l2_percent <= 10.0, "peeq over the plastic zone: {peeq:?}");
 }
+
+/// §4.1 block, the shipped mesh (1 B4 × 108 L9, B-bar, projected fields)
+/// against 3D at refine 2 (C3D20R, 145,767 DOF), the punch edges left out
+/// by one 3D element (11.3 mm). A regression guard, not issue 23's
+/// criteria, which the shipped block does not meet: measured u 19.0 % over
+/// the block and 24.4 % on the top face, von Mises 7.5 % and peeq 36 % over
+/// the plastic zone. Most of the displacement difference is the squeeze-out
+/// along the beam axis under the punch — u_y there is about half of the 3D
+/// value (−0.33 against −0.59 mm at y = 33 mm): one B4 element along y
+/// cannot follow the plastic flow out of the punch's footprint, while u_z
+/// under the punch agrees to 0.05 %. Bounds: the measured values + 10 %;
+/// a better element or mesh lowers them (then tighten these).
+#[test]
+fn block_indentation_whole_field_against_3d() {
+    let rows = whole_field("block_indentation");
+    let bound = |region: &str, q: &str, measured: f64| {
+        let r = row(&rows, region, q);
+        assert!(r.points > 100 && r.l2_percent <= 1.1 * measured, "{region} {q}: {r:?} (measured {measured} %)");
+    };
+    bound("body block", "u", 19.02);
+    bound("surface punch", "u", 24.36);
+    bound("plastic zone block", "von_mises", 7.54);
+    bound("plastic zone block", "peeq", 36.40);
+}

@@ -234,6 +234,20 @@ pub enum StoredError {
 /// with `#` before the column names are a comment); the rows are those of
 /// `cufem verify`.
 pub fn compare_stored(model: &Model, view: &FieldView<'_>, csv: &str) -> Result<Vec<FieldRow>, StoredError> {
+    compare_stored_on(model, model, view, csv)
+}
+
+/// As [`compare_stored`] for a solution `view` of `model`, another mesh of
+/// the same bodies (a refinement, another element): the points are placed
+/// by `stored_on`, the model the CSV was made on, and located in `model`'s
+/// mesh by their position; the norms keep `stored_on`'s weights.
+pub fn compare_stored_on(
+    stored_on: &Model,
+    model: &Model,
+    view: &FieldView<'_>,
+    csv: &str,
+) -> Result<Vec<FieldRow>, StoredError> {
+    let same = std::ptr::eq(stored_on, model);
     let mut points = Vec::new();
     // `#` lines (a provenance header) and the column names are skipped
     let rows = csv.lines().enumerate().filter(|(_, l)| !l.trim().is_empty() && !l.starts_with('#')).skip(1);
@@ -248,23 +262,30 @@ pub fn compare_stored(model: &Model, view: &FieldView<'_>, csv: &str) -> Result<
             return Err(bad(format!("{} columns, expected 13", v.len())));
         }
         let (body, element) = (v[0] as usize, v[1] as usize);
-        if body >= model.mesh.bodies.len() || element >= model.mesh.bodies[body].n_elements() {
+        if body >= stored_on.mesh.bodies.len() || element >= stored_on.mesh.bodies[body].n_elements() {
             return Err(bad(format!("body {body}, element {element}: not in this model's mesh")));
         }
         let location = Location { body, element, natural: [v[2], v[3], v[4]] };
+        let x = position(stored_on, &location);
+        let ours = if same {
+            view.sample(&location)
+        } else {
+            let at = crate::values::locate_in_model(&model.mesh, Some(body), x);
+            view.sample_at(&at).ok_or_else(|| bad(format!("the point {x:?} is not in the other mesh")))?
+        };
         let theirs = Sample { u: [v[8], v[9], v[10]], von_mises: v[11], peeq: v[12], ..Default::default() };
         points.push(FieldPoint {
             location,
-            x: position(model, &location),
+            x,
             weight: v[5],
             body,
             surface: (v[6] >= 0.0).then_some(v[6] as usize),
             excluded: v[7] != 0.0,
-            ours: view.sample(&location),
+            ours,
             theirs,
         });
     }
-    Ok(norms(model, &points, &contact_surfaces(model)))
+    Ok(norms(stored_on, &points, &contact_surfaces(stored_on)))
 }
 
 /// One 3D element per body: `(V / n)^{1/3}`.

@@ -29,7 +29,7 @@ use crate::quantity::{Quantity, Sample};
 
 pub mod field;
 
-pub use field::{FieldComparison, FieldRow, SingularZone, StoredError, compare_stored};
+pub use field::{FieldComparison, FieldRow, SingularZone, StoredError, compare_stored, compare_stored_on};
 
 /// One probe value, both ways.
 #[derive(Debug, Clone, Serialize)]

@@ -163,9 +163,8 @@ pub fn estimate_summary(model: &Model, solution: &Solution) -> Option<EstimateSu
         .largest(5)
         .into_iter()
         .map(|(e, share)| {
-            // bodies are numbered in order: the last one starting at or before e
-            let body = model.mesh.bodies.iter().rfind(|b| b.element_offset <= e).unwrap_or(&model.mesh.bodies[0]);
-            ElementShare { body: body.name.clone(), element: e - body.element_offset, share }
+            let (b, element) = model.mesh.body_of_element(e);
+            ElementShare { body: model.mesh.bodies[b].name.clone(), element, share }
         })
         .collect();
     Some(EstimateSummary {

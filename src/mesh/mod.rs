@@ -222,6 +222,12 @@ impl Mesh {
         (b, node - self.bodies[b].node_offset)
     }
 
+    /// Body owning a global element, and the element's body-local index.
+    pub fn body_of_element(&self, e: usize) -> (usize, usize) {
+        let b = self.bodies.iter().rposition(|b| b.element_offset <= e).unwrap_or(0);
+        (b, e - self.bodies[b].element_offset)
+    }
+
     /// Reference coordinates of a global node.
     pub fn coords(&self, node: usize) -> [f64; 3] {
         let (b, local) = self.body_of(node);

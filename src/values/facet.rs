@@ -25,6 +25,8 @@ pub struct FacetValues {
     pub shapes: Vec<f64>,
     /// Area weight of each point (m²).
     pub weights: Vec<f64>,
+    /// Natural coordinates `(ξ, η, ζ)` of each point in the element.
+    pub natural: Vec<[f64; 3]>,
     /// Outward unit normal at each point.
     pub normals: Vec<[f64; 3]>,
     /// Thickness of the element behind the face, measured along the normal (m).
@@ -55,7 +57,14 @@ impl FacetValues {
             .iter()
             .zip(&interior.weight)
             .fold([0.0; 2], |c, (p, w)| [c[0] + w * p[0] / area, c[1] + w * p[1] / area]);
-        let mut out = Self { nodes, shapes: Vec::new(), weights: Vec::new(), normals: Vec::new(), depth: 0.0 };
+        let mut out = Self {
+            nodes,
+            shapes: Vec::new(),
+            weights: Vec::new(),
+            natural: Vec::new(),
+            normals: Vec::new(),
+            depth: 0.0,
+        };
         let mut shapes = vec![0.0; n_sec * (pb + 1)];
         match side {
             FaceSide::Lateral(k) => {
@@ -87,6 +96,7 @@ impl FacetValues {
                         }
                         out.shapes.extend_from_slice(&shapes);
                         out.weights.push(wt * ds * a.weight);
+                        out.natural.push([xi, eta, gb.points[q]]);
                         out.normals.push([n2[0], 0.0, n2[1]]);
                     }
                 }
@@ -101,6 +111,7 @@ impl FacetValues {
                     shape_values(s, a, &mut shapes);
                     out.shapes.extend_from_slice(&shapes);
                     out.weights.push(s.weight);
+                    out.natural.push([interior.natural[q][0], interior.natural[q][1], zeta]);
                     out.normals.push([0.0, zeta, 0.0]);
                 }
                 let (y0, y1) = body.axis.element_span(eb);

@@ -34,7 +34,7 @@ use crate::contact::RigidSurface;
 use crate::model::Model;
 use crate::post::FieldView;
 use crate::quantity::Sample;
-use crate::values::{FaceSide, FacetValues, Location, PointValues};
+use crate::values::{FacetValues, Location, PointValues};
 
 /// Share of a body's largest 3D peeq above which a point is in the plastic
 /// zone.
@@ -113,14 +113,10 @@ pub struct FieldComparison {
 pub fn compare_fields(model: &Model, view: &FieldView<'_>, mesh: &HexMesh, run: &CcxRun) -> FieldComparison {
     let h = element_sizes(model, mesh);
     let zones = singular_zones(model, &h);
-    let theirs = |locs: &[Location]| -> Option<Sample> {
-        let (u, stress, peeq) = crate::ccx::sample(model, mesh, &run.results, locs)?;
-        Some(Sample { u, stress, von_mises: crate::voigt::von_mises(&stress), peeq, ..Default::default() })
-    };
     let mut points = Vec::new();
     let mut push = |loc: Location, weight: f64, surface: Option<usize>| {
         let x = position(model, &loc);
-        if let Some(t) = theirs(std::slice::from_ref(&loc)) {
+        if let Some(t) = super::ccx_sample(model, mesh, run, std::slice::from_ref(&loc)) {
             let excluded = zones.iter().any(|z| z.body == loc.body && z.contains(x));
             points.push(FieldPoint {
                 location: loc,
@@ -333,35 +329,13 @@ fn volume_points(model: &Model, b: usize, push: &mut impl FnMut(Location, f64, O
     }
 }
 
-/// The quadrature points of one face (natural coordinates in the order of
-/// [`FacetValues`], whose area weights they take).
+/// The quadrature points of one face with their area weights.
 fn face_points(model: &Model, b: usize, f: &crate::bc::Face, push: &mut impl FnMut(Location, f64)) {
     let body = &model.mesh.bodies[b];
     let fv = FacetValues::new(body, f.section_element, f.beam_element, f.side);
-    let (ps, pb) = (body.section.kind.order(), body.axis.kind.order());
-    let (gs, gb) = (crate::quadrature::GaussRule::new(ps + 1), crate::quadrature::GaussRule::new(pb + 1));
-    let mut natural = Vec::new();
-    match f.side {
-        FaceSide::Lateral(k) => {
-            for &t in &gs.points {
-                let (xi, eta) = match k {
-                    0 => (t, -1.0),
-                    1 => (1.0, t),
-                    2 => (t, 1.0),
-                    _ => (-1.0, t),
-                };
-                natural.extend(gb.points.iter().map(|&z| [xi, eta, z]));
-            }
-        }
-        FaceSide::End(end) => {
-            let zeta = if end { 1.0 } else { -1.0 };
-            let square = crate::quadrature::SquareRule::new(ps + 1);
-            natural.extend(square.points.iter().map(|p| [p[0], p[1], zeta]));
-        }
-    }
     let element = f.beam_element * body.section.n_elements() + f.section_element;
-    for (n, &w) in natural.into_iter().zip(&fv.weights) {
-        push(Location { body: b, element, natural: n }, w);
+    for (&natural, &w) in fv.natural.iter().zip(&fv.weights) {
+        push(Location { body: b, element, natural }, w);
     }
 }
 
@@ -484,7 +458,7 @@ fn norms(model: &Model, points: &[FieldPoint], surfaces: &[(String, usize, Vec<c
     for (b, body) in model.mesh.bodies.iter().enumerate() {
         let volume: Vec<&FieldPoint> = points.iter().filter(|p| p.body == b && p.surface.is_none()).collect();
         let largest = |f: &dyn Fn(&Sample) -> f64| volume.iter().map(|p| f(&p.theirs)).fold(0.0f64, f64::max);
-        let u_scale = largest(&|s| norm3(s.u));
+        let u_scale = largest(&|s| super::norm(s.u));
         let vm_scale = largest(&|s| s.von_mises);
         let peeq_scale = largest(&|s| s.peeq);
         let (mut u, mut vm) = (Norm::default(), Norm::default());
@@ -513,10 +487,6 @@ fn norms(model: &Model, points: &[FieldPoint], surfaces: &[(String, usize, Vec<c
         }
     }
     rows
-}
-
-fn norm3(v: [f64; 3]) -> f64 {
-    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }
 
 #[cfg(test)]

@@ -132,6 +132,11 @@ fn ccx_sample(model: &Model, mesh: &HexMesh, run: &CcxRun, locations: &[crate::v
     Some(Sample { u, stress, von_mises: crate::voigt::von_mises(&stress), peeq, ..Default::default() })
 }
 
+/// Length of a vector.
+fn norm(v: [f64; 3]) -> f64 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+}
+
 fn percent(ours: f64, reference: f64, scale: f64) -> Option<f64> {
     (reference.abs() > 1e-3 * scale).then(|| 100.0 * (ours - reference) / reference.abs())
 }
@@ -205,7 +210,6 @@ pub fn compare(
         }
     }
     let mut resultants = Vec::new();
-    let norm = |f: [f64; 3]| (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
     // a resultant below 1e-6 of the largest one is round-off (a symmetry plane's reaction)
     let force_scale = run.totals.values().map(|t| norm(t.0)).fold(0.0f64, f64::max);
     let mut push = |name: &str, kind: &'static str, ours: [f64; 3], set: String| {

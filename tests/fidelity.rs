@@ -136,3 +136,200 @@ fn block_axis_refinement_against_stored_3d() {
         }
     }
 }
+
+/// A CSV file's columns by header name (comment lines `#` skipped).
+fn columns(path: &std::path::Path) -> std::collections::HashMap<String, Vec<f64>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let names: Vec<String> = lines.next().unwrap().split(',').map(str::to_string).collect();
+    let mut cols: std::collections::HashMap<String, Vec<f64>> = names.iter().map(|n| (n.clone(), vec![])).collect();
+    for l in lines {
+        for (n, v) in names.iter().zip(l.split(',')) {
+            cols.get_mut(n).unwrap().push(v.parse().unwrap());
+        }
+    }
+    cols
+}
+
+/// The block's top line y = 0.05, z = 0.3 m of a run against the 3D line
+/// (CalculiX C3D20R, 145,767 DOF: tests/data/block_calculix_top_u_z.csv and
+/// block_calculix_top.csv, the same 201 stations): per station x, u_z and
+/// its 3D value; the largest differences of σ_zz and peeq under the punch
+/// (x ∈ [0.21, 0.29] m) in fractions of the 3D peak.
+struct TopLine {
+    x: Vec<f64>,
+    u_z: Vec<f64>,
+    u_z_3d: Vec<f64>,
+    s_zz_under: f64,
+    peeq_under: f64,
+}
+
+fn top_line(line_csv: &std::path::Path) -> TopLine {
+    let ours = columns(line_csv);
+    let uz3 = columns(&root().join("tests/data/block_calculix_top_u_z.csv"));
+    let top3 = columns(&root().join("tests/data/block_calculix_top.csv"));
+    let x = ours["x"].clone();
+    assert_eq!(x.len(), uz3["x"].len());
+    assert!(x.iter().zip(&uz3["x"]).all(|(a, b)| (a - b).abs() < 1e-12));
+    let under = |q: &str| {
+        let peak = top3[q].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        (0..x.len())
+            .filter(|&i| (0.21 - 1e-9..=0.29 + 1e-9).contains(&x[i]))
+            .map(|i| (ours[q][i] - top3[q][i]).abs() / peak)
+            .fold(0.0, f64::max)
+    };
+    TopLine {
+        u_z: ours["u_z"].clone(),
+        u_z_3d: uz3["u_z"].clone(),
+        s_zz_under: under("s_zz"),
+        peeq_under: under("peeq"),
+        x,
+    }
+}
+
+impl TopLine {
+    /// The largest relative u_z difference over the stations in `[a, b]` (and
+    /// their mirror images about the punch centre x = 0.25 m).
+    fn u_z_error(&self, a: f64, b: f64) -> f64 {
+        (0..self.x.len())
+            .filter(|&i| {
+                let x = self.x[i].min(0.5 - self.x[i]);
+                (a - 1e-9..=b + 1e-9).contains(&x)
+            })
+            .map(|i| (self.u_z[i] / self.u_z_3d[i] - 1.0).abs())
+            .fold(0.0, f64::max)
+    }
+
+    /// Whether u_z sinks monotonically from the far field to x = 0.19 m and
+    /// from the far field x = 0.5 to its mirror x = 0.31 m.
+    fn sinks_towards_the_punch(&self) -> bool {
+        let left: Vec<f64> = (0..self.x.len()).filter(|&i| self.x[i] <= 0.19 + 1e-9).map(|i| self.u_z[i]).collect();
+        let right: Vec<f64> =
+            (0..self.x.len()).rev().filter(|&i| self.x[i] >= 0.31 - 1e-9).map(|i| self.u_z[i]).collect();
+        [left, right].iter().all(|side| side.windows(2).all(|w| w[1] <= w[0]))
+    }
+}
+
+/// §4.1 block on the graded mesh of `examples/block_indentation_graded.toml`
+/// (17 × 6 L9 × 3 B3, 9,555 DOF, within issue 23's 10,000), run through
+/// the CLI, against 3D at refine 2. Issue 23's criteria and what was
+/// measured:
+/// - punch force within 2 % (measured +1.29 %);
+/// - top-line u_z within 5 % at x ∈ [0.03, 0.15] m (measured 4.8 %) and
+///   8 % at 0.175 m (0.9 %); towards the far side x = 0 the issue's 5 % is
+///   not met: an offset of about 0.002 mm (0.2 % of the punch travel) is
+///   8.1 % of the 3D −0.0305 mm there (5.1 % at x = 0.025), bound 10 %;
+/// - sinking monotonically towards the punch edge up to x = 0.19 m and its
+///   mirror image (the paper's mesh bulges up there);
+/// - σ_zz and peeq under the punch within 10 % of the 3D peak (measured
+///   7.0 % and 9.6 %).
+///
+/// Measured on purpose-broken copies: Young's modulus 10 % high or low
+/// moves u_z at x = 0.10–0.15 m by −7 to −9 % or +12 % and fails (the force,
+/// set by the plastic flow, moves by 0.1 %); the same depth with the
+/// paper's 0.3 grading (6 elements per side, 17 mm at the edge) bulges up
+/// at x = 0.19 m (−0.127 against −0.176 mm) and fails the monotonicity.
+#[test]
+fn block_indentation_graded_against_3d() {
+    let model = root().join("examples/block_indentation_graded.toml");
+    let out = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fidelity_block_graded");
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet", "--force"])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(s["dof"], 9555);
+    let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
+    // 3D punch force: tests/examples.rs BLOCK_FORCE_3D (the same CalculiX run)
+    let force = punch["force"][2].as_f64().unwrap() / -1.4102e6 - 1.0;
+    eprintln!("punch force vs 3D {:+.2} %", 100.0 * force);
+    assert!(force.abs() <= 0.02, "punch force {:+.2} % vs 3D", 100.0 * force);
+    let line = top_line(&out.join("line_top.csv"));
+    let (near, edge, corner) = (line.u_z_error(0.03, 0.15), line.u_z_error(0.175, 0.175), line.u_z_error(0.0, 0.03));
+    eprintln!(
+        "u_z: {:.1} % on [0.03, 0.15], {:.1} % at 0.175, {:.1} % on [0, 0.03]; under the punch σ_zz {:.1} %, peeq {:.1} %",
+        100.0 * near,
+        100.0 * edge,
+        100.0 * corner,
+        100.0 * line.s_zz_under,
+        100.0 * line.peeq_under
+    );
+    assert!(near <= 0.05 && edge <= 0.08 && corner <= 0.10, "u_z {near} {edge} {corner}");
+    assert!(line.sinks_towards_the_punch(), "the top surface does not sink monotonically towards the punch");
+    assert!(line.s_zz_under <= 0.10 && line.peeq_under <= 0.10, "{} {}", line.s_zz_under, line.peeq_under);
+}
+
+/// The graded block against the stored 3D fields of the paper's mesh
+/// (`compare_stored_on`, points located by position). A regression guard at
+/// the measured values + 10 %: u 6.85 % over the block and 5.79 % on the
+/// punch face (issue 23's 2 % not met: most of it is the 0.002 mm far-field
+/// offset above and the squeeze-out u_y, 3 B3 through the depth), von Mises
+/// 4.13 % over the plastic zone (issue 23's 10 %: met), peeq 20.0 %. The
+/// paper's mesh: 19.0 / 24.4 / 7.5 / 36.4 % (test above).
+#[test]
+fn block_indentation_graded_whole_field_against_3d() {
+    let stored_on = cufem::model::Model::from_file(&root().join("examples/block_indentation.toml")).unwrap();
+    let model = cufem::model::Model::from_file(&root().join("examples/block_indentation_graded.toml")).unwrap();
+    let solution = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
+    let csv = std::fs::read_to_string(root().join("tests/data/block_indentation_field_3d.csv")).unwrap();
+    let rows = cufem::verify::compare_stored_on(&stored_on, &model, &solution.fields(&model), &csv).unwrap();
+    for (region, q, measured) in [
+        ("body block", "u", 6.85),
+        ("surface punch", "u", 5.79),
+        ("plastic zone block", "von_mises", 4.13),
+        ("plastic zone block", "peeq", 19.97),
+    ] {
+        let r = row(&rows, region, q);
+        eprintln!("{region} {q}: L2 {:.2} % (measured {measured} %)", r.l2_percent);
+        assert!(r.points > 100 && r.l2_percent <= 1.1 * measured, "{region} {q}: {r:?}");
+    }
+    assert!(row(&rows, "plastic zone block", "von_mises").l2_percent <= 10.0);
+}
+
+/// Issue 23's "on a mesh you name of at most 40,000 DOF within 3 %": the
+/// graded block refined to 24 × 9 L9 × 6 B3 (36,309 DOF, 21 s). Measured
+/// (`cargo test --release --test fidelity -- --ignored --nocapture`): top-line
+/// u_z within 1.3 % at every station x ∈ [0, 0.19] m and its mirror, punch
+/// force +0.33 %, σ_zz and peeq under the punch 9.4 % and 6.6 % of the 3D
+/// peak; whole field u 2.5 %, punch face 2.0 %, plastic-zone von Mises
+/// 2.5 %, peeq 9.8 %.
+#[test]
+#[ignore = "a 36,309-DOF run (about 25 s); run by hand"]
+fn block_indentation_36k_within_three_percent_of_3d() {
+    let text = std::fs::read_to_string(root().join("examples/block_indentation_graded.toml")).unwrap();
+    let fine = text
+        .replace("to = 0.1, elements = 3 }", "to = 0.1, elements = 6 }")
+        .replace("{ from = 0.0, to = 0.15, elements = 3 }", "{ from = 0.0, to = 0.15, elements = 4 }")
+        .replace(
+            "{ from = 0.15, to = 0.2, elements = 3, ratio = 0.2 }",
+            "{ from = 0.15, to = 0.2, elements = 4, ratio = 0.2 }",
+        )
+        .replace("{ from = 0.2, to = 0.3, elements = 5 }", "{ from = 0.2, to = 0.3, elements = 8 }")
+        .replace(
+            "{ from = 0.3, to = 0.35, elements = 3, ratio = 5.0 }",
+            "{ from = 0.3, to = 0.35, elements = 4, ratio = 5.0 }",
+        )
+        .replace("{ from = 0.35, to = 0.5, elements = 3 }", "{ from = 0.35, to = 0.5, elements = 4 }")
+        .replace("to = 0.3, elements = 6, ratio = 0.3 }", "to = 0.3, elements = 9, ratio = 0.3 }");
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fidelity_block_36k");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("model.toml"), &fine).unwrap();
+    let out = dir.join("out");
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", dir.join("model.toml").to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet", "--force"])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(s["dof"], 36309);
+    let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
+    let force = punch["force"][2].as_f64().unwrap() / -1.4102e6 - 1.0;
+    let line = top_line(&out.join("line_top.csv"));
+    let u = line.u_z_error(0.0, 0.19);
+    eprintln!("36,309 DOF: force {:+.2} %, u_z within {:.2} % on [0, 0.19]", 100.0 * force, 100.0 * u);
+    assert!(force.abs() <= 0.02 && u <= 0.03 && line.sinks_towards_the_punch());
+    assert!(line.s_zz_under <= 0.10 && line.peeq_under <= 0.10, "{} {}", line.s_zz_under, line.peeq_under);
+}

@@ -26,11 +26,43 @@ fn whole_field(name: &str) -> Vec<FieldRow> {
     let model = cufem::model::Model::from_file(&root().join("examples").join(format!("{name}.toml"))).unwrap();
     let solution = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
     assert!(solution.failure.is_none(), "{:?}", solution.failure);
-    let csv = std::fs::read_to_string(root().join("tests/data").join(format!("{name}_field_3d.csv"))).unwrap();
-    let rows = cufem::verify::compare_stored(&model, &solution.fields(&model), &csv).unwrap();
+    let rows = cufem::verify::compare_stored(&model, &solution.fields(&model), &stored_3d(name)).unwrap();
     for r in &rows {
         eprintln!(
             "{name}: {:<28} {:<10} L2 {:6.2} %  max {:6.2} %  ({} points, {} excluded)",
+            r.region, r.quantity, r.l2_percent, r.max_percent, r.points, r.excluded
+        );
+    }
+    rows
+}
+
+/// The stored 3D fields of `examples/<name>.toml`: `tests/data/<name>_field_3d.csv`,
+/// or the same gzipped (`.csv.gz`) when large.
+fn stored_3d(name: &str) -> String {
+    let plain = root().join("tests/data").join(format!("{name}_field_3d.csv"));
+    if plain.exists() {
+        return std::fs::read_to_string(plain).unwrap();
+    }
+    let gz = std::fs::File::open(root().join("tests/data").join(format!("{name}_field_3d.csv.gz"))).unwrap();
+    let mut text = String::new();
+    std::io::Read::read_to_string(&mut flate2::read::GzDecoder::new(gz), &mut text).unwrap();
+    text
+}
+
+/// Runs `examples/<name>.toml` and compares it with the stored 3D fields of
+/// `examples/<stored>.toml`, another mesh of the same bodies (the stored
+/// points located by position).
+fn whole_field_on(name: &str, stored: &str) -> Vec<FieldRow> {
+    let model_of =
+        |n: &str| cufem::model::Model::from_file(&root().join("examples").join(format!("{n}.toml"))).unwrap();
+    let (model, stored_on) = (model_of(name), model_of(stored));
+    let solution = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
+    assert!(solution.failure.is_none(), "{:?}", solution.failure);
+    let rows =
+        cufem::verify::compare_stored_on(&stored_on, &model, &solution.fields(&model), &stored_3d(stored)).unwrap();
+    for r in &rows {
+        eprintln!(
+            "{name} on {stored}'s 3D: {:<28} {:<10} L2 {:6.2} %  max {:6.2} %  ({} points, {} excluded)",
             r.region, r.quantity, r.l2_percent, r.max_percent, r.points, r.excluded
         );
     }
@@ -332,4 +364,61 @@ fn block_indentation_36k_within_three_percent_of_3d() {
     eprintln!("36,309 DOF: force {:+.2} %, u_z within {:.2} % on [0, 0.19]", 100.0 * force, 100.0 * u);
     assert!(force.abs() <= 0.02 && u <= 0.03 && line.sinks_towards_the_punch());
     assert!(line.s_zz_under <= 0.10 && line.peeq_under <= 0.10, "{} {}", line.s_zz_under, line.peeq_under);
+}
+
+/// §4.2 compact bar, the paper's fine section (10 B4 × 16 L9), against the
+/// 3D fields stored for the 4 L9 mesh (refine 2, 55,755 DOF) — a finer 3D
+/// model than its own verify at refine 1. Issue 23's criteria, met:
+/// measured u 0.33 % over the bar, at most 0.29 % on the roller surfaces,
+/// von Mises 1.86 % over the plastic zone (peeq 6.4 %).
+#[test]
+fn bending_compact_16l9_whole_field_agrees_with_3d() {
+    let rows = whole_field_on("bending_compact_16L9", "bending_compact_4L9");
+    assert_issue_criteria(&rows, "bar");
+}
+
+/// §4.2 thin-walled tube, the shipped 22 B4 × 28 L9 (33,768 DOF), against 3D
+/// at refine 1 (C3D20R, 123,312 DOF; the three roller lines left out within
+/// 1.8 mm). Issue 23's criteria are met for von Mises over the plastic zone
+/// (measured 3.95 %) but not for the displacement: u 5.7 % over the tube and
+/// up to 6.0 % (L2) on the roller surfaces; most of it is the top wall
+/// between the webs, which sags off the loading roller by 0.019 mm where
+/// 3D keeps it on (docs/cross-check.md). A regression guard at the
+/// measured values + 10 % until the rollers improve.
+#[test]
+fn bending_tube_28l9_whole_field_against_3d() {
+    let rows = whole_field("bending_tube_28L9");
+    let vm = row(&rows, "plastic zone tube", "von_mises");
+    assert!(vm.points > 100 && vm.l2_percent <= 10.0, "{vm:?}");
+    for (region, q, measured) in [
+        ("body tube", "u", 5.7),
+        ("surface load", "u", 4.35),
+        ("surface support_left", "u", 6.02),
+        ("plastic zone tube", "von_mises", 3.95),
+        ("plastic zone tube", "peeq", 26.79),
+    ] {
+        let r = row(&rows, region, q);
+        assert!(r.points > 100 && r.l2_percent <= 1.1 * measured, "{region} {q}: {r:?} (measured {measured} %)");
+    }
+}
+
+/// §4.2 tube with the paper's coarse section (22 B4 × 20 L9) against the
+/// 3D fields stored for the 28 L9 mesh. Measured: u 3.82 % over the tube
+/// (closer to 3D than the 28 L9 mesh's 5.7 %: its top wall stays nearer the
+/// roller), at most 3.78 % on the roller surfaces (issue 23's 5 %: met),
+/// von Mises 4.31 % over the plastic zone (10 %: met), peeq 28 %. The
+/// issue's 2 % for u is not met; guarded at the measured values + 10 %.
+#[test]
+fn bending_tube_20l9_whole_field_against_3d() {
+    let rows = whole_field_on("bending_tube_20L9", "bending_tube_28L9");
+    for s in rows.iter().filter(|r| r.region.starts_with("surface ") && r.quantity == "u") {
+        assert!(s.points > 0 && s.max_percent <= 5.0, "u on {}: {s:?}", s.region);
+    }
+    for (region, q, measured) in
+        [("body tube", "u", 3.82), ("plastic zone tube", "von_mises", 4.31), ("plastic zone tube", "peeq", 28.06)]
+    {
+        let r = row(&rows, region, q);
+        assert!(r.points > 100 && r.l2_percent <= 1.1 * measured, "{region} {q}: {r:?} (measured {measured} %)");
+    }
+    assert!(row(&rows, "plastic zone tube", "von_mises").l2_percent <= 10.0);
 }

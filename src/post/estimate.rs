@@ -17,10 +17,9 @@
 //! A field the basis represents exactly (a patch test's constant stress)
 //! gives `η = 0`. Voigt order and engineering shear as in [`crate::voigt`].
 
-use super::Recovered;
 use crate::materials::Material;
 use crate::mesh::Mesh;
-use crate::values::{CellValues, shape_values};
+use crate::values::CellValues;
 use crate::voigt::Voigt;
 
 /// The estimate of one solution.
@@ -69,39 +68,31 @@ fn complementary(s: &Voigt, young: f64, poisson: f64) -> f64 {
 }
 
 /// Estimates the error of the stresses `stresses` (Gauss points, first of
-/// each body at `gp_offsets`) against their recovery `recovered`.
+/// each body at `gp_offsets`) against their recovery `recovered` (the same
+/// layout, [`super::spr::recover`]).
 pub fn estimate(
     mesh: &Mesh,
     cells: &[CellValues],
     materials: &[Material],
     stresses: &[Voigt],
     gp_offsets: &[usize],
-    recovered: &Recovered,
+    recovered: &[Voigt],
 ) -> ErrorEstimate {
     let mut out = ErrorEstimate { element: vec![0.0; mesh.n_elements()], ..Default::default() };
     let (mut error2, mut energy2) = (0.0, 0.0);
-    let mut nodes = Vec::new();
     for (b, body) in mesh.bodies.iter().enumerate() {
         let cell = &cells[b];
         let m = &materials[body.material];
-        let mut shapes = vec![0.0; body.nodes_per_element()];
         let ngp = cell.gp_per_element();
         for e in 0..body.n_elements() {
             let (es, eb) = body.split_element(e);
-            body.element_nodes(e, &mut nodes);
             let mut eta2 = 0.0;
             for gb in 0..cell.axis.n_gp {
                 for gs in 0..cell.section.n_gp {
-                    let (s, a) = (cell.section.point(es, gs), cell.axis.point(eb, gb));
-                    shape_values(s, a, &mut shapes);
-                    let w = s.weight * a.weight;
-                    let raw = stresses[gp_offsets[b] + e * ngp + gb * cell.section.n_gp + gs];
-                    let mut star = [0.0; 6];
-                    for (&n, &node) in shapes.iter().zip(&nodes) {
-                        for k in 0..6 {
-                            star[k] += n * recovered.stress[node][k];
-                        }
-                    }
+                    let w =
+                        cell.section.weight[es * cell.section.n_gp + gs] * cell.axis.weight[eb * cell.axis.n_gp + gb];
+                    let g = gp_offsets[b] + e * ngp + gb * cell.section.n_gp + gs;
+                    let (raw, star) = (stresses[g], recovered[g]);
                     let d: Voigt = std::array::from_fn(|k| star[k] - raw[k]);
                     eta2 += w * complementary(&d, m.young, m.poisson);
                     energy2 += w * complementary(&raw, m.young, m.poisson);

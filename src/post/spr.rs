@@ -53,6 +53,8 @@ struct Patch {
     elements: Vec<usize>,
     /// `R[g, k]`, `g` the element's points, `k` the patch's points (element-major), row-major.
     weights: Vec<f64>,
+    /// `I − A A⁺` over the patch's points (row-major): the fit's residual.
+    residual: Vec<f64>,
 }
 
 /// Legendre polynomials `P_0 … P_n` at `x`.
@@ -66,10 +68,10 @@ fn legendre(n: usize, x: f64, out: &mut [f64]) {
     }
 }
 
-/// `V A⁺` for a basis evaluated at the patch's points (`a`, rows) and at the
-/// element's own (`v`, rows), both row-major with `n` columns.
-fn fit_operator(a: &[f64], v: &[f64], n: usize) -> Vec<f64> {
-    let (m, k) = (a.len() / n, v.len() / n);
+/// `A⁺`, the least-squares operator (`n × m`, row-major) of a basis
+/// evaluated at `m` points (`a`, rows of `n`).
+fn pseudo_inverse(a: &[f64], n: usize) -> Vec<f64> {
+    let m = a.len() / n;
     let gram = Mat::<f64>::from_fn(n, n, |i, j| (0..m).map(|r| a[r * n + i] * a[r * n + j]).sum());
     let mut q = Mat::<f64>::zeros(n, n);
     let mut lambda = faer::Col::<f64>::zeros(n);
@@ -79,28 +81,46 @@ fn fit_operator(a: &[f64], v: &[f64], n: usize) -> Vec<f64> {
     let ok = evd::self_adjoint_evd(gram.as_ref(), lambda.as_diagonal_mut(), Some(q.as_mut()), par, stack, params);
     let largest = (0..n).map(|i| lambda[i]).fold(0.0f64, f64::max);
     // (AᵀA)⁺ = Q Λ⁺ Qᵀ
-    let mut pinv = vec![0.0; n * n];
+    let mut gram_pinv = vec![0.0; n * n];
     if ok.is_ok() {
         for l in (0..n).filter(|&l| lambda[l] > 1e-12 * largest) {
             for i in 0..n {
                 for j in 0..n {
-                    pinv[i * n + j] += q[(i, l)] * q[(j, l)] / lambda[l];
+                    gram_pinv[i * n + j] += q[(i, l)] * q[(j, l)] / lambda[l];
                 }
             }
         }
     }
-    // R = V (AᵀA)⁺ Aᵀ
-    let mut vp = vec![0.0; k * n];
-    for g in 0..k {
-        for j in 0..n {
-            vp[g * n + j] = (0..n).map(|i| v[g * n + i] * pinv[i * n + j]).sum();
+    // A⁺ = (AᵀA)⁺ Aᵀ
+    let mut out = vec![0.0; n * m];
+    for i in 0..n {
+        for p in 0..m {
+            out[i * m + p] = (0..n).map(|j| gram_pinv[i * n + j] * a[p * n + j]).sum();
         }
     }
+    out
+}
+
+/// `V A⁺` for a basis evaluated at the patch's points (`a`, rows) and at the
+/// element's own (`v`, rows), both row-major with `n` columns.
+fn fit_operator(a: &[f64], v: &[f64], n: usize) -> Vec<f64> {
+    let (m, k) = (a.len() / n, v.len() / n);
+    let pinv = pseudo_inverse(a, n);
     let mut r = vec![0.0; k * m];
     for g in 0..k {
         for p in 0..m {
-            r[g * m + p] = (0..n).map(|j| vp[g * n + j] * a[p * n + j]).sum();
+            r[g * m + p] = (0..n).map(|j| v[g * n + j] * pinv[j * m + p]).sum();
         }
+    }
+    r
+}
+
+/// `I − A A⁺` (`m × m`, row-major): the residual of the fit.
+fn residual_operator(a: &[f64], n: usize) -> Vec<f64> {
+    let m = a.len() / n;
+    let mut r = fit_operator(a, a, n);
+    for (i, x) in r.iter_mut().enumerate() {
+        *x = if i / m == i % m { 1.0 } else { 0.0 } - *x;
     }
     r
 }
@@ -157,31 +177,67 @@ fn section_patches(section: &CrossSection, values: &SectionValues) -> Vec<Patch>
             for q in points(&[e]) {
                 section_basis(p, q, centre, half, &mut v);
             }
-            Patch { weights: fit_operator(&a, &v, (p + 1) * (p + 1)), elements }
+            Patch { weights: fit_operator(&a, &v, (p + 1) * (p + 1)), residual: Vec::new(), elements }
         })
         .collect()
 }
 
-/// One patch per beam element: itself and its neighbours along the axis.
-fn axis_patches(axis: &BeamAxis, values: &AxisValues) -> Vec<Patch> {
+/// The candidate patches of every beam element: itself with both
+/// neighbours, with the one before, with the one after (those that exist).
+fn axis_patches(axis: &BeamAxis, values: &AxisValues) -> Vec<Vec<Patch>> {
     let (p, ng, ne) = (axis.kind.order(), values.n_gp, axis.n_elements());
+    let patch = |e: usize, elements: Vec<usize>| {
+        let ys: Vec<f64> =
+            elements.iter().flat_map(|&f| values.position[f * ng..(f + 1) * ng].iter().copied()).collect();
+        let (centre, half) = frame(ys.iter().map(|&y| [y, 0.0]));
+        let basis = |y: f64, out: &mut Vec<f64>| {
+            let mut l = vec![0.0; p + 1];
+            legendre(p, (y - centre[0]) / half[0], &mut l);
+            out.extend(l);
+        };
+        let (mut a, mut v) = (Vec::new(), Vec::new());
+        ys.iter().for_each(|&y| basis(y, &mut a));
+        values.position[e * ng..(e + 1) * ng].iter().for_each(|&y| basis(y, &mut v));
+        Patch { weights: fit_operator(&a, &v, p + 1), residual: residual_operator(&a, p + 1), elements }
+    };
     (0..ne)
         .map(|e| {
-            let elements: Vec<usize> = (e.saturating_sub(1)..=(e + 1).min(ne - 1)).collect();
-            let ys: Vec<f64> =
-                elements.iter().flat_map(|&f| values.position[f * ng..(f + 1) * ng].iter().copied()).collect();
-            let (centre, half) = frame(ys.iter().map(|&y| [y, 0.0]));
-            let basis = |y: f64, out: &mut Vec<f64>| {
-                let mut l = vec![0.0; p + 1];
-                legendre(p, (y - centre[0]) / half[0], &mut l);
-                out.extend(l);
-            };
-            let (mut a, mut v) = (Vec::new(), Vec::new());
-            ys.iter().for_each(|&y| basis(y, &mut a));
-            values.position[e * ng..(e + 1) * ng].iter().for_each(|&y| basis(y, &mut v));
-            Patch { weights: fit_operator(&a, &v, p + 1), elements }
+            let mut list = Vec::new();
+            if e > 0 && e + 1 < ne {
+                list.push(vec![e - 1, e, e + 1]);
+            }
+            if e > 0 {
+                list.push(vec![e - 1, e]);
+            }
+            if e + 1 < ne {
+                list.push(vec![e, e + 1]);
+            }
+            if list.is_empty() {
+                list.push(vec![e]);
+            }
+            list.into_iter().map(|elements| patch(e, elements)).collect()
         })
         .collect()
+}
+
+/// The candidate whose fit of `f` (values at each candidate's points) leaves
+/// the smallest mean squared residual per redundant point.
+fn smoothest(candidates: &[Patch], per_element: usize, n_terms: usize, f: &dyn Fn(&Patch, usize) -> f64) -> usize {
+    let mut best = (0, f64::INFINITY);
+    for (i, patch) in candidates.iter().enumerate() {
+        let m = patch.elements.len() * per_element;
+        if m <= n_terms {
+            continue;
+        }
+        let values: Vec<f64> = (0..m).map(|k| f(patch, k)).collect();
+        let r2: f64 =
+            (0..m).map(|i| (0..m).map(|j| patch.residual[i * m + j] * values[j]).sum::<f64>().powi(2)).sum::<f64>()
+                / (m - n_terms) as f64;
+        if r2 < best.1 {
+            best = (i, r2);
+        }
+    }
+    best.0
 }
 
 /// The recovered stress `σ*` at every Gauss point of every body (the layout
@@ -198,18 +254,19 @@ pub fn recover(mesh: &Mesh, cells: &[CellValues], stresses: &[Voigt], gp_offsets
         let index = |s: usize, eb: usize, qs: usize, qa: usize| (eb * ns + s) * ngp + qa * gs + qs;
         // along the axis first, at every section point
         let mut along = vec![[0.0; 6]; raw.len()];
-        for (eb, patch) in axis_patches(&body.axis, &cell.axis).iter().enumerate() {
-            let m = patch.elements.len() * ga;
+        let n_terms = body.axis.kind.order() + 1;
+        for (eb, candidates) in axis_patches(&body.axis, &cell.axis).iter().enumerate() {
             for s in 0..ns {
                 for qs in 0..gs {
-                    for qa in 0..ga {
-                        let row = &patch.weights[qa * m..(qa + 1) * m];
-                        let mut acc = [0.0; 6];
-                        for (k, &w) in row.iter().enumerate() {
-                            let f = raw[index(s, patch.elements[k / ga], qs, k % ga)];
-                            (0..6).for_each(|c| acc[c] += w * f[c]);
+                    for c in 0..6 {
+                        let at = |patch: &Patch, k: usize| raw[index(s, patch.elements[k / ga], qs, k % ga)][c];
+                        let patch = &candidates[smoothest(candidates, ga, n_terms, &at)];
+                        let m = patch.elements.len() * ga;
+                        for qa in 0..ga {
+                            let row = &patch.weights[qa * m..(qa + 1) * m];
+                            along[index(s, eb, qs, qa)][c] =
+                                row.iter().enumerate().map(|(k, &w)| w * at(patch, k)).sum();
                         }
-                        along[index(s, eb, qs, qa)] = acc;
                     }
                 }
             }

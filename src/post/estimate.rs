@@ -1,9 +1,9 @@
 //! A posteriori error estimate of the Zienkiewicz–Zhu type: the distance,
 //! in the energy norm, between the raw Gauss-point stresses and their
-//! continuous recovery.
+//! superconvergent patch recovery.
 //!
-//! With `σ_h` the stresses at the Gauss points and `σ*` the L2 projection
-//! of them onto the CUF basis ([`super::recovery`]), each element gets
+//! With `σ_h` the stresses at the Gauss points and `σ*` their patch
+//! recovery at the same points ([`super::spr`]), each element gets
 //!
 //! ```text
 //! η_e² = Σ_gp w |J| (σ* − σ_h)ᵀ C⁻¹ (σ* − σ_h)
@@ -13,9 +13,17 @@
 //! this measures the stress jump with the elastic energy, as an indicator),
 //! and the global estimate is the relative error in the energy norm
 //! `η = √(Σ η_e² / (Σ η_e² + ‖σ_h‖²))`, `‖σ_h‖² = Σ w |J| σ_hᵀ C⁻¹ σ_h`
-//! (Zienkiewicz & Zhu, *Int. J. Numer. Methods Eng.* 24, 1987, eq. 9–13).
-//! A field the basis represents exactly (a patch test's constant stress)
-//! gives `η = 0`. Voigt order and engineering shear as in [`crate::voigt`].
+//! (Zienkiewicz & Zhu, *Int. J. Numer. Methods Eng.* 24, 1987, eq. 9–13;
+//! the recovery of their 1992 paper). A field the patch polynomials hold (a
+//! patch test's constant stress) gives `η = 0`. Voigt order and engineering
+//! shear as in [`crate::voigt`].
+//!
+//! Why not the L2 projection onto the body's continuous basis
+//! ([`super::recovery`], the first version): for elements of even order the
+//! leading stress error is equal at both ends of every element, so the
+//! continuous projection reproduces it and `σ* ≈ σ_h`. On the Timoshenko
+//! cantilever its effectivity index was 0.18–0.19 against the exact error;
+//! with the patch recovery 0.81–0.89 (`tests/estimator.rs`).
 
 use crate::materials::Material;
 use crate::mesh::Mesh;

@@ -1,7 +1,10 @@
-//! The error estimate (`post::estimate`, Zienkiewicz–Zhu with the L2
-//! projection): zero where the basis holds the exact stress, decreasing
-//! under refinement, and close to the true error, which is measured here
-//! against a much finer cufem solution of the same problem.
+//! The error estimate (`post::estimate`, Zienkiewicz–Zhu with
+//! superconvergent patch recovery, `post::spr`): zero where the basis holds
+//! the exact stress, decreasing under refinement, and close to the true
+//! error — its effectivity index `η / ‖e‖` within issue 23's band 0.7–1.5 on
+//! the Timoshenko cantilever (true error from the exact energy), the compact
+//! bar and the block (true error against a much finer cufem solution of the
+//! same model, singular contact neighbourhoods left out).
 
 use cufem::analysis::{Silent, Solution};
 use cufem::model::Model;
@@ -31,29 +34,58 @@ fn cantilever(n: usize, m: usize) -> String {
     .replace("to = 1.0, elements = 5 }", &format!("to = 1.0, elements = {m} }}"))
 }
 
-/// `σᵀ C⁻¹ σ` (engineering shear), E = 70 GPa, ν = 0.3 as in the example.
-fn complementary(s: &[f64; 6]) -> f64 {
-    let (e, nu) = (70e9, 0.3);
+/// The compact bar (`bending_compact_4L9.toml`) with `n` × `n` L9 and `m`
+/// B4, over its first increment only: the roller pushed 0.05 mm (1/15 of
+/// the example's 0.75 mm) in one increment, which stays elastic (no
+/// plastic point, checked), so the energy norm is the error norm.
+fn bar(n: usize, m: usize) -> String {
+    let text = example("bending_compact_4L9.toml");
+    let section = "x = { from = 0.0, to = 0.01, elements = 2 }, z = { from = 0.0, to = 0.01, elements = 2 }";
+    assert!(text.contains(section) && text.contains("to = 0.25, elements = 10 }"));
+    assert!(text.contains("[0.0, 0.0, -0.75e-3]") && text.contains("increments = 15"));
+    text.replace(
+        section,
+        &format!("x = {{ from = 0.0, to = 0.01, elements = {n} }}, z = {{ from = 0.0, to = 0.01, elements = {n} }}"),
+    )
+    .replace("to = 0.25, elements = 10 }", &format!("to = 0.25, elements = {m} }}"))
+    .replace("[0.0, 0.0, -0.75e-3]", "[0.0, 0.0, -0.05e-3]")
+    .replace("increments = 15", "increments = 1")
+}
+
+/// The block (`block_indentation.toml`) with every section division `k`
+/// times finer and `m` B4, over its first increment (the punch down 0.05 mm
+/// of the example's 1 mm, elastic: no plastic point, checked), the element
+/// stress recovery (the reference's fields are then its own elements').
+fn block(k: usize, m: usize) -> String {
+    let text = example("block_indentation.toml");
+    assert!(text.matches("elements = 6").count() == 4 && text.contains("to = 0.1, elements = 1 }"));
+    assert!(text.contains("[0.0, 0.0, -1.0e-3]") && text.contains("increments = 20"));
+    text.replace("elements = 6", &format!("elements = {}", 6 * k))
+        .replace("to = 0.1, elements = 1 }", &format!("to = 0.1, elements = {m} }}"))
+        .replace("[0.0, 0.0, -1.0e-3]", "[0.0, 0.0, -0.05e-3]")
+        .replace("increments = 20", "increments = 1")
+        .replace("recovery = \"projection\"", "recovery = \"element\"")
+}
+
+/// `σᵀ C⁻¹ σ` (isotropic, engineering shear).
+fn complementary(s: &[f64; 6], e: f64, nu: f64) -> f64 {
     let normal = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] - 2.0 * nu * (s[0] * s[1] + s[1] * s[2] + s[2] * s[0]);
     (normal + 2.0 * (1.0 + nu) * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])) / e
 }
 
-/// The true error of `coarse` in the energy norm, `‖σ_ref − σ_h‖`, with
-/// `σ_ref` the stress of `fine` at each Gauss point of `coarse` (√J), over
-/// the elements beyond `y_from` (m).
-fn true_error(coarse: &(Model, Solution), fine: &(Model, Solution), y_from: f64) -> f64 {
+/// The true error of `coarse` per element in the energy norm squared,
+/// `∫ (σ_ref − σ_h)ᵀ C⁻¹ (σ_ref − σ_h)` with `σ_ref` the stress of `fine`
+/// at each Gauss point of `coarse` (J), body 0.
+fn true_error(coarse: &(Model, Solution), fine: &(Model, Solution)) -> Vec<f64> {
     let (cm, cs) = coarse;
     let (fm, fs) = fine;
     let view = fs.fields(fm);
     let body = &cm.mesh.bodies[0];
-    let cell = &cm.cells[0];
+    let (cell, mat) = (&cm.cells[0], &cm.materials[body.material]);
     let ngp = cell.gp_per_element();
-    let mut e2 = 0.0;
-    for e in 0..body.n_elements() {
+    let mut out = vec![0.0; body.n_elements()];
+    for (e, o) in out.iter_mut().enumerate() {
         let (es, eb) = body.split_element(e);
-        if body.axis.element_span(eb).0 < y_from - 1e-12 {
-            continue;
-        }
         for gb in 0..cell.axis.n_gp {
             for gs in 0..cell.section.n_gp {
                 let [x, z] = cell.section.position[es * cell.section.n_gp + gs];
@@ -62,11 +94,26 @@ fn true_error(coarse: &(Model, Solution), fine: &(Model, Solution), y_from: f64)
                 let at = locate_in_model(&fm.mesh, Some(0), [x, y, z]);
                 let reference = view.sample_at(&at).expect("inside the fine mesh").stress;
                 let raw = cs.stresses[e * ngp + gb * cell.section.n_gp + gs];
-                e2 += w * complementary(&std::array::from_fn(|k| reference[k] - raw[k]));
+                *o += w * complementary(&std::array::from_fn(|k| reference[k] - raw[k]), mat.young, mat.poisson);
             }
         }
     }
-    e2.sqrt()
+    out
+}
+
+/// `(η, ‖e‖)` over the elements `keep` accepts (section element, beam element).
+fn over(coarse: &(Model, Solution), truth: &[f64], keep: &dyn Fn(usize, usize) -> bool) -> (f64, f64) {
+    let body = &coarse.0.mesh.bodies[0];
+    let est = coarse.1.error_estimate.as_ref().unwrap();
+    let (mut eta, mut error) = (0.0, 0.0);
+    for (e, t) in truth.iter().enumerate() {
+        let (es, eb) = body.split_element(e);
+        if keep(es, eb) {
+            eta += est.element[e].powi(2);
+            error += t;
+        }
+    }
+    (eta.sqrt(), error.sqrt())
 }
 
 /// A bar in uniform tension: the stress is constant, the projection
@@ -84,46 +131,159 @@ fn a_uniform_stress_has_no_estimated_error() {
     assert!(est.relative() < 1e-6, "{}", est.relative());
 }
 
-/// The estimate over the elements beyond `y_from` (√J).
-fn estimate_beyond(m: &Model, s: &Solution, y_from: f64) -> f64 {
-    let body = &m.mesh.bodies[0];
-    let est = s.error_estimate.as_ref().unwrap();
-    (0..body.n_elements())
-        .filter(|&e| body.axis.element_span(body.split_element(e).1).0 >= y_from - 1e-12)
-        .map(|e| est.element[e].powi(2))
-        .sum::<f64>()
-        .sqrt()
-}
+/// `‖σ‖²` (twice the strain energy, J) of the exact solution of the
+/// Timoshenko cantilever model (the 3D elasticity problem the CUF meshes
+/// converge to): Richardson extrapolation `E_n = E − C n^−β` through the
+/// 8×8 × 20, 10×10 × 25 and 12×12 × 30 meshes (β = 1.59: the clamped
+/// root's corners are singular, ‖e‖ ~ h^0.8); the 6/8/10 triple gives
+/// 5.71998e-1. Recomputed by `the_exact_energy_of_the_cantilever` (ignored).
+const CANTILEVER_ENERGY: f64 = 5.72004e-1;
 
-/// The Timoshenko cantilever (tip shear) on three meshes against a much
-/// finer one (8 × 8 L9 × 20 B4): the estimate decreases under refinement
-/// and points where the true error is — the largest element estimate lies
-/// at the clamped root, whose section corners are singular (the clamp holds
-/// the Poisson contraction) and hold 98 % of the true error of the 2 × 2 ×
-/// 5 mesh. The effectivity index `η / ‖e‖` is printed, not asserted: beyond
-/// the first 0.2 m it measured 0.86, 0.38 and 0.28 on the three meshes,
-/// over the whole beam 0.17, 0.26 and 0.36 — below issue 23's band
-/// (0.7–1.5): the L2-projection recovery underestimates this error, which
-/// that issue leaves open.
+/// The Timoshenko cantilever on three meshes: the effectivity index against
+/// the true error `‖e‖² = E − E_h` (Galerkin orthogonality: for a conforming
+/// displacement model of linear elasticity `a(u − u_h, u − u_h) = a(u, u) −
+/// a(u_h, u_h)`, exact, and `E_h = ‖σ_h‖²` is the estimate's own
+/// `energy²`) lies in issue 23's band 0.7–1.5 (measured 0.81, 0.87, 0.89);
+/// the estimate decreases under refinement; its largest element lies at the
+/// clamped root, whose section corners are singular (the clamp holds the
+/// Poisson contraction) and hold 98 % of the true error of the 2 × 2 × 5
+/// mesh.
 #[test]
-fn the_estimate_decreases_and_points_at_the_root() {
-    let fine = solve(&cantilever(8, 20));
+fn the_cantilever_estimate_is_effective_and_points_at_the_root() {
     let mut last = f64::INFINITY;
     for (n, m) in [(2, 5), (4, 10), (6, 15)] {
         let coarse = solve(&cantilever(n, m));
         let est = coarse.1.error_estimate.as_ref().unwrap();
-        let whole = est.error / true_error(&coarse, &fine, 0.0);
-        let (eta, truth) = (estimate_beyond(&coarse.0, &coarse.1, 0.2), true_error(&coarse, &fine, 0.2));
+        let truth = (CANTILEVER_ENERGY - est.energy.powi(2)).sqrt();
+        let effectivity = est.error / truth;
         eprintln!(
-            "{n}×{n} L9 × {m} B4: estimate {:.3} %; beyond 0.2 m η = {eta:.4e}, ‖e‖ = {truth:.4e}, effectivity \
-             {:.3}; whole beam {whole:.3}",
+            "{n}×{n} L9 × {m} B4: estimate {:.3} %, η = {:.4e}, ‖e‖ = {truth:.4e}, effectivity {effectivity:.3}",
             100.0 * est.relative(),
-            eta / truth
+            est.error
         );
+        assert!((0.7..=1.5).contains(&effectivity), "effectivity {effectivity}");
         assert!(est.relative() < last, "the estimate grew under refinement");
         last = est.relative();
         let body = &coarse.0.mesh.bodies[0];
         let (top, _) = est.largest(1)[0];
         assert_eq!(body.split_element(top).1, 0, "the largest estimate is not at the root");
     }
+}
+
+/// Recomputes [`CANTILEVER_ENERGY`] (about 40 s).
+#[test]
+#[ignore = "measurement: the extrapolated exact energy of the cantilever"]
+fn the_exact_energy_of_the_cantilever() {
+    let e: Vec<f64> = [(8, 20), (10, 25), (12, 30)]
+        .iter()
+        .map(|&(n, m)| solve(&cantilever(n, m)).1.error_estimate.unwrap().energy.powi(2))
+        .collect();
+    // E_n = E − C n^−β through n = 8, 10, 12: bisection on β
+    let ratio = (e[1] - e[0]) / (e[2] - e[1]);
+    let f = |b: f64| (8f64.powf(-b) - 10f64.powf(-b)) / (10f64.powf(-b) - 12f64.powf(-b)) - ratio;
+    let (mut lo, mut hi) = (0.1, 6.0);
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if f(lo) * f(mid) <= 0.0 { hi = mid } else { lo = mid }
+    }
+    let c = (e[1] - e[0]) / (8f64.powf(-lo) - 10f64.powf(-lo));
+    let exact = e[0] + c * 8f64.powf(-lo);
+    eprintln!("energies {e:?}; β = {lo:.3}; extrapolated {exact:.6e}");
+    assert!((exact - CANTILEVER_ENERGY).abs() < 2e-6 * CANTILEVER_ENERGY);
+}
+
+/// The compact bar's first (elastic) increment, 2×2 L9 × 10 B4 (the
+/// example's mesh) and 4×4 × 20, against 8×8 × 40. The rollers load the bar
+/// along three lines (y = 0.025, 0.125, 0.225 m) narrower than any element:
+/// there the stress is singular and the true error has no limit (it grows
+/// with the reference's refinement), so the effectivity is asserted over the
+/// bar without the beam elements touching a roller line, and printed over
+/// the whole bar. Measured 0.89 and 1.04 (whole bar 1.01 and 1.32).
+#[test]
+fn the_compact_bar_estimate_is_effective_away_from_the_rollers() {
+    let fine = solve(&bar(8, 40));
+    assert_eq!(fine.1.plastic_points, 0);
+    for (n, m) in [(2, 10), (4, 20)] {
+        let coarse = solve(&bar(n, m));
+        assert_eq!(coarse.1.plastic_points, 0);
+        let truth = true_error(&coarse, &fine);
+        let touches_roller = |eb: usize| {
+            let (a, b) = coarse.0.mesh.bodies[0].axis.element_span(eb);
+            [0.025, 0.125, 0.225].iter().any(|&y| y > a - 1e-9 && y < b + 1e-9)
+        };
+        let (eta, error) = over(&coarse, &truth, &|_, eb| !touches_roller(eb));
+        let (eta_all, error_all) = over(&coarse, &truth, &|_, _| true);
+        let effectivity = eta / error;
+        eprintln!(
+            "bar {n}×{n} L9 × {m} B4: away from the rollers η = {eta:.4e}, ‖e‖ = {error:.4e}, effectivity \
+             {effectivity:.3}; whole bar {:.3}",
+            eta_all / error_all
+        );
+        assert!((0.7..=1.5).contains(&effectivity), "effectivity {effectivity}");
+    }
+}
+
+/// The block's first (elastic) increment, the example's 18×6 L9 × 1 B4,
+/// against every section division twice finer and 3 B4. The punch edges
+/// (x = 0.2 and 0.3 m on the top face) are singular (`r^−1/2` under a flat
+/// punch), so the effectivity is asserted over the block without the
+/// section elements touching an edge line (one element around each, as
+/// `verify`'s whole-field comparison leaves out), and printed over the
+/// whole block. Measured 0.96 (whole block 1.08).
+#[test]
+fn the_block_estimate_is_effective_away_from_the_punch_edges() {
+    let fine = solve(&block(2, 3));
+    let coarse = solve(&block(1, 1));
+    assert_eq!((coarse.1.plastic_points, fine.1.plastic_points), (0, 0));
+    let truth = true_error(&coarse, &fine);
+    let section = &coarse.0.mesh.bodies[0].section;
+    let at_edge = |es: usize| {
+        section.element(es).iter().any(|&t| {
+            let [x, z] = section.nodes[t];
+            ((x - 0.2).abs() < 1e-9 || (x - 0.3).abs() < 1e-9) && (z - 0.3).abs() < 1e-9
+        })
+    };
+    let (eta, error) = over(&coarse, &truth, &|es, _| !at_edge(es));
+    let (eta_all, error_all) = over(&coarse, &truth, &|_, _| true);
+    let effectivity = eta / error;
+    eprintln!(
+        "block: away from the punch edges η = {eta:.4e}, ‖e‖ = {error:.4e}, effectivity {effectivity:.3}; whole \
+         block {:.3}",
+        eta_all / error_all
+    );
+    assert!((0.7..=1.5).contains(&effectivity), "effectivity {effectivity}");
+}
+
+/// The full, elastoplastic examples (compact bar 0.75 mm, block 1 mm),
+/// against the same refinements as above run through the whole load: the
+/// energy norm with the elastic compliance is then no error norm (plastic
+/// strain is not in it), so this is reported, not asserted.
+#[test]
+#[ignore = "measurement: effectivity of the plastic end states (minutes)"]
+fn plastic_end_states_measured() {
+    let full_bar = |n, m| {
+        bar(n, m).replace("[0.0, 0.0, -0.05e-3]", "[0.0, 0.0, -0.75e-3]").replace("increments = 1", "increments = 15")
+    };
+    let (coarse, fine) = (solve(&full_bar(2, 10)), solve(&full_bar(6, 30)));
+    let truth = true_error(&coarse, &fine);
+    let touches_roller = |eb: usize| {
+        let (a, b) = coarse.0.mesh.bodies[0].axis.element_span(eb);
+        [0.025, 0.125, 0.225].iter().any(|&y| y > a - 1e-9 && y < b + 1e-9)
+    };
+    let (eta, error) = over(&coarse, &truth, &|_, eb| !touches_roller(eb));
+    eprintln!("plastic bar 2×2 × 10 against 6×6 × 30: away from the rollers effectivity {:.3}", eta / error);
+    let full_block = |k, m| {
+        block(k, m).replace("[0.0, 0.0, -0.05e-3]", "[0.0, 0.0, -1.0e-3]").replace("increments = 1", "increments = 20")
+    };
+    let (coarse, fine) = (solve(&full_block(1, 1)), solve(&full_block(2, 3)));
+    let truth = true_error(&coarse, &fine);
+    let section = &coarse.0.mesh.bodies[0].section;
+    let at_edge = |es: usize| {
+        section.element(es).iter().any(|&t| {
+            let [x, z] = section.nodes[t];
+            ((x - 0.2).abs() < 1e-9 || (x - 0.3).abs() < 1e-9) && (z - 0.3).abs() < 1e-9
+        })
+    };
+    let (eta, error) = over(&coarse, &truth, &|es, _| !at_edge(es));
+    eprintln!("plastic block against 2× finer × 3 B4: away from the punch edges effectivity {:.3}", eta / error);
 }

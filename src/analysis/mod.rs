@@ -406,25 +406,25 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         error_estimate: None,
         steps: step_ends,
     };
-    let projected = crate::post::recovery::project(
-        &model.mesh,
-        &model.cells,
-        &solution.stresses,
-        &solution.states,
-        &solution.gp_offsets,
-    )?;
-    // the estimate compares the raw stresses with their projection, which
-    // the fields then show only if the model asks for it
+    // the estimate compares the raw stresses with their patch recovery; the
+    // fields show the L2 projection if the model asks for it
+    let recovered = crate::post::spr::recover(&model.mesh, &model.cells, &solution.stresses, &solution.gp_offsets);
     solution.error_estimate = Some(crate::post::estimate::estimate(
         &model.mesh,
         &model.cells,
         &model.materials,
         &solution.stresses,
         &solution.gp_offsets,
-        &projected,
+        &recovered,
     ));
     if model.output.recovery == crate::model::Recovery::Projection {
-        solution.recovered = Some(projected);
+        solution.recovered = Some(crate::post::recovery::project(
+            &model.mesh,
+            &model.cells,
+            &solution.stresses,
+            &solution.states,
+            &solution.gp_offsets,
+        )?);
     }
     solution.warnings = warnings::result_warnings(model, &solution);
     Ok(solution)

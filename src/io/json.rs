@@ -168,7 +168,7 @@ pub fn estimate_summary(model: &Model, solution: &Solution) -> Option<EstimateSu
         })
         .collect();
     Some(EstimateSummary {
-        method: "Zienkiewicz-Zhu: raw Gauss-point stresses against their L2 projection, energy norm",
+        method: "Zienkiewicz-Zhu: raw Gauss-point stresses against their superconvergent patch recovery, energy norm",
         relative_energy_norm: est.relative(),
         largest,
     })

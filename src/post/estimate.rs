@@ -1,9 +1,9 @@
 //! A posteriori error estimate of the Zienkiewicz–Zhu type: the distance,
 //! in the energy norm, between the raw Gauss-point stresses and their
-//! continuous recovery.
+//! superconvergent patch recovery.
 //!
-//! With `σ_h` the stresses at the Gauss points and `σ*` the L2 projection
-//! of them onto the CUF basis ([`super::recovery`]), each element gets
+//! With `σ_h` the stresses at the Gauss points and `σ*` their patch
+//! recovery at the same points ([`super::spr`]), each element gets
 //!
 //! ```text
 //! η_e² = Σ_gp w |J| (σ* − σ_h)ᵀ C⁻¹ (σ* − σ_h)
@@ -13,14 +13,21 @@
 //! this measures the stress jump with the elastic energy, as an indicator),
 //! and the global estimate is the relative error in the energy norm
 //! `η = √(Σ η_e² / (Σ η_e² + ‖σ_h‖²))`, `‖σ_h‖² = Σ w |J| σ_hᵀ C⁻¹ σ_h`
-//! (Zienkiewicz & Zhu, *Int. J. Numer. Methods Eng.* 24, 1987, eq. 9–13).
-//! A field the basis represents exactly (a patch test's constant stress)
-//! gives `η = 0`. Voigt order and engineering shear as in [`crate::voigt`].
+//! (Zienkiewicz & Zhu, *Int. J. Numer. Methods Eng.* 24, 1987, eq. 9–13;
+//! the recovery of their 1992 paper). A field the patch polynomials hold (a
+//! patch test's constant stress) gives `η = 0`. Voigt order and engineering
+//! shear as in [`crate::voigt`].
+//!
+//! Why not the L2 projection onto the body's continuous basis
+//! ([`super::recovery`], the first version): for elements of even order the
+//! leading stress error is equal at both ends of every element, so the
+//! continuous projection reproduces it and `σ* ≈ σ_h`. On the Timoshenko
+//! cantilever its effectivity index was 0.18–0.19 against the exact error;
+//! with the patch recovery 0.81–0.89 (`tests/estimator.rs`).
 
-use super::Recovered;
 use crate::materials::Material;
 use crate::mesh::Mesh;
-use crate::values::{CellValues, shape_values};
+use crate::values::CellValues;
 use crate::voigt::Voigt;
 
 /// The estimate of one solution.
@@ -69,39 +76,31 @@ fn complementary(s: &Voigt, young: f64, poisson: f64) -> f64 {
 }
 
 /// Estimates the error of the stresses `stresses` (Gauss points, first of
-/// each body at `gp_offsets`) against their recovery `recovered`.
+/// each body at `gp_offsets`) against their recovery `recovered` (the same
+/// layout, [`super::spr::recover`]).
 pub fn estimate(
     mesh: &Mesh,
     cells: &[CellValues],
     materials: &[Material],
     stresses: &[Voigt],
     gp_offsets: &[usize],
-    recovered: &Recovered,
+    recovered: &[Voigt],
 ) -> ErrorEstimate {
     let mut out = ErrorEstimate { element: vec![0.0; mesh.n_elements()], ..Default::default() };
     let (mut error2, mut energy2) = (0.0, 0.0);
-    let mut nodes = Vec::new();
     for (b, body) in mesh.bodies.iter().enumerate() {
         let cell = &cells[b];
         let m = &materials[body.material];
-        let mut shapes = vec![0.0; body.nodes_per_element()];
         let ngp = cell.gp_per_element();
         for e in 0..body.n_elements() {
             let (es, eb) = body.split_element(e);
-            body.element_nodes(e, &mut nodes);
             let mut eta2 = 0.0;
             for gb in 0..cell.axis.n_gp {
                 for gs in 0..cell.section.n_gp {
-                    let (s, a) = (cell.section.point(es, gs), cell.axis.point(eb, gb));
-                    shape_values(s, a, &mut shapes);
-                    let w = s.weight * a.weight;
-                    let raw = stresses[gp_offsets[b] + e * ngp + gb * cell.section.n_gp + gs];
-                    let mut star = [0.0; 6];
-                    for (&n, &node) in shapes.iter().zip(&nodes) {
-                        for k in 0..6 {
-                            star[k] += n * recovered.stress[node][k];
-                        }
-                    }
+                    let w =
+                        cell.section.weight[es * cell.section.n_gp + gs] * cell.axis.weight[eb * cell.axis.n_gp + gb];
+                    let g = gp_offsets[b] + e * ngp + gb * cell.section.n_gp + gs;
+                    let (raw, star) = (stresses[g], recovered[g]);
                     let d: Voigt = std::array::from_fn(|k| star[k] - raw[k]);
                     eta2 += w * complementary(&d, m.young, m.poisson);
                     energy2 += w * complementary(&raw, m.young, m.poisson);

@@ -43,6 +43,7 @@
 
 pub mod estimate;
 pub mod recovery;
+pub mod spr;
 
 pub use crate::quantity::{Quantity, Sample};
 pub use estimate::ErrorEstimate;

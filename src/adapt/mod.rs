@@ -69,14 +69,16 @@ pub struct Source<'a> {
 }
 
 /// Runs `model` (read from `source`) adaptively under `settings`, calling
-/// `report` after each cycle. Returns the last cycle's model and solution.
+/// `report` after each cycle with the cycle, its model and its solution
+/// (which a caller may sample: each cycle's results are otherwise
+/// dropped). Returns the last cycle's model and solution.
 pub fn run(
     model: Model,
     source: Source<'_>,
     settings: &AdaptSettings,
     options: &RunOptions,
     progress: &mut dyn Progress,
-    report: &mut dyn FnMut(&AdaptCycle),
+    report: &mut dyn FnMut(&AdaptCycle, &Model, &Solution),
 ) -> Result<(Model, Solution), AdaptError> {
     if model.n_dofs() > settings.max_dof {
         return Err(AdaptError::Budget { max_dof: settings.max_dof, dof: model.n_dofs() });
@@ -92,7 +94,7 @@ pub fn run(
             time_s: start.elapsed().as_secs_f64(),
             refined: std::mem::take(&mut refined),
         };
-        report(&cycle);
+        report(&cycle, &model, &solution);
         cycles.push(cycle);
         start = Instant::now();
         let next = match stop_before_refining(&solution, settings, cycles.len() - 1) {

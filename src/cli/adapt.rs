@@ -57,6 +57,10 @@ impl AdaptArgs {
         if let Some(n) = self.max_dof {
             settings.max_dof = n;
         }
+        // before the output folder is touched (the library checks it too)
+        if model.n_dofs() > settings.max_dof {
+            return Err(fail(INPUT, AdaptError::Budget { max_dof: settings.max_dof, dof: model.n_dofs() }));
+        }
         Ok(Some(settings))
     }
 }
@@ -80,7 +84,7 @@ pub(super) fn run_into(
         settings.fraction
     ));
     let print = progress.printer();
-    let result = cufem::adapt::run(model, source, settings, options, progress, &mut |c| print(cycle_line(c)));
+    let result = cufem::adapt::run(model, source, settings, options, progress, &mut |c, _, _| print(cycle_line(c)));
     let (model, solution) = result.map_err(|e| match e {
         AdaptError::Model(e @ ModelError::TooLarge { .. }) => model_failure(e, path),
         AdaptError::Model(e) => fail(INPUT, anyhow!(e).context("refined model")),

@@ -1,15 +1,25 @@
-//! Marking (Dörfler's bulk criterion) and the refined mesh plan: which
-//! division intervals hold marked elements, each split in half for its
-//! whole row, column or axis slice, so the refined meshes stay
-//! tensor products without hanging nodes.
+//! Marking and the refined mesh plan: which division intervals are split,
+//! each in half for its whole row, column or axis slice, so the refined
+//! meshes stay tensor products without hanging nodes: the elements holding
+//! the bulk of the estimate are marked ([`dorfler`]) and every interval
+//! through a marked element is split ([`intervals`], [`refine`]).
+//!
+//! Every direction of a marked element is split because the estimate has
+//! no direction: `η_e` says how much error an element holds, not whether
+//! it is along x, z or the axis. Choosing intervals by error per added DOF
+//! instead (the cheap section intervals first, an axis interval only when
+//! its error paid for a whole section of nodes) was tried and failed: on
+//! the Timoshenko cantilever (1 × 1 L9, 2 B4; its error is along the axis)
+//! it split x and z intervals for eight cycles, 189 to 5,733 DOF, while the
+//! estimate stayed at 1.8 %.
 
 use crate::mesh::Mesh;
 use crate::model::{MeshPlan, SectionPlan};
 
-/// A parametric section (not a grid) is refined — uniformly — when the
-/// marked elements lie in at least this share of its section elements:
-/// the error is then spread over the section, and the only refinement it
-/// has, doubling every count, is the one that reaches it.
+/// A parametric section (not a grid) is doubled — its only refinement —
+/// when the marked elements lie in at least this share of its section
+/// elements (the error is spread over the section); with the error in a
+/// few of its elements only the axis is refined.
 pub const SECTION_SPREAD: f64 = 0.5;
 
 /// Dörfler marking: the fewest elements, largest `η_e` first, whose `η_e²`
@@ -48,7 +58,7 @@ pub fn split(lines: &[f64], split: &[bool]) -> Vec<f64> {
     out
 }
 
-/// The intervals of one body that hold marked elements.
+/// The intervals of one body to split.
 #[derive(Debug, Clone, PartialEq, Default)]
 pub struct BodyMarks {
     /// Per axis interval (beam element).
@@ -57,55 +67,59 @@ pub struct BodyMarks {
     pub x: Vec<bool>,
     /// Per z interval of a grid section (empty otherwise).
     pub z: Vec<bool>,
-    /// Section elements holding marked elements.
-    pub section: Vec<bool>,
+    /// A parametric section to be doubled as a whole.
+    pub section: bool,
 }
 
 impl BodyMarks {
-    /// True if anything is to be split.
-    pub fn any(&self) -> bool {
-        self.axis.iter().chain(&self.x).chain(&self.z).any(|m| *m)
+    fn empty(axis: usize, plan: &SectionPlan) -> Self {
+        let (nx, nz) = match plan {
+            SectionPlan::Grid { x, z } => (x.len() - 1, z.len() - 1),
+            _ => (0, 0),
+        };
+        Self { axis: vec![false; axis], x: vec![false; nx], z: vec![false; nz], section: false }
     }
 }
 
-/// The intervals holding the marked (global) elements, per body of `mesh`
-/// built from `plan`.
+/// Where an element lies: its axis interval and, in a grid section, its x
+/// and z intervals.
+fn place(mesh: &Mesh, plan: &MeshPlan, e: usize) -> (usize, usize, Option<(usize, usize)>) {
+    let (b, local) = mesh.body_of_element(e);
+    let (s, k) = mesh.bodies[b].split_element(local);
+    let grid = match &plan.bodies[b].section {
+        SectionPlan::Grid { x, .. } => Some((s % (x.len() - 1), s / (x.len() - 1))),
+        _ => None,
+    };
+    (b, k, grid)
+}
+
+/// Every interval holding one of the `marked` elements, in every
+/// direction: isotropic refinement of the marked elements. A parametric
+/// section (not a grid) is doubled when marked elements lie in at least
+/// [`SECTION_SPREAD`] of its section elements, else only its axis
+/// intervals are split.
 pub fn intervals(mesh: &Mesh, plan: &MeshPlan, marked: &[usize]) -> Vec<BodyMarks> {
-    let mut marks: Vec<BodyMarks> = mesh
-        .bodies
-        .iter()
-        .zip(&plan.bodies)
-        .map(|(b, p)| {
-            let (nx, nz) = match &p.section {
-                SectionPlan::Grid { x, z } => (x.len() - 1, z.len() - 1),
-                _ => (0, 0),
-            };
-            BodyMarks {
-                axis: vec![false; b.axis.n_elements()],
-                x: vec![false; nx],
-                z: vec![false; nz],
-                section: vec![false; b.section.n_elements()],
-            }
-        })
-        .collect();
+    let mut marks: Vec<BodyMarks> =
+        mesh.bodies.iter().zip(&plan.bodies).map(|(b, p)| BodyMarks::empty(b.axis.n_elements(), &p.section)).collect();
+    let mut section: Vec<Vec<bool>> = mesh.bodies.iter().map(|b| vec![false; b.section.n_elements()]).collect();
     for &e in marked {
-        let (b, local) = mesh.body_of_element(e);
-        let (s, k) = mesh.bodies[b].split_element(local);
+        let (b, k, grid) = place(mesh, plan, e);
         let m = &mut marks[b];
         m.axis[k] = true;
-        m.section[s] = true;
-        if !m.x.is_empty() {
-            let nx = m.x.len();
-            m.x[s % nx] = true;
-            m.z[s / nx] = true;
+        match grid {
+            Some((i, j)) => (m.x[i], m.z[j]) = (true, true),
+            None => section[b][mesh.bodies[b].split_element(e - mesh.bodies[b].element_offset).0] = true,
         }
+    }
+    for ((m, p), s) in marks.iter_mut().zip(&plan.bodies).zip(&section) {
+        let share = s.iter().filter(|x| **x).count() as f64 / s.len().max(1) as f64;
+        m.section = matches!(p.section, SectionPlan::Doubled { .. }) && share >= SECTION_SPREAD;
     }
     marks
 }
 
-/// The plan refined at `marks`: marked axis and grid intervals halved; a
-/// parametric section doubled when its marked elements are spread over it
-/// ([`SECTION_SPREAD`]); a fixed section kept.
+/// The plan refined at `marks`: marked axis and grid intervals halved, a
+/// marked parametric section doubled, a fixed section kept.
 pub fn refine(plan: &MeshPlan, marks: &[BodyMarks]) -> MeshPlan {
     let bodies = plan
         .bodies
@@ -119,12 +133,7 @@ pub fn refine(plan: &MeshPlan, marks: &[BodyMarks]) -> MeshPlan {
                     *x = split(x, &m.x);
                     *z = split(z, &m.z);
                 }
-                SectionPlan::Doubled { times, .. } => {
-                    let share = m.section.iter().filter(|s| **s).count() as f64 / m.section.len().max(1) as f64;
-                    if share >= SECTION_SPREAD {
-                        *times += 1;
-                    }
-                }
+                SectionPlan::Doubled { times, .. } => *times += u32::from(m.section),
                 SectionPlan::Fixed { .. } => {}
             }
             p

@@ -14,12 +14,14 @@
 //!
 //! Otherwise the elements holding the share `fraction` (Dörfler's θ) of
 //! `Σ η_e²` are marked ([`mark::dorfler`]) and every division interval
-//! holding a marked element is halved for its whole row, column or axis
-//! slice ([`mark::intervals`], [`mark::refine`]): the sections are tensor
-//! grids swept along the axis, so splitting intervals keeps the mesh
-//! conforming — no hanging nodes, no constraints — at the price of
-//! refining a whole row where one element asked for it. Sections that are
-//! not grids are refined as a whole or kept ([`crate::model::SectionPlan`]).
+//! through a marked element — x, z and axis — is halved for its whole row,
+//! column or axis slice ([`mark::intervals`], [`mark::refine`]): the
+//! sections are tensor grids swept along the axis, so splitting intervals
+//! keeps the mesh conforming — no hanging nodes, no constraints — at the
+//! price of refining a whole row where one element asked for it. Sections
+//! that are not grids are refined as a whole (every in-plane count doubled)
+//! when the marked elements are spread over them, else only along the
+//! axis; `quads` and `gmsh` sections are kept ([`crate::model::SectionPlan`]).
 //! The refined model is rebuilt from its own model-file text with the new
 //! divisions (`Model::parse_planned`), so every constraint, load, contact,
 //! probe and line is resolved on the new mesh by its geometric selection

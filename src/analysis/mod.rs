@@ -13,6 +13,7 @@ mod results;
 pub mod structure;
 mod warnings;
 
+pub use results::{AdaptCycle, Adaptivity};
 pub use structure::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Structure, Timings};
 
 use std::time::{Duration, Instant};
@@ -253,6 +254,9 @@ pub struct Solution {
     pub error_estimate: Option<crate::post::ErrorEstimate>,
     /// The end of every completed step of the load history, in order.
     pub steps: Vec<StepEnd>,
+    /// The cycles of an adaptive run that ended with this solution
+    /// (`crate::adapt`); `None` for a single run.
+    pub adapt: Option<Adaptivity>,
 }
 
 /// The state at the end of one step of the load history.
@@ -405,6 +409,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         recovered: None,
         error_estimate: None,
         steps: step_ends,
+        adapt: None,
     };
     // the estimate compares the raw stresses with their patch recovery; the
     // fields show the L2 projection if the model asks for it
@@ -478,6 +483,7 @@ impl Solution {
             recovered: None,
             error_estimate: None,
             steps: Vec::new(),
+            adapt: None,
         };
         if model.output.recovery == crate::model::Recovery::Projection {
             s.recovered =

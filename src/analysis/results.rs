@@ -103,3 +103,33 @@ pub struct ContactSet {
 }
 
 pub use crate::contact::ContactPoint;
+
+/// One cycle of an adaptive run (`crate::adapt`): a mesh solved from the
+/// start of the load history.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AdaptCycle {
+    /// Cycle number, 0 for the model's own mesh.
+    pub cycle: usize,
+    /// Degrees of freedom of its mesh.
+    pub dof: usize,
+    /// Relative error estimate (energy norm) of its solution.
+    pub estimate: f64,
+    /// Wall time of the cycle: building the refined model and solving it (s).
+    pub time_s: f64,
+    /// What its mesh refined in the previous one (empty for cycle 0).
+    pub refined: String,
+}
+
+/// How an adaptive run went: every cycle and why it stopped. The solution
+/// carrying it is the last cycle's.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Adaptivity {
+    /// The cycles, in order.
+    pub cycles: Vec<AdaptCycle>,
+    /// Why no further cycle was run.
+    pub stop: String,
+    /// The tolerance on the relative estimate.
+    pub tolerance: f64,
+    /// The DOF budget.
+    pub max_dof: usize,
+}

@@ -13,6 +13,7 @@
 //! | 5 | `verify`: CalculiX is missing or did not finish (the cufem results, deck and log are written) |
 //! | 130 | interrupted (Ctrl-C or SIGTERM); the last converged increment is written |
 
+mod adapt;
 mod bench;
 mod report;
 mod verify;
@@ -81,6 +82,8 @@ enum Command {
         /// Print only the final report.
         #[arg(long)]
         quiet: bool,
+        #[command(flatten)]
+        adapt: adapt::AdaptArgs,
         #[command(flatten)]
         resources: Resources,
     },
@@ -230,7 +233,9 @@ pub fn main() -> ExitCode {
 
 fn dispatch(cli: Cli) -> Result<u8, Failure> {
     match cli.command {
-        Command::Run { model, out, force, quiet, resources } => run(&model, out, force, quiet, &resources),
+        Command::Run { model, out, force, quiet, adapt, resources } => {
+            run(&model, out, force, quiet, &adapt, &resources)
+        }
         Command::Check { model, plot, out, resources } => {
             let m = load(&model, &resources)?;
             report::print_check(&m);
@@ -328,11 +333,16 @@ fn limit(r: &Resources) -> Option<u64> {
 }
 
 fn load(path: &Path, resources: &Resources) -> Result<Model, Failure> {
-    Model::from_file_with(path, Limits { max_memory: limit(resources) }).map_err(|e| match e {
+    Model::from_file_with(path, Limits { max_memory: limit(resources) }).map_err(|e| model_failure(e, path))
+}
+
+/// A model that could not be read: too large (4), else invalid input (1).
+fn model_failure(e: ModelError, path: &Path) -> Failure {
+    match e {
         ModelError::Io { .. } | ModelError::NotText { .. } | ModelError::TooBig { .. } => fail(INPUT, e),
         ModelError::TooLarge { .. } => fail(TOO_LARGE, anyhow!(e).context(format!("model {}", path.display()))),
         e => fail(INPUT, anyhow!(e).context(format!("invalid model {}", path.display()))),
-    })
+    }
 }
 
 /// Sets the worker threads (`--threads`, else the model's
@@ -411,12 +421,22 @@ fn interrupted_before_start() -> Result<u8, Failure> {
     Ok(INTERRUPTED)
 }
 
-fn run(path: &Path, out: Option<PathBuf>, force: bool, quiet: bool, resources: &Resources) -> Result<u8, Failure> {
+fn run(
+    path: &Path,
+    out: Option<PathBuf>,
+    force: bool,
+    quiet: bool,
+    adapt: &adapt::AdaptArgs,
+    resources: &Resources,
+) -> Result<u8, Failure> {
     // first: a Ctrl-C from now on is ours (a signal that killed the process
     // between preparing the folder and installing the handler would leave
     // its lock and staging folder behind)
     let interrupt = install_interrupt()?;
-    let model = load(path, resources)?;
+    let (text, base) = Model::read_text(path).map_err(|e| model_failure(e, path))?;
+    let limits = Limits { max_memory: limit(resources) };
+    let model = Model::parse_in(&text, limits, &base).map_err(|e| model_failure(e, path))?;
+    let settings = adapt.settings(&model)?;
     print_warnings(model.warnings.iter());
     configure_threads(resources.threads.or(model.solver.threads), resources.force_threads)?;
     let out = out.unwrap_or_else(|| default_out(path, ""));
@@ -430,7 +450,16 @@ fn run(path: &Path, out: Option<PathBuf>, force: bool, quiet: bool, resources: &
     }
     let mut progress = Reporter::new(quiet);
     let options = RunOptions { interrupt: interrupt.clone(), max_memory: limit(resources) };
-    let run = cufem::io::run_into(&model, folder, &options, &mut progress, |_| ()).map_err(run_failure)?;
+    let (model, run) = match settings {
+        None => {
+            let run = cufem::io::run_into(&model, folder, &options, &mut progress, |_| ()).map_err(run_failure)?;
+            (model, run)
+        }
+        Some(settings) => {
+            let source = cufem::adapt::Source { text: &text, base: &base, limits };
+            adapt::run_into(model, source, &settings, folder, &options, &mut progress, path)?
+        }
+    };
     progress.finish();
     let (solution, dest) = (&run.solution, &run.folder);
     report::print_results(&model, solution);
@@ -486,6 +515,17 @@ impl Reporter {
             b
         });
         Self { bar, quiet }
+    }
+
+    /// Prints like [`Reporter::line`], from where the reporter itself is
+    /// borrowed (an adaptive run's cycle reports).
+    fn printer(&self) -> impl Fn(String) + 'static {
+        let (bar, quiet) = (self.bar.clone(), self.quiet);
+        move |text| match &bar {
+            Some(b) => b.println(text),
+            None if !quiet => eprintln!("{text}"),
+            None => {}
+        }
     }
 
     fn line(&self, text: String) {

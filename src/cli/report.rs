@@ -4,7 +4,7 @@ use cufem::analysis::{IncrementLog, Solution};
 use cufem::model::Model;
 
 /// `12345` → `12,345`.
-fn thousands(n: usize) -> String {
+pub(super) fn thousands(n: usize) -> String {
     let s = n.to_string();
     let mut out = String::new();
     for (i, c) in s.chars().enumerate() {
@@ -219,6 +219,21 @@ pub fn print_results(model: &Model, solution: &Solution) {
         solution.increments.len(),
         iterations
     );
+    if let Some(a) = &solution.adapt {
+        println!();
+        println!("{:<8} {:>10} {:>12} {:>10}  refined", "cycle", "DOF", "estimate [%]", "time (s)");
+        for c in &a.cycles {
+            println!(
+                "{:<8} {:>10} {:>12.2} {:>10.1}  {}",
+                c.cycle,
+                thousands(c.dof),
+                100.0 * c.estimate,
+                c.time_s,
+                c.refined
+            );
+        }
+        println!("adaptive run stopped: {}", a.stop);
+    }
     let summary = cufem::io::summary(model, solution);
     if !summary.probes.is_empty() {
         println!();

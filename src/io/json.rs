@@ -127,9 +127,31 @@ pub struct Summary {
     pub steps: Vec<StepSummary>,
     /// The estimated discretization error (`post::estimate`), if computed.
     pub error_estimate: Option<EstimateSummary>,
+    /// The cycles of an adaptive run (`cufem run --adapt`), absent otherwise;
+    /// the rest of the summary is the last cycle's.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub adapt: Option<Vec<CycleSummary>>,
+    /// Why the adaptive run stopped, absent for a single run.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub adapt_stop: Option<String>,
     /// The other files of this result set (summary.json is written last and
     /// lists them, so a complete set can be recognised).
     pub files: Vec<String>,
+}
+
+/// One cycle of an adaptive run.
+#[derive(Debug, Clone, Serialize)]
+pub struct CycleSummary {
+    /// Cycle number, 0 for the model's own mesh.
+    pub cycle: usize,
+    /// Degrees of freedom.
+    pub dof: usize,
+    /// Relative error estimate (energy norm, 0–1).
+    pub estimate: f64,
+    /// Wall time of the cycle: building its model and solving it (s).
+    pub time_s: f64,
+    /// What its mesh refined in the previous cycle's.
+    pub refined: String,
 }
 
 /// The estimated discretization error of a run.
@@ -319,6 +341,19 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         warnings: model.warnings.iter().chain(&solution.warnings).map(|w| w.to_string()).collect(),
         steps: Vec::new(),
         error_estimate: estimate_summary(model, solution),
+        adapt: solution.adapt.as_ref().map(|a| {
+            a.cycles
+                .iter()
+                .map(|c| CycleSummary {
+                    cycle: c.cycle,
+                    dof: c.dof,
+                    estimate: c.estimate,
+                    time_s: c.time_s,
+                    refined: c.refined.clone(),
+                })
+                .collect()
+        }),
+        adapt_stop: solution.adapt.as_ref().map(|a| a.stop.clone()),
         files: Vec::new(),
     }
 }

@@ -14,6 +14,7 @@ mod indenters;
 mod material;
 mod overlap;
 mod preprocess;
+mod refine;
 mod restraint;
 mod schema;
 mod sections;
@@ -32,6 +33,8 @@ use crate::solver::newton::NewtonSettings;
 use crate::solver::stepping::StepSettings;
 use crate::values::{CellValues, ElementError, Location};
 use schema::*;
+
+pub use refine::{AdaptSettings, BodyPlan, MAX_BUDGET, MeshPlan, SectionPlan};
 
 /// Errors found while reading or validating a model.
 #[derive(Debug, thiserror::Error)]
@@ -271,6 +274,10 @@ pub struct Model {
     pub output: OutputSettings,
     /// What validation found suspicious but legal.
     pub warnings: Vec<Warning>,
+    /// `[adapt]`: refine and solve again (`crate::adapt`); `None` without the table.
+    pub adapt: Option<AdaptSettings>,
+    /// The divisions adaptive refinement may change ([`MeshPlan`]).
+    pub plan: MeshPlan,
 }
 
 /// Something suspicious but legal in a model (printed by `check` and `run`,
@@ -302,6 +309,13 @@ impl Model {
 
     /// Reads and validates a model file under explicit limits.
     pub fn from_file_with(path: &Path, limits: Limits) -> Result<Self, ModelError> {
+        let (text, base) = Self::read_text(path)?;
+        Self::parse_in(&text, limits, &base)
+    }
+
+    /// The text of a model file and the folder its relative paths start
+    /// at (what [`Model::parse_in`] and [`Model::parse_planned`] take).
+    pub fn read_text(path: &Path) -> Result<(String, std::path::PathBuf), ModelError> {
         let cap = crate::size::MAX_MODEL_FILE;
         let bytes = crate::size::read_at_most(path, cap)
             .map_err(|cause| ModelError::Io { path: path.display().to_string(), cause })?
@@ -314,7 +328,7 @@ impl Model {
             ModelError::NotText { path: path.display().to_string(), line, column, offset }
         })?;
         let base = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-        Self::parse_in(&text, limits, base)
+        Ok((text, base.to_path_buf()))
     }
 
     /// Parses and validates model-file text, refusing a model that cannot
@@ -333,6 +347,14 @@ impl Model {
     /// (gmsh sections) start at the folder `base`.
     pub fn parse_in(text: &str, limits: Limits, base: &Path) -> Result<Self, ModelError> {
         let file: ModelFile = toml::from_str(text).map_err(|e| ModelError::Parse(shorten_lines(&e.to_string())))?;
+        build(file, limits, base)
+    }
+
+    /// Parses and validates model-file text with its divisions replaced by
+    /// `plan` (a refinement of the plan of the same text, e.g. by `crate::adapt`).
+    pub fn parse_planned(text: &str, limits: Limits, base: &Path, plan: &MeshPlan) -> Result<Self, ModelError> {
+        let mut file: ModelFile = toml::from_str(text).map_err(|e| ModelError::Parse(shorten_lines(&e.to_string())))?;
+        refine::apply(&mut file, plan)?;
         build(file, limits, base)
     }
 
@@ -355,6 +377,8 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     validate::names(&file)?;
     let materials = material::materials(&file.materials)?;
     let (mesh, cells) = bodies::mesh(&file.bodies, &materials, limits, base)?;
+    let plan = refine::plan(&file)?;
+    let adapt = refine::adapt_settings(file.adapt.as_ref())?;
     let mut warnings = Vec::new();
     let constraints = preprocess::constraints(&file.constraints, &mesh, &mut warnings)?;
     let loads = preprocess::loads(&file.loads, &mesh, &materials)?;
@@ -389,5 +413,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         steps,
         output,
         warnings,
+        adapt,
+        plan,
     })
 }

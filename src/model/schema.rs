@@ -99,6 +99,19 @@ pub struct ModelFile {
     /// Reference values (e.g. from the paper) printed beside the results.
     #[serde(default)]
     pub references: Vec<ReferenceFile>,
+    /// Adaptive refinement (`cufem run` refines and solves again).
+    #[serde(default)]
+    pub adapt: Option<AdaptFile>,
+}
+
+/// `[adapt]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AdaptFile {
+    pub tolerance: Option<f64>,
+    pub max_dof: Option<usize>,
+    pub max_cycles: Option<usize>,
+    pub fraction: Option<f64>,
 }
 
 /// `[solver]`.

@@ -1,0 +1,170 @@
+//! Adaptive refinement: solve, estimate, mark, refine, solve again.
+//!
+//! Each cycle solves a mesh from the start of the load history (no
+//! transfer of Gauss-point histories between meshes: simple, and exact for
+//! a path-dependent material), takes the Zienkiewicz–Zhu estimate of its
+//! solution ([`crate::post::estimate`]), and stops when
+//!
+//! * the relative estimate is below the tolerance,
+//! * the next mesh would have more DOF than the budget `max_dof`,
+//! * `max_cycles` refinements have been solved,
+//! * nothing is left to refine, or
+//! * the analysis of a cycle stopped early (not converged, interrupted):
+//!   its last converged state is the result, as for a single run.
+//!
+//! Otherwise the elements holding the share `fraction` (Dörfler's θ) of
+//! `Σ η_e²` are marked ([`mark::dorfler`]) and every division interval
+//! through a marked element — x, z and axis — is halved for its whole row,
+//! column or axis slice ([`mark::intervals`], [`mark::refine`]): the
+//! sections are tensor grids swept along the axis, so splitting intervals
+//! keeps the mesh conforming — no hanging nodes, no constraints — at the
+//! price of refining a whole row where one element asked for it. Sections
+//! that are not grids are refined as a whole (every in-plane count doubled)
+//! when the marked elements are spread over them, else only along the
+//! axis; `quads` and `gmsh` sections are kept ([`crate::model::SectionPlan`]).
+//! The refined model is rebuilt from its own model-file text with the new
+//! divisions (`Model::parse_planned`), so every constraint, load, contact,
+//! probe and line is resolved on the new mesh by its geometric selection
+//! and keeps its name. The solution returned is the last cycle's, with
+//! the cycles in [`Solution::adapt`].
+
+pub mod mark;
+
+use std::path::Path;
+use std::time::Instant;
+
+use crate::analysis::{self, AdaptCycle, Adaptivity, AnalysisError, Progress, RunOptions, Solution};
+use crate::model::{AdaptSettings, Limits, MeshPlan, Model, ModelError};
+
+/// Errors of an adaptive run.
+#[derive(Debug, thiserror::Error)]
+pub enum AdaptError {
+    /// A refined model could not be built.
+    #[error(transparent)]
+    Model(#[from] ModelError),
+    /// An analysis could not start or failed outright.
+    #[error(transparent)]
+    Analysis(#[from] AnalysisError),
+    /// The model as given is already over the budget.
+    #[error(
+        "adapt.max_dof = {max_dof}: expected at least the model's own {dof} DOF (the first cycle solves the \
+         model as given; raise the budget or coarsen the model)"
+    )]
+    Budget {
+        /// The budget.
+        max_dof: usize,
+        /// The model's DOF.
+        dof: usize,
+    },
+}
+
+/// Where the refined models come from: the model file's text, the folder
+/// its relative paths start at, and the limits models are read under.
+#[derive(Debug, Clone, Copy)]
+pub struct Source<'a> {
+    /// Model-file text.
+    pub text: &'a str,
+    /// Folder of relative paths (gmsh sections).
+    pub base: &'a Path,
+    /// Limits for reading models.
+    pub limits: Limits,
+}
+
+/// Runs `model` (read from `source`) adaptively under `settings`, calling
+/// `report` after each cycle with the cycle, its model and its solution
+/// (which a caller may sample: each cycle's results are otherwise
+/// dropped). Returns the last cycle's model and solution.
+pub fn run(
+    model: Model,
+    source: Source<'_>,
+    settings: &AdaptSettings,
+    options: &RunOptions,
+    progress: &mut dyn Progress,
+    report: &mut dyn FnMut(&AdaptCycle, &Model, &Solution),
+) -> Result<(Model, Solution), AdaptError> {
+    if model.n_dofs() > settings.max_dof {
+        return Err(AdaptError::Budget { max_dof: settings.max_dof, dof: model.n_dofs() });
+    }
+    let (mut model, mut cycles, mut refined, mut start) = (model, Vec::new(), String::new(), Instant::now());
+    loop {
+        let mut solution = analysis::run(&model, options, progress)?;
+        let estimate = solution.error_estimate.as_ref().map_or(0.0, |e| e.relative());
+        let cycle = AdaptCycle {
+            cycle: cycles.len(),
+            dof: model.n_dofs(),
+            estimate,
+            time_s: start.elapsed().as_secs_f64(),
+            refined: std::mem::take(&mut refined),
+        };
+        report(&cycle, &model, &solution);
+        cycles.push(cycle);
+        start = Instant::now();
+        let next = match stop_before_refining(&solution, settings, cycles.len() - 1) {
+            Some(reason) => Err(reason),
+            None => next_model(&model, &solution, source, settings)?,
+        };
+        match next {
+            Ok(next) => {
+                refined = mark::describe(&model.mesh, &model.plan, &next.plan);
+                model = next;
+            }
+            Err(stop) => {
+                let (tolerance, max_dof) = (settings.tolerance, settings.max_dof);
+                solution.adapt = Some(Adaptivity { cycles, stop, tolerance, max_dof });
+                return Ok((model, solution));
+            }
+        }
+    }
+}
+
+/// Why no refinement follows this cycle's solution, if it is done.
+fn stop_before_refining(solution: &Solution, settings: &AdaptSettings, cycle: usize) -> Option<String> {
+    let estimate = solution.error_estimate.as_ref().map_or(0.0, |e| e.relative());
+    if let Some(f) = &solution.failure {
+        Some(format!("the analysis of cycle {cycle} stopped early: {f}"))
+    } else if estimate < settings.tolerance {
+        Some(format!(
+            "the estimate {:.2} % is below the tolerance {:.2} %",
+            100.0 * estimate,
+            100.0 * settings.tolerance
+        ))
+    } else if cycle >= settings.max_cycles {
+        Some(format!("max_cycles = {} refinements done", settings.max_cycles))
+    } else {
+        None
+    }
+}
+
+/// The refined model after `solution`, or why there is none (nothing to
+/// refine, over the DOF budget or the memory limit).
+fn next_model(
+    model: &Model,
+    solution: &Solution,
+    source: Source<'_>,
+    settings: &AdaptSettings,
+) -> Result<Result<Model, String>, AdaptError> {
+    let Some(estimate) = &solution.error_estimate else {
+        return Ok(Err("no error estimate to refine by".into()));
+    };
+    let marked = mark::dorfler(&estimate.element, settings.fraction);
+    let marks = mark::intervals(&model.mesh, &model.plan, &marked);
+    let plan: MeshPlan = mark::refine(&model.plan, &marks);
+    if plan == model.plan {
+        return Ok(Err("nothing left to refine (the marked elements' sections are kept as given)".into()));
+    }
+    let next = match Model::parse_planned(source.text, source.limits, source.base, &plan) {
+        Ok(m) => m,
+        Err(ModelError::TooLarge { dofs, .. }) => {
+            return Ok(Err(format!("the next mesh ({dofs} DOF) would not fit in the memory allowed")));
+        }
+        Err(e) => return Err(e.into()),
+    };
+    if next.n_dofs() > settings.max_dof {
+        return Ok(Err(format!(
+            "the next mesh ({} DOF) would exceed the budget max_dof = {}",
+            next.n_dofs(),
+            settings.max_dof
+        )));
+    }
+    Ok(Ok(next))
+}

@@ -1,0 +1,123 @@
+//! `cufem run --adapt TOL`: the options, and the adaptive run into the
+//! output folder (`cufem::adapt::run`, then the last cycle written as a
+//! single run's results are).
+
+use std::path::Path;
+
+use anyhow::anyhow;
+use cufem::adapt::{AdaptError, Source};
+use cufem::analysis::{AnalysisError, RunOptions};
+use cufem::io::output::OutputDir;
+use cufem::io::{RunInto, write_into};
+use cufem::model::{AdaptSettings, Model, ModelError};
+
+use super::{Failure, INPUT, Reporter, TOO_LARGE, fail, model_failure, run_failure};
+
+/// The options of `cufem run` for adaptive refinement.
+#[derive(clap::Args)]
+pub(super) struct AdaptArgs {
+    /// Refine where the error estimate is largest and solve again until the relative estimate (energy
+    /// norm) is below TOL, e.g. 0.05 (overrides the model's `adapt.tolerance`).
+    #[arg(long, value_name = "TOL", allow_negative_numbers = true, value_parser = parse_tolerance)]
+    adapt: Option<f64>,
+    /// DOF budget of an adaptive run: no mesh with more DOF is solved (overrides `adapt.max_dof`;
+    /// default 50,000).
+    #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_max_dof)]
+    max_dof: Option<usize>,
+}
+
+fn parse_tolerance(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v > 0.0 && v < 1.0 => Ok(v),
+        _ => Err("expected a relative error in the energy norm between 0 and 1 (e.g. 0.05)".into()),
+    }
+}
+
+fn parse_max_dof(s: &str) -> Result<usize, String> {
+    super::integer_in(s, 1, Some(cufem::model::MAX_BUDGET), "degrees of freedom")
+}
+
+impl AdaptArgs {
+    /// The settings of an adaptive run (the model's `[adapt]` table
+    /// overridden by the options), or `None` for a single run.
+    pub(super) fn settings(&self, model: &Model) -> Result<Option<AdaptSettings>, Failure> {
+        let mut settings = match (self.adapt, model.adapt) {
+            (None, None) if self.max_dof.is_some() => {
+                return Err(fail(
+                    INPUT,
+                    anyhow!("--max-dof is the budget of an adaptive run: give --adapt TOL or an [adapt] table too"),
+                ));
+            }
+            (None, None) => return Ok(None),
+            (_, file) => file.unwrap_or_default(),
+        };
+        if let Some(t) = self.adapt {
+            settings.tolerance = t;
+        }
+        if let Some(n) = self.max_dof {
+            settings.max_dof = n;
+        }
+        // before the output folder is touched (the library checks it too)
+        if model.n_dofs() > settings.max_dof {
+            return Err(fail(INPUT, AdaptError::Budget { max_dof: settings.max_dof, dof: model.n_dofs() }));
+        }
+        Ok(Some(settings))
+    }
+}
+
+/// Runs `model` adaptively and writes the last cycle's results into
+/// `folder`; returns that cycle's model with what was written.
+pub(super) fn run_into(
+    model: Model,
+    source: Source<'_>,
+    settings: &AdaptSettings,
+    folder: OutputDir,
+    options: &RunOptions,
+    progress: &mut Reporter,
+    path: &Path,
+) -> Result<(Model, RunInto<()>), Failure> {
+    progress.line(format!(
+        "adaptive run: until the estimate is below {:.2} %, at most {} DOF and {} refinements (θ = {})",
+        100.0 * settings.tolerance,
+        super::report::thousands(settings.max_dof),
+        settings.max_cycles,
+        settings.fraction
+    ));
+    let print = progress.printer();
+    let result = cufem::adapt::run(model, source, settings, options, progress, &mut |c, _, _| print(cycle_line(c)));
+    let (model, solution) = result.map_err(|e| match e {
+        AdaptError::Model(e @ ModelError::TooLarge { .. }) => model_failure(e, path),
+        AdaptError::Model(e) => fail(INPUT, anyhow!(e).context("refined model")),
+        AdaptError::Analysis(e @ AnalysisError::TooLarge { .. }) => fail(TOO_LARGE, e),
+        AdaptError::Analysis(e) => fail(INPUT, anyhow!(e).context("analysis failed")),
+        e @ AdaptError::Budget { .. } => fail(INPUT, e),
+    })?;
+    if let Some(a) = &solution.adapt {
+        progress.line(format!("adaptive run stopped: {}", a.stop));
+    }
+    let analysis_peak = cufem::size::peak_memory();
+    let written = write_into(&model, &solution, folder, |_| ()).map_err(run_failure)?;
+    Ok((
+        model,
+        RunInto {
+            solution,
+            files: written.files,
+            folder: written.folder,
+            kept_converged: written.kept_converged,
+            analysis_peak,
+            extra: written.extra,
+        },
+    ))
+}
+
+/// The report line of one cycle.
+pub(super) fn cycle_line(c: &cufem::analysis::AdaptCycle) -> String {
+    let refined = if c.refined.is_empty() { String::new() } else { format!("  (refined {})", c.refined) };
+    format!(
+        "cycle {}: {} DOF, estimate {:.2} %, {:.1} s{refined}",
+        c.cycle,
+        super::report::thousands(c.dof),
+        100.0 * c.estimate,
+        c.time_s
+    )
+}

@@ -422,3 +422,29 @@ fn bending_tube_20l9_whole_field_against_3d() {
     }
     assert!(row(&rows, "plastic zone tube", "von_mises").l2_percent <= 10.0);
 }
+
+/// §4.3 two cantilevers in contact (10 B4 × 16 L9 per beam, 15,066 DOF)
+/// against 3D at refine 1 (C3D20R, 56,430 DOF; both roller lines left out
+/// within 4.4 mm). Measured: the upper beam meets issue 23's criteria (u
+/// 0.77 % over it, at most 1.05 % on its contact surfaces, von Mises 7.89 %
+/// over its plastic zone); the lower beam does not (u 3.47 %, at most 3.95 %
+/// on the interface, von Mises 12.7 % over its plastic zone at its clamp,
+/// peeq 50 %). Not established why; one difference seen: the 3D contacts
+/// turn their normals with the deformation (3D root reactions have y
+/// components of 0.6–1.1 kN, the 7 in roller 0.49 kN), which node-to-node
+/// contact with normals fixed at the start does not. The lower beam is
+/// guarded at the measured values + 10 %.
+#[test]
+fn cantilevers_contact_whole_field_against_3d() {
+    let rows = whole_field("cantilevers_contact");
+    assert_issue_criteria(&rows, "upper");
+    for (region, q, measured) in [
+        ("body lower", "u", 3.47),
+        ("surface beams (master)", "u", 3.49),
+        ("plastic zone lower", "von_mises", 12.69),
+        ("plastic zone upper", "peeq", 40.81),
+    ] {
+        let r = row(&rows, region, q);
+        assert!(r.points > 100 && r.l2_percent <= 1.1 * measured, "{region} {q}: {r:?} (measured {measured} %)");
+    }
+}

@@ -53,6 +53,11 @@ fn stored_3d(name: &str) -> String {
 /// `examples/<stored>.toml`, another mesh of the same bodies (the stored
 /// points located by position).
 fn whole_field_on(name: &str, stored: &str) -> Vec<FieldRow> {
+    compare_on(name, stored).0
+}
+
+/// [`whole_field_on`], with the model and its solution.
+fn compare_on(name: &str, stored: &str) -> (Vec<FieldRow>, cufem::model::Model, cufem::analysis::Solution) {
     let model_of =
         |n: &str| cufem::model::Model::from_file(&root().join("examples").join(format!("{n}.toml"))).unwrap();
     let (model, stored_on) = (model_of(name), model_of(stored));
@@ -66,7 +71,7 @@ fn whole_field_on(name: &str, stored: &str) -> Vec<FieldRow> {
             r.region, r.quantity, r.l2_percent, r.max_percent, r.points, r.excluded
         );
     }
-    rows
+    (rows, model, solution)
 }
 
 fn row<'a>(rows: &'a [FieldRow], region: &str, quantity: &str) -> &'a FieldRow {
@@ -447,4 +452,33 @@ fn cantilevers_contact_whole_field_against_3d() {
         let r = row(&rows, region, q);
         assert!(r.points > 100 && r.l2_percent <= 1.1 * measured, "{region} {q}: {r:?} (measured {measured} %)");
     }
+}
+
+/// §4.2 tube on the axis mesh graded at the loading roller
+/// (`examples/bending_tube_graded.toml`, 24 B4 × 28 L9, 36,792 DOF) against
+/// the 3D fields stored for the paper's mesh (refine 1, points located by
+/// position). Issue 23's whole-field criteria, met (measured u 1.78 % over
+/// the tube, at most 1.39 % on the roller surfaces, von Mises 2.46 % over
+/// the plastic zone; the paper's mesh: 5.7 %, 5.5 %, 4.0 %); every roller
+/// force within 2 % of 3D (measured −0.86 %; CalculiX: 1,698.2 N at the
+/// loading roller, 849.1 N at each support; the paper's mesh −3.45 %). Not
+/// met: the top wall's middle sags off the roller by 0.64 % of the travel
+/// (issue: 0.5 %; 3D 0.39 %; paper's mesh 2.6 %), and σ_yy at the contact
+/// centre is 17.7 % above 3D (it needs a finer ring: docs/cross-check.md).
+#[test]
+fn bending_tube_graded_against_3d() {
+    let (rows, model, solution) = compare_on("bending_tube_graded", "bending_tube_28L9");
+    assert_issue_criteria(&rows, "tube");
+    let force = |n: &str| solution.contacts.iter().find(|c| c.name == n).unwrap().force[2];
+    for (name, ccx) in [("load", -1698.2), ("support_left", 849.09), ("support_right", 849.09)] {
+        let d = force(name) / ccx - 1.0;
+        eprintln!("{name}: {:+.2} % vs 3D", 100.0 * d);
+        assert!(d.abs() <= 0.02, "{name} {:+.2} % vs 3D", 100.0 * d);
+    }
+    // the middle of the top wall under the roller: 3D −0.75289 mm for the
+    // 0.75 mm travel (sag 0.39 %); measured −0.75481 mm (0.64 %); bound 1 %
+    // (the paper's mesh: 2.6 %)
+    let centre = solution.fields(&model).sample_point(None, [0.015, 0.125, 0.03]).unwrap().u[2];
+    eprintln!("contact centre u_z {:.5} mm", centre * 1e3);
+    assert!((centre / -0.75e-3 - 1.0).abs() <= 0.01, "contact centre u_z {centre:e} m");
 }

@@ -482,3 +482,67 @@ fn bending_tube_graded_against_3d() {
     eprintln!("contact centre u_z {:.5} mm", centre * 1e3);
     assert!((centre / -0.75e-3 - 1.0).abs() <= 0.01, "contact centre u_z {centre:e} m");
 }
+
+/// The table "The tube at its loading roller" of docs/cross-check.md, run
+/// by hand (`cargo test --release --test fidelity -- --ignored
+/// tube_roller_meshes --nocapture`, several minutes): the paper's tube with
+/// the axis refined at the loading roller and the ring refined, against
+/// the stored 3D fields of the paper's mesh.
+#[test]
+#[ignore = "a measurement, not a check: run by hand"]
+fn tube_roller_meshes_against_stored_3d() {
+    let text = std::fs::read_to_string(root().join("examples/bending_tube_28L9.toml")).unwrap();
+    let stored_on = cufem::model::Model::from_file(&root().join("examples/bending_tube_28L9.toml")).unwrap();
+    let start = text.find("axis = { element = \"B4\", segments = [").unwrap();
+    let end = start + text[start..].find("] }").unwrap() + 3;
+    let axis = |segments: &[(f64, usize)]| {
+        let mut from = 0.0;
+        let mut s = String::from("axis = { element = \"B4\", segments = [\n");
+        for &(to, n) in segments {
+            s += &format!("    {{ from = {from:?}, to = {to:?}, elements = {n} }},\n");
+            from = to;
+        }
+        s + "] }"
+    };
+    let graded_33 = [(0.025, 2), (0.115, 8), (0.125, 3), (0.135, 3), (0.225, 8), (0.25, 2)];
+    let graded_1 = [
+        (0.025, 2),
+        (0.105, 8),
+        (0.115, 2),
+        (0.121, 3),
+        (0.125, 4),
+        (0.129, 4),
+        (0.135, 3),
+        (0.145, 2),
+        (0.225, 8),
+        (0.25, 2),
+    ];
+    let variants = [
+        ("3.3 mm within 10 mm", text[..start].to_string() + &axis(&graded_33) + &text[end..]),
+        ("1 mm within 4 mm", text[..start].to_string() + &axis(&graded_1) + &text[end..]),
+        (
+            "the same, 52 L9",
+            (text[..start].to_string() + &axis(&graded_1) + &text[end..]).replace("around = 28", "around = 52"),
+        ),
+    ];
+    for (name, t) in variants {
+        let model = cufem::model::Model::parse(&t).unwrap();
+        let s = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
+        let view = s.fields(&model);
+        let force = s.contacts.iter().find(|c| c.name == "load").unwrap().force[2];
+        let p = view.sample_point(None, [0.015, 0.125, 0.03]).unwrap();
+        eprintln!(
+            "{name} ({} DOF): roller {:+.2} %, sag {:.2} % of travel, s_yy {:+.1} %, peeq {:+.1} %",
+            model.n_dofs(),
+            100.0 * (force / -1698.2 - 1.0),
+            100.0 * (p.u[2] / -0.75e-3 - 1.0),
+            100.0 * (p.stress[1] / -63.8669e6 - 1.0),
+            100.0 * (p.peeq / 5.27e-3 - 1.0)
+        );
+        let rows =
+            cufem::verify::compare_stored_on(&stored_on, &model, &view, &stored_3d("bending_tube_28L9")).unwrap();
+        for r in &rows {
+            eprintln!("  {:<28} {:<10} L2 {:6.2} %  max {:6.2} %", r.region, r.quantity, r.l2_percent, r.max_percent);
+        }
+    }
+}

@@ -236,13 +236,7 @@ fn the_block_estimate_is_effective_away_from_the_punch_edges() {
     let coarse = solve(&block(1, 1));
     assert_eq!((coarse.1.plastic_points, fine.1.plastic_points), (0, 0));
     let truth = true_error(&coarse, &fine);
-    let section = &coarse.0.mesh.bodies[0].section;
-    let at_edge = |es: usize| {
-        section.element(es).iter().any(|&t| {
-            let [x, z] = section.nodes[t];
-            ((x - 0.2).abs() < 1e-9 || (x - 0.3).abs() < 1e-9) && (z - 0.3).abs() < 1e-9
-        })
-    };
+    let at_edge = |es: usize| touches_punch_edge(&coarse.0, es);
     let (eta, error) = over(&coarse, &truth, &|es, _| !at_edge(es));
     let (eta_all, error_all) = over(&coarse, &truth, &|_, _| true);
     let effectivity = eta / error;
@@ -252,6 +246,16 @@ fn the_block_estimate_is_effective_away_from_the_punch_edges() {
         eta_all / error_all
     );
     assert!((0.7..=1.5).contains(&effectivity), "effectivity {effectivity}");
+}
+
+/// Whether section element `es` of the block touches a punch edge line
+/// (x = 0.2 or 0.3 m on the top face z = 0.3 m).
+fn touches_punch_edge(model: &Model, es: usize) -> bool {
+    let section = &model.mesh.bodies[0].section;
+    section.element(es).iter().any(|&t| {
+        let [x, z] = section.nodes[t];
+        ((x - 0.2).abs() < 1e-9 || (x - 0.3).abs() < 1e-9) && (z - 0.3).abs() < 1e-9
+    })
 }
 
 /// The full, elastoplastic examples (compact bar 0.75 mm, block 1 mm),
@@ -277,13 +281,7 @@ fn plastic_end_states_measured() {
     };
     let (coarse, fine) = (solve(&full_block(1, 1)), solve(&full_block(2, 3)));
     let truth = true_error(&coarse, &fine);
-    let section = &coarse.0.mesh.bodies[0].section;
-    let at_edge = |es: usize| {
-        section.element(es).iter().any(|&t| {
-            let [x, z] = section.nodes[t];
-            ((x - 0.2).abs() < 1e-9 || (x - 0.3).abs() < 1e-9) && (z - 0.3).abs() < 1e-9
-        })
-    };
+    let at_edge = |es: usize| touches_punch_edge(&coarse.0, es);
     let (eta, error) = over(&coarse, &truth, &|es, _| !at_edge(es));
     eprintln!("plastic block against 2× finer × 3 B4: away from the punch edges effectivity {:.3}", eta / error);
 }

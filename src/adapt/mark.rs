@@ -81,16 +81,16 @@ impl BodyMarks {
     }
 }
 
-/// Where an element lies: its axis interval and, in a grid section, its x
-/// and z intervals.
-fn place(mesh: &Mesh, plan: &MeshPlan, e: usize) -> (usize, usize, Option<(usize, usize)>) {
+/// Where an element lies: its body, section element and axis interval,
+/// and in a grid section its x and z intervals.
+fn place(mesh: &Mesh, plan: &MeshPlan, e: usize) -> (usize, usize, usize, Option<(usize, usize)>) {
     let (b, local) = mesh.body_of_element(e);
     let (s, k) = mesh.bodies[b].split_element(local);
     let grid = match &plan.bodies[b].section {
         SectionPlan::Grid { x, .. } => Some((s % (x.len() - 1), s / (x.len() - 1))),
         _ => None,
     };
-    (b, k, grid)
+    (b, s, k, grid)
 }
 
 /// Every interval holding one of the `marked` elements, in every
@@ -103,12 +103,12 @@ pub fn intervals(mesh: &Mesh, plan: &MeshPlan, marked: &[usize]) -> Vec<BodyMark
         mesh.bodies.iter().zip(&plan.bodies).map(|(b, p)| BodyMarks::empty(b.axis.n_elements(), &p.section)).collect();
     let mut section: Vec<Vec<bool>> = mesh.bodies.iter().map(|b| vec![false; b.section.n_elements()]).collect();
     for &e in marked {
-        let (b, k, grid) = place(mesh, plan, e);
+        let (b, s, k, grid) = place(mesh, plan, e);
         let m = &mut marks[b];
         m.axis[k] = true;
         match grid {
             Some((i, j)) => (m.x[i], m.z[j]) = (true, true),
-            None => section[b][mesh.bodies[b].split_element(e - mesh.bodies[b].element_offset).0] = true,
+            None => section[b][s] = true,
         }
     }
     for ((m, p), s) in marks.iter_mut().zip(&plan.bodies).zip(&section) {

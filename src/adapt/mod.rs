@@ -99,7 +99,7 @@ pub fn run(
         report(&cycle, &model, &solution);
         cycles.push(cycle);
         start = Instant::now();
-        let next = match stop_before_refining(&solution, settings, cycles.len() - 1) {
+        let next = match stop_before_refining(&solution, estimate, settings, cycles.len() - 1) {
             Some(reason) => Err(reason),
             None => next_model(&model, &solution, source, settings)?,
         };
@@ -118,8 +118,7 @@ pub fn run(
 }
 
 /// Why no refinement follows this cycle's solution, if it is done.
-fn stop_before_refining(solution: &Solution, settings: &AdaptSettings, cycle: usize) -> Option<String> {
-    let estimate = solution.error_estimate.as_ref().map_or(0.0, |e| e.relative());
+fn stop_before_refining(solution: &Solution, estimate: f64, settings: &AdaptSettings, cycle: usize) -> Option<String> {
     if let Some(f) = &solution.failure {
         Some(format!("the analysis of cycle {cycle} stopped early: {f}"))
     } else if estimate < settings.tolerance {

@@ -8,7 +8,7 @@ use anyhow::anyhow;
 use cufem::adapt::{AdaptError, Source};
 use cufem::analysis::{AnalysisError, RunOptions};
 use cufem::io::output::OutputDir;
-use cufem::io::{RunInto, write_into};
+use cufem::io::{RunInto, solved_into};
 use cufem::model::{AdaptSettings, Model, ModelError};
 
 use super::{Failure, INPUT, Reporter, TOO_LARGE, fail, model_failure, run_failure};
@@ -95,19 +95,8 @@ pub(super) fn run_into(
     if let Some(a) = &solution.adapt {
         progress.line(format!("adaptive run stopped: {}", a.stop));
     }
-    let analysis_peak = cufem::size::peak_memory();
-    let written = write_into(&model, &solution, folder, |_| ()).map_err(run_failure)?;
-    Ok((
-        model,
-        RunInto {
-            solution,
-            files: written.files,
-            folder: written.folder,
-            kept_converged: written.kept_converged,
-            analysis_peak,
-            extra: written.extra,
-        },
-    ))
+    let written = solved_into(&model, solution, folder, |_| ()).map_err(run_failure)?;
+    Ok((model, written))
 }
 
 /// The report line of one cycle.

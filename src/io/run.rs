@@ -71,6 +71,18 @@ pub fn run_into<T>(
     extra: impl FnOnce(Finished<'_>) -> T,
 ) -> Result<RunInto<T>, RunError> {
     let solution = analysis::run(model, options, progress)?;
+    solved_into(model, solution, folder, extra)
+}
+
+/// The second half of [`run_into`] for a solution computed otherwise (an
+/// adaptive run's last cycle): the peak memory read now, the results
+/// written into `folder` and committed.
+pub fn solved_into<T>(
+    model: &Model,
+    solution: Solution,
+    folder: OutputDir,
+    extra: impl FnOnce(Finished<'_>) -> T,
+) -> Result<RunInto<T>, RunError> {
     let analysis_peak = crate::size::peak_memory();
     let written = write_into(model, &solution, folder, |staging| {
         extra(Finished { solution: &solution, staging, analysis_peak })

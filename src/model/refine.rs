@@ -168,28 +168,11 @@ pub(super) fn plan(file: &ModelFile) -> Result<MeshPlan, ModelError> {
             },
             SectionFile::Quads(_) => SectionPlan::Fixed { shape: "quads" },
             SectionFile::Gmsh(_) => SectionPlan::Fixed { shape: "gmsh" },
-            s => SectionPlan::Doubled { shape: shape_name(s), times: 0 },
+            s => SectionPlan::Doubled { shape: s.shape(), times: 0 },
         };
         bodies.push(BodyPlan { axis, section });
     }
     Ok(MeshPlan { bodies })
-}
-
-fn shape_name(s: &SectionFile) -> &'static str {
-    match s {
-        SectionFile::Rectangle(_) => "rectangle",
-        SectionFile::Tube(_) => "tube",
-        SectionFile::Quads(_) => "quads",
-        SectionFile::IBeam(_) => "i_beam",
-        SectionFile::Channel(_) => "channel",
-        SectionFile::ZSection(_) => "z_section",
-        SectionFile::Angle(_) => "angle",
-        SectionFile::Hat(_) => "hat",
-        SectionFile::Box(_) => "box",
-        SectionFile::CircularTube(_) => "circular_tube",
-        SectionFile::Circle(_) => "circle",
-        SectionFile::Gmsh(_) => "gmsh",
-    }
 }
 
 fn lines_division(lines: &[f64]) -> DivisionFile {
@@ -218,7 +201,7 @@ pub(super) fn apply(file: &mut ModelFile, plan: &MeshPlan) -> Result<(), ModelEr
             (s, SectionPlan::Doubled { times, .. }) => double(s, 1usize.checked_shl(*times).unwrap_or(usize::MAX)),
             (_, SectionPlan::Fixed { .. }) => {}
             (s, _) => {
-                return Err(invalid("bodies.section", shape_name(s), "the section shape of the refined model's plan"));
+                return Err(invalid("bodies.section", s.shape(), "the section shape of the refined model's plan"));
             }
         }
     }

@@ -236,15 +236,23 @@ fn axis_patches(axis: &BeamAxis, values: &AxisValues) -> Vec<Vec<Patch>> {
 }
 
 /// The candidate whose fit of `f` (values at each candidate's points) leaves
-/// the smallest mean squared residual per redundant point.
-fn smoothest(candidates: &[Patch], per_element: usize, n_terms: usize, f: &dyn Fn(&Patch, usize) -> f64) -> usize {
+/// the smallest mean squared residual per redundant point (`values`: a
+/// buffer reused between calls).
+fn smoothest(
+    candidates: &[Patch],
+    per_element: usize,
+    n_terms: usize,
+    f: &dyn Fn(&Patch, usize) -> f64,
+    values: &mut Vec<f64>,
+) -> usize {
     let mut best = (0, f64::INFINITY);
     for (i, patch) in candidates.iter().enumerate() {
         let m = patch.elements.len() * per_element;
         if m <= n_terms {
             continue;
         }
-        let values: Vec<f64> = (0..m).map(|k| f(patch, k)).collect();
+        values.clear();
+        values.extend((0..m).map(|k| f(patch, k)));
         let r2: f64 =
             (0..m).map(|i| (0..m).map(|j| patch.residual[i * m + j] * values[j]).sum::<f64>().powi(2)).sum::<f64>()
                 / (m - n_terms) as f64;
@@ -270,12 +278,13 @@ pub fn recover(mesh: &Mesh, cells: &[CellValues], stresses: &[Voigt], gp_offsets
         // along the axis first, at every section point
         let mut along = vec![[0.0; 6]; raw.len()];
         let n_terms = body.axis.kind.order() + 1;
+        let mut values = Vec::new();
         for (eb, candidates) in axis_patches(&body.axis, &cell.axis).iter().enumerate() {
             for s in 0..ns {
                 for qs in 0..gs {
                     for c in 0..6 {
                         let at = |patch: &Patch, k: usize| raw[index(s, patch.elements[k / ga], qs, k % ga)][c];
-                        let patch = &candidates[smoothest(candidates, ga, n_terms, &at)];
+                        let patch = &candidates[smoothest(candidates, ga, n_terms, &at, &mut values)];
                         let m = patch.elements.len() * ga;
                         for qa in 0..ga {
                             let row = &patch.weights[qa * m..(qa + 1) * m];

@@ -38,6 +38,24 @@ pub enum SectionFile {
 }
 
 impl SectionFile {
+    /// The `shape` word, as the model file spells it.
+    pub fn shape(&self) -> &'static str {
+        match self {
+            Self::Rectangle(_) => "rectangle",
+            Self::Tube(_) => "tube",
+            Self::Quads(_) => "quads",
+            Self::IBeam(_) => "i_beam",
+            Self::Channel(_) => "channel",
+            Self::ZSection(_) => "z_section",
+            Self::Angle(_) => "angle",
+            Self::Hat(_) => "hat",
+            Self::Box(_) => "box",
+            Self::CircularTube(_) => "circular_tube",
+            Self::Circle(_) => "circle",
+            Self::Gmsh(_) => "gmsh",
+        }
+    }
+
     /// The `element` key (required except for `shape = "gmsh"`).
     pub fn element(&self) -> Option<SectionElement> {
         match self {

@@ -55,8 +55,9 @@ def test_rows_equal_single_runs(local):
     d = cufem.study.set_path(small_model(), "indenters.2.displacement.2", -0.5e-3)
     d = cufem.study.set_path(d, "materials.0.young_modulus", 68e9)
     s = cufem.Model.from_dict(d).run(threads=1, progress=False).summary
-    assert local.iloc[1]["probe.contact_centre.s_yy"] == s["probes"][0]["stress"][1]
-    assert local.iloc[1]["max_peeq"] == s["max_peeq"]
+    # to round-off (see the Dask test): a separate process may sum in another order
+    assert local.iloc[1]["probe.contact_centre.s_yy"] == pytest.approx(s["probes"][0]["stress"][1], rel=1e-12)
+    assert local.iloc[1]["max_peeq"] == pytest.approx(s["max_peeq"], rel=1e-12)
 
 
 def test_dask_local_cluster_gives_the_same_dataframe(local):
@@ -64,7 +65,13 @@ def test_dask_local_cluster_gives_the_same_dataframe(local):
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None) as cluster:
         with distributed.Client(cluster) as client:
             on_dask = study.run(small_model(), VARIANTS, OUTPUTS, client=client)
-    pd.testing.assert_frame_equal(on_dask, local, check_exact=True)
+    # Equal to round-off, not bit for bit: CI once saw the contact-centre
+    # stress differ in its 16th digit (7e-17 relative) between the Dask
+    # threads and the pool's processes — the same serial solve, whose SIMD
+    # kernels may sum in an order that depends on where buffers land in
+    # memory. 1e-12 still catches a variant mixed up with another (they
+    # differ from the first digit) or a dropped increment.
+    pd.testing.assert_frame_equal(on_dask, local, check_exact=False, rtol=1e-12, atol=0.0)
 
 
 def test_grid_and_bad_paths():

@@ -76,6 +76,7 @@ pub mod ccx;
 pub mod contact;
 pub mod elements;
 pub mod io;
+pub mod kinematics;
 pub mod materials;
 pub mod mesh;
 pub mod model;

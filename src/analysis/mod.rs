@@ -141,6 +141,8 @@ pub struct HistoryRow {
     pub contacts: Vec<ContactResultant>,
     /// Plastic Gauss points.
     pub plastic_points: usize,
+    /// Displacement at each probe, in the model's order.
+    pub probes: Vec<[f64; 3]>,
 }
 
 impl HistoryRow {
@@ -316,6 +318,7 @@ impl Observer<Structure<'_>> for Recorder<'_> {
             reactions: s.reactions(),
             contacts: contact,
             plastic_points: s.plastic_points(),
+            probes: s.probe_displacements(),
         });
         self.increments.push(inc.clone());
     }
@@ -503,6 +506,7 @@ impl Solution {
             stresses: &self.stresses,
             gp_offsets: &self.gp_offsets,
             recovered: self.recovered.as_ref(),
+            kinematics: model.kinematics,
         }
     }
 }

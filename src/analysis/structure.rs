@@ -91,7 +91,11 @@ impl<'m> Structure<'m> {
         let dirichlet = Dirichlet::new(&value, &source, &assembler);
         let elements = Elements::new(model);
         let t_cache = Instant::now();
-        assembler.cache_elastic(&elements.inputs(&vec![0.0; mesh.n_dofs()]));
+        // the elastic tangent is a constant only in small strain; the
+        // total-Lagrangian one depends on u and S everywhere
+        if !model.kinematics.is_nonlinear() {
+            assembler.cache_elastic(&elements.inputs(&vec![0.0; mesh.n_dofs()]));
+        }
         let element_cache = t_cache.elapsed();
         let timings = Timings {
             setup: t0.elapsed(),
@@ -141,6 +145,29 @@ impl<'m> Structure<'m> {
     /// Plastic Gauss points in the last evaluation.
     pub fn plastic_points(&self) -> usize {
         self.elements.plastic_points
+    }
+
+    /// The displacement at each probe of the model (mean over the elements
+    /// holding it; NaN for a probe outside every body).
+    pub fn probe_displacements(&self) -> Vec<[f64; 3]> {
+        self.model
+            .probes
+            .iter()
+            .map(|p| {
+                if p.locations.is_empty() {
+                    return [f64::NAN; 3];
+                }
+                let mut sum = [0.0; 3];
+                for loc in &p.locations {
+                    let pv = crate::values::PointValues::new(&self.model.mesh.bodies[loc.body], loc);
+                    let u = pv.displacement(&self.state.u);
+                    for k in 0..3 {
+                        sum[k] += u[k] / p.locations.len() as f64;
+                    }
+                }
+                sum
+            })
+            .collect()
     }
 
     /// Every contact point after the last evaluation (all indenter

@@ -70,6 +70,8 @@ pub struct Inputs<'a> {
     pub gp_offsets: &'a [usize],
     /// Tangent branch of points on their yield surface.
     pub predictor: Predictor,
+    /// Strain measure (small strain or total Lagrangian).
+    pub kinematics: crate::kinematics::Kinematics,
 }
 
 /// Outputs of an assembly pass.
@@ -229,6 +231,7 @@ impl Assembler {
                                 trial: trial.range(g0, ngp),
                                 stress: stress.range(g0, ngp),
                                 predictor: input.predictor,
+                                kinematics: input.kinematics,
                             }
                         };
                         WORKSPACE.with_borrow_mut(|ws| {
@@ -330,6 +333,7 @@ mod tests {
             committed: &committed,
             gp_offsets: &gp_offsets,
             predictor: Default::default(),
+            kinematics: Default::default(),
         };
         assembler.cache_elastic(&inputs);
         Setup { mesh, geometry, gp_offsets, materials, u, committed, assembler, uncached }
@@ -346,6 +350,7 @@ mod tests {
             committed: &s.committed,
             gp_offsets: &s.gp_offsets,
             predictor: Default::default(),
+            kinematics: Default::default(),
         };
         let mut force = vec![0.0; s.mesh.n_dofs()];
         let mut tangent = vec![0.0; a.pattern.nnz()];

@@ -4,7 +4,8 @@
 //!
 //! * Materials: `*ELASTIC`; `*PLASTIC` rows `(σ_y, ε̄ᵖ)` from the hardening
 //!   law (perfect: one row; linear: a second row at ε̄ᵖ = 10; table: its
-//!   rows). Small strain (no `NLGEOM`), like cufem.
+//!   rows). Small strain (no `NLGEOM`), like cufem, unless the model's
+//!   `analysis.geometry = "nonlinear"` (then `*STEP, NLGEOM`).
 //! * Constraints: `*BOUNDARY` on every hex node inside the constraint's
 //!   geometric selection.
 //! * Loads: consistent nodal forces (`*CLOAD`) integrated over the hex faces
@@ -342,7 +343,9 @@ fn step(d: &mut String, model: &Model, mesh: &HexMesh) {
     // the analysis step
     let s = &model.solver;
     let nonlinear = !model.is_linear();
-    let _ = writeln!(d, "*STEP, INC={}", s.steps.max_increments.max(100) * 10);
+    // large deformation: CalculiX's NLGEOM (total Lagrangian for C3D20R)
+    let nlgeom = if model.kinematics.is_nonlinear() { " NLGEOM," } else { "" };
+    let _ = writeln!(d, "*STEP,{nlgeom} INC={}", s.steps.max_increments.max(100) * 10);
     // body–body contact: ccx needs a small first increment (about 10 µm of
     // tool travel on the two-cantilever model) to find the contact state
     let initial = if model.contacts.is_empty() { s.steps.initial } else { s.steps.initial.min(0.004) };

@@ -39,7 +39,9 @@
 //! scatters what it computes.
 
 mod bbar;
+mod large;
 
+use crate::kinematics::{Kinematics, Tensor};
 use crate::materials::{Material, PointState, Predictor};
 use crate::values::CellValues;
 pub use crate::values::ElementError;
@@ -61,6 +63,14 @@ pub struct Workspace {
     /// the volumetric row), and the projection's small matrices.
     bbar: Vec<[f64; 3]>,
     proj_g: Vec<f64>,
+    /// Total Lagrangian: the deformation gradient `F` and the second
+    /// Piola–Kirchhoff stress `S` per Gauss point (for `B_NL` and the
+    /// geometric stiffness).
+    frames: Vec<Tensor>,
+    pk2: Vec<Voigt>,
+    /// The geometric stiffness per node pair, and `w S ∇N_b` per node.
+    geometric: Vec<f64>,
+    stressed_grads: Vec<[f64; 3]>,
     /// Element internal force, 3 entries per node (node-major).
     pub force: Vec<f64>,
     /// Element tangent, row-major `n × n` with `n = 3 · nodes`; the upper
@@ -73,6 +83,8 @@ impl Workspace {
     pub fn resize(&mut self, nodes: usize, points: usize) {
         self.grads.resize(nodes, [0.0; 3]);
         self.tangents.resize(points, [[0.0; 6]; 6]);
+        self.frames.resize(points, [[0.0; 3]; 3]);
+        self.pk2.resize(points, [0.0; 6]);
         self.bbar.resize(points * nodes, [0.0; 3]);
         self.proj_g.resize(4 * 3 * nodes, 0.0);
         self.force.resize(3 * nodes, 0.0);
@@ -113,6 +125,9 @@ pub struct PointData<'a> {
     pub stress: &'a mut [Voigt],
     /// Tangent branch of points on their yield surface.
     pub predictor: Predictor,
+    /// Strain measure: small strain, or total Lagrangian (then `stress`
+    /// receives the Cauchy stress, the material's `S` stays internal).
+    pub kinematics: Kinematics,
 }
 
 /// Computes the internal force (and the tangent, per `mode`) of body
@@ -141,6 +156,7 @@ pub fn element_response(
     if let Some(ps) = geom.volumetric.as_ref() {
         volumetric_projection(geom, ps, el.es, el.eb, el.nodes, ws);
     }
+    let kinematics = points.kinematics;
     let (all_elastic, plastic_points) = stresses_and_forces(geom, &el, u, material, points, ws);
     let tangent_computed = match mode {
         TangentMode::None => false,
@@ -148,8 +164,12 @@ pub fn element_response(
         TangentMode::UnlessElastic => !all_elastic,
     };
     if tangent_computed {
-        let contributing = gather_operators(geom, &el, material, mode == TangentMode::UnlessElastic, ws);
+        let correction = mode == TangentMode::UnlessElastic;
+        let contributing = gather_operators(geom, &el, material, correction, kinematics, ws);
         tangent_product(&el, contributing, ws);
+        if kinematics.is_nonlinear() {
+            large::add_geometric_stiffness(geom, el.es, el.eb, el.nodes, ws);
+        }
     }
     ElementStats { plastic_points, tangent_computed }
 }
@@ -202,6 +222,7 @@ fn stresses_and_forces(
 ) -> (bool, usize) {
     let (sg, ag) = (&geom.section, &geom.axis);
     let bbar = geom.volumetric.is_some();
+    let large = points.kinematics.is_nonlinear();
     let (ns, nb, nodes) = (sg.n_fun, ag.n_fun, el.nodes);
     let (mut all_elastic, mut plastic_points) = (true, 0);
     ws.contracted.resize(4 * ns, [0.0; 3]);
@@ -217,7 +238,8 @@ fn stresses_and_forces(
             let sp = sg.point(el.es, gs);
             let w = sp.weight * at.weight;
             let q = gb * sg.n_gp + gs;
-            let mut eps = point_strain(&sp, v, vy);
+            let grad = point_gradient(&sp, v, vy);
+            let mut eps = points.kinematics.strain(&grad);
             if bbar {
                 // ε̄ = ε + (θ̄ − θ)/3 · 1 with θ̄ − θ = Σ_a (b̄_a − g_a)·u_a
                 let d = &ws.bbar[q * nodes..(q + 1) * nodes];
@@ -231,11 +253,20 @@ fn stresses_and_forces(
             }
             let r = material.update_for_element(&eps, &points.committed[q], points.predictor);
             points.trial[q] = r.state;
-            points.stress[q] = r.stress;
             ws.tangents[q] = r.tangent;
             all_elastic &= r.elastic_tangent;
             plastic_points += usize::from(r.plastic);
-            add_point_force(&sp, w, &r.stress, h, hy);
+            // the stress whose rows meet the reference gradients: σ, or P = F S
+            let rows = if large {
+                let f = crate::kinematics::deformation_gradient(&grad);
+                (ws.frames[q], ws.pk2[q]) = (f, r.stress);
+                points.stress[q] = crate::kinematics::cauchy(&f, &r.stress);
+                crate::kinematics::first_piola(&f, &r.stress)
+            } else {
+                points.stress[q] = r.stress;
+                crate::voigt::stress_tensor(&r.stress)
+            };
+            add_point_force(&sp, w, &rows, h, hy);
             if bbar {
                 // f_a += w d_a tr σ / 3
                 let s = r.stress;
@@ -277,8 +308,9 @@ fn contract_axis(at: &crate::values::AxisAt<'_>, u: &[f64], v: &mut [[f64; 3]], 
     }
 }
 
-/// The strain at a section point from the contracted `v_τ`, `v'_τ`.
-fn point_strain(sp: &crate::values::SectionAt<'_>, v: &[[f64; 3]], vy: &[[f64; 3]]) -> Voigt {
+/// The displacement gradient `∂u_k/∂x_d` at a section point from the
+/// contracted `v_τ`, `v'_τ`.
+fn point_gradient(sp: &crate::values::SectionAt<'_>, v: &[[f64; 3]], vy: &[[f64; 3]]) -> Tensor {
     // grad[k][d] = ∂u_k/∂x_d
     let mut grad = [[0.0; 3]; 3];
     for t in 0..v.len() {
@@ -289,13 +321,14 @@ fn point_strain(sp: &crate::values::SectionAt<'_>, v: &[[f64; 3]], vy: &[[f64; 3
             grad[k][2] += fz * v[t][k];
         }
     }
-    crate::voigt::strain_from_gradient(&grad)
+    grad
 }
 
 /// A section point's share of `h_τ` and `h'_τ` (the rows of the stress
-/// tensor times `w`: `σ_k· = (σ_kx, σ_ky, σ_kz)`).
-fn add_point_force(sp: &crate::values::SectionAt<'_>, w: f64, s: &Voigt, h: &mut [[f64; 3]], hy: &mut [[f64; 3]]) {
-    let sig = crate::voigt::stress_tensor(s).map(|row| row.map(|x| w * x));
+/// tensor times `w`: `σ_k· = (σ_kx, σ_ky, σ_kz)`, or of `P = F S` in the
+/// total-Lagrangian formulation).
+fn add_point_force(sp: &crate::values::SectionAt<'_>, w: f64, s: &Tensor, h: &mut [[f64; 3]], hy: &mut [[f64; 3]]) {
+    let sig = s.map(|row| row.map(|x| w * x));
     for t in 0..h.len() {
         let (fx, f, fz) = (sp.fx[t], sp.f[t], sp.fz[t]);
         for k in 0..3 {
@@ -315,6 +348,7 @@ fn gather_operators(
     el: &Element,
     material: &Material,
     correction: bool,
+    kinematics: Kinematics,
     ws: &mut Workspace,
 ) -> usize {
     let (sg, ag) = (&geom.section, &geom.axis);
@@ -347,7 +381,12 @@ fn gather_operators(
                 // node b (crate::voigt's order and shear convention) plus the
                 // B-bar term m d_b[k] / 3 on the normal rows
                 let d = dbar.map_or([0.0; 3], |d| d[b]);
+                let frame = &ws.frames[q];
                 let bb: [Voigt; 3] = std::array::from_fn(|k| {
+                    if kinematics.is_nonlinear() {
+                        // δE = sym(Fᵀ (e_k ⊗ g)); B-bar is refused with this kinematics
+                        return crate::kinematics::strain_variation(frame, g, k);
+                    }
                     let mut col = [d[k] / 3.0, d[k] / 3.0, d[k] / 3.0, 0.0, 0.0, 0.0];
                     let mut unit = [0.0; 3];
                     unit[k] = 1.0;
@@ -398,179 +437,4 @@ fn tangent_product(el: &Element, contributing: usize, ws: &mut Workspace) {
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::mesh::{BeamAxis, Body, CrossSection, Division};
-    use crate::shape::{BeamElementKind, SectionElementKind};
-
-    fn single_element_body(sk: SectionElementKind, bk: BeamElementKind) -> Body {
-        // a distorted quad section (straight edges) and a single beam element
-        let corners = [[0.0, 0.0], [0.012, 0.001], [0.010, 0.011], [-0.001, 0.009]];
-        let section = CrossSection::from_quads(sk, &corners, &[[0, 1, 2, 3]], "s").unwrap();
-        let lines = Division::uniform(0.1, 0.13, 1).lines("y").unwrap();
-        Body {
-            name: "b".into(),
-            section,
-            axis: BeamAxis::from_lines(bk, &lines),
-            material: 0,
-            node_offset: 0,
-            element_offset: 0,
-        }
-    }
-
-    fn response(body: &Body, mat: &Material, u: &[f64], committed: &[PointState]) -> (Vec<f64>, Vec<f64>) {
-        response_with(&CellValues::new(body).unwrap(), mat, u, committed)
-    }
-
-    fn response_with(geom: &CellValues, mat: &Material, u: &[f64], committed: &[PointState]) -> (Vec<f64>, Vec<f64>) {
-        let ngp = geom.gp_per_element();
-        let mut trial = vec![PointState::default(); ngp];
-        let mut stress = vec![[0.0; 6]; ngp];
-        let mut ws = Workspace::default();
-        element_response(
-            geom,
-            0,
-            1,
-            u,
-            mat,
-            PointData { committed, trial: &mut trial, stress: &mut stress, predictor: Predictor::Loading },
-            TangentMode::Always,
-            &mut ws,
-        );
-        (ws.force.clone(), ws.tangent.clone())
-    }
-
-    #[test]
-    fn volume_and_rigid_body_modes() {
-        let mat = Material::new("m", 70e9, 0.3, None);
-        for sk in [SectionElementKind::L4, SectionElementKind::L9, SectionElementKind::L16] {
-            for bk in [BeamElementKind::B2, BeamElementKind::B3, BeamElementKind::B4] {
-                let body = single_element_body(sk, bk);
-                let geom = CellValues::new(&body).unwrap();
-                // shoelace area of the quad × length
-                let area = 0.5
-                    * ((0.0 * 0.001 - 0.012 * 0.0)
-                        + (0.012 * 0.011 - 0.010 * 0.001)
-                        + (0.010 * 0.009 - (-0.001) * 0.011)
-                        + (-0.001 * 0.0 - 0.0 * 0.009));
-                let vol: f64 = (0..geom.section.n_gp)
-                    .flat_map(|s| (0..geom.axis.n_gp).map(move |a| (s, a)))
-                    .map(|(s, a)| geom.section.weight[s] * geom.axis.weight[a])
-                    .sum();
-                assert!((vol - area * 0.03).abs() < 1e-15, "{sk:?}{bk:?}");
-                // rigid rotation about y gives zero force
-                let nodes = body.nodes_per_element();
-                let mut el = Vec::new();
-                body.element_nodes(0, &mut el);
-                let mut u = vec![0.0; 3 * nodes];
-                for (a, &g) in el.iter().enumerate() {
-                    let [x, y, z] = body.local_coords(g);
-                    // small rotation θ about an arbitrary axis: u = θ × x
-                    let th = [1e-4, -2e-4, 3e-4];
-                    u[3 * a] = th[1] * z - th[2] * y;
-                    u[3 * a + 1] = th[2] * x - th[0] * z;
-                    u[3 * a + 2] = th[0] * y - th[1] * x;
-                }
-                let ngp = geom.gp_per_element();
-                let (f, _) = response(&body, &mat, &u, &vec![PointState::default(); ngp]);
-                let fmax = f.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-                assert!(fmax < 1e-6, "{sk:?}{bk:?}: {fmax}");
-            }
-        }
-    }
-
-    #[test]
-    fn tangent_matches_finite_difference_of_force_elastoplastic() {
-        for bbar in [false, true] {
-            tangent_check(bbar);
-        }
-    }
-
-    /// B-bar: rigid motions give no force, a linear field (constant
-    /// volumetric strain, in every pressure space) gives the standard
-    /// element's force, and a field with non-constant divergence does not.
-    #[test]
-    fn bbar_reduces_to_the_standard_element_for_constant_dilatation() {
-        let mat = Material::new("m", 70e9, 0.3, None);
-        for sk in [SectionElementKind::L4, SectionElementKind::L9, SectionElementKind::L16] {
-            for bk in [BeamElementKind::B2, BeamElementKind::B3, BeamElementKind::B4] {
-                let body = single_element_body(sk, bk);
-                let std = CellValues::new(&body).unwrap();
-                let bar = CellValues::new(&body).unwrap().with_bbar(&body);
-                let committed = vec![PointState::default(); std.gp_per_element()];
-                let mut el = Vec::new();
-                body.element_nodes(0, &mut el);
-                let field = |f: &dyn Fn([f64; 3]) -> [f64; 3]| -> Vec<f64> {
-                    el.iter().flat_map(|&g| f(body.local_coords(g))).collect()
-                };
-                let linear =
-                    field(&|x| [1e-3 * x[0] + 2e-4 * x[2], -5e-4 * x[1] + 1e-4 * x[0], 3e-4 * x[2] - 2e-4 * x[1]]);
-                let (fs, _) = response_with(&std, &mat, &linear, &committed);
-                let (fb, _) = response_with(&bar, &mat, &linear, &committed);
-                let scale = fs.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-                let diff = fs.iter().zip(&fb).fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
-                assert!(diff < 1e-10 * scale, "{sk:?}{bk:?}: {diff:e}");
-                let rotation =
-                    field(&|x| [2e-4 * x[2] - 3e-4 * x[1], 3e-4 * x[0] - 1e-4 * x[2], 1e-4 * x[1] - 2e-4 * x[0]]);
-                let (fr, _) = response_with(&bar, &mat, &rotation, &committed);
-                assert!(fr.iter().fold(0.0f64, |a, b| a.max(b.abs())) < 1e-6, "{sk:?}{bk:?}");
-            }
-        }
-        // a dilatation that varies to second order is projected, so B-bar differs
-        let body = single_element_body(SectionElementKind::L9, BeamElementKind::B4);
-        let (std, bar) = (CellValues::new(&body).unwrap(), CellValues::new(&body).unwrap().with_bbar(&body));
-        let committed = vec![PointState::default(); std.gp_per_element()];
-        let mut el = Vec::new();
-        body.element_nodes(0, &mut el);
-        let u: Vec<f64> = el
-            .iter()
-            .flat_map(|&g| {
-                let x = body.local_coords(g);
-                [1e1 * x[0] * x[0] * x[1] * x[1], 0.0, 0.0]
-            })
-            .collect();
-        let (fs, _) = response_with(&std, &mat, &u, &committed);
-        let (fb, _) = response_with(&bar, &mat, &u, &committed);
-        let scale = fs.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-        assert!(fs.iter().zip(&fb).any(|(x, y)| (x - y).abs() > 1e-3 * scale));
-    }
-
-    fn tangent_check(bbar: bool) {
-        use crate::materials::Hardening;
-        let body = single_element_body(SectionElementKind::L9, BeamElementKind::B3);
-        let mat = Material::new("m", 70e9, 0.3, Some(Hardening::Linear { yield_stress: 100e6, modulus: 2e9 }));
-        let nodes = body.nodes_per_element();
-        let mut el = Vec::new();
-        body.element_nodes(0, &mut el);
-        // a displacement that yields part of the element
-        let mut u = vec![0.0; 3 * nodes];
-        for (a, &g) in el.iter().enumerate() {
-            let [x, y, z] = body.local_coords(g);
-            u[3 * a] = 3e-3 * y * z / 0.01 + 1e-5 * (x * 100.0).sin();
-            u[3 * a + 1] = -2e-3 * (z - 0.005) + 1e-3 * x * y;
-            u[3 * a + 2] = 1e-5 * (y * 50.0).cos() + 2e-3 * x;
-        }
-        let geom = CellValues::new(&body).unwrap();
-        let geom = if bbar { geom.with_bbar(&body) } else { geom };
-        let ngp = geom.gp_per_element();
-        let committed = vec![PointState::default(); ngp];
-        let (_, k) = response_with(&geom, &mat, &u, &committed);
-        let n = 3 * nodes;
-        let kmax = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-        let h = 1e-9;
-        let mut worst: f64 = 0.0;
-        for q in 0..n {
-            let (mut up, mut um) = (u.clone(), u.clone());
-            up[q] += h;
-            um[q] -= h;
-            let (fp, _) = response_with(&geom, &mat, &up, &committed);
-            let (fm, _) = response_with(&geom, &mat, &um, &committed);
-            for p in 0..n {
-                let fd = (fp[p] - fm[p]) / (2.0 * h);
-                let kk = if p <= q { k[p * n + q] } else { k[q * n + p] };
-                worst = worst.max((fd - kk).abs() / kmax);
-            }
-        }
-        assert!(worst < 1e-6, "relative tangent error {worst} (B-bar: {bbar})");
-    }
-}
+mod tests;

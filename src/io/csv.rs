@@ -95,7 +95,30 @@ pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result
         write(&path, &text)?;
         out.push(path);
     }
+    if !model.probes.is_empty() {
+        out.push(write_probe_history(model, solution, dir)?);
+    }
     Ok(out)
+}
+
+/// `history_probes.csv`: the displacement of every probe at every increment
+/// (columns `<probe>.u_x`, `<probe>.u_y`, `<probe>.u_z`).
+fn write_probe_history(model: &Model, solution: &Solution, dir: &Path) -> Result<PathBuf, IoError> {
+    let mut text = String::from("increment,lambda,iterations");
+    for p in &model.probes {
+        let _ = write!(text, ",{0}.u_x,{0}.u_y,{0}.u_z", p.name);
+    }
+    text.push('\n');
+    for row in &solution.history {
+        let _ = write!(text, "{},{:e},{}", row.increment, row.lambda, row.iterations);
+        for u in &row.probes {
+            let _ = write!(text, ",{:e},{:e},{:e}", u[0], u[1], u[2]);
+        }
+        text.push('\n');
+    }
+    let path = dir.join("history_probes.csv");
+    write(&path, &text)?;
+    Ok(path)
 }
 
 /// Final state of each contact point, one CSV per indenter or contact.

@@ -7,6 +7,7 @@
 //! | `result.vtu` | the whole 3D field (CUF elements split into linear hexahedra) |
 //! | `line_<name>.csv` | fields sampled along each `[[lines]]` entry |
 //! | `history_<name>.csv` | per increment: reaction of a constraint set, or force of a contact |
+//! | `history_probes.csv` | per increment: the displacement of every probe |
 //! | `contact_<name>.csv` | final gap, force and pressure of every contact point |
 //! | `line_<name>_<quantity>.png` | plots of the quantities listed in a line's `plot` |
 //! | `history_<indenter>.png` | force against displacement of each moving indenter |

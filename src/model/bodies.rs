@@ -20,6 +20,7 @@ use crate::values::CellValues;
 pub(super) fn mesh(
     file: &[BodyFile],
     materials: &[Material],
+    geometry: Geometry,
     limits: Limits,
     base: &Path,
 ) -> Result<(Mesh, Vec<CellValues>), ModelError> {
@@ -49,6 +50,17 @@ pub(super) fn mesh(
                 Some(Formulation::Standard) => false,
                 Some(Formulation::Bbar) => true,
             };
+            if bbar && geometry == Geometry::Nonlinear {
+                // B-bar projects the small-strain dilatation; its finite-strain
+                // counterpart (F-bar) is not implemented
+                let why =
+                    if file[i].formulation.is_some() { "\"bbar\"" } else { "unset (B-bar by default for ν ≥ 0.45)" };
+                return Err(invalid(
+                    format!("bodies[{i}].formulation"),
+                    why,
+                    "\"standard\" with analysis.geometry = \"nonlinear\" (B-bar is small-strain only)",
+                ));
+            }
             Ok(if bbar { cell.with_bbar(b) } else { cell })
         })
         .collect::<Result<Vec<_>, ModelError>>()?;

@@ -26,6 +26,7 @@ use std::path::Path;
 
 use crate::bc::{Constraint, Load};
 use crate::contact::{Indenter, PairContact};
+use crate::kinematics::Kinematics;
 use crate::materials::Material;
 use crate::mesh::{Mesh, MeshError};
 use crate::quantity::Quantity;
@@ -278,6 +279,8 @@ pub struct Model {
     pub adapt: Option<AdaptSettings>,
     /// The divisions adaptive refinement may change ([`MeshPlan`]).
     pub plan: MeshPlan,
+    /// `analysis.geometry`: small strain, or total Lagrangian.
+    pub kinematics: Kinematics,
 }
 
 /// Something suspicious but legal in a model (printed by `check` and `run`,
@@ -358,9 +361,9 @@ impl Model {
         build(file, limits, base)
     }
 
-    /// True if the problem is linear (no body yields, no contact).
+    /// True if the problem is linear (no body yields, no contact, small strain).
     pub fn is_linear(&self) -> bool {
-        is_linear(&self.mesh, &self.materials, &self.indenters, &self.contacts)
+        is_linear(&self.mesh, &self.materials, &self.indenters, &self.contacts) && !self.kinematics.is_nonlinear()
     }
 
     /// Number of degrees of freedom (3 per node, constrained ones included).
@@ -376,7 +379,12 @@ fn is_linear(mesh: &Mesh, materials: &[Material], indenters: &[Indenter], contac
 fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelError> {
     validate::names(&file)?;
     let materials = material::materials(&file.materials)?;
-    let (mesh, cells) = bodies::mesh(&file.bodies, &materials, limits, base)?;
+    let geometry = file.analysis.geometry.unwrap_or_default();
+    let (mesh, cells) = bodies::mesh(&file.bodies, &materials, geometry, limits, base)?;
+    let kinematics = match geometry {
+        Geometry::Linear => Kinematics::Linear,
+        Geometry::Nonlinear => Kinematics::TotalLagrangian,
+    };
     let plan = refine::plan(&file)?;
     let adapt = refine::adapt_settings(file.adapt.as_ref())?;
     let mut warnings = Vec::new();
@@ -388,7 +396,8 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let probes = preprocess::probes(&file.probes, &mesh)?;
     let lines = preprocess::lines(&file.lines, &mesh, &mut warnings)?;
     let references = validate::references(&file.references, &probes)?;
-    let solver = validate::solver_settings(&file.solver, is_linear(&mesh, &materials, &indenters, &contacts))?;
+    let linear = is_linear(&mesh, &materials, &indenters, &contacts) && !kinematics.is_nonlinear();
+    let solver = validate::solver_settings(&file.solver, linear)?;
     let output = validate::output(&file.output);
     let item_names = steps::ItemNames {
         indenters: indenters.iter().map(|i| i.name.as_str()).collect(),
@@ -415,5 +424,6 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         warnings,
         adapt,
         plan,
+        kinematics,
     })
 }

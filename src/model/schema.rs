@@ -63,6 +63,9 @@ pub struct ModelFile {
     /// Free text.
     #[serde(default)]
     pub description: Option<String>,
+    /// The kind of analysis (`[analysis]`).
+    #[serde(default)]
+    pub analysis: AnalysisFile,
     /// Nonlinear solution controls.
     #[serde(default)]
     pub solver: SolverFile,
@@ -102,6 +105,14 @@ pub struct ModelFile {
     /// Adaptive refinement (`cufem run` refines and solves again).
     #[serde(default)]
     pub adapt: Option<AdaptFile>,
+}
+
+/// `[analysis]`.
+#[derive(Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct AnalysisFile {
+    /// `geometry = "linear"` (default) or `"nonlinear"` (total Lagrangian).
+    pub geometry: Option<Geometry>,
 }
 
 /// `[adapt]`.

@@ -12,7 +12,8 @@
 //!   `σ = C ε` from the expansion, exactly — except in B-bar bodies, where
 //!   the stress uses the element's projected dilatation and is the
 //!   (unlimited) interpolation of the Gauss-point stresses, exact on affine
-//!   elements;
+//!   elements; likewise in a total-Lagrangian analysis, where the strain
+//!   is Green–Lagrange and the stress the Cauchy stress of the kernel;
 //! * in an element with plastic Gauss points, stress and `peeq` are the
 //!   Lagrange interpolation of their Gauss-point values through the
 //!   element's Gauss points (the tensor grid of `p + 1` points per direction
@@ -84,6 +85,9 @@ pub struct FieldView<'a> {
     /// Recovered nodal stress and peeq: when present, stress and peeq at
     /// points come from it (continuous); otherwise element by element.
     pub recovered: Option<&'a Recovered>,
+    /// The strain measure: small strain, or total Lagrangian (strain =
+    /// Green–Lagrange, stress = Cauchy from the Gauss points).
+    pub kinematics: crate::kinematics::Kinematics,
 }
 
 impl FieldView<'_> {
@@ -94,7 +98,8 @@ impl FieldView<'_> {
         let [xi, eta, zeta] = loc.natural;
         // the same shape values and strain as the element kernel
         let pv = PointValues::new(body, loc);
-        let mut s = Sample { u: pv.displacement(self.u), strain: pv.strain(self.u), ..Default::default() };
+        let strain = self.kinematics.strain(&pv.gradient(self.u));
+        let mut s = Sample { u: pv.displacement(self.u), strain, ..Default::default() };
         if let Some(r) = self.recovered {
             for (&n, &node) in pv.shapes.iter().zip(&pv.nodes) {
                 for k in 0..6 {
@@ -146,12 +151,14 @@ impl FieldView<'_> {
                 s.stress[k] = sigma[k].clamp(lo[k], hi[k]);
             }
             s.peeq = peeq.clamp(lo[6], hi[6]);
-        } else if geom.volumetric.is_some() {
+        } else if geom.volumetric.is_some() || self.kinematics.is_nonlinear() {
             // B-bar: the stress depends on the projected dilatation, not on
             // `div u` at the point (with ν → 0.5 the latter times λ is noise);
             // the Gauss-point stresses are the kernel's, and the interpolation
             // through them is exact on affine elements (the projected
             // dilatation is linear, the deviatoric strain of degree ≤ p)
+            // (total Lagrangian: the Cauchy stress is not `C E`, and the
+            // kernel's Gauss-point values are the ones to interpolate)
             s.stress = sigma;
         } else {
             s.stress = voigt::mat_vec(self.materials[body.material].elastic_stiffness(), &s.strain);

@@ -59,7 +59,20 @@ impl PointValues {
         out
     }
 
-    /// Strain from the global displacement vector.
+    /// Displacement gradient `∂u_k/∂x_d` from the global displacement vector.
+    pub fn gradient(&self, u: &[f64]) -> crate::kinematics::Tensor {
+        let mut h = [[0.0; 3]; 3];
+        for (g, &node) in self.grads.iter().zip(&self.nodes) {
+            for (k, row) in h.iter_mut().enumerate() {
+                for d in 0..3 {
+                    row[d] += u[3 * node + k] * g[d];
+                }
+            }
+        }
+        h
+    }
+
+    /// Small strain from the global displacement vector.
     pub fn strain(&self, u: &[f64]) -> Voigt {
         let mut eps = [0.0; 6];
         for (g, &node) in self.grads.iter().zip(&self.nodes) {

@@ -56,6 +56,7 @@ impl<'m> Elements<'m> {
             committed: &self.committed,
             gp_offsets: &self.gp_offsets,
             predictor: Default::default(),
+            kinematics: self.model.kinematics,
         }
     }
 }
@@ -77,6 +78,7 @@ impl Contribution for Elements<'_> {
             committed: &self.committed,
             gp_offsets: &self.gp_offsets,
             predictor: at.predictor,
+            kinematics: self.model.kinematics,
         };
         self.plastic_points = tangent.assembler.assemble(
             &inputs,

@@ -120,6 +120,18 @@ pub enum FactorPrecision {
     Double,
 }
 
+/// `analysis.geometry`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Geometry {
+    /// Small strain and small displacement (the default; the paper's).
+    #[default]
+    Linear,
+    /// Total Lagrangian: large displacements and rotations
+    /// (`crate::kinematics`).
+    Nonlinear,
+}
+
 /// `bodies.formulation`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]

@@ -1,6 +1,9 @@
 //! Solvers: the sparse direct linear solver (and its reuse as a
 //! preconditioner), Newton–Raphson, and load stepping with cutbacks.
+//! For large deformations: the generalized eigenproblem `K φ = μ B φ`
+//! (linear buckling, modes; [`eigen`]).
 
+pub mod eigen;
 pub mod krylov;
 pub mod linear;
 pub mod newton;

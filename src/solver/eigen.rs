@@ -13,7 +13,7 @@
 //! `⟨x, y⟩_K = xᵀ K y` even when `B` is indefinite:
 //! `⟨x, A y⟩_K = xᵀ B y = ⟨A x, y⟩_K`. So Lanczos is run in that inner
 //! product — the "buckling mode" of Grimes, Lewis & Simon, *SIAM J. Matrix
-//! Anal. Appl.* 15 (1994) 228–272, §2 — which with `B` indefinite is the
+//! Anal. Appl.* 15 (1994) 228–272 — which with `B` indefinite is the
 //! only choice: there is no `B` inner product, and in the Euclidean one `A`
 //! is not symmetric. The vectors `qⱼ` are `K`-orthonormal, and
 //!

@@ -62,7 +62,7 @@ fn laplacian_eigenvalues_to_round_off() {
 
 /// `K = Sᵀ D_K S`, `B = Sᵀ D_B S` with `S` unit lower bidiagonal: by the
 /// congruence `ψ = S φ`, `K φ = μ B φ ⇔ D_K ψ = μ D_B ψ`, so `μᵢ = d_Kᵢ / d_Bᵢ`
-/// exactly (Parlett, *The Symmetric Eigenvalue Problem*, §15.1: congruence
+/// exactly (Parlett, *The Symmetric Eigenvalue Problem*, ch. 15: congruence
 /// preserves the pencil's eigenvalues), `d_Bᵢ = 0` giving `μ = ∞`.
 /// `K⁻¹B` is not symmetric here, so Lanczos in the Euclidean inner product
 /// (or in a `B` "inner product", B being indefinite) gets other numbers.
@@ -109,9 +109,8 @@ fn indefinite_b_gives_the_smallest_positive_eigenvalues_exactly() {
 
 /// Pinned-pinned column (length `l`, bending stiffness `ei`) of `elements`
 /// cubic Hermite beam elements: `K` the bending stiffness and `G` the
-/// consistent geometric stiffness of a unit axial compression (Przemieniecki,
-/// *Theory of Matrix Structural Analysis*, §15.2; Cook et al., *Concepts and
-/// Applications of FEA*, 4th ed., §18.2), so that `K φ = P G φ` gives the
+/// consistent geometric stiffness of a unit axial compression (Cook et al.,
+/// *Concepts and Applications of Finite Element Analysis*, 4th ed., ch. 18), so that `K φ = P G φ` gives the
 /// critical loads. DOFs `(w, θ)` per node, `w` removed at both ends.
 fn euler_column(elements: usize, l: f64, ei: f64) -> (LowerCsc, Vec<f64>, Vec<f64>) {
     let h = l / elements as f64;
@@ -153,10 +152,10 @@ fn euler_column(elements: usize, l: f64, ei: f64) -> (LowerCsc, Vec<f64>, Vec<f6
 
 /// The first three critical loads of the discrete column converge to
 /// Euler's `P_k = k²π² EI / L²` (Timoshenko & Gere, *Theory of Elastic
-/// Stability*, §2.2) from above (Rayleigh–Ritz with consistent matrices) at
+/// Stability*, ch. 2) from above (Rayleigh–Ritz with consistent matrices) at
 /// the rate `h⁴` of cubic elements for a fourth-order problem,
 /// `h^(2(p+1−m))` with `p = 3`, `m = 2` (Strang & Fix, *An Analysis of the
-/// Finite Element Method*, §6.3).
+/// Finite Element Method*, ch. 6).
 #[test]
 fn euler_column_critical_loads_converge_at_the_fourth_order() {
     let (l, ei) = (2.0, 3.0);

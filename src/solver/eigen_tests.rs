@@ -49,7 +49,8 @@ fn laplacian_eigenvalues_to_round_off() {
     assert_eq!(sol.values.len(), 6);
     let h = std::f64::consts::PI / (n + 1) as f64;
     for (i, &mu) in sol.values.iter().enumerate() {
-        let exact = 2.0 - 2.0 * ((i + 1) as f64 * h).cos();
+        // 2 − 2cos x = 4 sin²(x/2), without the cancellation
+        let exact = 4.0 * ((i + 1) as f64 * h / 2.0).sin().powi(2);
         assert!(((mu - exact) / exact).abs() < 1e-10, "μ{} = {mu}, exact {exact}", i + 1);
         // the eigenvector is the sine mode (largest entry positive)
         let mode: Vec<f64> = (0..n).map(|j| ((j + 1) as f64 * (i + 1) as f64 * h).sin()).collect();

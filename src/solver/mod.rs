@@ -1,6 +1,11 @@
 //! Solvers: the sparse direct linear solver (and its reuse as a
 //! preconditioner), Newton–Raphson, and load stepping with cutbacks.
+//! For large deformations: the generalized eigenproblem `K φ = μ B φ`
+//! (linear buckling, modes; [`eigen`]) and arc-length path following
+//! through limit points and snap-backs ([`arclength`]).
 
+pub mod arclength;
+pub mod eigen;
 pub mod krylov;
 pub mod linear;
 pub mod newton;

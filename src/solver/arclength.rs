@@ -1,0 +1,496 @@
+//! Arc-length path following of `R(u, λ) = f_int(u) − λ f = 0` through
+//! limit points (where `λ` turns back) and snap-backs (where the
+//! displacements do), knowing nothing about finite elements.
+//!
+//! Load control cannot pass a maximum of `λ`, and control of one
+//! displacement cannot pass a point where that displacement turns back.
+//! Here `λ` is an unknown and each increment is held to a fixed length `Δl`
+//! of the path (Riks, *Int. J. Solids Struct.* 15 (1979) 529–551; Crisfield,
+//! *Comput. Struct.* 13 (1981) 55–62):
+//!
+//! ```text
+//! Δuᵀ Δu + ψ² Δλ² fᵀf = Δl²,
+//! ```
+//!
+//! with `Δu`, `Δλ` the change since the last converged point. `ψ = 0` (the
+//! default, [`ArcLengthSettings::psi`]) is Crisfield's *cylindrical* method:
+//! the load term, whose units differ from the displacements' and which
+//! matters little once the path turns, is dropped; `ψ = 1` is the spherical
+//! constraint of Riks and Wempner. Crisfield's form was chosen over Riks'
+//! linearized normal plane because it keeps the iterates on the sphere
+//! (cylinder) itself, which with the root choice below follows a sharply
+//! turning path (a snap-back) where the normal plane may miss it (Crisfield,
+//! *Non-linear Finite Element Analysis of Solids and Structures*, vol. 1,
+//! ch. 9).
+//!
+//! **Predictor.** With the tangent `K` at the converged point,
+//! `K δu_F = f` and `Δλ₁ = ±Δl / √(δu_Fᵀ δu_F + ψ² fᵀf)`, `Δu₁ = Δλ₁ δu_F`.
+//! The sign continues the previous increment's direction:
+//! `sign(Δu_prevᵀ δu_F + ψ² Δλ_prev fᵀf)` (Feng, Perić & Owen, *Comput.
+//! Struct.* 58 (1996) 479–485). The sign of `det K` (the
+//! parity of the number of negative pivots) is the classical alternative,
+//! but it changes at bifurcations, where the path does not reverse, and the
+//! previous direction needs no factor inertia; the number of negative pivots,
+//! if the problem knows it, is reported with each increment instead (it
+//! marks the passage of limit and bifurcation points).
+//!
+//! **Corrector** (the bordering, or two-solve, approach): at each iterate
+//! the tangent is factorized once and solves two right-hand sides,
+//! `K δu_R = −R` and `K δu_F = f`; the correction `δu = δu_R + δλ δu_F`
+//! satisfies the linearized equilibrium for any `δλ`, which is chosen to
+//! keep the constraint exactly:
+//!
+//! ```text
+//! a δλ² + b δλ + c = 0,  a = δu_Fᵀδu_F + ψ² fᵀf,
+//! b = 2 [δu_Fᵀ(Δu + δu_R) + ψ² Δλ fᵀf],
+//! c = (Δu + δu_R)ᵀ(Δu + δu_R) + ψ² Δλ² fᵀf − Δl².
+//! ```
+//!
+//! Of the two roots the one whose new increment makes the smaller angle
+//! with the present one (largest `Δu_oldᵀ Δu_new + ψ² Δλ_old Δλ_new fᵀf`)
+//! is taken, so the iteration does not double back along the path
+//! (Crisfield 1981). Complex roots (the line `δu_R + δλ δu_F`
+//! misses the cylinder, with too long a step) fail the increment.
+//! Convergence is `‖R‖ ≤ tol ‖f‖` ([`ArcLengthSettings::residual_tolerance`]):
+//! `λ` multiplies `f`, so `‖f‖` is the force unit of the problem.
+//!
+//! **Step length.** After a converged increment of `I` corrections,
+//! `Δl ← Δl · √(I_d / I)` (Crisfield 1981; `I_d` =
+//! [`ArcLengthSettings::desired_iterations`]), the factor limited to
+//! `[1/2, max_growth]` and `Δl` to `[min_ratio, max_ratio] · Δl₀`. A failed
+//! increment (iteration limit, divergence, complex roots, or a problem
+//! error) is rolled back to the last converged state and retried with `Δl/2`;
+//! below the minimum the run stops with an error. `Δl₀` comes from the first
+//! predictor and [`ArcLengthSettings::initial_dlambda`].
+
+use super::Interrupt;
+
+/// A path-following problem: `R(u, λ) = f_int(u) − λ f` with a fixed
+/// reference load `f`; the problem holds its state `u` (and any history).
+pub trait PathProblem {
+    /// Error type of the problem's own operations.
+    type Error: std::error::Error + Send + Sync + 'static;
+    /// Number of unknowns.
+    fn dimension(&self) -> usize;
+    /// The reference load `f` (the applied load is `λ f`).
+    fn reference_load(&self, f: &mut [f64]);
+    /// The residual `R = f_int(u) − λ f` at the current `u` into `r`, and
+    /// the tangent `∂f_int/∂u` at `u`, ready for [`Self::solve`].
+    fn residual(&mut self, lambda: f64, r: &mut [f64]) -> Result<(), Self::Error>;
+    /// Solves `K x = b` in place for each right-hand side, with the tangent
+    /// of the last [`Self::residual`] (one factorization for all).
+    fn solve(&mut self, rhs: &mut [&mut [f64]]) -> Result<(), Self::Error>;
+    /// `u ← u + δu`.
+    fn update(&mut self, du: &[f64]) -> Result<(), Self::Error>;
+    /// Accepts the current (converged) state as the new start point.
+    fn commit(&mut self);
+    /// Returns to the last committed state.
+    fn restore(&mut self);
+    /// Negative pivots of the last tangent, if the problem knows them.
+    fn negative_pivots(&self) -> Option<usize> {
+        None
+    }
+    /// The inner product of displacement vectors in the constraint (the
+    /// default: Euclidean; a problem mixing translations and rotations may
+    /// weight them).
+    fn dot(&self, a: &[f64], b: &[f64]) -> f64 {
+        a.iter().zip(b).map(|(x, y)| x * y).sum()
+    }
+}
+
+/// Controls of the arc-length method.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct ArcLengthSettings {
+    /// `Δλ` of the first predictor, which sets `Δl₀` (its sign, the direction).
+    pub initial_dlambda: f64,
+    /// Weight of the load in the constraint (0: cylindrical, 1: spherical).
+    pub psi: f64,
+    /// Smallest `Δl / Δl₀` before giving up.
+    pub min_ratio: f64,
+    /// Largest `Δl / Δl₀`.
+    pub max_ratio: f64,
+    /// Corrections per increment the step length aims at.
+    pub desired_iterations: usize,
+    /// Largest growth of `Δl` from one increment to the next.
+    pub max_growth: f64,
+    /// Corrections allowed per increment.
+    pub max_iterations: usize,
+    /// Convergence: `‖R‖ ≤ residual_tolerance · ‖f‖`.
+    pub residual_tolerance: f64,
+    /// Failure when `‖R‖/‖f‖` exceeds this factor times its first value (or 1).
+    pub divergence_ratio: f64,
+    /// Converged increments after which the run ends.
+    pub max_increments: usize,
+}
+
+impl Default for ArcLengthSettings {
+    fn default() -> Self {
+        Self {
+            initial_dlambda: 0.1,
+            psi: 0.0,
+            min_ratio: 1e-4,
+            max_ratio: 10.0,
+            desired_iterations: 5,
+            max_growth: 2.0,
+            max_iterations: 20,
+            residual_tolerance: 1e-8,
+            divergence_ratio: 1e6,
+            max_increments: 500,
+        }
+    }
+}
+
+/// Why an increment failed.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PathFailure {
+    /// The iteration limit was reached.
+    MaxIterations,
+    /// The residual grew past the divergence ratio or became non-finite.
+    Diverged,
+    /// The constraint's quadratic had complex roots.
+    ComplexRoots,
+    /// The problem failed (e.g. a singular tangent); see the message.
+    Problem,
+    /// A stop was requested through the [`Interrupt`].
+    Interrupted,
+}
+
+/// One increment, converged or failed.
+#[derive(Debug, Clone, PartialEq)]
+pub struct PathStep {
+    /// 1-based index of the increment.
+    pub index: usize,
+    /// Load factor reached (or, failed, last iterated).
+    pub lambda: f64,
+    /// Its change over the increment.
+    pub dlambda: f64,
+    /// The arc length `Δl` of the increment.
+    pub arc_length: f64,
+    /// Corrections made.
+    pub iterations: usize,
+    /// `‖R‖/‖f‖` at each evaluation.
+    pub residuals: Vec<f64>,
+    /// True if the increment converged (and was committed).
+    pub converged: bool,
+    /// Why it failed, if it did.
+    pub failure: Option<PathFailure>,
+    /// The problem's error message, if any.
+    pub message: Option<String>,
+    /// Failed attempts before this one (for a converged increment).
+    pub cutbacks: usize,
+    /// Negative pivots of the tangent at the converged point, if known.
+    pub negative_pivots: Option<usize>,
+}
+
+/// Callbacks of the path following.
+pub trait PathObserver<P> {
+    /// After each converged and committed increment; false ends the run.
+    fn converged(&mut self, problem: &P, step: &PathStep) -> bool;
+    /// After each failed attempt (before the retry with half the arc length).
+    fn cut_back(&mut self, _step: &PathStep) {}
+}
+
+/// Why the path following stopped with an error.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum PathStop {
+    /// The first tangent could not be formed or solved, or `f = 0`.
+    Start,
+    /// A cutback would bring `Δl` below its minimum.
+    ArcTooSmall,
+    /// A stop was requested through the [`Interrupt`].
+    Interrupted,
+}
+
+/// The path following stopped (the problem is left at its last converged
+/// increment).
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+#[error("{}", describe(self))]
+pub struct PathError {
+    /// Why.
+    pub reason: PathStop,
+    /// The last converged load factor.
+    pub last_lambda: f64,
+    /// Converged increments before the stop.
+    pub increments: usize,
+    /// The last attempt, if any.
+    pub attempt: Option<PathStep>,
+    /// The problem's message (at the start).
+    pub message: Option<String>,
+}
+
+fn describe(e: &PathError) -> String {
+    let at = format!("after {} increments, at load factor {:.6}", e.increments, e.last_lambda);
+    match e.reason {
+        PathStop::Start => format!(
+            "the path following could not start: {}",
+            e.message.as_deref().unwrap_or("the reference load is zero")
+        ),
+        PathStop::Interrupted => format!("path following interrupted {at}"),
+        PathStop::ArcTooSmall => {
+            let why = e.attempt.as_ref().map_or(String::new(), |s| {
+                let res: Vec<String> = s.residuals.iter().map(|r| format!("{r:.2e}")).collect();
+                format!(
+                    ": {:?} after {} iterations, relative residuals [{}]{}",
+                    s.failure.unwrap_or(PathFailure::MaxIterations),
+                    s.iterations,
+                    res.join(", "),
+                    s.message.as_ref().map(|m| format!("; {m}")).unwrap_or_default()
+                )
+            });
+            format!("the arc length fell below its minimum {at}{why}")
+        }
+    }
+}
+
+/// Follows the path from the problem's committed state at `lambda0` until
+/// the observer ends it or `max_increments` converge. Returns the converged
+/// increments.
+pub fn trace<P: PathProblem>(
+    problem: &mut P,
+    lambda0: f64,
+    settings: &ArcLengthSettings,
+    observer: &mut dyn PathObserver<P>,
+    interrupt: &Interrupt,
+) -> Result<Vec<PathStep>, Box<PathError>> {
+    let mut path = Path::start(problem, lambda0, settings)?;
+    let arc0 = path.arc;
+    let (min, max) = (arc0 * settings.min_ratio, arc0 * settings.max_ratio);
+    let mut history: Vec<PathStep> = Vec::new();
+    let mut cutbacks = 0;
+    let stop = |reason, path: &Path<P>, n, attempt| {
+        Box::new(PathError { reason, last_lambda: path.lambda, increments: n, attempt, message: None })
+    };
+    while history.len() < settings.max_increments {
+        if interrupt.is_requested() {
+            return Err(stop(PathStop::Interrupted, &path, history.len(), None));
+        }
+        let mut step = path.attempt(settings, interrupt);
+        step.index = history.len() + 1;
+        if step.converged {
+            path.p.commit();
+            path.fresh = true;
+            path.lambda = step.lambda;
+            std::mem::swap(&mut path.prev, &mut path.du);
+            path.prev_dlambda = step.dlambda;
+            step.cutbacks = cutbacks;
+            step.negative_pivots = path.p.negative_pivots();
+            cutbacks = 0;
+            let go_on = observer.converged(path.p, &step);
+            let factor = (settings.desired_iterations as f64 / step.iterations.max(1) as f64).sqrt();
+            path.arc = (path.arc * factor.clamp(0.5, settings.max_growth)).clamp(min, max);
+            history.push(step);
+            if !go_on {
+                break;
+            }
+        } else {
+            path.p.restore();
+            path.fresh = false;
+            if step.failure == Some(PathFailure::Interrupted) {
+                return Err(stop(PathStop::Interrupted, &path, history.len(), Some(step)));
+            }
+            observer.cut_back(&step);
+            cutbacks += 1;
+            path.arc *= 0.5;
+            if path.arc < min {
+                return Err(stop(PathStop::ArcTooSmall, &path, history.len(), Some(step)));
+            }
+        }
+    }
+    Ok(history)
+}
+
+/// The state of the path following between increments.
+struct Path<'a, P: PathProblem> {
+    p: &'a mut P,
+    /// Reference load.
+    f: Vec<f64>,
+    r: Vec<f64>,
+    dr: Vec<f64>,
+    df: Vec<f64>,
+    /// `Δu` of the present increment.
+    du: Vec<f64>,
+    /// `Δu` of the last converged increment.
+    prev: Vec<f64>,
+    prev_dlambda: f64,
+    /// `ψ² fᵀf`.
+    load_weight: f64,
+    /// `‖f‖` (Euclidean, the force unit).
+    f_norm: f64,
+    /// Last converged load factor.
+    lambda: f64,
+    arc: f64,
+    /// True while the problem's tangent is that of the committed state.
+    fresh: bool,
+    first_sign: f64,
+}
+
+impl<'a, P: PathProblem> Path<'a, P> {
+    /// Sets up the vectors and `Δl₀` from the tangent at the start.
+    fn start(p: &'a mut P, lambda: f64, settings: &ArcLengthSettings) -> Result<Self, Box<PathError>> {
+        let n = p.dimension();
+        let mut f = vec![0.0; n];
+        p.reference_load(&mut f);
+        let f_norm = f.iter().map(|x| x * x).sum::<f64>().sqrt();
+        let fail = |message: Option<String>| {
+            Box::new(PathError { reason: PathStop::Start, last_lambda: lambda, increments: 0, attempt: None, message })
+        };
+        if !(f_norm > 0.0) {
+            return Err(fail(None));
+        }
+        let mut path = Path {
+            load_weight: settings.psi * settings.psi * f_norm * f_norm,
+            p,
+            r: vec![0.0; n],
+            dr: vec![0.0; n],
+            df: f.clone(),
+            du: vec![0.0; n],
+            prev: vec![0.0; n],
+            f,
+            prev_dlambda: 0.0,
+            f_norm,
+            lambda,
+            arc: 0.0,
+            fresh: true,
+            first_sign: if settings.initial_dlambda < 0.0 { -1.0 } else { 1.0 },
+        };
+        path.p.residual(lambda, &mut path.r).map_err(|e| fail(Some(e.to_string())))?;
+        path.p.solve(&mut [&mut path.df[..]]).map_err(|e| fail(Some(e.to_string())))?;
+        let scale = (path.p.dot(&path.df, &path.df) + path.load_weight).sqrt();
+        path.arc = settings.initial_dlambda.abs() * scale;
+        if !(path.arc > 0.0 && path.arc.is_finite()) {
+            return Err(fail(Some(format!("the first predictor has length {:e}", path.arc))));
+        }
+        Ok(path)
+    }
+
+    /// One increment of length `self.arc` from the committed state; the
+    /// problem is left at its last iterate.
+    fn attempt(&mut self, settings: &ArcLengthSettings, interrupt: &Interrupt) -> PathStep {
+        let mut step = PathStep {
+            index: 0,
+            lambda: self.lambda,
+            dlambda: 0.0,
+            arc_length: self.arc,
+            iterations: 0,
+            residuals: Vec::new(),
+            converged: false,
+            failure: None,
+            message: None,
+            cutbacks: 0,
+            negative_pivots: None,
+        };
+        match self.predict() {
+            Ok(dlambda) => step.dlambda = dlambda,
+            Err(e) => return failed(step, PathFailure::Problem, Some(e.to_string())),
+        }
+        loop {
+            step.lambda = self.lambda + step.dlambda;
+            if let Err(e) = self.p.residual(step.lambda, &mut self.r) {
+                return failed(step, PathFailure::Problem, Some(e.to_string()));
+            }
+            let rho = self.r.iter().map(|x| x * x).sum::<f64>().sqrt() / self.f_norm;
+            step.residuals.push(rho);
+            if !rho.is_finite() || rho > settings.divergence_ratio * step.residuals[0].max(1.0) {
+                return failed(step, PathFailure::Diverged, None);
+            }
+            if rho <= settings.residual_tolerance {
+                step.converged = true;
+                return step;
+            }
+            if step.iterations >= settings.max_iterations {
+                return failed(step, PathFailure::MaxIterations, None);
+            }
+            if interrupt.is_requested() {
+                return failed(step, PathFailure::Interrupted, None);
+            }
+            match self.correct(step.dlambda) {
+                Ok(Some(dl)) => step.dlambda += dl,
+                Ok(None) => return failed(step, PathFailure::ComplexRoots, None),
+                Err(e) => return failed(step, PathFailure::Problem, Some(e.to_string())),
+            }
+            step.iterations += 1;
+        }
+    }
+
+    /// The predictor `Δu = Δλ₁ δu_F` from the committed state, applied to
+    /// the problem; returns `Δλ₁`.
+    fn predict(&mut self) -> Result<f64, P::Error> {
+        if !self.fresh {
+            self.p.residual(self.lambda, &mut self.r)?;
+        }
+        self.fresh = false;
+        self.df.copy_from_slice(&self.f);
+        self.p.solve(&mut [&mut self.df[..]])?;
+        let norm = (self.p.dot(&self.df, &self.df) + self.load_weight).sqrt();
+        let toward = self.p.dot(&self.prev, &self.df) + self.load_weight * self.prev_dlambda;
+        let sign = if self.prev_dlambda == 0.0 && toward == 0.0 {
+            self.first_sign
+        } else if toward < 0.0 {
+            -1.0
+        } else {
+            1.0
+        };
+        let dlambda = sign * self.arc / norm;
+        for (d, x) in self.du.iter_mut().zip(&self.df) {
+            *d = dlambda * x;
+        }
+        self.p.update(&self.du)?;
+        Ok(dlambda)
+    }
+
+    /// One correction at the present iterate (`Δλ = dlambda` so far):
+    /// `K δu_R = −R`, `K δu_F = f`, `δλ` from the constraint, `δu` applied
+    /// to the problem. Returns `δλ`, or `None` if the roots are complex.
+    fn correct(&mut self, dlambda: f64) -> Result<Option<f64>, P::Error> {
+        for (d, r) in self.dr.iter_mut().zip(&self.r) {
+            *d = -r;
+        }
+        self.df.copy_from_slice(&self.f);
+        self.p.solve(&mut [&mut self.dr[..], &mut self.df[..]])?;
+        let p = &*self.p;
+        let (uu, ur, rr) = (p.dot(&self.du, &self.du), p.dot(&self.du, &self.dr), p.dot(&self.dr, &self.dr));
+        let (fu, fr, ff) = (p.dot(&self.df, &self.du), p.dot(&self.df, &self.dr), p.dot(&self.df, &self.df));
+        let w = self.load_weight;
+        let a = ff + w;
+        let b = 2.0 * (fu + fr + w * dlambda);
+        let c = uu + 2.0 * ur + rr + w * dlambda * dlambda - self.arc * self.arc;
+        let disc = b * b - 4.0 * a * c;
+        if !(disc >= 0.0) || !(a > 0.0) {
+            return Ok(None);
+        }
+        // the roots without cancellation (Press et al., Numerical Recipes, §5.6)
+        let q = -0.5 * (b + if b < 0.0 { -1.0 } else { 1.0 } * disc.sqrt());
+        let roots = if q == 0.0 { [0.0, 0.0] } else { [q / a, c / q] };
+        // Δu_oldᵀ Δu_new + ψ² Δλ_old Δλ_new fᵀf, for δλ = x
+        let cosine = |x: f64| uu + ur + x * fu + w * dlambda * (dlambda + x);
+        let (c0, c1) = (cosine(roots[0]), cosine(roots[1]));
+        let pick = if (c0 - c1).abs() <= 1e-12 * (c0.abs() + c1.abs()) {
+            // equal angles: the root nearer the linearized one, −c/b
+            let linear = if b != 0.0 { -c / b } else { 0.0 };
+            if (roots[0] - linear).abs() <= (roots[1] - linear).abs() { roots[0] } else { roots[1] }
+        } else if c0 > c1 {
+            roots[0]
+        } else {
+            roots[1]
+        };
+        for (d, x) in self.dr.iter_mut().zip(&self.df) {
+            *d += pick * x;
+        }
+        self.p.update(&self.dr)?;
+        for (u, d) in self.du.iter_mut().zip(&self.dr) {
+            *u += d;
+        }
+        Ok(Some(pick))
+    }
+}
+
+/// `step` marked as failed.
+fn failed(mut step: PathStep, failure: PathFailure, message: Option<String>) -> PathStep {
+    step.failure = Some(failure);
+    step.message = message;
+    step
+}
+
+#[cfg(test)]
+#[path = "arclength_tests.rs"]
+mod tests;

@@ -1,0 +1,296 @@
+//! Tests of `solver::arclength` on the von Mises truss, whose equilibrium
+//! path is known in closed form.
+//!
+//! Two bars of half-span `a`, rise `h` and axial stiffness `EA` meet at the
+//! apex, loaded downwards by `λ P`; `w` is the apex's downward displacement.
+//! With the Green–Lagrange strain `E = (L² − L₀²)/(2 L₀²)`,
+//! `L² = a² + (h − w)²`, `L₀² = a² + h²`, and a constant `EA` (a
+//! Saint-Venant–Kirchhoff bar), the strain energy of the two bars is
+//! `U = 2 · EA L₀ E²/2` and `E = (w² − 2hw)/(2L₀²)`, so equilibrium
+//! `dU/dw = λ P` reads
+//!
+//! ```text
+//! F(w) = k_t w (h − w)(2h − w) = λ P,   k_t = EA / L₀³
+//! ```
+//!
+//! (the same cubic as Crisfield's shallow truss, *Non-linear Finite Element
+//! Analysis of Solids and Structures*, vol. 1, ch. 1, here exact for any
+//! depth). `F' = k_t (3w² − 6hw + 2h²)` vanishes at the limit points
+//! `w = h(1 ∓ 1/√3)`, where `F = ±2 k_t h³/(3√3)`; with `P` equal to that
+//! value the path runs up to `λ = 1`, down through `λ = 0` at `w = h` to
+//! `λ = −1`, and up the stable branch through `λ = 0` at `w = 2h` to
+//! `λ = 1` again at `w = h(1 + 2/√3)`.
+
+use super::*;
+
+const H: f64 = 1.0;
+
+/// `k_t = EA / L₀³` with `a = 10`, `h = 1`, `EA = 10⁶`.
+fn kt() -> f64 {
+    1e6 / (100.0 + H * H).powf(1.5)
+}
+
+/// The reference load: `λ = ±1` at the limit points.
+fn p_ref() -> f64 {
+    kt() * 2.0 * H.powi(3) / (3.0 * 3f64.sqrt())
+}
+
+/// `(F(w), F'(w))`.
+fn truss(w: f64) -> (f64, f64) {
+    let k = kt();
+    (k * w * (H - w) * (2.0 * H - w), k * (3.0 * w * w - 6.0 * H * w + 2.0 * H * H))
+}
+
+/// The truss alone (`u = [w]`), or with a spring of stiffness `k_s`
+/// between the apex and the loaded point (`u = [v, w]`: apex and load-point
+/// displacements): `f_int = [F(v) + k_s (v − w), k_s (w − v)]`, `f = [0, P]`.
+struct Truss {
+    spring: Option<f64>,
+    u: Vec<f64>,
+    committed: Vec<f64>,
+    k: [[f64; 2]; 2],
+}
+
+impl Truss {
+    fn new(spring: Option<f64>) -> Self {
+        let n = if spring.is_some() { 2 } else { 1 };
+        Self { spring, u: vec![0.0; n], committed: vec![0.0; n], k: [[0.0; 2]; 2] }
+    }
+}
+
+impl PathProblem for Truss {
+    type Error = std::io::Error;
+    fn dimension(&self) -> usize {
+        self.u.len()
+    }
+    fn reference_load(&self, f: &mut [f64]) {
+        f.fill(0.0);
+        f[f.len() - 1] = p_ref();
+    }
+    fn residual(&mut self, lambda: f64, r: &mut [f64]) -> Result<(), Self::Error> {
+        let (force, stiffness) = truss(self.u[0]);
+        match self.spring {
+            None => {
+                r[0] = force - lambda * p_ref();
+                self.k[0][0] = stiffness;
+            }
+            Some(ks) => {
+                let stretch = self.u[1] - self.u[0];
+                r[0] = force - ks * stretch;
+                r[1] = ks * stretch - lambda * p_ref();
+                self.k = [[stiffness + ks, -ks], [-ks, ks]];
+            }
+        }
+        Ok(())
+    }
+    fn solve(&mut self, rhs: &mut [&mut [f64]]) -> Result<(), Self::Error> {
+        let k = self.k;
+        let det = if self.u.len() == 1 { k[0][0] } else { k[0][0] * k[1][1] - k[0][1] * k[1][0] };
+        if det == 0.0 {
+            return Err(std::io::Error::other("singular tangent"));
+        }
+        for b in rhs.iter_mut() {
+            if b.len() == 1 {
+                b[0] /= k[0][0];
+            } else {
+                let (x, y) = (b[0], b[1]);
+                b[0] = (k[1][1] * x - k[0][1] * y) / det;
+                b[1] = (k[0][0] * y - k[1][0] * x) / det;
+            }
+        }
+        Ok(())
+    }
+    fn update(&mut self, du: &[f64]) -> Result<(), Self::Error> {
+        self.u.iter_mut().zip(du).for_each(|(u, d)| *u += d);
+        Ok(())
+    }
+    fn commit(&mut self) {
+        self.committed.clone_from(&self.u);
+    }
+    fn restore(&mut self) {
+        self.u.clone_from(&self.committed);
+    }
+}
+
+/// The converged points `(λ, u)` and steps; stops once `λ` has gone below
+/// −1/2 and come back up to 1 (the stable branch regained).
+#[derive(Default)]
+struct Record {
+    points: Vec<(f64, Vec<f64>)>,
+    steps: Vec<PathStep>,
+    cutbacks: usize,
+    dipped: bool,
+}
+
+impl PathObserver<Truss> for Record {
+    fn converged(&mut self, problem: &Truss, step: &PathStep) -> bool {
+        self.points.push((step.lambda, problem.u.clone()));
+        self.steps.push(step.clone());
+        self.dipped |= step.lambda < -0.5;
+        !(self.dipped && step.lambda >= 1.0)
+    }
+    fn cut_back(&mut self, _: &PathStep) {
+        self.cutbacks += 1;
+    }
+}
+
+/// Number of sign changes of the successive differences of `x`.
+fn reversals(x: &[f64]) -> usize {
+    let d: Vec<f64> = x.windows(2).map(|p| p[1] - p[0]).collect();
+    d.windows(2).filter(|p| p[0] * p[1] < 0.0).count()
+}
+
+fn settings() -> ArcLengthSettings {
+    ArcLengthSettings { initial_dlambda: 0.1, residual_tolerance: 1e-11, max_increments: 300, ..Default::default() }
+}
+
+fn run(spring: Option<f64>, settings: &ArcLengthSettings) -> (Truss, Record) {
+    let mut truss = Truss::new(spring);
+    let mut record = Record::default();
+    let history = trace(&mut truss, 0.0, settings, &mut record, &Interrupt::new()).map_err(|e| e.to_string()).unwrap();
+    assert_eq!(history, record.steps);
+    (truss, record)
+}
+
+/// Past the limit point `λ = 1`, down to `λ = −1` and back up the stable
+/// branch to `λ = 1`, without a cutback, every converged point on
+/// `λ = F(w)/P` (module comment) to 1e-8: with the cylinder (ψ = 0, where
+/// one unknown makes `Δw = ±Δl` and the path's direction rests on the
+/// predictor's sign), and with the sphere `Δw² + (h Δλ)² = Δl²`
+/// (`ψ = h/P`), which each converged point satisfies.
+#[test]
+fn von_mises_truss_snaps_through_on_the_exact_path() {
+    for psi in [0.0, H / p_ref()] {
+        let (_, rec) = run(None, &ArcLengthSettings { psi, ..settings() });
+        assert_eq!(rec.cutbacks, 0);
+        assert!(rec.steps.iter().all(|s| s.cutbacks == 0 && s.converged));
+        for (lambda, u) in &rec.points {
+            let exact = truss(u[0]).0 / p_ref();
+            assert!((lambda - exact).abs() < 1e-8, "ψ = {psi}, w = {}: λ = {lambda}, exact {exact}", u[0]);
+        }
+        let w: Vec<f64> = rec.points.iter().map(|p| p.1[0]).collect();
+        let lambda: Vec<f64> = rec.points.iter().map(|p| p.0).collect();
+        let (mut w0, mut l0) = (0.0, 0.0);
+        for (s, (&w, &l)) in rec.steps.iter().zip(w.iter().zip(&lambda)) {
+            let length = ((w - w0).powi(2) + (psi * p_ref() * (l - l0)).powi(2)).sqrt();
+            assert!((length - s.arc_length).abs() < 1e-10 * s.arc_length, "{length} against {}", s.arc_length);
+            (w0, l0) = (w, l);
+        }
+        // the apex moves down all the way (the predictor kept its direction
+        // where the tangent stiffness changed sign)
+        assert!(w.windows(2).all(|p| p[1] > p[0]), "{w:?}");
+        // both limit points, w = h(1 ∓ 1/√3), passed: λ rose, fell and rose again
+        assert_eq!(reversals(&lambda), 2, "{lambda:?}");
+        assert!(w[0] < H * (1.0 - 1.0 / 3f64.sqrt()) && H * (1.0 + 1.0 / 3f64.sqrt()) < w[w.len() - 1]);
+        let last = rec.points.last().unwrap();
+        assert!(last.0 >= 1.0 && last.1[0] > 2.0 * H, "{last:?}");
+    }
+}
+
+/// With a spring `k_s = k_t/2` in series, the load point's displacement is
+/// `w = v + F(v)/k_s` and `λ = F(v)/P` along the path (`v` the apex's). As
+/// `min F' = F'(h) = −k_t < −k_s`, `dw/dv = 1 + F'/k_s` is negative for
+/// `|v − h| < h/√6`: the path snaps back. Load control stops at the maxima
+/// of `λ`, and control of `w` at those of `w`; the path is traced through
+/// both pairs of turning points, every point on the exact path.
+#[test]
+fn snap_back_with_a_spring_in_series() {
+    let ks = 0.5 * kt();
+    let (_, rec) = run(Some(ks), &settings());
+    for (lambda, u) in &rec.points {
+        let (v, w) = (u[0], u[1]);
+        let force = truss(v).0;
+        assert!((lambda - force / p_ref()).abs() < 1e-8, "v = {v}: λ = {lambda}");
+        assert!((w - (v + force / ks)).abs() < 1e-8 * H, "v = {v}: w = {w}");
+    }
+    let v: Vec<f64> = rec.points.iter().map(|p| p.1[0]).collect();
+    let w: Vec<f64> = rec.points.iter().map(|p| p.1[1]).collect();
+    let lambda: Vec<f64> = rec.points.iter().map(|p| p.0).collect();
+    assert!(v.windows(2).all(|p| p[1] > p[0]), "{v:?}");
+    assert_eq!(reversals(&lambda), 2, "{lambda:?}");
+    assert_eq!(reversals(&w), 2, "{w:?}");
+    // w went back by most of the exact snap-back: w(h − h/√6) − w(h + h/√6)
+    let w_at = |v: f64| v + truss(v).0 / ks;
+    let back = w_at(H - H / 6f64.sqrt()) - w_at(H + H / 6f64.sqrt());
+    let traced = w.iter().cloned().fold(f64::MIN, f64::max) - w.iter().cloned().fold(f64::MAX, f64::min);
+    assert!(back > 0.0 && traced > back, "{back} {traced}");
+}
+
+/// The corrector is Newton's method with the exact tangent: near the
+/// solution the residual falls quadratically, `ρ_(k+1) ≈ C ρ_k²`, so the
+/// observed order `log(ρ_(k+1)/ρ_k) / log(ρ_k/ρ_(k−1))` tends to 2 (it would
+/// be 1 with a tangent kept from the predictor). Each converged point lies
+/// on the cylinder `‖Δu‖ = Δl` (ψ = 0).
+#[test]
+fn corrector_converges_quadratically_on_the_cylinder() {
+    let tight = ArcLengthSettings { residual_tolerance: 1e-13, ..settings() };
+    let (_, rec) = run(Some(0.5 * kt()), &tight);
+    let mut orders = Vec::new();
+    for s in &rec.steps {
+        for r in s.residuals.windows(3) {
+            // the asymptotic range, above rounding (‖R‖ ≈ 1e-16 · k_t h³)
+            if r[0] < 1e-2 && r[2] > 1e-13 {
+                orders.push((r[2] / r[1]).ln() / (r[1] / r[0]).ln());
+            }
+        }
+    }
+    assert!(orders.len() >= 5, "{orders:?}");
+    assert!(orders.iter().all(|&p| p > 1.8), "{orders:?}");
+    let mut last = vec![0.0; 2];
+    for ((_, u), s) in rec.points.iter().zip(&rec.steps) {
+        let du = ((u[0] - last[0]).powi(2) + (u[1] - last[1]).powi(2)).sqrt();
+        assert!((du - s.arc_length).abs() < 1e-10 * s.arc_length, "{du} against {}", s.arc_length);
+        last.clone_from(u);
+    }
+}
+
+/// A problem whose tangent cannot be solved after the start: each attempt
+/// fails, the arc length halves down to its minimum, and the error says so
+/// with the problem's message; the state is the committed one.
+#[test]
+fn repeated_failure_stops_at_the_minimum_arc_length() {
+    struct Broken(Truss, usize);
+    impl PathProblem for Broken {
+        type Error = std::io::Error;
+        fn dimension(&self) -> usize {
+            1
+        }
+        fn reference_load(&self, f: &mut [f64]) {
+            self.0.reference_load(f)
+        }
+        fn residual(&mut self, lambda: f64, r: &mut [f64]) -> Result<(), Self::Error> {
+            self.0.residual(lambda, r)
+        }
+        fn solve(&mut self, rhs: &mut [&mut [f64]]) -> Result<(), Self::Error> {
+            self.1 += 1;
+            if self.1 > 1 { Err(std::io::Error::other("factor broke down")) } else { self.0.solve(rhs) }
+        }
+        fn update(&mut self, du: &[f64]) -> Result<(), Self::Error> {
+            self.0.update(du)
+        }
+        fn commit(&mut self) {
+            self.0.commit()
+        }
+        fn restore(&mut self) {
+            self.0.restore()
+        }
+    }
+    struct Count(usize);
+    impl PathObserver<Broken> for Count {
+        fn converged(&mut self, _: &Broken, _: &PathStep) -> bool {
+            true
+        }
+        fn cut_back(&mut self, _: &PathStep) {
+            self.0 += 1;
+        }
+    }
+    let mut p = Broken(Truss::new(None), 0);
+    let mut count = Count(0);
+    let s = ArcLengthSettings { min_ratio: 0.01, ..settings() };
+    let e = trace(&mut p, 0.0, &s, &mut count, &Interrupt::new()).unwrap_err();
+    assert_eq!(e.reason, PathStop::ArcTooSmall);
+    // Δl₀ · (1, 1/2, …, 1/64) tried and failed; 1/128 < 0.01 ends the run
+    assert_eq!(count.0, 7);
+    assert!(e.to_string().contains("factor broke down"), "{e}");
+    assert_eq!(p.0.u, [0.0]);
+}

@@ -9,6 +9,7 @@
 //!     record reactions and contact forces      // Recorder
 //! ```
 
+pub mod buckling;
 mod results;
 pub mod structure;
 mod warnings;
@@ -40,6 +41,9 @@ pub enum AnalysisError {
     /// Linear algebra.
     #[error(transparent)]
     Linear(#[from] LinearError),
+    /// The buckling eigenproblem.
+    #[error("buckling analysis")]
+    Eigen(#[from] crate::solver::eigen::EigenError),
     /// The analysis would need more memory than allowed.
     #[error(
         "the analysis needs about {} of memory ({}) but {} is available; use a coarser mesh, or --max-memory \
@@ -259,6 +263,9 @@ pub struct Solution {
     /// The cycles of an adaptive run that ended with this solution
     /// (`crate::adapt`); `None` for a single run.
     pub adapt: Option<Adaptivity>,
+    /// `analysis.type = "buckling"`: critical load factors and modes about
+    /// the final state; `None` otherwise.
+    pub buckling: Option<buckling::Buckling>,
 }
 
 /// The state at the end of one step of the load history.
@@ -374,6 +381,10 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         // refresh forces at the last converged state for reactions and contact output
         structure.evaluate()?;
     }
+    let buckled = match (model.buckling, &failure) {
+        (Some(b), None) => Some(buckling::solve(&mut structure, b.modes)?),
+        _ => None,
+    };
     let lambda = structure.load_factor();
     let mut applied = [0.0; 3];
     for (d, f) in structure.external_loads().iter().enumerate() {
@@ -413,6 +424,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         error_estimate: None,
         steps: step_ends,
         adapt: None,
+        buckling: buckled,
     };
     // the estimate compares the raw stresses with their patch recovery; the
     // fields show the L2 projection if the model asks for it
@@ -487,6 +499,7 @@ impl Solution {
             error_estimate: None,
             steps: Vec::new(),
             adapt: None,
+            buckling: None,
         };
         if model.output.recovery == crate::model::Recovery::Projection {
             s.recovered =

@@ -247,6 +247,16 @@ impl<'m> Structure<'m> {
         &self.elements
     }
 
+    /// The pattern and the stress stiffness `K_σ` of the present
+    /// Gauss-point stresses, in pattern order (linear buckling).
+    pub(crate) fn stress_stiffness(&self) -> (&crate::solver::linear::LowerCsc, Vec<f64>) {
+        let a = &self.system.assembler;
+        let mut kg = vec![0.0; a.pattern.nnz()];
+        let u = self.displacements();
+        a.assemble_geometric(&self.elements.inputs(u), &self.elements.stress, &mut kg);
+        (&a.pattern, kg)
+    }
+
     /// The parts the solution keeps: displacements, elements, timings, memory.
     pub(crate) fn into_parts(self) -> (Vec<f64>, Elements<'m>, Timings, MemoryEstimate) {
         (self.state.u, self.elements, self.timings, self.memory)

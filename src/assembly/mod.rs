@@ -254,22 +254,11 @@ impl Assembler {
                                         *force.get(3 * n + c) += ws.force[3 * a + c];
                                     }
                                 }
-                                let map = &self.scatter.maps[range];
                                 // the element's tangent (Always) or its
                                 // correction to the assembled elastic tangent
                                 // (UnlessElastic)
                                 if stats.tangent_computed {
-                                    let n = 3 * nodes.len();
-                                    let mut k = 0;
-                                    for p in 0..n {
-                                        for &v in &ws.tangent[p * n + p..(p + 1) * n] {
-                                            let pos = map[k];
-                                            if pos != u32::MAX {
-                                                *tangent.get(pos as usize) += v;
-                                            }
-                                            k += 1;
-                                        }
-                                    }
+                                    scatter_upper(&self.scatter.maps[range], &ws.tangent, 3 * nodes.len(), &tangent);
                                 }
                             }
                             stats.plastic_points
@@ -279,6 +268,51 @@ impl Assembler {
                 .sum::<usize>();
         }
         plastic
+    }
+}
+
+impl Assembler {
+    /// The geometric (initial-stress) stiffness `K_σ` of every element from
+    /// the Gauss-point stresses `stress` (all bodies, the layout of
+    /// `Inputs::committed`), in pattern order (linear buckling).
+    pub fn assemble_geometric(&self, input: &Inputs<'_>, stress: &[Voigt], out: &mut [f64]) {
+        out.fill(0.0);
+        let values = Disjoint::new(out);
+        for colour in &self.scatter.colours {
+            colour.par_iter().for_each_init(Vec::new, |nodes, &ge| {
+                let r = self.scatter.elements[ge];
+                let body = &input.mesh.bodies[r.body];
+                let geom = &input.geometry[r.body];
+                body.element_nodes(r.element, nodes);
+                let ngp = geom.gp_per_element();
+                let g0 = input.gp_offsets[r.body] + r.element * ngp;
+                WORKSPACE.with_borrow_mut(|ws| {
+                    elements::geometric_matrix(geom, r.element, body.section.n_elements(), &stress[g0..g0 + ngp], ws);
+                    let range = self.scatter.offsets[ge]..self.scatter.offsets[ge + 1];
+                    // SAFETY: elements of one colour share no matrix entry.
+                    unsafe { scatter_upper(&self.scatter.maps[range], &ws.tangent, 3 * nodes.len(), &values) };
+                });
+            });
+        }
+    }
+}
+
+/// Adds the upper triangle of the row-major `n × n` element matrix `k` to
+/// the global values through the element's scatter map.
+///
+/// # Safety
+/// No other thread may write the entries of this element's map concurrently.
+unsafe fn scatter_upper(map: &[u32], k: &[f64], n: usize, values: &Disjoint<'_, f64>) {
+    let mut m = 0;
+    for p in 0..n {
+        for &v in &k[p * n + p..(p + 1) * n] {
+            let pos = map[m];
+            if pos != u32::MAX {
+                // SAFETY: the caller's contract.
+                unsafe { *values.get(pos as usize) += v };
+            }
+            m += 1;
+        }
     }
 }
 

@@ -299,4 +299,10 @@ pub fn print_results(model: &Model, solution: &Solution) {
             largest.join(", ")
         );
     }
+    if let Some(b) = &summary.buckling {
+        println!("buckling  mode  load factor   critical load [N]");
+        for (k, (f, p)) in b.factors.iter().zip(&b.critical_loads).enumerate() {
+            println!("          {:>4}  {f:>11.5e}   [{:.5e}, {:.5e}, {:.5e}]", k + 1, p[0], p[1], p[2]);
+        }
+    }
 }

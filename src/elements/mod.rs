@@ -174,6 +174,18 @@ pub fn element_response(
     ElementStats { plastic_points, tangent_computed }
 }
 
+/// The geometric (initial-stress) stiffness alone of body element `e`,
+/// `K_σ = δ_kl ∫ ∇N_a · σ ∇N_b dV`, from its Gauss-point stresses `stress`
+/// (linear buckling, `crate::analysis::buckling`), into the upper triangle
+/// of `ws.tangent`.
+pub fn geometric_matrix(geom: &CellValues, e: usize, n_section_elements: usize, stress: &[Voigt], ws: &mut Workspace) {
+    let el = Element::new(geom, e, n_section_elements);
+    ws.resize(el.nodes, el.n_points);
+    ws.tangent.fill(0.0);
+    ws.pk2[..el.n_points].copy_from_slice(&stress[..el.n_points]);
+    large::add_geometric_stiffness(geom, el.es, el.eb, el.nodes, ws);
+}
+
 /// Where an element sits and how big it is.
 struct Element {
     /// Section and beam element.

@@ -134,9 +134,24 @@ pub struct Summary {
     /// Why the adaptive run stopped, absent for a single run.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub adapt_stop: Option<String>,
+    /// `analysis.type = "buckling"`: the critical load factors and their
+    /// mode files, absent for a static analysis.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub buckling: Option<BucklingSummary>,
     /// The other files of this result set (summary.json is written last and
     /// lists them, so a complete set can be recognised).
     pub files: Vec<String>,
+}
+
+/// The buckling analysis in `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct BucklingSummary {
+    /// Critical load factors, ascending: the model's loads times each buckle.
+    pub factors: Vec<f64>,
+    /// Critical loads: the applied load (N, the sum of the loads at factor 1) times each factor.
+    pub critical_loads: Vec<[f64; 3]>,
+    /// The VTU of each mode (`mode_<k>.vtu`), or empty without VTU output.
+    pub modes: Vec<String>,
 }
 
 /// One cycle of an adaptive run.
@@ -354,8 +369,18 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
                 .collect()
         }),
         adapt_stop: solution.adapt.as_ref().map(|a| a.stop.clone()),
+        buckling: solution.buckling.as_ref().map(|b| BucklingSummary {
+            factors: b.factors.clone(),
+            critical_loads: b.factors.iter().map(|f| solution.applied.map(|a| a * f / solution.lambda)).collect(),
+            modes: if model.output.vtu { (1..=b.factors.len()).map(mode_vtu_name).collect() } else { Vec::new() },
+        }),
         files: Vec::new(),
     }
+}
+
+/// The VTU file name of buckling mode `k` (1-based).
+pub fn mode_vtu_name(k: usize) -> String {
+    format!("mode_{k}.vtu")
 }
 
 /// Writes a summary as pretty JSON.

@@ -8,6 +8,7 @@
 //! | `line_<name>.csv` | fields sampled along each `[[lines]]` entry |
 //! | `history_<name>.csv` | per increment: reaction of a constraint set, or force of a contact |
 //! | `history_probes.csv` | per increment: the displacement of every probe |
+//! | `mode_<k>.vtu` | buckling: the shape of mode k as the displacement field |
 //! | `contact_<name>.csv` | final gap, force and pressure of every contact point |
 //! | `line_<name>_<quantity>.png` | plots of the quantities listed in a line's `plot` |
 //! | `history_<indenter>.png` | force against displacement of each moving indenter |
@@ -133,6 +134,7 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     if model.output.plots {
         written.extend(png::history_plots(model, solution, dir)?);
     }
+    written.extend(write_modes(model, solution, dir)?);
     // the end of every step: a VTU per step and a .pvd series when the
     // history has several steps; probes and resultants per step in the summary
     let mut steps = Vec::new();
@@ -163,6 +165,22 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     let path = dir.join("summary.json");
     json::write(&path, &s)?;
     written.push(path);
+    Ok(written)
+}
+
+/// `mode_<k>.vtu` for every buckling mode: the mode shape (largest
+/// component 1, dimensionless) as the `displacement` field of the mesh,
+/// strains those of the shape, stresses those of the static state.
+fn write_modes(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
+    let (Some(b), true) = (&solution.buckling, model.output.vtu) else { return Ok(Vec::new()) };
+    let mut written = Vec::new();
+    let mut shape = solution.clone();
+    for (k, mode) in b.modes.iter().enumerate() {
+        shape.u.clone_from(mode);
+        let path = dir.join(json::mode_vtu_name(k + 1));
+        write_vtu(&path, model, &shape)?;
+        written.push(path);
+    }
     Ok(written)
 }
 

@@ -6,6 +6,7 @@
 //! value and what is allowed. The file format is documented key by key in
 //! `docs/model-format.md`.
 
+pub mod analysis;
 mod bodies;
 mod bounds;
 mod budget;
@@ -33,6 +34,7 @@ use crate::quantity::Quantity;
 use crate::solver::newton::NewtonSettings;
 use crate::solver::stepping::StepSettings;
 use crate::values::{CellValues, ElementError, Location};
+pub use analysis::BucklingSettings;
 use schema::*;
 
 pub use refine::{AdaptSettings, BodyPlan, MAX_BUDGET, MeshPlan, SectionPlan};
@@ -281,6 +283,9 @@ pub struct Model {
     pub plan: MeshPlan,
     /// `analysis.geometry`: small strain, or total Lagrangian.
     pub kinematics: Kinematics,
+    /// `analysis.type = "buckling"`: the linear buckling analysis after the
+    /// static solution; `None` for a static analysis.
+    pub buckling: Option<BucklingSettings>,
 }
 
 /// Something suspicious but legal in a model (printed by `check` and `run`,
@@ -381,10 +386,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let materials = material::materials(&file.materials)?;
     let geometry = file.analysis.geometry.unwrap_or_default();
     let (mesh, cells) = bodies::mesh(&file.bodies, &materials, geometry, limits, base)?;
-    let kinematics = match geometry {
-        Geometry::Linear => Kinematics::Linear,
-        Geometry::Nonlinear => Kinematics::TotalLagrangian,
-    };
+    let kinematics = analysis::kinematics(&file.analysis);
     let plan = refine::plan(&file)?;
     let adapt = refine::adapt_settings(file.adapt.as_ref())?;
     let mut warnings = Vec::new();
@@ -405,6 +407,17 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         loads: loads.iter().map(|l| l.name.as_str()).collect(),
     };
     let steps = steps::steps(&file.steps, &item_names, &solver.steps)?;
+    let buckling = analysis::buckling(
+        &file.analysis,
+        &analysis::Parts {
+            mesh: &mesh,
+            materials: &materials,
+            constraints: &constraints,
+            indenters: &indenters,
+            contacts: &contacts,
+            steps: file.steps.len(),
+        },
+    )?;
     Ok(Model {
         title: file.title.unwrap_or_else(|| "cufem model".into()),
         description: file.description.unwrap_or_default(),
@@ -425,5 +438,6 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         adapt,
         plan,
         kinematics,
+        buckling,
     })
 }

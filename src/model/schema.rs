@@ -113,6 +113,11 @@ pub struct ModelFile {
 pub struct AnalysisFile {
     /// `geometry = "linear"` (default) or `"nonlinear"` (total Lagrangian).
     pub geometry: Option<Geometry>,
+    /// `type = "static"` (default) or `"buckling"`.
+    #[serde(rename = "type")]
+    pub kind: Option<AnalysisType>,
+    /// Buckling: the number of modes wanted.
+    pub modes: Option<usize>,
 }
 
 /// `[adapt]`.

@@ -93,8 +93,8 @@ pub enum EigenError {
     /// The wanted Ritz pairs did not reach the tolerance within the restart limit.
     #[error(
         "the eigensolver did not converge: {converged} of the {wanted} wanted eigenpairs reached the tolerance \
-         after {restarts} restarts (largest relative residual {worst:.2e}); raise eigen.max_restarts or the \
-         subspace size"
+         after {restarts} restarts (largest relative residual {worst:.2e}); more restarts, a larger subspace \
+         or a looser tolerance (EigenSettings) may converge"
     )]
     NotConverged {
         /// Wanted pairs that had converged.

@@ -132,6 +132,18 @@ pub enum Geometry {
     Nonlinear,
 }
 
+/// `analysis.type`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum AnalysisType {
+    /// Incremental static analysis (the default).
+    #[default]
+    Static,
+    /// Linear buckling: the static solution at load factor 1, then the
+    /// critical load factors of its stress state (`crate::analysis::buckling`).
+    Buckling,
+}
+
 /// `bodies.formulation`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]

@@ -74,3 +74,32 @@ pub(crate) fn solve(structure: &mut Structure<'_>, modes: usize) -> Result<Buckl
         .collect();
     Ok(Buckling { factors: sol.values, modes, residuals: sol.residuals, solves: sol.solves })
 }
+
+/// `analysis.imperfection`: the buckling analysis of the same model — small
+/// strain, its materials taken elastic — and its mode `imp.mode` scaled to
+/// a largest component of `imp.amplitude`, the stress-free initial
+/// displacement `u₀` of the nonlinear analysis (`elements::PointData::initial`).
+/// Returns `u₀` (per DOF) and the buckling analysis it came from.
+pub(crate) fn imperfection(
+    model: &crate::model::Model,
+    imp: crate::model::Imperfection,
+) -> Result<(Vec<f64>, Buckling), AnalysisError> {
+    let mut linear = model.clone();
+    linear.kinematics = crate::kinematics::Kinematics::Linear;
+    linear.imperfection = None;
+    linear.buckling = Some(crate::model::BucklingSettings { modes: imp.mode });
+    for m in &mut linear.materials {
+        *m = crate::materials::Material::new(m.name.clone(), m.young, m.poisson, None);
+    }
+    // a single static increment (the model is now linear)
+    linear.solver.steps.initial = 1.0;
+    linear.solver.steps.max = 1.0;
+    for s in &mut linear.steps {
+        s.settings.initial = 1.0;
+        s.settings.max = 1.0;
+    }
+    let sol = super::run(&linear, &Default::default(), &mut super::Silent)?;
+    let b = sol.buckling.ok_or(AnalysisError::Imperfection(imp.mode, 0))?;
+    let mode = b.modes.get(imp.mode - 1).ok_or(AnalysisError::Imperfection(imp.mode, b.modes.len()))?;
+    Ok((mode.iter().map(|m| m * imp.amplitude).collect(), b))
+}

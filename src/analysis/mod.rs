@@ -41,6 +41,11 @@ pub enum AnalysisError {
     /// Linear algebra.
     #[error(transparent)]
     Linear(#[from] LinearError),
+    /// The imperfection's mode was not found.
+    #[error(
+        "analysis.imperfection.mode = {0}: the buckling analysis of the model found {1} positive critical load factors"
+    )]
+    Imperfection(usize, usize),
     /// The buckling eigenproblem.
     #[error("buckling analysis")]
     Eigen(#[from] crate::solver::eigen::EigenError),
@@ -339,7 +344,12 @@ impl Observer<Structure<'_>> for Recorder<'_> {
 /// Runs the analysis of `model`.
 pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> Result<Solution, AnalysisError> {
     let start = Instant::now();
+    // a geometric imperfection: the buckling analysis of the model first
+    let imperfect = model.imperfection.map(|imp| buckling::imperfection(model, imp)).transpose()?;
     let mut structure = Structure::new(model, options.max_memory)?;
+    if let Some((u0, _)) = &imperfect {
+        structure.set_imperfection(u0.clone());
+    }
     progress.start(
         model,
         &Setup {
@@ -424,7 +434,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         error_estimate: None,
         steps: step_ends,
         adapt: None,
-        buckling: buckled,
+        buckling: buckled.or(imperfect.map(|(_, b)| b)),
     };
     // the estimate compares the raw stresses with their patch recovery; the
     // fields show the L2 projection if the model asks for it

@@ -247,6 +247,12 @@ impl<'m> Structure<'m> {
         &self.elements
     }
 
+    /// Sets a stress-free initial displacement (a geometric imperfection,
+    /// per DOF) for a total-Lagrangian analysis, before the first evaluation.
+    pub(crate) fn set_imperfection(&mut self, u0: Vec<f64>) {
+        self.elements.initial = Some(u0);
+    }
+
     /// The pattern and the stress stiffness `K_σ` of the present
     /// Gauss-point stresses, in pattern order (linear buckling).
     pub(crate) fn stress_stiffness(&self) -> (&crate::solver::linear::LowerCsc, Vec<f64>) {

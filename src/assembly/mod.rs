@@ -72,6 +72,9 @@ pub struct Inputs<'a> {
     pub predictor: Predictor,
     /// Strain measure (small strain or total Lagrangian).
     pub kinematics: crate::kinematics::Kinematics,
+    /// Total Lagrangian: a stress-free initial displacement (3 per node; a
+    /// geometric imperfection), `None` for the perfect geometry.
+    pub initial: Option<&'a [f64]>,
 }
 
 /// Outputs of an assembly pass.
@@ -214,14 +217,18 @@ impl Assembler {
             plastic += colour
                 .par_iter()
                 .map_init(
-                    || (Vec::new(), Vec::new()),
-                    |(nodes, ue), &ge| {
+                    || (Vec::new(), Vec::new(), Vec::new()),
+                    |(nodes, ue, ie), &ge| {
                         let r = self.scatter.elements[ge];
                         let body = &input.mesh.bodies[r.body];
                         let geom = &input.geometry[r.body];
                         body.element_nodes(r.element, nodes);
                         ue.clear();
                         ue.extend(nodes.iter().flat_map(|&n| (0..3).map(move |c| input.u[3 * n + c])));
+                        if let Some(u0) = input.initial {
+                            ie.clear();
+                            ie.extend(nodes.iter().flat_map(|&n| (0..3).map(move |c| u0[3 * n + c])));
+                        }
                         let ngp = geom.gp_per_element();
                         let g0 = input.gp_offsets[r.body] + r.element * ngp;
                         // SAFETY: Gauss points of an element belong to it alone.
@@ -232,6 +239,7 @@ impl Assembler {
                                 stress: stress.range(g0, ngp),
                                 predictor: input.predictor,
                                 kinematics: input.kinematics,
+                                initial: input.initial.map(|_| &ie[..]),
                             }
                         };
                         WORKSPACE.with_borrow_mut(|ws| {
@@ -368,6 +376,7 @@ mod tests {
             gp_offsets: &gp_offsets,
             predictor: Default::default(),
             kinematics: Default::default(),
+            initial: None,
         };
         assembler.cache_elastic(&inputs);
         Setup { mesh, geometry, gp_offsets, materials, u, committed, assembler, uncached }
@@ -385,6 +394,7 @@ mod tests {
             gp_offsets: &s.gp_offsets,
             predictor: Default::default(),
             kinematics: Default::default(),
+            initial: None,
         };
         let mut force = vec![0.0; s.mesh.n_dofs()];
         let mut tangent = vec![0.0; a.pattern.nnz()];

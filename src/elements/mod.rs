@@ -128,6 +128,11 @@ pub struct PointData<'a> {
     /// Strain measure: small strain, or total Lagrangian (then `stress`
     /// receives the Cauchy stress, the material's `S` stays internal).
     pub kinematics: Kinematics,
+    /// Total Lagrangian: the element's stress-free initial displacement
+    /// `u₀` (a geometric imperfection; 3 per node): the strain is
+    /// `E(∇(u + u₀)) − E(∇u₀)` and `F = I + ∇(u + u₀)` — the strain energy of
+    /// the shape `X + u₀` to first order in `u₀`.
+    pub initial: Option<&'a [f64]>,
 }
 
 /// Computes the internal force (and the tangent, per `mode`) of body
@@ -237,21 +242,40 @@ fn stresses_and_forces(
     let large = points.kinematics.is_nonlinear();
     let (ns, nb, nodes) = (sg.n_fun, ag.n_fun, el.nodes);
     let (mut all_elastic, mut plastic_points) = (true, 0);
-    ws.contracted.resize(4 * ns, [0.0; 3]);
+    ws.contracted.resize(6 * ns, [0.0; 3]);
     for gb in 0..ag.n_gp {
         let at = ag.point(el.eb, gb);
         let (v, rest) = ws.contracted.split_at_mut(ns);
         let (vy, rest) = rest.split_at_mut(ns);
-        let (h, hy) = rest.split_at_mut(ns);
+        let (h, rest) = rest.split_at_mut(ns);
+        let (hy, rest) = rest.split_at_mut(ns);
+        let (v0, vy0) = rest.split_at_mut(ns);
         contract_axis(&at, u, v, vy);
+        if let Some(u0) = points.initial {
+            contract_axis(&at, u0, v0, vy0);
+        }
         h.fill([0.0; 3]);
         hy.fill([0.0; 3]);
         for gs in 0..sg.n_gp {
             let sp = sg.point(el.es, gs);
             let w = sp.weight * at.weight;
             let q = gb * sg.n_gp + gs;
-            let grad = point_gradient(&sp, v, vy);
+            let mut grad = point_gradient(&sp, v, vy);
             let mut eps = points.kinematics.strain(&grad);
+            if points.initial.is_some() {
+                // the imperfect shape is stress free: E(∇(u + u₀)) − E(∇u₀)
+                let g0 = point_gradient(&sp, v0, vy0);
+                let e0 = points.kinematics.strain(&g0);
+                for (row, r0) in grad.iter_mut().zip(&g0) {
+                    for (a, b) in row.iter_mut().zip(r0) {
+                        *a += b;
+                    }
+                }
+                eps = points.kinematics.strain(&grad);
+                for (e, z) in eps.iter_mut().zip(&e0) {
+                    *e -= z;
+                }
+            }
             if bbar {
                 // ε̄ = ε + (θ̄ − θ)/3 · 1 with θ̄ − θ = Σ_a (b̄_a − g_a)·u_a
                 let d = &ws.bbar[q * nodes..(q + 1) * nodes];

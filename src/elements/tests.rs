@@ -36,6 +36,18 @@ pub(super) fn response_kin(
     committed: &[PointState],
     kinematics: Kinematics,
 ) -> (Vec<f64>, Vec<f64>, Vec<Voigt>) {
+    response_initial(geom, mat, u, committed, kinematics, None)
+}
+
+/// [`response_kin`] with a stress-free initial displacement.
+fn response_initial(
+    geom: &CellValues,
+    mat: &Material,
+    u: &[f64],
+    committed: &[PointState],
+    kinematics: Kinematics,
+    initial: Option<&[f64]>,
+) -> (Vec<f64>, Vec<f64>, Vec<Voigt>) {
     let ngp = geom.gp_per_element();
     let mut trial = vec![PointState::default(); ngp];
     let mut stress = vec![[0.0; 6]; ngp];
@@ -46,7 +58,14 @@ pub(super) fn response_kin(
         1,
         u,
         mat,
-        PointData { committed, trial: &mut trial, stress: &mut stress, predictor: Predictor::Loading, kinematics },
+        PointData {
+            committed,
+            trial: &mut trial,
+            stress: &mut stress,
+            predictor: Predictor::Loading,
+            kinematics,
+            initial,
+        },
         TangentMode::Always,
         &mut ws,
     );
@@ -297,4 +316,51 @@ fn total_lagrangian_is_objective() {
     assert!(fr.iter().all(|v| v.abs() < 1e-8 * fmax) && sr.iter().flatten().all(|v| v.abs() < 1e-8 * smax));
     let (fl, _, _) = response_kin(&geom, &mat, &rigid, &committed, Kinematics::Linear);
     assert!(fl.iter().any(|v| v.abs() > fmax), "small strain: a 90° rotation strains the element");
+}
+
+/// A stress-free initial displacement (geometric imperfection): alone it
+/// gives no force; on top of a deformation the tangent is still the
+/// derivative of the force (the F of the total displacement in B_NL and
+/// the geometric term).
+#[test]
+fn imperfection_is_stress_free_and_its_tangent_consistent() {
+    let body = single_element_body(SectionElementKind::L9, BeamElementKind::B3);
+    let nodes = body.nodes_per_element();
+    let mut el = Vec::new();
+    body.element_nodes(0, &mut el);
+    let (mut u0, mut u) = (vec![0.0; 3 * nodes], vec![0.0; 3 * nodes]);
+    for (a, &g) in el.iter().enumerate() {
+        let [x, y, z] = body.local_coords(g);
+        u0[3 * a] = 0.02 * (y - 0.1) * (y - 0.1) / 0.03 + 0.01 * z;
+        u0[3 * a + 2] = -0.01 * x;
+        u[3 * a] = 2e-3 * y * z / 0.01;
+        u[3 * a + 1] = 3e-3 * (y - 0.1) + 1e-3 * x;
+        u[3 * a + 2] = 0.05 * (y - 0.1);
+    }
+    let geom = CellValues::new(&body).unwrap();
+    let committed = vec![PointState::default(); geom.gp_per_element()];
+    let mat = Material::new("m", 70e9, 0.3, None);
+    let tl = Kinematics::TotalLagrangian;
+    let zero = vec![0.0; 3 * nodes];
+    let (f0, _, _) = response_initial(&geom, &mat, &zero, &committed, tl, Some(&u0));
+    assert!(f0.iter().all(|v| v.abs() < 1e-9), "the imperfect shape alone is stress free");
+    let (f, k, _) = response_initial(&geom, &mat, &u, &committed, tl, Some(&u0));
+    let (fp, _, _) = response_kin(&geom, &mat, &u, &committed, tl);
+    let fmax = f.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    assert!(f.iter().zip(&fp).any(|(a, b)| (a - b).abs() > 1e-3 * fmax), "the imperfection changes the response");
+    let n = 3 * nodes;
+    let kmax = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let mut worst: f64 = 0.0;
+    for q in 0..n {
+        let (mut up, mut um) = (u.clone(), u.clone());
+        up[q] += 1e-9;
+        um[q] -= 1e-9;
+        let (fp, _, _) = response_initial(&geom, &mat, &up, &committed, tl, Some(&u0));
+        let (fm, _, _) = response_initial(&geom, &mat, &um, &committed, tl, Some(&u0));
+        for p in 0..n {
+            let kk = if p <= q { k[p * n + q] } else { k[q * n + p] };
+            worst = worst.max(((fp[p] - fm[p]) / 2e-9 - kk).abs() / kmax);
+        }
+    }
+    assert!(worst < 1e-6, "relative tangent error {worst}");
 }

@@ -27,6 +27,69 @@ pub(super) fn kinematics(file: &AnalysisFile) -> Kinematics {
     }
 }
 
+/// `analysis.imperfection`: the shape of a buckling mode, scaled, taken as
+/// the stress-free initial shape of a nonlinear-geometry analysis.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Imperfection {
+    /// Buckling mode (1-based).
+    pub mode: usize,
+    /// Largest displacement component of the imperfection (m).
+    pub amplitude: f64,
+}
+
+/// `analysis.imperfection`: with nonlinear geometry, and on a model whose
+/// buckling analysis can be made (loads and fixed supports only, one step;
+/// plastic materials are taken elastic for it).
+pub(super) fn imperfection(file: &AnalysisFile, parts: &Parts<'_>) -> Result<Option<Imperfection>, ModelError> {
+    let Some(imp) = &file.imperfection else { return Ok(None) };
+    if file.geometry != Some(Geometry::Nonlinear) {
+        return Err(invalid(
+            "analysis.imperfection",
+            "given",
+            "only with analysis.geometry = \"nonlinear\" (a small-strain analysis does not see it)",
+        ));
+    }
+    if imp.mode == 0 || imp.mode > MAX_MODES {
+        return Err(invalid("analysis.imperfection.mode", imp.mode, format!("an integer in 1..={MAX_MODES}")));
+    }
+    let size = parts.mesh.bodies.iter().map(|b| b.size()).fold(0.0, f64::max);
+    if !imp.amplitude.is_finite() || imp.amplitude == 0.0 || imp.amplitude.abs() > 0.1 * size {
+        return Err(invalid(
+            "analysis.imperfection.amplitude",
+            crate::numbers::number(imp.amplitude),
+            format!(
+                "a non-zero length (m) of at most a tenth of the body's size, {}",
+                crate::numbers::number(0.1 * size)
+            ),
+        ));
+    }
+    loads_and_supports_only(parts, "analysis.imperfection")?;
+    Ok(Some(Imperfection { mode: imp.mode, amplitude: imp.amplitude }))
+}
+
+/// Loads and fixed supports only, in one step: what a buckling analysis
+/// (and so an imperfection from one) can take.
+fn loads_and_supports_only(parts: &Parts<'_>, what: &str) -> Result<(), ModelError> {
+    let refuse = |key: String, value: &str, why: String| Err(invalid(key, value, why));
+    if !parts.indenters.is_empty() || !parts.contacts.is_empty() {
+        let key = if parts.indenters.is_empty() { "contacts" } else { "indenters" };
+        return refuse(key.into(), "present", format!("none with {what} (loads and supports only)"));
+    }
+    if parts.steps > 1 {
+        return refuse("steps".into(), &format!("{} steps", parts.steps), format!("one step with {what}"));
+    }
+    for (i, c) in parts.constraints.iter().enumerate() {
+        if c.values.iter().flatten().any(|&v| v != 0.0) {
+            return refuse(
+                format!("constraints[{i}]"),
+                "a non-zero prescribed displacement",
+                format!("fixed components only with {what} (prescribe loads instead)"),
+            );
+        }
+    }
+    Ok(())
+}
+
 /// What the model holds that a buckling analysis must check.
 pub(super) struct Parts<'a> {
     pub mesh: &'a Mesh,
@@ -53,30 +116,15 @@ pub(super) fn buckling(file: &AnalysisFile, parts: &Parts<'_>) -> Result<Option<
     if modes == 0 || modes > MAX_MODES {
         return Err(invalid("analysis.modes", modes, format!("an integer in 1..={MAX_MODES}")));
     }
-    let refuse = |key: String, value: &str, why: &str| Err(invalid(key, value, why.to_string()));
     if file.geometry == Some(Geometry::Nonlinear) {
-        return refuse(
-            "analysis.geometry".into(),
+        return Err(invalid(
+            "analysis.geometry",
             "\"nonlinear\"",
             "\"linear\" with analysis.type = \"buckling\" (a linear eigenvalue analysis about the small-strain state)",
-        );
+        ));
     }
-    if !parts.indenters.is_empty() || !parts.contacts.is_empty() {
-        let key = if parts.indenters.is_empty() { "contacts" } else { "indenters" };
-        return refuse(key.into(), "present", "none with analysis.type = \"buckling\" (loads and supports only)");
-    }
-    if parts.steps > 1 {
-        return refuse("steps".into(), &format!("{} steps", parts.steps), "one step with analysis.type = \"buckling\"");
-    }
-    for (i, c) in parts.constraints.iter().enumerate() {
-        if c.values.iter().flatten().any(|&v| v != 0.0) {
-            return refuse(
-                format!("constraints[{i}]"),
-                "a non-zero prescribed displacement",
-                "fixed components only with analysis.type = \"buckling\" (prescribe loads instead)",
-            );
-        }
-    }
+    loads_and_supports_only(parts, "analysis.type = \"buckling\"")?;
+    let refuse = |key: String, value: &str, why: &str| Err(invalid(key, value, why.to_string()));
     for b in &parts.mesh.bodies {
         let m = &parts.materials[b.material];
         if m.is_plastic() {

@@ -34,7 +34,7 @@ use crate::quantity::Quantity;
 use crate::solver::newton::NewtonSettings;
 use crate::solver::stepping::StepSettings;
 use crate::values::{CellValues, ElementError, Location};
-pub use analysis::BucklingSettings;
+pub use analysis::{BucklingSettings, Imperfection};
 use schema::*;
 
 pub use refine::{AdaptSettings, BodyPlan, MAX_BUDGET, MeshPlan, SectionPlan};
@@ -286,6 +286,9 @@ pub struct Model {
     /// `analysis.type = "buckling"`: the linear buckling analysis after the
     /// static solution; `None` for a static analysis.
     pub buckling: Option<BucklingSettings>,
+    /// `analysis.imperfection`: a scaled buckling mode as the stress-free
+    /// initial shape (nonlinear geometry); `None` for the perfect shape.
+    pub imperfection: Option<Imperfection>,
 }
 
 /// Something suspicious but legal in a model (printed by `check` and `run`,
@@ -407,17 +410,16 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         loads: loads.iter().map(|l| l.name.as_str()).collect(),
     };
     let steps = steps::steps(&file.steps, &item_names, &solver.steps)?;
-    let buckling = analysis::buckling(
-        &file.analysis,
-        &analysis::Parts {
-            mesh: &mesh,
-            materials: &materials,
-            constraints: &constraints,
-            indenters: &indenters,
-            contacts: &contacts,
-            steps: file.steps.len(),
-        },
-    )?;
+    let parts = analysis::Parts {
+        mesh: &mesh,
+        materials: &materials,
+        constraints: &constraints,
+        indenters: &indenters,
+        contacts: &contacts,
+        steps: file.steps.len(),
+    };
+    let buckling = analysis::buckling(&file.analysis, &parts)?;
+    let imperfection = analysis::imperfection(&file.analysis, &parts)?;
     Ok(Model {
         title: file.title.unwrap_or_else(|| "cufem model".into()),
         description: file.description.unwrap_or_default(),
@@ -439,5 +441,6 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         plan,
         kinematics,
         buckling,
+        imperfection,
     })
 }

@@ -118,6 +118,18 @@ pub struct AnalysisFile {
     pub kind: Option<AnalysisType>,
     /// Buckling: the number of modes wanted.
     pub modes: Option<usize>,
+    /// A geometric imperfection from a buckling mode (nonlinear geometry).
+    pub imperfection: Option<ImperfectionFile>,
+}
+
+/// `analysis.imperfection`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ImperfectionFile {
+    /// Which buckling mode (1 = the lowest).
+    pub mode: usize,
+    /// Its largest displacement component (m; the sign flips the shape).
+    pub amplitude: f64,
 }
 
 /// `[adapt]`.

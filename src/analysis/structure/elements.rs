@@ -23,6 +23,8 @@ pub(crate) struct Elements<'m> {
     f_int: Vec<f64>,
     /// Plastic Gauss points in the last evaluation.
     pub plastic_points: usize,
+    /// A stress-free initial displacement (geometric imperfection), per DOF.
+    pub initial: Option<Vec<f64>>,
 }
 
 impl<'m> Elements<'m> {
@@ -42,6 +44,7 @@ impl<'m> Elements<'m> {
             stress: vec![[0.0; 6]; n_gp],
             f_int: vec![0.0; model.mesh.n_dofs()],
             plastic_points: 0,
+            initial: None,
         }
     }
 
@@ -57,6 +60,7 @@ impl<'m> Elements<'m> {
             gp_offsets: &self.gp_offsets,
             predictor: Default::default(),
             kinematics: self.model.kinematics,
+            initial: self.initial.as_deref(),
         }
     }
 }
@@ -79,6 +83,7 @@ impl Contribution for Elements<'_> {
             gp_offsets: &self.gp_offsets,
             predictor: at.predictor,
             kinematics: self.model.kinematics,
+            initial: self.initial.as_deref(),
         };
         self.plastic_points = tangent.assembler.assemble(
             &inputs,

@@ -9,10 +9,12 @@
 //!     record reactions and contact forces      // Recorder
 //! ```
 
+pub mod path;
 mod results;
 pub mod structure;
 mod warnings;
 
+pub use path::{PathEnd, PathOutcome};
 pub use results::{AdaptCycle, Adaptivity};
 pub use structure::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Structure, Timings};
 
@@ -259,6 +261,8 @@ pub struct Solution {
     /// The cycles of an adaptive run that ended with this solution
     /// (`crate::adapt`); `None` for a single run.
     pub adapt: Option<Adaptivity>,
+    /// How the path following went (`solver.control = "arc_length"`).
+    pub path: Option<PathOutcome>,
 }
 
 /// The state at the end of one step of the load history.
@@ -346,7 +350,18 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
     // previous one left (displacements, plastic history, contact)
     let mut failure = None;
     let mut step_ends = Vec::new();
-    for (k, step) in model.steps.iter().enumerate() {
+    let mut path = None;
+    if let Some(settings) = &model.solver.path {
+        let (outcome, stopped) = path::follow(&mut structure, model, settings, &mut recorder, &options.interrupt);
+        if stopped.is_none() {
+            let (reactions, contacts) = (structure.reactions(), structure.contact_resultants());
+            let (name, lambda, increment) =
+                (model.steps[0].name.clone(), structure.load_factor(), recorder.increments.len());
+            step_ends.push(StepEnd { name, lambda, increment, reactions, contacts, fields: None });
+        }
+        (path, failure) = (Some(outcome), stopped);
+    }
+    for (k, step) in model.steps.iter().enumerate().filter(|_| path.is_none()) {
         let span = (k as f64, (k + 1) as f64);
         let first = recorder.increments.len() + 1;
         let newton = &model.solver.newton;
@@ -413,6 +428,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         error_estimate: None,
         steps: step_ends,
         adapt: None,
+        path,
     };
     // the estimate compares the raw stresses with their patch recovery; the
     // fields show the L2 projection if the model asks for it
@@ -487,6 +503,7 @@ impl Solution {
             error_estimate: None,
             steps: Vec::new(),
             adapt: None,
+            path: self.path.clone(),
         };
         if model.output.recovery == crate::model::Recovery::Projection {
             s.recovered =

@@ -103,9 +103,10 @@ pub struct PathOutcome {
     /// The stop criterion met; `None` if the run stopped early
     /// (`Solution::failure` says why).
     pub end: Option<PathEnd>,
-    /// The largest λ of the converged points (the limit load factor if
-    /// the path passed one) and the increment that reached it.
-    pub peak: (f64, usize),
+    /// The limit points passed: `(increment, λ)` of each converged point
+    /// where λ turned (a maximum, then a minimum after a snap-through), the
+    /// largest λ of the points around the limit, not interpolated.
+    pub limit_points: Vec<(usize, f64)>,
     /// The first arc length `Δl₀` (m).
     pub first_arc_length: f64,
 }
@@ -116,7 +117,9 @@ struct Watch<'r, 'a> {
     model: &'r Model,
     settings: &'r PathSettings,
     end: Option<PathEnd>,
-    peak: (f64, usize),
+    limit_points: Vec<(usize, f64)>,
+    /// `Δλ` of the previous point.
+    last_dlambda: f64,
     first_arc: f64,
 }
 
@@ -146,9 +149,11 @@ impl<'s, 'm> PathObserver<PathStructure<'s, 'm>> for Watch<'_, '_> {
             cutbacks: step.cutbacks,
         };
         self.recorder.converged(p.structure(), &inc);
-        if step.lambda > self.peak.0 || step.index == 1 {
-            self.peak = (step.lambda, step.index);
+        if step.dlambda * self.last_dlambda < 0.0 {
+            let previous = self.recorder.history.len().checked_sub(2).map(|k| &self.recorder.history[k]);
+            self.limit_points.extend(previous.map(|row| (row.increment, row.lambda)));
         }
+        self.last_dlambda = step.dlambda;
         if step.lambda >= self.settings.max_load_factor {
             self.end = Some(PathEnd::LoadFactor(step.lambda));
         } else if let Some(stop) = self.settings.stop {
@@ -187,7 +192,8 @@ pub(super) fn follow(
             Err(e) => start = Some(e.to_string()),
         }
     }
-    let mut watch = Watch { recorder, model, settings, end: None, peak: (0.0, 0), first_arc: 0.0 };
+    let mut watch =
+        Watch { recorder, model, settings, end: None, limit_points: Vec::new(), last_dlambda: 0.0, first_arc: 0.0 };
     let traced = match start {
         Some(message) => Err(Box::new(PathError {
             reason: PathStop::Start,
@@ -224,7 +230,7 @@ pub(super) fn follow(
             Some(s)
         }
     };
-    let outcome = PathOutcome { end: watch.end, peak: watch.peak, first_arc_length: watch.first_arc };
+    let outcome = PathOutcome { end: watch.end, limit_points: watch.limit_points, first_arc_length: watch.first_arc };
     (outcome, failure)
 }
 

@@ -87,6 +87,8 @@ pub(crate) fn imperfection(
     let mut linear = model.clone();
     linear.kinematics = crate::kinematics::Kinematics::Linear;
     linear.imperfection = None;
+    // by load control: the linear static state at the loads of the first step
+    linear.solver.path = None;
     linear.buckling = Some(crate::model::BucklingSettings { modes: imp.mode });
     for m in &mut linear.materials {
         *m = crate::materials::Material::new(m.name.clone(), m.young, m.poisson, None);

@@ -10,10 +10,12 @@
 //! ```
 
 pub mod buckling;
+pub mod path;
 mod results;
 pub mod structure;
 mod warnings;
 
+pub use path::{PathEnd, PathOutcome};
 pub use results::{AdaptCycle, Adaptivity};
 pub use structure::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Structure, Timings};
 
@@ -271,6 +273,8 @@ pub struct Solution {
     /// `analysis.type = "buckling"`: critical load factors and modes about
     /// the final state; `None` otherwise.
     pub buckling: Option<buckling::Buckling>,
+    /// How the path following went (`solver.control = "arc_length"`).
+    pub path: Option<PathOutcome>,
 }
 
 /// The state at the end of one step of the load history.
@@ -363,7 +367,18 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
     // previous one left (displacements, plastic history, contact)
     let mut failure = None;
     let mut step_ends = Vec::new();
-    for (k, step) in model.steps.iter().enumerate() {
+    let mut path = None;
+    if let Some(settings) = &model.solver.path {
+        let (outcome, stopped) = path::follow(&mut structure, model, settings, &mut recorder, &options.interrupt);
+        if stopped.is_none() {
+            let (reactions, contacts) = (structure.reactions(), structure.contact_resultants());
+            let (name, lambda, increment) =
+                (model.steps[0].name.clone(), structure.load_factor(), recorder.increments.len());
+            step_ends.push(StepEnd { name, lambda, increment, reactions, contacts, fields: None });
+        }
+        (path, failure) = (Some(outcome), stopped);
+    }
+    for (k, step) in model.steps.iter().enumerate().filter(|_| path.is_none()) {
         let span = (k as f64, (k + 1) as f64);
         let first = recorder.increments.len() + 1;
         let newton = &model.solver.newton;
@@ -435,6 +450,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         steps: step_ends,
         adapt: None,
         buckling: buckled.or(imperfect.map(|(_, b)| b)),
+        path,
     };
     // the estimate compares the raw stresses with their patch recovery; the
     // fields show the L2 projection if the model asks for it
@@ -510,6 +526,7 @@ impl Solution {
             steps: Vec::new(),
             adapt: None,
             buckling: None,
+            path: self.path.clone(),
         };
         if model.output.recovery == crate::model::Recovery::Projection {
             s.recovered =

@@ -24,6 +24,7 @@
 
 use std::time::{Duration, Instant};
 
+mod arc;
 mod dirichlet;
 pub(crate) mod elements;
 mod force;

@@ -14,6 +14,7 @@ mod contacts;
 mod indenters;
 mod material;
 mod overlap;
+mod path;
 mod preprocess;
 mod refine;
 mod restraint;
@@ -37,6 +38,7 @@ use crate::values::{CellValues, ElementError, Location};
 pub use analysis::{BucklingSettings, Imperfection};
 use schema::*;
 
+pub use path::{DisplacementStop, PathSettings};
 pub use refine::{AdaptSettings, BodyPlan, MAX_BUDGET, MeshPlan, SectionPlan};
 
 /// Errors found while reading or validating a model.
@@ -213,6 +215,8 @@ pub struct SolverSettings {
     pub threads: Option<usize>,
     /// Reuse of a factorization as the preconditioner of later solves.
     pub reuse: crate::solver::reuse::ReuseSettings,
+    /// `solver.control = "arc_length"`: path following (`None`: load stepping).
+    pub path: Option<PathSettings>,
 }
 
 /// Output controls.
@@ -402,7 +406,16 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let lines = preprocess::lines(&file.lines, &mesh, &mut warnings)?;
     let references = validate::references(&file.references, &probes)?;
     let linear = is_linear(&mesh, &materials, &indenters, &contacts) && !kinematics.is_nonlinear();
-    let solver = validate::solver_settings(&file.solver, linear)?;
+    let mut solver = validate::solver_settings(&file.solver, linear)?;
+    let loading = path::Loading {
+        steps: &file.steps,
+        constraints: &constraints,
+        loads: &loads,
+        indenters: &indenters,
+        contacts: &contacts,
+        probes: &probes,
+    };
+    solver.path = path::settings(&file.solver, &solver, &loading)?;
     let output = validate::output(&file.output);
     let item_names = steps::ItemNames {
         indenters: indenters.iter().map(|i| i.name.as_str()).collect(),

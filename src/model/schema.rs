@@ -160,6 +160,33 @@ pub struct SolverFile {
     pub reuse_factorization: Option<bool>,
     pub krylov_tolerance: Option<f64>,
     pub factor_precision: Option<FactorPrecision>,
+    /// `"load"` (default) or `"arc_length"` (path following, `model/path.rs`).
+    pub control: Option<Control>,
+    /// Arc length of the first increment (m), `control = "arc_length"`.
+    pub arc_length: Option<f64>,
+    /// The path following ends at the first point with λ at least this.
+    pub max_load_factor: Option<f64>,
+    /// The path following ends once a probe's displacement passes a value.
+    pub stop: Option<StopFile>,
+}
+
+/// `solver.control`: what drives the increments.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Control {
+    /// λ prescribed increment by increment (load stepping).
+    Load,
+    /// λ an unknown, each increment a fixed length of the path (Crisfield).
+    ArcLength,
+}
+
+/// `solver.stop = { probe, component, beyond }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StopFile {
+    pub probe: String,
+    pub component: Axis,
+    pub beyond: f64,
 }
 
 /// `[[materials]]`.

@@ -59,6 +59,9 @@ impl Step {
 }
 
 /// The factor of `item` at analysis time `lambda` (see the module docs).
+/// Outside `[0, n]` the first and last steps are extended linearly: load
+/// stepping never goes there, path following (`solver.control =
+/// "arc_length"`, one step) may pass λ = 1 or turn back below 0.
 pub fn factor(steps: &[Step], item: Item, lambda: f64) -> f64 {
     if steps.is_empty() {
         return lambda;
@@ -66,7 +69,7 @@ pub fn factor(steps: &[Step], item: Item, lambda: f64) -> f64 {
     let t = lambda.clamp(0.0, steps.len() as f64);
     let k = (t.ceil() as usize).clamp(1, steps.len()) - 1;
     let before = if k == 0 { 0.0 } else { steps[k - 1].target(item) };
-    before + (t - k as f64) * (steps[k].target(item) - before)
+    before + (lambda - k as f64) * (steps[k].target(item) - before)
 }
 
 /// Names of the items a step may scale, in model order.
@@ -205,6 +208,10 @@ mod tests {
         // no [[steps]]: one ramp to 1
         let one = steps(&[], &names, &base).unwrap();
         assert_eq!(factor(&one, Item::Load(0), 0.3), 0.3);
+        // beyond the history (path following): the end steps extended
+        assert_eq!(factor(&one, Item::Load(0), 1.5), 1.5);
+        assert_eq!(factor(&one, Item::Load(0), -0.25), -0.25);
+        assert_eq!(factor(&s, punch, 3.5), -0.5);
     }
 
     #[test]

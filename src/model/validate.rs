@@ -310,6 +310,7 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
             single_precision: single_precision && !linear,
             ..ReuseSettings::default()
         },
+        path: None,
     })
 }
 

@@ -120,6 +120,10 @@ pub enum StopReason {
     TooManyIncrements,
     /// A stop was requested through the [`Interrupt`].
     Interrupted,
+    /// Path following (`solver::arclength`) stopped before its end: the
+    /// arc length fell below its minimum, or the increments ran out
+    /// (`SteppingError::newton` carries the message).
+    PathFollowing,
 }
 
 /// The analysis could not reach λ = 1 (the problem is left at its last
@@ -162,6 +166,9 @@ impl std::fmt::Display for SteppingError {
             ),
             StopReason::Interrupted => {
                 write!(f, "interrupted at load factor {:.6} (the last converged increment)", self.last_converged)
+            }
+            StopReason::PathFollowing => {
+                f.write_str(self.newton.message.as_deref().unwrap_or("path following stopped"))
             }
         }
     }

@@ -345,31 +345,22 @@ impl Observer<Structure<'_>> for Recorder<'_> {
     }
 }
 
-/// Runs the analysis of `model`.
-pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> Result<Solution, AnalysisError> {
-    let start = Instant::now();
-    // a geometric imperfection: the buckling analysis of the model first
-    let imperfect = model.imperfection.map(|imp| buckling::imperfection(model, imp)).transpose()?;
-    let mut structure = Structure::new(model, options.max_memory)?;
-    if let Some((u0, _)) = &imperfect {
-        structure.set_imperfection(u0.clone());
-    }
-    progress.start(
-        model,
-        &Setup {
-            equations: structure.n_equations(),
-            factor_nnz: structure.factor_nnz(),
-            memory: structure.memory().clone(),
-        },
-    );
-    let mut recorder = Recorder { history: Vec::new(), increments: Vec::new(), cutbacks: Vec::new(), progress };
+/// Drives the structure over the model's load history — by load steps, or
+/// along the path by arc length — and returns the ends of the completed
+/// steps, the failure that stopped it (if any) and the path's outcome.
+fn drive(
+    structure: &mut Structure<'_>,
+    model: &Model,
+    options: &RunOptions,
+    recorder: &mut Recorder<'_>,
+) -> (Vec<StepEnd>, Option<SteppingError>, Option<PathOutcome>) {
     // the load history: each step drives λ over [k, k + 1] from the state the
     // previous one left (displacements, plastic history, contact)
     let mut failure = None;
     let mut step_ends = Vec::new();
     let mut path = None;
     if let Some(settings) = &model.solver.path {
-        let (outcome, stopped) = path::follow(&mut structure, model, settings, &mut recorder, &options.interrupt);
+        let (outcome, stopped) = path::follow(structure, model, settings, recorder, &options.interrupt);
         if stopped.is_none() {
             let (reactions, contacts) = (structure.reactions(), structure.contact_resultants());
             let (name, lambda, increment) =
@@ -382,8 +373,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         let span = (k as f64, (k + 1) as f64);
         let first = recorder.increments.len() + 1;
         let newton = &model.solver.newton;
-        match stepping::run_span(&mut structure, span, first, &step.settings, newton, &mut recorder, &options.interrupt)
-        {
+        match stepping::run_span(structure, span, first, &step.settings, newton, recorder, &options.interrupt) {
             Ok(_) => step_ends.push(StepEnd {
                 name: step.name.clone(),
                 lambda: span.1,
@@ -402,6 +392,28 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
             }
         }
     }
+    (step_ends, failure, path)
+}
+
+/// Runs the analysis of `model`.
+pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> Result<Solution, AnalysisError> {
+    let start = Instant::now();
+    // a geometric imperfection: the buckling analysis of the model first
+    let imperfect = model.imperfection.map(|imp| buckling::imperfection(model, imp)).transpose()?;
+    let mut structure = Structure::new(model, options.max_memory)?;
+    if let Some((u0, _)) = &imperfect {
+        structure.set_imperfection(u0.clone());
+    }
+    progress.start(
+        model,
+        &Setup {
+            equations: structure.n_equations(),
+            factor_nnz: structure.factor_nnz(),
+            memory: structure.memory().clone(),
+        },
+    );
+    let mut recorder = Recorder { history: Vec::new(), increments: Vec::new(), cutbacks: Vec::new(), progress };
+    let (step_ends, failure, path) = drive(&mut structure, model, options, &mut recorder);
     if failure.is_some() {
         // refresh forces at the last converged state for reactions and contact output
         structure.evaluate()?;

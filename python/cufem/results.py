@@ -66,7 +66,9 @@ class Results:
         """Per converged increment, as ``history_<name>.csv``: for a
         constraint set the prescribed displacement ``u_*`` and reaction
         ``r_*``; for an indenter or contact its displacement ``d_*``, force
-        ``f_*``, ``max_penetration``, ``plastic_points``, ``f_n`` and ``f_t``."""
+        ``f_*``, ``max_penetration``, ``plastic_points``, ``f_n`` and ``f_t``;
+        for ``"probes"`` (``history_probes.csv``) every probe's displacement
+        ``<probe>.u_*``."""
         return _table(self._native.history(name))
 
     def _vtu_data(self) -> dict:

@@ -444,7 +444,8 @@ impl NativeResults {
 
     /// The columns of `history_<name>.csv` (a constraint set: prescribed
     /// displacement and reaction; an indenter or contact: displacement,
-    /// force, penetration, plastic points), one row per converged increment.
+    /// force, penetration, plastic points; `"probes"`: every probe's
+    /// displacement), one row per converged increment.
     fn history(&self, name: &str) -> PyResult<Vec<(String, Vec<f64>)>> {
         let m = &self.model;
         let rows = &self.solution.history;
@@ -496,8 +497,20 @@ impl NativeResults {
             cols.push(col("f_t", rows.iter().map(|(_, c)| norm(c.tangential_force)).collect()));
             return Ok(cols);
         }
+        if name == "probes" && !m.probes.is_empty() {
+            // history_probes.csv: every probe's displacement per increment
+            for (p, probe) in m.probes.iter().enumerate() {
+                for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+                    cols.push(col(&format!("{}.u_{axis}", probe.name), rows.iter().map(|r| r.probes[p][k]).collect()));
+                }
+            }
+            return Ok(cols);
+        }
         let mut names: Vec<&str> = m.constraints.iter().map(|c| c.name.as_str()).collect();
         names.extend(self.solution.contact_sets.iter().map(|s| s.name.as_str()));
+        if !m.probes.is_empty() {
+            names.push("probes");
+        }
         Err(PyKeyError::new_err(format!(
             "history {name:?}: expected a constraint, indenter or contact, one of {names:?}"
         )))

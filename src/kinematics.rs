@@ -21,8 +21,19 @@
 //!   CUF nucleus keeps its form: only `B_a` now depends on `F`, and the
 //!   geometric term is a scalar per node pair times the 3×3 identity.
 //!   Cauchy stress for output: `σ = J⁻¹ F S Fᵀ`, `J = det F`.
+//! * **Total Lagrangian, logarithmic strain**
+//!   ([`Kinematics::TotalLagrangianLog`], `analysis.strain = "logarithmic"`):
+//!   the material sees `E_log = ½ ln C` instead of `E` and returns the
+//!   stress `T` conjugate to it; [`hencky`] turns `(T, ∂T/∂E_log)` into
+//!   `(S, ∂S/∂E)`, after which everything above is unchanged — finite-strain
+//!   plasticity with the small-strain return map (Miehe, Apel & Lambrecht
+//!   2002).
 //!
 //! Voigt order and the engineering shear convention are [`crate::voigt`]'s.
+
+pub mod hencky;
+
+pub use hencky::LogStrain;
 
 use crate::voigt::{self, Voigt};
 
@@ -38,12 +49,20 @@ pub enum Kinematics {
     /// Total Lagrangian: Green–Lagrange strain, second Piola–Kirchhoff
     /// stress, the geometric stiffness (large rotations and displacements).
     TotalLagrangian,
+    /// Total Lagrangian with the logarithmic (Hencky) strain `½ ln C` as the
+    /// material's strain ([`hencky`]): finite-strain elastoplasticity.
+    TotalLagrangianLog,
 }
 
 impl Kinematics {
-    /// True for the total-Lagrangian formulation.
+    /// True for the total-Lagrangian formulation (either strain measure).
     pub fn is_nonlinear(self) -> bool {
-        self == Kinematics::TotalLagrangian
+        self != Kinematics::Linear
+    }
+
+    /// True for the logarithmic strain measure.
+    pub fn is_logarithmic(self) -> bool {
+        self == Kinematics::TotalLagrangianLog
     }
 
     /// The strain of the displacement gradient `h[k][d] = ∂u_k/∂X_d`.
@@ -52,6 +71,7 @@ impl Kinematics {
         match self {
             Kinematics::Linear => voigt::strain_from_gradient(h),
             Kinematics::TotalLagrangian => green_lagrange(h),
+            Kinematics::TotalLagrangianLog => hencky::log_strain(h),
         }
     }
 }

@@ -41,7 +41,7 @@
 mod bbar;
 mod large;
 
-use crate::kinematics::{Kinematics, Tensor};
+use crate::kinematics::{Kinematics, LogStrain, Tensor};
 use crate::materials::{Material, PointState, Predictor};
 use crate::values::CellValues;
 pub use crate::values::ElementError;
@@ -260,22 +260,8 @@ fn stresses_and_forces(
             let sp = sg.point(el.es, gs);
             let w = sp.weight * at.weight;
             let q = gb * sg.n_gp + gs;
-            let mut grad = point_gradient(&sp, v, vy);
-            let mut eps = points.kinematics.strain(&grad);
-            if points.initial.is_some() {
-                // the imperfect shape is stress free: E(∇(u + u₀)) − E(∇u₀)
-                let g0 = point_gradient(&sp, v0, vy0);
-                let e0 = points.kinematics.strain(&g0);
-                for (row, r0) in grad.iter_mut().zip(&g0) {
-                    for (a, b) in row.iter_mut().zip(r0) {
-                        *a += b;
-                    }
-                }
-                eps = points.kinematics.strain(&grad);
-                for (e, z) in eps.iter_mut().zip(&e0) {
-                    *e -= z;
-                }
-            }
+            let g0 = points.initial.map(|_| point_gradient(&sp, v0, vy0));
+            let (grad, mut eps, log) = point_strain(points.kinematics, point_gradient(&sp, v, vy), g0);
             if bbar {
                 // ε̄ = ε + (θ̄ − θ)/3 · 1 with θ̄ − θ = Σ_a (b̄_a − g_a)·u_a
                 let d = &ws.bbar[q * nodes..(q + 1) * nodes];
@@ -287,7 +273,12 @@ fn stresses_and_forces(
                     *e += shift / 3.0;
                 }
             }
-            let r = material.update_for_element(&eps, &points.committed[q], points.predictor);
+            let mut r = material.update_for_element(&eps, &points.committed[q], points.predictor);
+            if let Some(log) = &log {
+                // the material's (T, ∂T/∂E_log) as (S, ∂S/∂E): the rest is the Green–Lagrange kernel's
+                (r.stress, r.tangent) = log.pull_back(&r.stress, &r.tangent);
+                r.elastic_tangent = false;
+            }
             points.trial[q] = r.state;
             ws.tangents[q] = r.tangent;
             all_elastic &= r.elastic_tangent;
@@ -326,6 +317,34 @@ fn stresses_and_forces(
         }
     }
     (all_elastic, plastic_points)
+}
+
+/// The strain the material sees at a Gauss point, from the displacement
+/// gradient `grad` and, with a stress-free initial displacement, its
+/// gradient `g0`: `E(∇(u + u₀)) − E(∇u₀)` (the imperfect shape is stress
+/// free). Returns the gradient of the total displacement (that of `F`), the
+/// strain, and with the logarithmic strain its spectral data (for the
+/// pull-back of the material's stress; [`crate::kinematics::hencky`]).
+fn point_strain(kinematics: Kinematics, mut grad: Tensor, g0: Option<Tensor>) -> (Tensor, Voigt, Option<LogStrain>) {
+    let e0 = g0.map(|g0| {
+        for (row, r0) in grad.iter_mut().zip(&g0) {
+            for (a, b) in row.iter_mut().zip(r0) {
+                *a += b;
+            }
+        }
+        kinematics.strain(&g0)
+    });
+    let log = kinematics.is_logarithmic().then(|| LogStrain::new(&grad));
+    let mut eps = match &log {
+        Some(l) => l.strain(),
+        None => kinematics.strain(&grad),
+    };
+    if let Some(e0) = e0 {
+        for (e, z) in eps.iter_mut().zip(&e0) {
+            *e -= z;
+        }
+    }
+    (grad, eps, log)
 }
 
 /// `v_τ = Σ_i N_i u_(i,τ)` and `v'_τ = Σ_i N_i,y u_(i,τ)` at one axis point.
@@ -472,5 +491,7 @@ fn tangent_product(el: &Element, contributing: usize, ws: &mut Workspace) {
     );
 }
 
+#[cfg(test)]
+mod log_tests;
 #[cfg(test)]
 mod tests;

@@ -1,7 +1,7 @@
 //! `[analysis]`: the kind of analysis and its geometry — what the driver
 //! does with the model, checked against what the model holds.
 
-use super::schema::{AnalysisFile, AnalysisType, Geometry};
+use super::schema::{AnalysisFile, AnalysisType, Geometry, StrainMeasure};
 use super::{ModelError, invalid};
 use crate::bc::Constraint;
 use crate::contact::{Indenter, PairContact};
@@ -19,11 +19,21 @@ pub struct BucklingSettings {
     pub modes: usize,
 }
 
-/// The kinematics of `analysis.geometry`.
-pub(super) fn kinematics(file: &AnalysisFile) -> Kinematics {
-    match file.geometry.unwrap_or_default() {
-        Geometry::Linear => Kinematics::Linear,
-        Geometry::Nonlinear => Kinematics::TotalLagrangian,
+/// The kinematics of `analysis.geometry` and `analysis.strain` (a strain
+/// measure only with nonlinear geometry).
+pub(super) fn kinematics(file: &AnalysisFile) -> Result<Kinematics, ModelError> {
+    match (file.geometry.unwrap_or_default(), file.strain) {
+        (Geometry::Linear, None) => Ok(Kinematics::Linear),
+        (Geometry::Linear, Some(s)) => Err(invalid(
+            "analysis.strain",
+            match s {
+                StrainMeasure::GreenLagrange => "\"green_lagrange\"",
+                StrainMeasure::Logarithmic => "\"logarithmic\"",
+            },
+            "only with analysis.geometry = \"nonlinear\" (a small-strain analysis has one strain, sym ∇u)",
+        )),
+        (Geometry::Nonlinear, None | Some(StrainMeasure::GreenLagrange)) => Ok(Kinematics::TotalLagrangian),
+        (Geometry::Nonlinear, Some(StrainMeasure::Logarithmic)) => Ok(Kinematics::TotalLagrangianLog),
     }
 }
 

@@ -285,7 +285,7 @@ pub struct Model {
     pub adapt: Option<AdaptSettings>,
     /// The divisions adaptive refinement may change ([`MeshPlan`]).
     pub plan: MeshPlan,
-    /// `analysis.geometry`: small strain, or total Lagrangian.
+    /// `analysis.geometry` and `analysis.strain`: small strain, or total Lagrangian (Green–Lagrange or logarithmic strain).
     pub kinematics: Kinematics,
     /// `analysis.type = "buckling"`: the linear buckling analysis after the
     /// static solution; `None` for a static analysis.
@@ -393,7 +393,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let materials = material::materials(&file.materials)?;
     let geometry = file.analysis.geometry.unwrap_or_default();
     let (mesh, cells) = bodies::mesh(&file.bodies, &materials, geometry, limits, base)?;
-    let kinematics = analysis::kinematics(&file.analysis);
+    let kinematics = analysis::kinematics(&file.analysis)?;
     let plan = refine::plan(&file)?;
     let adapt = refine::adapt_settings(file.adapt.as_ref())?;
     let mut warnings = Vec::new();

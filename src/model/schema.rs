@@ -113,6 +113,8 @@ pub struct ModelFile {
 pub struct AnalysisFile {
     /// `geometry = "linear"` (default) or `"nonlinear"` (total Lagrangian).
     pub geometry: Option<Geometry>,
+    /// `strain = "green_lagrange"` (default) or `"logarithmic"` (nonlinear geometry).
+    pub strain: Option<StrainMeasure>,
     /// `type = "static"` (default) or `"buckling"`.
     #[serde(rename = "type")]
     pub kind: Option<AnalysisType>,

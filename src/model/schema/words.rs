@@ -132,6 +132,17 @@ pub enum Geometry {
     Nonlinear,
 }
 
+/// `analysis.strain`: the strain measure of nonlinear geometry.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum StrainMeasure {
+    /// Green–Lagrange strain (the default with nonlinear geometry).
+    #[default]
+    GreenLagrange,
+    /// Logarithmic (Hencky) strain `½ ln C` (`crate::kinematics::hencky`).
+    Logarithmic,
+}
+
 /// `analysis.type`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
 #[serde(rename_all = "lowercase")]

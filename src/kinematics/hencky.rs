@@ -1,0 +1,324 @@
+//! The logarithmic (Hencky) strain of the total-Lagrangian formulation
+//! (`analysis.strain = "logarithmic"`), and the pull-back of the stress it
+//! is conjugate to: finite-strain elastoplasticity with the unchanged
+//! small-strain return map.
+//!
+//! Miehe, Apel & Lambrecht, *Anisotropic additive plasticity in the
+//! logarithmic strain space*, CMAME 191 (2002) 5383–5425 (§2–§4; for an
+//! isotropic material the additive split of `E_log` into elastic and
+//! plastic parts reproduces multiplicative J2 plasticity with exponential
+//! integration, Simo, CMAME 99 (1992) 61–112, and Eterovic & Bathe 1990):
+//!
+//! ```text
+//! C = Fᵀ F = I + 2E                           E the Green–Lagrange strain
+//! E_log = ½ ln C = Σ_i ½ ln c_i  N_i ⊗ N_i       c_i, N_i: eigenpairs of C
+//! (T, D, state) = material(E_log, history)     the small-strain J2 point, unchanged:
+//!                                              T conjugate to E_log, D = ∂T/∂E_log,
+//!                                              plastic strain stored in log space
+//! S = T : L,   L = ∂E_log/∂E                   second Piola–Kirchhoff stress
+//! ∂S/∂E = Lᵀ D L + T : ∂²E_log/∂E²             its tangent
+//! ```
+//!
+//! **The derivatives, by divided differences.** `E_log = f(C)` with the
+//! scalar `f(c) = ½ ln c` applied to the eigenvalues. In the eigenframe of
+//! `C` (components `Ã = Qᵀ A Q`) the first and second derivatives of such an
+//! isotropic tensor function are (Daleckii–Krein; Bhatia, *Matrix
+//! Analysis*, §V.3)
+//!
+//! ```text
+//! (Df[H])~_ij      = f[c_i, c_j] H̃_ij
+//! (D²f[H, K])~_ij  = Σ_k f[c_i, c_k, c_j] (H̃_ik K̃_kj + K̃_ik H̃_kj)
+//! ```
+//!
+//! with the divided differences `f[a, b] = (f(a) − f(b))/(a − b)`,
+//! `f[a, b, c] = (f[a, b] − f[b, c])/(a − c)` and their confluent limits
+//! (`f[a, a] = f'(a)`, `f[a, a, a] = f''(a)/2`). Since `dC = 2 dE`:
+//! `L̃ = 2 f[c_i, c_j]` on the component `ij` (so `S̃_ij = 2 f[c_i, c_j] T̃_ij`)
+//! and `T : ∂²E_log/∂E²[H, K] = 4 T̃ : D²f[H̃, K̃]` — for any `T`, coaxial with
+//! `C` or not (a non-proportional plastic history makes it non-coaxial).
+//!
+//! **Equal and nearly equal eigenvalues** (uniaxial tension has two equal
+//! stretches; the undeformed state three) have no special case beyond the
+//! divided differences themselves, computed without cancellation:
+//! `f[a, b] = artanh(r)/(a − b)` with `r = (a − b)/(c_a + c_b)` (exact, since
+//! `ln(c_a/c_b) = 2 artanh r`), by its series `(1 + r²/3 + r⁴/5 + r⁶/7)/(c_a + c_b)`
+//! for `|r| < 10⁻³`; `f[a, b, c]` from the two first differences of the
+//! outermost pairs (largest minus smallest eigenvalue in the denominator),
+//! and, when all three lie within `2·10⁻³` of their mean `m`, by the Taylor
+//! series of divided differences
+//! `f[c_0, c_1, c_2] = −1/(2m²) Σ_n (−1)ⁿ h_n(δ)/(n + 2)`, `δ_i = (c_i − m)/m`,
+//! `h_n` the complete homogeneous symmetric polynomials, to `n = 6`.
+//! The formulas are invariant to the choice of eigenvectors within a
+//! repeated eigenvalue, so the eigensolver (cyclic Jacobi on `2E = C − I`,
+//! which keeps small strains accurate) needs no care there either.
+//!
+//! Tensors are handled in the orthonormal Mandel basis in the eigenframe and
+//! rotated back; the inputs and outputs follow [`crate::voigt`] (engineering
+//! shear strains, tensor shear stresses).
+
+use super::{Tensor, green_lagrange};
+use crate::voigt::{Matrix6, Voigt};
+
+/// The Mandel components: index pairs of the six basis tensors.
+const PAIRS: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
+
+/// The logarithmic strain at a point, with the spectral data of `C` that
+/// its derivatives need.
+#[derive(Debug, Clone, Copy)]
+pub struct LogStrain {
+    /// Eigenvalues of `C − I = 2E` (`c_i − 1`).
+    x: [f64; 3],
+    /// Eigenvectors of `C`, as columns.
+    q: Tensor,
+    /// `E_log` in Voigt form (engineering shear).
+    strain: Voigt,
+}
+
+impl LogStrain {
+    /// The logarithmic strain of the displacement gradient `h[k][d] = ∂u_k/∂X_d`.
+    pub fn new(h: &Tensor) -> Self {
+        Self::from_green_lagrange(&green_lagrange(h))
+    }
+
+    /// The logarithmic strain of a Green–Lagrange strain `e` (Voigt,
+    /// engineering shear).
+    pub fn from_green_lagrange(e: &Voigt) -> Self {
+        // 2E: the engineering shear is already 2 E_ij
+        let two_e = [[2.0 * e[0], e[3], e[4]], [e[3], 2.0 * e[1], e[5]], [e[4], e[5], 2.0 * e[2]]];
+        let (x, q) = symmetric_eigen(two_e);
+        let log = x.map(|xi| 0.5 * xi.ln_1p());
+        let t: Tensor =
+            std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| q[i][k] * log[k] * q[j][k]).sum()));
+        Self { x, q, strain: [t[0][0], t[1][1], t[2][2], 2.0 * t[0][1], 2.0 * t[0][2], 2.0 * t[1][2]] }
+    }
+
+    /// `E_log` (Voigt, engineering shear): the strain the material sees.
+    pub fn strain(&self) -> Voigt {
+        self.strain
+    }
+
+    /// The second Piola–Kirchhoff stress `S = T : L` and its tangent
+    /// `∂S/∂E = Lᵀ D L + T : ∂²E_log/∂E²` (engineering-strain columns) from
+    /// the material's stress `t` conjugate to `E_log` and its tangent
+    /// `d = ∂T/∂E_log` (module docs).
+    pub fn pull_back(&self, t: &Voigt, d: &Matrix6) -> (Voigt, Matrix6) {
+        let q = &self.q;
+        let x = self.x;
+        let f1: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| first_divided(x[i], x[j])));
+        let f2 = second_differences(x);
+        // T̃ = Qᵀ T Q and S̃_ij = 2 f[c_i, c_j] T̃_ij
+        let tt = to_frame(q, &crate::voigt::stress_tensor(t));
+        let st: Tensor = std::array::from_fn(|i| std::array::from_fn(|j| 2.0 * f1[i][j] * tt[i][j]));
+        let s = from_frame(q, &st);
+        let stress = [s[0][0], s[1][1], s[2][2], s[0][1], s[0][2], s[1][2]];
+        // L̃ is diagonal in the eigenframe's Mandel basis
+        let l: [f64; 6] = PAIRS.map(|(i, j)| 2.0 * f1[i][j]);
+        let r6 = mandel_rotation(q);
+        // D in Mandel components (engineering columns → orthonormal basis), then into the frame
+        let dm: Matrix6 = std::array::from_fn(|a| std::array::from_fn(|b| d[a][b] * mandel_scale(a) * mandel_scale(b)));
+        let dt = congruence(&r6, &dm, true);
+        let basis = PAIRS.map(|(i, j)| mandel_basis(i, j));
+        let mut kt = [[0.0; 6]; 6];
+        for a in 0..6 {
+            for b in a..6 {
+                // T̃ : 4 D²f[B_a, B_b]
+                let (ha, hb) = (&basis[a], &basis[b]);
+                let mut g = 0.0;
+                for i in 0..3 {
+                    for j in 0..3 {
+                        let mut inner = 0.0;
+                        for k in 0..3 {
+                            inner += f2[i][k][j] * (ha[i][k] * hb[k][j] + hb[i][k] * ha[k][j]);
+                        }
+                        g += tt[i][j] * inner;
+                    }
+                }
+                kt[a][b] = l[a] * dt[a][b] * l[b] + 4.0 * g;
+                kt[b][a] = kt[a][b];
+            }
+        }
+        let km = congruence(&r6, &kt, false);
+        // back to stress rows and engineering-strain columns
+        let tangent = std::array::from_fn(|a| std::array::from_fn(|b| km[a][b] / (mandel_scale(a) * mandel_scale(b))));
+        (stress, tangent)
+    }
+}
+
+/// The logarithmic strain `½ ln(Fᵀ F)` of a displacement gradient (Voigt,
+/// engineering shear).
+pub fn log_strain(h: &Tensor) -> Voigt {
+    LogStrain::new(h).strain()
+}
+
+/// `√2` on the shear components: Mandel component = Voigt stress × scale
+/// = engineering strain / scale.
+#[inline]
+fn mandel_scale(a: usize) -> f64 {
+    if a < 3 { 1.0 } else { std::f64::consts::SQRT_2 }
+}
+
+/// The Mandel basis tensor of the index pair `(i, j)` (unit Frobenius norm).
+fn mandel_basis(i: usize, j: usize) -> Tensor {
+    let mut b = [[0.0; 3]; 3];
+    if i == j {
+        b[i][i] = 1.0;
+    } else {
+        b[i][j] = std::f64::consts::FRAC_1_SQRT_2;
+        b[j][i] = std::f64::consts::FRAC_1_SQRT_2;
+    }
+    b
+}
+
+/// `Qᵀ A Q`: components in the eigenframe.
+fn to_frame(q: &Tensor, a: &Tensor) -> Tensor {
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            (0..3).flat_map(|k| (0..3).map(move |l| (k, l))).map(|(k, l)| q[k][i] * a[k][l] * q[l][j]).sum()
+        })
+    })
+}
+
+/// `Q Ã Qᵀ`: back from the eigenframe.
+fn from_frame(q: &Tensor, a: &Tensor) -> Tensor {
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            (0..3).flat_map(|k| (0..3).map(move |l| (k, l))).map(|(k, l)| q[i][k] * a[k][l] * q[j][l]).sum()
+        })
+    })
+}
+
+/// The orthogonal 6×6 matrix whose column `b` holds the global Mandel
+/// components of the eigenframe's basis tensor `b`.
+fn mandel_rotation(q: &Tensor) -> Matrix6 {
+    let mut r = [[0.0; 6]; 6];
+    for (b, &(k, l)) in PAIRS.iter().enumerate() {
+        let g = from_frame(q, &mandel_basis(k, l));
+        for (a, &(i, j)) in PAIRS.iter().enumerate() {
+            r[a][b] = if i == j { g[i][i] } else { std::f64::consts::SQRT_2 * g[i][j] };
+        }
+    }
+    r
+}
+
+/// `Rᵀ M R` (`transpose_first`) or `R M Rᵀ`.
+fn congruence(r: &Matrix6, m: &Matrix6, transpose_first: bool) -> Matrix6 {
+    let rr = |i: usize, j: usize| if transpose_first { r[j][i] } else { r[i][j] };
+    let mut tmp = [[0.0; 6]; 6];
+    for i in 0..6 {
+        for j in 0..6 {
+            tmp[i][j] = (0..6).map(|k| rr(i, k) * m[k][j]).sum();
+        }
+    }
+    std::array::from_fn(|i| std::array::from_fn(|j| (0..6).map(|k| tmp[i][k] * rr(j, k)).sum()))
+}
+
+/// `f[c_a, c_b]` for `f(c) = ½ ln c`, `c = 1 + x`, without cancellation
+/// (module docs).
+fn first_divided(a: f64, b: f64) -> f64 {
+    let m = 2.0 + a + b;
+    let r = (a - b) / m;
+    if r.abs() < 1e-3 {
+        let r2 = r * r;
+        (1.0 + r2 * (1.0 / 3.0 + r2 * (1.0 / 5.0 + r2 / 7.0))) / m
+    } else {
+        r.atanh() / (a - b)
+    }
+}
+
+/// `f[c_a, c_b, c_c]` for `f(c) = ½ ln c`, `c = 1 + x` (module docs).
+fn second_divided(a: f64, b: f64, c: f64) -> f64 {
+    let mut v = [a, b, c];
+    v.sort_by(|p, q| q.total_cmp(p));
+    let [hi, mid, lo] = v;
+    let mean = 1.0 + (a + b + c) / 3.0;
+    if hi - lo > 2e-3 * mean {
+        return (first_divided(hi, mid) - first_divided(mid, lo)) / (hi - lo);
+    }
+    // Taylor series of the divided difference about the mean
+    let xbar = (a + b + c) / 3.0;
+    let d = v.map(|xi| (xi - xbar) / mean);
+    let mut sum = 0.0;
+    let mut sign = 1.0;
+    for n in 0..=6 {
+        sum += sign * complete_homogeneous(n, d) / (n + 2) as f64;
+        sign = -sign;
+    }
+    -sum / (2.0 * mean * mean)
+}
+
+/// The complete homogeneous symmetric polynomial `h_n(d_0, d_1, d_2)`.
+fn complete_homogeneous(n: usize, d: [f64; 3]) -> f64 {
+    let mut h = 0.0;
+    for i in 0..=n {
+        for j in 0..=n - i {
+            h += d[0].powi(i as i32) * d[1].powi(j as i32) * d[2].powi((n - i - j) as i32);
+        }
+    }
+    h
+}
+
+/// `f[c_i, c_k, c_j]` for every index triple (symmetric in its arguments).
+fn second_differences(x: [f64; 3]) -> [[[f64; 3]; 3]; 3] {
+    let mut f2 = [[[0.0; 3]; 3]; 3];
+    for i in 0..3 {
+        for k in i..3 {
+            for j in k..3 {
+                let v = second_divided(x[i], x[k], x[j]);
+                for (p, q, r) in [(i, k, j), (i, j, k), (k, i, j), (k, j, i), (j, i, k), (j, k, i)] {
+                    f2[p][q][r] = v;
+                }
+            }
+        }
+    }
+    f2
+}
+
+/// Eigenvalues and eigenvectors (columns) of a symmetric 3×3 matrix by the
+/// cyclic Jacobi method (orthonormal eigenvectors also for repeated
+/// eigenvalues; Golub & Van Loan §8.5). An off-diagonal entry below 10⁻¹⁸
+/// of its two diagonal entries is left: the results are those of a matrix
+/// that close to the given one.
+pub fn symmetric_eigen(mut a: Tensor) -> ([f64; 3], Tensor) {
+    let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    for _ in 0..50 {
+        let mut rotated = false;
+        for (p, q) in [(0, 1), (0, 2), (1, 2)] {
+            let apq = a[p][q];
+            if apq == 0.0 || apq.abs() <= 1e-18 * (a[p][p].abs() + a[q][q].abs()) {
+                continue;
+            }
+            rotated = true;
+            let theta = (a[q][q] - a[p][p]) / (2.0 * apq);
+            let t = if theta.abs() > 1e100 {
+                0.5 / theta
+            } else {
+                theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt())
+            };
+            let t = if theta == 0.0 { 1.0 } else { t };
+            let c = 1.0 / (t * t + 1.0).sqrt();
+            let s = t * c;
+            a[p][p] -= t * apq;
+            a[q][q] += t * apq;
+            a[p][q] = 0.0;
+            a[q][p] = 0.0;
+            let r = 3 - p - q;
+            let (arp, arq) = (a[r][p], a[r][q]);
+            a[r][p] = c * arp - s * arq;
+            a[p][r] = a[r][p];
+            a[r][q] = s * arp + c * arq;
+            a[q][r] = a[r][q];
+            for row in v.iter_mut() {
+                let (vp, vq) = (row[p], row[q]);
+                row[p] = c * vp - s * vq;
+                row[q] = s * vp + c * vq;
+            }
+        }
+        if !rotated {
+            break;
+        }
+    }
+    ([a[0][0], a[1][1], a[2][2]], v)
+}
+
+#[cfg(test)]
+mod tests;

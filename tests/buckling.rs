@@ -147,3 +147,49 @@ fn buckling_refuses_what_it_cannot_analyse() {
         }
     }
 }
+
+/// The inertia of the tangent on the perfect column's straight path
+/// (`geometry = "nonlinear"`, a rectangular 0.02 × 0.01 m section so that
+/// the two bending planes buckle apart): `history.csv` counts one negative
+/// pivot per Euler load passed — 0 below P₁ = π² E I_weak/(4 L²) =
+/// 822.5 N, 1 up to P₂ = 4 P₁ (the stiff plane), 2 up to 9 P₁ — checked
+/// at every increment of 100 N outside ±1 % of each critical load (the
+/// CUF loads are 0.2–0.4 % above Euler, test above). A count that lags by
+/// an increment (a factor reused from an earlier state) fails here.
+#[test]
+fn negative_pivots_count_the_euler_loads_passed() {
+    let text = std::fs::read_to_string(COLUMN)
+        .unwrap()
+        .replace("type = \"buckling\"\nmodes = 4", "geometry = \"nonlinear\"\n\n[solver]\nincrements = 40")
+        .replace("z = { from = -0.01, to = 0.01", "z = { from = -0.005, to = 0.005")
+        .replace("total_force = [0.0, -1.0, 0.0]", "total_force = [0.0, -4000.0, 0.0]");
+    let out = std::env::temp_dir().join(format!("cufem_inertia_{}", std::process::id()));
+    std::fs::create_dir_all(&out).unwrap();
+    let model_file = out.join("column.toml");
+    std::fs::write(&model_file, text).unwrap();
+    let status = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", "--quiet", "--force", "--out"])
+        .arg(out.join("run"))
+        .arg(&model_file)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let history = std::fs::read_to_string(out.join("run/history.csv")).unwrap();
+    assert!(history.starts_with("increment,lambda,iterations,plastic_points,negative_pivots\n"));
+    let p1 = std::f64::consts::PI.powi(2) * 200e9 * (0.02 * 0.01f64.powi(3) / 12.0) / 4.0;
+    let (mut checked, mut seen) = (0, [false; 3]);
+    for line in history.lines().skip(1) {
+        let v: Vec<&str> = line.split(',').collect();
+        let p = 4000.0 * v[1].parse::<f64>().unwrap();
+        let pivots: usize = v[4].parse().unwrap();
+        if [1.0, 4.0, 9.0].iter().any(|n| (p - n * p1).abs() < 0.01 * n * p1) {
+            continue;
+        }
+        let expected = [1.0, 4.0, 9.0].iter().filter(|n| p > *n * p1).count();
+        assert_eq!(pivots, expected, "P = {p:.1} N");
+        seen[expected] = true;
+        checked += 1;
+    }
+    assert!(checked >= 35 && seen == [true; 3], "{checked} increments checked, counts seen {seen:?}");
+    std::fs::remove_dir_all(&out).ok();
+}

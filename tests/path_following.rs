@@ -226,3 +226,25 @@ fn the_keys_are_checked_and_load_control_is_unchanged() {
     let e = err(&text().replace("control = \"arc_length\"", "control = \"arclength\""));
     assert!(e.contains("unknown variant `arclength`, expected `load` or `arc_length`"), "{e}");
 }
+
+/// The inertia of the tangent along the arch's path: no negative pivot on
+/// the rising branch, exactly one between the two limit points (a limit
+/// point turns one eigenvalue negative; the path is symmetric, so it is
+/// not a bifurcation), none after the valley. The limit points' own rows
+/// lie within an increment of the turn and are not checked.
+#[test]
+fn one_negative_pivot_between_the_limit_points() {
+    let sol = run(&text());
+    let outcome = sol.path.as_ref().unwrap();
+    let [(top, _), (valley, _)] = outcome.limit_points[..] else { panic!("{:?}", outcome.limit_points) };
+    for row in &sol.history {
+        let expected = if row.increment < top || row.increment > valley {
+            0
+        } else if row.increment > top && row.increment < valley {
+            1
+        } else {
+            continue;
+        };
+        assert_eq!(row.negative_pivots, Some(expected), "increment {} (λ = {})", row.increment, row.lambda);
+    }
+}

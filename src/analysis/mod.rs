@@ -154,6 +154,9 @@ pub struct HistoryRow {
     pub plastic_points: usize,
     /// Displacement at each probe, in the model's order.
     pub probes: Vec<[f64; 3]>,
+    /// Negative pivots of the last factorized tangent
+    /// ([`Structure::negative_pivots`]).
+    pub negative_pivots: Option<usize>,
 }
 
 impl HistoryRow {
@@ -187,6 +190,8 @@ pub struct IncrementLog {
     pub cutbacks: usize,
     /// Largest contact penetration (m).
     pub max_penetration: f64,
+    /// Negative pivots of the last factorized tangent.
+    pub negative_pivots: Option<usize>,
 }
 
 /// The size of an analysis once it is set up.
@@ -326,6 +331,7 @@ impl Observer<Structure<'_>> for Recorder<'_> {
             plastic_points: s.plastic_points(),
             cutbacks: inc.cutbacks,
             max_penetration,
+            negative_pivots: s.negative_pivots(),
         });
         self.history.push(HistoryRow {
             increment: inc.index,
@@ -335,6 +341,7 @@ impl Observer<Structure<'_>> for Recorder<'_> {
             contacts: contact,
             plastic_points: s.plastic_points(),
             probes: s.probe_displacements(),
+            negative_pivots: s.negative_pivots(),
         });
         self.increments.push(inc.clone());
     }

@@ -79,6 +79,10 @@ impl PathProblem for PathStructure<'_, '_> {
         Incremental::restore(self.structure);
         self.structure.start_path_increment();
     }
+
+    fn negative_pivots(&self) -> Option<usize> {
+        self.structure.negative_pivots()
+    }
 }
 
 /// Why a path following ended as the model asked.

@@ -63,6 +63,8 @@ pub struct Structure<'m> {
     system: LinearSystem,
     timings: Timings,
     memory: MemoryEstimate,
+    /// Negative pivots of the last committed tangent (nonlinear geometry).
+    inertia: Option<usize>,
 }
 
 impl<'m> Structure<'m> {
@@ -118,6 +120,7 @@ impl<'m> Structure<'m> {
             system: LinearSystem::new(assembler, chol, model.solver.reuse, model.has_friction(), mesh.n_dofs()),
             timings,
             memory,
+            inertia: None,
         })
     }
 
@@ -141,6 +144,18 @@ impl<'m> Structure<'m> {
     /// Current load factor.
     pub fn load_factor(&self) -> f64 {
         self.state.lambda
+    }
+
+    /// Negative pivots of the tangent: the number of its negative
+    /// eigenvalues (Sylvester), 0 while it is positive definite; a limit or
+    /// bifurcation point is passed where it changes. With
+    /// `geometry = "nonlinear"` that of the last committed (converged)
+    /// state, factorized at the commit (one factorization per increment,
+    /// which the next increment may reuse); in small strain that of the
+    /// last factorization made, which may be some iterations old (PCG
+    /// reuses factors). `None` before the first or if it failed.
+    pub fn negative_pivots(&self) -> Option<usize> {
+        if self.model.kinematics.is_nonlinear() { self.inertia } else { self.system.negative_pivots() }
     }
 
     /// Plastic Gauss points in the last evaluation.
@@ -417,6 +432,17 @@ impl Incremental for Structure<'_> {
     }
 
     fn commit(&mut self) {
+        if self.model.kinematics.is_nonlinear() {
+            // the tangent of the last evaluation is that of the converged
+            // state: its inertia (on the free DOFs, as it is solved; the
+            // right-hand side is rewritten by the next evaluation) marks
+            // limit and bifurcation points
+            let system = &mut self.system;
+            let col_ptr = &system.assembler.pattern.col_ptr;
+            let (tangent, rest, rhs) = (&mut system.tangent, system.rest.as_mut(), &mut system.rhs);
+            self.dirichlet.eliminate(&self.state.u, |e| col_ptr[e], tangent, rest, rhs);
+            self.inertia = system.inertia();
+        }
         self.state.commit();
         let at = self.state.at();
         for part in [&mut self.elements as &mut dyn Contribution, &mut self.loads, &mut self.contacts] {

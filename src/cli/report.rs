@@ -200,6 +200,10 @@ pub fn increment_line(log: &IncrementLog) -> String {
     if log.max_penetration > 0.0 {
         line.push_str(&format!("  max penetration {:.2e} m", log.max_penetration));
     }
+    if let Some(n) = log.negative_pivots.filter(|n| *n > 0) {
+        // an indefinite tangent: past a limit or bifurcation point
+        line.push_str(&format!("  negative pivots {n}"));
+    }
     if log.cutbacks > 0 {
         line.push_str(&format!("  (after {} cutbacks)", log.cutbacks));
     }

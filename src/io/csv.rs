@@ -98,7 +98,25 @@ pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result
     if !model.probes.is_empty() {
         out.push(write_probe_history(model, solution, dir)?);
     }
+    if !solution.history.is_empty() {
+        out.push(write_increment_history(solution, dir)?);
+    }
     Ok(out)
+}
+
+/// `history.csv`: one row per converged increment — load factor, Newton
+/// iterations, plastic Gauss points and the negative pivots of the last
+/// factorized tangent (empty when not known), which count the tangent's
+/// negative eigenvalues: a change marks a limit or bifurcation point.
+fn write_increment_history(solution: &Solution, dir: &Path) -> Result<PathBuf, IoError> {
+    let mut text = String::from("increment,lambda,iterations,plastic_points,negative_pivots\n");
+    for row in &solution.history {
+        let pivots = row.negative_pivots.map_or(String::new(), |n| n.to_string());
+        let _ = writeln!(text, "{},{:e},{},{},{pivots}", row.increment, row.lambda, row.iterations, row.plastic_points);
+    }
+    let path = dir.join("history.csv");
+    write(&path, &text)?;
+    Ok(path)
 }
 
 /// `history_probes.csv`: the displacement of every probe at every increment

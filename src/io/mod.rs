@@ -8,6 +8,7 @@
 //! | `line_<name>.csv` | fields sampled along each `[[lines]]` entry |
 //! | `history_<name>.csv` | per increment: reaction of a constraint set, or force of a contact |
 //! | `history_probes.csv` | per increment: the displacement of every probe |
+//! | `history.csv` | per increment: load factor, iterations, plastic points, negative pivots of the tangent |
 //! | `mode_<k>.vtu` | buckling: the shape of mode k as the displacement field |
 //! | `contact_<name>.csv` | final gap, force and pressure of every contact point |
 //! | `line_<name>_<quantity>.png` | plots of the quantities listed in a line's `plot` |

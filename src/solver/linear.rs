@@ -264,6 +264,41 @@ impl Cholesky {
         }
     }
 
+    /// Negative pivots of the present factor: by Sylvester's law of
+    /// inertia the number of negative eigenvalues of the factored matrix
+    /// (0 for an `LLᵀ` factor; the negative entries of `D` for `LDLᵀ`,
+    /// which faer computes without pivoting or regularization here, so
+    /// `D` is congruent to the matrix). `None` before the first
+    /// factorization.
+    pub fn negative_pivots(&self) -> Option<usize> {
+        match self.kind? {
+            Kind::Llt | Kind::Llt32 => Some(0),
+            Kind::Ldlt => Some(self.ldlt_diagonal().filter(|d| *d < 0.0).count()),
+        }
+    }
+
+    /// The diagonal `D` of an `LDLᵀ` factor, stored where `LLᵀ` keeps its
+    /// diagonal: the diagonal of each supernode's dense column block, or
+    /// the first entry of each simplicial column.
+    fn ldlt_diagonal(&self) -> impl Iterator<Item = f64> + '_ {
+        let v = &self.l_values;
+        let diagonal: Vec<f64> = match self.symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(sn) => {
+                let (begin, end, rows, vals) =
+                    (sn.supernode_begin(), sn.supernode_end(), sn.col_ptr_for_row_idx(), sn.col_ptr_for_val());
+                (0..sn.n_supernodes())
+                    .flat_map(|s| {
+                        let w = end[s] - begin[s];
+                        let h = w + rows[s + 1] - rows[s];
+                        (0..w).map(move |j| v[vals[s] + j * h + j])
+                    })
+                    .collect()
+            }
+            SymbolicCholeskyRaw::Simplicial(sp) => sp.col_ptr()[..sp.ncols()].iter().map(|&p| v[p]).collect(),
+        };
+        diagonal.into_iter()
+    }
+
     /// Number of stored values of the factor `L`.
     pub fn factor_nnz(&self) -> usize {
         self.symbolic.len_val()
@@ -449,10 +484,45 @@ mod tests {
         let mut ind = vals.clone();
         ind[0] = -2.0;
         chol.factorize(&ind).unwrap();
+        // one negative eigenvalue: the diagonal -2 couples to the rest by -1
+        // only, so the matrix is congruent to diag(-2, positive definite)
+        assert_eq!(chol.negative_pivots(), Some(1));
         pat.mul_symmetric(&ind, &x_exact, &mut b);
         chol.solve_in_place(&mut b).unwrap();
         for (a, e) in b.iter().zip(&x_exact) {
             assert!((a - e).abs() < 1e-9);
+        }
+    }
+
+    /// Inertia: the 5-point Laplacian on an m × m grid shifted by −σ has
+    /// as many negative pivots as Laplacian eigenvalues
+    /// `4 − 2 cos(iπ/(m+1)) − 2 cos(jπ/(m+1))` below σ (Sylvester's law;
+    /// the eigenvalues in closed form). The banded fill makes faer's
+    /// factor supernodal at m = 100 and simplicial at m = 24: both storage
+    /// kinds are read.
+    #[test]
+    fn negative_pivots_count_the_eigenvalues_below_the_shift() {
+        for (m, supernodal) in [(24, false), (100, true)] {
+            let n = m * m;
+            let columns: Vec<Vec<usize>> = (0..n)
+                .map(|c| [c, c + 1, c + m].into_iter().filter(|&r| r < n && (r != c + 1 || r % m != 0)).collect())
+                .collect();
+            let pat = LowerCsc::from_columns(n, &columns);
+            let mut chol = Cholesky::analyze(&pat).unwrap();
+            assert_eq!(matches!(chol.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)), supernodal);
+            let h = std::f64::consts::PI / (m + 1) as f64;
+            for sigma in [0.0, 0.5, 1.3, 2.9] {
+                let vals: Vec<f64> = columns
+                    .iter()
+                    .flat_map(|rows| rows.iter().map(|&r| if r == rows[0] { 4.0 - sigma } else { -1.0 }))
+                    .collect();
+                chol.factorize(&vals).unwrap();
+                let below = (1..=m)
+                    .flat_map(|i| (1..=m).map(move |j| 4.0 - 2.0 * (i as f64 * h).cos() - 2.0 * (j as f64 * h).cos()))
+                    .filter(|&l| l < sigma)
+                    .count();
+                assert_eq!(chol.negative_pivots(), Some(below), "m {m}, shift {sigma}");
+            }
         }
     }
 

@@ -204,6 +204,22 @@ impl ReusingSolver {
         self.chol.factor_nnz()
     }
 
+    /// Factorizes `values` now in double precision, whatever the policy
+    /// says (the next solves may reuse the factor): for the inertia of a
+    /// converged tangent. Not in single precision: near a critical point
+    /// the negative eigenvalue is far below the largest times 6e-8, and a
+    /// single-precision `LLᵀ` of the rounded matrix may then succeed.
+    pub fn factorize_now(&mut self, values: &[f64]) -> Result<(), LinearError> {
+        self.factorize(values, false)
+    }
+
+    /// Negative pivots of the present factor (the inertia of the last
+    /// factorized matrix: [`Cholesky::negative_pivots`]); `None` before
+    /// the first factorization.
+    pub fn negative_pivots(&self) -> Option<usize> {
+        self.chol.negative_pivots()
+    }
+
     /// Counters so far.
     pub fn stats(&self) -> &ReuseStats {
         &self.stats

@@ -69,6 +69,18 @@ impl LinearSystem {
         self.solver.solve_again_unsymmetric(&self.assembler.pattern, &self.tangent, rest, x)
     }
 
+    /// Negative pivots of the last factorized tangent.
+    pub fn negative_pivots(&self) -> Option<usize> {
+        self.solver.negative_pivots()
+    }
+
+    /// Factorizes the present (symmetric part of the) tangent and returns
+    /// its negative pivots; `None` if the factorization failed.
+    pub fn inertia(&mut self) -> Option<usize> {
+        self.solver.factorize_now(&self.tangent).ok()?;
+        self.solver.negative_pivots()
+    }
+
     /// The solver's counters.
     pub fn stats(&self) -> &ReuseStats {
         self.solver.stats()

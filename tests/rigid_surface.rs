@@ -217,3 +217,97 @@ fn a_ball_under_force_control_reaches_the_displacement_controlled_state() {
     eprintln!("force {:.6e} N: displacement {d:e} m (displacement control: -5e-5 m)", -force[2]);
     assert!((d / -5e-5 - 1.0).abs() < 1e-6, "force control reached {d} m");
 }
+
+/// The tangent with the material, geometric (initial-stress) and contact
+/// terms at once, at large rotation: a cantilever (1 m, 10 × 10 mm,
+/// elastic, ν = 0, `geometry = "nonlinear"`) given the displacement field
+/// of uniform bending to curvature κ = 0.5 /m (its axis an arc, the tip
+/// turned by 29°, fibres stretched by −κ t), and a rigid roller (R = 50 mm,
+/// axis x, `method = "surface"`) placed against the deformed top face at
+/// y = 0.7 m, 0.2 mm deep along the turned normal (it starts above the
+/// straight beam and is moved there at λ = 1). Not an equilibrium
+/// state (none is needed to compare a tangent with the residual's
+/// derivative), so the active set is set by the geometry: the three nodes
+/// across the top at y = 0.7 penetrate 0.2 mm, their neighbours 11 mm
+/// away stay 1 mm clear, and no perturbation switches a point. Assembled
+/// tangent against central differences of the residual in every component
+/// of the active nodes and of four axis nodes, relative to the largest
+/// tangent entry (h = 1e-9 m): issue 26's "finite-difference check of the
+/// tangent with the geometric and contact terms ≤ 1e-6".
+#[test]
+fn large_rotation_contact_tangent_matches_finite_differences() {
+    let (kappa, s0, radius, depth) = (0.5f64, 0.7f64, 0.05, 2e-4);
+    // axis point and unit normal (+z in the reference) at arc length s
+    let axis = |s: f64| [(kappa * s).sin() / kappa, 0.005 - (1.0 - (kappa * s).cos()) / kappa];
+    let normal = |s: f64| [(kappa * s).sin(), (kappa * s).cos()];
+    let (a, n) = (axis(s0), normal(s0));
+    let centre = [0.005, a[0] + (0.005 + radius - depth) * n[0], a[1] + (0.005 + radius - depth) * n[1]];
+    let text = format!(
+        r#"
+[analysis]
+geometry = "nonlinear"
+
+[[materials]]
+name = "steel"
+young_modulus = 200e9
+poisson_ratio = 0.0
+
+[[bodies]]
+name = "beam"
+material = "steel"
+section = {{ shape = "rectangle", element = "L9", x = {{ from = 0.0, to = 0.01, elements = 1 }}, z = {{ from = 0.0, to = 0.01, elements = 1 }} }}
+axis = {{ element = "B4", from = 0.0, to = 1.0, elements = 10 }}
+
+[[constraints]]
+name = "root"
+body = "beam"
+where = {{ y = 0.0 }}
+fix = ["x", "y", "z"]
+
+[[indenters]]
+name = "roller"
+body = "beam"
+shape = "cylinder"
+method = "surface"
+surface = {{ z = 0.01, y = [0.5, 1.0] }}
+axis = "x"
+center = [{}, {}, 0.1]
+radius = {radius}
+displacement = [0.0, 0.0, {}]
+"#,
+        centre[0],
+        centre[1],
+        centre[2] - 0.1
+    );
+    let model = Model::parse(&text).unwrap();
+    let mut s = Structure::new(&model, None).unwrap();
+    {
+        use cufem::solver::stepping::Incremental;
+        s.set_load_factor(1.0);
+    }
+    let n_nodes = s.displacements().len() / 3;
+    for node in 0..n_nodes {
+        let [_, y, z] = model.mesh.coords(node);
+        let (p, m) = (axis(y), normal(y));
+        let t = z - 0.005;
+        s.displacements_mut()[3 * node + 1] = p[0] + t * m[0] - y;
+        s.displacements_mut()[3 * node + 2] = p[1] + t * m[1] - z;
+    }
+    s.evaluate().unwrap();
+    let points = s.contact_points().to_vec();
+    let active: Vec<usize> = points.iter().filter(|p| p.active).map(|p| p.node).collect();
+    assert_eq!(active.len(), 3, "active: {active:?}");
+    for p in points.iter().filter(|p| p.active) {
+        assert!((p.gap + depth).abs() < 1e-9, "gap {}", p.gap);
+        // the roller's normal (towards the body: against the top face's
+        // outward normal) has turned with the beam (sin 0.35 = 0.34)
+        assert!((p.normal[1] + n[0]).abs() < 1e-9 && (p.normal[2] + n[1]).abs() < 1e-9, "{:?}", p.normal);
+    }
+    let nodes = active.iter().copied().chain((1..5).map(|i| i * n_nodes / 5));
+    let columns: Vec<(usize, usize)> =
+        nodes.flat_map(|n| (0..3).map(move |c| 3 * n + c)).filter_map(|d| s.equation(d).map(|e| (d, e))).collect();
+    let scale = s.tangent_values().iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let (worst, _) = common::tangent_vs_differences(&mut s, &columns, 1e-9, scale);
+    eprintln!("{} columns: largest difference {worst:.2e} of the largest entry", columns.len());
+    assert!(worst < 1e-6, "tangent differs from finite differences by {worst:e}");
+}

@@ -131,6 +131,8 @@ pub struct CcxRun {
     pub results: NodalResults,
     /// Force totals per node set (reactions of constraints, tool forces).
     pub totals: std::collections::HashMap<String, ([f64; 3], f64)>,
+    /// The same per printed increment: `(step time, force)`.
+    pub histories: std::collections::HashMap<String, Vec<(f64, [f64; 3])>>,
     /// Wall time.
     pub wall_time: Duration,
     /// Peak resident memory of the ccx process (bytes), if known.
@@ -171,7 +173,13 @@ pub fn run(program: &str, dir: &Path, threads: usize) -> Result<CcxRun, CcxError
     // kept so that a later `verify --ccx-results` reports the same cost
     let cost = format!("{} {}\n", wall_time.as_secs_f64(), peak_memory.unwrap_or(0));
     let _ = std::fs::write(dir.join("ccx.cost"), cost);
-    Ok(CcxRun { results, totals: results::read_dat(&dat), wall_time, peak_memory })
+    Ok(CcxRun {
+        results,
+        totals: results::read_dat(&dat),
+        histories: results::read_dat_history(&dat),
+        wall_time,
+        peak_memory,
+    })
 }
 
 /// Reads the results of an earlier run of the same deck from `from` (a
@@ -195,7 +203,13 @@ pub fn reuse(from: &Path, dir: &Path) -> Result<CcxRun, CcxError> {
     let mut cost = cost.split_whitespace().map(|v| v.parse::<f64>().ok());
     let wall_time = Duration::from_secs_f64(cost.next().flatten().unwrap_or(f64::NAN).max(0.0));
     let peak_memory = cost.next().flatten().filter(|&b| b > 0.0).map(|b| b as u64);
-    Ok(CcxRun { results, totals: results::read_dat(&dat), wall_time, peak_memory })
+    Ok(CcxRun {
+        results,
+        totals: results::read_dat(&dat),
+        histories: results::read_dat_history(&dat),
+        wall_time,
+        peak_memory,
+    })
 }
 
 fn read_or_fail(frd: &str, path: &Path, log: &str) -> Result<NodalResults, CcxError> {

@@ -89,11 +89,27 @@ pub fn read_frd(text: &str, path: &str) -> Result<NodalResults, CcxError> {
     Ok(out)
 }
 
+/// Force histories from the `.dat` file: for each node set, the force
+/// (total, or the sum of the listed nodal forces) at every printed
+/// increment, as `(step time, force)` in the file's order.
+pub fn read_dat_history(text: &str) -> HashMap<String, Vec<(f64, [f64; 3])>> {
+    let mut out: HashMap<String, Vec<(f64, [f64; 3])>> = HashMap::new();
+    for (set, force, time) in dat_blocks(text) {
+        out.entry(set).or_default().push((time, force));
+    }
+    out
+}
+
 /// Force totals from the `.dat` file: for each node set, the last
 /// `total force` (sets printed with `TOTALS=ONLY`) or the sum of the last
 /// listed nodal forces, with the step time they belong to.
 pub fn read_dat(text: &str) -> HashMap<String, ([f64; 3], f64)> {
-    let mut out: HashMap<String, ([f64; 3], f64)> = HashMap::new();
+    dat_blocks(text).into_iter().map(|(set, force, time)| (set, (force, time))).collect()
+}
+
+/// Every force block of the `.dat` file, in order: `(set, force, time)`.
+fn dat_blocks(text: &str) -> Vec<(String, [f64; 3], f64)> {
+    let mut out = Vec::new();
     let lines: Vec<&str> = text.lines().collect();
     let mut i = 0;
     while i < lines.len() {
@@ -126,7 +142,7 @@ pub fn read_dat(text: &str) -> HashMap<String, ([f64; 3], f64)> {
             }
         }
         if let Some(set) = set {
-            out.insert(set, (sum, time));
+            out.push((set, sum, time));
         }
     }
     out

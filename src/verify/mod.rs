@@ -13,7 +13,8 @@
 //! largest differences of the displacement, von Mises stress and peeq over
 //! each body, its plastic zone and its contact surfaces, singular places
 //! left out by a stated neighbourhood, and a VTU of the point-wise
-//! differences.
+//! differences. Over the load path ([`history`]): each indenter's force at
+//! every CalculiX increment (up to and past a peak).
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -28,8 +29,10 @@ use crate::model::Model;
 use crate::quantity::{Quantity, Sample};
 
 pub mod field;
+pub mod history;
 
 pub use field::{FieldComparison, FieldRow, SingularZone, StoredError, compare_stored, compare_stored_on};
+pub use history::{ForceCurve, ForceHistoryRow};
 
 /// One probe value, both ways.
 #[derive(Debug, Clone, Serialize)]
@@ -112,6 +115,11 @@ pub struct Comparison {
     pub fields: Vec<FieldRow>,
     /// The neighbourhoods of singular places left out of `fields`.
     pub excluded: Vec<SingularZone>,
+    /// Indenter force histories over the CalculiX increments.
+    pub force_histories: Vec<ForceHistoryRow>,
+    /// Their curves (written by [`Self::write`]).
+    #[serde(skip)]
+    pub force_curves: Vec<ForceCurve>,
     /// DOF, time and memory of both.
     pub cost: Cost,
 }
@@ -242,6 +250,7 @@ pub fn compare(
     };
     let solid = format!("{} × refine {}", mesh.kind.name(), mesh.refine);
     let whole = field::compare_fields(model, &view, mesh, run);
+    let (force_histories, force_curves) = history::compare_histories(model, solution, run);
     let comparison = Comparison {
         title: model.title.clone(),
         solid,
@@ -250,6 +259,8 @@ pub fn compare(
         resultants,
         fields: whole.rows.clone(),
         excluded: whole.zones.clone(),
+        force_histories,
+        force_curves,
         cost,
     };
     (comparison, curves, whole)
@@ -335,6 +346,7 @@ impl Comparison {
             }
         }
         self.field_table(&mut t);
+        history::table(&self.force_histories, &mut t);
         t
     }
 
@@ -462,6 +474,7 @@ impl Comparison {
             file(&p, &csv)?;
             written.push(p);
         }
+        written.extend(history::write(dir, &self.force_curves)?);
         Ok(written)
     }
 }

@@ -248,3 +248,34 @@ fn one_negative_pivot_between_the_limit_points() {
         assert_eq!(row.negative_pivots, Some(expected), "increment {} (λ = {})", row.increment, row.lambda);
     }
 }
+
+/// `summary.json` and the run's table report the path: its end criterion
+/// and the two limit points, as the library's outcome has them.
+#[test]
+fn the_summary_reports_the_limit_points() {
+    let out = std::env::temp_dir().join(format!("cufem_arch_{}", std::process::id()));
+    let run = std::process::Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", ARCH, "--quiet", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(run.status.success());
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let outcome = run_text_outcome();
+    assert_eq!(summary["path"]["end"], "load_factor");
+    let points = summary["path"]["limit_points"].as_array().unwrap();
+    assert_eq!(points.len(), outcome.len());
+    for (p, (i, l)) in points.iter().zip(&outcome) {
+        assert_eq!(p[0].as_u64().unwrap() as usize, *i);
+        assert!((p[1].as_f64().unwrap() - l).abs() < 1e-12 * l);
+    }
+    let table = String::from_utf8_lossy(&run.stdout);
+    assert!(table.contains("arc length: limit points increment"), "{table}");
+    std::fs::remove_dir_all(&out).ok();
+}
+
+/// The limit points of the example run through the library.
+fn run_text_outcome() -> Vec<(usize, f64)> {
+    run(&text()).path.unwrap().limit_points
+}

@@ -303,6 +303,11 @@ pub fn print_results(model: &Model, solution: &Solution) {
             largest.join(", ")
         );
     }
+    if let Some(p) = &summary.path {
+        let points: Vec<String> = p.limit_points.iter().map(|(i, l)| format!("increment {i} (λ = {l:.5})")).collect();
+        let points = if points.is_empty() { "none".to_string() } else { points.join(", ") };
+        println!("arc length: limit points {points}; ended by {}", p.end);
+    }
     if let Some(b) = &summary.buckling {
         println!("buckling  mode  load factor   critical load [N]");
         for (k, (f, p)) in b.factors.iter().zip(&b.critical_loads).enumerate() {

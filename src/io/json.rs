@@ -138,6 +138,10 @@ pub struct Summary {
     /// mode files, absent for a static analysis.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub buckling: Option<BucklingSummary>,
+    /// `solver.control = "arc_length"`: how the path following ended and
+    /// the limit points it passed, absent under load control.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub path: Option<PathSummary>,
     /// The other files of this result set (summary.json is written last and
     /// lists them, so a complete set can be recognised).
     pub files: Vec<String>,
@@ -152,6 +156,21 @@ pub struct BucklingSummary {
     pub critical_loads: Vec<[f64; 3]>,
     /// The VTU of each mode (`mode_<k>.vtu`), or empty without VTU output.
     pub modes: Vec<String>,
+}
+
+/// A path following in `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct PathSummary {
+    /// The stop criterion met: `"load_factor"` (λ reached
+    /// `solver.max_load_factor`), `"displacement"` (the probe of
+    /// `solver.stop` passed its value) or `"none"` (stopped early:
+    /// `failure` says why).
+    pub end: &'static str,
+    /// The limit points passed, in order: `[increment, λ]` of the converged
+    /// point where λ turned (a maximum, then a minimum after a snap).
+    pub limit_points: Vec<(usize, f64)>,
+    /// The first arc length (m).
+    pub first_arc_length: f64,
 }
 
 /// One cycle of an adaptive run.
@@ -373,6 +392,15 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
             factors: b.factors.clone(),
             critical_loads: b.factors.iter().map(|f| solution.applied.map(|a| a * f / solution.lambda)).collect(),
             modes: if model.output.vtu { (1..=b.factors.len()).map(mode_vtu_name).collect() } else { Vec::new() },
+        }),
+        path: solution.path.as_ref().map(|p| PathSummary {
+            end: match p.end {
+                Some(crate::analysis::PathEnd::LoadFactor(_)) => "load_factor",
+                Some(crate::analysis::PathEnd::Displacement { .. }) => "displacement",
+                None => "none",
+            },
+            limit_points: p.limit_points.clone(),
+            first_arc_length: p.first_arc_length,
         }),
         files: Vec::new(),
     }

@@ -125,6 +125,24 @@ pub fn cauchy(f: &Tensor, s: &Voigt) -> Voigt {
     [sij(0, 0), sij(1, 1), sij(2, 2), sij(0, 1), sij(0, 2), sij(1, 2)]
 }
 
+/// The second Piola–Kirchhoff stress of a Cauchy stress,
+/// `S = J F⁻¹ σ F⁻ᵀ` (the inverse of [`cauchy`]), in Voigt form.
+pub fn second_piola(f: &Tensor, sigma: &Voigt) -> Voigt {
+    let j = determinant(f);
+    // the inverse by cofactors: F⁻¹ = cof(F)ᵀ / J
+    let c = |r: usize, k: usize| {
+        let (r1, r2, k1, k2) = ((r + 1) % 3, (r + 2) % 3, (k + 1) % 3, (k + 2) % 3);
+        f[r1][k1] * f[r2][k2] - f[r1][k2] * f[r2][k1]
+    };
+    let inv: Tensor = std::array::from_fn(|i| std::array::from_fn(|k| c(k, i) / j));
+    let st = voigt::stress_tensor(sigma);
+    // S_ab = J Σ_ij F⁻¹_ai σ_ij F⁻¹_bj
+    let sab = |a: usize, b: usize| {
+        j * (0..3).map(|i| (0..3).map(|jj| inv[a][i] * st[i][jj] * inv[b][jj]).sum::<f64>()).sum::<f64>()
+    };
+    [sab(0, 0), sab(1, 1), sab(2, 2), sab(0, 1), sab(0, 2), sab(1, 2)]
+}
+
 /// The Green–Lagrange strain variation of a unit displacement in direction
 /// `k` of a node with reference gradient `g`: `δE = sym(Fᵀ (e_k ⊗ g))`,
 /// i.e. `δE_ij = ½ (F_ki g_j + F_kj g_i)` (engineering shear). With `F = I`
@@ -214,6 +232,18 @@ mod tests {
             for j in 0..3 {
                 assert!((rot[i][j] - expected[i][j]).abs() < 1e-13, "{i}{j}");
             }
+        }
+    }
+
+    /// `second_piola` inverts `cauchy` for a general (unsymmetric,
+    /// stretched, rotated) F, to round-off.
+    #[test]
+    fn second_piola_inverts_cauchy() {
+        let f = mul(&rotation([0.3, 1.0, -0.4], 0.9), &[[1.1, 0.2, -0.05], [0.03, 0.95, 0.1], [-0.02, 0.07, 1.2]]);
+        let s = [3.0, -1.0, 2.0, 0.5, -0.7, 0.25];
+        let back = second_piola(&f, &cauchy(&f, &s));
+        for k in 0..6 {
+            assert!((back[k] - s[k]).abs() < 1e-13, "{k}: {back:?}");
         }
     }
 

@@ -544,3 +544,56 @@ fn log_strain_is_green_lagrange_at_small_strain_on_the_compact_bar() {
         }
     }
 }
+
+/// `gauss.vtu` of a large-deformation run gives the reference measures
+/// beside the Cauchy stress: on the elastica at P L²/EI = 10 (the beam's
+/// axis turned by up to 80°, ν = 0), at every Gauss point of the middle
+/// half of the span, where the stress is the bending fibre stress along
+/// the turned axis t: the second Piola–Kirchhoff `pk2_yy` equals tr σ =
+/// σ_tt (the only non-zero Cauchy component of a slender beam, here
+/// rotated away from s_yy) within 2 % of the peak, the Green–Lagrange
+/// strain `gl_yy` is pk2_yy/E (Saint Venant–Kirchhoff, uniaxial) to 1e-6
+/// of the peak strain — while s_yy itself, the Cauchy component along the
+/// reference axis, is less than half of pk2_yy where the axis has turned
+/// by more than 45°. A wrong pull-back (a transposed F⁻¹: R σ Rᵀ for Rᵀ σ R)
+/// or F taken at another Gauss point than σ fails. (`log_yy` is written
+/// beside them; at these strains of 1e-3 it differs from gl_yy by 1e-6,
+/// below what this test could tell apart — `kinematics::hencky`'s tests
+/// check the measure.)
+#[test]
+fn gauss_points_give_pk2_and_both_strains_beside_cauchy() {
+    let out = std::env::temp_dir().join(format!("cufem_elastica_gauss_{}", std::process::id()));
+    std::fs::create_dir_all(&out).unwrap();
+    let model = out.join("elastica.toml");
+    let text = std::fs::read_to_string(ELASTICA).unwrap();
+    std::fs::write(&model, format!("{text}\n[output]\ngauss_points = true\n")).unwrap();
+    let status = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", "--quiet", "--force", "--out"])
+        .arg(out.join("run"))
+        .arg(&model)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let vtu = out.join("run/gauss.vtu");
+    let get = |n: &str| common::vtu_array(&vtu, Some(n));
+    let points = common::vtu_array(&vtu, None);
+    let (sxx, syy, szz, pk2, gl) = (get("s_xx"), get("s_yy"), get("s_zz"), get("pk2_yy"), get("gl_yy"));
+    assert_eq!(get("log_yy").len(), pk2.len());
+    let peak = pk2.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let strain_peak = gl.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let (mut checked, mut turned) = (0, 0);
+    for (i, p) in points.chunks(3).enumerate() {
+        if !(0.25..=0.75).contains(&p[1]) {
+            continue;
+        }
+        let trace = sxx[i] + syy[i] + szz[i];
+        assert!((pk2[i] - trace).abs() < 0.02 * peak, "y = {}: S_yy {} against tr σ {trace}", p[1], pk2[i]);
+        assert!((gl[i] - pk2[i] / 200e9).abs() < 1e-6 * strain_peak, "y = {}: E_yy {}", p[1], gl[i]);
+        if pk2[i].abs() > 0.2 * peak && syy[i].abs() < 0.5 * pk2[i].abs() {
+            turned += 1;
+        }
+        checked += 1;
+    }
+    assert!(checked > 100 && turned > 10, "{checked} points checked, {turned} turned past 45°");
+    std::fs::remove_dir_all(&out).ok();
+}

@@ -30,6 +30,8 @@ use crate::model::Model;
 use crate::post::{Location, Quantity};
 use crate::shape::Lagrange2d;
 
+mod finite;
+
 /// The whole 3D field of every body as `result.vtu` holds it: linear
 /// hexahedra over each element's own nodes, points duplicated per element.
 #[derive(Debug, Clone)]
@@ -196,7 +198,9 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
 /// VTK vertex per integration point at its physical position, with the
 /// stress of the return map (`s_xx`…`s_yz`, `von_mises`) and `peeq` as
 /// point data and `body`, `element` as cell data — the values every
-/// recovered field is built from, unsmoothed.
+/// recovered field is built from, unsmoothed. With
+/// `analysis.geometry = "nonlinear"` the stress is the Cauchy stress and
+/// [`finite::finite_strain_data`] adds the reference-configuration measures.
 pub fn write_gauss_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), IoError> {
     let view = solution.fields(model);
     let mut points: Vec<f64> = Vec::new();
@@ -234,6 +238,9 @@ pub fn write_gauss_vtu(path: &Path, model: &Model, solution: &Solution) -> Resul
         names.iter().zip(stress).map(|(n, v)| (n.to_string(), 1, Array::F64(v))).collect();
     point_data.push(("von_mises".into(), 1, Array::F64(von_mises)));
     point_data.push(("peeq".into(), 1, Array::F64(peeq)));
+    if model.kinematics.is_nonlinear() {
+        point_data.extend(finite::finite_strain_data(model, solution));
+    }
     let cell_data = body_element_data(cell_body, cell_element);
     let grid = Grid {
         title: &model.title,

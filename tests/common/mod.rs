@@ -53,3 +53,28 @@ pub fn solve_path(s: &mut Structure, path: &[(f64, bool)]) {
         }
     }
 }
+
+/// The values of a VTK XML file's `DataArray` named `name` (binary,
+/// `header_type="UInt64"`, the format cufem writes), or of the `Points`
+/// array with `name = None`.
+pub fn vtu_array(path: &std::path::Path, name: Option<&str>) -> Vec<f64> {
+    use base64::Engine as _;
+    let text = std::fs::read_to_string(path).unwrap();
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let a = doc
+        .descendants()
+        .find(|n| {
+            n.has_tag_name("DataArray")
+                && match name {
+                    Some(name) => n.attribute("Name") == Some(name),
+                    None => n.parent().is_some_and(|p| p.has_tag_name("Points")),
+                }
+        })
+        .unwrap_or_else(|| panic!("no array {name:?} in {}", path.display()));
+    let raw = base64::engine::general_purpose::STANDARD.decode(a.text().unwrap_or("").trim()).unwrap();
+    let n = u64::from_le_bytes(raw[..8].try_into().unwrap()) as usize;
+    match a.attribute("type").unwrap() {
+        "Float64" => raw[8..8 + n].chunks_exact(8).map(|b| f64::from_le_bytes(b.try_into().unwrap())).collect(),
+        t => panic!("type {t}"),
+    }
+}

@@ -131,7 +131,12 @@ pub fn compare_histories(model: &Model, solution: &Solution, run: &CcxRun) -> (V
             at,
             moving,
         });
-        curves.push(ForceCurve { name: ind.name.clone(), moving, direction: ind.displacement.map(|v| v / length.max(f64::MIN_POSITIVE)), points: curve });
+        curves.push(ForceCurve {
+            name: ind.name.clone(),
+            moving,
+            direction: ind.displacement.map(|v| v / length.max(f64::MIN_POSITIVE)),
+            points: curve,
+        });
     }
     (rows, curves)
 }

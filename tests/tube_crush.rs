@@ -1,0 +1,140 @@
+//! A thin-walled tube crushed by a rigid cylinder past its peak load
+//! (examples/tube_crush.toml, issue 26): cufem's force–displacement curve
+//! against the CalculiX NLGEOM twin's: within 2.0 % of the 3D peak up to
+//! it, 15.7 % past it (issue 26's 5 % past the peak is not met; tests below).
+//!
+//! The 3D curve is stored in tests/data/tube_crush_ccx_force.csv: it is
+//! `verify/history_load.csv` of
+//!
+//! ```text
+//! cufem verify examples/tube_crush.toml --refine 1
+//! ```
+//!
+//! (CalculiX 2.20, C3D20R × refine 1: 30,444 nodes, the same rigid rollers,
+//! `*STEP, NLGEOM`; columns `lambda,d,f_x,f_y,f_z,ccx_f_x,ccx_f_y,ccx_f_z`,
+//! d the roller's displacement in m, forces on the tube in N). Both runs
+//! take minutes on two cores, so the checks are `#[ignore]`d and run by
+//! hand:
+//!
+//! ```text
+//! cargo test --release --test tube_crush -- --ignored
+//! ```
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+const EXAMPLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/tube_crush.toml");
+const STORED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/tube_crush_ccx_force.csv");
+
+fn out_dir(name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+/// `(d, F)` rows of a CSV: the roller's displacement (m, positive down)
+/// and the force it pushes with (N, positive), from the columns named.
+fn curve(text: &str, d_col: &str, f_col: &str) -> Vec<(f64, f64)> {
+    let mut lines = text.lines();
+    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
+    let (i, j) = (header.iter().position(|h| *h == d_col).unwrap(), header.iter().position(|h| *h == f_col).unwrap());
+    lines
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap_or(f64::NAN)).collect();
+            (v[i].abs(), -v[j])
+        })
+        .collect()
+}
+
+/// Linear interpolation of `path` (increasing d, from (0, 0)) at `d`.
+fn at(path: &[(f64, f64)], d: f64) -> f64 {
+    let mut last = (0.0, 0.0);
+    for &p in path {
+        if p.0 >= d {
+            return last.1 + (d - last.0) / (p.0 - last.0) * (p.1 - last.1);
+        }
+        last = p;
+    }
+    panic!("d = {d} beyond the path's end {}", last.0)
+}
+
+/// The example is a valid model of the size its header states (checked
+/// in every test run: the comparisons below take minutes), and the stored
+/// 3D curve is the one of its 9 mm crush: 36 CalculiX increments of
+/// 0.25 mm, its peak passed.
+#[test]
+fn the_example_and_its_stored_curve_are_consistent() {
+    let check = Command::new(env!("CARGO_BIN_EXE_cufem")).args(["check", EXAMPLE]).output().unwrap();
+    assert!(check.status.success(), "{}", String::from_utf8_lossy(&check.stderr));
+    assert!(String::from_utf8_lossy(&check.stdout).contains("260 elements, 4,800 nodes, 14,400 DOF"));
+    let theirs = curve(&std::fs::read_to_string(STORED).unwrap(), "d", "ccx_f_z");
+    assert_eq!(theirs.len(), 36);
+    assert!((theirs.last().unwrap().0 - 9e-3).abs() < 1e-9);
+    let peak = theirs.iter().map(|p| p.1).fold(0.0, f64::max);
+    assert!(theirs.last().unwrap().1 < 0.9 * peak);
+}
+
+/// The example through the CLI against the stored 3D curve. Up to the 3D
+/// peak, at every 3D increment, the force within 5 % of the 3D peak
+/// (measured 2.0 %); cufem's largest force within 5 % of the 3D peak
+/// (measured +3.4 %); the 3D curve well past its peak (its last force
+/// 14 % below it). Past the peak issue 26 asks for 5 % and this model does
+/// NOT meet it: it stays near 1.25 kN where the 3D tube softens to
+/// 1.05 kN (15.7 % of the peak at 9 mm; the example's header gives the
+/// likely cause, volumetric locking under isochoric plastic flow).
+/// Asserted there: within 20 %, so that a regression beyond today's gap
+/// fails.
+#[test]
+#[ignore = "minutes: the crush runs 113 increments"]
+fn the_crush_follows_the_calculix_curve_to_its_peak() {
+    let out = out_dir("tube_crush");
+    let status = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", EXAMPLE, "--quiet", "--out"])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let ours = curve(&std::fs::read_to_string(out.join("history_load.csv")).unwrap(), "d_z", "f_z");
+    let stored = std::fs::read_to_string(STORED).unwrap();
+    let theirs = curve(&stored, "d", "ccx_f_z");
+    let peak = |c: &[(f64, f64)]| c.iter().copied().fold((0.0, 0.0), |m, p| if p.1 > m.1 { p } else { m });
+    let (p3, pc) = (peak(&theirs), peak(&ours));
+    eprintln!("peaks: 3D {:.1} N at {:.2} mm, cufem {:.1} N at {:.2} mm", p3.1, p3.0 * 1e3, pc.1, pc.0 * 1e3);
+    let (mut before, mut after): ((f64, f64), (f64, f64)) = ((0.0, 0.0), (0.0, 0.0));
+    for &(d, f) in &theirs {
+        let diff = 100.0 * (at(&ours, d) - f).abs() / p3.1;
+        let worst = if d <= p3.0 { &mut before } else { &mut after };
+        if diff > worst.1 {
+            *worst = (d, diff);
+        }
+    }
+    eprintln!("largest difference up to the 3D peak {:.2} % at {:.2} mm", before.1, before.0 * 1e3);
+    eprintln!("largest difference past it {:.2} % at {:.2} mm", after.1, after.0 * 1e3);
+    assert!(before.1 < 5.0, "{:.2} % at {:.2} mm", before.1, before.0 * 1e3);
+    assert!((pc.1 - p3.1).abs() < 0.05 * p3.1);
+    assert!(after.1 < 20.0, "{:.2} % at {:.2} mm", after.1, after.0 * 1e3);
+    let last = theirs.last().unwrap();
+    assert!(last.1 < 0.95 * p3.1 && last.0 > 2.0 * p3.0, "not past the peak: {last:?} against {p3:?}");
+}
+
+/// The same comparison made by `cufem verify` itself, CalculiX included:
+/// its force-history row for the loading roller — the peaks within 5 %
+/// (measured +3.4 %), the largest difference over the whole curve below
+/// 20 % (measured 15.7 %, past the peak: see the test above).
+#[test]
+#[ignore = "tens of minutes: runs CalculiX with NLGEOM on 30,444 nodes"]
+fn verify_compares_the_crush_with_calculix_nlgeom() {
+    let out = out_dir("tube_crush_verify");
+    let status = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["verify", EXAMPLE, "--refine", "1", "--quiet", "--out"])
+        .arg(&out)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let table: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("verify/table.json")).unwrap()).unwrap();
+    let load = table["force_histories"].as_array().unwrap().iter().find(|r| r["name"] == "load").unwrap();
+    eprintln!("{load}");
+    assert!(load["peak_difference_percent"].as_f64().unwrap().abs() < 5.0);
+    assert!(load["max_difference_percent"].as_f64().unwrap() < 20.0);
+}

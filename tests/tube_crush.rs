@@ -80,8 +80,8 @@ fn the_example_and_its_stored_curve_are_consistent() {
 /// (measured +3.4 %); the 3D curve well past its peak (its last force
 /// 14 % below it). Past the peak issue 26 asks for 5 % and this model does
 /// NOT meet it: it stays near 1.25 kN where the 3D tube softens to
-/// 1.05 kN (15.7 % of the peak at 9 mm; the example's header gives the
-/// likely cause, volumetric locking under isochoric plastic flow).
+/// 1.05 kN (15.7 % of the peak at 9 mm; the example's header discusses
+/// the causes: partly volumetric locking, partly the fold's resolution).
 /// Asserted there: within 20 %, so that a regression beyond today's gap
 /// fails.
 #[test]

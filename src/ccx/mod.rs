@@ -139,6 +139,20 @@ pub struct CcxRun {
     pub peak_memory: Option<u64>,
 }
 
+impl CcxRun {
+    /// The run's nodal results with the force totals and histories of its
+    /// `.dat` text.
+    fn new(results: NodalResults, dat: &str, wall_time: Duration, peak_memory: Option<u64>) -> Self {
+        Self {
+            results,
+            totals: results::read_dat(dat),
+            histories: results::read_dat_history(dat),
+            wall_time,
+            peak_memory,
+        }
+    }
+}
+
 /// Runs `program -i model` in `dir` with `threads` threads; the log goes to
 /// `dir/ccx.log`.
 pub fn run(program: &str, dir: &Path, threads: usize) -> Result<CcxRun, CcxError> {
@@ -173,13 +187,7 @@ pub fn run(program: &str, dir: &Path, threads: usize) -> Result<CcxRun, CcxError
     // kept so that a later `verify --ccx-results` reports the same cost
     let cost = format!("{} {}\n", wall_time.as_secs_f64(), peak_memory.unwrap_or(0));
     let _ = std::fs::write(dir.join("ccx.cost"), cost);
-    Ok(CcxRun {
-        results,
-        totals: results::read_dat(&dat),
-        histories: results::read_dat_history(&dat),
-        wall_time,
-        peak_memory,
-    })
+    Ok(CcxRun::new(results, &dat, wall_time, peak_memory))
 }
 
 /// Reads the results of an earlier run of the same deck from `from` (a
@@ -203,13 +211,7 @@ pub fn reuse(from: &Path, dir: &Path) -> Result<CcxRun, CcxError> {
     let mut cost = cost.split_whitespace().map(|v| v.parse::<f64>().ok());
     let wall_time = Duration::from_secs_f64(cost.next().flatten().unwrap_or(f64::NAN).max(0.0));
     let peak_memory = cost.next().flatten().filter(|&b| b > 0.0).map(|b| b as u64);
-    Ok(CcxRun {
-        results,
-        totals: results::read_dat(&dat),
-        histories: results::read_dat_history(&dat),
-        wall_time,
-        peak_memory,
-    })
+    Ok(CcxRun::new(results, &dat, wall_time, peak_memory))
 }
 
 fn read_or_fail(frd: &str, path: &Path, log: &str) -> Result<NodalResults, CcxError> {

@@ -239,7 +239,7 @@ pub fn write_gauss_vtu(path: &Path, model: &Model, solution: &Solution) -> Resul
     point_data.push(("von_mises".into(), 1, Array::F64(von_mises)));
     point_data.push(("peeq".into(), 1, Array::F64(peeq)));
     if model.kinematics.is_nonlinear() {
-        point_data.extend(finite::finite_strain_data(model, solution));
+        point_data.extend(finite::finite_strain_data(model, &view));
     }
     let cell_data = body_element_data(cell_body, cell_element);
     let grid = Grid {

@@ -273,16 +273,16 @@ impl Cholesky {
     pub fn negative_pivots(&self) -> Option<usize> {
         match self.kind? {
             Kind::Llt | Kind::Llt32 => Some(0),
-            Kind::Ldlt => Some(self.ldlt_diagonal().filter(|d| *d < 0.0).count()),
+            Kind::Ldlt => Some(self.ldlt_diagonal().iter().filter(|d| **d < 0.0).count()),
         }
     }
 
     /// The diagonal `D` of an `LDLᵀ` factor, stored where `LLᵀ` keeps its
     /// diagonal: the diagonal of each supernode's dense column block, or
     /// the first entry of each simplicial column.
-    fn ldlt_diagonal(&self) -> impl Iterator<Item = f64> + '_ {
+    fn ldlt_diagonal(&self) -> Vec<f64> {
         let v = &self.l_values;
-        let diagonal: Vec<f64> = match self.symbolic.raw() {
+        match self.symbolic.raw() {
             SymbolicCholeskyRaw::Supernodal(sn) => {
                 let (begin, end, rows, vals) =
                     (sn.supernode_begin(), sn.supernode_end(), sn.col_ptr_for_row_idx(), sn.col_ptr_for_val());
@@ -295,8 +295,7 @@ impl Cholesky {
                     .collect()
             }
             SymbolicCholeskyRaw::Simplicial(sp) => sp.col_ptr()[..sp.ncols()].iter().map(|&p| v[p]).collect(),
-        };
-        diagonal.into_iter()
+        }
     }
 
     /// Number of stored values of the factor `L`.

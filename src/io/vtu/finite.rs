@@ -1,19 +1,18 @@
 //! The finite-strain measures of `gauss.vtu` beside the analysis's own.
 
 use super::Array;
-use crate::analysis::Solution;
 use crate::model::Model;
-use crate::post::Location;
+use crate::post::{FieldView, Location};
 
 /// At every Gauss point (the order of [`super::write_gauss_vtu`]), from the
 /// deformation gradient `F = I + ∇u` of the displacement and the Cauchy
-/// stress σ: the second Piola–Kirchhoff stress `S = J F⁻¹ σ F⁻ᵀ`
+/// stress σ of the run's field `view`: the second Piola–Kirchhoff stress
+/// `S = J F⁻¹ σ F⁻ᵀ`
 /// (`pk2_xx`…`pk2_yz`, Pa), the Green–Lagrange strain (`gl_xx`…`gl_yz`) and
 /// the logarithmic strain `½ ln C` (`log_xx`…`log_yz`), shears as
 /// engineering strains (`crate::voigt`) — each measure beside the one the
 /// analysis used, whichever `analysis.strain` is.
-pub(super) fn finite_strain_data(model: &Model, solution: &Solution) -> Vec<(String, usize, Array)> {
-    let view = solution.fields(model);
+pub(super) fn finite_strain_data(model: &Model, view: &FieldView<'_>) -> Vec<(String, usize, Array)> {
     let mut columns: [Vec<f64>; 18] = Default::default();
     for (b, body) in model.mesh.bodies.iter().enumerate() {
         let cell = &model.cells[b];

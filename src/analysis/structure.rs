@@ -114,7 +114,7 @@ impl<'m> Structure<'m> {
             state: Kinematics::new(mesh.n_dofs()),
             elements,
             loads: Loads::new(model),
-            contacts: Contacts::new(mesh, &model.indenters, &model.contacts),
+            contacts: Contacts::new(mesh, &model.indenters, &model.contacts, model.kinematics.is_nonlinear()),
             dirichlet,
             force: ForceControl::new(model, n_eq),
             system: LinearSystem::new(assembler, chol, model.solver.reuse, model.has_friction(), mesh.n_dofs()),

@@ -48,6 +48,7 @@
 use crate::bc::FaceIntegral;
 
 pub mod assembly;
+pub mod current;
 mod friction;
 pub use assembly::{ContactPoint, Contacts};
 pub use friction::{Friction, FrictionResponse, friction_response, stick_block, turning_friction};

@@ -51,6 +51,23 @@ impl Lagrange1d {
             dn[k] = der;
         }
     }
+
+    /// Second derivatives `ddn[k] = d²N_k/dξ²` (`len()` entries):
+    /// `Σ_(j≠l, both ≠ k) Π_(m ∉ {k, j, l}) (ξ − ξ_m) / Π_(m≠k) (ξ_k − ξ_m)`.
+    pub fn second_derivatives(&self, xi: f64, ddn: &mut [f64]) {
+        let x = &self.nodes;
+        let m = x.len();
+        for k in 0..m {
+            let denom: f64 = (0..m).filter(|&j| j != k).map(|j| x[k] - x[j]).product();
+            let mut sum = 0.0;
+            for j in (0..m).filter(|&j| j != k) {
+                for l in (0..m).filter(|&l| l != k && l != j) {
+                    sum += (0..m).filter(|&q| q != k && q != j && q != l).map(|q| xi - x[q]).product::<f64>();
+                }
+            }
+            ddn[k] = sum / denom;
+        }
+    }
 }
 
 /// Tensor-product Lagrange basis on `[-1, 1]²` (ξ varies fastest).
@@ -104,6 +121,28 @@ impl Lagrange2d {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Second derivatives against central differences of the first, and
+    /// zero sum (the basis reproduces constants and lines).
+    #[test]
+    fn second_derivatives_match_differences() {
+        for p in 1..=3 {
+            let l = Lagrange1d::new(p);
+            let m = l.len();
+            let (mut n, mut dp, mut dm, mut dd) = (vec![0.0; m], vec![0.0; m], vec![0.0; m], vec![0.0; m]);
+            for xi in [-0.9, -0.3, 0.2, 0.75] {
+                let h = 1e-6;
+                l.eval(xi + h, &mut n, &mut dp);
+                l.eval(xi - h, &mut n, &mut dm);
+                l.second_derivatives(xi, &mut dd);
+                for k in 0..m {
+                    let fd = (dp[k] - dm[k]) / (2.0 * h);
+                    assert!((dd[k] - fd).abs() < 1e-6, "p {p} k {k}: {} against {fd}", dd[k]);
+                }
+                assert!(dd.iter().sum::<f64>().abs() < 1e-10);
+            }
+        }
+    }
 
     #[test]
     fn kronecker_delta_and_partition_of_unity_1d() {

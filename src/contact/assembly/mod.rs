@@ -94,12 +94,18 @@ pub struct Contacts<'m> {
     /// The next evaluation is the first of an increment that starts at the
     /// committed state (frictional points then get the stick tangent).
     first_evaluation: bool,
+    /// Surface contacts between deformable bodies are evaluated in the
+    /// current configuration (`crate::contact::current`: nonlinear
+    /// geometry); otherwise their projections are fixed within an increment.
+    current: bool,
 }
 
 impl<'m> Contacts<'m> {
     /// The contact points of `indenters` and `pairs` on `mesh`, the surface
-    /// contacts projected in the reference configuration.
-    pub fn new(mesh: &'m Mesh, indenters: &'m [Indenter], pairs: &'m [PairContact]) -> Self {
+    /// contacts projected in the reference configuration; with `current`
+    /// (nonlinear geometry) surface contacts between deformable bodies are
+    /// evaluated in the current configuration.
+    pub fn new(mesh: &'m Mesh, indenters: &'m [Indenter], pairs: &'m [PairContact], current: bool) -> Self {
         let mut points = Vec::new();
         let mut ranges = Vec::new();
         for ind in indenters {
@@ -138,6 +144,7 @@ impl<'m> Contacts<'m> {
             f_contact: vec![0.0; mesh.n_dofs()],
             offsets: vec![[0.0; 3]; indenters.len()],
             first_evaluation: false,
+            current,
         };
         contacts.update_projections(&vec![0.0; mesh.n_dofs()]);
         contacts

@@ -13,7 +13,7 @@
 
 use super::{ContactPoint, Contacts};
 use crate::assembly::{At, Tangent};
-use crate::contact::{self, PairContact, surface};
+use crate::contact::{self, PairContact, current, surface};
 use crate::materials::Predictor;
 
 /// Projections and weighted gaps of one surface contact.
@@ -21,6 +21,21 @@ use crate::materials::Predictor;
 pub(super) struct State {
     /// Per slave node.
     gaps: Vec<surface::NodeGap>,
+    /// In the current configuration (`Contacts::current`): each slave
+    /// point's projection onto the deformed master surface, from which the
+    /// gaps were linearized; empty otherwise.
+    current: Vec<Option<current::CurrentProjection>>,
+}
+
+impl State {
+    /// Every point projected onto the master surface deformed by `u`, and
+    /// the weighted gaps linearized there.
+    fn current(s: &surface::SurfaceContact, mesh: &crate::mesh::Mesh, u: &[f64]) -> Self {
+        let master = &mesh.bodies[s.master_body];
+        let current: Vec<_> = s.points.iter().map(|p| current::project(s, master, p, u)).collect();
+        let projections: Vec<_> = current.iter().map(|c| c.as_ref().map(|c| c.projection.clone())).collect();
+        Self { gaps: s.node_gaps(&projections), current }
+    }
 }
 
 /// The contact points (one per slave node) of a surface contact before the
@@ -43,9 +58,13 @@ impl Contacts<'_> {
     pub(super) fn update_projections(&mut self, u_committed: &[f64]) {
         for (c, pc) in self.pairs.iter().enumerate() {
             let Some(s) = &pc.surface else { continue };
-            let projections: Vec<_> = s.points.iter().map(|p| surface::project(s, self.mesh, p, u_committed)).collect();
-            let gaps = s.node_gaps(&projections);
-            self.surface[c] = State { gaps };
+            self.surface[c] = if self.current {
+                State::current(s, self.mesh, u_committed)
+            } else {
+                let projections: Vec<_> =
+                    s.points.iter().map(|p| surface::project(s, self.mesh, p, u_committed)).collect();
+                State { gaps: s.node_gaps(&projections), current: Vec::new() }
+            };
         }
     }
 
@@ -62,7 +81,14 @@ impl Contacts<'_> {
         friction: Option<&contact::Friction>,
     ) -> usize {
         let mut changes = 0;
-        let state = std::mem::take(&mut self.surface[c]);
+        let state = if self.current {
+            // the deformed master surface of this very state
+            State::current(s, self.mesh, at.u)
+        } else {
+            std::mem::take(&mut self.surface[c])
+        };
+        // P_a / A_a of each active slave node, for the gaps' second variation
+        let mut pressures = vec![0.0; state.gaps.len()];
         for (j, g) in state.gaps.iter().enumerate() {
             let (area, eps) = (s.areas[j], s.penalties[j]);
             let point = &mut self.points[k0 + j];
@@ -95,6 +121,7 @@ impl Contacts<'_> {
                 continue;
             }
             point.force = g.moment.map(|v| force * v / area);
+            pressures[j] = force / area;
             for (b, v) in &g.grad {
                 for k in 0..3 {
                     self.f_contact[3 * b + k] += force / area * v[k];
@@ -109,6 +136,20 @@ impl Contacts<'_> {
             }
             if let Some(fr) = friction {
                 self.surface_friction(at, tangent, k0 + j, (g, area, eps, force), fr);
+            }
+        }
+        // in the current configuration the gap is not linear in u: the force
+        // P_a on g̃_a/A_a adds −(P_a/A_a) Σ_q w_q N_a(q) ∂²g_q
+        for (p, cp) in s.points.iter().zip(&state.current) {
+            let Some(cp) = cp else { continue };
+            let coefficient: f64 = p
+                .nodes
+                .iter()
+                .zip(&p.shapes)
+                .map(|(a, na)| pressures[s.slave_nodes.binary_search(a).expect("slave node listed")] * p.weight * na)
+                .sum();
+            if coefficient != 0.0 {
+                cp.add_second_variation(p, -coefficient, |a, b, block| tangent.add_node_block(a, b, block));
             }
         }
         self.surface[c] = state;

@@ -131,7 +131,8 @@ pub fn plan(model: &Model) -> Result<Sizes, AnalysisError> {
             }
         }
     }
-    let couplings: Vec<(usize, usize)> = model.contacts.iter().flat_map(|c| c.couplings(&model.mesh)).collect();
+    let couplings: Vec<(usize, usize)> =
+        model.contacts.iter().flat_map(|c| c.couplings(&model.mesh, model.kinematics.is_nonlinear())).collect();
     let numbering = Numbering::new(&model.mesh, &fixed, &couplings)?;
     let solver = Cholesky::analyze(&numbering.pattern)?;
     Ok(sizes(model, &numbering, &solver))

@@ -79,7 +79,8 @@ impl<'m> Structure<'m> {
         let mesh = &model.mesh;
         let (value, source) = dirichlet::prescribed_values(model);
         let fixed: Vec<bool> = value.iter().map(|v| *v == Some(0.0)).collect();
-        let couplings: Vec<(usize, usize)> = model.contacts.iter().flat_map(|c| c.couplings(mesh)).collect();
+        let couplings: Vec<(usize, usize)> =
+            model.contacts.iter().flat_map(|c| c.couplings(mesh, model.kinematics.is_nonlinear())).collect();
         let numbering = Numbering::new(mesh, &fixed, &couplings)?;
         let t_sym = Instant::now();
         let chol = Cholesky::analyze(&numbering.pattern)?;

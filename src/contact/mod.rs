@@ -50,6 +50,7 @@ use crate::bc::FaceIntegral;
 pub mod assembly;
 pub mod current;
 mod friction;
+pub mod nodal_normal;
 pub use assembly::{ContactPoint, Contacts};
 pub use friction::{Friction, FrictionResponse, friction_response, stick_block, turning_friction};
 pub mod surface;
@@ -308,10 +309,27 @@ impl PairContact {
     }
 
     /// Node pairs the matrix pattern must couple: the node pairs, or the
-    /// slave–master couplings of a surface contact's candidate faces.
-    pub fn couplings(&self, mesh: &crate::mesh::Mesh) -> Vec<(usize, usize)> {
+    /// slave–master couplings of a surface contact's candidate faces; with
+    /// `current` (nonlinear geometry) a node pair couples its slave node and
+    /// every node of the master faces around its master node (whose
+    /// positions turn its normal, [`nodal_normal`]).
+    pub fn couplings(&self, mesh: &crate::mesh::Mesh, current: bool) -> Vec<(usize, usize)> {
         match &self.surface {
             Some(s) => s.couplings(&mesh.bodies[s.master_body]),
+            None if current => {
+                let masters: Vec<usize> = self.pairs.iter().map(|p| p.master).collect();
+                let normals = nodal_normal::NodalNormal::for_nodes(mesh, &self.master, &masters);
+                let mut set = std::collections::BTreeSet::new();
+                for (p, n) in self.pairs.iter().zip(&normals) {
+                    let all: Vec<usize> = std::iter::once(p.slave).chain(n.nodes.iter().copied()).collect();
+                    for (i, &a) in all.iter().enumerate() {
+                        for &b in &all[i + 1..] {
+                            set.insert((a.min(b), a.max(b)));
+                        }
+                    }
+                }
+                set.into_iter().collect()
+            }
             None => self.pairs.iter().map(|p| (p.slave, p.master)).collect(),
         }
     }

@@ -401,6 +401,17 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let loads = preprocess::loads(&file.loads, &mesh, &materials)?;
     let indenters = indenters::indenters(&file.indenters, &mesh, &materials, &mut warnings)?;
     let contacts = contacts::pair_contacts(&file.contacts, &mesh, &materials, &mut warnings)?;
+    if kinematics.is_nonlinear()
+        && let Some((k, c)) = contacts.iter().enumerate().find(|(_, c)| c.surface.is_none() && c.friction.is_some())
+    {
+        // node pairs in the current configuration are frictionless (contact::nodal_normal)
+        return Err(invalid(
+            format!("contacts[{k}].friction"),
+            c.friction.as_ref().map_or(0.0, |f| f.coefficient),
+            "no friction on node-to-node contact with analysis.geometry = \"nonlinear\" (use method = \"surface\", \
+             whose friction follows the current configuration)",
+        ));
+    }
     restraint::check(&mesh, &constraints, &indenters, &contacts)?;
     let probes = preprocess::probes(&file.probes, &mesh)?;
     let lines = preprocess::lines(&file.lines, &mesh, &mut warnings)?;

@@ -98,6 +98,9 @@ pub struct Contacts<'m> {
     /// current configuration (`crate::contact::current`: nonlinear
     /// geometry); otherwise their projections are fixed within an increment.
     current: bool,
+    /// With `current`: the current master normal of every node pair, per
+    /// pair contact (empty for surface contacts).
+    nodal_normals: Vec<Vec<crate::contact::nodal_normal::NodalNormal>>,
 }
 
 impl<'m> Contacts<'m> {
@@ -145,6 +148,17 @@ impl<'m> Contacts<'m> {
             offsets: vec![[0.0; 3]; indenters.len()],
             first_evaluation: false,
             current,
+            nodal_normals: if current {
+                pairs
+                    .iter()
+                    .map(|pc| {
+                        let masters: Vec<usize> = pc.pairs.iter().map(|p| p.master).collect();
+                        crate::contact::nodal_normal::NodalNormal::for_nodes(mesh, &pc.master, &masters)
+                    })
+                    .collect()
+            } else {
+                Vec::new()
+            },
         };
         contacts.update_projections(&vec![0.0; mesh.n_dofs()]);
         contacts
@@ -223,6 +237,11 @@ impl Contribution for Contacts<'_> {
         }
         for (c, pc) in pairs.iter().enumerate() {
             for (j, p) in pc.pairs.iter().enumerate() {
+                if self.current {
+                    changes += usize::from(self.pair_current(at, tangent, k, (c, j)));
+                    k += 1;
+                    continue;
+                }
                 let um = [0, 1, 2].map(|i| at.u[3 * p.master + i]);
                 // an interference fit's overlap is imposed over the first step
                 let gap0 = p.gap0 + pc.overlap_relief(j, at.lambda);

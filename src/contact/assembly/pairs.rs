@@ -121,3 +121,50 @@ impl Contacts<'_> {
         changed
     }
 }
+
+impl Contacts<'_> {
+    /// Node pair `j` of pair contact `c` in the current configuration
+    /// (`contact::nodal_normal`): the gap between the current positions
+    /// along the master surface's current normal, force `p ∇g`
+    /// (`p = λ − ε g ≥ 0`) on the slave node, the master node and the
+    /// master faces' nodes that turn the normal, tangent
+    /// `ε ∇g ∇gᵀ − p ∂²g`. Frictionless (friction is refused with it).
+    /// Returns true if the point's active status changed.
+    pub(super) fn pair_current(
+        &mut self,
+        at: &At<'_>,
+        tangent: &mut Tangent<'_>,
+        k: usize,
+        (c, j): (usize, usize),
+    ) -> bool {
+        let pc = &self.pairs[c];
+        let p = &pc.pairs[j];
+        let normal = &self.nodal_normals[c][j];
+        let cp = normal.pair(self.mesh, p.slave, p.master, at.u, pc.overlap_relief(j, at.lambda));
+        let response = contact::augmented_response(cp.gap, &cp.normal, p.penalty, self.points[k].multiplier);
+        let point = &mut self.points[k];
+        let changed = response.is_some() != point.active;
+        point.active = response.is_some();
+        point.gap = cp.gap;
+        point.normal = cp.normal;
+        point.force = [0.0; 3];
+        point.sliding = false;
+        self.blocks[k] = response.map_or([[0.0; 3]; 3], |r| r.1);
+        let Some((f, _)) = response else { return changed };
+        point.force = f;
+        let pressure: f64 = (0..3).map(|i| f[i] * cp.normal[i]).sum();
+        for (b, g) in &cp.gradient {
+            for i in 0..3 {
+                self.f_contact[3 * b + i] += pressure * g[i];
+            }
+        }
+        for (x, (a, ga)) in cp.gradient.iter().enumerate() {
+            for (b, gb) in &cp.gradient[x..] {
+                let block: [[f64; 3]; 3] = std::array::from_fn(|r| std::array::from_fn(|s| p.penalty * ga[r] * gb[s]));
+                tangent.add_node_block(*a, *b, &block);
+            }
+        }
+        normal.add_second_variation(&cp, -pressure, p.master, |a, b, block| tangent.add_node_block(a, b, block));
+        changed
+    }
+}

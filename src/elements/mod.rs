@@ -68,9 +68,11 @@ pub struct Workspace {
     /// geometric stiffness).
     frames: Vec<Tensor>,
     pk2: Vec<Voigt>,
-    /// The geometric stiffness per node pair, and `w S ∇N_b` per node.
+    /// The geometric stiffness per node pair, and the stacked gradients
+    /// `∇N_a` and `w S ∇N_a` (node × 3 · points, row-major).
     geometric: Vec<f64>,
-    stressed_grads: Vec<[f64; 3]>,
+    gradients: Vec<f64>,
+    stressed_grads: Vec<f64>,
     /// Element internal force, 3 entries per node (node-major).
     pub force: Vec<f64>,
     /// Element tangent, row-major `n × n` with `n = 3 · nodes`; the upper
@@ -451,18 +453,19 @@ fn gather_operators(
                 for (k, col) in bb.iter().enumerate() {
                     let p = (3 * b + k) * stride + col0;
                     ws.bt[p..p + 6].copy_from_slice(col);
-                    let cb = &mut ws.cbt[p..p + 6];
-                    for (row, cr) in cb.iter_mut().zip(c) {
-                        *row = w
-                            * (cr[0] * col[0]
-                                + cr[1] * col[1]
-                                + cr[2] * col[2]
-                                + cr[3] * col[3]
-                                + cr[4] * col[4]
-                                + cr[5] * col[5]);
-                    }
                 }
             }
+            // w C B̄_j for all element DOFs at once: (DOF × 6) · (w C)ᵀ, a
+            // small GEMM (the column-by-column 6 × 6 products ran scalar and
+            // took a third of a total-Lagrangian assembly)
+            let lhs = faer::MatRef::from_row_major_slice_with_stride(&ws.bt[col0..], ndof, 6, stride);
+            let flat: [f64; 36] = std::array::from_fn(|i| c[i / 6][i % 6]);
+            let cmat = faer::MatRef::from_row_major_slice(&flat, 6, 6);
+            // (faer 0.24's `from_row_major_slice_with_stride_mut` lays the
+            // data out column-major: the transposed column-major view instead)
+            let dst = faer::MatMut::from_column_major_slice_with_stride_mut(&mut ws.cbt[col0..], 6, ndof, stride)
+                .transpose_mut();
+            faer::linalg::matmul::matmul(dst, faer::Accum::Replace, lhs, cmat.transpose(), w, faer::Par::Seq);
             contributing += 1;
         }
     }

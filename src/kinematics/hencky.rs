@@ -117,20 +117,23 @@ impl LogStrain {
         // D in Mandel components (engineering columns → orthonormal basis), then into the frame
         let dm: Matrix6 = std::array::from_fn(|a| std::array::from_fn(|b| d[a][b] * mandel_scale(a) * mandel_scale(b)));
         let dt = congruence(&r6, &dm, true);
-        let basis = PAIRS.map(|(i, j)| mandel_basis(i, j));
+        // the Mandel basis tensors' non-zero entries (one or two each)
+        let basis = PAIRS.map(|(i, j)| {
+            let v = if i == j { 1.0 } else { std::f64::consts::FRAC_1_SQRT_2 };
+            [(i, j, v), (j, i, if i == j { 0.0 } else { v })]
+        });
         let mut kt = [[0.0; 6]; 6];
         for a in 0..6 {
             for b in a..6 {
-                // T̃ : 4 D²f[B_a, B_b]
-                let (ha, hb) = (&basis[a], &basis[b]);
+                // T̃ : 4 D²f[B_a, B_b] = 4 Σ_ijk T̃_ij f[c_i, c_k, c_j] (H_ik K_kj + K_ik H_kj)
                 let mut g = 0.0;
-                for i in 0..3 {
-                    for j in 0..3 {
-                        let mut inner = 0.0;
-                        for k in 0..3 {
-                            inner += f2[i][k][j] * (ha[i][k] * hb[k][j] + hb[i][k] * ha[k][j]);
+                for (h, k) in [(&basis[a], &basis[b]), (&basis[b], &basis[a])] {
+                    for &(i, m, hv) in h {
+                        for &(m2, j, kv) in k {
+                            if m == m2 {
+                                g += tt[i][j] * f2[i][m][j] * hv * kv;
+                            }
                         }
-                        g += tt[i][j] * inner;
                     }
                 }
                 kt[a][b] = l[a] * dt[a][b] * l[b] + 4.0 * g;
@@ -157,44 +160,42 @@ fn mandel_scale(a: usize) -> f64 {
     if a < 3 { 1.0 } else { std::f64::consts::SQRT_2 }
 }
 
-/// The Mandel basis tensor of the index pair `(i, j)` (unit Frobenius norm).
-fn mandel_basis(i: usize, j: usize) -> Tensor {
-    let mut b = [[0.0; 3]; 3];
-    if i == j {
-        b[i][i] = 1.0;
-    } else {
-        b[i][j] = std::f64::consts::FRAC_1_SQRT_2;
-        b[j][i] = std::f64::consts::FRAC_1_SQRT_2;
-    }
-    b
+/// `A B` of 3×3 matrices.
+fn product(a: &Tensor, b: &Tensor) -> Tensor {
+    std::array::from_fn(|i| std::array::from_fn(|j| a[i][0] * b[0][j] + a[i][1] * b[1][j] + a[i][2] * b[2][j]))
+}
+
+/// `Aᵀ`.
+fn transposed(a: &Tensor) -> Tensor {
+    std::array::from_fn(|i| std::array::from_fn(|j| a[j][i]))
 }
 
 /// `Qᵀ A Q`: components in the eigenframe.
 fn to_frame(q: &Tensor, a: &Tensor) -> Tensor {
-    std::array::from_fn(|i| {
-        std::array::from_fn(|j| {
-            (0..3).flat_map(|k| (0..3).map(move |l| (k, l))).map(|(k, l)| q[k][i] * a[k][l] * q[l][j]).sum()
-        })
-    })
+    product(&transposed(q), &product(a, q))
 }
 
 /// `Q Ã Qᵀ`: back from the eigenframe.
 fn from_frame(q: &Tensor, a: &Tensor) -> Tensor {
-    std::array::from_fn(|i| {
-        std::array::from_fn(|j| {
-            (0..3).flat_map(|k| (0..3).map(move |l| (k, l))).map(|(k, l)| q[i][k] * a[k][l] * q[j][l]).sum()
-        })
-    })
+    product(&product(q, a), &transposed(q))
 }
 
 /// The orthogonal 6×6 matrix whose column `b` holds the global Mandel
-/// components of the eigenframe's basis tensor `b`.
+/// components of the eigenframe's basis tensor `b`: `Q B_kl Qᵀ` is
+/// `q_k q_kᵀ` for `k = l` and `(q_k q_lᵀ + q_l q_kᵀ)/√2` otherwise (`q_k`
+/// the columns of `Q`).
 fn mandel_rotation(q: &Tensor) -> Matrix6 {
     let mut r = [[0.0; 6]; 6];
     for (b, &(k, l)) in PAIRS.iter().enumerate() {
-        let g = from_frame(q, &mandel_basis(k, l));
+        let g = |i: usize, j: usize| {
+            if k == l {
+                q[i][k] * q[j][k]
+            } else {
+                std::f64::consts::FRAC_1_SQRT_2 * (q[i][k] * q[j][l] + q[i][l] * q[j][k])
+            }
+        };
         for (a, &(i, j)) in PAIRS.iter().enumerate() {
-            r[a][b] = if i == j { g[i][i] } else { std::f64::consts::SQRT_2 * g[i][j] };
+            r[a][b] = if i == j { g(i, i) } else { std::f64::consts::SQRT_2 * g(i, j) };
         }
     }
     r
@@ -237,21 +238,27 @@ fn second_divided(a: f64, b: f64, c: f64) -> f64 {
     // Taylor series of the divided difference about the mean
     let xbar = (a + b + c) / 3.0;
     let d = v.map(|xi| (xi - xbar) / mean);
+    let h = complete_homogeneous(d);
     let mut sum = 0.0;
     let mut sign = 1.0;
-    for n in 0..=6 {
-        sum += sign * complete_homogeneous(n, d) / (n + 2) as f64;
+    for (n, hn) in h.iter().enumerate() {
+        sum += sign * hn / (n + 2) as f64;
         sign = -sign;
     }
     -sum / (2.0 * mean * mean)
 }
 
-/// The complete homogeneous symmetric polynomial `h_n(d_0, d_1, d_2)`.
-fn complete_homogeneous(n: usize, d: [f64; 3]) -> f64 {
-    let mut h = 0.0;
-    for i in 0..=n {
-        for j in 0..=n - i {
-            h += d[0].powi(i as i32) * d[1].powi(j as i32) * d[2].powi((n - i - j) as i32);
+/// The complete homogeneous symmetric polynomials `h_0 … h_6` of
+/// `(d_0, d_1, d_2)`, by adding one variable at a time:
+/// `h_n(x_1 … x_k) = h_n(x_1 … x_(k−1)) + x_k h_(n−1)(x_1 … x_k)`.
+fn complete_homogeneous(d: [f64; 3]) -> [f64; 7] {
+    let mut h = [1.0; 7];
+    for n in 1..7 {
+        h[n] = h[n - 1] * d[0];
+    }
+    for &x in &d[1..] {
+        for n in 1..7 {
+            h[n] += x * h[n - 1];
         }
     }
     h

@@ -230,3 +230,21 @@ fn symmetric_eigen_decomposes() {
         assert!(got.iter().zip(&want).all(|(g, w)| (g - w).abs() < 1e-14), "{got:?} {want:?}");
     }
 }
+
+/// The recurrence for `h_n` against its definition, the sum of all
+/// monomials of degree `n` (`Σ_(i+j+k=n) d_0^i d_1^j d_2^k`).
+#[test]
+fn complete_homogeneous_polynomials_match_their_definition() {
+    for d in [[0.3, -0.2, 0.1], [1e-3, 2e-3, -3e-3], [0.0, 0.0, 0.7]] {
+        let h = complete_homogeneous(d);
+        for (n, hn) in h.iter().enumerate() {
+            let mut direct = 0.0;
+            for i in 0..=n {
+                for j in 0..=n - i {
+                    direct += d[0].powi(i as i32) * d[1].powi(j as i32) * d[2].powi((n - i - j) as i32);
+                }
+            }
+            assert!((hn - direct).abs() <= 1e-15 * direct.abs().max(1.0), "n {n}: {hn} against {direct}");
+        }
+    }
+}

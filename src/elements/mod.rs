@@ -26,8 +26,9 @@
 //!
 //! **Computed as one product.** Summed over the Gauss points `j` the nuclei
 //! of all node pairs are `K = Σ_j B̄_jᵀ (w_j C_j B̄_j) = Bᵀ (C B)` with
-//! `B = [B̄_1; …; B̄_Q]` stacked (6Q × element DOFs): the kernel fills `B`
-//! and `C B` and hands the product to a blocked dense GEMM (faer, upper
+//! `B = [B̄_1; …; B̄_Q]` stacked (6Q × element DOFs): the kernel fills `B`,
+//! forms `w C B̄_j` point by point as small products (element DOFs × 6
+//! times 6 × 6), and hands `Bᵀ (C B)` to a blocked dense GEMM (faer, upper
 //! triangle only). That ignores the zeros of `B̄_a` (half its entries) but
 //! runs at the machine's vector speed, where the node-pair loop it replaced
 //! ran at the speed of loads and stores of the element matrix: the elastic

@@ -254,6 +254,12 @@ impl Material {
 /// step clamped at segment breaks: each step either lands on the root inside
 /// the current segment or stops at its end and continues on the next one, so
 /// it is exact after at most as many steps as segments are crossed.
+///
+/// A non-finite trial stress (a diverging Newton iterate) gives a
+/// non-finite `Δγ` at once, which the caller's residual reports: the
+/// comparison with the segment's end is false for NaN, and the search
+/// would otherwise step past the last segment forever (a crushed tube hung
+/// there after its Newton iterate diverged).
 fn return_map(hardening: &Hardening, q_trial: f64, peeq_old: f64, three_g: f64) -> (f64, f64) {
     let mut k = hardening.segment(peeq_old);
     let mut dgamma = 0.0;
@@ -262,7 +268,7 @@ fn return_map(hardening: &Hardening, q_trial: f64, peeq_old: f64, three_g: f64) 
         let residual = q_trial - three_g * dgamma - sy;
         let step = residual / (three_g + h);
         let end = hardening.segment_end(k) - peeq_old;
-        if dgamma + step <= end {
+        if dgamma + step <= end || !step.is_finite() || end == f64::INFINITY {
             return (dgamma + step, h);
         }
         dgamma = end;
@@ -296,6 +302,25 @@ mod tests {
             lat -= res / d;
         }
         panic!("uniaxial driver did not converge: eps_xx={eps_xx} lat={lat}");
+    }
+
+    /// A non-finite strain (a diverging Newton iterate) gives a non-finite
+    /// stress at once with every hardening law, never a hang.
+    #[test]
+    fn non_finite_strain_returns_non_finite_stress() {
+        let table = Hardening::Table { strains: vec![0.0, 0.01, 0.03], stresses: vec![100e6, 120e6, 130e6] };
+        for h in [table, Hardening::Linear { yield_stress: 100e6, modulus: 1e9 }] {
+            let m = Material::new("m", 70e9, 0.33, Some(h));
+            for bad in [f64::NAN, f64::INFINITY] {
+                let r = m.update(&[bad, 0.0, 0.0, 0.0, 0.0, 0.0], &PointState::default());
+                assert!(!r.stress.iter().all(|s| s.is_finite()), "{bad}: {:?}", r.stress);
+            }
+        }
+        assert!(
+            return_map(&Hardening::Table { strains: vec![0.0, 0.01], stresses: vec![1e8, 2e8] }, f64::NAN, 0.0, 1e11)
+                .0
+                .is_nan()
+        );
     }
 
     #[test]

@@ -35,7 +35,7 @@
 //! (the last from `Δn = −m^(αβ) (n·Δa_α) a_β`; the form is symmetric as a
 //! Hessian must be: `m⁻¹ b A⁻¹` is). A contact force `p` (N) on the
 //! weighted gap then contributes `p ∂δg` besides the penalty's `ε δg Δg`
-//! (`crate::contact::assembly`, tests/surface_contact.rs: the tangent
+//! (`crate::contact::assembly`, tests/current_contact.rs: the tangent
 //! against finite differences on bodies turned by 60°).
 
 use crate::bc::Face;
@@ -178,6 +178,7 @@ fn project_on_face(body: &Body, face: &Face, x: [f64; 3], u: &[f64]) -> Option<(
         [r[0] + u[3 * node], r[1] + u[3 * node + 1], r[2] + u[3 * node + 2]]
     };
     let (mut a, mut b) = (0.0, 0.0);
+    let mut converged = false;
     for _ in 0..50 {
         let jet = face_jet(body, face, a, b);
         let s = deformed(&jet, &position);
@@ -192,10 +193,13 @@ fn project_on_face(body: &Body, face: &Face, x: [f64; 3], u: &[f64]) -> Option<(
         a = (a + da).clamp(-2.0, 2.0);
         b = (b + db).clamp(-2.0, 2.0);
         if da.abs() + db.abs() < 1e-14 {
+            converged = true;
             break;
         }
     }
-    if a.abs() > 1.0 + 1e-9 || b.abs() > 1.0 + 1e-9 {
+    // not converged (the gap and its variations would not belong to one
+    // closest point), or converged outside the face: not this face's point
+    if !converged || a.abs() > 1.0 + 1e-9 || b.abs() > 1.0 + 1e-9 {
         return None;
     }
     let (a, b) = (a.clamp(-1.0, 1.0), b.clamp(-1.0, 1.0));
@@ -205,7 +209,8 @@ fn project_on_face(body: &Body, face: &Face, x: [f64; 3], u: &[f64]) -> Option<(
 }
 
 /// Projects slave point `p` onto the nearest of its candidate master faces
-/// in the configuration `u`; `None` if no candidate holds its closest point.
+/// in the configuration `u`; `None` if no candidate holds its closest point
+/// (the point is then out of contact, as in the reference configuration).
 pub fn project(contact: &SurfaceContact, body: &Body, p: &SlavePoint, u: &[f64]) -> Option<CurrentProjection> {
     let mut us = [0.0; 3];
     for (&node, &s) in p.nodes.iter().zip(&p.shapes) {
@@ -214,22 +219,40 @@ pub fn project(contact: &SurfaceContact, body: &Body, p: &SlavePoint, u: &[f64])
         }
     }
     let x: [f64; 3] = std::array::from_fn(|k| p.position[k] + us[k]);
-    let mut best: Option<(f64, usize, FaceJet, Deformed, [f64; 2])> = None;
+    let mut best: Option<(f64, CurrentProjection)> = None;
     for &f in &p.candidates {
         let Some((jet, s, param)) = project_on_face(body, &contact.master_faces[f], x, u) else { continue };
         let d: [f64; 3] = std::array::from_fn(|k| x[k] - s.x[k]);
         let dist = dot(d, d).sqrt();
-        if best.as_ref().is_none_or(|(bd, ..)| dist < *bd) {
-            best = Some((dist, f, jet, s, param));
+        if best.as_ref().is_none_or(|(bd, _)| dist < *bd)
+            && let Some(cp) = closest_point(body, &contact.master_faces[f], f, (x, us), (jet, s, param), u)
+        {
+            best = Some((dist, cp));
         }
     }
-    let (_, f, jet, s, param) = best?;
+    best.map(|(_, cp)| cp)
+}
+
+/// The projection data at the closest point `(jet, s, param)` of master face
+/// `face` (index `f`) to the slave point at `x` (displacement `us`); `None`
+/// where the surface is degenerate (no normal, or `m − g b` singular).
+fn closest_point(
+    body: &Body,
+    face: &Face,
+    f: usize,
+    (x, us): ([f64; 3], [f64; 3]),
+    (jet, s, param): (FaceJet, Deformed, [f64; 2]),
+    u: &[f64],
+) -> Option<CurrentProjection> {
     // the outward normal: a_1 × a_2 oriented as the reference face's
-    let reference = face_point(body, &contact.master_faces[f], param[0], param[1]);
+    let reference = face_point(body, face, param[0], param[1]);
     let c = cross(s.a[0], s.a[1]);
     let sign =
         if dot(cross(reference.tangents[0], reference.tangents[1]), reference.normal) < 0.0 { -1.0 } else { 1.0 };
     let len = dot(c, c).sqrt();
+    if !(len > 0.0 && len.is_finite()) {
+        return None;
+    }
     let n = c.map(|v| sign * v / len);
     let gap = dot(std::array::from_fn(|k| x[k] - s.x[k]), n);
     let m = [dot(s.a[0], s.a[0]), dot(s.a[0], s.a[1]), dot(s.a[1], s.a[1])];

@@ -145,9 +145,10 @@ impl NodalNormal {
                 let mut q = vec![0.0; n * n];
                 for &f in list {
                     let t = &faces[f];
-                    let w = t.weights[t.nodes.iter().position(|a| a == master).unwrap_or(0)];
+                    let w = t.weights[t.nodes.iter().position(|a| a == master).expect("the face holds the node")];
                     let k = t.nodes.len();
-                    let idx: Vec<usize> = t.nodes.iter().map(|a| nodes.binary_search(a).unwrap_or(0)).collect();
+                    let idx: Vec<usize> =
+                        t.nodes.iter().map(|a| nodes.binary_search(a).expect("the face's nodes are listed")).collect();
                     for b in 0..k {
                         for c in 0..k {
                             q[idx[b] * n + idx[c]] += 0.5 * w * (t.m[b * k + c] - t.m[c * k + b]);

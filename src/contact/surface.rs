@@ -239,9 +239,12 @@ pub struct Projection {
     pub face: usize,
     /// Face coordinates `(a, b)`.
     pub param: [f64; 2],
-    /// Master outward normal there (reference configuration).
+    /// Master outward normal there (reference configuration; the deformed
+    /// master's in the current configuration, `contact::current`).
     pub normal: [f64; 3],
-    /// `(X_s − X_m)·n` (m).
+    /// The gap at zero displacement along `n`, `(X_s − X_m)·n` (m); in the
+    /// current configuration the value that makes `gap0 + (u_s − u_m)·n`
+    /// the current gap.
     pub gap0: f64,
     /// Master face nodes.
     pub nodes: Vec<usize>,

@@ -408,8 +408,8 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         return Err(invalid(
             format!("contacts[{k}].friction"),
             c.friction.as_ref().map_or(0.0, |f| f.coefficient),
-            "no friction on node-to-node contact with analysis.geometry = \"nonlinear\" (use method = \"surface\", \
-             whose friction follows the current configuration)",
+            "no friction on node-to-node contact with analysis.geometry = \"nonlinear\" (method = \"surface\" \
+             takes friction there, with the current normal; docs/contact.md)",
         ));
     }
     restraint::check(&mesh, &constraints, &indenters, &contacts)?;

@@ -141,7 +141,13 @@ impl Contacts<'_> {
         let p = &pc.pairs[j];
         let normal = &self.nodal_normals[c][j];
         let cp = normal.pair(self.mesh, p.slave, p.master, at.u, pc.overlap_relief(j, at.lambda));
-        let response = contact::augmented_response(cp.gap, &cp.normal, p.penalty, self.points[k].multiplier);
+        // a master surface crushed to no normal (|ñ| = 0) gives no contact,
+        // not NaN forces (augmented_response takes a NaN gap as touching)
+        let response = if cp.gap.is_finite() {
+            contact::augmented_response(cp.gap, &cp.normal, p.penalty, self.points[k].multiplier)
+        } else {
+            None
+        };
         let point = &mut self.points[k];
         let changed = response.is_some() != point.active;
         point.active = response.is_some();

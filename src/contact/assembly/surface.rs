@@ -8,8 +8,12 @@
 //! is `ĝ_a = g̃_a / A_a` and its force `P_a = λ_a − ε_a ĝ_a ≥ 0` (N; `λ_a`
 //! the augmented-Lagrangian multiplier). The energy `½ ε_a ĝ_a²` gives the
 //! nodal contact forces `(P_a / A_a) G_a` and the tangent
-//! `(ε_a / A_a²) G_a G_aᵀ` — exact, since `ĝ_a` is linear in `u` within an
-//! increment.
+//! `(ε_a / A_a²) G_a G_aᵀ` — exact in small strain, where `ĝ_a` is linear
+//! in `u` within an increment. With nonlinear geometry
+//! (`Contacts::current`) the projections are made on the deformed master
+//! at every evaluation (`contact::current`), the weighted gaps linearized
+//! there, and the gaps' second variation `−(P_a/A_a) Σ_q w_q N_a ∂²g_q`
+//! completes the tangent.
 
 use super::{ContactPoint, Contacts};
 use crate::assembly::{At, Tangent};

@@ -44,6 +44,7 @@ use crate::shape::Lagrange1d;
 use crate::values::FaceSide;
 
 use super::surface::{Projection, SlavePoint, SurfaceContact, face_point};
+use super::{cross, dot};
 
 /// Shape functions of a face at one point with their derivatives in the
 /// face coordinates `(a, b)`.
@@ -134,14 +135,6 @@ fn deformed(jet: &FaceJet, position: &impl Fn(usize) -> [f64; 3]) -> Deformed {
         }
     }
     out
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
 }
 
 /// Inverse of a symmetric 2×2 matrix `[m00, m01, m11]`; `None` if singular.

@@ -55,6 +55,16 @@ pub use assembly::{ContactPoint, Contacts};
 pub use friction::{Friction, FrictionResponse, friction_response, stick_block, turning_friction};
 pub mod surface;
 
+/// `a · b` of 3-vectors (the contact geometry's points, tangents, normals).
+pub(crate) fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// `a × b` of 3-vectors.
+pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+}
+
 /// Default dimensionless penalty factor α.
 pub const DEFAULT_PENALTY_FACTOR: f64 = 100.0;
 

@@ -37,8 +37,8 @@ use crate::bc::integrate_face;
 use crate::mesh::Mesh;
 use crate::quadrature::GaussRule;
 
-use super::ContactSurface;
 use super::current::face_jet;
+use super::{ContactSurface, cross, dot};
 
 /// The current normal of one master node: the nodes of its contact faces
 /// and the antisymmetric `Q` of `ñ = Σ Q_BC x_B × x_C`.
@@ -48,14 +48,6 @@ pub struct NodalNormal {
     pub nodes: Vec<usize>,
     /// `Q`, row-major `nodes × nodes`.
     q: Vec<f64>,
-}
-
-fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
-}
-
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 
 /// `[v]×`, the matrix of `w ↦ v × w`.

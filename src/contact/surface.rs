@@ -50,6 +50,7 @@
 //! matrix pattern at setup. A point whose projection leaves them is
 //! inactive (gap NaN; counted by [`project`]'s callers).
 
+use super::{cross, dot};
 use crate::bc::Face;
 use crate::mesh::{Body, Mesh};
 use crate::quadrature::GaussRule;
@@ -252,10 +253,6 @@ pub struct Projection {
     pub shapes: Vec<f64>,
 }
 
-fn dot(a: [f64; 3], b: [f64; 3]) -> f64 {
-    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
-}
-
 fn interpolate(nodes: &[usize], shapes: &[f64], u: &[f64]) -> [f64; 3] {
     let mut out = [0.0; 3];
     for (&n, &s) in nodes.iter().zip(shapes) {
@@ -450,11 +447,7 @@ pub fn build(
                         let (a, b) = (0.5 * (sa[0] + sa[1]) + ha * ta, 0.5 * (sb[0] + sb[1]) + hb * tb);
                         let fp = face_point(body, face, a, b);
                         let [t0, t1] = fp.tangents;
-                        let c = [
-                            t0[1] * t1[2] - t0[2] * t1[1],
-                            t0[2] * t1[0] - t0[0] * t1[2],
-                            t0[0] * t1[1] - t0[1] * t1[0],
-                        ];
+                        let c = cross(t0, t1);
                         let weight = wa * wb * ha * hb * dot(c, c).sqrt();
                         let x = fp.position;
                         let candidates: Vec<usize> = boxes

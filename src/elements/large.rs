@@ -39,23 +39,11 @@ pub(super) fn add_geometric_stiffness(geom: &CellValues, es: usize, eb: usize, n
     }
     let mut kg = std::mem::take(&mut ws.geometric);
     kg.resize(nodes * nodes, 0.0);
-    {
-        use faer::linalg::matmul::triangular::{BlockStructure, matmul};
-        let lhs = faer::MatRef::from_row_major_slice(&g, nodes, stride);
-        let rhs = faer::MatRef::from_row_major_slice(&gs, nodes, stride);
-        let dst = faer::MatMut::from_row_major_slice_mut(&mut kg, nodes, nodes);
-        matmul(
-            dst,
-            BlockStructure::TriangularUpper,
-            faer::Accum::Replace,
-            lhs,
-            BlockStructure::Rectangular,
-            rhs.transpose(),
-            BlockStructure::Rectangular,
-            1.0,
-            faer::Par::Seq,
-        );
-    }
+    super::upper_product(
+        faer::MatMut::from_row_major_slice_mut(&mut kg, nodes, nodes),
+        faer::MatRef::from_row_major_slice(&g, nodes, stride),
+        faer::MatRef::from_row_major_slice(&gs, nodes, stride),
+    );
     for a in 0..nodes {
         for b in a..nodes {
             let v = kg[a * nodes + b];

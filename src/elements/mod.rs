@@ -481,6 +481,13 @@ fn tangent_product(el: &Element, contributing: usize, ws: &mut Workspace) {
     let lhs = faer::MatRef::from_row_major_slice_with_stride(&ws.bt[..], ndof, k, stride);
     let rhs = faer::MatRef::from_row_major_slice_with_stride(&ws.cbt[..], ndof, k, stride);
     let dst = faer::MatMut::from_row_major_slice_mut(&mut ws.tangent[..ndof * ndof], ndof, ndof);
+    upper_product(dst, lhs, rhs);
+}
+
+/// `dst = lhs · rhsᵀ`, upper triangle only (faer GEMM, sequential: the
+/// element loop is the parallel one): the kernel's material and geometric
+/// products.
+fn upper_product(dst: faer::MatMut<'_, f64>, lhs: faer::MatRef<'_, f64>, rhs: faer::MatRef<'_, f64>) {
     use faer::linalg::matmul::triangular::{BlockStructure, matmul};
     matmul(
         dst,

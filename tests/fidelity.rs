@@ -258,24 +258,25 @@ impl TopLine {
 }
 
 /// §4.1 block on the graded mesh of `examples/block_indentation_graded.toml`
-/// (17 × 6 L9 × 3 B3, 9,555 DOF, within issue 23's 10,000), run through
+/// (16 × 6 L9 × 3 B3, 9,009 DOF, within issue 23's 10,000), run through
 /// the CLI, against 3D at refine 2. Issue 23's criteria and what was
 /// measured:
-/// - punch force within 2 % (measured +1.29 %);
-/// - top-line u_z within 5 % at x ∈ [0.03, 0.15] m (measured 4.8 %) and
-///   8 % at 0.175 m (0.9 %); towards the far side x = 0 the issue's 5 % is
-///   not met: an offset of about 0.002 mm (0.2 % of the punch travel) is
-///   8.1 % of the 3D −0.0305 mm there (5.1 % at x = 0.025), bound 10 %;
+/// - punch force within 2 % (measured +0.74 %);
+/// - top-line u_z within 5 % at x ∈ [0, 0.15] m: 2.5 % on [0.03, 0.15] and
+///   4.1 % on [0, 0.03] (the far corner, where u_z is only −0.030 mm);
+///   8 % at 0.175 m (0.2 %);
 /// - sinking monotonically towards the punch edge up to x = 0.19 m and its
 ///   mirror image (the paper's mesh bulges up there);
 /// - σ_zz and peeq under the punch within 10 % of the 3D peak (measured
-///   7.0 % and 9.6 %).
+///   6.0 % and 6.0 %).
 ///
-/// Measured on purpose-broken copies: Young's modulus 10 % high or low
-/// moves u_z at x = 0.10–0.15 m by −7 to −9 % or +12 % and fails (the force,
-/// set by the plastic flow, moves by 0.1 %); the same depth with the
-/// paper's 0.3 grading (6 elements per side, 17 mm at the edge) bulges up
-/// at x = 0.19 m (−0.127 against −0.176 mm) and fails the monotonicity.
+/// Measured on purpose-broken copies (`/tmp` sweeps of the example's text):
+/// Young's modulus 10 % high or low moves u_z on [0.03, 0.15] m by 9.5 % or
+/// 12 % and fails (the force, set by the plastic flow, moves by 0.1 %); the
+/// paper's x grading (6 elements per side, 17 mm at the edge) bulges up at
+/// x = 0.19 m and fails the monotonicity; the paper's z grading (ratio 0.3)
+/// puts the far corner 8.7 % off; six uniform elements under the punch
+/// instead of the two graded halves put peeq 15.7 % of the peak off.
 #[test]
 fn block_indentation_graded_against_3d() {
     let model = root().join("examples/block_indentation_graded.toml");
@@ -287,7 +288,7 @@ fn block_indentation_graded_against_3d() {
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    assert_eq!(s["dof"], 9555);
+    assert_eq!(s["dof"], 9009);
     let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
     // 3D punch force: tests/examples.rs BLOCK_FORCE_3D (the same CalculiX run)
     let force = punch["force"][2].as_f64().unwrap() / -1.4102e6 - 1.0;
@@ -303,18 +304,19 @@ fn block_indentation_graded_against_3d() {
         100.0 * line.s_zz_under,
         100.0 * line.peeq_under
     );
-    assert!(near <= 0.05 && edge <= 0.08 && corner <= 0.10, "u_z {near} {edge} {corner}");
+    assert!(near <= 0.05 && edge <= 0.08 && corner <= 0.05, "u_z {near} {edge} {corner}");
     assert!(line.sinks_towards_the_punch(), "the top surface does not sink monotonically towards the punch");
     assert!(line.s_zz_under <= 0.10 && line.peeq_under <= 0.10, "{} {}", line.s_zz_under, line.peeq_under);
 }
 
 /// The graded block against the stored 3D fields of the paper's mesh
 /// (`compare_stored_on`, points located by position). A regression guard at
-/// the measured values + 10 %: u 6.85 % over the block and 5.79 % on the
-/// punch face (issue 23's 2 % not met: most of it is the 0.002 mm far-field
-/// offset above and the squeeze-out u_y, 3 B3 through the depth), von Mises
-/// 4.13 % over the plastic zone (issue 23's 10 %: met), peeq 20.0 %. The
-/// paper's mesh: 19.0 / 24.4 / 7.5 / 36.4 % (test above).
+/// the measured values + 10 %: u 4.76 % over the block and 3.63 % on the
+/// punch face (issue 23's 2 % not met; the largest differences, 7 % of the
+/// largest |u|, sit beside the punch edges at the free faces y = 0 and
+/// 0.1 m), von Mises 4.49 % over the plastic zone
+/// (issue 23's 10 %: met), peeq 16.4 %. The paper's mesh: 19.0 / 24.4 /
+/// 7.5 / 36.4 % (test above).
 #[test]
 fn block_indentation_graded_whole_field_against_3d() {
     let stored_on = cufem::model::Model::from_file(&root().join("examples/block_indentation.toml")).unwrap();
@@ -322,13 +324,19 @@ fn block_indentation_graded_whole_field_against_3d() {
     let solution = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
     let csv = std::fs::read_to_string(root().join("tests/data/block_indentation_field_3d.csv")).unwrap();
     let rows = cufem::verify::compare_stored_on(&stored_on, &model, &solution.fields(&model), &csv).unwrap();
+    for r in &rows {
+        eprintln!(
+            "graded block: {:<28} {:<10} L2 {:6.2} %  max {:6.2} % at {:?}",
+            r.region, r.quantity, r.l2_percent, r.max_percent, r.at
+        );
+    }
     guard(
         &rows,
         &[
-            ("body block", "u", 6.85),
-            ("surface punch", "u", 5.79),
-            ("plastic zone block", "von_mises", 4.13),
-            ("plastic zone block", "peeq", 19.97),
+            ("body block", "u", 4.76),
+            ("surface punch", "u", 3.63),
+            ("plastic zone block", "von_mises", 4.49),
+            ("plastic zone block", "peeq", 16.37),
         ],
     );
     assert!(row(&rows, "plastic zone block", "von_mises").l2_percent <= 10.0);
@@ -345,20 +353,19 @@ fn block_indentation_graded_whole_field_against_3d() {
 #[ignore = "a 36,309-DOF run (about 25 s); run by hand"]
 fn block_indentation_36k_within_three_percent_of_3d() {
     let text = std::fs::read_to_string(root().join("examples/block_indentation_graded.toml")).unwrap();
-    let fine = text
-        .replace("to = 0.1, elements = 3 }", "to = 0.1, elements = 6 }")
-        .replace("{ from = 0.0, to = 0.15, elements = 3 }", "{ from = 0.0, to = 0.15, elements = 4 }")
-        .replace(
-            "{ from = 0.15, to = 0.2, elements = 3, ratio = 0.2 }",
-            "{ from = 0.15, to = 0.2, elements = 4, ratio = 0.2 }",
-        )
-        .replace("{ from = 0.2, to = 0.3, elements = 5 }", "{ from = 0.2, to = 0.3, elements = 8 }")
-        .replace(
-            "{ from = 0.3, to = 0.35, elements = 3, ratio = 5.0 }",
-            "{ from = 0.3, to = 0.35, elements = 4, ratio = 5.0 }",
-        )
-        .replace("{ from = 0.35, to = 0.5, elements = 3 }", "{ from = 0.35, to = 0.5, elements = 4 }")
-        .replace("to = 0.3, elements = 6, ratio = 0.3 }", "to = 0.3, elements = 9, ratio = 0.3 }");
+    // The example's mesh replaced by 24 × 9 L9 × 6 B3 with the same kind of
+    // grading (30, 14 and 6 mm towards each punch edge).
+    let (x_start, x_end) = (text.find("x = { segments").unwrap(), text.find("[[constraints]]").unwrap());
+    let fine = text[..x_start].replace("to = 0.1, elements = 3 }", "to = 0.1, elements = 6 }")
+        + "x = { segments = [\n\
+           { from = 0.0, to = 0.15, elements = 4 },\n\
+           { from = 0.15, to = 0.2, elements = 4, ratio = 0.2 },\n\
+           { from = 0.2, to = 0.3, elements = 8 },\n\
+           { from = 0.3, to = 0.35, elements = 4, ratio = 5.0 },\n\
+           { from = 0.35, to = 0.5, elements = 4 },\n\
+           ] }\n\
+           z = { from = 0.0, to = 0.3, elements = 9, ratio = 0.3 }\n\n"
+        + &text[x_end..];
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR")).join("fidelity_block_36k");
     std::fs::create_dir_all(&dir).unwrap();
     std::fs::write(dir.join("model.toml"), &fine).unwrap();

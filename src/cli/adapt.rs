@@ -24,12 +24,23 @@ pub(super) struct AdaptArgs {
     /// default 50,000).
     #[arg(long, value_name = "N", allow_negative_numbers = true, value_parser = parse_max_dof)]
     max_dof: Option<usize>,
+    /// Dörfler's θ of an adaptive run: the marked elements are the fewest, largest first, holding this
+    /// share of the squared estimate (overrides `adapt.fraction`; default 0.5).
+    #[arg(long, value_name = "THETA", allow_negative_numbers = true, value_parser = parse_fraction)]
+    fraction: Option<f64>,
 }
 
 fn parse_tolerance(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(v) if v > 0.0 && v < 1.0 => Ok(v),
         _ => Err("expected a relative error in the energy norm between 0 and 1 (e.g. 0.05)".into()),
+    }
+}
+
+fn parse_fraction(s: &str) -> Result<f64, String> {
+    match s.trim().parse::<f64>() {
+        Ok(v) if v > 0.0 && v <= 1.0 => Ok(v),
+        _ => Err("expected Dörfler's θ, a share of the squared estimate in (0, 1] (e.g. 0.5)".into()),
     }
 }
 
@@ -42,10 +53,11 @@ impl AdaptArgs {
     /// overridden by the options), or `None` for a single run.
     pub(super) fn settings(&self, model: &Model) -> Result<Option<AdaptSettings>, Failure> {
         let mut settings = match (self.adapt, model.adapt) {
-            (None, None) if self.max_dof.is_some() => {
+            (None, None) if self.max_dof.is_some() || self.fraction.is_some() => {
+                let option = if self.max_dof.is_some() { "--max-dof" } else { "--fraction" };
                 return Err(fail(
                     INPUT,
-                    anyhow!("--max-dof is the budget of an adaptive run: give --adapt TOL or an [adapt] table too"),
+                    anyhow!("{option} is an option of an adaptive run: give --adapt TOL or an [adapt] table too"),
                 ));
             }
             (None, None) => return Ok(None),
@@ -56,6 +68,9 @@ impl AdaptArgs {
         }
         if let Some(n) = self.max_dof {
             settings.max_dof = n;
+        }
+        if let Some(f) = self.fraction {
+            settings.fraction = f;
         }
         // before the output folder is touched (the library checks it too)
         if model.n_dofs() > settings.max_dof {

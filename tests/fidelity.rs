@@ -562,6 +562,55 @@ fn tube_roller_meshes_against_stored_3d() {
     }
 }
 
+/// The table "The cantilevers' rollers under refinement" of
+/// docs/cross-check.md, run by hand (`cargo test --release --test fidelity
+/// -- --ignored cantilever_meshes --nocapture`, several minutes):
+/// `examples/cantilevers_contact.toml` with both beams' axes refined alike
+/// (so that the node-to-node pairs keep matching) and their sections
+/// refined, the rollers as shipped (node-to-node) or exact-gap rigid
+/// surfaces; roller forces, the force across the interface, and the whole
+/// field against the stored 3D fields of the shipped mesh.
+#[test]
+#[ignore = "a measurement, not a check: run by hand"]
+fn cantilever_meshes_against_stored_3d() {
+    let text = std::fs::read_to_string(root().join("examples/cantilevers_contact.toml")).unwrap();
+    let stored_on = cufem::model::Model::from_file(&root().join("examples/cantilevers_contact.toml")).unwrap();
+    let (upper, lower) = (
+        "axis = { element = \"B4\", from = 0.0, to = 0.254, elements = 10 }",
+        "axis = { element = \"B4\", from = 0.0762, to = 0.3302, elements = 10 }",
+    );
+    for (axis, section, surface) in
+        [(10, 4, true), (20, 4, false), (20, 4, true), (40, 4, false), (80, 4, false), (20, 6, false), (40, 6, false)]
+    {
+        let elements = format!("elements = {axis} }}");
+        let mut t = text
+            .replace(upper, &upper.replace("elements = 10 }", &elements))
+            .replace(lower, &lower.replace("elements = 10 }", &elements))
+            .replace("elements = 4 }", &format!("elements = {section} }}"));
+        if surface {
+            t = t.replace("radius = 0.0127\n", "radius = 0.0127\nmethod = \"surface\"\n");
+        }
+        let model = cufem::model::Model::parse(&t).unwrap();
+        let s = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
+        assert!(s.failure.is_none(), "{:?}", s.failure);
+        let force = |n: &str| s.contacts.iter().find(|c| c.name == n).unwrap().force[2];
+        eprintln!(
+            "{axis} B4, {section} x {section} L9, rollers {} ({} DOF): 7 in {:.0} N, 9 in {:.0} N, interface {:.0} N",
+            if surface { "surface" } else { "node-to-node" },
+            model.n_dofs(),
+            -force("indenter_7in"),
+            -force("indenter_9in"),
+            force("beams"),
+        );
+        let rows =
+            cufem::verify::compare_stored_on(&stored_on, &model, &s.fields(&model), &stored_3d("cantilevers_contact"))
+                .unwrap();
+        for r in &rows {
+            eprintln!("  {:<28} {:<10} L2 {:6.2} %  max {:6.2} %", r.region, r.quantity, r.l2_percent, r.max_percent);
+        }
+    }
+}
+
 /// Why B-bar is not the default for plastic bodies (ARCHITECTURE.md, "The
 /// element"): on the compact bar it is not at least as good as the paper's
 /// element against the stored 3D field. Measured: von Mises over the

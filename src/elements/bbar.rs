@@ -67,7 +67,7 @@ pub(super) fn volumetric_projection(
 
 /// Inverse of a small symmetric positive definite matrix (the `n × n`
 /// leading block of `m`, n ≤ 4) by Gauss–Jordan elimination.
-fn invert_spd(m: &[[f64; 4]; 4], n: usize) -> [[f64; 4]; 4] {
+pub(super) fn invert_spd(m: &[[f64; 4]; 4], n: usize) -> [[f64; 4]; 4] {
     let mut a = *m;
     let mut inv = [[0.0; 4]; 4];
     for (i, row) in inv.iter_mut().enumerate().take(n) {

@@ -13,7 +13,7 @@ use crate::shape::{BeamElementKind, SectionElementKind};
 const LOG: Kinematics = Kinematics::TotalLagrangianLog;
 
 /// Force, tangent, Gauss-point Cauchy stresses and trial states.
-fn evaluate(
+pub(super) fn evaluate(
     geom: &CellValues,
     mat: &Material,
     u: &[f64],
@@ -36,7 +36,7 @@ fn evaluate(
 }
 
 /// The nodal displacement of a map `x → u(x)` over the element's nodes.
-fn field(body: &Body, f: &dyn Fn([f64; 3]) -> [f64; 3]) -> Vec<f64> {
+pub(super) fn field(body: &Body, f: &dyn Fn([f64; 3]) -> [f64; 3]) -> Vec<f64> {
     let mut el = Vec::new();
     body.element_nodes(0, &mut el);
     el.iter().flat_map(|&g| f(body.local_coords(g))).collect()
@@ -44,7 +44,7 @@ fn field(body: &Body, f: &dyn Fn([f64; 3]) -> [f64; 3]) -> Vec<f64> {
 
 /// Largest difference between the tangent and central differences of the
 /// force, relative to the largest tangent entry.
-fn tangent_error(geom: &CellValues, mat: &Material, u: &[f64], committed: &[PointState]) -> f64 {
+pub(super) fn tangent_error(geom: &CellValues, mat: &Material, u: &[f64], committed: &[PointState]) -> f64 {
     let (_, k, _, _) = evaluate(geom, mat, u, committed);
     let n = u.len();
     let kmax = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));
@@ -67,7 +67,7 @@ fn tangent_error(geom: &CellValues, mat: &Material, u: &[f64], committed: &[Poin
 /// Uniaxial stretch `λ` along the axis y with the lateral stretch `μ` in
 /// both x and z: `F = diag(μ, λ, μ)` at every point, two equal principal
 /// stretches exactly.
-fn uniaxial(body: &Body, lambda: f64, mu: f64) -> Vec<f64> {
+pub(super) fn uniaxial(body: &Body, lambda: f64, mu: f64) -> Vec<f64> {
     field(body, &|x| [(mu - 1.0) * x[0], (lambda - 1.0) * (x[1] - 0.1), (mu - 1.0) * x[2]])
 }
 

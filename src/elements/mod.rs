@@ -40,6 +40,7 @@
 //! scatters what it computes.
 
 mod bbar;
+mod fbar;
 mod large;
 
 use crate::kinematics::{Kinematics, LogStrain, Tensor};
@@ -64,6 +65,15 @@ pub struct Workspace {
     /// the volumetric row), and the projection's small matrices.
     bbar: Vec<[f64; 3]>,
     proj_g: Vec<f64>,
+    /// B-bar at finite strain (`fbar`): per point and node `g̃_a = F⁻ᵀ ∇N_a`;
+    /// per point `θ̄ − θ`, the weight, the projection's coefficients
+    /// `c_l` (4 each), `p = tr T / 3`, and the coupling `(Lᵀ D m, mᵀ D m / 9)`.
+    spatial: Vec<[f64; 3]>,
+    dilatation: Vec<f64>,
+    weights: Vec<f64>,
+    proj_c: Vec<f64>,
+    pressure: Vec<f64>,
+    coupling: Vec<(Voigt, f64)>,
     /// Total Lagrangian: the deformation gradient `F` and the second
     /// Piola–Kirchhoff stress `S` per Gauss point (for `B_NL` and the
     /// geometric stiffness).
@@ -88,6 +98,8 @@ impl Workspace {
         self.tangents.resize(points, [[0.0; 6]; 6]);
         self.frames.resize(points, [[0.0; 3]; 3]);
         self.pk2.resize(points, [0.0; 6]);
+        self.pressure.resize(points, 0.0);
+        self.coupling.resize(points, ([0.0; 6], 0.0));
         self.bbar.resize(points * nodes, [0.0; 3]);
         self.proj_g.resize(4 * 3 * nodes, 0.0);
         self.force.resize(3 * nodes, 0.0);
@@ -161,10 +173,14 @@ pub fn element_response(
     let el = Element::new(geom, e, n_section_elements);
     ws.resize(el.nodes, el.n_points);
     ws.force.fill(0.0);
-    if let Some(ps) = geom.volumetric.as_ref() {
-        volumetric_projection(geom, ps, el.es, el.eb, el.nodes, ws);
-    }
     let kinematics = points.kinematics;
+    if let Some(ps) = geom.volumetric.as_ref() {
+        if kinematics.is_nonlinear() {
+            fbar::dilatation_projection(geom, ps, (el.es, el.eb, el.nodes), u, ws);
+        } else {
+            volumetric_projection(geom, ps, el.es, el.eb, el.nodes, ws);
+        }
+    }
     let (all_elastic, plastic_points) = stresses_and_forces(geom, &el, u, material, points, ws);
     let tangent_computed = match mode {
         TangentMode::None => false,
@@ -174,9 +190,12 @@ pub fn element_response(
     if tangent_computed {
         let correction = mode == TangentMode::UnlessElastic;
         let contributing = gather_operators(geom, &el, material, correction, kinematics, ws);
-        tangent_product(&el, contributing, ws);
+        tangent_product(&el, contributing, operator_rows(geom, kinematics), ws);
         if kinematics.is_nonlinear() {
             large::add_geometric_stiffness(geom, el.es, el.eb, el.nodes, ws);
+            if let Some(ps) = geom.volumetric.as_ref() {
+                fbar::add_dilatation_curvature(ps, el.nodes, el.n_points, ws);
+            }
         }
     }
     ElementStats { plastic_points, tangent_computed }
@@ -266,18 +285,30 @@ fn stresses_and_forces(
             let g0 = points.initial.map(|_| point_gradient(&sp, v0, vy0));
             let (grad, mut eps, log) = point_strain(points.kinematics, point_gradient(&sp, v, vy), g0);
             if bbar {
-                // ε̄ = ε + (θ̄ − θ)/3 · 1 with θ̄ − θ = Σ_a (b̄_a − g_a)·u_a
-                let d = &ws.bbar[q * nodes..(q + 1) * nodes];
-                let mut shift = 0.0;
-                for (a, da) in d.iter().enumerate() {
-                    shift += da[0] * u[3 * a] + da[1] * u[3 * a + 1] + da[2] * u[3 * a + 2];
-                }
+                // ε̄ = ε + (θ̄ − θ)/3 · 1: in small strain θ̄ − θ = Σ_a (b̄_a − g_a)·u_a,
+                // at finite strain the projected ln J less ln J (fbar)
+                let shift = if large {
+                    ws.dilatation[q]
+                } else {
+                    let d = &ws.bbar[q * nodes..(q + 1) * nodes];
+                    d.iter()
+                        .enumerate()
+                        .map(|(a, da)| da[0] * u[3 * a] + da[1] * u[3 * a + 1] + da[2] * u[3 * a + 2])
+                        .sum()
+                };
                 for e in eps.iter_mut().take(3) {
                     *e += shift / 3.0;
                 }
             }
             let mut r = material.update_for_element(&eps, &points.committed[q], points.predictor);
+            // the mean stress conjugate to the dilatation (T's, before any pull-back)
+            ws.pressure[q] = (r.stress[0] + r.stress[1] + r.stress[2]) / 3.0;
             if let Some(log) = &log {
+                if bbar {
+                    // fbar's coupling of the dilatation row: (Lᵀ D m, mᵀ D m / 9)
+                    let dm: Voigt = std::array::from_fn(|i| r.tangent[i][0] + r.tangent[i][1] + r.tangent[i][2]);
+                    ws.coupling[q] = (log.pull_back_stress(&dm), (dm[0] + dm[1] + dm[2]) / 9.0);
+                }
                 // the material's (T, ∂T/∂E_log) as (S, ∂S/∂E): the rest is the Green–Lagrange kernel's
                 (r.stress, r.tangent) = log.pull_back(&r.stress, &r.tangent);
                 r.elastic_tangent = false;
@@ -290,7 +321,9 @@ fn stresses_and_forces(
             let rows = if large {
                 let f = crate::kinematics::deformation_gradient(&grad);
                 (ws.frames[q], ws.pk2[q]) = (f, r.stress);
-                points.stress[q] = crate::kinematics::cauchy(&f, &r.stress);
+                // σ = F S Fᵀ / J̄ with B-bar (fbar), J̄ = J e^(θ̄ − θ)
+                let scale = if bbar { (-ws.dilatation[q]).exp() } else { 1.0 };
+                points.stress[q] = crate::kinematics::cauchy(&f, &r.stress).map(|s| s * scale);
                 crate::kinematics::first_piola(&f, &r.stress)
             } else {
                 points.stress[q] = r.stress;
@@ -298,9 +331,8 @@ fn stresses_and_forces(
             };
             add_point_force(&sp, w, &rows, h, hy);
             if bbar {
-                // f_a += w d_a tr σ / 3
-                let s = r.stress;
-                let tr = (s[0] + s[1] + s[2]) / 3.0;
+                // f_a += w d_a p, p = tr σ / 3 (tr T / 3 at finite strain)
+                let tr = ws.pressure[q];
                 for a in 0..nodes {
                     let da = ws.bbar[q * nodes + a];
                     for k in 0..3 {
@@ -410,7 +442,8 @@ fn gather_operators(
     ws: &mut Workspace,
 ) -> usize {
     let (sg, ag) = (&geom.section, &geom.axis);
-    let (nodes, ndof, stride) = (el.nodes, 3 * el.nodes, 6 * el.n_points);
+    let rows = operator_rows(geom, kinematics);
+    let (nodes, ndof, stride) = (el.nodes, 3 * el.nodes, rows * el.n_points);
     let bbar = geom.volumetric.is_some();
     let elastic = material.elastic_stiffness();
     ws.bt.resize(ndof * stride, 0.0);
@@ -433,7 +466,7 @@ fn gather_operators(
             let w = geom.gradients(el.es, el.eb, gb, gs, &mut ws.grads[..nodes]);
             let c = &ws.tangents[q];
             let dbar = if bbar { Some(&ws.bbar[q * nodes..(q + 1) * nodes]) } else { None };
-            let col0 = 6 * contributing;
+            let col0 = rows * contributing;
             for (b, &g) in ws.grads[..nodes].iter().enumerate() {
                 // column k of B̄_b: the strain of a unit displacement u_k of
                 // node b (crate::voigt's order and shear convention) plus the
@@ -454,17 +487,29 @@ fn gather_operators(
                 for (k, col) in bb.iter().enumerate() {
                     let p = (3 * b + k) * stride + col0;
                     ws.bt[p..p + 6].copy_from_slice(col);
+                    if rows == 7 {
+                        // fbar's dilatation row: δθ̄ − δθ of a unit u_k of node b
+                        ws.bt[p + 6] = d[k];
+                    }
                 }
             }
             // w C B̄_j for all element DOFs at once: (DOF × 6) · (w C)ᵀ, a
             // small GEMM (the column-by-column 6 × 6 products ran scalar and
             // took a third of a total-Lagrangian assembly)
-            let lhs = faer::MatRef::from_row_major_slice_with_stride(&ws.bt[col0..], ndof, 6, stride);
-            let flat: [f64; 36] = std::array::from_fn(|i| c[i / 6][i % 6]);
-            let cmat = faer::MatRef::from_row_major_slice(&flat, 6, 6);
+            let lhs = faer::MatRef::from_row_major_slice_with_stride(&ws.bt[col0..], ndof, rows, stride);
+            // C, or fbar's [[∂S/∂E, v/3], [vᵀ/3, mᵀDm/9]]
+            let (v, kappa) = ws.coupling[q];
+            let flat: [f64; 49] = std::array::from_fn(|i| match (i / rows, i % rows) {
+                (a, b) if a < 6 && b < 6 => c[a][b],
+                (6, 6) => kappa,
+                (6, b) if b < 6 => v[b] / 3.0,
+                (a, _) if a < 6 => v[a] / 3.0,
+                _ => 0.0,
+            });
+            let cmat = faer::MatRef::from_row_major_slice(&flat[..rows * rows], rows, rows);
             // (faer 0.24's `from_row_major_slice_with_stride_mut` lays the
             // data out column-major: the transposed column-major view instead)
-            let dst = faer::MatMut::from_column_major_slice_with_stride_mut(&mut ws.cbt[col0..], 6, ndof, stride)
+            let dst = faer::MatMut::from_column_major_slice_with_stride_mut(&mut ws.cbt[col0..], rows, ndof, stride)
                 .transpose_mut();
             faer::linalg::matmul::matmul(dst, faer::Accum::Replace, lhs, cmat.transpose(), w, faer::Par::Seq);
             contributing += 1;
@@ -473,11 +518,17 @@ fn gather_operators(
     contributing
 }
 
+/// Rows of the kernel's operator per Gauss point: the six strains, and with
+/// B-bar at finite strain the dilatation (`fbar`).
+fn operator_rows(geom: &CellValues, kinematics: Kinematics) -> usize {
+    if geom.volumetric.is_some() && kinematics.is_nonlinear() { 7 } else { 6 }
+}
+
 /// `K = Σ_j B̄_jᵀ (w C B̄_j) = bt · cbtᵀ` over the `contributing` points, one
 /// dense product (faer GEMM, upper triangle) into `ws.tangent`.
-fn tangent_product(el: &Element, contributing: usize, ws: &mut Workspace) {
-    let (ndof, stride) = (3 * el.nodes, 6 * el.n_points);
-    let k = 6 * contributing;
+fn tangent_product(el: &Element, contributing: usize, rows: usize, ws: &mut Workspace) {
+    let (ndof, stride) = (3 * el.nodes, rows * el.n_points);
+    let k = rows * contributing;
     let lhs = faer::MatRef::from_row_major_slice_with_stride(&ws.bt[..], ndof, k, stride);
     let rhs = faer::MatRef::from_row_major_slice_with_stride(&ws.cbt[..], ndof, k, stride);
     let dst = faer::MatMut::from_row_major_slice_mut(&mut ws.tangent[..ndof * ndof], ndof, ndof);
@@ -502,6 +553,8 @@ fn upper_product(dst: faer::MatMut<'_, f64>, lhs: faer::MatRef<'_, f64>, rhs: fa
     );
 }
 
+#[cfg(test)]
+mod fbar_tests;
 #[cfg(test)]
 mod log_tests;
 #[cfg(test)]

@@ -104,13 +104,9 @@ impl LogStrain {
     pub fn pull_back(&self, t: &Voigt, d: &Matrix6) -> (Voigt, Matrix6) {
         let q = &self.q;
         let x = self.x;
-        let f1: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| first_divided(x[i], x[j])));
+        let f1 = self.first_differences();
         let f2 = second_differences(x);
-        // T̃ = Qᵀ T Q and S̃_ij = 2 f[c_i, c_j] T̃_ij
-        let tt = to_frame(q, &crate::voigt::stress_tensor(t));
-        let st: Tensor = std::array::from_fn(|i| std::array::from_fn(|j| 2.0 * f1[i][j] * tt[i][j]));
-        let s = from_frame(q, &st);
-        let stress = [s[0][0], s[1][1], s[2][2], s[0][1], s[0][2], s[1][2]];
+        let (stress, tt) = self.pull_back_in_frame(t, &f1);
         // L̃ is diagonal in the eigenframe's Mandel basis
         let l: [f64; 6] = PAIRS.map(|(i, j)| 2.0 * f1[i][j]);
         let r6 = mandel_rotation(q);
@@ -144,6 +140,29 @@ impl LogStrain {
         // back to stress rows and engineering-strain columns
         let tangent = std::array::from_fn(|a| std::array::from_fn(|b| km[a][b] / (mandel_scale(a) * mandel_scale(b))));
         (stress, tangent)
+    }
+}
+
+impl LogStrain {
+    /// `Lᵀ t` for a stress-like `t` (Voigt, tensor shear): the second
+    /// Piola–Kirchhoff stress of a stress `t` conjugate to `E_log`, with
+    /// `(Lᵀ t) · δE = t · δE_log`.
+    pub fn pull_back_stress(&self, t: &Voigt) -> Voigt {
+        self.pull_back_in_frame(t, &self.first_differences()).0
+    }
+
+    /// `f[c_i, c_j]` of the eigenvalues of `C`.
+    fn first_differences(&self) -> Tensor {
+        let x = self.x;
+        std::array::from_fn(|i| std::array::from_fn(|j| first_divided(x[i], x[j])))
+    }
+
+    /// `S = Lᵀ t` (Voigt) and `T̃ = Qᵀ t Q`: in the eigenframe `S̃_ij = 2 f[c_i, c_j] T̃_ij`.
+    fn pull_back_in_frame(&self, t: &Voigt, f1: &Tensor) -> (Voigt, Tensor) {
+        let tt = to_frame(&self.q, &crate::voigt::stress_tensor(t));
+        let st: Tensor = std::array::from_fn(|i| std::array::from_fn(|j| 2.0 * f1[i][j] * tt[i][j]));
+        let s = from_frame(&self.q, &st);
+        ([s[0][0], s[1][1], s[2][2], s[0][1], s[0][2], s[1][2]], tt)
     }
 }
 

@@ -20,7 +20,7 @@ use crate::values::CellValues;
 pub(super) fn mesh(
     file: &[BodyFile],
     materials: &[Material],
-    geometry: Geometry,
+    analysis: &AnalysisFile,
     limits: Limits,
     base: &Path,
 ) -> Result<(Mesh, Vec<CellValues>), ModelError> {
@@ -50,16 +50,27 @@ pub(super) fn mesh(
                 Some(Formulation::Standard) => false,
                 Some(Formulation::Bbar) => true,
             };
-            if bbar && geometry == Geometry::Nonlinear {
-                // B-bar projects the small-strain dilatation; its finite-strain
-                // counterpart (F-bar) is not implemented
+            if bbar && analysis.geometry == Some(Geometry::Nonlinear) {
+                // at finite strain B-bar projects the logarithmic dilatation
+                // ln J (crate::elements's fbar), which only the logarithmic
+                // strain has as its trace; a stress-free imperfection would
+                // need its own projected dilatation
                 let why =
                     if file[i].formulation.is_some() { "\"bbar\"" } else { "unset (B-bar by default for ν ≥ 0.45)" };
-                return Err(invalid(
-                    format!("bodies[{i}].formulation"),
-                    why,
-                    "\"standard\" with analysis.geometry = \"nonlinear\" (B-bar is small-strain only)",
-                ));
+                if analysis.strain != Some(StrainMeasure::Logarithmic) {
+                    return Err(invalid(
+                        format!("bodies[{i}].formulation"),
+                        why,
+                        "\"standard\" with the Green–Lagrange strain (B-bar at finite strain needs analysis.strain = \"logarithmic\")",
+                    ));
+                }
+                if analysis.imperfection.is_some() {
+                    return Err(invalid(
+                        format!("bodies[{i}].formulation"),
+                        why,
+                        "\"standard\" with analysis.imperfection (B-bar of an imperfect shape is not implemented)",
+                    ));
+                }
             }
             Ok(if bbar { cell.with_bbar(b) } else { cell })
         })

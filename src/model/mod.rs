@@ -391,8 +391,7 @@ fn is_linear(mesh: &Mesh, materials: &[Material], indenters: &[Indenter], contac
 fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelError> {
     validate::names(&file)?;
     let materials = material::materials(&file.materials)?;
-    let geometry = file.analysis.geometry.unwrap_or_default();
-    let (mesh, cells) = bodies::mesh(&file.bodies, &materials, geometry, limits, base)?;
+    let (mesh, cells) = bodies::mesh(&file.bodies, &materials, &file.analysis, limits, base)?;
     let kinematics = analysis::kinematics(&file.analysis)?;
     let plan = refine::plan(&file)?;
     let adapt = refine::adapt_settings(file.adapt.as_ref())?;

@@ -92,7 +92,8 @@ impl Contacts<'_> {
             std::mem::take(&mut self.surface[c])
         };
         // P_a / A_a of each active slave node, for the gaps' second variation
-        let mut pressures = vec![0.0; state.gaps.len()];
+        // (current configuration only: in the reference one the gap is linear)
+        let mut pressures = vec![0.0; if self.current { state.gaps.len() } else { 0 }];
         for (j, g) in state.gaps.iter().enumerate() {
             let (area, eps) = (s.areas[j], s.penalties[j]);
             let point = &mut self.points[k0 + j];
@@ -125,7 +126,9 @@ impl Contacts<'_> {
                 continue;
             }
             point.force = g.moment.map(|v| force * v / area);
-            pressures[j] = force / area;
+            if let Some(p) = pressures.get_mut(j) {
+                *p = force / area;
+            }
             for (b, v) in &g.grad {
                 for k in 0..3 {
                     self.f_contact[3 * b + k] += force / area * v[k];

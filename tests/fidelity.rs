@@ -468,6 +468,38 @@ fn cantilevers_contact_whole_field_against_3d() {
     );
 }
 
+/// §4.3 cantilevers on the finer axis mesh of
+/// `examples/cantilevers_contact_fine.toml` (20 B4 per beam, 29,646 DOF)
+/// against the 3D fields stored for the paper's mesh (refine 1, points
+/// located by position). Issue 23's whole-field criteria, met for both
+/// beams (measured u 0.25 % and 0.28 %, at most 0.64 % on the contact
+/// surfaces, von Mises 5.5 % and 5.6 % over the plastic zones; the paper's
+/// mesh: 0.77 / 3.47 %, 12.7 % on the lower beam). The 7 in roller within
+/// 2 % of 3D (measured +0.53 %; CalculiX 25,769 N) and the root reactions
+/// (+0.44 %, −0.17 %; 12,619 and 16,087 N); the lightly loaded 9 in roller
+/// is −3.7 % (2,827 against 2,937 N), bound 5 %: it is not converged in
+/// either model (docs/cross-check.md). Young's modulus 10 % high fails
+/// it (checked by hand: the 9 in roller goes to −8.1 %; the 7 in one, set
+/// by the plastic zone under it, only to +1.3 %, and u stays within 0.3 %).
+#[test]
+fn cantilevers_contact_fine_against_3d() {
+    let (rows, _, solution) = compare_on("cantilevers_contact_fine", "cantilevers_contact");
+    assert_issue_criteria(&rows, "upper");
+    assert_issue_criteria(&rows, "lower");
+    let contact = |n: &str| solution.contacts.iter().find(|c| c.name == n).unwrap().force[2];
+    let reaction = |n: &str| solution.reactions.iter().find(|r| r.name == n).unwrap().force[2];
+    for (name, value, ccx, bound) in [
+        ("7 in roller", contact("indenter_7in"), -25_769.0, 0.02),
+        ("9 in roller", contact("indenter_9in"), -2_937.2, 0.05),
+        ("upper root", reaction("upper_root"), 12_619.0, 0.02),
+        ("lower root", reaction("lower_root"), 16_087.0, 0.02),
+    ] {
+        let d = value / ccx - 1.0;
+        eprintln!("{name}: {:+.2} % vs 3D", 100.0 * d);
+        assert!(d.abs() <= bound, "{name} {:+.2} % vs 3D", 100.0 * d);
+    }
+}
+
 /// §4.2 tube on the axis mesh graded at the loading roller
 /// (`examples/bending_tube_graded.toml`, 24 B4 × 28 L9, 36,792 DOF) against
 /// the 3D fields stored for the paper's mesh (refine 1, points located by

@@ -159,7 +159,7 @@ fn dilatation_curvature_is_the_derivative_of_the_projected_dilatation() {
     force(&u, &mut ws);
     ws.pressure[..points].copy_from_slice(&pressure);
     ws.tangent.fill(0.0);
-    fbar::add_dilatation_curvature(ps, nodes, points, &mut ws);
+    fbar::add_dilatation_curvature(ps, nodes, points, 1e11, &mut ws);
     let k = ws.tangent.clone();
     let (n, h) = (3 * nodes, 1e-8);
     let kmax = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));

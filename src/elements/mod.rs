@@ -69,6 +69,7 @@ pub struct Workspace {
     /// per point `θ̄ − θ`, the weight, the projection's coefficients
     /// `c_l` (4 each), `p = tr T / 3`, and the coupling `(Lᵀ D m, mᵀ D m / 9)`.
     spatial: Vec<[f64; 3]>,
+    proj_w: Vec<f64>,
     dilatation: Vec<f64>,
     weights: Vec<f64>,
     proj_c: Vec<f64>,
@@ -194,7 +195,7 @@ pub fn element_response(
         if kinematics.is_nonlinear() {
             large::add_geometric_stiffness(geom, el.es, el.eb, el.nodes, ws);
             if let Some(ps) = geom.volumetric.as_ref() {
-                fbar::add_dilatation_curvature(ps, el.nodes, el.n_points, ws);
+                fbar::add_dilatation_curvature(ps, el.nodes, el.n_points, material.elastic_stiffness()[0][0], ws);
             }
         }
     }

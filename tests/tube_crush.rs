@@ -1,7 +1,8 @@
 //! A thin-walled tube crushed by a rigid cylinder past its peak load
 //! (examples/tube_crush.toml, issue 26): cufem's force–displacement curve
-//! against the CalculiX NLGEOM twin's: within 2.0 % of the 3D peak up to
-//! it, 15.7 % past it (issue 26's 5 % past the peak is not met; tests below).
+//! against the CalculiX NLGEOM twin's: within 1.8 % of the 3D peak up to
+//! it and 3.7 % past it (issue 26's 5 % up to and past the peak; tests
+//! below). With the paper's element instead of B-bar it was 15.7 % past it.
 //!
 //! The 3D curve is stored in tests/data/tube_crush_ccx_force.csv: it is
 //! `verify/history_load.csv` of
@@ -74,18 +75,15 @@ fn the_example_and_its_stored_curve_are_consistent() {
     assert!(theirs.last().unwrap().1 < 0.9 * peak);
 }
 
-/// The example through the CLI against the stored 3D curve. Up to the 3D
-/// peak, at every 3D increment, the force within 5 % of the 3D peak
-/// (measured 2.0 %); cufem's largest force within 5 % of the 3D peak
-/// (measured +3.4 %); the 3D curve well past its peak (its last force
-/// 14 % below it). Past the peak issue 26 asks for 5 % and this model does
-/// NOT meet it: it stays near 1.25 kN where the 3D tube softens to
-/// 1.05 kN (15.7 % of the peak at 9 mm; the example's header discusses
-/// the causes: partly volumetric locking, partly the fold's resolution).
-/// Asserted there: within 20 %, so that a regression beyond today's gap
-/// fails.
+/// The example through the CLI against the stored 3D curve, issue 26's
+/// criterion: at every 3D increment the force within 5 % of the 3D peak,
+/// up to the peak (measured 1.8 %) and past it (measured 3.7 %, at 9 mm:
+/// 1,085 against 1,046 N); cufem's largest force within 5 % of the 3D
+/// peak (measured −0.2 %); the 3D curve well past its peak (its last force
+/// 14 % below it). The paper's element (no B-bar) fails it: 15.7 % past
+/// the peak.
 #[test]
-#[ignore = "minutes: the crush runs 115 increments"]
+#[ignore = "minutes: the crush runs 159 increments"]
 fn the_crush_follows_the_calculix_curve_to_its_peak() {
     let out = out_dir("tube_crush");
     let status = Command::new(env!("CARGO_BIN_EXE_cufem"))
@@ -112,15 +110,15 @@ fn the_crush_follows_the_calculix_curve_to_its_peak() {
     eprintln!("largest difference past it {:.2} % at {:.2} mm", after.1, after.0 * 1e3);
     assert!(before.1 < 5.0, "{:.2} % at {:.2} mm", before.1, before.0 * 1e3);
     assert!((pc.1 - p3.1).abs() < 0.05 * p3.1);
-    assert!(after.1 < 20.0, "{:.2} % at {:.2} mm", after.1, after.0 * 1e3);
+    assert!(after.1 < 5.0, "{:.2} % at {:.2} mm", after.1, after.0 * 1e3);
     let last = theirs.last().unwrap();
     assert!(last.1 < 0.95 * p3.1 && last.0 > 2.0 * p3.0, "not past the peak: {last:?} against {p3:?}");
 }
 
 /// The same comparison made by `cufem verify` itself, CalculiX included:
 /// its force-history row for the loading roller — the peaks within 5 %
-/// (measured +3.4 %), the largest difference over the whole curve below
-/// 20 % (measured 15.7 %, past the peak: see the test above).
+/// and the largest difference over the whole curve below 5 % of the 3D
+/// peak (issue 26's criterion; measured in docs/cross-check.md).
 #[test]
 #[ignore = "tens of minutes: runs CalculiX with NLGEOM on 30,444 nodes"]
 fn verify_compares_the_crush_with_calculix_nlgeom() {
@@ -136,5 +134,5 @@ fn verify_compares_the_crush_with_calculix_nlgeom() {
     let load = table["force_histories"].as_array().unwrap().iter().find(|r| r["name"] == "load").unwrap();
     eprintln!("{load}");
     assert!(load["peak_difference_percent"].as_f64().unwrap().abs() < 5.0);
-    assert!(load["max_difference_percent"].as_f64().unwrap() < 20.0);
+    assert!(load["max_difference_percent"].as_f64().unwrap() < 5.0);
 }

@@ -14,7 +14,8 @@
 //!
 //! the F-bar deformation gradient of de Souza Neto et al. (IJSS 33, 1996)
 //! with the projected logarithmic dilatation — for a constant pressure space
-//! the mean dilatation of Simo, Taylor & Pister (CMAME 51, 1985). The
+//! a logarithmic variant of the mean dilatation of Simo, Taylor & Pister
+//! (CMAME 51, 1985), which averages J where this averages ln J. The
 //! element's energy is `∫ W(Ē(u)) dV₀`, so its force and tangent are exact
 //! variations and the tangent is symmetric (the material's is: J2 with the
 //! associative flow rule). With `T` the material's stress (conjugate to
@@ -146,18 +147,20 @@ pub(super) fn add_dilatation_curvature(
         }
     }
     let ndof = 3 * nodes;
-    let excess: Vec<f64> = (0..points)
-        .map(|q| {
-            let c = &ws.proj_c[q * 4..q * 4 + 4];
-            (0..n).map(|l| c[l] * p_l[l]).sum::<f64>() - ws.pressure[q]
-        })
-        .collect();
+    // p̄ − p per point, in the force-free buffer of the projection's weights
+    let mut excess = std::mem::take(&mut ws.proj_w);
+    excess.clear();
+    excess.extend((0..points).map(|q| {
+        let c = &ws.proj_c[q * 4..q * 4 + 4];
+        (0..n).map(|l| c[l] * p_l[l]).sum::<f64>() - ws.pressure[q]
+    }));
     // With isotropic elasticity and isochoric plastic flow (every material
     // of crate::materials) p = K θ̄ lies in the pressure space and p̄ = p up
     // to round-off (θ and tr E_log are summed differently): the term is
     // then below 1e-10 of the material part, and the loop (half of an
     // evaluation's time) is skipped.
     if excess.iter().all(|e| e.abs() <= 1e-10 * modulus) {
+        ws.proj_w = excess;
         return;
     }
     for q in 0..points {
@@ -175,6 +178,7 @@ pub(super) fn add_dilatation_curvature(
             }
         }
     }
+    ws.proj_w = excess;
 }
 
 /// The cofactor matrix of `f` (`cof F = J F⁻ᵀ`).

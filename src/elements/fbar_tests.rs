@@ -178,3 +178,100 @@ fn dilatation_curvature_is_the_derivative_of_the_projected_dilatation() {
     eprintln!("dilatation curvature vs central differences: {worst:e}");
     assert!(worst < 1e-6, "{worst:e}");
 }
+
+/// The tangent against central differences on every pressure space: L4 × B2
+/// (`{1}`), L9 × B2 (`{1, ξ, η}`), L16 × B4 (`{1, ξ, η, ζ}`; the other
+/// test has L9 × B3), plastic at a large rotation, within 1e-6.
+#[test]
+fn fbar_tangent_on_every_pressure_space() {
+    let (s, c) = 0.6f64.sin_cos();
+    for (sk, bk) in [
+        (SectionElementKind::L4, BeamElementKind::B2),
+        (SectionElementKind::L9, BeamElementKind::B2),
+        (SectionElementKind::L16, BeamElementKind::B4),
+    ] {
+        let body = single_element_body(sk, bk);
+        let geom = CellValues::new(&body).unwrap().with_bbar(&body);
+        let virgin = vec![PointState::default(); geom.gp_per_element()];
+        let rotated = field(&body, &|[x, y, z]| {
+            let (yr, zr) = (0.1 + c * (y - 0.1) - s * z, s * (y - 0.1) + c * z);
+            [
+                0.02 * y * z / 0.01 + 0.01 * x,
+                yr - y + 0.03 * (y - 0.1) + 0.01 * x,
+                zr - z - 0.01 * (y - 0.1).powi(2) / 0.03,
+            ]
+        });
+        let worst = tangent_error(&geom, &plastic(), &rotated, &virgin);
+        eprintln!("{sk:?} × {bk:?}: relative tangent error {worst:e}");
+        assert!(worst < 1e-6, "{sk:?} × {bk:?}: {worst:e}");
+    }
+}
+
+/// The Cauchy stress is `F S Fᵀ / J̄`: elastic, its mean times `J̄` is the
+/// Kirchhoff mean `K θ̄` at every Gauss point of a non-homogeneous
+/// deformation (θ̄ ≠ θ there), to 1e-9; with `J` instead of `J̄` it is not.
+#[test]
+fn fbar_cauchy_stress_is_over_the_projected_volume() {
+    let body = single_element_body(SectionElementKind::L9, BeamElementKind::B4);
+    let geom = CellValues::new(&body).unwrap().with_bbar(&body);
+    let ngp = geom.gp_per_element();
+    let (virgin, mut trial, mut stress) =
+        (vec![PointState::default(); ngp], vec![PointState::default(); ngp], vec![[0.0; 6]; ngp]);
+    let mat = Material::new("m", 70e9, 0.3, None);
+    let bulk = 70e9 / (3.0 * 0.4);
+    let u = field(&body, &|[x, y, z]| [0.04 * x * (y - 0.1) / 0.03, 0.15 * (y - 0.1), 0.03 * z * z / 0.01]);
+    let mut ws = Workspace::default();
+    let points = PointData {
+        committed: &virgin,
+        trial: &mut trial,
+        stress: &mut stress,
+        predictor: Predictor::Loading,
+        kinematics: Kinematics::TotalLagrangianLog,
+        initial: None,
+    };
+    element_response(&geom, 0, 1, &u, &mat, points, TangentMode::None, &mut ws);
+    let mut off_projection = 0.0f64;
+    for (q, s) in stress.iter().enumerate() {
+        let theta = crate::kinematics::determinant(&ws.frames[q]).ln();
+        let theta_bar = theta + ws.dilatation[q];
+        off_projection = off_projection.max((theta_bar - theta).abs());
+        let kirchhoff_mean = theta_bar.exp() * (s[0] + s[1] + s[2]) / 3.0;
+        assert!((kirchhoff_mean - bulk * theta_bar).abs() < 1e-9 * bulk * theta_bar.abs(), "point {q}");
+    }
+    assert!(off_projection > 1e-3, "θ̄ = θ everywhere: the test cannot tell J̄ from J ({off_projection:e})");
+}
+
+/// One workspace through elements of different sizes (L16 × B4, L4 × B2,
+/// L16 × B4 again) gives each the force and tangent (upper triangle) of a
+/// fresh one, bit for bit.
+#[test]
+fn fbar_workspace_is_reused_across_element_sizes() {
+    let run = |body: &crate::mesh::Body, ws: &mut Workspace| {
+        let geom = CellValues::new(body).unwrap().with_bbar(body);
+        let ngp = geom.gp_per_element();
+        let (virgin, mut trial, mut stress) =
+            (vec![PointState::default(); ngp], vec![PointState::default(); ngp], vec![[0.0; 6]; ngp]);
+        let u = field(body, &|[x, y, z]| [0.04 * x * (y - 0.1) / 0.03, 0.15 * (y - 0.1), 0.03 * z * z / 0.01]);
+        let points = PointData {
+            committed: &virgin,
+            trial: &mut trial,
+            stress: &mut stress,
+            predictor: Predictor::Loading,
+            kinematics: Kinematics::TotalLagrangianLog,
+            initial: None,
+        };
+        element_response(&geom, 0, 1, &u, &plastic(), points, TangentMode::Always, ws);
+        // the kernel writes the upper triangle only
+        let n = ws.force.len();
+        let upper: Vec<f64> =
+            (0..n).flat_map(|p| (p..n).map(move |q| (p, q))).map(|(p, q)| ws.tangent[p * n + q]).collect();
+        (ws.force.clone(), upper)
+    };
+    let big = single_element_body(SectionElementKind::L16, BeamElementKind::B4);
+    let small = single_element_body(SectionElementKind::L4, BeamElementKind::B2);
+    let (fresh_big, fresh_small) = (run(&big, &mut Workspace::default()), run(&small, &mut Workspace::default()));
+    let mut ws = Workspace::default();
+    assert_eq!(run(&big, &mut ws), fresh_big);
+    assert_eq!(run(&small, &mut ws), fresh_small);
+    assert_eq!(run(&big, &mut ws), fresh_big);
+}

@@ -57,7 +57,8 @@ pub struct Workspace {
     /// Sum factorization: `v_τ, v'_τ, h_τ, h'_τ` at one axis point (3 each).
     contracted: Vec<[f64; 3]>,
     /// The tangent as one product: B̄ per Gauss point (`bt`, element DOF ×
-    /// 6 · points, row-major) and w C B̄ (`cbt`, same layout).
+    /// rows · points, row-major; 6 rows, 7 with B-bar at finite strain) and
+    /// w C B̄ (`cbt`, same layout).
     bt: Vec<f64>,
     cbt: Vec<f64>,
     tangents: Vec<Matrix6>,
@@ -175,6 +176,13 @@ pub fn element_response(
     ws.resize(el.nodes, el.n_points);
     ws.force.fill(0.0);
     let kinematics = points.kinematics;
+    // what the model reader refuses (crate::model's bodies), for library callers
+    assert!(
+        geom.volumetric.is_none()
+            || !kinematics.is_nonlinear()
+            || (kinematics.is_logarithmic() && points.initial.is_none() && mode != TangentMode::UnlessElastic),
+        "B-bar at finite strain needs the logarithmic strain, no initial displacement and a full tangent"
+    );
     if let Some(ps) = geom.volumetric.as_ref() {
         if kinematics.is_nonlinear() {
             fbar::dilatation_projection(geom, ps, (el.es, el.eb, el.nodes), u, ws);
@@ -431,9 +439,10 @@ fn add_point_force(sp: &crate::values::SectionAt<'_>, w: f64, s: &Tensor, h: &mu
 
 /// Second pass: for every contributing Gauss point `j` (all, or with
 /// `correction` only those whose tangent is not the elastic one, with
-/// `C − C^el` — the nucleus is linear in `C`), the operator `B̄_j` (its six
-/// rows as columns `6j..6j+6` of `ws.bt`, one row per element DOF) and
-/// `w C B̄_j` likewise in `ws.cbt`. Returns the number of points gathered.
+/// `C − C^el` — the nucleus is linear in `C`), the operator `B̄_j` (its
+/// rows — six, seven with B-bar at finite strain — as columns of `ws.bt`,
+/// one row per element DOF) and `w C B̄_j` likewise in `ws.cbt`. Returns
+/// the number of points gathered.
 fn gather_operators(
     geom: &CellValues,
     el: &Element,
@@ -476,7 +485,7 @@ fn gather_operators(
                 let frame = &ws.frames[q];
                 let bb: [Voigt; 3] = std::array::from_fn(|k| {
                     if kinematics.is_nonlinear() {
-                        // δE = sym(Fᵀ (e_k ⊗ g)); B-bar is refused with this kinematics
+                        // δE = sym(Fᵀ (e_k ⊗ g)); B-bar's dilatation is the 7th row (fbar)
                         return crate::kinematics::strain_variation(frame, g, k);
                     }
                     let mut col = [d[k] / 3.0, d[k] / 3.0, d[k] / 3.0, 0.0, 0.0, 0.0];

@@ -130,17 +130,24 @@ pub fn cauchy(f: &Tensor, s: &Voigt) -> Voigt {
 pub fn second_piola(f: &Tensor, sigma: &Voigt) -> Voigt {
     let j = determinant(f);
     // the inverse by cofactors: F⁻¹ = cof(F)ᵀ / J
-    let c = |r: usize, k: usize| {
-        let (r1, r2, k1, k2) = ((r + 1) % 3, (r + 2) % 3, (k + 1) % 3, (k + 2) % 3);
-        f[r1][k1] * f[r2][k2] - f[r1][k2] * f[r2][k1]
-    };
-    let inv: Tensor = std::array::from_fn(|i| std::array::from_fn(|k| c(k, i) / j));
+    let c = cofactor(f);
+    let inv: Tensor = std::array::from_fn(|i| std::array::from_fn(|k| c[k][i] / j));
     let st = voigt::stress_tensor(sigma);
     // S_ab = J Σ_ij F⁻¹_ai σ_ij F⁻¹_bj
     let sab = |a: usize, b: usize| {
         j * (0..3).map(|i| (0..3).map(|jj| inv[a][i] * st[i][jj] * inv[b][jj]).sum::<f64>()).sum::<f64>()
     };
     [sab(0, 0), sab(1, 1), sab(2, 2), sab(0, 1), sab(0, 2), sab(1, 2)]
+}
+
+/// The cofactor matrix `cof F = J F⁻ᵀ` (signed minors, by cyclic indices).
+pub fn cofactor(f: &Tensor) -> Tensor {
+    std::array::from_fn(|i| {
+        std::array::from_fn(|j| {
+            let (i1, i2, j1, j2) = ((i + 1) % 3, (i + 2) % 3, (j + 1) % 3, (j + 2) % 3);
+            f[i1][j1] * f[i2][j2] - f[i1][j2] * f[i2][j1]
+        })
+    })
 }
 
 /// The Green–Lagrange strain variation of a unit displacement in direction

@@ -4,6 +4,8 @@
 //! names survive, and the CLI runs cycles until the budget with the
 //! estimate falling.
 
+mod common;
+
 use std::path::Path;
 use std::process::Command;
 
@@ -262,28 +264,16 @@ fn block_adapts_within_five_percent_of_3d_below_the_uniform_dof() {
         serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
     let dof = s["dof"].as_u64().unwrap();
     assert!(s["adapt"].as_array().unwrap().len() >= 2 && dof < 38_325, "{dof} DOF after {:?}", s["adapt"]);
-    let table = |path: &Path| -> Vec<Vec<f64>> {
-        let text = std::fs::read_to_string(path).unwrap();
-        let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-        let names: Vec<&str> = lines.next().unwrap().split(',').collect();
-        let (x, s_zz) =
-            (names.iter().position(|n| *n == "x").unwrap(), names.iter().position(|n| *n == "s_zz").unwrap());
-        lines
-            .map(|l| {
-                let v: Vec<f64> = l.split(',').map(|c| c.parse().unwrap()).collect();
-                vec![v[x], v[s_zz]]
-            })
-            .collect()
-    };
-    let (ours, reference) = (table(&dir.join("line_top.csv")), table(&root.join("tests/data/block_calculix_top.csv")));
-    let peak = reference.iter().map(|r| r[1].abs()).fold(0.0, f64::max);
-    let worst = ours
-        .iter()
-        .zip(&reference)
-        .filter(|(_, r)| (0.21 - 1e-9..=0.29 + 1e-9).contains(&r[0]))
-        .map(|(o, r)| {
-            assert!((o[0] - r[0]).abs() < 1e-12);
-            (o[1] - r[1]).abs() / peak
+    let (ours, reference) = (
+        common::csv_columns(&dir.join("line_top.csv")),
+        common::csv_columns(&root.join("tests/data/block_calculix_top.csv")),
+    );
+    let peak = reference["s_zz"].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let worst = (0..reference["x"].len())
+        .filter(|&i| (0.21 - 1e-9..=0.29 + 1e-9).contains(&reference["x"][i]))
+        .map(|i| {
+            assert!((ours["x"][i] - reference["x"][i]).abs() < 1e-12);
+            (ours["s_zz"][i] - reference["s_zz"][i]).abs() / peak
         })
         .fold(0.0, f64::max);
     eprintln!("adaptive block: {dof} DOF, σ_zz under the punch within {:.2} % of the 3D peak", 100.0 * worst);

@@ -13,6 +13,8 @@
 //! margin, named as such (a regression guard until the element or the
 //! contact improves).
 
+mod common;
+
 use std::path::PathBuf;
 
 use cufem::verify::FieldRow;
@@ -184,20 +186,6 @@ fn block_axis_refinement_against_stored_3d() {
     }
 }
 
-/// A CSV file's columns by header name (comment lines `#` skipped).
-fn columns(path: &std::path::Path) -> std::collections::HashMap<String, Vec<f64>> {
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
-    let names: Vec<String> = lines.next().unwrap().split(',').map(str::to_string).collect();
-    let mut cols: std::collections::HashMap<String, Vec<f64>> = names.iter().map(|n| (n.clone(), vec![])).collect();
-    for l in lines {
-        for (n, v) in names.iter().zip(l.split(',')) {
-            cols.get_mut(n).unwrap().push(v.parse().unwrap());
-        }
-    }
-    cols
-}
-
 /// The block's top line y = 0.05, z = 0.3 m of a run against the 3D line
 /// (CalculiX C3D20R, 145,767 DOF: tests/data/block_calculix_top_u_z.csv and
 /// block_calculix_top.csv, the same 201 stations): per station x, u_z and
@@ -212,9 +200,9 @@ struct TopLine {
 }
 
 fn top_line(line_csv: &std::path::Path) -> TopLine {
-    let ours = columns(line_csv);
-    let uz3 = columns(&root().join("tests/data/block_calculix_top_u_z.csv"));
-    let top3 = columns(&root().join("tests/data/block_calculix_top.csv"));
+    let ours = common::csv_columns(line_csv);
+    let uz3 = common::csv_columns(&root().join("tests/data/block_calculix_top_u_z.csv"));
+    let top3 = common::csv_columns(&root().join("tests/data/block_calculix_top.csv"));
     let x = ours["x"].clone();
     assert_eq!(x.len(), uz3["x"].len());
     assert!(x.iter().zip(&uz3["x"]).all(|(a, b)| (a - b).abs() < 1e-12));
@@ -304,6 +292,7 @@ fn block_indentation_graded_against_3d() {
         100.0 * line.s_zz_under,
         100.0 * line.peeq_under
     );
+    eprintln!("u_z: within {:.1} % at every station x ∈ [0, 0.19] m and its mirror", 100.0 * line.u_z_error(0.0, 0.19));
     assert!(near <= 0.05 && edge <= 0.08 && corner <= 0.05, "u_z {near} {edge} {corner}");
     assert!(line.sinks_towards_the_punch(), "the top surface does not sink monotonically towards the punch");
     assert!(line.s_zz_under <= 0.10 && line.peeq_under <= 0.10, "{} {}", line.s_zz_under, line.peeq_under);
@@ -634,9 +623,13 @@ fn cantilever_meshes_against_stored_3d() {
             -force("indenter_9in"),
             force("beams"),
         );
+        let view = s.fields(&model);
+        for p in &model.probes {
+            let at = view.sample_probe(p).unwrap();
+            eprintln!("  probe {}: σ_yy {:.1} MPa, peeq {:.2e}", p.name, at.stress[1] / 1e6, at.peeq);
+        }
         let rows =
-            cufem::verify::compare_stored_on(&stored_on, &model, &s.fields(&model), &stored_3d("cantilevers_contact"))
-                .unwrap();
+            cufem::verify::compare_stored_on(&stored_on, &model, &view, &stored_3d("cantilevers_contact")).unwrap();
         for r in &rows {
             eprintln!("  {:<28} {:<10} L2 {:6.2} %  max {:6.2} %", r.region, r.quantity, r.l2_percent, r.max_percent);
         }

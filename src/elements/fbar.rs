@@ -82,7 +82,7 @@ pub(super) fn dilatation_projection(
             let j = crate::kinematics::determinant(&f);
             let theta = if j > 0.0 { j.ln() } else { f64::NAN };
             // F⁻ᵀ = cof(F) / J
-            let inv_t = cofactor(&f).map(|row| row.map(|c| c / j));
+            let inv_t = crate::kinematics::cofactor(&f).map(|row| row.map(|c| c / j));
             ws.dilatation[q] = theta;
             for (gt, g) in ws.spatial[q * nodes..(q + 1) * nodes].iter_mut().zip(&ws.grads[..nodes]) {
                 *gt = std::array::from_fn(|i| inv_t[i][0] * g[0] + inv_t[i][1] * g[1] + inv_t[i][2] * g[2]);
@@ -179,14 +179,4 @@ pub(super) fn add_dilatation_curvature(
         }
     }
     ws.proj_w = excess;
-}
-
-/// The cofactor matrix of `f` (`cof F = J F⁻ᵀ`).
-fn cofactor(f: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
-    std::array::from_fn(|i| {
-        std::array::from_fn(|j| {
-            let (i1, i2, j1, j2) = ((i + 1) % 3, (i + 2) % 3, (j + 1) % 3, (j + 2) % 3);
-            f[i1][j1] * f[i2][j2] - f[i1][j2] * f[i2][j1]
-        })
-    })
 }

@@ -78,3 +78,17 @@ pub fn vtu_array(path: &std::path::Path, name: Option<&str>) -> Vec<f64> {
         t => panic!("type {t}"),
     }
 }
+
+/// A CSV file's columns by header name (comment lines `#` skipped).
+pub fn csv_columns(path: &std::path::Path) -> std::collections::HashMap<String, Vec<f64>> {
+    let text = std::fs::read_to_string(path).unwrap();
+    let mut lines = text.lines().filter(|l| !l.starts_with('#'));
+    let names: Vec<String> = lines.next().unwrap().split(',').map(str::to_string).collect();
+    let mut cols: std::collections::HashMap<String, Vec<f64>> = names.iter().map(|n| (n.clone(), vec![])).collect();
+    for l in lines {
+        for (n, v) in names.iter().zip(l.split(',')) {
+            cols.get_mut(n).unwrap().push(v.parse().unwrap());
+        }
+    }
+    cols
+}

@@ -55,9 +55,10 @@ def test_rows_equal_single_runs(local):
     d = cufem.study.set_path(small_model(), "indenters.2.displacement.2", -0.5e-3)
     d = cufem.study.set_path(d, "materials.0.young_modulus", 68e9)
     s = cufem.Model.from_dict(d).run(threads=1, progress=False).summary
-    # to round-off (see the Dask test): a separate process may sum in another order
-    assert local.iloc[1]["probe.contact_centre.s_yy"] == pytest.approx(s["probes"][0]["stress"][1], rel=1e-12)
-    assert local.iloc[1]["max_peeq"] == pytest.approx(s["max_peeq"], rel=1e-12)
+    # to the Newton tolerance (see the Dask test): a separate process may sum
+    # in another order and so stop one iteration earlier or later
+    assert local.iloc[1]["probe.contact_centre.s_yy"] == pytest.approx(s["probes"][0]["stress"][1], rel=1e-6)
+    assert local.iloc[1]["max_peeq"] == pytest.approx(s["max_peeq"], rel=1e-6)
 
 
 def test_dask_local_cluster_gives_the_same_dataframe(local):
@@ -65,13 +66,20 @@ def test_dask_local_cluster_gives_the_same_dataframe(local):
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=False, dashboard_address=None) as cluster:
         with distributed.Client(cluster) as client:
             on_dask = study.run(small_model(), VARIANTS, OUTPUTS, client=client)
-    # Equal to round-off, not bit for bit: CI once saw the contact-centre
-    # stress differ in its 16th digit (7e-17 relative) between the Dask
-    # threads and the pool's processes — the same serial solve, whose SIMD
+    # Equal to the Newton tolerance, not bit for bit. The serial solve's SIMD
     # kernels may sum in an order that depends on where buffers land in
-    # memory. 1e-12 still catches a variant mixed up with another (they
-    # differ from the first digit) or a dropped increment.
-    pd.testing.assert_frame_equal(on_dask, local, check_exact=False, rtol=1e-12, atol=0.0)
+    # memory (faer aligns its reductions to the address), so the Dask threads
+    # and the pool's processes see residuals that differ in their 16th
+    # digit. Usually that stays round-off (CI once saw 7e-17 relative), but
+    # when a residual sits at the convergence threshold one run takes one
+    # more Newton iteration than the other, and the results then differ by
+    # that iteration's correction: CI saw max_peeq differ by 6e-9 relative.
+    # Both are converged answers to the solver's residual and displacement
+    # tolerance of 1e-6 (NewtonSettings::default), so that is the equality
+    # the test can honestly ask for; it still catches a variant mixed up
+    # with another (they differ from the first digit) or a dropped
+    # increment (max_peeq moves by percent).
+    pd.testing.assert_frame_equal(on_dask, local, check_exact=False, rtol=1e-6, atol=0.0)
 
 
 def test_grid_and_bad_paths():

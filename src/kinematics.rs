@@ -40,6 +40,9 @@ use crate::voigt::{self, Voigt};
 /// A 3×3 tensor `t[i][j]`.
 pub type Tensor = [[f64; 3]; 3];
 
+/// The identity tensor (`F` of the undeformed state).
+pub const IDENTITY: Tensor = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+
 /// The strain measure and configuration of the analysis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Kinematics {

@@ -34,6 +34,11 @@
 //! of `D m` (`L = ∂E_log/∂E`). The last term uses that `Π` is self-adjoint:
 //! `∫ p Π(Δδθ) = ∫ Π(p) Δδθ`. The Cauchy stress is `σ = F S Fᵀ / J̄`
 //! (`F̄ S̄ F̄ᵀ = F S Fᵀ` since `S̄ = (J/J̄)^{2/3} S`).
+//!
+//! The tangent is formed in the kernel's nucleus form (`nucleus`): the
+//! terms of `d`'s local half `−g̃` (and the curvature) are 3 × 3 matrices
+//! per point and component pair ([`add_point_terms`]), those of its
+//! projected half `Π g̃` a rank-2n update per element ([`add_projected`]).
 
 use super::Workspace;
 use super::bbar::invert_spd;
@@ -126,57 +131,110 @@ pub(super) fn dilatation_projection(
     ws.proj_w = w_psi;
 }
 
-/// The curvature of the dilatation, `−∫ (p̄ − p) g̃_(a,l) g̃_(b,k) dV₀` for
-/// the DOF pair `((a, k), (b, l))`, into the upper triangle of
-/// `ws.tangent`; `p` per point in `ws.pressure`, `p̄ = Π p`; `modulus` the
-/// material's largest elastic stiffness (`C₁₁`), the scale below which
-/// `p̄ − p` is round-off.
-pub(super) fn add_dilatation_curvature(
-    ps: &PressureSpace,
-    nodes: usize,
-    points: usize,
-    modulus: f64,
-    ws: &mut Workspace,
-) {
+/// Per element, before the points' nuclei: `p̄ − p` per point (into
+/// `ws.proj_w`, the projection's weights are no longer needed) and
+/// `A_lm = Σ_q w κ c_l c_m` (`κ = mᵀDm/9`), the weight of the projected
+/// dilatation's own term.
+pub(super) fn prepare(ps: &PressureSpace, points: usize, ws: &mut Workspace) -> [[f64; 4]; 4] {
     let n = ps.n;
     let mut p_l = [0.0; 4];
+    let mut a = [[0.0; 4]; 4];
     for q in 0..points {
         let psi = &ps.psi[q * n..(q + 1) * n];
+        let c = &ws.proj_c[q * 4..q * 4 + 4];
+        let wk = ws.weights[q] * ws.coupling[q].1;
         for l in 0..n {
             p_l[l] += ws.weights[q] * psi[l] * ws.pressure[q];
+            for m in 0..n {
+                a[l][m] += wk * c[l] * c[m];
+            }
         }
     }
-    let ndof = 3 * nodes;
-    // p̄ − p per point, in the force-free buffer of the projection's weights
     let mut excess = std::mem::take(&mut ws.proj_w);
     excess.clear();
     excess.extend((0..points).map(|q| {
         let c = &ws.proj_c[q * 4..q * 4 + 4];
         (0..n).map(|l| c[l] * p_l[l]).sum::<f64>() - ws.pressure[q]
     }));
-    // With isotropic elasticity and isochoric plastic flow (every material
-    // of crate::materials) p = K θ̄ lies in the pressure space and p̄ = p up
-    // to round-off (θ and tr E_log are summed differently): the term is
-    // then below 1e-10 of the material part, and the loop (half of an
-    // evaluation's time) is skipped.
-    if excess.iter().all(|e| e.abs() <= 1e-10 * modulus) {
-        ws.proj_w = excess;
-        return;
-    }
-    for q in 0..points {
-        let s = -ws.weights[q] * excess[q];
-        let gt = &ws.spatial[q * nodes..(q + 1) * nodes];
-        for a in 0..nodes {
-            for k in 0..3 {
-                let row = (3 * a + k) * ndof;
-                for b in a..nodes {
-                    let first = if b == a { k } else { 0 };
-                    for l in first..3 {
-                        ws.tangent[row + 3 * b + l] += s * gt[a][l] * gt[b][k];
-                    }
-                }
+    ws.proj_w = excess;
+    a
+}
+
+/// The point-local part of the dilatation's terms in the nuclei `m` of
+/// point `q` (`crate::elements::nucleus`, pairs `(c, d)` in `pairs`), with
+/// `d = Π g̃ − g̃`, `y = w Bᵀ v / 3` (`y_(a,c) = α_ck ∂_k N_a`, `α = w F V / 3`
+/// with `V` the tensor of `v`) and `g̃_(a,c) = β_ck ∂_k N_a`, `β = F⁻ᵀ`:
+///
+/// ```text
+/// M^(cd)_kl += −α_ck β_dl − β_ck α_dl + w κ β_ck β_dl − w (p̄ − p) β_dk β_cl
+/// ```
+///
+/// (the `−g̃` halves of `y dᵀ + d yᵀ + w κ d dᵀ`, and the curvature).
+/// Returns `γ = α − w κ β`, whose projection `Z_l = Σ_q c_l γ ∇N` carries
+/// the rest ([`add_projected`]).
+#[inline(always)]
+pub(super) fn add_point_terms(
+    m: &mut [[[f64; 3]; 3]; 6],
+    pairs: &[(usize, usize); 6],
+    f: &crate::kinematics::Tensor,
+    (v, kappa): (crate::voigt::Voigt, f64),
+    w: f64,
+    excess: f64,
+) -> [[f64; 3]; 3] {
+    let j = crate::kinematics::determinant(f);
+    let beta = crate::kinematics::cofactor(f).map(|row| row.map(|c| c / j));
+    let vt = crate::voigt::stress_tensor(&v);
+    let alpha: [[f64; 3]; 3] =
+        std::array::from_fn(|c| std::array::from_fn(|k| w / 3.0 * (0..3).map(|i| f[c][i] * vt[i][k]).sum::<f64>()));
+    let (wk, we) = (w * kappa, w * excess);
+    for (mp, &(c, d)) in m.iter_mut().zip(pairs) {
+        for (k, row) in mp.iter_mut().enumerate() {
+            for (l, x) in row.iter_mut().enumerate() {
+                *x += -alpha[c][k] * beta[d][l] - beta[c][k] * alpha[d][l] + wk * beta[c][k] * beta[d][l]
+                    - we * beta[d][k] * beta[c][l];
             }
         }
     }
-    ws.proj_w = excess;
+    std::array::from_fn(|c| std::array::from_fn(|k| alpha[c][k] - wk * beta[c][k]))
+}
+
+/// The projected part of the dilatation's terms, added to the upper
+/// triangle of `ws.tangent`: with `G_l = ∫ ψ_l g̃` (`ws.proj_g`), `Z_l`
+/// (`ws.proj_z`, rows `(l, c)` × nodes) and `A` from [`prepare`],
+///
+/// ```text
+/// K += Σ_l (U_l G_lᵀ + G_l U_lᵀ),   U_l = Z_l + ½ Σ_m A_lm G_m
+/// ```
+///
+/// (`Σ_q z_q Pᵀ + P z_qᵀ + w κ P Pᵀ` with `P = Σ_l c_l G_l`, `z = y − w κ g̃`):
+/// a rank-2n update.
+pub(super) fn add_projected(n: usize, nodes: usize, a: &[[f64; 4]; 4], ws: &mut Workspace) {
+    use faer::linalg::matmul::triangular::{BlockStructure, matmul};
+    let (ndof, k) = (3 * nodes, 2 * n);
+    let (g, z) = (&ws.proj_g[..n * ndof], &ws.proj_z);
+    // [U | G] and [G | U], DOF × 2n each, row-major: K += [U | G] [G | U]ᵀ
+    let mut w = std::mem::take(&mut ws.proj_u);
+    w.resize(2 * ndof * k, 0.0);
+    let (w1, w2) = w.split_at_mut(ndof * k);
+    for p in 0..ndof {
+        let (node, c) = (p / 3, p % 3);
+        for l in 0..n {
+            let u = z[(3 * l + c) * nodes + node] + 0.5 * (0..n).map(|m| a[l][m] * g[m * ndof + p]).sum::<f64>();
+            let gl = g[l * ndof + p];
+            (w1[p * k + l], w1[p * k + n + l]) = (u, gl);
+            (w2[p * k + l], w2[p * k + n + l]) = (gl, u);
+        }
+    }
+    matmul(
+        faer::MatMut::from_row_major_slice_mut(&mut ws.tangent[..ndof * ndof], ndof, ndof),
+        BlockStructure::TriangularUpper,
+        faer::Accum::Add,
+        faer::MatRef::from_row_major_slice(w1, ndof, k),
+        BlockStructure::Rectangular,
+        faer::MatRef::from_row_major_slice(w2, ndof, k).transpose(),
+        BlockStructure::Rectangular,
+        1.0,
+        faer::Par::Seq,
+    );
+    ws.proj_u = w;
 }

@@ -155,9 +155,28 @@ fn dilatation_curvature_is_the_derivative_of_the_projected_dilatation() {
         f
     };
     force(&u, &mut ws);
+    // the nuclei with no material stiffness, stress or coupling, F of u:
+    // the dilatation's curvature alone
     ws.pressure[..points].copy_from_slice(&pressure);
-    ws.tangent.fill(0.0);
-    fbar::add_dilatation_curvature(ps, nodes, points, 1e11, &mut ws);
+    ws.tangents.fill([[0.0; 6]; 6]);
+    ws.pk2.fill([0.0; 6]);
+    ws.coupling.fill(([0.0; 6], 0.0));
+    let mut grads = vec![[0.0; 3]; nodes];
+    for gb in 0..geom.axis.n_gp {
+        for gs in 0..geom.section.n_gp {
+            geom.gradients(0, 0, gb, gs, &mut grads);
+            let mut grad = [[0.0; 3]; 3];
+            for (a, g) in grads.iter().enumerate() {
+                for (k, row) in grad.iter_mut().enumerate() {
+                    for d in 0..3 {
+                        row[d] += u[3 * a + k] * g[d];
+                    }
+                }
+            }
+            ws.frames[gb * geom.section.n_gp + gs] = crate::kinematics::deformation_gradient(&grad);
+        }
+    }
+    nucleus::large_tangent(&geom, (0, 0, nodes), Some(ps), &mut ws);
     let k = ws.tangent.clone();
     let (n, h) = (3 * nodes, 1e-8);
     let kmax = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));

@@ -33,6 +33,10 @@
 //! runs at the machine's vector speed, where the node-pair loop it replaced
 //! ran at the speed of loads and stores of the element matrix: the elastic
 //! matrices of tube 28 L9 took 94 → 52 ms (`cufem bench`, back to back).
+//! With nonlinear geometry the operator depends on `F` and the tangent
+//! gains the geometric term: there the kernel forms the 3 × 3 nuclei per
+//! point and component pair instead and contracts them with the gradients
+//! in one product (`nucleus`), without `B`.
 //!
 //! Shape functions, gradients and weights come from [`crate::values`], the
 //! same code that post-processing and face integrals use. The kernel writes
@@ -41,7 +45,7 @@
 
 mod bbar;
 mod fbar;
-mod large;
+mod nucleus;
 
 use crate::kinematics::{Kinematics, LogStrain, Tensor};
 use crate::materials::{Material, PointState, Predictor};
@@ -56,9 +60,8 @@ pub struct Workspace {
     grads: Vec<[f64; 3]>,
     /// Sum factorization: `v_τ, v'_τ, h_τ, h'_τ` at one axis point (3 each).
     contracted: Vec<[f64; 3]>,
-    /// The tangent as one product: B̄ per Gauss point (`bt`, element DOF ×
-    /// rows · points, row-major; 6 rows, 7 with B-bar at finite strain) and
-    /// w C B̄ (`cbt`, same layout).
+    /// The small-strain tangent as one product: B̄ per Gauss point (`bt`,
+    /// element DOF × 6 · points, row-major) and w C B̄ (`cbt`, same layout).
     bt: Vec<f64>,
     cbt: Vec<f64>,
     tangents: Vec<Matrix6>,
@@ -74,18 +77,22 @@ pub struct Workspace {
     dilatation: Vec<f64>,
     weights: Vec<f64>,
     proj_c: Vec<f64>,
+    /// ... and in the tangent the projections `Z_l` (rows `(l, c)` ×
+    /// nodes) and the update's factors `[U | G]`, `[G | U]`
+    /// (`fbar::add_projected`).
+    proj_z: Vec<f64>,
+    proj_u: Vec<f64>,
     pressure: Vec<f64>,
     coupling: Vec<(Voigt, f64)>,
     /// Total Lagrangian: the deformation gradient `F` and the second
-    /// Piola–Kirchhoff stress `S` per Gauss point (for `B_NL` and the
-    /// geometric stiffness).
+    /// Piola–Kirchhoff stress `S` per Gauss point (for the nuclei).
     frames: Vec<Tensor>,
     pk2: Vec<Voigt>,
-    /// The geometric stiffness per node pair, and the stacked gradients
-    /// `∇N_a` and `w S ∇N_a` (node × 3 · points, row-major).
-    geometric: Vec<f64>,
+    /// The total-Lagrangian tangent's product (`nucleus`): the stacked
+    /// gradients `Gᵀ`, the rows `Eᵀ` and the pair blocks it gives.
     gradients: Vec<f64>,
-    stressed_grads: Vec<f64>,
+    nucleus_rows: Vec<f64>,
+    nuclei: Vec<f64>,
     /// Element internal force, 3 entries per node (node-major).
     pub force: Vec<f64>,
     /// Element tangent, row-major `n × n` with `n = 3 · nodes`; the upper
@@ -180,8 +187,12 @@ pub fn element_response(
     assert!(
         geom.volumetric.is_none()
             || !kinematics.is_nonlinear()
-            || (kinematics.is_logarithmic() && points.initial.is_none() && mode != TangentMode::UnlessElastic),
-        "B-bar at finite strain needs the logarithmic strain, no initial displacement and a full tangent"
+            || (kinematics.is_logarithmic() && points.initial.is_none()),
+        "B-bar at finite strain needs the logarithmic strain and no initial displacement"
+    );
+    assert!(
+        !(kinematics.is_nonlinear() && mode == TangentMode::UnlessElastic),
+        "nonlinear geometry has no elastic tangent to correct"
     );
     if let Some(ps) = geom.volumetric.as_ref() {
         if kinematics.is_nonlinear() {
@@ -196,16 +207,12 @@ pub fn element_response(
         TangentMode::Always => true,
         TangentMode::UnlessElastic => !all_elastic,
     };
-    if tangent_computed {
-        let correction = mode == TangentMode::UnlessElastic;
-        let contributing = gather_operators(geom, &el, material, correction, kinematics, ws);
-        tangent_product(&el, contributing, operator_rows(geom, kinematics), ws);
-        if kinematics.is_nonlinear() {
-            large::add_geometric_stiffness(geom, el.es, el.eb, el.nodes, ws);
-            if let Some(ps) = geom.volumetric.as_ref() {
-                fbar::add_dilatation_curvature(ps, el.nodes, el.n_points, material.elastic_stiffness()[0][0], ws);
-            }
-        }
+    if tangent_computed && kinematics.is_nonlinear() {
+        // material, geometric (and B-bar's) terms as 3×3 nuclei (nucleus)
+        nucleus::large_tangent(geom, (el.es, el.eb, el.nodes), geom.volumetric.as_ref(), ws);
+    } else if tangent_computed {
+        let contributing = gather_operators(geom, &el, material, mode == TangentMode::UnlessElastic, ws);
+        tangent_product(&el, contributing, ws);
     }
     ElementStats { plastic_points, tangent_computed }
 }
@@ -213,13 +220,15 @@ pub fn element_response(
 /// The geometric (initial-stress) stiffness alone of body element `e`,
 /// `K_σ = δ_kl ∫ ∇N_a · σ ∇N_b dV`, from its Gauss-point stresses `stress`
 /// (linear buckling, `crate::analysis::buckling`), into the upper triangle
-/// of `ws.tangent`.
+/// of `ws.tangent`: the total-Lagrangian nuclei (`nucleus`) at `F = I`
+/// with no material stiffness, `M^(cd) = w δ_cd σ`.
 pub fn geometric_matrix(geom: &CellValues, e: usize, n_section_elements: usize, stress: &[Voigt], ws: &mut Workspace) {
     let el = Element::new(geom, e, n_section_elements);
     ws.resize(el.nodes, el.n_points);
-    ws.tangent.fill(0.0);
     ws.pk2[..el.n_points].copy_from_slice(&stress[..el.n_points]);
-    large::add_geometric_stiffness(geom, el.es, el.eb, el.nodes, ws);
+    ws.frames[..el.n_points].fill(crate::kinematics::IDENTITY);
+    ws.tangents[..el.n_points].fill([[0.0; 6]; 6]);
+    nucleus::large_tangent(geom, (el.es, el.eb, el.nodes), None, ws);
 }
 
 /// Where an element sits and how big it is.
@@ -437,23 +446,20 @@ fn add_point_force(sp: &crate::values::SectionAt<'_>, w: f64, s: &Tensor, h: &mu
     }
 }
 
-/// Second pass: for every contributing Gauss point `j` (all, or with
-/// `correction` only those whose tangent is not the elastic one, with
-/// `C − C^el` — the nucleus is linear in `C`), the operator `B̄_j` (its
-/// rows — six, seven with B-bar at finite strain — as columns of `ws.bt`,
-/// one row per element DOF) and `w C B̄_j` likewise in `ws.cbt`. Returns
-/// the number of points gathered.
+/// Second pass (small strain): for every contributing Gauss point `j`
+/// (all, or with `correction` only those whose tangent is not the elastic
+/// one, with `C − C^el` — the nucleus is linear in `C`), the operator `B̄_j`
+/// (its six rows as columns of `ws.bt`, one row per element DOF) and
+/// `w C B̄_j` likewise in `ws.cbt`. Returns the number of points gathered.
 fn gather_operators(
     geom: &CellValues,
     el: &Element,
     material: &Material,
     correction: bool,
-    kinematics: Kinematics,
     ws: &mut Workspace,
 ) -> usize {
     let (sg, ag) = (&geom.section, &geom.axis);
-    let rows = operator_rows(geom, kinematics);
-    let (nodes, ndof, stride) = (el.nodes, 3 * el.nodes, rows * el.n_points);
+    let (nodes, ndof, stride) = (el.nodes, 3 * el.nodes, 6 * el.n_points);
     let bbar = geom.volumetric.is_some();
     let elastic = material.elastic_stiffness();
     ws.bt.resize(ndof * stride, 0.0);
@@ -476,50 +482,29 @@ fn gather_operators(
             let w = geom.gradients(el.es, el.eb, gb, gs, &mut ws.grads[..nodes]);
             let c = &ws.tangents[q];
             let dbar = if bbar { Some(&ws.bbar[q * nodes..(q + 1) * nodes]) } else { None };
-            let col0 = rows * contributing;
+            let col0 = 6 * contributing;
             for (b, &g) in ws.grads[..nodes].iter().enumerate() {
                 // column k of B̄_b: the strain of a unit displacement u_k of
                 // node b (crate::voigt's order and shear convention) plus the
                 // B-bar term m d_b[k] / 3 on the normal rows
                 let d = dbar.map_or([0.0; 3], |d| d[b]);
-                let frame = &ws.frames[q];
-                let bb: [Voigt; 3] = std::array::from_fn(|k| {
-                    if kinematics.is_nonlinear() {
-                        // δE = sym(Fᵀ (e_k ⊗ g)); B-bar's dilatation is the 7th row (fbar)
-                        return crate::kinematics::strain_variation(frame, g, k);
-                    }
+                for k in 0..3 {
                     let mut col = [d[k] / 3.0, d[k] / 3.0, d[k] / 3.0, 0.0, 0.0, 0.0];
                     let mut unit = [0.0; 3];
                     unit[k] = 1.0;
                     crate::voigt::add_nodal_strain(&mut col, g, unit);
-                    col
-                });
-                for (k, col) in bb.iter().enumerate() {
                     let p = (3 * b + k) * stride + col0;
-                    ws.bt[p..p + 6].copy_from_slice(col);
-                    if rows == 7 {
-                        // fbar's dilatation row: δθ̄ − δθ of a unit u_k of node b
-                        ws.bt[p + 6] = d[k];
-                    }
+                    ws.bt[p..p + 6].copy_from_slice(&col);
                 }
             }
             // w C B̄_j for all element DOFs at once: (DOF × 6) · (w C)ᵀ, a
-            // small GEMM (the column-by-column 6 × 6 products ran scalar and
-            // took a third of a total-Lagrangian assembly)
-            let lhs = faer::MatRef::from_row_major_slice_with_stride(&ws.bt[col0..], ndof, rows, stride);
-            // C, or fbar's [[∂S/∂E, v/3], [vᵀ/3, mᵀDm/9]]
-            let (v, kappa) = ws.coupling[q];
-            let flat: [f64; 49] = std::array::from_fn(|i| match (i / rows, i % rows) {
-                (a, b) if a < 6 && b < 6 => c[a][b],
-                (6, 6) => kappa,
-                (6, b) if b < 6 => v[b] / 3.0,
-                (a, _) if a < 6 => v[a] / 3.0,
-                _ => 0.0,
-            });
-            let cmat = faer::MatRef::from_row_major_slice(&flat[..rows * rows], rows, rows);
+            // small GEMM (the column-by-column 6 × 6 products ran scalar)
+            let lhs = faer::MatRef::from_row_major_slice_with_stride(&ws.bt[col0..], ndof, 6, stride);
+            let flat: [f64; 36] = std::array::from_fn(|i| c[i / 6][i % 6]);
+            let cmat = faer::MatRef::from_row_major_slice(&flat, 6, 6);
             // (faer 0.24's `from_row_major_slice_with_stride_mut` lays the
             // data out column-major: the transposed column-major view instead)
-            let dst = faer::MatMut::from_column_major_slice_with_stride_mut(&mut ws.cbt[col0..], rows, ndof, stride)
+            let dst = faer::MatMut::from_column_major_slice_with_stride_mut(&mut ws.cbt[col0..], 6, ndof, stride)
                 .transpose_mut();
             faer::linalg::matmul::matmul(dst, faer::Accum::Replace, lhs, cmat.transpose(), w, faer::Par::Seq);
             contributing += 1;
@@ -528,28 +513,16 @@ fn gather_operators(
     contributing
 }
 
-/// Rows of the kernel's operator per Gauss point: the six strains, and with
-/// B-bar at finite strain the dilatation (`fbar`).
-fn operator_rows(geom: &CellValues, kinematics: Kinematics) -> usize {
-    if geom.volumetric.is_some() && kinematics.is_nonlinear() { 7 } else { 6 }
-}
-
 /// `K = Σ_j B̄_jᵀ (w C B̄_j) = bt · cbtᵀ` over the `contributing` points, one
-/// dense product (faer GEMM, upper triangle) into `ws.tangent`.
-fn tangent_product(el: &Element, contributing: usize, rows: usize, ws: &mut Workspace) {
-    let (ndof, stride) = (3 * el.nodes, rows * el.n_points);
-    let k = rows * contributing;
+/// dense product (faer GEMM, upper triangle only, sequential: the element
+/// loop is the parallel one) into `ws.tangent`.
+fn tangent_product(el: &Element, contributing: usize, ws: &mut Workspace) {
+    use faer::linalg::matmul::triangular::{BlockStructure, matmul};
+    let (ndof, stride) = (3 * el.nodes, 6 * el.n_points);
+    let k = 6 * contributing;
     let lhs = faer::MatRef::from_row_major_slice_with_stride(&ws.bt[..], ndof, k, stride);
     let rhs = faer::MatRef::from_row_major_slice_with_stride(&ws.cbt[..], ndof, k, stride);
     let dst = faer::MatMut::from_row_major_slice_mut(&mut ws.tangent[..ndof * ndof], ndof, ndof);
-    upper_product(dst, lhs, rhs);
-}
-
-/// `dst = lhs · rhsᵀ`, upper triangle only (faer GEMM, sequential: the
-/// element loop is the parallel one): the kernel's material and geometric
-/// products.
-fn upper_product(dst: faer::MatMut<'_, f64>, lhs: faer::MatRef<'_, f64>, rhs: faer::MatRef<'_, f64>) {
-    use faer::linalg::matmul::triangular::{BlockStructure, matmul};
     matmul(
         dst,
         BlockStructure::TriangularUpper,
@@ -567,5 +540,7 @@ fn upper_product(dst: faer::MatMut<'_, f64>, lhs: faer::MatRef<'_, f64>, rhs: fa
 mod fbar_tests;
 #[cfg(test)]
 mod log_tests;
+#[cfg(test)]
+mod nucleus_tests;
 #[cfg(test)]
 mod tests;

@@ -45,8 +45,9 @@ fn plastic() -> Material {
 /// and plastic, at a large rotation with a non-affine stretch and shear (θ
 /// varies over the element, so every fbar term is active) and after a
 /// plastic history (measured 5e-10). Dropping the coupling `v/3` (error
-/// 0.24) or the 7th row (0.14) makes it fail. The dilatation curvature
-/// vanishes with these materials (`p̄ = p`; its own test below).
+/// 0.24) or the projected half of the dilatation row (`fbar::add_projected`,
+/// 0.55) makes it fail. The dilatation curvature vanishes with these
+/// materials (`p̄ = p`; its own test below).
 #[test]
 fn fbar_tangent_matches_finite_differences() {
     let body = single_element_body(SectionElementKind::L9, BeamElementKind::B3);

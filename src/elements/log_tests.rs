@@ -19,20 +19,8 @@ pub(super) fn evaluate(
     u: &[f64],
     committed: &[PointState],
 ) -> (Vec<f64>, Vec<f64>, Vec<Voigt>, Vec<PointState>) {
-    let ngp = geom.gp_per_element();
-    let mut trial = vec![PointState::default(); ngp];
-    let mut stress = vec![[0.0; 6]; ngp];
-    let mut ws = Workspace::default();
-    let points = PointData {
-        committed,
-        trial: &mut trial,
-        stress: &mut stress,
-        predictor: Predictor::Loading,
-        kinematics: LOG,
-        initial: None,
-    };
-    element_response(geom, 0, 1, u, mat, points, TangentMode::Always, &mut ws);
-    (ws.force.clone(), ws.tangent.clone(), stress, trial)
+    let run = super::tests::kernel(geom, mat, u, committed, LOG, None);
+    (run.ws.force, run.ws.tangent, run.stress, run.trial)
 }
 
 /// The nodal displacement of a map `x → u(x)` over the element's nodes.

@@ -94,17 +94,7 @@ fn both(
     kin: Kinematics,
 ) -> (Vec<f64>, Vec<f64>, usize) {
     let ngp = geom.gp_per_element();
-    let (mut trial, mut stress) = (vec![PointState::default(); ngp], vec![[0.0; 6]; ngp]);
-    let mut ws = Workspace::default();
-    let points = PointData {
-        committed,
-        trial: &mut trial,
-        stress: &mut stress,
-        predictor: Predictor::Loading,
-        kinematics: kin,
-        initial: None,
-    };
-    let stats = element_response(geom, 0, 1, u, mat, points, TangentMode::Always, &mut ws);
+    let super::tests::KernelRun { ws, stats, .. } = super::tests::kernel(geom, mat, u, committed, kin, None);
     let nodes = geom.section.n_fun * geom.axis.n_fun;
     let n = 3 * nodes;
     let mut k = vec![0.0; n * n];

@@ -36,40 +36,43 @@ pub(super) fn response_kin(
     committed: &[PointState],
     kinematics: Kinematics,
 ) -> (Vec<f64>, Vec<f64>, Vec<Voigt>) {
-    response_initial(geom, mat, u, committed, kinematics, None)
+    let run = kernel(geom, mat, u, committed, kinematics, None);
+    (run.ws.force, run.ws.tangent, run.stress)
 }
 
-/// [`response_kin`] with a stress-free initial displacement.
-fn response_initial(
+/// One call of the kernel with a full tangent, from a fresh workspace.
+pub(super) struct KernelRun {
+    /// The workspace after the call (force, tangent, per-point data).
+    pub ws: Workspace,
+    /// Gauss-point stresses (Cauchy with nonlinear geometry) and trial states.
+    pub stress: Vec<Voigt>,
+    pub trial: Vec<PointState>,
+    pub stats: ElementStats,
+}
+
+/// Runs the kernel on element 0 of `geom` with a full tangent.
+pub(super) fn kernel(
     geom: &CellValues,
     mat: &Material,
     u: &[f64],
     committed: &[PointState],
     kinematics: Kinematics,
     initial: Option<&[f64]>,
-) -> (Vec<f64>, Vec<f64>, Vec<Voigt>) {
+) -> KernelRun {
     let ngp = geom.gp_per_element();
     let mut trial = vec![PointState::default(); ngp];
     let mut stress = vec![[0.0; 6]; ngp];
     let mut ws = Workspace::default();
-    element_response(
-        geom,
-        0,
-        1,
-        u,
-        mat,
-        PointData {
-            committed,
-            trial: &mut trial,
-            stress: &mut stress,
-            predictor: Predictor::Loading,
-            kinematics,
-            initial,
-        },
-        TangentMode::Always,
-        &mut ws,
-    );
-    (ws.force.clone(), ws.tangent.clone(), stress)
+    let points = PointData {
+        committed,
+        trial: &mut trial,
+        stress: &mut stress,
+        predictor: Predictor::Loading,
+        kinematics,
+        initial,
+    };
+    let stats = element_response(geom, 0, 1, u, mat, points, TangentMode::Always, &mut ws);
+    KernelRun { ws, stress, trial, stats }
 }
 
 #[test]
@@ -342,9 +345,10 @@ fn imperfection_is_stress_free_and_its_tangent_consistent() {
     let mat = Material::new("m", 70e9, 0.3, None);
     let tl = Kinematics::TotalLagrangian;
     let zero = vec![0.0; 3 * nodes];
-    let (f0, _, _) = response_initial(&geom, &mat, &zero, &committed, tl, Some(&u0));
+    let f0 = kernel(&geom, &mat, &zero, &committed, tl, Some(&u0)).ws.force;
     assert!(f0.iter().all(|v| v.abs() < 1e-9), "the imperfect shape alone is stress free");
-    let (f, k, _) = response_initial(&geom, &mat, &u, &committed, tl, Some(&u0));
+    let run = kernel(&geom, &mat, &u, &committed, tl, Some(&u0));
+    let (f, k) = (run.ws.force, run.ws.tangent);
     let (fp, _, _) = response_kin(&geom, &mat, &u, &committed, tl);
     let fmax = f.iter().fold(0.0f64, |a, b| a.max(b.abs()));
     assert!(f.iter().zip(&fp).any(|(a, b)| (a - b).abs() > 1e-3 * fmax), "the imperfection changes the response");
@@ -355,8 +359,8 @@ fn imperfection_is_stress_free_and_its_tangent_consistent() {
         let (mut up, mut um) = (u.clone(), u.clone());
         up[q] += 1e-9;
         um[q] -= 1e-9;
-        let (fp, _, _) = response_initial(&geom, &mat, &up, &committed, tl, Some(&u0));
-        let (fm, _, _) = response_initial(&geom, &mat, &um, &committed, tl, Some(&u0));
+        let fp = kernel(&geom, &mat, &up, &committed, tl, Some(&u0)).ws.force;
+        let fm = kernel(&geom, &mat, &um, &committed, tl, Some(&u0)).ws.force;
         for p in 0..n {
             let kk = if p <= q { k[p * n + q] } else { k[q * n + p] };
             worst = worst.max(((fp[p] - fm[p]) / 2e-9 - kk).abs() / kmax);

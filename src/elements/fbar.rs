@@ -25,8 +25,8 @@
 //!
 //! ```text
 //! f_a = ∫ (F S) ∇N_a + p d_a dV₀
-//! K   = ∫ [B; d]ᵀ [[∂S/∂E, v/3], [vᵀ/3, mᵀDm/9]] [B; d] dV₀        (B = δE, the 7th row d)
-//!     + ∫ ∇N_a · S ∇N_b δ_kl dV₀                                   (geometric, unchanged)
+//! K   = ∫ [B; d]ᵀ [[∂S/∂E, v/3], [vᵀ/3, mᵀDm/9]] [B; d] dV₀        (B = δE, d the dilatation row)
+//!     + ∫ ∇N_a · S ∇N_b δ_kl dV₀                                   (geometric, as without B-bar)
 //!     − ∫ (p̄ − p) g̃_(a,l) g̃_(b,k) dV₀                              (Δδθ = −g̃_(a,l) g̃_(b,k))
 //! ```
 //!

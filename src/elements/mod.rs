@@ -66,12 +66,15 @@ pub struct Workspace {
     cbt: Vec<f64>,
     tangents: Vec<Matrix6>,
     /// B-bar: `(b̄_a − g_a)` per Gauss point and node (the correction of
-    /// the volumetric row), and the projection's small matrices.
+    /// the volumetric row; at finite strain `d_a = Π g̃_a − g̃_a`), and the
+    /// projection's small matrices (at finite strain `G_l = ∫ ψ_l g̃`).
     bbar: Vec<[f64; 3]>,
     proj_g: Vec<f64>,
     /// B-bar at finite strain (`fbar`): per point and node `g̃_a = F⁻ᵀ ∇N_a`;
-    /// per point `θ̄ − θ`, the weight, the projection's coefficients
-    /// `c_l` (4 each), `p = tr T / 3`, and the coupling `(Lᵀ D m, mᵀ D m / 9)`.
+    /// `w ψ_l` per point in the projection, then `p̄ − p` per point in the
+    /// tangent (`proj_w`); per point `θ̄ − θ`, the weight, the projection's
+    /// coefficients `c_l` (4 each), `p = tr T / 3`, and the coupling
+    /// `(Lᵀ D m, mᵀ D m / 9)`.
     spatial: Vec<[f64; 3]>,
     proj_w: Vec<f64>,
     dilatation: Vec<f64>,
@@ -165,9 +168,10 @@ pub struct PointData<'a> {
 ///
 /// Two passes over the Gauss points: the first evaluates strains, the
 /// material update and the internal force; the second — only when a
-/// tangent is needed — gathers `B̄` and `w C B̄` of the points that
-/// contribute (all, or those not elastic) with the tangents kept from the
-/// first, and forms the nuclei as one product (module docs).
+/// tangent is needed — forms the nuclei with the tangents kept from the
+/// first: in small strain by gathering `B̄` and `w C B̄` of the points that
+/// contribute (all, or those not elastic) into one product, with nonlinear
+/// geometry as 3 × 3 nuclei per point (`nucleus`; module docs).
 #[allow(clippy::too_many_arguments)] // the kernel's inputs are the terms of eq. (11); bundling them adds nothing
 pub fn element_response(
     geom: &CellValues,

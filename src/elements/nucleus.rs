@@ -26,8 +26,10 @@
 //! Carrera (2018) for the geometrically nonlinear CUF. With the gradients of
 //! all nodes at all points stacked, `G` (nodes × 3Q), and `E^(cd) =
 //! G (blockdiag_q M_q^(cd))ᵀ` likewise, the six pairs `c ≤ d` are one GEMM
-//! `G [E^(00) … E^(22)]ᵀ` (nodes × 6 nodes; `M` is symmetric, so the pairs
-//! `c > d` are the transposes). That is 36 × 108 × 216 for an L9 × B4
+//! `G [E^(00) … E^(22)]ᵀ` (nodes × 6 nodes; the pairs `c > d` are the
+//! transposes, since `M^(dc) = M^(cd)ᵀ` for symmetric `C = ∂S/∂E` and `S`:
+//! the material update symmetrizes its tangent, `update_for_element`, and
+//! the logarithmic pull-back forms it symmetric). That is 36 × 108 × 216 for an L9 × B4
 //! element against 108 × 216 × 108 (half of it, the upper triangle) for
 //! `Bᵀ (C B)` with `B` the stacked 6 × 108 operators, plus the latter's
 //! `C B` products and separate geometric GEMM; the operator `B` is never

@@ -13,7 +13,8 @@
 //! B-bar. The finite-difference tests (`tests`, `log_tests`, `fbar_tests`)
 //! check the tangent against the force to 1e-6; this one checks every entry
 //! of the upper triangle to 1e-12, so a transposed pair block, a missing
-//! entry of the pairs `c > d` or a wrong projected term fails it.
+//! entry of the pairs `c > d`, a wrong projected term or a wrong curvature
+//! (checked with a pressure set outside the pressure space) fails it.
 
 use super::tests::single_element_body;
 use super::*;
@@ -48,23 +49,28 @@ fn nucleus_tangent_equals_the_operator_form() {
         Material::new("m", 70e9, 0.3, None),
         Material::new("m", 70e9, 0.3, Some(Hardening::Linear { yield_stress: 100e6, modulus: 2e9 })),
     ];
+    // (kinematics, B-bar, a pressure outside the pressure space): with
+    // cufem's materials p̄ = p and the dilatation's curvature vanishes, so
+    // the last variant sets p by hand (as fbar_tests' curvature test) and
+    // forms the tangent again to check that term too
     let variants = [
-        (Kinematics::TotalLagrangian, false),
-        (Kinematics::TotalLagrangianLog, false),
-        (Kinematics::TotalLagrangianLog, true),
+        (Kinematics::TotalLagrangian, false, false),
+        (Kinematics::TotalLagrangianLog, false, false),
+        (Kinematics::TotalLagrangianLog, true, false),
+        (Kinematics::TotalLagrangianLog, true, true),
     ];
     for (sk, bk) in kinds {
         let body = single_element_body(sk, bk);
         let u = deformed(&body);
         for mat in &materials {
-            for (kin, bbar) in variants {
+            for (kin, bbar, off_space) in variants {
                 let geom = if bbar {
                     CellValues::new(&body).unwrap().with_bbar(&body)
                 } else {
                     CellValues::new(&body).unwrap()
                 };
                 let committed = vec![PointState::default(); geom.gp_per_element()];
-                let (k, reference, plastic) = both(&geom, mat, &u, &committed, kin);
+                let (k, reference, plastic) = both(&geom, mat, &u, &committed, kin, off_space);
                 assert_eq!(plastic > 0, mat.is_plastic(), "the state is plastic with the hardening material");
                 let n = 3 * body.nodes_per_element();
                 let kmax = reference.iter().fold(0.0f64, |a, b| a.max(b.abs()));
@@ -76,7 +82,7 @@ fn nucleus_tangent_equals_the_operator_form() {
                 }
                 assert!(
                     worst < 1e-12,
-                    "{sk:?} x {bk:?}, {kin:?}, B-bar {bbar}, plastic {}: {worst:e}",
+                    "{sk:?} x {bk:?}, {kin:?}, B-bar {bbar} (p set by hand {off_space}), plastic {}: {worst:e}",
                     mat.is_plastic()
                 );
             }
@@ -85,17 +91,25 @@ fn nucleus_tangent_equals_the_operator_form() {
 }
 
 /// The kernel's tangent, the reference (full matrix) and the number of
-/// plastic points.
+/// plastic points; with `off_space` the tangent formed again after the
+/// points' pressures are set to a field outside the pressure space.
 fn both(
     geom: &CellValues,
     mat: &Material,
     u: &[f64],
     committed: &[PointState],
     kin: Kinematics,
+    off_space: bool,
 ) -> (Vec<f64>, Vec<f64>, usize) {
     let ngp = geom.gp_per_element();
-    let super::tests::KernelRun { ws, stats, .. } = super::tests::kernel(geom, mat, u, committed, kin, None);
+    let super::tests::KernelRun { mut ws, stats, .. } = super::tests::kernel(geom, mat, u, committed, kin, None);
     let nodes = geom.section.n_fun * geom.axis.n_fun;
+    if off_space {
+        for (q, p) in ws.pressure[..ngp].iter_mut().enumerate() {
+            *p = 1e8 * (1.0 + ((q * q) % 7) as f64);
+        }
+        nucleus::large_tangent(geom, (0, 0, nodes), geom.volumetric.as_ref(), &mut ws);
+    }
     let n = 3 * nodes;
     let mut k = vec![0.0; n * n];
     let mut grads = vec![[0.0; 3]; nodes];

@@ -323,8 +323,8 @@ fn total_lagrangian_is_objective() {
 
 /// A stress-free initial displacement (geometric imperfection): alone it
 /// gives no force; on top of a deformation the tangent is still the
-/// derivative of the force (the F of the total displacement in B_NL and
-/// the geometric term).
+/// derivative of the force (the F of the total displacement in the
+/// nuclei's material and geometric terms).
 #[test]
 fn imperfection_is_stress_free_and_its_tangent_consistent() {
     let body = single_element_body(SectionElementKind::L9, BeamElementKind::B3);

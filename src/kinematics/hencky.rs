@@ -257,13 +257,11 @@ fn second_divided(a: f64, b: f64, c: f64) -> f64 {
     // Taylor series of the divided difference about the mean
     let xbar = (a + b + c) / 3.0;
     let d = v.map(|xi| (xi - xbar) / mean);
+    // Σ_n (−1)ⁿ h_n / (n + 2), the coefficients as products (the seven
+    // divisions per triple were a fifth of the pull-back's time)
+    const COEFFICIENTS: [f64; 7] = [1.0 / 2.0, -1.0 / 3.0, 1.0 / 4.0, -1.0 / 5.0, 1.0 / 6.0, -1.0 / 7.0, 1.0 / 8.0];
     let h = complete_homogeneous(d);
-    let mut sum = 0.0;
-    let mut sign = 1.0;
-    for (n, hn) in h.iter().enumerate() {
-        sum += sign * hn / (n + 2) as f64;
-        sign = -sign;
-    }
+    let sum: f64 = h.iter().zip(COEFFICIENTS).map(|(hn, c)| c * hn).sum();
     -sum / (2.0 * mean * mean)
 }
 

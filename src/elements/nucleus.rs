@@ -29,11 +29,11 @@
 //! `G [E^(00) … E^(22)]ᵀ` (nodes × 6 nodes; the pairs `c > d` are the
 //! transposes, since `M^(dc) = M^(cd)ᵀ` for symmetric `C = ∂S/∂E` and `S`:
 //! the material update symmetrizes its tangent, `update_for_element`, and
-//! the logarithmic pull-back forms it symmetric). That is 36 × 108 × 216 for an L9 × B4
-//! element against 108 × 216 × 108 (half of it, the upper triangle) for
-//! `Bᵀ (C B)` with `B` the stacked 6 × 108 operators, plus the latter's
-//! `C B` products and separate geometric GEMM; the operator `B` is never
-//! formed.
+//! the logarithmic pull-back forms it symmetric). That is 36 × 108 × 216
+//! for an L9 × B4 element against 108 × 216 × 108 (half of it, the upper
+//! triangle) for `Bᵀ (C B)` with `B` the stacked 6 × 108 operators, plus
+//! the latter's `C B` products and separate geometric GEMM; the operator
+//! `B` is never formed.
 //!
 //! **B-bar at finite strain** (`fbar`) adds the terms of its dilatation
 //! row `d = Π g̃ − g̃`. Their `−g̃` halves are local, gradients at the point
@@ -181,11 +181,18 @@ fn point_nuclei(
     pk2: &crate::voigt::Voigt,
     w: f64,
 ) -> [[[f64; 3]; 3]; 6] {
-    // H_c as 6 × 3, from row c of F
-    let h: [[[f64; 3]; 6]; 3] = std::array::from_fn(|cc| {
-        let [fx, fy, fz] = f[cc];
-        [[fx, 0.0, 0.0], [0.0, fy, 0.0], [0.0, 0.0, fz], [fy, fx, 0.0], [fz, 0.0, fx], [0.0, fz, fy]]
+    // H_c as 6 × 3: column l is δE of a unit u_c with gradient e_l
+    // (kinematics::strain_variation, the one statement of the Voigt order
+    // and shear convention for δE)
+    let cols: [[crate::voigt::Voigt; 3]; 3] = std::array::from_fn(|cc| {
+        std::array::from_fn(|l| {
+            let mut e = [0.0; 3];
+            e[l] = 1.0;
+            crate::kinematics::strain_variation(f, e, cc)
+        })
     });
+    let h: [[[f64; 3]; 6]; 3] =
+        std::array::from_fn(|cc| std::array::from_fn(|r| std::array::from_fn(|l| cols[cc][l][r])));
     // w C H_d (6 × 3)
     let ch: [[[f64; 3]; 6]; 3] = std::array::from_fn(|d| {
         std::array::from_fn(|r| std::array::from_fn(|l| w * (0..6).map(|s| c[r][s] * h[d][s][l]).sum::<f64>()))

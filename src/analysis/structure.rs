@@ -29,6 +29,8 @@ mod dirichlet;
 pub(crate) mod elements;
 mod force;
 mod kinematics;
+#[cfg(test)]
+mod limit_tests;
 mod loads;
 mod resultants;
 mod system;
@@ -285,6 +287,23 @@ impl<'m> Structure<'m> {
         (self.state.u, self.elements, self.timings, self.memory)
     }
 
+    /// Scales the correction in `rhs` by the contacts' step limit
+    /// (`contact::assembly::limit`: no open point carried deeper than the
+    /// deepest in contact). Not with force-controlled indenters, whose
+    /// rigid motion is a further unknown of the same correction.
+    fn limit_correction(&mut self) {
+        if self.force.is_driven() || !self.contacts.limits_steps() {
+            return;
+        }
+        let system = &mut self.system;
+        let du: Vec<f64> =
+            system.assembler.dofs.eq.iter().map(|&e| if e == NO_EQ { 0.0 } else { system.rhs[e] }).collect();
+        let alpha = self.contacts.step_limit(&du);
+        if alpha < 1.0 {
+            system.rhs.iter_mut().for_each(|r| *r *= alpha);
+        }
+    }
+
     /// Adds the solved correction (in `system.rhs`, by equation) to `u` and
     /// reports its norm (with `da2`, the squared correction of the
     /// force-controlled indenters) and the norm of the increment so far.
@@ -392,6 +411,7 @@ impl NonlinearProblem for Structure<'_> {
         );
         let da2 = self.force.solve(system, self.state.lambda)?;
         self.record_solver();
+        self.limit_correction();
         Ok(self.apply_correction(da2))
     }
 }

@@ -90,6 +90,11 @@ impl<'m> ForceControl<'m> {
         Self { model, driven }
     }
 
+    /// True if some indenter is force-controlled (its motion an unknown).
+    pub fn is_driven(&self) -> bool {
+        !self.driven.is_empty()
+    }
+
     /// Rigid displacement of every indenter at load factor `lambda`: the
     /// prescribed motion times its factor, or the solved one.
     pub fn offsets(&self, lambda: f64) -> impl Iterator<Item = [f64; 3]> + '_ {

@@ -8,7 +8,9 @@
 //! (the exact gap of a rigid surface in the current configuration,
 //! `method = "surface"` on an indenter), `surface` (segment-to-segment
 //! between deformable bodies, `method = "surface"` on a contact);
-//! `augment` holds the Uzawa updates of the augmented Lagrangian. A new
+//! `augment` holds the Uzawa updates of the augmented Lagrangian, `limit`
+//! the step-length control that keeps a correction from carrying open
+//! points deep into contact. A new
 //! contact kind is a new file here and a branch in [`Contacts::evaluate`].
 //!
 //! Forces go to the contact's own nodal force vector `f_c` (the residual is
@@ -18,6 +20,8 @@
 //! pressure coupling), which goes beside it (`Tangent::add_rest_block`).
 
 mod augment;
+mod limit;
+pub use limit::SMALLEST_FRACTION;
 mod pairs;
 mod rigid;
 mod surface;
@@ -168,6 +172,12 @@ impl<'m> Contacts<'m> {
     /// candidates, then all pairs, in model order).
     pub fn points(&self) -> &[ContactPoint] {
         &self.points
+    }
+
+    /// The points, to be set by hand in tests.
+    #[cfg(test)]
+    pub(crate) fn points_mut(&mut self) -> &mut [ContactPoint] {
+        &mut self.points
     }
 
     /// The points of each indenter, then of each pair contact, in model order.

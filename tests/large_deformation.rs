@@ -612,3 +612,30 @@ fn gauss_points_give_pk2_and_both_strains_beside_cauchy() {
     assert!(checked > 100 && turned > 10, "{checked} points checked, {turned} turned past 45°");
     std::fs::remove_dir_all(&out).ok();
 }
+
+/// A failed increment is retried once with the elastic predictor before it
+/// is cut back (`Incremental::cautious`). That predictor decides only at
+/// points on their yield surface with no strain increment, i.e. at the
+/// committed state: an attempt started on the secant of the last increment
+/// would be repeated to the last digit (every such retry of
+/// examples/tube_crush.toml did), so the structure declines it there —
+/// unless a frictional point's stick tangent makes the retry differ.
+#[test]
+fn the_cautious_retry_is_declined_where_it_would_repeat_the_failed_attempt() {
+    use cufem::solver::stepping::Incremental;
+    let example = |name: &str| {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name);
+        Model::parse(&std::fs::read_to_string(path).unwrap()).unwrap()
+    };
+    for (name, frictional) in [("elastica.toml", false), ("cantilevers_contact_friction.toml", true)] {
+        let model = example(name);
+        let mut s = analysis::Structure::new(&model, None).unwrap();
+        common::solve_path(&mut s, &[(0.02, true)]);
+        s.set_load_factor(0.04);
+        assert!(s.cautious(true), "{name}: at the committed state the retry differs");
+        s.cautious(false);
+        s.set_load_factor(0.04);
+        s.extrapolate(1.0);
+        assert_eq!(s.cautious(true), frictional, "{name}: on the secant");
+    }
+}

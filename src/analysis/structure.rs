@@ -420,6 +420,7 @@ impl Incremental for Structure<'_> {
     fn set_load_factor(&mut self, lambda: f64) {
         // prescribed values are reached by the next correction (dirichlet.rs)
         self.state.lambda = lambda;
+        self.state.on_secant = false;
         self.contacts.start_increment();
         self.dirichlet.set_load_factor(self.model, lambda);
     }
@@ -429,6 +430,15 @@ impl Incremental for Structure<'_> {
     }
 
     fn cautious(&mut self, on: bool) -> bool {
+        // The elastic predictor decides only at points on their yield
+        // surface with no strain increment: at the committed state. A failed
+        // attempt started on the secant of the last increment would be
+        // repeated to the last digit (measured on examples/tube_crush.toml:
+        // every retry's residuals equal its failed attempt's), unless a
+        // frictional point takes the stick tangent (contact::assembly).
+        if on && self.state.on_secant && !self.contacts.is_frictional() {
+            return false;
+        }
         let wanted = if on { Predictor::Elastic } else { Predictor::Loading };
         let changed = self.state.predictor != wanted;
         self.state.predictor = wanted;

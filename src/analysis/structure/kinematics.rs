@@ -21,6 +21,9 @@ pub(crate) struct Kinematics {
     /// Tangent branch of points on their yield surface or Coulomb cone
     /// (elastic/sticking after a failed attempt: `Incremental::cautious`).
     pub predictor: Predictor,
+    /// The present solve started on the secant of the last increment, not
+    /// at the committed state.
+    pub on_secant: bool,
 }
 
 impl Kinematics {
@@ -33,6 +36,7 @@ impl Kinematics {
             lambda: 0.0,
             lambda_committed: 0.0,
             predictor: Predictor::Loading,
+            on_secant: false,
         }
     }
 
@@ -47,7 +51,8 @@ impl Kinematics {
         for ((u, c), s) in self.u.iter_mut().zip(&self.u_committed).zip(&self.u_step) {
             *u = c + ratio * s;
         }
-        ratio > 0.0 && self.u_step.iter().any(|&s| s != 0.0)
+        self.on_secant = ratio > 0.0 && self.u_step.iter().any(|&s| s != 0.0);
+        self.on_secant
     }
 
     /// The increment converged: its state becomes the committed one.

@@ -185,6 +185,11 @@ impl<'m> Contacts<'m> {
         &self.ranges
     }
 
+    /// True if some indenter or contact has friction.
+    pub fn is_frictional(&self) -> bool {
+        self.frictional
+    }
+
     /// Each point's assembled block `K = −∂f/∂u_slave` of the last evaluation.
     pub fn blocks(&self) -> &[[[f64; 3]; 3]] {
         &self.blocks

@@ -2,6 +2,7 @@
 
 import math
 
+import numpy as np
 import pandas as pd
 import pytest
 
@@ -78,8 +79,16 @@ def test_dask_local_cluster_gives_the_same_dataframe(local):
     # tolerance of 1e-6 (NewtonSettings::default), so that is the equality
     # the test can honestly ask for; it still catches a variant mixed up
     # with another (they differ from the first digit) or a dropped
-    # increment (max_peeq moves by percent).
-    pd.testing.assert_frame_equal(on_dask, local, check_exact=False, rtol=1e-6, atol=0.0)
+    # increment (max_peeq moves by percent). A force that is zero by
+    # symmetry (a symmetry plane's in-plane reaction) is round-off of the
+    # forces around it, so forces are compared to 1e-6 of the largest force
+    # in the frame, the residual tolerance's own scale (CI once saw such a
+    # reaction at 1.6e-7 against 1.3e-8 N).
+    forces = [c for c in local.columns if c.startswith(("reaction.", "contact."))]
+    scale = float(np.nanmax(np.abs(local[forces].to_numpy(dtype=float))))
+    others = [c for c in local.columns if c not in forces]
+    pd.testing.assert_frame_equal(on_dask[others], local[others], check_exact=False, rtol=1e-6, atol=0.0)
+    pd.testing.assert_frame_equal(on_dask[forces], local[forces], check_exact=False, rtol=1e-6, atol=1e-6 * scale)
 
 
 def test_grid_and_bad_paths():

@@ -577,6 +577,7 @@ impl Progress for Reporter {
             match c.newton.failure {
                 Some(cufem::solver::newton::Failure::Diverged) => "diverged",
                 Some(cufem::solver::newton::Failure::Problem) => "linear solve failed",
+                Some(cufem::solver::newton::Failure::Stagnated) => "stagnated",
                 _ => "not converged",
             },
             res.join(" "),

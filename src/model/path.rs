@@ -86,6 +86,7 @@ pub(super) fn settings(
         ("cutback_factor", s.cutback_factor.is_some()),
         ("growth_factor", s.growth_factor.is_some()),
         ("easy_iterations", s.easy_iterations.is_some()),
+        ("stagnation_iterations", s.stagnation_iterations.is_some()),
         ("displacement_tolerance", s.displacement_tolerance.is_some()),
     ];
     if let Some((key, _)) = load_only.iter().find(|g| g.1) {

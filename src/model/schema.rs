@@ -157,6 +157,9 @@ pub struct SolverFile {
     pub cutback_factor: Option<f64>,
     pub growth_factor: Option<f64>,
     pub easy_iterations: Option<usize>,
+    /// Newton gives up after this many corrections without a new smallest
+    /// residual (`solver::newton::NewtonSettings::stagnation_iterations`).
+    pub stagnation_iterations: Option<usize>,
     pub max_increments: Option<usize>,
     pub threads: Option<usize>,
     pub reuse_factorization: Option<bool>,

@@ -273,6 +273,11 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
     if min > max {
         return Err(invalid("solver.min_increment", min, format!("at most max_increment ({max})")));
     }
+    let stagnation = match s.stagnation_iterations {
+        Some(0) => return Err(invalid("solver.stagnation_iterations", 0, "an integer ≥ 1")),
+        Some(n) => n,
+        None => usize::MAX,
+    };
     let max_iterations = s.max_iterations.unwrap_or(25);
     if max_iterations == 0 {
         return Err(invalid("solver.max_iterations", 0, "an integer ≥ 1"));
@@ -300,6 +305,7 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
             residual_tolerance: tol("residual_tolerance", s.residual_tolerance, 1e-6)?,
             displacement_tolerance: tol("displacement_tolerance", s.displacement_tolerance, 1e-6)?,
             divergence_ratio: 1e6,
+            stagnation_iterations: stagnation,
         },
         threads: s.threads,
         reuse: ReuseSettings {
@@ -381,6 +387,12 @@ mod tests {
             false,
         ));
         assert!(e.contains("solver.min_increment"), "{e}");
+        // stagnation: off unless asked, and at least one correction
+        assert_eq!(s.newton.stagnation_iterations, usize::MAX);
+        let given = SolverFile { stagnation_iterations: Some(4), ..Default::default() };
+        assert_eq!(solver_settings(&given, false).unwrap().newton.stagnation_iterations, 4);
+        let e = err(solver_settings(&SolverFile { stagnation_iterations: Some(0), ..Default::default() }, false));
+        assert!(e.contains("solver.stagnation_iterations = 0"), "{e}");
         // reuse of factorizations: on by default, PCG stop at most 0.1
         // (docs/model-format.md)
         assert!(s.reuse.enabled && s.reuse.tolerance == 0.1);

@@ -179,6 +179,9 @@ fn describe(r: &Report) -> String {
     let what = match r.failure {
         Some(newton::Failure::Diverged) => format!("Newton diverged after {} iterations", r.iterations),
         Some(newton::Failure::Problem) => format!("the linear solve failed after {} iterations", r.iterations),
+        Some(newton::Failure::Stagnated) => {
+            format!("Newton's residual stopped decreasing ({} iterations)", r.iterations)
+        }
         _ => format!("Newton did not converge in {} iterations", r.iterations),
     };
     format!(

@@ -295,10 +295,10 @@ impl<'m> Structure<'m> {
         if self.force.is_driven() || !self.contacts.limits_steps() {
             return;
         }
+        // the correction by DOF, read from the equations (no copy)
         let system = &mut self.system;
-        let du: Vec<f64> =
-            system.assembler.dofs.eq.iter().map(|&e| if e == NO_EQ { 0.0 } else { system.rhs[e] }).collect();
-        let alpha = self.contacts.step_limit(&du);
+        let (eq, rhs) = (&system.assembler.dofs.eq, &system.rhs);
+        let alpha = self.contacts.step_limit(|d| if eq[d] == NO_EQ { 0.0 } else { rhs[eq[d]] });
         if alpha < 1.0 {
             system.rhs.iter_mut().for_each(|r| *r *= alpha);
         }

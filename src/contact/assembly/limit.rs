@@ -54,13 +54,13 @@ use crate::contact::dot;
 pub const SMALLEST_FRACTION: f64 = 1e-3;
 
 impl Contacts<'_> {
-    /// The fraction `α ∈ (0, 1]` of the correction `du`
-    /// (per DOF, `3 · node + component`) to apply: the largest that takes
+    /// The fraction `α ∈ (0, 1]` of the correction (`du(d)`: its value at
+    /// DOF `d = 3 · node + component`) to apply: the largest that takes
     /// no point open at the last evaluation (indenters and node pairs)
     /// deeper than the deepest point in contact now (module docs), at
     /// least [`SMALLEST_FRACTION`] while none is; 1 in small strain and
     /// with friction.
-    pub fn step_limit(&self, du: &[f64]) -> f64 {
+    pub fn step_limit(&self, du: impl Fn(usize) -> f64) -> f64 {
         if !self.limits_steps() {
             return 1.0;
         }
@@ -73,7 +73,7 @@ impl Contacts<'_> {
             if p.active || !p.gap.is_finite() {
                 continue;
             }
-            let d: [f64; 3] = std::array::from_fn(|i| du[3 * slave + i] - master.map_or(0.0, |m| du[3 * m + i]));
+            let d: [f64; 3] = std::array::from_fn(|i| du(3 * slave + i) - master.map_or(0.0, |m| du(3 * m + i)));
             let closing = -dot(p.normal, d);
             let reach = p.gap + deepest;
             if closing > reach {

@@ -74,6 +74,7 @@ pub mod assembly;
 pub mod bc;
 pub mod ccx;
 pub mod contact;
+pub mod dynamics;
 pub mod elements;
 pub mod io;
 pub mod kinematics;

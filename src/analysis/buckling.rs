@@ -51,27 +51,7 @@ pub(crate) fn solve(structure: &mut Structure<'_>, modes: usize) -> Result<Buckl
     let settings = EigenSettings { count: modes, positive_only: true, tolerance: 1e-8, ..Default::default() };
     let sol = eigen::solve(pattern, &k0, &b, &settings)?;
     let n_dofs = structure.displacements().len();
-    let modes = sol
-        .vectors
-        .iter()
-        .map(|v| {
-            let mut mode = vec![0.0; n_dofs];
-            for (d, m) in mode.iter_mut().enumerate() {
-                if let Some(e) = structure.equation(d) {
-                    *m = v[e];
-                }
-            }
-            // scale to a largest component of +1
-            let (mut big, mut sign) = (0.0f64, 1.0);
-            for m in &mode {
-                if m.abs() > big {
-                    (big, sign) = (m.abs(), m.signum());
-                }
-            }
-            mode.iter_mut().for_each(|m| *m *= sign / big.max(f64::MIN_POSITIVE));
-            mode
-        })
-        .collect();
+    let modes = sol.vectors.iter().map(|v| super::modal::shape(structure, v, n_dofs)).collect();
     Ok(Buckling { factors: sol.values, modes, residuals: sol.residuals, solves: sol.solves })
 }
 

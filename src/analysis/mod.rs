@@ -10,6 +10,7 @@
 //! ```
 
 pub mod buckling;
+pub mod modal;
 pub mod path;
 mod results;
 pub mod structure;
@@ -48,9 +49,12 @@ pub enum AnalysisError {
         "analysis.imperfection.mode = {0}: the buckling analysis of the model found {1} positive critical load factors"
     )]
     Imperfection(usize, usize),
-    /// The buckling eigenproblem.
-    #[error("buckling analysis")]
+    /// The eigenproblem of a buckling or modal analysis.
+    #[error("eigenvalue analysis")]
     Eigen(#[from] crate::solver::eigen::EigenError),
+    /// The mass matrix of a modal analysis.
+    #[error(transparent)]
+    Mass(#[from] crate::dynamics::MassError),
     /// The analysis would need more memory than allowed.
     #[error(
         "the analysis needs about {} of memory ({}) but {} is available; use a coarser mesh, or --max-memory \
@@ -279,6 +283,9 @@ pub struct Solution {
     /// `analysis.type = "buckling"`: critical load factors and modes about
     /// the final state; `None` otherwise.
     pub buckling: Option<buckling::Buckling>,
+    /// `analysis.type = "modal"`: natural frequencies and modes about the
+    /// final state; `None` otherwise.
+    pub modal: Option<modal::Modal>,
     /// How the path following went (`solver.control = "arc_length"`).
     pub path: Option<PathOutcome>,
 }
@@ -430,6 +437,10 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         (Some(b), None) => Some(buckling::solve(&mut structure, b.modes)?),
         _ => None,
     };
+    let vibration = match (model.modal, &failure) {
+        (Some(settings), None) => Some(modal::solve(&mut structure, settings)?),
+        _ => None,
+    };
     let lambda = structure.load_factor();
     let mut applied = [0.0; 3];
     for (d, f) in structure.external_loads().iter().enumerate() {
@@ -470,6 +481,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         steps: step_ends,
         adapt: None,
         buckling: buckled.or(imperfect.map(|(_, b)| b)),
+        modal: vibration,
         path,
     };
     // the estimate compares the raw stresses with their patch recovery; the
@@ -546,6 +558,7 @@ impl Solution {
             steps: Vec::new(),
             adapt: None,
             buckling: None,
+            modal: None,
             path: self.path.clone(),
         };
         if model.output.recovery == crate::model::Recovery::Projection {

@@ -282,6 +282,22 @@ impl<'m> Structure<'m> {
         (&a.pattern, kg)
     }
 
+    /// The pattern, the tangent of the last evaluation and the mass matrix
+    /// of `kind`, with the prescribed DOFs fixed in both (free vibration,
+    /// `analysis::modal`).
+    pub(crate) fn vibration_matrices(
+        &self,
+        kind: crate::dynamics::MassKind,
+    ) -> Result<(&crate::solver::linear::LowerCsc, Vec<f64>, Vec<f64>), crate::dynamics::MassError> {
+        use crate::dynamics::mass;
+        let (model, a) = (self.model, &self.system.assembler);
+        let densities = mass::densities(&model.mesh, &model.materials)?;
+        let mut m = mass::assemble(a, &model.mesh, &model.cells, &densities, kind)?;
+        let mut k = self.system.tangent.clone();
+        self.dirichlet.fix_for_eigen(|e| a.pattern.col_ptr[e], &mut k, &mut m);
+        Ok((&a.pattern, k, m))
+    }
+
     /// The parts the solution keeps: displacements, elements, timings, memory.
     pub(crate) fn into_parts(self) -> (Vec<f64>, Elements<'m>, Timings, MemoryEstimate) {
         (self.state.u, self.elements, self.timings, self.memory)

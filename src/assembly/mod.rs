@@ -284,18 +284,31 @@ impl Assembler {
     /// the Gauss-point stresses `stress` (all bodies, the layout of
     /// `Inputs::committed`), in pattern order (linear buckling).
     pub fn assemble_geometric(&self, input: &Inputs<'_>, stress: &[Voigt], out: &mut [f64]) {
+        self.assemble_matrices(input.mesh, out, |body, element, ws| {
+            let geom = &input.geometry[body];
+            let ngp = geom.gp_per_element();
+            let g0 = input.gp_offsets[body] + element * ngp;
+            let n_section = input.mesh.bodies[body].section.n_elements();
+            elements::geometric_matrix(geom, element, n_section, &stress[g0..g0 + ngp], ws);
+        });
+    }
+
+    /// Assembles, in pattern order, a matrix of element contributions
+    /// (constrained DOFs dropped): `element(body, element, ws)` writes the
+    /// upper triangle of the element's row-major `3 nodes` square matrix
+    /// (DOF `3a + c`) into `ws.tangent`; assembly only scatters it.
+    pub fn assemble_matrices<F>(&self, mesh: &Mesh, out: &mut [f64], element: F)
+    where
+        F: Fn(usize, usize, &mut Workspace) + Sync,
+    {
         out.fill(0.0);
         let values = Disjoint::new(out);
         for colour in &self.scatter.colours {
             colour.par_iter().for_each_init(Vec::new, |nodes, &ge| {
                 let r = self.scatter.elements[ge];
-                let body = &input.mesh.bodies[r.body];
-                let geom = &input.geometry[r.body];
-                body.element_nodes(r.element, nodes);
-                let ngp = geom.gp_per_element();
-                let g0 = input.gp_offsets[r.body] + r.element * ngp;
+                mesh.bodies[r.body].element_nodes(r.element, nodes);
                 WORKSPACE.with_borrow_mut(|ws| {
-                    elements::geometric_matrix(geom, r.element, body.section.n_elements(), &stress[g0..g0 + ngp], ws);
+                    element(r.body, r.element, ws);
                     let range = self.scatter.offsets[ge]..self.scatter.offsets[ge + 1];
                     // SAFETY: elements of one colour share no matrix entry.
                     unsafe { scatter_upper(&self.scatter.maps[range], &ws.tangent, 3 * nodes.len(), &values) };

@@ -308,6 +308,19 @@ pub fn print_results(model: &Model, solution: &Solution) {
         let points = if points.is_empty() { "none".to_string() } else { points.join(", ") };
         println!("arc length: limit points {points}; ended by {}", p.end);
     }
+    if let Some(m) = &summary.modal {
+        let share = |k: usize, v: f64| if m.free_mass[k] > 0.0 { 100.0 * v / m.free_mass[k] } else { 0.0 };
+        println!("modal  mode  frequency [Hz]   effective mass [% of the free mass]  x / y / z");
+        for (k, (f, e)) in m.frequencies_hz.iter().zip(&m.effective_masses).enumerate() {
+            println!(
+                "       {:>4}  {f:>14.6e}   {:>6.2} / {:>6.2} / {:>6.2}",
+                k + 1,
+                share(0, e[0]),
+                share(1, e[1]),
+                share(2, e[2])
+            );
+        }
+    }
     if let Some(b) = &summary.buckling {
         println!("buckling  mode  load factor   critical load [N]");
         for (k, (f, p)) in b.factors.iter().zip(&b.critical_loads).enumerate() {

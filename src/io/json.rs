@@ -138,6 +138,10 @@ pub struct Summary {
     /// mode files, absent for a static analysis.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub buckling: Option<BucklingSummary>,
+    /// `analysis.type = "modal"`: the natural frequencies, effective masses
+    /// and mode files, absent for another analysis.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub modal: Option<ModalSummary>,
     /// `solver.control = "arc_length"`: how the path following ended and
     /// the limit points it passed, absent under load control.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -145,6 +149,20 @@ pub struct Summary {
     /// The other files of this result set (summary.json is written last and
     /// lists them, so a complete set can be recognised).
     pub files: Vec<String>,
+}
+
+/// The modal analysis in `summary.json`.
+#[derive(Debug, Clone, Serialize)]
+pub struct ModalSummary {
+    /// Natural frequencies f (Hz), ascending.
+    pub frequencies_hz: Vec<f64>,
+    /// Effective masses of each mode in x, y and z (kg).
+    pub effective_masses: Vec<[f64; 3]>,
+    /// The mass moving with the free DOFs in x, y and z (kg): the sums of
+    /// all modes' effective masses.
+    pub free_mass: [f64; 3],
+    /// The VTU of each mode (`mode_<k>.vtu`), or empty without VTU output.
+    pub modes: Vec<String>,
 }
 
 /// The buckling analysis in `summary.json`.
@@ -393,6 +411,12 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
             critical_loads: b.factors.iter().map(|f| solution.applied.map(|a| a * f / solution.lambda)).collect(),
             modes: if model.output.vtu { (1..=b.factors.len()).map(mode_vtu_name).collect() } else { Vec::new() },
         }),
+        modal: solution.modal.as_ref().map(|m| ModalSummary {
+            frequencies_hz: m.frequencies.clone(),
+            effective_masses: m.effective_masses.clone(),
+            free_mass: m.free_mass,
+            modes: if model.output.vtu { (1..=m.frequencies.len()).map(mode_vtu_name).collect() } else { Vec::new() },
+        }),
         path: solution.path.as_ref().map(|p| PathSummary {
             end: match p.end {
                 Some(crate::analysis::PathEnd::LoadFactor(_)) => "load_factor",
@@ -406,7 +430,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
     }
 }
 
-/// The VTU file name of buckling mode `k` (1-based).
+/// The VTU file name of buckling or vibration mode `k` (1-based).
 pub fn mode_vtu_name(k: usize) -> String {
     format!("mode_{k}.vtu")
 }

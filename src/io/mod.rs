@@ -9,7 +9,7 @@
 //! | `history_<name>.csv` | per increment: reaction of a constraint set, or force of a contact |
 //! | `history_probes.csv` | per increment: the displacement of every probe |
 //! | `history.csv` | per increment: load factor, iterations, plastic points, negative pivots of the tangent |
-//! | `mode_<k>.vtu` | buckling: the shape of mode k as the displacement field |
+//! | `mode_<k>.vtu` | buckling and modal: the shape of mode k as the displacement field |
 //! | `contact_<name>.csv` | final gap, force and pressure of every contact point |
 //! | `line_<name>_<quantity>.png` | plots of the quantities listed in a line's `plot` |
 //! | `history_<indenter>.png` | force against displacement of each moving indenter |
@@ -169,14 +169,21 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     Ok(written)
 }
 
-/// `mode_<k>.vtu` for every buckling mode: the mode shape (largest
-/// component 1, dimensionless) as the `displacement` field of the mesh,
-/// strains those of the shape, stresses those of the static state.
+/// `mode_<k>.vtu` for every buckling or vibration mode: the mode shape
+/// (largest component 1, dimensionless) as the `displacement` field of the
+/// mesh, strains those of the shape, stresses those of the static state.
 fn write_modes(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
-    let (Some(b), true) = (&solution.buckling, model.output.vtu) else { return Ok(Vec::new()) };
+    let modes = match (&solution.buckling, &solution.modal) {
+        (Some(b), _) => &b.modes,
+        (None, Some(m)) => &m.modes,
+        (None, None) => return Ok(Vec::new()),
+    };
+    if !model.output.vtu {
+        return Ok(Vec::new());
+    }
     let mut written = Vec::new();
     let mut shape = solution.clone();
-    for (k, mode) in b.modes.iter().enumerate() {
+    for (k, mode) in modes.iter().enumerate() {
         shape.u.clone_from(mode);
         let path = dir.join(json::mode_vtu_name(k + 1));
         write_vtu(&path, model, &shape)?;

@@ -81,6 +81,9 @@ pub struct Material {
     /// Kinematic hardening terms (at most [`MAX_BACKSTRESSES`]); empty for
     /// purely isotropic hardening.
     pub kinematic: Vec<BackStress>,
+    /// Mass density ρ (kg/m³), `None` where the model gives none (a static
+    /// analysis needs none; the mass matrix does, `crate::dynamics`).
+    pub density: Option<f64>,
     elastic: Matrix6,
 }
 
@@ -94,6 +97,7 @@ impl Material {
             poisson,
             hardening,
             kinematic: Vec::new(),
+            density: None,
             elastic: voigt::isotropic_stiffness(young, poisson),
         }
     }
@@ -103,6 +107,12 @@ impl Material {
     pub fn with_kinematic(mut self, kinematic: Vec<BackStress>) -> Self {
         assert!(kinematic.len() <= MAX_BACKSTRESSES);
         self.kinematic = kinematic;
+        self
+    }
+
+    /// The same material with the mass density ρ (kg/m³, validated: positive).
+    pub fn with_density(mut self, density: Option<f64>) -> Self {
+        self.density = density;
         self
     }
 

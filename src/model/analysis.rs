@@ -1,7 +1,7 @@
 //! `[analysis]`: the kind of analysis and its geometry — what the driver
 //! does with the model, checked against what the model holds.
 
-use super::schema::{AnalysisFile, AnalysisType, Geometry, StrainMeasure};
+use super::schema::{AnalysisFile, AnalysisType, Geometry, MassMatrix, StrainMeasure};
 use super::{ModelError, invalid};
 use crate::bc::Constraint;
 use crate::contact::{Indenter, PairContact};
@@ -17,6 +17,16 @@ pub const MAX_MODES: usize = 50;
 pub struct BucklingSettings {
     /// Modes wanted (`analysis.modes`, default 4).
     pub modes: usize,
+}
+
+/// `analysis.type = "modal"`: free vibration about the end of the static
+/// analysis.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct ModalSettings {
+    /// Modes wanted (`analysis.modes`, default 6).
+    pub modes: usize,
+    /// `analysis.mass`.
+    pub mass: crate::dynamics::MassKind,
 }
 
 /// The kinematics of `analysis.geometry` and `analysis.strain` (a strain
@@ -117,8 +127,8 @@ pub(super) struct Parts<'a> {
 /// its key.
 pub(super) fn buckling(file: &AnalysisFile, parts: &Parts<'_>) -> Result<Option<BucklingSettings>, ModelError> {
     if file.kind.unwrap_or_default() != AnalysisType::Buckling {
-        if let Some(m) = file.modes {
-            return Err(invalid("analysis.modes", m, "only with analysis.type = \"buckling\""));
+        if let (Some(m), false) = (file.modes, file.kind == Some(AnalysisType::Modal)) {
+            return Err(invalid("analysis.modes", m, "only with analysis.type = \"buckling\" or \"modal\""));
         }
         return Ok(None);
     }
@@ -146,4 +156,58 @@ pub(super) fn buckling(file: &AnalysisFile, parts: &Parts<'_>) -> Result<Option<
         }
     }
     Ok(Some(BucklingSettings { modes }))
+}
+
+/// `analysis.type = "modal"`, `analysis.modes` and `analysis.mass`: `None`
+/// for another analysis. The frequencies are those of the tangent at the
+/// end of the static analysis (of an unloaded model: the elastic
+/// stiffness), so the static part may hold anything a static analysis may,
+/// except friction (its tangent is unsymmetric); every body's material
+/// needs a density.
+pub(super) fn modal(file: &AnalysisFile, parts: &Parts<'_>) -> Result<Option<ModalSettings>, ModelError> {
+    if file.kind != Some(AnalysisType::Modal) {
+        if let Some(m) = file.mass {
+            return Err(invalid("analysis.mass", mass_word(m), "only with analysis.type = \"modal\""));
+        }
+        return Ok(None);
+    }
+    let modes = file.modes.unwrap_or(6);
+    if modes == 0 || modes > MAX_MODES {
+        return Err(invalid("analysis.modes", modes, format!("an integer in 1..={MAX_MODES}")));
+    }
+    if file.imperfection.is_some() {
+        return Err(invalid("analysis.imperfection", "given", "not with analysis.type = \"modal\""));
+    }
+    for b in &parts.mesh.bodies {
+        let m = &parts.materials[b.material];
+        if m.density.is_none() {
+            return Err(invalid(
+                format!("materials \"{}\".density", m.name),
+                "(missing)",
+                format!("the mass density in kg/m³ with analysis.type = \"modal\" (body \"{}\")", b.name),
+            ));
+        }
+    }
+    let frictional =
+        parts.indenters.iter().any(|i| i.friction.is_some()) || parts.contacts.iter().any(|c| c.friction.is_some());
+    if frictional {
+        let key = if parts.contacts.iter().any(|c| c.friction.is_some()) { "contacts" } else { "indenters" };
+        return Err(invalid(
+            format!("{key}.friction"),
+            "present",
+            "frictionless contact with analysis.type = \"modal\" (the tangent with friction is unsymmetric)",
+        ));
+    }
+    let mass = match file.mass.unwrap_or_default() {
+        MassMatrix::Consistent => crate::dynamics::MassKind::Consistent,
+        MassMatrix::Lumped => crate::dynamics::MassKind::Lumped,
+    };
+    Ok(Some(ModalSettings { modes, mass }))
+}
+
+fn mass_word(m: MassMatrix) -> &'static str {
+    match m {
+        MassMatrix::Consistent => "\"consistent\"",
+        MassMatrix::Lumped => "\"lumped\"",
+    }
 }

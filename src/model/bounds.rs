@@ -20,6 +20,7 @@
 //! | tractions, pressures, load/area | ≤ E of the loaded body | a stress of E is a strain of order 1 |
 //! | prescribed and indenter displacements | ≤ the body's size | a rigid-body scale motion is not small displacement |
 //! | penalty factor α | 1e-3 … 1e8 | |
+//! | mass density | 0.1 … 2e5 kg/m³ | aerogels to ten times osmium |
 
 use super::{ModelError, invalid};
 pub use crate::numbers::{limit, list, number};
@@ -35,6 +36,8 @@ pub const MAX_HARDENING: f64 = 100.0;
 /// Largest equivalent plastic strain in a hardening table.
 pub const MAX_TABLE_PEEQ: f64 = 10.0;
 pub use crate::mesh::{GRADING_RATIO, MAX_COORD, MIN_RELATIVE_SIZE};
+/// Accepted range of the mass density (kg/m³).
+pub const DENSITY: (f64, f64) = (0.1, 2e5);
 /// Accepted range of the dimensionless penalty factor.
 pub const PENALTY_FACTOR: (f64, f64) = (1e-3, 1e8);
 

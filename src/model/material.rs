@@ -32,7 +32,19 @@ pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelErro
             (Some(hardening(&pk, p, young)?), kinematic(&pk, p.kinematic.as_deref().unwrap_or(&[]), young)?)
         }
     };
-    Ok(Material::new(m.name.clone(), young, nu, hardening).with_kinematic(kinematic))
+    let density = m
+        .density
+        .map(|rho| {
+            bounds::within(
+                &format!("{key}.density"),
+                rho,
+                bounds::DENSITY.0,
+                bounds::DENSITY.1,
+                "the mass density in kg/m³, from aerogels to ten times osmium",
+            )
+        })
+        .transpose()?;
+    Ok(Material::new(m.name.clone(), young, nu, hardening).with_kinematic(kinematic).with_density(density))
 }
 
 /// What `yield_stress` may be, for the messages.

@@ -35,7 +35,7 @@ use crate::quantity::Quantity;
 use crate::solver::newton::NewtonSettings;
 use crate::solver::stepping::StepSettings;
 use crate::values::{CellValues, ElementError, Location};
-pub use analysis::{BucklingSettings, Imperfection};
+pub use analysis::{BucklingSettings, Imperfection, ModalSettings};
 use schema::*;
 
 pub use path::{DisplacementStop, PathSettings};
@@ -293,6 +293,9 @@ pub struct Model {
     /// `analysis.imperfection`: a scaled buckling mode as the stress-free
     /// initial shape (nonlinear geometry); `None` for the perfect shape.
     pub imperfection: Option<Imperfection>,
+    /// `analysis.type = "modal"`: the natural frequencies and modes about
+    /// the end of the static analysis; `None` otherwise.
+    pub modal: Option<ModalSettings>,
 }
 
 /// Something suspicious but legal in a model (printed by `check` and `run`,
@@ -443,6 +446,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     };
     let buckling = analysis::buckling(&file.analysis, &parts)?;
     let imperfection = analysis::imperfection(&file.analysis, &parts)?;
+    let modal = analysis::modal(&file.analysis, &parts)?;
     Ok(Model {
         title: file.title.unwrap_or_else(|| "cufem model".into()),
         description: file.description.unwrap_or_default(),
@@ -465,5 +469,6 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         kinematics,
         buckling,
         imperfection,
+        modal,
     })
 }

@@ -115,11 +115,13 @@ pub struct AnalysisFile {
     pub geometry: Option<Geometry>,
     /// `strain = "green_lagrange"` (default) or `"logarithmic"` (nonlinear geometry).
     pub strain: Option<StrainMeasure>,
-    /// `type = "static"` (default) or `"buckling"`.
+    /// `type = "static"` (default), `"buckling"` or `"modal"`.
     #[serde(rename = "type")]
     pub kind: Option<AnalysisType>,
-    /// Buckling: the number of modes wanted.
+    /// Buckling and modal: the number of modes wanted.
     pub modes: Option<usize>,
+    /// Modal: `mass = "consistent"` (default) or `"lumped"`.
+    pub mass: Option<MassMatrix>,
     /// A geometric imperfection from a buckling mode (nonlinear geometry).
     pub imperfection: Option<ImperfectionFile>,
 }
@@ -201,6 +203,8 @@ pub struct MaterialFile {
     pub name: String,
     pub young_modulus: f64,
     pub poisson_ratio: f64,
+    /// Mass density ρ (kg/m³): needed by the mass matrix (`analysis.type = "modal"`).
+    pub density: Option<f64>,
     pub plasticity: Option<PlasticityFile>,
 }
 

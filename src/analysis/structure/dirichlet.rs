@@ -99,6 +99,20 @@ impl Dirichlet {
         (off, size)
     }
 
+    /// For an eigenproblem `K φ = ω² M φ` about the present state: every
+    /// entry coupling a prescribed equation zeroed in both matrices (lower
+    /// triangles on one pattern), and its mass diagonal too, so that the
+    /// prescribed DOFs stay fixed (their `θ = 1/ω²` is zero, never wanted).
+    pub fn fix_for_eigen(&self, diagonal: impl Fn(usize) -> usize, k: &mut [f64], m: &mut [f64]) {
+        for &(pos, _, _) in &self.entries {
+            k[pos] = 0.0;
+            m[pos] = 0.0;
+        }
+        for &(_, e, _, _) in &self.prescribed {
+            m[diagonal(e)] = 0.0;
+        }
+    }
+
     /// Symmetric elimination (module docs) of the system `K δu = b` held in
     /// `tangent` (lower-triangle values), `rest` (the unsymmetric part, if
     /// any) and `rhs` (`−R` per equation on entry; on exit with `Δ_p` moved

@@ -153,6 +153,20 @@ pub enum AnalysisType {
     /// Linear buckling: the static solution at load factor 1, then the
     /// critical load factors of its stress state (`crate::analysis::buckling`).
     Buckling,
+    /// Free vibration: the static solution, then the lowest natural
+    /// frequencies and modes about it (`crate::analysis::modal`).
+    Modal,
+}
+
+/// `analysis.mass`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum MassMatrix {
+    /// `∫ ρ N_a N_b dV` (the default).
+    #[default]
+    Consistent,
+    /// Row sums on the diagonal.
+    Lumped,
 }
 
 /// `bodies.formulation`.

@@ -20,7 +20,9 @@
 //! factor entry 8 (in both precisions: a single-precision factor shares
 //! those bytes with the rounded matrix, see `solver::linear`); a Gauss point two states (200 bytes each with three back-stresses) and a stress of 48;
 //! a DOF 64 (eight vectors); in a model with friction, the GMRES basis
-//! (`solver::krylov::GmresWork::vectors` of 8 bytes per equation); the program itself about 8 MiB. Setup transients (node graph, METIS arrays, the
+//! (`solver::krylov::GmresWork::vectors` of 8 bytes per equation); in a buckling or modal analysis
+//! the Lanczos basis (`solver::eigen::vectors`) and two value arrays of the pattern (K and B);
+//! the program itself about 8 MiB. Setup transients (node graph, METIS arrays, the
 //! transposed pattern) and output transients (VTU arrays) are freed before
 //! the factor is allocated, so the larger of them is added, not both.
 
@@ -55,6 +57,9 @@ pub struct Sizes {
     pub vtu_points: u64,
     /// Vectors of the equations' size held by GMRES (a model with friction; 0 otherwise).
     pub krylov_vectors: u64,
+    /// Vectors of the equations' size held by the eigensolver (buckling or
+    /// modal analysis; 0 otherwise).
+    pub eigen_vectors: u64,
     /// True once `factor_nnz` comes from the symbolic factorization.
     pub exact: bool,
 }
@@ -97,6 +102,16 @@ impl Sizes {
             ("Gauss-point states and stresses", s.gauss_points.saturating_mul(GAUSS_POINT_BYTES)),
             ("vectors", s.dofs.saturating_mul(64)),
             ("GMRES basis (friction)", s.equations.saturating_mul(8).saturating_mul(s.krylov_vectors)),
+            // the Lanczos basis, and the two matrices K and B (or M) copied
+            // out of the tangent's pattern
+            (
+                "eigensolver (basis, K and B)",
+                if s.eigen_vectors > 0 {
+                    s.equations.saturating_mul(8).saturating_mul(s.eigen_vectors).saturating_add(s.pattern_nnz * 16)
+                } else {
+                    0
+                },
+            ),
         ];
         // node graph (adjacency, its copy, METIS arrays) + transposed pattern
         let setup = s.node_pairs.saturating_mul(20).saturating_add(s.pattern_nnz.saturating_mul(8));

@@ -262,6 +262,11 @@ fn the_channel_example_bends_in_its_plane_of_symmetry_as_a_beam() {
         assert!(out.join(name.as_str().unwrap()).exists(), "{name}");
     }
     assert_eq!(modal["modes"].as_array().unwrap().len(), 8);
+    // the memory estimate, eigensolver included, against the measured peak:
+    // the band of every example (tests/examples.rs); measured 1.19
+    let estimated = summary["memory"]["estimated_bytes"].as_f64().unwrap();
+    let peak = summary["memory"]["peak_bytes"].as_f64().unwrap();
+    assert!((0.9..1.3).contains(&(estimated / peak)), "estimate {estimated:e} B, peak {peak:e} B");
 }
 
 /// What a modal analysis cannot take is refused by its key.

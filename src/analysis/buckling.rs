@@ -19,7 +19,7 @@
 //! (a shape; its sign is arbitrary).
 
 use super::{AnalysisError, Structure};
-use crate::solver::eigen::{self, EigenSettings};
+use crate::solver::eigen::EigenSettings;
 
 /// The critical load factors and their modes.
 #[derive(Debug, Clone, PartialEq)]
@@ -42,14 +42,14 @@ pub(crate) fn solve(structure: &mut Structure<'_>, modes: usize) -> Result<Buckl
     structure.evaluate()?;
     let lambda = structure.load_factor();
     let k0 = structure.tangent_values().to_vec();
-    let (pattern, kg) = structure.stress_stiffness();
+    let kg = structure.stress_stiffness();
     // the stress state of the loads at factor 1 (linear: σ scales with λ)
     let b: Vec<f64> = kg.iter().map(|v| -v / lambda).collect();
     // 1e-8: a load factor's error is of the order of the residual squared
     // (a Rayleigh quotient); 1e-10 is out of reach of the round-off of
     // slender models' K₀ (a 4 m deep-web cantilever stalled at 5e-9)
     let settings = EigenSettings { count: modes, positive_only: true, tolerance: 1e-8, ..Default::default() };
-    let sol = eigen::solve(pattern, &k0, &b, &settings)?;
+    let sol = structure.eigen(&k0, &b, &settings)?;
     let n_dofs = structure.displacements().len();
     let modes = sol.vectors.iter().map(|v| super::modal::shape(structure, v, n_dofs)).collect();
     Ok(Buckling { factors: sol.values, modes, residuals: sol.residuals, solves: sol.solves })

@@ -106,6 +106,11 @@ pub fn sizes(model: &Model, numbering: &Numbering, solver: &Cholesky) -> Sizes {
         } else {
             0
         },
+        eigen_vectors: model
+            .buckling
+            .map(|b| b.modes)
+            .or(model.modal.map(|m| m.modes))
+            .map_or(0, |count| crate::solver::eigen::vectors(count) as u64),
         exact: true,
         ..Default::default()
     };

@@ -29,7 +29,7 @@
 //! torsional (none) modes apart.
 
 use super::{AnalysisError, Structure};
-use crate::solver::eigen::{self, EigenSettings};
+use crate::solver::eigen::EigenSettings;
 
 /// The natural frequencies and their modes.
 #[derive(Debug, Clone, PartialEq)]
@@ -57,11 +57,12 @@ pub(crate) fn solve(
     use crate::solver::newton::NonlinearProblem;
     // the tangent at the converged state
     structure.evaluate()?;
-    let (pattern, k, m) = structure.vibration_matrices(settings.mass)?;
+    let (k, m) = structure.vibration_matrices(settings.mass)?;
     // 1e-8: the frequency's error is of the order of the residual squared
     let eigen_settings =
         EigenSettings { count: settings.modes, positive_only: true, tolerance: 1e-8, ..Default::default() };
-    let sol = eigen::solve(pattern, &k, &m, &eigen_settings)?;
+    let sol = structure.eigen(&k, &m, &eigen_settings)?;
+    let pattern = structure.pattern();
     // r_k per equation, and M r_k
     let n_eq = pattern.n;
     let mut direction = vec![[0.0; 3]; n_eq];

@@ -272,30 +272,41 @@ impl<'m> Structure<'m> {
         self.elements.initial = Some(u0);
     }
 
-    /// The pattern and the stress stiffness `K_σ` of the present
-    /// Gauss-point stresses, in pattern order (linear buckling).
-    pub(crate) fn stress_stiffness(&self) -> (&crate::solver::linear::LowerCsc, Vec<f64>) {
+    /// The stress stiffness `K_σ` of the present Gauss-point stresses, in
+    /// pattern order (linear buckling).
+    pub(crate) fn stress_stiffness(&self) -> Vec<f64> {
         let a = &self.system.assembler;
         let mut kg = vec![0.0; a.pattern.nnz()];
         let u = self.displacements();
         a.assemble_geometric(&self.elements.inputs(u), &self.elements.stress, &mut kg);
-        (&a.pattern, kg)
+        kg
     }
 
-    /// The pattern, the tangent of the last evaluation and the mass matrix
-    /// of `kind`, with the prescribed DOFs fixed in both (free vibration,
-    /// `analysis::modal`).
+    /// The tangent of the last evaluation and the mass matrix of `kind`
+    /// (lower triangles on [`Self::pattern`]), with the prescribed DOFs
+    /// fixed in both (free vibration, `analysis::modal`).
     pub(crate) fn vibration_matrices(
         &self,
         kind: crate::dynamics::MassKind,
-    ) -> Result<(&crate::solver::linear::LowerCsc, Vec<f64>, Vec<f64>), crate::dynamics::MassError> {
+    ) -> Result<(Vec<f64>, Vec<f64>), crate::dynamics::MassError> {
         use crate::dynamics::mass;
         let (model, a) = (self.model, &self.system.assembler);
         let densities = mass::densities(&model.mesh, &model.materials)?;
         let mut m = mass::assemble(a, &model.mesh, &model.cells, &densities, kind)?;
         let mut k = self.system.tangent.clone();
         self.dirichlet.fix_for_eigen(|e| a.pattern.col_ptr[e], &mut k, &mut m);
-        Ok((&a.pattern, k, m))
+        Ok((k, m))
+    }
+
+    /// `K φ = μ B φ` (lower triangles on [`Self::pattern`]) with the
+    /// structure's own factorization (buckling, free vibration).
+    pub(crate) fn eigen(
+        &mut self,
+        k: &[f64],
+        b: &[f64],
+        settings: &crate::solver::eigen::EigenSettings,
+    ) -> Result<crate::solver::eigen::EigenSolution, crate::solver::eigen::EigenError> {
+        self.system.eigen(k, b, settings)
     }
 
     /// The parts the solution keeps: displacements, elements, timings, memory.

@@ -158,6 +158,18 @@ pub struct EigenSolution {
     pub runs: usize,
 }
 
+/// The basis size `m` of [`EigenSettings::subspace`] = 0: `max(2 count + 10, 20)`.
+pub fn auto_subspace(count: usize) -> usize {
+    (2 * count + 10).max(20)
+}
+
+/// Vectors of the equations' size an eigensolution of `count` pairs holds
+/// at most: the basis (`m + 1`), the locked pairs and two of scratch (for
+/// the memory estimate).
+pub fn vectors(count: usize) -> usize {
+    auto_subspace(count) + 1 + count + 2
+}
+
 /// Solves `K φ = μ B φ` for the eigenvalues of smallest `|μ|`; `k` and `b`
 /// are values on `pattern` (lower triangles). Factorizes `K` itself.
 pub fn solve(pattern: &LowerCsc, k: &[f64], b: &[f64], settings: &EigenSettings) -> Result<EigenSolution, EigenError> {
@@ -459,7 +471,7 @@ fn lanczos(
     restarts: &mut usize,
 ) -> Result<Vec<Ritz>, EigenError> {
     let n = op.n();
-    let auto = (2 * settings.count + 10).max(20);
+    let auto = auto_subspace(settings.count);
     let m = (if settings.subspace == 0 { auto } else { settings.subspace }).min(n.saturating_sub(locked.len()));
     if m == 0 {
         return Ok(Vec::new());

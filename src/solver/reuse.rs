@@ -213,6 +213,25 @@ impl ReusingSolver {
         self.factorize(values, false)
     }
 
+    /// Factorizes `values` in double precision and solves the eigenproblem
+    /// `K φ = μ B φ` with that factor (`K` = `values`, `b` on the same
+    /// pattern): the structure's own factorization serves the eigensolver,
+    /// so a buckling or modal analysis adds no second symbolic analysis or
+    /// factor. Not positive definite: [`EigenError::NotPositiveDefinite`].
+    pub fn eigen(
+        &mut self,
+        pattern: &LowerCsc,
+        values: &[f64],
+        b: &[f64],
+        settings: &super::eigen::EigenSettings,
+    ) -> Result<super::eigen::EigenSolution, super::eigen::EigenError> {
+        match self.factorize(values, false) {
+            Err(LinearError::Singular) => return Err(super::eigen::EigenError::NotPositiveDefinite),
+            other => other?,
+        }
+        super::eigen::solve_factored(&mut self.chol, pattern, values, b, settings)
+    }
+
     /// Negative pivots of the present factor (the inertia of the last
     /// factorized matrix: [`Cholesky::negative_pivots`]); `None` before
     /// the first factorization.

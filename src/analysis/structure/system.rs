@@ -81,6 +81,17 @@ impl LinearSystem {
         self.solver.negative_pivots()
     }
 
+    /// `K φ = μ B φ` for the lower triangles `k` and `b` on this system's
+    /// pattern, with this system's factorization (`ReusingSolver::eigen`).
+    pub fn eigen(
+        &mut self,
+        k: &[f64],
+        b: &[f64],
+        settings: &crate::solver::eigen::EigenSettings,
+    ) -> Result<crate::solver::eigen::EigenSolution, crate::solver::eigen::EigenError> {
+        self.solver.eigen(&self.assembler.pattern, k, b, settings)
+    }
+
     /// The solver's counters.
     pub fn stats(&self) -> &ReuseStats {
         self.solver.stats()

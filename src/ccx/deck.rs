@@ -19,6 +19,13 @@
 //!   edge); the deformable body is the slave side of a tool contact.
 //! * Increments: `*STATIC` with the model's first, smallest and largest Δλ
 //!   (the step time is the load factor).
+//! * Free vibration (`analysis.type = "modal"`): `*DENSITY` in each material
+//!   that has one, and instead of the static step a `*FREQUENCY` step asking
+//!   for the model's number of modes, with the same (zero) `*BOUNDARY`: the
+//!   elastic modes about the undeformed state, CalculiX's consistent mass.
+//!   A pre-stressed modal model (loads, prescribed displacements, tools,
+//!   contacts) is refused before the deck is written
+//!   ([`super::check_supported`]).
 
 use std::fmt::Write as _;
 
@@ -194,7 +201,10 @@ pub fn write(model: &Model, mesh: &HexMesh) -> String {
     materials(&mut d, model, mesh);
     node_sets(&mut d, model, mesh);
     contact_pairs(&mut d, model, mesh);
-    step(&mut d, model, mesh);
+    match model.modal {
+        Some(modal) => frequency_step(&mut d, model, mesh, modal.modes),
+        None => step(&mut d, model, mesh),
+    }
     let _ = writeln!(d, "*END STEP");
     d
 }
@@ -226,6 +236,9 @@ fn materials(d: &mut String, model: &Model, mesh: &HexMesh) {
     for m in &model.materials {
         let _ = writeln!(d, "*MATERIAL, NAME={}", set_name("M", &m.name));
         let _ = writeln!(d, "*ELASTIC\n{:e}, {}", m.young, m.poisson);
+        if let Some(rho) = m.density {
+            let _ = writeln!(d, "*DENSITY\n{rho:e}");
+        }
         if let Some(h) = &m.hardening {
             let _ = writeln!(d, "*PLASTIC");
             for (s, e) in plastic_rows(h) {
@@ -337,6 +350,31 @@ fn contact_pairs(d: &mut String, model: &Model, mesh: &HexMesh) {
     }
 }
 
+/// `*BOUNDARY` of the constraints on their node sets.
+fn boundary(d: &mut String, model: &Model) {
+    let _ = writeln!(d, "*BOUNDARY");
+    for c in &model.constraints {
+        if c.selection.is_none() {
+            continue;
+        }
+        for (k, v) in c.values.iter().enumerate() {
+            if let Some(v) = v {
+                let _ = writeln!(d, "{}, {}, {}, {v:.12e}", set_name("C", &c.name), k + 1, k + 1);
+            }
+        }
+    }
+}
+
+/// The free-vibration step (`*END STEP` is the caller's): the `modes`
+/// lowest eigenfrequencies about the undeformed state, each mode's
+/// displacement in the `.frd` file, the eigenvalue table in the `.dat` file.
+fn frequency_step(d: &mut String, model: &Model, mesh: &HexMesh, modes: usize) {
+    debug_assert!(mesh.tools.is_empty(), "a modal deck has no tools (check_supported)");
+    let _ = writeln!(d, "*STEP\n*FREQUENCY\n{modes}");
+    boundary(d, model);
+    let _ = writeln!(d, "*NODE FILE\nU");
+}
+
 /// The analysis step: increments, controls, boundary conditions, loads and
 /// requested output (`*END STEP` is the caller's).
 fn step(d: &mut String, model: &Model, mesh: &HexMesh) {
@@ -359,17 +397,7 @@ fn step(d: &mut String, model: &Model, mesh: &HexMesh) {
         let r = s.newton.residual_tolerance;
         let _ = writeln!(d, "*CONTROLS, PARAMETERS=FIELD\n{:e}, {:e}", r, 10.0 * r);
     }
-    let _ = writeln!(d, "*BOUNDARY");
-    for c in &model.constraints {
-        if c.selection.is_none() {
-            continue;
-        }
-        for (k, v) in c.values.iter().enumerate() {
-            if let Some(v) = v {
-                let _ = writeln!(d, "{}, {}, {}, {v:.12e}", set_name("C", &c.name), k + 1, k + 1);
-            }
-        }
-    }
+    boundary(d, model);
     for tool in &mesh.tools {
         let ind = &model.indenters[tool.indenter];
         for k in 0..3 {

@@ -1,7 +1,9 @@
 //! CalculiX (`ccx`) as the 3D reference: export a model as a solid-element
 //! deck ([`deck`], on the hex mesh of [`mesh`]), run `ccx` on it, read its
 //! results back ([`results`]) and sample them at the model's probes and
-//! lines exactly where cufem samples its own fields.
+//! lines exactly where cufem samples its own fields. A modal model
+//! (`analysis.type = "modal"`) becomes a `*FREQUENCY` step, whose
+//! eigenfrequencies and mode shapes are read back instead of a static state.
 
 pub mod deck;
 pub mod mesh;
@@ -64,6 +66,18 @@ pub enum CcxError {
         /// What cannot be exported.
         what: String,
     },
+    /// A modal model whose modes are about a loaded state.
+    #[error(
+        "{key}: {value} — a pre-stressed modal analysis cannot be exported to CalculiX yet: the deck's *FREQUENCY \
+         step takes the modes about the unloaded, undeformed state, so export-ccx and verify take \
+         analysis.type = \"modal\" only without loads, non-zero prescribed displacements, indenters and contacts"
+    )]
+    PreStressed {
+        /// The model-file key.
+        key: String,
+        /// What it holds.
+        value: String,
+    },
     /// Results could not be read.
     #[error("cannot read CalculiX results {path}: {message}")]
     Results {
@@ -121,6 +135,31 @@ pub fn check_supported(model: &Model) -> Result<(), CcxError> {
     if let Some(key) = friction {
         return Err(CcxError::Unsupported { key: format!("{key}.friction"), what: "Coulomb friction".into() });
     }
+    if model.modal.is_some() {
+        check_unloaded(model)?;
+    }
+    Ok(())
+}
+
+/// [`CcxError::PreStressed`] for the first thing that loads a modal model:
+/// its `*FREQUENCY` step is about the undeformed state only.
+fn check_unloaded(model: &Model) -> Result<(), CcxError> {
+    let refuse = |key: String, value: String| Err(CcxError::PreStressed { key, value });
+    if let Some(l) = model.loads.first() {
+        return refuse("loads".into(), format!("load \"{}\"", l.name));
+    }
+    for (i, c) in model.constraints.iter().enumerate() {
+        if let Some(v) = c.values.iter().flatten().find(|v| **v != 0.0) {
+            let value = format!("a prescribed displacement of {} m", crate::numbers::number(*v));
+            return refuse(format!("constraints[{i}]"), value);
+        }
+    }
+    if let Some(ind) = model.indenters.first() {
+        return refuse("indenters".into(), format!("indenter \"{}\"", ind.name));
+    }
+    if let Some(c) = model.contacts.first() {
+        return refuse("contacts".into(), format!("contact \"{}\"", c.name));
+    }
     Ok(())
 }
 
@@ -133,6 +172,8 @@ pub struct CcxRun {
     pub totals: std::collections::HashMap<String, ([f64; 3], f64)>,
     /// The same per printed increment: `(step time, force)`.
     pub histories: std::collections::HashMap<String, Vec<(f64, [f64; 3])>>,
+    /// The eigenvalue table of a `*FREQUENCY` step (empty for a static deck).
+    pub frequencies: Vec<results::Eigenvalue>,
     /// Wall time.
     pub wall_time: Duration,
     /// Peak resident memory of the ccx process (bytes), if known.
@@ -147,6 +188,7 @@ impl CcxRun {
             results,
             totals: results::read_dat(dat),
             histories: results::read_dat_history(dat),
+            frequencies: results::read_frequencies(dat),
             wall_time,
             peak_memory,
         }
@@ -159,12 +201,17 @@ pub fn run(program: &str, dir: &Path, threads: usize) -> Result<CcxRun, CcxError
     let log_path = dir.join("ccx.log");
     let log = std::fs::File::create(&log_path).map_err(file_error(&log_path))?;
     let err = log.try_clone().map_err(file_error(&log_path))?;
+    // a frequency step solves with one factor hundreds of times (ARPACK),
+    // which ccx 2.20's SPOOLES does 3–5× slower on 2 threads than on one
+    // (1.9 s against 6.3 s for the 960-hex cantilever of tests/ccx_modal.rs)
+    let frequency = std::fs::read_to_string(dir.join("model.inp")).is_ok_and(|t| t.contains("\n*FREQUENCY\n"));
+    let solver_threads = if frequency { 1 } else { threads };
     let start = Instant::now();
     let status = std::process::Command::new(program)
         .args(["-i", "model"])
         .current_dir(dir)
         .env("OMP_NUM_THREADS", threads.to_string())
-        .env("CCX_NPROC_EQUATION_SOLVER", threads.to_string())
+        .env("CCX_NPROC_EQUATION_SOLVER", solver_threads.to_string())
         .env("CCX_NPROC_RESULTS", threads.to_string())
         .stdout(log)
         .stderr(err)
@@ -179,11 +226,17 @@ pub fn run(program: &str, dir: &Path, threads: usize) -> Result<CcxRun, CcxError
     let frd_path = dir.join("model.frd");
     let frd = std::fs::read_to_string(&frd_path).unwrap_or_default();
     let results = read_or_fail(&frd, &frd_path, &log_text)?;
-    let failed = !status.success() || log_text.contains("*ERROR") || (results.time - 1.0).abs() > 1e-6;
-    if failed {
+    let dat = std::fs::read_to_string(dir.join("model.dat")).unwrap_or_default();
+    // a static step ends at load factor 1; a frequency step with every
+    // mode it wrote to the .frd file in the .dat file's table
+    let finished = if results.modes.is_empty() {
+        (results.time - 1.0).abs() <= 1e-6
+    } else {
+        results::read_frequencies(&dat).len() == results.modes.len()
+    };
+    if !status.success() || log_text.contains("*ERROR") || !finished {
         return Err(CcxError::Failed { reached: results.time, tail: tail(&log_text, 15) });
     }
-    let dat = std::fs::read_to_string(dir.join("model.dat")).unwrap_or_default();
     // kept so that a later `verify --ccx-results` reports the same cost
     let cost = format!("{} {}\n", wall_time.as_secs_f64(), peak_memory.unwrap_or(0));
     let _ = std::fs::write(dir.join("ccx.cost"), cost);

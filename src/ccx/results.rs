@@ -1,11 +1,14 @@
 //! Reading CalculiX results: nodal fields from the `.frd` file and force
-//! totals from the `.dat` file, of the last increment written.
+//! totals from the `.dat` file, of the last increment written; of a
+//! `*FREQUENCY` step every mode shape (`.frd`) and the eigenvalue table
+//! (`.dat`).
 //!
 //! `.frd` result blocks start with a `-4  NAME` line, have `-5` component
 //! lines and one `-1` line per node: the node number in 10 columns after
 //! ` -1`, then the values in 12 columns each. Stress components come as
 //! SXX SYY SZZ SXY SYZ SZX and are reordered here to the Voigt order of
-//! [`crate::voigt`] (xx, yy, zz, xy, xz, yz).
+//! [`crate::voigt`] (xx, yy, zz, xy, xz, yz). A mode's block has `MODAL` in
+//! its `100C` header line, whose value is the frequency (cycles/time).
 
 use std::collections::HashMap;
 
@@ -22,6 +25,54 @@ pub struct NodalResults {
     pub peeq: HashMap<usize, f64>,
     /// Step time (load factor) of these results.
     pub time: f64,
+    /// Of a `*FREQUENCY` step: each mode's frequency (Hz, as its block
+    /// header gives it) and displacement per node, in the file's order.
+    pub modes: Vec<(f64, HashMap<usize, [f64; 3]>)>,
+}
+
+/// One row of CalculiX's eigenvalue table.
+#[derive(Debug, Clone, Copy, PartialEq, serde::Serialize)]
+pub struct Eigenvalue {
+    /// Mode number (1-based).
+    pub mode: usize,
+    /// Eigenvalue ω² (rad²/s²).
+    pub eigenvalue: f64,
+    /// ω (rad/s).
+    pub radians_per_second: f64,
+    /// f = ω / 2π (Hz).
+    pub hz: f64,
+}
+
+/// The last `E I G E N V A L U E   O U T P U T` table of a `.dat` text
+/// (rows `MODE NO, EIGENVALUE, ω (rad/time), f (cycles/time), imaginary
+/// part`); empty if there is none.
+pub fn read_frequencies(text: &str) -> Vec<Eigenvalue> {
+    let mut out = Vec::new();
+    let mut lines = text.lines();
+    while let Some(line) = lines.next() {
+        if !line.contains("E I G E N V A L U E   O U T P U T") {
+            continue;
+        }
+        out.clear();
+        // header lines, then one row per mode up to the next blank line
+        for row in lines.by_ref().skip_while(|l| parse_eigen_row(l).is_none()) {
+            match parse_eigen_row(row) {
+                Some(e) => out.push(e),
+                None => break,
+            }
+        }
+    }
+    out
+}
+
+fn parse_eigen_row(line: &str) -> Option<Eigenvalue> {
+    let w: Vec<&str> = line.split_whitespace().collect();
+    if w.len() < 4 {
+        return None;
+    }
+    let mode = w[0].parse().ok()?;
+    let v: Vec<f64> = w[1..4].iter().map(|t| t.parse().ok()).collect::<Option<_>>()?;
+    Some(Eigenvalue { mode, eigenvalue: v[0], radians_per_second: v[1], hz: v[2] })
 }
 
 fn parse_values(line: &str) -> Option<(usize, Vec<f64>)> {
@@ -41,14 +92,19 @@ pub fn read_frd(text: &str, path: &str) -> Result<NodalResults, CcxError> {
     let mut out = NodalResults::default();
     let mut current: Option<String> = None;
     let mut block_time = 0.0;
+    let mut modal = false;
     for line in text.lines() {
         if line.starts_with("  100C") {
             // "  100CL  101 1.000000000 ..." : the step time in columns 13–25
             block_time = line.get(12..25).and_then(|t| t.trim().parse().ok()).unwrap_or(block_time);
+            modal = line.contains("MODAL");
             continue;
         }
         if let Some(rest) = line.strip_prefix(" -4") {
             let name = rest.split_whitespace().next().unwrap_or("").to_string();
+            if modal && name == "DISP" {
+                out.modes.push((block_time, HashMap::new()));
+            }
             match name.as_str() {
                 "DISP" => out.u.clear(),
                 "STRESS" => out.stress.clear(),
@@ -73,6 +129,9 @@ pub fn read_frd(text: &str, path: &str) -> Result<NodalResults, CcxError> {
         match name {
             "DISP" if v.len() >= 3 => {
                 out.u.insert(node, [v[0], v[1], v[2]]);
+                if modal && let Some((_, mode)) = out.modes.last_mut() {
+                    mode.insert(node, [v[0], v[1], v[2]]);
+                }
             }
             "STRESS" if v.len() >= 6 => {
                 out.stress.insert(node, [v[0], v[1], v[2], v[3], v[5], v[4]]);
@@ -178,5 +237,77 @@ mod tests {
         assert_eq!(t["C_ROOT"].0[2], 1e3);
         assert_eq!(t["C_ROOT"].1, 1.0);
         assert_eq!(t["REF_P"].0, [1.0, 2.0, -5.0]);
+    }
+
+    /// The eigenvalue table and two mode blocks as ccx 2.20 wrote them for
+    /// a solid steel cantilever (50 × 100 mm, 1 m, 960 C3D20R, `*FREQUENCY`
+    /// 6; the deck of `cufem export-ccx` on tests/ccx_modal.rs's model,
+    /// `ccx -i model`), mode lines cut to the clamped node 1 and the tip
+    /// node 5101.
+    #[test]
+    fn reads_the_eigenvalue_table_and_the_mode_shapes() {
+        let dat = "
+     E I G E N V A L U E   O U T P U T
+
+ MODE NO    EIGENVALUE                       FREQUENCY   
+                                     REAL PART            IMAGINARY PART
+                           (RAD/TIME)      (CYCLES/TIME     (RAD/TIME)
+
+      1   0.6929342E+05   0.2632364E+03   0.4189538E+02   0.0000000E+00
+      2   0.2730604E+06   0.5225518E+03   0.8316670E+02   0.0000000E+00
+      3   0.2659536E+07   0.1630808E+04   0.2595512E+03   0.0000000E+00
+      4   0.9824251E+07   0.3134366E+04   0.4988499E+03   0.0000000E+00
+      5   0.1424082E+08   0.3773701E+04   0.6006032E+03   0.0000000E+00
+      6   0.2013363E+08   0.4487052E+04   0.7141365E+03   0.0000000E+00
+
+     P A R T I C I P A T I O N   F A C T O R S
+
+MODE NO.   X-COMPONENT     Y-COMPONENT     Z-COMPONENT     X-ROTATION      Y-ROTATION      Z-ROTATION
+
+      1   0.4900181E+01  -0.2249294E-13  -0.2176608E-10  -0.1600867E-10   0.2450091E+00  -0.3564036E+01
+";
+        let f = read_frequencies(dat);
+        assert_eq!(f.len(), 6, "{f:?}");
+        assert_eq!(
+            f[0],
+            Eigenvalue { mode: 1, eigenvalue: 0.6929342e5, radians_per_second: 0.2632364e3, hz: 0.4189538e2 }
+        );
+        assert_eq!((f[5].mode, f[5].hz), (6, 0.7141365e3));
+        // ω² and f agree to the table's 7 digits
+        for e in &f {
+            assert!((e.eigenvalue.sqrt() / (2.0 * std::f64::consts::PI) / e.hz - 1.0).abs() < 1e-6, "{e:?}");
+        }
+        assert!(read_frequencies(" total force (fx,fy,fz) for set C_ROOT and time  0.1000000E+01\n").is_empty());
+        let frd = "\
+    1PMODE                         1                                  
+  100CL  101 41.89537836        5101                     2    1MODAL      1
+ -4  DISP        4    1
+ -5  D1          1    2    1    0
+ -5  D2          1    2    2    0
+ -5  D3          1    2    3    0
+ -5  ALL         1    2    0    0    1ALL
+ -1         1 0.00000E+00 0.00000E+00 0.00000E+00
+ -1      5101 3.19233E-01-1.09886E-02 5.49092E-07
+ -3
+    1PMODE                         2                                  
+  100CL  102 83.16669999        5101                     2    2MODAL      1
+ -4  DISP        4    1
+ -5  D1          1    2    1    0
+ -5  D2          1    2    2    0
+ -5  D3          1    2    3    0
+ -5  ALL         1    2    0    0    1ALL
+ -1         1 0.00000E+00 0.00000E+00 0.00000E+00
+ -1      5101-3.12701E-01 6.06000E-02-1.38330E-04
+ -3
+ 9999
+";
+        let r = read_frd(frd, "x.frd").unwrap();
+        assert_eq!(r.modes.len(), 2);
+        assert_eq!(r.modes[0].0, 41.89537836);
+        assert_eq!(r.modes[0].1[&5101], [3.19233e-1, -1.09886e-2, 5.49092e-7]);
+        assert_eq!(r.modes[1].1[&5101], [-3.12701e-1, 6.06e-2, -1.3833e-4]);
+        assert_eq!(r.modes[1].1[&1], [0.0; 3]);
+        // a static .frd has no modes
+        assert!(read_frd("  100CL  101 1.000000000\n -4  DISP        4    1\n -1         1 1.00000E-03 2.00000E-03 3.00000E-03\n", "s.frd").unwrap().modes.is_empty());
     }
 }

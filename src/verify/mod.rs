@@ -14,7 +14,9 @@
 //! each body, its plastic zone and its contact surfaces, singular places
 //! left out by a stated neighbourhood, and a VTU of the point-wise
 //! differences. Over the load path ([`history`]): each indenter's force at
-//! every CalculiX increment (up to and past a peak).
+//! every CalculiX increment (up to and past a peak). A modal model
+//! ([`modal`]) compares its natural frequencies mode by mode instead, since
+//! its static state is the unloaded one.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -30,9 +32,11 @@ use crate::quantity::{Quantity, Sample};
 
 pub mod field;
 pub mod history;
+pub mod modal;
 
 pub use field::{FieldComparison, FieldRow, SingularZone, StoredError, compare_stored, compare_stored_on};
 pub use history::{ForceCurve, ForceHistoryRow};
+pub use modal::ModeRow;
 
 /// One probe value, both ways.
 #[derive(Debug, Clone, Serialize)]
@@ -120,6 +124,8 @@ pub struct Comparison {
     /// Their curves (written by [`Self::write`]).
     #[serde(skip)]
     pub force_curves: Vec<ForceCurve>,
+    /// Natural frequencies mode by mode (a modal model; it has no static rows).
+    pub modes: Vec<ModeRow>,
     /// DOF, time and memory of both.
     pub cost: Cost,
 }
@@ -158,6 +164,12 @@ pub fn compare(
     run: &CcxRun,
     cufem_peak: Option<u64>,
 ) -> (Comparison, Vec<Curve>, FieldComparison) {
+    let solid = format!("{} × refine {}", mesh.kind.name(), mesh.refine);
+    let cost = cost(model, solution, mesh, run, cufem_peak);
+    if model.modal.is_some() {
+        let modes = modal::compare_modes(model, solution, mesh, run);
+        return (Comparison::modal(model, solid, cost, modes), Vec::new(), FieldComparison::default());
+    }
     let view = solution.fields(model);
     let u_scale = run.results.u.values().flat_map(|u| u.iter()).fold(0.0f64, |a, b| a.max(b.abs()));
     let s_scale = run.results.stress.values().map(crate::voigt::von_mises).fold(0.0f64, f64::max);
@@ -239,16 +251,6 @@ pub fn compare(
     for c in solution.contacts.iter().filter(|c| c.kind == crate::analysis::ContactKind::Indenter) {
         push(&c.name, "indenter", c.force, set_name("REF", &c.name));
     }
-    let body_nodes: usize = (0..model.mesh.bodies.len()).map(|b| mesh.body_nodes(b).len()).sum();
-    let cost = Cost {
-        cufem_dof: model.n_dofs(),
-        ccx_dof: 3 * body_nodes,
-        cufem_time_s: solution.wall_time.as_secs_f64(),
-        ccx_time_s: run.wall_time.as_secs_f64(),
-        cufem_peak_bytes: cufem_peak,
-        ccx_peak_bytes: run.peak_memory,
-    };
-    let solid = format!("{} × refine {}", mesh.kind.name(), mesh.refine);
     let whole = field::compare_fields(model, &view, mesh, run);
     let (force_histories, force_curves) = history::compare_histories(model, solution, run);
     let comparison = Comparison {
@@ -261,9 +263,23 @@ pub fn compare(
         excluded: whole.zones.clone(),
         force_histories,
         force_curves,
+        modes: Vec::new(),
         cost,
     };
     (comparison, curves, whole)
+}
+
+/// DOF, wall time and peak memory of both analyses.
+fn cost(model: &Model, solution: &Solution, mesh: &HexMesh, run: &CcxRun, cufem_peak: Option<u64>) -> Cost {
+    let body_nodes: usize = (0..model.mesh.bodies.len()).map(|b| mesh.body_nodes(b).len()).sum();
+    Cost {
+        cufem_dof: model.n_dofs(),
+        ccx_dof: 3 * body_nodes,
+        cufem_time_s: solution.wall_time.as_secs_f64(),
+        ccx_time_s: run.wall_time.as_secs_f64(),
+        cufem_peak_bytes: cufem_peak,
+        ccx_peak_bytes: run.peak_memory,
+    }
 }
 
 fn show(v: Option<f64>) -> String {
@@ -271,6 +287,25 @@ fn show(v: Option<f64>) -> String {
 }
 
 impl Comparison {
+    /// The comparison of a modal model: its frequencies only, since its
+    /// static state is the unloaded one (nothing to compare at probes,
+    /// lines, resultants or over the field).
+    fn modal(model: &Model, solid: String, cost: Cost, modes: Vec<ModeRow>) -> Self {
+        Self {
+            title: model.title.clone(),
+            solid,
+            probes: Vec::new(),
+            lines: Vec::new(),
+            resultants: Vec::new(),
+            fields: Vec::new(),
+            excluded: Vec::new(),
+            force_histories: Vec::new(),
+            force_curves: Vec::new(),
+            modes,
+            cost,
+        }
+    }
+
     /// The table as text.
     pub fn table(&self) -> String {
         let mut t = String::new();
@@ -347,6 +382,7 @@ impl Comparison {
         }
         self.field_table(&mut t);
         history::table(&self.force_histories, &mut t);
+        modal::table(&self.modes, &mut t);
         t
     }
 
@@ -438,18 +474,22 @@ impl Comparison {
             let _ = writeln!(csv, "field_l2,{},{},,,{:e}", csv_text(&r.region), csv_text(&r.quantity), r.l2_percent);
             let _ = writeln!(csv, "field_max,{},{},,,{:e}", csv_text(&r.region), csv_text(&r.quantity), r.max_percent);
         }
+        modal::csv(&self.modes, &mut csv);
         let p = dir.join("table.csv");
         file(&p, &csv)?;
         written.push(p);
         let p = dir.join("table.json");
         file(&p, &serde_json::to_string_pretty(self).unwrap_or_default())?;
         written.push(p);
-        let p = dir.join("field_difference.vtu");
-        whole.write_vtu(&p, &self.title)?;
-        written.push(p);
-        let p = dir.join("field_points.csv");
-        file(&p, &whole.points_csv())?;
-        written.push(p);
+        // a modal model compares no static field
+        if !whole.points.is_empty() {
+            let p = dir.join("field_difference.vtu");
+            whole.write_vtu(&p, &self.title)?;
+            written.push(p);
+            let p = dir.join("field_points.csv");
+            file(&p, &whole.points_csv())?;
+            written.push(p);
+        }
         for (line, q, points) in curves {
             let ours: Vec<(f64, f64)> = points.iter().map(|(s, a, _)| (s * 1e3, a * q.display_scale())).collect();
             let theirs: Vec<(f64, f64)> = points.iter().map(|(s, _, b)| (s * 1e3, b * q.display_scale())).collect();

@@ -291,6 +291,9 @@ pub struct Solution {
     /// `analysis.type = "modal"`: natural frequencies and modes about the
     /// final state; `None` otherwise.
     pub modal: Option<modal::Modal>,
+    /// `analysis.type = "transient"`: the energy balance per converged
+    /// time step (the initial state first); `None` otherwise.
+    pub energy: Option<Vec<crate::dynamics::energy::EnergyRow>>,
     /// How the path following went (`solver.control = "arc_length"`).
     pub path: Option<PathOutcome>,
 }
@@ -459,6 +462,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         .collect();
     let (equations, factor_nnz, plastic_points) =
         (structure.n_equations(), structure.factor_nnz(), structure.plastic_points());
+    let energy = structure.energies();
     let (u, elements, timings, memory) = structure.into_parts();
     let mut solution = Solution {
         reactions,
@@ -487,6 +491,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         adapt: None,
         buckling: buckled.or(imperfect.map(|(_, b)| b)),
         modal: vibration,
+        energy,
         path,
     };
     // the estimate compares the raw stresses with their patch recovery; the
@@ -564,6 +569,7 @@ impl Solution {
             adapt: None,
             buckling: None,
             modal: None,
+            energy: None,
             path: self.path.clone(),
         };
         if model.output.recovery == crate::model::Recovery::Projection {

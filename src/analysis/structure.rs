@@ -18,9 +18,9 @@
 //! * `structure/system.rs`: the tangent, the right-hand side and the solver;
 //! * `structure/kinematics.rs`: the displacements and λ.
 //!
-//! A new capability is a new part: inertia would be a contribution (its
-//! forces `M a` and stiffness `c M`), a new contact kind a file of
-//! `contact::assembly`.
+//! A new capability is a new part: inertia is a contribution
+//! ([`crate::dynamics::Inertia`]: its forces `M a + C v` and stiffness
+//! `M/(βΔt²) + γC/(βΔt)`), a new contact kind a file of `contact::assembly`.
 
 use std::time::{Duration, Instant};
 
@@ -34,6 +34,7 @@ mod limit_tests;
 mod loads;
 mod resultants;
 mod system;
+mod transient;
 
 pub use super::results::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Timings};
 use crate::assembly::{Assembler, Contribution, NO_EQ, Numbering, Phase};
@@ -66,7 +67,9 @@ pub struct Structure<'m> {
     timings: Timings,
     memory: MemoryEstimate,
     /// Negative pivots of the last committed tangent (nonlinear geometry).
-    inertia: Option<usize>,
+    pivots: Option<usize>,
+    /// Inertia and damping (`analysis.type = "transient"`), a contribution.
+    dynamics: Option<crate::dynamics::Inertia>,
 }
 
 impl<'m> Structure<'m> {
@@ -112,6 +115,10 @@ impl<'m> Structure<'m> {
             ..Default::default()
         };
         let n_eq = assembler.dofs.n_eq;
+        let dynamics = match &model.transient {
+            Some(settings) => Some(transient::inertia(model, settings, &assembler, &elements)?),
+            None => None,
+        };
         Ok(Self {
             model,
             state: Kinematics::new(mesh.n_dofs()),
@@ -123,14 +130,16 @@ impl<'m> Structure<'m> {
             system: LinearSystem::new(assembler, chol, model.solver.reuse, model.has_friction(), mesh.n_dofs()),
             timings,
             memory,
-            inertia: None,
+            pivots: None,
+            dynamics,
         })
     }
 
     /// The contributions in the order they are evaluated and summed (the
     /// elements first: they write the whole tangent).
-    fn contributions(&mut self) -> [&mut dyn Contribution; 3] {
-        [&mut self.elements, &mut self.loads, &mut self.contacts]
+    fn contributions(&mut self) -> impl Iterator<Item = &mut dyn Contribution> {
+        let parts: [&mut dyn Contribution; 3] = [&mut self.elements, &mut self.loads, &mut self.contacts];
+        parts.into_iter().chain(self.dynamics.iter_mut().map(|i| i as &mut dyn Contribution))
     }
 
     /// Displacements, 3 per node (`3 · node + component`).
@@ -158,7 +167,7 @@ impl<'m> Structure<'m> {
     /// last factorization made, which may be some iterations old (PCG
     /// reuses factors). `None` before the first or if it failed.
     pub fn negative_pivots(&self) -> Option<usize> {
-        if self.model.kinematics.is_nonlinear() { self.inertia } else { self.system.negative_pivots() }
+        if self.model.kinematics.is_nonlinear() { self.pivots } else { self.system.negative_pivots() }
     }
 
     /// Plastic Gauss points in the last evaluation.
@@ -309,6 +318,12 @@ impl<'m> Structure<'m> {
         self.system.eigen(k, b, settings)
     }
 
+    /// The energy balance of a transient analysis, one row per converged
+    /// time step (the initial state first); `None` for a static one.
+    pub(crate) fn energies(&self) -> Option<Vec<crate::dynamics::energy::EnergyRow>> {
+        self.dynamics.as_ref().map(|i| i.energies().to_vec())
+    }
+
     /// The parts the solution keeps: displacements, elements, timings, memory.
     pub(crate) fn into_parts(self) -> (Vec<f64>, Elements<'m>, Timings, MemoryEstimate) {
         (self.state.u, self.elements, self.timings, self.memory)
@@ -376,7 +391,8 @@ impl NonlinearProblem for Structure<'_> {
             let at = self.state.at();
             let mut tangent = self.system.tangent();
             let parts: [&mut dyn Contribution; 3] = [&mut self.elements, &mut self.loads, &mut self.contacts];
-            for part in parts {
+            let inertia = self.dynamics.iter_mut().map(|i| i as &mut dyn Contribution);
+            for part in parts.into_iter().chain(inertia) {
                 let t = Instant::now();
                 changes += part.evaluate(&at, &mut tangent);
                 elapsed[usize::from(part.phase() == Phase::Contact)] += t.elapsed();
@@ -388,7 +404,8 @@ impl NonlinearProblem for Structure<'_> {
         let imbalance = &mut self.system.imbalance;
         imbalance.fill(0.0);
         let mut scale: f64 = 0.0;
-        for part in [&self.elements as &dyn Contribution, &self.loads, &self.contacts] {
+        let parts = [&self.elements as &dyn Contribution, &self.loads, &self.contacts];
+        for part in parts.into_iter().chain(self.dynamics.iter().map(|i| i as &dyn Contribution)) {
             let f = part.forces();
             let mut size2 = 0.0;
             for (r, &v) in imbalance.iter_mut().zip(f.values) {
@@ -490,7 +507,12 @@ impl Incremental for Structure<'_> {
     }
 
     fn commit(&mut self) {
-        if self.model.kinematics.is_nonlinear() {
+        if let Some(inertia) = self.dynamics.as_mut() {
+            let parts = [&self.elements as &dyn Contribution, &self.loads, &self.contacts];
+            transient::account_energy(inertia, &self.state, &self.system, &self.dirichlet, parts);
+        }
+        // (a transient tangent carries M / (β Δt²): always positive definite)
+        if self.model.kinematics.is_nonlinear() && self.dynamics.is_none() {
             // the tangent of the last evaluation is that of the converged
             // state: its inertia (on the free DOFs, as it is solved; the
             // right-hand side is rewritten by the next evaluation) marks
@@ -499,11 +521,12 @@ impl Incremental for Structure<'_> {
             let col_ptr = &system.assembler.pattern.col_ptr;
             let (tangent, rest, rhs) = (&mut system.tangent, system.rest.as_mut(), &mut system.rhs);
             self.dirichlet.eliminate(&self.state.u, |e| col_ptr[e], tangent, rest, rhs);
-            self.inertia = system.inertia();
+            self.pivots = system.inertia();
         }
         self.state.commit();
         let at = self.state.at();
-        for part in [&mut self.elements as &mut dyn Contribution, &mut self.loads, &mut self.contacts] {
+        let parts = [&mut self.elements as &mut dyn Contribution, &mut self.loads, &mut self.contacts];
+        for part in parts.into_iter().chain(self.dynamics.iter_mut().map(|i| i as &mut dyn Contribution)) {
             part.commit(&at);
         }
         self.force.commit();

@@ -175,17 +175,29 @@ impl Assembler {
     /// elastic); the element loop itself, without a global elastic tangent
     /// yet, computes and scatters every element's full matrix.
     pub fn cache_elastic(&mut self, input: &Inputs<'_>) {
+        self.elastic_global.clear();
+        self.elastic_global = self.elastic_matrix(input);
+    }
+
+    /// The tangent of every element at zero displacements and virgin
+    /// states (the elastic stiffness `K₀`), in pattern order: what
+    /// [`Self::cache_elastic`] keeps, for whoever needs it once (Rayleigh
+    /// damping).
+    pub fn elastic_matrix(&self, input: &Inputs<'_>) -> Vec<f64> {
+        if !self.elastic_global.is_empty() {
+            return self.elastic_global.clone();
+        }
         debug_assert!(input.u.iter().all(|&v| v == 0.0), "the elastic tangent is taken at zero displacement");
         let n_gp = input.committed.len();
         let (mut force, mut trial, mut stress) =
             (vec![0.0; input.u.len()], vec![PointState::default(); n_gp], vec![[0.0; 6]; n_gp]);
         let mut global = vec![0.0; self.pattern.nnz()];
-        self.elastic_global.clear();
+        // with the cache empty, the element loop forms every element's matrix
         self.assemble(
             input,
             Outputs { force: &mut force, tangent: Some(&mut global), trial: &mut trial, stress: &mut stress },
         );
-        self.elastic_global = global;
+        global
     }
 
     /// Element loop: internal forces (and tangent) of all elements from the

@@ -14,6 +14,12 @@
 //! node pairs as the stiffness, so it fits the stiffness's pattern and
 //! scatter maps.
 
+pub mod energy;
+pub mod inertia;
 pub mod mass;
+pub mod settings;
+
+pub use inertia::Inertia;
 
 pub use mass::{MassError, MassKind};
+pub use settings::TransientSettings;

@@ -142,6 +142,10 @@ pub struct Summary {
     /// and mode files, absent for another analysis.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub modal: Option<ModalSummary>,
+    /// `analysis.type = "transient"`: the energy balance at the end (the
+    /// whole history is in `energy.csv`), absent for another analysis.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub energy: Option<crate::dynamics::energy::EnergyRow>,
     /// `solver.control = "arc_length"`: how the path following ended and
     /// the limit points it passed, absent under load control.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -417,6 +421,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
             free_mass: m.free_mass,
             modes: if model.output.vtu { (1..=m.frequencies.len()).map(mode_vtu_name).collect() } else { Vec::new() },
         }),
+        energy: solution.energy.as_ref().and_then(|rows| rows.last().copied()),
         path: solution.path.as_ref().map(|p| PathSummary {
             end: match p.end {
                 Some(crate::analysis::PathEnd::LoadFactor(_)) => "load_factor",

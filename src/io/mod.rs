@@ -9,12 +9,14 @@
 //! | `history_<name>.csv` | per increment: reaction of a constraint set, or force of a contact |
 //! | `history_probes.csv` | per increment: the displacement of every probe |
 //! | `history.csv` | per increment: load factor, iterations, plastic points, negative pivots of the tangent |
+//! | `energy.csv`, `energy.png` | transient: per converged time step, the kinetic energy, the work of the internal, damping, applied, contact and support forces, and their balance |
 //! | `mode_<k>.vtu` | buckling and modal: the shape of mode k as the displacement field |
 //! | `contact_<name>.csv` | final gap, force and pressure of every contact point |
 //! | `line_<name>_<quantity>.png` | plots of the quantities listed in a line's `plot` |
 //! | `history_<indenter>.png` | force against displacement of each moving indenter |
 
 mod csv;
+mod energy;
 mod json;
 pub mod output;
 mod png;
@@ -136,6 +138,7 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
         written.extend(png::history_plots(model, solution, dir)?);
     }
     written.extend(write_modes(model, solution, dir)?);
+    written.extend(energy::write_energy(model, solution, dir)?);
     // the end of every step: a VTU per step and a .pvd series when the
     // history has several steps; probes and resultants per step in the summary
     let mut steps = Vec::new();
@@ -149,7 +152,9 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
             let path = dir.join(&name);
             write_vtu(&path, model, at_end)?;
             written.push(path);
-            series.push((solution.steps[k].lambda, name.clone()));
+            // the series' time: λ, or the time in s of a transient run
+            let lambda = solution.steps[k].lambda;
+            series.push((model.transient.as_ref().map_or(lambda, |t| t.time(lambda)), name.clone()));
             vtu = Some(name);
         }
         steps.push(json::step_summary(model, solution, k, at_end, vtu));

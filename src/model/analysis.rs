@@ -166,8 +166,8 @@ pub(super) fn buckling(file: &AnalysisFile, parts: &Parts<'_>) -> Result<Option<
 /// needs a density.
 pub(super) fn modal(file: &AnalysisFile, parts: &Parts<'_>) -> Result<Option<ModalSettings>, ModelError> {
     if file.kind != Some(AnalysisType::Modal) {
-        if let Some(m) = file.mass {
-            return Err(invalid("analysis.mass", mass_word(m), "only with analysis.type = \"modal\""));
+        if let (Some(m), false) = (file.mass, file.kind == Some(AnalysisType::Transient)) {
+            return Err(invalid("analysis.mass", mass_word(m), "only with analysis.type = \"modal\" or \"transient\""));
         }
         return Ok(None);
     }
@@ -178,16 +178,7 @@ pub(super) fn modal(file: &AnalysisFile, parts: &Parts<'_>) -> Result<Option<Mod
     if file.imperfection.is_some() {
         return Err(invalid("analysis.imperfection", "given", "not with analysis.type = \"modal\""));
     }
-    for b in &parts.mesh.bodies {
-        let m = &parts.materials[b.material];
-        if m.density.is_none() {
-            return Err(invalid(
-                format!("materials \"{}\".density", m.name),
-                "(missing)",
-                format!("the mass density in kg/m³ with analysis.type = \"modal\" (body \"{}\")", b.name),
-            ));
-        }
-    }
+    densities_given(parts, "modal")?;
     let frictional =
         parts.indenters.iter().any(|i| i.friction.is_some()) || parts.contacts.iter().any(|c| c.friction.is_some());
     if frictional {
@@ -198,11 +189,30 @@ pub(super) fn modal(file: &AnalysisFile, parts: &Parts<'_>) -> Result<Option<Mod
             "frictionless contact with analysis.type = \"modal\" (the tangent with friction is unsymmetric)",
         ));
     }
-    let mass = match file.mass.unwrap_or_default() {
+    Ok(Some(ModalSettings { modes, mass: mass_kind(file) }))
+}
+
+/// `analysis.mass` as the mass matrix's kind.
+pub(super) fn mass_kind(file: &AnalysisFile) -> crate::dynamics::MassKind {
+    match file.mass.unwrap_or_default() {
         MassMatrix::Consistent => crate::dynamics::MassKind::Consistent,
         MassMatrix::Lumped => crate::dynamics::MassKind::Lumped,
-    };
-    Ok(Some(ModalSettings { modes, mass }))
+    }
+}
+
+/// Every body's material has a density (`kind`: the analysis type that needs it).
+pub(super) fn densities_given(parts: &Parts<'_>, kind: &str) -> Result<(), ModelError> {
+    for b in &parts.mesh.bodies {
+        let m = &parts.materials[b.material];
+        if m.density.is_none() {
+            return Err(invalid(
+                format!("materials \"{}\".density", m.name),
+                "(missing)",
+                format!("the mass density in kg/m³ with analysis.type = \"{kind}\" (body \"{}\")", b.name),
+            ));
+        }
+    }
+    Ok(())
 }
 
 fn mass_word(m: MassMatrix) -> &'static str {

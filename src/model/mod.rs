@@ -22,6 +22,7 @@ mod schema;
 mod sections;
 pub mod steps;
 mod surface_contact;
+pub mod transient;
 mod validate;
 
 use std::path::Path;
@@ -296,6 +297,9 @@ pub struct Model {
     /// `analysis.type = "modal"`: the natural frequencies and modes about
     /// the end of the static analysis; `None` otherwise.
     pub modal: Option<ModalSettings>,
+    /// `analysis.type = "transient"`: implicit dynamics over the load
+    /// history in time; `None` for a static analysis.
+    pub transient: Option<crate::dynamics::TransientSettings>,
 }
 
 /// Something suspicious but legal in a model (printed by `check` and `run`,
@@ -447,6 +451,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let buckling = analysis::buckling(&file.analysis, &parts)?;
     let imperfection = analysis::imperfection(&file.analysis, &parts)?;
     let modal = analysis::modal(&file.analysis, &parts)?;
+    let transient = transient::transient(&file.analysis, &file.steps, &parts, solver.path.is_some())?;
     Ok(Model {
         title: file.title.unwrap_or_else(|| "cufem model".into()),
         description: file.description.unwrap_or_default(),
@@ -470,5 +475,6 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         buckling,
         imperfection,
         modal,
+        transient,
     })
 }

@@ -120,10 +120,48 @@ pub struct AnalysisFile {
     pub kind: Option<AnalysisType>,
     /// Buckling and modal: the number of modes wanted.
     pub modes: Option<usize>,
-    /// Modal: `mass = "consistent"` (default) or `"lumped"`.
+    /// Modal and transient: `mass = "consistent"` (default) or `"lumped"`.
     pub mass: Option<MassMatrix>,
+    /// Transient: the time (s) of one load step, λ ∈ [k, k + 1].
+    pub duration: Option<f64>,
+    /// Transient: Newmark's parameters (default the trapezoidal rule).
+    pub newmark: Option<NewmarkFile>,
+    /// Transient: Rayleigh damping.
+    pub damping: Option<DampingFile>,
+    /// Transient: uniform initial velocities of bodies.
+    pub initial_velocities: Option<Vec<InitialVelocityFile>>,
     /// A geometric imperfection from a buckling mode (nonlinear geometry).
     pub imperfection: Option<ImperfectionFile>,
+}
+
+/// `analysis.newmark`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NewmarkFile {
+    /// β.
+    pub beta: f64,
+    /// γ.
+    pub gamma: f64,
+}
+
+/// `analysis.damping`: `C = mass · M + stiffness · K₀`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DampingFile {
+    /// α_M (1/s).
+    pub mass: Option<f64>,
+    /// β_K (s).
+    pub stiffness: Option<f64>,
+}
+
+/// `analysis.initial_velocities[]`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InitialVelocityFile {
+    /// The body.
+    pub body: String,
+    /// Its velocity (m/s).
+    pub velocity: Exact<f64, 3>,
 }
 
 /// `analysis.imperfection`.
@@ -516,4 +554,6 @@ pub struct StepFile {
     pub increments: Option<usize>,
     pub max_increment: Option<f64>,
     pub min_increment: Option<f64>,
+    /// Transient: this step's time (s), overriding `analysis.duration`.
+    pub duration: Option<f64>,
 }

@@ -156,6 +156,9 @@ pub enum AnalysisType {
     /// Free vibration: the static solution, then the lowest natural
     /// frequencies and modes about it (`crate::analysis::modal`).
     Modal,
+    /// Implicit transient dynamics: the load history in time, with inertia
+    /// (`crate::dynamics::inertia`).
+    Transient,
 }
 
 /// `analysis.mass`.

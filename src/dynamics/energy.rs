@@ -1,0 +1,90 @@
+//! The energy balance of a transient analysis, per converged time step.
+//!
+//! Every work term is accumulated by the trapezoidal rule over the step's
+//! displacement increment `Δu`, `W += ½ (f_n + f_(n+1)) · Δu`: the
+//! internal work `W_int` (strain energy plus plastic dissipation), the
+//! damping dissipation `D` (`C v`), the work of the loads `W_ext`, of the
+//! contacts `W_c` and of the supports `W_s` (reactions on prescribed
+//! motion). The kinetic energy is `T = ½ vᵀ M v`. Their balance
+//!
+//! ```text
+//! B = W_ext + W_c + W_s − (T − T₀) − W_int − D
+//! ```
+//!
+//! is zero to Newton's tolerance for the trapezoidal rule (`β = ¼, γ = ½`:
+//! the inertia forces' trapezoidal work is exactly `ΔT`), and for `γ > ½`
+//! the energy the scheme dissipates (Hughes, *The Finite Element Method*,
+//! §9.3): what a run prints as the balance is an error budget, not a
+//! physical term.
+
+/// One converged time step's energies (J) at time `time` (s).
+#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+pub struct EnergyRow {
+    /// Time (s).
+    pub time: f64,
+    /// `T`.
+    pub kinetic: f64,
+    /// `W_int`.
+    pub internal: f64,
+    /// `D`.
+    pub damping: f64,
+    /// `W_ext`.
+    pub external: f64,
+    /// `W_c`.
+    pub contact: f64,
+    /// `W_s`.
+    pub supports: f64,
+    /// `B` (above).
+    pub balance: f64,
+}
+
+/// The running sums and the forces of the last converged step.
+#[derive(Debug, Default)]
+pub struct EnergyLedger {
+    /// Rows so far (the initial state first).
+    pub rows: Vec<EnergyRow>,
+    previous: Option<[Vec<f64>; 5]>,
+}
+
+/// The converged step's forces per DOF: internal, damping, loads, contact,
+/// supports (reactions at constrained DOFs, zero elsewhere).
+pub struct StepForces<'a> {
+    /// `f_int`.
+    pub internal: &'a [f64],
+    /// `C v`.
+    pub damping: &'a [f64],
+    /// `f_ext`.
+    pub external: &'a [f64],
+    /// `f_c`.
+    pub contact: &'a [f64],
+    /// Reactions.
+    pub supports: &'a [f64],
+}
+
+impl EnergyLedger {
+    /// Records the step to `time` over `du` with the converged `forces` and
+    /// kinetic energy `kinetic`; the first call records the initial state
+    /// (then `du` is ignored).
+    pub fn record(&mut self, time: f64, du: &[f64], forces: &StepForces<'_>, kinetic: f64) {
+        let now = [forces.internal, forces.damping, forces.external, forces.contact, forces.supports];
+        let mut row = self.rows.last().copied().unwrap_or_default();
+        row.time = time;
+        row.kinetic = kinetic;
+        if let Some(prev) = &self.previous {
+            let work = |k: usize| -> f64 {
+                let f = now[k];
+                let total: f64 = prev[k].iter().zip(f).zip(du).map(|((a, b), d)| 0.5 * (a + b) * d).sum();
+                total
+            };
+            row.internal += work(0);
+            row.damping += work(1);
+            row.external += work(2);
+            row.contact += work(3);
+            row.supports += work(4);
+        }
+        let t0 = self.rows.first().map_or(kinetic, |r| r.kinetic);
+        row.balance = row.external + row.contact + row.supports - (row.kinetic - t0) - row.internal - row.damping;
+        self.rows.push(row);
+        self.previous = Some(now.map(<[f64]>::to_vec));
+    }
+}

@@ -1,0 +1,235 @@
+//! Inertia and Rayleigh damping as a contribution to the residual:
+//! Newmark's method (`analysis.type = "transient"`).
+//!
+//! The semi-discrete equations `M ü + C u̇ + f_int(u) = f_ext(t) + f_c(u)`
+//! are integrated from `t_n` to `t_(n+1) = t_n + Δt` with Newmark's
+//! approximations (Newmark 1959; Hughes, *The Finite Element Method*,
+//! §9.1):
+//!
+//! ```text
+//! a = (u − u_n − Δt v_n) / (β Δt²) − (1/(2β) − 1) a_n
+//! v = v_n + Δt ((1 − γ) a_n + γ a)
+//! ```
+//!
+//! so that at the end of the step the residual gains `M a + C v` and the
+//! tangent `M / (β Δt²) + γ C / (β Δt)`; the unknown stays the
+//! displacement and the existing Newton solves each step. The load history
+//! is the time history: analysis time λ maps to `t` through the steps'
+//! durations (`TransientSettings::time`), so the
+//! stepping's increments are time steps and its cutbacks halve Δt.
+//! `β = ¼, γ = ½` (the default, the trapezoidal rule) conserves the energy
+//! of a linear undamped system exactly and is second-order accurate;
+//! `γ > ½` with `β = ¼ (γ + ½)²` damps the highest frequencies (first
+//! order). `C = α_M M + β_K K₀` with `K₀` the elastic stiffness at u = 0.
+//!
+//! The structure starts at rest with the initial velocities of the model
+//! (`a₀ = 0`: no load at t = 0, as every load history starts from zero).
+//! Constrained DOFs have no equation and carry no inertia force (so with a
+//! consistent mass a support's reaction leaves out the inertia of its
+//! neighbours' coupling terms; with the lumped mass it is exact).
+
+use super::TransientSettings;
+use super::energy::StepForces;
+use crate::assembly::{At, Contribution, Forces, NO_EQ, Phase, Tangent};
+
+/// Newmark's inertia and damping forces.
+#[derive(Debug)]
+pub struct Inertia {
+    settings: TransientSettings,
+    /// `M` (lower triangle in pattern order).
+    mass: Vec<f64>,
+    /// `C`, `None` without damping.
+    damping: Option<Vec<f64>>,
+    /// Committed velocity and acceleration (per DOF), and λ.
+    v_n: Vec<f64>,
+    a_n: Vec<f64>,
+    lambda_n: f64,
+    /// Trial velocity and acceleration (per DOF).
+    v: Vec<f64>,
+    a: Vec<f64>,
+    /// `M a + C v` per DOF, and its damping part `C v`.
+    force: Vec<f64>,
+    damping_force: Vec<f64>,
+    /// Scratch per equation.
+    x: Vec<f64>,
+    y: Vec<f64>,
+    /// The energy balance per converged step.
+    ledger: super::energy::EnergyLedger,
+}
+
+impl Inertia {
+    /// At rest but for the initial velocities `v0` (per DOF; constrained
+    /// DOFs are left at zero), with the mass `mass` and the elastic
+    /// stiffness `k0` (both lower triangles on the structure's pattern;
+    /// `k0` is read only for stiffness-proportional damping).
+    pub fn new(settings: TransientSettings, mass: Vec<f64>, k0: &[f64], v0: Vec<f64>, n_eq: usize) -> Self {
+        let (alpha, beta) = settings.damping;
+        // K₀ is given only when β_K > 0 (empty otherwise)
+        let damping = (alpha > 0.0 || beta > 0.0).then(|| {
+            let k = |i: usize| k0.get(i).copied().unwrap_or(0.0);
+            mass.iter().enumerate().map(|(i, m)| alpha * m + beta * k(i)).collect::<Vec<f64>>()
+        });
+        let n = v0.len();
+        Self {
+            settings,
+            mass,
+            damping,
+            v: v0.clone(),
+            v_n: v0,
+            a_n: vec![0.0; n],
+            a: vec![0.0; n],
+            lambda_n: 0.0,
+            force: vec![0.0; n],
+            damping_force: vec![0.0; n],
+            x: vec![0.0; n_eq],
+            y: vec![0.0; n_eq],
+            ledger: Default::default(),
+        }
+    }
+
+    /// Records the initial state (at rest but for the initial velocities,
+    /// unloaded) as the first row of the energy balance.
+    pub fn start(&mut self, eq: &[usize], pattern: &crate::solver::linear::LowerCsc) {
+        let v0 = self.v_n.clone();
+        let kinetic = self.kinetic_energy(&v0, eq, pattern);
+        let zero = vec![0.0; v0.len()];
+        let forces = StepForces { internal: &zero, damping: &zero, external: &zero, contact: &zero, supports: &zero };
+        self.ledger.record(self.time(0.0), &zero, &forces, kinetic);
+    }
+
+    /// Adds the converged step at λ to the energy balance: `du` the step's
+    /// displacement increment, `forces` the other parts' converged forces
+    /// (the damping forces are this part's own).
+    pub fn account(
+        &mut self,
+        lambda: f64,
+        du: &[f64],
+        forces: [&[f64]; 4],
+        eq: &[usize],
+        pattern: &crate::solver::linear::LowerCsc,
+    ) {
+        let v = std::mem::take(&mut self.v);
+        let kinetic = self.kinetic_energy(&v, eq, pattern);
+        self.v = v;
+        let [internal, external, contact, supports] = forces;
+        let step = StepForces { internal, damping: &self.damping_force, external, contact, supports };
+        let time = self.time(lambda);
+        self.ledger.record(time, du, &step, kinetic);
+    }
+
+    /// The energy balance, one row per converged step (the initial state first).
+    pub fn energies(&self) -> &[super::energy::EnergyRow] {
+        &self.ledger.rows
+    }
+
+    /// The settings.
+    pub fn settings(&self) -> &TransientSettings {
+        &self.settings
+    }
+
+    /// Time (s) at analysis time λ.
+    pub fn time(&self, lambda: f64) -> f64 {
+        self.settings.time(lambda)
+    }
+
+    /// Velocities of the last evaluation (per DOF).
+    pub fn velocities(&self) -> &[f64] {
+        &self.v
+    }
+
+    /// Committed velocities (per DOF).
+    pub fn committed_velocities(&self) -> &[f64] {
+        &self.v_n
+    }
+
+    /// The damping forces `C v` of the last evaluation (per DOF).
+    pub fn damping_forces(&self) -> &[f64] {
+        &self.damping_force
+    }
+
+    /// `½ vᵀ M v` of per-DOF velocities `v` on the equations `eq`.
+    pub fn kinetic_energy(&mut self, v: &[f64], eq: &[usize], pattern: &crate::solver::linear::LowerCsc) -> f64 {
+        gather(v, eq, &mut self.x);
+        pattern.mul_symmetric(&self.mass, &self.x, &mut self.y);
+        0.5 * self.x.iter().zip(&self.y).map(|(a, b)| a * b).sum::<f64>()
+    }
+}
+
+/// `out[e] = v[d]` for every DOF `d` with an equation `e`.
+fn gather(v: &[f64], eq: &[usize], out: &mut [f64]) {
+    for (d, &e) in eq.iter().enumerate() {
+        if e != NO_EQ {
+            out[e] = v[d];
+        }
+    }
+}
+
+impl Contribution for Inertia {
+    fn phase(&self) -> Phase {
+        Phase::Loads
+    }
+
+    fn evaluate(&mut self, at: &At<'_>, tangent: &mut Tangent<'_>) -> usize {
+        let dt = self.time(at.lambda) - self.time(self.lambda_n);
+        let (beta, gamma) = (self.settings.beta, self.settings.gamma);
+        if dt > 0.0 {
+            let c0 = 1.0 / (beta * dt * dt);
+            let c2 = 1.0 / (2.0 * beta) - 1.0;
+            for d in 0..self.a.len() {
+                let a = c0 * (at.u[d] - at.u_committed[d] - dt * self.v_n[d]) - c2 * self.a_n[d];
+                self.a[d] = a;
+                self.v[d] = self.v_n[d] + dt * ((1.0 - gamma) * self.a_n[d] + gamma * a);
+            }
+            let c1 = gamma / (beta * dt);
+            for (k, t) in tangent.values.iter_mut().enumerate() {
+                *t += c0 * self.mass[k];
+            }
+            if let Some(c) = &self.damping {
+                for (t, ck) in tangent.values.iter_mut().zip(c) {
+                    *t += c1 * ck;
+                }
+            }
+        } else {
+            // at the committed time (the state before the first increment,
+            // or evaluated again after convergence): its own a and v
+            self.a.clone_from(&self.a_n);
+            self.v.clone_from(&self.v_n);
+        }
+        let eq = &tangent.assembler.dofs.eq;
+        let pattern = &tangent.assembler.pattern;
+        self.force.fill(0.0);
+        self.damping_force.fill(0.0);
+        gather(&self.a, eq, &mut self.x);
+        pattern.mul_symmetric(&self.mass, &self.x, &mut self.y);
+        for (d, &e) in eq.iter().enumerate() {
+            if e != NO_EQ {
+                self.force[d] = self.y[e];
+            }
+        }
+        if let Some(c) = &self.damping {
+            gather(&self.v, eq, &mut self.x);
+            pattern.mul_symmetric(c, &self.x, &mut self.y);
+            for (d, &e) in eq.iter().enumerate() {
+                if e != NO_EQ {
+                    self.damping_force[d] = self.y[e];
+                    self.force[d] += self.y[e];
+                }
+            }
+        }
+        0
+    }
+
+    fn forces(&self) -> Forces<'_> {
+        // the inertia force balances the internal one in free motion, so
+        // it sets the force scale of the convergence test with the loads
+        Forces { values: &self.force, sign: 1.0, scale: true }
+    }
+
+    fn commit(&mut self, at: &At<'_>) {
+        self.v_n.clone_from(&self.v);
+        self.a_n.clone_from(&self.a);
+        self.lambda_n = at.lambda;
+    }
+
+    fn restore(&mut self) {}
+}

@@ -1,0 +1,31 @@
+//! The settings of a transient analysis (validated by `model::transient`).
+
+use super::MassKind;
+
+/// The settings of a transient analysis.
+#[derive(Debug, Clone, PartialEq)]
+pub struct TransientSettings {
+    /// Time of each load step (s): step k (λ ∈ [k, k + 1]) lasts
+    /// `durations[k]`.
+    pub durations: Vec<f64>,
+    /// Newmark's β.
+    pub beta: f64,
+    /// Newmark's γ.
+    pub gamma: f64,
+    /// Rayleigh damping `C = α_M M + β_K K₀`: `(α_M, β_K)`.
+    pub damping: (f64, f64),
+    /// The mass matrix.
+    pub mass: MassKind,
+    /// Uniform initial velocity per body index (m/s).
+    pub initial_velocities: Vec<(usize, [f64; 3])>,
+}
+
+impl TransientSettings {
+    /// The time (s) at analysis time λ: the durations of the steps before
+    /// and the elapsed fraction of the present one.
+    pub fn time(&self, lambda: f64) -> f64 {
+        let n = self.durations.len();
+        let k = (lambda.max(0.0).floor() as usize).min(n - 1);
+        self.durations[..k].iter().sum::<f64>() + (lambda - k as f64) * self.durations[k]
+    }
+}

@@ -1,0 +1,119 @@
+//! `analysis.type = "transient"`: the keys of implicit dynamics — the time
+//! of a load step, Newmark's parameters, Rayleigh damping, the mass matrix
+//! and initial velocities — checked here (`crate::dynamics::inertia` uses
+//! them).
+
+use super::analysis::{Parts, densities_given, mass_kind};
+use super::schema::{AnalysisFile, AnalysisType};
+use super::{ModelError, bounds, invalid};
+use crate::dynamics::TransientSettings;
+
+/// Longest accepted step duration (s).
+pub const MAX_DURATION: f64 = 1e6;
+/// Largest accepted initial speed (m/s).
+pub const MAX_SPEED: f64 = 1e4;
+
+/// The keys that only a transient analysis takes, for the refusal of a
+/// static one.
+fn transient_key(file: &AnalysisFile) -> Option<&'static str> {
+    if file.duration.is_some() {
+        Some("analysis.duration")
+    } else if file.newmark.is_some() {
+        Some("analysis.newmark")
+    } else if file.damping.is_some() {
+        Some("analysis.damping")
+    } else if file.initial_velocities.is_some() {
+        Some("analysis.initial_velocities")
+    } else {
+        None
+    }
+}
+
+/// `analysis.type = "transient"` and its keys; `None` for another analysis
+/// (whose file may not hold them).
+pub(super) fn transient(
+    file: &AnalysisFile,
+    steps: &[super::schema::StepFile],
+    parts: &Parts<'_>,
+    arc_length: bool,
+) -> Result<Option<TransientSettings>, ModelError> {
+    if file.kind != Some(AnalysisType::Transient) {
+        if let Some(i) = steps.iter().position(|s| s.duration.is_some()) {
+            return Err(invalid(format!("steps[{i}].duration"), "given", "only with analysis.type = \"transient\""));
+        }
+        return match transient_key(file) {
+            Some(key) => Err(invalid(key, "given", "only with analysis.type = \"transient\"")),
+            None => Ok(None),
+        };
+    }
+    let duration = |key: &str, d: Option<f64>| -> Result<f64, ModelError> {
+        let d = d.ok_or_else(|| {
+            invalid(
+                "analysis.duration",
+                "(missing)",
+                format!("the time of one load step in s with analysis.type = \"transient\" ({key} gives none)"),
+            )
+        })?;
+        bounds::within(key, d, f64::MIN_POSITIVE, MAX_DURATION, "the time of a load step in s, positive")
+    };
+    let base = file.duration.map(|d| duration("analysis.duration", Some(d))).transpose()?;
+    let durations = if steps.is_empty() {
+        vec![duration("analysis.duration", base)?]
+    } else {
+        steps
+            .iter()
+            .enumerate()
+            .map(|(i, s)| duration(&format!("steps[{i}].duration"), s.duration.or(base)))
+            .collect::<Result<Vec<f64>, ModelError>>()?
+    };
+    let (beta, gamma) = file.newmark.as_ref().map_or((0.25, 0.5), |n| (n.beta, n.gamma));
+    // unconditional stability of the implicit Newmark family on linear
+    // problems: γ ≥ ½ and β ≥ ¼ (γ + ½)² (Hughes, *The Finite Element
+    // Method*, §9.1.2); γ > ½ damps the highest modes
+    if !(gamma.is_finite() && (0.5..=1.0).contains(&gamma)) {
+        return Err(invalid(
+            "analysis.newmark.gamma",
+            bounds::number(gamma),
+            "a number in [0.5, 1] (γ ≥ ½ for stability)",
+        ));
+    }
+    let min_beta = 0.25 * (gamma + 0.5).powi(2);
+    if !(beta.is_finite() && beta >= min_beta - 1e-12 && beta <= 0.5) {
+        return Err(invalid(
+            "analysis.newmark.beta",
+            bounds::number(beta),
+            format!(
+                "a number from ¼ (γ + ½)² = {} to 0.5 (unconditional stability; an explicit β is not supported)",
+                bounds::number(min_beta)
+            ),
+        ));
+    }
+    let damping = file.damping.as_ref().map_or(Ok::<_, ModelError>((0.0, 0.0)), |d| {
+        let a = d.mass.unwrap_or(0.0);
+        let b = d.stiffness.unwrap_or(0.0);
+        bounds::within("analysis.damping.mass", a, 0.0, 1e9, "α_M in 1/s, ≥ 0")?;
+        bounds::within("analysis.damping.stiffness", b, 0.0, 1e3, "β_K in s, ≥ 0")?;
+        Ok((a, b))
+    })?;
+    if arc_length {
+        return Err(invalid(
+            "solver.control",
+            "\"arc_length\"",
+            "load control with analysis.type = \"transient\" (time cannot run backwards)",
+        ));
+    }
+    densities_given(parts, "transient")?;
+    let mut initial_velocities = Vec::new();
+    for (i, v) in file.initial_velocities.iter().flatten().enumerate() {
+        let key = format!("analysis.initial_velocities[{i}]");
+        let body = parts.mesh.body_index(&v.body).ok_or_else(|| {
+            let names: Vec<&str> = parts.mesh.bodies.iter().map(|b| b.name.as_str()).collect();
+            invalid(format!("{key}.body"), format!("{:?}", v.body), format!("one of the bodies {names:?}"))
+        })?;
+        for (k, c) in v.velocity.iter().enumerate() {
+            bounds::within(&format!("{key}.velocity[{k}]"), *c, -MAX_SPEED, MAX_SPEED, "a speed in m/s")?;
+        }
+        initial_velocities.push((body, *v.velocity));
+    }
+    Ok(Some(TransientSettings { durations, beta, gamma, damping, mass: mass_kind(file), initial_velocities }))
+}

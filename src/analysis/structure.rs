@@ -415,6 +415,7 @@ impl NonlinearProblem for Structure<'_> {
             if f.scale {
                 scale = scale.max(size2.sqrt());
             }
+            scale = scale.max(f.reference);
         }
         let eq = &self.system.assembler.dofs.eq;
         let (mut res2, mut reac2) = (0.0, 0.0);

@@ -2,7 +2,7 @@
 //! never touched, a penalty too soft to hold its contact, an augmented
 //! contact left above its tolerance, non-finite forces, a probe in a part
 //! the load does not reach, plastic strains beyond what the Green–Lagrange
-//! strain measure models.
+//! strain measure models, contacts that created energy in a transient run.
 
 use super::Solution;
 use crate::model::{Model, Warning};
@@ -58,6 +58,7 @@ pub(super) fn result_warnings(model: &Model, solution: &Solution) -> Vec<Warning
         }
     }
     strain_measure_warning(model, solution, &mut warnings);
+    contact_energy_warning(solution, &mut warnings);
     let finite = |f: &[f64; 3]| f.iter().all(|v| v.is_finite());
     if !(solution.reactions.iter().all(|r| finite(&r.force)) && solution.contacts.iter().all(|c| finite(&c.force))) {
         warnings.push(Warning {
@@ -173,6 +174,35 @@ fn strain_measure_warning(model: &Model, solution: &Solution, warnings: &mut Vec
                  the hardening curve at 10 % strain): set analysis.strain = \"logarithmic\"",
                 100.0 * peeq,
                 100.0 * GREEN_LAGRANGE_PLASTIC_LIMIT
+            ),
+        });
+    }
+}
+
+/// A transient run whose contacts did net work on the bodies: a
+/// frictionless penalty contact is a conservative spring, so once its
+/// points have separated again its work is zero; what remains is energy the
+/// time integration made at the contact (a penalty too stiff for the time
+/// step: the contact spring's period is not resolved, the points chatter,
+/// and the trapezoidal rule's end-point forces do spurious work). Warned
+/// when, with no contact force left at the end, the contact work exceeds
+/// 1 % of the largest energy of the run.
+fn contact_energy_warning(solution: &Solution, warnings: &mut Vec<Warning>) {
+    let Some(rows) = &solution.energy else { return };
+    let Some(last) = rows.last() else { return };
+    let open = solution.contacts.iter().all(|c| c.force == [0.0; 3]);
+    let scale = rows.iter().map(|r| r.kinetic.max(r.internal.abs()).max(r.external.abs())).fold(0.0, f64::max);
+    if open && scale > 0.0 && last.contact.abs() > 0.01 * scale {
+        warnings.push(Warning {
+            key: "analysis.type".into(),
+            message: format!(
+                "the contacts did {:.3e} J of net work ({:.1} % of the largest energy, {:.3e} J) although they \
+                 are open at the end: the time integration created or lost energy at the contact — lower the \
+                 contacts' penalty_factor (about 1 resolves the contact oscillation with the time step) or \
+                 take smaller increments (energy.csv)",
+                last.contact,
+                100.0 * last.contact.abs() / scale,
+                scale
             ),
         });
     }

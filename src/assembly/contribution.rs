@@ -105,6 +105,11 @@ pub struct Forces<'a> {
     /// True if they set the force scale of the convergence test (applied
     /// and contact forces; internal forces balance them).
     pub scale: bool,
+    /// A force norm (N) the part sets as a scale beside its own forces (0
+    /// for most): inertia's `‖M v_n‖/Δt`, the force that would stop the
+    /// motion within the step — a body in free flight has no forces at
+    /// all to measure its residual against.
+    pub reference: f64,
 }
 
 /// A part of the structure's residual and tangent (module docs).

@@ -49,6 +49,8 @@ pub struct Inertia {
     a: Vec<f64>,
     /// `M a + C v` per DOF, and its damping part `C v`.
     force: Vec<f64>,
+    /// `‖M v_n‖ / Δt` of the last evaluation (the force scale it sets).
+    reference: f64,
     damping_force: Vec<f64>,
     /// Scratch per equation.
     x: Vec<f64>,
@@ -80,6 +82,7 @@ impl Inertia {
             a: vec![0.0; n],
             lambda_n: 0.0,
             force: vec![0.0; n],
+            reference: 0.0,
             damping_force: vec![0.0; n],
             x: vec![0.0; n_eq],
             y: vec![0.0; n_eq],
@@ -197,6 +200,14 @@ impl Contribution for Inertia {
         }
         let eq = &tangent.assembler.dofs.eq;
         let pattern = &tangent.assembler.pattern;
+        // the scale of the step's residual: the force that would stop the
+        // committed motion within the step
+        self.reference = 0.0;
+        if dt > 0.0 {
+            gather(&self.v_n, eq, &mut self.x);
+            pattern.mul_symmetric(&self.mass, &self.x, &mut self.y);
+            self.reference = self.y.iter().map(|v| v * v).sum::<f64>().sqrt() / dt;
+        }
         self.force.fill(0.0);
         self.damping_force.fill(0.0);
         gather(&self.a, eq, &mut self.x);
@@ -222,7 +233,7 @@ impl Contribution for Inertia {
     fn forces(&self) -> Forces<'_> {
         // the inertia force balances the internal one in free motion, so
         // it sets the force scale of the convergence test with the loads
-        Forces { values: &self.force, sign: 1.0, scale: true }
+        Forces { values: &self.force, sign: 1.0, scale: true, reference: self.reference }
     }
 
     fn commit(&mut self, at: &At<'_>) {

@@ -11,11 +11,13 @@ use crate::contact::{self, Indenter, RigidSurface, SurfaceNodes};
 use crate::materials::Material;
 use crate::mesh::{Body, Mesh};
 
-/// `[[indenters]]`, with a warning for one whose motion cannot reach its surface.
+/// `[[indenters]]`, with a warning for one whose motion cannot reach its
+/// surface (not in a transient analysis, where bodies may fly into it).
 pub(super) fn indenters(
     file: &[IndenterFile],
     mesh: &Mesh,
     materials: &[Material],
+    transient: bool,
     warnings: &mut Vec<Warning>,
 ) -> Result<Vec<Indenter>, ModelError> {
     let mut indenters = Vec::new();
@@ -25,7 +27,7 @@ pub(super) fn indenters(
         let ind = indenter(&key, d, b, &mesh.bodies[b], materials)?;
         // how far the indenter's own motion brings it towards each node
         let reach = |c: &contact::ContactNode| (0..3).map(|k| ind.displacement[k] * c.normal[k]).sum::<f64>() - c.gap0;
-        if ind.force.is_none() && ind.nodes.iter().all(|c| reach(c) < 0.0) {
+        if !transient && ind.force.is_none() && ind.nodes.iter().all(|c| reach(c) < 0.0) {
             warnings.push(Warning {
                 key: format!("{key}.displacement"),
                 message: format!(

@@ -405,7 +405,8 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let mut warnings = Vec::new();
     let constraints = preprocess::constraints(&file.constraints, &mesh, &mut warnings)?;
     let loads = preprocess::loads(&file.loads, &mesh, &materials)?;
-    let indenters = indenters::indenters(&file.indenters, &mesh, &materials, &mut warnings)?;
+    let transient = file.analysis.kind == Some(schema::AnalysisType::Transient);
+    let indenters = indenters::indenters(&file.indenters, &mesh, &materials, transient, &mut warnings)?;
     let contacts = contacts::pair_contacts(&file.contacts, &mesh, &materials, &mut warnings)?;
     if kinematics.is_nonlinear()
         && let Some((k, c)) = contacts.iter().enumerate().find(|(_, c)| c.surface.is_none() && c.friction.is_some())
@@ -418,7 +419,11 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
              takes friction there, with the current normal; docs/contact.md)",
         ));
     }
-    restraint::check(&mesh, &constraints, &indenters, &contacts)?;
+    // in a transient analysis the mass holds a free body: M/(β Δt²) in the
+    // tangent keeps every time step's system positive definite
+    if !transient {
+        restraint::check(&mesh, &constraints, &indenters, &contacts)?;
+    }
     let probes = preprocess::probes(&file.probes, &mesh)?;
     let lines = preprocess::lines(&file.lines, &mesh, &mut warnings)?;
     let references = validate::references(&file.references, &probes)?;

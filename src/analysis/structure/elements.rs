@@ -98,7 +98,7 @@ impl Contribution for Elements<'_> {
     }
 
     fn forces(&self) -> Forces<'_> {
-        Forces { values: &self.f_int, sign: 1.0, scale: false }
+        Forces { values: &self.f_int, sign: 1.0, scale: false, reference: 0.0 }
     }
 
     fn commit(&mut self, _at: &At<'_>) {

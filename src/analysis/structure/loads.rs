@@ -41,7 +41,7 @@ impl Contribution for Loads<'_> {
     }
 
     fn forces(&self) -> Forces<'_> {
-        Forces { values: &self.f_ext, sign: -1.0, scale: true }
+        Forces { values: &self.f_ext, sign: -1.0, scale: true, reference: 0.0 }
     }
 
     fn commit(&mut self, _at: &At<'_>) {}

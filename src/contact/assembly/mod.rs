@@ -275,7 +275,7 @@ impl Contribution for Contacts<'_> {
     }
 
     fn forces(&self) -> Forces<'_> {
-        Forces { values: &self.f_contact, sign: -1.0, scale: true }
+        Forces { values: &self.f_contact, sign: -1.0, scale: true, reference: 0.0 }
     }
 
     /// Commits the points and projects the surface contacts anew from the

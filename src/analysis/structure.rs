@@ -530,7 +530,7 @@ impl Incremental for Structure<'_> {
         for part in parts.into_iter().chain(self.dynamics.iter_mut().map(|i| i as &mut dyn Contribution)) {
             part.commit(&at);
         }
-        self.force.commit();
+        self.force.commit(self.state.lambda);
     }
 
     fn restore(&mut self) {

@@ -24,7 +24,8 @@ pub(super) fn indenters(
     for (i, d) in file.iter().enumerate() {
         let key = format!("indenters[{i}]");
         let b = body_index(mesh, format!("{key}.body"), &d.body)?;
-        let ind = indenter(&key, d, b, &mesh.bodies[b], materials)?;
+        let mut ind = indenter(&key, d, b, &mesh.bodies[b], materials)?;
+        ind.impactor = impactor(&key, d, transient)?;
         // how far the indenter's own motion brings it towards each node
         let reach = |c: &contact::ContactNode| (0..3).map(|k| ind.displacement[k] * c.normal[k]).sum::<f64>() - c.gap0;
         if !transient && ind.force.is_none() && ind.nodes.iter().all(|c| reach(c) < 0.0) {
@@ -92,7 +93,12 @@ pub(super) fn indenter(
         ));
     }
     facing(key, d, body, &surface, &nodes)?;
-    let (displacement, force) = motion(key, d, body, young, &nodes)?;
+    // an impactor (mass, velocity) moves by its inertia: checked by `impactor`
+    let (displacement, force) = if d.mass.is_some() || d.velocity.is_some() {
+        ([0.0; 3], d.force.map(<[f64; 3]>::from))
+    } else {
+        motion(key, d, body, young, &nodes)?
+    };
     let penetration_tolerance = tolerance(key, d.penetration_tolerance, body.size())?;
     Ok(Indenter {
         name: d.name.clone(),
@@ -105,7 +111,60 @@ pub(super) fn indenter(
         friction: friction(key, d.friction)?,
         faces: face_list,
         updated: d.method.unwrap_or_default() == IndenterMethod::Surface,
+        impactor: None,
     })
+}
+
+/// `mass` and `velocity`: a rigid impactor, only in a transient analysis,
+/// without `displacement` (its motion is its own), with a `force` (say its
+/// weight) along its velocity if any.
+fn impactor(key: &str, d: &IndenterFile, transient: bool) -> Result<Option<contact::Impactor>, ModelError> {
+    let (mass, velocity) = match (d.mass, d.velocity) {
+        (None, None) => return Ok(None),
+        (None, Some(_)) => {
+            return Err(invalid(format!("{key}.mass"), "(missing)", "the impactor's mass in kg (with velocity)"));
+        }
+        (Some(_), None) => {
+            return Err(invalid(
+                format!("{key}.velocity"),
+                "(missing)",
+                "the impactor's initial velocity [x, y, z] in m/s (with mass)",
+            ));
+        }
+        (Some(m), Some(v)) => (m, <[f64; 3]>::from(v)),
+    };
+    if !transient {
+        return Err(invalid(format!("{key}.mass"), bounds::number(mass), "only with analysis.type = \"transient\""));
+    }
+    bounds::within(&format!("{key}.mass"), mass, f64::MIN_POSITIVE, 1e9, "the impactor's mass in kg, positive")?;
+    let speed = velocity.iter().map(|v| v * v).sum::<f64>().sqrt();
+    if !(speed > 0.0 && speed <= super::transient::MAX_SPEED) {
+        return Err(invalid(
+            format!("{key}.velocity"),
+            format!("{velocity:?}"),
+            "a non-zero velocity in m/s of at most 1e4 (the impactor moves along it)",
+        ));
+    }
+    if d.displacement.is_some() {
+        return Err(invalid(
+            format!("{key}.displacement"),
+            "(given with mass)",
+            "no displacement for an impactor: its motion follows from its mass, velocity and contact force",
+        ));
+    }
+    if let Some(f) = d.force {
+        let f = <[f64; 3]>::from(f);
+        let along: f64 = f.iter().zip(&velocity).map(|(a, b)| a * b).sum::<f64>() / speed;
+        let norm = f.iter().map(|v| v * v).sum::<f64>().sqrt();
+        if !(norm.is_finite() && (norm - along.abs()) <= 1e-9 * norm) {
+            return Err(invalid(
+                format!("{key}.force"),
+                format!("{f:?}"),
+                "a force along the impactor's velocity (it moves along one direction)",
+            ));
+        }
+    }
+    Ok(Some(contact::Impactor { mass, velocity }))
 }
 
 /// The indenter's rigid surface from its shape's own keys.

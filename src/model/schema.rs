@@ -439,6 +439,8 @@ tagged_table! {
         penetration_tolerance: Option<f64>,
         friction: Option<f64>,
         method: Option<IndenterMethod>,
+        mass: Option<f64>,
+        velocity: Option<Exact<f64, 3>>,
     }
     /// The indenter's shape and its own keys.
     pub shape: enum IndenterShape by "shape" {

@@ -24,6 +24,13 @@
 //! algorithm, as in arc-length methods). While an indenter touches nothing,
 //! the Jacobian of its nearest candidate node stands in, so that Newton
 //! moves it into contact.
+//!
+//! A rigid **impactor** (`mass`, `velocity`; transient analysis) is driven
+//! the same way along its velocity `d̂`: its equation gains its inertia,
+//! `r = Σ f·d̂ − F + m ä` with Newmark's `ä` of its displacement `a`
+//! (`dynamics::inertia`, the model's β and γ) and `C += m/(β Δt²)`; its
+//! mass keeps the bordered system regular while it flies, so no contact
+//! stands in, and its force scale is `m |v_n| / Δt`.
 
 use super::dirichlet::Dirichlet;
 use super::system::LinearSystem;
@@ -54,6 +61,22 @@ struct Driven {
     c: f64,
     /// Residual `r` of the last evaluation (N).
     r: f64,
+    /// A rigid impactor's inertia (transient analysis), `None` under force
+    /// control.
+    inertia: Option<Inertia>,
+}
+
+/// The Newmark state of an impactor along its direction (module docs).
+#[derive(Debug, Clone)]
+struct Inertia {
+    mass: f64,
+    /// Committed velocity and acceleration along `dir`, and λ.
+    v_n: f64,
+    acc_n: f64,
+    lambda_n: f64,
+    /// Trial velocity and acceleration.
+    v: f64,
+    acc: f64,
 }
 
 /// The force-controlled indenters of a model.
@@ -71,12 +94,26 @@ impl<'m> ForceControl<'m> {
             .iter()
             .enumerate()
             .filter_map(|(i, ind)| {
-                let f = ind.force?;
-                let m = (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
+                let norm = |f: [f64; 3]| (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
+                // an impactor moves along its velocity, pushed by its force
+                // (if any, validated parallel); under force control along the force
+                let (dir, magnitude, inertia) = match (ind.impactor, ind.force) {
+                    (Some(imp), f) => {
+                        let speed = norm(imp.velocity);
+                        let dir = imp.velocity.map(|v| v / speed);
+                        let along = f.map_or(0.0, |f| f.iter().zip(&dir).map(|(a, b)| a * b).sum());
+                        let inertia =
+                            Inertia { mass: imp.mass, v_n: speed, acc_n: 0.0, lambda_n: 0.0, v: speed, acc: 0.0 };
+                        (dir, along, Some(inertia))
+                    }
+                    (None, Some(f)) => (f.map(|v| v / norm(f)), norm(f), None),
+                    (None, None) => return None,
+                };
                 Some(Driven {
                     indenter: i,
-                    dir: f.map(|v| v / m),
-                    magnitude: m,
+                    dir,
+                    magnitude,
+                    inertia,
                     a: 0.0,
                     a_committed: 0.0,
                     a_step: 0.0,
@@ -139,8 +176,10 @@ impl<'m> ForceControl<'m> {
             drv.b.fill(0.0);
             drv.b_row.fill(0.0);
             drv.c = 0.0;
+            // an impactor's mass regularizes its equation: no stand-in contact
+            let stand_in = !any && drv.inertia.is_none();
             for (j, (p, c)) in points[range.clone()].iter().zip(&ind.nodes).enumerate() {
-                if !(p.active || (!any && j == nearest.1)) {
+                if !(p.active || (stand_in && j == nearest.1)) {
                     continue;
                 }
                 // the point's assembled block K (ε n nᵀ, plus friction);
@@ -162,8 +201,23 @@ impl<'m> ForceControl<'m> {
                 }
             }
             drv.r = pushed - target;
+            let mut scale = target.abs();
+            if let (Some(inertia), Some(tr)) = (drv.inertia.as_mut(), model.transient.as_ref()) {
+                // m ä + (its push on the body) = its force: Newmark in a
+                let dt = tr.time(lambda) - tr.time(inertia.lambda_n);
+                if dt > 0.0 {
+                    let c0 = 1.0 / (tr.beta * dt * dt);
+                    inertia.acc = c0 * (drv.a - drv.a_committed - dt * inertia.v_n)
+                        - (1.0 / (2.0 * tr.beta) - 1.0) * inertia.acc_n;
+                    inertia.v = inertia.v_n + dt * ((1.0 - tr.gamma) * inertia.acc_n + tr.gamma * inertia.acc);
+                    drv.c += inertia.mass * c0;
+                    // the force that would stop it within the step
+                    scale = scale.max(inertia.mass * inertia.v_n.abs() / dt);
+                }
+                drv.r += inertia.mass * inertia.acc;
+            }
             res2 += drv.r * drv.r;
-            target2 += target * target;
+            target2 += scale * scale;
         }
         (res2, target2)
     }
@@ -242,11 +296,14 @@ impl<'m> ForceControl<'m> {
         }
     }
 
-    /// The increment converged.
-    pub fn commit(&mut self) {
+    /// The increment converged (at λ = `lambda`).
+    pub fn commit(&mut self, lambda: f64) {
         for d in &mut self.driven {
             d.a_step = d.a - d.a_committed;
             d.a_committed = d.a;
+            if let Some(i) = d.inertia.as_mut() {
+                (i.v_n, i.acc_n, i.lambda_n) = (i.v, i.acc, lambda);
+            }
         }
     }
 

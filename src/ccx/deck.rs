@@ -26,6 +26,9 @@
 //!   A pre-stressed modal model (loads, prescribed displacements, tools,
 //!   contacts) is refused before the deck is written
 //!   ([`super::check_supported`]).
+//! * Transient dynamics (`analysis.type = "transient"`): one `*DYNAMIC,
+//!   DIRECT` step per load step with the load history as amplitudes in time
+//!   ([`super::dynamic`]).
 
 use std::fmt::Write as _;
 
@@ -50,7 +53,8 @@ fn element_line(e: usize, nodes: &[usize]) -> String {
     entries.chunks(15).map(|c| c.join(", ")).collect::<Vec<_>>().join(",\n")
 }
 
-fn list(ids: impl Iterator<Item = usize>) -> String {
+/// Node or element numbers (1-based), twelve per line.
+pub(super) fn list(ids: impl Iterator<Item = usize>) -> String {
     let v: Vec<String> = ids.map(|i| (i + 1).to_string()).collect();
     v.chunks(12).map(|c| c.join(", ")).collect::<Vec<_>>().join(",\n")
 }
@@ -139,7 +143,7 @@ fn face_forces(
 }
 
 /// Nodal forces of a load on the hex mesh.
-fn load_forces(model: &Model, mesh: &HexMesh, load: &Load) -> Vec<(usize, [f64; 3])> {
+pub(super) fn load_forces(model: &Model, mesh: &HexMesh, load: &Load) -> Vec<(usize, [f64; 3])> {
     match &load.kind {
         LoadKind::PerNode { selection, force } => {
             // the hex nodes at the CUF nodes' positions
@@ -201,9 +205,14 @@ pub fn write(model: &Model, mesh: &HexMesh) -> String {
     materials(&mut d, model, mesh);
     node_sets(&mut d, model, mesh);
     contact_pairs(&mut d, model, mesh);
-    match model.modal {
-        Some(modal) => frequency_step(&mut d, model, mesh, modal.modes),
-        None => step(&mut d, model, mesh),
+    match (model.modal, &model.transient) {
+        (Some(modal), _) => frequency_step(&mut d, model, mesh, modal.modes),
+        // every load step a *DYNAMIC step, each with its *END STEP
+        (None, Some(t)) => {
+            super::dynamic::steps(&mut d, model, mesh, t);
+            return d;
+        }
+        (None, None) => step(&mut d, model, mesh),
     }
     let _ = writeln!(d, "*END STEP");
     d

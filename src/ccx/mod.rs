@@ -4,8 +4,11 @@
 //! lines exactly where cufem samples its own fields. A modal model
 //! (`analysis.type = "modal"`) becomes a `*FREQUENCY` step, whose
 //! eigenfrequencies and mode shapes are read back instead of a static state.
+//! A transient model (`analysis.type = "transient"`) becomes one `*DYNAMIC`
+//! step per load step ([`dynamic`]), whose displacement history is read back.
 
 pub mod deck;
+pub mod dynamic;
 pub mod mesh;
 pub mod results;
 
@@ -39,9 +42,12 @@ pub enum CcxError {
         program: String,
     },
     /// `ccx` ran but did not finish the analysis.
-    #[error("CalculiX did not finish the analysis (reached load factor {reached:.4}); the end of its log:\n{tail}")]
+    #[error(
+        "CalculiX did not finish the analysis (reached step time {reached:.4e}: the load factor of a static step, \
+         the time in s of a dynamic one); the end of its log:\n{tail}"
+    )]
     Failed {
-        /// Step time of the last results written.
+        /// Step time of the last results written (a dynamic step's total time).
         reached: f64,
         /// Last lines of the log.
         tail: String,
@@ -78,6 +84,18 @@ pub enum CcxError {
         /// What it holds.
         value: String,
     },
+    /// A transient model with something its `*DYNAMIC` twin cannot reproduce.
+    #[error("{key}: {value} — {why}; export-ccx and verify take analysis.type = \"transient\" only with {allowed}")]
+    Transient {
+        /// The model-file key.
+        key: String,
+        /// What it holds.
+        value: String,
+        /// Why the twin cannot hold it.
+        why: String,
+        /// What is allowed instead.
+        allowed: String,
+    },
     /// Results could not be read.
     #[error("cannot read CalculiX results {path}: {message}")]
     Results {
@@ -103,17 +121,23 @@ pub fn export(model: &Model, kind: HexKind, refine: usize, dir: &Path) -> Result
     Ok((mesh, path))
 }
 
-/// [`CcxError::Unsupported`] for the first feature of `model` that the
-/// CalculiX deck cannot represent (checked before any work by `export` and
+/// [`CcxError::Unsupported`] (of a transient model [`CcxError::Transient`])
+/// for the first feature of `model` that the CalculiX deck cannot represent (checked before any work by `export` and
 /// by `cufem verify` before its analysis).
 pub fn check_supported(model: &Model) -> Result<(), CcxError> {
+    if let Some(t) = &model.transient {
+        // contact first: a transient model with an indenter of any kind is
+        // refused as such ([`CcxError::Transient`])
+        dynamic::check(model, t)?;
+    }
     if let Some(k) = model.indenters.iter().position(|i| i.force.is_some()) {
         return Err(CcxError::Unsupported {
             key: format!("indenters[{k}].force"),
             what: "a force-controlled indenter".into(),
         });
     }
-    if model.steps.len() > 1 {
+    // a transient load history is one *DYNAMIC step per load step
+    if model.steps.len() > 1 && model.transient.is_none() {
         return Err(CcxError::Unsupported {
             key: "steps".into(),
             what: format!("a load history of {} [[steps]] (one at most)", model.steps.len()),
@@ -204,8 +228,13 @@ pub fn run(program: &str, dir: &Path, threads: usize) -> Result<CcxRun, CcxError
     // a frequency step solves with one factor hundreds of times (ARPACK),
     // which ccx 2.20's SPOOLES does 3–5× slower on 2 threads than on one
     // (1.9 s against 6.3 s for the 960-hex cantilever of tests/ccx_modal.rs)
-    let frequency = std::fs::read_to_string(dir.join("model.inp")).is_ok_and(|t| t.contains("\n*FREQUENCY\n"));
-    let solver_threads = if frequency { 1 } else { threads };
+    let deck = std::fs::read_to_string(dir.join("model.inp")).unwrap_or_default();
+    let frequency = deck.contains("\n*FREQUENCY\n");
+    // a dynamic step factorizes twice per increment: on 2 threads ccx 2.20
+    // took 27.5 s for the 201 increments of the 50-hex bar of
+    // tests/ccx_dynamic.rs, on one 2.5 s
+    let dynamic_end = dynamic::end_time(&deck);
+    let solver_threads = if frequency || dynamic_end.is_some() { 1 } else { threads };
     let start = Instant::now();
     let status = std::process::Command::new(program)
         .args(["-i", "model"])
@@ -227,9 +256,13 @@ pub fn run(program: &str, dir: &Path, threads: usize) -> Result<CcxRun, CcxError
     let frd = std::fs::read_to_string(&frd_path).unwrap_or_default();
     let results = read_or_fail(&frd, &frd_path, &log_text)?;
     let dat = std::fs::read_to_string(dir.join("model.dat")).unwrap_or_default();
-    // a static step ends at load factor 1; a frequency step with every
-    // mode it wrote to the .frd file in the .dat file's table
-    let finished = if results.modes.is_empty() {
+    // a static step ends at load factor 1, dynamic steps at their total
+    // time; a frequency step with every mode it wrote to the .frd file in
+    // the .dat file's table
+    let finished = if let Some(end) = dynamic_end {
+        // a dynamic step's time is the total time, written with 6 digits
+        (results.time - end).abs() <= 1e-5 * end
+    } else if results.modes.is_empty() {
         (results.time - 1.0).abs() <= 1e-6
     } else {
         results::read_frequencies(&dat).len() == results.modes.len()
@@ -286,6 +319,32 @@ fn children_peak_memory() -> Option<u64> {
     let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
     let r = unsafe { libc::getrusage(libc::RUSAGE_CHILDREN, &mut usage) };
     (r == 0).then(|| usage.ru_maxrss as u64 * 1024)
+}
+
+/// The displacement `u` (CalculiX node number → value, one increment of
+/// [`NodalResults::history`]) at a point located in the CUF mesh, as
+/// [`sample`] interpolates it (mean over the elements holding it).
+pub fn sample_displacement(
+    model: &Model,
+    mesh: &HexMesh,
+    u: &std::collections::HashMap<usize, [f64; 3]>,
+    locations: &[Location],
+) -> Option<[f64; 3]> {
+    if locations.is_empty() {
+        return None;
+    }
+    let mut n = [0.0; 20];
+    let mut out = [0.0; 3];
+    let w = 1.0 / locations.len() as f64;
+    for loc in locations {
+        let (e, p) = mesh.locate(model, loc);
+        mesh::hex_shapes(mesh.kind, p, &mut n);
+        for (a, &node) in mesh.elements[e].iter().enumerate() {
+            let ua = u.get(&(node + 1)).copied().unwrap_or_default();
+            (0..3).for_each(|k| out[k] += w * n[a] * ua[k]);
+        }
+    }
+    Some(out)
 }
 
 /// 3D fields at a point located in the CUF mesh (mean over the elements

@@ -8,7 +8,10 @@
 //! ` -1`, then the values in 12 columns each. Stress components come as
 //! SXX SYY SZZ SXY SYZ SZX and are reordered here to the Voigt order of
 //! [`crate::voigt`] (xx, yy, zz, xy, xz, yz). A mode's block has `MODAL` in
-//! its `100C` header line, whose value is the frequency (cycles/time).
+//! its `100C` header line, whose value is the frequency (cycles/time). A
+//! dynamic step's blocks have the type 1 (a time step; columns 57–58 of the
+//! header, after the value and the node count) and the total time as their
+//! value: each one's displacements are kept ([`NodalResults::history`]).
 
 use std::collections::HashMap;
 
@@ -28,6 +31,10 @@ pub struct NodalResults {
     /// Of a `*FREQUENCY` step: each mode's frequency (Hz, as its block
     /// header gives it) and displacement per node, in the file's order.
     pub modes: Vec<(f64, HashMap<usize, [f64; 3]>)>,
+    /// Of `*DYNAMIC` steps: every increment's total time (s) and
+    /// displacement per node, in the file's order (empty for a static or
+    /// frequency step, whose increments are not kept).
+    pub history: Vec<(f64, HashMap<usize, [f64; 3]>)>,
 }
 
 /// One row of CalculiX's eigenvalue table.
@@ -92,18 +99,22 @@ pub fn read_frd(text: &str, path: &str) -> Result<NodalResults, CcxError> {
     let mut out = NodalResults::default();
     let mut current: Option<String> = None;
     let mut block_time = 0.0;
-    let mut modal = false;
+    let (mut modal, mut dynamic) = (false, false);
     for line in text.lines() {
         if line.starts_with("  100C") {
             // "  100CL  101 1.000000000 ..." : the step time in columns 13–25
             block_time = line.get(12..25).and_then(|t| t.trim().parse().ok()).unwrap_or(block_time);
             modal = line.contains("MODAL");
+            dynamic = line.get(56..58).is_some_and(|t| t.trim() == "1");
             continue;
         }
         if let Some(rest) = line.strip_prefix(" -4") {
             let name = rest.split_whitespace().next().unwrap_or("").to_string();
             if modal && name == "DISP" {
                 out.modes.push((block_time, HashMap::new()));
+            }
+            if dynamic && name == "DISP" {
+                out.history.push((block_time, HashMap::new()));
             }
             match name.as_str() {
                 "DISP" => out.u.clear(),
@@ -131,6 +142,9 @@ pub fn read_frd(text: &str, path: &str) -> Result<NodalResults, CcxError> {
                 out.u.insert(node, [v[0], v[1], v[2]]);
                 if modal && let Some((_, mode)) = out.modes.last_mut() {
                     mode.insert(node, [v[0], v[1], v[2]]);
+                }
+                if dynamic && let Some((_, increment)) = out.history.last_mut() {
+                    increment.insert(node, [v[0], v[1], v[2]]);
                 }
             }
             "STRESS" if v.len() >= 6 => {
@@ -307,7 +321,41 @@ MODE NO.   X-COMPONENT     Y-COMPONENT     Z-COMPONENT     X-ROTATION      Y-ROT
         assert_eq!(r.modes[0].1[&5101], [3.19233e-1, -1.09886e-2, 5.49092e-7]);
         assert_eq!(r.modes[1].1[&5101], [-3.12701e-1, 6.06e-2, -1.3833e-4]);
         assert_eq!(r.modes[1].1[&1], [0.0; 3]);
-        // a static .frd has no modes
+        // a static .frd has no modes and no history
+        assert!(r.history.is_empty());
         assert!(read_frd("  100CL  101 1.000000000\n -4  DISP        4    1\n -1         1 1.00000E-03 2.00000E-03 3.00000E-03\n", "s.frd").unwrap().modes.is_empty());
+    }
+
+    /// Two increments of a `*DYNAMIC` step as ccx 2.20 wrote them for the
+    /// step-loaded bar of tests/ccx_dynamic.rs (`cufem export-ccx`, then
+    /// `ccx -i model`), cut to two nodes: each increment is kept with its
+    /// total time, the last one is also the final state.
+    #[test]
+    fn reads_every_increment_of_a_dynamic_step() {
+        let frd = "\
+    1PSTEP                         1           1           1          
+  100CL  101 1.00000E-09          52                     1    1           1
+ -4  DISP        4    1
+ -5  D1          1    2    1    0
+ -1       289 0.00000E+00 1.65253E-33 0.00000E+00
+ -1       601 0.00000E+00 3.10000E-13 0.00000E+00
+ -3
+    1PSTEP                         2           1           2          
+  100CL  102 4.00100E-06          52                     1    2           1
+ -4  DISP        4    1
+ -5  D1          1    2    1    0
+ -1       289 0.00000E+00 0.00000E+00 0.00000E+00
+ -1       601 0.00000E+00 2.50000E-06 0.00000E+00
+ -3
+ 9999
+";
+        let r = read_frd(frd, "d.frd").unwrap();
+        assert_eq!(r.history.len(), 2);
+        assert_eq!(r.history[0].0, 1e-9);
+        assert_eq!(r.history[1].0, 4.001e-6);
+        assert_eq!(r.history[0].1[&601], [0.0, 3.1e-13, 0.0]);
+        assert_eq!(r.history[1].1[&601], [0.0, 2.5e-6, 0.0]);
+        assert_eq!((r.time, r.u[&601]), (4.001e-6, [0.0, 2.5e-6, 0.0]));
+        assert!(r.modes.is_empty());
     }
 }

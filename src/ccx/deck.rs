@@ -185,7 +185,8 @@ fn plastic_rows(h: &Hardening) -> Vec<(f64, f64)> {
     }
 }
 
-/// The deck text.
+/// The deck text; of a transient model its model data only, which
+/// [`super::dynamic::steps`] completes with the `*DYNAMIC` steps.
 pub fn write(model: &Model, mesh: &HexMesh) -> String {
     let mut d = String::new();
     let _ = writeln!(d, "** CalculiX deck exported by cufem {} from \"{}\"", env!("CARGO_PKG_VERSION"), model.title);
@@ -207,11 +208,8 @@ pub fn write(model: &Model, mesh: &HexMesh) -> String {
     contact_pairs(&mut d, model, mesh);
     match (model.modal, &model.transient) {
         (Some(modal), _) => frequency_step(&mut d, model, mesh, modal.modes),
-        // every load step a *DYNAMIC step, each with its *END STEP
-        (None, Some(t)) => {
-            super::dynamic::steps(&mut d, model, mesh, t);
-            return d;
-        }
+        // the model data only: `ccx::export` adds the *DYNAMIC steps
+        (None, Some(_)) => return d,
         (None, None) => step(&mut d, model, mesh),
     }
     let _ = writeln!(d, "*END STEP");

@@ -117,7 +117,11 @@ pub fn export(model: &Model, kind: HexKind, refine: usize, dir: &Path) -> Result
     std::fs::create_dir_all(dir).map_err(file_error(dir))?;
     let mesh = HexMesh::new(model, kind, refine);
     let path = dir.join("model.inp");
-    std::fs::write(&path, deck::write(model, &mesh)).map_err(file_error(&path))?;
+    let mut text = deck::write(model, &mesh);
+    if let Some(t) = &model.transient {
+        dynamic::steps(&mut text, model, &mesh, t);
+    }
+    std::fs::write(&path, text).map_err(file_error(&path))?;
     Ok((mesh, path))
 }
 

@@ -301,7 +301,9 @@ fn plot_sections(m: &Model, model: &Path, out: Option<PathBuf>) -> Result<(), Fa
 /// this command (exit 1); anything else is a file error (exit 3).
 fn ccx_failure(e: cufem::ccx::CcxError) -> Failure {
     match e {
-        cufem::ccx::CcxError::Unsupported { .. } | cufem::ccx::CcxError::PreStressed { .. } => fail(INPUT, e),
+        cufem::ccx::CcxError::Unsupported { .. }
+        | cufem::ccx::CcxError::PreStressed { .. }
+        | cufem::ccx::CcxError::Transient { .. } => fail(INPUT, e),
         e => fail(FILES, e),
     }
 }

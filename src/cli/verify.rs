@@ -35,16 +35,19 @@ fn find_program(program: &Path) -> Option<PathBuf> {
 }
 
 /// Adds the whole-field rows and the zones left out (of a modal model: the
-/// frequencies mode by mode) to the run's `summary.json` (key `verify`),
+/// frequencies mode by mode; of a transient one: the probe histories) to
+/// the run's `summary.json` (key `verify`),
 /// beside the table in `verify/`.
 fn add_to_summary(path: &Path, c: &verify::Comparison) -> Result<(), cufem::io::IoError> {
     let error = |e: std::io::Error| cufem::io::file_error(path, e);
     let text = std::fs::read_to_string(path).map_err(error)?;
     let mut summary: serde_json::Value = serde_json::from_str(&text).map_err(|e| error(e.into()))?;
-    summary["verify"] = if c.modes.is_empty() {
-        serde_json::json!({ "solid": c.solid, "fields": c.fields, "excluded": c.excluded })
-    } else {
+    summary["verify"] = if !c.modes.is_empty() {
         serde_json::json!({ "solid": c.solid, "modes": c.modes })
+    } else if !c.probe_histories.is_empty() {
+        serde_json::json!({ "solid": c.solid, "probe_histories": c.probe_histories })
+    } else {
+        serde_json::json!({ "solid": c.solid, "fields": c.fields, "excluded": c.excluded })
     };
     std::fs::write(path, serde_json::to_string_pretty(&summary).unwrap_or_default()).map_err(error)
 }

@@ -16,7 +16,8 @@
 //! differences. Over the load path ([`history`]): each indenter's force at
 //! every CalculiX increment (up to and past a peak). A modal model
 //! ([`modal`]) compares its natural frequencies mode by mode instead, since
-//! its static state is the unloaded one.
+//! its static state is the unloaded one; a transient model ([`transient`])
+//! the displacement history at its probes, since its state changes in time.
 
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
@@ -33,10 +34,12 @@ use crate::quantity::{Quantity, Sample};
 pub mod field;
 pub mod history;
 pub mod modal;
+pub mod transient;
 
 pub use field::{FieldComparison, FieldRow, SingularZone, StoredError, compare_stored, compare_stored_on};
 pub use history::{ForceCurve, ForceHistoryRow};
 pub use modal::ModeRow;
+pub use transient::{ProbeCurve, ProbeHistoryRow};
 
 /// One probe value, both ways.
 #[derive(Debug, Clone, Serialize)]
@@ -126,6 +129,12 @@ pub struct Comparison {
     pub force_curves: Vec<ForceCurve>,
     /// Natural frequencies mode by mode (a modal model; it has no static rows).
     pub modes: Vec<ModeRow>,
+    /// Displacement histories at the probes (a transient model; it has no
+    /// static rows).
+    pub probe_histories: Vec<ProbeHistoryRow>,
+    /// Their curves (written by [`Self::write`]).
+    #[serde(skip)]
+    pub probe_curves: Vec<ProbeCurve>,
     /// DOF, time and memory of both.
     pub cost: Cost,
 }
@@ -168,7 +177,12 @@ pub fn compare(
     let cost = cost(model, solution, mesh, run, cufem_peak);
     if model.modal.is_some() {
         let modes = modal::compare_modes(model, solution, mesh, run);
-        return (Comparison::modal(model, solid, cost, modes), Vec::new(), FieldComparison::default());
+        return (Comparison { modes, ..Comparison::empty(model, solid, cost) }, Vec::new(), FieldComparison::default());
+    }
+    if model.transient.is_some() {
+        let (probe_histories, probe_curves) = transient::compare_probe_histories(model, solution, mesh, run);
+        let comparison = Comparison { probe_histories, probe_curves, ..Comparison::empty(model, solid, cost) };
+        return (comparison, Vec::new(), FieldComparison::default());
     }
     let view = solution.fields(model);
     let u_scale = run.results.u.values().flat_map(|u| u.iter()).fold(0.0f64, |a, b| a.max(b.abs()));
@@ -264,6 +278,8 @@ pub fn compare(
         force_histories,
         force_curves,
         modes: Vec::new(),
+        probe_histories: Vec::new(),
+        probe_curves: Vec::new(),
         cost,
     };
     (comparison, curves, whole)
@@ -287,10 +303,11 @@ fn show(v: Option<f64>) -> String {
 }
 
 impl Comparison {
-    /// The comparison of a modal model: its frequencies only, since its
-    /// static state is the unloaded one (nothing to compare at probes,
-    /// lines, resultants or over the field).
-    fn modal(model: &Model, solid: String, cost: Cost, modes: Vec<ModeRow>) -> Self {
+    /// A comparison without rows, for a modal model (its frequencies only,
+    /// since its static state is the unloaded one) or a transient one (its
+    /// probe histories only): nothing to compare at one state's probes,
+    /// lines, resultants or over its field.
+    fn empty(model: &Model, solid: String, cost: Cost) -> Self {
         Self {
             title: model.title.clone(),
             solid,
@@ -301,7 +318,9 @@ impl Comparison {
             excluded: Vec::new(),
             force_histories: Vec::new(),
             force_curves: Vec::new(),
-            modes,
+            modes: Vec::new(),
+            probe_histories: Vec::new(),
+            probe_curves: Vec::new(),
             cost,
         }
     }
@@ -383,6 +402,7 @@ impl Comparison {
         self.field_table(&mut t);
         history::table(&self.force_histories, &mut t);
         modal::table(&self.modes, &mut t);
+        transient::table(&self.probe_histories, &mut t);
         t
     }
 
@@ -475,6 +495,7 @@ impl Comparison {
             let _ = writeln!(csv, "field_max,{},{},,,{:e}", csv_text(&r.region), csv_text(&r.quantity), r.max_percent);
         }
         modal::csv(&self.modes, &mut csv);
+        transient::csv(&self.probe_histories, &mut csv);
         let p = dir.join("table.csv");
         file(&p, &csv)?;
         written.push(p);
@@ -515,6 +536,7 @@ impl Comparison {
             written.push(p);
         }
         written.extend(history::write(dir, &self.force_curves)?);
+        written.extend(transient::write(dir, &self.probe_histories, &self.probe_curves)?);
         Ok(written)
     }
 }

@@ -58,7 +58,7 @@ pub(super) fn result_warnings(model: &Model, solution: &Solution) -> Vec<Warning
         }
     }
     strain_measure_warning(model, solution, &mut warnings);
-    contact_energy_warning(solution, &mut warnings);
+    contact_energy_warning(model, solution, &mut warnings);
     let finite = |f: &[f64; 3]| f.iter().all(|v| v.is_finite());
     if !(solution.reactions.iter().all(|r| finite(&r.force)) && solution.contacts.iter().all(|c| finite(&c.force))) {
         warnings.push(Warning {
@@ -186,9 +186,16 @@ fn strain_measure_warning(model: &Model, solution: &Solution, warnings: &mut Vec
 /// step: the contact spring's period is not resolved, the points chatter,
 /// and the trapezoidal rule's end-point forces do spurious work). Warned
 /// when, with no contact force left at the end, the contact work exceeds
-/// 1 % of the largest energy of the run.
-fn contact_energy_warning(solution: &Solution, warnings: &mut Vec<Warning>) {
+/// 1 % of the largest energy of the run, in a model whose indenters stand
+/// still (the only conservative ones).
+fn contact_energy_warning(model: &Model, solution: &Solution, warnings: &mut Vec<Warning>) {
     let Some(rows) = &solution.energy else { return };
+    // only fixed rigid indenters are conservative: an impactor or a moving
+    // or force-driven indenter does work on the bodies by right
+    let fixed = model.indenters.iter().all(|i| i.impactor.is_none() && i.force.is_none() && i.displacement == [0.0; 3]);
+    if !fixed {
+        return;
+    }
     let Some(last) = rows.last() else { return };
     let open = solution.contacts.iter().all(|c| c.force == [0.0; 3]);
     let scale = rows.iter().map(|r| r.kinetic.max(r.internal.abs()).max(r.external.abs())).fold(0.0, f64::max);

@@ -50,9 +50,11 @@ use crate::bc::FaceIntegral;
 pub mod assembly;
 pub mod current;
 mod friction;
+mod impactor;
 pub mod nodal_normal;
 pub use assembly::{ContactPoint, Contacts};
 pub use friction::{Friction, FrictionResponse, friction_response, stick_block, turning_friction};
+pub use impactor::Impactor;
 pub mod surface;
 
 /// `a · b` of 3-vectors (the contact geometry's points, tangents, normals).
@@ -253,19 +255,9 @@ pub struct Indenter {
     /// ([`RigidSurface::current_gap`]); `false`: node-to-node, fixed at the
     /// reference configuration (the paper's method).
     pub updated: bool,
-    /// A rigid impactor with mass (transient analysis): its motion along
-    /// its initial velocity is an unknown driven by its inertia, its
-    /// contact force and `force`; `None`: no mass of its own.
+    /// A rigid impactor's mass and velocity (transient analysis; module
+    /// `impactor`); `None`: no mass of its own.
     pub impactor: Option<Impactor>,
-}
-
-/// The mass and initial velocity of a rigid impactor (a drop weight).
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Impactor {
-    /// Mass (kg).
-    pub mass: f64,
-    /// Initial velocity (m/s); the impactor moves along it.
-    pub velocity: [f64; 3],
 }
 
 /// The boundary faces of one side of a contact.

@@ -134,6 +134,13 @@ fn the_trapezoidal_rule_conserves_energy_and_a_dissipative_newmark_does_not() {
         rows.iter().map(|r| r.balance.abs()).fold(0.0, f64::max) / scale
     };
     let trapezoidal = balance("");
+    // an elastic body's internal work is its elastic strain energy: the
+    // trapezoidal work of the nodal forces against ½ ∫ σᵀ C⁻¹ σ dV of the
+    // Gauss-point stresses, the same quadrature as K (round-off apart)
+    let sol = common::run(&bar(1000.0, hold, 100, ""));
+    let last = *sol.energy.unwrap().last().unwrap();
+    println!("internal work {:e} J, elastic strain energy {:e} J", last.internal, last.elastic);
+    assert!(last.plastic.abs() < 1e-9 * last.internal, "{last:?}");
     let dissipative = balance("newmark = { beta = 0.3025, gamma = 0.6 }");
     println!("largest energy imbalance: trapezoidal {trapezoidal:.2e}, γ = 0.6 {dissipative:.2e} of the energy");
     assert!(trapezoidal < 1e-6, "{trapezoidal}");
@@ -372,4 +379,8 @@ fn a_drop_weight_hands_its_energy_to_the_tube() {
     let summary: serde_json::Value = serde_json::from_str(&summary).unwrap();
     let peeq = summary["probes"][0]["peeq"].as_f64().unwrap_or(0.0);
     assert!(peeq > 1e-3, "no plastic dent: peeq {peeq}");
+    // most of what the tube took is dissipated plastically
+    let (plastic, internal) = (*energy["plastic_J"].last().unwrap(), *energy["internal_J"].last().unwrap());
+    println!("plastic dissipation {plastic} J of the internal work {internal} J");
+    assert!(plastic > 0.5 * internal && plastic <= internal, "{plastic} of {internal}");
 }

@@ -510,7 +510,8 @@ impl Incremental for Structure<'_> {
     fn commit(&mut self) {
         if let Some(inertia) = self.dynamics.as_mut() {
             let parts = [&self.elements as &dyn Contribution, &self.loads, &self.contacts];
-            transient::account_energy(inertia, &self.state, &self.system, &self.dirichlet, parts);
+            let model = (self.model, &self.elements);
+            transient::account_energy(inertia, model, &self.state, &self.system, &self.dirichlet, parts);
         }
         // (a transient tangent carries M / (β Δt²): always positive definite)
         if self.model.kinematics.is_nonlinear() && self.dynamics.is_none() {

@@ -5,7 +5,9 @@
 //! internal work `W_int` (strain energy plus plastic dissipation), the
 //! damping dissipation `D` (`C v`), the work of the loads `W_ext`, of the
 //! contacts `W_c` and of the supports `W_s` (reactions on prescribed
-//! motion). The kinetic energy is `T = ½ vᵀ M v`. Their balance
+//! motion). The kinetic energy is `T = ½ vᵀ M v`; the internal work splits
+//! into the elastic strain energy held, `½ ∫ σᵀ C⁻¹ σ dV`, and the rest,
+//! the plastic dissipation. Their balance
 //!
 //! ```text
 //! B = W_ext + W_c + W_s − (T − T₀) − W_int − D
@@ -26,6 +28,10 @@ pub struct EnergyRow {
     pub kinetic: f64,
     /// `W_int`.
     pub internal: f64,
+    /// The elastic strain energy `½ ∫ σᵀ C⁻¹ σ dV` held now.
+    pub elastic: f64,
+    /// `W_int` less the elastic strain energy: plastic dissipation.
+    pub plastic: f64,
     /// `D`.
     pub damping: f64,
     /// `W_ext`.
@@ -62,10 +68,10 @@ pub struct StepForces<'a> {
 }
 
 impl EnergyLedger {
-    /// Records the step to `time` over `du` with the converged `forces` and
-    /// kinetic energy `kinetic`; the first call records the initial state
-    /// (then `du` is ignored).
-    pub fn record(&mut self, time: f64, du: &[f64], forces: &StepForces<'_>, kinetic: f64) {
+    /// Records the step to `time` over `du` with the converged `forces`,
+    /// kinetic energy `kinetic` and elastic strain energy `elastic`; the
+    /// first call records the initial state (then `du` is ignored).
+    pub fn record(&mut self, time: f64, du: &[f64], forces: &StepForces<'_>, kinetic: f64, elastic: f64) {
         let now = [forces.internal, forces.damping, forces.external, forces.contact, forces.supports];
         let mut row = self.rows.last().copied().unwrap_or_default();
         row.time = time;
@@ -82,6 +88,8 @@ impl EnergyLedger {
             row.contact += work(3);
             row.supports += work(4);
         }
+        row.elastic = elastic;
+        row.plastic = row.internal - elastic;
         let t0 = self.rows.first().map_or(kinetic, |r| r.kinetic);
         row.balance = row.external + row.contact + row.supports - (row.kinetic - t0) - row.internal - row.damping;
         self.rows.push(row);

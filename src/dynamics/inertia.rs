@@ -97,15 +97,16 @@ impl Inertia {
         let kinetic = self.kinetic_energy(&v0, eq, pattern);
         let zero = vec![0.0; v0.len()];
         let forces = StepForces { internal: &zero, damping: &zero, external: &zero, contact: &zero, supports: &zero };
-        self.ledger.record(self.time(0.0), &zero, &forces, kinetic);
+        self.ledger.record(self.time(0.0), &zero, &forces, kinetic, 0.0);
     }
 
     /// Adds the converged step at λ to the energy balance: `du` the step's
     /// displacement increment, `forces` the other parts' converged forces
-    /// (the damping forces are this part's own).
+    /// (the damping forces are this part's own), `elastic` the elastic
+    /// strain energy held.
     pub fn account(
         &mut self,
-        lambda: f64,
+        (lambda, elastic): (f64, f64),
         du: &[f64],
         forces: [&[f64]; 4],
         eq: &[usize],
@@ -117,7 +118,7 @@ impl Inertia {
         let [internal, external, contact, supports] = forces;
         let step = StepForces { internal, damping: &self.damping_force, external, contact, supports };
         let time = self.time(lambda);
-        self.ledger.record(time, du, &step, kinetic);
+        self.ledger.record(time, du, &step, kinetic, elastic);
     }
 
     /// The energy balance, one row per converged step (the initial state first).

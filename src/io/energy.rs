@@ -11,12 +11,17 @@ use crate::model::Model;
 /// Writes the energy balance of a transient run (nothing for another).
 pub fn write_energy(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     let Some(rows) = &solution.energy else { return Ok(Vec::new()) };
-    let mut text = String::from("time_s,kinetic_J,internal_J,damping_J,external_J,contact_J,supports_J,balance_J\n");
+    let mut text = String::from(
+        "time_s,kinetic_J,internal_J,elastic_J,plastic_J,damping_J,external_J,contact_J,supports_J,balance_J\n",
+    );
     for r in rows {
-        text.push_str(&format!(
-            "{:e},{:e},{:e},{:e},{:e},{:e},{:e},{:e}\n",
-            r.time, r.kinetic, r.internal, r.damping, r.external, r.contact, r.supports, r.balance
-        ));
+        let values = [
+            r.time, r.kinetic, r.internal, r.elastic, r.plastic, r.damping, r.external, r.contact, r.supports,
+            r.balance,
+        ];
+        let line: Vec<String> = values.iter().map(|v| format!("{v:e}")).collect();
+        text.push_str(&line.join(","));
+        text.push('\n');
     }
     let path = dir.join("energy.csv");
     std::fs::write(&path, text).map_err(|e| super::file_error(&path, e))?;
@@ -36,6 +41,8 @@ pub fn write_energy(model: &Model, solution: &Solution, dir: &Path) -> Result<Ve
             &[
                 series("kinetic T", |r| r.kinetic),
                 series("internal work", |r| r.internal),
+                series("elastic strain energy", |r| r.elastic),
+                series("plastic dissipation", |r| r.plastic),
                 series("work of loads, contacts and supports", |r| r.external + r.contact + r.supports),
                 series("damping", |r| r.damping),
                 series("balance", |r| r.balance),

@@ -75,6 +75,39 @@ fn complementary(s: &Voigt, young: f64, poisson: f64) -> f64 {
     normal / young + 2.0 * (1.0 + poisson) * shear / young
 }
 
+/// The elastic strain energy `½ ∫ σᵀ C⁻¹ σ dV` of the Gauss-point
+/// stresses `stresses` (first of each body at `gp_offsets`), with each
+/// body's isotropic elastic compliance: the recoverable part of the
+/// internal work (the energy ledger of a transient run; with nonlinear
+/// geometry, of the stresses as stored, an approximation for large
+/// strains).
+pub fn elastic_energy(
+    mesh: &Mesh,
+    cells: &[CellValues],
+    materials: &[Material],
+    stresses: &[Voigt],
+    gp_offsets: &[usize],
+) -> f64 {
+    let mut total = 0.0;
+    for (b, body) in mesh.bodies.iter().enumerate() {
+        let cell = &cells[b];
+        let m = &materials[body.material];
+        let ngp = cell.gp_per_element();
+        for e in 0..body.n_elements() {
+            let (es, eb) = body.split_element(e);
+            for gb in 0..cell.axis.n_gp {
+                for gs in 0..cell.section.n_gp {
+                    let w =
+                        cell.section.weight[es * cell.section.n_gp + gs] * cell.axis.weight[eb * cell.axis.n_gp + gb];
+                    let g = gp_offsets[b] + e * ngp + gb * cell.section.n_gp + gs;
+                    total += 0.5 * w * complementary(&stresses[g], m.young, m.poisson);
+                }
+            }
+        }
+    }
+    total
+}
+
 /// Estimates the error of the stresses `stresses` (Gauss points, first of
 /// each body at `gp_offsets`) against their recovery `recovered` (the same
 /// layout, [`super::spr::recover`]).

@@ -48,6 +48,7 @@ pub(super) fn inertia(
 /// forces, and the reactions at constrained and prescribed DOFs.
 pub(super) fn account_energy(
     inertia: &mut crate::dynamics::Inertia,
+    (model, solid): (&Model, &Elements<'_>),
     state: &Kinematics,
     system: &LinearSystem,
     dirichlet: &Dirichlet,
@@ -62,5 +63,18 @@ pub(super) fn account_energy(
         })
         .collect();
     let [elements, loads, contacts] = parts.map(|p| p.forces().values);
-    inertia.account(state.lambda, &du, [elements, loads, contacts, &supports], eq, &system.assembler.pattern);
+    let elastic = crate::post::estimate::elastic_energy(
+        &model.mesh,
+        &model.cells,
+        &model.materials,
+        &solid.stress,
+        &solid.gp_offsets,
+    );
+    inertia.account(
+        (state.lambda, elastic),
+        &du,
+        [elements, loads, contacts, &supports],
+        eq,
+        &system.assembler.pattern,
+    );
 }

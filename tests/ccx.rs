@@ -2,22 +2,17 @@
 //! `calculix-ccx`); `.ci/run` installs it, and they fail — never skip — when
 //! it cannot be found.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
 
+use std::path::{Path, PathBuf};
+
+use common::cufem;
 use cufem::analysis::{self, Silent};
 use cufem::ccx::{self, HexKind};
 use cufem::model::Model;
 
-fn cufem() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_cufem"))
-}
-
 fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("ccx_{name}"));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::scratch_dir("ccx", name)
 }
 
 fn example(name: &str) -> String {

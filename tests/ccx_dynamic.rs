@@ -4,21 +4,16 @@
 //! (Debian package `calculix-ccx`), like tests/ccx.rs, and fail — never
 //! skip — without it.
 
-use std::path::{Path, PathBuf};
-use std::process::Command;
+mod common;
 
+use std::path::PathBuf;
+
+use common::cufem;
 use cufem::ccx::{self, HexKind};
 use cufem::model::Model;
 
-fn cufem() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_cufem"))
-}
-
 fn scratch(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("ccx_dynamic_{name}"));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::scratch_dir("ccx_dynamic", name)
 }
 
 /// The step-loaded bar of tests/dynamics.rs, coarsened: a 1 m steel rod,

@@ -75,6 +75,34 @@ fn complementary(s: &Voigt, young: f64, poisson: f64) -> f64 {
     normal / young + 2.0 * (1.0 + poisson) * shear / young
 }
 
+/// Calls `visit(global element, Gauss point, volume weight, material)` for
+/// every Gauss point of the mesh (first of each body at `gp_offsets`, the
+/// kernel's order `g = g_axis · n_section + g_section` within an element).
+fn each_point(
+    mesh: &Mesh,
+    cells: &[CellValues],
+    materials: &[Material],
+    gp_offsets: &[usize],
+    mut visit: impl FnMut(usize, usize, f64, &Material),
+) {
+    for (b, body) in mesh.bodies.iter().enumerate() {
+        let cell = &cells[b];
+        let m = &materials[body.material];
+        let ngp = cell.gp_per_element();
+        for e in 0..body.n_elements() {
+            let (es, eb) = body.split_element(e);
+            for gb in 0..cell.axis.n_gp {
+                for gs in 0..cell.section.n_gp {
+                    let w =
+                        cell.section.weight[es * cell.section.n_gp + gs] * cell.axis.weight[eb * cell.axis.n_gp + gb];
+                    let g = gp_offsets[b] + e * ngp + gb * cell.section.n_gp + gs;
+                    visit(body.element_offset + e, g, w, m);
+                }
+            }
+        }
+    }
+}
+
 /// The elastic strain energy `½ ∫ σᵀ C⁻¹ σ dV` of the Gauss-point
 /// stresses `stresses` (first of each body at `gp_offsets`), with each
 /// body's isotropic elastic compliance: the recoverable part of the
@@ -89,22 +117,9 @@ pub fn elastic_energy(
     gp_offsets: &[usize],
 ) -> f64 {
     let mut total = 0.0;
-    for (b, body) in mesh.bodies.iter().enumerate() {
-        let cell = &cells[b];
-        let m = &materials[body.material];
-        let ngp = cell.gp_per_element();
-        for e in 0..body.n_elements() {
-            let (es, eb) = body.split_element(e);
-            for gb in 0..cell.axis.n_gp {
-                for gs in 0..cell.section.n_gp {
-                    let w =
-                        cell.section.weight[es * cell.section.n_gp + gs] * cell.axis.weight[eb * cell.axis.n_gp + gb];
-                    let g = gp_offsets[b] + e * ngp + gb * cell.section.n_gp + gs;
-                    total += 0.5 * w * complementary(&stresses[g], m.young, m.poisson);
-                }
-            }
-        }
-    }
+    each_point(mesh, cells, materials, gp_offsets, |_, g, w, m| {
+        total += 0.5 * w * complementary(&stresses[g], m.young, m.poisson);
+    });
     total
 }
 
@@ -120,28 +135,18 @@ pub fn estimate(
     recovered: &[Voigt],
 ) -> ErrorEstimate {
     let mut out = ErrorEstimate { element: vec![0.0; mesh.n_elements()], ..Default::default() };
-    let (mut error2, mut energy2) = (0.0, 0.0);
-    for (b, body) in mesh.bodies.iter().enumerate() {
-        let cell = &cells[b];
-        let m = &materials[body.material];
-        let ngp = cell.gp_per_element();
-        for e in 0..body.n_elements() {
-            let (es, eb) = body.split_element(e);
-            let mut eta2 = 0.0;
-            for gb in 0..cell.axis.n_gp {
-                for gs in 0..cell.section.n_gp {
-                    let w =
-                        cell.section.weight[es * cell.section.n_gp + gs] * cell.axis.weight[eb * cell.axis.n_gp + gb];
-                    let g = gp_offsets[b] + e * ngp + gb * cell.section.n_gp + gs;
-                    let (raw, star) = (stresses[g], recovered[g]);
-                    let d: Voigt = std::array::from_fn(|k| star[k] - raw[k]);
-                    eta2 += w * complementary(&d, m.young, m.poisson);
-                    energy2 += w * complementary(&raw, m.young, m.poisson);
-                }
-            }
-            out.element[body.element_offset + e] = eta2.max(0.0).sqrt();
-            error2 += eta2.max(0.0);
-        }
+    let mut energy2 = 0.0;
+    // η_e² per element, then its square root
+    each_point(mesh, cells, materials, gp_offsets, |e, g, w, m| {
+        let (raw, star) = (stresses[g], recovered[g]);
+        let d: Voigt = std::array::from_fn(|k| star[k] - raw[k]);
+        out.element[e] += w * complementary(&d, m.young, m.poisson);
+        energy2 += w * complementary(&raw, m.young, m.poisson);
+    });
+    let mut error2 = 0.0;
+    for eta in &mut out.element {
+        error2 += eta.max(0.0);
+        *eta = eta.max(0.0).sqrt();
     }
     out.error = error2.sqrt();
     out.energy = energy2.max(0.0).sqrt();

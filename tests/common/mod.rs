@@ -1,6 +1,9 @@
 //! Helpers shared by the integration tests (each test binary uses a part).
 #![allow(dead_code)]
 
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
 use cufem::analysis::Structure;
 use cufem::solver::newton::NonlinearProblem;
 
@@ -91,4 +94,17 @@ pub fn csv_columns(path: &std::path::Path) -> std::collections::HashMap<String, 
         }
     }
     cols
+}
+
+/// The `cufem` binary of this build.
+pub fn cufem() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_cufem"))
+}
+
+/// An empty folder `<prefix>_<name>` in the test scratch directory.
+pub fn scratch_dir(prefix: &str, name: &str) -> PathBuf {
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{prefix}_{name}"));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
 }

@@ -92,17 +92,7 @@ point = [0.005, 0.5, 0.005]
 /// (9,063 DOF, ccx 10.4 s) the differences are 0.87 % and 1.17 %.
 #[test]
 fn verify_cross_checks_the_step_loaded_bar_history_with_calculix() {
-    let dir = scratch("bar");
-    let model = dir.join("bar.toml");
-    std::fs::write(&model, BAR).unwrap();
-    let out = dir.join("out");
-    let run = cufem()
-        .args(["verify", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--refine", "1", "--quiet"])
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&run.stdout);
-    assert!(run.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&run.stderr));
-    eprintln!("{stdout}");
+    let out = common::verify(&scratch("bar"), "bar", BAR, 1);
     // the deck: the density, two dynamic steps (1 ns in one increment, then
     // 200 of 4 µs), the trapezoidal rule, the load through its amplitude
     let deck = std::fs::read_to_string(out.join("verify/ccx/model.inp")).unwrap();

@@ -55,17 +55,7 @@ fix = ["x", "y", "z"]
 /// frequency by 2 % and fails.
 #[test]
 fn verify_cross_checks_the_natural_frequencies_with_calculix() {
-    let dir = scratch("cantilever");
-    let model = dir.join("cantilever.toml");
-    std::fs::write(&model, CANTILEVER).unwrap();
-    let out = dir.join("out");
-    let run = cufem()
-        .args(["verify", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--refine", "1", "--quiet"])
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&run.stdout);
-    assert!(run.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&run.stderr));
-    eprintln!("{stdout}");
+    let out = common::verify(&scratch("cantilever"), "cantilever", CANTILEVER, 1);
     // the deck: the density, one frequency step for 6 modes, no static step
     let deck = std::fs::read_to_string(out.join("verify/ccx/model.inp")).unwrap();
     assert!(deck.contains("*DENSITY\n7.85e3\n") && deck.contains("*STEP\n*FREQUENCY\n6\n"), "{deck:.0}");

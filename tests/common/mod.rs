@@ -108,3 +108,21 @@ pub fn scratch_dir(prefix: &str, name: &str) -> PathBuf {
     std::fs::create_dir_all(&d).unwrap();
     d
 }
+
+/// Writes `text` as `<dir>/<name>.toml` and runs `cufem verify` on it at
+/// `--refine refine` into `<dir>/out`, which it returns; the run must
+/// succeed (its report is printed).
+pub fn verify(dir: &Path, name: &str, text: &str, refine: u32) -> PathBuf {
+    let model = dir.join(format!("{name}.toml"));
+    std::fs::write(&model, text).unwrap();
+    let out = dir.join("out");
+    let refine = refine.to_string();
+    let run = cufem()
+        .args(["verify", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--refine", &refine, "--quiet"])
+        .output()
+        .unwrap();
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    assert!(run.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&run.stderr));
+    eprintln!("{stdout}");
+    out
+}

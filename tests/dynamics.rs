@@ -296,6 +296,31 @@ fn a_rod_rebounds_from_a_rigid_wall_after_two_transit_times() {
     assert!(energy > 2.0, "{energy}");
     let summary = std::fs::read_to_string(stiff.join("summary.json")).unwrap();
     assert!(summary.contains("net work"), "no warning in {summary}");
+    // the ParaView time series: a frame every 50 µs of the 600 µs
+    let pvd = std::fs::read_to_string(out.join("frames.pvd")).unwrap();
+    assert_eq!(pvd.matches("<DataSet").count(), 12, "{pvd}");
+    assert!(out.join("frame_0012.vtu").exists());
+}
+
+/// A frame (`analysis.output_interval`) holds the state of the increment it
+/// was taken at: the tip displacement sampled from the frame's fields
+/// equals the probe history's at that increment, and the frames come at
+/// the first converged time at or past each multiple of the interval.
+#[test]
+fn frames_hold_the_fields_of_their_time() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/rod_impact.toml");
+    let text = std::fs::read_to_string(path).unwrap().replace("output_interval = 5e-5", "output_interval = 1.5e-4");
+    let model = cufem::model::Model::parse(&text).unwrap();
+    let sol = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
+    let times: Vec<f64> = sol.frames.iter().map(|f| f.time).collect();
+    assert_eq!(times.len(), 4, "{times:?}");
+    for (k, t) in times.iter().enumerate() {
+        assert!((t - 1.5e-4 * (k + 1) as f64).abs() < 1e-6 * 6e-4, "frame {k} at {t} s");
+        let snapshot = sol.at_frame(&model, k).unwrap();
+        let tip = snapshot.fields(&model).sample_probe(&model.probes[0]).unwrap().u;
+        let row = &sol.history[sol.frames[k].increment - 1];
+        assert!((tip[1] - row.probes[0][1]).abs() <= 1e-12 * row.probes[0][1].abs().max(1e-9), "{tip:?} {row:?}");
+    }
 }
 
 /// A rigid mass striking the free end of a rod fixed at the other end

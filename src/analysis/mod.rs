@@ -12,11 +12,14 @@
 pub mod buckling;
 pub mod modal;
 pub mod path;
+mod recorder;
 mod results;
 pub mod structure;
 mod warnings;
 
 pub use path::{PathEnd, PathOutcome};
+pub use recorder::Frame;
+use recorder::Recorder;
 pub use results::{AdaptCycle, Adaptivity};
 pub use structure::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Structure, Timings};
 
@@ -31,7 +34,7 @@ use crate::size::{MemoryEstimate, Sizes, human_bytes};
 use crate::solver::Interrupt;
 use crate::solver::linear::{Cholesky, LinearError};
 use crate::solver::newton::NonlinearProblem;
-use crate::solver::stepping::{self, Cutback, Increment, Observer, SteppingError};
+use crate::solver::stepping::{self, Cutback, Increment, SteppingError};
 use crate::voigt::Voigt;
 
 /// Errors that stop an analysis before it can start (a non-convergence is
@@ -294,6 +297,9 @@ pub struct Solution {
     /// `analysis.type = "transient"`: the energy balance per converged
     /// time step (the initial state first); `None` otherwise.
     pub energy: Option<Vec<crate::dynamics::energy::EnergyRow>>,
+    /// `analysis.output_interval`: the fields at every output time of a
+    /// transient run (empty otherwise).
+    pub frames: Vec<Frame>,
     /// How the path following went (`solver.control = "arc_length"`).
     pub path: Option<PathOutcome>,
 }
@@ -325,47 +331,6 @@ pub struct StepFields {
     pub states: Vec<PointState>,
     /// Gauss-point stresses.
     pub stresses: Vec<Voigt>,
-}
-
-struct Recorder<'a> {
-    history: Vec<HistoryRow>,
-    increments: Vec<Increment>,
-    cutbacks: Vec<Cutback>,
-    progress: &'a mut dyn Progress,
-}
-
-impl Observer<Structure<'_>> for Recorder<'_> {
-    fn converged(&mut self, s: &Structure<'_>, inc: &Increment) {
-        let contact = s.contact_resultants();
-        let max_penetration = contact.iter().map(|c| c.max_penetration).fold(0.0, f64::max);
-        self.progress.increment(&IncrementLog {
-            index: inc.index,
-            lambda: inc.lambda,
-            dlambda: inc.dlambda,
-            iterations: inc.newton.iterations,
-            residuals: inc.newton.residuals.clone(),
-            plastic_points: s.plastic_points(),
-            cutbacks: inc.cutbacks,
-            max_penetration,
-            negative_pivots: s.negative_pivots(),
-        });
-        self.history.push(HistoryRow {
-            increment: inc.index,
-            lambda: inc.lambda,
-            iterations: inc.newton.iterations,
-            reactions: s.reactions(),
-            contacts: contact,
-            plastic_points: s.plastic_points(),
-            probes: s.probe_displacements(),
-            negative_pivots: s.negative_pivots(),
-        });
-        self.increments.push(inc.clone());
-    }
-
-    fn cut_back(&mut self, c: &Cutback) {
-        self.progress.cutback(c);
-        self.cutbacks.push(c.clone());
-    }
 }
 
 /// Drives the structure over the model's load history — by load steps, or
@@ -435,7 +400,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
             memory: structure.memory().clone(),
         },
     );
-    let mut recorder = Recorder { history: Vec::new(), increments: Vec::new(), cutbacks: Vec::new(), progress };
+    let mut recorder = Recorder::new(model, progress);
     let (step_ends, failure, path) = drive(&mut structure, model, options, &mut recorder);
     if failure.is_some() {
         // refresh forces at the last converged state for reactions and contact output
@@ -492,6 +457,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         buckling: buckled.or(imperfect.map(|(_, b)| b)),
         modal: vibration,
         energy,
+        frames: recorder.frames,
         path,
     };
     // the estimate compares the raw stresses with their patch recovery; the
@@ -540,6 +506,26 @@ impl Solution {
     pub fn at_step(&self, model: &Model, k: usize) -> Result<Option<Solution>, AnalysisError> {
         let Some(end) = self.steps.get(k) else { return Ok(None) };
         let Some(fields) = &end.fields else { return Ok(None) };
+        self.with_fields(model, fields, end.lambda, (&end.reactions, &end.contacts)).map(Some)
+    }
+
+    /// The solution as it was at frame `k` of a transient run (its fields,
+    /// and the reactions and contact resultants of its increment).
+    pub fn at_frame(&self, model: &Model, k: usize) -> Result<Solution, AnalysisError> {
+        let frame = &self.frames[k];
+        let row = &self.history[frame.increment - 1];
+        self.with_fields(model, &frame.fields, row.lambda, (&row.reactions, &row.contacts))
+    }
+
+    /// This solution with the fields, λ and resultants of another moment
+    /// (histories and timings of the whole run).
+    fn with_fields(
+        &self,
+        model: &Model,
+        fields: &StepFields,
+        lambda: f64,
+        (reactions, contacts): (&[Reaction], &[ContactResultant]),
+    ) -> Result<Solution, AnalysisError> {
         // field by field: `..self.clone()` would copy every step's fields
         // (and the final ones) only to drop them
         let mut s = Solution {
@@ -547,9 +533,9 @@ impl Solution {
             states: fields.states.clone(),
             stresses: fields.stresses.clone(),
             gp_offsets: self.gp_offsets.clone(),
-            lambda: end.lambda,
-            reactions: end.reactions.clone(),
-            contacts: end.contacts.clone(),
+            lambda,
+            reactions: reactions.to_vec(),
+            contacts: contacts.to_vec(),
             contact_sets: self.contact_sets.clone(),
             applied: self.applied,
             history: self.history.clone(),
@@ -570,13 +556,14 @@ impl Solution {
             buckling: None,
             modal: None,
             energy: None,
+            frames: Vec::new(),
             path: self.path.clone(),
         };
         if model.output.recovery == crate::model::Recovery::Projection {
             s.recovered =
                 Some(crate::post::recovery::project(&model.mesh, &model.cells, &s.stresses, &s.states, &s.gp_offsets)?);
         }
-        Ok(Some(s))
+        Ok(s)
     }
 
     /// A view for field evaluation.

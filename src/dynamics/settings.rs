@@ -18,6 +18,9 @@ pub struct TransientSettings {
     pub mass: MassKind,
     /// Uniform initial velocity per body index (m/s).
     pub initial_velocities: Vec<(usize, [f64; 3])>,
+    /// `analysis.output_interval`: the time (s) between the frames of the
+    /// ParaView time series; `None`: the step ends only.
+    pub output_interval: Option<f64>,
 }
 
 impl TransientSettings {

@@ -9,6 +9,7 @@
 //! | `history_<name>.csv` | per increment: reaction of a constraint set, or force of a contact |
 //! | `history_probes.csv` | per increment: the displacement of every probe |
 //! | `history.csv` | per increment: load factor, iterations, plastic points, negative pivots of the tangent |
+//! | `frame_<k>.vtu`, `frames.pvd` | transient with `analysis.output_interval`: the fields at every output time, and their ParaView time series |
 //! | `energy.csv`, `energy.png` | transient: per converged time step, the kinetic energy, the work of the internal, damping, applied, contact and support forces, and their balance |
 //! | `mode_<k>.vtu` | buckling and modal: the shape of mode k as the displacement field |
 //! | `contact_<name>.csv` | final gap, force and pressure of every contact point |
@@ -164,6 +165,7 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
         write_pvd(&path, &series)?;
         written.push(path);
     }
+    written.extend(write_frames(model, solution, dir)?);
     // last: its presence and its list of files mark a complete result set
     let mut s = summary(model, solution);
     s.steps = steps;
@@ -194,6 +196,29 @@ fn write_modes(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<Pat
         write_vtu(&path, model, &shape)?;
         written.push(path);
     }
+    Ok(written)
+}
+
+/// `frame_<k>.vtu` for every frame of a transient run
+/// (`analysis.output_interval`) and `frames.pvd`, their ParaView time
+/// series in seconds.
+fn write_frames(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
+    if solution.frames.is_empty() || !model.output.vtu {
+        return Ok(Vec::new());
+    }
+    let mut written = Vec::new();
+    let mut series = Vec::new();
+    for (k, frame) in solution.frames.iter().enumerate() {
+        let snapshot = solution.at_frame(model, k).map_err(|e| IoError::Recovery(e.to_string()))?;
+        let name = format!("frame_{:04}.vtu", k + 1);
+        let path = dir.join(&name);
+        write_vtu(&path, model, &snapshot)?;
+        written.push(path);
+        series.push((frame.time, name));
+    }
+    let path = dir.join("frames.pvd");
+    write_pvd(&path, &series)?;
+    written.push(path);
     Ok(written)
 }
 

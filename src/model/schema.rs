@@ -130,6 +130,8 @@ pub struct AnalysisFile {
     pub damping: Option<DampingFile>,
     /// Transient: uniform initial velocities of bodies.
     pub initial_velocities: Option<Vec<InitialVelocityFile>>,
+    /// Transient: the time (s) between the frames of the ParaView series.
+    pub output_interval: Option<f64>,
     /// A geometric imperfection from a buckling mode (nonlinear geometry).
     pub imperfection: Option<ImperfectionFile>,
 }

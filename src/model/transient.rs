@@ -24,6 +24,8 @@ fn transient_key(file: &AnalysisFile) -> Option<&'static str> {
         Some("analysis.damping")
     } else if file.initial_velocities.is_some() {
         Some("analysis.initial_velocities")
+    } else if file.output_interval.is_some() {
+        Some("analysis.output_interval")
     } else {
         None
     }
@@ -115,5 +117,29 @@ pub(super) fn transient(
         }
         initial_velocities.push((body, *v.velocity));
     }
-    Ok(Some(TransientSettings { durations, beta, gamma, damping, mass: mass_kind(file), initial_velocities }))
+    let total: f64 = durations.iter().sum();
+    let output_interval = file
+        .output_interval
+        .map(|dt| {
+            bounds::within(
+                "analysis.output_interval",
+                dt,
+                total * 1e-6,
+                total,
+                &format!(
+                    "the time between frames in s, at most the analysis's {} s and a millionth of it at least",
+                    bounds::number(total)
+                ),
+            )
+        })
+        .transpose()?;
+    Ok(Some(TransientSettings {
+        durations,
+        beta,
+        gamma,
+        damping,
+        mass: mass_kind(file),
+        initial_velocities,
+        output_interval,
+    }))
 }

@@ -1,0 +1,101 @@
+//! The observer of the stepping (`solver::stepping::Observer`): progress,
+//! history rows and, for a transient analysis, the frames of its ParaView
+//! time series.
+
+use super::{HistoryRow, IncrementLog, Progress, StepFields, Structure};
+use crate::model::Model;
+use crate::solver::stepping::{Cutback, Increment, Observer};
+
+/// What the stepping reports at every converged increment: the progress
+/// shown, the history rows and increments kept, and in a transient analysis
+/// with `analysis.output_interval` the frames of the time series.
+pub(super) struct Recorder<'a> {
+    pub history: Vec<HistoryRow>,
+    pub increments: Vec<Increment>,
+    pub cutbacks: Vec<Cutback>,
+    pub progress: &'a mut dyn Progress,
+    /// Frames so far, and the time of the next one (transient analysis).
+    pub frames: Vec<Frame>,
+    next_frame: f64,
+    model: &'a Model,
+}
+
+/// The fields of a transient run at one output time.
+#[derive(Debug, Clone)]
+pub struct Frame {
+    /// Time (s).
+    pub time: f64,
+    /// The increment it was taken at (1-based; its row in the history).
+    pub increment: usize,
+    /// Displacements, states and stresses then.
+    pub fields: StepFields,
+}
+
+impl<'a> Recorder<'a> {
+    /// Nothing recorded yet.
+    pub fn new(model: &'a Model, progress: &'a mut dyn Progress) -> Self {
+        let next_frame = model.transient.as_ref().and_then(|t| t.output_interval).unwrap_or(f64::INFINITY);
+        Self {
+            history: Vec::new(),
+            increments: Vec::new(),
+            cutbacks: Vec::new(),
+            progress,
+            frames: Vec::new(),
+            next_frame,
+            model,
+        }
+    }
+
+    /// A frame of the structure's present fields if its time has come.
+    fn frame(&mut self, s: &Structure<'_>, inc: &Increment) {
+        let Some(tr) = &self.model.transient else { return };
+        let Some(interval) = tr.output_interval else { return };
+        let t = tr.time(inc.lambda);
+        // the first converged time at or past each multiple of the interval
+        if t < self.next_frame * (1.0 - 1e-9) {
+            return;
+        }
+        while self.next_frame <= t * (1.0 + 1e-9) {
+            self.next_frame += interval;
+        }
+        let e = s.elements();
+        let fields =
+            StepFields { u: s.displacements().to_vec(), states: e.committed.clone(), stresses: e.stress.clone() };
+        self.frames.push(Frame { time: t, increment: inc.index, fields });
+    }
+}
+
+impl Observer<Structure<'_>> for Recorder<'_> {
+    fn converged(&mut self, s: &Structure<'_>, inc: &Increment) {
+        let contact = s.contact_resultants();
+        let max_penetration = contact.iter().map(|c| c.max_penetration).fold(0.0, f64::max);
+        self.progress.increment(&IncrementLog {
+            index: inc.index,
+            lambda: inc.lambda,
+            dlambda: inc.dlambda,
+            iterations: inc.newton.iterations,
+            residuals: inc.newton.residuals.clone(),
+            plastic_points: s.plastic_points(),
+            cutbacks: inc.cutbacks,
+            max_penetration,
+            negative_pivots: s.negative_pivots(),
+        });
+        self.history.push(HistoryRow {
+            increment: inc.index,
+            lambda: inc.lambda,
+            iterations: inc.newton.iterations,
+            reactions: s.reactions(),
+            contacts: contact,
+            plastic_points: s.plastic_points(),
+            probes: s.probe_displacements(),
+            negative_pivots: s.negative_pivots(),
+        });
+        self.increments.push(inc.clone());
+        self.frame(s, inc);
+    }
+
+    fn cut_back(&mut self, c: &Cutback) {
+        self.progress.cutback(c);
+        self.cutbacks.push(c.clone());
+    }
+}

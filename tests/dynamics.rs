@@ -448,3 +448,65 @@ fn the_transient_tangent_matches_finite_differences() {
     println!("{} columns, largest relative difference {worst:e}", columns.len());
     assert!(worst < 1e-6, "{worst:e}");
 }
+
+/// Hertz's impact theory (Johnson, *Contact Mechanics*, §11.4): a rigid
+/// ball of mass m at v₀ on an elastic half-space indents it by
+/// `δ_max = (15 m v₀² / (16 E* √R))^(2/5)`, with the peak force
+/// `(4/3) E* √R δ_max^(3/2)`, and leaves after `2.94 δ_max / v₀`. The
+/// quarter model of `examples/hertz_ball.toml` (the same block, clamped,
+/// 30 mm: a wave crosses it in 6 µs, quasi-static against the impact) with
+/// its ball made an impactor (a quarter of 1 kg at 1 m/s, 1 µm above the
+/// block, `method = "surface"`, default penalty), 40 steps of 6.5 µs:
+/// δ_max 71.1 µm, 4,394 N on the quarter and 209.1 µs in theory; measured
+/// −1.3 %, +2.1 % (the static example is +2.9 %: the finite clamped block
+/// is stiffer than the half-space) and −1.2 %; the ball rebounds at
+/// 1.000 v₀ (test 2 %). Issue 27 asks 5 %. Ignored: about 40 s
+/// (`cargo test --release --test dynamics -- --ignored hertz --nocapture`).
+#[test]
+#[ignore]
+fn a_ball_bounces_off_a_block_as_hertz_impact_theory_says() {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hertz_ball.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let lines = text.find("[[lines]]").unwrap();
+    let text = text[..lines]
+        .replace("[solver]\nincrements = 4", "[analysis]\ntype = \"transient\"\n\n[solver]\nmax_increments = 5000")
+        .replacen("poisson_ratio = 0.3\n", "poisson_ratio = 0.3\ndensity = 7850.0\n", 1)
+        .replace("center = [0.0, 0.0, 0.01]", "center = [0.0, 0.0, 0.010001]")
+        .replace("displacement = [0.0, 0.0, -5e-5]", "mass = 0.25\nvelocity = [0.0, 0.0, -1.0]")
+        + "[[steps]]\nname = \"impact\"\nfactor = 1.0\nduration = 2.6e-4\nincrements = 40\n";
+    assert!(text.contains("mass = 0.25") && text.contains("transient"), "{text}");
+    let sol = common::run(&text);
+    let (mass, v0, radius, gap) = (1.0f64, 1.0, 0.01f64, 1e-6);
+    let e_star = 200e9 / (1.0 - 0.3f64 * 0.3);
+    let delta = (15.0 * mass * v0 * v0 / (16.0 * e_star * radius.sqrt())).powf(0.4);
+    let peak = 4.0 / 3.0 * e_star * radius.sqrt() * delta.powf(1.5) / 4.0;
+    let duration = 2.94 * delta / v0;
+    // the ball's travel beyond the gap (its indentation) and force in time
+    let rows: Vec<(f64, f64, f64)> = sol
+        .history
+        .iter()
+        .map(|r| {
+            let b = r.contact("ball").unwrap();
+            (r.lambda * 2.6e-4, -b.displacement[2] - gap, -b.force[2])
+        })
+        .collect();
+    let max_indent = rows.iter().map(|r| r.1).fold(0.0, f64::max);
+    let max_force = rows.iter().map(|r| r.2).fold(0.0, f64::max);
+    // separation: where the indentation returns to zero (linear between steps)
+    let k = rows.iter().rposition(|r| r.1 > 0.0).unwrap();
+    let (a, b) = (rows[k], rows[k + 1]);
+    let end = a.0 + (b.0 - a.0) * a.1 / (a.1 - b.1);
+    let contact = end - gap / v0;
+    let n = rows.len() - 1;
+    let rebound = (rows[n - 5].1 - rows[n].1) / (rows[n].0 - rows[n - 5].0);
+    println!(
+        "indentation {max_indent:e} m against {delta:e} m, force {max_force:.1} N against {peak:.1} N, \
+         contact {contact:e} s against {duration:e} s, rebound {rebound} m/s"
+    );
+    for (got, want, what) in
+        [(max_indent, delta, "indentation"), (max_force, peak, "force"), (contact, duration, "duration")]
+    {
+        assert!((got / want - 1.0).abs() < 0.05, "{what}: {got} against {want}");
+    }
+    assert!((rebound / v0 - 1.0).abs() < 0.02, "rebound {rebound}");
+}

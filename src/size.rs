@@ -22,6 +22,7 @@
 //! a DOF 64 (eight vectors); in a model with friction, the GMRES basis
 //! (`solver::krylov::GmresWork::vectors` of 8 bytes per equation); in a buckling or modal analysis
 //! the Lanczos basis (`solver::eigen::vectors`) and two value arrays of the pattern (K and B);
+//! in a transient analysis the mass (and damping) values on the pattern;
 //! the program itself about 8 MiB. Setup transients (node graph, METIS arrays, the
 //! transposed pattern) and output transients (VTU arrays) are freed before
 //! the factor is allocated, so the larger of them is added, not both.
@@ -60,6 +61,9 @@ pub struct Sizes {
     /// Vectors of the equations' size held by the eigensolver (buckling or
     /// modal analysis; 0 otherwise).
     pub eigen_vectors: u64,
+    /// Matrices on the tangent's pattern a transient analysis keeps: the
+    /// mass, and the damping if any (0 otherwise).
+    pub dynamic_matrices: u64,
     /// True once `factor_nnz` comes from the symbolic factorization.
     pub exact: bool,
 }
@@ -102,6 +106,7 @@ impl Sizes {
             ("Gauss-point states and stresses", s.gauss_points.saturating_mul(GAUSS_POINT_BYTES)),
             ("vectors", s.dofs.saturating_mul(64)),
             ("GMRES basis (friction)", s.equations.saturating_mul(8).saturating_mul(s.krylov_vectors)),
+            ("mass and damping matrices", s.pattern_nnz.saturating_mul(8).saturating_mul(s.dynamic_matrices)),
             // the Lanczos basis, and the two matrices K and B (or M) copied
             // out of the tangent's pattern
             (

@@ -20,65 +20,9 @@ fn scratch(name: &str) -> PathBuf {
 /// 10 × 10 mm, ν = 0, fixed at y = 0 and held laterally everywhere, 50 B2;
 /// 1 kN at its end risen in 1 ns, then held for one period 4L/c = 0.8 ms
 /// in 200 time steps (c = √(E/ρ) = 5,000 m/s; Courant number 1).
-const BAR: &str = r#"
-title = "Step-loaded bar"
-
-[analysis]
-type = "transient"
-
-[solver]
-max_increments = 5000
-
-[[materials]]
-name = "steel"
-young_modulus = 200e9
-poisson_ratio = 0.0
-density = 8000.0
-
-[[bodies]]
-name = "bar"
-material = "steel"
-section = { shape = "rectangle", element = "L4", x = { from = 0.0, to = 0.01, elements = 1 }, z = { from = 0.0, to = 0.01, elements = 1 } }
-axis = { element = "B2", from = 0.0, to = 1.0, elements = 50 }
-
-[[constraints]]
-name = "root"
-body = "bar"
-where = { y = 0.0 }
-fix = ["x", "y", "z"]
-
-[[constraints]]
-name = "lateral"
-body = "bar"
-where = { y = [0.0, 1.0] }
-fix = ["x", "z"]
-
-[[loads]]
-name = "end"
-body = "bar"
-where = { y = 1.0 }
-total_force = [0.0, 1000.0, 0.0]
-
-[[steps]]
-name = "rise"
-factor = 1.0
-duration = 1e-9
-increments = 1
-
-[[steps]]
-name = "hold"
-factor = 1.0
-duration = 8e-4
-increments = 200
-
-[[probes]]
-name = "end"
-point = [0.005, 1.0, 0.005]
-
-[[probes]]
-name = "middle"
-point = [0.005, 0.5, 0.005]
-"#;
+fn bar() -> String {
+    common::step_loaded_bar(50, 1000.0, 8e-4, 200, "")
+}
 
 /// `cufem verify --refine 1` on the bar (50 C3D20R, 1,824 DOF against
 /// cufem's 612; about 2 s in all, ccx 1.8 s of it): the end's u_y history
@@ -92,7 +36,7 @@ point = [0.005, 0.5, 0.005]
 /// (9,063 DOF, ccx 10.4 s) the differences are 0.87 % and 1.17 %.
 #[test]
 fn verify_cross_checks_the_step_loaded_bar_history_with_calculix() {
-    let out = common::verify(&scratch("bar"), "bar", BAR, 1);
+    let out = common::verify(&scratch("bar"), "bar", &bar(), 1);
     // the deck: the density, two dynamic steps (1 ns in one increment, then
     // 200 of 4 µs), the trapezoidal rule, the load through its amplitude
     let deck = std::fs::read_to_string(out.join("verify/ccx/model.inp")).unwrap();
@@ -143,7 +87,7 @@ fn verify_cross_checks_the_step_loaded_bar_history_with_calculix() {
 /// step end, each step's own increment (no ccx run).
 #[test]
 fn initial_velocities_and_the_load_history_become_the_deck() {
-    let text = BAR.replace(
+    let text = bar().replace(
         "type = \"transient\"",
         "type = \"transient\"\ninitial_velocities = [{ body = \"bar\", velocity = [0.0, -0.5, 0.0] }]",
     ) + "\n[[steps]]\nname = \"release\"\nfactor = 0.5\nduration = 2e-4\nincrements = 40\n";
@@ -169,11 +113,13 @@ fn initial_velocities_and_the_load_history_become_the_deck() {
 #[test]
 fn a_transient_model_with_contact_or_another_integrator_is_refused_by_key() {
     let wall = format!(
-        "{BAR}\n[[indenters]]\nname = \"wall\"\nbody = \"bar\"\nshape = \"flat\"\nsurface = {{ y = 1.0 }}\n\
-         normal = \"-y\"\nposition = 1.00001\ndisplacement = [0.0, 0.0, 0.0]\n"
+        "{}\n[[indenters]]\nname = \"wall\"\nbody = \"bar\"\nshape = \"flat\"\nsurface = {{ y = 1.0 }}\n\
+         normal = \"-y\"\nposition = 1.00001\ndisplacement = [0.0, 0.0, 0.0]\n",
+        bar()
     );
-    let newmark = BAR.replace("type = \"transient\"", "type = \"transient\"\nnewmark = { beta = 0.3025, gamma = 0.6 }");
-    let damped = BAR.replace("type = \"transient\"", "type = \"transient\"\ndamping = { mass = 10.0 }");
+    let newmark =
+        bar().replace("type = \"transient\"", "type = \"transient\"\nnewmark = { beta = 0.3025, gamma = 0.6 }");
+    let damped = bar().replace("type = \"transient\"", "type = \"transient\"\ndamping = { mass = 10.0 }");
     let cases = [
         ("wall", &wall, "indenters: indenter \"wall\"", "a transient analysis with contact cannot be exported"),
         ("newmark", &newmark, "analysis.newmark: beta = 0.3025, gamma = 0.6", "the default beta = 0.25, gamma = 0.5"),

@@ -7,71 +7,9 @@ mod common;
 const E: f64 = 200e9;
 const RHO: f64 = 8000.0;
 
-/// A 1 m steel bar (10 × 10 mm, ν = 0 so that it is the 1D rod of
-/// d'Alembert's solution, held laterally everywhere), fixed at y = 0 and
-/// pulled at y = 1 m by `force` (N) applied within 1 ns and held for
-/// `hold` s in `steps` time steps.
+/// The step-loaded bar of `common::step_loaded_bar` on 200 B2.
 fn bar(force: f64, hold: f64, steps: usize, analysis: &str) -> String {
-    format!(
-        r#"
-        [analysis]
-        type = "transient"
-        {analysis}
-
-        [solver]
-        max_increments = 5000
-
-        [[materials]]
-        name = "steel"
-        young_modulus = {E}
-        poisson_ratio = 0.0
-        density = {RHO}
-
-        [[bodies]]
-        name = "bar"
-        material = "steel"
-        section = {{ shape = "rectangle", element = "L4", x = {{ from = 0.0, to = 0.01, elements = 1 }}, z = {{ from = 0.0, to = 0.01, elements = 1 }} }}
-        axis = {{ element = "B2", from = 0.0, to = 1.0, elements = 200 }}
-
-        [[constraints]]
-        name = "root"
-        body = "bar"
-        where = {{ y = 0.0 }}
-        fix = ["x", "y", "z"]
-
-        [[constraints]]
-        name = "lateral"
-        body = "bar"
-        where = {{ y = [0.0, 1.0] }}
-        fix = ["x", "z"]
-
-        [[loads]]
-        name = "end"
-        body = "bar"
-        where = {{ y = 1.0 }}
-        total_force = [0.0, {force}, 0.0]
-
-        [[steps]]
-        name = "rise"
-        factor = 1.0
-        duration = 1e-9
-        increments = 1
-
-        [[steps]]
-        name = "hold"
-        factor = 1.0
-        duration = {hold}
-        increments = {steps}
-
-        [[probes]]
-        name = "end"
-        point = [0.005, 1.0, 0.005]
-
-        [[probes]]
-        name = "middle"
-        point = [0.005, 0.5, 0.005]
-        "#
-    )
+    common::step_loaded_bar(200, force, hold, steps, analysis)
 }
 
 /// Time (s) of analysis time λ in the bar's history (1 ns, then `hold`).
@@ -184,7 +122,7 @@ fn mass_proportional_damping_decays_every_mode_at_its_rate() {
 fn transient_refuses_what_it_cannot_integrate() {
     let text = bar(1000.0, 1e-3, 10, "");
     let cases = [
-        (text.replace("duration = 1e-3\n", "").replace("duration = 1e-9\n", ""), "analysis.duration"),
+        (text.replace("duration = 0.001\n", "").replace("duration = 1e-9\n", ""), "analysis.duration"),
         (text.replace("duration = 1e-9", "duration = -1.0"), "steps[0].duration = -1"),
         (
             text.replace("type = \"transient\"", "type = \"transient\"\nnewmark = { beta = 0.1, gamma = 0.5 }"),
@@ -337,11 +275,11 @@ fn frames_hold_the_fields_of_their_time() {
 fn a_mass_striking_a_rod_follows_saint_venants_solution() {
     let text = bar(0.0, 4e-4, 400, "")
         .replace(
-            "[[loads]]\n        name = \"end\"\n        body = \"bar\"\n        where = { y = 1.0 }\n        total_force = [0.0, 0, 0.0]\n",
+            "[[loads]]\nname = \"end\"\nbody = \"bar\"\nwhere = { y = 1.0 }\ntotal_force = [0.0, 0.0, 0.0]\n",
             "[[indenters]]\nname = \"hammer\"\nbody = \"bar\"\nshape = \"flat\"\nsurface = { y = 1.0 }\nnormal = \"-y\"\n\
              position = 1.00001\nmass = 0.8\nvelocity = [0.0, -1.0, 0.0]\npenalty_factor = 1.0\n",
         )
-        .replace("name = \"rise\"\n        factor = 1.0\n        duration = 1e-9", "name = \"rise\"\n        factor = 1.0\n        duration = 1e-6");
+        .replace("name = \"rise\"\nfactor = 1.0\nduration = 1e-9", "name = \"rise\"\nfactor = 1.0\nduration = 1e-6");
     assert!(text.contains("hammer") && !text.contains("total_force"), "{text}");
     let sol = common::run(&text);
     let (rho, c, area, v0, mass, gap) = (RHO, (E / RHO).sqrt(), 1e-4, 1.0, 0.8, 1e-5);

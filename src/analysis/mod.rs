@@ -114,6 +114,10 @@ pub fn sizes(model: &Model, numbering: &Numbering, solver: &Cholesky) -> Sizes {
             .map(|b| b.modes)
             .or(model.modal.map(|m| m.modes))
             .map_or(0, |count| crate::solver::eigen::vectors(count) as u64),
+        dynamic_matrices: model.transient.as_ref().map_or(0, |t| {
+            let damped = t.damping.0 > 0.0 || t.damping.1 > 0.0;
+            1 + u64::from(damped)
+        }),
         exact: true,
         ..Default::default()
     };

@@ -51,6 +51,8 @@ pub struct Inertia {
     force: Vec<f64>,
     /// `‖M v_n‖ / Δt` of the last evaluation (the force scale it sets).
     reference: f64,
+    /// `‖M v_n‖` of the committed state, once computed.
+    momentum: Option<f64>,
     damping_force: Vec<f64>,
     /// Scratch per equation.
     x: Vec<f64>,
@@ -83,6 +85,7 @@ impl Inertia {
             lambda_n: 0.0,
             force: vec![0.0; n],
             reference: 0.0,
+            momentum: None,
             damping_force: vec![0.0; n],
             x: vec![0.0; n_eq],
             y: vec![0.0; n_eq],
@@ -126,33 +129,13 @@ impl Inertia {
         &self.ledger.rows
     }
 
-    /// The settings.
-    pub fn settings(&self) -> &TransientSettings {
-        &self.settings
-    }
-
     /// Time (s) at analysis time λ.
     pub fn time(&self, lambda: f64) -> f64 {
         self.settings.time(lambda)
     }
 
-    /// Velocities of the last evaluation (per DOF).
-    pub fn velocities(&self) -> &[f64] {
-        &self.v
-    }
-
-    /// Committed velocities (per DOF).
-    pub fn committed_velocities(&self) -> &[f64] {
-        &self.v_n
-    }
-
-    /// The damping forces `C v` of the last evaluation (per DOF).
-    pub fn damping_forces(&self) -> &[f64] {
-        &self.damping_force
-    }
-
     /// `½ vᵀ M v` of per-DOF velocities `v` on the equations `eq`.
-    pub fn kinetic_energy(&mut self, v: &[f64], eq: &[usize], pattern: &crate::solver::linear::LowerCsc) -> f64 {
+    fn kinetic_energy(&mut self, v: &[f64], eq: &[usize], pattern: &crate::solver::linear::LowerCsc) -> f64 {
         gather(v, eq, &mut self.x);
         pattern.mul_symmetric(&self.mass, &self.x, &mut self.y);
         0.5 * self.x.iter().zip(&self.y).map(|(a, b)| a * b).sum::<f64>()
@@ -205,9 +188,15 @@ impl Contribution for Inertia {
         // committed motion within the step
         self.reference = 0.0;
         if dt > 0.0 {
-            gather(&self.v_n, eq, &mut self.x);
-            pattern.mul_symmetric(&self.mass, &self.x, &mut self.y);
-            self.reference = self.y.iter().map(|v| v * v).sum::<f64>().sqrt() / dt;
+            let momentum = match self.momentum {
+                Some(p) => p,
+                None => {
+                    gather(&self.v_n, eq, &mut self.x);
+                    pattern.mul_symmetric(&self.mass, &self.x, &mut self.y);
+                    *self.momentum.insert(self.y.iter().map(|v| v * v).sum::<f64>().sqrt())
+                }
+            };
+            self.reference = momentum / dt;
         }
         self.force.fill(0.0);
         self.damping_force.fill(0.0);
@@ -241,6 +230,7 @@ impl Contribution for Inertia {
         self.v_n.clone_from(&self.v);
         self.a_n.clone_from(&self.a);
         self.lambda_n = at.lambda;
+        self.momentum = None;
     }
 
     fn restore(&mut self) {}

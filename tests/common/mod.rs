@@ -126,3 +126,73 @@ pub fn verify(dir: &Path, name: &str, text: &str, refine: u32) -> PathBuf {
     eprintln!("{stdout}");
     out
 }
+
+/// A 1 m steel bar (10 × 10 mm, ν = 0 so that it is the 1D rod of
+/// d'Alembert's solution, held laterally everywhere; E = 200 GPa,
+/// ρ = 8,000 kg/m³, c = 5,000 m/s) of `elements` B2, fixed at y = 0 and
+/// pulled at y = 1 m by `force` (N) applied within 1 ns and held for `hold`
+/// s in `steps` time steps, with the analysis keys `analysis`; probes at
+/// the end and the middle (tests/dynamics.rs, tests/ccx_dynamic.rs).
+pub fn step_loaded_bar(elements: usize, force: f64, hold: f64, steps: usize, analysis: &str) -> String {
+    format!(
+        r#"title = "Step-loaded bar"
+
+[analysis]
+type = "transient"
+{analysis}
+
+[solver]
+max_increments = 5000
+
+[[materials]]
+name = "steel"
+young_modulus = 200e9
+poisson_ratio = 0.0
+density = 8000.0
+
+[[bodies]]
+name = "bar"
+material = "steel"
+section = {{ shape = "rectangle", element = "L4", x = {{ from = 0.0, to = 0.01, elements = 1 }}, z = {{ from = 0.0, to = 0.01, elements = 1 }} }}
+axis = {{ element = "B2", from = 0.0, to = 1.0, elements = {elements} }}
+
+[[constraints]]
+name = "root"
+body = "bar"
+where = {{ y = 0.0 }}
+fix = ["x", "y", "z"]
+
+[[constraints]]
+name = "lateral"
+body = "bar"
+where = {{ y = [0.0, 1.0] }}
+fix = ["x", "z"]
+
+[[loads]]
+name = "end"
+body = "bar"
+where = {{ y = 1.0 }}
+total_force = [0.0, {force:?}, 0.0]
+
+[[steps]]
+name = "rise"
+factor = 1.0
+duration = 1e-9
+increments = 1
+
+[[steps]]
+name = "hold"
+factor = 1.0
+duration = {hold:?}
+increments = {steps}
+
+[[probes]]
+name = "end"
+point = [0.005, 1.0, 0.005]
+
+[[probes]]
+name = "middle"
+point = [0.005, 0.5, 0.005]
+"#
+    )
+}

@@ -187,13 +187,14 @@ fn columns(path: &std::path::Path) -> std::collections::HashMap<String, Vec<f64>
 /// `examples/rod_impact.toml` through the CLI: an elastic rod at v₀ = 1 m/s
 /// against a rigid wall stays in contact for `2L/c` = 0.4 ms and leaves
 /// with `−v₀` and its kinetic energy (the 1D wave solution, Graff §1.4):
-/// duration within 2 % (measured +0.25 %), the free end's mean velocity
-/// after separation within 2 % of −v₀ (measured below 1 %), the energy
-/// `T + W_int` at the end within 1 % of `T₀` (measured 0.0 %: 99.54 %
-/// kinetic, 0.46 % vibration) with the contact's net work below 1 % of it —
-/// the issue's checks. For contrast the same impact with the default
-/// penalty factor (100), whose contact spring the 1 µs step does not
-/// resolve: the rod leaves with several times its energy (5.9), and the run
+/// duration within 2 %, the free end's mean velocity after separation
+/// within 2 % of −v₀, the energy `T + W_int` at the end within 1 % of `T₀`
+/// — the issue's checks — at the default penalty factor (100), whose
+/// contact spring the 1 µs step does not resolve, with the contact impulse
+/// at the end of each step (the default, `dynamics::impulse`): the
+/// contact's net work is a loss (it cannot create energy) below 1 % of
+/// `T₀`. For contrast the same impact with Newmark's average of the contact
+/// forces: the rod leaves with several times its energy (5.9), and the run
 /// warns (summary.json).
 #[test]
 fn a_rod_rebounds_from_a_rigid_wall_after_two_transit_times() {
@@ -226,11 +227,12 @@ fn a_rod_rebounds_from_a_rigid_wall_after_two_transit_times() {
     assert!((rebound / -v0 - 1.0).abs() < 0.02, "{rebound}");
     let (energy, contact_work) = energy_ratio(&out);
     println!("energy at the end {energy} of T0, the contact's net work {contact_work} of T0");
-    assert!((energy - 1.0).abs() < 0.01 && contact_work.abs() < 0.01, "{energy} {contact_work}");
-    // the same impact with the default penalty factor: energy created
-    let stiff = run_cli("rod_impact_stiff", &text.replace("penalty_factor = 1.0\n", ""));
+    assert!((energy - 1.0).abs() < 0.01 && (-0.01..=0.0).contains(&contact_work), "{energy} {contact_work}");
+    // the same impact with Newmark's average of the contact forces: energy created
+    let average = text.replace("type = \"transient\"\n", "type = \"transient\"\ncontact_forces = \"newmark\"\n");
+    let stiff = run_cli("rod_impact_stiff", &average);
     let (energy, _) = energy_ratio(&stiff);
-    println!("with the default penalty: energy at the end {energy} of T0");
+    println!("with Newmark's average of the contact forces: energy at the end {energy} of T0");
     assert!(energy > 2.0, "{energy}");
     let summary = std::fs::read_to_string(stiff.join("summary.json")).unwrap();
     assert!(summary.contains("net work"), "no warning in {summary}");
@@ -387,6 +389,40 @@ fn the_transient_tangent_matches_finite_differences() {
     assert!(worst < 1e-6, "{worst:e}");
 }
 
+/// The end-of-step contact impulse (`dynamics::impulse`) in the tangent:
+/// `examples/rod_impact.toml` 20 µs into its contact with the wall, in the
+/// middle of a step, the columns of the rod's end nodes (in contact, the
+/// contact stiffness `K_c / γ = 2 K_c` far above the mass term) against
+/// central differences of the residual: within 1e-6 of the largest entry.
+/// Without the factor 1/γ on the contact blocks Newton does not converge in
+/// the first steps of the contact (tried by hand).
+#[test]
+fn the_contact_impulse_tangent_matches_finite_differences() {
+    use cufem::solver::newton::{self, NewtonSettings, NonlinearProblem};
+    use cufem::solver::stepping::Incremental;
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/rod_impact.toml");
+    let model = cufem::model::Model::parse(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let mut s = cufem::analysis::Structure::new(&model, None).unwrap();
+    // steps of 1 µs (600 over the 600 µs); the wall is reached at 10 µs
+    for k in 1..=30 {
+        s.set_load_factor(k as f64 / 600.0);
+        let report = newton::solve(&mut s, &NewtonSettings::default(), &Default::default());
+        assert!(report.converged(), "{report:?}");
+        s.commit();
+    }
+    s.set_load_factor(30.5 / 600.0);
+    s.evaluate().unwrap();
+    let k = s.tangent_values().to_vec();
+    let scale = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let n_nodes = s.displacements().len() / 3;
+    let columns: Vec<(usize, usize)> =
+        (n_nodes - 4..n_nodes).map(|n| 3 * n + 1).filter_map(|d| s.equation(d).map(|e| (d, e))).collect();
+    assert_eq!(columns.len(), 4);
+    let (worst, _) = common::tangent_vs_differences(&mut s, &columns, 1e-10, scale);
+    println!("largest relative difference {worst:e}");
+    assert!(worst < 1e-6, "{worst:e}");
+}
+
 /// Hertz's impact theory (Johnson, *Contact Mechanics*, §11.4): a rigid
 /// ball of mass m at v₀ on an elastic half-space indents it by
 /// `δ_max = (15 m v₀² / (16 E* √R))^(2/5)`, with the peak force
@@ -396,9 +432,10 @@ fn the_transient_tangent_matches_finite_differences() {
 /// its ball made an impactor (a quarter of 1 kg at 1 m/s, 1 µm above the
 /// block, `method = "surface"`, default penalty), 40 steps of 6.5 µs:
 /// δ_max 71.1 µm, 4,394 N on the quarter and 209.1 µs in theory; measured
-/// −1.3 %, +2.1 % (the static example is +2.9 %: the finite clamped block
+/// −1.3 %, +1.7 % (the static example is +2.9 %: the finite clamped block
 /// is stiffer than the half-space) and −1.2 %; the ball rebounds at
-/// 1.000 v₀ (test 2 %). Issue 27 asks 5 %. Ignored: about 40 s
+/// 0.998 v₀ (test 2 %; the end-of-step contact impulse loses 0.4 % of the
+/// energy). Issue 27 asks 5 %. Ignored: about 40 s
 /// (`cargo test --release --test dynamics -- --ignored hertz --nocapture`).
 #[test]
 #[ignore]

@@ -70,6 +70,9 @@ pub struct Structure<'m> {
     pivots: Option<usize>,
     /// Inertia and damping (`analysis.type = "transient"`), a contribution.
     dynamics: Option<crate::dynamics::Inertia>,
+    /// The contacts' end-of-step impulse (a transient analysis with
+    /// contacts and `analysis.contact_forces = "implicit"`).
+    impulse: Option<crate::dynamics::ContactImpulse>,
 }
 
 impl<'m> Structure<'m> {
@@ -132,6 +135,7 @@ impl<'m> Structure<'m> {
             memory,
             pivots: None,
             dynamics,
+            impulse: transient::impulse(model),
         })
     }
 
@@ -392,21 +396,29 @@ impl NonlinearProblem for Structure<'_> {
             let mut tangent = self.system.tangent();
             let parts: [&mut dyn Contribution; 3] = [&mut self.elements, &mut self.loads, &mut self.contacts];
             let inertia = self.dynamics.iter_mut().map(|i| i as &mut dyn Contribution);
+            let weight = self.impulse.as_ref().map_or(1.0, |i| i.weight());
             for part in parts.into_iter().chain(inertia) {
                 let t = Instant::now();
+                tangent.weight = if part.phase() == Phase::Contact { weight } else { 1.0 };
                 changes += part.evaluate(&at, &mut tangent);
                 elapsed[usize::from(part.phase() == Phase::Contact)] += t.elapsed();
             }
         }
         self.timings.assembly += elapsed[0];
         self.timings.contact += elapsed[1];
+        if let Some(impulse) = self.impulse.as_mut() {
+            impulse.update(self.contacts.forces().values);
+        }
         // their forces summed into the residual, per DOF
         let imbalance = &mut self.system.imbalance;
         imbalance.fill(0.0);
         let mut scale: f64 = 0.0;
         let parts = [&self.elements as &dyn Contribution, &self.loads, &self.contacts];
         for part in parts.into_iter().chain(self.dynamics.iter().map(|i| i as &dyn Contribution)) {
-            let f = part.forces();
+            let mut f = part.forces();
+            if let (Phase::Contact, Some(impulse)) = (part.phase(), &self.impulse) {
+                f.values = impulse.force();
+            }
             let mut size2 = 0.0;
             for (r, &v) in imbalance.iter_mut().zip(f.values) {
                 *r += f.sign * v;
@@ -511,7 +523,11 @@ impl Incremental for Structure<'_> {
         if let Some(inertia) = self.dynamics.as_mut() {
             let parts = [&self.elements as &dyn Contribution, &self.loads, &self.contacts];
             let model = (self.model, &self.elements);
-            transient::account_energy(inertia, model, &self.state, &self.system, &self.dirichlet, parts);
+            let contact = self.impulse.as_ref().map(|i| i.force());
+            transient::account_energy(inertia, model, &self.state, (&self.system, &self.dirichlet), parts, contact);
+        }
+        if let Some(impulse) = self.impulse.as_mut() {
+            impulse.commit();
         }
         // (a transient tangent carries M / (β Δt²): always positive definite)
         if self.model.kinematics.is_nonlinear() && self.dynamics.is_none() {

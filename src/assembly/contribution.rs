@@ -44,13 +44,22 @@ pub struct Tangent<'a> {
     pub values: &'a mut [f64],
     /// The unsymmetric rest, `None` in a model whose tangent is symmetric.
     pub rest: Option<&'a mut NonSymmetric>,
+    /// The factor on the blocks added through this tangent's methods: 1,
+    /// but `1/γ` for the contacts of a transient analysis
+    /// (`dynamics::impulse`).
+    pub weight: f64,
 }
 
 impl Tangent<'_> {
     /// Adds the symmetric block `k` between the DOFs of nodes `a` (rows) and
     /// `b` (columns) — and its transpose for `a ≠ b`.
     pub fn add_node_block(&mut self, a: usize, b: usize, k: &[[f64; 3]; 3]) {
-        self.assembler.add_node_block(self.values, a, b, k);
+        if self.weight == 1.0 {
+            self.assembler.add_node_block(self.values, a, b, k);
+        } else {
+            let w = self.weight;
+            self.assembler.add_node_block(self.values, a, b, &k.map(|r| r.map(|v| w * v)));
+        }
     }
 
     /// Adds `sign · block` between nodes `a` (rows) and `b` (columns) to the
@@ -62,7 +71,7 @@ impl Tangent<'_> {
             for (j, &v) in row.iter().enumerate() {
                 let (r, c) = (eq[3 * a + i], eq[3 * b + j]);
                 if v != 0.0 && r != super::NO_EQ && c != super::NO_EQ {
-                    rest.push_entry(r, c, sign * v);
+                    rest.push_entry(r, c, self.weight * sign * v);
                 }
             }
         }
@@ -79,7 +88,8 @@ impl Tangent<'_> {
                 .filter_map(|(d, x)| (eq[d] != super::NO_EQ && x != 0.0).then_some((eq[d], x)))
                 .collect()
         };
-        rest.push_outer(sparse(u), sparse(v));
+        let w = self.weight;
+        rest.push_outer(sparse(u).into_iter().map(|(e, x)| (e, w * x)), sparse(v));
     }
 }
 

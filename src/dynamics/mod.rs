@@ -15,10 +15,12 @@
 //! scatter maps.
 
 pub mod energy;
+pub mod impulse;
 pub mod inertia;
 pub mod mass;
 pub mod settings;
 
+pub use impulse::{ContactForces, ContactImpulse};
 pub use inertia::Inertia;
 
 pub use mass::{MassError, MassKind};

@@ -1,6 +1,6 @@
 //! The settings of a transient analysis (validated by `model::transient`).
 
-use super::MassKind;
+use super::{ContactForces, MassKind};
 
 /// The settings of a transient analysis.
 #[derive(Debug, Clone, PartialEq)]
@@ -21,6 +21,9 @@ pub struct TransientSettings {
     /// `analysis.output_interval`: the time (s) between the frames of the
     /// ParaView time series; `None`: the step ends only.
     pub output_interval: Option<f64>,
+    /// `analysis.contact_forces`: the contact impulse at the end of the
+    /// step, or Newmark's average (`dynamics::impulse`).
+    pub contact_forces: ContactForces,
 }
 
 impl TransientSettings {

@@ -132,8 +132,21 @@ pub struct AnalysisFile {
     pub initial_velocities: Option<Vec<InitialVelocityFile>>,
     /// Transient: the time (s) between the frames of the ParaView series.
     pub output_interval: Option<f64>,
+    /// Transient: `contact_forces = "implicit"` (default: the contact
+    /// impulse at the end of the step) or `"newmark"`.
+    pub contact_forces: Option<ContactForcesFile>,
     /// A geometric imperfection from a buckling mode (nonlinear geometry).
     pub imperfection: Option<ImperfectionFile>,
+}
+
+/// `analysis.contact_forces`.
+#[derive(Debug, Clone, Copy, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum ContactForcesFile {
+    /// The contact impulse at the end of the step.
+    Implicit,
+    /// Newmark's average of the forces at both ends.
+    Newmark,
 }
 
 /// `analysis.newmark`.

@@ -26,6 +26,8 @@ fn transient_key(file: &AnalysisFile) -> Option<&'static str> {
         Some("analysis.initial_velocities")
     } else if file.output_interval.is_some() {
         Some("analysis.output_interval")
+    } else if file.contact_forces.is_some() {
+        Some("analysis.contact_forces")
     } else {
         None
     }
@@ -141,5 +143,9 @@ pub(super) fn transient(
         mass: mass_kind(file),
         initial_velocities,
         output_interval,
+        contact_forces: match file.contact_forces {
+            Some(super::schema::ContactForcesFile::Newmark) => crate::dynamics::ContactForces::Newmark,
+            Some(super::schema::ContactForcesFile::Implicit) | None => crate::dynamics::ContactForces::Implicit,
+        },
     }))
 }

@@ -61,6 +61,10 @@ struct Driven {
     c: f64,
     /// Residual `r` of the last evaluation (N).
     r: f64,
+    /// Its push on the body as the residual takes it, trial and committed:
+    /// the algorithmic `f'` of a transient analysis's end-of-step contact
+    /// impulse (`dynamics::impulse`), else the push itself (N).
+    pushed: (f64, f64),
     /// A rigid impactor's inertia (transient analysis), `None` under force
     /// control.
     inertia: Option<Inertia>,
@@ -121,6 +125,7 @@ impl<'m> ForceControl<'m> {
                     b_row: vec![0.0; n_eq],
                     c: 0.0,
                     r: 0.0,
+                    pushed: (0.0, 0.0),
                 })
             })
             .collect();
@@ -156,6 +161,13 @@ impl<'m> ForceControl<'m> {
         let model = self.model;
         let (points, blocks) = (contacts.points(), contacts.blocks());
         let (mut res2, mut target2) = (0.0, 0.0);
+        // the contacts' end-of-step impulse: f' and its derivatives 1/γ
+        let gamma = model
+            .transient
+            .as_ref()
+            .filter(|t| t.contact_forces == crate::dynamics::ContactForces::Implicit)
+            .map(|t| t.gamma);
+        let weight = gamma.map_or(1.0, |g| 1.0 / g);
         for drv in &mut self.driven {
             let k = drv.indenter;
             let ind = &model.indenters[k];
@@ -189,8 +201,8 @@ impl<'m> ForceControl<'m> {
                 } else {
                     c.normal.map(|a| c.normal.map(|b| c.penalty * a * b))
                 };
-                let col: [f64; 3] = std::array::from_fn(|m| dot(&kb[m], &d));
-                let row: [f64; 3] = std::array::from_fn(|m| (0..3).map(|i| kb[i][m] * d[i]).sum());
+                let col: [f64; 3] = std::array::from_fn(|m| weight * dot(&kb[m], &d));
+                let row: [f64; 3] = std::array::from_fn(|m| weight * (0..3).map(|i| kb[i][m] * d[i]).sum::<f64>());
                 drv.c += dot(&d, &col);
                 for m in 0..3 {
                     let e = eq[3 * c.node + m];
@@ -200,7 +212,8 @@ impl<'m> ForceControl<'m> {
                     }
                 }
             }
-            drv.r = pushed - target;
+            drv.pushed.0 = gamma.map_or(pushed, |g| crate::dynamics::impulse::algorithmic(g, pushed, drv.pushed.1));
+            drv.r = drv.pushed.0 - target;
             let mut scale = target.abs();
             if let (Some(inertia), Some(tr)) = (drv.inertia.as_mut(), model.transient.as_ref()) {
                 // m ä + (its push on the body) = its force: Newmark in a
@@ -301,6 +314,7 @@ impl<'m> ForceControl<'m> {
         for d in &mut self.driven {
             d.a_step = d.a - d.a_committed;
             d.a_committed = d.a;
+            d.pushed.1 = d.pushed.0;
             if let Some(i) = d.inertia.as_mut() {
                 (i.v_n, i.acc_n, i.lambda_n) = (i.v, i.acc, lambda);
             }

@@ -44,15 +44,24 @@ pub(super) fn inertia(
     Ok(inertia)
 }
 
+/// The contacts' end-of-step impulse of a transient model with contacts
+/// (`analysis.contact_forces = "implicit"`, `dynamics::impulse`).
+pub(super) fn impulse(model: &Model) -> Option<crate::dynamics::ContactImpulse> {
+    let settings = model.transient.as_ref()?;
+    let contacts = !model.indenters.is_empty() || !model.contacts.is_empty();
+    (contacts && settings.contact_forces == crate::dynamics::ContactForces::Implicit)
+        .then(|| crate::dynamics::ContactImpulse::new(settings.gamma, model.mesh.n_dofs()))
+}
+
 /// The converged step's work terms into the energy balance: the parts'
 /// forces, and the reactions at constrained and prescribed DOFs.
 pub(super) fn account_energy(
     inertia: &mut crate::dynamics::Inertia,
     (model, solid): (&Model, &Elements<'_>),
     state: &Kinematics,
-    system: &LinearSystem,
-    dirichlet: &Dirichlet,
+    (system, dirichlet): (&LinearSystem, &Dirichlet),
     parts: [&dyn Contribution; 3],
+    contact: Option<&[f64]>,
 ) {
     let du: Vec<f64> = state.u.iter().zip(&state.u_committed).map(|(a, b)| a - b).collect();
     let eq = &system.assembler.dofs.eq;
@@ -63,6 +72,8 @@ pub(super) fn account_energy(
         })
         .collect();
     let [elements, loads, contacts] = parts.map(|p| p.forces().values);
+    // the contacts' algorithmic force where it replaces theirs
+    let contacts = contact.unwrap_or(contacts);
     let elastic = crate::post::estimate::elastic_energy(
         &model.mesh,
         &model.cells,

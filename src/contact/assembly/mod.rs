@@ -44,6 +44,10 @@ use crate::mesh::Mesh;
 /// and slip count as unsettled too.
 pub const UNSETTLED_FORCING: f64 = 1e-2;
 
+/// A gap below this fraction of the largest body is round-off (the
+/// status of a point there does not unsettle Newton).
+pub const ROUNDOFF_GAP: f64 = 1e-12;
+
 /// State of one contact point after an evaluation.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct ContactPoint {
@@ -232,6 +236,7 @@ impl Contribution for Contacts<'_> {
         // of the active set too (UNSETTLED_FORCING)
         let was_sliding: Vec<bool> =
             if self.frictional { self.points.iter().map(|p| p.sliding).collect() } else { Vec::new() };
+        let was_active: Vec<bool> = self.points.iter().map(|p| p.active).collect();
         let (indenters, pairs) = (self.indenters, self.pairs);
         let mut k = 0;
         for (k_ind, ind) in indenters.iter().enumerate() {
@@ -270,6 +275,14 @@ impl Contribution for Contacts<'_> {
             }
         }
         changes += was_sliding.iter().zip(&self.points).filter(|(w, p)| **w != p.sliding).count();
+        // A point that opens or closes at a gap of round-off carries no
+        // force either way: its flip leaves the residual as it is and must
+        // not keep Newton from settling. Implicit dynamics brings nodes to
+        // rest on a surface (an inelastic impact, `dynamics::impulse`), and
+        // bodies resting on rigid supports at zero gap start there.
+        let roundoff = ROUNDOFF_GAP * self.mesh.bodies.iter().map(|b| b.size()).fold(0.0, f64::max);
+        let grazing = was_active.iter().zip(&self.points).filter(|(w, p)| **w != p.active && p.gap.abs() <= roundoff);
+        changes = changes.saturating_sub(grazing.count());
         self.first_evaluation = false;
         changes
     }

@@ -524,7 +524,9 @@ impl Incremental for Structure<'_> {
             let parts = [&self.elements as &dyn Contribution, &self.loads, &self.contacts];
             let model = (self.model, &self.elements);
             let contact = self.impulse.as_ref().map(|i| i.force());
-            transient::account_energy(inertia, model, &self.state, (&self.system, &self.dirichlet), parts, contact);
+            let impactors = self.force.impactor_energy();
+            let system = (&self.system, &self.dirichlet);
+            transient::account_energy(inertia, model, &self.state, system, parts, (contact, impactors));
         }
         if let Some(impulse) = self.impulse.as_mut() {
             impulse.commit();

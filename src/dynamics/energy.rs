@@ -36,8 +36,12 @@ pub struct EnergyRow {
     pub damping: f64,
     /// `W_ext`.
     pub external: f64,
-    /// `W_c`.
+    /// `W_c`: the contacts' work on the bodies.
     pub contact: f64,
+    /// `½ m v²` of the rigid impactors, beside the balance (which is the
+    /// bodies'): what they lose is the contacts' work on the bodies plus
+    /// what the contacts dissipate (`dynamics::impulse`).
+    pub impactors: f64,
     /// `W_s`.
     pub supports: f64,
     /// `B` (above).

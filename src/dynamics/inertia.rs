@@ -95,21 +95,29 @@ impl Inertia {
 
     /// Records the initial state (at rest but for the initial velocities,
     /// unloaded) as the first row of the energy balance.
-    pub fn start(&mut self, eq: &[usize], pattern: &crate::solver::linear::LowerCsc) {
+    pub fn start(&mut self, eq: &[usize], pattern: &crate::solver::linear::LowerCsc, impactors: f64) {
         let v0 = self.v_n.clone();
         let kinetic = self.kinetic_energy(&v0, eq, pattern);
         let zero = vec![0.0; v0.len()];
         let forces = StepForces { internal: &zero, damping: &zero, external: &zero, contact: &zero, supports: &zero };
         self.ledger.record(self.time(0.0), &zero, &forces, kinetic, 0.0);
+        self.set_impactors(impactors);
+    }
+
+    /// The impactors' kinetic energy in the last row.
+    fn set_impactors(&mut self, energy: f64) {
+        if let Some(row) = self.ledger.rows.last_mut() {
+            row.impactors = energy;
+        }
     }
 
     /// Adds the converged step at λ to the energy balance: `du` the step's
     /// displacement increment, `forces` the other parts' converged forces
     /// (the damping forces are this part's own), `elastic` the elastic
-    /// strain energy held.
+    /// strain energy held, `impactors` the rigid impactors' kinetic energy.
     pub fn account(
         &mut self,
-        (lambda, elastic): (f64, f64),
+        (lambda, elastic, impactors): (f64, f64, f64),
         du: &[f64],
         forces: [&[f64]; 4],
         eq: &[usize],
@@ -122,6 +130,7 @@ impl Inertia {
         let step = StepForces { internal, damping: &self.damping_force, external, contact, supports };
         let time = self.time(lambda);
         self.ledger.record(time, du, &step, kinetic, elastic);
+        self.set_impactors(impactors);
     }
 
     /// The energy balance, one row per converged step (the initial state first).

@@ -12,12 +12,21 @@ use crate::model::Model;
 pub fn write_energy(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     let Some(rows) = &solution.energy else { return Ok(Vec::new()) };
     let mut text = String::from(
-        "time_s,kinetic_J,internal_J,elastic_J,plastic_J,damping_J,external_J,contact_J,supports_J,balance_J\n",
+        "time_s,kinetic_J,internal_J,elastic_J,plastic_J,damping_J,external_J,contact_J,supports_J,balance_J,impactors_J\n",
     );
     for r in rows {
         let values = [
-            r.time, r.kinetic, r.internal, r.elastic, r.plastic, r.damping, r.external, r.contact, r.supports,
+            r.time,
+            r.kinetic,
+            r.internal,
+            r.elastic,
+            r.plastic,
+            r.damping,
+            r.external,
+            r.contact,
+            r.supports,
             r.balance,
+            r.impactors,
         ];
         let line: Vec<String> = values.iter().map(|v| format!("{v:e}")).collect();
         text.push_str(&line.join(","));

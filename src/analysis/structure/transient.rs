@@ -40,7 +40,12 @@ pub(super) fn inertia(
         }
     }
     let mut inertia = crate::dynamics::Inertia::new(settings.clone(), m, &k0, v0, assembler.dofs.n_eq);
-    inertia.start(eq, &assembler.pattern);
+    let impactors = model
+        .indenters
+        .iter()
+        .filter_map(|i| i.impactor)
+        .map(|i| 0.5 * i.mass * i.velocity.iter().map(|v| v * v).sum::<f64>());
+    inertia.start(eq, &assembler.pattern, impactors.sum());
     Ok(inertia)
 }
 
@@ -61,7 +66,7 @@ pub(super) fn account_energy(
     state: &Kinematics,
     (system, dirichlet): (&LinearSystem, &Dirichlet),
     parts: [&dyn Contribution; 3],
-    contact: Option<&[f64]>,
+    (contact, impactors): (Option<&[f64]>, f64),
 ) {
     let du: Vec<f64> = state.u.iter().zip(&state.u_committed).map(|(a, b)| a - b).collect();
     let eq = &system.assembler.dofs.eq;
@@ -82,7 +87,7 @@ pub(super) fn account_energy(
         &solid.gp_offsets,
     );
     inertia.account(
-        (state.lambda, elastic),
+        (state.lambda, elastic, impactors),
         &du,
         [elements, loads, contacts, &supports],
         eq,

@@ -256,6 +256,11 @@ fn materials(d: &mut String, model: &Model, mesh: &HexMesh) {
     let stiff = model.materials.iter().map(|m| m.young).fold(0.0, f64::max) * 1e3;
     if !mesh.tools.is_empty() {
         let _ = writeln!(d, "*MATERIAL, NAME=RIGID_TOOL\n*ELASTIC\n{stiff:e}, 0.3");
+        // `*DYNAMIC` asks every material for a density: a negligible one
+        if model.transient.is_some() {
+            let light = model.materials.iter().filter_map(|m| m.density).fold(f64::INFINITY, f64::min);
+            let _ = writeln!(d, "*DENSITY\n{:e}", 1e-3 * light);
+        }
     }
     for body in &model.mesh.bodies {
         let m = &model.materials[body.material];
@@ -263,7 +268,19 @@ fn materials(d: &mut String, model: &Model, mesh: &HexMesh) {
     }
     for tool in &mesh.tools {
         let name = &model.indenters[tool.indenter].name;
-        let _ = writeln!(d, "*SOLID SECTION, ELSET={}, MATERIAL=RIGID_TOOL", set_name("T", name));
+        // an impactor's mass is its tool's: a material of density m / V
+        // (CalculiX leaves a MASS element's kinetic energy out of the energy
+        // check of its dynamic contact, and then declares divergence)
+        let material = match model.indenters[tool.indenter].impactor {
+            Some(imp) if model.transient.is_some() => {
+                let material = set_name("RIGID", name);
+                let density = imp.mass / super::volume::tool_volume(mesh, tool);
+                let _ = writeln!(d, "*MATERIAL, NAME={material}\n*ELASTIC\n{stiff:e}, 0.3\n*DENSITY\n{density:.12e}");
+                material
+            }
+            _ => "RIGID_TOOL".to_string(),
+        };
+        let _ = writeln!(d, "*SOLID SECTION, ELSET={}, MATERIAL={material}", set_name("T", name));
         let _ = writeln!(
             d,
             "*RIGID BODY, ELSET={}, REF NODE={}, ROT NODE={}",

@@ -25,8 +25,29 @@
 //!   nodes of the hexahedra holding the probes (all nodes in a model
 //!   without probes), which is what verify compares.
 //!
-//! Contact (indenters, pair contacts) in a transient model is refused: the
-//! twin does not hold CalculiX's dynamic contact yet.
+//! * Rigid tools (indenters) and contact pairs as in the static deck
+//!   ([`super::deck`]); a displacement-controlled tool's reference node
+//!   follows its prescribed motion through an amplitude. A rigid
+//!   **impactor** (`[[indenters]] mass, velocity`) is free along its
+//!   velocity, which must be a coordinate axis (its other translations and
+//!   its rotation node are held). Its mass is its tool's: the tool's
+//!   material has the density `m / V` (CalculiX leaves a `MASS` element's
+//!   kinetic energy out of the energy check of its dynamic contact and
+//!   then declares divergence); the other tools' material has a negligible
+//!   one (a thousandth of the lightest body's). Its initial velocity is
+//!   given to every node of the tool. Its displacement (`*NODE PRINT,
+//!   NSET=REF_…`, `U, V`) and the contact's total surface force on the
+//!   body (`*CONTACT PRINT, SLAVE=…, MASTER=…`, `CF`) are printed at every
+//!   increment ([`crate::verify::impact`] compares them). With a rigid tool
+//!   the step has `NLGEOM` (ccx 2.20 ends in a segmentation fault
+//!   without). CalculiX integrates its contact forces like every other
+//!   force (its penalty with the static deck's slope); cufem takes their
+//!   impulse at the end of each step ([`crate::dynamics::impulse`]).
+//!   Plasticity with contact is refused ([`check`]: ccx 2.20 cannot
+//!   integrate it in a `*DYNAMIC` step). CalculiX's dynamic contact needs
+//!   small fixed increments: on a steel block struck by a plate, 2e-7 s
+//!   converged where 1e-6 s stopped at separation (`DIRECT` allows no
+//!   cutback).
 
 use std::fmt::Write as _;
 
@@ -41,20 +62,37 @@ use crate::model::steps::{Item, factor};
 pub const OUTPUT_SET: &str = "U_HISTORY";
 
 /// [`CcxError::Transient`] for the first thing of a transient model that
-/// the `*DYNAMIC` twin cannot reproduce exactly: contact, Newmark
-/// parameters other than the trapezoidal rule, Rayleigh damping.
+/// the `*DYNAMIC` twin cannot reproduce exactly: an impactor moving off a
+/// coordinate axis, Newmark parameters other than the trapezoidal rule,
+/// Rayleigh damping.
 pub fn check(model: &Model, t: &TransientSettings) -> Result<(), CcxError> {
-    let contact = "a transient analysis with contact cannot be exported to CalculiX yet (the twin has no \
-                   dynamic contact)";
-    let no_contact = "no indenters and no contacts";
     let refuse = |key: &str, value: String, why: &str, allowed: &str| {
         Err(CcxError::Transient { key: key.into(), value, why: why.into(), allowed: allowed.into() })
     };
-    if let Some(ind) = model.indenters.first() {
-        return refuse("indenters", format!("indenter \"{}\"", ind.name), contact, no_contact);
+    for (k, ind) in model.indenters.iter().enumerate() {
+        if let Some(imp) = ind.impactor
+            && axis(imp.velocity).is_none()
+        {
+            let v = imp.velocity.map(crate::numbers::number);
+            return refuse(
+                &format!("indenters[{k}].velocity"),
+                format!("[{}, {}, {}]", v[0], v[1], v[2]),
+                "the CalculiX twin holds an impactor's reference node in the directions across its velocity, \
+                 which it can only along coordinate axes",
+                "a velocity along x, y or z",
+            );
+        }
     }
-    if let Some(c) = model.contacts.first() {
-        return refuse("contacts", format!("contact \"{}\"", c.name), contact, no_contact);
+    let contact = !model.indenters.is_empty() || !model.contacts.is_empty();
+    if let Some(k) = model.materials.iter().position(|m| m.is_plastic()).filter(|_| contact) {
+        return refuse(
+            &format!("materials[{k}].plasticity"),
+            format!("material \"{}\"", model.materials[k].name),
+            "CalculiX 2.20 cannot integrate plasticity in a *DYNAMIC step with contact pairs: its return map \
+             fails at the first iteration (`no convergence in incplas`, residuals of 1e48) even before any \
+             contact, and node-to-surface contact stops at the first contact increment",
+            "elastic materials in a transient model with indenters or contacts",
+        );
     }
     if t.beta != 0.25 || t.gamma != 0.5 {
         return refuse(
@@ -78,6 +116,12 @@ pub fn check(model: &Model, t: &TransientSettings) -> Result<(), CcxError> {
         );
     }
     Ok(())
+}
+
+/// The coordinate axis (0, 1, 2) a velocity is along, `None` off the axes.
+fn axis(v: [f64; 3]) -> Option<usize> {
+    let nonzero: Vec<usize> = (0..3).filter(|&k| v[k] != 0.0).collect();
+    (nonzero.len() == 1).then(|| nonzero[0])
 }
 
 /// Step end times `t_k` (s): `[0, T_0, T_0 + T_1, …]`.
@@ -130,6 +174,12 @@ fn model_data(d: &mut String, model: &Model, mesh: &HexMesh, t: &TransientSettin
             amplitude(d, model, &set_name("A_C", &c.name), Item::Constraint(i), &ends);
         }
     }
+    for (k, ind) in model.indenters.iter().enumerate() {
+        if ind.impactor.is_none() && ind.displacement.iter().any(|v| *v != 0.0) {
+            amplitude(d, model, &set_name("A_I", &ind.name), Item::Indenter(k), &ends);
+        }
+    }
+    impactors(d, model, mesh);
     for &(b, v) in &t.initial_velocities {
         let set = set_name("V", &model.mesh.bodies[b].name);
         let _ = writeln!(d, "*NSET, NSET={set}\n{}", list(mesh.body_nodes(b).into_iter()));
@@ -150,6 +200,47 @@ fn model_data(d: &mut String, model: &Model, mesh: &HexMesh, t: &TransientSettin
     nodes.sort_unstable();
     nodes.dedup();
     let _ = writeln!(d, "*NSET, NSET={OUTPUT_SET}\n{}", list(nodes.into_iter()));
+}
+
+/// Each impactor's initial velocity on every node of its rigid body (on
+/// the reference node alone CalculiX's velocities alternate between v₀ and
+/// 0 from one increment to the next).
+fn impactors(d: &mut String, model: &Model, mesh: &HexMesh) {
+    for tool in &mesh.tools {
+        let ind = &model.indenters[tool.indenter];
+        let Some(imp) = ind.impactor else { continue };
+        let mut nodes: Vec<usize> = mesh.elements[tool.elements.clone()].iter().flatten().copied().collect();
+        nodes.extend([tool.reference, tool.rotation]);
+        nodes.sort_unstable();
+        nodes.dedup();
+        let _ = writeln!(d, "*NSET, NSET={}\n{}", set_name("V", &ind.name), list(nodes.into_iter()));
+        let _ = writeln!(d, "*INITIAL CONDITIONS, TYPE=VELOCITY");
+        for (c, v) in imp.velocity.iter().enumerate().filter(|(_, v)| **v != 0.0) {
+            let _ = writeln!(d, "{}, {}, {v:.12e}", set_name("V", &ind.name), c + 1);
+        }
+    }
+}
+
+/// The rigid tools' reference and rotation nodes: a displacement-controlled
+/// tool moves through its amplitude, an impactor is free along its
+/// velocity's axis.
+fn tools(d: &mut String, model: &Model, mesh: &HexMesh) {
+    for tool in &mesh.tools {
+        let ind = &model.indenters[tool.indenter];
+        let (reference, rotation) = (tool.reference + 1, tool.rotation + 1);
+        let _ = writeln!(d, "*BOUNDARY\n{rotation}, 1, 3, 0.");
+        let free = ind.impactor.and_then(|imp| axis(imp.velocity));
+        let moved = ind.impactor.is_none() && ind.displacement.iter().any(|v| *v != 0.0);
+        for k in (0..3).filter(|&k| Some(k) != free && !(moved && ind.displacement[k] != 0.0)) {
+            let _ = writeln!(d, "{reference}, {}, {}, 0.", k + 1, k + 1);
+        }
+        if moved {
+            let _ = writeln!(d, "*BOUNDARY, AMPLITUDE={}", set_name("A_I", &ind.name));
+            for (k, v) in ind.displacement.iter().enumerate().filter(|(_, v)| **v != 0.0) {
+                let _ = writeln!(d, "{reference}, {}, {}, {v:.12e}", k + 1, k + 1);
+            }
+        }
+    }
 }
 
 /// The boundary conditions and loads of a step, each non-zero one through
@@ -191,7 +282,10 @@ fn conditions(d: &mut String, model: &Model, mesh: &HexMesh) {
 /// load step, each with its `*END STEP`.
 pub fn steps(d: &mut String, model: &Model, mesh: &HexMesh, t: &TransientSettings) {
     model_data(d, model, mesh, t);
-    let nlgeom = if model.kinematics.is_nonlinear() { " NLGEOM," } else { "" };
+    // a rigid body in a *DYNAMIC step: ccx 2.20 ends in a segmentation
+    // fault without NLGEOM (the displacements of an impact are small: the
+    // same small-strain answer)
+    let nlgeom = if model.kinematics.is_nonlinear() || !mesh.tools.is_empty() { " NLGEOM," } else { "" };
     let plastic = model.materials.iter().any(|m| m.is_plastic());
     for (k, ((dt, n), duration)) in increments(model, t).into_iter().zip(&t.durations).enumerate() {
         let _ = writeln!(d, "** load step {} \"{}\": {n} increments of {dt:.6e} s", k, model.steps[k].name);
@@ -203,7 +297,14 @@ pub fn steps(d: &mut String, model: &Model, mesh: &HexMesh, t: &TransientSetting
             let _ = writeln!(d, "*CONTROLS, PARAMETERS=FIELD\n{:e}, {:e}", r, 10.0 * r);
         }
         conditions(d, model, mesh);
+        tools(d, model, mesh);
         let _ = writeln!(d, "*NODE FILE, NSET={OUTPUT_SET}\nU");
+        for tool in &mesh.tools {
+            let name = &model.indenters[tool.indenter].name;
+            let _ = writeln!(d, "*NODE PRINT, NSET={}\nU, V", set_name("REF", name));
+            let (slave, master) = (set_name("SS", name), set_name("SM", name));
+            let _ = writeln!(d, "*CONTACT PRINT, SLAVE={slave}, MASTER={master}\nCF");
+        }
         let _ = writeln!(d, "*END STEP");
     }
 }

@@ -11,6 +11,7 @@ pub mod deck;
 pub mod dynamic;
 pub mod mesh;
 pub mod results;
+pub mod volume;
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};

@@ -181,20 +181,47 @@ pub fn read_dat(text: &str) -> HashMap<String, ([f64; 3], f64)> {
 }
 
 /// Every force block of the `.dat` file, in order: `(set, force, time)`.
+/// Nodal displacement and velocity blocks come as the sums over their
+/// sets' nodes under `U:set` and `V:set`, a contact's total surface force
+/// (`*CONTACT PRINT`, `CF`) under `CF:slave set`.
 fn dat_blocks(text: &str) -> Vec<(String, [f64; 3], f64)> {
     let mut out = Vec::new();
     let lines: Vec<&str> = text.lines().collect();
     let mut i = 0;
     while i < lines.len() {
         let l = lines[i].trim();
-        let header = l.starts_with("total force (fx,fy,fz) for set") || l.starts_with("forces (fx,fy,fz) for set");
+        let prefix = if l.starts_with("displacements (vx,vy,vz) for set") {
+            "U:"
+        } else if l.starts_with("velocities (vx,vy,vz) for set") {
+            "V:"
+        } else {
+            ""
+        };
+        if l.starts_with("statistics for slave set") {
+            // its first row of numbers: the total surface force, then the moment
+            let words: Vec<&str> = l.split_whitespace().collect();
+            let set = words.get(4).map(|s| format!("CF:{}", s.trim_end_matches(',')));
+            let time = words.last().and_then(|t| t.parse::<f64>().ok()).unwrap_or(0.0);
+            let values = lines[i + 1..].iter().take(6).find_map(|line| {
+                let v: Vec<f64> = line.split_whitespace().filter_map(|w| w.parse().ok()).collect();
+                (v.len() >= 3).then(|| [v[0], v[1], v[2]])
+            });
+            if let (Some(set), Some(f)) = (set, values) {
+                out.push((set, f, time));
+            }
+            i += 1;
+            continue;
+        }
+        let header = l.starts_with("total force (fx,fy,fz) for set")
+            || l.starts_with("forces (fx,fy,fz) for set")
+            || !prefix.is_empty();
         if !header {
             i += 1;
             continue;
         }
         let total = l.starts_with("total");
         let words: Vec<&str> = l.split_whitespace().collect();
-        let set = words.iter().position(|w| *w == "set").and_then(|p| words.get(p + 1)).map(|s| s.to_string());
+        let set = words.iter().position(|w| *w == "set").and_then(|p| words.get(p + 1)).map(|s| format!("{prefix}{s}"));
         let time = words.last().and_then(|t| t.parse::<f64>().ok()).unwrap_or(0.0);
         i += 1;
         let mut sum = [0.0; 3];
@@ -330,6 +357,16 @@ MODE NO.   X-COMPONENT     Y-COMPONENT     Z-COMPONENT     X-ROTATION      Y-ROT
     /// step-loaded bar of tests/ccx_dynamic.rs (`cufem export-ccx`, then
     /// `ccx -i model`), cut to two nodes: each increment is kept with its
     /// total time, the last one is also the final state.
+    #[test]
+    fn reads_displacement_velocity_and_contact_force_histories() {
+        // ccx 2.20's .dat blocks of *NODE PRINT U, V and *CONTACT PRINT CF
+        let dat = "\n displacements (vx,vy,vz) for set REF_W and time  0.1000000E-05\n\n     20001  0.000000E+00  0.000000E+00 -1.000000E-06\n\n velocities (vx,vy,vz) for set REF_W and time  0.1000000E-05\n\n     20001  0.000000E+00  0.000000E+00 -1.000000E+00\n\n statistics for slave set SS_W, master set SM_W and time  0.2000000E-05\n\n   total surface force (fx,fy,fz) and moment about the origin (mx,my,mz)\n\n    0.000000E+00 -1.533896E-27 -5.165458E+01 -2.644729E-12  2.569421E-12 -1.274413E-29\n\n   center of gravity and mean normal\n";
+        let h = read_dat_history(dat);
+        assert_eq!(h["U:REF_W"], vec![(1e-6, [0.0, 0.0, -1e-6])]);
+        assert_eq!(h["V:REF_W"], vec![(1e-6, [0.0, 0.0, -1.0])]);
+        assert_eq!(h["CF:SS_W"], vec![(2e-6, [0.0, -1.533896e-27, -51.65458])]);
+    }
+
     #[test]
     fn reads_every_increment_of_a_dynamic_step() {
         let frd = "\

@@ -33,6 +33,7 @@ use crate::quantity::{Quantity, Sample};
 
 pub mod field;
 pub mod history;
+pub mod impact;
 pub mod modal;
 pub mod transient;
 
@@ -135,6 +136,11 @@ pub struct Comparison {
     /// Their curves (written by [`Self::write`]).
     #[serde(skip)]
     pub probe_curves: Vec<ProbeCurve>,
+    /// Rigid impactors' motion, force and energy left (a transient model).
+    pub impacts: Vec<impact::ImpactRow>,
+    /// Their curves (written by [`Self::write`]).
+    #[serde(skip)]
+    pub impact_curves: Vec<impact::ImpactCurve>,
     /// DOF, time and memory of both.
     pub cost: Cost,
 }
@@ -164,6 +170,19 @@ fn percent(ours: f64, reference: f64, scale: f64) -> Option<f64> {
     (reference.abs() > 1e-3 * scale).then(|| 100.0 * (ours - reference) / reference.abs())
 }
 
+/// A transient model's rows: the probes' and the impactors' histories.
+fn transient_comparison(
+    model: &Model,
+    solution: &Solution,
+    mesh: &HexMesh,
+    run: &CcxRun,
+    empty: Comparison,
+) -> Comparison {
+    let (probe_histories, probe_curves) = transient::compare_probe_histories(model, solution, mesh, run);
+    let (impacts, impact_curves) = impact::compare_impacts(model, solution, run);
+    Comparison { probe_histories, probe_curves, impacts, impact_curves, ..empty }
+}
+
 /// Compares `solution` with the CalculiX run on `mesh`: the table, the
 /// line overlays and the sample points of the whole-field comparison.
 pub fn compare(
@@ -180,8 +199,7 @@ pub fn compare(
         return (Comparison { modes, ..Comparison::empty(model, solid, cost) }, Vec::new(), FieldComparison::default());
     }
     if model.transient.is_some() {
-        let (probe_histories, probe_curves) = transient::compare_probe_histories(model, solution, mesh, run);
-        let comparison = Comparison { probe_histories, probe_curves, ..Comparison::empty(model, solid, cost) };
+        let comparison = transient_comparison(model, solution, mesh, run, Comparison::empty(model, solid, cost));
         return (comparison, Vec::new(), FieldComparison::default());
     }
     let view = solution.fields(model);
@@ -280,6 +298,8 @@ pub fn compare(
         modes: Vec::new(),
         probe_histories: Vec::new(),
         probe_curves: Vec::new(),
+        impacts: Vec::new(),
+        impact_curves: Vec::new(),
         cost,
     };
     (comparison, curves, whole)
@@ -321,6 +341,8 @@ impl Comparison {
             modes: Vec::new(),
             probe_histories: Vec::new(),
             probe_curves: Vec::new(),
+            impacts: Vec::new(),
+            impact_curves: Vec::new(),
             cost,
         }
     }
@@ -403,6 +425,7 @@ impl Comparison {
         history::table(&self.force_histories, &mut t);
         modal::table(&self.modes, &mut t);
         transient::table(&self.probe_histories, &mut t);
+        impact::table(&self.impacts, &mut t);
         t
     }
 
@@ -496,6 +519,7 @@ impl Comparison {
         }
         modal::csv(&self.modes, &mut csv);
         transient::csv(&self.probe_histories, &mut csv);
+        impact::csv(&self.impacts, &mut csv);
         let p = dir.join("table.csv");
         file(&p, &csv)?;
         written.push(p);
@@ -537,6 +561,7 @@ impl Comparison {
         }
         written.extend(history::write(dir, &self.force_curves)?);
         written.extend(transient::write(dir, &self.probe_histories, &self.probe_curves)?);
+        written.extend(impact::write(dir, &self.impact_curves)?);
         Ok(written)
     }
 }

@@ -64,6 +64,9 @@ pub struct Sizes {
     /// Matrices on the tangent's pattern a transient analysis keeps: the
     /// mass, and the damping if any (0 otherwise).
     pub dynamic_matrices: u64,
+    /// Field snapshots a run keeps until it writes them: the step ends,
+    /// and a transient run's frames (`analysis.output_interval`).
+    pub snapshots: u64,
     /// True once `factor_nnz` comes from the symbolic factorization.
     pub exact: bool,
 }
@@ -91,6 +94,10 @@ impl MemoryEstimate {
 const GAUSS_POINT_BYTES: u64 =
     (2 * std::mem::size_of::<crate::materials::PointState>() + std::mem::size_of::<crate::voigt::Voigt>()) as u64;
 
+/// Bytes per Gauss point of a field snapshot: its state and its stress.
+const SNAPSHOT_POINT_BYTES: u64 =
+    (std::mem::size_of::<crate::materials::PointState>() + std::mem::size_of::<crate::voigt::Voigt>()) as u64;
+
 impl Sizes {
     /// The memory these counts take (see the module docs for the constants).
     pub fn memory(&self) -> MemoryEstimate {
@@ -107,6 +114,15 @@ impl Sizes {
             ("vectors", s.dofs.saturating_mul(64)),
             ("GMRES basis (friction)", s.equations.saturating_mul(8).saturating_mul(s.krylov_vectors)),
             ("mass and damping matrices", s.pattern_nnz.saturating_mul(8).saturating_mul(s.dynamic_matrices)),
+            // each: the displacements, and a committed state and a stress
+            // per Gauss point
+            (
+                "step ends and frames",
+                s.dofs
+                    .saturating_mul(8)
+                    .saturating_add(s.gauss_points.saturating_mul(SNAPSHOT_POINT_BYTES))
+                    .saturating_mul(s.snapshots),
+            ),
             // the Lanczos basis, and the two matrices K and B (or M) copied
             // out of the tangent's pattern
             (

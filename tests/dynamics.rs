@@ -236,9 +236,12 @@ fn a_rod_rebounds_from_a_rigid_wall_after_two_transit_times() {
     assert!(energy > 2.0, "{energy}");
     let summary = std::fs::read_to_string(stiff.join("summary.json")).unwrap();
     assert!(summary.contains("net work"), "no warning in {summary}");
-    // the ParaView time series: a frame every 50 µs of the 600 µs
+    // the ParaView time series: a frame every 50 µs of the 600 µs, each
+    // counted by the memory estimate
     let pvd = std::fs::read_to_string(out.join("frames.pvd")).unwrap();
     assert_eq!(pvd.matches("<DataSet").count(), 12, "{pvd}");
+    let model = cufem::model::Model::parse(&text).unwrap();
+    assert_eq!(cufem::analysis::plan(&model).unwrap().snapshots, 12);
     assert!(out.join("frame_0012.vtu").exists());
 }
 

@@ -118,6 +118,17 @@ pub fn sizes(model: &Model, numbering: &Numbering, solver: &Cholesky) -> Sizes {
             let damped = t.damping.0 > 0.0 || t.damping.1 > 0.0;
             1 + u64::from(damped)
         }),
+        // the step ends (kept with more than one step), and a frame per
+        // output interval
+        snapshots: if model.steps.len() > 1 { model.steps.len() as u64 } else { 0 }
+            + model
+                .transient
+                .as_ref()
+                .and_then(|t| {
+                    let total: f64 = t.durations.iter().sum();
+                    t.output_interval.map(|dt| (total / dt * (1.0 + 1e-9)).floor() as u64)
+                })
+                .unwrap_or(0),
         exact: true,
         ..Default::default()
     };

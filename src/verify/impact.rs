@@ -79,6 +79,11 @@ fn absorbed(mass: f64, speed: f64, history: &[(f64, f64)]) -> f64 {
     0.5 * mass * (speed * speed - v * v)
 }
 
+/// The largest magnitude of `values` (0 for none).
+fn largest(values: impl Iterator<Item = f64>) -> f64 {
+    values.fold(0.0, |m, x| m.max(x.abs()))
+}
+
 /// `∫ F dt` by the trapezoidal rule from `(0, 0)`.
 fn impulse(history: &[(f64, f64)]) -> f64 {
     let mut last = (0.0, 0.0);
@@ -134,9 +139,8 @@ pub fn compare_impacts(model: &Model, solution: &Solution, run: &CcxRun) -> (Vec
         if points.len() < 2 || theirs_f.is_empty() {
             continue;
         }
-        let peak = |v: &mut dyn Iterator<Item = f64>| v.fold(0.0f64, |m, x| m.max(x.abs()));
-        let displacement_peaks = (peak(&mut points.iter().map(|p| p.1)), peak(&mut points.iter().map(|p| p.2)));
-        let diff = peak(&mut points.iter().map(|p| p.1 - p.2));
+        let displacement_peaks = (largest(points.iter().map(|p| p.1)), largest(points.iter().map(|p| p.2)));
+        let diff = largest(points.iter().map(|p| p.1 - p.2));
         let force_peaks =
             (points.iter().fold(0.0f64, |m, p| m.max(p.3)), theirs_f.iter().fold(0.0f64, |m, p| m.max(p.1)));
         let ours_f: Vec<(f64, f64)> = ours.iter().map(|p| (p.0, p.2)).collect();

@@ -109,6 +109,8 @@ pub struct Contacts<'m> {
     /// With `current`: the current master normal of every node pair, per
     /// pair contact (empty for surface contacts).
     nodal_normals: Vec<Vec<crate::contact::nodal_normal::NodalNormal>>,
+    /// [`ROUNDOFF_GAP`] times the largest body's size (m).
+    roundoff_gap: f64,
 }
 
 impl<'m> Contacts<'m> {
@@ -156,6 +158,7 @@ impl<'m> Contacts<'m> {
             offsets: vec![[0.0; 3]; indenters.len()],
             first_evaluation: false,
             current,
+            roundoff_gap: ROUNDOFF_GAP * mesh.bodies.iter().map(|b| b.size()).fold(0.0, f64::max),
             nodal_normals: if current {
                 pairs
                     .iter()
@@ -280,7 +283,7 @@ impl Contribution for Contacts<'_> {
         // not keep Newton from settling. Implicit dynamics brings nodes to
         // rest on a surface (an inelastic impact, `dynamics::impulse`), and
         // bodies resting on rigid supports at zero gap start there.
-        let roundoff = ROUNDOFF_GAP * self.mesh.bodies.iter().map(|b| b.size()).fold(0.0, f64::max);
+        let roundoff = self.roundoff_gap;
         let grazing = was_active.iter().zip(&self.points).filter(|(w, p)| **w != p.active && p.gap.abs() <= roundoff);
         changes = changes.saturating_sub(grazing.count());
         self.first_evaluation = false;

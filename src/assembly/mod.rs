@@ -260,7 +260,7 @@ impl Assembler {
                                 r.element,
                                 body.section.n_elements(),
                                 ue,
-                                &input.materials[body.material],
+                                &input.materials[body.material_of(body.split_element(r.element).0)],
                                 points,
                                 mode,
                                 ws,

@@ -158,6 +158,7 @@ pub(crate) mod tests {
             section: CrossSection::rectangle(SectionElementKind::L4, &xl, &zl).unwrap(),
             axis: BeamAxis::from_lines(BeamElementKind::B2, &yl),
             material: 0,
+            element_materials: Vec::new(),
             node_offset: 0,
             element_offset: 0,
         };
@@ -168,6 +169,7 @@ pub(crate) mod tests {
                 .unwrap(),
             axis: BeamAxis::from_lines(BeamElementKind::B3, &Division::uniform(0.0, 0.05, 2).lines("y").unwrap()),
             material: 0,
+            element_materials: Vec::new(),
             node_offset: 0,
             element_offset: 0,
         };

@@ -117,6 +117,7 @@ mod tests {
             section: CrossSection::rectangle(SectionElementKind::L9, &xl, &zl).unwrap(),
             axis: BeamAxis::from_lines(BeamElementKind::B4, &yl),
             material: 0,
+            element_materials: Vec::new(),
             node_offset: 0,
             element_offset: 0,
         }

@@ -338,7 +338,7 @@ fn contact_pairs(d: &mut String, model: &Model, mesh: &HexMesh) {
         let ind = &model.indenters[tool.indenter];
         let slave = mesh.body_faces(model, ind.body, &ind.faces);
         let h = mesh.element_size(ind.body);
-        let e = model.materials[model.mesh.bodies[ind.body].material].young;
+        let e = crate::model::body_young(&model.mesh.bodies[ind.body], &model.materials);
         surface(d, &set_name("SS", &ind.name), &slave);
         surface(d, &set_name("SM", &ind.name), &tool.faces);
         let _ = writeln!(d, "*SURFACE INTERACTION, NAME={}", set_name("SI", &ind.name));
@@ -355,9 +355,8 @@ fn contact_pairs(d: &mut String, model: &Model, mesh: &HexMesh) {
         let slave = mesh.body_faces(model, pc.slave.body, &pc.slave.faces);
         let master = mesh.body_faces(model, pc.master.body, &pc.master.faces);
         let h = mesh.element_size(pc.slave.body).min(mesh.element_size(pc.master.body));
-        let e = model.materials[model.mesh.bodies[pc.slave.body].material]
-            .young
-            .min(model.materials[model.mesh.bodies[pc.master.body].material].young);
+        let e = crate::model::body_young(&model.mesh.bodies[pc.slave.body], &model.materials)
+            .min(crate::model::body_young(&model.mesh.bodies[pc.master.body], &model.materials));
         surface(d, &set_name("SS", &pc.name), &slave);
         surface(d, &set_name("SM", &pc.name), &master);
         let _ = writeln!(d, "*SURFACE INTERACTION, NAME={}", set_name("SI", &pc.name));

@@ -13,6 +13,7 @@ fn block(kind: SectionElementKind, nx: usize, z: [f64; 2], offset: usize) -> Bod
         section: CrossSection::rectangle(kind, &xl, &zl).unwrap(),
         axis: BeamAxis::from_lines(BeamElementKind::B3, &yl),
         material: 0,
+        element_materials: Vec::new(),
         node_offset: offset,
         element_offset: 0,
     }

@@ -98,18 +98,19 @@ pub fn element_mass(geom: &CellValues, e: usize, n_section: usize, density: f64,
 
 /// The mass matrix of the model in `assembler`'s pattern (free equations;
 /// lower triangle in pattern order), each body with its material's
-/// density (`densities[body]`).
+/// density per section element (`densities[body][section element]`).
 pub fn assemble(
     assembler: &Assembler,
     mesh: &Mesh,
     cells: &[CellValues],
-    densities: &[f64],
+    densities: &[Vec<f64>],
     kind: MassKind,
 ) -> Result<Vec<f64>, MassError> {
     let mut out = vec![0.0; assembler.pattern.nnz()];
     assembler.assemble_matrices(mesh, &mut out, |body, element, ws| {
         let n_section = mesh.bodies[body].section.n_elements();
-        element_mass(&cells[body], element, n_section, densities[body], kind, ws);
+        let rho = densities[body][element % n_section];
+        element_mass(&cells[body], element, n_section, rho, kind, ws);
     });
     if kind == MassKind::Lumped {
         let p = &assembler.pattern;
@@ -123,14 +124,19 @@ pub fn assemble(
     Ok(out)
 }
 
-/// The density of every body of `mesh` from its material, or the error
-/// naming the first material without one.
-pub fn densities(mesh: &Mesh, materials: &[crate::materials::Material]) -> Result<Vec<f64>, MassError> {
+/// The density of every section element of every body of `mesh` from its
+/// material (plies and zones have their own), or the error naming the first
+/// material without one.
+pub fn densities(mesh: &Mesh, materials: &[crate::materials::Material]) -> Result<Vec<Vec<f64>>, MassError> {
     mesh.bodies
         .iter()
         .map(|b| {
-            let m = &materials[b.material];
-            m.density.ok_or_else(|| MassError::NoDensity { material: m.name.clone(), body: b.name.clone() })
+            (0..b.section.n_elements())
+                .map(|es| {
+                    let m = &materials[b.material_of(es)];
+                    m.density.ok_or_else(|| MassError::NoDensity { material: m.name.clone(), body: b.name.clone() })
+                })
+                .collect()
         })
         .collect()
 }

@@ -18,6 +18,7 @@ fn body(section: SectionElementKind, axis: BeamElementKind, elements: usize) -> 
         section,
         axis: BeamAxis::from_lines(axis, &lines),
         material: 0,
+        element_materials: Vec::new(),
         node_offset: 0,
         element_offset: 0,
     }

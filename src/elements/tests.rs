@@ -14,6 +14,7 @@ pub(super) fn single_element_body(sk: SectionElementKind, bk: BeamElementKind) -
         section,
         axis: BeamAxis::from_lines(bk, &lines),
         material: 0,
+        element_materials: Vec::new(),
         node_offset: 0,
         element_offset: 0,
     }

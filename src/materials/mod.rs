@@ -17,9 +17,13 @@
 //!
 //! Strains and stresses follow [`crate::voigt`] (engineering shear strains).
 
+pub mod anisotropic;
+pub mod failure;
 mod hardening;
 pub mod kinematic;
 
+pub use anisotropic::{Frame, Orthotropic};
+pub use failure::{Indices, Strengths};
 pub use hardening::Hardening;
 pub use kinematic::{BackStress, MAX_BACKSTRESSES};
 
@@ -67,14 +71,17 @@ pub enum Predictor {
     Elastic,
 }
 
-/// An isotropic material: linear elastic, optionally with J2 plasticity.
+/// A material: isotropic linear elastic, optionally with J2 plasticity, or
+/// anisotropic linear elastic ([`anisotropic`]) in a material frame.
 #[derive(Debug, Clone)]
 pub struct Material {
-    /// Name from the model file.
+    /// Name from the model file (an oriented copy appends its angle).
     pub name: String,
-    /// Young's modulus E (Pa).
+    /// Young's modulus E (Pa); of an anisotropic material the largest of
+    /// E1, E2, E3, the scale of its penalties and bounds.
     pub young: f64,
-    /// Poisson's ratio ν (−).
+    /// Poisson's ratio ν (−); of an anisotropic material 0 (unused: such a
+    /// material has no plasticity and no B-bar by default).
     pub poisson: f64,
     /// Von Mises plasticity, `None` for a purely elastic material.
     pub hardening: Option<Hardening>,
@@ -84,6 +91,13 @@ pub struct Material {
     /// Mass density ρ (kg/m³), `None` where the model gives none (a static
     /// analysis needs none; the mass matrix does, `crate::dynamics`).
     pub density: Option<f64>,
+    /// Strengths for the failure indices ([`failure`]), in the material axes.
+    pub strengths: Option<Strengths>,
+    /// The material axes (global axes unless the material is oriented).
+    pub frame: Frame,
+    /// The stiffness in the material axes of an anisotropic material
+    /// (`None`: isotropic).
+    pub anisotropic: Option<Matrix6>,
     elastic: Matrix6,
 }
 
@@ -98,8 +112,56 @@ impl Material {
             hardening,
             kinematic: Vec::new(),
             density: None,
+            strengths: None,
+            frame: Frame::default(),
+            anisotropic: None,
             elastic: voigt::isotropic_stiffness(young, poisson),
         }
+    }
+
+    /// An anisotropic linear-elastic material from its stiffness in the
+    /// material axes (validated: symmetric positive definite), in the global
+    /// axes until [`Material::oriented`].
+    pub fn anisotropic(name: impl Into<String>, stiffness: Matrix6) -> Self {
+        let young = anisotropic::invert(&stiffness)
+            .map(|s| (0..3).map(|i| 1.0 / s[i][i]).fold(0.0, f64::max))
+            .unwrap_or(stiffness[0][0]);
+        let mut m = Self::new(name, young, 0.0, None);
+        m.anisotropic = Some(stiffness);
+        m.elastic = stiffness;
+        m
+    }
+
+    /// The same material with its axes in `frame` (the stiffness turned to
+    /// the global axes: `C = Tᵀ C_m T`) and `suffix` appended to its name.
+    /// An isotropic material keeps its stiffness; its frame still orients
+    /// the stresses of its failure indices.
+    pub fn oriented(&self, frame: Frame, suffix: &str) -> Self {
+        let mut m = self.clone();
+        m.name = format!("{}{suffix}", self.name);
+        m.frame = frame;
+        if let Some(c) = &self.anisotropic {
+            m.elastic = frame.stiffness_to_global(c);
+        }
+        m
+    }
+
+    /// The same material with strengths for the failure indices.
+    pub fn with_strengths(mut self, strengths: Option<Strengths>) -> Self {
+        self.strengths = strengths;
+        self
+    }
+
+    /// `σᵀ C⁻¹ σ` with this material's elastic compliance (twice the
+    /// complementary energy density).
+    pub fn complementary(&self, stress: &Voigt) -> f64 {
+        let s = anisotropic::invert(&self.elastic).expect("validated: positive definite");
+        (0..6).map(|i| (0..6).map(|j| stress[i] * s[i][j] * stress[j]).sum::<f64>()).sum()
+    }
+
+    /// The failure indices of a global stress, `None` without strengths.
+    pub fn failure_indices(&self, stress: &Voigt) -> Option<Indices> {
+        self.strengths.as_ref().map(|s| s.indices(&self.frame.stress_to_material(stress)))
     }
 
     /// The same material with kinematic hardening terms (validated: at most

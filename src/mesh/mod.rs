@@ -119,6 +119,10 @@ pub struct Body {
     pub axis: BeamAxis,
     /// Index of the body's material in the model's material list.
     pub material: usize,
+    /// The material of each section element where they differ (plies,
+    /// zones; indices into the model's list, oriented copies included);
+    /// empty: [`Body::material`] everywhere.
+    pub element_materials: Vec<usize>,
     /// Global number of the body's first node.
     pub node_offset: usize,
     /// Global number of the body's first element.
@@ -126,6 +130,23 @@ pub struct Body {
 }
 
 impl Body {
+    /// The material of section element `es` (of every body element over it).
+    pub fn material_of(&self, es: usize) -> usize {
+        self.element_materials.get(es).copied().unwrap_or(self.material)
+    }
+
+    /// Every material the body uses, without repeats, in increasing order.
+    pub fn materials(&self) -> Vec<usize> {
+        let mut m: Vec<usize> = self.element_materials.clone();
+        m.push(self.material);
+        if !self.element_materials.is_empty() {
+            m.retain(|&k| self.element_materials.contains(&k));
+        }
+        m.sort_unstable();
+        m.dedup();
+        m
+    }
+
     /// Number of 3D nodes.
     pub fn n_nodes(&self) -> usize {
         self.section.n_nodes() * self.axis.n_nodes()
@@ -254,6 +275,7 @@ mod tests {
             section: CrossSection::rectangle(kind, &xl, &zl).unwrap(),
             axis: BeamAxis::from_lines(beam, &yl),
             material: 0,
+            element_materials: Vec::new(),
             node_offset: 0,
             element_offset: 0,
         }

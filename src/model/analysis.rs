@@ -145,8 +145,8 @@ pub(super) fn buckling(file: &AnalysisFile, parts: &Parts<'_>) -> Result<Option<
     }
     loads_and_supports_only(parts, "analysis.type = \"buckling\"")?;
     let refuse = |key: String, value: &str, why: &str| Err(invalid(key, value, why.to_string()));
-    for b in &parts.mesh.bodies {
-        let m = &parts.materials[b.material];
+    for m in parts.mesh.bodies.iter().flat_map(|b| b.materials()) {
+        let m = &parts.materials[m];
         if m.is_plastic() {
             return refuse(
                 format!("materials \"{}\".plasticity", m.name),
@@ -203,8 +203,10 @@ pub(super) fn mass_kind(file: &AnalysisFile) -> crate::dynamics::MassKind {
 /// Every body's material has a density (`kind`: the analysis type that needs it).
 pub(super) fn densities_given(parts: &Parts<'_>, kind: &str) -> Result<(), ModelError> {
     for b in &parts.mesh.bodies {
-        let m = &parts.materials[b.material];
-        if m.density.is_none() {
+        let Some(m) = b.materials().into_iter().map(|m| &parts.materials[m]).find(|m| m.density.is_none()) else {
+            continue;
+        };
+        {
             return Err(invalid(
                 format!("materials \"{}\".density", m.name),
                 "(missing)",

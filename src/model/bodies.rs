@@ -19,7 +19,7 @@ use crate::values::CellValues;
 /// Files named by a section (gmsh) are relative to `base`.
 pub(super) fn mesh(
     file: &[BodyFile],
-    materials: &[Material],
+    materials: &mut Vec<Material>,
     analysis: &AnalysisFile,
     limits: Limits,
     base: &Path,
@@ -46,7 +46,7 @@ pub(super) fn mesh(
             // elasticity (ν ≥ 0.45: tests/locking.rs); for plastic flow the
             // choice stays the user's (docs/cross-check.md, docs/limitations.md)
             let bbar = match file[i].formulation {
-                None => materials[b.material].poisson >= 0.45,
+                None => b.materials().iter().any(|&m| materials[m].anisotropic.is_none() && materials[m].poisson >= 0.45),
                 Some(Formulation::Standard) => false,
                 Some(Formulation::Bbar) => true,
             };
@@ -81,7 +81,7 @@ pub(super) fn mesh(
 pub(super) fn body(
     i: usize,
     b: &BodyFile,
-    materials: &[Material],
+    materials: &mut Vec<Material>,
     budget: &mut Budget,
     base: &Path,
 ) -> Result<Body, ModelError> {
@@ -93,17 +93,15 @@ pub(super) fn body(
     let beam = a.element.kind();
     let axis_lines = division_parts(&ak, a.from, a.to, a.elements, a.ratio, a.lines.as_ref(), a.segments.as_ref())?;
     let axis_elements = (axis_lines.len() - 1) as u64;
-    let material = materials.iter().position(|m| m.name == b.material).ok_or_else(|| {
-        let names: Vec<&str> = materials.iter().map(|m| m.name.as_str()).collect();
-        invalid(format!("{key}.material"), format!("{:?}", b.material), format!("one of the materials {names:?}"))
-    })?;
     let section = Sections { key: &key, beam, axis_elements, budget }.section(&b.section, base)?;
     connected(&format!("{key}.section"), &section)?;
+    let (material, element_materials) = super::zones::assign(&key, b, &section, materials)?;
     Ok(Body {
         name: b.name.clone(),
         section,
         axis: BeamAxis::from_lines(beam, &axis_lines),
         material,
+        element_materials,
         node_offset: 0,
         element_offset: 0,
     })

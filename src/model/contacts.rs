@@ -92,7 +92,7 @@ fn pair_contact(
     let (master_body, slave_body) = (&mesh.bodies[bm], &mesh.bodies[bs]);
     let (master_faces, mf) = surface_faces(&format!("{key}.master.where"), &c.master.selection, master_body)?;
     let (slave_faces, sf) = surface_faces(&format!("{key}.slave.where"), &c.slave.selection, slave_body)?;
-    let (em, es) = (materials[master_body.material].young, materials[slave_body.material].young);
+    let (em, es) = (super::body_young(master_body, materials), super::body_young(slave_body, materials));
     let master = SurfaceNodes::from_faces(&mf, em);
     // the softer side sets the stiffness scale
     let slave = SurfaceNodes::from_faces(&sf, es.min(em));

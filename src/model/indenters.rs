@@ -53,7 +53,7 @@ pub(super) fn indenter(
     materials: &[Material],
 ) -> Result<Indenter, ModelError> {
     let (face_list, faces) = surface_faces(&format!("{key}.surface"), &d.surface, body)?;
-    let young = materials[body.material].young;
+    let young = super::body_young(body, materials);
     let surface = SurfaceNodes::from_faces(&faces, young);
     let pen = penalty(key, d.penalty, d.penalty_factor)?;
     let tol = 1e-9 * body.size();

@@ -1,11 +1,14 @@
-//! Validation of `[[materials]]`: elastic constants, the isotropic hardening
+//! Validation of `[[materials]]`: elastic constants (isotropic, orthotropic
+//! or a full stiffness), strengths, the isotropic hardening
 //! law (perfect, linear, table, Voce) and the kinematic back-stresses, each
 //! bounded to physically sensible magnitudes.
 
 use super::bounds;
 use super::schema::*;
 use super::{ModelError, invalid};
-use crate::materials::{BackStress, Hardening, MAX_BACKSTRESSES, Material};
+use crate::materials::anisotropic::{self, positive_definite};
+use crate::materials::{BackStress, Hardening, MAX_BACKSTRESSES, Material, Orthotropic, Strengths};
+use crate::voigt::Matrix6;
 
 /// `[[materials]]`.
 pub(super) fn materials(file: &[MaterialFile]) -> Result<Vec<Material>, ModelError> {
@@ -14,24 +17,6 @@ pub(super) fn materials(file: &[MaterialFile]) -> Result<Vec<Material>, ModelErr
 
 pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelError> {
     let key = format!("materials[{i}]");
-    let young = bounds::within(
-        &format!("{key}.young_modulus"),
-        m.young_modulus,
-        bounds::MIN_YOUNG,
-        bounds::MAX_YOUNG,
-        "Young's modulus in Pa, from soft foams to ten times diamond",
-    )?;
-    let nu = m.poisson_ratio;
-    if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
-        return Err(invalid(format!("{key}.poisson_ratio"), nu, "a number in (−1, 0.5)"));
-    }
-    let (hardening, kinematic) = match &m.plasticity {
-        None => (None, Vec::new()),
-        Some(p) => {
-            let pk = format!("{key}.plasticity");
-            (Some(hardening(&pk, p, young)?), kinematic(&pk, p.kinematic.as_deref().unwrap_or(&[]), young)?)
-        }
-    };
     let density = m
         .density
         .map(|rho| {
@@ -44,7 +29,157 @@ pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelErro
             )
         })
         .transpose()?;
-    Ok(Material::new(m.name.clone(), young, nu, hardening).with_kinematic(kinematic).with_density(density))
+    let base = match (m.orthotropic.as_ref(), m.stiffness.as_ref()) {
+        (None, None) => isotropic(&key, m)?,
+        (Some(o), None) => anisotropic(&key, m, "orthotropic", orthotropic(&key, o)?)?,
+        (None, Some(c)) => anisotropic(&key, m, "stiffness", full_stiffness(&key, c)?)?,
+        (Some(_), Some(_)) => {
+            return Err(invalid(
+                format!("{key}.stiffness"),
+                "given with orthotropic",
+                "one of young_modulus/poisson_ratio, orthotropic or stiffness",
+            ));
+        }
+    };
+    let strengths = m.strengths.as_ref().map(|s| strengths(&key, s)).transpose()?;
+    Ok(base.with_density(density).with_strengths(strengths))
+}
+
+/// The isotropic elastic constants and the plasticity of `m`.
+fn isotropic(key: &str, m: &MaterialFile) -> Result<Material, ModelError> {
+    let young = m.young_modulus.ok_or_else(|| {
+        invalid(
+            format!("{key}.young_modulus"),
+            "(missing)",
+            "Young's modulus in Pa (or, for an anisotropic material, orthotropic = {…} or stiffness = [[…], …])",
+        )
+    })?;
+    let young = bounds::within(
+        &format!("{key}.young_modulus"),
+        young,
+        bounds::MIN_YOUNG,
+        bounds::MAX_YOUNG,
+        "Young's modulus in Pa, from soft foams to ten times diamond",
+    )?;
+    let nu = m.poisson_ratio.ok_or_else(|| {
+        invalid(format!("{key}.poisson_ratio"), "(missing)", "Poisson's ratio, a number in (−1, 0.5)")
+    })?;
+    if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
+        return Err(invalid(format!("{key}.poisson_ratio"), nu, "a number in (−1, 0.5)"));
+    }
+    let (hardening, kinematic) = match &m.plasticity {
+        None => (None, Vec::new()),
+        Some(p) => {
+            let pk = format!("{key}.plasticity");
+            (Some(hardening(&pk, p, young)?), kinematic(&pk, p.kinematic.as_deref().unwrap_or(&[]), young)?)
+        }
+    };
+    Ok(Material::new(m.name.clone(), young, nu, hardening).with_kinematic(kinematic))
+}
+
+/// An anisotropic elastic material (its constants given by `which`): no
+/// isotropic constants, no plasticity.
+fn anisotropic(key: &str, m: &MaterialFile, which: &str, stiffness: Matrix6) -> Result<Material, ModelError> {
+    for (name, given) in [("young_modulus", m.young_modulus.is_some()), ("poisson_ratio", m.poisson_ratio.is_some())] {
+        if given {
+            return Err(invalid(format!("{key}.{name}"), "given", format!("no isotropic constants with {which}")));
+        }
+    }
+    if m.plasticity.is_some() {
+        return Err(invalid(
+            format!("{key}.plasticity"),
+            "given",
+            format!("no plasticity with {which}: anisotropic materials are elastic (J2 plasticity is isotropic)"),
+        ));
+    }
+    Ok(Material::anisotropic(m.name.clone(), stiffness))
+}
+
+/// `orthotropic = {…}`: moduli bounded like `young_modulus`, the stiffness
+/// positive definite (Jones, Mechanics of Composite Materials, §2.4).
+fn orthotropic(key: &str, o: &OrthotropicFile) -> Result<Matrix6, ModelError> {
+    let ok = format!("{key}.orthotropic");
+    let modulus = |name: &str, v: f64| {
+        bounds::within(
+            &format!("{ok}.{name}"),
+            v,
+            bounds::MIN_YOUNG,
+            bounds::MAX_YOUNG,
+            "a modulus in Pa, from soft foams to ten times diamond",
+        )
+    };
+    let ratio = |name: &str, v: f64| {
+        if v.is_finite() && v.abs() < 10.0 {
+            Ok(v)
+        } else {
+            Err(invalid(format!("{ok}.{name}"), v, "a finite Poisson's ratio (|ν| < 10; admissible with the moduli)"))
+        }
+    };
+    let c = Orthotropic {
+        young: [modulus("e1", o.e1)?, modulus("e2", o.e2)?, modulus("e3", o.e3)?],
+        shear: [modulus("g12", o.g12)?, modulus("g13", o.g13)?, modulus("g23", o.g23)?],
+        poisson: [ratio("nu12", o.nu12)?, ratio("nu13", o.nu13)?, ratio("nu23", o.nu23)?],
+    };
+    c.stiffness().ok_or_else(|| {
+        invalid(
+            &ok,
+            format!("ν12 = {}, ν13 = {}, ν23 = {}", o.nu12, o.nu13, o.nu23),
+            "Poisson's ratios with a positive definite compliance: ν_ij² < E_i/E_j and \
+             1 − ν12ν21 − ν23ν32 − ν13ν31 − 2ν21ν32ν13 > 0 (Jones §2.4.1)",
+        )
+    })
+}
+
+/// `stiffness = [[…] × 6]`: symmetric, positive definite, entries bounded.
+fn full_stiffness(key: &str, rows: &[Exact<f64, 6>]) -> Result<Matrix6, ModelError> {
+    let sk = format!("{key}.stiffness");
+    if rows.len() != 6 {
+        return Err(invalid(&sk, format!("{} rows", rows.len()), "6 rows of 6 numbers (Pa)"));
+    }
+    let c: Matrix6 = std::array::from_fn(|i| rows[i].0);
+    for (i, row) in c.iter().enumerate() {
+        for (j, v) in row.iter().enumerate() {
+            if !(v.is_finite() && v.abs() <= 10.0 * bounds::MAX_YOUNG) {
+                return Err(invalid(format!("{sk}[{i}][{j}]"), v, "a finite stiffness in Pa"));
+            }
+        }
+    }
+    if !positive_definite(&c) {
+        return Err(invalid(
+            &sk,
+            "not symmetric positive definite",
+            "a symmetric, positive definite 6×6 matrix in the order xx, yy, zz, xy, xz, yz (engineering shears)",
+        ));
+    }
+    let young = anisotropic::invert(&c).map(|s| (0..3).map(|i| 1.0 / s[i][i]).fold(0.0, f64::max)).unwrap_or(0.0);
+    bounds::within(
+        &sk,
+        young,
+        bounds::MIN_YOUNG,
+        bounds::MAX_YOUNG,
+        "moduli 1/S_ii from soft foams to ten times diamond",
+    )?;
+    Ok(c)
+}
+
+/// `strengths = {…}`: positive stresses below the largest modulus.
+fn strengths(key: &str, s: &StrengthsFile) -> Result<Strengths, ModelError> {
+    let sk = format!("{key}.strengths");
+    let v = |name: &str, v: f64| {
+        bounds::within(
+            &format!("{sk}.{name}"),
+            v,
+            f64::MIN_POSITIVE,
+            bounds::MAX_YOUNG,
+            "a strength in Pa, positive (compressive ones as magnitudes)",
+        )
+    };
+    let (yt, yc, s12) = (v("yt", s.yt)?, v("yc", s.yc)?, v("s12", s.s12)?);
+    Ok(Strengths {
+        tension: [v("xt", s.xt)?, yt, v("zt", s.zt.unwrap_or(yt))?],
+        compression: [v("xc", s.xc)?, yc, v("zc", s.zc.unwrap_or(yc))?],
+        shear: [s12, v("s13", s.s13.unwrap_or(s12))?, v("s23", s.s23)?],
+    })
 }
 
 /// What `yield_stress` may be, for the messages.

@@ -12,6 +12,7 @@ mod bounds;
 mod budget;
 mod contacts;
 mod indenters;
+mod laminate;
 mod material;
 mod overlap;
 mod path;
@@ -24,6 +25,7 @@ pub mod steps;
 mod surface_contact;
 pub mod transient;
 mod validate;
+mod zones;
 
 use std::path::Path;
 
@@ -31,7 +33,7 @@ use crate::bc::{Constraint, Load};
 use crate::contact::{Indenter, PairContact};
 use crate::kinematics::Kinematics;
 use crate::materials::Material;
-use crate::mesh::{Mesh, MeshError};
+use crate::mesh::{Body, Mesh, MeshError};
 use crate::quantity::Quantity;
 use crate::solver::newton::NewtonSettings;
 use crate::solver::stepping::StepSettings;
@@ -391,14 +393,22 @@ impl Model {
     }
 }
 
+/// The stiffness scale of a body for its penalties and bounds: the largest
+/// Young's modulus of its materials.
+pub(crate) fn body_young(body: &Body, materials: &[Material]) -> f64 {
+    body.materials().iter().map(|&m| materials[m].young).fold(0.0, f64::max)
+}
+
 fn is_linear(mesh: &Mesh, materials: &[Material], indenters: &[Indenter], contacts: &[PairContact]) -> bool {
-    mesh.bodies.iter().all(|b| !materials[b.material].is_plastic()) && indenters.is_empty() && contacts.is_empty()
+    mesh.bodies.iter().all(|b| b.materials().iter().all(|&m| !materials[m].is_plastic()))
+        && indenters.is_empty()
+        && contacts.is_empty()
 }
 
 fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelError> {
     validate::names(&file)?;
-    let materials = material::materials(&file.materials)?;
-    let (mesh, cells) = bodies::mesh(&file.bodies, &materials, &file.analysis, limits, base)?;
+    let mut materials = material::materials(&file.materials)?;
+    let (mesh, cells) = bodies::mesh(&file.bodies, &mut materials, &file.analysis, limits, base)?;
     let kinematics = analysis::kinematics(&file.analysis)?;
     let plan = refine::plan(&file)?;
     let adapt = refine::adapt_settings(file.adapt.as_ref())?;

@@ -179,7 +179,7 @@ pub(super) fn loads(
     for (i, l) in file.iter().enumerate() {
         let key = format!("loads[{i}]");
         let b = body_index(mesh, format!("{key}.body"), &l.body)?;
-        let young = materials[mesh.bodies[b].material].young;
+        let young = super::body_young(&mesh.bodies[b], materials);
         loads.push(load(&key, l, b, &mesh.bodies[b], young)?);
     }
 

@@ -238,6 +238,11 @@ fn double(s: &mut SectionFile, f: usize) {
             c.through = times(c.through, (around / 8).max(1));
             c.around = times(Some(around), around);
         }
+        SectionFile::Laminate(l) => {
+            for p in l.plies.iter_mut().flatten() {
+                p.elements = times(p.elements, 1);
+            }
+        }
         SectionFile::Rectangle(_) | SectionFile::Quads(_) | SectionFile::Gmsh(_) => {}
     }
 }

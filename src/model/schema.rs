@@ -254,11 +254,51 @@ pub struct StopFile {
 #[serde(deny_unknown_fields)]
 pub struct MaterialFile {
     pub name: String,
-    pub young_modulus: f64,
-    pub poisson_ratio: f64,
+    /// Isotropic: E (Pa).
+    pub young_modulus: Option<f64>,
+    /// Isotropic: ν.
+    pub poisson_ratio: Option<f64>,
+    /// Orthotropic engineering constants in the material axes.
+    pub orthotropic: Option<OrthotropicFile>,
+    /// A full 6×6 stiffness in the material axes (Pa; Voigt order xx, yy,
+    /// zz, xy, xz, yz with engineering shears).
+    pub stiffness: Option<Vec<Exact<f64, 6>>>,
+    /// Strengths for the failure indices.
+    pub strengths: Option<StrengthsFile>,
     /// Mass density ρ (kg/m³): needed by the mass matrix (`analysis.type = "modal"`).
     pub density: Option<f64>,
     pub plasticity: Option<PlasticityFile>,
+}
+
+/// `materials.orthotropic`: engineering constants (Pa and −).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OrthotropicFile {
+    pub e1: f64,
+    pub e2: f64,
+    pub e3: f64,
+    pub g12: f64,
+    pub g13: f64,
+    pub g23: f64,
+    pub nu12: f64,
+    pub nu13: f64,
+    pub nu23: f64,
+}
+
+/// `materials.strengths` (Pa, magnitudes): `zt`, `zc` default to `yt`,
+/// `yc` and `s13` to `s12` (transverse isotropy).
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct StrengthsFile {
+    pub xt: f64,
+    pub xc: f64,
+    pub yt: f64,
+    pub yc: f64,
+    pub zt: Option<f64>,
+    pub zc: Option<f64>,
+    pub s12: f64,
+    pub s13: Option<f64>,
+    pub s23: f64,
 }
 
 tagged_table! {
@@ -307,11 +347,30 @@ pub struct KinematicFile {
 #[serde(deny_unknown_fields)]
 pub struct BodyFile {
     pub name: String,
-    pub material: String,
+    /// The body's material (optional where plies or zones cover the section).
+    pub material: Option<String>,
     #[serde(deserialize_with = "section::read")]
     pub section: SectionFile,
     pub axis: AxisFile,
     pub formulation: Option<Formulation>,
+    /// `[[bodies.zones]]`: materials and material axes of section regions.
+    pub zones: Option<Vec<ZoneFile>>,
+}
+
+/// One `[[bodies.zones]]`: a section region's material and its axes.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ZoneFile {
+    /// A named section region (every element when absent).
+    pub region: Option<String>,
+    /// The material (the body's when absent).
+    pub material: Option<String>,
+    /// The angle (degrees) of the material's axis 1 from `fibre`, about `normal`.
+    pub angle: Option<f64>,
+    /// Axis 1 at angle 0 (default the beam axis `[0, 1, 0]`).
+    pub fibre: Option<Exact<f64, 3>>,
+    /// Axis 3 (default `[0, 0, 1]`).
+    pub normal: Option<Exact<f64, 3>>,
 }
 
 /// An interval division: `{from, to, elements[, ratio]}`, `{lines}` or `{segments}`.

@@ -76,6 +76,12 @@ impl Sections<'_> {
                 self.blocks(&sk, kind, profiles::circle(center, radius, around, through))
             }
             SectionFile::Gmsh(g) => self.gmsh(&sk, g, base),
+            SectionFile::Laminate(l) => {
+                let section = super::laminate::section(&sk, kind, l)?;
+                let (n, p) = (section.n_elements() as u64, kind.order() as u64);
+                self.add(kind, n, section.n_nodes() as u64, n.saturating_mul((p + 1).pow(4)) / 4)?;
+                Ok(section)
+            }
         }
     }
 

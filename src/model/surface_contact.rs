@@ -26,7 +26,7 @@ pub(super) fn surface_contact(
     let (master_body, slave_body) = (&mesh.bodies[bm], &mesh.bodies[bs]);
     let (master_faces, mf) = surface_faces(&format!("{key}.master.where"), &c.master.selection, master_body)?;
     let (slave_faces, sf) = surface_faces(&format!("{key}.slave.where"), &c.slave.selection, slave_body)?;
-    let young = materials[master_body.material].young.min(materials[slave_body.material].young);
+    let young = super::body_young(master_body, materials).min(super::body_young(slave_body, materials));
     let pen = penalty(key, c.penalty, c.penalty_factor)?;
     let largest_face = master_faces
         .iter()

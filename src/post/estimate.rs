@@ -75,6 +75,14 @@ fn complementary(s: &Voigt, young: f64, poisson: f64) -> f64 {
     normal / young + 2.0 * (1.0 + poisson) * shear / young
 }
 
+/// `σᵀ C⁻¹ σ` of the material (its own compliance when anisotropic).
+fn energy(s: &Voigt, m: &Material) -> f64 {
+    match &m.anisotropic {
+        None => complementary(s, m.young, m.poisson),
+        Some(_) => m.complementary(s),
+    }
+}
+
 /// Calls `visit(global element, Gauss point, volume weight, material)` for
 /// every Gauss point of the mesh (first of each body at `gp_offsets`, the
 /// kernel's order `g = g_axis · n_section + g_section` within an element).
@@ -87,10 +95,10 @@ fn each_point(
 ) {
     for (b, body) in mesh.bodies.iter().enumerate() {
         let cell = &cells[b];
-        let m = &materials[body.material];
         let ngp = cell.gp_per_element();
         for e in 0..body.n_elements() {
             let (es, eb) = body.split_element(e);
+            let m = &materials[body.material_of(es)];
             for gb in 0..cell.axis.n_gp {
                 for gs in 0..cell.section.n_gp {
                     let w =
@@ -118,7 +126,7 @@ pub fn elastic_energy(
 ) -> f64 {
     let mut total = 0.0;
     each_point(mesh, cells, materials, gp_offsets, |_, g, w, m| {
-        total += 0.5 * w * complementary(&stresses[g], m.young, m.poisson);
+        total += 0.5 * w * energy(&stresses[g], m);
     });
     total
 }
@@ -140,8 +148,8 @@ pub fn estimate(
     each_point(mesh, cells, materials, gp_offsets, |e, g, w, m| {
         let (raw, star) = (stresses[g], recovered[g]);
         let d: Voigt = std::array::from_fn(|k| star[k] - raw[k]);
-        out.element[e] += w * complementary(&d, m.young, m.poisson);
-        energy2 += w * complementary(&raw, m.young, m.poisson);
+        out.element[e] += w * energy(&d, m);
+        energy2 += w * energy(&raw, m);
     });
     let mut error2 = 0.0;
     for eta in &mut out.element {

@@ -161,7 +161,10 @@ impl FieldView<'_> {
             // kernel's Gauss-point values are the ones to interpolate)
             s.stress = sigma;
         } else {
-            s.stress = voigt::mat_vec(self.materials[body.material].elastic_stiffness(), &s.strain);
+            s.stress = voigt::mat_vec(
+                self.materials[body.material_of(body.split_element(loc.element).0)].elastic_stiffness(),
+                &s.strain,
+            );
         }
         s.von_mises = voigt::von_mises(&s.stress);
         s

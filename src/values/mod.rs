@@ -401,6 +401,7 @@ mod tests {
             section,
             axis: BeamAxis::from_lines(BeamElementKind::B3, &lines),
             material: 0,
+            element_materials: Vec::new(),
             node_offset: 0,
             element_offset: 0,
         }

@@ -35,6 +35,8 @@ pub enum SectionFile {
     Circle(CircleFile),
     /// A gmsh `.msh` file.
     Gmsh(GmshFile),
+    /// A stack of plies over a rectangle.
+    Laminate(LaminateFile),
 }
 
 impl SectionFile {
@@ -53,6 +55,7 @@ impl SectionFile {
             Self::CircularTube(_) => "circular_tube",
             Self::Circle(_) => "circle",
             Self::Gmsh(_) => "gmsh",
+            Self::Laminate(_) => "laminate",
         }
     }
 
@@ -68,6 +71,7 @@ impl SectionFile {
             Self::CircularTube(s) => s.element,
             Self::Circle(s) => s.element,
             Self::Gmsh(s) => s.element,
+            Self::Laminate(s) => s.element,
         }
     }
 }
@@ -85,6 +89,29 @@ pub struct RectangleFile {
     pub element: Option<SectionElement>,
     pub x: Option<DivisionFile>,
     pub z: Option<DivisionFile>,
+}
+
+/// `shape = "laminate"`: plies stacked along z from `z0`, bottom first,
+/// over the width divided by `x`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LaminateFile {
+    pub element: Option<SectionElement>,
+    pub x: Option<DivisionFile>,
+    pub z0: Option<f64>,
+    pub plies: Option<Vec<PlyFile>>,
+}
+
+/// One ply of a laminate.
+#[derive(Debug, Clone, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlyFile {
+    pub thickness: f64,
+    pub material: String,
+    /// Degrees about z from the beam axis y (right-handed: +90 along −x).
+    pub angle: Option<f64>,
+    /// Elements through the ply (default 1).
+    pub elements: Option<usize>,
 }
 
 /// `shape = "tube"`.

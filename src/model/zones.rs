@@ -1,0 +1,154 @@
+//! The materials of a body's section elements: the body's `material`, the
+//! plies of a laminate section and `[[bodies.zones]]` (a section region's
+//! material and material axes), applied in that order. A material placed
+//! in a frame it cares about (anisotropic stiffness, or strengths whose
+//! indices are taken in its axes) becomes an oriented copy appended to the
+//! model's material list ([`Material::oriented`]); one copy per material
+//! and frame.
+
+use super::laminate;
+use super::schema::{BodyFile, SectionFile, ZoneFile};
+use super::{ModelError, invalid};
+use crate::materials::{Frame, Material};
+use crate::mesh::CrossSection;
+
+/// One zone as the model file gives it, from a ply or `[[bodies.zones]]`.
+struct Zone<'a> {
+    key: String,
+    region: Option<String>,
+    material: Option<&'a str>,
+    angle: f64,
+    fibre: [f64; 3],
+    normal: [f64; 3],
+    /// True if the zone states an orientation (angle or axes).
+    oriented: bool,
+}
+
+/// Index of the material called `name` (key `key` for the message).
+fn find(key: &str, name: &str, materials: &[Material]) -> Result<usize, ModelError> {
+    materials.iter().position(|m| m.name == name).ok_or_else(|| {
+        let names: Vec<&str> = materials.iter().map(|m| m.name.as_str()).collect();
+        invalid(key, format!("{name:?}"), format!("one of the materials {names:?}"))
+    })
+}
+
+fn zones<'a>(key: &str, b: &'a BodyFile) -> Vec<Zone<'a>> {
+    let mut out = Vec::new();
+    if let SectionFile::Laminate(l) = &b.section {
+        for (k, p) in l.plies.as_deref().unwrap_or(&[]).iter().enumerate() {
+            out.push(Zone {
+                key: format!("{key}.section.plies[{k}]"),
+                region: Some(laminate::region_name(k)),
+                material: Some(&p.material),
+                angle: p.angle.unwrap_or(0.0),
+                fibre: [0.0, 1.0, 0.0],
+                normal: [0.0, 0.0, 1.0],
+                oriented: true,
+            });
+        }
+    }
+    for (k, z) in b.zones.as_deref().unwrap_or(&[]).iter().enumerate() {
+        out.push(zone(format!("{key}.zones[{k}]"), z));
+    }
+    out
+}
+
+fn zone(key: String, z: &ZoneFile) -> Zone<'_> {
+    Zone {
+        key,
+        region: z.region.clone(),
+        material: z.material.as_deref(),
+        angle: z.angle.unwrap_or(0.0),
+        fibre: z.fibre.map_or([0.0, 1.0, 0.0], Into::into),
+        normal: z.normal.map_or([0.0, 0.0, 1.0], Into::into),
+        oriented: z.angle.is_some() || z.fibre.is_some() || z.normal.is_some(),
+    }
+}
+
+/// The body's material and the material of each of its section elements
+/// (empty when every element has the body's own, unturned material).
+pub(super) fn assign(
+    key: &str,
+    b: &BodyFile,
+    section: &CrossSection,
+    materials: &mut Vec<Material>,
+) -> Result<(usize, Vec<usize>), ModelError> {
+    let base = b.material.as_deref().map(|name| find(&format!("{key}.material"), name, materials)).transpose()?;
+    let list = zones(key, b);
+    if list.is_empty() {
+        let base = base.ok_or_else(|| {
+            invalid(
+                format!("{key}.material"),
+                "(missing)",
+                "the body's material (required unless a laminate's plies or [[bodies.zones]] give every section element one)",
+            )
+        })?;
+        return Ok((base, Vec::new()));
+    }
+    let mut per_element: Vec<Option<usize>> = vec![base; section.n_elements()];
+    for z in &list {
+        let elements: Vec<usize> = match &z.region {
+            None => (0..section.n_elements()).collect(),
+            Some(r) => section.regions.iter().find(|g| &g.name == r).map(|g| g.elements.clone()).ok_or_else(|| {
+                let names: Vec<&str> = section.regions.iter().map(|g| g.name.as_str()).collect();
+                invalid(
+                    format!("{}.region", z.key),
+                    format!("{r:?}"),
+                    format!("one of the section's regions {names:?}"),
+                )
+            })?,
+        };
+        let m = match z.material {
+            Some(name) => find(&format!("{}.material", z.key), name, materials)?,
+            None => base.ok_or_else(|| {
+                invalid(format!("{}.material", z.key), "(missing)", "a material (the body has none of its own)")
+            })?,
+        };
+        let m = oriented(z, m, materials)?;
+        for e in elements {
+            per_element[e] = Some(m);
+        }
+    }
+    if let Some(e) = per_element.iter().position(Option::is_none) {
+        let bare = per_element.iter().filter(|m| m.is_none()).count();
+        return Err(invalid(
+            format!("{key}.material"),
+            format!("(missing; {bare} section elements have no material, the first is element {e})"),
+            "a material for the body, or plies and zones covering the whole section",
+        ));
+    }
+    let per_element: Vec<usize> = per_element.into_iter().flatten().collect();
+    Ok((base.unwrap_or(per_element[0]), per_element))
+}
+
+/// The material `m` in the zone's frame: itself when the frame does not
+/// matter to it (isotropic without strengths) or is the global one, else
+/// its oriented copy (appended once).
+fn oriented(z: &Zone<'_>, m: usize, materials: &mut Vec<Material>) -> Result<usize, ModelError> {
+    if !(z.angle.is_finite() && z.angle.abs() <= 360.0) {
+        return Err(invalid(format!("{}.angle", z.key), z.angle, "an angle in degrees within ±360"));
+    }
+    let frame = Frame::ply(z.fibre, z.normal, z.angle.to_radians()).ok_or_else(|| {
+        invalid(
+            format!("{}.fibre", z.key),
+            format!("{:?} with normal {:?}", z.fibre, z.normal),
+            "two non-zero, non-parallel vectors (axis 1 at angle 0, and axis 3)",
+        )
+    })?;
+    let material = &materials[m];
+    let matters = material.anisotropic.is_some() || material.strengths.is_some();
+    if !matters || (!z.oriented && frame == material.frame) {
+        return Ok(m);
+    }
+    let suffix = if z.fibre == [0.0, 1.0, 0.0] && z.normal == [0.0, 0.0, 1.0] {
+        format!("@{}", crate::numbers::short(z.angle))
+    } else {
+        format!("@{}/{:?}/{:?}", crate::numbers::short(z.angle), z.fibre, z.normal)
+    };
+    let copy = material.oriented(frame, &suffix);
+    if let Some(k) = materials.iter().position(|x| x.name == copy.name) {
+        return Ok(k);
+    }
+    materials.push(copy);
+    Ok(materials.len() - 1)
+}

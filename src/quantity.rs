@@ -16,6 +16,10 @@ pub enum Quantity {
     VonMises,
     /// Equivalent plastic strain, −.
     Peeq,
+    /// A failure index (`crate::post::failure::CRITERIA`: maximum stress,
+    /// Tsai–Wu, Hashin fibre, Hashin matrix), −; 0 where the material has
+    /// no strengths.
+    Failure(usize),
 }
 
 const VOIGT: [&str; 6] = ["xx", "yy", "zz", "xy", "xz", "yz"];
@@ -32,7 +36,17 @@ impl Quantity {
         v
     }
 
-    /// Model-file / CSV name (`u_z`, `s_yy`, `e_xz`, `von_mises`, `peeq`).
+    /// [`Quantity::all`], followed by the failure indices when `failure`
+    /// (a model with strengths).
+    pub fn all_for(failure: bool) -> Vec<Quantity> {
+        let mut v = Self::all();
+        if failure {
+            v.extend((0..4).map(Quantity::Failure));
+        }
+        v
+    }
+
+    /// Model-file / CSV name (`u_z`, `s_yy`, `e_xz`, `von_mises`, `peeq`, `fi_tsai_wu`).
     pub fn name(self) -> String {
         match self {
             Self::Displacement(k) => format!("u_{}", AXES[k]),
@@ -40,12 +54,13 @@ impl Quantity {
             Self::Stress(k) => format!("s_{}", VOIGT[k]),
             Self::VonMises => "von_mises".into(),
             Self::Peeq => "peeq".into(),
+            Self::Failure(k) => crate::post::failure::CRITERIA[k].into(),
         }
     }
 
     /// Parses a name produced by [`Quantity::name`].
     pub fn parse(s: &str) -> Option<Self> {
-        Self::all().into_iter().find(|q| q.name() == s)
+        Self::all_for(true).into_iter().find(|q| q.name() == s)
     }
 
     /// Human label with unit, for plots and tables.
@@ -56,6 +71,7 @@ impl Quantity {
             Self::Stress(k) => format!("σ_{} [MPa]", VOIGT[k]),
             Self::VonMises => "von Mises stress [MPa]".into(),
             Self::Peeq => "equivalent plastic strain [-]".into(),
+            Self::Failure(k) => format!("failure index {} [-]", &crate::post::failure::CRITERIA[k][3..]),
         }
     }
 
@@ -82,6 +98,8 @@ pub struct Sample {
     pub von_mises: f64,
     /// Equivalent plastic strain.
     pub peeq: f64,
+    /// Failure indices (`crate::post::failure::CRITERIA`), 0 without strengths.
+    pub failure: [f64; 4],
 }
 
 impl Sample {
@@ -93,6 +111,7 @@ impl Sample {
             Quantity::Stress(k) => self.stress[k],
             Quantity::VonMises => self.von_mises,
             Quantity::Peeq => self.peeq,
+            Quantity::Failure(k) => self.failure[k],
         }
     }
 
@@ -101,7 +120,8 @@ impl Sample {
     /// mean stress tensor, so the reported invariant always belongs to the
     /// reported tensor (averaging the elements' own von Mises values gave
     /// 92.5 MPa beside a tensor whose invariant is 82.1 MPa at the block's
-    /// punch edge).
+    /// punch edge). The failure indices are the largest of the samples'
+    /// (a point on a ply interface fails when either ply does).
     pub fn mean(samples: &[Sample]) -> Sample {
         let n = samples.len() as f64;
         let mut m = Sample::default();
@@ -114,6 +134,9 @@ impl Sample {
                 m.stress[k] += s.stress[k] / n;
             }
             m.peeq += s.peeq / n;
+            for k in 0..4 {
+                m.failure[k] = m.failure[k].max(s.failure[k]);
+            }
         }
         m.von_mises = crate::voigt::von_mises(&m.stress);
         m

@@ -410,7 +410,7 @@ impl NativeResults {
         })?;
         let s = self.solution.fields(&self.model).sample_probe(p).unwrap_or_default();
         let mut v = vec![("x".into(), p.point[0]), ("y".into(), p.point[1]), ("z".into(), p.point[2])];
-        v.extend(Quantity::all().into_iter().map(|q| (q.name(), s.get(q))));
+        v.extend(self.model.quantities().into_iter().map(|q| (q.name(), s.get(q))));
         Ok(v)
     }
 
@@ -423,7 +423,7 @@ impl NativeResults {
         })?;
         let (model, solution) = (self.model.clone(), self.solution.clone());
         let samples = py.allow_threads(|| post::sample_line(&solution.fields(&model), line));
-        let quantities = Quantity::all();
+        let quantities = model.quantities();
         let mut cols: Vec<(String, Vec<f64>)> = ["s", "x", "y", "z"]
             .iter()
             .map(|c| (c.to_string(), Vec::new()))

@@ -85,8 +85,24 @@ pub fn selected_faces(body: &Body, selection: &Selection) -> Vec<Face> {
 /// whose integral vanishes are left out), the mean outward normal, the area
 /// and the depth of the element behind the face.
 pub fn integrate_face(body: &Body, face: &Face) -> FaceIntegral {
+    integrate_face_with(body, face, |_| 1.0)
+}
+
+/// As [`integrate_face`], with the shape functions weighted by `f` at each
+/// point of the face: `∫ N_a f dA` per node.
+pub fn integrate_face_with(body: &Body, face: &Face, f: impl Fn([f64; 3]) -> f64) -> FaceIntegral {
     let fv = FacetValues::new(body, face.section_element, face.beam_element, face.side);
-    let per_node = fv.integrate(|_| 1.0);
+    let n = fv.nodes.len();
+    let per_node = fv.integrate(|q| {
+        let mut x = [0.0; 3];
+        for (s, &node) in fv.shapes[q * n..(q + 1) * n].iter().zip(&fv.nodes) {
+            let c = body.local_coords(node - body.node_offset);
+            for k in 0..3 {
+                x[k] += s * c[k];
+            }
+        }
+        f(x)
+    });
     let area: f64 = fv.weights.iter().sum();
     let mut normal = [0.0; 3];
     for (n, w) in fv.normals.iter().zip(&fv.weights) {

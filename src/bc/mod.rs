@@ -4,7 +4,7 @@
 
 mod faces;
 
-pub use faces::{Face, FaceIntegral, FaceSide, boundary_faces, integrate_face, selected_faces};
+pub use faces::{Face, FaceIntegral, FaceSide, boundary_faces, integrate_face, integrate_face_with, selected_faces};
 
 use std::sync::Arc;
 
@@ -123,6 +123,27 @@ pub enum LoadKind {
     },
 }
 
+/// A variation of a traction or pressure along one coordinate: the load
+/// times `sin(π (c − from)/(to − from))` (a half sine wave over
+/// `[from, to]`, as in Navier's and Pagano's solutions of simply supported
+/// members).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Profile {
+    /// The coordinate (0: x, 1: y, 2: z).
+    pub along: usize,
+    /// Where the half wave starts (m).
+    pub from: f64,
+    /// Where it ends (m).
+    pub to: f64,
+}
+
+impl Profile {
+    /// The factor at a point.
+    pub fn factor(&self, p: [f64; 3]) -> f64 {
+        (std::f64::consts::PI * (p[self.along] - self.from) / (self.to - self.from)).sin()
+    }
+}
+
 /// A load on a node set.
 #[derive(Debug, Clone)]
 pub struct Load {
@@ -134,6 +155,8 @@ pub struct Load {
     pub body: usize,
     /// The load as given.
     pub kind: LoadKind,
+    /// Its variation over the faces (`None`: uniform).
+    pub profile: Option<Profile>,
 }
 
 impl Load {

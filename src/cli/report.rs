@@ -303,6 +303,21 @@ pub fn print_results(model: &Model, solution: &Solution) {
             largest.join(", ")
         );
     }
+    if let Some(f) = &summary.ply_failure {
+        for c in &f.criteria {
+            let w = &c.first_failure_at;
+            println!(
+                "{:<18} largest index {:.4}; first failure at load factor {:.4} in {} at [{:.4e}, {:.4e}, {:.4e}] m",
+                c.criterion,
+                c.largest_index,
+                c.first_failure_load_factor,
+                w.material,
+                w.point[0],
+                w.point[1],
+                w.point[2]
+            );
+        }
+    }
     if let Some(p) = &summary.path {
         let points: Vec<String> = p.limit_points.iter().map(|(i, l)| format!("increment {i} (λ = {l:.5})")).collect();
         let points = if points.is_empty() { "none".to_string() } else { points.join(", ") };

@@ -24,10 +24,9 @@ fn write(path: &Path, text: &str) -> Result<(), IoError> {
 
 /// `s,x,y,z,u_x,…,peeq,e_xx,…` — one row per sample; rows outside every
 /// body are omitted.
-pub fn write_line(path: &Path, samples: &[LineSample]) -> Result<(), IoError> {
-    let quantities = Quantity::all();
+pub fn write_line(path: &Path, samples: &[LineSample], quantities: &[Quantity]) -> Result<(), IoError> {
     let mut text = String::from("s,x,y,z");
-    for q in &quantities {
+    for q in quantities {
         text.push(',');
         text.push_str(&q.name());
     }
@@ -35,7 +34,7 @@ pub fn write_line(path: &Path, samples: &[LineSample]) -> Result<(), IoError> {
     for s in samples {
         let Some(v) = s.sample else { continue };
         let _ = write!(text, "{:e},{:e},{:e},{:e}", s.s, s.point[0], s.point[1], s.point[2]);
-        for &q in &quantities {
+        for &q in quantities {
             let _ = write!(text, ",{:e}", v.get(q));
         }
         text.push('\n');

@@ -23,6 +23,9 @@ pub struct ProbeSummary {
     pub von_mises: f64,
     /// Equivalent plastic strain (0 while elastic).
     pub peeq: f64,
+    /// Failure indices by name (`fi_max_stress`, …), where a material has strengths.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub failure_indices: Option<std::collections::BTreeMap<&'static str, f64>>,
 }
 
 /// A resultant force of a constraint set or contact.
@@ -127,6 +130,10 @@ pub struct Summary {
     pub steps: Vec<StepSummary>,
     /// The estimated discretization error (`post::estimate`), if computed.
     pub error_estimate: Option<EstimateSummary>,
+    /// The failure indices' largest values and the first-ply-failure load
+    /// factor (`post::failure`), where a material has strengths.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub ply_failure: Option<crate::post::failure::FailureSummary>,
     /// The cycles of an adaptive run (`cufem run --adapt`), absent otherwise;
     /// the rest of the summary is the last cycle's.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -285,6 +292,7 @@ pub struct MemorySummary {
 /// Probe values of a solution.
 fn probes(model: &Model, solution: &Solution) -> Vec<ProbeSummary> {
     let view = solution.fields(model);
+    let ply_failure = model.materials.iter().any(|m| m.strengths.is_some());
     model
         .probes
         .iter()
@@ -297,6 +305,8 @@ fn probes(model: &Model, solution: &Solution) -> Vec<ProbeSummary> {
                 stress: s.stress,
                 von_mises: s.von_mises,
                 peeq: s.peeq,
+                failure_indices: ply_failure
+                    .then(|| crate::post::failure::CRITERIA.iter().copied().zip(s.failure).collect()),
             }
         })
         .collect()
@@ -397,6 +407,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         warnings: model.warnings.iter().chain(&solution.warnings).map(|w| w.to_string()).collect(),
         steps: Vec::new(),
         error_estimate: estimate_summary(model, solution),
+        ply_failure: crate::post::failure::summary(model, solution),
         adapt: solution.adapt.as_ref().map(|a| {
             a.cycles
                 .iter()

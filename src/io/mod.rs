@@ -98,7 +98,7 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     for line in &model.lines {
         let samples = post::sample_line(&view, line);
         let path = dir.join(format!("line_{}.csv", line.name));
-        csv::write_line(&path, &samples)?;
+        csv::write_line(&path, &samples, &model.quantities())?;
         written.push(path);
         if model.output.plots {
             for &q in &line.plot {

@@ -90,7 +90,7 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
     let mut cell_body: Vec<i32> = Vec::new();
     let mut cell_element: Vec<i32> = Vec::new();
     let scalars: Vec<Quantity> =
-        Quantity::all().into_iter().filter(|q| !matches!(q, Quantity::Displacement(_))).collect();
+        model.quantities().into_iter().filter(|q| !matches!(q, Quantity::Displacement(_))).collect();
     let mut scalar_data: Vec<Vec<f64>> = vec![Vec::new(); scalars.len()];
     let mut displacement: Vec<f64> = Vec::new();
     let mut contact_force: Vec<f64> = Vec::new();

@@ -45,8 +45,11 @@ pub struct Indices {
     pub hashin_fibre: f64,
     /// Hashin, matrix mode (tension or compression by the sign of σ22 + σ33).
     pub hashin_matrix: f64,
-    /// The smallest strength ratio of the three criteria: the load
-    /// multiplier of first failure under proportional loading.
+    /// The strength ratio of each (maximum stress, Tsai–Wu, Hashin fibre,
+    /// Hashin matrix): the load multiplier of its failure under
+    /// proportional loading (∞ for a mode that never fails).
+    pub ratios: [f64; 4],
+    /// The smallest of [`Indices::ratios`].
     pub strength_ratio: f64,
 }
 
@@ -134,6 +137,7 @@ impl Strengths {
             tsai_wu: tw.value(),
             hashin_fibre: hf.value(),
             hashin_matrix: hm.value(),
+            ratios: [ms.ratio(), tw.ratio(), hf.ratio(), hm.ratio()],
             strength_ratio: [ms, tw, hf, hm].iter().map(|m| m.ratio()).fold(f64::INFINITY, f64::min),
         }
     }

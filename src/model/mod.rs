@@ -387,6 +387,12 @@ impl Model {
         is_linear(&self.mesh, &self.materials, &self.indenters, &self.contacts) && !self.kinematics.is_nonlinear()
     }
 
+    /// The quantities of this model's CSV files, VTU and probes: every
+    /// [`Quantity`], the failure indices only if a material has strengths.
+    pub fn quantities(&self) -> Vec<Quantity> {
+        Quantity::all_for(self.materials.iter().any(|m| m.strengths.is_some()))
+    }
+
     /// Number of degrees of freedom (3 per node, constrained ones included).
     pub fn n_dofs(&self) -> usize {
         self.mesh.n_dofs()

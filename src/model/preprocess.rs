@@ -358,6 +358,7 @@ pub(super) fn load(key: &str, l: &LoadFile, b: usize, body: &Body, young: f64) -
     if given.iter().filter(|g| **g).count() != 1 {
         return Err(invalid(key, "load kind", "exactly one of force_per_node, total_force, traction, pressure"));
     }
+    let profile = l.profile.as_ref().map(|p| load_profile(key, l, p, body)).transpose()?;
     let mut forces: std::collections::BTreeMap<usize, [f64; 3]> = Default::default();
     let kind;
     if let Some(f) = l.force_per_node {
@@ -376,8 +377,15 @@ pub(super) fn load(key: &str, l: &LoadFile, b: usize, body: &Body, young: f64) -
         }
         kind = LoadKind::PerNode { selection: sel, force: f };
     } else {
-        let (face_list, faces) = surface_faces(&format!("{key}.where"), &l.selection, body)?;
+        let (face_list, mut faces) = surface_faces(&format!("{key}.where"), &l.selection, body)?;
         let area: f64 = faces.iter().map(|f| f.area).sum();
+        if let Some(p) = profile {
+            // ∫ N_a f dA with the uniform traction's normal and area kept
+            for (fi, face) in faces.iter_mut().zip(&face_list) {
+                let weighted = bc::integrate_face_with(body, face, |x| p.factor(x));
+                (fi.nodes, fi.weights) = (weighted.nodes, weighted.weights);
+            }
+        }
         let traction = |f: &bc::FaceIntegral| -> Result<[f64; 3], ModelError> {
             Ok(if let Some(t) = l.traction {
                 bounds::vector(&format!("{key}.traction"), t, young, &stress_why)?
@@ -413,5 +421,27 @@ pub(super) fn load(key: &str, l: &LoadFile, b: usize, body: &Body, young: f64) -
             }
         };
     }
-    Ok(Load { name: l.name.clone(), nodal_forces: forces.into_iter().collect(), body: b, kind })
+    Ok(Load { name: l.name.clone(), nodal_forces: forces.into_iter().collect(), body: b, kind, profile })
+}
+
+/// `loads.profile`: only on a traction or a pressure, over an interval of
+/// positive length within the body's extent.
+fn load_profile(key: &str, l: &LoadFile, p: &LoadProfileFile, body: &Body) -> Result<bc::Profile, ModelError> {
+    let pk = format!("{key}.profile");
+    if l.traction.is_none() && l.pressure.is_none() {
+        return Err(invalid(
+            &pk,
+            "given",
+            "a profile only with traction or pressure (a total_force or force_per_node is not distributed)",
+        ));
+    }
+    let ProfileShape::Sine = p.shape;
+    let size = body.size();
+    for (name, v) in [("from", p.from), ("to", p.to)] {
+        bounds::within(&format!("{pk}.{name}"), v, -bounds::MAX_COORD, bounds::MAX_COORD, "a coordinate in m")?;
+    }
+    if !(p.to - p.from > 1e-9 * size) {
+        return Err(invalid(format!("{pk}.to"), p.to, format!("a coordinate above from = {}", p.from)));
+    }
+    Ok(bc::Profile { along: p.along.index(), from: p.from, to: p.to })
 }

@@ -498,6 +498,18 @@ pub struct LoadFile {
     pub total_force: Option<Exact<f64, 3>>,
     pub traction: Option<Exact<f64, 3>>,
     pub pressure: Option<f64>,
+    /// A variation of `traction` or `pressure` over the faces.
+    pub profile: Option<LoadProfileFile>,
+}
+
+/// `loads.profile = { shape = "sine", along = "y", from = …, to = … }`.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadProfileFile {
+    pub shape: ProfileShape,
+    pub along: Axis,
+    pub from: f64,
+    pub to: f64,
 }
 
 tagged_table! {

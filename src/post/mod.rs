@@ -43,6 +43,7 @@
 //! values (fields such as stress are discontinuous there).
 
 pub mod estimate;
+pub mod failure;
 pub mod recovery;
 pub mod spr;
 
@@ -93,6 +94,17 @@ pub struct FieldView<'a> {
 impl FieldView<'_> {
     /// Fields at a located point.
     pub fn sample(&self, loc: &Location) -> Sample {
+        let mut s = self.sample_stress(loc);
+        let body = &self.mesh.bodies[loc.body];
+        let material = &self.materials[body.material_of(body.split_element(loc.element).0)];
+        if let Some(ix) = material.failure_indices(&s.stress) {
+            s.failure = failure::as_array(&ix);
+        }
+        s
+    }
+
+    /// [`FieldView::sample`] without the failure indices.
+    fn sample_stress(&self, loc: &Location) -> Sample {
         let body = &self.mesh.bodies[loc.body];
         let geom = &self.geometry[loc.body];
         let [xi, eta, zeta] = loc.natural;

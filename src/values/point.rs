@@ -48,6 +48,18 @@ impl PointValues {
         Self { nodes, shapes, grads }
     }
 
+    /// The point's reference position `x = Σ N_a X_a` (m) in `body`.
+    pub fn position(&self, body: &Body) -> [f64; 3] {
+        let mut out = [0.0; 3];
+        for (&n, &node) in self.shapes.iter().zip(&self.nodes) {
+            let x = body.local_coords(node - body.node_offset);
+            for k in 0..3 {
+                out[k] += n * x[k];
+            }
+        }
+        out
+    }
+
     /// Displacement `u = Σ N_a u_a` from the global displacement vector.
     pub fn displacement(&self, u: &[f64]) -> [f64; 3] {
         let mut out = [0.0; 3];

@@ -54,6 +54,14 @@ impl BeamElement {
     }
 }
 
+/// The shape of a load's variation (`loads.profile.shape`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum ProfileShape {
+    /// A half sine wave over `[from, to]`.
+    Sine,
+}
+
 /// A coordinate axis (`constraints.fix`, a cylinder's `axis`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
 #[serde(rename_all = "lowercase")]

@@ -17,7 +17,7 @@ use cufem::analysis::{self, IncrementLog, Progress, RunOptions, Solution};
 use cufem::io::output::OutputDir;
 use cufem::model::steps::{self, Item};
 use cufem::model::{Limits, Model, ModelError as RustModelError};
-use cufem::post::{self, Quantity};
+use cufem::post;
 use cufem::solver::Interrupt;
 use cufem::solver::stepping::Cutback;
 use numpy::{IntoPyArray, PyArrayMethods};

@@ -16,7 +16,7 @@ pub enum Quantity {
     VonMises,
     /// Equivalent plastic strain, −.
     Peeq,
-    /// A failure index (`crate::post::failure::CRITERIA`: maximum stress,
+    /// A failure index (`crate::materials::failure::CRITERIA`: maximum stress,
     /// Tsai–Wu, Hashin fibre, Hashin matrix), −; 0 where the material has
     /// no strengths.
     Failure(usize),
@@ -54,7 +54,7 @@ impl Quantity {
             Self::Stress(k) => format!("s_{}", VOIGT[k]),
             Self::VonMises => "von_mises".into(),
             Self::Peeq => "peeq".into(),
-            Self::Failure(k) => crate::post::failure::CRITERIA[k].into(),
+            Self::Failure(k) => crate::materials::failure::CRITERIA[k].into(),
         }
     }
 
@@ -71,7 +71,7 @@ impl Quantity {
             Self::Stress(k) => format!("σ_{} [MPa]", VOIGT[k]),
             Self::VonMises => "von Mises stress [MPa]".into(),
             Self::Peeq => "equivalent plastic strain [-]".into(),
-            Self::Failure(k) => format!("failure index {} [-]", &crate::post::failure::CRITERIA[k][3..]),
+            Self::Failure(k) => format!("failure index {} [-]", &crate::materials::failure::CRITERIA[k][3..]),
         }
     }
 
@@ -98,7 +98,7 @@ pub struct Sample {
     pub von_mises: f64,
     /// Equivalent plastic strain.
     pub peeq: f64,
-    /// Failure indices (`crate::post::failure::CRITERIA`), 0 without strengths.
+    /// Failure indices (`crate::materials::failure::CRITERIA`), 0 without strengths.
     pub failure: [f64; 4],
 }
 

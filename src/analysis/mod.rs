@@ -475,17 +475,15 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         frames: recorder.frames,
         path,
     };
-    // the estimate compares the raw stresses with their patch recovery; the
+    // the estimate compares the raw stresses with their patch recovery (not
+    // in layered bodies, whose stress jumps it would count as error); the
     // fields show the L2 projection if the model asks for it
-    let recovered = crate::post::spr::recover(&model.mesh, &model.cells, &solution.stresses, &solution.gp_offsets);
-    solution.error_estimate = Some(crate::post::estimate::estimate(
-        &model.mesh,
-        &model.cells,
-        &model.materials,
-        &solution.stresses,
-        &solution.gp_offsets,
-        &recovered,
-    ));
+    if !model.mesh.bodies.iter().any(|b| b.is_layered()) {
+        let (mesh, cells, stresses, offsets) = (&model.mesh, &model.cells, &solution.stresses, &solution.gp_offsets);
+        let recovered = crate::post::spr::recover(mesh, cells, stresses, offsets);
+        let estimate = crate::post::estimate::estimate(mesh, cells, &model.materials, stresses, offsets, &recovered);
+        solution.error_estimate = Some(estimate);
+    }
     if model.output.recovery == crate::model::Recovery::Projection {
         solution.recovered = Some(crate::post::recovery::project(
             &model.mesh,

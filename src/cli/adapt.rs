@@ -105,7 +105,7 @@ pub(super) fn run_into(
         AdaptError::Model(e) => fail(INPUT, anyhow!(e).context("refined model")),
         AdaptError::Analysis(e @ AnalysisError::TooLarge { .. }) => fail(TOO_LARGE, e),
         AdaptError::Analysis(e) => fail(INPUT, anyhow!(e).context("analysis failed")),
-        e @ AdaptError::Budget { .. } => fail(INPUT, e),
+        e @ (AdaptError::Budget { .. } | AdaptError::Layered { .. }) => fail(INPUT, e),
     })?;
     if let Some(a) = &solution.adapt {
         progress.line(format!("adaptive run stopped: {}", a.stop));

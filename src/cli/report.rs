@@ -303,21 +303,7 @@ pub fn print_results(model: &Model, solution: &Solution) {
             largest.join(", ")
         );
     }
-    if let Some(f) = &summary.ply_failure {
-        for c in &f.criteria {
-            let w = &c.first_failure_at;
-            println!(
-                "{:<18} largest index {:.4}; first failure at load factor {:.4} in {} at [{:.4e}, {:.4e}, {:.4e}] m",
-                c.criterion,
-                c.largest_index,
-                c.first_failure_load_factor,
-                w.material,
-                w.point[0],
-                w.point[1],
-                w.point[2]
-            );
-        }
-    }
+    print_ply_failure(&summary);
     if let Some(p) = &summary.path {
         let points: Vec<String> = p.limit_points.iter().map(|(i, l)| format!("increment {i} (λ = {l:.5})")).collect();
         let points = if points.is_empty() { "none".to_string() } else { points.join(", ") };
@@ -341,5 +327,17 @@ pub fn print_results(model: &Model, solution: &Solution) {
         for (k, (f, p)) in b.factors.iter().zip(&b.critical_loads).enumerate() {
             println!("          {:>4}  {f:>11.5e}   [{:.5e}, {:.5e}, {:.5e}]", k + 1, p[0], p[1], p[2]);
         }
+    }
+}
+
+/// Each failure criterion's largest index and first-failure load factor.
+fn print_ply_failure(summary: &cufem::io::Summary) {
+    let Some(f) = &summary.ply_failure else { return };
+    for c in &f.criteria {
+        let w = &c.first_failure_at;
+        println!(
+            "{:<18} largest index {:.4}; first failure at load factor {:.4} in {} at [{:.4e}, {:.4e}, {:.4e}] m",
+            c.criterion, c.largest_index, c.first_failure_load_factor, w.material, w.point[0], w.point[1], w.point[2]
+        );
     }
 }

@@ -407,7 +407,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         warnings: model.warnings.iter().chain(&solution.warnings).map(|w| w.to_string()).collect(),
         steps: Vec::new(),
         error_estimate: estimate_summary(model, solution),
-        ply_failure: crate::post::failure::summary(model, solution),
+        ply_failure: crate::post::failure::summary(&solution.fields(model), solution.lambda),
         adapt: solution.adapt.as_ref().map(|a| {
             a.cycles
                 .iter()

@@ -22,6 +22,11 @@
 //!   (τ23² − σ22σ33)/S23² + (τ12² + τ13²)/S12²`. The fibre and the matrix
 //!   index are reported apart.
 
+/// The names of the criteria as fields, in the order of
+/// [`Indices::ratios`] (`crate::quantity::Quantity::Failure`, the summary's
+/// `ply_failure`).
+pub const CRITERIA: [&str; 4] = ["fi_max_stress", "fi_tsai_wu", "fi_hashin_fibre", "fi_hashin_matrix"];
+
 /// Strengths of a ply in its material axes (Pa, all positive; compressive
 /// strengths as magnitudes).
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -27,6 +27,8 @@ pub struct Block {
     pub map: BlockMap,
     /// Region the block's elements belong to.
     pub region: String,
+    /// The wall normal `(x, z)` of a ply block ([`super::section::Region::normal`]).
+    pub normal: Option<[f64; 2]>,
 }
 
 impl std::fmt::Debug for Block {
@@ -42,6 +44,7 @@ impl Block {
             counts: [nx, nz],
             map: Box::new(move |u, v| [x[0] + u * (x[1] - x[0]), z[0] + v * (z[1] - z[0])]),
             region: region.to_string(),
+            normal: None,
         }
     }
 
@@ -94,7 +97,7 @@ pub fn from_blocks(kind: SectionElementKind, blocks: &[Block]) -> Result<CrossSe
         let region = match regions.iter().position(|r| r.name == b.region) {
             Some(r) => r,
             None => {
-                regions.push(Region { name: b.region.clone(), elements: Vec::new() });
+                regions.push(Region { name: b.region.clone(), elements: Vec::new(), normal: b.normal });
                 regions.len() - 1
             }
         };
@@ -169,6 +172,7 @@ mod tests {
                 [r * t.cos(), r * t.sin()]
             }),
             region: "ring".into(),
+            normal: None,
         };
         let s = from_blocks(SectionElementKind::L16, &[ring]).unwrap();
         assert_eq!(s.n_nodes(), 4 * 24);

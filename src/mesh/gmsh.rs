@@ -373,7 +373,7 @@ fn build(
             let name = names.get(&tag).cloned().unwrap_or_else(|| format!("physical_{tag}"));
             match regions.iter_mut().find(|g| g.name == name) {
                 Some(g) => g.elements.push(e),
-                None => regions.push(Region { name, elements: vec![e] }),
+                None => regions.push(Region { name, elements: vec![e], normal: None }),
             }
         }
     }

@@ -46,7 +46,7 @@ fn quad4_file_is_the_parametric_rectangle() {
     assert_eq!(s.kind, SectionElementKind::L4);
     assert_eq!(s.n_nodes(), 6);
     assert_eq!(key(&s), key(&rectangle(SectionElementKind::L4)));
-    assert_eq!(s.regions, vec![Region { name: "plate".into(), elements: vec![0, 1] }]);
+    assert_eq!(s.regions, vec![Region { name: "plate".into(), elements: vec![0, 1], normal: None }]);
     // scaled from mm
     let mm = parse(&quad4_file(QUAD4), "plate.msh", 1e-3, "section.file").unwrap();
     assert!((mm.properties().area - 2e-6).abs() < 1e-20);

@@ -147,6 +147,12 @@ impl Body {
         m
     }
 
+    /// True if the body has more than one material (plies, zones): its
+    /// stresses jump between them.
+    pub fn is_layered(&self) -> bool {
+        self.materials().len() > 1
+    }
+
     /// Number of 3D nodes.
     pub fn n_nodes(&self) -> usize {
         self.section.n_nodes() * self.axis.n_nodes()

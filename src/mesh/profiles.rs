@@ -35,7 +35,7 @@ pub struct Walls {
 }
 
 /// Element counts of a straight-walled profile.
-#[derive(Debug, Clone, Copy, PartialEq)]
+#[derive(Debug, Clone, PartialEq)]
 pub struct Counts {
     /// Along each flange part between webs (an outstand, or a box cell's flange).
     pub flange: usize,
@@ -43,8 +43,13 @@ pub struct Counts {
     pub web: usize,
     /// Along each lip of a hat.
     pub lip: usize,
-    /// Through each wall thickness.
+    /// Through each wall thickness (with `plies`: their sum).
     pub through: usize,
+    /// Plies through every wall, first at the wall's lower x (webs) or
+    /// lower z (flanges): (share of the wall thickness, elements); empty for
+    /// a homogeneous wall. Ply `k`'s elements form the region
+    /// `<wall>_ply<k+1>` with the wall's normal.
+    pub plies: Vec<(f64, usize)>,
 }
 
 /// The families of straight-walled profiles.
@@ -93,21 +98,60 @@ fn clear(key: &str, value: f64, clear: f64, what: &str) -> Result<f64, MeshError
     }
 }
 
-/// Blocks of a grid whose columns are `xs` (length, elements) from `x0`,
-/// rows `zs` from `z0`; `cells` lists the filled `(column, row, region)`.
-fn grid(origin: [f64; 2], xs: &[(f64, usize)], zs: &[(f64, usize)], cells: &[(usize, usize, &str)]) -> Vec<Block> {
-    let lines = |start: f64, parts: &[(f64, usize)]| {
+/// One column or row of a profile's grid: its length, its elements, and
+/// whether it is a wall's thickness (split into the plies, if any).
+type Part = (f64, usize, bool);
+
+/// The sub-parts of a part: the plies of a wall's thickness, or itself.
+fn split(part: Part, plies: &[(f64, usize)]) -> Vec<(f64, usize)> {
+    if part.2 && !plies.is_empty() {
+        plies.iter().map(|&(share, n)| (share * part.0, n)).collect()
+    } else {
+        vec![(part.0, part.1)]
+    }
+}
+
+/// Blocks of a grid whose columns are `xs` from `x0`, rows `zs` from `z0`;
+/// `cells` lists the filled `(column, row, region)`. With `plies`, each
+/// wall thickness is split into its plies: a cell on a thickness row
+/// (flanges, and the junctions, which belong to them) is layered along z,
+/// a cell on a thickness column only (webs) along x.
+fn grid(
+    origin: [f64; 2],
+    xs: &[Part],
+    zs: &[Part],
+    cells: &[(usize, usize, &str)],
+    plies: &[(f64, usize)],
+) -> Vec<Block> {
+    let lines = |start: f64, parts: &[Part]| {
         let mut l = vec![start];
-        for (len, _) in parts {
+        for (len, _, _) in parts {
             l.push(l.last().unwrap() + len);
         }
         l
     };
     let (xl, zl) = (lines(origin[0], xs), lines(origin[1], zs));
-    cells
-        .iter()
-        .map(|&(i, j, region)| Block::rectangle([xl[i], xl[i + 1]], [zl[j], zl[j + 1]], xs[i].1, zs[j].1, region))
-        .collect()
+    let mut blocks = Vec::new();
+    for &(i, j, region) in cells {
+        let (cols, rows) = (split(xs[i], plies), split(zs[j], plies));
+        let along_z = zs[j].2;
+        let mut z0 = zl[j];
+        for (b, &(hz, nz)) in rows.iter().enumerate() {
+            let mut x0 = xl[i];
+            for (a, &(hx, nx)) in cols.iter().enumerate() {
+                let mut block = Block::rectangle([x0, x0 + hx], [z0, z0 + hz], nx, nz, region);
+                if !plies.is_empty() && (along_z || xs[i].2) {
+                    let (k, normal) = if along_z { (b, [0.0, 1.0]) } else { (a, [1.0, 0.0]) };
+                    block.region = format!("{region}_ply{}", k + 1);
+                    block.normal = Some(normal);
+                }
+                blocks.push(block);
+                x0 += hx;
+            }
+            z0 += hz;
+        }
+    }
+    blocks
 }
 
 /// The blocks of a straight-walled profile with its bottom-left bounding-box
@@ -142,38 +186,38 @@ pub fn straight(family: Family, origin: [f64; 2], d: &Walls, n: &Counts) -> Resu
         Family::I => {
             let out = flange_clear(1.0, 0.0)? / 2.0;
             let h = web_clear(2.0)?;
-            let xs = [(out, n.flange), (tw, t), (out, n.flange)];
-            let zs = [(tf, t), (h, n.web), (tf, t)];
+            let xs = [(out, n.flange, false), (tw, t, true), (out, n.flange, false)];
+            let zs = [(tf, t, true), (h, n.web, false), (tf, t, true)];
             let cells = [(0, 0, bf), (1, 0, bf), (2, 0, bf), (1, 1, bw), (0, 2, bt), (1, 2, bt), (2, 2, bt)];
-            grid(origin, &xs, &zs, &cells)
+            grid(origin, &xs, &zs, &cells, &n.plies)
         }
         Family::Channel => {
             let out = flange_clear(1.0, 0.0)?;
             let h = web_clear(2.0)?;
-            let xs = [(tw, t), (out, n.flange)];
-            let zs = [(tf, t), (h, n.web), (tf, t)];
-            grid(origin, &xs, &zs, &[(0, 0, bf), (1, 0, bf), (0, 1, bw), (0, 2, bt), (1, 2, bt)])
+            let xs = [(tw, t, true), (out, n.flange, false)];
+            let zs = [(tf, t, true), (h, n.web, false), (tf, t, true)];
+            grid(origin, &xs, &zs, &[(0, 0, bf), (1, 0, bf), (0, 1, bw), (0, 2, bt), (1, 2, bt)], &n.plies)
         }
         Family::Z => {
             let out = flange_clear(1.0, 0.0)?;
             let h = web_clear(2.0)?;
-            let xs = [(out, n.flange), (tw, t), (out, n.flange)];
-            let zs = [(tf, t), (h, n.web), (tf, t)];
-            grid(origin, &xs, &zs, &[(1, 0, bf), (2, 0, bf), (1, 1, bw), (0, 2, bt), (1, 2, bt)])
+            let xs = [(out, n.flange, false), (tw, t, true), (out, n.flange, false)];
+            let zs = [(tf, t, true), (h, n.web, false), (tf, t, true)];
+            grid(origin, &xs, &zs, &[(1, 0, bf), (2, 0, bf), (1, 1, bw), (0, 2, bt), (1, 2, bt)], &n.plies)
         }
         Family::Angle => {
             let out = flange_clear(1.0, 0.0)?;
             let h = web_clear(1.0)?;
-            let xs = [(tw, t), (out, n.flange)];
-            let zs = [(tf, t), (h, n.web)];
-            grid(origin, &xs, &zs, &[(0, 0, "leg_x"), (1, 0, "leg_x"), (0, 1, "leg_z")])
+            let xs = [(tw, t, true), (out, n.flange, false)];
+            let zs = [(tf, t, true), (h, n.web, false)];
+            grid(origin, &xs, &zs, &[(0, 0, "leg_x"), (1, 0, "leg_x"), (0, 1, "leg_z")], &n.plies)
         }
         Family::Hat => {
             let lip = positive("section.lip", d.lip, "a positive lip width in m")?;
             let top = flange_clear(2.0, 0.0)?;
             let h = web_clear(2.0)?;
-            let xs = [(lip, n.lip), (tw, t), (top, n.flange), (tw, t), (lip, n.lip)];
-            let zs = [(tf, t), (h, n.web), (tf, t)];
+            let xs = [(lip, n.lip, false), (tw, t, true), (top, n.flange, false), (tw, t, true), (lip, n.lip, false)];
+            let zs = [(tf, t, true), (h, n.web, false), (tf, t, true)];
             let cells = [
                 (0, 0, "lips"),
                 (1, 0, "lips"),
@@ -185,7 +229,7 @@ pub fn straight(family: Family, origin: [f64; 2], d: &Walls, n: &Counts) -> Resu
                 (2, 2, bt),
                 (3, 2, bt),
             ];
-            grid(origin, &xs, &zs, &cells)
+            grid(origin, &xs, &zs, &cells, &n.plies)
         }
         Family::Box => {
             let cells = d.cells;
@@ -194,11 +238,11 @@ pub fn straight(family: Family, origin: [f64; 2], d: &Walls, n: &Counts) -> Resu
             }
             let cell = flange_clear(cells as f64 + 1.0, 0.0)? / cells as f64;
             let h = web_clear(2.0)?;
-            let mut xs = vec![(tw, t)];
+            let mut xs = vec![(tw, t, true)];
             for _ in 0..cells {
-                xs.extend([(cell, n.flange), (tw, t)]);
+                xs.extend([(cell, n.flange, false), (tw, t, true)]);
             }
-            let zs = [(tf, t), (h, n.web), (tf, t)];
+            let zs = [(tf, t, true), (h, n.web, false), (tf, t, true)];
             let mut filled = Vec::new();
             for i in 0..xs.len() {
                 filled.extend([(i, 0, bf), (i, 2, bt)]);
@@ -206,7 +250,7 @@ pub fn straight(family: Family, origin: [f64; 2], d: &Walls, n: &Counts) -> Resu
                     filled.push((i, 1, "webs"));
                 }
             }
-            grid(origin, &xs, &zs, &filled)
+            grid(origin, &xs, &zs, &filled, &n.plies)
         }
     })
 }
@@ -242,6 +286,7 @@ pub fn circular_tube(
             [center[0] + r * th.cos(), center[1] + r * th.sin()]
         }),
         region: "wall".into(),
+        normal: None,
     }])
 }
 
@@ -268,6 +313,7 @@ pub fn circle(center: [f64; 2], radius: f64, around: usize, through: usize) -> R
         counts: [n, n],
         map: Box::new(move |u, v| [center[0] - a + 2.0 * a * u, center[1] - a + 2.0 * a * v]),
         region: "core".into(),
+        normal: None,
     }];
     for k in 0..4 {
         let rot = k as f64 * FRAC_PI_2;
@@ -283,6 +329,7 @@ pub fn circle(center: [f64; 2], radius: f64, around: usize, through: usize) -> R
                 [center[0] + c * p[0] - s * p[1], center[1] + s * p[0] + c * p[1]]
             }),
             region: "rim".into(),
+            normal: None,
         });
     }
     Ok(blocks)

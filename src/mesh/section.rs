@@ -34,6 +34,9 @@ pub struct Region {
     pub name: String,
     /// Section element indices, increasing.
     pub elements: Vec<usize>,
+    /// The wall's normal `(x, z)` of a ply through a profile's wall
+    /// (`None` for other regions).
+    pub normal: Option<[f64; 2]>,
 }
 
 /// Local edge `k` of a quadrilateral as seen from its natural coordinates:

@@ -20,6 +20,13 @@ pub(super) fn region_name(k: usize) -> String {
 /// 1..=MAX_COUNT elements, a finite angle.
 fn plies<'a>(sk: &str, s: &'a LaminateFile) -> Result<&'a [PlyFile], ModelError> {
     let plies = s.plies.as_deref().unwrap_or(&[]);
+    check(sk, plies)?;
+    Ok(plies)
+}
+
+/// Checks a list of plies (key `sk`.plies): at least one, positive
+/// thickness, 1..=MAX_COUNT elements, a finite angle.
+pub(super) fn check(sk: &str, plies: &[PlyFile]) -> Result<(), ModelError> {
     if plies.is_empty() {
         return Err(invalid(
             format!("{sk}.plies"),
@@ -46,7 +53,7 @@ fn plies<'a>(sk: &str, s: &'a LaminateFile) -> Result<&'a [PlyFile], ModelError>
             return Err(invalid(format!("{pk}.angle"), a, "an angle in degrees within ±360"));
         }
     }
-    Ok(plies)
+    Ok(())
 }
 
 /// The z lines of the stack (element boundaries) and each ply's element
@@ -92,7 +99,11 @@ pub(super) fn section(sk: &str, kind: SectionElementKind, s: &LaminateFile) -> R
     section.regions = rows
         .iter()
         .enumerate()
-        .map(|(k, &(first, n))| Region { name: region_name(k), elements: (first * nx..(first + n) * nx).collect() })
+        .map(|(k, &(first, n))| Region {
+            name: region_name(k),
+            elements: (first * nx..(first + n) * nx).collect(),
+            normal: None,
+        })
         .collect();
     Ok(section)
 }

@@ -455,6 +455,26 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     };
     solver.path = path::settings(&file.solver, &solver, &loading)?;
     let output = validate::output(&file.output);
+    if output.recovery == Recovery::Projection
+        && let Some(b) = mesh.bodies.iter().position(|b| b.is_layered())
+    {
+        return Err(invalid(
+            "output.recovery",
+            "\"projection\"",
+            format!(
+                "\"element\" with a layered body (bodies[{b}] has several materials: a continuous projection \
+                 would smooth the stress jumps between its plies and zones)"
+            ),
+        ));
+    }
+    if mesh.bodies.iter().any(|b| b.is_layered()) {
+        warnings.push(Warning {
+            key: "bodies".into(),
+            message: "layered bodies: no error estimate (its patch recovery would count the stress jumps between \
+                      plies as error)"
+                .into(),
+        });
+    }
     let item_names = steps::ItemNames {
         indenters: indenters.iter().map(|i| i.name.as_str()).collect(),
         constraints: constraints.iter().map(|c| c.name.as_str()).collect(),

@@ -14,10 +14,12 @@ use std::fmt;
 use serde::Deserialize;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
 
+mod anisotropy;
 mod section;
 pub(crate) mod tagged;
 mod words;
 
+pub use anisotropy::*;
 pub use section::*;
 use tagged::tagged_table;
 pub use words::*;
@@ -270,37 +272,6 @@ pub struct MaterialFile {
     pub plasticity: Option<PlasticityFile>,
 }
 
-/// `materials.orthotropic`: engineering constants (Pa and −).
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct OrthotropicFile {
-    pub e1: f64,
-    pub e2: f64,
-    pub e3: f64,
-    pub g12: f64,
-    pub g13: f64,
-    pub g23: f64,
-    pub nu12: f64,
-    pub nu13: f64,
-    pub nu23: f64,
-}
-
-/// `materials.strengths` (Pa, magnitudes): `zt`, `zc` default to `yt`,
-/// `yc` and `s13` to `s12` (transverse isotropy).
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct StrengthsFile {
-    pub xt: f64,
-    pub xc: f64,
-    pub yt: f64,
-    pub yc: f64,
-    pub zt: Option<f64>,
-    pub zc: Option<f64>,
-    pub s12: f64,
-    pub s13: Option<f64>,
-    pub s23: f64,
-}
-
 tagged_table! {
     /// `[materials.plasticity]`.
     pub struct PlasticityFile {
@@ -355,22 +326,6 @@ pub struct BodyFile {
     pub formulation: Option<Formulation>,
     /// `[[bodies.zones]]`: materials and material axes of section regions.
     pub zones: Option<Vec<ZoneFile>>,
-}
-
-/// One `[[bodies.zones]]`: a section region's material and its axes.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ZoneFile {
-    /// A named section region (every element when absent).
-    pub region: Option<String>,
-    /// The material (the body's when absent).
-    pub material: Option<String>,
-    /// The angle (degrees) of the material's axis 1 from `fibre`, about `normal`.
-    pub angle: Option<f64>,
-    /// Axis 1 at angle 0 (default the beam axis `[0, 1, 0]`).
-    pub fibre: Option<Exact<f64, 3>>,
-    /// Axis 3 (default `[0, 0, 1]`).
-    pub normal: Option<Exact<f64, 3>>,
 }
 
 /// An interval division: `{from, to, elements[, ratio]}`, `{lines}` or `{segments}`.
@@ -500,16 +455,6 @@ pub struct LoadFile {
     pub pressure: Option<f64>,
     /// A variation of `traction` or `pressure` over the faces.
     pub profile: Option<LoadProfileFile>,
-}
-
-/// `loads.profile = { shape = "sine", along = "y", from = …, to = … }`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct LoadProfileFile {
-    pub shape: ProfileShape,
-    pub along: Axis,
-    pub from: f64,
-    pub to: f64,
 }
 
 tagged_table! {

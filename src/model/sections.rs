@@ -222,11 +222,12 @@ impl Sections<'_> {
         cells: Option<usize>,
     ) -> Result<CrossSection, ModelError> {
         let n = |name: &str, v: Option<usize>, default: usize| count(&format!("{sk}.{name}"), v.unwrap_or(default));
+        let (web_thickness, flange_thickness, through, plies) = wall_plies(sk, s)?;
         let walls = Walls {
             width: length(format!("{sk}.width"), s.width, "the overall width")?,
             height: length(format!("{sk}.height"), s.height, "the overall height")?,
-            web: length(format!("{sk}.web_thickness"), s.web_thickness, "the web thickness")?,
-            flange: length(format!("{sk}.flange_thickness"), s.flange_thickness, "the flange thickness")?,
+            web: length(format!("{sk}.web_thickness"), web_thickness, "the web thickness")?,
+            flange: length(format!("{sk}.flange_thickness"), flange_thickness, "the flange thickness")?,
             lip: match lip {
                 Some((width, _)) => length(format!("{sk}.lip"), width, "the lip width")?,
                 None => 0.0,
@@ -237,7 +238,8 @@ impl Sections<'_> {
             flange: n("along_flange", s.along_flange, 2)?,
             web: n("along_web", s.along_web, 4)?,
             lip: n("along_lip", lip.and_then(|l| l.1), 1)?,
-            through: n("through", s.through, 1)?,
+            through: n("through", through, 1)?,
+            plies,
         };
         let origin = point(format!("{sk}.origin"), s.origin.map(Into::into))?;
         let blocks = profiles::straight(family, origin, &walls, &counts);
@@ -290,6 +292,41 @@ impl Sections<'_> {
         self.add(section.kind, elements, section.n_nodes() as u64, pairs)?;
         Ok(section)
     }
+}
+
+/// A profile's wall thicknesses and elements through them, from its plies
+/// when it has some: every wall is the stack (web_thickness and
+/// flange_thickness, if given, must equal its thickness; through, its
+/// elements), with each ply's share of the thickness and elements.
+#[allow(clippy::type_complexity)]
+fn wall_plies(
+    sk: &str,
+    s: &ProfileFile,
+) -> Result<(Option<f64>, Option<f64>, Option<usize>, Vec<(f64, usize)>), ModelError> {
+    let Some(plies) = s.plies.as_deref() else {
+        return Ok((s.web_thickness, s.flange_thickness, s.through, Vec::new()));
+    };
+    super::laminate::check(sk, plies)?;
+    let total: f64 = plies.iter().map(|p| p.thickness).sum();
+    let elements: usize = plies.iter().map(|p| p.elements.unwrap_or(1)).sum();
+    for (name, v) in [("web_thickness", s.web_thickness), ("flange_thickness", s.flange_thickness)] {
+        if let Some(v) = v
+            && (v - total).abs() > 1e-9 * total
+        {
+            return Err(invalid(
+                format!("{sk}.{name}"),
+                v,
+                format!("the plies' total thickness {total} m, or no {name} (the plies give every wall's thickness)"),
+            ));
+        }
+    }
+    if let Some(t) = s.through
+        && t != elements
+    {
+        return Err(invalid(format!("{sk}.through"), t, format!("the plies' {elements} elements, or no through")));
+    }
+    let shares = plies.iter().map(|p| (p.thickness / total, p.elements.unwrap_or(1))).collect();
+    Ok((Some(total), Some(total), Some(elements), shares))
 }
 
 fn length(key: String, v: Option<f64>, what: &str) -> Result<f64, ModelError> {

@@ -1,5 +1,6 @@
 //! The materials of a body's section elements: the body's `material`, the
-//! plies of a laminate section and `[[bodies.zones]]` (a section region's
+//! plies of a laminate section or through a profile's walls (each wall's
+//! plies turned about that wall's normal) and `[[bodies.zones]]` (a section region's
 //! material and material axes), applied in that order. A material placed
 //! in a frame it cares about (anisotropic stiffness, or strengths whose
 //! indices are taken in its axes) becomes an oriented copy appended to the
@@ -32,8 +33,25 @@ fn find(key: &str, name: &str, materials: &[Material]) -> Result<usize, ModelErr
     })
 }
 
-fn zones<'a>(key: &str, b: &'a BodyFile) -> Vec<Zone<'a>> {
+fn zones<'a>(key: &str, b: &'a BodyFile, section: &CrossSection) -> Vec<Zone<'a>> {
     let mut out = Vec::new();
+    if let Some(plies) = b.section.wall_plies() {
+        // `<wall>_ply<k>` regions of a profile (mesh::profiles), with their wall's normal
+        for r in &section.regions {
+            let Some(n) = r.normal else { continue };
+            let Some(k) = r.name.rsplit_once("_ply").and_then(|(_, k)| k.parse::<usize>().ok()) else { continue };
+            let Some(p) = k.checked_sub(1).and_then(|k| plies.get(k)) else { continue };
+            out.push(Zone {
+                key: format!("{key}.section.plies[{}]", k - 1),
+                region: Some(r.name.clone()),
+                material: Some(&p.material),
+                angle: p.angle.unwrap_or(0.0),
+                fibre: [0.0, 1.0, 0.0],
+                normal: [n[0], 0.0, n[1]],
+                oriented: true,
+            });
+        }
+    }
     if let SectionFile::Laminate(l) = &b.section {
         for (k, p) in l.plies.as_deref().unwrap_or(&[]).iter().enumerate() {
             out.push(Zone {
@@ -74,7 +92,7 @@ pub(super) fn assign(
     materials: &mut Vec<Material>,
 ) -> Result<(usize, Vec<usize>), ModelError> {
     let base = b.material.as_deref().map(|name| find(&format!("{key}.material"), name, materials)).transpose()?;
-    let list = zones(key, b);
+    let list = zones(key, b, section);
     if list.is_empty() {
         let base = base.ok_or_else(|| {
             invalid(

@@ -14,13 +14,10 @@
 
 use serde::Serialize;
 
-use crate::analysis::Solution;
-use crate::model::Model;
+use super::FieldView;
 use crate::values::{Location, PointValues};
 
-/// The names of the criteria, in the order of [`FailureSummary::criteria`]
-/// (also the field names of [`crate::quantity::Quantity::Failure`]).
-pub const CRITERIA: [&str; 4] = ["fi_max_stress", "fi_tsai_wu", "fi_hashin_fibre", "fi_hashin_matrix"];
+pub use crate::materials::failure::CRITERIA;
 
 /// A place in the model and the material there.
 #[derive(Debug, Clone, Serialize)]
@@ -66,19 +63,19 @@ pub fn as_array(i: &crate::materials::Indices) -> [f64; 4] {
     [i.max_stress, i.tsai_wu, i.hashin_fibre, i.hashin_matrix]
 }
 
-/// The failure summary of `solution`, `None` if no material has strengths.
-pub fn summary(model: &Model, solution: &Solution) -> Option<FailureSummary> {
-    if model.materials.iter().all(|m| m.strengths.is_none()) {
+/// The failure summary of the fields `view` at load factor `lambda`,
+/// `None` if no material has strengths.
+pub fn summary(view: &FieldView<'_>, lambda: f64) -> Option<FailureSummary> {
+    if view.materials.iter().all(|m| m.strengths.is_none()) {
         return None;
     }
-    let view = solution.fields(model);
     // per criterion: (largest index, where), (smallest ratio, where)
     let mut best: Vec<Option<(Extreme, Extreme)>> = vec![None; 4];
-    for (b, body) in model.mesh.bodies.iter().enumerate() {
+    for (b, body) in view.mesh.bodies.iter().enumerate() {
         let (ps, pb) = (body.section.kind.order(), body.axis.kind.order());
         let grid = |p: usize| (0..=p).map(move |k| -1.0 + 2.0 * k as f64 / p as f64);
         for e in 0..body.n_elements() {
-            let material = &model.materials[body.material_of(body.split_element(e).0)];
+            let material = &view.materials[body.material_of(body.split_element(e).0)];
             if material.strengths.is_none() {
                 continue;
             }
@@ -119,7 +116,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Option<FailureSummary> {
                 criterion,
                 largest_index,
                 largest_at,
-                first_failure_load_factor: solution.lambda * ratio,
+                first_failure_load_factor: lambda * ratio,
                 first_failure_at,
             })
         })

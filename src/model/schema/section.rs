@@ -59,6 +59,16 @@ impl SectionFile {
         }
     }
 
+    /// The plies through the walls of a straight-walled profile, if given.
+    pub fn wall_plies(&self) -> Option<&[PlyFile]> {
+        match self {
+            Self::IBeam(s) | Self::Channel(s) | Self::ZSection(s) | Self::Angle(s) => s.plies.as_deref(),
+            Self::Hat(s) => s.plies.as_deref(),
+            Self::Box(s) => s.plies.as_deref(),
+            _ => None,
+        }
+    }
+
     /// The `element` key (required except for `shape = "gmsh"`).
     pub fn element(&self) -> Option<SectionElement> {
         match self {
@@ -151,6 +161,9 @@ pub struct ProfileFile {
     pub along_flange: Option<usize>,
     pub along_web: Option<usize>,
     pub through: Option<usize>,
+    /// Plies through every wall (thickness, material, angle, elements),
+    /// from the wall's lower x (webs) or lower z (flanges).
+    pub plies: Option<Vec<PlyFile>>,
 }
 
 /// `shape = "hat"`: a profile with lips.
@@ -168,6 +181,8 @@ pub struct HatFile {
     pub along_web: Option<usize>,
     pub along_lip: Option<usize>,
     pub through: Option<usize>,
+    /// Plies through every wall.
+    pub plies: Option<Vec<PlyFile>>,
 }
 
 /// `shape = "box"`: a profile of one or more cells.
@@ -184,6 +199,9 @@ pub struct BoxFile {
     pub along_flange: Option<usize>,
     pub along_web: Option<usize>,
     pub through: Option<usize>,
+    /// Plies through every wall (thickness, material, angle, elements),
+    /// from the wall's lower x (webs) or lower z (flanges).
+    pub plies: Option<Vec<PlyFile>>,
 }
 
 /// The keys a hat or a box shares with the other profiles.
@@ -199,6 +217,7 @@ macro_rules! shared_profile {
             along_flange: $s.along_flange,
             along_web: $s.along_web,
             through: $s.through,
+            plies: $s.plies.clone(),
         }
     };
 }

@@ -331,12 +331,19 @@ fn turning_plies_and_load_together_turns_the_answer() {
 /// by 3.3 %.
 #[test]
 fn laminated_box_beam_bends_like_laminated_timoshenko_beam() {
-    let (_, s) = run_cli("box_beam_laminated", None);
+    let (out, s) = run_cli("box_beam_laminated", None);
     let force =
         -s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "load").unwrap()["force"][2].as_f64().unwrap();
     let probe = s["probes"].as_array().unwrap().iter().find(|p| p["name"] == "bottom_flange_mid_span").unwrap();
     let w = -probe["u"][2].as_f64().unwrap();
     assert!(probe["failure_indices"]["fi_tsai_wu"].as_f64().unwrap() > 0.0, "{probe}");
+    // the VTU's failure fields are the summary's: its largest Tsai–Wu index
+    // is the one summary.json reports (both over every element's Lagrange
+    // grid, faces included)
+    let vtu = common::vtu_array(&out.join("result.vtu"), Some("fi_tsai_wu"));
+    let largest = vtu.iter().fold(0.0f64, |m, v| m.max(*v));
+    let reported = s["ply_failure"]["criteria"][1]["largest_index"].as_f64().unwrap();
+    assert!((largest / reported - 1.0).abs() < 1e-9, "VTU {largest} against summary {reported}");
     let lamina = clt::Lamina { e1: 181e9, e2: 10.3e9, nu12: 0.28, g12: 7.17e9 };
     let (t, layup) = (0.5e-3, [0.0, 90.0, 90.0, 0.0]);
     let plies: Vec<clt::Ply> =

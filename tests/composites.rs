@@ -423,3 +423,101 @@ fn plies_follow_each_wall_of_a_profile() {
     let e = cufem::model::Model::parse(&bad).unwrap_err().to_string();
     assert!(e.contains("bodies[0].section.web_thickness") && e.contains("total thickness"), "{e}");
 }
+
+/// Bad anisotropic input is refused by key with what is allowed: Poisson's
+/// ratios without a positive definite compliance, a stiffness that is not
+/// symmetric, plasticity on an anisotropic material, an unknown zone region,
+/// a fibre along the normal.
+#[test]
+fn bad_anisotropic_input_is_refused_by_key() {
+    let ply = "[[materials]]\nname = \"ply\"\northotropic = { e1 = 25e9, e2 = 1e9, e3 = 1e9, g12 = 0.5e9, g13 = 0.5e9, \
+               g23 = 0.2e9, nu12 = 0.25, nu13 = 0.25, nu23 = 0.25 }\n";
+    let zone = "[[bodies.zones]]\nmaterial = \"ply\"\nangle = 30.0\n";
+    let good = cantilever(ply, zone, [0.0, 0.0, 1.0]);
+    assert!(cufem::model::Model::parse(&good).is_ok());
+    let cases: [(String, &str, &str); 5] = [
+        (good.replace("nu12 = 0.25", "nu12 = 6.0"), "materials[0].orthotropic", "positive definite"),
+        (
+            good.replace(
+                "orthotropic = { e1 = 25e9, e2 = 1e9, e3 = 1e9, g12 = 0.5e9, g13 = 0.5e9, g23 = 0.2e9, nu12 = 0.25, nu13 = 0.25, nu23 = 0.25 }",
+                "stiffness = [[1e9, 2e8, 0, 0, 0, 0], [0, 1e9, 0, 0, 0, 0], [0, 0, 1e9, 0, 0, 0], [0, 0, 0, 1e9, 0, 0], [0, 0, 0, 0, 1e9, 0], [0, 0, 0, 0, 0, 1e9]]",
+            ),
+            "materials[0].stiffness",
+            "symmetric",
+        ),
+        (
+            good.replace("nu23 = 0.25 }\n", "nu23 = 0.25 }\nplasticity = { hardening = \"perfect\", yield_stress = 1e8 }\n"),
+            "materials[0].plasticity",
+            "anisotropic materials are elastic",
+        ),
+        (good.replace("angle = 30.0\n", "angle = 30.0\nregion = \"web\"\n"), "bodies[0].zones[0].region", "regions"),
+        (good.replace("angle = 30.0\n", "angle = 30.0\nfibre = [0.0, 0.0, 2.0]\n"), "bodies[0].zones[0].fibre", "non-parallel"),
+    ];
+    for (text, key, allowed) in cases {
+        let e = cufem::model::Model::parse(&text).unwrap_err().to_string();
+        assert!(e.contains(key) && e.contains(allowed), "expected {key} … {allowed}, got: {e}");
+    }
+}
+
+/// An isotropic elastoplastic layer beside an elastic anisotropic one (a
+/// metal liner on a carbon ply): a cantilever loaded past the liner's yield
+/// converges, the liner yields, the ply stays elastic, and the liner's
+/// Gauss points stay on or inside their yield surface (perfect plasticity:
+/// von Mises ≤ σ_y to 1e-9).
+#[test]
+fn an_elastoplastic_liner_yields_beside_an_elastic_ply() {
+    let materials = "[[materials]]\nname = \"ply\"\northotropic = { e1 = 181e9, e2 = 10.3e9, e3 = 10.3e9, g12 = 7.17e9, \
+                     g13 = 7.17e9, g23 = 3.68e9, nu12 = 0.28, nu13 = 0.28, nu23 = 0.4 }\n\n[[materials]]\nname = \"liner\"\n\
+                     young_modulus = 70e9\npoisson_ratio = 0.33\nplasticity = { hardening = \"perfect\", yield_stress = 1e8 }\n";
+    let text = format!(
+        r#"{materials}
+[solver]
+increments = 8
+
+[[bodies]]
+name = "beam"
+section = {{ shape = "laminate", element = "L9", x = {{ from = -0.005, to = 0.005, elements = 2 }}, z0 = -0.005, plies = [
+  {{ thickness = 0.005, material = "liner", elements = 2 }},
+  {{ thickness = 0.005, material = "ply", angle = 0.0, elements = 2 }} ] }}
+axis = {{ element = "B4", from = 0.0, to = 0.1, elements = 4 }}
+
+[[constraints]]
+name = "root"
+body = "beam"
+where = {{ y = 0.0 }}
+fix = ["x", "y", "z"]
+
+[[loads]]
+name = "tip"
+body = "beam"
+where = {{ y = 0.1 }}
+total_force = [0.0, 0.0, -3000.0]
+"#
+    );
+    let model = cufem::model::Model::parse(&text).unwrap();
+    let sol = common::run(&text);
+    let body = &model.mesh.bodies[0];
+    let cell = &model.cells[0];
+    let ngp = cell.gp_per_element();
+    let (mut liner_yielded, mut ply_yielded) = (0, 0);
+    for e in 0..body.n_elements() {
+        let es = body.split_element(e).0;
+        let m = &model.materials[body.material_of(es)];
+        // the liner is the first ply, below z = 0
+        let nodes = body.section.element(es);
+        let zc = nodes.iter().map(|&n| body.section.nodes[n][1]).sum::<f64>() / nodes.len() as f64;
+        assert_eq!(m.is_plastic(), zc < 0.0, "element {es} at z = {zc}");
+        for g in e * ngp..(e + 1) * ngp {
+            let peeq = sol.states[g].peeq;
+            if m.is_plastic() {
+                liner_yielded += usize::from(peeq > 0.0);
+                let vm = cufem::voigt::von_mises(&sol.stresses[g]);
+                assert!(vm <= 1e8 * (1.0 + 1e-9), "liner point {g}: von Mises {vm:e}");
+            } else {
+                ply_yielded += usize::from(peeq > 0.0);
+            }
+        }
+    }
+    eprintln!("liner: {liner_yielded} plastic Gauss points; ply: {ply_yielded}");
+    assert!(liner_yielded > 0 && ply_yielded == 0);
+}

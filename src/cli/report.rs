@@ -44,10 +44,12 @@ pub fn print_check(model: &Model) {
     println!();
     println!("bodies:");
     for b in &model.mesh.bodies {
+        // a layered body: its materials in their frames (`t300@90`)
+        let names: Vec<&str> = b.materials().into_iter().map(|m| model.materials[m].name.as_str()).collect();
         println!(
             "  {:<12} material {:<12} section {} × {:?} ({} nodes), axis {} × {:?} ({} nodes): {} elements, {} nodes, {} DOF",
             b.name,
-            model.materials[b.material].name,
+            names.join(", "),
             b.section.n_elements(),
             b.section.kind,
             b.section.n_nodes(),
@@ -72,7 +74,21 @@ pub fn print_check(model: &Model) {
             None => "elastic".to_string(),
             Some(h) => format!("von Mises, {h}"),
         };
-        println!("material {}: E = {:.4} GPa, ν = {}, {}", m.name, m.young * 1e-9, m.poisson, plastic);
+        match &m.anisotropic {
+            None => println!("material {}: E = {:.4} GPa, ν = {}, {}", m.name, m.young * 1e-9, m.poisson, plastic),
+            Some(c) => {
+                // the moduli along the material axes, and where the axes point
+                let s = cufem::materials::anisotropic::invert(c).unwrap_or_default();
+                let [e1, e2, e3] = [0, 1, 2].map(|i| 1e-9 / s[i][i]);
+                let [a1, _, a3] = m.frame.axes;
+                println!(
+                    "material {}: anisotropic, E1 = {e1:.4}, E2 = {e2:.4}, E3 = {e3:.4} GPa, axis 1 = {a1:.3?}, \
+                     axis 3 = {a3:.3?}, elastic{}",
+                    m.name,
+                    if m.strengths.is_some() { ", with strengths" } else { "" }
+                );
+            }
+        }
     }
     for c in &model.constraints {
         let comps: Vec<String> = c

@@ -158,11 +158,15 @@ fn oriented(z: &Zone<'_>, m: usize, materials: &mut Vec<Material>) -> Result<usi
     if !matters || (!z.oriented && frame == material.frame) {
         return Ok(m);
     }
-    let suffix = if z.fibre == [0.0, 1.0, 0.0] && z.normal == [0.0, 0.0, 1.0] {
-        format!("@{}", crate::numbers::short(z.angle))
-    } else {
-        format!("@{}/{:?}/{:?}", crate::numbers::short(z.angle), z.fibre, z.normal)
-    };
+    // `cfrp@90`, with the axes when they are not the laminate's: `cfrp@0 n(1,0,0)`
+    let short = |v: [f64; 3]| v.map(crate::numbers::short).join(",");
+    let mut suffix = format!("@{}", crate::numbers::short(z.angle));
+    if z.normal != [0.0, 0.0, 1.0] {
+        suffix += &format!(" n({})", short(z.normal));
+    }
+    if z.fibre != [0.0, 1.0, 0.0] {
+        suffix += &format!(" f({})", short(z.fibre));
+    }
     let copy = material.oriented(frame, &suffix);
     if let Some(k) = materials.iter().position(|x| x.name == copy.name) {
         return Ok(k);

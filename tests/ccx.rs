@@ -396,7 +396,10 @@ fn features_without_a_calculix_twin_are_refused_by_key() {
     );
     let friction = example("block_indentation.toml")
         .replace("displacement = [0.0, 0.0, -1.0e-3]", "displacement = [0.0, 0.0, -1.0e-3]\nfriction = 0.2");
+    // Pagano's sine load: the deck's surface loads are uniform
+    let profile = example("pagano_s4.toml");
     for (name, text, key) in [
+        ("profile", profile, "loads[0].profile"),
         ("steps", unload, "steps"),
         ("friction", friction, "indenters[0].friction"),
         ("force", force, "indenters[0].force"),

@@ -2,9 +2,11 @@
 //! bodies, materials, constraints, loads, rigid tools, contacts and load
 //! increments, on the hexahedral mesh of [`super::mesh`].
 //!
-//! * Materials: `*ELASTIC`; `*PLASTIC` rows `(σ_y, ε̄ᵖ)` from the hardening
-//!   law (perfect: one row; linear: a second row at ε̄ᵖ = 10; table: its
-//!   rows). Small strain (no `NLGEOM`), like cufem, unless the model's
+//! * Materials: `*ELASTIC` (anisotropic: engineering constants or the 21
+//!   `ANISO` constants in the material axes, with an `*ORIENTATION`; one
+//!   section per body and material: [`super::material`]); `*PLASTIC` rows
+//!   `(σ_y, ε̄ᵖ)` from the hardening law (perfect: one row; linear: a second
+//!   row at ε̄ᵖ = 10; table: its rows). Small strain (no `NLGEOM`), like cufem, unless the model's
 //!   `analysis.geometry = "nonlinear"` (then `*STEP, NLGEOM`).
 //! * Constraints: `*BOUNDARY` on every hex node inside the constraint's
 //!   geometric selection.
@@ -33,17 +35,12 @@
 use std::fmt::Write as _;
 
 use super::mesh::{HEX_FACES, HEX_NODES, HexMesh, Part};
+pub(super) use super::names::list;
+pub use super::names::set_name;
 use crate::bc::{Load, LoadKind, Selection};
 use crate::materials::Hardening;
 use crate::model::Model;
 use crate::quadrature::GaussRule;
-
-/// A name usable in a CalculiX set (letters, digits, `_`).
-pub fn set_name(prefix: &str, name: &str) -> String {
-    let clean: String =
-        name.chars().map(|c| if c.is_ascii_alphanumeric() { c.to_ascii_uppercase() } else { '_' }).collect();
-    format!("{prefix}_{clean}")
-}
 
 /// An element line: its number and nodes, at most 16 entries per line
 /// (CalculiX's limit), continued on the next line.
@@ -51,12 +48,6 @@ fn element_line(e: usize, nodes: &[usize]) -> String {
     let mut entries = vec![(e + 1).to_string()];
     entries.extend(nodes.iter().map(|n| (n + 1).to_string()));
     entries.chunks(15).map(|c| c.join(", ")).collect::<Vec<_>>().join(",\n")
-}
-
-/// Node or element numbers (1-based), twelve per line.
-pub(super) fn list(ids: impl Iterator<Item = usize>) -> String {
-    let v: Vec<String> = ids.map(|i| (i + 1).to_string()).collect();
-    v.chunks(12).map(|c| c.join(", ")).collect::<Vec<_>>().join(",\n")
 }
 
 /// Hex nodes of body `b` inside `selection`.
@@ -149,8 +140,10 @@ pub(super) fn load_forces(model: &Model, mesh: &HexMesh, load: &Load) -> Vec<(us
             // the hex nodes at the CUF nodes' positions
             let cuf: Vec<[f64; 3]> = load.nodal_forces.iter().map(|(n, _)| model.mesh.coords(*n)).collect();
             let tol = 1e-9 * model.mesh.bodies[load.body].size();
+            // a node split at a material interface takes the load once
             selected_nodes(mesh, load.body, selection)
                 .into_iter()
+                .filter(|n| !mesh.ties.iter().any(|t| t.copy == *n))
                 .filter(|&n| cuf.iter().any(|c| (0..3).all(|k| (c[k] - mesh.nodes[n][k]).abs() <= tol)))
                 .map(|n| (n, *force))
                 .collect()
@@ -205,6 +198,7 @@ pub fn write(model: &Model, mesh: &HexMesh) -> String {
     elements(&mut d, model, mesh);
     materials(&mut d, model, mesh);
     node_sets(&mut d, model, mesh);
+    super::interfaces::equations(&mut d, model, mesh);
     contact_pairs(&mut d, model, mesh);
     match (model.modal, &model.transient) {
         (Some(modal), _) => frequency_step(&mut d, model, mesh, modal.modes),
@@ -240,9 +234,8 @@ fn elements(d: &mut String, model: &Model, mesh: &HexMesh) {
 /// and `*RIGID BODY`s.
 fn materials(d: &mut String, model: &Model, mesh: &HexMesh) {
     // materials
-    for m in &model.materials {
-        let _ = writeln!(d, "*MATERIAL, NAME={}", set_name("M", &m.name));
-        let _ = writeln!(d, "*ELASTIC\n{:e}, {}", m.young, m.poisson);
+    for (m, name) in model.materials.iter().zip(super::material::material_names(model)) {
+        let _ = writeln!(d, "*MATERIAL, NAME={name}\n{}", super::material::elastic(m));
         if let Some(rho) = m.density {
             let _ = writeln!(d, "*DENSITY\n{rho:e}");
         }
@@ -262,10 +255,8 @@ fn materials(d: &mut String, model: &Model, mesh: &HexMesh) {
             let _ = writeln!(d, "*DENSITY\n{:e}", 1e-3 * light);
         }
     }
-    for body in &model.mesh.bodies {
-        let m = &model.materials[body.material];
-        let _ = writeln!(d, "*SOLID SECTION, ELSET={}, MATERIAL={}", set_name("B", &body.name), set_name("M", &m.name));
-    }
+    super::material::orientations(d, model);
+    super::material::sections(d, model, mesh);
     for tool in &mesh.tools {
         let name = &model.indenters[tool.indenter].name;
         // an impactor's mass is its tool's: a material of density m / V

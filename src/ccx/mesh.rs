@@ -173,6 +173,9 @@ pub struct HexMesh {
     pub bodies: Vec<BodyHexes>,
     /// Per indenter.
     pub tools: Vec<Tool>,
+    /// Nodes duplicated at material interfaces (filled by
+    /// [`super::interfaces`] when exported).
+    pub ties: Vec<super::Tie>,
 }
 
 /// Topological identity of a point of a section element's grid.
@@ -195,6 +198,7 @@ impl HexMesh {
             parts: Vec::new(),
             bodies: Vec::new(),
             tools: Vec::new(),
+            ties: Vec::new(),
         };
         for (b, body) in model.mesh.bodies.iter().enumerate() {
             mesh.add_body(b, body);

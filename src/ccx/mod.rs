@@ -9,7 +9,10 @@
 
 pub mod deck;
 pub mod dynamic;
+pub mod interfaces;
+pub mod material;
 pub mod mesh;
+mod names;
 pub mod results;
 pub mod volume;
 
@@ -21,6 +24,18 @@ pub use results::NodalResults;
 
 use crate::model::Model;
 use crate::values::Location;
+
+/// A node of the 3D mesh duplicated at a material interface
+/// ([`interfaces`]).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Tie {
+    /// The body.
+    pub body: usize,
+    /// The copy (the dependent node of the equations).
+    pub copy: usize,
+    /// The node it duplicates.
+    pub original: usize,
+}
 
 /// Errors of the CalculiX cross-check.
 #[derive(Debug, thiserror::Error)]
@@ -116,7 +131,8 @@ fn file_error(path: &Path) -> impl FnOnce(std::io::Error) -> CcxError + '_ {
 pub fn export(model: &Model, kind: HexKind, refine: usize, dir: &Path) -> Result<(HexMesh, PathBuf), CcxError> {
     check_supported(model)?;
     std::fs::create_dir_all(dir).map_err(file_error(dir))?;
-    let mesh = HexMesh::new(model, kind, refine);
+    let mut mesh = HexMesh::new(model, kind, refine);
+    mesh.ties = interfaces::split(&mut mesh, model);
     let path = dir.join("model.inp");
     let mut text = deck::write(model, &mesh);
     if let Some(t) = &model.transient {
@@ -163,6 +179,13 @@ pub fn check_supported(model: &Model) -> Result<(), CcxError> {
         .or_else(|| model.contacts.iter().position(|c| c.friction.is_some()).map(|k| format!("contacts[{k}]")));
     if let Some(key) = friction {
         return Err(CcxError::Unsupported { key: format!("{key}.friction"), what: "Coulomb friction".into() });
+    }
+    // the deck's loads are uniform over their faces
+    if let Some(k) = model.loads.iter().position(|l| l.profile.is_some()) {
+        return Err(CcxError::Unsupported {
+            key: format!("loads[{k}].profile"),
+            what: "a load varying over its faces (the 3D twin's surface loads are uniform)".into(),
+        });
     }
     if model.modal.is_some() {
         check_unloaded(model)?;

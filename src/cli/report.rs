@@ -69,27 +69,7 @@ pub fn print_check(model: &Model) {
         thousands(model.n_dofs())
     );
     print_sections(model);
-    for m in &model.materials {
-        let plastic = match &m.hardening {
-            None => "elastic".to_string(),
-            Some(h) => format!("von Mises, {h}"),
-        };
-        match &m.anisotropic {
-            None => println!("material {}: E = {:.4} GPa, ν = {}, {}", m.name, m.young * 1e-9, m.poisson, plastic),
-            Some(c) => {
-                // the moduli along the material axes, and where the axes point
-                let s = cufem::materials::anisotropic::invert(c).unwrap_or_default();
-                let [e1, e2, e3] = [0, 1, 2].map(|i| 1e-9 / s[i][i]);
-                let [a1, _, a3] = m.frame.axes;
-                println!(
-                    "material {}: anisotropic, E1 = {e1:.4}, E2 = {e2:.4}, E3 = {e3:.4} GPa, axis 1 = {a1:.3?}, \
-                     axis 3 = {a3:.3?}, elastic{}",
-                    m.name,
-                    if m.strengths.is_some() { ", with strengths" } else { "" }
-                );
-            }
-        }
-    }
+    print_materials(model);
     for c in &model.constraints {
         let comps: Vec<String> = c
             .values
@@ -355,5 +335,30 @@ fn print_ply_failure(summary: &cufem::io::Summary) {
             "{:<18} largest index {:.4}; first failure at load factor {:.4} in {} at [{:.4e}, {:.4e}, {:.4e}] m",
             c.criterion, c.largest_index, c.first_failure_load_factor, w.material, w.point[0], w.point[1], w.point[2]
         );
+    }
+}
+
+/// One line per material: its constants, or an anisotropic one's moduli along its axes and where they point.
+fn print_materials(model: &Model) {
+    for m in &model.materials {
+        let plastic = match &m.hardening {
+            None => "elastic".to_string(),
+            Some(h) => format!("von Mises, {h}"),
+        };
+        match &m.anisotropic {
+            None => println!("material {}: E = {:.4} GPa, ν = {}, {}", m.name, m.young * 1e-9, m.poisson, plastic),
+            Some(c) => {
+                // the moduli along the material axes, and where the axes point
+                let s = cufem::materials::anisotropic::invert(c).unwrap_or_default();
+                let [e1, e2, e3] = [0, 1, 2].map(|i| 1e-9 / s[i][i]);
+                let [a1, _, a3] = m.frame.axes;
+                println!(
+                    "material {}: anisotropic, E1 = {e1:.4}, E2 = {e2:.4}, E3 = {e3:.4} GPa, axis 1 = {a1:.3?}, \
+                     axis 3 = {a3:.3?}, elastic{}",
+                    m.name,
+                    if m.strengths.is_some() { ", with strengths" } else { "" }
+                );
+            }
+        }
     }
 }

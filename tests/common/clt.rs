@@ -189,30 +189,9 @@ pub fn abd_matrix(plies: &[Ply]) -> [[f64; 6]; 6] {
     m
 }
 
-/// Solves the dense system `a x = b` by Gaussian elimination with partial
-/// pivoting; panics on a singular matrix.
-pub fn gauss_solve(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Vec<f64> {
-    let n = b.len();
-    for k in 0..n {
-        let piv = (k..n).max_by(|&i, &j| a[i][k].abs().total_cmp(&a[j][k].abs())).unwrap();
-        assert!(a[piv][k] != 0.0, "singular system");
-        a.swap(k, piv);
-        b.swap(k, piv);
-        for i in k + 1..n {
-            let f = a[i][k] / a[k][k];
-            for j in k..n {
-                a[i][j] -= f * a[k][j];
-            }
-            b[i] -= f * b[k];
-        }
-    }
-    let mut x = vec![0.0; n];
-    for k in (0..n).rev() {
-        let s: f64 = (k + 1..n).map(|j| a[k][j] * x[j]).sum();
-        x[k] = (b[k] - s) / a[k][k];
-    }
-    x
-}
+/// Dense `a x = b` (Gaussian elimination with partial pivoting), shared
+/// with the Pagano oracle: a test binary including this file includes it too.
+pub use super::pagano::gauss_solve;
 
 /// Mid-plane strains and curvatures `(ε⁰, κ)` under the resultants
 /// `n = [N_xx, N_yy, N_xy]`, `m = [M_xx, M_yy, M_xy]` (per unit width):

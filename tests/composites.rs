@@ -521,3 +521,26 @@ total_force = [0.0, 0.0, -3000.0]
     eprintln!("liner: {liner_yielded} plastic Gauss points; ply: {ply_yielded}");
     assert!(liner_yielded > 0 && ply_yielded == 0);
 }
+
+/// `shape = "tube"` with plies is the one-cell box with the same plies:
+/// the same section (nodes, elements, ply regions and their materials), so
+/// the same answer; without along_x/along_z it is refused by key.
+#[test]
+fn a_tube_with_plies_is_the_layered_box() {
+    let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box_beam_laminated.toml"))
+        .unwrap();
+    let tube = text.replace(
+        "shape = \"box\", element = \"L9\", origin = [0.0, 0.0], width = 0.04, height = 0.06, along_flange = 4, along_web = 6,",
+        "shape = \"tube\", element = \"L9\", origin = [0.0, 0.0], width = 0.04, height = 0.06, along_x = 4, along_z = 6,",
+    );
+    assert_ne!(tube, text);
+    let (a, b) = (cufem::model::Model::parse(&text).unwrap(), cufem::model::Model::parse(&tube).unwrap());
+    let (sa, sb) = (&a.mesh.bodies[0].section, &b.mesh.bodies[0].section);
+    assert_eq!(sa.nodes, sb.nodes);
+    assert_eq!(sa.connectivity, sb.connectivity);
+    assert_eq!(sa.regions, sb.regions);
+    assert_eq!(a.mesh.bodies[0].element_materials, b.mesh.bodies[0].element_materials);
+    let bad = tube.replace("along_x = 4, along_z = 6,", "around = 8,");
+    let e = cufem::model::Model::parse(&bad).unwrap_err().to_string();
+    assert!(e.contains("bodies[0].section.along_x") && e.contains("plies"), "{e}");
+}

@@ -107,6 +107,9 @@ impl Sections<'_> {
 
     /// `shape = "tube"`: a thin-walled rectangular tube.
     fn tube(&mut self, sk: &str, kind: SectionElementKind, s: &TubeFile) -> Result<CrossSection, ModelError> {
+        if s.plies.is_some() {
+            return self.layered_tube(sk, kind, s);
+        }
         let need = |name: &str, v: Option<f64>| {
             v.ok_or_else(|| invalid(format!("{sk}.{name}"), "(missing)", "a positive length in m")).and_then(|v| {
                 bounds::within(
@@ -179,6 +182,43 @@ impl Sections<'_> {
         let pairs = elements.saturating_mul((p + 1).pow(4)) / 4;
         self.add(kind, elements, nodes, pairs)?;
         CrossSection::tube(kind, origin[0], origin[1], w, h, t, ax, az, through).map_err(|e| rekey(e, sk))
+    }
+
+    /// `shape = "tube"` with plies: the same section as a one-cell `box`
+    /// (corner blocks with their flanges), whose walls take the plies.
+    fn layered_tube(&mut self, sk: &str, kind: SectionElementKind, s: &TubeFile) -> Result<CrossSection, ModelError> {
+        let (Some(along_x), Some(along_z), None) = (s.along_x, s.along_z, s.around) else {
+            return Err(invalid(
+                format!("{sk}.along_x"),
+                "(missing, or around given)",
+                "along_x and along_z (not around) with plies: the elements along each wall between the corners",
+            ));
+        };
+        let profile = ProfileFile {
+            element: s.element,
+            origin: s.origin,
+            width: s.width,
+            height: s.height,
+            web_thickness: s.thickness,
+            flange_thickness: s.thickness,
+            along_flange: Some(along_x),
+            along_web: Some(along_z),
+            through: s.through,
+            plies: s.plies.clone(),
+        };
+        self.straight(sk, kind, Family::Box, &profile, None, None).map_err(|e| match e {
+            // the box's keys are the tube's
+            ModelError::Invalid { key, value, allowed } => ModelError::Invalid {
+                key: key
+                    .replace("web_thickness", "thickness")
+                    .replace("flange_thickness", "thickness")
+                    .replace("along_flange", "along_x")
+                    .replace("along_web", "along_z"),
+                value,
+                allowed,
+            },
+            e => e,
+        })
     }
 
     /// `shape = "quads"`: listed corner points and quadrilaterals.

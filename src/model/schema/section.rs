@@ -65,6 +65,7 @@ impl SectionFile {
             Self::IBeam(s) | Self::Channel(s) | Self::ZSection(s) | Self::Angle(s) => s.plies.as_deref(),
             Self::Hat(s) => s.plies.as_deref(),
             Self::Box(s) => s.plies.as_deref(),
+            Self::Tube(s) => s.plies.as_deref(),
             _ => None,
         }
     }
@@ -137,6 +138,8 @@ pub struct TubeFile {
     pub along_x: Option<usize>,
     pub along_z: Option<usize>,
     pub through: Option<usize>,
+    /// Plies through every wall (the tube is then built as a one-cell box).
+    pub plies: Option<Vec<PlyFile>>,
 }
 
 /// `shape = "quads"`.

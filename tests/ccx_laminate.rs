@@ -195,14 +195,17 @@ fn example(name: &str) -> String {
 }
 
 /// `cufem verify` on examples/sandwich_indentation.toml (3 × 6 L9 × 14 B4,
-/// 11,739 DOF) against its 3D twin at refine 1: C3D20R from `ccx::mesh`, 2
-/// hexahedra per L9 interval across and through, 3 per B4 element along
-/// the axis (3,024 C3D20R, 49,221 DOF), the skin–core interface nodes
-/// tied (`ccx::interfaces`). The issue asks for the indenter's contact force
-/// and the core's σ_zz under the indenter within 5 %; measured: force
-/// +0.15 %, σ_zz +1.9 % (at refine 2, 24,192 C3D20R: …). The deck holds the
-/// skins as engineering constants in their axes (`*ORIENTATION`), one
-/// element set per material, the interface equations.
+/// 11,739 DOF) against its 3D twin at refine 1: C3D20R from `ccx::mesh`,
+/// one per Lagrange interval (2 × 2 per L9 element, 3 per B4 element;
+/// 3,024 C3D20R, 49,221 DOF), the skin–core interface nodes tied
+/// (`ccx::interfaces`). The issue asks for the indenter's contact force and
+/// the core's σ_zz under the indenter within 5 %; measured: force +0.15 %,
+/// σ_zz +1.9 % (−0.3649 against −0.3721 MPa; CalculiX about 2 minutes). At
+/// refine 2 CalculiX had not settled the contact of the first increment
+/// after 25 iterations (an hour); on a one-element-wide variant refine 1
+/// and 2 give −0.376 and −0.373 MPa. The deck holds the skins as
+/// engineering constants in their axes (`*ORIENTATION`), one element set
+/// per material, the interface equations.
 #[test]
 fn the_sandwich_indentation_agrees_with_calculix() {
     let dir = common::scratch_dir("ccx_laminate", "sandwich");

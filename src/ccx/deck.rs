@@ -11,8 +11,10 @@
 //! * Constraints: `*BOUNDARY` on every hex node inside the constraint's
 //!   geometric selection.
 //! * Loads: consistent nodal forces (`*CLOAD`) integrated over the hex faces
-//!   of the loaded CUF faces (3 × 3 Gauss points per face); per-node loads on
-//!   the hex nodes that coincide with the CUF nodes.
+//!   of the loaded CUF faces (3 × 3 Gauss points per face, a `loads.profile`
+//!   taken at each, though [`super::check_supported`] still refuses such a
+//!   load); per-node loads on the hex nodes that coincide with the CUF
+//!   nodes.
 //! * Indenters: rigid bodies (`*RIGID BODY`) moved through their reference
 //!   node; the tool force on the body is the reaction there.
 //! * Contacts: frictionless `*CONTACT PAIR`, surface to surface, linear
@@ -56,11 +58,11 @@ fn selected_nodes(mesh: &HexMesh, b: usize, selection: &Selection) -> Vec<usize>
 }
 
 /// Consistent nodal forces of a traction field over hex faces:
-/// `∫ N_a t(n) dA` with 3 × 3 Gauss points per face.
+/// `∫ N_a t(n, x) dA` with 3 × 3 Gauss points per face.
 fn face_forces(
     mesh: &HexMesh,
     faces: &[(usize, usize)],
-    traction: impl Fn([f64; 3]) -> [f64; 3],
+    traction: impl Fn([f64; 3], [f64; 3]) -> [f64; 3],
 ) -> Vec<(usize, [f64; 3])> {
     let g = GaussRule::new(3);
     let kind = mesh.kind;
@@ -119,7 +121,7 @@ fn face_forces(
                 }
                 let outward = (0..3).map(|k| cr[k] * (x[k] - centre[k])).sum::<f64>() >= 0.0;
                 let normal = cr.map(|v| if outward { v / da_ } else { -v / da_ });
-                let tr = traction(normal);
+                let tr = traction(normal, x);
                 let w = wa * wb * da_;
                 for &a in local {
                     let f = out.entry(el[a]).or_insert([0.0; 3]);
@@ -135,6 +137,7 @@ fn face_forces(
 
 /// Nodal forces of a load on the hex mesh.
 pub(super) fn load_forces(model: &Model, mesh: &HexMesh, load: &Load) -> Vec<(usize, [f64; 3])> {
+    let factor = |x: [f64; 3]| load.profile.map_or(1.0, |p| p.factor(x));
     match &load.kind {
         LoadKind::PerNode { selection, force } => {
             // the hex nodes at the CUF nodes' positions
@@ -148,15 +151,16 @@ pub(super) fn load_forces(model: &Model, mesh: &HexMesh, load: &Load) -> Vec<(us
                 .map(|n| (n, *force))
                 .collect()
         }
+        // `loads.profile`: the load times the profile's factor at each Gauss point
         LoadKind::Traction { faces, traction } => {
             let hex = mesh.body_faces(model, load.body, faces);
             let t = *traction;
-            face_forces(mesh, &hex, move |_| t)
+            face_forces(mesh, &hex, move |_, x| t.map(|v| v * factor(x)))
         }
         LoadKind::Pressure { faces, pressure } => {
             let hex = mesh.body_faces(model, load.body, faces);
             let p = *pressure;
-            face_forces(mesh, &hex, move |n| n.map(|v| -p * v))
+            face_forces(mesh, &hex, move |n, x| n.map(|v| -p * factor(x) * v))
         }
     }
 }

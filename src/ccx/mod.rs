@@ -1,7 +1,10 @@
 //! CalculiX (`ccx`) as the 3D reference: export a model as a solid-element
 //! deck ([`deck`], on the hex mesh of [`mesh`]), run `ccx` on it, read its
 //! results back ([`results`]) and sample them at the model's probes and
-//! lines exactly where cufem samples its own fields. A modal model
+//! lines exactly where cufem samples its own fields. Anisotropic and layered
+//! bodies keep their constants in the material axes with an `*ORIENTATION`
+//! and a section per body and material ([`material`]), their interface
+//! nodes split per material and tied ([`interfaces`]). A modal model
 //! (`analysis.type = "modal"`) becomes a `*FREQUENCY` step, whose
 //! eigenfrequencies and mode shapes are read back instead of a static state.
 //! A transient model (`analysis.type = "transient"`) becomes one `*DYNAMIC`

@@ -240,7 +240,8 @@ pub fn compare(
             })
             .collect();
         let wanted: Vec<Quantity> = if l.plot.is_empty() { qs.clone() } else { l.plot.clone() };
-        for q in wanted {
+        // the 3D twin has no failure indices: a plotted one is not compared
+        for q in wanted.into_iter().filter(|q| !matches!(q, Quantity::Failure(_))) {
             let peak = stations.iter().map(|s| s.2.get(q).abs()).fold(0.0f64, f64::max);
             if stations.is_empty() {
                 continue;

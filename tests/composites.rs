@@ -434,7 +434,12 @@ fn bad_anisotropic_input_is_refused_by_key() {
                g23 = 0.2e9, nu12 = 0.25, nu13 = 0.25, nu23 = 0.25 }\n";
     let zone = "[[bodies.zones]]\nmaterial = \"ply\"\nangle = 30.0\n";
     let good = cantilever(ply, zone, [0.0, 0.0, 1.0]);
-    assert!(cufem::model::Model::parse(&good).is_ok());
+    assert_eq!(cufem::model::Model::parse(&good).unwrap().materials.len(), 2, "ply and ply@30");
+    // a zone that states no orientation keeps the material's own axes: no copy
+    let plain =
+        cufem::model::Model::parse(&cantilever(ply, "[[bodies.zones]]\nmaterial = \"ply\"\n", [0.0; 3])).unwrap();
+    assert_eq!(plain.materials.len(), 1);
+    assert_eq!(plain.mesh.bodies[0].materials(), vec![0]);
     let cases: [(String, &str, &str); 5] = [
         (good.replace("nu12 = 0.25", "nu12 = 6.0"), "materials[0].orthotropic", "positive definite"),
         (

@@ -54,8 +54,14 @@ pub struct Indices {
     /// Hashin matrix): the load multiplier of its failure under
     /// proportional loading (∞ for a mode that never fails).
     pub ratios: [f64; 4],
-    /// The smallest of [`Indices::ratios`].
-    pub strength_ratio: f64,
+}
+
+impl Indices {
+    /// The smallest of [`Indices::ratios`]: the load multiplier at which
+    /// the first criterion fails.
+    pub fn strength_ratio(&self) -> f64 {
+        self.ratios.iter().copied().fold(f64::INFINITY, f64::min)
+    }
 }
 
 /// A mode `a R² + b R` (quadratic and linear parts at the stress itself).
@@ -143,7 +149,6 @@ impl Strengths {
             hashin_fibre: hf.value(),
             hashin_matrix: hm.value(),
             ratios: [ms.ratio(), tw.ratio(), hf.ratio(), hm.ratio()],
-            strength_ratio: [ms, tw, hf, hm].iter().map(|m| m.ratio()).fold(f64::INFINITY, f64::min),
         }
     }
 }
@@ -171,7 +176,7 @@ mod tests {
             assert!((ix.tsai_wu - 1.0).abs() < 1e-12, "{i} {s}: {}", ix.tsai_wu);
             let h = if i == 0 { ix.hashin_fibre } else { ix.hashin_matrix };
             assert!((h - 1.0).abs() < 1e-12, "{i} {s}: {h}");
-            assert!((ix.strength_ratio - 1.0).abs() < 1e-12);
+            assert!((ix.strength_ratio() - 1.0).abs() < 1e-12);
         }
         let ix = st.indices(&[0.0, 0.0, 0.0, 68e6, 0.0, 0.0]);
         assert!((ix.max_stress - 1.0).abs() < 1e-12 && (ix.tsai_wu - 1.0).abs() < 1e-12);
@@ -184,7 +189,7 @@ mod tests {
         let st = t300();
         let sig = [400e6, -60e6, 5e6, 20e6, 3e6, -4e6];
         let ix = st.indices(&sig);
-        let r = ix.strength_ratio;
+        let r = ix.strength_ratio();
         assert!(r > 0.0 && r.is_finite());
         let at = st.indices(&sig.map(|v| v * r));
         let largest = at.max_stress.max(at.tsai_wu).max(at.hashin_fibre).max(at.hashin_matrix);

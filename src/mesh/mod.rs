@@ -137,11 +137,10 @@ impl Body {
 
     /// Every material the body uses, without repeats, in increasing order.
     pub fn materials(&self) -> Vec<usize> {
-        let mut m: Vec<usize> = self.element_materials.clone();
-        m.push(self.material);
-        if !self.element_materials.is_empty() {
-            m.retain(|&k| self.element_materials.contains(&k));
+        if self.element_materials.is_empty() {
+            return vec![self.material];
         }
+        let mut m = self.element_materials.clone();
         m.sort_unstable();
         m.dedup();
         m

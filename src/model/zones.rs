@@ -139,9 +139,10 @@ pub(super) fn assign(
     Ok((base.unwrap_or(per_element[0]), per_element))
 }
 
-/// The material `m` in the zone's frame: itself when the frame does not
-/// matter to it (isotropic without strengths) or is the global one, else
-/// its oriented copy (appended once).
+/// The material `m` in the zone's frame: itself when the zone states no
+/// orientation (the material keeps its own, global axes) or the frame does
+/// not matter to it (isotropic without strengths), else its oriented copy
+/// (appended once).
 fn oriented(z: &Zone<'_>, m: usize, materials: &mut Vec<Material>) -> Result<usize, ModelError> {
     if !(z.angle.is_finite() && z.angle.abs() <= 360.0) {
         return Err(invalid(format!("{}.angle", z.key), z.angle, "an angle in degrees within ±360"));
@@ -154,8 +155,7 @@ fn oriented(z: &Zone<'_>, m: usize, materials: &mut Vec<Material>) -> Result<usi
         )
     })?;
     let material = &materials[m];
-    let matters = material.anisotropic.is_some() || material.strengths.is_some();
-    if !matters || (!z.oriented && frame == material.frame) {
+    if !z.oriented || (material.anisotropic.is_none() && material.strengths.is_none()) {
         return Ok(m);
     }
     // `cfrp@90`, with the axes when they are not the laminate's: `cfrp@0 n(1,0,0)`

@@ -591,6 +591,7 @@ impl Solution {
             gp_offsets: &self.gp_offsets,
             recovered: self.recovered.as_ref(),
             kinematics: model.kinematics,
+            symmetry: &model.symmetry.planes,
         }
     }
 }

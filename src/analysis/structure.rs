@@ -194,7 +194,9 @@ impl<'m> Structure<'m> {
                     let pv = crate::values::PointValues::new(&self.model.mesh.bodies[loc.body], loc);
                     let u = pv.displacement(&self.state.u);
                     for k in 0..3 {
-                        sum[k] += u[k] / p.locations.len() as f64;
+                        // a probe at a mirror image: its u reflected back
+                        let sign = if p.reflected[k] { -1.0 } else { 1.0 };
+                        sum[k] += sign * u[k] / p.locations.len() as f64;
                     }
                 }
                 sum

@@ -3,6 +3,7 @@
 //! (nodal forces, tractions, pressures).
 
 mod faces;
+pub mod symmetry;
 
 pub use faces::{Face, FaceIntegral, FaceSide, boundary_faces, integrate_face, integrate_face_with, selected_faces};
 

@@ -277,19 +277,7 @@ pub fn print_results(model: &Model, solution: &Solution) {
             );
         }
     }
-    for (c, f) in model.constraints.iter().zip(&summary.reactions) {
-        println!("reaction {:<12} [{:.5e}, {:.5e}, {:.5e}] N", c.name, f.force[0], f.force[1], f.force[2]);
-    }
-    for c in &summary.contact {
-        println!(
-            "contact  {:<12} force on body [{:.5e}, {:.5e}, {:.5e}] N, max penetration {:.3e} m",
-            c.name,
-            c.force[0],
-            c.force[1],
-            c.force[2],
-            c.max_penetration.unwrap_or(0.0)
-        );
-    }
+    print_resultants(model, &summary);
     if let Some(e) = &summary.error_estimate {
         let largest: Vec<String> =
             e.largest.iter().take(3).map(|l| format!("{} #{} ({:.0} %)", l.body, l.element, 100.0 * l.share)).collect();
@@ -327,6 +315,30 @@ pub fn print_results(model: &Model, solution: &Solution) {
 }
 
 /// Each failure criterion's largest index and first-failure load factor.
+/// Reactions and contact forces, with the full structure's beside in a
+/// model with symmetry planes.
+fn print_resultants(model: &Model, summary: &cufem::io::Summary) {
+    // in a model with symmetry planes, the force on the full structure beside
+    let full = |f: &cufem::io::ForceSummary| {
+        f.full_structure_force
+            .map_or(String::new(), |g| format!(" (full structure [{:.5e}, {:.5e}, {:.5e}] N)", g[0], g[1], g[2]))
+    };
+    for (c, f) in model.constraints.iter().zip(&summary.reactions) {
+        println!("reaction {:<12} [{:.5e}, {:.5e}, {:.5e}] N{}", c.name, f.force[0], f.force[1], f.force[2], full(f));
+    }
+    for c in &summary.contact {
+        println!(
+            "contact  {:<12} force on body [{:.5e}, {:.5e}, {:.5e}] N, max penetration {:.3e} m{}",
+            c.name,
+            c.force[0],
+            c.force[1],
+            c.force[2],
+            c.max_penetration.unwrap_or(0.0),
+            full(c)
+        );
+    }
+}
+
 fn print_ply_failure(summary: &cufem::io::Summary) {
     let Some(f) = &summary.ply_failure else { return };
     for c in &f.criteria {

@@ -49,6 +49,12 @@ pub struct ForceSummary {
     /// See `normal_force`.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub tangential_force: Option<[f64; 3]>,
+    /// In a model with symmetry planes, the force on the full structure
+    /// (`bc::symmetry::full_structure`: doubled per plane the item lies
+    /// across, its component normal to the plane cancelled); absent in a
+    /// full model and for a plane's own reaction.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub full_structure_force: Option<[f64; 3]>,
 }
 
 /// Phase timings in seconds.
@@ -312,7 +318,9 @@ fn probes(model: &Model, solution: &Solution) -> Vec<ProbeSummary> {
         .collect()
 }
 
-fn reactions(list: &[crate::analysis::Reaction]) -> Vec<ForceSummary> {
+use crate::bc::symmetry::Symmetry;
+
+fn reactions(list: &[crate::analysis::Reaction], symmetry: &Symmetry) -> Vec<ForceSummary> {
     list.iter()
         .map(|r| ForceSummary {
             name: r.name.clone(),
@@ -321,11 +329,12 @@ fn reactions(list: &[crate::analysis::Reaction]) -> Vec<ForceSummary> {
             max_penetration: None,
             normal_force: None,
             tangential_force: None,
+            full_structure_force: symmetry.full(&r.name, r.force),
         })
         .collect()
 }
 
-fn contacts(list: &[crate::analysis::ContactResultant]) -> Vec<ForceSummary> {
+fn contacts(list: &[crate::analysis::ContactResultant], symmetry: &Symmetry) -> Vec<ForceSummary> {
     list.iter()
         .map(|c| ForceSummary {
             name: c.name.clone(),
@@ -334,6 +343,7 @@ fn contacts(list: &[crate::analysis::ContactResultant]) -> Vec<ForceSummary> {
             max_penetration: Some(c.max_penetration),
             normal_force: Some(c.normal_force),
             tangential_force: Some(c.tangential_force),
+            full_structure_force: symmetry.full(&c.name, c.force),
         })
         .collect()
 }
@@ -354,8 +364,8 @@ pub fn step_summary(
         increment: end.increment,
         max_peeq: at_end.states.iter().map(|s| s.peeq).fold(0.0, f64::max),
         probes: probes(model, at_end),
-        reactions: reactions(&end.reactions),
-        contact: contacts(&end.contacts),
+        reactions: reactions(&end.reactions, &model.symmetry),
+        contact: contacts(&end.contacts, &model.symmetry),
         vtu,
     }
 }
@@ -364,8 +374,8 @@ pub fn step_summary(
 /// for the last step only; `io::write_results` fills the others).
 pub fn summary(model: &Model, solution: &Solution) -> Summary {
     let probes = probes(model, solution);
-    let reactions = reactions(&solution.reactions);
-    let contact = contacts(&solution.contacts);
+    let reactions = reactions(&solution.reactions, &model.symmetry);
+    let contact = contacts(&solution.contacts, &model.symmetry);
     let t = &solution.timings;
     Summary {
         title: model.title.clone(),

@@ -26,7 +26,7 @@ mod section_plot;
 mod vtu;
 
 pub use csv::field as csv_field;
-pub use json::{Summary, summary};
+pub use json::{ForceSummary, Summary, summary};
 pub use png::{Series, line_plot};
 pub use run::{Finished, RunError, RunInto, Written, run_into, solved_into, write_into};
 pub use section_plot::section_plot;

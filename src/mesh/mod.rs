@@ -11,6 +11,7 @@
 //! (the equation numbering for the solver is in [`crate::assembly`]).
 
 pub mod blocks;
+mod clip;
 mod division;
 pub mod gmsh;
 pub mod profiles;

@@ -9,6 +9,7 @@ use super::schema::*;
 use super::sections::Sections;
 use super::validate::division_parts;
 use super::{Limits, ModelError, invalid};
+use crate::bc::symmetry::Plane;
 use crate::elements::ElementError;
 use crate::materials::Material;
 use crate::mesh::{BeamAxis, Body, CrossSection, Mesh};
@@ -23,11 +24,12 @@ pub(super) fn mesh(
     analysis: &AnalysisFile,
     limits: Limits,
     base: &Path,
+    planes: &[Plane],
 ) -> Result<(Mesh, Vec<CellValues>), ModelError> {
     let mut bodies = Vec::new();
     let mut budget = Budget::new(limits.max_memory);
     for (i, b) in file.iter().enumerate() {
-        bodies.push(body(i, b, materials, &mut budget, base)?);
+        bodies.push(body(i, b, materials, &mut budget, base, planes)?);
     }
     let mesh = Mesh::new(bodies);
     let cells = mesh
@@ -84,6 +86,7 @@ pub(super) fn body(
     materials: &mut Vec<Material>,
     budget: &mut Budget,
     base: &Path,
+    planes: &[Plane],
 ) -> Result<Body, ModelError> {
     let key = format!("bodies[{i}]");
     // the axis first: its size is needed to budget the body before the
@@ -94,6 +97,8 @@ pub(super) fn body(
     let axis_lines = division_parts(&ak, a.from, a.to, a.elements, a.ratio, a.lines.as_ref(), a.segments.as_ref())?;
     let axis_elements = (axis_lines.len() - 1) as u64;
     let section = Sections { key: &key, beam, axis_elements, budget }.section(&b.section, base)?;
+    // symmetry planes cut the body to the side kept
+    let (section, axis_lines) = super::symmetry::cut(&key, &b.name, planes, section, axis_lines)?;
     connected(&format!("{key}.section"), &section)?;
     let (material, element_materials) = super::zones::assign(&key, b, &section, materials)?;
     Ok(Body {

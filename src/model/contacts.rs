@@ -7,7 +7,8 @@ use super::preprocess::{body_index, surface_faces};
 use super::schema::*;
 use super::surface_contact::surface_contact;
 use super::validate::{finite_positive, friction, penalty, tolerance};
-use super::{ModelError, Warning, invalid};
+use super::{ModelError, Warning, invalid, symmetry};
+use crate::bc::symmetry::Plane;
 use crate::contact::{self, ContactSurface, PairContact, SurfaceNodes};
 use crate::materials::Material;
 use crate::mesh::Mesh;
@@ -18,11 +19,16 @@ pub(super) fn pair_contacts(
     file: &[ContactFile],
     mesh: &Mesh,
     materials: &[Material],
+    planes: &[Plane],
     warnings: &mut Vec<Warning>,
 ) -> Result<Vec<PairContact>, ModelError> {
     let mut contacts = Vec::new();
     for (i, c) in file.iter().enumerate() {
         let key = format!("contacts[{i}]");
+        if let Some(p) = symmetry::left_out(planes, &c.slave.selection) {
+            warnings.push(symmetry::note(key, &c.name, p));
+            continue;
+        }
         let bm = body_index(mesh, format!("{key}.master.body"), &c.master.body)?;
         let bs = body_index(mesh, format!("{key}.slave.body"), &c.slave.body)?;
         if bm == bs {

@@ -6,7 +6,8 @@ use super::bounds;
 use super::preprocess::{body_index, model_coords, surface_faces};
 use super::schema::*;
 use super::validate::{describe_selection, friction, penalty, tolerance};
-use super::{ModelError, Warning, invalid};
+use super::{ModelError, Warning, invalid, symmetry};
+use crate::bc::symmetry::Plane;
 use crate::contact::{self, Indenter, RigidSurface, SurfaceNodes};
 use crate::materials::Material;
 use crate::mesh::{Body, Mesh};
@@ -18,14 +19,20 @@ pub(super) fn indenters(
     mesh: &Mesh,
     materials: &[Material],
     transient: bool,
+    planes: &[Plane],
     warnings: &mut Vec<Warning>,
 ) -> Result<Vec<Indenter>, ModelError> {
     let mut indenters = Vec::new();
     for (i, d) in file.iter().enumerate() {
         let key = format!("indenters[{i}]");
+        if let Some(p) = symmetry::left_out(planes, &d.surface) {
+            warnings.push(symmetry::note(key, &d.name, p));
+            continue;
+        }
         let b = body_index(mesh, format!("{key}.body"), &d.body)?;
         let mut ind = indenter(&key, d, b, &mesh.bodies[b], materials)?;
         ind.impactor = impactor(&key, d, transient)?;
+        symmetry::check_indenter(&key, &ind, planes, mesh)?;
         // how far the indenter's own motion brings it towards each node
         let reach = |c: &contact::ContactNode| (0..3).map(|k| ind.displacement[k] * c.normal[k]).sum::<f64>() - c.gap0;
         if !transient && ind.force.is_none() && ind.nodes.iter().all(|c| reach(c) < 0.0) {

@@ -23,6 +23,7 @@ mod schema;
 mod sections;
 pub mod steps;
 mod surface_contact;
+mod symmetry;
 pub mod transient;
 mod validate;
 mod zones;
@@ -173,8 +174,13 @@ pub struct Probe {
     /// Body to evaluate in (`None`: the first body containing the point).
     pub body: Option<usize>,
     /// The elements holding the point (several on an element boundary),
-    /// located once during preprocessing.
+    /// located once during preprocessing; for a point in the part a
+    /// symmetry plane leaves out, those holding its image.
     pub locations: Vec<Location>,
+    /// The axes along which the point was reflected to its image (all
+    /// false inside the model): its fields are the image's reflected back
+    /// (`bc::symmetry::reflect_sample`).
+    pub reflected: [bool; 3],
 }
 
 /// A straight line sampled at equally spaced points.
@@ -302,6 +308,9 @@ pub struct Model {
     /// `analysis.type = "transient"`: implicit dynamics over the load
     /// history in time; `None` for a static analysis.
     pub transient: Option<crate::dynamics::TransientSettings>,
+    /// Planes of mirror symmetry (`[[symmetry]]`; none in a full model) and
+    /// which items lie across them.
+    pub symmetry: crate::bc::symmetry::Symmetry,
 }
 
 /// Something suspicious but legal in a model (printed by `check` and `run`,
@@ -414,16 +423,18 @@ fn is_linear(mesh: &Mesh, materials: &[Material], indenters: &[Indenter], contac
 fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelError> {
     validate::names(&file)?;
     let mut materials = material::materials(&file.materials)?;
-    let (mesh, cells) = bodies::mesh(&file.bodies, &mut materials, &file.analysis, limits, base)?;
+    let planes = symmetry::planes(&file.symmetry)?;
+    let (mesh, cells) = bodies::mesh(&file.bodies, &mut materials, &file.analysis, limits, base, &planes)?;
+    let planes = symmetry::placed(planes, &mesh)?;
     let kinematics = analysis::kinematics(&file.analysis)?;
     let plan = refine::plan(&file)?;
     let adapt = refine::adapt_settings(file.adapt.as_ref())?;
     let mut warnings = Vec::new();
-    let constraints = preprocess::constraints(&file.constraints, &mesh, &mut warnings)?;
-    let loads = preprocess::loads(&file.loads, &mesh, &materials)?;
+    let (constraints, n_user) = preprocess::constraints(&file.constraints, &mesh, &planes, &mut warnings)?;
+    let loads = preprocess::loads(&file.loads, &mesh, &materials, &planes, &mut warnings)?;
     let transient = file.analysis.kind == Some(schema::AnalysisType::Transient);
-    let indenters = indenters::indenters(&file.indenters, &mesh, &materials, transient, &mut warnings)?;
-    let contacts = contacts::pair_contacts(&file.contacts, &mesh, &materials, &mut warnings)?;
+    let indenters = indenters::indenters(&file.indenters, &mesh, &materials, transient, &planes, &mut warnings)?;
+    let contacts = contacts::pair_contacts(&file.contacts, &mesh, &materials, &planes, &mut warnings)?;
     if kinematics.is_nonlinear()
         && let Some((k, c)) = contacts.iter().enumerate().find(|(_, c)| c.surface.is_none() && c.friction.is_some())
     {
@@ -440,8 +451,9 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     if !transient {
         restraint::check(&mesh, &constraints, &indenters, &contacts)?;
     }
-    let probes = preprocess::probes(&file.probes, &mesh)?;
-    let lines = preprocess::lines(&file.lines, &mesh, &mut warnings)?;
+    let probes = preprocess::probes(&file.probes, &mesh, &planes)?;
+    let lines = preprocess::lines(&file.lines, &mesh, &planes, &mut warnings)?;
+    let symmetry = symmetry::resolve(planes, &mesh, &constraints[..n_user], &indenters, &contacts);
     let references = validate::references(&file.references, &probes)?;
     let linear = is_linear(&mesh, &materials, &indenters, &contacts) && !kinematics.is_nonlinear();
     let mut solver = validate::solver_settings(&file.solver, linear)?;
@@ -517,5 +529,6 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         imperfection,
         modal,
         transient,
+        symmetry,
     })
 }

@@ -5,7 +5,8 @@
 use super::bounds;
 use super::schema::*;
 use super::validate::{MAX_COUNT, describe_selection};
-use super::{Line, ModelError, Probe, Warning, invalid};
+use super::{Line, ModelError, Probe, Warning, invalid, symmetry};
+use crate::bc::symmetry::Plane;
 use crate::bc::{self, Condition, Constraint, Load, LoadKind, Selection};
 use crate::mesh::{Body, Mesh};
 use crate::values::locate_in_model;
@@ -33,16 +34,24 @@ pub(super) fn optional_body(mesh: &Mesh, key: String, name: &Option<String>) -> 
 /// ranges around all of it), and a body every node of which is fixed in all
 /// three directions, are warned about: such a body cannot deform, the
 /// analysis runs and shows nothing (the probe warning needs some motion).
+/// The symmetry planes' constraints follow the file's (whose number is
+/// returned beside them); a constraint wholly on a plane's left-out side
+/// is left out with a note.
 pub(super) fn constraints(
     file: &[ConstraintFile],
     mesh: &Mesh,
+    planes: &[Plane],
     warnings: &mut Vec<Warning>,
-) -> Result<Vec<Constraint>, ModelError> {
+) -> Result<(Vec<Constraint>, usize), ModelError> {
     let mut constraints = Vec::new();
     // bodies already warned about a selection holding all their nodes
     let mut whole = vec![false; mesh.bodies.len()];
     for (i, c) in file.iter().enumerate() {
         let key = format!("constraints[{i}]");
+        if let Some(p) = symmetry::left_out(planes, &c.selection) {
+            warnings.push(symmetry::note(key, &c.name, p));
+            continue;
+        }
         let b = body_index(mesh, format!("{key}.body"), &c.body)?;
         let body = &mesh.bodies[b];
         let sel = selection(&format!("{key}.where"), &c.selection, body)?;
@@ -109,9 +118,11 @@ pub(super) fn constraints(
         }
         constraints.push(Constraint { name: c.name.clone(), body: b, nodes, values, selection: Some(sel) });
     }
+    let user = constraints.len();
+    constraints.extend(symmetry::constraints(planes, mesh));
     warn_fully_fixed(&constraints, mesh, &whole, warnings);
     check_agreement(&constraints, mesh)?;
-    Ok(constraints)
+    Ok((constraints, user))
 }
 
 /// Warns about a body fixed in x, y and z at every node (by one or several
@@ -174,26 +185,37 @@ pub(super) fn loads(
     file: &[LoadFile],
     mesh: &Mesh,
     materials: &[crate::materials::Material],
+    planes: &[Plane],
+    warnings: &mut Vec<Warning>,
 ) -> Result<Vec<Load>, ModelError> {
     let mut loads = Vec::new();
     for (i, l) in file.iter().enumerate() {
         let key = format!("loads[{i}]");
+        if let Some(p) = symmetry::left_out(planes, &l.selection) {
+            warnings.push(symmetry::note(key, &l.name, p));
+            continue;
+        }
         let b = body_index(mesh, format!("{key}.body"), &l.body)?;
         let young = super::body_young(&mesh.bodies[b], materials);
-        loads.push(load(&key, l, b, &mesh.bodies[b], young)?);
+        let load = load(&key, l, b, &mesh.bodies[b], young)?;
+        symmetry::check_load(&key, &load, l, planes, mesh)?;
+        loads.push(load);
     }
 
     Ok(loads)
 }
 
 /// `[[probes]]`, located once.
-pub(super) fn probes(file: &[ProbeFile], mesh: &Mesh) -> Result<Vec<Probe>, ModelError> {
+/// A probe in the part a symmetry plane leaves out is located at its
+/// image (`bc::symmetry::image`) and its fields reflected back.
+pub(super) fn probes(file: &[ProbeFile], mesh: &Mesh, planes: &[Plane]) -> Result<Vec<Probe>, ModelError> {
     let mut probes = Vec::new();
     for (i, p) in file.iter().enumerate() {
         let key = format!("probes[{i}]");
         let point = bounds::point(&format!("{key}.point"), p.point)?;
         let body = optional_body(mesh, format!("{key}.body"), &p.body)?;
-        let locations = locate_in_model(mesh, body, point);
+        let (image, reflected) = crate::bc::symmetry::image(planes, point);
+        let locations = locate_in_model(mesh, body, image);
         if locations.is_empty() {
             return Err(invalid(
                 format!("{key}.point"),
@@ -201,13 +223,18 @@ pub(super) fn probes(file: &[ProbeFile], mesh: &Mesh) -> Result<Vec<Probe>, Mode
                 "a point inside a body (or inside the named body)",
             ));
         }
-        probes.push(Probe { name: p.name.clone(), point, body, locations });
+        probes.push(Probe { name: p.name.clone(), point, body, locations, reflected });
     }
     Ok(probes)
 }
 
 /// `[[lines]]`; a line outside every body is an error, partly outside a warning.
-pub(super) fn lines(file: &[LineFile], mesh: &Mesh, warnings: &mut Vec<Warning>) -> Result<Vec<Line>, ModelError> {
+pub(super) fn lines(
+    file: &[LineFile],
+    mesh: &Mesh,
+    planes: &[Plane],
+    warnings: &mut Vec<Warning>,
+) -> Result<Vec<Line>, ModelError> {
     let mut lines = Vec::new();
     for (i, l) in file.iter().enumerate() {
         let key = format!("lines[{i}]");
@@ -230,7 +257,7 @@ pub(super) fn lines(file: &[LineFile], mesh: &Mesh, warnings: &mut Vec<Warning>)
             .filter(|&k| {
                 let t = k as f64 / (checked - 1) as f64;
                 let p = [0, 1, 2].map(|d| line.from[d] + t * (line.to[d] - line.from[d]));
-                locate_in_model(mesh, line.body, p).is_empty()
+                locate_in_model(mesh, line.body, crate::bc::symmetry::image(planes, p).0).is_empty()
             })
             .count();
         if outside == checked {

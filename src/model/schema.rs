@@ -16,11 +16,13 @@ use serde::de::{self, Deserializer, SeqAccess, Visitor};
 
 mod anisotropy;
 mod section;
+mod symmetry;
 pub(crate) mod tagged;
 mod words;
 
 pub use anisotropy::*;
 pub use section::*;
+pub use symmetry::*;
 use tagged::tagged_table;
 pub use words::*;
 
@@ -107,6 +109,9 @@ pub struct ModelFile {
     /// Adaptive refinement (`cufem run` refines and solves again).
     #[serde(default)]
     pub adapt: Option<AdaptFile>,
+    /// Planes of mirror symmetry.
+    #[serde(default)]
+    pub symmetry: Vec<SymmetryFile>,
 }
 
 /// `[analysis]`.

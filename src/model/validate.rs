@@ -23,7 +23,8 @@ pub(super) fn names(file: &ModelFile) -> Result<(), ModelError> {
     unique_names(
         keyed("constraints", &file.constraints, |m| &m.name)
             .chain(keyed("indenters", &file.indenters, |m| &m.name))
-            .chain(keyed("contacts", &file.contacts, |m| &m.name)),
+            .chain(keyed("contacts", &file.contacts, |m| &m.name))
+            .chain(keyed("symmetry", &file.symmetry, |m| &m.name)),
     )?;
     if file.bodies.is_empty() {
         return Err(invalid("bodies", "[]", "at least one [[bodies]] table"));

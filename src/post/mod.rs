@@ -89,6 +89,9 @@ pub struct FieldView<'a> {
     /// The strain measure: small strain, or total Lagrangian (strain =
     /// Green–Lagrange, stress = Cauchy from the Gauss points).
     pub kinematics: crate::kinematics::Kinematics,
+    /// The model's planes of symmetry: a point in the part they leave out
+    /// is evaluated at its image, its fields reflected back.
+    pub symmetry: &'a [crate::bc::symmetry::Plane],
 }
 
 impl FieldView<'_> {
@@ -182,9 +185,12 @@ impl FieldView<'_> {
         s
     }
 
-    /// Fields at a point (mean over the elements holding it), or `None` outside.
+    /// Fields at a point (mean over the elements holding it), or `None` outside;
+    /// in the part a symmetry plane leaves out, its image's reflected back.
     pub fn sample_point(&self, body: Option<usize>, point: [f64; 3]) -> Option<Sample> {
-        self.sample_at(&locate_in_model(self.mesh, body, point))
+        crate::bc::symmetry::sample(self.symmetry, point, |image| {
+            self.sample_at(&locate_in_model(self.mesh, body, image))
+        })
     }
 
     /// Fields at a point already located (mean over its elements), `None` without a location.
@@ -198,7 +204,7 @@ impl FieldView<'_> {
 
     /// Fields at a probe (located during preprocessing).
     pub fn sample_probe(&self, probe: &crate::model::Probe) -> Option<Sample> {
-        self.sample_at(&probe.locations)
+        crate::bc::symmetry::sample(self.symmetry, probe.point, |_| self.sample_at(&probe.locations))
     }
 }
 

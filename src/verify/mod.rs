@@ -156,6 +156,39 @@ fn quantities(model: &Model) -> Vec<Quantity> {
         .collect()
 }
 
+use crate::bc::symmetry;
+
+/// The reactions and indenter forces against CalculiX's.
+fn resultant_rows(model: &Model, solution: &Solution, run: &CcxRun) -> Vec<ResultantRow> {
+    let mut resultants = Vec::new();
+    // a resultant below 1e-6 of the largest one is round-off (a symmetry plane's reaction)
+    let force_scale = run.totals.values().map(|t| norm(t.0)).fold(0.0f64, f64::max);
+    let mut push = |name: &str, kind: &'static str, ours: [f64; 3], set: String| {
+        if let Some((theirs, _)) = run.totals.get(&set) {
+            let d = [ours[0] - theirs[0], ours[1] - theirs[1], ours[2] - theirs[2]];
+            let big = norm(*theirs);
+            resultants.push(ResultantRow {
+                name: name.to_string(),
+                kind,
+                cufem: ours,
+                ccx: *theirs,
+                difference_percent: (big > 1e-6 * force_scale).then(|| 100.0 * norm(d) / big),
+            });
+        }
+    };
+    // a symmetry plane's reaction is internal to the full structure (and
+    // CalculiX's RF at its nodes holds their contact forces): not compared
+    let sym = &model.symmetry;
+    for r in solution.reactions.iter().filter(|r| sym.planes.is_empty() || sym.across.iter().any(|(n, _)| n == &r.name))
+    {
+        push(&r.name, "reaction", r.force, set_name("C", &r.name));
+    }
+    for c in solution.contacts.iter().filter(|c| c.kind == crate::analysis::ContactKind::Indenter) {
+        push(&c.name, "indenter", c.force, set_name("REF", &c.name));
+    }
+    resultants
+}
+
 fn ccx_sample(model: &Model, mesh: &HexMesh, run: &CcxRun, locations: &[crate::values::Location]) -> Option<Sample> {
     let (u, stress, peeq) = crate::ccx::sample(model, mesh, &run.results, locations)?;
     Some(Sample { u, stress, von_mises: crate::voigt::von_mises(&stress), peeq, ..Default::default() })
@@ -211,9 +244,11 @@ pub fn compare(
         _ => s_scale,
     };
     let qs = quantities(model);
+    let planes = &model.symmetry.planes;
     let mut probes = Vec::new();
     for p in &model.probes {
-        let (Some(ours), Some(theirs)) = (view.sample_probe(p), ccx_sample(model, mesh, run, &p.locations)) else {
+        let theirs = symmetry::sample(planes, p.point, |_| ccx_sample(model, mesh, run, &p.locations));
+        let (Some(ours), Some(theirs)) = (view.sample_probe(p), theirs) else {
             continue;
         };
         for &q in &qs {
@@ -235,8 +270,10 @@ pub fn compare(
             .filter_map(|i| {
                 let t = i as f64 / (l.points - 1) as f64;
                 let x = [0, 1, 2].map(|k| l.from[k] + t * (l.to[k] - l.from[k]));
-                let locs = crate::values::locate_in_model(&model.mesh, l.body, x);
-                Some((t * len, view.sample_at(&locs)?, ccx_sample(model, mesh, run, &locs)?))
+                // beyond a symmetry plane or on it: both sides as bc::symmetry::sample
+                let locs = crate::values::locate_in_model(&model.mesh, l.body, symmetry::image(planes, x).0);
+                let ours = symmetry::sample(planes, x, |_| view.sample_at(&locs))?;
+                Some((t * len, ours, symmetry::sample(planes, x, |_| ccx_sample(model, mesh, run, &locs))?))
             })
             .collect();
         let wanted: Vec<Quantity> = if l.plot.is_empty() { qs.clone() } else { l.plot.clone() };
@@ -262,28 +299,7 @@ pub fn compare(
             curves.push((l.name.clone(), q, stations.iter().map(|s| (s.0, s.1.get(q), s.2.get(q))).collect()));
         }
     }
-    let mut resultants = Vec::new();
-    // a resultant below 1e-6 of the largest one is round-off (a symmetry plane's reaction)
-    let force_scale = run.totals.values().map(|t| norm(t.0)).fold(0.0f64, f64::max);
-    let mut push = |name: &str, kind: &'static str, ours: [f64; 3], set: String| {
-        if let Some((theirs, _)) = run.totals.get(&set) {
-            let d = [ours[0] - theirs[0], ours[1] - theirs[1], ours[2] - theirs[2]];
-            let big = norm(*theirs);
-            resultants.push(ResultantRow {
-                name: name.to_string(),
-                kind,
-                cufem: ours,
-                ccx: *theirs,
-                difference_percent: (big > 1e-6 * force_scale).then(|| 100.0 * norm(d) / big),
-            });
-        }
-    };
-    for r in &solution.reactions {
-        push(&r.name, "reaction", r.force, set_name("C", &r.name));
-    }
-    for c in solution.contacts.iter().filter(|c| c.kind == crate::analysis::ContactKind::Indenter) {
-        push(&c.name, "indenter", c.force, set_name("REF", &c.name));
-    }
+    let resultants = resultant_rows(model, solution, run);
     let whole = field::compare_fields(model, &view, mesh, run);
     let (force_histories, force_curves) = history::compare_histories(model, solution, run);
     let comparison = Comparison {

@@ -1,0 +1,35 @@
+//! `[[symmetry]]`: planes of mirror symmetry (`bc::symmetry`).
+
+use serde::Deserialize;
+
+/// `[[symmetry]]`: the model is the part of a symmetric structure on one
+/// side of this plane.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct SymmetryFile {
+    /// Name (the plane's reaction).
+    pub name: String,
+    /// `{ x = c }`, `{ y = c }` or `{ z = c }`.
+    pub plane: PlaneFile,
+    /// The side modelled: `"above"` (coordinates ≥ c) or `"below"`.
+    pub keep: Option<KeepSide>,
+}
+
+/// `symmetry.plane`: exactly one coordinate.
+#[derive(Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PlaneFile {
+    pub x: Option<f64>,
+    pub y: Option<f64>,
+    pub z: Option<f64>,
+}
+
+/// `symmetry.keep`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum KeepSide {
+    /// Coordinates at or above the plane's.
+    Above,
+    /// Coordinates at or below the plane's.
+    Below,
+}

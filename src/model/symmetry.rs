@@ -1,0 +1,263 @@
+//! `[[symmetry]]`: the planes read and checked, each body cut to the side
+//! kept, the planes' constraints (`u_n = 0` on the plane), the items that
+//! lie wholly in the mirrored part (left out), and the items that lie
+//! across a plane (whose forces on the full structure are reported).
+//! The mechanics is in `bc::symmetry`.
+
+use super::schema::{ConditionFile, KeepSide, LoadFile, SelectionFile, SymmetryFile};
+use super::{ModelError, Warning, bounds, invalid};
+use crate::bc::symmetry::{Plane, Side, Symmetry};
+use crate::bc::{Condition, Constraint, Load, Selection};
+use crate::contact::{Indenter, PairContact};
+use crate::mesh::{CrossSection, Mesh};
+
+/// The planes as the file gives them (tolerance 0 until the bodies are known).
+pub(super) fn planes(file: &[SymmetryFile]) -> Result<Vec<Plane>, ModelError> {
+    let mut planes: Vec<Plane> = Vec::new();
+    for (i, s) in file.iter().enumerate() {
+        let key = format!("symmetry[{i}]");
+        let given: Vec<(usize, f64)> =
+            [s.plane.x, s.plane.y, s.plane.z].into_iter().enumerate().filter_map(|(a, v)| Some((a, v?))).collect();
+        let &[(axis, at)] = given.as_slice() else {
+            return Err(invalid(
+                format!("{key}.plane"),
+                format!("{} coordinates", given.len()),
+                "exactly one coordinate: { x = … }, { y = … } or { z = … } (a plane normal to that axis)",
+            ));
+        };
+        let at = bounds::coordinate(&format!("{key}.plane.{}", ["x", "y", "z"][axis]), at)?;
+        let keep = match s.keep {
+            Some(KeepSide::Above) => Side::Above,
+            Some(KeepSide::Below) => Side::Below,
+            None => {
+                return Err(invalid(
+                    format!("{key}.keep"),
+                    "missing",
+                    "\"above\" or \"below\": the side of the plane the model keeps (coordinates ≥ or ≤ the plane's)",
+                ));
+            }
+        };
+        if let Some(j) = planes.iter().position(|p| p.axis == axis) {
+            return Err(invalid(
+                format!("{key}.plane"),
+                format!("{} = {at}", ["x", "y", "z"][axis]),
+                format!(
+                    "a plane normal to another axis than symmetry[{j}]'s (two parallel planes make a periodic cell)"
+                ),
+            ));
+        }
+        planes.push(Plane { name: s.name.clone(), axis, at, keep, tolerance: 0.0 });
+    }
+    Ok(planes)
+}
+
+/// Cuts a body's section and axis element boundaries (`lines`) to the sides
+/// kept: an element on the left-out side goes, one across a plane is an error.
+pub(super) fn cut(
+    key: &str,
+    body: &str,
+    planes: &[Plane],
+    section: CrossSection,
+    lines: Vec<f64>,
+) -> Result<(CrossSection, Vec<f64>), ModelError> {
+    if planes.is_empty() {
+        return Ok((section, lines));
+    }
+    let b = section.bounds();
+    let size = ((b[1] - b[0]).powi(2) + (b[3] - b[2]).powi(2) + (lines[lines.len() - 1] - lines[0]).powi(2)).sqrt();
+    let mut section = section;
+    let mut lines = lines;
+    for (i, p) in planes.iter().enumerate() {
+        let plane = Plane { tolerance: 1e-6 * size, ..p.clone() };
+        let pk = format!("symmetry[{i}].plane");
+        // each element's extent along the plane's normal
+        let spans: Vec<(f64, f64)> = if plane.axis == 1 {
+            lines.windows(2).map(|w| (w[0], w[1])).collect()
+        } else {
+            let c = if plane.axis == 0 { 0 } else { 1 };
+            (0..section.n_elements())
+                .map(|e| {
+                    let v = section.element(e).iter().map(|&n| section.nodes[n][c]);
+                    (v.clone().fold(f64::INFINITY, f64::min), v.fold(f64::NEG_INFINITY, f64::max))
+                })
+                .collect()
+        };
+        let mut kept = Vec::with_capacity(spans.len());
+        for (e, &(lo, hi)) in spans.iter().enumerate() {
+            let (above, below) = (lo >= plane.at - plane.tolerance, hi <= plane.at + plane.tolerance);
+            let stays = if plane.keep == Side::Above { above } else { below };
+            if !above && !below {
+                let what = if plane.axis == 1 { "axis element" } else { "section element" };
+                let c = ["x", "y", "z"][plane.axis];
+                return Err(invalid(
+                    pk,
+                    plane.describe(),
+                    format!(
+                        "a plane along element boundaries: {what} {e} of body {body:?} spans {c} from {} to {} \
+                         (place an element boundary on the plane)",
+                        crate::numbers::short(lo),
+                        crate::numbers::short(hi)
+                    ),
+                ));
+            }
+            kept.push(stays);
+        }
+        if !kept.iter().any(|&k| k) {
+            return Err(invalid(
+                pk,
+                plane.describe(),
+                format!("a plane with part of body {body:?} on the side kept ({key} lies wholly on the side left out)"),
+            ));
+        }
+        if plane.axis == 1 {
+            let first = kept.iter().position(|&k| k).unwrap_or(0);
+            let last = kept.iter().rposition(|&k| k).unwrap_or(0);
+            lines = lines[first..=last + 1].to_vec();
+        } else {
+            section = section.retain_elements(|e| kept[e]).0;
+        }
+    }
+    Ok((section, lines))
+}
+
+/// The planes with their tolerance (1e-6 of the largest body) and a check
+/// that each touches a body.
+pub(super) fn placed(planes: Vec<Plane>, mesh: &Mesh) -> Result<Vec<Plane>, ModelError> {
+    let size = mesh.bodies.iter().map(|b| b.size()).fold(0.0, f64::max);
+    let planes: Vec<Plane> = planes.into_iter().map(|p| Plane { tolerance: 1e-6 * size, ..p }).collect();
+    for (i, p) in planes.iter().enumerate() {
+        if !(0..mesh.n_nodes()).any(|n| p.holds(mesh.coords(n))) {
+            return Err(invalid(
+                format!("symmetry[{i}].plane"),
+                p.describe(),
+                "a plane through nodes of a body (the model's side of it must touch the plane)",
+            ));
+        }
+    }
+    Ok(planes)
+}
+
+/// One constraint per plane and body it touches: the normal component zero
+/// on the plane (named after the plane; `plane_body` with several bodies).
+pub(super) fn constraints(planes: &[Plane], mesh: &Mesh) -> Vec<Constraint> {
+    let mut out = Vec::new();
+    for p in planes {
+        let touched: Vec<usize> = (0..mesh.bodies.len())
+            .filter(|&b| (0..mesh.bodies[b].n_nodes()).any(|n| p.holds(mesh.bodies[b].local_coords(n))))
+            .collect();
+        for &b in &touched {
+            let body = &mesh.bodies[b];
+            let mut conditions = [None; 3];
+            conditions[p.axis] = Some(Condition::Equal(p.at));
+            let selection = Selection { conditions, tolerance: p.tolerance, region: None, radial: None };
+            let nodes = selection.nodes(body).into_iter().map(|n| n + body.node_offset).collect();
+            let mut values = [None; 3];
+            values[p.axis] = Some(0.0);
+            let name = if touched.len() == 1 { p.name.clone() } else { format!("{}_{}", p.name, body.name) };
+            out.push(Constraint { name, body: b, nodes, values, selection: Some(selection) });
+        }
+    }
+    out
+}
+
+/// The plane whose left-out side holds the whole selection (its condition
+/// along the plane's normal lies there), if any: the item is the mirror
+/// image of one in the model, and is left out.
+pub(super) fn left_out<'a>(planes: &'a [Plane], s: &SelectionFile) -> Option<&'a Plane> {
+    planes.iter().find(|p| match [&s.x, &s.y, &s.z][p.axis] {
+        Some(ConditionFile::Value(v)) => p.removes(*v),
+        Some(ConditionFile::Range([a, b])) => p.removes(*a) && p.removes(*b),
+        None => false,
+    })
+}
+
+/// The note for an item left out.
+pub(super) fn note(key: String, name: &str, plane: &Plane) -> Warning {
+    Warning {
+        key,
+        message: format!(
+            "{name:?} lies wholly on the side of symmetry plane {:?} ({}) that the model leaves out: it is the \
+             mirror image of an item kept, and is left out with it",
+            plane.name,
+            plane.describe()
+        ),
+    }
+}
+
+/// For each plane, whether any of the nodes lies on it.
+pub(super) fn across(planes: &[Plane], mesh: &Mesh, nodes: impl Iterator<Item = usize> + Clone) -> Vec<bool> {
+    planes.iter().map(|p| nodes.clone().any(|n| p.holds(mesh.coords(n)))).collect()
+}
+
+/// The model's [`Symmetry`]: which constraints (`user`, not the planes'
+/// own), indenters and pair contacts lie across each plane.
+pub(super) fn resolve(
+    planes: Vec<Plane>,
+    mesh: &Mesh,
+    user: &[Constraint],
+    indenters: &[Indenter],
+    contacts: &[PairContact],
+) -> Symmetry {
+    let mut items: Vec<(String, Vec<bool>)> = Vec::new();
+    for c in user {
+        items.push((c.name.clone(), across(&planes, mesh, c.nodes.iter().copied())));
+    }
+    for i in indenters {
+        items.push((i.name.clone(), across(&planes, mesh, i.nodes.iter().map(|n| n.node))));
+    }
+    for c in contacts {
+        let surface = c.surface.iter().flat_map(|s| s.slave_nodes.iter().copied());
+        let slave = c.pairs.iter().map(|p| p.slave).chain(surface);
+        items.push((c.name.clone(), across(&planes, mesh, slave)));
+    }
+    Symmetry { planes, across: items }
+}
+
+/// A force per node or a total force on nodes of a plane is refused: which
+/// share of it the part kept carries is not said (a traction or pressure
+/// is integrated over the faces kept, which is that share).
+pub(super) fn check_load(
+    key: &str,
+    load: &Load,
+    l: &LoadFile,
+    planes: &[Plane],
+    mesh: &Mesh,
+) -> Result<(), ModelError> {
+    let kind = if l.force_per_node.is_some() {
+        "force_per_node"
+    } else if l.total_force.is_some() {
+        "total_force"
+    } else {
+        return Ok(());
+    };
+    match planes.iter().find(|p| load.nodal_forces.iter().any(|(n, _)| p.holds(mesh.coords(*n)))) {
+        None => Ok(()),
+        Some(p) => Err(invalid(
+            format!("{key}.{kind}"),
+            format!("a load on nodes of symmetry plane {:?} ({})", p.name, p.describe()),
+            "a `traction` or `pressure` there (integrated over the faces kept, it is the kept part's share; a force \
+             per node or a total force does not say which share the part kept carries)",
+        )),
+    }
+}
+
+/// A force-controlled indenter or an impactor across a plane is refused
+/// (its force or mass would have to be split between the mirror images).
+pub(super) fn check_indenter(key: &str, indenter: &Indenter, planes: &[Plane], mesh: &Mesh) -> Result<(), ModelError> {
+    let what = if indenter.impactor.is_some() {
+        "mass"
+    } else if indenter.force.is_some() {
+        "force"
+    } else {
+        return Ok(());
+    };
+    match planes.iter().find(|p| indenter.nodes.iter().any(|n| p.holds(mesh.coords(n.node)))) {
+        None => Ok(()),
+        Some(p) => Err(invalid(
+            format!("{key}.{what}"),
+            format!("an indenter touching symmetry plane {:?} ({})", p.name, p.describe()),
+            "a displacement-controlled indenter there (a force or a mass would have to be split between the mirror \
+             images; model the full structure for force control and impact)",
+        )),
+    }
+}

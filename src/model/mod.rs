@@ -505,6 +505,14 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let imperfection = analysis::imperfection(&file.analysis, &parts)?;
     let modal = analysis::modal(&file.analysis, &parts)?;
     let transient = transient::transient(&file.analysis, &file.steps, &parts, solver.path.is_some())?;
+    if !symmetry.planes.is_empty() && (buckling.is_some() || modal.is_some()) {
+        warnings.push(Warning {
+            key: "symmetry".into(),
+            message: "with symmetry planes only the modes symmetric about them are found: an antisymmetric buckling \
+                      or vibration mode, and a lower eigenvalue it may have, needs the full structure"
+                .into(),
+        });
+    }
     Ok(Model {
         title: file.title.unwrap_or_else(|| "cufem model".into()),
         description: file.description.unwrap_or_default(),

@@ -190,3 +190,13 @@ fn coarse_twins_equal_their_full_models() {
     );
     twin("bending_tube_20L9", "bending_tube_20L9_quarter", &[[0.0293, 0.06, 0.015], [0.005, 0.2, 0.0005]]);
 }
+
+#[test]
+fn graded_tube_quarter_equals_the_full_model() {
+    // the axis graded towards the roller: the plane y = 0.125 between 2 mm elements
+    twin(
+        "bending_tube_graded",
+        "bending_tube_graded_quarter",
+        &[[0.0007, 0.124, 0.015], [0.022, 0.126, 0.0295], [0.005, 0.2, 0.0005]],
+    );
+}

@@ -16,11 +16,13 @@ use serde::de::{self, Deserializer, SeqAccess, Visitor};
 
 mod anisotropy;
 mod section;
+mod stepping;
 pub(crate) mod tagged;
 mod words;
 
 pub use anisotropy::*;
 pub use section::*;
+pub use stepping::*;
 use tagged::tagged_table;
 pub use words::*;
 
@@ -230,6 +232,10 @@ pub struct SolverFile {
     pub max_load_factor: Option<f64>,
     /// The path following ends once a probe's displacement passes a value.
     pub stop: Option<StopFile>,
+    /// Load-step control by an error measure (`schema/stepping.rs`).
+    pub step_control: Option<StepControlFile>,
+    /// Backtracking along a Newton correction that overshoots.
+    pub line_search: Option<bool>,
 }
 
 /// `solver.control`: what drives the increments.

@@ -24,6 +24,8 @@ pub(crate) struct Kinematics {
     /// The present solve started on the secant of the last increment, not
     /// at the committed state.
     pub on_secant: bool,
+    /// The last correction, for a line search (`solver.line_search`).
+    pub line: Option<super::line::Line>,
 }
 
 impl Kinematics {
@@ -37,6 +39,7 @@ impl Kinematics {
             lambda_committed: 0.0,
             predictor: Predictor::Loading,
             on_secant: false,
+            line: None,
         }
     }
 

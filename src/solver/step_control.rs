@@ -3,7 +3,7 @@
 //! count.
 //!
 //! After each converged increment (before it is committed) the problem
-//! measures what changed ([`super::stepping::Incremental::measure`]): the
+//! measures what changed (`Incremental::measure` of `solver::stepping`): the
 //! largest increment of the equivalent plastic strain at any point, and the
 //! fraction of the discrete contact set whose status changed. Each is
 //! divided by its target ([`StepControl`]); `q` is the largest ratio.

@@ -273,20 +273,7 @@ pub fn run_span<P: Incremental>(
             // secant of the last increment instead of the committed state
             problem.extrapolate((target - lambda) / last.dlambda);
         }
-        let mut report = newton::solve(problem, newton_settings, interrupt);
-        // augmented Lagrangian: re-solve the increment after each multiplier
-        // update until the problem is satisfied (or Newton fails)
-        let mut augmentations = 0;
-        while report.converged() && augmentations < MAX_AUGMENTATIONS && problem.augment() {
-            augmentations += 1;
-            let again = newton::solve(problem, newton_settings, interrupt);
-            report.iterations += again.iterations;
-            report.residuals.extend(again.residuals);
-            report.corrections.extend(again.corrections);
-            report.line_searches += again.line_searches;
-            report.failure = again.failure;
-            report.message = again.message;
-        }
+        let report = solve_increment(problem, newton_settings, interrupt);
         if report.failure == Some(newton::Failure::Interrupted) {
             problem.restore();
             problem.set_load_factor(lambda);
@@ -354,6 +341,25 @@ pub fn run_span<P: Incremental>(
         }
     }
     Ok(history)
+}
+
+/// Newton on the present increment, solved again after each multiplier
+/// update of an augmented Lagrangian until the problem is satisfied (or
+/// Newton fails); the reports joined.
+fn solve_increment<P: Incremental>(problem: &mut P, newton_settings: &NewtonSettings, interrupt: &Interrupt) -> Report {
+    let mut report = newton::solve(problem, newton_settings, interrupt);
+    let mut augmentations = 0;
+    while report.converged() && augmentations < MAX_AUGMENTATIONS && problem.augment() {
+        augmentations += 1;
+        let again = newton::solve(problem, newton_settings, interrupt);
+        report.iterations += again.iterations;
+        report.residuals.extend(again.residuals);
+        report.corrections.extend(again.corrections);
+        report.line_searches += again.line_searches;
+        report.failure = again.failure;
+        report.message = again.message;
+    }
+    report
 }
 
 #[cfg(test)]

@@ -8,19 +8,9 @@
 //! further unknown outside `u`.
 
 use super::Structure;
+use super::kinematics::Line;
 use crate::assembly::NO_EQ;
 use crate::solver::newton::Correction;
-
-/// The last correction, for a line search along it.
-#[derive(Debug)]
-pub(crate) struct Line {
-    /// The full correction by DOF (0 at fixed and prescribed DOFs).
-    du: Vec<f64>,
-    /// `Δu·R` at its start.
-    start: f64,
-    /// The fraction of it applied now.
-    eta: f64,
-}
 
 impl Structure<'_> {
     /// Keeps the solved correction (in `system.rhs`, by equation) before it

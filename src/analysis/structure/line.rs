@@ -5,7 +5,10 @@
 //! Only a correction that makes no jump of the prescribed values and moves
 //! no force-controlled indenter is searched along: a shortened prescribed
 //! jump would be a different load, and an indenter's displacement is a
-//! further unknown outside `u`.
+//! further unknown outside `u`. Nor in a model with friction: its tangent
+//! is no energy's Hessian, so `Δu·R` is no slope (measured: both frictional
+//! cantilevers failed their first increment with a search, stick and slip
+//! flipping with every trial step).
 
 use super::Structure;
 use super::kinematics::Line;
@@ -17,7 +20,7 @@ impl Structure<'_> {
     /// is applied, with its slope at the start; `searchable` false forgets
     /// the last one instead.
     pub(super) fn remember_correction(&mut self, searchable: bool) {
-        if !searchable || self.force.is_driven() {
+        if !searchable || self.force.is_driven() || self.contacts.is_frictional() {
             self.state.line = None;
             return;
         }

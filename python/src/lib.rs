@@ -207,8 +207,9 @@ impl Progress for Channel {
 
     fn cutback(&mut self, c: &Cutback) {
         if self.print {
+            let what = if c.rejected.is_some() { "rejected by solver.step_control" } else { "failed" };
             let _ = self.tx.send(Message::Line(format!(
-                "  cutback: increment {} (λ = {:.4}, Δλ = {:.3e}) failed after {} iterations",
+                "  cutback: increment {} (λ = {:.4}, Δλ = {:.3e}) {what} after {} iterations",
                 c.index, c.lambda, c.dlambda, c.newton.iterations
             )));
         }

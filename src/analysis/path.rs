@@ -137,7 +137,14 @@ fn report(step: &PathStep) -> Report {
     let complex = step.failure == Some(arclength::PathFailure::ComplexRoots);
     let message =
         if complex { Some("the arc-length constraint has no real root".into()) } else { step.message.clone() };
-    Report { iterations: step.iterations, residuals: step.residuals.clone(), corrections: Vec::new(), failure, message }
+    Report {
+        iterations: step.iterations,
+        residuals: step.residuals.clone(),
+        corrections: Vec::new(),
+        failure,
+        message,
+        line_searches: 0,
+    }
 }
 
 impl<'s, 'm> PathObserver<PathStructure<'s, 'm>> for Watch<'_, '_> {
@@ -172,7 +179,13 @@ impl<'s, 'm> PathObserver<PathStructure<'s, 'm>> for Watch<'_, '_> {
 
     fn cut_back(&mut self, step: &PathStep) {
         let index = self.recorder.increments.len() + 1;
-        self.recorder.cut_back(&Cutback { index, lambda: step.lambda, dlambda: step.dlambda, newton: report(step) });
+        self.recorder.cut_back(&Cutback {
+            index,
+            lambda: step.lambda,
+            dlambda: step.dlambda,
+            newton: report(step),
+            rejected: None,
+        });
     }
 }
 

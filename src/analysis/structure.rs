@@ -31,6 +31,7 @@ mod force;
 mod kinematics;
 #[cfg(test)]
 mod limit_tests;
+mod line;
 mod loads;
 mod resultants;
 mod system;
@@ -45,7 +46,7 @@ use crate::model::Model;
 use crate::size::MemoryEstimate;
 use crate::solver::linear::{Cholesky, LinearError};
 use crate::solver::newton::{Correction, Evaluation, NonlinearProblem};
-use crate::solver::stepping::Incremental;
+use crate::solver::stepping::{Incremental, StepMeasure};
 use dirichlet::Dirichlet;
 use elements::Elements;
 use force::ForceControl;
@@ -456,6 +457,11 @@ impl NonlinearProblem for Structure<'_> {
     }
 
     fn correct(&mut self) -> Result<Correction, LinearError> {
+        // a line search only along a correction without a prescribed jump
+        let searchable = self.model.solver.newton.line_search && {
+            let (off, size) = self.dirichlet.offset(&self.state.u);
+            off <= 1e-12 * size
+        };
         let system = &mut self.system;
         for r in &mut system.rhs {
             *r = -*r;
@@ -471,7 +477,16 @@ impl NonlinearProblem for Structure<'_> {
         let da2 = self.force.solve(system, self.state.lambda)?;
         self.record_solver();
         self.limit_correction();
+        self.remember_correction(searchable);
         Ok(self.apply_correction(da2))
+    }
+
+    fn slopes(&self) -> Option<(f64, f64)> {
+        self.line_slopes()
+    }
+
+    fn step_to(&mut self, eta: f64) -> Option<Correction> {
+        self.line_step_to(eta)
     }
 }
 
@@ -519,6 +534,14 @@ impl Incremental for Structure<'_> {
             self.contacts.start_extrapolated();
         }
         self.force.extrapolate(ratio);
+    }
+
+    fn measure(&self) -> StepMeasure {
+        let (changed, before, after) = self.contacts.status_changes();
+        StepMeasure {
+            plastic_strain: self.elements.largest_peeq_increment(),
+            contact_set: (before > 0).then(|| changed as f64 / before.max(after) as f64),
+        }
     }
 
     fn commit(&mut self) {

@@ -569,6 +569,14 @@ impl Progress for Reporter {
     }
 
     fn cutback(&mut self, c: &Cutback) {
+        if let Some(q) = c.rejected {
+            self.line(format!(
+                "  rejected: increment {} (λ = {:.4}, Δλ = {:.3e}) converged in {} iterations but changed {:.1} times \
+                 what solver.step_control allows; redone smaller",
+                c.index, c.lambda, c.dlambda, c.newton.iterations, q
+            ));
+            return;
+        }
         let res: Vec<String> = c.newton.residuals.iter().map(|r| format!("{r:.1e}")).collect();
         self.line(format!(
             "  cutback: increment {} (λ = {:.4}, Δλ = {:.3e}) failed after {} iterations ({}), residuals [{}]{}",

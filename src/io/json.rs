@@ -110,8 +110,12 @@ pub struct Summary {
     pub increments: usize,
     /// Newton iterations in converged increments.
     pub newton_iterations: usize,
-    /// Failed attempts.
+    /// Failed attempts (and increments rejected by `solver.step_control`).
     pub cutbacks: usize,
+    /// Of those, converged increments rejected by `solver.step_control`.
+    pub rejected_increments: usize,
+    /// Newton corrections shortened by `solver.line_search` (converged increments).
+    pub line_searches: usize,
     /// Plastic Gauss points at the end.
     pub plastic_points: usize,
     /// Largest equivalent plastic strain over all Gauss points.
@@ -392,6 +396,8 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         increments: solution.increments.len(),
         newton_iterations: solution.increments.iter().map(|i| i.newton.iterations).sum(),
         cutbacks: solution.cutbacks.len(),
+        rejected_increments: solution.cutbacks.iter().filter(|c| c.rejected.is_some()).count(),
+        line_searches: solution.increments.iter().map(|i| i.newton.line_searches).sum(),
         plastic_points: solution.plastic_points,
         max_peeq: solution.states.iter().map(|s| s.peeq).fold(0.0, f64::max),
         failure: solution.failure.as_ref().map(|f| f.to_string()),

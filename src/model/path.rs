@@ -88,6 +88,8 @@ pub(super) fn settings(
         ("easy_iterations", s.easy_iterations.is_some()),
         ("stagnation_iterations", s.stagnation_iterations.is_some()),
         ("displacement_tolerance", s.displacement_tolerance.is_some()),
+        ("step_control", s.step_control.is_some()),
+        ("line_search", s.line_search.is_some()),
     ];
     if let Some((key, _)) = load_only.iter().find(|g| g.1) {
         return Err(invalid(

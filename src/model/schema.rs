@@ -16,12 +16,14 @@ use serde::de::{self, Deserializer, SeqAccess, Visitor};
 
 mod anisotropy;
 mod section;
+mod stepping;
 mod symmetry;
 pub(crate) mod tagged;
 mod words;
 
 pub use anisotropy::*;
 pub use section::*;
+pub use stepping::*;
 pub use symmetry::*;
 use tagged::tagged_table;
 pub use words::*;
@@ -235,25 +237,10 @@ pub struct SolverFile {
     pub max_load_factor: Option<f64>,
     /// The path following ends once a probe's displacement passes a value.
     pub stop: Option<StopFile>,
-}
-
-/// `solver.control`: what drives the increments.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum Control {
-    /// λ prescribed increment by increment (load stepping).
-    Load,
-    /// λ an unknown, each increment a fixed length of the path (Crisfield).
-    ArcLength,
-}
-
-/// `solver.stop = { probe, component, beyond }`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct StopFile {
-    pub probe: String,
-    pub component: Axis,
-    pub beyond: f64,
+    /// Load-step control by an error measure (`schema/stepping.rs`).
+    pub step_control: Option<StepControlFile>,
+    /// Backtracking along a Newton correction that overshoots.
+    pub line_search: Option<bool>,
 }
 
 /// `[[materials]]`.

@@ -153,7 +153,10 @@ fn settings(key: &str, s: &StepFile, base: &StepSettings) -> Result<StepSettings
     if let Some(n) = s.increments {
         let n = count(&format!("{key}.increments"), n)?;
         out.initial = 1.0 / n as f64;
-        out.max = out.initial;
+        // with a step control the step's increments grow as its measures allow
+        if out.control.is_none() {
+            out.max = out.initial;
+        }
         out.min = out.min.min(1e-4 * out.initial);
     }
     for (name, value, slot) in

@@ -10,7 +10,7 @@ use crate::contact::{self, Penalty};
 use crate::mesh::{Division, Segment};
 use crate::solver::newton::NewtonSettings;
 use crate::solver::reuse::ReuseSettings;
-use crate::solver::stepping::StepSettings;
+use crate::solver::stepping::{StepControl, StepSettings};
 
 /// Names are unique per table; constraints, indenters and contacts share
 /// one name space (they all write `history_<name>.csv`).
@@ -244,7 +244,9 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
             Some(v) => Err(invalid(format!("solver.{name}"), number(v), "a number in (0, 1]")),
         }
     };
-    let max = fraction("max_increment", s.max_increment, initial)?;
+    let control = step_control(s.step_control.as_ref())?;
+    // the step control grows the increment as far as its measures allow
+    let max = fraction("max_increment", s.max_increment, if control.is_some() { 1.0 } else { initial })?;
     let min = fraction("min_increment", s.min_increment, 1e-4 * initial.min(max))?;
     // open at both ends: 0 would stop at the first cutback, 1 would retry the
     // same increment forever
@@ -300,6 +302,7 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
             growth_factor: growth,
             easy_iterations: s.easy_iterations.unwrap_or(4),
             max_increments,
+            control,
         },
         newton: NewtonSettings {
             max_iterations,
@@ -307,6 +310,7 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
             displacement_tolerance: tol("displacement_tolerance", s.displacement_tolerance, 1e-6)?,
             divergence_ratio: 1e6,
             stagnation_iterations: stagnation,
+            line_search: s.line_search.unwrap_or(false),
         },
         threads: s.threads,
         reuse: ReuseSettings {
@@ -319,6 +323,35 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
         },
         path: None,
     })
+}
+
+/// `solver.step_control`: at least one target; a plastic strain in
+/// (0, 0.1], a fraction of the contact set in (0, 1].
+fn step_control(c: Option<&StepControlFile>) -> Result<Option<StepControl>, ModelError> {
+    let Some(c) = c else { return Ok(None) };
+    let key = "solver.step_control";
+    let check = |name: &str, v: Option<f64>, hi: f64, what: &str| match v {
+        Some(v) if !(v.is_finite() && v > 0.0 && v <= hi) => {
+            Err(invalid(format!("{key}.{name}"), number(v), format!("a number in (0, {hi}]: {what}")))
+        }
+        _ => Ok(v),
+    };
+    let plastic_strain = check(
+        "plastic_strain",
+        c.plastic_strain,
+        0.1,
+        "the largest increment of the equivalent plastic strain at any Gauss point per load increment, e.g. 2e-3",
+    )?;
+    let contact_set = check(
+        "contact_set",
+        c.contact_set,
+        1.0,
+        "the largest fraction of the active contact points that open or close in one increment, e.g. 0.2",
+    )?;
+    if plastic_strain.is_none() && contact_set.is_none() {
+        return Err(invalid(key, "{}", "at least one of plastic_strain, contact_set"));
+    }
+    Ok(Some(StepControl { plastic_strain, contact_set }))
 }
 
 pub(super) fn describe_selection(s: &SelectionFile) -> String {
@@ -411,6 +444,46 @@ mod tests {
         // another word is refused by the reader, with its line and the two allowed
         let e = toml::from_str::<SolverFile>("factor_precision = \"half\"").unwrap_err().to_string();
         assert!(e.contains("line 1") && e.contains("unknown variant `half`, expected `single` or `double`"), "{e}");
+    }
+
+    #[test]
+    fn step_control_and_line_search_keys() {
+        // off by default: the fixed count, no line search
+        let s = solver_settings(&SolverFile::default(), false).unwrap();
+        assert_eq!((s.steps.control, s.steps.max, s.newton.line_search), (None, 0.1, false));
+        let file = |t: &str| toml::from_str::<SolverFile>(t).unwrap();
+        let s = solver_settings(&file("step_control = { plastic_strain = 2e-3 }\nline_search = true"), false).unwrap();
+        let c = s.steps.control.unwrap();
+        assert_eq!((c.plastic_strain, c.contact_set, s.newton.line_search), (Some(2e-3), None, true));
+        // the control lets Δλ grow to the whole step unless max_increment caps it
+        assert_eq!((s.steps.initial, s.steps.max), (0.1, 1.0));
+        let s = solver_settings(&file("max_increment = 0.2\nstep_control = { contact_set = 0.3 }"), false).unwrap();
+        assert_eq!((s.steps.max, s.steps.control.unwrap().contact_set), (0.2, Some(0.3)));
+        for (text, says) in [
+            (
+                "step_control = { plastic_strain = 0.0 }",
+                "solver.step_control.plastic_strain = 0: expected a number in (0, 0.1]",
+            ),
+            (
+                "step_control = { plastic_strain = 0.5 }",
+                "solver.step_control.plastic_strain = 0.5: expected a number in (0, 0.1]",
+            ),
+            (
+                "step_control = { contact_set = 1.5 }",
+                "solver.step_control.contact_set = 1.5: expected a number in (0, 1]",
+            ),
+            (
+                "step_control = { contact_set = nan }",
+                "solver.step_control.contact_set = NaN: expected a number in (0, 1]",
+            ),
+            ("step_control = {}", "solver.step_control = {}: expected at least one of plastic_strain, contact_set"),
+        ] {
+            let e = err(solver_settings(&file(text), false));
+            assert!(e.contains(says), "{text}: {e}");
+        }
+        // an unknown key is refused by the reader with the allowed ones
+        let e = toml::from_str::<SolverFile>("step_control = { plastic = 1e-3 }").unwrap_err().to_string();
+        assert!(e.contains("unknown field `plastic`, expected `plastic_strain` or `contact_set`"), "{e}");
     }
 
     #[test]

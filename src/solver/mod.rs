@@ -11,6 +11,7 @@ pub mod linear;
 pub mod newton;
 pub mod nonsymmetric;
 pub mod reuse;
+pub mod step_control;
 pub mod stepping;
 
 use std::sync::Arc;

@@ -19,6 +19,17 @@
 //! corrections (it is going nowhere: the caller cuts the step back sooner
 //! than at `max_iterations`), and before any further correction once an
 //! [`Interrupt`] is requested.
+//!
+//! With [`NewtonSettings::line_search`], a correction after which the
+//! residual grew *and* the energy still falls along it at its start but
+//! rises at its end (`s(η) = Δx·R(x_k + η Δx)`, `s(0) < 0 < s(1)`: the full
+//! step overshot the minimum along its direction) is shortened: `η` by
+//! regula falsi on `s` (Illinois), at most [`LINE_SEARCH_STEPS`]
+//! evaluations, until `|s(η)| ≤ ½|s(0)|` (Crisfield, *Non-linear Finite
+//! Element Analysis of Solids and Structures* 1, §9.3; Matthies & Strang
+//! 1979). Corrections after which the residual fell keep their full step,
+//! and a problem that cannot search along its correction
+//! ([`NonlinearProblem::slopes`] = `None`) is not touched.
 
 use super::Interrupt;
 
@@ -50,7 +61,26 @@ pub trait NonlinearProblem {
     fn evaluate(&mut self) -> Result<Evaluation, Self::Error>;
     /// Solves with the current tangent and applies `x ← x + Δx`.
     fn correct(&mut self) -> Result<Correction, Self::Error>;
+    /// For a line search, after an evaluation: `(Δx·R(x_k), Δx·R(x))`, the
+    /// last correction `Δx` against the residual at its start `x_k` and at
+    /// the present iterate (the slopes of the energy along `Δx`). `None`
+    /// (the default): no line search along this correction.
+    fn slopes(&self) -> Option<(f64, f64)> {
+        None
+    }
+    /// Moves the iterate to `x_k + η Δx` along the last correction and
+    /// reports that correction (called only after [`Self::slopes`] gave
+    /// `Some`). The default: nothing moved.
+    fn step_to(&mut self, _eta: f64) -> Option<Correction> {
+        None
+    }
 }
+
+/// Most evaluations of one line search.
+pub const LINE_SEARCH_STEPS: usize = 4;
+
+/// Smallest step length of a line search.
+pub const SMALLEST_STEP: f64 = 0.1;
 
 /// Newton controls.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -72,6 +102,8 @@ pub struct NewtonSettings {
     /// `max_iterations` after one, 4 saves a fifth of the evaluations
     /// (`solver.stagnation_iterations`, examples/tube_crush.toml).
     pub stagnation_iterations: usize,
+    /// Shorten a correction that overshoots (module docs; off by default).
+    pub line_search: bool,
 }
 
 impl Default for NewtonSettings {
@@ -82,6 +114,7 @@ impl Default for NewtonSettings {
             displacement_tolerance: 1e-6,
             divergence_ratio: 1e6,
             stagnation_iterations: usize::MAX,
+            line_search: false,
         }
     }
 }
@@ -114,6 +147,8 @@ pub struct Report {
     pub failure: Option<Failure>,
     /// Message of a problem error, if any.
     pub message: Option<String>,
+    /// Corrections shortened by the line search.
+    pub line_searches: usize,
 }
 
 impl Report {
@@ -128,12 +163,29 @@ pub fn solve<P: NonlinearProblem>(problem: &mut P, settings: &NewtonSettings, in
     let mut report = Report::default();
     let mut last_correction: Option<f64> = None;
     loop {
-        let ev = match problem.evaluate() {
+        let mut ev = match problem.evaluate() {
             Ok(ev) => ev,
             Err(e) => return fail(report, Failure::Problem, Some(e.to_string())),
         };
-        let r = ev.residual_norm / ev.force_scale.max(f64::MIN_POSITIVE);
-        let r = if ev.residual_norm == 0.0 { 0.0 } else { r };
+        let mut r = relative(&ev);
+        if settings.line_search
+            && let Some(&before) = report.residuals.last()
+            && r > before
+        {
+            match line_search(problem) {
+                Ok(Some((e, c))) => {
+                    (ev, r) = (e, relative(&e));
+                    let rel = if c.norm == 0.0 { 0.0 } else { c.norm / c.increment_norm.max(f64::MIN_POSITIVE) };
+                    if let Some(last) = report.corrections.last_mut() {
+                        *last = rel;
+                    }
+                    last_correction = Some(rel);
+                    report.line_searches += 1;
+                }
+                Ok(None) => {}
+                Err(e) => return fail(report, Failure::Problem, Some(e.to_string())),
+            }
+        }
         report.residuals.push(r);
         if !r.is_finite() || r > settings.divergence_ratio * report.residuals[0].max(1.0) {
             return fail(report, Failure::Diverged, None);
@@ -176,6 +228,50 @@ pub fn solve<P: NonlinearProblem>(problem: &mut P, settings: &NewtonSettings, in
         }
         report.iterations += 1;
     }
+}
+
+/// The relative residual `‖R‖/F` of an evaluation.
+fn relative(ev: &Evaluation) -> f64 {
+    if ev.residual_norm == 0.0 { 0.0 } else { ev.residual_norm / ev.force_scale.max(f64::MIN_POSITIVE) }
+}
+
+/// Shortens the last correction if it overshot along its direction (module
+/// docs): the evaluation and correction of the step length taken, `None`
+/// if the full step stays.
+fn line_search<P: NonlinearProblem>(problem: &mut P) -> Result<Option<(Evaluation, Correction)>, P::Error> {
+    let Some((s0, s1)) = problem.slopes() else { return Ok(None) };
+    if !(s0 < 0.0 && s1 > 0.0) {
+        return Ok(None);
+    }
+    // regula falsi on s(η) over the bracket [lo, hi], s(lo) < 0 < s(hi);
+    // Illinois: the end kept twice in a row has its value halved
+    let (mut lo, mut s_lo, mut hi, mut s_hi) = (0.0, s0, 1.0, s1);
+    let mut kept = 0i8;
+    let mut taken = None;
+    for _ in 0..LINE_SEARCH_STEPS {
+        let eta = (lo - s_lo * (hi - lo) / (s_hi - s_lo)).clamp(SMALLEST_STEP, 1.0);
+        let Some(c) = problem.step_to(eta) else { return Ok(None) };
+        let ev = problem.evaluate()?;
+        taken = Some((ev, c));
+        let Some((_, s)) = problem.slopes() else { break };
+        if s.abs() <= 0.5 * s0.abs() || eta <= SMALLEST_STEP {
+            break;
+        }
+        if s > 0.0 {
+            (hi, s_hi) = (eta, s);
+            if kept == -1 {
+                s_lo *= 0.5;
+            }
+            kept = -1;
+        } else {
+            (lo, s_lo) = (eta, s);
+            if kept == 1 {
+                s_hi *= 0.5;
+            }
+            kept = 1;
+        }
+    }
+    Ok(taken)
 }
 
 fn fail(mut report: Report, failure: Failure, message: Option<String>) -> Report {
@@ -291,6 +387,63 @@ mod tests {
             &Interrupt::new(),
         );
         assert_eq!((rep.failure, rep.iterations), (Some(Failure::MaxIterations), 20));
+    }
+
+    /// A softening spring `atan(x) = 0` from x₀ = 2: Newton's first step
+    /// lands at −3.5, where the residual is larger, and every further one
+    /// overshoots more (plain Newton on atan diverges from |x₀| > 1.39).
+    struct Atan {
+        x: f64,
+        start: f64,
+        dx: f64,
+        x0: f64,
+    }
+
+    impl NonlinearProblem for Atan {
+        type Error = std::io::Error;
+        fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
+            Ok(Evaluation { residual_norm: self.x.atan().abs(), force_scale: 1.0, settled: true })
+        }
+        fn correct(&mut self) -> Result<Correction, Self::Error> {
+            (self.start, self.dx) = (self.x, -self.x.atan() * (1.0 + self.x * self.x));
+            self.x += self.dx;
+            Ok(Correction { norm: self.dx.abs(), increment_norm: (self.x - self.x0).abs() })
+        }
+        fn slopes(&self) -> Option<(f64, f64)> {
+            Some((self.dx * self.start.atan(), self.dx * self.x.atan()))
+        }
+        fn step_to(&mut self, eta: f64) -> Option<Correction> {
+            self.x = self.start + eta * self.dx;
+            Some(Correction { norm: (eta * self.dx).abs(), increment_norm: (self.x - self.x0).abs() })
+        }
+    }
+
+    #[test]
+    fn the_line_search_shortens_an_overshooting_correction() {
+        let plain = NewtonSettings::default();
+        let rep = solve(&mut Atan { x: 2.0, start: 2.0, dx: 0.0, x0: 2.0 }, &plain, &Interrupt::new());
+        assert!(!rep.converged(), "plain Newton should diverge: {rep:?}");
+        let searching = NewtonSettings { line_search: true, ..plain };
+        let mut p = Atan { x: 2.0, start: 2.0, dx: 0.0, x0: 2.0 };
+        let rep = solve(&mut p, &searching, &Interrupt::new());
+        assert!(rep.converged() && p.x.abs() < 1e-6, "{rep:?} at x = {}", p.x);
+        assert!(rep.line_searches >= 1, "{rep:?}");
+        // every recorded residual after the first search is below its start
+        assert!(rep.residuals.iter().skip(1).all(|&r| r < rep.residuals[0]), "{:?}", rep.residuals);
+    }
+
+    /// From x₀ = 1 Newton on atan converges, its residual falling at every
+    /// correction (0.79, 0.52, 0.12, …): the line search leaves every
+    /// iterate as it is, to the last bit.
+    #[test]
+    fn the_line_search_leaves_a_contracting_newton_alone() {
+        let exact = NewtonSettings { residual_tolerance: 1e-14, ..Default::default() };
+        let mut a = Atan { x: 1.0, start: 1.0, dx: 0.0, x0: 1.0 };
+        let plain = solve(&mut a, &exact, &Interrupt::new());
+        let mut b = Atan { x: 1.0, start: 1.0, dx: 0.0, x0: 1.0 };
+        let searched = solve(&mut b, &NewtonSettings { line_search: true, ..exact }, &Interrupt::new());
+        assert!(plain.converged() && plain.iterations >= 4, "{plain:?}");
+        assert_eq!((&plain, a.x.to_bits()), (&searched, b.x.to_bits()));
     }
 
     #[test]

@@ -10,9 +10,16 @@
 //! problem's cautious linearization ([`Incremental::cautious`]). When `Δλ`
 //! would fall below `min_increment`, the analysis stops with a report and the
 //! problem is left at its last converged increment.
+//!
+//! With a [`StepControl`] (`solver.step_control`) the size of the next
+//! increment follows instead what the last one changed, as the problem
+//! measures it ([`Incremental::measure`]; rules in `solver::step_control`),
+//! and an increment that changed far too much is redone smaller.
 
 use super::Interrupt;
 use super::newton::{self, NewtonSettings, NonlinearProblem, Report};
+use super::step_control::Verdict;
+pub use super::step_control::{StepControl, StepMeasure};
 
 /// A problem that can be driven incrementally.
 pub trait Incremental: NonlinearProblem {
@@ -40,6 +47,11 @@ pub trait Incremental: NonlinearProblem {
     /// linear extrapolation of the path; the default: start at the
     /// committed state). Called only within one step of a load history.
     fn extrapolate(&mut self, _ratio: f64) {}
+    /// After a converged solve, before it is committed: what the increment
+    /// changed, for the step control (the default: nothing measured).
+    fn measure(&self) -> StepMeasure {
+        StepMeasure::default()
+    }
 }
 
 /// Controls of the load stepping.
@@ -59,6 +71,9 @@ pub struct StepSettings {
     pub easy_iterations: usize,
     /// Largest number of converged increments before the analysis is stopped.
     pub max_increments: usize,
+    /// Step control by an error measure (`None`: the growth after easy
+    /// increments alone).
+    pub control: Option<StepControl>,
 }
 
 impl Default for StepSettings {
@@ -71,6 +86,7 @@ impl Default for StepSettings {
             growth_factor: 1.5,
             easy_iterations: 4,
             max_increments: 1000,
+            control: None,
         }
     }
 }
@@ -99,8 +115,11 @@ pub struct Cutback {
     pub lambda: f64,
     /// Δλ that failed.
     pub dlambda: f64,
-    /// The failed Newton history.
+    /// The failed Newton history (converged if the step control rejected it).
     pub newton: Report,
+    /// `Some(q)`: the attempt converged, but the step control rejected it,
+    /// its measure `q` times the target.
+    pub rejected: Option<f64>,
 }
 
 /// Callbacks of the stepping loop.
@@ -223,6 +242,8 @@ pub fn run_span<P: Incremental>(
     let mut history: Vec<Increment> = Vec::new();
     let mut dlambda = steps.initial.min(steps.max);
     let mut cutbacks = 0;
+    // the present increment was already rejected once by the step control
+    let mut rejected = false;
     while lambda < end - 1e-12 * end.abs().max(1.0) {
         if history.len() >= steps.max_increments {
             return Err(Box::new(SteppingError {
@@ -252,19 +273,7 @@ pub fn run_span<P: Incremental>(
             // secant of the last increment instead of the committed state
             problem.extrapolate((target - lambda) / last.dlambda);
         }
-        let mut report = newton::solve(problem, newton_settings, interrupt);
-        // augmented Lagrangian: re-solve the increment after each multiplier
-        // update until the problem is satisfied (or Newton fails)
-        let mut augmentations = 0;
-        while report.converged() && augmentations < MAX_AUGMENTATIONS && problem.augment() {
-            augmentations += 1;
-            let again = newton::solve(problem, newton_settings, interrupt);
-            report.iterations += again.iterations;
-            report.residuals.extend(again.residuals);
-            report.corrections.extend(again.corrections);
-            report.failure = again.failure;
-            report.message = again.message;
-        }
+        let report = solve_increment(problem, newton_settings, interrupt);
         if report.failure == Some(newton::Failure::Interrupted) {
             problem.restore();
             problem.set_load_factor(lambda);
@@ -278,21 +287,39 @@ pub fn run_span<P: Incremental>(
             }));
         }
         if report.converged() {
+            let easy = report.iterations <= steps.easy_iterations;
+            let mut next = None;
+            if let Some(control) = &steps.control {
+                let growth = if easy { steps.growth_factor } else { 1.0 };
+                match control.verdict(&problem.measure(), dlambda, growth, steps.min, rejected) {
+                    Verdict::Reject { factor, q } => {
+                        problem.restore();
+                        let index = first_index + history.len();
+                        let rejection = Cutback { index, lambda: target, dlambda, newton: report, rejected: Some(q) };
+                        observer.cut_back(&rejection);
+                        (cutbacks, rejected, dlambda) = (cutbacks + 1, true, dlambda * factor);
+                        continue;
+                    }
+                    Verdict::Accept(factor) => next = Some(factor),
+                }
+            }
             problem.cautious(false);
             problem.commit();
             lambda = target;
             let inc = Increment { index: first_index + history.len(), lambda, dlambda, newton: report, cutbacks };
             observer.converged(problem, &inc);
-            let easy = inc.newton.iterations <= steps.easy_iterations;
             history.push(inc);
             cutbacks = 0;
-            if easy {
+            rejected = false;
+            if let Some(factor) = next {
+                dlambda = (dlambda * factor).clamp(steps.min, steps.max);
+            } else if easy {
                 dlambda = (dlambda * steps.growth_factor).min(steps.max);
             }
         } else {
             problem.restore();
             let index = first_index + history.len();
-            observer.cut_back(&Cutback { index, lambda: target, dlambda, newton: report.clone() });
+            observer.cut_back(&Cutback { index, lambda: target, dlambda, newton: report.clone(), rejected: None });
             cutbacks += 1;
             if problem.cautious(true) {
                 // retry the same Δλ with the cautious linearization first
@@ -314,6 +341,25 @@ pub fn run_span<P: Incremental>(
         }
     }
     Ok(history)
+}
+
+/// Newton on the present increment, solved again after each multiplier
+/// update of an augmented Lagrangian until the problem is satisfied (or
+/// Newton fails); the reports joined.
+fn solve_increment<P: Incremental>(problem: &mut P, newton_settings: &NewtonSettings, interrupt: &Interrupt) -> Report {
+    let mut report = newton::solve(problem, newton_settings, interrupt);
+    let mut augmentations = 0;
+    while report.converged() && augmentations < MAX_AUGMENTATIONS && problem.augment() {
+        augmentations += 1;
+        let again = newton::solve(problem, newton_settings, interrupt);
+        report.iterations += again.iterations;
+        report.residuals.extend(again.residuals);
+        report.corrections.extend(again.corrections);
+        report.line_searches += again.line_searches;
+        report.failure = again.failure;
+        report.message = again.message;
+    }
+    report
 }
 
 #[cfg(test)]
@@ -422,5 +468,131 @@ mod tests {
         assert!(hist[0].dlambda < 1.0);
         assert!((hist.last().unwrap().lambda - 1.0).abs() < 1e-12);
         assert!((s.u - 3.0).abs() < 1e-5, "{}", s.u);
+    }
+
+    /// A 1-DOF elastoplastic spring (k = 1, yield force 1, hardening
+    /// H = 0.1) under 3 λ: elastic to λ = 1/3, then the plastic
+    /// displacement grows by dp/dλ = 3/H = 30; at λ = 1, p = 20 and u = 23
+    /// (backward Euler is exact on this monotonic 1-D path, whatever the
+    /// increments).
+    struct Hardening {
+        lambda: f64,
+        u: f64,
+        u_committed: f64,
+        p: f64,
+        p_committed: f64,
+        r: f64,
+        k: f64,
+    }
+
+    impl Hardening {
+        fn new() -> Self {
+            Self { lambda: 0.0, u: 0.0, u_committed: 0.0, p: 0.0, p_committed: 0.0, r: 0.0, k: 1.0 }
+        }
+    }
+
+    impl NonlinearProblem for Hardening {
+        type Error = std::io::Error;
+        fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
+            let h = 0.1;
+            let trial = self.u - self.p_committed;
+            let over = trial.abs() - (1.0 + h * self.p_committed);
+            (self.p, self.k) = if over > 0.0 {
+                (self.p_committed + trial.signum() * over / (1.0 + h), h / (1.0 + h))
+            } else {
+                (self.p_committed, 1.0)
+            };
+            self.r = self.u - self.p - 3.0 * self.lambda;
+            Ok(Evaluation { residual_norm: self.r.abs(), force_scale: 3.0 * self.lambda.max(1e-3), settled: true })
+        }
+        fn correct(&mut self) -> Result<Correction, Self::Error> {
+            let du = -self.r / self.k;
+            self.u += du;
+            Ok(Correction { norm: du.abs(), increment_norm: (self.u - self.u_committed).abs() })
+        }
+    }
+
+    impl Incremental for Hardening {
+        fn set_load_factor(&mut self, lambda: f64) {
+            self.lambda = lambda;
+        }
+        fn commit(&mut self) {
+            (self.u_committed, self.p_committed) = (self.u, self.p);
+        }
+        fn restore(&mut self) {
+            (self.u, self.p) = (self.u_committed, self.p_committed);
+        }
+        fn measure(&self) -> StepMeasure {
+            StepMeasure { plastic_strain: (self.p - self.p_committed).abs(), contact_set: None }
+        }
+    }
+
+    /// Records the plastic increment of every converged increment and the
+    /// rejections.
+    #[derive(Default)]
+    struct PlasticLog {
+        dp: Vec<f64>,
+        p: f64,
+        rejected: usize,
+    }
+    impl Observer<Hardening> for PlasticLog {
+        fn converged(&mut self, s: &Hardening, _: &Increment) {
+            self.dp.push(s.p_committed - self.p);
+            self.p = s.p_committed;
+        }
+        fn cut_back(&mut self, c: &Cutback) {
+            self.rejected += usize::from(c.rejected.is_some());
+        }
+    }
+
+    fn plastic_run(steps: &StepSettings) -> (Vec<Increment>, PlasticLog, Hardening) {
+        let mut s = Hardening::new();
+        let mut log = PlasticLog::default();
+        let hist = run(&mut s, steps, &NewtonSettings::default(), &mut log, &Interrupt::new()).unwrap();
+        assert!((s.u - 23.0).abs() < 1e-5 && (hist.last().unwrap().lambda - 1.0).abs() < 1e-12, "{}", s.u);
+        (hist, log, s)
+    }
+
+    #[test]
+    fn without_a_step_control_the_count_is_fixed() {
+        let (hist, log, _) = plastic_run(&StepSettings { initial: 0.1, max: 0.1, ..Default::default() });
+        assert_eq!((hist.len(), log.rejected), (10, 0));
+        assert!(hist.iter().all(|i| (i.dlambda - 0.1).abs() < 1e-12));
+    }
+
+    /// With `plastic_strain = 5` the elastic start grows (0.1, 0.2, 0.4),
+    /// the increment into the plastic range (to λ = 0.7) changes p by
+    /// 11 > 2 × 5 and is redone smaller, and the plastic increments then
+    /// follow Δλ ≈ 0.8 · 5 / 30: fewer increments than the fixed 10, each
+    /// accepted one within twice the target, the same exact end.
+    #[test]
+    fn the_step_control_grows_elastic_increments_and_bounds_plastic_ones() {
+        let control = StepControl { plastic_strain: Some(5.0), contact_set: None };
+        let steps =
+            StepSettings { initial: 0.1, max: 1.0, growth_factor: 2.0, control: Some(control), ..Default::default() };
+        let (hist, log, _) = plastic_run(&steps);
+        assert!(hist.len() < 10, "{} increments", hist.len());
+        assert!(hist[1].dlambda > hist[0].dlambda, "the elastic increments grow");
+        assert!(log.rejected >= 1, "the jump into the plastic range is redone");
+        assert!(log.dp.iter().all(|&dp| dp <= 2.0 * 5.0 * (1.0 + 1e-9)), "{:?}", log.dp);
+        // the plastic increments (3.36 across the yield point, 5.19, 4, 4,
+        // and the rest to λ = 1) aim at 0.8 of the target: once p grows
+        // linearly in λ, they hit it
+        let plastic: Vec<f64> = log.dp.iter().copied().filter(|&dp| dp > 0.0).collect();
+        assert_eq!(hist.len(), 7, "{plastic:?}");
+        assert!(plastic[2..plastic.len() - 1].iter().all(|&dp| (dp - 4.0).abs() < 1e-9), "{plastic:?}");
+    }
+
+    /// A too large first increment is rejected once, not repeatedly: with
+    /// Δλ = 1 the first attempt changes p by 20 (4 × the target).
+    #[test]
+    fn a_rejected_increment_is_redone_once() {
+        let control = StepControl { plastic_strain: Some(5.0), contact_set: None };
+        let steps = StepSettings { initial: 1.0, max: 1.0, control: Some(control), ..Default::default() };
+        let (hist, log, _) = plastic_run(&steps);
+        assert_eq!(hist[0].cutbacks, 1);
+        // 0.8 / 4 = 0.2, bounded below by a quarter
+        assert!((hist[0].dlambda - 0.25).abs() < 1e-12, "{}", hist[0].dlambda);
+        assert!(log.rejected >= 1);
     }
 }

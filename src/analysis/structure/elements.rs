@@ -65,6 +65,15 @@ impl<'m> Elements<'m> {
     }
 }
 
+impl Elements<'_> {
+    /// The largest increment of the equivalent plastic strain at any Gauss
+    /// point, from the committed states to those of the last evaluation
+    /// (the step control's measure of plastic flow).
+    pub fn largest_peeq_increment(&self) -> f64 {
+        self.trial.iter().zip(&self.committed).map(|(t, c)| t.peeq - c.peeq).fold(0.0, f64::max)
+    }
+}
+
 impl Contribution for Elements<'_> {
     fn phase(&self) -> Phase {
         Phase::Elements

@@ -24,6 +24,8 @@ pub(crate) struct Kinematics {
     /// The present solve started on the secant of the last increment, not
     /// at the committed state.
     pub on_secant: bool,
+    /// The last correction, for a line search (`solver.line_search`).
+    pub line: Option<Line>,
 }
 
 impl Kinematics {
@@ -37,6 +39,7 @@ impl Kinematics {
             lambda_committed: 0.0,
             predictor: Predictor::Loading,
             on_secant: false,
+            line: None,
         }
     }
 
@@ -74,4 +77,15 @@ impl Kinematics {
     pub fn increment2(&self) -> f64 {
         self.u.iter().zip(&self.u_committed).map(|(a, b)| (a - b) * (a - b)).sum()
     }
+}
+
+/// The last correction, for a line search along it (`structure/line.rs`).
+#[derive(Debug)]
+pub(crate) struct Line {
+    /// The full correction by DOF (0 at fixed and prescribed DOFs).
+    pub du: Vec<f64>,
+    /// `Δu·R` at its start.
+    pub start: f64,
+    /// The fraction of it applied now.
+    pub eta: f64,
 }

@@ -217,6 +217,15 @@ impl<'m> Contacts<'m> {
         self.first_evaluation = true;
     }
 
+    /// Points that opened or closed since the committed state, and the
+    /// points active there and now: the step control's measure of the
+    /// contact set (`solver::step_control`).
+    pub fn status_changes(&self) -> (usize, usize, usize) {
+        let changed = self.points.iter().zip(&self.committed).filter(|(p, c)| p.active != c.active).count();
+        let active = |v: &[ContactPoint]| v.iter().filter(|p| p.active).count();
+        (changed, active(&self.committed), active(&self.points))
+    }
+
     /// The increment starts on the secant of the last one instead: a point
     /// that slid is past its cone, and its consistent tangent applies at once.
     pub fn start_extrapolated(&mut self) {

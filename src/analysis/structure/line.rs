@@ -1,0 +1,58 @@
+//! The structure's side of Newton's line search (`solver::newton`,
+//! `solver.line_search`): the last correction kept by DOF, the slopes
+//! `Δu·R` of the energy along it, and moves along it.
+//!
+//! Only a correction that makes no jump of the prescribed values and moves
+//! no force-controlled indenter is searched along: a shortened prescribed
+//! jump would be a different load, and an indenter's displacement is a
+//! further unknown outside `u`. Nor in a model with friction: its tangent
+//! is no energy's Hessian, so `Δu·R` is no slope (measured: both frictional
+//! cantilevers failed their first increment with a search, stick and slip
+//! flipping with every trial step).
+
+use super::Structure;
+use super::kinematics::Line;
+use crate::assembly::NO_EQ;
+use crate::solver::newton::Correction;
+
+impl Structure<'_> {
+    /// Keeps the solved correction (in `system.rhs`, by equation) before it
+    /// is applied, with its slope at the start; `searchable` false forgets
+    /// the last one instead.
+    pub(super) fn remember_correction(&mut self, searchable: bool) {
+        if !searchable || self.force.is_driven() || self.contacts.is_frictional() {
+            self.state.line = None;
+            return;
+        }
+        let eq = &self.system.assembler.dofs.eq;
+        let du: Vec<f64> = eq
+            .iter()
+            .map(|&e| if e == NO_EQ || self.dirichlet.is_prescribed(e) { 0.0 } else { self.system.rhs[e] })
+            .collect();
+        let start = dot(&du, &self.system.imbalance);
+        self.state.line = Some(Line { du, start, eta: 1.0 });
+    }
+
+    /// `(Δu·R(u_k), Δu·R(u))` at the last evaluation.
+    pub(super) fn line_slopes(&self) -> Option<(f64, f64)> {
+        let line = self.state.line.as_ref()?;
+        Some((line.start, dot(&line.du, &self.system.imbalance)))
+    }
+
+    /// Moves `u` to `u_k + η Δu`.
+    pub(super) fn line_step_to(&mut self, eta: f64) -> Option<Correction> {
+        let line = self.state.line.as_mut()?;
+        let change = eta - line.eta;
+        let mut norm2 = 0.0;
+        for (u, d) in self.state.u.iter_mut().zip(&line.du) {
+            *u += change * d;
+            norm2 += d * d;
+        }
+        line.eta = eta;
+        Some(Correction { norm: eta * norm2.sqrt(), increment_norm: self.state.increment2().sqrt() })
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}

@@ -1,0 +1,147 @@
+//! Load-step control by an error measure (`solver.step_control`): the size
+//! of the next increment from what the last one changed, instead of a fixed
+//! count.
+//!
+//! After each converged increment (before it is committed) the problem
+//! measures what changed (`Incremental::measure` of `solver::stepping`): the
+//! largest increment of the equivalent plastic strain at any point, and the
+//! fraction of the discrete contact set whose status changed. Each is
+//! divided by its target ([`StepControl`]); `q` is the largest ratio.
+//!
+//! * `q` > [`REJECT`] (plastic strain only): the increment is rejected,
+//!   rolled back and redone with `Δλ · max(SAFETY/q, 1/4)` — once per
+//!   increment, and not below the smallest increment. The plastic strain
+//!   is a measure of the error of integrating the path in one increment;
+//!   a change of the contact set is not an error of a converged state
+//!   (frictionless contact is path-independent), so it only steers the
+//!   next size.
+//! * otherwise the next `Δλ` is `Δλ · clamp(SAFETY/q, 1/2, g)`, `g` the
+//!   growth factor after an easy increment (Newton within
+//!   `easy_iterations`) and 1 after a hard one, bounded by the step's
+//!   smallest and largest increment.
+//!
+//! Both measures grow about linearly with `Δλ` along a smooth path, so
+//! `SAFETY/q` is the increment that would have met the target with a margin.
+//! Stepping knows nothing of plasticity or contact: the measures are two
+//! numbers the problem reports (the default: nothing measured, `q` = 0,
+//! the increment grows like an easy one).
+
+/// Targets of the step control. `None`: that measure is not controlled.
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StepControl {
+    /// Largest increment of the equivalent plastic strain at any point
+    /// per load increment.
+    pub plastic_strain: Option<f64>,
+    /// Largest fraction of the contact points, of those active before or
+    /// after the increment, that open or close in one increment.
+    pub contact_set: Option<f64>,
+}
+
+/// What a converged increment changed (reported by the problem).
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
+pub struct StepMeasure {
+    /// Largest increment of the equivalent plastic strain at any point.
+    pub plastic_strain: f64,
+    /// Points whose contact status changed, as a fraction of those active
+    /// before or after (the larger count); `None` when no point was active
+    /// before the increment (a first touch is no rate: any `Δλ` gives 1).
+    pub contact_set: Option<f64>,
+}
+
+/// A measure above `REJECT` times its target rejects the increment.
+pub const REJECT: f64 = 2.0;
+
+/// The next increment aims at this fraction of the target.
+pub const SAFETY: f64 = 0.8;
+
+/// The control's verdict on a converged increment.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub enum Verdict {
+    /// Keep the increment; the next one is `Δλ` times this factor.
+    Accept(f64),
+    /// Redo the increment with `Δλ` times this factor; `q` is the ratio
+    /// of its measure to its target.
+    Reject {
+        /// Factor on `Δλ` for the retry.
+        factor: f64,
+        /// Largest ratio of measure to target.
+        q: f64,
+    },
+}
+
+impl StepControl {
+    /// The largest ratio of a measure to its target, and that of the
+    /// plastic strain alone (the one that may reject).
+    pub fn ratios(&self, m: &StepMeasure) -> (f64, f64) {
+        let plastic = self.plastic_strain.map_or(0.0, |t| m.plastic_strain / t);
+        let contact = match (self.contact_set, m.contact_set) {
+            (Some(t), Some(c)) => c / t,
+            _ => 0.0,
+        };
+        (plastic.max(contact), plastic)
+    }
+
+    /// The verdict on an increment of `dlambda` with measure `m`: `growth`
+    /// is the largest factor allowed (1 after a hard increment), `min` the
+    /// smallest increment, `retried` true if this increment was already
+    /// rejected once.
+    pub fn verdict(&self, m: &StepMeasure, dlambda: f64, growth: f64, min: f64, retried: bool) -> Verdict {
+        let (q, plastic) = self.ratios(m);
+        if plastic > REJECT && !retried {
+            let factor = (SAFETY / plastic).max(0.25);
+            if dlambda * factor >= min {
+                return Verdict::Reject { factor, q: plastic };
+            }
+        }
+        let factor = if q > 0.0 { SAFETY / q } else { f64::INFINITY };
+        Verdict::Accept(factor.clamp(0.5, growth.max(0.5)))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn m(plastic_strain: f64, contact_set: Option<f64>) -> StepMeasure {
+        StepMeasure { plastic_strain, contact_set }
+    }
+
+    #[test]
+    fn grows_below_the_target_and_shrinks_above_it() {
+        let c = StepControl { plastic_strain: Some(1e-3), contact_set: Some(0.2) };
+        // nothing changed: the full growth
+        assert_eq!(c.verdict(&m(0.0, None), 0.1, 1.5, 1e-5, false), Verdict::Accept(1.5));
+        // a fifth of the target: 0.8 / 0.2 = 4, capped at the growth
+        assert_eq!(c.verdict(&m(2e-4, Some(0.0)), 0.1, 1.5, 1e-5, false), Verdict::Accept(1.5));
+        // after a hard increment: no growth, but no forced shrink either
+        assert_eq!(c.verdict(&m(2e-4, None), 0.1, 1.0, 1e-5, false), Verdict::Accept(1.0));
+        // the contact set at 2 × its target: 0.4, bounded to 0.5
+        assert_eq!(c.verdict(&m(0.0, Some(0.4)), 0.1, 1.5, 1e-5, false), Verdict::Accept(0.5));
+        // plastic strain at 1.25 × its target: accepted, 0.64
+        let Verdict::Accept(f) = c.verdict(&m(1.25e-3, None), 0.1, 1.5, 1e-5, false) else { panic!() };
+        assert!((f - 0.64).abs() < 1e-12, "{f}");
+    }
+
+    #[test]
+    fn rejects_a_plastic_strain_far_above_its_target_once() {
+        let c = StepControl { plastic_strain: Some(1e-3), contact_set: Some(0.2) };
+        let Verdict::Reject { factor, q } = c.verdict(&m(2.5e-3, None), 0.1, 1.5, 1e-5, false) else { panic!() };
+        assert!((factor - 0.32).abs() < 1e-12 && (q - 2.5).abs() < 1e-12, "{factor} {q}");
+        // at most by a quarter
+        let Verdict::Reject { factor, .. } = c.verdict(&m(1.0, None), 0.1, 1.5, 1e-5, false) else { panic!() };
+        assert_eq!(factor, 0.25);
+        // not twice, and not below the smallest increment
+        assert_eq!(c.verdict(&m(4e-3, None), 0.1, 1.5, 1e-5, true), Verdict::Accept(0.5));
+        assert_eq!(c.verdict(&m(4e-3, None), 0.1, 1.5, 0.05, false), Verdict::Accept(0.5));
+        // the contact set never rejects
+        assert_eq!(c.verdict(&m(0.0, Some(1.0)), 0.1, 1.5, 1e-5, false), Verdict::Accept(0.5));
+    }
+
+    #[test]
+    fn an_uncontrolled_measure_is_ignored() {
+        let c = StepControl { plastic_strain: None, contact_set: Some(0.2) };
+        assert_eq!(c.verdict(&m(1.0, Some(0.04)), 0.1, 2.0, 1e-5, false), Verdict::Accept(2.0));
+        let c = StepControl { plastic_strain: Some(1e-3), contact_set: None };
+        assert_eq!(c.ratios(&m(5e-4, Some(1.0))), (0.5, 0.5));
+    }
+}

@@ -324,6 +324,14 @@ impl ReusingSolver {
         self.stats.factorization_time += t.elapsed();
         self.stats.factorizations += 1;
         self.stats.single_factorizations += usize::from(self.chol.is_single());
+        if single && !self.chol.is_single() {
+            // LLᵀ of the matrix rounded to single precision broke down (not
+            // positive definite there) and the factor was made again in
+            // double: double from now on, instead of a failed single
+            // attempt before every later factorization
+            self.single = false;
+            self.stats.precision_fallbacks += 1;
+        }
         self.has_factor = true;
         self.worn = false;
         Ok(())

@@ -220,3 +220,25 @@ fn must_factor_solves_the_unsymmetric_system_exactly() {
     assert!(residual_unsymmetric(&pattern, &v, &s, &y, &b2) <= EXACT * b2n);
     assert_eq!((solver.stats().factorizations, solver.stats().single_factorizations), (1, 0));
 }
+
+/// A matrix whose rounding to `f32` is singular (2×2 blocks of eigenvalues
+/// `δ = 1e-9` and 2: `1 + δ` rounds to 1): the single-precision `LLᵀ`
+/// breaks down and the factor is made in double. The solver must then stay
+/// in double — before, every later factorization tried (and failed) in
+/// single precision first, which cost the 999,108-DOF I-beam 90 s of 400
+/// (docs/performance.md, "At scale").
+#[test]
+fn a_breakdown_in_single_precision_switches_to_double_for_good() {
+    let (pattern, v) = pairs(&[1e-9; 50]);
+    let mut alone = Cholesky::analyze(&pattern).unwrap();
+    alone.factorize_with(&v, true).unwrap();
+    assert!(!alone.is_single(), "the f32 LLᵀ of a singular rounding succeeded: the test proves nothing");
+    let mut solver = ReusingSolver::new(Cholesky::analyze(&pattern).unwrap(), ReuseSettings::default());
+    assert!(solver.single, "single precision is the default");
+    let b: Vec<f64> = (0..pattern.n).map(|i| ((i * 7919) % 13) as f64 - 6.0).collect();
+    let mut x = b.clone();
+    assert_eq!(solver.solve(&pattern, &v, &mut x, 1e-10, false).unwrap(), SolveKind::Factorized);
+    let st = *solver.stats();
+    assert_eq!((st.factorizations, st.single_factorizations, st.precision_fallbacks), (1, 0, 1), "{st:?}");
+    assert!(!solver.single, "a breakdown in f32 leaves the solver trying f32 again");
+}

@@ -142,6 +142,9 @@ pub struct ReuseStats {
     /// Single-precision factors that did not precondition their own matrix
     /// (the solver factorizes in double from then on).
     pub precision_fallbacks: usize,
+    /// Single-precision `LLᵀ` attempts that broke down (the matrix rounded
+    /// to `f32` not positive definite; the factor was then made in double).
+    pub single_breakdowns: usize,
     /// Time in numeric factorizations.
     pub factorization_time: Duration,
     /// Time in triangular solves and PCG.
@@ -179,6 +182,11 @@ pub struct ReusingSolver {
     fresh_iterations: usize,
     /// Factorize in single precision (until a single factor fails to precondition).
     single: bool,
+    /// Breakdowns of the single-precision `LLᵀ` since its last success.
+    breakdowns: usize,
+    /// Factorizations left to make in double before single precision is
+    /// tried again (`2^breakdowns − 1` after a breakdown, at most 63).
+    backoff: usize,
 }
 
 impl ReusingSolver {
@@ -196,6 +204,8 @@ impl ReusingSolver {
             gmres: GmresWork::default(),
             fresh_iterations: 0,
             single: settings.enabled && settings.single_precision,
+            breakdowns: 0,
+            backoff: 0,
         }
     }
 
@@ -318,20 +328,33 @@ impl ReusingSolver {
     /// Numeric factorization of the present matrix (single precision if
     /// asked and `LLᵀ` succeeds in it), with the counters.
     fn factorize(&mut self, values: &[f64], single: bool) -> Result<(), LinearError> {
+        // after LLᵀ broke down in single precision (the matrix rounded to
+        // f32 not positive definite; the factor was then made again in
+        // double), single precision is tried again only after 1, 3, 7, …
+        // factorizations in double: a breakdown can pass (a contact set
+        // flipping in a failing attempt: the graded tube breaks down and
+        // then factors 79 times in single), while a tangent too
+        // ill-conditioned for f32 (the 1M I-beam, all 68 factorizations)
+        // would pay a failed attempt before every factorization
+        let try_single = single && self.backoff == 0;
+        if single && !try_single {
+            self.backoff -= 1;
+        }
         let t = Instant::now();
         self.has_factor = false;
-        self.chol.factorize_with(values, single)?;
+        self.chol.factorize_with(values, try_single)?;
+        if try_single {
+            if self.chol.is_single() {
+                self.breakdowns = 0;
+            } else {
+                self.breakdowns += 1;
+                self.stats.single_breakdowns += 1;
+                self.backoff = (1 << self.breakdowns.min(6)) - 1;
+            }
+        }
         self.stats.factorization_time += t.elapsed();
         self.stats.factorizations += 1;
         self.stats.single_factorizations += usize::from(self.chol.is_single());
-        if single && !self.chol.is_single() {
-            // LLᵀ of the matrix rounded to single precision broke down (not
-            // positive definite there) and the factor was made again in
-            // double: double from now on, instead of a failed single
-            // attempt before every later factorization
-            self.single = false;
-            self.stats.precision_fallbacks += 1;
-        }
         self.has_factor = true;
         self.worn = false;
         Ok(())

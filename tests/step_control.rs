@@ -9,18 +9,7 @@ use std::path::Path;
 
 /// Runs the model text through the CLI; its summary.json.
 fn summary(name: &str, text: &str) -> Value {
-    let dir = common::scratch_dir("step_control", name);
-    let model = dir.join(format!("{name}.toml"));
-    std::fs::write(&model, text).unwrap();
-    let out = dir.join("out");
-    let run = common::cufem()
-        .args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"])
-        .output()
-        .unwrap();
-    assert!(run.status.success(), "{name}: {}", String::from_utf8_lossy(&run.stderr));
-    let s: Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    assert_eq!(s["converged"], true, "{name}");
-    s
+    common::run_text("step_control", name, text).1
 }
 
 /// The probe's stress (6 components) and the loading roller's force.

@@ -13,7 +13,6 @@ use std::path::Path;
 
 use cufem::model::Model;
 use cufem::post::{Quantity, Sample};
-use serde_json::Value;
 
 fn example(name: &str) -> String {
     std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(format!("{name}.toml")))
@@ -84,16 +83,7 @@ fn twin(full: &str, quarter: &str, extra: &[[f64; 3]]) -> (f64, f64) {
     }
 
     // the twin through the CLI: its summary's full-structure forces
-    let dir = common::scratch_dir("symmetry", quarter);
-    let file = dir.join(format!("{quarter}.toml"));
-    std::fs::write(&file, extra_probes(&example(quarter), extra)).unwrap();
-    let out = dir.join("out");
-    let run = common::cufem()
-        .args(["run", file.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"])
-        .output()
-        .unwrap();
-    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
-    let summary: Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let (_, summary) = common::run_text("symmetry", quarter, &extra_probes(&example(quarter), extra));
     let mut force_worst: f64 = 0.0;
     for c in summary["contact"].as_array().unwrap() {
         let name = c["name"].as_str().unwrap();

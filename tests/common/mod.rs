@@ -101,6 +101,23 @@ pub fn cufem() -> Command {
     Command::new(env!("CARGO_BIN_EXE_cufem"))
 }
 
+/// Writes `text` as `<prefix>_<name>/<name>.toml` in the test scratch
+/// directory and runs `cufem run --quiet` on it into `out` beside it; the
+/// run must succeed and converge. The output folder and its summary.json.
+pub fn run_text(prefix: &str, name: &str, text: &str) -> (PathBuf, serde_json::Value) {
+    let dir = scratch_dir(prefix, name);
+    let model = dir.join(format!("{name}.toml"));
+    std::fs::write(&model, text).unwrap();
+    let out = dir.join("out");
+    let run =
+        cufem().args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"]).output().unwrap();
+    assert!(run.status.success(), "{name}: {}", String::from_utf8_lossy(&run.stderr));
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(summary["converged"], true, "{name}");
+    (out, summary)
+}
+
 /// An empty folder `<prefix>_<name>` in the test scratch directory.
 pub fn scratch_dir(prefix: &str, name: &str) -> PathBuf {
     let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("{prefix}_{name}"));

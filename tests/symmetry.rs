@@ -83,7 +83,17 @@ fn twin(full: &str, quarter: &str, extra: &[[f64; 3]]) -> (f64, f64) {
     }
 
     // the twin through the CLI: its summary's full-structure forces
-    let (_, summary) = common::run_text("symmetry", quarter, &extra_probes(&example(quarter), extra));
+    let (out, summary) = common::run_text("symmetry", quarter, &extra_probes(&example(quarter), extra));
+    // the probes' displacement history (Structure::probe_displacements, its
+    // own path to the mirror image): the last row is the full model's u
+    let history = common::csv_columns(&out.join("history_probes.csv"));
+    for p in &full_model.probes {
+        let u = fv.sample_probe(p).unwrap().u;
+        for (k, c) in ["u_x", "u_y", "u_z"].iter().enumerate() {
+            let ours = *history[&format!("{}.{c}", p.name)].last().unwrap();
+            assert!((ours - u[k]).abs() < 1e-6 * scale[0], "{full}: {} {c} {ours:e} against {:e}", p.name, u[k]);
+        }
+    }
     let mut force_worst: f64 = 0.0;
     for c in summary["contact"].as_array().unwrap() {
         let name = c["name"].as_str().unwrap();

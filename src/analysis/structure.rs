@@ -190,13 +190,14 @@ impl<'m> Structure<'m> {
                 if p.locations.is_empty() {
                     return [f64::NAN; 3];
                 }
+                // a probe in the part a symmetry plane leaves out: its image's u reflected back
+                let reflected = crate::bc::symmetry::image(&self.model.symmetry.planes, p.point).1;
                 let mut sum = [0.0; 3];
                 for loc in &p.locations {
                     let pv = crate::values::PointValues::new(&self.model.mesh.bodies[loc.body], loc);
                     let u = pv.displacement(&self.state.u);
                     for k in 0..3 {
-                        // a probe at a mirror image: its u reflected back
-                        let sign = if p.reflected[k] { -1.0 } else { 1.0 };
+                        let sign = if reflected[k] { -1.0 } else { 1.0 };
                         sum[k] += sign * u[k] / p.locations.len() as f64;
                     }
                 }

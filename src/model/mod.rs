@@ -177,10 +177,6 @@ pub struct Probe {
     /// located once during preprocessing; for a point in the part a
     /// symmetry plane leaves out, those holding its image.
     pub locations: Vec<Location>,
-    /// The axes along which the point was reflected to its image (all
-    /// false inside the model): its fields are the image's reflected back
-    /// (`bc::symmetry::reflect_sample`).
-    pub reflected: [bool; 3],
 }
 
 /// A straight line sampled at equally spaced points.

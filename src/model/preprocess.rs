@@ -214,8 +214,7 @@ pub(super) fn probes(file: &[ProbeFile], mesh: &Mesh, planes: &[Plane]) -> Resul
         let key = format!("probes[{i}]");
         let point = bounds::point(&format!("{key}.point"), p.point)?;
         let body = optional_body(mesh, format!("{key}.body"), &p.body)?;
-        let (image, reflected) = crate::bc::symmetry::image(planes, point);
-        let locations = locate_in_model(mesh, body, image);
+        let locations = locate_in_model(mesh, body, crate::bc::symmetry::image(planes, point).0);
         if locations.is_empty() {
             return Err(invalid(
                 format!("{key}.point"),
@@ -223,7 +222,7 @@ pub(super) fn probes(file: &[ProbeFile], mesh: &Mesh, planes: &[Plane]) -> Resul
                 "a point inside a body (or inside the named body)",
             ));
         }
-        probes.push(Probe { name: p.name.clone(), point, body, locations, reflected });
+        probes.push(Probe { name: p.name.clone(), point, body, locations });
     }
     Ok(probes)
 }

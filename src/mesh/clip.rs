@@ -6,8 +6,8 @@ use super::{CrossSection, Region};
 impl CrossSection {
     /// The section made of the elements `keep` accepts (in their order),
     /// with only their nodes (in their order) and the regions' kept
-    /// elements renumbered; also the old index of each kept element.
-    pub fn retain_elements(&self, keep: impl Fn(usize) -> bool) -> (CrossSection, Vec<usize>) {
+    /// elements renumbered.
+    pub fn retain_elements(&self, keep: impl Fn(usize) -> bool) -> CrossSection {
         let kept: Vec<usize> = (0..self.n_elements()).filter(|&e| keep(e)).collect();
         let mut new_node = vec![usize::MAX; self.n_nodes()];
         for &e in &kept {
@@ -36,7 +36,7 @@ impl CrossSection {
                 normal: r.normal,
             })
             .collect();
-        (CrossSection { kind: self.kind, nodes, connectivity, regions }, kept)
+        CrossSection { kind: self.kind, nodes, connectivity, regions }
     }
 }
 
@@ -48,12 +48,15 @@ mod tests {
 
     #[test]
     fn the_right_half_of_a_rectangle_is_a_rectangle() {
-        let full = CrossSection::rectangle(SectionElementKind::L9, &[0.0, 0.5, 1.0, 1.5, 2.0], &[0.0, 1.0]).unwrap();
+        let mut full =
+            CrossSection::rectangle(SectionElementKind::L9, &[0.0, 0.5, 1.0, 1.5, 2.0], &[0.0, 1.0]).unwrap();
+        full.regions.push(Region { name: "ends".into(), elements: vec![0, 3], normal: None });
         let half = CrossSection::rectangle(SectionElementKind::L9, &[1.0, 1.5, 2.0], &[0.0, 1.0]).unwrap();
         let centre = |s: &CrossSection, e: usize| s.element(e).iter().map(|&n| s.nodes[n][0]).sum::<f64>() / 9.0;
-        let (kept, old) = full.retain_elements(|e| centre(&full, e) > 1.0);
-        assert_eq!(old, vec![2, 3]);
+        let kept = full.retain_elements(|e| centre(&full, e) > 1.0);
         assert_eq!((kept.n_nodes(), kept.n_elements()), (half.n_nodes(), half.n_elements()));
+        // a region keeps its kept elements, renumbered (old 3 is new 1)
+        assert_eq!(kept.regions[0].elements, vec![1]);
         // every kept element has the same corner points as the half's, in order
         for e in 0..2 {
             let a: Vec<[f64; 2]> = kept.element(e).iter().map(|&n| kept.nodes[n]).collect();

@@ -57,16 +57,14 @@ pub(super) fn cut(
     key: &str,
     body: &str,
     planes: &[Plane],
-    section: CrossSection,
-    lines: Vec<f64>,
+    mut section: CrossSection,
+    mut lines: Vec<f64>,
 ) -> Result<(CrossSection, Vec<f64>), ModelError> {
     if planes.is_empty() {
         return Ok((section, lines));
     }
     let b = section.bounds();
     let size = ((b[1] - b[0]).powi(2) + (b[3] - b[2]).powi(2) + (lines[lines.len() - 1] - lines[0]).powi(2)).sqrt();
-    let mut section = section;
-    let mut lines = lines;
     for (i, p) in planes.iter().enumerate() {
         let plane = Plane { tolerance: 1e-6 * size, ..p.clone() };
         let pk = format!("symmetry[{i}].plane");
@@ -114,7 +112,7 @@ pub(super) fn cut(
             let last = kept.iter().rposition(|&k| k).unwrap_or(0);
             lines = lines[first..=last + 1].to_vec();
         } else {
-            section = section.retain_elements(|e| kept[e]).0;
+            section = section.retain_elements(|e| kept[e]);
         }
     }
     Ok((section, lines))

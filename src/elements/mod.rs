@@ -36,7 +36,7 @@
 //! With nonlinear geometry the operator depends on `F` and the tangent
 //! gains the geometric term: there the kernel forms the 3 × 3 nuclei per
 //! point and component pair instead and contracts them with the gradients
-//! in one product (`nucleus`), without `B`.
+//! by sum factorization over the axis points (`nucleus`), without `B`.
 //!
 //! Shape functions, gradients and weights come from [`crate::values`], the
 //! same code that post-processing and face integrals use. The kernel writes
@@ -91,11 +91,16 @@ pub struct Workspace {
     /// Piola–Kirchhoff stress `S` per Gauss point (for the nuclei).
     frames: Vec<Tensor>,
     pk2: Vec<Voigt>,
-    /// The total-Lagrangian tangent's product (`nucleus`): the stacked
-    /// gradients `Gᵀ`, the rows `Eᵀ` and the pair blocks it gives.
+    /// The total-Lagrangian tangent by sum factorization (`nucleus`), per
+    /// axis point: the section values as rows, the rows of `M ĝ`, the
+    /// section sums `S`, their expansion along `j` (`T`) and with B-bar the
+    /// section parts `ẑ_l` of the projections; per element the pair blocks.
     gradients: Vec<f64>,
     nucleus_rows: Vec<f64>,
     nuclei: Vec<f64>,
+    section_sums: Vec<f64>,
+    section_t: Vec<f64>,
+    section_z: Vec<f64>,
     /// Element internal force, 3 entries per node (node-major).
     pub force: Vec<f64>,
     /// Element tangent, row-major `n × n` with `n = 3 · nodes`; the upper
@@ -171,7 +176,8 @@ pub struct PointData<'a> {
 /// tangent is needed — forms the nuclei with the tangents kept from the
 /// first: in small strain by gathering `B̄` and `w C B̄` of the points that
 /// contribute (all, or those not elastic) into one product, with nonlinear
-/// geometry as 3 × 3 nuclei per point (`nucleus`; module docs).
+/// geometry as 3 × 3 nuclei per point, summed section by section
+/// (`nucleus`; module docs).
 #[allow(clippy::too_many_arguments)] // the kernel's inputs are the terms of eq. (11); bundling them adds nothing
 pub fn element_response(
     geom: &CellValues,

@@ -82,7 +82,7 @@ fn nucleus_tangent_equals_the_operator_form() {
                 }
                 assert!(
                     worst < 1e-12,
-                    "{sk:?} x {bk:?}, {kin:?}, B-bar {bbar} (p set by hand {off_space}), plastic {}: {worst:e}",
+                    "{sk:?} x {bk:?}, {kin:?}, B-bar {bbar} (p and v set by hand {off_space}), plastic {}: {worst:e}",
                     mat.is_plastic()
                 );
             }
@@ -92,7 +92,8 @@ fn nucleus_tangent_equals_the_operator_form() {
 
 /// The kernel's tangent, the reference (full matrix) and the number of
 /// plastic points; with `off_space` the tangent formed again after the
-/// points' pressures are set to a field outside the pressure space.
+/// points' pressures are set to a field outside the pressure space and
+/// their couplings `v` away from the materials' own.
 fn both(
     geom: &CellValues,
     mat: &Material,
@@ -107,6 +108,15 @@ fn both(
     if off_space {
         for (q, p) in ws.pressure[..ngp].iter_mut().enumerate() {
             *p = 1e8 * (1.0 + ((q * q) % 7) as f64);
+        }
+        // and a coupling v that is not 3κ Lᵀm: with cufem's materials
+        // (D m = 3K m, J2 deviatoric) γ = α − wκβ vanishes at every point
+        // and the projections Z_l with it, which would leave them unchecked
+        for (q, (v, _)) in ws.coupling[..ngp].iter_mut().enumerate() {
+            v[0] += 2e10 * (1.0 + (q % 3) as f64);
+            v[1] -= 1e10;
+            v[3] += 1e10 * ((q % 5) as f64 - 2.0);
+            v[5] += 5e9;
         }
         nucleus::large_tangent(geom, (0, 0, nodes), geom.volumetric.as_ref(), &mut ws);
     }

@@ -276,24 +276,7 @@ fn buckling_refuses_what_it_cannot_analyse() {
 /// an increment (a factor reused from an earlier state) fails here.
 #[test]
 fn negative_pivots_count_the_euler_loads_passed() {
-    let text = std::fs::read_to_string(COLUMN)
-        .unwrap()
-        .replace("type = \"buckling\"\nmodes = 4", "geometry = \"nonlinear\"\n\n[solver]\nincrements = 40")
-        .replace("z = { from = -0.01, to = 0.01", "z = { from = -0.005, to = 0.005")
-        .replace("total_force = [0.0, -1.0, 0.0]", "total_force = [0.0, -4000.0, 0.0]");
-    let out = std::env::temp_dir().join(format!("cufem_inertia_{}", std::process::id()));
-    std::fs::create_dir_all(&out).unwrap();
-    let model_file = out.join("column.toml");
-    std::fs::write(&model_file, text).unwrap();
-    let status = Command::new(env!("CARGO_BIN_EXE_cufem"))
-        .args(["run", "--quiet", "--force", "--out"])
-        .arg(out.join("run"))
-        .arg(&model_file)
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let history = std::fs::read_to_string(out.join("run/history.csv")).unwrap();
-    assert!(history.starts_with("increment,lambda,iterations,plastic_points,negative_pivots\n"));
+    let (history, _) = perfect_column("");
     let p1 = std::f64::consts::PI.powi(2) * 200e9 * (0.02 * 0.01f64.powi(3) / 12.0) / 4.0;
     let (mut checked, mut seen) = (0, [false; 3]);
     for line in history.lines().skip(1) {
@@ -309,5 +292,59 @@ fn negative_pivots_count_the_euler_loads_passed() {
         checked += 1;
     }
     assert!(checked >= 35 && seen == [true; 3], "{checked} increments checked, counts seen {seen:?}");
+}
+
+/// `history.csv` and `summary.json` of the perfect column of the test
+/// above, under 4 kN in 40 increments, with `solver` keys `extra`.
+fn perfect_column(extra: &str) -> (String, String) {
+    let text = std::fs::read_to_string(COLUMN)
+        .unwrap()
+        .replace(
+            "type = \"buckling\"\nmodes = 4",
+            &format!("geometry = \"nonlinear\"\n\n[solver]\nincrements = 40\n{extra}"),
+        )
+        .replace("z = { from = -0.01, to = 0.01", "z = { from = -0.005, to = 0.005")
+        .replace("total_force = [0.0, -1.0, 0.0]", "total_force = [0.0, -4000.0, 0.0]");
+    let out = std::env::temp_dir().join(format!("cufem_inertia_{}_{}", std::process::id(), extra.len()));
+    std::fs::create_dir_all(&out).unwrap();
+    let model_file = out.join("column.toml");
+    std::fs::write(&model_file, text).unwrap();
+    let status = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", "--quiet", "--force", "--out"])
+        .arg(out.join("run"))
+        .arg(&model_file)
+        .status()
+        .unwrap();
+    assert!(status.success());
+    let read = |name: &str| std::fs::read_to_string(out.join("run").join(name)).unwrap();
+    let files = (read("history.csv"), read("summary.json"));
     std::fs::remove_dir_all(&out).ok();
+    files
+}
+
+/// `solver.inertia = "last_factorization"` reports the inertia of the last
+/// factor the solver made anyway: the same increments and load factors, no
+/// factorization per increment (fewer in all), and a count that lags the
+/// converged tangent's (one negative pivot from P₁ on) but never leads it
+/// — a report that is the converged one's, or that counts anything but
+/// factors, fails.
+#[test]
+fn inertia_of_the_last_factorization_is_free_and_lags() {
+    let (exact, exact_summary) = perfect_column("");
+    let (lagged, lagged_summary) = perfect_column("inertia = \"last_factorization\"");
+    let factorizations = |summary: &str| -> usize {
+        let at = summary.find("\"factorizations\": ").expect("factorizations in summary.json") + 18;
+        summary[at..].split(|c: char| !c.is_ascii_digit()).next().unwrap().parse().unwrap()
+    };
+    let (every, last) = (factorizations(&exact_summary), factorizations(&lagged_summary));
+    assert!(last + 35 <= every, "{last} factorizations with the last one's inertia, {every} with every increment's");
+    let mut lags = 0;
+    for (e, l) in exact.lines().zip(lagged.lines()).skip(1) {
+        let (e, l): (Vec<&str>, Vec<&str>) = (e.split(',').collect(), l.split(',').collect());
+        assert_eq!(e[..2], l[..2], "the same increments and load factors");
+        let (e, l): (usize, usize) = (e[4].parse().unwrap(), l[4].parse().unwrap());
+        assert!(l <= e, "the last factor's count leads the converged tangent's: {l} > {e}");
+        lags += usize::from(l < e);
+    }
+    assert!(lags > 0, "the last factorization's count never lagged: it is the converged tangent's");
 }

@@ -166,13 +166,25 @@ impl<'m> Structure<'m> {
     /// Negative pivots of the tangent: the number of its negative
     /// eigenvalues (Sylvester), 0 while it is positive definite; a limit or
     /// bifurcation point is passed where it changes. With
-    /// `geometry = "nonlinear"` that of the last committed (converged)
+    /// `solver.inertia = "every_increment"` (the default with
+    /// `geometry = "nonlinear"`) that of the last committed (converged)
     /// state, factorized at the commit (one factorization per increment,
-    /// which the next increment may reuse); in small strain that of the
-    /// last factorization made, which may be some iterations old (PCG
-    /// reuses factors). `None` before the first or if it failed.
+    /// which the next increment may reuse); otherwise that of the last
+    /// factorization made, which may be some iterations or increments old
+    /// (PCG reuses factors). `None` before the first or if it failed.
     pub fn negative_pivots(&self) -> Option<usize> {
-        if self.model.kinematics.is_nonlinear() { self.pivots } else { self.system.negative_pivots() }
+        if self.inertia_every_increment() { self.pivots } else { self.system.negative_pivots() }
+    }
+
+    /// True if every converged tangent is factorized for its inertia
+    /// (`solver.inertia`; by default with nonlinear geometry, not in a
+    /// transient run, whose tangent carries `M / (β Δt²)`).
+    fn inertia_every_increment(&self) -> bool {
+        let every = match self.model.solver.inertia {
+            Some(report) => report == crate::model::InertiaReport::EveryIncrement,
+            None => self.model.kinematics.is_nonlinear(),
+        };
+        every && self.dynamics.is_none()
     }
 
     /// Plastic Gauss points in the last evaluation.
@@ -557,8 +569,7 @@ impl Incremental for Structure<'_> {
         if let Some(impulse) = self.impulse.as_mut() {
             impulse.commit();
         }
-        // (a transient tangent carries M / (β Δt²): always positive definite)
-        if self.model.kinematics.is_nonlinear() && self.dynamics.is_none() {
+        if self.inertia_every_increment() {
             // the tangent of the last evaluation is that of the converged
             // state: its inertia (on the free DOFs, as it is solved; the
             // right-hand side is rewritten by the next evaluation) marks

@@ -222,6 +222,21 @@ pub struct SolverSettings {
     pub reuse: crate::solver::reuse::ReuseSettings,
     /// `solver.control = "arc_length"`: path following (`None`: load stepping).
     pub path: Option<PathSettings>,
+    /// `solver.inertia`: which tangent's inertia `history.csv` reports
+    /// (`None`: every converged one with nonlinear geometry, else the last
+    /// factorized one).
+    pub inertia: Option<InertiaReport>,
+}
+
+/// Which tangent's inertia (negative pivots) each increment reports.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum InertiaReport {
+    /// The converged tangent of every increment, factorized in double
+    /// precision for it (one factorization per increment).
+    EveryIncrement,
+    /// The last tangent the solver factorized anyway (free; it may be some
+    /// iterations or increments old).
+    LastFactorization,
 }
 
 /// Output controls.

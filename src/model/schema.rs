@@ -241,6 +241,8 @@ pub struct SolverFile {
     pub step_control: Option<StepControlFile>,
     /// Backtracking along a Newton correction that overshoots.
     pub line_search: Option<bool>,
+    /// Which tangent's inertia each increment reports.
+    pub inertia: Option<Inertia>,
 }
 
 /// `[[materials]]`.

@@ -322,6 +322,10 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
             ..ReuseSettings::default()
         },
         path: None,
+        inertia: s.inertia.map(|i| match i {
+            Inertia::EveryIncrement => super::InertiaReport::EveryIncrement,
+            Inertia::LastFactorization => super::InertiaReport::LastFactorization,
+        }),
     })
 }
 

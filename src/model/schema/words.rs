@@ -128,6 +128,17 @@ pub enum FactorPrecision {
     Double,
 }
 
+/// `solver.inertia`.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Inertia {
+    /// The converged tangent of every increment (the default with
+    /// nonlinear geometry).
+    EveryIncrement,
+    /// The last factorized tangent (the default otherwise).
+    LastFactorization,
+}
+
 /// `analysis.geometry`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
 #[serde(rename_all = "lowercase")]

@@ -16,9 +16,7 @@
 //! * **Parallelism.** Elements are coloured so that no two elements of a
 //!   colour share a node (section colour × beam-element parity); the
 //!   elements of a colour are processed in parallel and write to disjoint
-//!   entries. With one worker thread the loop runs over all elements in
-//!   their order instead (`ScatterMaps::batches`): neighbours then scatter
-//!   into matrix entries still in cache.
+//!   entries.
 
 mod contribution;
 mod numbering;
@@ -227,7 +225,7 @@ impl Assembler {
         let trial = Disjoint::new(out.trial);
         let stress = Disjoint::new(out.stress);
         let mut plastic = 0;
-        for colour in self.scatter.batches() {
+        for colour in &self.scatter.colours {
             plastic += colour
                 .par_iter()
                 .map_init(
@@ -268,8 +266,8 @@ impl Assembler {
                                 ws,
                             );
                             let range = self.scatter.offsets[ge]..self.scatter.offsets[ge + 1];
-                            // SAFETY: elements of one batch share no node, hence
-                            // no DOF and no matrix entry, or run on one thread.
+                            // SAFETY: elements of one colour share no node, hence
+                            // no DOF and no matrix entry.
                             unsafe {
                                 for (a, &n) in nodes.iter().enumerate() {
                                     for c in 0..3 {
@@ -317,14 +315,14 @@ impl Assembler {
     {
         out.fill(0.0);
         let values = Disjoint::new(out);
-        for colour in self.scatter.batches() {
+        for colour in &self.scatter.colours {
             colour.par_iter().for_each_init(Vec::new, |nodes, &ge| {
                 let r = self.scatter.elements[ge];
                 mesh.bodies[r.body].element_nodes(r.element, nodes);
                 WORKSPACE.with_borrow_mut(|ws| {
                     element(r.body, r.element, ws);
                     let range = self.scatter.offsets[ge]..self.scatter.offsets[ge + 1];
-                    // SAFETY: elements of one batch share no matrix entry, or run on one thread.
+                    // SAFETY: elements of one colour share no matrix entry.
                     unsafe { scatter_upper(&self.scatter.maps[range], &ws.tangent, 3 * nodes.len(), &values) };
                 });
             });

@@ -34,9 +34,6 @@ pub struct ScatterMaps {
     pub maps: Vec<u32>,
     /// Elements of each colour.
     pub colours: Vec<Vec<usize>>,
-    /// All elements in their order (`0, 1, …`): the one batch of a
-    /// sequential loop ([`Self::batches`]).
-    natural: Vec<usize>,
 }
 
 impl ScatterMaps {
@@ -66,22 +63,7 @@ impl ScatterMaps {
         }
         offsets.push(maps.len());
         let colours = colour(mesh, &elements);
-        let natural = (0..elements.len()).collect();
-        Self { elements, offsets, maps, colours, natural }
-    }
-
-    /// The batches of elements the element loop runs one after the other,
-    /// each in parallel: the colours (no two elements of a colour share a
-    /// node, hence a matrix entry); with one worker thread all elements in
-    /// their order instead, so that neighbours, which share nodes, scatter
-    /// one after the other into matrix entries still in cache (colour by
-    /// colour, every matrix entry was fetched from memory once per colour
-    /// holding an element at it: up to 8 times).
-    pub fn batches(&self) -> impl Iterator<Item = &[usize]> {
-        let sequential = rayon::current_num_threads() == 1;
-        let (colours, natural) =
-            if sequential { (&[][..], Some(&self.natural[..])) } else { (&self.colours[..], None) };
-        colours.iter().map(Vec::as_slice).chain(natural)
+        Self { elements, offsets, maps, colours }
     }
 
     /// The map of global element `ge`.

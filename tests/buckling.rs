@@ -9,6 +9,8 @@ use std::process::Command;
 use cufem::analysis::{self, Silent};
 use cufem::model::Model;
 
+mod common;
+
 const COLUMN: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/column_buckling.toml");
 
 /// `examples/column_buckling.toml` through the CLI: the clamped–free
@@ -276,7 +278,7 @@ fn buckling_refuses_what_it_cannot_analyse() {
 /// an increment (a factor reused from an earlier state) fails here.
 #[test]
 fn negative_pivots_count_the_euler_loads_passed() {
-    let (history, _) = perfect_column("");
+    let (history, _) = perfect_column("exact", "");
     let p1 = std::f64::consts::PI.powi(2) * 200e9 * (0.02 * 0.01f64.powi(3) / 12.0) / 4.0;
     let (mut checked, mut seen) = (0, [false; 3]);
     for line in history.lines().skip(1) {
@@ -296,7 +298,7 @@ fn negative_pivots_count_the_euler_loads_passed() {
 
 /// `history.csv` and `summary.json` of the perfect column of the test
 /// above, under 4 kN in 40 increments, with `solver` keys `extra`.
-fn perfect_column(extra: &str) -> (String, String) {
+fn perfect_column(name: &str, extra: &str) -> (String, serde_json::Value) {
     let text = std::fs::read_to_string(COLUMN)
         .unwrap()
         .replace(
@@ -305,21 +307,8 @@ fn perfect_column(extra: &str) -> (String, String) {
         )
         .replace("z = { from = -0.01, to = 0.01", "z = { from = -0.005, to = 0.005")
         .replace("total_force = [0.0, -1.0, 0.0]", "total_force = [0.0, -4000.0, 0.0]");
-    let out = std::env::temp_dir().join(format!("cufem_inertia_{}_{}", std::process::id(), extra.len()));
-    std::fs::create_dir_all(&out).unwrap();
-    let model_file = out.join("column.toml");
-    std::fs::write(&model_file, text).unwrap();
-    let status = Command::new(env!("CARGO_BIN_EXE_cufem"))
-        .args(["run", "--quiet", "--force", "--out"])
-        .arg(out.join("run"))
-        .arg(&model_file)
-        .status()
-        .unwrap();
-    assert!(status.success());
-    let read = |name: &str| std::fs::read_to_string(out.join("run").join(name)).unwrap();
-    let files = (read("history.csv"), read("summary.json"));
-    std::fs::remove_dir_all(&out).ok();
-    files
+    let (out, summary) = common::run_text("inertia", name, &text);
+    (std::fs::read_to_string(out.join("history.csv")).unwrap(), summary)
 }
 
 /// `solver.inertia = "last_factorization"` reports the inertia of the last
@@ -330,12 +319,9 @@ fn perfect_column(extra: &str) -> (String, String) {
 /// factors, fails.
 #[test]
 fn inertia_of_the_last_factorization_is_free_and_lags() {
-    let (exact, exact_summary) = perfect_column("");
-    let (lagged, lagged_summary) = perfect_column("inertia = \"last_factorization\"");
-    let factorizations = |summary: &str| -> usize {
-        let at = summary.find("\"factorizations\": ").expect("factorizations in summary.json") + 18;
-        summary[at..].split(|c: char| !c.is_ascii_digit()).next().unwrap().parse().unwrap()
-    };
+    let (exact, exact_summary) = perfect_column("every", "");
+    let (lagged, lagged_summary) = perfect_column("last", "inertia = \"last_factorization\"");
+    let factorizations = |summary: &serde_json::Value| summary["timings"]["factorizations"].as_u64().unwrap();
     let (every, last) = (factorizations(&exact_summary), factorizations(&lagged_summary));
     assert!(last + 35 <= every, "{last} factorizations with the last one's inertia, {every} with every increment's");
     let mut lags = 0;

@@ -1,5 +1,5 @@
 //! The total-Lagrangian tangent as 3×3 fundamental nuclei: the material and
-//! geometric stiffness in one product over the displacement gradients.
+//! geometric stiffness summed section by section along the axis.
 //!
 //! With `F = I + ∇u` the Green–Lagrange variation of a unit displacement
 //! `δu_c` of node `a` (reference gradient `g = ∇N_a`) is
@@ -43,9 +43,9 @@
 //! points, one for `α = 0` (the `x` and `z` rows of `M`) and one for
 //! `α = 1` (its `y` row), which skip the zeros of `ĝ`; the axis functions
 //! then enter by contiguous axpys. For an L9 × B4 element that is
-//! 4 × 9 × 27 × 108 multiply-adds in the products and 4 × 11,664 in the
-//! expansion, against 36 × 108 × 216 for the one product over the stacked
-//! node gradients that it replaces.
+//! 4 × 9 × 27 × 108 multiply-adds in the products and 4 × 23,328 in the
+//! expansion, against 36 × 108 × 216 for one product over the stacked node
+//! gradients.
 //!
 //! **B-bar at finite strain** (`fbar`) adds the terms of its dilatation
 //! row `d = Π g̃ − g̃`. Their `−g̃` halves are local, gradients at the point

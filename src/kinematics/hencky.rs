@@ -58,9 +58,55 @@
 
 use super::{Tensor, green_lagrange};
 use crate::voigt::{Matrix6, Voigt};
+use std::f64::consts::FRAC_1_SQRT_2;
 
 /// The Mandel components: index pairs of the six basis tensors.
 const PAIRS: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
+
+/// The non-zero terms `(a, b, i, k, j, c)` of `Σ_ijk T̃_ij f[c_i, c_k, c_j]
+/// (H_ik K_kj + K_ik H_kj)` for the Mandel basis tensors `H = B_a`,
+/// `K = B_b`, `a ≤ b`: `c` the product of their entries `H_ik K_kj` (36
+/// terms of the 6 · 7/2 pairs' 4 · 4 index products).
+const SECOND_TERMS: [(usize, usize, usize, usize, usize, f64); 36] = second_terms();
+
+/// Builds [`SECOND_TERMS`].
+const fn second_terms() -> [(usize, usize, usize, usize, usize, f64); 36] {
+    // entries (row, column, value) of the basis tensor of pair `a`
+    const fn entries(a: usize) -> [(usize, usize, f64); 2] {
+        let (i, j) = PAIRS[a];
+        if i == j { [(i, i, 1.0), (i, i, 0.0)] } else { [(i, j, FRAC_1_SQRT_2), (j, i, FRAC_1_SQRT_2)] }
+    }
+    let mut out = [(0, 0, 0, 0, 0, 0.0); 36];
+    let mut n = 0;
+    let mut a = 0;
+    while a < 6 {
+        let mut b = a;
+        while b < 6 {
+            let mut order = 0;
+            while order < 2 {
+                let (h, k) = if order == 0 { (entries(a), entries(b)) } else { (entries(b), entries(a)) };
+                let mut p = 0;
+                while p < 2 {
+                    let mut q = 0;
+                    while q < 2 {
+                        let ((i, m, hv), (m2, j, kv)) = (h[p], k[q]);
+                        if m == m2 && hv * kv != 0.0 {
+                            out[n] = (a, b, i, m, j, hv * kv);
+                            n += 1;
+                        }
+                        q += 1;
+                    }
+                    p += 1;
+                }
+                order += 1;
+            }
+            b += 1;
+        }
+        a += 1;
+    }
+    assert!(n == 36);
+    out
+}
 
 /// The logarithmic strain at a point, with the spectral data of `C` that
 /// its derivatives need.
@@ -72,6 +118,10 @@ pub struct LogStrain {
     q: Tensor,
     /// `E_log` in Voigt form (engineering shear).
     strain: Voigt,
+    /// The first divided differences `f[c_i, c_j]` (symmetric; both the
+    /// stress and the tangent pull-back need them, the second differences
+    /// are made of them).
+    f1: Tensor,
 }
 
 impl LogStrain {
@@ -89,7 +139,16 @@ impl LogStrain {
         let log = x.map(|xi| 0.5 * xi.ln_1p());
         let t: Tensor =
             std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| q[i][k] * log[k] * q[j][k]).sum()));
-        Self { x, q, strain: [t[0][0], t[1][1], t[2][2], 2.0 * t[0][1], 2.0 * t[0][2], 2.0 * t[1][2]] }
+        // symmetric: one evaluation per pair
+        let mut f1 = [[0.0; 3]; 3];
+        for i in 0..3 {
+            for j in i..3 {
+                f1[i][j] = first_divided(x[i], x[j]);
+                f1[j][i] = f1[i][j];
+            }
+        }
+        let strain = [t[0][0], t[1][1], t[2][2], 2.0 * t[0][1], 2.0 * t[0][2], 2.0 * t[1][2]];
+        Self { x, q, strain, f1 }
     }
 
     /// `E_log` (Voigt, engineering shear): the strain the material sees.
@@ -104,8 +163,8 @@ impl LogStrain {
     pub fn pull_back(&self, t: &Voigt, d: &Matrix6) -> (Voigt, Matrix6) {
         let q = &self.q;
         let x = self.x;
-        let f1 = self.first_differences();
-        let f2 = second_differences(x);
+        let f1 = self.f1;
+        let f2 = second_differences(x, &f1);
         let (stress, tt) = self.pull_back_in_frame(t, &f1);
         // L̃ is diagonal in the eigenframe's Mandel basis
         let l: [f64; 6] = PAIRS.map(|(i, j)| 2.0 * f1[i][j]);
@@ -113,32 +172,22 @@ impl LogStrain {
         // D in Mandel components (engineering columns → orthonormal basis), then into the frame
         let dm: Matrix6 = std::array::from_fn(|a| std::array::from_fn(|b| d[a][b] * mandel_scale(a) * mandel_scale(b)));
         let dt = congruence(&r6, &dm, true);
-        // the Mandel basis tensors' non-zero entries (one or two each)
-        let basis = PAIRS.map(|(i, j)| {
-            let v = if i == j { 1.0 } else { std::f64::consts::FRAC_1_SQRT_2 };
-            [(i, j, v), (j, i, if i == j { 0.0 } else { v })]
-        });
+        // T̃ : 4 D²f[B_a, B_b] = 4 Σ_ijk T̃_ij f[c_i, c_k, c_j] (H_ik K_kj + K_ik H_kj), term by term
+        let mut g = [[0.0; 6]; 6];
+        for &(a, b, i, k, j, c) in &SECOND_TERMS {
+            g[a][b] += tt[i][j] * f2[i][k][j] * c;
+        }
         let mut kt = [[0.0; 6]; 6];
         for a in 0..6 {
             for b in a..6 {
-                // T̃ : 4 D²f[B_a, B_b] = 4 Σ_ijk T̃_ij f[c_i, c_k, c_j] (H_ik K_kj + K_ik H_kj)
-                let mut g = 0.0;
-                for (h, k) in [(&basis[a], &basis[b]), (&basis[b], &basis[a])] {
-                    for &(i, m, hv) in h {
-                        for &(m2, j, kv) in k {
-                            if m == m2 {
-                                g += tt[i][j] * f2[i][m][j] * hv * kv;
-                            }
-                        }
-                    }
-                }
-                kt[a][b] = l[a] * dt[a][b] * l[b] + 4.0 * g;
+                kt[a][b] = l[a] * dt[a][b] * l[b] + 4.0 * g[a][b];
                 kt[b][a] = kt[a][b];
             }
         }
         let km = congruence(&r6, &kt, false);
         // back to stress rows and engineering-strain columns
-        let tangent = std::array::from_fn(|a| std::array::from_fn(|b| km[a][b] / (mandel_scale(a) * mandel_scale(b))));
+        const UNSCALE: [f64; 6] = [1.0, 1.0, 1.0, FRAC_1_SQRT_2, FRAC_1_SQRT_2, FRAC_1_SQRT_2];
+        let tangent = std::array::from_fn(|a| std::array::from_fn(|b| km[a][b] * UNSCALE[a] * UNSCALE[b]));
         (stress, tangent)
     }
 }
@@ -148,13 +197,7 @@ impl LogStrain {
     /// Piola–Kirchhoff stress of a stress `t` conjugate to `E_log`, with
     /// `(Lᵀ t) · δE = t · δE_log`.
     pub fn pull_back_stress(&self, t: &Voigt) -> Voigt {
-        self.pull_back_in_frame(t, &self.first_differences()).0
-    }
-
-    /// `f[c_i, c_j]` of the eigenvalues of `C`.
-    fn first_differences(&self) -> Tensor {
-        let x = self.x;
-        std::array::from_fn(|i| std::array::from_fn(|j| first_divided(x[i], x[j])))
+        self.pull_back_in_frame(t, &self.f1).0
     }
 
     /// `S = Lᵀ t` (Voigt) and `T̃ = Qᵀ t Q`: in the eigenframe `S̃_ij = 2 f[c_i, c_j] T̃_ij`.
@@ -220,22 +263,37 @@ fn mandel_rotation(q: &Tensor) -> Matrix6 {
     r
 }
 
-/// `Rᵀ M R` (`transpose_first`) or `R M Rᵀ`.
+/// `Rᵀ M R` (`transpose_first`) or `R M Rᵀ`, for a symmetric `M`: the
+/// upper triangle computed, the lower mirrored (the result is symmetric to
+/// the last bit). Row-times-matrix loops with the contiguous index
+/// innermost.
 fn congruence(r: &Matrix6, m: &Matrix6, transpose_first: bool) -> Matrix6 {
-    let rr = |i: usize, j: usize| if transpose_first { r[j][i] } else { r[i][j] };
+    // A = Rᵀ or R; the result is A M Aᵀ
+    let a: Matrix6 = if transpose_first { std::array::from_fn(|i| std::array::from_fn(|j| r[j][i])) } else { *r };
     let mut tmp = [[0.0; 6]; 6];
-    for i in 0..6 {
-        for j in 0..6 {
-            tmp[i][j] = (0..6).map(|k| rr(i, k) * m[k][j]).sum();
+    for (ti, ai) in tmp.iter_mut().zip(&a) {
+        for (aik, mk) in ai.iter().zip(m) {
+            for (t, mkj) in ti.iter_mut().zip(mk) {
+                *t += aik * mkj;
+            }
         }
     }
-    std::array::from_fn(|i| std::array::from_fn(|j| (0..6).map(|k| tmp[i][k] * rr(j, k)).sum()))
+    let mut out = [[0.0; 6]; 6];
+    for i in 0..6 {
+        for j in i..6 {
+            let v = (0..6).map(|k| tmp[i][k] * a[j][k]).sum();
+            out[i][j] = v;
+            out[j][i] = v;
+        }
+    }
+    out
 }
 
 /// `f[c_a, c_b]` for `f(c) = ½ ln c`, `c = 1 + x`, without cancellation
 /// (module docs).
 fn first_divided(a: f64, b: f64) -> f64 {
-    let m = 2.0 + a + b;
+    // symmetric in (a, b) to the last bit
+    let m = 2.0 + (a + b);
     let r = (a - b) / m;
     if r.abs() < 1e-3 {
         let r2 = r * r;
@@ -245,18 +303,30 @@ fn first_divided(a: f64, b: f64) -> f64 {
     }
 }
 
-/// `f[c_a, c_b, c_c]` for `f(c) = ½ ln c`, `c = 1 + x` (module docs).
-fn second_divided(a: f64, b: f64, c: f64) -> f64 {
-    let mut v = [a, b, c];
-    v.sort_by(|p, q| q.total_cmp(p));
-    let [hi, mid, lo] = v;
+/// `f[c_a, c_b, c_c]` for `f(c) = ½ ln c`, `c = 1 + x`, of the eigenvalues
+/// `x[a], x[b], x[c]` (module docs), from their first divided differences
+/// `f1`.
+fn second_divided(x: [f64; 3], f1: &Tensor, abc: [usize; 3]) -> f64 {
+    // the indices by decreasing eigenvalue (a sorting network; ties in
+    // either order give the same values)
+    let [mut hi, mut mid, mut lo] = abc;
+    if x[mid] > x[hi] {
+        std::mem::swap(&mut hi, &mut mid);
+    }
+    if x[lo] > x[mid] {
+        std::mem::swap(&mut mid, &mut lo);
+    }
+    if x[mid] > x[hi] {
+        std::mem::swap(&mut hi, &mut mid);
+    }
+    let (a, b, c) = (x[abc[0]], x[abc[1]], x[abc[2]]);
     let mean = 1.0 + (a + b + c) / 3.0;
-    if hi - lo > 2e-3 * mean {
-        return (first_divided(hi, mid) - first_divided(mid, lo)) / (hi - lo);
+    if x[hi] - x[lo] > 2e-3 * mean {
+        return (f1[hi][mid] - f1[mid][lo]) / (x[hi] - x[lo]);
     }
     // Taylor series of the divided difference about the mean
     let xbar = (a + b + c) / 3.0;
-    let d = v.map(|xi| (xi - xbar) / mean);
+    let d = [hi, mid, lo].map(|i| (x[i] - xbar) / mean);
     // Σ_n (−1)ⁿ h_n / (n + 2), the coefficients as products (the seven
     // divisions per triple were a fifth of the pull-back's time)
     const COEFFICIENTS: [f64; 7] = [1.0 / 2.0, -1.0 / 3.0, 1.0 / 4.0, -1.0 / 5.0, 1.0 / 6.0, -1.0 / 7.0, 1.0 / 8.0];
@@ -281,13 +351,14 @@ fn complete_homogeneous(d: [f64; 3]) -> [f64; 7] {
     h
 }
 
-/// `f[c_i, c_k, c_j]` for every index triple (symmetric in its arguments).
-fn second_differences(x: [f64; 3]) -> [[[f64; 3]; 3]; 3] {
+/// `f[c_i, c_k, c_j]` for every index triple (symmetric in its arguments),
+/// from the first differences `f1`.
+fn second_differences(x: [f64; 3], f1: &Tensor) -> [[[f64; 3]; 3]; 3] {
     let mut f2 = [[[0.0; 3]; 3]; 3];
     for i in 0..3 {
         for k in i..3 {
             for j in k..3 {
-                let v = second_divided(x[i], x[k], x[j]);
+                let v = second_divided(x, f1, [i, k, j]);
                 for (p, q, r) in [(i, k, j), (i, j, k), (k, i, j), (k, j, i), (j, i, k), (j, k, i)] {
                     f2[p][q][r] = v;
                 }

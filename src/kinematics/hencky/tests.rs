@@ -188,6 +188,12 @@ fn small_strain_agrees_with_green_lagrange_to_second_order() {
 #[test]
 fn divided_differences_and_their_limits() {
     let f = |x: f64| 0.5 * x.ln_1p();
+    // f[a, b, c] from the first differences of the three, as the pull-back makes it
+    let second_divided = |a: f64, b: f64, c: f64| {
+        let x = [a, b, c];
+        let f1 = std::array::from_fn(|i| std::array::from_fn(|j| first_divided(x[i], x[j])));
+        super::second_divided(x, &f1, [0, 1, 2])
+    };
     let (a, b, c) = (0.3, -0.2, 0.7);
     assert!((first_divided(a, b) - (f(a) - f(b)) / (a - b)).abs() < 1e-15);
     let dd = ((f(a) - f(b)) / (a - b) - (f(b) - f(c)) / (b - c)) / (a - c);

@@ -639,3 +639,24 @@ fn the_cautious_retry_is_declined_where_it_would_repeat_the_failed_attempt() {
         assert_eq!(s.cautious(true), frictional, "{name}: on the secant");
     }
 }
+
+/// `cufem bench --full`'s split of the element loop (`analysis::Timings`):
+/// on one thread the kernel's two passes lie within the loop's wall time;
+/// with nonlinear geometry every evaluation forms the element tangents,
+/// while the same cantilever in small strain reuses its cached elastic
+/// matrices and forms none (a swapped or unmeasured pass fails it).
+#[test]
+fn the_element_loop_is_split_into_its_kernel_passes() {
+    use std::time::Duration;
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let run = |model: &Model| {
+        pool.install(|| analysis::run(model, &Default::default(), &mut analysis::Silent).unwrap()).timings
+    };
+    let mut model = Model::from_file(Path::new(ELASTICA)).unwrap();
+    let t = run(&model);
+    assert!(t.stress_pass > Duration::ZERO && t.element_tangents > Duration::ZERO, "{t:?}");
+    assert!(t.stress_pass + t.element_tangents <= t.assembly, "{t:?}");
+    model.kinematics = cufem::kinematics::Kinematics::Linear;
+    let t = run(&model);
+    assert!(t.stress_pass > Duration::ZERO && t.element_tangents == Duration::ZERO, "{t:?}");
+}

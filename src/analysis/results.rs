@@ -18,6 +18,13 @@ pub struct Timings {
     pub element_cache: Duration,
     /// Element loop with material updates and scatter.
     pub assembly: Duration,
+    /// Part of `assembly`, summed over the worker threads: the kernel's
+    /// first pass (strains, material updates, internal forces).
+    pub stress_pass: Duration,
+    /// Part of `assembly`, summed over the worker threads: forming the
+    /// element tangents. On one thread `assembly` less both is the gather
+    /// of element displacements and the scatter of forces and matrices.
+    pub element_tangents: Duration,
     /// Contact search and penalty terms.
     pub contact: Duration,
     /// Numeric factorizations.
@@ -39,6 +46,17 @@ pub struct Timings {
     /// Single-precision factors that did not precondition their own tangent
     /// (double precision from then on).
     pub precision_fallbacks: usize,
+}
+
+impl Timings {
+    /// Adds one evaluation: the element loop's and the contacts' wall times
+    /// (`[elements, contact]`) and the kernel's passes.
+    pub(crate) fn add_evaluation(&mut self, elapsed: [Duration; 2], kernel: &crate::assembly::AssemblyStats) {
+        self.assembly += elapsed[0];
+        self.contact += elapsed[1];
+        self.stress_pass += kernel.stress_pass;
+        self.element_tangents += kernel.element_tangents;
+    }
 }
 
 /// The resultant reaction of a named constraint set (N): the force of the

@@ -189,7 +189,7 @@ impl<'m> Structure<'m> {
 
     /// Plastic Gauss points in the last evaluation.
     pub fn plastic_points(&self) -> usize {
-        self.elements.plastic_points
+        self.elements.last.plastic_points
     }
 
     /// The displacement at each probe of the model (mean over the elements
@@ -420,8 +420,7 @@ impl NonlinearProblem for Structure<'_> {
                 elapsed[usize::from(part.phase() == Phase::Contact)] += t.elapsed();
             }
         }
-        self.timings.assembly += elapsed[0];
-        self.timings.contact += elapsed[1];
+        self.timings.add_evaluation(elapsed, &self.elements.last);
         if let Some(impulse) = self.impulse.as_mut() {
             impulse.update(self.contacts.forces().values);
         }

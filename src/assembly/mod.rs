@@ -202,8 +202,9 @@ impl Assembler {
 
     /// Element loop: internal forces (and tangent) of all elements from the
     /// displacements, with trial states and Gauss-point stresses. Returns
-    /// the number of plastic Gauss points.
-    pub fn assemble(&self, input: &Inputs<'_>, out: Outputs<'_>) -> usize {
+    /// the number of plastic Gauss points and the time in the kernel's two
+    /// passes.
+    pub fn assemble(&self, input: &Inputs<'_>, out: Outputs<'_>) -> AssemblyStats {
         out.force.fill(0.0);
         let with_tangent = out.tangent.is_some();
         let mode = match (with_tangent, self.elastic_global.is_empty()) {
@@ -224,9 +225,9 @@ impl Assembler {
         let tangent = Disjoint::new(tangent);
         let trial = Disjoint::new(out.trial);
         let stress = Disjoint::new(out.stress);
-        let mut plastic = 0;
+        let mut stats = AssemblyStats::default();
         for colour in &self.scatter.colours {
-            plastic += colour
+            stats += colour
                 .par_iter()
                 .map_init(
                     || (Vec::new(), Vec::new(), Vec::new()),
@@ -281,13 +282,17 @@ impl Assembler {
                                     scatter_upper(&self.scatter.maps[range], &ws.tangent, 3 * nodes.len(), &tangent);
                                 }
                             }
-                            stats.plastic_points
+                            AssemblyStats {
+                                plastic_points: stats.plastic_points,
+                                stress_pass: stats.stress_pass,
+                                element_tangents: stats.tangent_pass,
+                            }
                         })
                     },
                 )
-                .sum::<usize>();
+                .reduce(AssemblyStats::default, |a, b| a + b);
         }
-        plastic
+        stats
     }
 }
 
@@ -327,6 +332,37 @@ impl Assembler {
                 });
             });
         }
+    }
+}
+
+/// What one element loop did: plastic Gauss points, and the time its
+/// kernel spent in each pass, summed over the worker threads (on one
+/// thread, the element loop less these two is the scatter and the gather).
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct AssemblyStats {
+    /// Gauss points whose update was plastic.
+    pub plastic_points: usize,
+    /// Strains, material updates and internal forces.
+    pub stress_pass: std::time::Duration,
+    /// Element tangents (zero where the kernel formed none).
+    pub element_tangents: std::time::Duration,
+}
+
+impl std::ops::Add for AssemblyStats {
+    type Output = Self;
+
+    fn add(self, b: Self) -> Self {
+        Self {
+            plastic_points: self.plastic_points + b.plastic_points,
+            stress_pass: self.stress_pass + b.stress_pass,
+            element_tangents: self.element_tangents + b.element_tangents,
+        }
+    }
+}
+
+impl std::ops::AddAssign for AssemblyStats {
+    fn add_assign(&mut self, b: Self) {
+        *self = *self + b;
     }
 }
 
@@ -430,6 +466,7 @@ mod tests {
                 &inputs,
                 Outputs { force: &mut force, tangent: Some(&mut tangent), trial: &mut trial, stress: &mut stress },
             )
+            .plastic_points
         });
         (force, tangent, plastic)
     }

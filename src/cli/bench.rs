@@ -26,13 +26,13 @@ pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
     println!("{} — {} DOF, {} run(s), {} thread(s)", model.title, model.n_dofs(), repeat, rayon::current_num_threads());
     if full {
         let mut walls = Vec::new();
-        let mut rows: Vec<[Duration; 4]> = Vec::new();
+        let mut rows: Vec<[Duration; 6]> = Vec::new();
         let mut last = None;
         for _ in 0..repeat {
             let sol = analysis::run(model, &analysis::RunOptions::default(), &mut Silent)?;
             let t = sol.timings;
             walls.push(sol.wall_time);
-            rows.push([t.assembly, t.contact, t.factorization, t.solve]);
+            rows.push([t.assembly, t.contact, t.factorization, t.solve, t.stress_pass, t.element_tangents]);
             last = Some(sol);
         }
         let sol = last.expect("at least one run");
@@ -64,6 +64,8 @@ pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
         let per_eval = |d: Duration| d / t.evaluations.max(1) as u32;
         let per_fact = |d: Duration| d / t.factorizations.max(1) as u32;
         println!("  element loop + return map  {}   per evaluation {}", ms(col(0)), ms(per_eval(col(0))));
+        println!("    kernel: stress pass      {}   per evaluation {}", ms(col(4)), ms(per_eval(col(4))));
+        println!("    kernel: element tangents {}   per evaluation {}", ms(col(5)), ms(per_eval(col(5))));
         println!("  contact                    {}   per evaluation {}", ms(col(1)), ms(per_eval(col(1))));
         println!("  numeric factorization      {}   per factor.    {}", ms(col(2)), ms(per_fact(col(2))));
         let per_solve = |d: Duration| d / solves as u32;

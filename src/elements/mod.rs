@@ -145,6 +145,10 @@ pub struct ElementStats {
     pub plastic_points: usize,
     /// True if `Workspace::tangent` was computed.
     pub tangent_computed: bool,
+    /// Time in the first pass (strain, material update, internal force).
+    pub stress_pass: std::time::Duration,
+    /// Time forming the element tangent (zero if not computed).
+    pub tangent_pass: std::time::Duration,
 }
 
 /// Gauss-point data of one element that the kernel reads and writes.
@@ -211,7 +215,9 @@ pub fn element_response(
             volumetric_projection(geom, ps, el.es, el.eb, el.nodes, ws);
         }
     }
+    let start = std::time::Instant::now();
     let (all_elastic, plastic_points) = stresses_and_forces(geom, &el, u, material, points, ws);
+    let stressed = std::time::Instant::now();
     let tangent_computed = match mode {
         TangentMode::None => false,
         TangentMode::Always => true,
@@ -224,7 +230,9 @@ pub fn element_response(
         let contributing = gather_operators(geom, &el, material, mode == TangentMode::UnlessElastic, ws);
         tangent_product(&el, contributing, ws);
     }
-    ElementStats { plastic_points, tangent_computed }
+    let stress_pass = stressed - start;
+    let tangent_pass = if tangent_computed { stressed.elapsed() } else { std::time::Duration::ZERO };
+    ElementStats { plastic_points, tangent_computed, stress_pass, tangent_pass }
 }
 
 /// The geometric (initial-stress) stiffness alone of body element `e`,

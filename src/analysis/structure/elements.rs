@@ -3,7 +3,7 @@
 //! `elements`, the material point of `materials`), and the Gauss-point
 //! history, committed only after an increment converges.
 
-use crate::assembly::{At, Contribution, Forces, Inputs, Outputs, Phase, Tangent};
+use crate::assembly::{AssemblyStats, At, Contribution, Forces, Inputs, Outputs, Phase, Tangent};
 use crate::materials::PointState;
 use crate::model::Model;
 use crate::voigt::Voigt;
@@ -21,8 +21,9 @@ pub(crate) struct Elements<'m> {
     pub stress: Vec<Voigt>,
     /// Internal forces of the last evaluation (per DOF).
     f_int: Vec<f64>,
-    /// Plastic Gauss points in the last evaluation.
-    pub plastic_points: usize,
+    /// The last evaluation's element loop: its plastic Gauss points and
+    /// the time in the kernel's passes.
+    pub last: AssemblyStats,
     /// A stress-free initial displacement (geometric imperfection), per DOF.
     pub initial: Option<Vec<f64>>,
 }
@@ -43,7 +44,7 @@ impl<'m> Elements<'m> {
             trial: vec![PointState::default(); n_gp],
             stress: vec![[0.0; 6]; n_gp],
             f_int: vec![0.0; model.mesh.n_dofs()],
-            plastic_points: 0,
+            last: AssemblyStats::default(),
             initial: None,
         }
     }
@@ -94,7 +95,7 @@ impl Contribution for Elements<'_> {
             kinematics: self.model.kinematics,
             initial: self.initial.as_deref(),
         };
-        self.plastic_points = tangent.assembler.assemble(
+        self.last = tangent.assembler.assemble(
             &inputs,
             Outputs {
                 force: &mut self.f_int,

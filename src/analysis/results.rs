@@ -19,7 +19,8 @@ pub struct Timings {
     /// Element loop with material updates and scatter.
     pub assembly: Duration,
     /// Part of `assembly`, summed over the worker threads: the kernel's
-    /// first pass (strains, material updates, internal forces).
+    /// first pass (B-bar's projections, strains, material updates,
+    /// internal forces).
     pub stress_pass: Duration,
     /// Part of `assembly`, summed over the worker threads: forming the
     /// element tangents. On one thread `assembly` less both is the gather

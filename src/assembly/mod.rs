@@ -342,7 +342,7 @@ impl Assembler {
 pub struct AssemblyStats {
     /// Gauss points whose update was plastic.
     pub plastic_points: usize,
-    /// Strains, material updates and internal forces.
+    /// B-bar's projections, strains, material updates and internal forces.
     pub stress_pass: std::time::Duration,
     /// Element tangents (zero where the kernel formed none).
     pub element_tangents: std::time::Duration,

@@ -145,7 +145,8 @@ pub struct ElementStats {
     pub plastic_points: usize,
     /// True if `Workspace::tangent` was computed.
     pub tangent_computed: bool,
-    /// Time in the first pass (strain, material update, internal force).
+    /// Time in the first pass (B-bar's projection, strain, material
+    /// update, internal force).
     pub stress_pass: std::time::Duration,
     /// Time forming the element tangent (zero if not computed).
     pub tangent_pass: std::time::Duration,
@@ -208,6 +209,8 @@ pub fn element_response(
         !(kinematics.is_nonlinear() && mode == TangentMode::UnlessElastic),
         "nonlinear geometry has no elastic tangent to correct"
     );
+    // the first pass: B-bar's projection, then the points
+    let start = std::time::Instant::now();
     if let Some(ps) = geom.volumetric.as_ref() {
         if kinematics.is_nonlinear() {
             fbar::dilatation_projection(geom, ps, (el.es, el.eb, el.nodes), u, ws);
@@ -215,7 +218,6 @@ pub fn element_response(
             volumetric_projection(geom, ps, el.es, el.eb, el.nodes, ws);
         }
     }
-    let start = std::time::Instant::now();
     let (all_elastic, plastic_points) = stresses_and_forces(geom, &el, u, material, points, ws);
     let stressed = std::time::Instant::now();
     let tangent_computed = match mode {

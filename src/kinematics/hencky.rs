@@ -186,8 +186,8 @@ impl LogStrain {
         }
         let km = congruence(&r6, &kt, false);
         // back to stress rows and engineering-strain columns
-        const UNSCALE: [f64; 6] = [1.0, 1.0, 1.0, FRAC_1_SQRT_2, FRAC_1_SQRT_2, FRAC_1_SQRT_2];
-        let tangent = std::array::from_fn(|a| std::array::from_fn(|b| km[a][b] * UNSCALE[a] * UNSCALE[b]));
+        let tangent =
+            std::array::from_fn(|a| std::array::from_fn(|b| km[a][b] * MANDEL_UNSCALE[a] * MANDEL_UNSCALE[b]));
         (stress, tangent)
     }
 }
@@ -221,6 +221,10 @@ pub fn log_strain(h: &Tensor) -> Voigt {
 fn mandel_scale(a: usize) -> f64 {
     if a < 3 { 1.0 } else { std::f64::consts::SQRT_2 }
 }
+
+/// `1 / mandel_scale(a)`, as a table (a product in the pull-back's last
+/// step instead of 36 divisions).
+const MANDEL_UNSCALE: [f64; 6] = [1.0, 1.0, 1.0, FRAC_1_SQRT_2, FRAC_1_SQRT_2, FRAC_1_SQRT_2];
 
 /// `A B` of 3×3 matrices.
 fn product(a: &Tensor, b: &Tensor) -> Tensor {

@@ -660,3 +660,44 @@ fn the_element_loop_is_split_into_its_kernel_passes() {
     let t = run(&model);
     assert!(t.stress_pass > Duration::ZERO && t.element_tangents == Duration::ZERO, "{t:?}");
 }
+
+/// Newton's last evaluation of a solve leaves the element tangents out
+/// (`Structure::evaluate_residual`, `solver::newton`'s module docs): if a
+/// correction follows after all, the structure forms them again first. The
+/// elastica loaded to PL²/EI ≈ 2 from its committed state at ≈ 1.6 (one
+/// thread; `solver.inertia = "last_factorization"`, with which the commit
+/// needs no converged tangent and the structure accepts the skip): the correction after `evaluate_residual` equals the one after
+/// `evaluate` to the bit. Without the second evaluation the correction
+/// solves with the tangent the residual-only evaluation left — the first
+/// correction's, its supports eliminated — and differs (checked).
+#[test]
+fn a_correction_after_a_residual_only_evaluation_uses_the_present_tangent() {
+    use cufem::solver::newton::{self, NewtonSettings, NonlinearProblem};
+    use cufem::solver::stepping::Incremental;
+    let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+    let mut model = Model::from_file(Path::new(ELASTICA)).unwrap();
+    model.solver.inertia = Some(cufem::model::InertiaReport::LastFactorization);
+    let correction = |residual_only: bool| {
+        pool.install(|| {
+            let mut s = analysis::Structure::new(&model, None).unwrap();
+            s.set_load_factor(0.16);
+            assert!(newton::solve(&mut s, &NewtonSettings::default(), &Default::default()).converged());
+            s.commit();
+            s.set_load_factor(0.2);
+            // two corrections in: the tangent of the first is in the system
+            s.evaluate().unwrap();
+            s.correct().unwrap();
+            if residual_only {
+                s.evaluate_residual().unwrap();
+            } else {
+                s.evaluate().unwrap();
+            }
+            let before = s.displacements().to_vec();
+            s.correct().unwrap();
+            s.displacements().iter().zip(&before).map(|(a, b)| a - b).collect::<Vec<f64>>()
+        })
+    };
+    let (full, lazy) = (correction(false), correction(true));
+    assert!(full.iter().any(|&v| v != 0.0));
+    assert_eq!(full, lazy);
+}

@@ -34,6 +34,12 @@ pub struct Timings {
     pub solve: Duration,
     /// Number of residual/tangent evaluations.
     pub evaluations: usize,
+    /// Of them: evaluations without the element tangents (Newton expected
+    /// them to be the last of their solve).
+    pub residual_only: usize,
+    /// Of them: evaluations repeated with the element tangents after a
+    /// residual-only one that did not converge.
+    pub reevaluations: usize,
     /// Number of factorizations.
     pub factorizations: usize,
     /// Solves that reused an earlier factorization as PCG preconditioner.

@@ -16,17 +16,21 @@
 //! * `structure/force.rs`: force-controlled indenters, whose displacement is
 //!   an extra unknown bordering the linear system;
 //! * `structure/system.rs`: the tangent, the right-hand side and the solver;
-//! * `structure/kinematics.rs`: the displacements and λ.
+//! * `structure/kinematics.rs`: the displacements and λ;
+//! * `structure/evaluation.rs`: one evaluation of all parts (with or
+//!   without the element tangents), `structure/stepping.rs`: the load
+//!   stepping's start, commit and restore of an increment.
 //!
 //! A new capability is a new part: inertia is a contribution
 //! ([`crate::dynamics::Inertia`]: its forces `M a + C v` and stiffness
 //! `M/(βΔt²) + γC/(βΔt)`), a new contact kind a file of `contact::assembly`.
 
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 mod arc;
 mod dirichlet;
 pub(crate) mod elements;
+mod evaluation;
 mod force;
 mod kinematics;
 #[cfg(test)]
@@ -34,19 +38,17 @@ mod limit_tests;
 mod line;
 mod loads;
 mod resultants;
+mod stepping;
 mod system;
 mod transient;
 
 pub use super::results::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Timings};
-use crate::assembly::{Assembler, Contribution, NO_EQ, Numbering, Phase};
+use crate::assembly::{Assembler, Contribution, NO_EQ, Numbering};
 use crate::contact::Contacts;
-use crate::contact::assembly::UNSETTLED_FORCING;
-use crate::materials::Predictor;
 use crate::model::Model;
 use crate::size::MemoryEstimate;
 use crate::solver::linear::{Cholesky, LinearError};
 use crate::solver::newton::{Correction, Evaluation, NonlinearProblem};
-use crate::solver::stepping::{Incremental, StepMeasure};
 use dirichlet::Dirichlet;
 use elements::Elements;
 use force::ForceControl;
@@ -74,6 +76,9 @@ pub struct Structure<'m> {
     /// The contacts' end-of-step impulse (a transient analysis with
     /// contacts and `analysis.contact_forces = "implicit"`).
     impulse: Option<crate::dynamics::ContactImpulse>,
+    /// The last evaluation left the element tangents out
+    /// (`structure/evaluation.rs`).
+    tangent_stale: bool,
 }
 
 impl<'m> Structure<'m> {
@@ -137,6 +142,7 @@ impl<'m> Structure<'m> {
             pivots: None,
             dynamics,
             impulse: transient::impulse(model),
+            tangent_stale: false,
         })
     }
 
@@ -402,73 +408,26 @@ impl NonlinearProblem for Structure<'_> {
     type Error = LinearError;
 
     fn evaluate(&mut self) -> Result<Evaluation, LinearError> {
-        self.timings.evaluations += 1;
-        self.contacts.move_indenters(self.force.offsets(self.state.lambda));
-        // every contribution into the tangent, in order
-        let mut changes = 0;
-        let mut elapsed = [Duration::ZERO; 2];
-        {
-            let at = self.state.at();
-            let mut tangent = self.system.tangent();
-            let parts: [&mut dyn Contribution; 3] = [&mut self.elements, &mut self.loads, &mut self.contacts];
-            let inertia = self.dynamics.iter_mut().map(|i| i as &mut dyn Contribution);
-            let weight = self.impulse.as_ref().map_or(1.0, |i| i.weight());
-            for part in parts.into_iter().chain(inertia) {
-                let t = Instant::now();
-                tangent.weight = if part.phase() == Phase::Contact { weight } else { 1.0 };
-                changes += part.evaluate(&at, &mut tangent);
-                elapsed[usize::from(part.phase() == Phase::Contact)] += t.elapsed();
-            }
+        self.tangent_stale = false;
+        self.evaluate_parts(true)
+    }
+
+    /// Without the element tangents (the kernel's second pass and its
+    /// scatter): [`Self::correct`] evaluates again with them if the solve
+    /// goes on. Not when the commit factorizes the converged tangent for
+    /// its inertia (`solver.inertia = "every_increment"`): that needs it.
+    fn evaluate_residual(&mut self) -> Result<Evaluation, LinearError> {
+        if self.inertia_every_increment() {
+            return self.evaluate();
         }
-        self.timings.add_evaluation(elapsed, &self.elements.last);
-        if let Some(impulse) = self.impulse.as_mut() {
-            impulse.update(self.contacts.forces().values);
-        }
-        // their forces summed into the residual, per DOF
-        let imbalance = &mut self.system.imbalance;
-        imbalance.fill(0.0);
-        let mut scale: f64 = 0.0;
-        let parts = [&self.elements as &dyn Contribution, &self.loads, &self.contacts];
-        for part in parts.into_iter().chain(self.dynamics.iter().map(|i| i as &dyn Contribution)) {
-            let mut f = part.forces();
-            if let (Phase::Contact, Some(impulse)) = (part.phase(), &self.impulse) {
-                f.values = impulse.force();
-            }
-            let mut size2 = 0.0;
-            for (r, &v) in imbalance.iter_mut().zip(f.values) {
-                *r += f.sign * v;
-                size2 += v * v;
-            }
-            if f.scale {
-                scale = scale.max(size2.sqrt());
-            }
-            scale = scale.max(f.reference);
-        }
-        let eq = &self.system.assembler.dofs.eq;
-        let (mut res2, mut reac2) = (0.0, 0.0);
-        for (d, &e) in eq.iter().enumerate() {
-            let r = imbalance[d];
-            if e == NO_EQ || self.dirichlet.is_prescribed(e) {
-                reac2 += r * r;
-            } else {
-                res2 += r * r;
-            }
-            if e != NO_EQ {
-                self.system.rhs[e] = r;
-            }
-        }
-        // prescribed values reached (exactly, after the first correction)
-        let (off, size) = self.dirichlet.offset(&self.state.u);
-        let (driven_res2, driven_target2) = self.force.evaluate(&self.contacts, eq, &self.dirichlet, self.state.lambda);
-        res2 += driven_res2;
-        let scale = scale.max(reac2.sqrt()).max(driven_target2.sqrt());
-        let settled = changes == 0 && off <= 1e-12 * size;
-        let r = if scale > 0.0 { res2.sqrt() / scale } else { 1.0 };
-        self.system.forcing = if settled { r } else { r.min(UNSETTLED_FORCING) };
-        Ok(Evaluation { residual_norm: res2.sqrt(), force_scale: scale, settled })
+        let ev = self.evaluate_parts(false)?;
+        self.tangent_stale = true;
+        self.timings.residual_only += 1;
+        Ok(ev)
     }
 
     fn correct(&mut self) -> Result<Correction, LinearError> {
+        self.form_tangent()?;
         // a line search only along a correction without a prescribed jump
         let searchable = self.model.solver.newton.line_search && {
             let (off, size) = self.dirichlet.offset(&self.state.u);
@@ -499,101 +458,5 @@ impl NonlinearProblem for Structure<'_> {
 
     fn step_to(&mut self, eta: f64) -> Option<Correction> {
         self.line_step_to(eta)
-    }
-}
-
-impl Incremental for Structure<'_> {
-    fn set_load_factor(&mut self, lambda: f64) {
-        // prescribed values are reached by the next correction (dirichlet.rs)
-        self.state.lambda = lambda;
-        self.state.on_secant = false;
-        self.contacts.start_increment();
-        self.dirichlet.set_load_factor(self.model, lambda);
-    }
-
-    fn augment(&mut self) -> bool {
-        self.contacts.augment()
-    }
-
-    fn cautious(&mut self, on: bool) -> bool {
-        // The elastic predictor decides only at points on their yield
-        // surface with no strain increment: at the committed state. A failed
-        // attempt started on the secant of the last increment would be
-        // repeated to the last digit (measured on examples/tube_crush.toml:
-        // every retry's residuals equal its failed attempt's), unless a
-        // frictional point takes the stick tangent (contact::assembly).
-        if on && self.state.on_secant && !self.contacts.is_frictional() {
-            return false;
-        }
-        let wanted = if on { Predictor::Elastic } else { Predictor::Loading };
-        let changed = self.state.predictor != wanted;
-        self.state.predictor = wanted;
-        changed
-    }
-
-    fn extrapolate(&mut self, ratio: f64) {
-        // Started on the secant of the last increment, a point that slid is
-        // beyond its cone in the direction it slid, not on it to round-off:
-        // its consistent tangent applies from the first iteration, and the
-        // stick predictor (`contact::assembly`) is kept for increments that
-        // start at the committed state (the first of a load step, where the
-        // loading may reverse). Measured on
-        // examples/cantilevers_contact_friction.toml: the same Newton
-        // iterations (66 against 67), 21 factorizations against 52 (the
-        // predictor's tangent differs from the sliding one at every sliding
-        // point, so no factor served both).
-        if self.state.extrapolate(ratio) {
-            self.contacts.start_extrapolated();
-        }
-        self.force.extrapolate(ratio);
-    }
-
-    fn measure(&self) -> StepMeasure {
-        let (changed, before, after) = self.contacts.status_changes();
-        StepMeasure {
-            plastic_strain: self.elements.largest_peeq_increment(),
-            contact_set: (before > 0).then(|| changed as f64 / before.max(after) as f64),
-        }
-    }
-
-    fn commit(&mut self) {
-        if let Some(inertia) = self.dynamics.as_mut() {
-            let parts = [&self.elements as &dyn Contribution, &self.loads, &self.contacts];
-            let model = (self.model, &self.elements);
-            let contact = self.impulse.as_ref().map(|i| i.force());
-            let impactors = self.force.impactor_energy();
-            let system = (&self.system, &self.dirichlet);
-            transient::account_energy(inertia, model, &self.state, system, parts, (contact, impactors));
-        }
-        if let Some(impulse) = self.impulse.as_mut() {
-            impulse.commit();
-        }
-        if self.inertia_every_increment() {
-            // the tangent of the last evaluation is that of the converged
-            // state: its inertia (on the free DOFs, as it is solved; the
-            // right-hand side is rewritten by the next evaluation) marks
-            // limit and bifurcation points
-            let system = &mut self.system;
-            let col_ptr = &system.assembler.pattern.col_ptr;
-            let (tangent, rest, rhs) = (&mut system.tangent, system.rest.as_mut(), &mut system.rhs);
-            self.dirichlet.eliminate(&self.state.u, |e| col_ptr[e], tangent, rest, rhs);
-            self.pivots = system.inertia();
-        }
-        self.state.commit();
-        let at = self.state.at();
-        let parts = [&mut self.elements as &mut dyn Contribution, &mut self.loads, &mut self.contacts];
-        for part in parts.into_iter().chain(self.dynamics.iter_mut().map(|i| i as &mut dyn Contribution)) {
-            part.commit(&at);
-        }
-        self.force.commit(self.state.lambda);
-    }
-
-    fn restore(&mut self) {
-        self.state.restore();
-        for part in self.contributions() {
-            part.restore();
-        }
-        self.force.restore();
-        self.dirichlet.set_load_factor(self.model, self.state.lambda);
     }
 }

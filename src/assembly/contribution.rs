@@ -48,6 +48,12 @@ pub struct Tangent<'a> {
     /// but `1/γ` for the contacts of a transient analysis
     /// (`dynamics::impulse`).
     pub weight: f64,
+    /// False when only the forces are asked for (Newton's evaluation that
+    /// is expected to be the last of its solve,
+    /// [`crate::solver::newton::NonlinearProblem::evaluate_residual`]): a
+    /// part may then leave its stiffness out, and the values are not a
+    /// tangent until the next evaluation that wants one.
+    pub wanted: bool,
 }
 
 impl Tangent<'_> {

@@ -40,10 +40,13 @@ pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
         let iters: usize = sol.increments.iter().map(|i| i.newton.iterations).sum();
         let col = |k: usize| median(rows.iter().map(|r| r[k]).collect());
         println!(
-            "  increments {}, Newton iterations {}, evaluations {}, cutbacks {}",
+            "  increments {}, Newton iterations {}, evaluations {} ({} without element tangents, {} repeated \
+             with them), cutbacks {}",
             sol.increments.len(),
             iters,
             t.evaluations,
+            t.residual_only,
+            t.reevaluations,
             sol.cutbacks.len()
         );
         let solves = (t.factorizations + t.reused).max(1);

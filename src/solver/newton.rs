@@ -20,6 +20,16 @@
 //! than at `max_iterations`), and before any further correction once an
 //! [`Interrupt`] is requested.
 //!
+//! **The last evaluation.** Once the residual contracts, the next one is
+//! predicted as `r_(k+1) ≈ max(r_k³ / r_(k−1)², r_k²)` — quadratic
+//! convergence with the constant of the last step, and no faster than the
+//! forcing term `η = r_k` of an inexact solve allows. When that prediction
+//! and the correction test it implies are within tolerance and the last
+//! evaluation was settled, the next evaluation is asked for through
+//! [`NonlinearProblem::evaluate_residual`]: a tangent formed there would go
+//! unused if it converges. If it does not, the problem forms the tangent
+//! before the correction, at the cost of a second evaluation.
+//!
 //! With [`NewtonSettings::line_search`], a correction after which the
 //! residual grew *and* the energy still falls along it at its start but
 //! rises at its end (`s(η) = Δx·R(x_k + η Δx)`, `s(0) < 0 < s(1)`: the full
@@ -59,6 +69,13 @@ pub trait NonlinearProblem {
     type Error: std::error::Error + Send + Sync + 'static;
     /// Evaluates residual and tangent at the current iterate.
     fn evaluate(&mut self) -> Result<Evaluation, Self::Error>;
+    /// Evaluates the residual at the current iterate where [`solve`]
+    /// expects it to converge, so that no correction would use the tangent
+    /// (module docs). A problem may skip the tangent here, but must then
+    /// form it in its next [`Self::correct`]. The default: [`Self::evaluate`].
+    fn evaluate_residual(&mut self) -> Result<Evaluation, Self::Error> {
+        self.evaluate()
+    }
     /// Solves with the current tangent and applies `x ← x + Δx`.
     fn correct(&mut self) -> Result<Correction, Self::Error>;
     /// For a line search, after an evaluation: `(Δx·R(x_k), Δx·R(x))`, the
@@ -162,8 +179,11 @@ impl Report {
 pub fn solve<P: NonlinearProblem>(problem: &mut P, settings: &NewtonSettings, interrupt: &Interrupt) -> Report {
     let mut report = Report::default();
     let mut last_correction: Option<f64> = None;
+    let mut last_settled = false;
     loop {
-        let mut ev = match problem.evaluate() {
+        let expected = last_settled && expect_convergence(&report.residuals, last_correction, settings);
+        let evaluated = if expected { problem.evaluate_residual() } else { problem.evaluate() };
+        let mut ev = match evaluated {
             Ok(ev) => ev,
             Err(e) => return fail(report, Failure::Problem, Some(e.to_string())),
         };
@@ -187,6 +207,7 @@ pub fn solve<P: NonlinearProblem>(problem: &mut P, settings: &NewtonSettings, in
             }
         }
         report.residuals.push(r);
+        last_settled = ev.settled;
         if !r.is_finite() || r > settings.divergence_ratio * report.residuals[0].max(1.0) {
             return fail(report, Failure::Diverged, None);
         }
@@ -228,6 +249,22 @@ pub fn solve<P: NonlinearProblem>(problem: &mut P, settings: &NewtonSettings, in
         }
         report.iterations += 1;
     }
+}
+
+/// True if the next evaluation is predicted to pass the convergence test
+/// (module docs): the residual `r_(k+1) ≈ max(r_k³ / r_(k−1)², r_k²)`
+/// within tolerance while it contracts, and the correction test met by the
+/// last correction or by its prediction from that residual.
+fn expect_convergence(residuals: &[f64], last_correction: Option<f64>, settings: &NewtonSettings) -> bool {
+    let (Some(c), [.., before, r]) = (last_correction, residuals) else { return false };
+    if r >= before {
+        return false;
+    }
+    let next = (r * r * r / (before * before)).max(r * r);
+    next <= settings.residual_tolerance
+        && (c <= settings.displacement_tolerance
+            || c * next / r <= settings.displacement_tolerance
+            || next <= 1e-3 * settings.residual_tolerance)
 }
 
 /// The relative residual `‖R‖/F` of an evaluation.
@@ -355,6 +392,87 @@ mod tests {
         assert!(rep.converged());
         assert_eq!(rep.iterations, 19);
         assert!(0.5 * (p.x - 2.0).abs() <= 1e-6 * (p.x - 3.0).abs() * 1.000_01);
+    }
+
+    /// `Halving` or `Cubic` that forms its "tangent" (the correction's
+    /// factor) only in `evaluate` and drops it in `evaluate_residual`: a
+    /// correction after a residual-only evaluation must form it again.
+    struct Lazy {
+        x: f64,
+        cubic: bool,
+        tangent: Option<f64>,
+        residual_only: usize,
+        reformed: usize,
+    }
+
+    impl Lazy {
+        fn residual(&self) -> f64 {
+            if self.cubic { self.x.powi(3) - 8.0 } else { 1e3 * (self.x - 2.0) }
+        }
+    }
+
+    impl NonlinearProblem for Lazy {
+        type Error = std::io::Error;
+        fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
+            self.tangent = Some(if self.cubic { 3.0 * self.x * self.x } else { 2e3 });
+            let scale = if self.cubic { 8.0 } else { 1.0 };
+            Ok(Evaluation { residual_norm: self.residual().abs(), force_scale: scale, settled: true })
+        }
+        fn evaluate_residual(&mut self) -> Result<Evaluation, Self::Error> {
+            let ev = self.evaluate()?;
+            self.tangent = None;
+            self.residual_only += 1;
+            Ok(ev)
+        }
+        fn correct(&mut self) -> Result<Correction, Self::Error> {
+            if self.tangent.is_none() {
+                self.evaluate()?;
+                self.reformed += 1;
+            }
+            let dx = -self.residual() / self.tangent.unwrap();
+            self.x += dx;
+            Ok(Correction { norm: dx.abs(), increment_norm: (self.x - 3.0).abs() })
+        }
+    }
+
+    /// Quadratic convergence (x³ = 8): the prediction `max(r³/r_prev², r²)`
+    /// is above the true `r²/3` (module docs), so the last evaluation, and
+    /// only it, leaves the tangent out, and the iterates are those of the
+    /// plain problem to the bit.
+    #[test]
+    fn the_last_evaluation_of_a_quadratic_solve_skips_the_tangent() {
+        let settings = NewtonSettings { residual_tolerance: 1e-12, ..Default::default() };
+        let mut plain = Cubic { x: 3.0, x0: 3.0, r: 0.0, k: 0.0 };
+        let expected = solve(&mut plain, &settings, &Interrupt::new());
+        let mut p = Lazy { x: 3.0, cubic: true, tangent: None, residual_only: 0, reformed: 0 };
+        let rep = solve(&mut p, &settings, &Interrupt::new());
+        assert!(rep.converged());
+        assert_eq!(rep.residuals, expected.residuals);
+        assert_eq!(p.x, plain.x);
+        assert_eq!((p.residual_only, p.reformed), (1, 0));
+    }
+
+    /// Linear convergence by one half where the prediction expects a
+    /// quarter: residual-only evaluations that do not converge are followed
+    /// by corrections that form the tangent again, and the iterates are
+    /// those of `Halving` (19 corrections, the test above).
+    #[test]
+    fn a_wrongly_expected_convergence_forms_the_tangent_before_correcting() {
+        let settings = NewtonSettings {
+            max_iterations: 100,
+            residual_tolerance: 0.5,
+            displacement_tolerance: 1e-6,
+            ..Default::default()
+        };
+        let mut p = Lazy { x: 3.0, cubic: false, tangent: None, residual_only: 0, reformed: 0 };
+        let rep = solve(&mut p, &settings, &Interrupt::new());
+        assert!(rep.converged());
+        assert_eq!(rep.iterations, 19);
+        assert!(p.reformed >= 1, "{} {}", p.residual_only, p.reformed);
+        assert_eq!(p.residual_only, p.reformed + 1);
+        let mut plain = Halving { x: 3.0 };
+        solve(&mut plain, &settings, &Interrupt::new());
+        assert_eq!(p.x, plain.x);
     }
 
     /// A residual that bounces between 1 and 2 (a cycle): with

@@ -82,7 +82,8 @@ impl Contribution for Elements<'_> {
 
     /// Overwrites the whole tangent (the assembler starts from the elastic
     /// tangent and corrects the non-elastic elements): the elements are
-    /// evaluated first.
+    /// evaluated first. When the tangent is not wanted, the kernel's second
+    /// pass (the element tangents and their scatter) is skipped.
     fn evaluate(&mut self, at: &At<'_>, tangent: &mut Tangent<'_>) -> usize {
         let inputs = Inputs {
             mesh: &self.model.mesh,
@@ -99,7 +100,7 @@ impl Contribution for Elements<'_> {
             &inputs,
             Outputs {
                 force: &mut self.f_int,
-                tangent: Some(&mut *tangent.values),
+                tangent: if tangent.wanted { Some(&mut *tangent.values) } else { None },
                 trial: &mut self.trial,
                 stress: &mut self.stress,
             },

@@ -48,7 +48,8 @@ impl LinearSystem {
         if let Some(rest) = self.rest.as_mut() {
             rest.clear();
         }
-        Tangent { assembler: &self.assembler, values: &mut self.tangent, rest: self.rest.as_mut(), weight: 1.0 }
+        let (values, rest) = (&mut self.tangent, self.rest.as_mut());
+        Tangent { assembler: &self.assembler, values, rest, weight: 1.0, wanted: true }
     }
 
     /// Solves `K x = rhs` in place (`must_factor`: with the present tangent's

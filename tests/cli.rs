@@ -521,3 +521,24 @@ fn any_title_gives_outputs_their_readers_accept() {
         assert!(err.contains("loads[0].name") && err.contains("letters, digits"), "{bad}: {err}");
     }
 }
+
+/// A reader that stops early (`cufem check … | head -0`) closes the pipe
+/// before cufem writes: cufem ends on SIGPIPE like other Unix tools, not
+/// with println!'s panic on EPIPE (exit code 101 and a backtrace).
+#[test]
+fn a_closed_output_pipe_ends_cufem_quietly() {
+    use std::os::unix::process::ExitStatusExt;
+    use std::process::Stdio;
+    let mut child = cufem()
+        .arg("check")
+        .arg(example("bending_compact_16L9.toml"))
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    drop(child.stdout.take());
+    let out = child.wait_with_output().unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(out.status.signal(), Some(libc::SIGPIPE), "{:?} {stderr}", out.status);
+}

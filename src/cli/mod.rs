@@ -214,14 +214,6 @@ fn fail(code: u8, error: impl Into<anyhow::Error>) -> Failure {
 
 /// Entry point (see the module docs for the exit codes).
 pub fn main() -> ExitCode {
-    // A reader that stops early (`cufem bench … | head`) closes the pipe:
-    // end quietly as Unix tools do, instead of println! panicking on EPIPE
-    // (Rust ignores SIGPIPE by default).
-    // SAFETY: restores the default disposition of one signal before any
-    // thread starts; no handler is involved.
-    unsafe {
-        libc::signal(libc::SIGPIPE, libc::SIG_DFL);
-    }
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
         Err(e) => {

@@ -218,14 +218,8 @@ pub fn solve<P: NonlinearProblem>(problem: &mut P, settings: &NewtonSettings, in
         // it, ‖Δx_(k+1)‖ ≈ ‖Δx_k‖ · r_k / r_(k−1) — this saves the iteration
         // that would only confirm convergence.
         let n = report.residuals.len();
-        let predicted = match (last_correction, n >= 2) {
-            (Some(c), true) if r < report.residuals[n - 2] => Some(c * r / report.residuals[n - 2]),
-            _ => None,
-        };
-        let small_correction = last_correction.is_none_or(|c| c <= settings.displacement_tolerance)
-            || predicted.is_some_and(|c| c <= settings.displacement_tolerance)
-            || r <= 1e-3 * settings.residual_tolerance;
-        if ev.settled && r <= settings.residual_tolerance && small_correction {
+        let before = (n >= 2).then(|| report.residuals[n - 2]);
+        if ev.settled && converged(r, before, last_correction, settings) {
             return report;
         }
         if report.iterations >= settings.max_iterations {
@@ -251,20 +245,34 @@ pub fn solve<P: NonlinearProblem>(problem: &mut P, settings: &NewtonSettings, in
     }
 }
 
-/// True if the next evaluation is predicted to pass the convergence test
-/// (module docs): the residual `r_(k+1) ≈ max(r_k³ / r_(k−1)², r_k²)`
-/// within tolerance while it contracts, and the correction test met by the
-/// last correction or by its prediction from that residual.
+/// The convergence test on the relative residual `r` (the one before it
+/// `before`) and the last relative correction `c` (module docs; the
+/// contacts' settledness aside): `r` within tolerance, and the correction
+/// test met by `c`, or by the next correction predicted while the residual
+/// contracts, `c · r / before`, or waived a thousand times below the
+/// residual tolerance.
+fn converged(r: f64, before: Option<f64>, c: Option<f64>, settings: &NewtonSettings) -> bool {
+    let tol_x = settings.displacement_tolerance;
+    let predicted = match (c, before) {
+        (Some(c), Some(b)) if r < b => Some(c * r / b),
+        _ => None,
+    };
+    r <= settings.residual_tolerance
+        && (c.is_none_or(|c| c <= tol_x)
+            || predicted.is_some_and(|c| c <= tol_x)
+            || r <= 1e-3 * settings.residual_tolerance)
+}
+
+/// True if the next evaluation is predicted to pass [`converged`] (module
+/// docs): its residual `max(r_k³ / r_(k−1)², r_k²)` while the residual
+/// contracts, after at least one correction.
 fn expect_convergence(residuals: &[f64], last_correction: Option<f64>, settings: &NewtonSettings) -> bool {
-    let (Some(c), [.., before, r]) = (last_correction, residuals) else { return false };
+    let (Some(_), [.., before, r]) = (last_correction, residuals) else { return false };
     if r >= before {
         return false;
     }
     let next = (r * r * r / (before * before)).max(r * r);
-    next <= settings.residual_tolerance
-        && (c <= settings.displacement_tolerance
-            || c * next / r <= settings.displacement_tolerance
-            || next <= 1e-3 * settings.residual_tolerance)
+    converged(next, Some(*r), last_correction, settings)
 }
 
 /// The relative residual `‖R‖/F` of an evaluation.

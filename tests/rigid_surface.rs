@@ -311,3 +311,99 @@ displacement = [0.0, 0.0, {}]
     eprintln!("{} columns: largest difference {worst:.2e} of the largest entry", columns.len());
     assert!(worst < 1e-6, "tangent differs from finite differences by {worst:e}");
 }
+
+/// The slice of [`rolled`], its base held, pressed 20 µm by the roller at
+/// mid-length.
+const PRESSED: &str = r#"
+[[materials]]
+name = "steel"
+young_modulus = 200e9
+poisson_ratio = 0.3
+
+[[bodies]]
+name = "block"
+material = "steel"
+section = { shape = "rectangle", element = "L9", x = { from = 0.0, to = 0.001, elements = 1 }, z = { from = -0.01, to = 0.0, elements = 4, ratio = 0.1 } }
+axis = { element = "B4", from = 0.0, to = 0.012, elements = 8 }
+
+[[constraints]]
+name = "bottom"
+body = "block"
+where = { z = -0.01 }
+fix = ["x", "y", "z"]
+[[constraints]]
+name = "planes"
+body = "block"
+where = { x = [0.0, 0.001] }
+fix = ["x"]
+
+[[indenters]]
+name = "roller"
+body = "block"
+shape = "cylinder"
+method = "surface"
+surface = { z = 0.0 }
+axis = "x"
+center = [0.0005, 0.006, 0.01]
+radius = 0.01
+displacement = [0.0, 0.0, -2e-5]
+"#;
+
+/// An increment started on the secant of the last one (`Incremental::extrapolate`)
+/// where a point in contact at the committed state is found open keeps
+/// that point's penalty law for its first evaluation
+/// (`contact::assembly::rigid`, module docs): the force `−ε g n`, a
+/// tension, and the evaluation unsettled. At the next evaluation of the
+/// same displacements, and at an increment started at the committed
+/// state, the point is open and carries nothing. The block is moved
+/// 50 µm away from the roller (more than its 20 µm stroke) to open every
+/// point.
+#[test]
+fn a_point_the_secant_lifts_off_keeps_its_contact_for_one_evaluation() {
+    use cufem::solver::newton::{self, NewtonSettings};
+    use cufem::solver::stepping::Incremental;
+    let model = Model::parse(PRESSED).unwrap();
+    let candidates = &model.indenters[0].nodes;
+    let mut s = Structure::new(&model, None).unwrap();
+    s.set_load_factor(0.5);
+    assert!(newton::solve(&mut s, &NewtonSettings::default(), &Default::default()).converged());
+    s.commit();
+    let committed: Vec<bool> = s.contact_points().iter().map(|p| p.active).collect();
+    let in_contact = committed.iter().filter(|a| **a).count();
+    assert!(in_contact >= 2 && in_contact < candidates.len(), "{in_contact} of {}", candidates.len());
+    let lift = |s: &mut Structure| {
+        for (d, u) in s.displacements_mut().iter_mut().enumerate() {
+            if d % 3 == 2 {
+                *u -= 5e-5;
+            }
+        }
+    };
+    let carries_nothing =
+        |s: &Structure| s.contact_points().iter().all(|p| p.gap > 0.0 && !p.active && p.force == [0.0; 3]);
+    s.set_load_factor(1.0);
+    s.extrapolate(1.0);
+    lift(&mut s);
+    assert!(!s.evaluate().unwrap().settled);
+    for ((p, c), &was) in s.contact_points().iter().zip(candidates).zip(&committed) {
+        assert!(p.gap > 0.0, "{p:?}");
+        if !was {
+            assert!(!p.active && p.force == [0.0; 3], "{p:?}");
+            continue;
+        }
+        // −ε g along the normal into the body: pulls the node to the roller
+        let expected = p.normal.map(|n| -c.penalty * p.gap * n);
+        assert!(p.active, "{p:?}");
+        for i in 0..3 {
+            assert!((p.force[i] - expected[i]).abs() <= 1e-12 * c.penalty * p.gap, "{p:?} {expected:?}");
+        }
+        assert!(p.force[2] > 0.0, "a tension, toward the roller above: {p:?}");
+    }
+    s.evaluate().unwrap();
+    assert!(carries_nothing(&s));
+    // an increment started at the committed state keeps nothing
+    s.restore();
+    s.set_load_factor(1.0);
+    lift(&mut s);
+    s.evaluate().unwrap();
+    assert!(carries_nothing(&s));
+}

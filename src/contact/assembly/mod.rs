@@ -102,6 +102,10 @@ pub struct Contacts<'m> {
     /// The next evaluation is the first of an increment that starts at the
     /// committed state (frictional points then get the stick tangent).
     first_evaluation: bool,
+    /// The next evaluation is the first of an increment started on the
+    /// secant of the last one: frictionless rigid-surface points in contact
+    /// at the committed state keep their penalty law there (`rigid`).
+    on_secant: bool,
     /// Surface contacts between deformable bodies are evaluated in the
     /// current configuration (`crate::contact::current`: nonlinear
     /// geometry); otherwise their projections are fixed within an increment.
@@ -157,6 +161,7 @@ impl<'m> Contacts<'m> {
             f_contact: vec![0.0; mesh.n_dofs()],
             offsets: vec![[0.0; 3]; indenters.len()],
             first_evaluation: false,
+            on_secant: false,
             current,
             roundoff_gap: ROUNDOFF_GAP * mesh.bodies.iter().map(|b| b.size()).fold(0.0, f64::max),
             nodal_normals: if current {
@@ -227,9 +232,12 @@ impl<'m> Contacts<'m> {
     }
 
     /// The increment starts on the secant of the last one instead: a point
-    /// that slid is past its cone, and its consistent tangent applies at once.
+    /// that slid is past its cone, and its consistent tangent applies at
+    /// once; a frictionless point of a rigid surface that the secant lifted
+    /// off keeps the contact it had (`rigid`, module docs).
     pub fn start_extrapolated(&mut self) {
         self.first_evaluation = false;
+        self.on_secant = true;
     }
 }
 
@@ -296,6 +304,7 @@ impl Contribution for Contacts<'_> {
         let grazing = was_active.iter().zip(&self.points).filter(|(w, p)| **w != p.active && p.gap.abs() <= roundoff);
         changes = changes.saturating_sub(grazing.count());
         self.first_evaluation = false;
+        self.on_secant = false;
         changes
     }
 

@@ -349,61 +349,92 @@ radius = 0.01
 displacement = [0.0, 0.0, -2e-5]
 "#;
 
-/// An increment started on the secant of the last one (`Incremental::extrapolate`)
-/// where a point in contact at the committed state is found open keeps
-/// that point's penalty law for its first evaluation
-/// (`contact::assembly::rigid`, module docs): the force `−ε g n`, a
-/// tension, and the evaluation unsettled. At the next evaluation of the
-/// same displacements, and at an increment started at the committed
-/// state, the point is open and carries nothing. The block is moved
-/// 50 µm away from the roller (more than its 20 µm stroke) to open every
-/// point.
-#[test]
-fn a_point_the_secant_lifts_off_keeps_its_contact_for_one_evaluation() {
+/// Moves every node of [`PRESSED`]'s block 50 µm away from the roller
+/// (more than its 20 µm stroke), so that every contact point is open.
+fn lift(s: &mut Structure) {
+    for (d, u) in s.displacements_mut().iter_mut().enumerate() {
+        if d % 3 == 2 {
+            *u -= 5e-5;
+        }
+    }
+}
+
+/// True if every contact point is open and carries nothing.
+fn carries_nothing(s: &Structure) -> bool {
+    s.contact_points().iter().all(|p| p.gap > 0.0 && !p.active && p.force == [0.0; 3])
+}
+
+/// [`PRESSED`] (with `friction` on the roller if given) solved to half its
+/// stroke and committed, then its next increment started on the secant of
+/// the first (`Incremental::extrapolate`) with the block lifted off
+/// ([`lift`]) and evaluated: `check` gets the structure, whether that
+/// evaluation was settled, and which points were in contact at the
+/// committed state.
+fn lifted_secant_start(friction: Option<f64>, check: impl FnOnce(&mut Structure, bool, &[bool])) {
     use cufem::solver::newton::{self, NewtonSettings};
     use cufem::solver::stepping::Incremental;
-    let model = Model::parse(PRESSED).unwrap();
-    let candidates = &model.indenters[0].nodes;
+    let roller = "displacement = [0.0, 0.0, -2e-5]";
+    let text = match friction {
+        Some(mu) => PRESSED.replace(roller, &format!("{roller}\nfriction = {mu}")),
+        None => PRESSED.to_string(),
+    };
+    let model = Model::parse(&text).unwrap();
     let mut s = Structure::new(&model, None).unwrap();
     s.set_load_factor(0.5);
     assert!(newton::solve(&mut s, &NewtonSettings::default(), &Default::default()).converged());
     s.commit();
     let committed: Vec<bool> = s.contact_points().iter().map(|p| p.active).collect();
     let in_contact = committed.iter().filter(|a| **a).count();
-    assert!(in_contact >= 2 && in_contact < candidates.len(), "{in_contact} of {}", candidates.len());
-    let lift = |s: &mut Structure| {
-        for (d, u) in s.displacements_mut().iter_mut().enumerate() {
-            if d % 3 == 2 {
-                *u -= 5e-5;
-            }
-        }
-    };
-    let carries_nothing =
-        |s: &Structure| s.contact_points().iter().all(|p| p.gap > 0.0 && !p.active && p.force == [0.0; 3]);
+    assert!(in_contact >= 2 && in_contact < committed.len(), "{in_contact} of {}", committed.len());
     s.set_load_factor(1.0);
     s.extrapolate(1.0);
     lift(&mut s);
-    assert!(!s.evaluate().unwrap().settled);
-    for ((p, c), &was) in s.contact_points().iter().zip(candidates).zip(&committed) {
-        assert!(p.gap > 0.0, "{p:?}");
-        if !was {
-            assert!(!p.active && p.force == [0.0; 3], "{p:?}");
-            continue;
+    let settled = s.evaluate().unwrap().settled;
+    check(&mut s, settled, &committed);
+}
+
+/// An increment started on the secant of the last one where a point in
+/// contact at the committed state is found open keeps that point's
+/// penalty law for its first evaluation (`contact::assembly::rigid`,
+/// module docs): the force `−ε g n`, a tension, and the evaluation
+/// unsettled. At the next evaluation of the same displacements, and at an
+/// increment started at the committed state, the point is open and
+/// carries nothing.
+#[test]
+fn a_point_the_secant_lifts_off_keeps_its_contact_for_one_evaluation() {
+    use cufem::solver::stepping::Incremental;
+    let model = Model::parse(PRESSED).unwrap();
+    let candidates = &model.indenters[0].nodes;
+    lifted_secant_start(None, |s, settled, committed| {
+        assert!(!settled);
+        for ((p, c), &was) in s.contact_points().iter().zip(candidates).zip(committed) {
+            assert!(p.gap > 0.0, "{p:?}");
+            if !was {
+                assert!(!p.active && p.force == [0.0; 3], "{p:?}");
+                continue;
+            }
+            // −ε g along the normal into the body: pulls the node to the roller
+            let expected = p.normal.map(|n| -c.penalty * p.gap * n);
+            assert!(p.active, "{p:?}");
+            for i in 0..3 {
+                assert!((p.force[i] - expected[i]).abs() <= 1e-12 * c.penalty * p.gap, "{p:?} {expected:?}");
+            }
+            assert!(p.force[2] > 0.0, "a tension, toward the roller above: {p:?}");
         }
-        // −ε g along the normal into the body: pulls the node to the roller
-        let expected = p.normal.map(|n| -c.penalty * p.gap * n);
-        assert!(p.active, "{p:?}");
-        for i in 0..3 {
-            assert!((p.force[i] - expected[i]).abs() <= 1e-12 * c.penalty * p.gap, "{p:?} {expected:?}");
-        }
-        assert!(p.force[2] > 0.0, "a tension, toward the roller above: {p:?}");
-    }
-    s.evaluate().unwrap();
-    assert!(carries_nothing(&s));
-    // an increment started at the committed state keeps nothing
-    s.restore();
-    s.set_load_factor(1.0);
-    lift(&mut s);
-    s.evaluate().unwrap();
-    assert!(carries_nothing(&s));
+        s.evaluate().unwrap();
+        assert!(carries_nothing(s));
+        // an increment started at the committed state keeps nothing
+        s.restore();
+        s.set_load_factor(1.0);
+        lift(s);
+        s.evaluate().unwrap();
+        assert!(carries_nothing(s));
+    });
+}
+
+/// With friction the rule is off (the Coulomb return needs a compressive
+/// normal force): the same lifted secant start finds every point open.
+#[test]
+fn with_friction_a_point_the_secant_lifts_off_opens_at_once() {
+    lifted_secant_start(Some(0.3), |s, _, _| assert!(carries_nothing(s)));
 }

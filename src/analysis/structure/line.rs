@@ -8,7 +8,10 @@
 //! further unknown outside `u`. Nor in a model with friction: its tangent
 //! is no energy's Hessian, so `Δu·R` is no slope (measured: both frictional
 //! cantilevers failed their first increment with a search, stick and slip
-//! flipping with every trial step).
+//! flipping with every trial step). Nor a correction from an evaluation
+//! in which contact points kept their contact at a secant start
+//! (`contact::assembly::rigid`): its residual holds their tensions, the
+//! residuals along the correction do not.
 
 use super::Structure;
 use super::kinematics::Line;
@@ -20,7 +23,10 @@ impl Structure<'_> {
     /// is applied, with its slope at the start; `searchable` false forgets
     /// the last one instead.
     pub(super) fn remember_correction(&mut self, searchable: bool) {
-        if !searchable || self.force.is_driven() || self.contacts.is_frictional() {
+        // nor from an evaluation whose residual holds kept contact tensions
+        // (`contact::assembly::rigid`): the slope at its end, without them,
+        // would be another function's
+        if !searchable || self.force.is_driven() || self.contacts.is_frictional() || self.contacts.kept_points() > 0 {
             self.state.line = None;
             return;
         }

@@ -106,6 +106,8 @@ pub struct Contacts<'m> {
     /// secant of the last one: frictionless rigid-surface points in contact
     /// at the committed state keep their penalty law there (`rigid`).
     on_secant: bool,
+    /// Points that kept their contact so at the last evaluation.
+    kept: usize,
     /// Surface contacts between deformable bodies are evaluated in the
     /// current configuration (`crate::contact::current`: nonlinear
     /// geometry); otherwise their projections are fixed within an increment.
@@ -162,6 +164,7 @@ impl<'m> Contacts<'m> {
             offsets: vec![[0.0; 3]; indenters.len()],
             first_evaluation: false,
             on_secant: false,
+            kept: 0,
             current,
             roundoff_gap: ROUNDOFF_GAP * mesh.bodies.iter().map(|b| b.size()).fold(0.0, f64::max),
             nodal_normals: if current {
@@ -220,6 +223,7 @@ impl<'m> Contacts<'m> {
     /// gives sliding points the stick tangent (`pairs`).
     pub fn start_increment(&mut self) {
         self.first_evaluation = true;
+        self.on_secant = false;
     }
 
     /// Points that opened or closed since the committed state, and the
@@ -239,6 +243,13 @@ impl<'m> Contacts<'m> {
         self.first_evaluation = false;
         self.on_secant = true;
     }
+
+    /// The points that kept their contact at the last evaluation, the first
+    /// of an increment started on the secant (`rigid`, module docs): its
+    /// residual holds their tensions, which no later evaluation has.
+    pub fn kept_points(&self) -> usize {
+        self.kept
+    }
 }
 
 impl Contribution for Contacts<'_> {
@@ -257,6 +268,7 @@ impl Contribution for Contacts<'_> {
         let was_sliding: Vec<bool> =
             if self.frictional { self.points.iter().map(|p| p.sliding).collect() } else { Vec::new() };
         let was_active: Vec<bool> = self.points.iter().map(|p| p.active).collect();
+        self.kept = 0;
         let (indenters, pairs) = (self.indenters, self.pairs);
         let mut k = 0;
         for (k_ind, ind) in indenters.iter().enumerate() {

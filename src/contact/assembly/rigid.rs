@@ -5,22 +5,26 @@
 //! **The secant's start.** An increment that starts on the secant of the
 //! last one (`solver::stepping`: `u_n + (Δλ/Δλ_n) Δu_n`) moves a point in
 //! contact along a straight line, while the surface it slides on curves
-//! away: sliding `s` over a roller of radius `R` lifts it by `s²/2R`. On the
-//! crushed tube (examples/tube_crush.toml) the support line, sliding some
-//! 0.2 mm per increment, started every increment open by 2–7 µm. An open
-//! point adds nothing to the tangent, so the first correction let the tube
-//! drop onto the support unresisted, and the step limit (`limit`) then
-//! allowed it as deep as the deepest point in contact — a load-roller node
-//! line the secant had carried 10–30 µm in: support forces of 10⁵ N against
-//! a roller force of 750 N, and an iteration spent on them in almost every
-//! increment. So at that first evaluation a frictionless point in contact
-//! at the committed state keeps its penalty law where the secant opened it:
+//! away: sliding `s` over a roller of radius `R` lifts it by `s²/2R`.
+//! Without the rule below, the crushed tube's support line
+//! (examples/tube_crush.toml), sliding some 0.2 mm per increment, starts
+//! every increment open by 2–7 µm; an open point adds nothing to the
+//! tangent, so the first correction drops the tube onto the support
+//! unresisted, as deep as the step limit (`limit`) allows — the deepest
+//! point in contact, a load-roller node line the secant carried 10–30 µm
+//! in: support forces of 10⁵ N against a roller force of 750 N, and an
+//! iteration spent on them in almost every increment. So at that first
+//! evaluation a frictionless point in contact at the committed state keeps
+//! its penalty law where the secant opened it (by more than round-off):
 //! the force `(λ − ε g) n`, a tension, and the tangent of a point in
-//! contact (it counts as a status change, so Newton cannot stop there);
+//! contact (it counts as a status change, so Newton cannot stop there, and
+//! no line search runs along the correction from it, `structure/line.rs`);
 //! the first correction then holds it on the surface, and from the next
-//! evaluation on, every point's status is its own again. Measured with
-//! `cufem bench examples/tube_crush.toml --full --threads 1`: docs/performance.md.
-//! Not with friction, whose return needs a compressive normal force.
+//! evaluation on, every point's status is its own again. A point that the
+//! load truly lifts off (a reversal within a step) is pulled back by that
+//! one correction too and opens at the next. Measured with `cufem bench
+//! examples/tube_crush.toml --full --threads 1`: docs/performance.md. Not
+//! with friction, whose return needs a compressive normal force.
 
 use super::Contacts;
 use super::pairs::split;
@@ -70,7 +74,11 @@ impl Contacts<'_> {
         let response = contact::augmented_response(g, &n, c.penalty, point.multiplier);
         point.active = response.is_some();
         // a point in contact lifted off by the secant's start (module docs)
-        let kept = response.is_none() && self.on_secant && friction.is_none() && self.committed[k].active;
+        let kept = response.is_none()
+            && self.on_secant
+            && friction.is_none()
+            && self.committed[k].active
+            && g > self.roundoff_gap;
         let response = if kept {
             let p = point.multiplier - c.penalty * g;
             Some((n.map(|v| p * v), n.map(|a| n.map(|b| c.penalty * a * b))))
@@ -112,6 +120,7 @@ impl Contacts<'_> {
         tangent.add_rest_block(c.node, c.node, &rest, 1.0);
         if kept {
             self.points[k].active = true;
+            self.kept += 1;
             return true;
         }
         !was

@@ -396,8 +396,8 @@ fn lifted_secant_start(friction: Option<f64>, check: impl FnOnce(&mut Structure,
 /// An increment started on the secant of the last one where a point in
 /// contact at the committed state is found open keeps that point's
 /// penalty law for its first evaluation (`contact::assembly::rigid`,
-/// module docs): the force `−ε g n`, a tension, and the evaluation
-/// unsettled. At the next evaluation of the same displacements, and at an
+/// module docs): the force `−ε g n`, a tension, its block `ε n nᵀ` in the
+/// tangent, and the evaluation unsettled. At the next evaluation of the same displacements, and at an
 /// increment restarted from the committed state after a secant start that
 /// was never evaluated, the point is open and carries nothing.
 #[test]
@@ -421,8 +421,21 @@ fn a_point_the_secant_lifts_off_keeps_its_contact_for_one_evaluation() {
             }
             assert!(p.force[2] > 0.0, "a tension, toward the roller above: {p:?}");
         }
+        // each kept point's u_z diagonal, then the same without the kept points
+        let zz = |s: &Structure| -> Vec<f64> {
+            let kept = s.contact_points().iter().zip(committed).filter(|(_, was)| **was);
+            kept.map(|(p, _)| s.equation(3 * p.node + 2).map_or(f64::NAN, |e| s.tangent_entry(e, e))).collect()
+        };
+        let (with, normals) = (zz(s), s.contact_points().to_vec());
         s.evaluate().unwrap();
         assert!(carries_nothing(s));
+        // the kept block ε n nᵀ − p ∂n/∂y: its curvature part is p/ρ (1 − n_z²)
+        // here, below 1e-6 of ε n_z² (g ~ 30 µm, ρ = 10 mm, n_z² > 0.999)
+        let kept = normals.iter().zip(candidates).zip(committed).filter(|(_, was)| **was);
+        for ((((p, c), _), a), b) in kept.zip(&with).zip(zz(s)) {
+            let expected = c.penalty * p.normal[2] * p.normal[2];
+            assert!(((a - b) - expected).abs() <= 1e-6 * expected, "{} against {expected}", a - b);
+        }
         // an increment retried from the committed state (a cutback) keeps
         // nothing, though its secant start was never evaluated
         s.extrapolate(1.0);

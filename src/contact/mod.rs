@@ -471,13 +471,18 @@ pub fn augmented_response(
     penalty: f64,
     multiplier: f64,
 ) -> Option<([f64; 3], [[f64; 3]; 3])> {
-    let p = multiplier - penalty * g;
-    if p < 0.0 || (multiplier == 0.0 && g > 0.0) {
+    if multiplier - penalty * g < 0.0 || (multiplier == 0.0 && g > 0.0) {
         return None;
     }
-    let force = normal.map(|v| p * v);
-    let k = normal.map(|a| normal.map(|b| penalty * a * b));
-    Some((force, k))
+    Some(penalty_law(g, normal, penalty, multiplier))
+}
+
+/// The law of [`augmented_response`] without its inequality: force
+/// `(λ − ε g) n`, a tension where `λ − ε g < 0`, and block `ε n nᵀ` (a
+/// point kept in contact at a secant start, `assembly::rigid`).
+pub fn penalty_law(g: f64, normal: &[f64; 3], penalty: f64, multiplier: f64) -> ([f64; 3], [[f64; 3]; 3]) {
+    let p = multiplier - penalty * g;
+    (normal.map(|v| p * v), normal.map(|a| normal.map(|b| penalty * a * b)))
 }
 
 #[cfg(test)]

@@ -79,12 +79,7 @@ impl Contacts<'_> {
             && friction.is_none()
             && self.committed[k].active
             && g > self.roundoff_gap;
-        let response = if kept {
-            let p = point.multiplier - c.penalty * g;
-            Some((n.map(|v| p * v), n.map(|a| n.map(|b| c.penalty * a * b))))
-        } else {
-            response
-        };
+        let response = if kept { Some(contact::penalty_law(g, &n, c.penalty, point.multiplier)) } else { response };
         let Some((mut f, kb)) = response else { return was };
         let p = (0..3).map(|i| f[i] * n[i]).sum::<f64>();
         let mut block: [[f64; 3]; 3] = std::array::from_fn(|i| std::array::from_fn(|j| kb[i][j] - p * dn[i][j]));

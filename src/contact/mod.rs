@@ -453,9 +453,12 @@ pub fn gap(gap0: f64, normal: &[f64; 3], u_slave: [f64; 3], u_master: [f64; 3]) 
     gap0 + (0..3).map(|k| (u_slave[k] - u_master[k]) * normal[k]).sum::<f64>()
 }
 
+/// A point's force on the slave node and its block `K = −∂f/∂u_slave`.
+pub type Response = ([f64; 3], [[f64; 3]; 3]);
+
 /// Force on the slave node `−ε g n` (eq. 20) and the block `ε n nᵀ` (eq. 19)
 /// of an active pair, `None` if the pair is open (`g > 0`).
-pub fn penalty_response(g: f64, normal: &[f64; 3], penalty: f64) -> Option<([f64; 3], [[f64; 3]; 3])> {
+pub fn penalty_response(g: f64, normal: &[f64; 3], penalty: f64) -> Option<Response> {
     augmented_response(g, normal, penalty, 0.0)
 }
 
@@ -464,23 +467,15 @@ pub fn penalty_response(g: f64, normal: &[f64; 3], penalty: f64) -> Option<([f64
 /// `ε n nᵀ`; `λ = 0` is the pure penalty of [`penalty_response`]. Between
 /// Newton solves the multiplier is updated to the force, `λ ← λ − ε g`
 /// (Uzawa), until the penetration is below the contact's tolerance: the
-/// answer then no longer depends on `ε`.
-pub fn augmented_response(
-    g: f64,
-    normal: &[f64; 3],
-    penalty: f64,
-    multiplier: f64,
-) -> Option<([f64; 3], [[f64; 3]; 3])> {
-    if multiplier - penalty * g < 0.0 || (multiplier == 0.0 && g > 0.0) {
-        return None;
-    }
-    Some(penalty_law(g, normal, penalty, multiplier))
+/// answer then no longer depends on `ε`. A NaN gap counts as touching.
+pub fn augmented_response(g: f64, normal: &[f64; 3], penalty: f64, multiplier: f64) -> Option<Response> {
+    let open = multiplier - penalty * g < 0.0 || (multiplier == 0.0 && g > 0.0);
+    (!open).then(|| penalty_law(g, normal, penalty, multiplier))
 }
 
-/// The law of [`augmented_response`] without its inequality: force
-/// `(λ − ε g) n`, a tension where `λ − ε g < 0`, and block `ε n nᵀ` (a
-/// point kept in contact at a secant start, `assembly::rigid`).
-pub fn penalty_law(g: f64, normal: &[f64; 3], penalty: f64, multiplier: f64) -> ([f64; 3], [[f64; 3]; 3]) {
+/// [`augmented_response`]'s law without its inequality (a tension where
+/// `λ − ε g < 0`: a point kept in contact at a secant start, `assembly::rigid`).
+pub fn penalty_law(g: f64, normal: &[f64; 3], penalty: f64, multiplier: f64) -> Response {
     let p = multiplier - penalty * g;
     (normal.map(|v| p * v), normal.map(|a| normal.map(|b| penalty * a * b)))
 }

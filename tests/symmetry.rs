@@ -108,6 +108,28 @@ fn twin(full: &str, quarter: &str, extra: &[[f64; 3]]) -> (f64, f64) {
             assert!((own - quarter).abs() <= 1e-12 * peak);
         }
     }
+    // every indenter's history carries the full structure's force too: its
+    // last row is the full model's force, and f_* the quarter's own
+    for ind in &quarter_model.indenters {
+        let history = common::csv_columns(&out.join(format!("history_{}.csv", ind.name)));
+        let full_force = full_solution.contacts.iter().find(|f| f.name == ind.name).unwrap().force;
+        let own = quarter_solution.contacts.iter().find(|f| f.name == ind.name).unwrap().force;
+        let peak = full_force.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (k, c) in ["x", "y", "z"].iter().enumerate() {
+            let (full_col, own_col) =
+                (history[&format!("full_f_{c}")].last().unwrap(), history[&format!("f_{c}")].last().unwrap());
+            assert!(
+                (full_col - full_force[k]).abs() < 1e-6 * peak,
+                "{}: full_f_{c} {full_col:e} against {:e}",
+                ind.name,
+                full_force[k]
+            );
+            assert!((own_col - own[k]).abs() <= 1e-12 * peak, "{}: f_{c} {own_col:e} against {:e}", ind.name, own[k]);
+        }
+    }
+    // a plane's own reaction has no full-structure force
+    let plane = std::fs::read_to_string(out.join("history_symmetry_x.csv")).unwrap();
+    assert!(!plane.lines().next().unwrap().contains("full_"), "{}", plane.lines().next().unwrap());
     // the loading roller touches both planes: its full force is 4× the quarter's
     let load = quarter_solution.contacts.iter().find(|c| c.name == "load").unwrap().force[2];
     let full_load = full_solution.contacts.iter().find(|c| c.name == "load").unwrap().force[2];

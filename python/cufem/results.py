@@ -67,6 +67,8 @@ class Results:
         constraint set the prescribed displacement ``u_*`` and reaction
         ``r_*``; for an indenter or contact its displacement ``d_*``, force
         ``f_*``, ``max_penetration``, ``plastic_points``, ``f_n`` and ``f_t``;
+        in a model cut by symmetry planes, also the full structure's
+        ``full_r_*`` or ``full_f_*`` (not for a plane's own reaction);
         for ``"probes"`` (``history_probes.csv``) every probe's displacement
         ``<probe>.u_*``."""
         return _table(self._native.history(name))

@@ -445,8 +445,9 @@ impl NativeResults {
 
     /// The columns of `history_<name>.csv` (a constraint set: prescribed
     /// displacement and reaction; an indenter or contact: displacement,
-    /// force, penetration, plastic points; `"probes"`: every probe's
-    /// displacement), one row per converged increment.
+    /// force, penetration, plastic points; cut by symmetry planes, the full
+    /// structure's force too; `"probes"`: every probe's displacement), one
+    /// row per converged increment.
     fn history(&self, name: &str) -> PyResult<Vec<(String, Vec<f64>)>> {
         let m = &self.model;
         let rows = &self.solution.history;
@@ -473,6 +474,14 @@ impl NativeResults {
                     rows.iter().map(|r| r.reaction(name).map_or(f64::NAN, |r| r.force[k])).collect(),
                 ));
             }
+            // in a model cut by symmetry planes, as the CSV: the full structure's reaction
+            if m.symmetry.full(name, [0.0; 3]).is_some() {
+                for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+                    let full = |f: [f64; 3]| m.symmetry.full(name, f).map_or(f64::NAN, |f| f[k]);
+                    let r = rows.iter().map(|r| r.reaction(name).map_or(f64::NAN, |r| full(r.force))).collect();
+                    cols.push(col(&format!("full_r_{axis}"), r));
+                }
+            }
             return Ok(cols);
         }
         if self.solution.contact_sets.iter().any(|s| s.name == name) {
@@ -496,6 +505,12 @@ impl NativeResults {
             let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
             cols.push(col("f_n", rows.iter().map(|(_, c)| norm(c.normal_force)).collect()));
             cols.push(col("f_t", rows.iter().map(|(_, c)| norm(c.tangential_force)).collect()));
+            if m.symmetry.full(name, [0.0; 3]).is_some() {
+                for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+                    let f = rows.iter().map(|(_, c)| m.symmetry.full(name, c.force).map_or(f64::NAN, |f| f[k]));
+                    cols.push(col(&format!("full_f_{axis}"), f.collect()));
+                }
+            }
             return Ok(cols);
         }
         if name == "probes" && !m.probes.is_empty() {

@@ -44,20 +44,26 @@ pub fn write_line(path: &Path, samples: &[LineSample], quantities: &[Quantity]) 
 
 /// One CSV per constraint set (reaction against prescribed displacement)
 /// and per contact (resultant force against indenter displacement), each
-/// matched to its history entries by name.
+/// matched to its history entries by name. In a model with symmetry planes
+/// an item that has a force on the full structure (`bc::symmetry::Symmetry::full`:
+/// not a plane's own reaction) gets it in three more columns, `full_r_*`
+/// or `full_f_*`, as `summary.json`'s `full_structure_force`.
 pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     let mut out = Vec::new();
     for (ci, c) in model.constraints.iter().enumerate() {
-        let mut text = String::from("increment,lambda,iterations,u_x,u_y,u_z,r_x,r_y,r_z\n");
+        let full = |r: [f64; 3]| model.symmetry.full(&c.name, r);
+        let mut text = String::from("increment,lambda,iterations,u_x,u_y,u_z,r_x,r_y,r_z");
+        text.push_str(if full([0.0; 3]).is_some() { ",full_r_x,full_r_y,full_r_z\n" } else { "\n" });
         for row in &solution.history {
             let a = steps::factor(&model.steps, Item::Constraint(ci), row.lambda);
             let u = c.values.map(|v| v.map_or(String::new(), |v| format!("{:e}", a * v)));
             let r = row.reaction(&c.name).map_or([f64::NAN; 3], |r| r.force);
-            let _ = writeln!(
+            let _ = write!(
                 text,
                 "{},{:e},{},{},{},{},{:e},{:e},{:e}",
                 row.increment, row.lambda, row.iterations, u[0], u[1], u[2], r[0], r[1], r[2]
             );
+            end_row(&mut text, full(r));
         }
         let path = dir.join(format!("history_{}.csv", c.name));
         write(&path, &text)?;
@@ -65,14 +71,15 @@ pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result
     }
     for set in &solution.contact_sets {
         let is_indenter = model.indenters.iter().any(|i| i.name == set.name);
-        let mut text = String::from(
-            "increment,lambda,iterations,d_x,d_y,d_z,f_x,f_y,f_z,max_penetration,plastic_points,f_n,f_t\n",
-        );
+        let full = |f: [f64; 3]| model.symmetry.full(&set.name, f);
+        let mut text =
+            String::from("increment,lambda,iterations,d_x,d_y,d_z,f_x,f_y,f_z,max_penetration,plastic_points,f_n,f_t");
+        text.push_str(if full([0.0; 3]).is_some() { ",full_f_x,full_f_y,full_f_z\n" } else { "\n" });
         for row in &solution.history {
             let Some(c) = row.contact(&set.name) else { continue };
             let d = if is_indenter { c.displacement.map(|v| format!("{v:e}")) } else { Default::default() };
             let f = c.force;
-            let _ = writeln!(
+            let _ = write!(
                 text,
                 "{},{:e},{},{},{},{},{:e},{:e},{:e},{:e},{},{:e},{:e}",
                 row.increment,
@@ -89,6 +96,7 @@ pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result
                 norm(c.normal_force),
                 norm(c.tangential_force)
             );
+            end_row(&mut text, full(f));
         }
         let path = dir.join(format!("history_{}.csv", set.name));
         write(&path, &text)?;
@@ -176,6 +184,14 @@ pub fn write_contact_points(model: &Model, solution: &Solution, dir: &Path) -> R
         out.push(path);
     }
     Ok(out)
+}
+
+/// Ends a history row, with the full structure's force if there is one.
+fn end_row(text: &mut String, full: Option<[f64; 3]>) {
+    if let Some(f) = full {
+        let _ = write!(text, ",{:e},{:e},{:e}", f[0], f[1], f[2]);
+    }
+    text.push('\n');
 }
 
 fn norm(v: [f64; 3]) -> f64 {

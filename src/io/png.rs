@@ -144,10 +144,14 @@ pub fn history_plots(model: &Model, solution: &Solution, dir: &Path) -> Result<V
         }
         let dir_unit = d.map(|v| v / norm);
         let along = |v: [f64; 3]| v[0] * dir_unit[0] + v[1] * dir_unit[1] + v[2] * dir_unit[2];
+        // in a model cut by symmetry planes, the force on the full structure
+        // (as summary.json's full_structure_force), the one to compare
+        let full = model.symmetry.full(&ind.name, [0.0; 3]).is_some();
         let mut points = vec![(0.0, 0.0)];
         points.extend(solution.history.iter().filter_map(|row| {
             let c = row.contact(&ind.name)?;
-            Some((along(c.displacement) * 1e3, along(c.force)))
+            let f = model.symmetry.full(&ind.name, c.force).unwrap_or(c.force);
+            Some((along(c.displacement) * 1e3, along(f)))
         }));
         // short tick labels keep the axis label clear of them
         let largest = points.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
@@ -164,7 +168,7 @@ pub fn history_plots(model: &Model, solution: &Solution, dir: &Path) -> Result<V
             &path,
             &format!("Indenter {}: force against displacement", ind.name),
             "indenter displacement [mm]",
-            &format!("force along the motion [{unit}]"),
+            &format!("force along the motion{} [{unit}]", if full { ", full structure" } else { "" }),
             &[Series { name: "cufem".into(), points, dashed: false }],
         )?;
         out.push(path);

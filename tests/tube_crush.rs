@@ -165,7 +165,7 @@ fn the_crush_tangent_matches_finite_differences_mid_increment() {
     // plastically within it (Δγ > 0) and contact not yet settled
     s.set_load_factor(0.1 + 1.0 / 36.0);
     s.extrapolate(1.0);
-    let two = newton::NewtonSettings { max_iterations: 2, ..newton_settings.clone() };
+    let two = newton::NewtonSettings { max_iterations: 2, ..*newton_settings };
     let report = newton::solve(&mut s, &two, &Default::default());
     assert!(!report.converged(), "{report:?}");
     s.evaluate().unwrap();

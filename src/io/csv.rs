@@ -58,12 +58,15 @@ pub fn write_histories(model: &Model, solution: &Solution, dir: &Path) -> Result
             let a = steps::factor(&model.steps, Item::Constraint(ci), row.lambda);
             let u = c.values.map(|v| v.map_or(String::new(), |v| format!("{:e}", a * v)));
             let r = row.reaction(&c.name).map_or([f64::NAN; 3], |r| r.force);
+            // no reaction recorded: NaN in the full columns too, not the
+            // plane's cancelled 0 (as Python's Results.history)
+            let full_r = if r[0].is_nan() { full(r).map(|_| r) } else { full(r) };
             let _ = write!(
                 text,
                 "{},{:e},{},{},{},{},{:e},{:e},{:e}",
                 row.increment, row.lambda, row.iterations, u[0], u[1], u[2], r[0], r[1], r[2]
             );
-            end_row(&mut text, full(r));
+            end_row(&mut text, full_r);
         }
         let path = dir.join(format!("history_{}.csv", c.name));
         write(&path, &text)?;

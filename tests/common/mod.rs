@@ -82,7 +82,9 @@ pub fn vtu_array(path: &std::path::Path, name: Option<&str>) -> Vec<f64> {
     }
 }
 
-/// A CSV file's columns by header name (comment lines `#` skipped).
+/// A CSV file's columns by header name (comment lines `#` skipped; an
+/// empty field, such as a free component's prescribed displacement in a
+/// constraint's history, is NaN).
 pub fn csv_columns(path: &std::path::Path) -> std::collections::HashMap<String, Vec<f64>> {
     let text = std::fs::read_to_string(path).unwrap();
     let mut lines = text.lines().filter(|l| !l.starts_with('#'));
@@ -90,7 +92,7 @@ pub fn csv_columns(path: &std::path::Path) -> std::collections::HashMap<String, 
     let mut cols: std::collections::HashMap<String, Vec<f64>> = names.iter().map(|n| (n.clone(), vec![])).collect();
     for l in lines {
         for (n, v) in names.iter().zip(l.split(',')) {
-            cols.get_mut(n).unwrap().push(v.parse().unwrap());
+            cols.get_mut(n).unwrap().push(if v.is_empty() { f64::NAN } else { v.parse().unwrap() });
         }
     }
     cols

@@ -52,6 +52,10 @@ pub enum AnalysisError {
         "analysis.imperfection.mode = {0}: the buckling analysis of the model found {1} positive critical load factors"
     )]
     Imperfection(usize, usize),
+    /// A value of the model that the analysis found it cannot take (e.g. an
+    /// arc length too long for the model's stiffness).
+    #[error(transparent)]
+    Model(#[from] crate::model::ModelError),
     /// The eigenproblem of a buckling or modal analysis.
     #[error("eigenvalue analysis")]
     Eigen(#[from] crate::solver::eigen::EigenError),
@@ -351,19 +355,21 @@ pub struct StepFields {
 /// Drives the structure over the model's load history — by load steps, or
 /// along the path by arc length — and returns the ends of the completed
 /// steps, the failure that stopped it (if any) and the path's outcome.
+type Driven = (Vec<StepEnd>, Option<SteppingError>, Option<PathOutcome>);
+
 fn drive(
     structure: &mut Structure<'_>,
     model: &Model,
     options: &RunOptions,
     recorder: &mut Recorder<'_>,
-) -> (Vec<StepEnd>, Option<SteppingError>, Option<PathOutcome>) {
+) -> Result<Driven, AnalysisError> {
     // the load history: each step drives λ over [k, k + 1] from the state the
     // previous one left (displacements, plastic history, contact)
     let mut failure = None;
     let mut step_ends = Vec::new();
     let mut path = None;
     if let Some(settings) = &model.solver.path {
-        let (outcome, stopped) = path::follow(structure, model, settings, recorder, &options.interrupt);
+        let (outcome, stopped) = path::follow(structure, model, settings, recorder, &options.interrupt)?;
         if stopped.is_none() {
             let (reactions, contacts) = (structure.reactions(), structure.contact_resultants());
             let (name, lambda, increment) =
@@ -395,7 +401,7 @@ fn drive(
             }
         }
     }
-    (step_ends, failure, path)
+    Ok((step_ends, failure, path))
 }
 
 /// Runs the analysis of `model`.
@@ -416,7 +422,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         },
     );
     let mut recorder = Recorder::new(model, progress);
-    let (step_ends, failure, path) = drive(&mut structure, model, options, &mut recorder);
+    let (step_ends, failure, path) = drive(&mut structure, model, options, &mut recorder)?;
     if failure.is_some() {
         // refresh forces at the last converged state for reactions and contact output
         structure.evaluate()?;

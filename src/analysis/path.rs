@@ -131,6 +131,7 @@ fn report(step: &PathStep) -> Report {
     let failure = step.failure.map(|f| match f {
         arclength::PathFailure::Diverged => Failure::Diverged,
         arclength::PathFailure::Problem | arclength::PathFailure::ComplexRoots => Failure::Problem,
+        arclength::PathFailure::Turned => Failure::Rejected,
         arclength::PathFailure::Interrupted => Failure::Interrupted,
         arclength::PathFailure::MaxIterations => Failure::MaxIterations,
     });
@@ -191,23 +192,37 @@ impl<'s, 'm> PathObserver<PathStructure<'s, 'm>> for Watch<'_, '_> {
 
 /// Traces the path of `structure` (at its committed state, λ = 0) with the
 /// model's settings. Returns how it went and, if it stopped before a stop
-/// criterion, why (the structure is then at its last converged point).
+/// criterion, why (the structure is then at its last converged point); an
+/// error for an arc length too long for the model (below).
+///
+/// Every arc length is at most the length of the linear path to
+/// `solver.max_load_factor` at the start's stiffness (`max_load_factor ·
+/// ‖K₀⁻¹ f‖`): a longer first arc would reach past the whole requested path
+/// in one increment, so `solver.arc_length` beyond it is refused by key.
 pub(super) fn follow(
     structure: &mut Structure<'_>,
     model: &Model,
     settings: &PathSettings,
     recorder: &mut Recorder<'_>,
     interrupt: &Interrupt,
-) -> (PathOutcome, Option<SteppingError>) {
+) -> Result<(PathOutcome, Option<SteppingError>), super::AnalysisError> {
     let mut problem = PathStructure::new(structure);
     let mut arc = settings.arc;
+    arc.max_lambda = settings.max_load_factor;
     let mut start = None;
-    if let Some(length) = settings.arc_length {
-        // Δλ of the first predictor from the requested Δl₀
-        match first_dlambda(&mut problem, length) {
-            Ok(d) => arc.initial_dlambda = d,
-            Err(e) => start = Some(e.to_string()),
+    match linear_length(&mut problem) {
+        Ok(norm) if norm > 0.0 && norm.is_finite() => {
+            arc.max_length = settings.max_load_factor * norm;
+            if let Some(length) = settings.arc_length {
+                if length > arc.max_length {
+                    return Err(too_long(length, norm, settings.max_load_factor).into());
+                }
+                // Δλ of the first predictor from the requested Δl₀
+                arc.initial_dlambda = length / norm;
+            }
         }
+        Ok(_) => {}
+        Err(e) => start = Some(e.to_string()),
     }
     let mut watch =
         Watch { recorder, model, settings, end: None, limit_points: Vec::new(), last_dlambda: 0.0, first_arc: 0.0 };
@@ -248,17 +263,35 @@ pub(super) fn follow(
         }
     };
     let outcome = PathOutcome { end: watch.end, limit_points: watch.limit_points, first_arc_length: watch.first_arc };
-    (outcome, failure)
+    Ok((outcome, failure))
 }
 
-/// `Δλ` whose linear predictor has length `arc` at the start.
-fn first_dlambda(p: &mut PathStructure<'_, '_>, arc: f64) -> Result<f64, LinearError> {
+/// `‖K₀⁻¹ f‖` at the start: the length of the linear predictor of Δλ = 1.
+fn linear_length(p: &mut PathStructure<'_, '_>) -> Result<f64, LinearError> {
     let mut r = vec![0.0; p.dimension()];
     p.residual(0.0, &mut r)?;
     let mut df = p.load.clone();
     p.solve(&mut [&mut df[..]])?;
-    let norm = p.dot(&df, &df).sqrt();
-    Ok(if norm > 0.0 { arc / norm } else { 1.0 })
+    Ok(p.dot(&df, &df).sqrt())
+}
+
+/// The refusal of `solver.arc_length = length` longer than the linear path
+/// to `max_load_factor` (`norm` = `‖K₀⁻¹ f‖`).
+fn too_long(length: f64, norm: f64, max_load_factor: f64) -> crate::model::ModelError {
+    use crate::numbers::limit;
+    crate::model::ModelError::Invalid {
+        key: "solver.arc_length".into(),
+        value: format!("{} m", crate::numbers::number(length)),
+        allowed: format!(
+            "at most {} m for this model, the length of its linear path to solver.max_load_factor = {} at the \
+             start's stiffness: this first increment alone would carry λ to {} by the linear prediction and could \
+             jump over limit points; a tenth of that or less follows them (or give solver.increments instead: 10 \
+             makes the first increment a tenth of the load)",
+            limit(max_load_factor * norm),
+            crate::numbers::number(max_load_factor),
+            limit(length / norm)
+        ),
+    }
 }
 
 /// The early stop after `n` converged points at `lambda`.

@@ -296,6 +296,11 @@ impl<'m> Structure<'m> {
         &self.loads.f_ext
     }
 
+    /// The model the structure discretizes.
+    pub fn model(&self) -> &'m Model {
+        self.model
+    }
+
     /// The elements' part: Gauss-point states, stresses and offsets.
     pub(crate) fn elements(&self) -> &Elements<'m> {
         &self.elements

@@ -588,6 +588,7 @@ impl Progress for Reporter {
                 Some(cufem::solver::newton::Failure::Diverged) => "diverged",
                 Some(cufem::solver::newton::Failure::Problem) => "linear solve failed",
                 Some(cufem::solver::newton::Failure::Stagnated) => "stagnated",
+                Some(cufem::solver::newton::Failure::Rejected) => "converged, rejected",
                 _ => "not converged",
             },
             res.join(" "),

@@ -61,7 +61,25 @@
 //! increment (iteration limit, divergence, complex roots, or a problem
 //! error) is rolled back to the last converged state and retried with `Δl/2`;
 //! below the minimum the run stops with an error. `Δl₀` comes from the first
-//! predictor and [`ArcLengthSettings::initial_dlambda`].
+//! predictor and [`ArcLengthSettings::initial_dlambda`]; no `Δl` exceeds
+//! [`ArcLengthSettings::max_length`].
+//!
+//! **No jump along the path.** A long arc can converge on a far part of
+//! the path — past a limit point and its snap, onto the stable branch
+//! beyond — with nothing at its ends to show it (both tangents positive
+//! definite). On a smooth path the converged change `Δu` of a short enough
+//! increment is nearly parallel to its predictor (the tangent at its start);
+//! one that turned by more than `acos(`[`ArcLengthSettings::min_cosine`]`)`
+//! is rolled back and redone with half the arc length, at most
+//! [`MAX_TURNS`] times per increment (a kink of the path — a contact
+//! closing — turns the direction however short the arc, and is then
+//! accepted).
+//!
+//! **Landing on the end.** An increment that carries `λ` past
+//! [`ArcLengthSettings::max_lambda`] is redone from its start with `λ`
+//! prescribed there (Newton at fixed `λ`, the predictor the tangent's), as
+//! load stepping ends on its last load factor; if that fails, the arc is
+//! shortened in proportion (a cutback) and the path goes on.
 
 use super::Interrupt;
 
@@ -121,7 +139,19 @@ pub struct ArcLengthSettings {
     pub divergence_ratio: f64,
     /// Converged increments after which the run ends.
     pub max_increments: usize,
+    /// Largest `Δl` of any increment (`f64::INFINITY`: only `max_ratio`).
+    pub max_length: f64,
+    /// The end of the path: an increment passing this `λ` is redone to
+    /// land on it (`f64::INFINITY`: none).
+    pub max_lambda: f64,
+    /// Smallest cosine between an increment's predictor and its converged
+    /// `Δu` (module docs, "No jump along the path").
+    pub min_cosine: f64,
 }
+
+/// Most rollbacks of one increment for having turned too far from its
+/// predictor (the arc is then 1/64 of the first attempt's).
+pub const MAX_TURNS: usize = 6;
 
 impl Default for ArcLengthSettings {
     fn default() -> Self {
@@ -136,6 +166,12 @@ impl Default for ArcLengthSettings {
             residual_tolerance: 1e-8,
             divergence_ratio: 1e6,
             max_increments: 500,
+            max_length: f64::INFINITY,
+            max_lambda: f64::INFINITY,
+            // 11.5°: converged increments of the shipped arch turn by at
+            // most 3.7° (20, 5 or 1 increments per unit λ); a jump over its
+            // snap-through turned by 23°
+            min_cosine: 0.98,
         }
     }
 }
@@ -153,6 +189,9 @@ pub enum PathFailure {
     Problem,
     /// A stop was requested through the [`Interrupt`].
     Interrupted,
+    /// The increment converged but turned from its predictor by more than
+    /// [`ArcLengthSettings::min_cosine`] allows (a jump along the path).
+    Turned,
 }
 
 /// One increment, converged or failed.
@@ -254,7 +293,7 @@ pub fn trace<P: PathProblem>(
 ) -> Result<Vec<PathStep>, Box<PathError>> {
     let mut path = Path::start(problem, lambda0, settings)?;
     let arc0 = path.arc;
-    let (min, max) = (arc0 * settings.min_ratio, arc0 * settings.max_ratio);
+    let (min, max) = (arc0 * settings.min_ratio, (arc0 * settings.max_ratio).min(settings.max_length));
     let mut history: Vec<PathStep> = Vec::new();
     let mut cutbacks = 0;
     let stop = |reason, path: &Path<P>, n, attempt| {
@@ -264,11 +303,36 @@ pub fn trace<P: PathProblem>(
         if interrupt.is_requested() {
             return Err(stop(PathStop::Interrupted, &path, history.len(), None));
         }
-        let mut step = path.attempt(settings, interrupt);
+        let mut step = path.attempt(settings, interrupt, None);
+        // a failure halves the arc, a failed landing shortens it in proportion
+        let mut shorten = 0.5;
+        if step.converged && step.lambda > settings.max_lambda && path.lambda < settings.max_lambda {
+            // redo the increment to land on the end (not a cutback)
+            let passed = step.lambda;
+            path.p.restore();
+            path.fresh = false;
+            step = path.attempt(settings, interrupt, Some(settings.max_lambda));
+            if !step.converged && step.failure.is_some_and(|f| f != PathFailure::Interrupted) {
+                // shorten the arc in proportion to the overshoot instead
+                shorten = ((settings.max_lambda - path.lambda) / (passed - path.lambda)).clamp(0.05, 0.45);
+            }
+        }
         step.index = history.len() + 1;
+        if step.converged && path.turns < MAX_TURNS && path.cosine() < settings.min_cosine {
+            step.converged = false;
+            step.message = Some(format!(
+                "the converged increment turned by {:.1}° from its predictor (at most {:.1}°: a jump along the path, \
+                 past a limit point?)",
+                path.cosine().clamp(-1.0, 1.0).acos().to_degrees(),
+                settings.min_cosine.acos().to_degrees()
+            ));
+            step.failure = Some(PathFailure::Turned);
+            path.turns += 1;
+        }
         if step.converged {
             path.p.commit();
             path.fresh = true;
+            path.turns = 0;
             path.lambda = step.lambda;
             std::mem::swap(&mut path.prev, &mut path.du);
             path.prev_dlambda = step.dlambda;
@@ -290,7 +354,7 @@ pub fn trace<P: PathProblem>(
             }
             observer.cut_back(&step);
             cutbacks += 1;
-            path.arc *= 0.5;
+            path.arc *= shorten;
             if path.arc < min {
                 return Err(stop(PathStop::ArcTooSmall, &path, history.len(), Some(step)));
             }
@@ -322,6 +386,10 @@ struct Path<'a, P: PathProblem> {
     /// True while the problem's tangent is that of the committed state.
     fresh: bool,
     first_sign: f64,
+    /// The present increment's predictor `Δu₁`.
+    predictor: Vec<f64>,
+    /// Rollbacks of the present increment for turning too far.
+    turns: usize,
 }
 
 impl<'a, P: PathProblem> Path<'a, P> {
@@ -352,20 +420,23 @@ impl<'a, P: PathProblem> Path<'a, P> {
             arc: 0.0,
             fresh: true,
             first_sign: if settings.initial_dlambda < 0.0 { -1.0 } else { 1.0 },
+            predictor: vec![0.0; n],
+            turns: 0,
         };
         path.p.residual(lambda, &mut path.r).map_err(|e| fail(Some(e.to_string())))?;
         path.p.solve(&mut [&mut path.df[..]]).map_err(|e| fail(Some(e.to_string())))?;
         let scale = (path.p.dot(&path.df, &path.df) + path.load_weight).sqrt();
-        path.arc = settings.initial_dlambda.abs() * scale;
+        path.arc = (settings.initial_dlambda.abs() * scale).min(settings.max_length);
         if !(path.arc > 0.0 && path.arc.is_finite()) {
             return Err(fail(Some(format!("the first predictor has length {:e}", path.arc))));
         }
         Ok(path)
     }
 
-    /// One increment of length `self.arc` from the committed state; the
+    /// One increment of length `self.arc` from the committed state — or,
+    /// with `land`, to the load factor `land` (Newton at fixed `λ`); the
     /// problem is left at its last iterate.
-    fn attempt(&mut self, settings: &ArcLengthSettings, interrupt: &Interrupt) -> PathStep {
+    fn attempt(&mut self, settings: &ArcLengthSettings, interrupt: &Interrupt, land: Option<f64>) -> PathStep {
         let mut step = PathStep {
             index: 0,
             lambda: self.lambda,
@@ -379,12 +450,12 @@ impl<'a, P: PathProblem> Path<'a, P> {
             cutbacks: 0,
             negative_pivots: None,
         };
-        match self.predict() {
+        match self.predict(land.map(|l| l - self.lambda)) {
             Ok(dlambda) => step.dlambda = dlambda,
             Err(e) => return failed(step, PathFailure::Problem, Some(e.to_string())),
         }
         loop {
-            step.lambda = self.lambda + step.dlambda;
+            step.lambda = land.unwrap_or(self.lambda + step.dlambda);
             if let Err(e) = self.p.residual(step.lambda, &mut self.r) {
                 return failed(step, PathFailure::Problem, Some(e.to_string()));
             }
@@ -403,7 +474,7 @@ impl<'a, P: PathProblem> Path<'a, P> {
             if interrupt.is_requested() {
                 return failed(step, PathFailure::Interrupted, None);
             }
-            match self.correct(step.dlambda) {
+            match self.correct(step.dlambda, land.is_some()) {
                 Ok(Some(dl)) => step.dlambda += dl,
                 Ok(None) => return failed(step, PathFailure::ComplexRoots, None),
                 Err(e) => return failed(step, PathFailure::Problem, Some(e.to_string())),
@@ -413,8 +484,8 @@ impl<'a, P: PathProblem> Path<'a, P> {
     }
 
     /// The predictor `Δu = Δλ₁ δu_F` from the committed state, applied to
-    /// the problem; returns `Δλ₁`.
-    fn predict(&mut self) -> Result<f64, P::Error> {
+    /// the problem (`Δλ₁` from the arc length, or `fixed`); returns `Δλ₁`.
+    fn predict(&mut self, fixed: Option<f64>) -> Result<f64, P::Error> {
         if !self.fresh {
             self.p.residual(self.lambda, &mut self.r)?;
         }
@@ -430,18 +501,20 @@ impl<'a, P: PathProblem> Path<'a, P> {
         } else {
             1.0
         };
-        let dlambda = sign * self.arc / norm;
+        let dlambda = fixed.unwrap_or(sign * self.arc / norm);
         for (d, x) in self.du.iter_mut().zip(&self.df) {
             *d = dlambda * x;
         }
         self.p.update(&self.du)?;
+        self.predictor.copy_from_slice(&self.du);
         Ok(dlambda)
     }
 
     /// One correction at the present iterate (`Δλ = dlambda` so far):
     /// `K δu_R = −R`, `K δu_F = f`, `δλ` from the constraint, `δu` applied
-    /// to the problem. Returns `δλ`, or `None` if the roots are complex.
-    fn correct(&mut self, dlambda: f64) -> Result<Option<f64>, P::Error> {
+    /// to the problem (with `fixed`, `δλ = 0`: Newton at fixed `λ`).
+    /// Returns `δλ`, or `None` if the roots are complex.
+    fn correct(&mut self, dlambda: f64, fixed: bool) -> Result<Option<f64>, P::Error> {
         for (d, r) in self.dr.iter_mut().zip(&self.r) {
             *d = -r;
         }
@@ -455,6 +528,9 @@ impl<'a, P: PathProblem> Path<'a, P> {
         let b = 2.0 * (fu + fr + w * dlambda);
         let c = uu + 2.0 * ur + rr + w * dlambda * dlambda - self.arc * self.arc;
         let disc = b * b - 4.0 * a * c;
+        if fixed {
+            return self.apply(0.0).map(Some);
+        }
         if !(disc >= 0.0) || !(a > 0.0) {
             return Ok(None);
         }
@@ -473,14 +549,28 @@ impl<'a, P: PathProblem> Path<'a, P> {
         } else {
             roots[1]
         };
+        self.apply(pick).map(Some)
+    }
+
+    /// `δu = δu_R + δλ δu_F` applied to the problem and the increment;
+    /// returns `δλ`.
+    fn apply(&mut self, dlambda: f64) -> Result<f64, P::Error> {
         for (d, x) in self.dr.iter_mut().zip(&self.df) {
-            *d += pick * x;
+            *d += dlambda * x;
         }
         self.p.update(&self.dr)?;
         for (u, d) in self.du.iter_mut().zip(&self.dr) {
             *u += d;
         }
-        Ok(Some(pick))
+        Ok(dlambda)
+    }
+
+    /// The cosine between the present increment's `Δu` and its predictor
+    /// (1 for a zero vector: nothing turned).
+    fn cosine(&self) -> f64 {
+        let p = &*self.p;
+        let (uu, pp) = (p.dot(&self.du, &self.du), p.dot(&self.predictor, &self.predictor));
+        if uu > 0.0 && pp > 0.0 { p.dot(&self.du, &self.predictor) / (uu * pp).sqrt() } else { 1.0 }
     }
 }
 

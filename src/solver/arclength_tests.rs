@@ -294,3 +294,65 @@ fn repeated_failure_stops_at_the_minimum_arc_length() {
     assert!(e.to_string().contains("factor broke down"), "{e}");
     assert_eq!(p.0.u, [0.0]);
 }
+
+/// Records the converged points until `λ` reaches `end`.
+struct Until(f64, Vec<(f64, Vec<f64>)>, usize);
+
+impl PathObserver<Truss> for Until {
+    fn converged(&mut self, problem: &Truss, step: &PathStep) -> bool {
+        self.1.push((step.lambda, problem.u.clone()));
+        step.lambda < self.0
+    }
+    fn cut_back(&mut self, _: &PathStep) {
+        self.2 += 1;
+    }
+}
+
+/// A first arc three and five times the linear path to the limit load
+/// (`Δλ₁ = 3`, `5`) on the truss with a spring in series: unchecked, it
+/// converges on the stable branch far beyond both limit points (λ = 0.14
+/// then 3.2, 6.7, …: λ never turns); with the check each jump turns the
+/// increment by more than 11.5° from its predictor, is redone shorter, and
+/// the path passes both limit points (λ turns twice), every point on the
+/// exact path. (A first arc of 10 jumps without turning: what
+/// [`ArcLengthSettings::max_length`] is for.)
+#[test]
+fn a_long_arc_does_not_jump_over_the_limit_points() {
+    for first in [3.0, 5.0] {
+        let traced = |min_cosine: f64| {
+            let s = ArcLengthSettings { initial_dlambda: first, min_cosine, max_increments: 60, ..settings() };
+            let (mut problem, mut record) = (Truss::new(Some(0.5 * kt())), Record::default());
+            let _ = trace(&mut problem, 0.0, &s, &mut record, &Interrupt::new());
+            record
+        };
+        let unchecked = traced(-1.0);
+        let lambda: Vec<f64> = unchecked.points.iter().map(|p| p.0).collect();
+        assert_eq!(reversals(&lambda), 0, "the premise: an unchecked arc of {first} jumps, {lambda:?}");
+        let checked = traced(ArcLengthSettings::default().min_cosine);
+        let lambda: Vec<f64> = checked.points.iter().map(|p| p.0).collect();
+        assert!(checked.cutbacks > 0, "no increment redone");
+        // down below −1/2 and back up to 1 (the observer's end), λ turning twice
+        assert!(checked.dipped && *lambda.last().unwrap() >= 1.0, "{lambda:?}");
+        assert_eq!(reversals(&lambda), 2, "{lambda:?}");
+        for (lambda, u) in &checked.points {
+            assert!((lambda - truss(u[0]).0 / p_ref()).abs() < 1e-8, "v = {}: λ = {lambda}", u[0]);
+        }
+    }
+}
+
+/// With `max_lambda = 0.5` the increment that passes it is redone at
+/// λ = 0.5: the last point is there exactly, on the exact path's rising
+/// branch (`F(w) = P/2`, `w < h(1 − 1/√3)`), and no cutback was counted.
+#[test]
+fn the_path_lands_on_its_end() {
+    let s = ArcLengthSettings { max_lambda: 0.5, initial_dlambda: 0.15, ..settings() };
+    let mut record = Until(0.5, Vec::new(), 0);
+    let mut problem = Truss::new(None);
+    let steps = trace(&mut problem, 0.0, &s, &mut record, &Interrupt::new()).unwrap();
+    let (lambda, u) = record.1.last().unwrap();
+    assert_eq!(*lambda, 0.5);
+    assert!((truss(u[0]).0 / p_ref() - 0.5).abs() < 1e-9, "w = {}", u[0]);
+    assert!(u[0] < H * (1.0 - 1.0 / 3f64.sqrt()));
+    assert!(record.1[..record.1.len() - 1].iter().all(|p| p.0 < 0.5));
+    assert_eq!((record.2, steps.last().unwrap().cutbacks), (0, 0));
+}

@@ -149,6 +149,10 @@ pub enum Failure {
     Problem,
     /// A stop was requested through the [`Interrupt`].
     Interrupted,
+    /// The iteration converged, but a check of the converged state
+    /// rejected it (the report's message says why; e.g. an arc-length
+    /// increment that turned too far from its predictor).
+    Rejected,
 }
 
 /// History of one Newton solve.

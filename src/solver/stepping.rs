@@ -198,6 +198,7 @@ fn describe(r: &Report) -> String {
     let what = match r.failure {
         Some(newton::Failure::Diverged) => format!("Newton diverged after {} iterations", r.iterations),
         Some(newton::Failure::Problem) => format!("the linear solve failed after {} iterations", r.iterations),
+        Some(newton::Failure::Rejected) => format!("converged in {} iterations but rejected", r.iterations),
         Some(newton::Failure::Stagnated) => {
             format!("Newton's residual stopped decreasing ({} iterations)", r.iterations)
         }

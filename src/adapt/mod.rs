@@ -9,8 +9,9 @@
 //! * the next mesh would have more DOF than the budget `max_dof`,
 //! * `max_cycles` refinements have been solved,
 //! * nothing is left to refine, or
-//! * the analysis of a cycle stopped early (not converged, interrupted):
-//!   its last converged state is the result, as for a single run.
+//! * the analysis of a cycle stopped early (not converged, interrupted) or
+//!   failed, or a stop was requested: the last finished cycle is the result
+//!   (for the first cycle, its last converged state, as for a single run).
 //!
 //! Otherwise the elements holding the share `fraction` (Dörfler's θ) of
 //! `Σ η_e²` are marked ([`mark::dorfler`]) and every division interval
@@ -33,8 +34,9 @@ pub mod mark;
 use std::path::Path;
 use std::time::Instant;
 
-use crate::analysis::{self, AdaptCycle, Adaptivity, AnalysisError, Progress, RunOptions, Solution};
+use crate::analysis::{self, AdaptCycle, AdaptEnd, Adaptivity, AnalysisError, Progress, RunOptions, Solution};
 use crate::model::{AdaptSettings, Limits, MeshPlan, Model, ModelError};
+use crate::solver::stepping::StopReason;
 
 /// Errors of an adaptive run.
 #[derive(Debug, thiserror::Error)]
@@ -83,7 +85,15 @@ pub struct Source<'a> {
 /// Runs `model` (read from `source`) adaptively under `settings`, calling
 /// `report` after each cycle with the cycle, its model and its solution
 /// (which a caller may sample: each cycle's results are otherwise
-/// dropped). Returns the last cycle's model and solution.
+/// dropped). Returns the last finished cycle's model and solution.
+///
+/// Every exit after the first cycle keeps the last finished one: a later
+/// cycle whose mesh exceeds the memory allowed ends the run as the DOF
+/// budget does ([`AdaptEnd::Done`]); one whose analysis stops early, fails,
+/// or whose refined model cannot be built ends it [`AdaptEnd::Stopped`]; a
+/// stop request (Ctrl-C) [`AdaptEnd::Interrupted`] — each with the last
+/// finished cycle's solution and the reason in [`Adaptivity::stop`]. Only
+/// the first cycle's errors are errors (nothing was finished).
 pub fn run(
     model: Model,
     source: Source<'_>,
@@ -98,35 +108,93 @@ pub fn run(
     if model.n_dofs() > settings.max_dof {
         return Err(AdaptError::Budget { max_dof: settings.max_dof, dof: model.n_dofs() });
     }
-    let (mut model, mut cycles, mut refined, mut start) = (model, Vec::new(), String::new(), Instant::now());
+    let mut run = Cycles { settings, cycles: Vec::new(), last: None };
+    let (mut model, mut refined, mut start) = (model, String::new(), Instant::now());
     loop {
-        let mut solution = analysis::run(&model, options, progress)?;
+        let k = run.cycles.len();
+        if k > 0 && options.interrupt.is_requested() {
+            return Ok(run.end(format!("interrupted before cycle {k}"), AdaptEnd::Interrupted));
+        }
+        let mut solution = match analysis::run(&model, options, progress) {
+            Err(e) if k == 0 => return Err(e.into()),
+            Err(AnalysisError::TooLarge { estimate, limit }) => {
+                let why = format!(
+                    "the mesh of cycle {k} ({} DOF) would need {} of memory, more than the {} allowed",
+                    model.n_dofs(),
+                    crate::size::human_bytes(estimate.total()),
+                    crate::size::human_bytes(limit)
+                );
+                return Ok(run.end(why, AdaptEnd::Done));
+            }
+            Err(e) => {
+                let why = format!("the analysis of cycle {k} ({} DOF) failed: {e}", model.n_dofs());
+                return Ok(run.end(why, AdaptEnd::Stopped));
+            }
+            Ok(s) => match &s.failure {
+                Some(f) if k > 0 => {
+                    let end =
+                        if f.reason == StopReason::Interrupted { AdaptEnd::Interrupted } else { AdaptEnd::Stopped };
+                    return Ok(
+                        run.end(format!("the analysis of cycle {k} ({} DOF) stopped early: {f}", model.n_dofs()), end)
+                    );
+                }
+                _ => s,
+            },
+        };
         let estimate = solution.error_estimate.as_ref().map_or(0.0, |e| e.relative());
         let cycle = AdaptCycle {
-            cycle: cycles.len(),
+            cycle: k,
             dof: model.n_dofs(),
             estimate,
             time_s: start.elapsed().as_secs_f64(),
             refined: std::mem::take(&mut refined),
         };
         report(&cycle, &model, &solution);
-        cycles.push(cycle);
+        run.cycles.push(cycle);
         start = Instant::now();
-        let next = match stop_before_refining(&solution, estimate, settings, cycles.len() - 1) {
-            Some(reason) => Err(reason),
-            None => next_model(&model, &solution, source, settings)?,
+        let next = match stop_before_refining(&solution, estimate, settings, k) {
+            Some(reason) => Err((reason, AdaptEnd::Done)),
+            None => match next_model(&model, &solution, source, settings) {
+                Ok(next) => next.map_err(|reason| (reason, AdaptEnd::Done)),
+                Err(e) => {
+                    Err((format!("the refined model of cycle {} could not be built: {e}", k + 1), AdaptEnd::Stopped))
+                }
+            },
         };
         match next {
             Ok(next) => {
                 refined = mark::describe(&model.mesh, &model.plan, &next.plan);
-                model = next;
+                run.last = Some((std::mem::replace(&mut model, next), solution));
             }
-            Err(stop) => {
-                let (tolerance, max_dof) = (settings.tolerance, settings.max_dof);
-                solution.adapt = Some(Adaptivity { cycles, stop, tolerance, max_dof });
+            Err((stop, end)) => {
+                solution.adapt = Some(run.adaptivity(stop, end));
                 return Ok((model, solution));
             }
         }
+    }
+}
+
+/// The cycles of an adaptive run so far and the last finished one's model
+/// and solution (once a refinement follows it).
+struct Cycles<'a> {
+    settings: &'a AdaptSettings,
+    cycles: Vec<AdaptCycle>,
+    last: Option<(Model, Solution)>,
+}
+
+impl Cycles<'_> {
+    fn adaptivity(&mut self, stop: String, end: AdaptEnd) -> Adaptivity {
+        let (tolerance, max_dof) = (self.settings.tolerance, self.settings.max_dof);
+        Adaptivity { cycles: std::mem::take(&mut self.cycles), stop, tolerance, max_dof, end }
+    }
+
+    /// The end of the run after a later cycle could not finish: the last
+    /// finished cycle's model and solution, with why.
+    fn end(mut self, why: String, end: AdaptEnd) -> (Model, Solution) {
+        let (model, mut solution) = self.last.take().expect("a cycle finished before a refinement");
+        let k = self.cycles.len() - 1;
+        solution.adapt = Some(self.adaptivity(format!("{why}; the results are cycle {k}'s, the last finished"), end));
+        (model, solution)
     }
 }
 

@@ -10,17 +10,21 @@
 //! ```
 
 pub mod buckling;
+mod checks;
+mod conditioning;
 pub mod modal;
 pub mod path;
 mod recorder;
 mod results;
+mod solution;
+mod stages;
 pub mod structure;
 mod warnings;
 
 pub use path::{PathEnd, PathOutcome};
 pub use recorder::Frame;
 use recorder::Recorder;
-pub use results::{AdaptCycle, Adaptivity};
+pub use results::{AdaptCycle, AdaptEnd, Adaptivity};
 pub use structure::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Structure, Timings};
 
 use std::time::{Duration, Instant};
@@ -49,9 +53,19 @@ pub enum AnalysisError {
     Linear(#[from] LinearError),
     /// The imperfection's mode was not found.
     #[error(
-        "analysis.imperfection.mode = {0}: the buckling analysis of the model found {1} positive critical load factors"
+        "analysis.imperfection.mode = {mode}: expected the number of a buckling mode of the model, whose buckling \
+         analysis found {found} buckling load factor(s){why}"
     )]
-    Imperfection(usize, usize),
+    Imperfection {
+        /// The mode asked for.
+        mode: usize,
+        /// Buckling load factors found.
+        found: usize,
+        /// Factors found beyond the critical-strain bound (not buckling).
+        beyond: Vec<f64>,
+        /// Why, when more can be said (`; …`).
+        why: String,
+    },
     /// A value of the model that the analysis found it cannot take (e.g. an
     /// arc length too long for the model's stiffness).
     #[error(transparent)]
@@ -422,19 +436,17 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         },
     );
     let mut recorder = Recorder::new(model, progress);
-    let (step_ends, failure, path) = drive(&mut structure, model, options, &mut recorder)?;
+    let (step_ends, mut failure, path) = drive(&mut structure, model, options, &mut recorder)?;
+    if let Some(f) = failure.as_mut().filter(|f| f.reason == stepping::StopReason::IncrementTooSmall)
+        && let Some(why) = conditioning::diagnose(model)
+    {
+        f.newton.message = Some(f.newton.message.take().map_or(why.clone(), |m| format!("{m}; {why}")));
+    }
     if failure.is_some() {
         // refresh forces at the last converged state for reactions and contact output
         structure.evaluate()?;
     }
-    let buckled = match (model.buckling, &failure) {
-        (Some(b), None) => Some(buckling::solve(&mut structure, b.modes)?),
-        _ => None,
-    };
-    let vibration = match (model.modal, &failure) {
-        (Some(settings), None) => Some(modal::solve(&mut structure, settings)?),
-        _ => None,
-    };
+    let (buckled, vibration, failure) = stages::eigen(&mut structure, model, &recorder.history, failure)?;
     let lambda = structure.load_factor();
     let mut applied = [0.0; 3];
     for (d, f) in structure.external_loads().iter().enumerate() {
@@ -501,103 +513,4 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
     }
     solution.warnings = warnings::result_warnings(model, &solution);
     Ok(solution)
-}
-
-impl Solution {
-    /// The reaction of the constraint set `name`.
-    pub fn reaction(&self, name: &str) -> Option<&Reaction> {
-        self.reactions.iter().find(|r| r.name == name)
-    }
-
-    /// The resultant of the indenter or contact `name`.
-    pub fn contact(&self, name: &str) -> Option<&ContactResultant> {
-        self.contacts.iter().find(|c| c.name == name)
-    }
-
-    /// The points of the indenter or contact `name`.
-    pub fn contact_points(&self, name: &str) -> Option<&[ContactPoint]> {
-        self.contact_sets.iter().find(|c| c.name == name).map(|c| c.points.as_slice())
-    }
-
-    /// The solution as it was at the end of step `k` (fields, reactions and
-    /// contact resultants of that moment; histories and timings of the whole
-    /// run), or `None` if the step did not complete or kept no fields.
-    pub fn at_step(&self, model: &Model, k: usize) -> Result<Option<Solution>, AnalysisError> {
-        let Some(end) = self.steps.get(k) else { return Ok(None) };
-        let Some(fields) = &end.fields else { return Ok(None) };
-        self.with_fields(model, fields, end.lambda, (&end.reactions, &end.contacts)).map(Some)
-    }
-
-    /// The solution as it was at frame `k` of a transient run (its fields,
-    /// and the reactions and contact resultants of its increment).
-    pub fn at_frame(&self, model: &Model, k: usize) -> Result<Solution, AnalysisError> {
-        let frame = &self.frames[k];
-        let row = &self.history[frame.increment - 1];
-        self.with_fields(model, &frame.fields, row.lambda, (&row.reactions, &row.contacts))
-    }
-
-    /// This solution with the fields, λ and resultants of another moment
-    /// (histories and timings of the whole run).
-    fn with_fields(
-        &self,
-        model: &Model,
-        fields: &StepFields,
-        lambda: f64,
-        (reactions, contacts): (&[Reaction], &[ContactResultant]),
-    ) -> Result<Solution, AnalysisError> {
-        // field by field: `..self.clone()` would copy every step's fields
-        // (and the final ones) only to drop them
-        let mut s = Solution {
-            u: fields.u.clone(),
-            states: fields.states.clone(),
-            stresses: fields.stresses.clone(),
-            gp_offsets: self.gp_offsets.clone(),
-            lambda,
-            reactions: reactions.to_vec(),
-            contacts: contacts.to_vec(),
-            contact_sets: self.contact_sets.clone(),
-            applied: self.applied,
-            history: self.history.clone(),
-            increments: self.increments.clone(),
-            cutbacks: self.cutbacks.clone(),
-            failure: self.failure.clone(),
-            equations: self.equations,
-            factor_nnz: self.factor_nnz,
-            plastic_points: self.plastic_points,
-            timings: self.timings,
-            wall_time: self.wall_time,
-            memory: self.memory.clone(),
-            warnings: self.warnings.clone(),
-            recovered: None,
-            error_estimate: None,
-            steps: Vec::new(),
-            adapt: None,
-            buckling: None,
-            modal: None,
-            energy: None,
-            frames: Vec::new(),
-            path: self.path.clone(),
-        };
-        if model.output.recovery == crate::model::Recovery::Projection {
-            s.recovered =
-                Some(crate::post::recovery::project(&model.mesh, &model.cells, &s.stresses, &s.states, &s.gp_offsets)?);
-        }
-        Ok(s)
-    }
-
-    /// A view for field evaluation.
-    pub fn fields<'a>(&'a self, model: &'a Model) -> crate::post::FieldView<'a> {
-        crate::post::FieldView {
-            mesh: &model.mesh,
-            geometry: &model.cells,
-            materials: &model.materials,
-            u: &self.u,
-            states: &self.states,
-            stresses: &self.stresses,
-            gp_offsets: &self.gp_offsets,
-            recovered: self.recovered.as_ref(),
-            kinematics: model.kinematics,
-            symmetry: &model.symmetry.planes,
-        }
-    }
 }

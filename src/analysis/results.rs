@@ -157,4 +157,23 @@ pub struct Adaptivity {
     pub tolerance: f64,
     /// The DOF budget.
     pub max_dof: usize,
+    /// How the run ended; the solution is that of the last cycle in
+    /// [`Adaptivity::cycles`] (the last finished one) unless `Done` came
+    /// with a cycle whose own analysis stopped early (cycle 0).
+    pub end: AdaptEnd,
+}
+
+/// How an adaptive run ended.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum AdaptEnd {
+    /// As asked: the tolerance, the DOF budget, the memory limit,
+    /// `max_cycles`, nothing left to refine — or cycle 0 itself stopped
+    /// early (its `Solution::failure` says why, as for a single run).
+    Done,
+    /// A later cycle's analysis stopped early, failed, or its refined model
+    /// could not be built: the results are the last finished cycle's.
+    Stopped,
+    /// A stop was requested (Ctrl-C, SIGTERM) during or between later
+    /// cycles: the results are the last finished cycle's.
+    Interrupted,
 }

@@ -58,6 +58,7 @@ pub(super) fn result_warnings(model: &Model, solution: &Solution) -> Vec<Warning
         }
     }
     strain_measure_warning(model, solution, &mut warnings);
+    super::checks::check(model, solution, &mut warnings);
     contact_energy_warning(model, solution, &mut warnings);
     let finite = |f: &[f64; 3]| f.iter().all(|v| v.is_finite());
     if !(solution.reactions.iter().all(|r| finite(&r.force)) && solution.contacts.iter().all(|c| finite(&c.force))) {

@@ -6,12 +6,12 @@ use std::path::Path;
 
 use anyhow::anyhow;
 use cufem::adapt::{AdaptError, Source};
-use cufem::analysis::{AnalysisError, RunOptions};
+use cufem::analysis::{AdaptEnd, AnalysisError, RunOptions, Solution};
 use cufem::io::output::OutputDir;
 use cufem::io::{RunInto, solved_into};
 use cufem::model::{AdaptSettings, Model, ModelError};
 
-use super::{Failure, INPUT, Reporter, TOO_LARGE, fail, model_failure, run_failure};
+use super::{Failure, INPUT, INTERRUPTED, NOT_CONVERGED, Reporter, TOO_LARGE, fail, model_failure, run_failure};
 
 /// The options of `cufem run` for adaptive refinement.
 #[derive(clap::Args)]
@@ -108,10 +108,27 @@ pub(super) fn run_into(
         e @ (AdaptError::Budget { .. } | AdaptError::Layered { .. }) => fail(INPUT, e),
     })?;
     if let Some(a) = &solution.adapt {
-        progress.line(format!("adaptive run stopped: {}", a.stop));
+        if a.end == AdaptEnd::Done {
+            progress.line(format!("adaptive run stopped: {}", a.stop));
+        } else {
+            // also with --quiet: the results are not those asked for
+            eprintln!("adaptive run stopped: {}", a.stop);
+        }
     }
     let written = solved_into(&model, solution, folder, |_| ()).map_err(run_failure)?;
     Ok((model, written))
+}
+
+/// The exit code of an adaptive run that wrote its last finished cycle
+/// but did not end as asked: a later cycle stopped or failed (2), or a stop
+/// was requested (130); `None` otherwise (the solution's own failure
+/// decides, as for a single run).
+pub(super) fn exit_code(solution: &Solution) -> Option<u8> {
+    match solution.adapt.as_ref().map(|a| a.end) {
+        Some(AdaptEnd::Stopped) => Some(NOT_CONVERGED),
+        Some(AdaptEnd::Interrupted) => Some(INTERRUPTED),
+        _ => None,
+    }
 }
 
 /// The report line of one cycle.

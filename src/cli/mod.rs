@@ -469,6 +469,9 @@ fn run(
     println!("\nwrote {} files to {}", run.files.len(), dest.display());
     match &solution.failure {
         None => {
+            if let Some(code) = adapt::exit_code(solution) {
+                return Ok(code);
+            }
             if interrupt.is_requested() {
                 eprintln!("(the interrupt came after the analysis had finished: the results are complete)");
             }

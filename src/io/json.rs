@@ -151,6 +151,15 @@ pub struct Summary {
     /// Why the adaptive run stopped, absent for a single run.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub adapt_stop: Option<String>,
+    /// The cycle whose results the files hold (the last finished one),
+    /// absent for a single run.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub adapt_cycle: Option<usize>,
+    /// How the adaptive run ended: `"done"` (tolerance, budget, memory,
+    /// max_cycles), `"stopped"` (a later cycle failed or stopped early) or
+    /// `"interrupted"`; absent for a single run.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub adapt_end: Option<&'static str>,
     /// `analysis.type = "buckling"`: the critical load factors and their
     /// mode files, absent for a static analysis.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -437,6 +446,12 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
                 .collect()
         }),
         adapt_stop: solution.adapt.as_ref().map(|a| a.stop.clone()),
+        adapt_cycle: solution.adapt.as_ref().and_then(|a| a.cycles.last()).map(|c| c.cycle),
+        adapt_end: solution.adapt.as_ref().map(|a| match a.end {
+            crate::analysis::AdaptEnd::Done => "done",
+            crate::analysis::AdaptEnd::Stopped => "stopped",
+            crate::analysis::AdaptEnd::Interrupted => "interrupted",
+        }),
         buckling: solution.buckling.as_ref().map(|b| BucklingSummary {
             factors: b.factors.clone(),
             critical_loads: b.factors.iter().map(|f| solution.applied.map(|a| a * f / solution.lambda)).collect(),

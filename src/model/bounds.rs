@@ -21,6 +21,8 @@
 //! | prescribed and indenter displacements | ≤ the body's size | a rigid-body scale motion is not small displacement |
 //! | penalty factor α | 1e-3 … 1e8 | |
 //! | mass density | 0.1 … 2e5 kg/m³ | aerogels to ten times osmium |
+//! | Poisson's ratio (isotropic) | −1 < ν ≤ 0.4999 | rubber's; closer to ½ the bulk modulus exceeds 5000 G and the solves lose the digits Newton needs |
+//! | ply elements | ≥ 1e-5 × the stack's thickness | thin-ply prepregs (20 µm) are 2e-4 of a 0.1 m stack |
 
 use super::{ModelError, invalid};
 pub use crate::numbers::{limit, list, number};
@@ -38,6 +40,21 @@ pub const MAX_TABLE_PEEQ: f64 = 10.0;
 pub use crate::mesh::{GRADING_RATIO, MAX_COORD, MIN_RELATIVE_SIZE};
 /// Accepted range of the mass density (kg/m³).
 pub const DENSITY: (f64, f64) = (0.1, 2e5);
+/// Largest Poisson's ratio of an isotropic material: natural rubber's
+/// (1 − 2ν = 2e-4, bulk modulus 5000 times the shear modulus). Closer to ½
+/// the stiffness matrix is too ill-conditioned for double precision:
+/// examples/epp_cantilever.toml and bending_compact_4L9.toml converge at
+/// ν = 0.49999 and stall at a residual of 1e-5 at 0.499999.
+pub const MAX_POISSON: f64 = 0.4999;
+/// Smallest element of a ply (its thickness over its elements) as a share
+/// of the stack's thickness; the thinnest plies made (thin-ply prepregs,
+/// 20 µm) are 2e-4 of a 0.1 m stack. Thinner, the ply's through-thickness
+/// stiffness swamps its neighbours' and the linear solves lose the digits
+/// Newton needs: Pagano's S = 4 laminate (examples/pagano_s4.toml) with its
+/// middle ply 1e-9 m thick (elements 3.7e-8 of the stack) stalls at a
+/// residual of 1e-3 (1e-8 m, 3.7e-7, converges), and an L9 section with an
+/// element 1e-6 of its height stalls at 4e-5 (1e-5 converges).
+pub const MIN_PLY_SHARE: f64 = 1e-5;
 /// Accepted range of the dimensionless penalty factor.
 pub const PENALTY_FACTOR: (f64, f64) = (1e-3, 1e8);
 

@@ -47,6 +47,21 @@ pub(super) fn check(sk: &str, plies: &[PlyFile]) -> Result<(), ModelError> {
         if !(1..=MAX_COUNT).contains(&n) {
             return Err(invalid(format!("{pk}.elements"), n, format!("an integer in 1..={MAX_COUNT}")));
         }
+        let stack: f64 = plies.iter().map(|q| q.thickness).sum();
+        if p.thickness / (n as f64) < bounds::MIN_PLY_SHARE * stack {
+            return Err(invalid(
+                format!("{pk}.thickness"),
+                crate::numbers::number(p.thickness),
+                format!(
+                    "at least {} m with {n} element(s): each element at least {:e} of the stack's {} m (thinner, \
+                     the ply's stiffness through its thickness swamps its neighbours' and the solves lose the digits \
+                     Newton needs)",
+                    crate::numbers::limit(bounds::MIN_PLY_SHARE * stack * n as f64),
+                    bounds::MIN_PLY_SHARE,
+                    crate::numbers::limit(stack)
+                ),
+            ));
+        }
         if let Some(a) = p.angle
             && !(a.is_finite() && a.abs() <= 360.0)
         {

@@ -62,10 +62,18 @@ fn isotropic(key: &str, m: &MaterialFile) -> Result<Material, ModelError> {
         "Young's modulus in Pa, from soft foams to ten times diamond",
     )?;
     let nu = m.poisson_ratio.ok_or_else(|| {
-        invalid(format!("{key}.poisson_ratio"), "(missing)", "Poisson's ratio, a number in (−1, 0.5)")
+        invalid(format!("{key}.poisson_ratio"), "(missing)", "Poisson's ratio, a number in (−1, 0.4999]")
     })?;
-    if !(nu.is_finite() && nu > -1.0 && nu < 0.5) {
-        return Err(invalid(format!("{key}.poisson_ratio"), nu, "a number in (−1, 0.5)"));
+    if !(nu.is_finite() && nu > -1.0 && nu <= bounds::MAX_POISSON) {
+        return Err(invalid(
+            format!("{key}.poisson_ratio"),
+            nu,
+            format!(
+                "a number in (−1, {}] (rubber's; nearer to 0.5 the stiffness matrix is too ill-conditioned to solve \
+                 in double precision)",
+                bounds::MAX_POISSON
+            ),
+        ));
     }
     let (hardening, kinematic) = match &m.plasticity {
         None => (None, Vec::new()),

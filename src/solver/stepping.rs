@@ -143,6 +143,10 @@ pub enum StopReason {
     /// arc length fell below its minimum, or the increments ran out
     /// (`SteppingError::newton` carries the message).
     PathFollowing,
+    /// The eigenvalue analysis after the converged static solution
+    /// (buckling, modal) could not be made; the static state is kept
+    /// (`SteppingError::newton` carries the message).
+    Eigenproblem,
 }
 
 /// The analysis could not reach λ = 1 (the problem is left at its last
@@ -186,7 +190,7 @@ impl std::fmt::Display for SteppingError {
             StopReason::Interrupted => {
                 write!(f, "interrupted at load factor {:.6} (the last converged increment)", self.last_converged)
             }
-            StopReason::PathFollowing => {
+            StopReason::PathFollowing | StopReason::Eigenproblem => {
                 f.write_str(self.newton.message.as_deref().unwrap_or("path following stopped"))
             }
         }

@@ -168,7 +168,7 @@ fn bad_input_is_reported_with_key_value_and_allowed_values() {
     let cases: Vec<(String, Vec<&str>)> = vec![
         (
             base.replace("poisson_ratio = 0.3", "poisson_ratio = 0.7"),
-            vec!["materials[0].poisson_ratio", "0.7", "(−1, 0.5)"],
+            vec!["materials[0].poisson_ratio", "0.7", "(−1, 0.4999]"],
         ),
         (
             base.replace("element = \"L9\"", "element = \"L8\""),

@@ -11,6 +11,9 @@ use crate::solver::eigen::EigenError;
 use crate::solver::newton::Report;
 use crate::solver::stepping::{SteppingError, StopReason};
 
+/// The buckling or modal results, and the run's failure.
+type Eigen = (Option<buckling::Buckling>, Option<modal::Modal>, Option<SteppingError>);
+
 /// Runs the model's eigenvalue analysis about the converged static state
 /// (none after a static run that stopped early). An eigenproblem that
 /// cannot be solved becomes the run's failure, the static state kept.
@@ -19,7 +22,7 @@ pub(super) fn eigen(
     model: &Model,
     history: &[HistoryRow],
     failure: Option<SteppingError>,
-) -> Result<(Option<buckling::Buckling>, Option<modal::Modal>, Option<SteppingError>), AnalysisError> {
+) -> Result<Eigen, AnalysisError> {
     if failure.is_some() {
         return Ok((None, None, failure));
     }

@@ -468,10 +468,8 @@ fn run(
     print_warnings(solution.warnings.iter());
     println!("\nwrote {} files to {}", run.files.len(), dest.display());
     match &solution.failure {
+        None if adapt::exit_code(solution).is_some() => Ok(adapt::exit_code(solution).unwrap_or(OK)),
         None => {
-            if let Some(code) = adapt::exit_code(solution) {
-                return Ok(code);
-            }
             if interrupt.is_requested() {
                 eprintln!("(the interrupt came after the analysis had finished: the results are complete)");
             }

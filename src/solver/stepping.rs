@@ -143,9 +143,7 @@ pub enum StopReason {
     /// arc length fell below its minimum, or the increments ran out
     /// (`SteppingError::newton` carries the message).
     PathFollowing,
-    /// The eigenvalue analysis after the converged static solution
-    /// (buckling, modal) could not be made; the static state is kept
-    /// (`SteppingError::newton` carries the message).
+    /// The eigenproblem after the static solution failed (message in `newton`).
     Eigenproblem,
 }
 
@@ -202,7 +200,6 @@ fn describe(r: &Report) -> String {
     let what = match r.failure {
         Some(newton::Failure::Diverged) => format!("Newton diverged after {} iterations", r.iterations),
         Some(newton::Failure::Problem) => format!("the linear solve failed after {} iterations", r.iterations),
-        Some(newton::Failure::Rejected) => format!("converged in {} iterations but rejected", r.iterations),
         Some(newton::Failure::Stagnated) => {
             format!("Newton's residual stopped decreasing ({} iterations)", r.iterations)
         }

@@ -15,7 +15,7 @@ use crate::model::{Model, Warning};
 /// at 0.5 rad — more than any elastic strain, so the stresses are no longer
 /// those of the structure. Over a body, not at a point: a punch's corner or
 /// a plastic hinge concentrates the gradient at points of a sound analysis
-/// (shipped small-strain examples: largest point values 2.99 at the corner
+/// (shipped small-strain examples: largest single components 2.99 at the corner
 /// of examples/punch_plane_strain.toml and 0.23 in the plastic hinge of
 /// examples/epp_cantilever.toml; body RMS values at most 0.29, on that
 /// cantilever collapsing to 20 % of its length, and 0.20 on Pagano's S = 50

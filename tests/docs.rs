@@ -141,3 +141,44 @@ fn relative_links_resolve() {
     }
     assert!(broken.is_empty(), "broken links:\n{}", broken.join("\n"));
 }
+
+/// Every `#[ignore]` in tests/ and src/ names the validation step that runs
+/// it: `#[ignore = "validate: slow — …"]` (bench/validate's step `slow`,
+/// within its hour) or `#[ignore = "validate: references — …"]` (the long
+/// CalculiX runs that re-make stored 3D references, `bench/validate
+/// --references`). A bare or other reason would leave the test run by
+/// nothing.
+#[test]
+fn every_ignored_test_names_its_validation_step() {
+    let mut files = Vec::new();
+    let mut stack = vec![root().join("tests"), root().join("src")];
+    while let Some(dir) = stack.pop() {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                stack.push(p);
+            } else if p.extension().is_some_and(|x| x == "rs") {
+                files.push(p);
+            }
+        }
+    }
+    let validate = std::fs::read_to_string(root().join("bench/validate")).unwrap();
+    assert!(validate.contains("\"validate: slow\"") && validate.contains("\"validate: references\""));
+    let mut bad = Vec::new();
+    for f in files {
+        for (n, line) in std::fs::read_to_string(&f).unwrap().lines().enumerate() {
+            let t = line.trim_start();
+            if t.starts_with("#[ignore")
+                && !(t.starts_with("#[ignore = \"validate: slow — ")
+                    || t.starts_with("#[ignore = \"validate: references — "))
+            {
+                bad.push(format!("{}:{}: {t}", f.strip_prefix(root()).unwrap().display(), n + 1));
+            }
+        }
+    }
+    assert!(
+        bad.is_empty(),
+        "ignored tests that no validation step runs (give them `validate: slow — …` or `validate: references — …`):\n{}",
+        bad.join("\n")
+    );
+}

@@ -183,6 +183,7 @@ fn block_indentation() {
     // 2.2 MPa, 0.7 % of the 3D peak; asserted 2 % (the paper's element:
     // 65 MPa, test below).
     let reversal = largest_reversal(&top_line(&out));
+    common::figure("block.reversal", reversal / 1e6, "MPa", "< 2 % of the 3D peak (5.9 MPa)");
     assert!(reversal < 0.02 * BLOCK_SZZ_PEAK_3D, "σ_zz reversal under the punch {reversal:e} Pa");
     // The punch edge is a singular point: at the probe (0.2, 0.05, 0.3) the
     // 3D model gives σ_zz −213.7 MPa and peeq 0.194
@@ -252,9 +253,10 @@ fn block_indentation_first_increment_force_against_3d() {
 /// The block with the paper's displacement-based element and element-wise
 /// recovery (the example without its two issue-8 lines): volumetric locking
 /// in the confined plastic flow under the punch. Measured: punch force
-/// +8.0 % above the 3D model and a σ_zz reversal of 65 MPa under the punch
-/// (plateaus joined by jumps). This is why the example ships B-bar; the test
-/// fails if `formulation` or `recovery` stopped being honoured.
+/// +8.0 % above the 3D model (a known limit of that element, asserted from
+/// both sides) and a σ_zz reversal of 65 MPa under the punch (plateaus
+/// joined by jumps). This is why the example ships B-bar; the test fails if
+/// `formulation` or `recovery` stopped being honoured.
 #[test]
 fn block_indentation_paper_element_locks() {
     let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/block_indentation.toml"))
@@ -264,10 +266,13 @@ fn block_indentation_paper_element_locks() {
     assert!(!text.contains("formulation = \"bbar\"\n") && !text.contains("recovery = \"projection\"\n"));
     let (s, out) = run_text("block_standard", &text);
     let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
-    let excess = vec3(&punch["force"])[2] / BLOCK_FORCE_3D - 1.0;
-    assert!((0.05..0.11).contains(&excess), "punch force {:+.1} % vs CalculiX", 100.0 * excess);
+    let excess = 100.0 * (vec3(&punch["force"])[2] / BLOCK_FORCE_3D - 1.0);
+    common::known_limit("block_paper_element.punch_force", excess, "%", 7.8, 8.3, "punch force against 3D (locking)");
     let reversal = largest_reversal(&top_line(&out));
+    common::figure("block_paper_element.reversal", reversal / 1e6, "MPa", "> 10 % of the 3D peak (plateaus and jumps)");
     assert!(reversal > 0.1 * BLOCK_SZZ_PEAK_3D, "σ_zz reversal under the punch {reversal:e} Pa");
+    common::figure("block_paper_element.edge.s_zz", probe(&s, "edge", "s_zz") / 1e6, "MPa", "reported");
+    common::figure("block_paper_element.edge.peeq", probe(&s, "edge", "peeq"), "", "reported");
 }
 
 /// The indentation test (issue 10): the block example loaded to 1 mm and

@@ -67,6 +67,13 @@ pub struct Sizes {
     /// Field snapshots a run keeps until it writes them: the step ends,
     /// and a transient run's frames (`analysis.output_interval`).
     pub snapshots: u64,
+    /// Converged increments the run keeps a record of: the time steps of
+    /// a transient analysis (without cutbacks), the planned increments of
+    /// a static one.
+    pub history_rows: u64,
+    /// Bytes of one increment's record (history row, Newton's report,
+    /// energy row).
+    pub history_row_bytes: u64,
     /// True once `factor_nnz` comes from the symbolic factorization.
     pub exact: bool,
 }
@@ -123,6 +130,7 @@ impl Sizes {
                     .saturating_add(s.gauss_points.saturating_mul(SNAPSHOT_POINT_BYTES))
                     .saturating_mul(s.snapshots),
             ),
+            ("history of the increments", s.history_rows.saturating_mul(s.history_row_bytes)),
             // the Lanczos basis, and the two matrices K and B (or M) copied
             // out of the tangent's pattern
             (

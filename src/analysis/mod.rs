@@ -60,11 +60,11 @@ pub enum AnalysisError {
     Mass(#[from] crate::dynamics::MassError),
     /// The analysis would need more memory than allowed.
     #[error(
-        "the analysis needs about {} of memory ({}) but {} is available; use a coarser mesh, or --max-memory \
-         to raise the limit",
+        "the analysis needs about {} of memory ({}) but {} is available; {}, or --max-memory to raise the limit",
         human_bytes(.estimate.total()),
         describe_memory(.estimate),
-        human_bytes(*.limit)
+        human_bytes(*.limit),
+        memory_advice(.estimate)
     )]
     TooLarge {
         /// The estimate.
@@ -72,6 +72,19 @@ pub enum AnalysisError {
         /// The limit (bytes).
         limit: u64,
     },
+}
+
+/// What shrinks the largest part of an estimate: the frames of a
+/// transient run, its time steps' records, or else the mesh.
+pub fn memory_advice(m: &MemoryEstimate) -> &'static str {
+    match m.parts.iter().max_by_key(|p| p.1).map(|p| p.0) {
+        Some("step ends and frames") => {
+            "raise analysis.output_interval (frames are kept until the run ends, one per time step at most) or use \
+             fewer load steps"
+        }
+        Some("history of the increments") => "use fewer time steps (steps[].increments)",
+        _ => "use a coarser mesh",
+    }
 }
 
 /// `what: size` list of the largest parts of an estimate.
@@ -119,16 +132,19 @@ pub fn sizes(model: &Model, numbering: &Numbering, solver: &Cholesky) -> Sizes {
             1 + u64::from(damped)
         }),
         // the step ends (kept with more than one step), and a frame per
-        // output interval
+        // output interval: at most one per time step
         snapshots: if model.steps.len() > 1 { model.steps.len() as u64 } else { 0 }
             + model
                 .transient
                 .as_ref()
                 .and_then(|t| {
                     let total: f64 = t.durations.iter().sum();
-                    t.output_interval.map(|dt| (total / dt * (1.0 + 1e-9)).floor() as u64)
+                    let steps: usize = model.steps.iter().map(crate::model::steps::Step::planned_increments).sum();
+                    t.output_interval.map(|dt| ((total / dt * (1.0 + 1e-9)).floor() as u64).min(steps as u64))
                 })
                 .unwrap_or(0),
+        history_rows: model.steps.iter().map(|s| s.planned_increments() as u64).sum(),
+        history_row_bytes: history_row_bytes(model),
         exact: true,
         ..Default::default()
     };
@@ -141,6 +157,21 @@ pub fn sizes(model: &Model, numbering: &Numbering, solver: &Cholesky) -> Sizes {
         s.vtu_points += e * per;
     }
     s
+}
+
+/// Bytes a converged increment keeps until the results are written: its
+/// history row (reactions, contact resultants, probes), its increment
+/// record (Newton's residuals, about 8 of them), and in a transient
+/// analysis its row of the energy balance.
+fn history_row_bytes(model: &Model) -> u64 {
+    use std::mem::size_of;
+    let row = size_of::<HistoryRow>()
+        + model.constraints.len() * size_of::<Reaction>()
+        + (model.indenters.len() + model.contacts.len()) * size_of::<ContactResultant>()
+        + model.probes.len() * size_of::<[f64; 3]>();
+    let increment = size_of::<Increment>() + 8 * size_of::<f64>();
+    let energy = if model.transient.is_some() { size_of::<crate::dynamics::energy::EnergyRow>() } else { 0 };
+    (row + increment + energy) as u64
 }
 
 /// Orders the equations and runs the symbolic factorization only (no
@@ -389,7 +420,12 @@ fn drive(
                     stresses: structure.elements().stress.clone(),
                 }),
             }),
-            Err(e) => {
+            Err(mut e) => {
+                // a transient stop speaks of times
+                if let Some(t) = &model.transient {
+                    let at = t.time(e.lambda);
+                    e.seconds = Some([at, at - t.time(e.lambda - e.dlambda), t.time(e.last_converged)]);
+                }
                 failure = Some(*e);
                 break;
             }

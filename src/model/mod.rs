@@ -516,6 +516,11 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let imperfection = analysis::imperfection(&file.analysis, &parts)?;
     let modal = analysis::modal(&file.analysis, &parts)?;
     let transient = transient::transient(&file.analysis, &file.steps, &parts, solver.path.is_some())?;
+    let mut steps = steps;
+    if let Some(t) = &transient {
+        transient::time_steps(&mut steps, file.solver.max_increments)?;
+        transient::contact_mass_warnings(&file.analysis, t, &parts, &mut warnings);
+    }
     if !symmetry.planes.is_empty() && (buckling.is_some() || modal.is_some()) {
         warnings.push(Warning {
             key: "symmetry".into(),

@@ -161,10 +161,36 @@ pub struct SteppingError {
     pub last_converged: f64,
     /// Newton history of the last attempt.
     pub newton: Report,
+    /// A transient analysis's times (s): attempted, the last time step
+    /// tried, and the last converged one; the message then speaks of
+    /// times instead of load factors. `None` for a static analysis.
+    pub seconds: Option<[f64; 3]>,
 }
 
 impl std::fmt::Display for SteppingError {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        if let Some([t, dt, last]) = self.seconds {
+            return match self.reason {
+                StopReason::IncrementTooSmall => write!(
+                    f,
+                    "time step {} did not converge at t = {t:.6e} s (Δt = {dt:.3e} s) and a cutback would go below \
+                     solver.min_increment: {}",
+                    self.increment,
+                    describe(&self.newton)
+                ),
+                StopReason::TooManyIncrements => write!(
+                    f,
+                    "stopped at t = {last:.6e} s after {} converged time steps of this load step: the limit \
+                     solver.max_increments = {} was reached (raise it to go on)",
+                    self.increment - 1,
+                    self.increment - 1
+                ),
+                StopReason::Interrupted => write!(f, "interrupted at t = {last:.6e} s (the last converged time step)"),
+                StopReason::PathFollowing => {
+                    f.write_str(self.newton.message.as_deref().unwrap_or("path following stopped"))
+                }
+            };
+        }
         match self.reason {
             StopReason::IncrementTooSmall => write!(
                 f,
@@ -253,6 +279,7 @@ pub fn run_span<P: Incremental>(
                 dlambda,
                 last_converged: lambda,
                 newton: Report::default(),
+                seconds: None,
             }));
         }
         if interrupt.is_requested() {
@@ -263,6 +290,7 @@ pub fn run_span<P: Incremental>(
                 dlambda,
                 last_converged: lambda,
                 newton: Report::default(),
+                seconds: None,
             }));
         }
         dlambda = dlambda.min(end - lambda);
@@ -284,6 +312,7 @@ pub fn run_span<P: Incremental>(
                 dlambda,
                 last_converged: lambda,
                 newton: report,
+                seconds: None,
             }));
         }
         if report.converged() {
@@ -335,6 +364,7 @@ pub fn run_span<P: Incremental>(
                     dlambda,
                     last_converged: lambda,
                     newton: report,
+                    seconds: None,
                 }));
             }
             dlambda = next;

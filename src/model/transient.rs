@@ -40,8 +40,26 @@ fn transient_key(file: &AnalysisFile) -> Option<&'static str> {
 }
 
 /// `analysis.type = "transient"` and its keys; `None` for another analysis
-/// (whose file may not hold them).
+/// (whose file may not hold them). Its load steps' increment limits follow
+/// their time steps ([`time_steps`]), and the contacts' mass is checked
+/// ([`contact_mass_warnings`]).
 pub(super) fn transient(
+    file: &super::schema::ModelFile,
+    steps: &mut [super::steps::Step],
+    parts: &Parts<'_>,
+    arc_length: bool,
+    warnings: &mut Vec<super::Warning>,
+) -> Result<Option<TransientSettings>, ModelError> {
+    let settings = settings(&file.analysis, &file.steps, parts, arc_length)?;
+    if let Some(t) = &settings {
+        time_steps(steps, file.solver.max_increments)?;
+        contact_mass_warnings(&file.analysis, t, parts, warnings);
+    }
+    Ok(settings)
+}
+
+/// The transient settings of `[analysis]` (module docs).
+fn settings(
     file: &AnalysisFile,
     steps: &[super::schema::StepFile],
     parts: &Parts<'_>,
@@ -171,7 +189,7 @@ pub const CUTBACK_ALLOWANCE: usize = 1000;
 /// (`given`, the limit of each load step): refused by key if the limit is
 /// below a step's time steps (the run would stop part way); without the
 /// key, each step may take its time steps and [`CUTBACK_ALLOWANCE`] more.
-pub(super) fn time_steps(steps: &mut [super::steps::Step], given: Option<usize>) -> Result<(), ModelError> {
+fn time_steps(steps: &mut [super::steps::Step], given: Option<usize>) -> Result<(), ModelError> {
     for (k, step) in steps.iter_mut().enumerate() {
         let needed = step.planned_increments();
         match given {
@@ -196,7 +214,7 @@ pub(super) fn time_steps(steps: &mut [super::steps::Step], given: Option<usize>)
 /// Warnings of the contacts' mass (`analysis.contact_mass`): the key given
 /// without contacts, and contact nodes that keep mass because every node of
 /// an element is on a contact surface (`dynamics::redistribution`).
-pub(super) fn contact_mass_warnings(
+fn contact_mass_warnings(
     file: &AnalysisFile,
     settings: &TransientSettings,
     parts: &Parts<'_>,

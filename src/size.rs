@@ -22,7 +22,9 @@
 //! a DOF 64 (eight vectors); in a model with friction, the GMRES basis
 //! (`solver::krylov::GmresWork::vectors` of 8 bytes per equation); in a buckling or modal analysis
 //! the Lanczos basis (`solver::eigen::vectors`) and two value arrays of the pattern (K and B);
-//! in a transient analysis the mass (and damping) values on the pattern;
+//! in a transient analysis the mass (and damping) values on the pattern,
+//! its frames (at most one per time step) and every step's record (the
+//! history row, Newton's report and the energy row: `analysis::sizes`);
 //! the program itself about 8 MiB. Setup transients (node graph, METIS arrays, the
 //! transposed pattern) and output transients (VTU arrays) are freed before
 //! the factor is allocated, so the larger of them is added, not both.

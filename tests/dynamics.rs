@@ -325,6 +325,54 @@ fn the_wall_force_follows_saint_venants_plateau() {
     assert!(opened > 0 && peak > 1.5 * plateau_force, "{opened} {peak}");
 }
 
+/// Two identical rods colliding at ±1 m/s (node-to-node contact between
+/// bodies, `[[contacts]]`): the interface stays at rest and each rod
+/// carries Saint-Venant's stress `ρ c v₀` until its wave returns at `2L/c`
+/// (Graff §1.4), a contact force of 4.0 kN. With both sides' contact nodes
+/// massless (the default) the force is within 5 % of it over the middle
+/// 80 % of the contact (measured 0.71 %) and never zero inside it, and the
+/// energy never above the initial beyond round-off (measured 1.5e-12);
+/// with their mass kept the ends chatter (measured 9.6 %, an open step).
+#[test]
+fn two_colliding_rods_push_with_saint_venants_force() {
+    let rod = |name: &str, from: f64| {
+        format!(
+            "[[bodies]]\nname = \"{name}\"\nmaterial = \"steel\"\nsection = {{ shape = \"rectangle\", element = \"L4\", \
+             x = {{ from = 0.0, to = 0.01, elements = 1 }}, z = {{ from = 0.0, to = 0.01, elements = 1 }} }}\n\
+             axis = {{ element = \"B2\", from = {from:?}, to = {:?}, elements = 100 }}\n\n",
+            from + 1.0
+        )
+    };
+    let text = format!(
+        "[analysis]\ntype = \"transient\"\ninitial_velocities = [{{ body = \"left\", velocity = [0.0, 1.0, 0.0] }}, \
+         {{ body = \"right\", velocity = [0.0, -1.0, 0.0] }}]\n\n[[materials]]\nname = \"steel\"\n\
+         young_modulus = 200e9\npoisson_ratio = 0.0\ndensity = 8000.0\n\n{}{}[[contacts]]\nname = \"ends\"\n\
+         master = {{ body = \"right\", where = {{ y = 1.00002 }} }}\nslave = {{ body = \"left\", where = {{ y = 1.0 }} }}\n\n\
+         [[steps]]\nname = \"flight\"\nfactor = 1.0\nduration = 6e-4\nincrements = 600\n",
+        rod("left", 0.0),
+        rod("right", 1.00002)
+    );
+    let run = |text: &str| {
+        let sol = common::run(text);
+        let force: Vec<(f64, f64)> =
+            sol.history.iter().map(|r| (r.lambda * 6e-4, r.contact("ends").unwrap().force[1].abs())).collect();
+        let energy = sol.energy.unwrap();
+        let t0 = energy[0].kinetic;
+        (force, energy.iter().map(|r| (r.kinetic + r.elastic) / t0).fold(0.0, f64::max))
+    };
+    let (force, most) = run(&text);
+    let (middle, opened, _) = plateau(&force);
+    let worst = middle.iter().map(|f| (f / 4000.0 - 1.0).abs()).fold(0.0, f64::max);
+    println!("largest deviation {:.2} %, {opened} open steps, largest T + U {most} of T0", 100.0 * worst);
+    assert!(middle.len() > 300 && worst < 0.05 && opened == 0, "{worst} {opened}");
+    assert!(most <= 1.0 + 1e-9, "{most}");
+    let (force, _) = run(&text.replace("type = \"transient\"\n", "type = \"transient\"\ncontact_mass = \"kept\"\n"));
+    let (middle, opened, _) = plateau(&force);
+    let worst = middle.iter().map(|f| (f / 4000.0 - 1.0).abs()).fold(0.0, f64::max);
+    println!("the contact nodes' mass kept: largest deviation {:.2} %, {opened} open steps", 100.0 * worst);
+    assert!(worst > 0.05 && opened > 0, "{worst} {opened}");
+}
+
 /// A frame (`analysis.output_interval`) holds the state of the increment it
 /// was taken at: the tip displacement sampled from the frame's fields
 /// equals the probe history's at that increment, and the frames come at

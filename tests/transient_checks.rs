@@ -146,3 +146,23 @@ fn a_transient_analysis_takes_an_imperfection() {
     assert!(b.factors[0] > 0.5 && b.factors[0] < 1.0, "{:?}", b.factors);
     assert_eq!(sol.energy.map(|e| e.len()), Some(11));
 }
+
+/// Mass redistribution where it cannot apply: a rod pressed by walls on
+/// both lateral faces, one L4 through its height, has every node on a
+/// contact surface, so no element has a node to take a contact node's
+/// mass; they keep it and the model warns by key. The key given without
+/// any contact warns too.
+#[test]
+fn contact_nodes_without_a_neighbour_keep_their_mass_with_a_warning() {
+    let walls = "[[indenters]]\nname = \"below\"\nbody = \"rod\"\nshape = \"flat\"\nsurface = { z = 0.0 }\n\
+                 normal = \"+z\"\nposition = -1e-5\ndisplacement = [0.0, 0.0, 0.0]\n\n[[indenters]]\nname = \"above\"\n\
+                 body = \"rod\"\nshape = \"flat\"\nsurface = { z = 0.01 }\nnormal = \"-z\"\nposition = 0.01001\n\
+                 displacement = [0.0, 0.0, 0.0]\n\n[[steps]]";
+    let model = Model::parse(&rod("[[steps]]", walls)).unwrap();
+    let w = model.warnings.iter().find(|w| w.key == "analysis.contact_mass").expect("a warning");
+    assert!(w.message.contains("404 of the 404 contact nodes keep part of their mass"), "{w}");
+    let text = rod("type = \"transient\"", "type = \"transient\"\ncontact_mass = \"kept\"");
+    let free = format!("{}{}", &text[..text.find("[[indenters]]").unwrap()], &text[text.find("[[steps]]").unwrap()..]);
+    let model = Model::parse(&free).unwrap();
+    assert!(model.warnings.iter().any(|w| w.key == "analysis.contact_mass"), "{:?}", model.warnings);
+}

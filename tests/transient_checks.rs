@@ -42,7 +42,7 @@ fn the_time_steps_are_checked_against_max_increments() {
     std::fs::write(&file, &free).unwrap();
     let out = common::cufem().args(["check", file.to_str().unwrap()]).output().unwrap();
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(stdout.contains("transient: 20,000 time steps over 6e-4 s (flight: 20,000 × 3.000e-8 s)"), "{stdout}");
+    assert!(stdout.contains("transient: 20,000 time steps over 6.0000e-4 s (flight: 20,000 × 3.000e-8 s)"), "{stdout}");
 }
 
 /// The memory estimate counts at most one frame per time step (a 100-step

@@ -64,11 +64,11 @@ pub fn sizes(model: &Model, numbering: &Numbering, solver: &Cholesky) -> Sizes {
                 .as_ref()
                 .and_then(|t| {
                     let total: f64 = t.durations.iter().sum();
-                    let steps: usize = model.steps.iter().map(crate::model::steps::Step::planned_increments).sum();
+                    let steps = model.steps.iter().fold(0usize, |n, s| n.saturating_add(s.planned_increments()));
                     t.output_interval.map(|dt| ((total / dt * (1.0 + 1e-9)).floor() as u64).min(steps as u64))
                 })
                 .unwrap_or(0),
-        history_rows: model.steps.iter().map(|s| s.planned_increments() as u64).sum(),
+        history_rows: model.steps.iter().fold(0u64, |n, s| n.saturating_add(s.planned_increments() as u64)),
         history_row_bytes: history_row_bytes(model),
         exact: true,
         ..Default::default()

@@ -151,15 +151,19 @@ pub fn time_steps(model: &Model) -> Option<String> {
         .zip(&t.durations)
         .map(|(s, d)| (s.planned_increments(), d / s.planned_increments() as f64))
         .collect();
-    let total: usize = per.iter().map(|p| p.0).sum();
-    let steps: Vec<String> = model
+    let total = per.iter().fold(0usize, |n, p| n.saturating_add(p.0));
+    let mut steps: Vec<String> = model
         .steps
         .iter()
         .zip(&per)
+        .take(3)
         .map(|(s, (n, dt))| format!("{}: {} × {dt:.3e} s", s.name, thousands(*n)))
         .collect();
+    if model.steps.len() > 3 {
+        steps.push(format!("and {} more load steps", model.steps.len() - 3));
+    }
     Some(format!(
-        "transient: {} time steps over {:e} s ({}); each load step may take up to solver.max_increments = {}",
+        "transient: {} time steps over {:.4e} s ({}); each load step may take up to solver.max_increments = {}",
         thousands(total),
         t.durations.iter().sum::<f64>(),
         steps.join(", "),

@@ -205,7 +205,10 @@ fn time_steps(steps: &mut [super::steps::Step], given: Option<usize>) -> Result<
                 ));
             }
             Some(_) => {}
-            None => step.settings.max_increments = step.settings.max_increments.max(needed + CUTBACK_ALLOWANCE),
+            None => {
+                step.settings.max_increments =
+                    step.settings.max_increments.max(needed.saturating_add(CUTBACK_ALLOWANCE));
+            }
         }
     }
     Ok(())

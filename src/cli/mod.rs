@@ -476,11 +476,11 @@ fn run(
         }
         Some(f) => {
             eprintln!("\nthe analysis stopped early: {f}");
-            eprintln!(
-                "results of the last converged increment (load factor {:.4}) are in {}",
-                solution.lambda,
-                dest.display()
-            );
+            let at = match &model.transient {
+                Some(t) => format!("time step (t = {:.6e} s)", t.time(solution.lambda)),
+                None => format!("increment (load factor {:.4})", solution.lambda),
+            };
+            eprintln!("results of the last converged {at} are in {}", dest.display());
             if run.kept_converged {
                 eprintln!("the converged results already in {} were kept as they were", out.display());
             }
@@ -511,7 +511,7 @@ impl Reporter {
         let bar = (!quiet && std::io::stderr().is_terminal()).then(|| {
             let b = ProgressBar::new(1000);
             b.set_style(
-                ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} λ = {msg}")
+                ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} λ = {msg} (about {eta} left)")
                     .unwrap_or_else(|_| ProgressStyle::default_bar()),
             );
             b

@@ -136,6 +136,39 @@ pub fn print_check(model: &Model) {
         s.newton.residual_tolerance,
         s.newton.displacement_tolerance
     );
+    if let Some(line) = time_steps(model) {
+        println!("{line}");
+    }
+}
+
+/// A transient analysis's time steps, said before it starts: how many,
+/// over how long, and each load step's Δt (without cutbacks).
+pub fn time_steps(model: &Model) -> Option<String> {
+    let t = model.transient.as_ref()?;
+    let per: Vec<(usize, f64)> = model
+        .steps
+        .iter()
+        .zip(&t.durations)
+        .map(|(s, d)| (s.planned_increments(), d / s.planned_increments() as f64))
+        .collect();
+    let total = per.iter().fold(0usize, |n, p| n.saturating_add(p.0));
+    let mut steps: Vec<String> = model
+        .steps
+        .iter()
+        .zip(&per)
+        .take(3)
+        .map(|(s, (n, dt))| format!("{}: {} × {dt:.3e} s", s.name, thousands(*n)))
+        .collect();
+    if model.steps.len() > 3 {
+        steps.push(format!("and {} more load steps", model.steps.len() - 3));
+    }
+    Some(format!(
+        "transient: {} time steps over {:.4e} s ({}); each load step may take up to solver.max_increments = {}",
+        thousands(total),
+        t.durations.iter().sum::<f64>(),
+        steps.join(", "),
+        thousands(model.steps.iter().map(|s| s.settings.max_increments).max().unwrap_or(0))
+    ))
 }
 
 /// Each body's section properties, integrated over its mesh (`cufem check`).
@@ -179,6 +212,9 @@ pub fn print_memory(s: &cufem::size::Sizes, limit: Option<u64>) {
 pub fn print_header(model: &Model) {
     println!("{}", model.title);
     println!("{} — {} DOF", discretization(model), thousands(model.n_dofs()));
+    if let Some(line) = time_steps(model) {
+        println!("{line}");
+    }
 }
 
 /// One log line per converged increment.

@@ -503,7 +503,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         constraints: constraints.iter().map(|c| c.name.as_str()).collect(),
         loads: loads.iter().map(|l| l.name.as_str()).collect(),
     };
-    let steps = steps::steps(&file.steps, &item_names, &solver.steps)?;
+    let mut steps = steps::steps(&file.steps, &item_names, &solver.steps)?;
     let parts = analysis::Parts {
         mesh: &mesh,
         materials: &materials,
@@ -515,7 +515,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let buckling = analysis::buckling(&file.analysis, &parts)?;
     let imperfection = analysis::imperfection(&file.analysis, &parts)?;
     let modal = analysis::modal(&file.analysis, &parts)?;
-    let transient = transient::transient(&file.analysis, &file.steps, &parts, solver.path.is_some())?;
+    let transient = transient::transient(&file, &mut steps, &parts, solver.path.is_some(), &mut warnings)?;
     if !symmetry.planes.is_empty() && (buckling.is_some() || modal.is_some()) {
         warnings.push(Warning {
             key: "symmetry".into(),

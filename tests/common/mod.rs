@@ -275,8 +275,10 @@ pub fn ccx_missing() -> bool {
     if std::env::var_os("CUFEM_REQUIRE_CCX").is_some_and(|v| !v.is_empty()) {
         panic!("{test}: {reason} (CUFEM_REQUIRE_CCX is set: the CalculiX tests must run here)");
     }
-    // stderr past the test harness's capture: the skip shows in `cargo test`'s output
+    // to stderr past the test harness's capture, so that the skip shows in
+    // `cargo test`'s output; in one write, so that other tests' lines do not
+    // cut it
     use std::io::Write;
-    let _ = writeln!(std::io::stderr(), "{test}: skipped: {reason}");
+    let _ = std::io::stderr().write_all(format!("{test}: skipped: {reason}\n").as_bytes());
     true
 }

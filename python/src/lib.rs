@@ -14,8 +14,8 @@ use std::sync::mpsc;
 use std::time::Duration;
 
 use cufem::analysis::{self, IncrementLog, Progress, RunOptions, Solution};
-use cufem::io::report;
 use cufem::io::output::OutputDir;
+use cufem::io::report;
 use cufem::model::steps::{self, Item};
 use cufem::model::{Limits, Model, ModelError as RustModelError};
 use cufem::post;

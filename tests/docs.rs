@@ -266,8 +266,7 @@ fn figures(text: &str) -> Vec<Figure> {
         while i < chars.len() {
             let c = chars[i];
             let before = if i > 0 { chars[i - 1] } else { ' ' };
-            if !c.is_ascii_digit() || before.is_alphanumeric() || matches!(before, '_' | '.' | '§' | '/' | '#' | '@')
-            {
+            if !c.is_ascii_digit() || before.is_alphanumeric() || matches!(before, '_' | '.' | '§' | '/' | '#' | '@') {
                 i += 1;
                 continue;
             }
@@ -282,16 +281,21 @@ fn figures(text: &str) -> Vec<Figure> {
             let (mut point, mut comma, mut exponent) = (false, false, false);
             while j < chars.len() {
                 let d = chars[j];
-                let next_digits = |k: usize, count: usize| (1..=count).all(|m| chars.get(k + m).is_some_and(char::is_ascii_digit));
+                let next_digits =
+                    |k: usize, count: usize| (1..=count).all(|m| chars.get(k + m).is_some_and(char::is_ascii_digit));
                 if d.is_ascii_digit() {
                     j += 1;
-                } else if d == ',' && !point && next_digits(j, 3) && !chars.get(j + 4).is_some_and(char::is_ascii_digit) {
+                } else if d == ',' && !point && next_digits(j, 3) && !chars.get(j + 4).is_some_and(char::is_ascii_digit)
+                {
                     comma = true;
                     j += 1;
                 } else if d == '.' && !point && !exponent && next_digits(j, 1) {
                     point = true;
                     j += 1;
-                } else if d == 'e' && !exponent && (next_digits(j, 1) || (matches!(chars.get(j + 1), Some('-' | '−')) && next_digits(j + 1, 1))) {
+                } else if d == 'e'
+                    && !exponent
+                    && (next_digits(j, 1) || (matches!(chars.get(j + 1), Some('-' | '−')) && next_digits(j + 1, 1)))
+                {
                     exponent = true;
                     j += if next_digits(j, 1) { 1 } else { 2 };
                 } else {
@@ -313,9 +317,10 @@ fn figures(text: &str) -> Vec<Figure> {
                 || after.starts_with('×');
             let head: String = chars[..start].iter().collect();
             let head = head.trim_end_matches(['(', ' ']);
-            let numbered = ["§", "Table", "Tables", "Fig.", "Figs.", "issue", "issues", "Issue", "Eq.", "eq.", "step", "Step"]
-                .iter()
-                .any(|w| head.ends_with(w));
+            let numbered =
+                ["§", "Table", "Tables", "Fig.", "Figs.", "issue", "issues", "Issue", "Eq.", "eq.", "step", "Step"]
+                    .iter()
+                    .any(|w| head.ends_with(w));
             let date = chars.get(j) == Some(&'-') && j - start == 4 && !point;
             let times = before == '×' || (start > 0 && chars[start - 1] == '×');
             if !numbered && !date && (point || comma || exponent || unit || times) {
@@ -333,7 +338,8 @@ fn figures_are_recognised_and_names_numbers_and_code_are_not() {
                 10 B4 × 108 L9, §4.1, Table 2, issue 23, 2026-11-25, `E = 70e9`, [a](docs/x-1.2.md), 3 cores\n\
                 ```\n1.5 s\n```\n";
     let all = figures(text);
-    let found: Vec<(usize, &str, Option<&Tag>)> = all.iter().map(|f| (f.line, f.text.as_str(), f.tag.as_ref())).collect();
+    let found: Vec<(usize, &str, Option<&Tag>)> =
+        all.iter().map(|f| (f.line, f.text.as_str(), f.tag.as_ref())).collect();
     let (v, b) = (Tag::Value("block.s_zz".into()), Tag::Bound("x".into()));
     assert_eq!(
         found,
@@ -433,7 +439,10 @@ fn every_figure_in_the_docs_has_a_source() {
             };
             if bound {
                 let number = f.text.trim_start_matches(['+', '−', '-']);
-                if !check.split(|c: char| !(c.is_ascii_digit() || c == '.' || c == 'e' || c == '-')).any(|w| w == number) {
+                if !check
+                    .split(|c: char| !(c.is_ascii_digit() || c == '.' || c == 'e' || c == '-'))
+                    .any(|w| w == number)
+                {
                     bad.push(format!("{at}: the check of {id} is \"{check}\", which has no bound {number}"));
                 }
                 continue;

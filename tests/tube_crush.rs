@@ -247,6 +247,9 @@ fn the_crush_tangent_matches_finite_differences_mid_increment() {
 #[test]
 #[ignore = "validate: references — runs CalculiX with NLGEOM on 19,789 nodes (half an hour)"]
 fn verify_compares_the_crush_with_calculix_nlgeom() {
+    if common::ccx_missing() {
+        return;
+    }
     let out = out_dir("tube_crush_verify");
     let status = Command::new(env!("CARGO_BIN_EXE_cufem"))
         .args(["verify", EXAMPLE, "--refine", "1", "--quiet", "--out"])

@@ -94,7 +94,7 @@ pub(super) fn run_into(
     progress.line(format!(
         "adaptive run: until the estimate is below {:.2} %, at most {} DOF and {} refinements (θ = {})",
         100.0 * settings.tolerance,
-        super::report::thousands(settings.max_dof),
+        cufem::io::report::thousands(settings.max_dof),
         settings.max_cycles,
         settings.fraction
     ));
@@ -120,7 +120,7 @@ pub(super) fn cycle_line(c: &cufem::analysis::AdaptCycle) -> String {
     format!(
         "cycle {}: {} DOF, estimate {:.2} %, {:.1} s{refined}",
         c.cycle,
-        super::report::thousands(c.dof),
+        cufem::io::report::thousands(c.dof),
         100.0 * c.estimate,
         c.time_s
     )

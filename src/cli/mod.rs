@@ -448,7 +448,7 @@ fn run(
     // the output folder is checked and locked before any computing
     let folder = OutputDir::prepare(&out, force).map_err(|e| fail(FILES, e))?;
     if !quiet {
-        report::print_header(&model);
+        print!("{}", cufem::io::report::header(&model));
     }
     let mut progress = Reporter::new(quiet);
     let options = RunOptions { interrupt: interrupt.clone(), max_memory: limit(resources) };
@@ -464,9 +464,9 @@ fn run(
     };
     progress.finish();
     let (solution, dest) = (&run.solution, &run.folder);
-    report::print_results(&model, solution);
+    print!("{}", cufem::io::report::results(&model, solution));
     print_warnings(solution.warnings.iter());
-    println!("\nwrote {} files to {}", run.files.len(), dest.display());
+    println!("{}", cufem::io::report::wrote_line(run.files.len(), dest));
     match &solution.failure {
         None => {
             if interrupt.is_requested() {
@@ -475,14 +475,9 @@ fn run(
             Ok(OK)
         }
         Some(f) => {
-            eprintln!("\nthe analysis stopped early: {f}");
-            let at = match &model.transient {
-                Some(t) => format!("time step (t = {:.6e} s)", t.time(solution.lambda)),
-                None => format!("increment (load factor {:.4})", solution.lambda),
-            };
-            eprintln!("results of the last converged {at} are in {}", dest.display());
-            if run.kept_converged {
-                eprintln!("the converged results already in {} were kept as they were", out.display());
+            let kept = run.kept_converged.then_some(out.as_path());
+            if let Some(text) = cufem::io::report::stopped_early(&model, solution, Some(dest), kept) {
+                eprintln!("{text}");
             }
             Ok(if f.reason == StopReason::Interrupted { INTERRUPTED } else { NOT_CONVERGED })
         }
@@ -551,17 +546,11 @@ impl Progress for Reporter {
             // λ runs over [0, number of steps]
             b.set_length(1000 * model.steps.len() as u64);
         }
-        self.line(format!(
-            "solving {} equations, nnz(L) = {}, memory estimate {} (Ctrl-C stops at the next safe point and keeps \
-             the results)",
-            setup.equations,
-            setup.factor_nnz,
-            size::human_bytes(setup.memory.total())
-        ));
+        self.line(cufem::io::report::start_line(setup));
     }
 
     fn increment(&mut self, log: &IncrementLog) {
-        self.line(report::increment_line(log));
+        self.line(cufem::io::report::increment_line(log));
         if let Some(b) = &self.bar {
             b.set_position((log.lambda * 1000.0).round() as u64);
             b.set_message(format!("{:.4}", log.lambda));
@@ -569,29 +558,6 @@ impl Progress for Reporter {
     }
 
     fn cutback(&mut self, c: &Cutback) {
-        if let Some(q) = c.rejected {
-            self.line(format!(
-                "  rejected: increment {} (λ = {:.4}, Δλ = {:.3e}) converged in {} iterations but changed {:.1} times \
-                 what solver.step_control allows; redone smaller",
-                c.index, c.lambda, c.dlambda, c.newton.iterations, q
-            ));
-            return;
-        }
-        let res: Vec<String> = c.newton.residuals.iter().map(|r| format!("{r:.1e}")).collect();
-        self.line(format!(
-            "  cutback: increment {} (λ = {:.4}, Δλ = {:.3e}) failed after {} iterations ({}), residuals [{}]{}",
-            c.index,
-            c.lambda,
-            c.dlambda,
-            c.newton.iterations,
-            match c.newton.failure {
-                Some(cufem::solver::newton::Failure::Diverged) => "diverged",
-                Some(cufem::solver::newton::Failure::Problem) => "linear solve failed",
-                Some(cufem::solver::newton::Failure::Stagnated) => "stagnated",
-                _ => "not converged",
-            },
-            res.join(" "),
-            c.newton.message.as_ref().map(|m| format!(": {m}")).unwrap_or_default()
-        ));
+        self.line(cufem::io::report::cutback_line(c));
     }
 }

@@ -8,7 +8,7 @@ use cufem::io::Finished;
 use cufem::io::output::OutputDir;
 use cufem::verify;
 
-use super::{FILES, Failure, NOT_CONVERGED, OK, Reporter, Resources, fail, report};
+use super::{FILES, Failure, NOT_CONVERGED, OK, Reporter, Resources, fail};
 
 /// Exit code: CalculiX is missing or did not finish.
 pub const CCX_FAILED: u8 = 5;
@@ -76,7 +76,7 @@ pub fn run(a: Args) -> Result<u8, Failure> {
     }
     let folder = OutputDir::prepare(&out, a.force).map_err(|e| fail(FILES, e))?;
     if !a.quiet {
-        report::print_header(&model);
+        print!("{}", cufem::io::report::header(&model));
     }
     let mut progress = Reporter::new(a.quiet);
     let options = RunOptions { interrupt, max_memory: super::limit(&a.resources) };

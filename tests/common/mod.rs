@@ -253,3 +253,32 @@ pub fn within(id: &str, value: f64, reference: f64, relative: f64, source: &str)
         100.0 * relative
     );
 }
+
+/// True when CalculiX (`ccx`) is not on the PATH: the calling test should
+/// return at once (`if common::ccx_missing() { return; }`), and this prints
+/// its one-line reason, `<test>: skipped: CalculiX (ccx) not on the PATH; …`.
+/// With `CUFEM_REQUIRE_CCX` set (`.ci/run` sets it: CI has ccx) a missing
+/// ccx fails the test instead, so that CI never passes by skipping.
+pub fn ccx_missing() -> bool {
+    let on_path = std::env::var_os("PATH").is_some_and(|path| {
+        use std::os::unix::fs::PermissionsExt;
+        std::env::split_paths(&path).any(|dir| {
+            std::fs::metadata(dir.join("ccx")).is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o111 != 0)
+        })
+    });
+    if on_path {
+        return false;
+    }
+    // libtest runs each test in a thread named after it
+    let test = std::thread::current().name().unwrap_or("a CalculiX test").to_string();
+    let reason = "CalculiX (ccx) not on the PATH; apt-get install calculix-ccx";
+    if std::env::var_os("CUFEM_REQUIRE_CCX").is_some_and(|v| !v.is_empty()) {
+        panic!("{test}: {reason} (CUFEM_REQUIRE_CCX is set: the CalculiX tests must run here)");
+    }
+    // to stderr past the test harness's capture, so that the skip shows in
+    // `cargo test`'s output; in one write, so that other tests' lines do not
+    // cut it
+    use std::io::Write;
+    let _ = std::io::stderr().write_all(format!("{test}: skipped: {reason}\n").as_bytes());
+    true
+}

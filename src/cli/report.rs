@@ -295,7 +295,8 @@ pub fn print_results(model: &Model, solution: &Solution) {
     }
     if let Some(m) = &summary.modal {
         let share = |k: usize, v: f64| if m.free_mass[k] > 0.0 { 100.0 * v / m.free_mass[k] } else { 0.0 };
-        println!("modal  mode  frequency [Hz]   effective mass [% of the free mass]  x / y / z");
+        let of = if m.effective_masses_of == "full_structure" { " of the full structure" } else { "" };
+        println!("modal  mode  frequency [Hz]   effective mass [% of the free mass{of}]  x / y / z");
         for (k, (f, e)) in m.frequencies_hz.iter().zip(&m.effective_masses).enumerate() {
             println!(
                 "       {:>4}  {f:>14.6e}   {:>6.2} / {:>6.2} / {:>6.2}",

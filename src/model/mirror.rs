@@ -303,7 +303,8 @@ mod tests {
         // an isotropic material with strengths in turned axes: the same
         // stiffness, but its indices are taken along 30° or −30°
         let iso = Material::new("glass", 70e9, 0.2, None).with_strengths(Some(s));
-        let turned = |deg: f64| iso.oriented(Frame::ply([0.0, 1.0, 0.0], [0.0, 0.0, 1.0], deg.to_radians()).unwrap(), "");
+        let turned =
+            |deg: f64| iso.oriented(Frame::ply([0.0, 1.0, 0.0], [0.0, 0.0, 1.0], deg.to_radians()).unwrap(), "");
         assert!(mirror_images(&turned(30.0), &turned(-30.0), 0));
         assert!(!mirror_images(&turned(30.0), &turned(30.0), 0));
     }

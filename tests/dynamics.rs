@@ -143,7 +143,7 @@ fn transient_refuses_what_it_cannot_integrate() {
             ),
             "analysis.initial_velocities[0].body",
         ),
-        (text.replace("density = 8000", "# no density"), "materials \"steel\".density"),
+        (text.replace("density = 8000", "# no density"), "materials[0].density = (missing)"),
         (text.replace("type = \"transient\"", "type = \"static\""), "steps[0].duration"),
         (text.replace("type = \"transient\"", "type = \"transient\"\nmodes = 3"), "analysis.modes"),
     ];

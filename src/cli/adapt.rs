@@ -64,6 +64,19 @@ impl AdaptArgs {
             (_, file) => file.unwrap_or_default(),
         };
         if let Some(t) = self.adapt {
+            // (an [adapt] table with another analysis is refused with the model)
+            if model.analysis_type() != "static" {
+                return Err(fail(
+                    INPUT,
+                    anyhow!(
+                        "--adapt {t} with analysis.type = \"{}\": expected a static analysis (the error estimate \
+                         --adapt refines by is that of the static stresses, not of the modes, critical loads or time \
+                         history of a {} analysis)",
+                        model.analysis_type(),
+                        model.analysis_type()
+                    ),
+                ));
+            }
             settings.tolerance = t;
         }
         if let Some(n) = self.max_dof {

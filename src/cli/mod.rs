@@ -16,6 +16,7 @@
 mod adapt;
 mod bench;
 mod report;
+mod values;
 mod verify;
 
 use std::io::IsTerminal;
@@ -31,6 +32,7 @@ use cufem::size;
 use cufem::solver::Interrupt;
 use cufem::solver::stepping::{Cutback, StopReason};
 use indicatif::{ProgressBar, ProgressStyle};
+use values::{integer_in, parse_memory, parse_refine, parse_repeat, parse_threads};
 
 /// Exit code: success.
 const OK: u8 = 0;
@@ -63,7 +65,9 @@ struct Resources {
     #[arg(long)]
     force_threads: bool,
     /// Largest memory the analysis may need, e.g. 8G or 512MiB (default: the memory available now).
-    #[arg(long, allow_negative_numbers = true, value_parser = parse_memory)]
+    // allow_hyphen_values: "-5G" reaches the parser, whose message names what is allowed, instead of
+    // clap's "unexpected argument '-5'"
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_memory)]
     max_memory: Option<u64>,
 }
 
@@ -160,47 +164,6 @@ enum Command {
 
 /// Most worker threads, also with --force-threads.
 const MAX_THREADS: usize = 1024;
-
-/// An integer option from `lo` to `hi` (`None`: no upper limit). Negative
-/// values reach this parser (`allow_negative_numbers`) so that the message
-/// names what is allowed instead of clap's "unexpected argument '-1'"; clap
-/// prefixes it with the option and the value.
-fn integer_in(s: &str, lo: usize, hi: Option<usize>, what: &str) -> Result<usize, String> {
-    let range = match hi {
-        Some(hi) => format!("an integer from {lo} to {hi}"),
-        None => format!("an integer ≥ {lo}"),
-    };
-    match s.trim().parse::<i128>() {
-        Ok(v) if v >= lo as i128 && hi.is_none_or(|hi| v <= hi as i128) => {
-            usize::try_from(v).map_err(|_| format!("expected {range} ({what})"))
-        }
-        _ => Err(format!("expected {range} ({what})")),
-    }
-}
-
-fn parse_threads(s: &str) -> Result<usize, String> {
-    integer_in(
-        s,
-        1,
-        None,
-        &format!(
-            "worker threads; more than the logical cores are capped at them unless --force-threads, which allows up \
-             to {MAX_THREADS}"
-        ),
-    )
-}
-
-fn parse_refine(s: &str) -> Result<usize, String> {
-    integer_in(s, 1, Some(8), "hexahedra per Lagrange interval")
-}
-
-fn parse_repeat(s: &str) -> Result<usize, String> {
-    integer_in(s, 1, Some(1000), "timed repetitions")
-}
-
-fn parse_memory(s: &str) -> Result<u64, String> {
-    size::parse_bytes(s).ok_or_else(|| format!("{s:?}: expected a size such as 8G, 512MiB or 1000000000"))
-}
 
 /// An error with the exit code it maps to.
 struct Failure {

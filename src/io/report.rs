@@ -346,7 +346,8 @@ fn ply_failure(s: &mut String, summary: &super::Summary) {
 fn modes(s: &mut String, summary: &super::Summary) {
     if let Some(m) = &summary.modal {
         let share = |k: usize, v: f64| if m.free_mass[k] > 0.0 { 100.0 * v / m.free_mass[k] } else { 0.0 };
-        out!(s, "modal  mode  frequency [Hz]   effective mass [% of the free mass]  x / y / z");
+        let of = if m.effective_masses_of == "full_structure" { " of the full structure" } else { "" };
+        out!(s, "modal  mode  frequency [Hz]   effective mass [% of the free mass{of}]  x / y / z");
         for (k, (f, e)) in m.frequencies_hz.iter().zip(&m.effective_masses).enumerate() {
             out!(
                 s,

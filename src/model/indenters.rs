@@ -36,6 +36,7 @@ pub(super) fn indenters(
             lightest_impactor(&key, imp.mass, &mesh.bodies[b], materials)?;
         }
         symmetry::check_indenter(&key, &ind, planes, mesh)?;
+        symmetry::check_indenter_shape(&key, &ind, planes, mesh)?;
         // how far the indenter's own motion brings it towards each node
         let reach = |c: &contact::ContactNode| (0..3).map(|k| ind.displacement[k] * c.normal[k]).sum::<f64>() - c.gap0;
         if !transient && ind.force.is_none() && ind.nodes.iter().all(|c| reach(c) < 0.0) {

@@ -133,18 +133,7 @@ fn settings(
         ));
     }
     densities_given(parts, "transient")?;
-    let mut initial_velocities = Vec::new();
-    for (i, v) in file.initial_velocities.iter().flatten().enumerate() {
-        let key = format!("analysis.initial_velocities[{i}]");
-        let body = parts.mesh.body_index(&v.body).ok_or_else(|| {
-            let names: Vec<&str> = parts.mesh.bodies.iter().map(|b| b.name.as_str()).collect();
-            invalid(format!("{key}.body"), format!("{:?}", v.body), format!("one of the bodies {names:?}"))
-        })?;
-        for (k, c) in v.velocity.iter().enumerate() {
-            bounds::within(&format!("{key}.velocity[{k}]"), *c, -MAX_SPEED, MAX_SPEED, "a speed in m/s")?;
-        }
-        initial_velocities.push((body, *v.velocity));
-    }
+    let initial_velocities = initial_velocities(file, parts)?;
     let total: f64 = durations.iter().sum();
     let output_interval = file
         .output_interval
@@ -249,4 +238,33 @@ fn contact_mass_warnings(
             ),
         });
     }
+}
+
+/// `analysis.initial_velocities`: one entry per body, each speed bounded.
+fn initial_velocities(file: &AnalysisFile, parts: &Parts<'_>) -> Result<Vec<(usize, [f64; 3])>, ModelError> {
+    let mut initial_velocities: Vec<(usize, [f64; 3])> = Vec::new();
+    for (i, v) in file.initial_velocities.iter().flatten().enumerate() {
+        let key = format!("analysis.initial_velocities[{i}]");
+        let body = parts.mesh.body_index(&v.body).ok_or_else(|| {
+            let names: Vec<&str> = parts.mesh.bodies.iter().map(|b| b.name.as_str()).collect();
+            invalid(format!("{key}.body"), format!("{:?}", v.body), format!("one of the bodies {names:?}"))
+        })?;
+        // one velocity per body: a second entry would silently replace the first
+        if let Some(j) = initial_velocities.iter().position(|&(b, _)| b == body) {
+            return Err(invalid(
+                format!("{key}.body"),
+                format!("{:?}", v.body),
+                format!(
+                    "a body without an earlier entry (analysis.initial_velocities[{j}] already gives body {:?} its \
+                     velocity; one entry per body, its velocity the whole body's)",
+                    v.body
+                ),
+            ));
+        }
+        for (k, c) in v.velocity.iter().enumerate() {
+            bounds::within(&format!("{key}.velocity[{k}]"), *c, -MAX_SPEED, MAX_SPEED, "a speed in m/s")?;
+        }
+        initial_velocities.push((body, *v.velocity));
+    }
+    Ok(initial_velocities)
 }

@@ -311,10 +311,13 @@ fn figures(text: &str) -> Vec<Figure> {
                 _ => (None, after),
             };
             let trimmed = after.strip_prefix(' ').unwrap_or(&after);
+            // `4 × 4` is a product of counts, `266×` a ratio
+            let product = |r: &str| r.trim_start().starts_with(|c: char| c.is_ascii_digit());
             let unit = UNITS.iter().any(|u| {
-                trimmed.strip_prefix(u).is_some_and(|r| !r.starts_with(|c: char| c.is_alphanumeric() || c == '_'))
-            }) || after.starts_with('%')
-                || after.starts_with('×');
+                trimmed.strip_prefix(u).is_some_and(|r| {
+                    !r.starts_with(|c: char| c.is_alphanumeric() || c == '_') && !(*u == "×" && product(r))
+                })
+            }) || after.starts_with('%');
             let head: String = chars[..start].iter().collect();
             let head = head.trim_end_matches(['(', ' ']);
             let numbered =
@@ -322,7 +325,7 @@ fn figures(text: &str) -> Vec<Figure> {
                     .iter()
                     .any(|w| head.ends_with(w));
             let date = chars.get(j) == Some(&'-') && j - start == 4 && !point;
-            let times = before == '×' || (start > 0 && chars[start - 1] == '×');
+            let times = start > 0 && chars[start - 1] == '×';
             if !numbered && !date && (point || comma || exponent || unit || times) {
                 out.push(Figure { line: n + 1, text, tag });
             }
@@ -335,6 +338,7 @@ fn figures(text: &str) -> Vec<Figure> {
 #[test]
 fn figures_are_recognised_and_names_numbers_and_code_are_not() {
     let text = "σ_zz −134.3<!--v:block.s_zz--> MPa at 5,772 DOF, 0.61 s, +8.0 % and ×266, 2e-6 (test 2<!--b:x--> %);\n\
+                4 × 4 L9, 3 × 1, 20×;\n\
                 10 B4 × 108 L9, §4.1, Table 2, issue 23, 2026-11-25, `E = 70e9`, [a](docs/x-1.2.md), 3 cores\n\
                 ```\n1.5 s\n```\n";
     let all = figures(text);
@@ -350,7 +354,8 @@ fn figures_are_recognised_and_names_numbers_and_code_are_not() {
             (1, "+8.0", None),
             (1, "266", None),
             (1, "2e-6", None),
-            (1, "2", Some(&b))
+            (1, "2", Some(&b)),
+            (2, "20", None)
         ]
     );
 }

@@ -22,7 +22,9 @@
 //! a DOF 64 (eight vectors); in a model with friction, the GMRES basis
 //! (`solver::krylov::GmresWork::vectors` of 8 bytes per equation); in a buckling or modal analysis
 //! the Lanczos basis (`solver::eigen::vectors`) and two value arrays of the pattern (K and B);
-//! in a transient analysis the mass (and damping) values on the pattern;
+//! in a transient analysis the mass (and damping) values on the pattern,
+//! its frames (at most one per time step) and every step's record (the
+//! history row, Newton's report and the energy row: `analysis::sizes`);
 //! the program itself about 8 MiB. Setup transients (node graph, METIS arrays, the
 //! transposed pattern) and output transients (VTU arrays) are freed before
 //! the factor is allocated, so the larger of them is added, not both.
@@ -67,6 +69,13 @@ pub struct Sizes {
     /// Field snapshots a run keeps until it writes them: the step ends,
     /// and a transient run's frames (`analysis.output_interval`).
     pub snapshots: u64,
+    /// Converged increments the run keeps a record of: the time steps of
+    /// a transient analysis (without cutbacks), the planned increments of
+    /// a static one.
+    pub history_rows: u64,
+    /// Bytes of one increment's record (history row, Newton's report,
+    /// energy row).
+    pub history_row_bytes: u64,
     /// True once `factor_nnz` comes from the symbolic factorization.
     pub exact: bool,
 }
@@ -123,6 +132,7 @@ impl Sizes {
                     .saturating_add(s.gauss_points.saturating_mul(SNAPSHOT_POINT_BYTES))
                     .saturating_mul(s.snapshots),
             ),
+            ("history of the increments", s.history_rows.saturating_mul(s.history_row_bytes)),
             // the Lanczos basis, and the two matrices K and B (or M) copied
             // out of the tangent's pattern
             (

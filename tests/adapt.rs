@@ -188,7 +188,6 @@ fn cli_run_adapt_refines_until_the_budget() {
     for (k, c) in cycles.iter().enumerate() {
         assert_eq!(c["cycle"].as_u64().unwrap() as usize, k);
         assert!(c["dof"].as_u64().unwrap() as usize <= budget);
-        assert!(c["time_s"].as_f64().unwrap() >= 0.0);
     }
     for w in cycles.windows(2) {
         assert!(w[1]["dof"].as_u64() > w[0]["dof"].as_u64());
@@ -317,14 +316,16 @@ fn measure(
     rows
 }
 
-/// The block under `--adapt` against the 3D solution along the top line
-/// (x ∈ [0.21, 0.29] m, σ_zz in % of the 3D peak, as
-/// bench/block_refinement.py) and the 3D punch force (1.4102 MN).
-/// `cargo test --release --test adapt -- --ignored block --nocapture`;
-/// `ADAPT_BLOCK` another example file to start from, `ADAPT_FRACTION` θ,
-/// `ADAPT_MAX_DOF` the budget.
+/// The block under `--adapt` from the paper's mesh against the 3D solution
+/// along the top line (x ∈ [0.21, 0.29] m, σ_zz in % of the 3D peak, as
+/// bench/block_refinement.py; CalculiX C3D20R refine 2,
+/// tests/data/block_calculix_top.csv) and the 3D punch force (1.4102 MN),
+/// with a budget of 60,000 DOF (docs/verification.md, "Adaptive
+/// refinement"). What the docs claim: the punch force within 0.6 % of 3D
+/// from cycle 1 on, and σ_zz under the punch within 6 % of the 3D peak at
+/// the last cycle, from 14.8 % on the paper's mesh.
 #[test]
-#[ignore = "measurement: several minutes"]
+#[ignore = "validate: slow — three adaptive cycles of the block up to 55,000 DOF (about 3 min)"]
 fn block_adaptive_against_3d() {
     let root = Path::new(env!("CARGO_MANIFEST_DIR"));
     let reference: Vec<[f64; 3]> = std::fs::read_to_string(root.join("tests/data/block_calculix_top.csv"))
@@ -337,11 +338,8 @@ fn block_adaptive_against_3d() {
         })
         .collect();
     let peak = reference.iter().map(|r| r[1].abs()).fold(0.0, f64::max);
-    let max_dof = std::env::var("ADAPT_MAX_DOF").ok().and_then(|v| v.parse().ok()).unwrap_or(38_325);
-    let fraction = std::env::var("ADAPT_FRACTION").ok().and_then(|v| v.parse().ok()).unwrap_or(0.5);
-    let settings = cufem::model::AdaptSettings { tolerance: 0.01, max_dof, max_cycles: 20, fraction };
-    let start = std::env::var("ADAPT_BLOCK").unwrap_or_else(|_| "block_indentation.toml".into());
-    let rows = measure(&start, settings, &|m, s| {
+    let settings = cufem::model::AdaptSettings { tolerance: 0.01, max_dof: 60_000, max_cycles: 20, fraction: 0.5 };
+    let rows = measure("block_indentation.toml", settings, &|m, s| {
         let view = s.fields(m);
         let line = m.lines.iter().find(|l| l.name == "top").unwrap();
         let samples = cufem::post::sample_line(&view, line);
@@ -352,20 +350,38 @@ fn block_adaptive_against_3d() {
             .map(|(r, p)| (p.sample.as_ref().unwrap().stress[2] - r[1]).abs() / peak)
             .fold(0.0, f64::max);
         let force = s.contact("punch").unwrap().force[2];
-        vec![100.0 * szz, 100.0 * (force / -1.4102e6 - 1.0), samples[100].sample.as_ref().unwrap().stress[2] / 1e6]
+        vec![100.0 * szz, 100.0 * (force / -1.4102e6 - 1.0)]
     });
-    println!("(σ_zz vs 3D max % of peak, punch force vs 3D %, centre σ_zz MPa)");
-    assert!(rows.len() > 1);
+    for (k, (dof, estimate, _, v)) in rows.iter().enumerate() {
+        common::figure(&format!("adapt_block.cycle{k}.dof"), *dof as f64, "", "reported");
+        common::figure(&format!("adapt_block.cycle{k}.estimate"), 100.0 * estimate, "%", "reported");
+        common::figure(&format!("adapt_block.cycle{k}.s_zz"), v[0], "%", "last cycle ≤ 6 % of the 3D peak");
+        common::figure(&format!("adapt_block.cycle{k}.force"), v[1], "%", "from cycle 1: |force − 3D| ≤ 0.6 %");
+        if k >= 1 {
+            assert!(v[1].abs() <= 0.6, "cycle {k}: punch force {:+.2} % from 3D", v[1]);
+        }
+    }
+    let last = rows.last().unwrap();
+    assert!(rows.len() >= 3 && last.3[0] <= 6.0, "{} cycles; σ_zz at the last {:.2} %", rows.len(), last.3[0]);
 }
 
 /// The thin-walled tube under `--adapt`: the loading roller's force per
-/// cycle (3D: 1,698 N; uniform axis refinements in docs/usage.md).
-/// `cargo test --release --test adapt -- --ignored tube --nocapture`
+/// cycle against 3D (CalculiX C3D20R, refine 1 of the paper's mesh:
+/// 1,698.2 N), four cycles. What the docs claim: cycles 3 and later settle
+/// within 0.6 % of 3D, from −3.45 % on the paper's mesh.
 #[test]
-#[ignore = "measurement: several minutes"]
+#[ignore = "validate: slow — four adaptive cycles of the tube up to 43,000 DOF (about 4 min)"]
 fn tube_adaptive_roller_force() {
-    let max_dof = std::env::var("ADAPT_MAX_DOF").ok().and_then(|v| v.parse().ok()).unwrap_or(140_000);
-    let settings = cufem::model::AdaptSettings { tolerance: 0.01, max_dof, max_cycles: 20, fraction: 0.5 };
+    let settings = cufem::model::AdaptSettings { tolerance: 0.01, max_dof: 140_000, max_cycles: 3, fraction: 0.5 };
     let rows = measure("bending_tube_28L9.toml", settings, &|_, s| vec![-s.contact("load").unwrap().force[2]]);
-    assert!(rows.len() > 1);
+    for (k, (dof, estimate, _, v)) in rows.iter().enumerate() {
+        let d = 100.0 * (v[0] / 1698.2 - 1.0);
+        common::figure(&format!("adapt_tube.cycle{k}.dof"), *dof as f64, "", "reported");
+        common::figure(&format!("adapt_tube.cycle{k}.estimate"), 100.0 * estimate, "%", "reported");
+        common::figure(&format!("adapt_tube.cycle{k}.force"), d, "%", "from cycle 3: |force − 3D| ≤ 0.6 %");
+        if k >= 3 {
+            assert!(d.abs() <= 0.6, "cycle {k}: roller force {d:+.2} % from 3D");
+        }
+    }
+    assert_eq!(rows.len(), 4, "cycles 0–3");
 }

@@ -252,7 +252,7 @@ fn buckling_refuses_what_it_cannot_analyse() {
                 "poisson_ratio = 0.3",
                 "poisson_ratio = 0.3\nplasticity = { yield_stress = 250e6, hardening = \"perfect\" }",
             ),
-            "materials \"steel\".plasticity",
+            "materials[0].plasticity",
         ),
         (
             text.replace("fix = [\"x\", \"y\", \"z\"]", "fix = [\"x\", \"z\"]\ndisplacement = { y = 1e-3 }"),

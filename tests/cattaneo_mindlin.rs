@@ -124,33 +124,3 @@ fn the_stick_zone_of_a_sheared_cylinder_contact_follows_cattaneo_mindlin() {
     }
     assert_eq!(checked, n_shear);
 }
-
-/// The cost of the unsymmetric solve, measured (not a check of results):
-/// the first press increment of the slice above with friction (GMRES
-/// preconditioned by the Cholesky factor of the symmetric part) and without
-/// (Cholesky and PCG), factorizations and solve time printed. Run with
-/// `cargo test --release --test cattaneo_mindlin -- --ignored --nocapture`.
-#[test]
-#[ignore = "a timing, not a check: run by hand"]
-fn frictional_against_frictionless_cost() {
-    for (name, text) in
-        [("friction (GMRES)", SLICE.to_string()), ("frictionless (PCG)", SLICE.replace("friction = 0.3\n", ""))]
-    {
-        let model = Model::parse(&text).unwrap();
-        let mut s = Structure::new(&model, None).unwrap();
-        assert_eq!(s.is_unsymmetric(), name.contains("GMRES"));
-        s.set_load_factor(0.5);
-        let r = newton::solve(&mut s, &NewtonSettings::default(), &Default::default());
-        assert!(r.converged());
-        let tm = s.timings();
-        eprintln!(
-            "{name}: {} iterations, {} factorizations in {:.3} s ({:.3} s each), {} Krylov iterations, solves {:.3} s",
-            r.iterations,
-            tm.factorizations,
-            tm.factorization.as_secs_f64(),
-            tm.factorization.as_secs_f64() / tm.factorizations as f64,
-            tm.krylov_iterations,
-            tm.solve.as_secs_f64()
-        );
-    }
-}

@@ -36,6 +36,9 @@ fn bar() -> String {
 /// (9,063 DOF, ccx 10.4 s) the differences are 0.87 % and 1.17 %.
 #[test]
 fn verify_cross_checks_the_step_loaded_bar_history_with_calculix() {
+    if common::ccx_missing() {
+        return;
+    }
     let out = common::verify(&scratch("bar"), "bar", &bar(), 1);
     // the deck: the density, two dynamic steps (1 ns in one increment, then
     // 200 of 4 µs), the trapezoidal rule, the load through its amplitude
@@ -157,17 +160,30 @@ fn a_transient_model_without_an_exact_twin_is_refused_by_key() {
 /// `ccx::dynamic`), through `cufem verify --refine 1` (315 against 1,047
 /// DOF; ccx about 20 s). The expected values are CalculiX's own (ccx 2.20,
 /// `*DYNAMIC, DIRECT, ALPHA=0`, the plate's mass in its density):
-/// measured the plate's motion within 0.57 % of the 3D peak (test 2 %), the
-/// contact's impulse −0.1 % (test 2 %), the peak force −5.3 % (test 10 %:
+/// measured the plate's motion within 0.91 % of the 3D peak (test 2 %), the
+/// contact's impulse +0.11 % (test 2 %), the peak force −4.8 % (test 10 %:
 /// the force rings at the contact nodes' frequencies, which differ between
-/// the meshes), and the energy the plate left in the block, 2.5 % of the
-/// impact energy, differs by 0.28 % of it (test 1 %; +12 % of itself: the
-/// block's vibration, and cufem's end-of-step contact impulse dissipates
-/// 0.38 mJ, 0.75 % of the impact energy). With Newmark's average of the
-/// contact forces instead (`contact_forces = "newmark"`, tried by hand) the
-/// plate leaves with 20 times its energy: motion 350 %, impulse +173 %.
+/// the meshes).
+///
+/// The energy the plate leaves in the block, `½ m (v₀² − v²)` (CalculiX
+/// 1.121 mJ, 2.2 % of the impact energy), is not matched: cufem's is
+/// −19.6 % of it with the contact nodes massless (the default,
+/// `dynamics::redistribution`: with one element through the block's
+/// height the top row's share of the mass moves to mid-height, and the
+/// block's vibration changes), +12.3 % with their mass kept (the same
+/// CalculiX results, `--ccx-results`; the end-of-step contact impulse then
+/// dissipates 0.38 mJ, the nodes stopping dead on the plate). Both are
+/// asserted from both sides (docs/limitations.md), and so is the largest
+/// difference of the top probe's u_z history under the ringing contact:
+/// 25.4 % of the 3D peak (21.1 % with the nodes' mass kept). With Newmark's average
+/// of the contact forces and the nodes' mass kept (`contact_forces =
+/// "newmark"`, `contact_mass = "kept"`, tried by hand) the plate leaves
+/// with 20 times its energy: motion 350 %, impulse +173 %.
 #[test]
 fn verify_cross_checks_an_impact_with_calculix() {
+    if common::ccx_missing() {
+        return;
+    }
     let text = r#"title = "Steel block struck by a rigid plate"
 
 [analysis]
@@ -233,9 +249,45 @@ increments = 300
     assert!(get("displacement_difference_percent") < 2.0, "{r}");
     assert!(get("impulse_difference_percent").abs() < 2.0, "{r}");
     assert!(get("peak_difference_percent").abs() < 10.0, "{r}");
-    assert!(get("absorbed_difference_of_impact_percent").abs() < 1.0, "{r}");
+    // the energy left in the block against CalculiX's, relative to itself:
+    // the contact nodes massless (the default), then their mass kept, on
+    // the same CalculiX results
+    let absorbed = get("absorbed_difference_percent");
+    println!("absorbed energy: {} against CalculiX's {} J, {absorbed:.2} %", r["absorbed"][0], r["absorbed"][1]);
+    let what = "energy left in the block against CalculiX's";
+    common::known_limit("ccx_dynamic.absorbed.redistributed", absorbed, "%", -22.0, -17.0, what);
+    // the top probe's u_z, under the ringing contact: 25.4 % of the 3D peak
+    // (21.1 % with the contact nodes' mass kept), asserted from both sides
+    let top = |table: &serde_json::Value| {
+        let rows = table["probe_histories"].as_array().unwrap();
+        let r = rows.iter().find(|r| r["probe"] == "top" && r["quantity"] == "u_z").unwrap();
+        r["max_difference_percent"].as_f64().unwrap()
+    };
+    let probe = top(&table);
+    let what = "the top probe's u_z history against CalculiX's, % of its peak";
+    common::known_limit("ccx_dynamic.probe_history.redistributed", probe, "%", 23.0, 28.0, what);
+    let kept = text.replace("type = \"transient\"\n", "type = \"transient\"\ncontact_mass = \"kept\"\n");
+    let dir = scratch("impact_kept");
+    std::fs::write(dir.join("kept.toml"), &kept).unwrap();
+    let (model, ccx_dir, out_kept) = (dir.join("kept.toml"), out.join("verify/ccx"), dir.join("out"));
+    let run = cufem()
+        .args(["verify", model.to_str().unwrap(), "--out", out_kept.to_str().unwrap(), "--refine", "1", "--quiet"])
+        .args(["--ccx-results", ccx_dir.to_str().unwrap(), "--force"])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let table: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out_kept.join("verify/table.json")).unwrap()).unwrap();
+    let kept = &table["impacts"][0];
+    let absorbed = kept["absorbed_difference_percent"].as_f64().unwrap();
+    println!("the contact nodes' mass kept: absorbed {} J, {absorbed:.2} %", kept["absorbed"][0]);
+    let what = "energy left in the block against CalculiX's, the contact nodes' mass kept";
+    common::known_limit("ccx_dynamic.absorbed.kept", absorbed, "%", 10.0, 15.0, what);
+    let probe = top(&table);
+    let what = "the top probe's u_z history, the contact nodes' mass kept";
+    common::known_limit("ccx_dynamic.probe_history.kept", probe, "%", 18.5, 23.5, what);
     // the 3D reference itself: the plate's impulse is m (v0 − v_end), with
-    // the rebound close to v0 (an elastic block keeps 2.5 % of the energy)
+    // the rebound close to v0 (an elastic block keeps 2.2 % of the energy in CalculiX)
     let impulse = r["impulses"][1].as_f64().unwrap();
     assert!((impulse / 0.2 - 1.0).abs() < 0.02, "{r}");
     for f in ["impact_plate.csv", "impact_plate_ccx.csv", "impact_plate.png"] {

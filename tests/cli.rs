@@ -422,7 +422,7 @@ fn option_values_are_checked_by_name() {
         (&["bench", m, "--threads", "-1"], &["'-1' for '--threads", "an integer ≥ 1"]),
         (&["bench", m, "--threads", "0"], &["'0' for '--threads", "an integer ≥ 1"]),
         (&["export-ccx", m, "--refine", "-1"], &["'-1' for '--refine", "an integer from 1 to 8"]),
-        (&["bench", m, "--max-memory", "-1"], &["'-1' for '--max-memory", "a size such as 8G"]),
+        (&["bench", m, "--max-memory", "-1"], &["'-1' for '--max-memory", "a positive size such as 8G"]),
         (
             &["bench", m, "--repeat", "1", "--threads", "5000", "--force-threads"],
             &["--threads = 5000", "with --force-threads: expected an integer from 1 to 1024"],

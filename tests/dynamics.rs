@@ -143,7 +143,7 @@ fn transient_refuses_what_it_cannot_integrate() {
             ),
             "analysis.initial_velocities[0].body",
         ),
-        (text.replace("density = 8000", "# no density"), "materials \"steel\".density"),
+        (text.replace("density = 8000", "# no density"), "materials[0].density = (missing)"),
         (text.replace("type = \"transient\"", "type = \"static\""), "steps[0].duration"),
         (text.replace("type = \"transient\"", "type = \"transient\"\nmodes = 3"), "analysis.modes"),
     ];
@@ -184,33 +184,52 @@ fn columns(path: &std::path::Path) -> std::collections::HashMap<String, Vec<f64>
     cols
 }
 
+/// The energy `T + W_int` at the end over `T₀` and the contacts' net work
+/// over `T₀` of a run's energy.csv.
+fn energy_ratio(out: &std::path::Path) -> (f64, f64) {
+    let e = columns(&out.join("energy.csv"));
+    let n = e["time_s"].len() - 1;
+    let t0 = e["kinetic_J"][0];
+    ((e["kinetic_J"][n] + e["internal_J"][n]) / t0, e["contact_J"][n] / t0)
+}
+
+/// `examples/rod_impact.toml` with `line` added to its `[analysis]`.
+fn rod_impact(line: &str) -> String {
+    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/rod_impact.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    text.replace("type = \"transient\"\n", &format!("type = \"transient\"\n{line}\n"))
+}
+
+/// The wall's contact force of a rod_impact run: (time in s, force in N
+/// pushing the rod back) per time step.
+fn wall_force(out: &std::path::Path) -> Vec<(f64, f64)> {
+    let wall = columns(&out.join("history_wall.csv"));
+    wall["lambda"].iter().zip(&wall["f_y"]).map(|(l, f)| (l * 6e-4, -f)).collect()
+}
+
 /// `examples/rod_impact.toml` through the CLI: an elastic rod at v₀ = 1 m/s
 /// against a rigid wall stays in contact for `2L/c` = 0.4 ms and leaves
 /// with `−v₀` and its kinetic energy (the 1D wave solution, Graff §1.4):
 /// duration within 2 %, the free end's mean velocity after separation
 /// within 2 % of −v₀, the energy `T + W_int` at the end within 1 % of `T₀`
 /// — the issue's checks — at the default penalty factor (100), whose
-/// contact spring the 1 µs step does not resolve, with the contact impulse
-/// at the end of each step (the default, `dynamics::impulse`): the
-/// contact's net work is a loss (it cannot create energy) below 1 % of
-/// `T₀`. For contrast the same impact with Newmark's average of the contact
-/// forces: the rod leaves with several times its energy (5.9), and the run
-/// warns (summary.json).
+/// contact spring the 1 µs step does not resolve, with the defaults of a
+/// transient contact: the contact impulse at the end of each step
+/// (`dynamics::impulse`) and the contact nodes massless
+/// (`dynamics::redistribution`): the contact's net work is a loss (it
+/// cannot create energy) below 1 % of `T₀` (measured 1.2e-4). For
+/// contrast the plain penalty — Newmark's average of the contact forces
+/// with the contact nodes' mass kept — creates energy: the rod leaves with
+/// 8.41 times its energy, asserted from both sides (8.0 to 8.85: the
+/// chatter's gain depends on every bounce), and the run warns
+/// (summary.json).
 #[test]
 fn a_rod_rebounds_from_a_rigid_wall_after_two_transit_times() {
-    let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/rod_impact.toml");
-    let text = std::fs::read_to_string(path).unwrap();
+    let text = rod_impact("");
     let (c, length, v0) = ((200e9f64 / 8000.0).sqrt(), 1.0, 1.0);
-    let energy_ratio = |out: &std::path::Path| {
-        let e = columns(&out.join("energy.csv"));
-        let n = e["time_s"].len() - 1;
-        let t0 = e["kinetic_J"][0];
-        ((e["kinetic_J"][n] + e["internal_J"][n]) / t0, e["contact_J"][n] / t0)
-    };
     let out = run_cli("rod_impact", &text);
-    let wall = columns(&out.join("history_wall.csv"));
-    let time: Vec<f64> = wall["lambda"].iter().map(|l| l * 6e-4).collect();
-    let touching: Vec<f64> = time.iter().zip(&wall["f_y"]).filter(|(_, f)| f.abs() > 0.0).map(|(t, _)| *t).collect();
+    let force = wall_force(&out);
+    let touching: Vec<f64> = force.iter().filter(|(_, f)| f.abs() > 0.0).map(|(t, _)| *t).collect();
     let duration = touching.last().unwrap() - touching[0];
     println!(
         "contact {:e} s to {:e} s: {duration:e} s against 2L/c = {:e} s",
@@ -219,6 +238,7 @@ fn a_rod_rebounds_from_a_rigid_wall_after_two_transit_times() {
         2.0 * length / c
     );
     assert!((duration / (2.0 * length / c) - 1.0).abs() < 0.02, "{duration}");
+    let time: Vec<f64> = force.iter().map(|r| r.0).collect();
     let probes = columns(&out.join("history_probes.csv"));
     let tail = &probes["tail.u_y"];
     let (i1, i2) = (time.iter().position(|&t| t >= 4.5e-4).unwrap(), time.len() - 1);
@@ -228,13 +248,13 @@ fn a_rod_rebounds_from_a_rigid_wall_after_two_transit_times() {
     let (energy, contact_work) = energy_ratio(&out);
     println!("energy at the end {energy} of T0, the contact's net work {contact_work} of T0");
     assert!((energy - 1.0).abs() < 0.01 && (-0.01..=0.0).contains(&contact_work), "{energy} {contact_work}");
-    // the same impact with Newmark's average of the contact forces: energy created
-    let average = text.replace("type = \"transient\"\n", "type = \"transient\"\ncontact_forces = \"newmark\"\n");
-    let stiff = run_cli("rod_impact_stiff", &average);
-    let (energy, _) = energy_ratio(&stiff);
-    println!("with Newmark's average of the contact forces: energy at the end {energy} of T0");
-    assert!(energy > 2.0, "{energy}");
-    let summary = std::fs::read_to_string(stiff.join("summary.json")).unwrap();
+    // the plain penalty: Newmark's average of the contact forces, the
+    // contact nodes' mass kept: energy created
+    let plain = run_cli("rod_impact_plain", &rod_impact("contact_forces = \"newmark\"\ncontact_mass = \"kept\""));
+    let (energy, _) = energy_ratio(&plain);
+    let what = "energy after the impact with Newmark's average of the contact forces, the nodes' mass kept";
+    common::known_limit("dynamics.newmark_average.energy_ratio", energy, "", 8.0, 8.85, what);
+    let summary = std::fs::read_to_string(plain.join("summary.json")).unwrap();
     assert!(summary.contains("net work"), "no warning in {summary}");
     // the ParaView time series: a frame every 50 µs of the 600 µs, each
     // counted by the memory estimate
@@ -243,6 +263,114 @@ fn a_rod_rebounds_from_a_rigid_wall_after_two_transit_times() {
     let model = cufem::model::Model::parse(&text).unwrap();
     assert_eq!(cufem::analysis::plan(&model).unwrap().snapshots, 12);
     assert!(out.join("frame_0012.vtu").exists());
+}
+
+/// The middle 80 % of a contact: the force samples after the first tenth
+/// and before the last tenth of the time from first touch to the last step
+/// with a force, and whether the contact opened in between.
+fn plateau(force: &[(f64, f64)]) -> (Vec<f64>, usize, f64) {
+    let first = force.iter().position(|r| r.1 > 0.0).unwrap();
+    let last = force.iter().rposition(|r| r.1 > 0.0).unwrap();
+    let (t0, t1) = (force[first].0, force[last].0);
+    let span = t1 - t0;
+    let middle = force.iter().filter(|r| r.0 >= t0 + 0.1 * span && r.0 <= t1 - 0.1 * span).map(|r| r.1).collect();
+    let opened = force[first..=last].iter().filter(|r| r.1 <= 0.0).count();
+    (middle, opened, span)
+}
+
+/// Saint-Venant's impact force (Graff, *Wave Motion in Elastic Solids*,
+/// §1.4): the rod of `examples/rod_impact.toml` pushes on the wall with
+/// `ρ c v₀ A` = 8000 · 5000 · 1 · 1e-4 = 4.0 kN from first touch until
+/// the wave's return at `2L/c` = 400 µs. With the contact nodes massless
+/// (`analysis.contact_mass = "redistributed"`, the default) and the
+/// contact impulse at the end of the step (the default): the wall's force
+/// within 5 % of 4.0 kN over the middle 80 % of the contact (issue 46;
+/// measured 0.71 %: the mesh's dispersion, largest as the unloading wave
+/// returns), no step of the contact without force, the contact time
+/// within 2 % of 2L/c (measured −0.5 %), and the energy `T + U` (kinetic
+/// and elastic strain energy) above `T₀` at no step beyond round-off
+/// (1e-9 of it; measured 1.1e-12, in free flight). With the contact
+/// nodes' mass kept (`"kept"`) the force chatters: the end node stops
+/// dead, opens in the contact's second step and rings (a peak of 7.3 kN,
+/// asserted above 6 kN). A 10 % error in the density (the mass matrix)
+/// fails the plateau (7.7 %) and the contact time (+4.3 %), tried by hand.
+#[test]
+fn the_wall_force_follows_saint_venants_plateau() {
+    let (rho, c, v0, area, length) = (8000.0, (200e9f64 / 8000.0).sqrt(), 1.0, 1e-4, 1.0);
+    let plateau_force = rho * c * v0 * area;
+    let out = run_cli("rod_impact_plateau", &rod_impact(""));
+    let force = wall_force(&out);
+    let (middle, opened, span) = plateau(&force);
+    let worst = middle.iter().map(|f| (f / plateau_force - 1.0).abs()).fold(0.0, f64::max);
+    println!(
+        "{} steps in the middle 80 %: largest deviation {:.2} % of {plateau_force} N; {opened} open steps; contact \
+         {span:e} s",
+        middle.len(),
+        100.0 * worst
+    );
+    assert!(middle.len() > 300 && worst < 0.05, "{worst}");
+    assert_eq!(opened, 0, "the contact opened {opened} times");
+    assert!((span / (2.0 * length / c) - 1.0).abs() < 0.02, "{span}");
+    let e = columns(&out.join("energy.csv"));
+    let t0 = e["kinetic_J"][0];
+    let most = e["kinetic_J"].iter().zip(&e["elastic_J"]).map(|(t, u)| (t + u) / t0).fold(0.0, f64::max);
+    println!("largest T + U: {most} of T0");
+    assert!(most <= 1.0 + 1e-9, "{most}");
+    // the contact nodes' mass kept: the end chatters on the wall
+    let kept = run_cli("rod_impact_kept", &rod_impact("contact_mass = \"kept\""));
+    let force = wall_force(&kept);
+    let (_, opened, _) = plateau(&force);
+    let peak = force.iter().map(|r| r.1).fold(0.0, f64::max);
+    println!("the contact nodes' mass kept: {opened} open steps, peak {peak} N");
+    assert!(opened > 0 && peak > 1.5 * plateau_force, "{opened} {peak}");
+}
+
+/// Two identical rods colliding at ±1 m/s (node-to-node contact between
+/// bodies, `[[contacts]]`): the interface stays at rest and each rod
+/// carries Saint-Venant's stress `ρ c v₀` until its wave returns at `2L/c`
+/// (Graff §1.4), a contact force of 4.0 kN. With both sides' contact nodes
+/// massless (the default) the force is within 5 % of it over the middle
+/// 80 % of the contact (measured 0.71 %) and never zero inside it, and the
+/// energy never above the initial beyond round-off (measured 1.5e-12);
+/// with their mass kept the ends chatter (measured 9.6 %, an open step).
+#[test]
+fn two_colliding_rods_push_with_saint_venants_force() {
+    let rod = |name: &str, from: f64| {
+        format!(
+            "[[bodies]]\nname = \"{name}\"\nmaterial = \"steel\"\nsection = {{ shape = \"rectangle\", element = \"L4\", \
+             x = {{ from = 0.0, to = 0.01, elements = 1 }}, z = {{ from = 0.0, to = 0.01, elements = 1 }} }}\n\
+             axis = {{ element = \"B2\", from = {from:?}, to = {:?}, elements = 100 }}\n\n",
+            from + 1.0
+        )
+    };
+    let text = format!(
+        "[analysis]\ntype = \"transient\"\ninitial_velocities = [{{ body = \"left\", velocity = [0.0, 1.0, 0.0] }}, \
+         {{ body = \"right\", velocity = [0.0, -1.0, 0.0] }}]\n\n[[materials]]\nname = \"steel\"\n\
+         young_modulus = 200e9\npoisson_ratio = 0.0\ndensity = 8000.0\n\n{}{}[[contacts]]\nname = \"ends\"\n\
+         master = {{ body = \"right\", where = {{ y = 1.00002 }} }}\nslave = {{ body = \"left\", where = {{ y = 1.0 }} }}\n\n\
+         [[steps]]\nname = \"flight\"\nfactor = 1.0\nduration = 6e-4\nincrements = 600\n",
+        rod("left", 0.0),
+        rod("right", 1.00002)
+    );
+    let run = |text: &str| {
+        let sol = common::run(text);
+        let force: Vec<(f64, f64)> =
+            sol.history.iter().map(|r| (r.lambda * 6e-4, r.contact("ends").unwrap().force[1].abs())).collect();
+        let energy = sol.energy.unwrap();
+        let t0 = energy[0].kinetic;
+        (force, energy.iter().map(|r| (r.kinetic + r.elastic) / t0).fold(0.0, f64::max))
+    };
+    let (force, most) = run(&text);
+    let (middle, opened, _) = plateau(&force);
+    let worst = middle.iter().map(|f| (f / 4000.0 - 1.0).abs()).fold(0.0, f64::max);
+    println!("largest deviation {:.2} %, {opened} open steps, largest T + U {most} of T0", 100.0 * worst);
+    assert!(middle.len() > 300 && worst < 0.05 && opened == 0, "{worst} {opened}");
+    assert!(most <= 1.0 + 1e-9, "{most}");
+    let (force, _) = run(&text.replace("type = \"transient\"\n", "type = \"transient\"\ncontact_mass = \"kept\"\n"));
+    let (middle, opened, _) = plateau(&force);
+    let worst = middle.iter().map(|f| (f / 4000.0 - 1.0).abs()).fold(0.0, f64::max);
+    println!("the contact nodes' mass kept: largest deviation {:.2} %, {opened} open steps", 100.0 * worst);
+    assert!(worst > 0.05 && opened > 0, "{worst} {opened}");
 }
 
 /// A frame (`analysis.output_interval`) holds the state of the increment it
@@ -273,7 +401,7 @@ fn frames_hold_the_fields_of_their_time() {
 /// the mass has travelled `v₀ τ (1 − e^(−t/τ))` (Saint-Venant; Timoshenko
 /// & Goodier, *Theory of Elasticity*, §151). M = ρ A L (τ = L/c),
 /// v₀ = 1 m/s, a 10 µm gap, penalty factor 1: the mass's displacement
-/// within 1 % of that over the contact (measured 0.35 %), and its mean
+/// within 1 % of that over the contact (measured 0.36 %, its end nodes massless), and its mean
 /// force over each quarter of `2L/c` within 5 % of the closed form's (the
 /// contact spring rings about it; measured within 2.4 %).
 #[test]
@@ -318,20 +446,53 @@ fn a_mass_striking_a_rod_follows_saint_venants_solution() {
     }
 }
 
-/// `examples/tube_drop_weight.toml` through the CLI (ignored: about a
-/// minute; `cargo test --release --test dynamics -- --ignored drop_weight
-/// --nocapture`): the weight's loss of kinetic energy `½ m (v₀² − v²)`
-/// (its final velocity from its displacement over the last ten steps)
-/// equals the contact work on the tube in the energy ledger within 1 %
-/// (measured 0.005 %) once it has left the tube: two independent
-/// integrations — the impactor's Newmark in its own unknown, the ledger's
-/// trapezoidal work on the tube's nodes — of the same exchange. The tube
-/// dents plastically and the weight rebounds.
+/// A smaller twin of `examples/tube_drop_weight.toml` through the CLI: the
+/// same tube, supports, alloy and 2 kg weight at 1 m/s, its section 8 L9
+/// around instead of 20 and its axis 10 B4 instead of 22 (4,464 DOF
+/// against 24,120), the same 300 steps of 20 µs. The weight's loss of
+/// kinetic energy `½ m (v₀² − v²)` (its final velocity from its
+/// displacement over the last ten steps) equals the contact work on the
+/// tube in the energy ledger within 1 % (measured 0.79 J and −0.24 %; the
+/// example itself gives 0.805 J and −0.005 %) once it has left the tube:
+/// two independent integrations — the impactor's Newmark in its own
+/// unknown, the ledger's trapezoidal work on the tube's nodes — of the
+/// same exchange, which differ by what the contact dissipates (with 150
+/// steps of 40 µs −1.5 %, tried by hand). The tube dents plastically and
+/// the weight rebounds.
 #[test]
-#[ignore]
 fn a_drop_weight_hands_its_energy_to_the_tube() {
+    let mut twin = drop_weight_example().replace("around = 20", "around = 8");
+    for (from, to) in [
+        ("to = 0.025, elements = 2", "to = 0.025, elements = 1"),
+        ("to = 0.125, elements = 9", "to = 0.125, elements = 4"),
+        ("to = 0.225, elements = 9", "to = 0.225, elements = 4"),
+        ("to = 0.25, elements = 2", "to = 0.25, elements = 1"),
+    ] {
+        assert!(twin.contains(from), "{from}");
+        twin = twin.replace(from, to);
+    }
+    drop_weight("tube_drop_weight_twin", &twin);
+}
+
+/// The checks of [`a_drop_weight_hands_its_energy_to_the_tube`] on
+/// `examples/tube_drop_weight.toml` itself (measured: the weight lost
+/// 0.80492 J, the contacts did 0.80488 J on the tube, −0.005 %; 0.786 J
+/// plastic dissipation of 0.802 J internal work).
+#[test]
+#[ignore = "validate: slow — examples/tube_drop_weight.toml through the CLI, 24,120 DOF and 300 time steps, about 60 s"]
+fn the_drop_weight_example_hands_its_energy_to_the_tube() {
+    drop_weight("tube_drop_weight", &drop_weight_example());
+}
+
+fn drop_weight_example() -> String {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/tube_drop_weight.toml");
-    let out = run_cli("tube_drop_weight", &std::fs::read_to_string(path).unwrap());
+    std::fs::read_to_string(path).unwrap()
+}
+
+/// Runs a drop-weight model through the CLI and checks its energy exchange
+/// ([`a_drop_weight_hands_its_energy_to_the_tube`]).
+fn drop_weight(name: &str, text: &str) {
+    let out = run_cli(name, text);
     let hammer = columns(&out.join("history_load.csv"));
     let n = hammer["lambda"].len() - 1;
     let t = |k: usize| hammer["lambda"][k] * 6e-3;
@@ -439,18 +600,35 @@ fn the_contact_impulse_tangent_matches_finite_differences() {
 /// `δ_max = (15 m v₀² / (16 E* √R))^(2/5)`, with the peak force
 /// `(4/3) E* √R δ_max^(3/2)`, and leaves after `2.94 δ_max / v₀`. The
 /// quarter model of `examples/hertz_ball.toml` (the same block, clamped,
-/// 30 mm: a wave crosses it in 6 µs, quasi-static against the impact) with
-/// its ball made an impactor (a quarter of 1 kg at 1 m/s, 1 µm above the
-/// block, `method = "surface"`, default penalty), 40 steps of 6.5 µs:
-/// δ_max 71.1 µm, 4,394 N on the quarter and 209.1 µs in theory; measured
-/// −1.3 %, +1.7 % (the static example is +2.9 %: the finite clamped block
-/// is stiffer than the half-space) and −1.2 %; the ball rebounds at
-/// 0.998 v₀ (test 2 %; the end-of-step contact impulse loses 0.4 % of the
-/// energy). Issue 27 asks 5 %. Ignored: about 40 s
-/// (`cargo test --release --test dynamics -- --ignored hertz --nocapture`).
+/// 30 mm: a wave crosses it in 6 µs, quasi-static against the impact),
+/// coarsened to 5 elements per direction (ratio 60, the example 10) for a
+/// fast twin, with its ball made an impactor (a quarter of 1 kg at 1 m/s,
+/// 1 µm above the block, `method = "surface"`, default penalty), 40 steps
+/// of 6.5 µs: δ_max 71.1 µm, 4,394 N on the quarter and 209.1 µs in
+/// theory; measured −0.67 %, +3.1 % (the static example is +2.9 %: the
+/// finite clamped block is stiffer than the half-space) and −1.1 %; the
+/// ball rebounds at 0.998 v₀ (test 2 %). Issue 27 asks 5 %. The example's
+/// own mesh (10 elements per direction, 40 s) gives −1.3 %, +1.7 % and
+/// −1.2 % (the validation test below); with 4 elements per direction
+/// −3.0 % on the force. A 10 % heavier ball (+5.9 % on the peak force in
+/// theory) fails, tried by hand.
 #[test]
-#[ignore]
 fn a_ball_bounces_off_a_block_as_hertz_impact_theory_says() {
+    hertz_impact(5);
+}
+
+/// [`a_ball_bounces_off_a_block_as_hertz_impact_theory_says`] on the mesh
+/// of `examples/hertz_ball.toml` itself (10 elements per direction,
+/// 41,013 DOF; measured −1.3 %, +1.7 %, −1.2 %, rebound 0.998 v₀).
+#[test]
+#[ignore = "validate: slow — the Hertz impact on examples/hertz_ball.toml's mesh, 41,013 DOF and 40 time steps, about 40 s"]
+fn a_ball_bounces_off_the_examples_block_as_hertz_impact_theory_says() {
+    hertz_impact(10);
+}
+
+/// The Hertz impact on the block of `examples/hertz_ball.toml` with
+/// `elements` per direction (module docs of the tests above).
+fn hertz_impact(elements: usize) {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/hertz_ball.toml");
     let text = std::fs::read_to_string(path).unwrap();
     let lines = text.find("[[lines]]").unwrap();
@@ -459,8 +637,10 @@ fn a_ball_bounces_off_a_block_as_hertz_impact_theory_says() {
         .replacen("poisson_ratio = 0.3\n", "poisson_ratio = 0.3\ndensity = 7850.0\n", 1)
         .replace("center = [0.0, 0.0, 0.01]", "center = [0.0, 0.0, 0.010001]")
         .replace("displacement = [0.0, 0.0, -5e-5]", "mass = 0.25\nvelocity = [0.0, 0.0, -1.0]")
+        .replace("elements = 10,", &format!("elements = {elements},"))
         + "[[steps]]\nname = \"impact\"\nfactor = 1.0\nduration = 2.6e-4\nincrements = 40\n";
     assert!(text.contains("mass = 0.25") && text.contains("transient"), "{text}");
+    assert_eq!(text.matches(&format!("elements = {elements},")).count(), 3, "{text}");
     let sol = common::run(&text);
     let (mass, v0, radius, gap) = (1.0f64, 1.0, 0.01f64, 1e-6);
     let e_star = 200e9 / (1.0 - 0.3f64 * 0.3);

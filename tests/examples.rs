@@ -16,6 +16,8 @@ use std::sync::{Arc, OnceLock};
 
 use serde_json::Value;
 
+mod common;
+
 /// Runs `examples/<name>.toml` and returns its summary.
 fn run(name: &str) -> Value {
     // each example runs once per test binary: a regression test that reads
@@ -102,8 +104,17 @@ fn probe(s: &Value, name: &str, quantity: &str) -> f64 {
     }
 }
 
-fn assert_within(name: &str, what: &str, value: f64, reference: f64, relative: f64) {
+/// `value` within `relative` of `reference`; the difference in % is the
+/// figure `id` of the validation report.
+fn assert_within(id: &str, what: &str, value: f64, reference: f64, relative: f64) {
     let err = (value - reference).abs() / reference.abs();
+    common::figure(
+        id,
+        100.0 * (value / reference - 1.0),
+        "%",
+        &format!("|difference| ≤ {} %: {what}", 100.0 * relative),
+    );
+    let name = id;
     eprintln!("{name}: {what} = {value:.4e} (reference {reference:.4e}, {:.1} %)", 100.0 * err);
     assert!(
         err <= relative,
@@ -113,24 +124,17 @@ fn assert_within(name: &str, what: &str, value: f64, reference: f64, relative: f
     );
 }
 
-/// The numeric columns of a CSV file that cufem wrote, by header name.
-fn csv_columns(path: &Path) -> std::collections::HashMap<String, Vec<f64>> {
-    let text = std::fs::read_to_string(path).unwrap();
-    let mut lines = text.lines();
-    let header: Vec<&str> = lines.next().unwrap().split(',').collect();
-    let mut columns: Vec<Vec<f64>> = vec![Vec::new(); header.len()];
-    for line in lines {
-        for (c, v) in columns.iter_mut().zip(line.split(',')) {
-            c.push(v.parse().unwrap());
-        }
-    }
-    header.into_iter().map(String::from).zip(columns).collect()
-}
+use common::csv_columns;
 
 /// σ_zz along the top line (`line_top.csv` of a run), as (x, σ_zz, peeq).
 fn top_line(out: &Path) -> Vec<[f64; 3]> {
     let c = csv_columns(&out.join("line_top.csv"));
     (0..c["x"].len()).map(|i| [c["x"][i], c["s_zz"][i], c["peeq"][i]]).collect()
+}
+
+/// The 7 in roller's force (N, pushing down: positive).
+fn roller_7in(s: &Value) -> f64 {
+    -vec3(&s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "indenter_7in").unwrap()["force"])[2]
 }
 
 /// Normal and tangential resultants (N) of the run's pair contact.
@@ -167,40 +171,92 @@ fn block_indentation() {
     // The punch force against the 3D solid model: measured −1.05 %; the
     // issue's tolerance, 2 % (the paper's element: +8.0 %, test below).
     let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
-    assert_within("block", "punch force vs CalculiX", vec3(&punch["force"])[2], BLOCK_FORCE_3D, 0.02);
+    assert_within(
+        "block.punch_force",
+        "punch force vs CalculiX (tests/data/references.toml, block)",
+        vec3(&punch["force"])[2],
+        BLOCK_FORCE_3D,
+        0.02,
+    );
     // σ_zz rises monotonically from the edge region to the centre, as in 3D:
     // no plateaus and jumps, no oscillation. Measured: largest reversal
     // 2.2 MPa, 0.7 % of the 3D peak; asserted 2 % (the paper's element:
     // 65 MPa, test below).
     let reversal = largest_reversal(&top_line(&out));
+    common::figure("block.reversal", reversal / 1e6, "MPa", "< 2 % of the 3D peak (5.9 MPa)");
     assert!(reversal < 0.02 * BLOCK_SZZ_PEAK_3D, "σ_zz reversal under the punch {reversal:e} Pa");
-    // The paper's own models give 0.0404–0.0658 at the punch edge (ABAQUS
-    // coarse to fine, CUF): its mesh dependence. We ask for that range ±25 %
-    // of its top (a singular point: 3D gives 0.19 there; measured 0.0755).
-    let peeq = probe(&s, "edge", "peeq");
-    assert!((0.0404 - 0.25 * 0.0658..=0.0658 * 1.25).contains(&peeq), "peeq {peeq}");
+    // The punch edge is a singular point: at the probe (0.2, 0.05, 0.3) the
+    // 3D model gives σ_zz −213.7 MPa and peeq 0.194
+    // (tests/data/block_calculix_top.csv, x = 0.2) and the paper's models
+    // 0.0404–0.0658 (Table 2, growing under refinement); the example gives
+    // −134.3 MPa and 0.0755. Known limits, asserted from both sides
+    // (docs/limitations.md).
+    common::known_limit(
+        "block.edge.s_zz",
+        probe(&s, "edge", "s_zz") / 1e6,
+        "MPa",
+        -138.3,
+        -130.3,
+        "σ_zz at the punch edge",
+    );
+    common::known_limit("block.edge.peeq", probe(&s, "edge", "peeq"), "", 0.0733, 0.0778, "peeq at the punch edge");
+    // Along the top under the punch, x ∈ [0.21, 0.29] m, away from the
+    // edge: σ_zz and peeq against the 3D top line, in % of its peak.
+    // Measured 14.8 % and 10.5 % (the refined CUF meshes reach 8 % and 6 %:
+    // block_refined_fields_match_calculix): known limits.
+    let (szz, peeq) = under_the_punch(&top_line(&out));
+    common::known_limit("block.top.s_zz", 100.0 * szz, "%", 14.3, 15.3, "σ_zz under the punch against 3D");
+    common::known_limit("block.top.peeq", 100.0 * peeq, "%", 10.1, 10.9, "peeq under the punch against 3D");
 }
 
-/// Regression guard, not a validation: the block's elastic stiffness on the
-/// shipped mesh against cufem's own refined model (36 × 12 section
-/// elements, 2 B4; 38,325 DOF: 266,215 N at the first increment, 0.05 mm;
-/// the shipped mesh measured 265,252 N, 0.4 % softer). It guards the
-/// element stiffness of the B-bar element and the punch contact against a
-/// change of more than 2 %; the independent checks of the same example are
-/// the CalculiX force and σ_zz above.
+/// The largest differences of σ_zz and peeq along the top under the punch,
+/// x ∈ [0.21, 0.29] m, from the 3D top line (CalculiX C3D20R, refine 2,
+/// tests/data/block_calculix_top.csv), as fractions of the 3D peak of each.
+fn under_the_punch(ours: &[[f64; 3]]) -> (f64, f64) {
+    let reference = csv_columns(&Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data/block_calculix_top.csv"));
+    let mut worst = [0.0f64; 2];
+    for (k, q) in [(1, "s_zz"), (2, "peeq")] {
+        let peak = reference[q].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (i, o) in ours.iter().enumerate() {
+            assert!((reference["x"][i] - o[0]).abs() < 1e-9, "stations differ");
+            if (0.21 - 1e-9..=0.29 + 1e-9).contains(&o[0]) {
+                worst[k - 1] = worst[k - 1].max((o[k] - reference[q][i]).abs() / peak);
+            }
+        }
+    }
+    (worst[0], worst[1])
+}
+
+/// The block's elastic stiffness on the shipped mesh: the force of the
+/// first increment (0.05 mm, elastic) against the 3D model of the same
+/// elastic increment (CalculiX C3D20R: 263,204.7 N at refine 1,
+/// 263,753.4 N at refine 2, 145,767 DOF: `cufem verify` of the example
+/// without its plasticity, one increment of 0.05 mm;
+/// tests/data/references.toml, block_elastic). Measured +0.57 % against
+/// refine 2; 2 %: the 3D force still rises under refinement (+0.2 % from
+/// refine 1 to 2) at the singular punch edges, while a 10 % error in the
+/// element stiffness or the punch contact fails.
 #[test]
-fn regression_block_indentation_first_increment_force() {
+fn block_indentation_first_increment_force_against_3d() {
     let _ = run("block_indentation");
     assert_eq!(first_increment("block_indentation", "punch").0, 0.0, "the first increment is elastic");
-    assert_first_force("block_indentation", "punch", -266_215.0, 0.02);
+    let (_, _, force) = first_increment("block_indentation", "punch");
+    assert_within(
+        "block.first_force",
+        "elastic first-increment punch force vs CalculiX (refine 2)",
+        force,
+        -263_753.4,
+        0.02,
+    );
 }
 
 /// The block with the paper's displacement-based element and element-wise
 /// recovery (the example without its two issue-8 lines): volumetric locking
 /// in the confined plastic flow under the punch. Measured: punch force
-/// +8.0 % above the 3D model and a σ_zz reversal of 65 MPa under the punch
-/// (plateaus joined by jumps). This is why the example ships B-bar; the test
-/// fails if `formulation` or `recovery` stopped being honoured.
+/// +8.0 % above the 3D model (a known limit of that element, asserted from
+/// both sides) and a σ_zz reversal of 65 MPa under the punch (plateaus
+/// joined by jumps). This is why the example ships B-bar; the test fails if
+/// `formulation` or `recovery` stopped being honoured.
 #[test]
 fn block_indentation_paper_element_locks() {
     let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/block_indentation.toml"))
@@ -210,10 +266,13 @@ fn block_indentation_paper_element_locks() {
     assert!(!text.contains("formulation = \"bbar\"\n") && !text.contains("recovery = \"projection\"\n"));
     let (s, out) = run_text("block_standard", &text);
     let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
-    let excess = vec3(&punch["force"])[2] / BLOCK_FORCE_3D - 1.0;
-    assert!((0.05..0.11).contains(&excess), "punch force {:+.1} % vs CalculiX", 100.0 * excess);
+    let excess = 100.0 * (vec3(&punch["force"])[2] / BLOCK_FORCE_3D - 1.0);
+    common::known_limit("block_paper_element.punch_force", excess, "%", 7.8, 8.3, "punch force against 3D (locking)");
     let reversal = largest_reversal(&top_line(&out));
+    common::figure("block_paper_element.reversal", reversal / 1e6, "MPa", "> 10 % of the 3D peak (plateaus and jumps)");
     assert!(reversal > 0.1 * BLOCK_SZZ_PEAK_3D, "σ_zz reversal under the punch {reversal:e} Pa");
+    common::figure("block_paper_element.edge.s_zz", probe(&s, "edge", "s_zz") / 1e6, "MPa", "reported");
+    common::figure("block_paper_element.edge.peeq", probe(&s, "edge", "peeq"), "", "reported");
 }
 
 /// The indentation test (issue 10): the block example loaded to 1 mm and
@@ -232,7 +291,7 @@ fn block_indentation_unload() {
     let bottom = vec3(&steps[0]["reactions"].as_array().unwrap()[0]["force"])[2];
     assert!((bottom + punch(&steps[0])).abs() < 1e-6 * bottom.abs(), "loaded balance {bottom:e}");
     // loaded: the block example's force (same model and increments)
-    assert_within("block_indentation_unload", "loaded punch force vs CalculiX", punch(&steps[0]), BLOCK_FORCE_3D, 0.02);
+    assert_within("block_unload.punch_force", "loaded punch force vs CalculiX", punch(&steps[0]), BLOCK_FORCE_3D, 0.02);
     assert_eq!(punch(&steps[1]), 0.0, "the punch has left the block");
     let centre = |step: &Value| {
         step["probes"].as_array().unwrap().iter().find(|p| p["name"] == "centre").unwrap()["u"][2].as_f64().unwrap()
@@ -280,7 +339,7 @@ fn bending_tube_springback() {
     assert!(rows[loaded][pp] > 0.0, "the tube yields under the roller");
     let first_unload = &rows[loaded + 1];
     let k_unload = (rows[loaded][fz] - first_unload[fz]) / (rows[loaded][dz] - first_unload[dz]);
-    assert_within("bending_tube_springback", "unloading slope vs elastic stiffness", k_unload, k_elastic, 0.01);
+    assert_within("tube_springback.unloading_slope", "unloading slope vs elastic stiffness", k_unload, k_elastic, 0.01);
     // elastic down to 60 % of the force; below, 4 Gauss points on the roller
     // line yield again in reverse (measured at 41 % and 22 %)
     for r in rows.iter().filter(|r| r[lam] > 1.0 && r[lam] < 1.5) {
@@ -296,21 +355,29 @@ fn bending_tube_springback() {
 
 /// §4.2, Tables 3 and 5: compact bar. The span, roller radius and section
 /// mesh are assumed (Fig. 7 missing); the probe sits on the loading-roller
-/// line, where a node-to-node contact concentrates the load.
-fn compact(name: &str, dof: u64, paper_syy: f64, paper_peeq: f64) {
+/// line, where a node-to-node contact concentrates the load. Against the 3D
+/// model of the same bar (CalculiX C3D20R, refine 1 of the 16 L9 mesh;
+/// tests/data/references.toml, compact16_quarter): σ_yy −43.6 MPa and peeq
+/// 1.08e-3 at the probe. The probe's values are known limits, asserted from
+/// both sides (`s_yy` in MPa and `peeq` measured, ±3 %; docs/limitations.md):
+/// σ_yy 2–3 % and peeq 9–12 % below 3D on the roller line. The paper's
+/// values (Table 5) are reported beside them: its geometry is not ours.
+fn compact(name: &str, dof: u64, s_yy: f64, peeq: f64) {
     let s = run(name);
     assert_eq!(s["dof"], dof);
     assert_equilibrium(name, &s);
-    // σ_yy at the contact centre: bending-dominated; the paper's own models
-    // span −38.8 to −49.8 MPa (±12 % around their mean). 20 %.
-    assert_within(name, "σ_yy at the contact centre", probe(&s, "contact_centre", "s_yy"), paper_syy, 0.20);
-    // peeq there is a local contact quantity, set by the unknown load
-    // introduction (span: force ∝ span⁻³ at fixed deflection; roller size):
-    // we obtain about half the paper's value. Only the order of magnitude is
-    // checked (a factor 2.5), and the gap is reported in the README.
-    let peeq = probe(&s, "contact_centre", "peeq");
-    eprintln!("{name}: peeq {peeq:.3e} vs paper {paper_peeq:.3e}");
-    assert!(peeq > paper_peeq / 2.5 && peeq < paper_peeq * 2.5);
+    let (ours_syy, ours_peeq) = (probe(&s, "contact_centre", "s_yy") / 1e6, probe(&s, "contact_centre", "peeq"));
+    let band = |v: f64| if v < 0.0 { (1.03 * v, 0.97 * v) } else { (0.97 * v, 1.03 * v) };
+    let (lo, hi) = band(s_yy);
+    common::known_limit(&format!("{name}.s_yy"), ours_syy, "MPa", lo, hi, "σ_yy at the contact centre (3D: −43.6 MPa)");
+    let (lo, hi) = band(peeq);
+    common::known_limit(&format!("{name}.peeq"), ours_peeq, "", lo, hi, "peeq at the contact centre (3D: 1.08e-3)");
+    common::figure(
+        &format!("{name}.s_yy_vs_paper_abaqus"),
+        100.0 * (ours_syy / -43.63 - 1.0),
+        "%",
+        "reported against paper Table 5, ABAQUS refined",
+    );
 }
 
 /// `(plastic points, indenter displacement along z, force along z)` of the
@@ -326,18 +393,6 @@ fn first_increment(name: &str, indenter: &str) -> (f64, f64, f64) {
         first[at].parse().unwrap_or_else(|e| panic!("{key} = {:?}: {e}", first[at]))
     };
     (column("plastic_points"), column("d_z"), column("f_z"))
-}
-
-/// Regression guard: the indenter force of the first increment (elastic,
-/// or with a few plastic points right under a roller) against the same
-/// increment of cufem's own refined model (each section and axis division
-/// doubled, or the ring refined from 20 to 36 elements). The reference is
-/// nearer the converged stiffness but not independent of the code;
-/// `tolerance` covers the measured discretization difference with room to
-/// spare, while a 10 % error in the element stiffness does not fit in it.
-fn assert_first_force(name: &str, indenter: &str, refined: f64, tolerance: f64) {
-    let (_, _, force) = first_increment(name, indenter);
-    assert_within(name, &format!("first-increment force of {indenter} vs refined CUF"), force, refined, tolerance);
 }
 
 /// The roller force of the first (elastic) increment against Timoshenko's
@@ -356,66 +411,111 @@ fn assert_elastic_bending_stiffness(name: &str) {
     let (i, a, g) = (b.powi(4) / 12.0, b * b, e / (2.0 * (1.0 + nu)));
     let kappa = 10.0 * (1.0 + nu) / (12.0 + 11.0 * nu);
     let compliance = l.powi(3) / (48.0 * e * i) + l / (4.0 * kappa * g * a);
-    assert_within(name, "elastic roller force vs Timoshenko", force, delta / compliance, 0.02);
+    assert_within(
+        &format!("{name}.elastic_force"),
+        "elastic roller force vs Timoshenko",
+        force,
+        delta / compliance,
+        0.02,
+    );
 }
 
 #[test]
 fn bending_compact_4l9() {
-    compact("bending_compact_4L9", 2325, -45.30e6, 1.89e-3);
+    compact("bending_compact_4L9", 2325, -42.37, 0.951e-3);
     assert_elastic_bending_stiffness("bending_compact_4L9");
 }
 
 #[test]
 fn bending_compact_16l9() {
-    compact("bending_compact_16L9", 7533, -49.75e6, 1.98e-3);
+    compact("bending_compact_16L9", 7533, -42.93, 0.981e-3);
     assert_elastic_bending_stiffness("bending_compact_16L9");
 }
 
 /// §4.2, Tables 4 and 6: thin-walled tube. As for the compact bar, plus the
 /// ring mesh (Fig. 13) is assumed. The probe is at mid-width of the top wall
 /// under the roller, where the wall bends locally (in our model it lifts off
-/// the roller by ~0.02 mm): the paper's models spread from −38.7 to −60.6 MPa
-/// (σ_yy) and 2.1e-3 to 8.4e-3 (peeq) at this point. 30 % on σ_yy, a
-/// factor 2 on peeq.
-fn tube(name: &str, dof: u64, paper_syy: f64, paper_peeq: f64) -> Value {
+/// the roller by ~0.02 mm). Against the 3D model of the 28 L9 mesh
+/// (CalculiX C3D20R, refine 1; tests/data/references.toml, tube): σ_yy
+/// −63.87 MPa and peeq 5.27e-3 at the probe. Known limits, asserted from
+/// both sides (the measured values ±3 %; docs/limitations.md): 28 L9 +13 %
+/// on σ_yy and peeq within 0.2 %; 20 L9 +1.4 % and +15 %.
+fn tube(name: &str, dof: u64, s_yy: f64, peeq: f64) -> Value {
     let s = run(name);
     assert_eq!(s["dof"], dof);
     assert_equilibrium(name, &s);
-    assert_within(name, "σ_yy at the contact centre", probe(&s, "contact_centre", "s_yy"), paper_syy, 0.30);
-    let peeq = probe(&s, "contact_centre", "peeq");
-    eprintln!("{name}: peeq {peeq:.3e} vs paper {paper_peeq:.3e}");
-    assert!(peeq > paper_peeq / 2.0 && peeq < paper_peeq * 2.0);
+    let (ours_syy, ours_peeq) = (probe(&s, "contact_centre", "s_yy") / 1e6, probe(&s, "contact_centre", "peeq"));
+    common::known_limit(
+        &format!("{name}.s_yy"),
+        ours_syy,
+        "MPa",
+        1.03 * s_yy,
+        0.97 * s_yy,
+        "σ_yy at the contact centre (3D: −63.87 MPa)",
+    );
+    common::known_limit(
+        &format!("{name}.peeq"),
+        ours_peeq,
+        "",
+        0.97 * peeq,
+        1.03 * peeq,
+        "peeq at the contact centre (3D: 5.27e-3)",
+    );
+    common::figure(
+        &format!("{name}.s_yy_vs_3d"),
+        100.0 * (ours_syy / -63.8669 - 1.0),
+        "%",
+        "reported against 3D (CalculiX C3D20R, refine 1)",
+    );
+    common::figure(
+        &format!("{name}.peeq_vs_3d"),
+        100.0 * (ours_peeq / 5.27e-3 - 1.0),
+        "%",
+        "reported against 3D (CalculiX C3D20R, refine 1)",
+    );
     s
 }
 
 #[test]
 fn bending_tube_20l9() {
-    let _ = tube("bending_tube_20L9", 24120, -51.50e6, 7.76e-3);
+    let _ = tube("bending_tube_20L9", 24120, -64.74, 6.05e-3);
 }
 
-/// Regression guard, not a validation: the tube's roller force at the
-/// first increment against cufem's own refined model (36 L9 around the
-/// ring, 44 B4; 86,184 DOF: 342.1 N at 0.05 mm, 28 Gauss points already
-/// yielding under the roller); the 20-element ring is 3.5 % stiffer (the
-/// wall bends under the roller), hence 5 %. It guards the thin-wall bending
-/// stiffness and the roller contact of the shipped mesh; the independent
-/// checks are the paper's σ_yy and peeq in `tube` and the 3D comparison
-/// (docs/cross-check.md).
+/// The tube's elastic stiffness on the shipped 20 L9 mesh: the roller force
+/// of the example without its plasticity, one increment of 0.05 mm, against
+/// the 3D model of the same mesh and increment (CalculiX C3D20R, refine 1,
+/// 88,080 DOF: 337.29 N; tests/data/references.toml, tube20_elastic).
+/// Measured +5.35 %: one L9 through the 1.5 mm wall and 20 around the ring
+/// make the wall too stiff in its local bending under the roller line
+/// (cufem's own model with 36 L9 and 44 B4 gives 342.1 N, +1.4 %). A known
+/// limit, asserted from both sides (docs/limitations.md); a 10 % error in
+/// the thin-wall bending stiffness or the roller contact leaves it.
 #[test]
-fn regression_bending_tube_20l9_first_increment_force() {
-    let _ = run("bending_tube_20L9");
-    assert_first_force("bending_tube_20L9", "load", -342.12, 0.05);
+fn bending_tube_20l9_elastic_stiffness_against_3d() {
+    let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/bending_tube_20L9.toml");
+    let text = std::fs::read_to_string(path).unwrap();
+    let (start, end) = (text.find("[materials.plasticity]").unwrap(), text.find("[[bodies]]").unwrap());
+    let elastic = format!("{}{}", &text[..start], &text[end..])
+        .replace("increments = 15", "increments = 1")
+        .replace("displacement = [0.0, 0.0, -0.75e-3]", "displacement = [0.0, 0.0, -0.05e-3]");
+    assert!(elastic.contains("-0.05e-3") && elastic.contains("increments = 1\n"));
+    let (s, _) = run_text("bending_tube_20L9_elastic", &elastic);
+    let load = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "load").unwrap();
+    let d = 100.0 * (vec3(&load["force"])[2] / -337.2939 - 1.0);
+    common::known_limit("bending_tube_20L9.elastic_force", d, "%", 5.19, 5.51, "elastic roller force against 3D");
 }
 
 #[test]
 fn bending_tube_28l9() {
-    let s = tube("bending_tube_28L9", 33768, -60.60e6, 8.38e-3);
+    let s = tube("bending_tube_28L9", 33768, -72.28, 5.26e-3);
     // 3D reference: `cufem verify examples/bending_tube_28L9.toml --refine 1`
-    // (CalculiX 2.20, C3D20R, 123,312 DOF, same quarter model): loading
-    // roller 1,698.2 N. Measured −3.45 %; 5 %: node-to-node against surface
-    // contact on a wall of one L9 through the thickness.
+    // (CalculiX 2.20, C3D20R, 123,312 DOF; tests/data/references.toml, tube):
+    // loading roller 1,698.2 N. Measured −3.45 %: the axis elements of
+    // 11.1 mm cannot follow the web tops crushing under the roller (the
+    // graded mesh is within 0.9 %: tests/fidelity.rs). A known limit.
     let load = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "load").unwrap();
-    assert_within("bending_tube_28L9", "roller force vs CalculiX", vec3(&load["force"])[2], -1698.2, 0.05);
+    let d = 100.0 * (vec3(&load["force"])[2] / -1698.2 - 1.0);
+    common::known_limit("bending_tube_28L9.force_load", d, "%", -3.56, -3.34, "roller force against 3D");
 }
 
 /// §4.3, Tables 7–8. The layout is our choice (no source found for Choi &
@@ -434,8 +534,10 @@ fn cantilevers_contact() {
     assert!(max_peeq > 0.0 && max_peeq < 0.05, "max peeq {max_peeq}");
     // 3D reference: `cufem verify examples/cantilevers_contact.toml --refine 1`
     // (CalculiX 2.20, 5,420 C3D20R, 56,430 DOF, frictionless surface-to-surface
-    // contact). 5 %: node-to-node against surface contact on a 3.7× coarser
-    // model; measured 1.9 % (7 in roller), 2.5 % and 3.6 % (roots).
+    // contact; tests/data/references.toml, cantilevers). Measured +1.9 %
+    // (7 in roller), +2.5 % and +3.6 % (roots); with 20 B4 per beam all
+    // three are within 0.6 % (tests/fidelity.rs): known limits of the
+    // paper's axis mesh, asserted from both sides.
     let force = |name: &str| {
         let c = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == name).unwrap();
         vec3(&c["force"])[2]
@@ -444,9 +546,13 @@ fn cantilevers_contact() {
         let r = s["reactions"].as_array().unwrap().iter().find(|r| r["name"] == name).unwrap();
         vec3(&r["force"])[2]
     };
-    assert_within("cantilevers", "7 in roller force vs CalculiX", force("indenter_7in"), -25_769.0, 0.05);
-    assert_within("cantilevers", "upper root reaction vs CalculiX", reaction("upper_root"), 12_619.0, 0.05);
-    assert_within("cantilevers", "lower root reaction vs CalculiX", reaction("lower_root"), 16_087.0, 0.05);
+    for (id, value, ccx, low, high) in [
+        ("cantilevers.force_7in", force("indenter_7in"), -25_769.0, 1.80, 1.92),
+        ("cantilevers.upper_root", reaction("upper_root"), 12_619.0, 2.43, 2.59),
+        ("cantilevers.lower_root", reaction("lower_root"), 16_087.0, 3.53, 3.76),
+    ] {
+        common::known_limit(id, 100.0 * (value / ccx - 1.0), "%", low, high, "against 3D");
+    }
     // both rollers bear (the 9 in one lightly: 3.4 kN here, 2.9 kN in 3D)
     assert!(force("indenter_9in") < -1000.0);
     // the pair contact carries the load from one beam to the other
@@ -466,26 +572,34 @@ fn punch_plane_strain() {
     let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
     // measured +2.0 % (+3.0 % on a mesh half as fine: converging from above)
     let pressure = vec3(&punch["force"])[2] / 0.01;
-    assert_within("punch_plane_strain", "mean punch pressure vs Prandtl", pressure, prandtl, 0.03);
+    assert_within("punch_plane_strain.pressure", "mean punch pressure vs Prandtl", pressure, prandtl, 0.03);
     // measured −0.2 %
-    assert_within("punch_plane_strain", "σ_zz at the centre vs Prandtl", probe(&s, "centre", "s_zz"), prandtl, 0.03);
+    assert_within(
+        "punch_plane_strain.s_zz_centre",
+        "σ_zz at the centre vs Prandtl",
+        probe(&s, "centre", "s_zz"),
+        prandtl,
+        0.03,
+    );
     // the profile under the punch, away from the edge elements: flat at
     // Prandtl's pressure within 3 % (measured −294…−301 MPa); no plateaus and
     // jumps, no oscillation between neighbouring stations
     let out = Path::new(env!("CARGO_TARGET_TMPDIR")).join("example_punch_plane_strain");
-    let csv = std::fs::read_to_string(out.join("line_top.csv")).unwrap();
-    let header: Vec<&str> = csv.lines().next().unwrap().split(',').collect();
-    let (ix, izz) = (header.iter().position(|h| *h == "x").unwrap(), header.iter().position(|h| *h == "s_zz").unwrap());
-    for line in csv.lines().skip(1) {
-        let f: Vec<f64> = line.split(',').map(|v| v.parse().unwrap()).collect();
-        if (0.455..=0.545).contains(&f[ix]) {
-            assert_within("punch_plane_strain", &format!("σ_zz at x = {}", f[ix]), f[izz], prandtl, 0.03);
-        }
-    }
+    let line = csv_columns(&out.join("line_top.csv"));
+    let worst = (0..line["x"].len())
+        .filter(|&i| (0.455..=0.545).contains(&line["x"][i]))
+        .map(|i| line["s_zz"][i] / prandtl - 1.0)
+        .fold(0.0f64, |w, d| if d.abs() > w.abs() { d } else { w });
+    common::figure(
+        "punch_plane_strain.s_zz_profile",
+        100.0 * worst,
+        "%",
+        "|difference| ≤ 3 % at every station under the punch, against Prandtl",
+    );
+    assert!(worst.abs() <= 0.03, "σ_zz under the punch {:+.2} % from Prandtl", 100.0 * worst);
 }
 
-/// Issue 8's field check (long: about 5 min; `cargo test --release --test
-/// examples -- --ignored`). The block example (B-bar, projected fields) on
+/// Issue 8's field check. The block example (B-bar, projected fields) on
 /// refined CUF meshes — the section twice as fine in both directions
 /// (36 × 12 L9, same gradings) with 3 and with 4 B4 along y: 54,750 and
 /// 71,175 DOF — against the CalculiX solution of
@@ -497,15 +611,8 @@ fn punch_plane_strain() {
 /// 5.9 % / 5.8 %, force +0.32 % / +0.45 %, no reversal, σ_zz 3 ↔ 4 B4
 /// 1.5 %. docs/cross-check.md lists the whole refinement sequence.
 #[test]
-#[ignore]
+#[ignore = "validate: slow — the block on two meshes of 55,000 and 71,000 DOF (about 4 min)"]
 fn block_refined_fields_match_calculix() {
-    let table = |text: &str| -> Vec<Vec<f64>> {
-        text.lines()
-            .filter(|l| !l.starts_with('#') && !l.starts_with(|c: char| c.is_alphabetic()))
-            .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
-            .collect()
-    };
-    let reference = table(include_str!("data/block_calculix_top.csv"));
     let mut lines = Vec::new();
     for (axis, dof) in [(3, 54750), (4, 71175)] {
         let name = format!("block_refined_{axis}B4");
@@ -518,30 +625,21 @@ fn block_refined_fields_match_calculix() {
         let (s, out) = run_text(&name, &text);
         assert_eq!(s["dof"], dof);
         let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
-        assert_within(&name, "punch force vs CalculiX", vec3(&punch["force"])[2], BLOCK_FORCE_3D, 0.02);
-        let ours = top_line(&out);
-        assert!(
-            largest_reversal(&ours) < 0.02 * BLOCK_SZZ_PEAK_3D,
-            "{name}: σ_zz reversal {:e} Pa",
-            largest_reversal(&ours)
+        assert_within(
+            &format!("{name}.punch_force"),
+            "punch force vs CalculiX",
+            vec3(&punch["force"])[2],
+            BLOCK_FORCE_3D,
+            0.02,
         );
-        for (k, q) in [(1, "s_zz"), (2, "peeq")] {
-            let peak = reference.iter().map(|r| r[k].abs()).fold(0.0f64, f64::max);
-            for (r, o) in reference.iter().zip(&ours) {
-                assert!((r[0] - o[0]).abs() < 1e-9, "stations differ");
-                if (0.21 - 1e-9..=0.29 + 1e-9).contains(&r[0]) {
-                    let d = (o[k] - r[k]).abs() / peak;
-                    assert!(
-                        d < 0.10,
-                        "{name}: {q} at x = {}: cufem {:e}, 3D {:e} ({:.1} % of the 3D peak)",
-                        r[0],
-                        o[k],
-                        r[k],
-                        100.0 * d
-                    );
-                }
-            }
-        }
+        let ours = top_line(&out);
+        let reversal = largest_reversal(&ours);
+        common::figure(&format!("{name}.reversal"), 100.0 * reversal / BLOCK_SZZ_PEAK_3D, "%", "< 2 % of the 3D peak");
+        assert!(reversal < 0.02 * BLOCK_SZZ_PEAK_3D, "{name}: σ_zz reversal {reversal:e} Pa");
+        let (szz, peeq) = under_the_punch(&ours);
+        common::figure(&format!("{name}.s_zz_under"), 100.0 * szz, "%", "< 10 % of the 3D peak under the punch");
+        common::figure(&format!("{name}.peeq_under"), 100.0 * peeq, "%", "< 10 % of the 3D peak under the punch");
+        assert!(szz < 0.10 && peeq < 0.10, "{name}: σ_zz {szz}, peeq {peeq} of the 3D peaks");
         lines.push(ours);
     }
     for (a, b) in lines[0].iter().zip(&lines[1]) {
@@ -591,7 +689,13 @@ fn ibeam_roller() {
     // none); 5 % while a 10 % error in the bending stiffness fails
     let (plastic, delta, force) = first_increment(name, "load");
     assert_eq!(plastic, 0.0, "{name}: the first increment should be elastic");
-    assert_within(name, "first-increment roller force vs Timoshenko", force / delta, 1.0 / ibeam_compliance(), 0.05);
+    assert_within(
+        "ibeam_roller.first_force",
+        "first-increment roller force vs Timoshenko",
+        force / delta,
+        1.0 / ibeam_compliance(),
+        0.05,
+    );
     // at 4 mm the web yields under the roller (local crippling) while the
     // web's mid-height at mid-span and above the support stays elastic
     let peeq =
@@ -604,7 +708,7 @@ fn ibeam_roller() {
     // loading roller 8,554.2 N. Measured +0.97 %; 3 %: node-to-node against
     // surface contact, one L9 through each wall
     let load = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "load").unwrap();
-    assert_within(name, "roller force vs CalculiX", vec3(&load["force"])[2], -8554.2, 0.03);
+    assert_within("ibeam_roller.force_load", "roller force vs CalculiX", vec3(&load["force"])[2], -8554.2, 0.03);
 }
 
 /// The same beam elastic (no plasticity, one increment): the deflection of
@@ -628,7 +732,7 @@ fn ibeam_roller_elastic_matches_timoshenko() {
     let force = -vec3(&load["force"])[2];
     let deflection = uz("web_support") - uz("web_mid");
     assert_within(
-        "ibeam_roller_elastic",
+        "ibeam_roller_elastic.stiffness",
         "beam stiffness (web mid-height) vs Timoshenko",
         force / deflection,
         1.0 / ibeam_compliance(),
@@ -638,15 +742,14 @@ fn ibeam_roller_elastic_matches_timoshenko() {
 
 /// The two cantilevers with Coulomb friction μ = 0.3 between the beams
 /// (issue 9, item 5; node-to-node contact, GMRES on the unsymmetric
-/// tangent). Coulomb's law bounds
-/// the tangential resultant of the interface by μ times its normal
-/// resultant; the interface slides wherever it touches here (measured:
-/// 5.31 kN against 0.300 × 17.68 kN), so the bound is met with equality to
-/// within the elastic-slip regularisation (asserted: between 0.29 and
-/// 0.3 (1 + 1e-9) times the normal force). Friction resists the beams'
-/// relative sliding, so the structure is stiffer than without it: the 7 in
-/// roller force must exceed the frictionless example's (26.25 kN; measured
-/// +3.6 %).
+/// tangent). Coulomb's law bounds the tangential resultant of the interface
+/// by μ times its normal resultant; the interface slides wherever it
+/// touches here (measured: 5.31 kN against 0.300 × 17.68 kN), so the bound
+/// is met with equality to within the elastic-slip regularisation
+/// (asserted: between 0.29 and 0.3 (1 + 1e-9) times the normal force).
+/// Friction resists the beams' relative sliding, so the structure is
+/// stiffer than without it: the 7 in roller force must exceed that of the
+/// frictionless example, run by this file (measured +3.6 %).
 #[test]
 fn cantilevers_contact_friction() {
     let s = run("cantilevers_contact_friction");
@@ -656,24 +759,22 @@ fn cantilevers_contact_friction() {
     eprintln!("friction cantilevers: interface normal {normal:.1} N, tangential {tangential:.1} N");
     assert!(normal > 0.0 && tangential <= 0.3 * normal * (1.0 + 1e-9), "{tangential} vs μN = {}", 0.3 * normal);
     assert!(tangential >= 0.29 * normal, "interface not sliding: {tangential} vs {normal}");
-    let roller = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "indenter_7in").unwrap();
-    let f7 = -vec3(&roller["force"])[2];
-    assert!(f7 > 26_248.0 && f7 < 26_248.0 * 1.10, "7 in roller {f7} N (frictionless 26,248 N)");
+    let frictionless = roller_7in(&run("cantilevers_contact"));
+    let rise = roller_7in(&s) / frictionless - 1.0;
+    common::figure("cantilevers_friction.rise_7in", 100.0 * rise, "%", "> 0: friction stiffens the structure");
+    assert!(rise > 0.0, "7 in roller {:+.2} % against the frictionless example", 100.0 * rise);
 }
 
 /// The two cantilevers on non-matching meshes (surface contact) with
 /// Coulomb friction μ = 0.3 (issue 9, item 5). Coulomb bounds the
 /// interface's tangential resultant by μ N and it slides wherever it
 /// touches (measured 5.03 kN = 0.300 × 16.78 kN; asserted 0.29–0.3 μN as
-/// for the matching mesh). Independent check of the friction's effect:
-/// on the matching mesh with node-to-node contact (examples
-/// cantilevers_contact and cantilevers_contact_friction, both run by this
-/// file) friction raises the 7 in roller force by 3.6 % and the interface
-/// normal force by 6.1 %; on the non-matching mesh the same friction must
-/// do the same to within one percentage point, against the frictionless
-/// non-matching run (27,866 N and 15,838 N: examples/
-/// cantilevers_contact_nonmatching.toml, `cufem run`, and the header of
-/// that file). Measured +3.4 % and +6.0 %. Dropping the unsymmetric
+/// for the matching mesh). Independent check of the friction's effect: the
+/// same friction must change the 7 in roller force and the interface
+/// normal force on the non-matching mesh (surface contact) as on the
+/// matching mesh (node-to-node contact), to within one percentage point;
+/// all four examples are run by this file (measured: matching +3.6 % and
+/// +6.1 %, non-matching +3.4 % and +6.0 %). Dropping the unsymmetric
 /// pressure coupling of the surface-friction tangent makes this model
 /// fail to converge in its first increment (measured).
 #[test]
@@ -685,17 +786,24 @@ fn cantilevers_contact_nonmatching_friction() {
     eprintln!("non-matching friction cantilevers: interface normal {normal:.1} N, tangential {tangential:.1} N");
     assert!(tangential <= 0.3 * normal * (1.0 + 1e-9), "{tangential} vs μN = {}", 0.3 * normal);
     assert!(tangential >= 0.29 * normal, "interface not sliding: {tangential} vs {normal}");
-    let roller = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "indenter_7in").unwrap();
-    let f7 = -vec3(&roller["force"])[2];
-    let rise7 = f7 / 27_866.0 - 1.0;
-    let rise_n = normal / 15_838.0 - 1.0;
-    eprintln!(
-        "friction effect on the non-matching mesh: 7 in roller {:+.2} %, interface normal {:+.2} %",
-        100.0 * rise7,
-        100.0 * rise_n
+    let frictionless = run("cantilevers_contact_nonmatching");
+    let rise7 = roller_7in(&s) / roller_7in(&frictionless) - 1.0;
+    let rise_n = normal / interface_forces(&frictionless).0 - 1.0;
+    let (matching, matching_friction) = (run("cantilevers_contact"), run("cantilevers_contact_friction"));
+    let rise7_matching = roller_7in(&matching_friction) / roller_7in(&matching) - 1.0;
+    let rise_n_matching = interface_forces(&matching_friction).0 / interface_forces(&matching).0 - 1.0;
+    let check = "within 1 point of the same rise on the matching mesh";
+    common::figure("cantilevers_nonmatching_friction.rise_7in", 100.0 * rise7, "%", check);
+    common::figure("cantilevers_nonmatching_friction.rise_normal", 100.0 * rise_n, "%", check);
+    common::figure("cantilevers_friction.rise_normal", 100.0 * rise_n_matching, "%", "reported");
+    assert!(
+        (rise7 - rise7_matching).abs() < 0.01,
+        "7 in roller rises {rise7} with friction (matching mesh: {rise7_matching})"
     );
-    assert!((rise7 - 0.036).abs() < 0.01, "7 in roller rises {rise7} with friction (matching mesh: +3.6 %)");
-    assert!((rise_n - 0.061).abs() < 0.01, "interface normal force rises {rise_n} (matching mesh: +6.1 %)");
+    assert!(
+        (rise_n - rise_n_matching).abs() < 0.01,
+        "interface normal force rises {rise_n} (matching mesh: {rise_n_matching})"
+    );
     // contact_beams.csv: at every sliding point the tangential traction is
     // μ times the normal pressure (Coulomb), and pressure × area sums to the
     // interface's normal resultant
@@ -742,11 +850,11 @@ fn hertz_ball() {
     for (lambda, f_z) in history["lambda"].iter().zip(&history["f_z"]) {
         let d = lambda * delta;
         let hertz = 4.0 / 3.0 * e_star * r.sqrt() * d.powf(1.5) / 4.0;
-        assert_within("hertz_ball", &format!("ball force at δ = {d:e} m vs Hertz"), -f_z, hertz, 0.04);
+        assert_within("hertz_ball.force", &format!("ball force at δ = {d:e} m vs Hertz"), -f_z, hertz, 0.04);
     }
     let p = 4.0 / 3.0 * e_star * r.sqrt() * delta.powf(1.5);
     let a2 = r * delta;
     let p0 = 3.0 * p / (2.0 * std::f64::consts::PI * a2);
     let centre = csv_columns(&out.join("line_surface_x.csv"))["s_zz"][0];
-    assert_within("hertz_ball", "σ_zz at the contact centre vs −p₀", centre, -p0, 0.05);
+    assert_within("hertz_ball.s_zz_centre", "σ_zz at the contact centre vs −p₀", centre, -p0, 0.05);
 }

@@ -9,9 +9,9 @@
 //! relative L2 difference of u over the body ≤ 2 %, the largest difference
 //! of u on every contact surface ≤ 5 % of the body's largest |u|, von Mises
 //! relative L2 difference over the plastic zone ≤ 10 % — where the shipped
-//! model meets them; where it does not yet, the measured value with a
-//! margin, named as such (a regression guard until the element or the
-//! contact improves).
+//! model meets them; where it does not yet, the measured value as a known
+//! limit asserted from both sides (±3 %) and listed in docs/limitations.md.
+//! Every row is also a figure of the validation report (`bench/validate`).
 
 mod common;
 
@@ -29,12 +29,7 @@ fn whole_field(name: &str) -> Vec<FieldRow> {
     let solution = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
     assert!(solution.failure.is_none(), "{:?}", solution.failure);
     let rows = cufem::verify::compare_stored(&model, &solution.fields(&model), &stored_3d(name)).unwrap();
-    for r in &rows {
-        eprintln!(
-            "{name}: {:<28} {:<10} L2 {:6.2} %  max {:6.2} %  ({} points, {} excluded)",
-            r.region, r.quantity, r.l2_percent, r.max_percent, r.points, r.excluded
-        );
-    }
+    report(name, &rows);
     rows
 }
 
@@ -67,22 +62,68 @@ fn compare_on(name: &str, stored: &str) -> (Vec<FieldRow>, cufem::model::Model, 
     assert!(solution.failure.is_none(), "{:?}", solution.failure);
     let rows =
         cufem::verify::compare_stored_on(&stored_on, &model, &solution.fields(&model), &stored_3d(stored)).unwrap();
-    for r in &rows {
-        eprintln!(
-            "{name} on {stored}'s 3D: {:<28} {:<10} L2 {:6.2} %  max {:6.2} %  ({} points, {} excluded)",
-            r.region, r.quantity, r.l2_percent, r.max_percent, r.points, r.excluded
-        );
-    }
+    report(name, &rows);
     (rows, model, solution)
 }
 
-/// A regression guard: each `(region, quantity, measured L2 %)` at most
-/// 10 % above its measured value (where issue 23's criteria are not met yet).
-fn guard(rows: &[FieldRow], measured: &[(&str, &str, f64)]) {
-    for &(region, q, value) in measured {
+/// Known limits where issue 23's criteria are not met yet: each
+/// `(region, quantity, measured L2 %)` asserted from both sides, within
+/// ±3 % of the measured value (docs/limitations.md, "Whole field against
+/// 3D"): an improvement fails too, so that the range and the docs follow
+/// it. The runs are deterministic to round-off (1e-8 between thread
+/// counts), so the band holds only what a change of the code would move.
+fn known_limits(prefix: &str, rows: &[FieldRow], limits: &[(&str, &str, f64)]) {
+    for &(region, q, measured) in limits {
         let r = row(rows, region, q);
-        assert!(r.points > 100 && r.l2_percent <= 1.1 * value, "{region} {q}: {r:?} (measured {value} %)");
+        assert!(r.points > 100, "{region} {q}: {r:?}");
+        let (low, high) = ((0.97 * measured * 100.0).floor() / 100.0, (1.03 * measured * 100.0).ceil() / 100.0);
+        common::known_limit(
+            &field_id(prefix, region, q),
+            r.l2_percent,
+            "%",
+            low,
+            high,
+            &format!("{prefix}: {region} {q}"),
+        );
     }
+}
+
+/// The report id of a whole-field row: `field.<prefix>.<region>.<quantity>`
+/// (the region's spaces and brackets as `_`).
+fn field_id(prefix: &str, region: &str, quantity: &str) -> String {
+    let region: String = region
+        .chars()
+        .map(|c| if c.is_alphanumeric() { c } else { '_' })
+        .collect::<String>()
+        .trim_matches('_')
+        .replace("__", "_");
+    format!("field.{prefix}.{region}.{quantity}")
+}
+
+/// Every row as a figure of the validation report (L2 and largest
+/// difference, in %), then printed.
+fn report(prefix: &str, rows: &[FieldRow]) {
+    for r in rows {
+        let id = field_id(prefix, &r.region, &r.quantity);
+        common::figure(&format!("{id}.max"), r.max_percent, "%", "measured against the stored 3D field");
+        common::figure(&id, r.l2_percent, "%", "measured against the stored 3D field (relative L2)");
+        eprintln!(
+            "{prefix}: {:<28} {:<10} L2 {:6.2} %  max {:6.2} %  ({} points, {} excluded)",
+            r.region, r.quantity, r.l2_percent, r.max_percent, r.points, r.excluded
+        );
+    }
+}
+
+/// One relative L2 difference in % at most `bound` (issue 23's criteria).
+fn criterion(prefix: &str, rows: &[FieldRow], region: &str, quantity: &str, bound: f64) {
+    let r = row(rows, region, quantity);
+    common::figure(
+        &field_id(prefix, region, quantity),
+        r.l2_percent,
+        "%",
+        &format!("≤ {bound} % (relative L2, issue 23)"),
+    );
+    assert!(r.points > 100 && r.l2_percent <= bound, "{region} {quantity}: {r:?}");
 }
 
 fn row<'a>(rows: &'a [FieldRow], region: &str, quantity: &str) -> &'a FieldRow {
@@ -92,13 +133,21 @@ fn row<'a>(rows: &'a [FieldRow], region: &str, quantity: &str) -> &'a FieldRow {
 }
 
 /// Issue 23's whole-field criteria for one body.
-fn assert_issue_criteria(rows: &[FieldRow], body: &str) {
+/// Issue 23's whole-field criteria for one body (`prefix` names the
+/// figures as [`report`] does).
+fn assert_issue_criteria(prefix: &str, rows: &[FieldRow], body: &str) {
+    let check = |r: &FieldRow, what: &str, value: f64, bound: f64, suffix: &str| {
+        let id = field_id(prefix, &r.region, &r.quantity) + suffix;
+        common::figure(&id, value, "%", &format!("≤ {bound} % ({what}, issue 23)"));
+        assert!(r.points > 0 && value <= bound, "{what}: {r:?}");
+    };
     let u = row(rows, &format!("body {body}"), "u");
-    assert!(u.points > 100 && u.l2_percent <= 2.0, "u over the body: {u:?}");
+    assert!(u.points > 100);
+    check(u, "relative L2 of u over the body", u.l2_percent, 2.0, "");
     let vm = row(rows, &format!("plastic zone {body}"), "von_mises");
-    assert!(vm.points > 0 && vm.l2_percent <= 10.0, "von Mises over the plastic zone: {vm:?}");
+    check(vm, "relative L2 of von Mises over the plastic zone", vm.l2_percent, 10.0, "");
     for s in rows.iter().filter(|r| r.region.starts_with("surface ") && r.quantity == "u") {
-        assert!(s.points > 0 && s.max_percent <= 5.0, "u on {}: {s:?}", s.region);
+        check(s, "largest u difference on a contact surface, % of the largest |u|", s.max_percent, 5.0, ".max");
     }
 }
 
@@ -113,28 +162,28 @@ fn assert_issue_criteria(rows: &[FieldRow], body: &str) {
 #[test]
 fn bending_compact_4l9_whole_field_agrees_with_3d() {
     let rows = whole_field("bending_compact_4L9");
-    assert_issue_criteria(&rows, "bar");
-    let vm = row(&rows, "body bar", "von_mises");
-    assert!(vm.l2_percent <= 3.0, "von Mises over the bar: {vm:?}");
-    let peeq = row(&rows, "plastic zone bar", "peeq");
-    assert!(peeq.l2_percent <= 10.0, "peeq over the plastic zone: {peeq:?}");
+    assert_issue_criteria("bending_compact_4L9", &rows, "bar");
+    criterion("bending_compact_4L9", &rows, "body bar", "von_mises", 3.0);
+    criterion("bending_compact_4L9", &rows, "plastic zone bar", "peeq", 10.0);
 }
 
 /// §4.1 block, the shipped mesh (1 B4 × 108 L9, B-bar, projected fields)
 /// against 3D at refine 2 (C3D20R, 145,767 DOF), the punch edges left out
-/// by one 3D element (11.3 mm). A regression guard, not issue 23's
+/// by one 3D element (11.3 mm). Known limits, not issue 23's
 /// criteria, which the shipped block does not meet: measured u 19.0 % over
 /// the block and 24.4 % on the top face, von Mises 7.5 % and peeq 36 % over
 /// the plastic zone. Most of the displacement difference is the squeeze-out
 /// along the beam axis under the punch — u_y there is about half of the 3D
 /// value (−0.33 against −0.59 mm at y = 33 mm): one B4 element along y
 /// cannot follow the plastic flow out of the punch's footprint, while u_z
-/// under the punch agrees to 0.05 %. Bounds: the measured values + 10 %;
-/// a better element or mesh lowers them (then tighten these).
+/// under the punch agrees to 0.05 %. Known limits (docs/limitations.md),
+/// asserted from both sides; `block_axis_refinement_against_stored_3d`
+/// shows the axis mesh is the cause.
 #[test]
 fn block_indentation_whole_field_against_3d() {
     let rows = whole_field("block_indentation");
-    guard(
+    known_limits(
+        "block_indentation",
         &rows,
         &[
             ("body block", "u", 19.02),
@@ -145,14 +194,15 @@ fn block_indentation_whole_field_against_3d() {
     );
 }
 
-/// A measurement for issue 23, run by hand (`cargo test --release --test
-/// fidelity -- --ignored --nocapture`): the block with 1, 2 and 3 B4
-/// along the beam axis (the shipped section mesh) against the stored 3D
-/// fields of the shipped mesh (`compare_stored_on`: the points located by
-/// position in each refined mesh). It prints the rows; it asserts only that
-/// the shipped mesh gives the rows of the regular test above.
+/// The block with 1, 2 and 3 B4 along the beam axis (the shipped section
+/// mesh) against the stored 3D fields of the shipped mesh
+/// (`compare_stored_on`: the points located by position in each refined
+/// mesh). The claim of the test above: one B4 along y is what keeps u 19 %
+/// off 3D (the squeeze-out along the axis), so two and three B4 must each at
+/// least halve the displacement difference over the block and on the punch
+/// face (measured 19.0 → 8.6 and 8.0 %, 24.4 → 5.2 and 5.8 %).
 #[test]
-#[ignore = "a measurement, not a check: run by hand"]
+#[ignore = "validate: slow — the block with 1, 2 and 3 B4 (about a minute)"]
 fn block_axis_refinement_against_stored_3d() {
     let path = root().join("examples/block_indentation.toml");
     let text = std::fs::read_to_string(&path).unwrap();
@@ -160,6 +210,7 @@ fn block_axis_refinement_against_stored_3d() {
     let csv = std::fs::read_to_string(root().join("tests/data/block_indentation_field_3d.csv")).unwrap();
     let axis = "axis = { element = \"B4\", from = 0.0, to = 0.1, elements = 1 }";
     assert!(text.contains(axis));
+    let mut errors = Vec::new();
     for n in [1, 2, 3] {
         let model =
             cufem::model::Model::parse(&text.replace(axis, &axis.replace("elements = 1", &format!("elements = {n}"))))
@@ -167,23 +218,13 @@ fn block_axis_refinement_against_stored_3d() {
         let solution = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
         assert!(solution.failure.is_none());
         let rows = cufem::verify::compare_stored_on(&stored_on, &model, &solution.fields(&model), &csv).unwrap();
-        for r in &rows {
-            eprintln!(
-                "{n} B4 ({} DOF): {:<22} {:<10} L2 {:6.2} %  max {:6.2} %",
-                model.n_dofs(),
-                r.region,
-                r.quantity,
-                r.l2_percent,
-                r.max_percent
-            );
-        }
-        if n == 1 {
-            let same = whole_field("block_indentation");
-            for (a, b) in rows.iter().zip(&same) {
-                assert!((a.l2_percent - b.l2_percent).abs() < 1e-6 * b.l2_percent.max(1e-6), "{a:?} vs {b:?}");
-            }
-        }
+        report(&format!("block_indentation_{n}B4"), &rows);
+        let l2 = |region: &str| row(&rows, region, "u").l2_percent;
+        errors.push((l2("body block"), l2("surface punch")));
     }
+    let (one, two, three) = (errors[0], errors[1], errors[2]);
+    assert!(two.0 < 0.5 * one.0 && two.1 < 0.5 * one.1, "2 B4 {two:?} against 1 B4 {one:?}");
+    assert!(three.0 < 0.5 * one.0 && three.1 < 0.5 * one.1, "3 B4 {three:?} against 1 B4 {one:?}");
 }
 
 /// The block's top line y = 0.05, z = 0.3 m of a run against the 3D line
@@ -279,32 +320,35 @@ fn block_indentation_graded_against_3d() {
     assert_eq!(s["dof"], 9009);
     let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
     // 3D punch force: tests/examples.rs BLOCK_FORCE_3D (the same CalculiX run)
-    let force = punch["force"][2].as_f64().unwrap() / -1.4102e6 - 1.0;
-    eprintln!("punch force vs 3D {:+.2} %", 100.0 * force);
-    assert!(force.abs() <= 0.02, "punch force {:+.2} % vs 3D", 100.0 * force);
+    let source = "CalculiX C3D20R, refine 2 (tests/data/references.toml, block)";
+    common::within("block_graded.punch_force", punch["force"][2].as_f64().unwrap(), -1.4102e6, 0.02, source);
     let line = top_line(&out.join("line_top.csv"));
     let (near, edge, corner) = (line.u_z_error(0.03, 0.15), line.u_z_error(0.175, 0.175), line.u_z_error(0.0, 0.03));
-    eprintln!(
-        "u_z: {:.1} % on [0.03, 0.15], {:.1} % at 0.175, {:.1} % on [0, 0.03]; under the punch σ_zz {:.1} %, peeq {:.1} %",
-        100.0 * near,
-        100.0 * edge,
-        100.0 * corner,
-        100.0 * line.s_zz_under,
-        100.0 * line.peeq_under
+    let top = "the 3D top line (tests/data/block_calculix_top_u_z.csv)";
+    common::figure("block_graded.u_z_near", 100.0 * near, "%", &format!("≤ 5 % on x ∈ [0.03, 0.15] m against {top}"));
+    common::figure("block_graded.u_z_edge", 100.0 * edge, "%", &format!("≤ 8 % at x = 0.175 m against {top}"));
+    common::figure("block_graded.u_z_corner", 100.0 * corner, "%", &format!("≤ 5 % on x ∈ [0, 0.03] m against {top}"));
+    common::figure(
+        "block_graded.u_z_all",
+        100.0 * line.u_z_error(0.0, 0.19),
+        "%",
+        "reported: every station x ∈ [0, 0.19] m",
     );
-    eprintln!("u_z: within {:.1} % at every station x ∈ [0, 0.19] m and its mirror", 100.0 * line.u_z_error(0.0, 0.19));
+    let peak = "of the 3D peak under the punch (tests/data/block_calculix_top.csv)";
+    common::figure("block_graded.s_zz_under", 100.0 * line.s_zz_under, "%", &format!("≤ 10 % {peak}"));
+    common::figure("block_graded.peeq_under", 100.0 * line.peeq_under, "%", &format!("≤ 10 % {peak}"));
     assert!(near <= 0.05 && edge <= 0.08 && corner <= 0.05, "u_z {near} {edge} {corner}");
     assert!(line.sinks_towards_the_punch(), "the top surface does not sink monotonically towards the punch");
     assert!(line.s_zz_under <= 0.10 && line.peeq_under <= 0.10, "{} {}", line.s_zz_under, line.peeq_under);
 }
 
 /// The graded block against the stored 3D fields of the paper's mesh
-/// (`compare_stored_on`, points located by position). A regression guard at
-/// the measured values + 10 %: u 4.76 % over the block and 3.63 % on the
+/// (`compare_stored_on`, points located by position). Known limits,
+/// asserted from both sides: u 4.76 % over the block and 3.63 % on the
 /// punch face (issue 23's 2 % not met; the largest differences, 7 % of the
 /// largest |u|, sit beside the punch edges at the free faces y = 0 and
-/// 0.1 m), von Mises 4.49 % over the plastic zone
-/// (issue 23's 10 %: met), peeq 16.4 %. The paper's mesh: 19.0 / 24.4 /
+/// 0.1 m), peeq 16.4 % over the plastic zone; von Mises 4.49 % over the
+/// plastic zone meets issue 23's 10 %. The paper's mesh: 19.0 / 24.4 /
 /// 7.5 / 36.4 % (test above).
 #[test]
 fn block_indentation_graded_whole_field_against_3d() {
@@ -313,13 +357,9 @@ fn block_indentation_graded_whole_field_against_3d() {
     let solution = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
     let csv = std::fs::read_to_string(root().join("tests/data/block_indentation_field_3d.csv")).unwrap();
     let rows = cufem::verify::compare_stored_on(&stored_on, &model, &solution.fields(&model), &csv).unwrap();
-    for r in &rows {
-        eprintln!(
-            "graded block: {:<28} {:<10} L2 {:6.2} %  max {:6.2} % at {:?}",
-            r.region, r.quantity, r.l2_percent, r.max_percent, r.at
-        );
-    }
-    guard(
+    report("block_indentation_graded", &rows);
+    known_limits(
+        "block_indentation_graded",
         &rows,
         &[
             ("body block", "u", 4.76),
@@ -328,18 +368,15 @@ fn block_indentation_graded_whole_field_against_3d() {
             ("plastic zone block", "peeq", 16.37),
         ],
     );
-    assert!(row(&rows, "plastic zone block", "von_mises").l2_percent <= 10.0);
+    criterion("block_indentation_graded", &rows, "plastic zone block", "von_mises", 10.0);
 }
 
 /// Issue 23's "on a mesh you name of at most 40,000 DOF within 3 %": the
-/// graded block refined to 24 × 9 L9 × 6 B3 (36,309 DOF, 21 s). Measured
-/// (`cargo test --release --test fidelity -- --ignored --nocapture`): top-line
-/// u_z within 1.3 % at every station x ∈ [0, 0.19] m and its mirror, punch
-/// force +0.33 %, σ_zz and peeq under the punch 9.4 % and 6.6 % of the 3D
-/// peak; whole field u 2.5 %, punch face 2.0 %, plastic-zone von Mises
-/// 2.5 %, peeq 9.8 %.
+/// graded block refined to 24 × 9 L9 × 6 B3 (36,309 DOF, about 20 s).
+/// Measured: top-line u_z within 1.3 % at every station x ∈ [0, 0.19] m
+/// and its mirror, punch force +0.33 %, σ_zz and peeq under the punch
+/// 9.4 % and 6.6 % of the 3D peak.
 #[test]
-#[ignore = "a 36,309-DOF run (about 25 s); run by hand"]
 fn block_indentation_36k_within_three_percent_of_3d() {
     let text = std::fs::read_to_string(root().join("examples/block_indentation_graded.toml")).unwrap();
     // The example's mesh replaced by 24 × 9 L9 × 6 B3 with the same kind of
@@ -368,11 +405,20 @@ fn block_indentation_36k_within_three_percent_of_3d() {
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
     assert_eq!(s["dof"], 36309);
     let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
-    let force = punch["force"][2].as_f64().unwrap() / -1.4102e6 - 1.0;
+    let source = "CalculiX C3D20R, refine 2 (tests/data/references.toml, block)";
+    common::within("block_36k.punch_force", punch["force"][2].as_f64().unwrap(), -1.4102e6, 0.02, source);
     let line = top_line(&out.join("line_top.csv"));
     let u = line.u_z_error(0.0, 0.19);
-    eprintln!("36,309 DOF: force {:+.2} %, u_z within {:.2} % on [0, 0.19]", 100.0 * force, 100.0 * u);
-    assert!(force.abs() <= 0.02 && u <= 0.03 && line.sinks_towards_the_punch());
+    common::figure(
+        "block_36k.u_z_all",
+        100.0 * u,
+        "%",
+        "≤ 3 % at every station x ∈ [0, 0.19] m against the 3D top line",
+    );
+    let peak = "of the 3D peak under the punch (tests/data/block_calculix_top.csv)";
+    common::figure("block_36k.s_zz_under", 100.0 * line.s_zz_under, "%", &format!("≤ 10 % {peak}"));
+    common::figure("block_36k.peeq_under", 100.0 * line.peeq_under, "%", &format!("≤ 10 % {peak}"));
+    assert!(u <= 0.03 && line.sinks_towards_the_punch(), "u_z {u}");
     assert!(line.s_zz_under <= 0.10 && line.peeq_under <= 0.10, "{} {}", line.s_zz_under, line.peeq_under);
 }
 
@@ -384,7 +430,7 @@ fn block_indentation_36k_within_three_percent_of_3d() {
 #[test]
 fn bending_compact_16l9_whole_field_agrees_with_3d() {
     let rows = whole_field_on("bending_compact_16L9", "bending_compact_4L9");
-    assert_issue_criteria(&rows, "bar");
+    assert_issue_criteria("bending_compact_16L9", &rows, "bar");
 }
 
 /// §4.2 thin-walled tube, the shipped 22 B4 × 28 L9 (33,768 DOF), against 3D
@@ -393,20 +439,19 @@ fn bending_compact_16l9_whole_field_agrees_with_3d() {
 /// (measured 3.95 %) but not for the displacement: u 5.7 % over the tube and
 /// up to 6.0 % (L2) on the roller surfaces; most of it is the top wall
 /// between the webs, which sags off the loading roller by 0.019 mm where
-/// 3D keeps it on (docs/cross-check.md). A regression guard at the
-/// measured values + 10 % until the rollers improve.
+/// 3D keeps it on (docs/cross-check.md). Known limits, asserted from both
+/// sides (docs/limitations.md).
 #[test]
 fn bending_tube_28l9_whole_field_against_3d() {
     let rows = whole_field("bending_tube_28L9");
-    let vm = row(&rows, "plastic zone tube", "von_mises");
-    assert!(vm.points > 100 && vm.l2_percent <= 10.0, "{vm:?}");
-    guard(
+    criterion("bending_tube_28L9", &rows, "plastic zone tube", "von_mises", 10.0);
+    known_limits(
+        "bending_tube_28L9",
         &rows,
         &[
-            ("body tube", "u", 5.7),
+            ("body tube", "u", 5.71),
             ("surface load", "u", 4.35),
             ("surface support_left", "u", 6.02),
-            ("plastic zone tube", "von_mises", 3.95),
             ("plastic zone tube", "peeq", 26.79),
         ],
     );
@@ -417,18 +462,17 @@ fn bending_tube_28l9_whole_field_against_3d() {
 /// (closer to 3D than the 28 L9 mesh's 5.7 %: its top wall stays nearer the
 /// roller), at most 3.78 % on the roller surfaces (issue 23's 5 %: met),
 /// von Mises 4.31 % over the plastic zone (10 %: met), peeq 28 %. The
-/// issue's 2 % for u is not met; guarded at the measured values + 10 %.
+/// issue's 2 % for u is not met: known limits, asserted from both sides.
 #[test]
 fn bending_tube_20l9_whole_field_against_3d() {
     let rows = whole_field_on("bending_tube_20L9", "bending_tube_28L9");
     for s in rows.iter().filter(|r| r.region.starts_with("surface ") && r.quantity == "u") {
+        let id = field_id("bending_tube_20L9", &s.region, "u") + ".max";
+        common::figure(&id, s.max_percent, "%", "≤ 5 % (largest u difference on a contact surface, issue 23)");
         assert!(s.points > 0 && s.max_percent <= 5.0, "u on {}: {s:?}", s.region);
     }
-    guard(
-        &rows,
-        &[("body tube", "u", 3.82), ("plastic zone tube", "von_mises", 4.31), ("plastic zone tube", "peeq", 28.06)],
-    );
-    assert!(row(&rows, "plastic zone tube", "von_mises").l2_percent <= 10.0);
+    known_limits("bending_tube_20L9", &rows, &[("body tube", "u", 3.82), ("plastic zone tube", "peeq", 28.06)]);
+    criterion("bending_tube_20L9", &rows, "plastic zone tube", "von_mises", 10.0);
 }
 
 /// §4.3 two cantilevers in contact (10 B4 × 16 L9 per beam, 15,066 DOF)
@@ -441,12 +485,13 @@ fn bending_tube_20l9_whole_field_against_3d() {
 /// turn their normals with the deformation (3D root reactions have y
 /// components of 0.6–1.1 kN, the 7 in roller 0.49 kN), which node-to-node
 /// contact with normals fixed at the start does not. The lower beam is
-/// guarded at the measured values + 10 %.
+/// a known limit, asserted from both sides (docs/limitations.md).
 #[test]
 fn cantilevers_contact_whole_field_against_3d() {
     let rows = whole_field("cantilevers_contact");
-    assert_issue_criteria(&rows, "upper");
-    guard(
+    assert_issue_criteria("cantilevers_contact", &rows, "upper");
+    known_limits(
+        "cantilevers_contact",
         &rows,
         &[
             ("body lower", "u", 3.47),
@@ -466,27 +511,24 @@ fn cantilevers_contact_whole_field_against_3d() {
 /// mesh: 0.77 / 3.47 %, 12.7 % on the lower beam). The 7 in roller within
 /// 2 % of 3D (measured +0.53 %; CalculiX 25,769 N) and the root reactions
 /// (+0.44 %, −0.17 %; 12,619 and 16,087 N); the lightly loaded 9 in roller
-/// is −3.7 % (2,827 against 2,937 N), bound 5 %: it is not converged in
-/// either model (docs/cross-check.md). Young's modulus 10 % high fails
+/// is −3.7 % (2,827 against 2,937 N), a known limit asserted from both
+/// sides: it is not converged in either model (docs/cross-check.md). Young's modulus 10 % high fails
 /// it (checked by hand: the 9 in roller goes to −8.1 %; the 7 in one, set
 /// by the plastic zone under it, only to +1.3 %, and u stays within 0.3 %).
 #[test]
 fn cantilevers_contact_fine_against_3d() {
     let (rows, _, solution) = compare_on("cantilevers_contact_fine", "cantilevers_contact");
-    assert_issue_criteria(&rows, "upper");
-    assert_issue_criteria(&rows, "lower");
+    assert_issue_criteria("cantilevers_contact_fine", &rows, "upper");
+    assert_issue_criteria("cantilevers_contact_fine", &rows, "lower");
     let contact = |n: &str| solution.contacts.iter().find(|c| c.name == n).unwrap().force[2];
     let reaction = |n: &str| solution.reactions.iter().find(|r| r.name == n).unwrap().force[2];
-    for (name, value, ccx, bound) in [
-        ("7 in roller", contact("indenter_7in"), -25_769.0, 0.02),
-        ("9 in roller", contact("indenter_9in"), -2_937.2, 0.05),
-        ("upper root", reaction("upper_root"), 12_619.0, 0.02),
-        ("lower root", reaction("lower_root"), 16_087.0, 0.02),
-    ] {
-        let d = value / ccx - 1.0;
-        eprintln!("{name}: {:+.2} % vs 3D", 100.0 * d);
-        assert!(d.abs() <= bound, "{name} {:+.2} % vs 3D", 100.0 * d);
-    }
+    // CalculiX C3D20R, refine 1 of the paper's mesh (tests/data/references.toml, cantilevers)
+    let source = "CalculiX C3D20R, refine 1 (tests/data/references.toml, cantilevers)";
+    common::within("cantilevers_fine.force_7in", contact("indenter_7in"), -25_769.0, 0.02, source);
+    common::within("cantilevers_fine.upper_root", reaction("upper_root"), 12_619.0, 0.02, source);
+    common::within("cantilevers_fine.lower_root", reaction("lower_root"), 16_087.0, 0.02, source);
+    let nine = 100.0 * (contact("indenter_9in") / -2_937.2 - 1.0);
+    common::known_limit("cantilevers_fine.force_9in", nine, "%", -3.9, -3.5, "the 9 in roller against 3D");
 }
 
 /// §4.2 tube on the axis mesh graded at the loading roller
@@ -504,28 +546,32 @@ fn cantilevers_contact_fine_against_3d() {
 #[test]
 fn bending_tube_graded_against_3d() {
     let (rows, model, solution) = compare_on("bending_tube_graded", "bending_tube_28L9");
-    assert_issue_criteria(&rows, "tube");
+    assert_issue_criteria("bending_tube_graded", &rows, "tube");
     let force = |n: &str| solution.contacts.iter().find(|c| c.name == n).unwrap().force[2];
+    let source = "CalculiX C3D20R, refine 1 (tests/data/references.toml, tube)";
     for (name, ccx) in [("load", -1698.2), ("support_left", 849.09), ("support_right", 849.09)] {
-        let d = force(name) / ccx - 1.0;
-        eprintln!("{name}: {:+.2} % vs 3D", 100.0 * d);
-        assert!(d.abs() <= 0.02, "{name} {:+.2} % vs 3D", 100.0 * d);
+        common::within(&format!("tube_graded.force_{name}"), force(name), ccx, 0.02, source);
     }
     // the middle of the top wall under the roller: 3D −0.75289 mm for the
     // 0.75 mm travel (sag 0.39 %); measured −0.75481 mm (0.64 %); bound 1 %
     // (the paper's mesh: 2.6 %)
     let centre = solution.fields(&model).sample_point(None, [0.015, 0.125, 0.03]).unwrap().u[2];
-    eprintln!("contact centre u_z {:.5} mm", centre * 1e3);
-    assert!((centre / -0.75e-3 - 1.0).abs() <= 0.01, "contact centre u_z {centre:e} m");
+    let sag = 100.0 * (centre / -0.75e-3 - 1.0);
+    common::figure("tube_graded.sag", sag, "%", "≤ 1 % of the 0.75 mm travel (3D: 0.39 %)");
+    assert!(sag.abs() <= 1.0, "contact centre u_z {centre:e} m");
 }
 
-/// The table "The tube at its loading roller" of docs/cross-check.md, run
-/// by hand (`cargo test --release --test fidelity -- --ignored
-/// tube_roller_meshes --nocapture`, several minutes): the paper's tube with
-/// the axis refined at the loading roller and the ring refined, against
-/// the stored 3D fields of the paper's mesh.
+/// The table "The tube at its loading roller" of docs/cross-check.md: the
+/// paper's tube with the axis refined at the loading roller and the ring
+/// refined, against the 3D model of the paper's mesh (CalculiX C3D20R,
+/// refine 1: roller 1,698.2 N, σ_yy −63.87 MPa and peeq 5.27e-3 at the
+/// contact centre; the stored 3D fields). What the docs claim from it:
+/// elements of 1–3.3 mm at the roller bring the roller force within 1.1 %
+/// of 3D and u over the tube below 2.1 % (the paper's mesh: −3.45 % and
+/// 5.7 %); σ_yy at the contact centre follows the ring, +9 to +15 % with
+/// 28 L9 and within 2 % with 52 L9.
 #[test]
-#[ignore = "a measurement, not a check: run by hand"]
+#[ignore = "validate: slow — three tube meshes of 40,000–108,000 DOF (about 3 min)"]
 fn tube_roller_meshes_against_stored_3d() {
     let text = std::fs::read_to_string(root().join("examples/bending_tube_28L9.toml")).unwrap();
     let stored_on = cufem::model::Model::from_file(&root().join("examples/bending_tube_28L9.toml")).unwrap();
@@ -554,45 +600,54 @@ fn tube_roller_meshes_against_stored_3d() {
         (0.25, 2),
     ];
     let variants = [
-        ("3.3 mm within 10 mm", text[..start].to_string() + &axis(&graded_33) + &text[end..]),
-        ("1 mm within 4 mm", text[..start].to_string() + &axis(&graded_1) + &text[end..]),
+        ("axis_3mm", text[..start].to_string() + &axis(&graded_33) + &text[end..]),
+        ("axis_1mm", text[..start].to_string() + &axis(&graded_1) + &text[end..]),
         (
-            "the same, 52 L9",
+            "axis_1mm_52L9",
             (text[..start].to_string() + &axis(&graded_1) + &text[end..]).replace("around = 28", "around = 52"),
         ),
     ];
     for (name, t) in variants {
         let model = cufem::model::Model::parse(&t).unwrap();
         let s = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
+        assert!(s.failure.is_none(), "{:?}", s.failure);
         let view = s.fields(&model);
-        let force = s.contacts.iter().find(|c| c.name == "load").unwrap().force[2];
+        let force = 100.0 * (s.contacts.iter().find(|c| c.name == "load").unwrap().force[2] / -1698.2 - 1.0);
         let p = view.sample_point(None, [0.015, 0.125, 0.03]).unwrap();
-        eprintln!(
-            "{name} ({} DOF): roller {:+.2} %, sag {:.2} % of travel, s_yy {:+.1} %, peeq {:+.1} %",
-            model.n_dofs(),
-            100.0 * (force / -1698.2 - 1.0),
-            100.0 * (p.u[2] / -0.75e-3 - 1.0),
-            100.0 * (p.stress[1] / -63.8669e6 - 1.0),
-            100.0 * (p.peeq / 5.27e-3 - 1.0)
-        );
+        let s_yy = 100.0 * (p.stress[1] / -63.8669e6 - 1.0);
+        let id = |q: &str| format!("tube_roller.{name}.{q}");
+        common::figure(&id("dof"), model.n_dofs() as f64, "", "reported");
+        common::figure(&id("force"), force, "%", "|force − 3D| ≤ 1.1 %");
+        common::figure(&id("sag"), 100.0 * (p.u[2] / -0.75e-3 - 1.0), "%", "reported (3D: 0.39 % of the travel)");
+        common::figure(&id("s_yy"), s_yy, "%", "28 L9: 9 to 15 %; 52 L9: within 2 %");
+        common::figure(&id("peeq"), 100.0 * (p.peeq / 5.27e-3 - 1.0), "%", "reported");
         let rows =
             cufem::verify::compare_stored_on(&stored_on, &model, &view, &stored_3d("bending_tube_28L9")).unwrap();
-        for r in &rows {
-            eprintln!("  {:<28} {:<10} L2 {:6.2} %  max {:6.2} %", r.region, r.quantity, r.l2_percent, r.max_percent);
+        report(&format!("tube_roller.{name}"), &rows);
+        assert!(force.abs() <= 1.1, "{name}: roller force {force:+.2} % from 3D");
+        assert!(row(&rows, "body tube", "u").l2_percent < 2.1, "{name}: u over the tube");
+        if name.ends_with("52L9") {
+            assert!(s_yy.abs() <= 2.0, "{name}: σ_yy {s_yy:+.1} %");
+        } else {
+            assert!((9.0..=15.5).contains(&s_yy), "{name}: σ_yy {s_yy:+.1} %");
         }
     }
 }
 
 /// The table "The cantilevers' rollers under refinement" of
-/// docs/cross-check.md, run by hand (`cargo test --release --test fidelity
-/// -- --ignored cantilever_meshes --nocapture`, several minutes):
-/// `examples/cantilevers_contact.toml` with both beams' axes refined alike
-/// (so that the node-to-node pairs keep matching) and their sections
-/// refined, the rollers as shipped (node-to-node) or exact-gap rigid
-/// surfaces; roller forces, the force across the interface, and the whole
-/// field against the stored 3D fields of the shipped mesh.
+/// docs/cross-check.md: `examples/cantilevers_contact.toml` with both
+/// beams' axes refined alike (so that the node-to-node pairs keep
+/// matching) and their sections refined, the rollers as shipped
+/// (node-to-node) or exact-gap rigid surfaces; roller forces, the force
+/// across the interface, and the whole field against the stored 3D fields
+/// of the shipped mesh (CalculiX C3D20R, refine 1: 7 in roller 25,769 N,
+/// 9 in roller 2,937 N). What the docs claim from it: from 20 B4 on the
+/// 7 in roller is within 0.6 % of 3D and von Mises over both plastic zones
+/// within 6 %; the 9 in roller does not converge (it falls by 15–25 %
+/// under axis refinement); surface rollers move the roller forces by less
+/// than 1 %.
 #[test]
-#[ignore = "a measurement, not a check: run by hand"]
+#[ignore = "validate: slow — seven cantilever meshes of 15,000–123,000 DOF (about 5 min)"]
 fn cantilever_meshes_against_stored_3d() {
     let text = std::fs::read_to_string(root().join("examples/cantilevers_contact.toml")).unwrap();
     let stored_on = cufem::model::Model::from_file(&root().join("examples/cantilevers_contact.toml")).unwrap();
@@ -600,9 +655,17 @@ fn cantilever_meshes_against_stored_3d() {
         "axis = { element = \"B4\", from = 0.0, to = 0.254, elements = 10 }",
         "axis = { element = \"B4\", from = 0.0762, to = 0.3302, elements = 10 }",
     );
-    for (axis, section, surface) in
-        [(10, 4, true), (20, 4, false), (20, 4, true), (40, 4, false), (80, 4, false), (20, 6, false), (40, 6, false)]
-    {
+    let mut forces = std::collections::HashMap::new();
+    for (axis, section, surface) in [
+        (10, 4, false),
+        (10, 4, true),
+        (20, 4, false),
+        (20, 4, true),
+        (40, 4, false),
+        (80, 4, false),
+        (20, 6, false),
+        (40, 6, false),
+    ] {
         let elements = format!("elements = {axis} }}");
         let mut t = text
             .replace(upper, &upper.replace("elements = 10 }", &elements))
@@ -615,24 +678,37 @@ fn cantilever_meshes_against_stored_3d() {
         let s = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
         assert!(s.failure.is_none(), "{:?}", s.failure);
         let force = |n: &str| s.contacts.iter().find(|c| c.name == n).unwrap().force[2];
-        eprintln!(
-            "{axis} B4, {section} x {section} L9, rollers {} ({} DOF): 7 in {:.0} N, 9 in {:.0} N, interface {:.0} N",
-            if surface { "surface" } else { "node-to-node" },
-            model.n_dofs(),
-            -force("indenter_7in"),
-            -force("indenter_9in"),
-            force("beams"),
-        );
+        let key = format!("{axis}B4_{section}x{section}{}", if surface { "_surface" } else { "" });
+        let id = |q: &str| format!("cantilever_rollers.{key}.{q}");
+        let (f7, f9) =
+            (100.0 * (force("indenter_7in") / -25_769.0 - 1.0), 100.0 * (force("indenter_9in") / -2_937.2 - 1.0));
+        common::figure(&id("dof"), model.n_dofs() as f64, "", "reported");
+        common::figure(&id("force_7in"), f7, "%", "from 20 B4 on: within 0.6 % of 3D");
+        common::figure(&id("force_9in"), f9, "%", "reported: not converged");
         let view = s.fields(&model);
         for p in &model.probes {
             let at = view.sample_probe(p).unwrap();
-            eprintln!("  probe {}: σ_yy {:.1} MPa, peeq {:.2e}", p.name, at.stress[1] / 1e6, at.peeq);
+            common::figure(&id(&format!("{}.s_yy", p.name)), at.stress[1] / 1e6, "MPa", "reported");
         }
         let rows =
             cufem::verify::compare_stored_on(&stored_on, &model, &view, &stored_3d("cantilevers_contact")).unwrap();
-        for r in &rows {
-            eprintln!("  {:<28} {:<10} L2 {:6.2} %  max {:6.2} %", r.region, r.quantity, r.l2_percent, r.max_percent);
+        report(&format!("cantilever_rollers.{key}"), &rows);
+        if axis >= 20 {
+            assert!(f7.abs() <= 0.6, "{key}: 7 in roller {f7:+.2} %");
+            for b in ["upper", "lower"] {
+                let vm = row(&rows, &format!("plastic zone {b}"), "von_mises").l2_percent;
+                assert!(vm <= 6.0, "{key}: von Mises over the {b} plastic zone {vm} %");
+            }
         }
+        forces.insert(key, (force("indenter_7in"), force("indenter_9in")));
+    }
+    for (a, b) in [("10B4_4x4", "10B4_4x4_surface"), ("20B4_4x4", "20B4_4x4_surface")] {
+        let ((a7, a9), (b7, b9)) = (forces[a], forces[b]);
+        assert!((b7 / a7 - 1.0).abs() < 0.01 && (b9 / a9 - 1.0).abs() < 0.01, "{a} against {b}");
+    }
+    let nine = |k: &str| forces[k].1;
+    for k in ["40B4_4x4", "80B4_4x4", "40B4_6x6"] {
+        assert!(nine(k) / nine("10B4_4x4") < 0.85, "{k}: the 9 in roller did not fall under refinement");
     }
 }
 

@@ -289,7 +289,7 @@ fn modal_refuses_what_it_cannot_analyse() {
     )
     .unwrap();
     let cases = [
-        (text.replace("density = 2700.0\n", ""), "materials \"aluminium\".density"),
+        (text.replace("density = 2700.0\n", ""), "materials[0].density = (missing)"),
         (text.replace("density = 2700.0", "density = -1.0"), "materials[0].density = -1"),
         (text.replace("modes = 8", "modes = 0"), "analysis.modes = 0"),
         (text.replace("modes = 8", "modes = 8\nmass = \"diagonal\""), "diagonal"),

@@ -9,7 +9,10 @@
 //! arch under a central load has none in closed form that this plane-strain
 //! continuum model (polygonal centreline, thickness along z) would match to
 //! better than the shallow-arch approximations themselves; the limit load is
-//! checked against the displacement-controlled path only.
+//! checked against the displacement-controlled path and against CalculiX
+//! with NLGEOM under the same displacement control.
+
+mod common;
 
 use cufem::analysis::{self, PathEnd, Silent, Solution};
 use cufem::model::Model;
@@ -148,7 +151,14 @@ fn every_point_lies_on_the_displacement_controlled_path() {
     let (u_d, p_d) = peak(&reference);
     eprintln!("limit load: arc length {p_a:.3} N at u = {u_a:.5} m, displacement control {p_d:.3} N at {u_d:.5} m");
     assert!((p_a - p_d).abs() < 1e-3 * p_d, "{p_a} vs {p_d}");
-    assert!((960.0..990.0).contains(&p_d), "{p_d}");
+    // the limit load against CalculiX with NLGEOM under the same
+    // displacement control of the crown (`cufem verify` of the arch with the
+    // load replaced by a prescribed crown deflection of 30 mm in 60
+    // increments, --refine 1; tests/data/references.toml, arch): 975.56 N at
+    // 12.87 mm (the parabola through the three largest increments). 1 %: the
+    // 3D model's own discretization and increments; a 10 % error in the
+    // stiffness moves the limit load by about as much.
+    common::within("arch.limit_load_vs_nlgeom", p_d, 975.56, 0.01, "CalculiX NLGEOM, displacement control");
 }
 
 /// (d) Newton on the path converges quadratically: with the tolerance at

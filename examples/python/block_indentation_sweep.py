@@ -4,19 +4,22 @@ Runs examples/block_indentation.toml at a few punch depths and plots the
 punch force and the equivalent plastic strain at the punch edge and centre
 against the depth (with the force–depth history of the deepest run).
 
-    pip install ./python matplotlib
+    pip install "./python[all]"      # or "./python[plot]": matplotlib
     python examples/python/block_indentation_sweep.py [--out out/python]
 """
 
 import argparse
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-
 import cufem
+
+try:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+except ModuleNotFoundError as e:
+    raise SystemExit(f'{e.name} is not installed: pip install "./python[all]" (or "./python[plot]")') from e
 from cufem.model import set_path
 
 HERE = Path(__file__).resolve().parent
@@ -34,7 +37,7 @@ def main():
     rows = []
     for depth in DEPTHS_MM:
         d = set_path(base, "indenters.0.displacement.2", -depth * 1e-3)
-        results = cufem.Model.from_dict(d).run(progress=False)
+        results = cufem.Model.from_dict(d).run(quiet=True)
         s = results.summary
         force = -next(c for c in s["contact"] if c["name"] == "punch")["force"][2]
         peeq = {p["name"]: p["peeq"] for p in s["probes"]}

@@ -2,24 +2,27 @@
 run through cufem.study on a local Dask cluster.
 
 Each variant is the tube of examples/bending_tube_20L9.toml with another
-wall thickness, solved in 5 increments (a short sweep: 1.5 minutes on
+wall thickness, solved in 5 increments (a short sweep: about a minute on
 two cores). The same call with the Client of a real cluster runs it there.
 
-    pip install ./python "dask[distributed]" matplotlib
+    pip install "./python[all]"      # dask[distributed] and matplotlib
     python examples/python/tube_wall_thickness_dask.py [--out out/python]
 """
 
 import argparse
 from pathlib import Path
 
-import matplotlib
-
-matplotlib.use("Agg")
-import matplotlib.pyplot as plt
-from dask.distributed import Client, LocalCluster
-
 import cufem
 from cufem import study
+
+try:
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from dask.distributed import Client, LocalCluster
+except ModuleNotFoundError as e:
+    raise SystemExit(f'{e.name} is not installed: pip install "./python[all]"') from e
 
 HERE = Path(__file__).resolve().parent
 THICKNESS_MM = [1.0, 1.5, 2.0]

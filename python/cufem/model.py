@@ -70,8 +70,20 @@ class Model:
         ``equations`` after the symbolic factorization, and the warnings."""
         return self._native.check()
 
-    def run(self, out=None, threads: Optional[int] = None, progress: bool = True, force: bool = False) -> Results:
-        """Solves the model and returns its :class:`Results`.
+    def run(self, out=None, threads: Optional[int] = None, quiet: bool = False, force: bool = False) -> Results:
+        """Solves the model and returns its :class:`Results`, printing what
+        ``cufem run`` prints, from the same library functions: the title and
+        the discretization, a line when the analysis is set up and one per
+        increment (λ, iterations, residuals, plastic points, penetration)
+        and per cutback, the final table (DOF, time, increments, Newton
+        iterations; probes, references, reactions and contact forces) and
+        the files written. Header, table and files go to ``sys.stdout``,
+        progress and warnings to ``sys.stderr`` (as the CLI's streams).
+
+        quiet: print nothing but the warnings (also in
+        ``summary["warnings"]``). ``cufem run --quiet`` still prints the
+        final table; ``quiet=True`` does not, so that a loop of runs stays
+        silent.
 
         The GIL is released during the solve. Ctrl-C (SIGINT) stops the
         analysis at the next safe point: the results of the last converged
@@ -83,10 +95,10 @@ class Model:
         stops early never replaces a converged result set there: it writes
         to ``<out>.partial`` instead (``Results.out`` says where).
         threads: worker threads (default: the model's ``solver.threads``,
-        else all cores). progress: print a line per increment to stderr.
+        else all cores).
         """
         out = os.fspath(out) if out is not None else None
-        native = self._native.run(out, force, threads, progress)
+        native = self._native.run(out, force, threads, quiet)
         # a run that stopped early beside a converged set writes to out.partial
         return Results(native, native.written_to or out)
 

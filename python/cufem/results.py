@@ -8,16 +8,16 @@ from typing import Dict, Optional
 
 import numpy as np
 
+from ._extras import require
+
+
 def _table(columns):
-    """A pandas DataFrame if pandas is installed, else a dict of numpy arrays."""
+    """The columns as a pandas DataFrame (integer counts as integers)."""
+    pd = require("pandas", "a table of results (Results.line, Results.history)")
     data = {name: np.asarray(values, dtype=float) for name, values in columns}
     for k in ("increment", "iterations", "plastic_points"):
         if k in data and np.all(np.isfinite(data[k])):
             data[k] = data[k].astype(np.int64)
-    try:
-        import pandas as pd
-    except ImportError:
-        return data
     return pd.DataFrame(data)
 
 
@@ -58,8 +58,8 @@ class Results:
 
     def line(self, name: str):
         """The samples of ``[[lines]]`` entry `name` as ``line_<name>.csv``
-        has them (columns ``s, x, y, z, u_x, …, peeq, e_xx, …``): a pandas
-        DataFrame, or a dict of numpy arrays without pandas."""
+        has them (columns ``s, x, y, z, u_x, …, peeq, e_xx, …``), as a
+        pandas DataFrame."""
         return _table(self._native.line(name))
 
     def history(self, name: str):
@@ -70,7 +70,7 @@ class Results:
         in a model cut by symmetry planes, also the full structure's
         ``full_r_*`` or ``full_f_*`` (not for a plane's own reaction);
         for ``"probes"`` (``history_probes.csv``) every probe's displacement
-        ``<probe>.u_*``."""
+        ``<probe>.u_*``. A pandas DataFrame."""
         return _table(self._native.history(name))
 
     def _vtu_data(self) -> dict:
@@ -101,8 +101,9 @@ class Results:
     def to_meshio(self):
         """The fields of ``result.vtu`` as a ``meshio.Mesh`` (hexahedra;
         point data and the ``body``/``element`` cell data, each (n,
-        components) like ``meshio.read`` gives them). Needs meshio."""
-        import meshio
+        components) like ``meshio.read`` gives them). Needs meshio (the
+        ``meshio`` extra)."""
+        meshio = require("meshio", "Results.to_meshio()")
 
         d = self._vtu_data()
 

@@ -34,6 +34,7 @@ import os
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Union
 
 from . import _native
+from ._extras import require
 from .model import Model, set_path
 
 _QUANTITIES = {"u_x": ("u", 0), "u_y": ("u", 1), "u_z": ("u", 2)}
@@ -90,7 +91,7 @@ def run_variant(model: dict, base: str, variant: Dict[str, Any], outputs: Sequen
         d = model
         for path, value in variant.items():
             d = set_path(d, path, value)
-        results = Model.from_dict(d, base=base).run(threads=threads, progress=False)
+        results = Model.from_dict(d, base=base).run(threads=threads, quiet=True)
         summary = results.summary
         for spec in outputs:
             row[spec] = output_value(summary, spec)
@@ -141,7 +142,7 @@ def run(
     threads: solver threads per variant (default 1: the parallelism is
     across variants).
     """
-    import pandas as pd
+    pd = require("pandas", "cufem.study.run")
 
     base_dict, base = _model_dict(model)
     variants = grid(variants) if isinstance(variants, dict) else [dict(v) for v in variants]

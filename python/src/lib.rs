@@ -15,6 +15,7 @@ use std::time::Duration;
 
 use cufem::analysis::{self, IncrementLog, Progress, RunOptions, Solution};
 use cufem::io::output::OutputDir;
+use cufem::io::report;
 use cufem::model::steps::{self, Item};
 use cufem::model::{Limits, Model, ModelError as RustModelError};
 use cufem::post;
@@ -170,55 +171,73 @@ fn py_to_value(obj: &Bound<'_, PyAny>, key: &str) -> PyResult<toml::Value> {
     )))
 }
 
+/// Where a line of text goes: as `cufem run` prints it, the header and the
+/// final report to stdout, progress and warnings to stderr.
+#[derive(Clone, Copy)]
+enum Stream {
+    Out,
+    Err,
+}
+
 /// What the analysis thread tells the caller's thread.
 enum Message {
-    Line(String),
+    Line(Stream, String),
     Done(Box<Result<Solution, String>>),
 }
 
 /// Progress lines sent to the caller's thread (printed there through
-/// Python's `sys.stderr`, so Jupyter shows them).
+/// Python's `sys.stderr`, so Jupyter shows them): the CLI's lines, from
+/// the same functions (`cufem::io::report`).
 struct Channel {
     tx: mpsc::Sender<Message>,
     print: bool,
 }
 
-impl Progress for Channel {
-    fn start(&mut self, _model: &Model, setup: &analysis::Setup) {
+impl Channel {
+    fn send(&self, text: String) {
         if self.print {
-            let _ = self.tx.send(Message::Line(format!(
-                "solving {} equations, nnz(L) = {}, memory estimate {} (Ctrl-C stops at the next safe point and \
-                 keeps the results)",
-                setup.equations,
-                setup.factor_nnz,
-                cufem::size::human_bytes(setup.memory.total())
-            )));
-        }
-    }
-
-    fn increment(&mut self, log: &IncrementLog) {
-        if self.print {
-            let _ = self.tx.send(Message::Line(format!(
-                "increment {:>3}: λ = {:.4} (Δλ = {:.3e}), {} iterations, {} plastic points, max penetration {:.3e} m",
-                log.index, log.lambda, log.dlambda, log.iterations, log.plastic_points, log.max_penetration
-            )));
-        }
-    }
-
-    fn cutback(&mut self, c: &Cutback) {
-        if self.print {
-            let what = if c.rejected.is_some() { "rejected by solver.step_control" } else { "failed" };
-            let _ = self.tx.send(Message::Line(format!(
-                "  cutback: increment {} (λ = {:.4}, Δλ = {:.3e}) {what} after {} iterations",
-                c.index, c.lambda, c.dlambda, c.newton.iterations
-            )));
+            let _ = self.tx.send(Message::Line(Stream::Err, text));
         }
     }
 }
 
+impl Progress for Channel {
+    fn start(&mut self, _model: &Model, setup: &analysis::Setup) {
+        self.send(report::start_line(setup));
+    }
+
+    fn increment(&mut self, log: &IncrementLog) {
+        self.send(report::increment_line(log));
+    }
+
+    fn cutback(&mut self, c: &Cutback) {
+        self.send(report::cutback_line(c));
+    }
+}
+
+/// Writes `text`, ending in a newline, to Python's `sys.stdout` or `sys.stderr`
+/// (what Jupyter shows, what pytest's `capsys` captures).
+fn write_to(py: Python<'_>, stream: Stream, text: &str) -> PyResult<()> {
+    let name = match stream {
+        Stream::Out => "stdout",
+        Stream::Err => "stderr",
+    };
+    let file = py.import("sys")?.getattr(name)?;
+    let line = if text.ends_with('\n') { text.to_string() } else { format!("{text}\n") };
+    file.call_method1("write", (line,))?;
+    Ok(())
+}
+
 fn write_stderr(py: Python<'_>, text: &str) -> PyResult<()> {
-    let stderr = py.import("sys")?.getattr("stderr")?;
-    stderr.call_method1("write", (format!("{text}\n"),))?;
+    write_to(py, Stream::Err, text)
+}
+
+/// The model's or the run's warnings, to stderr as `cufem run` prints them
+/// (also with `quiet`: they are in `summary["warnings"]` too).
+fn write_warnings<'a>(py: Python<'_>, warnings: impl Iterator<Item = &'a cufem::model::Warning>) -> PyResult<()> {
+    for w in warnings {
+        write_stderr(py, &format!("warning: {w}"))?;
+    }
     Ok(())
 }
 
@@ -272,18 +291,19 @@ impl NativeModel {
     }
 
     /// Solves the model in a thread of its own (GIL released); the caller's
-    /// thread prints progress and watches for Ctrl-C: a first one stops the
-    /// analysis at the next safe point (the last converged increment is
-    /// kept and, with `out`, written), a second one raises
-    /// `KeyboardInterrupt` at once.
-    #[pyo3(signature = (out=None, force=false, threads=None, progress=true))]
+    /// thread prints what `cufem run` prints (header, a line per increment,
+    /// the final report; nothing but the warnings with `quiet`) and watches
+    /// for Ctrl-C: a first one stops the analysis at the next safe point
+    /// (the last converged increment is kept and, with `out`, written), a
+    /// second one raises `KeyboardInterrupt` at once.
+    #[pyo3(signature = (out=None, force=false, threads=None, quiet=false))]
     fn run(
         &self,
         py: Python<'_>,
         out: Option<PathBuf>,
         force: bool,
         threads: Option<usize>,
-        progress: bool,
+        quiet: bool,
     ) -> PyResult<NativeResults> {
         let threads = threads.or(self.model.solver.threads);
         if let Some(n) = threads
@@ -291,11 +311,15 @@ impl NativeModel {
         {
             return Err(PyValueError::new_err(format!("threads = {n}: expected an integer from 1 to 1024")));
         }
+        write_warnings(py, self.model.warnings.iter())?;
         // the output folder is checked and locked before any computing
         let folder = match &out {
             Some(dir) => Some(OutputDir::prepare(dir, force).map_err(output_error)?),
             None => None,
         };
+        if !quiet {
+            write_to(py, Stream::Out, &report::header(&self.model))?;
+        }
         let mut builder = rayon::ThreadPoolBuilder::new();
         if let Some(n) = threads {
             builder = builder.num_threads(n);
@@ -308,7 +332,7 @@ impl NativeModel {
         let worker = std::thread::Builder::new()
             .name("cufem-analysis".into())
             .spawn(move || {
-                let mut sink = Channel { tx: tx.clone(), print: progress };
+                let mut sink = Channel { tx: tx.clone(), print: !quiet };
                 let result = pool.install(|| analysis::run(&model, &options, &mut sink)).map_err(|e| e.to_string());
                 let _ = tx.send(Message::Done(Box::new(result)));
             })
@@ -321,7 +345,7 @@ impl NativeModel {
             });
             rx = back;
             match message {
-                Ok(Message::Line(text)) => write_stderr(py, &text)?,
+                Ok(Message::Line(stream, text)) => write_to(py, stream, &text)?,
                 Ok(Message::Done(result)) => break *result,
                 Err(mpsc::RecvTimeoutError::Timeout) => {}
                 Err(mpsc::RecvTimeoutError::Disconnected) => {
@@ -335,31 +359,38 @@ impl NativeModel {
                     return Err(e);
                 }
                 interrupt.request();
-                if progress {
+                if !quiet {
                     write_stderr(py, "interrupted: stopping at the next safe point (Ctrl-C again to abandon the run)")?;
                 }
             }
         };
         let _ = worker.join();
         let solution = result.map_err(|e| PyRuntimeError::new_err(format!("analysis failed: {e}")))?;
+        if !quiet {
+            write_to(py, Stream::Out, &report::results(&self.model, &solution))?;
+        }
+        write_warnings(py, solution.warnings.iter())?;
         let mut files = None;
         let mut written_to = None;
+        let mut kept = false;
         if let Some(folder) = folder {
             let model = self.model.clone();
             let written =
                 py.allow_threads(|| cufem::io::write_into(&model, &solution, folder, |_| ())).map_err(output_error)?;
-            if written.kept_converged && progress {
-                write_stderr(
-                    py,
-                    &format!(
-                        "the run stopped early: its results are in {} (the converged results were kept)",
-                        written.folder.display()
-                    ),
-                )?;
+            if !quiet {
+                write_to(py, Stream::Out, &report::wrote_line(written.files.len(), &written.folder))?;
             }
+            kept = written.kept_converged;
             files = Some(written.files);
-            written_to = Some(written.folder.display().to_string());
+            written_to = Some(written.folder);
         }
+        if !quiet {
+            let kept = out.as_deref().filter(|_| kept);
+            if let Some(text) = report::stopped_early(&self.model, &solution, written_to.as_deref(), kept) {
+                write_stderr(py, &text)?;
+            }
+        }
+        let written_to = written_to.map(|w| w.display().to_string());
         Ok(NativeResults { model: self.model.clone(), solution: Arc::new(solution), files, written_to })
     }
 }

@@ -20,8 +20,8 @@ def test_from_dict_round_trips_from_file(name):
 
 def test_from_dict_runs_to_the_same_results():
     m = cufem.Model.from_file(EXAMPLES / "bending_compact_4L9.toml")
-    a = m.run(threads=1, progress=False).summary
-    b = cufem.Model.from_dict(m.to_dict()).run(threads=1, progress=False).summary
+    a = m.run(threads=1, quiet=True).summary
+    b = cufem.Model.from_dict(m.to_dict()).run(threads=1, quiet=True).summary
     for k in ("probes", "reactions", "contact", "max_peeq", "increments", "status"):
         assert a[k] == b[k]
 

@@ -9,7 +9,7 @@ from conftest import EXAMPLES
 def test_other_threads_run_during_the_solve():
     model = cufem.Model.from_file(EXAMPLES / "bending_compact_4L9.toml")
     done = []
-    worker = threading.Thread(target=lambda: done.append(model.run(threads=1, progress=False)))
+    worker = threading.Thread(target=lambda: done.append(model.run(threads=1, quiet=True)))
     count = 0
     worker.start()
     while worker.is_alive():

@@ -28,7 +28,7 @@ def py_runs(tmp_path_factory):
         if name not in cache:
             out = tmp_path_factory.mktemp("py") / name
             model = cufem.Model.from_file(EXAMPLES / f"{name}.toml")
-            cache[name] = (model.run(out=out, threads=1, progress=False), out)
+            cache[name] = (model.run(out=out, threads=1, quiet=True), out)
         return cache[name]
 
     return get
@@ -43,7 +43,7 @@ def test_summary_equals_the_cli_summary_json(name, cli_runs, py_runs):
     assert stable(load_summary(out)) == stable(cli)
     assert results.summary["status"] == "converged"
     # in memory, without writing: the same content, no file list
-    mem = cufem.Model.from_file(EXAMPLES / f"{name}.toml").run(threads=1, progress=False)
+    mem = cufem.Model.from_file(EXAMPLES / f"{name}.toml").run(threads=1, quiet=True)
     assert stable(mem.summary, files=False) == stable(cli, files=False)
     assert mem.summary["files"] == [] and mem.files is None
 
@@ -51,7 +51,7 @@ def test_summary_equals_the_cli_summary_json(name, cli_runs, py_runs):
 @pytest.mark.parametrize("name", EXAMPLES_COMPARED)
 def test_results_do_not_depend_on_the_thread_count(name, cli_runs):
     cli = load_summary(cli_runs(name))
-    two = cufem.Model.from_file(EXAMPLES / f"{name}.toml").run(threads=2, progress=False)
+    two = cufem.Model.from_file(EXAMPLES / f"{name}.toml").run(threads=2, quiet=True)
     assert stable(two.summary, files=False) == stable(cli, files=False)
 
 
@@ -108,7 +108,7 @@ def test_meshio_reads_the_cli_vtu_and_to_meshio_agrees(name, cli_runs, py_runs):
     for k, v in theirs.cell_data.items():
         np.testing.assert_array_equal(ours.cell_data[k][0], v[0], err_msg=k)
     # the fields without a written folder: the same arrays, from memory
-    mem = cufem.Model.from_file(EXAMPLES / f"{name}.toml").run(threads=1, progress=False)
+    mem = cufem.Model.from_file(EXAMPLES / f"{name}.toml").run(threads=1, quiet=True)
     np.testing.assert_array_equal(mem.field("s_yy"), theirs.point_data["s_yy"][:, 0])
     np.testing.assert_array_equal(mem.points, theirs.points)
 
@@ -124,7 +124,7 @@ def test_check_counts(cli):
 
 
 def test_history_and_line_shapes():
-    r = cufem.Model.from_file(EXAMPLES / "bending_compact_4L9.toml").run(threads=1, progress=False)
+    r = cufem.Model.from_file(EXAMPLES / "bending_compact_4L9.toml").run(threads=1, quiet=True)
     h = r.history("load")
     assert list(h.columns[:3]) == ["increment", "lambda", "iterations"]
     assert len(h) == r.summary["increments"]

@@ -55,7 +55,7 @@ def test_a_failed_variant_is_a_row_with_its_message(local):
 def test_rows_equal_single_runs(local):
     d = cufem.study.set_path(small_model(), "indenters.2.displacement.2", -0.5e-3)
     d = cufem.study.set_path(d, "materials.0.young_modulus", 68e9)
-    s = cufem.Model.from_dict(d).run(threads=1, progress=False).summary
+    s = cufem.Model.from_dict(d).run(threads=1, quiet=True).summary
     # to the Newton tolerance (see the Dask test): a separate process may sum
     # in another order and so stop one iteration earlier or later
     assert local.iloc[1]["probe.contact_centre.s_yy"] == pytest.approx(s["probes"][0]["stress"][1], rel=1e-6)

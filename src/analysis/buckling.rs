@@ -170,8 +170,14 @@ pub(crate) fn imperfection(
     // by load control: the linear static state at the loads of the first step
     linear.solver.path = None;
     linear.buckling = Some(crate::model::BucklingSettings { modes: imp.mode });
+    // the buckling of the loads' static state, whatever the analysis that
+    // follows (a transient one integrates from the imperfect shape)
+    linear.transient = None;
+    linear.modal = None;
     for m in &mut linear.materials {
+        let density = m.density;
         *m = crate::materials::Material::new(m.name.clone(), m.young, m.poisson, None);
+        m.density = density;
     }
     // a single static increment (the model is now linear)
     linear.solver.steps.initial = 1.0;

@@ -16,6 +16,7 @@ pub mod modal;
 pub mod path;
 mod recorder;
 mod results;
+mod sizes;
 mod solution;
 mod stages;
 pub mod structure;
@@ -25,18 +26,18 @@ pub use path::{PathEnd, PathOutcome};
 pub use recorder::Frame;
 use recorder::Recorder;
 pub use results::{AdaptCycle, AdaptEnd, Adaptivity};
+pub use sizes::{describe_memory, memory_advice, plan, sizes};
 pub use structure::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Structure, Timings};
 
 use std::time::{Duration, Instant};
 
-use crate::assembly::Numbering;
 use crate::elements::ElementError;
 use crate::materials::PointState;
 use crate::model::Model;
 use crate::model::Warning;
-use crate::size::{MemoryEstimate, Sizes, human_bytes};
+use crate::size::{MemoryEstimate, human_bytes};
 use crate::solver::Interrupt;
-use crate::solver::linear::{Cholesky, LinearError};
+use crate::solver::linear::LinearError;
 use crate::solver::newton::NonlinearProblem;
 use crate::solver::stepping::{self, Cutback, Increment, SteppingError};
 use crate::voigt::Voigt;
@@ -78,11 +79,11 @@ pub enum AnalysisError {
     Mass(#[from] crate::dynamics::MassError),
     /// The analysis would need more memory than allowed.
     #[error(
-        "the analysis needs about {} of memory ({}) but {} is available; use a coarser mesh, or --max-memory \
-         to raise the limit",
+        "the analysis needs about {} of memory ({}) but {} is available; {}, or --max-memory to raise the limit",
         human_bytes(.estimate.total()),
         describe_memory(.estimate),
-        human_bytes(*.limit)
+        human_bytes(*.limit),
+        memory_advice(.estimate)
     )]
     TooLarge {
         /// The estimate.
@@ -90,13 +91,6 @@ pub enum AnalysisError {
         /// The limit (bytes).
         limit: u64,
     },
-}
-
-/// `what: size` list of the largest parts of an estimate.
-pub fn describe_memory(m: &MemoryEstimate) -> String {
-    let mut parts = m.parts.clone();
-    parts.sort_by_key(|p| std::cmp::Reverse(p.1));
-    parts.iter().take(3).map(|(w, b)| format!("{w} {}", human_bytes(*b))).collect::<Vec<_>>().join(", ")
 }
 
 /// Options of an analysis run.
@@ -107,80 +101,6 @@ pub struct RunOptions {
     pub interrupt: Interrupt,
     /// Refuse the analysis if its estimated memory exceeds this (bytes).
     pub max_memory: Option<u64>,
-}
-
-/// The sizes that set the memory of `model`'s analysis, exact after the
-/// symbolic factorization.
-pub fn sizes(model: &Model, numbering: &Numbering, solver: &Cholesky) -> Sizes {
-    let mesh = &model.mesh;
-    let mut s = Sizes {
-        equations: numbering.dofs.n_eq as u64,
-        nodes: mesh.n_nodes() as u64,
-        dofs: mesh.n_dofs() as u64,
-        elements: mesh.n_elements() as u64,
-        node_pairs: numbering.node_pairs as u64,
-        pattern_nnz: numbering.pattern.nnz() as u64,
-        factor_nnz: solver.factor_nnz() as u64,
-        factor_scratch: solver.scratch_bytes() as u64,
-        krylov_vectors: if model.has_friction() {
-            crate::solver::krylov::GmresWork::vectors(crate::solver::reuse::GMRES_RESTART) as u64
-        } else {
-            0
-        },
-        eigen_vectors: model
-            .buckling
-            .map(|b| b.modes)
-            .or(model.modal.map(|m| m.modes))
-            .map_or(0, |count| crate::solver::eigen::vectors(count) as u64),
-        dynamic_matrices: model.transient.as_ref().map_or(0, |t| {
-            let damped = t.damping.0 > 0.0 || t.damping.1 > 0.0;
-            1 + u64::from(damped)
-        }),
-        // the step ends (kept with more than one step), and a frame per
-        // output interval
-        snapshots: if model.steps.len() > 1 { model.steps.len() as u64 } else { 0 }
-            + model
-                .transient
-                .as_ref()
-                .and_then(|t| {
-                    let total: f64 = t.durations.iter().sum();
-                    t.output_interval.map(|dt| (total / dt * (1.0 + 1e-9)).floor() as u64)
-                })
-                .unwrap_or(0),
-        exact: true,
-        ..Default::default()
-    };
-    for b in &mesh.bodies {
-        let per = (b.section.kind.nodes() * b.axis.kind.nodes()) as u64;
-        let n = 3 * per;
-        let e = b.n_elements() as u64;
-        s.gauss_points += e * per;
-        s.element_entries += e * n * (n + 1) / 2;
-        s.vtu_points += e * per;
-    }
-    s
-}
-
-/// Orders the equations and runs the symbolic factorization only (no
-/// element matrices, no factor): the exact size of the analysis, for
-/// `cufem check`.
-pub fn plan(model: &Model) -> Result<Sizes, AnalysisError> {
-    let n = model.mesh.n_dofs();
-    let mut fixed = vec![false; n];
-    for c in &model.constraints {
-        for &node in &c.nodes {
-            for (k, v) in c.values.iter().enumerate() {
-                if *v == Some(0.0) {
-                    fixed[3 * node + k] = true;
-                }
-            }
-        }
-    }
-    let couplings: Vec<(usize, usize)> =
-        model.contacts.iter().flat_map(|c| c.couplings(&model.mesh, model.kinematics.is_nonlinear())).collect();
-    let numbering = Numbering::new(&model.mesh, &fixed, &couplings)?;
-    let solver = Cholesky::analyze(&numbering.pattern)?;
-    Ok(sizes(model, &numbering, &solver))
 }
 
 /// One row of the load history (after a converged increment).
@@ -409,7 +329,12 @@ fn drive(
                     stresses: structure.elements().stress.clone(),
                 }),
             }),
-            Err(e) => {
+            Err(mut e) => {
+                // a transient stop speaks of times
+                if let Some(t) = &model.transient {
+                    let at = t.time(e.lambda);
+                    e.seconds = Some([at, at - t.time(e.lambda - e.dlambda), t.time(e.last_converged)]);
+                }
                 failure = Some(*e);
                 break;
             }

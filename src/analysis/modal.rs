@@ -27,6 +27,20 @@
 //! the mass that moves with the free DOFs (Chopra, *Dynamics of
 //! Structures*, §13.2). They tell bending (`x`, `z`), axial (`y`) and
 //! torsional (none) modes apart.
+//!
+//! **A model cut by symmetry planes** is `2^p` mirror images of itself
+//! (`p` planes), and its modes are the full structure's modes symmetric
+//! about every plane (`u_n` odd across it). The effective masses reported
+//! are the full structure's: a symmetric mode `Φ` (the mode and its mirror
+//! images) has `Φᵀ M_full Φ = 2^p φᵀ M φ` and, for a direction `k` along
+//! every plane, `Φᵀ M_full r_k = 2^p φᵀ M r_k`, so `m_ik` is `2^p` times the
+//! model's; along a plane's normal the rigid translation is antisymmetric
+//! about it and a symmetric mode's effective mass is zero (the
+//! antisymmetric modes that carry it are not computed). The free mass is
+//! the full structure's too: `2^p` times the model's `r_kᵀ M r_k` with
+//! `r_k` on every node the file's constraints leave free in direction `k`
+//! — a node held only by a plane's `u_n = 0` is free in the full
+//! structure ([`full_free_mass`]).
 
 use super::{AnalysisError, Structure};
 use crate::solver::eigen::EigenSettings;
@@ -42,6 +56,10 @@ pub struct Modal {
     pub effective_masses: Vec<[f64; 3]>,
     /// The mass moving with the free DOFs in x, y and z, `r_kᵀ M r_k` (kg).
     pub free_mass: [f64; 3],
+    /// True if the effective and free masses are those of the full
+    /// structure of a model cut by symmetry planes (module docs), false if
+    /// they are the model's own (a model without planes).
+    pub full_structure: bool,
     /// Relative Ritz residual of each pair.
     pub residuals: Vec<f64>,
     /// Solves with the factor of `K_T` the eigensolver took.
@@ -91,7 +109,86 @@ pub(crate) fn solve(
         modes.push(shape(structure, v, n_dofs));
     }
     let frequencies = sol.values.iter().map(|w2| w2.sqrt() / (2.0 * std::f64::consts::PI)).collect();
-    Ok(Modal { frequencies, modes, effective_masses, free_mass, residuals: sol.residuals, solves: sol.solves })
+    let mut modal = Modal {
+        frequencies,
+        modes,
+        effective_masses,
+        free_mass,
+        full_structure: false,
+        residuals: sol.residuals,
+        solves: sol.solves,
+    };
+    let model = structure.model();
+    if !model.symmetry.planes.is_empty() {
+        let full = full_free_mass(model, settings.mass).map_err(AnalysisError::from)?;
+        to_full_structure(&mut modal, &model.symmetry, full);
+    }
+    Ok(modal)
+}
+
+/// The model's effective and free masses turned into the full structure's
+/// (module docs), given the full structure's free mass `full`.
+fn to_full_structure(modal: &mut Modal, symmetry: &crate::bc::symmetry::Symmetry, full: [f64; 3]) {
+    let copies = symmetry.copies() as f64;
+    let normal: [bool; 3] = std::array::from_fn(|k| symmetry.planes.iter().any(|p| p.axis == k));
+    for m in &mut modal.effective_masses {
+        for k in 0..3 {
+            m[k] = if normal[k] { 0.0 } else { copies * m[k] };
+        }
+    }
+    modal.free_mass = full;
+    modal.full_structure = true;
+}
+
+/// The full structure's free mass of a model cut by symmetry planes:
+/// `2^p r_kᵀ M r_k` with `r_k` = 1 on every node the file's constraints
+/// (not the planes') leave free in direction `k`, integrated element by
+/// element with the mass matrix's own rule: `∫ ρ (Σ_a r_a N_a)²`
+/// (consistent) or `∫ ρ Σ_a r_a N_a` (lumped, the row sums).
+pub(crate) fn full_free_mass(
+    model: &crate::model::Model,
+    kind: crate::dynamics::MassKind,
+) -> Result<[f64; 3], crate::dynamics::MassError> {
+    let densities = crate::dynamics::mass::densities(&model.mesh, &model.materials)?;
+    let mut free = vec![[true; 3]; model.mesh.n_nodes()];
+    for (i, c) in model.constraints.iter().enumerate() {
+        if model.symmetry.constraints.contains(&i) {
+            continue;
+        }
+        for &n in &c.nodes {
+            for k in 0..3 {
+                free[n][k] &= c.values[k].is_none();
+            }
+        }
+    }
+    let mut total = [0.0; 3];
+    let (mut nodes, mut shapes) = (Vec::new(), Vec::new());
+    for (b, body) in model.mesh.bodies.iter().enumerate() {
+        let cell = &model.cells[b];
+        let (sg, ag) = (&cell.section, &cell.axis);
+        let n_section = body.section.n_elements();
+        for e in 0..body.n_elements() {
+            let (es, eb) = (e % n_section, e / n_section);
+            body.element_nodes(e, &mut nodes);
+            shapes.resize(nodes.len(), 0.0);
+            for gb in 0..ag.n_gp {
+                for gs in 0..sg.n_gp {
+                    let (s, a) = (sg.point(es, gs), ag.point(eb, gb));
+                    let w = densities[b][es] * s.weight * a.weight;
+                    crate::values::shape_values(s, a, &mut shapes);
+                    for (k, t) in total.iter_mut().enumerate() {
+                        let r: f64 = nodes.iter().zip(&shapes).filter(|(n, _)| free[**n][k]).map(|(_, v)| v).sum();
+                        *t += match kind {
+                            crate::dynamics::MassKind::Consistent => w * r * r,
+                            crate::dynamics::MassKind::Lumped => w * r,
+                        };
+                    }
+                }
+            }
+        }
+    }
+    let copies = model.symmetry.copies() as f64;
+    Ok(total.map(|t| copies * t))
 }
 
 /// Mode `v` (per equation) per DOF, scaled to a largest component of +1.
@@ -110,4 +207,57 @@ pub(super) fn shape(structure: &Structure<'_>, v: &[f64], n_dofs: usize) -> Vec<
     }
     mode.iter_mut().for_each(|m| *m *= sign / big.max(f64::MIN_POSITIVE));
     mode
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::dynamics::MassKind;
+
+    /// A cantilever with a prescribed end: its free DOFs differ per direction.
+    const MODEL: &str = r#"
+        [analysis]
+        type = "modal"
+        modes = 2
+        mass = "MASS"
+        [[materials]]
+        name = "steel"
+        young_modulus = 200e9
+        poisson_ratio = 0.3
+        density = 7800.0
+        [[bodies]]
+        name = "b"
+        material = "steel"
+        section = { shape = "rectangle", element = "L9", x = { from = 0.0, to = 0.02, elements = 2 }, z = { from = 0.0, to = 0.01, elements = 1 } }
+        axis = { element = "B3", from = 0.0, to = 0.2, elements = 3 }
+        [[constraints]]
+        name = "root"
+        body = "b"
+        where = { y = 0.0 }
+        fix = ["x", "y", "z"]
+        [[constraints]]
+        name = "edge"
+        body = "b"
+        where = { y = 0.2, z = 0.0 }
+        fix = ["z"]
+    "#;
+
+    #[test]
+    fn the_integrated_free_mass_is_the_mass_matrixs_without_planes() {
+        // two independent computations of r_kᵀ M r_k: the assembled matrix on
+        // the free equations (`solve`) and the element integral of
+        // `full_free_mass` (one copy, no plane)
+        for (word, kind) in [("consistent", MassKind::Consistent), ("lumped", MassKind::Lumped)] {
+            let model = crate::model::Model::parse(&MODEL.replace("MASS", word)).unwrap();
+            let sol = crate::analysis::run(&model, &Default::default(), &mut crate::analysis::Silent).unwrap();
+            let modal = sol.modal.unwrap();
+            let integrated = full_free_mass(&model, kind).unwrap();
+            for k in 0..3 {
+                assert!((integrated[k] - modal.free_mass[k]).abs() < 1e-12 * modal.free_mass[k], "{word} {k}");
+            }
+            // with the end's z fixed, less mass moves along z than along x
+            assert!(modal.free_mass[2] < modal.free_mass[0]);
+            assert!(!modal.full_structure);
+        }
+    }
 }

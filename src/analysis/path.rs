@@ -303,5 +303,6 @@ fn stopped(n: usize, lambda: f64, message: String) -> SteppingError {
         dlambda: 0.0,
         last_converged: lambda,
         newton: Report { message: Some(message), ..Report::default() },
+        seconds: None,
     }
 }

@@ -34,6 +34,9 @@ pub struct Timings {
     pub solve: Duration,
     /// Number of residual/tangent evaluations.
     pub evaluations: usize,
+    /// Element tangents (or their corrections to the cached elastic
+    /// tangent) formed by the kernel, over all evaluations.
+    pub element_tangents_formed: usize,
     /// Of them: evaluations without the element tangents (Newton expected
     /// them to be the last of their solve).
     pub residual_only: usize,
@@ -63,6 +66,7 @@ impl Timings {
         self.contact += elapsed[1];
         self.stress_pass += kernel.stress_pass;
         self.element_tangents += kernel.element_tangents;
+        self.element_tangents_formed += kernel.tangents_formed;
     }
 }
 

@@ -235,6 +235,11 @@ impl<'m> Structure<'m> {
         &self.system.assembler.pattern
     }
 
+    /// The model.
+    pub(crate) fn model(&self) -> &'m Model {
+        self.model
+    }
+
     /// Equation of a DOF, `None` if it is fixed.
     pub fn equation(&self, dof: usize) -> Option<usize> {
         let e = self.system.assembler.dofs.eq[dof];
@@ -332,7 +337,7 @@ impl<'m> Structure<'m> {
         use crate::dynamics::mass;
         let (model, a) = (self.model, &self.system.assembler);
         let densities = mass::densities(&model.mesh, &model.materials)?;
-        let mut m = mass::assemble(a, &model.mesh, &model.cells, &densities, kind)?;
+        let mut m = mass::assemble(a, &model.mesh, &model.cells, &densities, kind, None)?;
         let mut k = self.system.tangent.clone();
         self.dirichlet.fix_for_eigen(|e| a.pattern.col_ptr[e], &mut k, &mut m);
         Ok((k, m))

@@ -286,6 +286,7 @@ impl Assembler {
                                 plastic_points: stats.plastic_points,
                                 stress_pass: stats.stress_pass,
                                 element_tangents: stats.tangent_pass,
+                                tangents_formed: usize::from(stats.tangent_computed),
                             }
                         })
                     },
@@ -346,6 +347,8 @@ pub struct AssemblyStats {
     pub stress_pass: std::time::Duration,
     /// Element tangents (zero where the kernel formed none).
     pub element_tangents: std::time::Duration,
+    /// Number of element tangents (or tangent corrections) formed.
+    pub tangents_formed: usize,
 }
 
 impl std::ops::Add for AssemblyStats {
@@ -356,6 +359,7 @@ impl std::ops::Add for AssemblyStats {
             plastic_points: self.plastic_points + b.plastic_points,
             stress_pass: self.stress_pass + b.stress_pass,
             element_tangents: self.element_tangents + b.element_tangents,
+            tangents_formed: self.tangents_formed + b.tangents_formed,
         }
     }
 }

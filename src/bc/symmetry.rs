@@ -82,6 +82,9 @@ pub struct Symmetry {
     pub planes: Vec<Plane>,
     /// Per item name, one flag per plane: its nodes touch the plane.
     pub across: Vec<(String, Vec<bool>)>,
+    /// The planes' own constraints (`u_n = 0`): their indices among the
+    /// model's constraints.
+    pub constraints: Vec<usize>,
 }
 
 impl Symmetry {
@@ -100,6 +103,23 @@ impl Symmetry {
     pub fn copies(&self) -> usize {
         1 << self.planes.len()
     }
+}
+
+/// The sign of each Voigt component (xx, yy, zz, xy, xz, yz) under the
+/// reflection of `axis`: −1 for a shear with one index along it.
+pub fn voigt_signs(axis: usize) -> [f64; 6] {
+    let s = |k: usize| if k == axis { -1.0 } else { 1.0 };
+    [1.0, 1.0, 1.0, s(0) * s(1), s(0) * s(2), s(1) * s(2)]
+}
+
+/// The mirror image across a plane normal to `axis` of a stiffness in
+/// Voigt form: `C'_ij = s_i s_j C_ij` ([`voigt_signs`]). A material is
+/// its own mirror image when its couplings between the even and the odd
+/// components vanish (orthotropic axes along the plane's normal, or an
+/// isotropic material); a ply at θ about z mirrors across x or y to −θ.
+pub fn reflect_stiffness(c: &[[f64; 6]; 6], axis: usize) -> [[f64; 6]; 6] {
+    let s = voigt_signs(axis);
+    std::array::from_fn(|i| std::array::from_fn(|j| s[i] * s[j] * c[i][j]))
 }
 
 /// The image of `p` in the modelled part: reflected across every plane
@@ -218,6 +238,38 @@ mod tests {
         assert_eq!(s.von_mises, crate::voigt::von_mises(&s.stress));
         // off the plane: the evaluator's own values
         assert_eq!(sample(&planes, [0.1, 0.3, 0.1], |_| Some(one_side)).unwrap().stress, one_side.stress);
+    }
+
+    /// A carbon ply's stiffness turned by `deg` about z from the y axis.
+    fn ply(deg: f64) -> [[f64; 6]; 6] {
+        use crate::materials::anisotropic::{Frame, Orthotropic};
+        let o = Orthotropic { young: [140e9, 10e9, 10e9], shear: [5e9, 5e9, 3.5e9], poisson: [0.3, 0.3, 0.4] };
+        let frame = Frame::ply([0.0, 1.0, 0.0], [0.0, 0.0, 1.0], deg.to_radians()).unwrap();
+        frame.stiffness_to_global(&o.stiffness().unwrap())
+    }
+
+    fn close(a: &[[f64; 6]; 6], b: &[[f64; 6]; 6]) -> bool {
+        a.iter().flatten().zip(b.iter().flatten()).all(|(x, y)| (x - y).abs() <= 1e-6 * 140e9)
+    }
+
+    #[test]
+    fn a_ply_at_theta_mirrors_to_minus_theta_across_x_and_y_and_to_itself_across_z() {
+        // the reflection x → −x (or y → −y) turns the fibre direction
+        // (sin θ, cos θ, 0) into (−sin θ, cos θ, 0) up to its sign: θ → −θ;
+        // z → −z leaves an in-plane fibre where it is
+        let (c30, c_30) = (ply(30.0), ply(-30.0));
+        assert!(close(&reflect_stiffness(&c30, 0), &c_30));
+        assert!(close(&reflect_stiffness(&c30, 1), &c_30));
+        assert!(close(&reflect_stiffness(&c30, 2), &c30));
+        assert!(!close(&reflect_stiffness(&c30, 0), &c30));
+        // plies along the axes are their own mirror images across every plane
+        for deg in [0.0, 90.0] {
+            for axis in 0..3 {
+                assert!(close(&reflect_stiffness(&ply(deg), axis), &ply(deg)), "{deg} {axis}");
+            }
+        }
+        assert_eq!(voigt_signs(0), [1.0, 1.0, 1.0, -1.0, -1.0, 1.0]);
+        assert_eq!(voigt_signs(2), [1.0, 1.0, 1.0, 1.0, -1.0, -1.0]);
     }
 
     #[test]

@@ -64,6 +64,19 @@ impl AdaptArgs {
             (_, file) => file.unwrap_or_default(),
         };
         if let Some(t) = self.adapt {
+            // (an [adapt] table with another analysis is refused with the model)
+            if model.analysis_type() != "static" {
+                return Err(fail(
+                    INPUT,
+                    anyhow!(
+                        "--adapt {t} with analysis.type = \"{}\": expected a static analysis (the error estimate \
+                         --adapt refines by is that of the static stresses, not of the modes, critical loads or time \
+                         history of a {} analysis)",
+                        model.analysis_type(),
+                        model.analysis_type()
+                    ),
+                ));
+            }
             settings.tolerance = t;
         }
         if let Some(n) = self.max_dof {
@@ -94,7 +107,7 @@ pub(super) fn run_into(
     progress.line(format!(
         "adaptive run: until the estimate is below {:.2} %, at most {} DOF and {} refinements (θ = {})",
         100.0 * settings.tolerance,
-        super::report::thousands(settings.max_dof),
+        cufem::io::report::thousands(settings.max_dof),
         settings.max_cycles,
         settings.fraction
     ));
@@ -137,7 +150,7 @@ pub(super) fn cycle_line(c: &cufem::analysis::AdaptCycle) -> String {
     format!(
         "cycle {}: {} DOF, estimate {:.2} %, {:.1} s{refined}",
         c.cycle,
-        super::report::thousands(c.dof),
+        cufem::io::report::thousands(c.dof),
         100.0 * c.estimate,
         c.time_s
     )

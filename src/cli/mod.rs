@@ -16,6 +16,7 @@
 mod adapt;
 mod bench;
 mod report;
+mod values;
 mod verify;
 
 use std::io::IsTerminal;
@@ -31,6 +32,7 @@ use cufem::size;
 use cufem::solver::Interrupt;
 use cufem::solver::stepping::{Cutback, StopReason};
 use indicatif::{ProgressBar, ProgressStyle};
+use values::{integer_in, parse_memory, parse_refine, parse_repeat, parse_threads};
 
 /// Exit code: success.
 const OK: u8 = 0;
@@ -63,7 +65,9 @@ struct Resources {
     #[arg(long)]
     force_threads: bool,
     /// Largest memory the analysis may need, e.g. 8G or 512MiB (default: the memory available now).
-    #[arg(long, allow_negative_numbers = true, value_parser = parse_memory)]
+    // allow_hyphen_values: "-5G" reaches the parser, whose message names what is allowed, instead of
+    // clap's "unexpected argument '-5'"
+    #[arg(long, allow_hyphen_values = true, value_parser = parse_memory)]
     max_memory: Option<u64>,
 }
 
@@ -160,47 +164,6 @@ enum Command {
 
 /// Most worker threads, also with --force-threads.
 const MAX_THREADS: usize = 1024;
-
-/// An integer option from `lo` to `hi` (`None`: no upper limit). Negative
-/// values reach this parser (`allow_negative_numbers`) so that the message
-/// names what is allowed instead of clap's "unexpected argument '-1'"; clap
-/// prefixes it with the option and the value.
-fn integer_in(s: &str, lo: usize, hi: Option<usize>, what: &str) -> Result<usize, String> {
-    let range = match hi {
-        Some(hi) => format!("an integer from {lo} to {hi}"),
-        None => format!("an integer ≥ {lo}"),
-    };
-    match s.trim().parse::<i128>() {
-        Ok(v) if v >= lo as i128 && hi.is_none_or(|hi| v <= hi as i128) => {
-            usize::try_from(v).map_err(|_| format!("expected {range} ({what})"))
-        }
-        _ => Err(format!("expected {range} ({what})")),
-    }
-}
-
-fn parse_threads(s: &str) -> Result<usize, String> {
-    integer_in(
-        s,
-        1,
-        None,
-        &format!(
-            "worker threads; more than the logical cores are capped at them unless --force-threads, which allows up \
-             to {MAX_THREADS}"
-        ),
-    )
-}
-
-fn parse_refine(s: &str) -> Result<usize, String> {
-    integer_in(s, 1, Some(8), "hexahedra per Lagrange interval")
-}
-
-fn parse_repeat(s: &str) -> Result<usize, String> {
-    integer_in(s, 1, Some(1000), "timed repetitions")
-}
-
-fn parse_memory(s: &str) -> Result<u64, String> {
-    size::parse_bytes(s).ok_or_else(|| format!("{s:?}: expected a size such as 8G, 512MiB or 1000000000"))
-}
 
 /// An error with the exit code it maps to.
 struct Failure {
@@ -448,7 +411,7 @@ fn run(
     // the output folder is checked and locked before any computing
     let folder = OutputDir::prepare(&out, force).map_err(|e| fail(FILES, e))?;
     if !quiet {
-        report::print_header(&model);
+        print!("{}", cufem::io::report::header(&model));
     }
     let mut progress = Reporter::new(quiet);
     let options = RunOptions { interrupt: interrupt.clone(), max_memory: limit(resources) };
@@ -464,9 +427,9 @@ fn run(
     };
     progress.finish();
     let (solution, dest) = (&run.solution, &run.folder);
-    report::print_results(&model, solution);
+    print!("{}", cufem::io::report::results(&model, solution));
     print_warnings(solution.warnings.iter());
-    println!("\nwrote {} files to {}", run.files.len(), dest.display());
+    println!("{}", cufem::io::report::wrote_line(run.files.len(), dest));
     match &solution.failure {
         None if adapt::exit_code(solution).is_some() => Ok(adapt::exit_code(solution).unwrap_or(OK)),
         None => {
@@ -476,14 +439,9 @@ fn run(
             Ok(OK)
         }
         Some(f) => {
-            eprintln!("\nthe analysis stopped early: {f}");
-            eprintln!(
-                "results of the last converged increment (load factor {:.4}) are in {}",
-                solution.lambda,
-                dest.display()
-            );
-            if run.kept_converged {
-                eprintln!("the converged results already in {} were kept as they were", out.display());
+            let kept = run.kept_converged.then_some(out.as_path());
+            if let Some(text) = cufem::io::report::stopped_early(&model, solution, Some(dest), kept) {
+                eprintln!("{text}");
             }
             Ok(if f.reason == StopReason::Interrupted { INTERRUPTED } else { NOT_CONVERGED })
         }
@@ -512,7 +470,7 @@ impl Reporter {
         let bar = (!quiet && std::io::stderr().is_terminal()).then(|| {
             let b = ProgressBar::new(1000);
             b.set_style(
-                ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} λ = {msg}")
+                ProgressStyle::with_template("{spinner} [{elapsed_precise}] {bar:40} λ = {msg} (about {eta} left)")
                     .unwrap_or_else(|_| ProgressStyle::default_bar()),
             );
             b
@@ -552,17 +510,11 @@ impl Progress for Reporter {
             // λ runs over [0, number of steps]
             b.set_length(1000 * model.steps.len() as u64);
         }
-        self.line(format!(
-            "solving {} equations, nnz(L) = {}, memory estimate {} (Ctrl-C stops at the next safe point and keeps \
-             the results)",
-            setup.equations,
-            setup.factor_nnz,
-            size::human_bytes(setup.memory.total())
-        ));
+        self.line(cufem::io::report::start_line(setup));
     }
 
     fn increment(&mut self, log: &IncrementLog) {
-        self.line(report::increment_line(log));
+        self.line(cufem::io::report::increment_line(log));
         if let Some(b) = &self.bar {
             b.set_position((log.lambda * 1000.0).round() as u64);
             b.set_message(format!("{:.4}", log.lambda));
@@ -570,30 +522,6 @@ impl Progress for Reporter {
     }
 
     fn cutback(&mut self, c: &Cutback) {
-        if let Some(q) = c.rejected {
-            self.line(format!(
-                "  rejected: increment {} (λ = {:.4}, Δλ = {:.3e}) converged in {} iterations but changed {:.1} times \
-                 what solver.step_control allows; redone smaller",
-                c.index, c.lambda, c.dlambda, c.newton.iterations, q
-            ));
-            return;
-        }
-        let res: Vec<String> = c.newton.residuals.iter().map(|r| format!("{r:.1e}")).collect();
-        self.line(format!(
-            "  cutback: increment {} (λ = {:.4}, Δλ = {:.3e}) failed after {} iterations ({}), residuals [{}]{}",
-            c.index,
-            c.lambda,
-            c.dlambda,
-            c.newton.iterations,
-            match c.newton.failure {
-                Some(cufem::solver::newton::Failure::Diverged) => "diverged",
-                Some(cufem::solver::newton::Failure::Problem) => "linear solve failed",
-                Some(cufem::solver::newton::Failure::Stagnated) => "stagnated",
-                Some(cufem::solver::newton::Failure::Rejected) => "converged, rejected",
-                _ => "not converged",
-            },
-            res.join(" "),
-            c.newton.message.as_ref().map(|m| format!(": {m}")).unwrap_or_default()
-        ));
+        self.line(cufem::io::report::cutback_line(c));
     }
 }

@@ -1,39 +1,8 @@
-//! Text reports printed by the CLI.
+//! Text reports printed by `cufem check` (those of a run are in the
+//! library, `cufem::io::report`, shared with the Python package).
 
-use cufem::analysis::{IncrementLog, Solution};
+use cufem::io::report::thousands;
 use cufem::model::Model;
-
-/// `12345` → `12,345`.
-pub(super) fn thousands(n: usize) -> String {
-    let s = n.to_string();
-    let mut out = String::new();
-    for (i, c) in s.chars().enumerate() {
-        if i > 0 && (s.len() - i).is_multiple_of(3) {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
-}
-
-fn discretization(model: &Model) -> String {
-    let parts: Vec<String> = model
-        .mesh
-        .bodies
-        .iter()
-        .map(|b| {
-            format!(
-                "{} {}{:?} - {}{:?}",
-                b.name,
-                b.axis.n_elements(),
-                b.axis.kind,
-                b.section.n_elements(),
-                b.section.kind
-            )
-        })
-        .collect();
-    parts.join(", ")
-}
 
 /// `cufem check`: the model's size and what it contains.
 pub fn print_check(model: &Model) {
@@ -136,6 +105,9 @@ pub fn print_check(model: &Model) {
         s.newton.residual_tolerance,
         s.newton.displacement_tolerance
     );
+    if let Some(line) = cufem::io::report::time_steps(model) {
+        println!("{line}");
+    }
 }
 
 /// Each body's section properties, integrated over its mesh (`cufem check`).
@@ -172,181 +144,6 @@ pub fn print_memory(s: &cufem::size::Sizes, limit: Option<u64>) {
     println!("  {:<44} {:>12}", "setup or output transients (larger of)", human_bytes(m.transient));
     if let Some(l) = limit {
         println!("  available: {}", human_bytes(l));
-    }
-}
-
-/// Header of `cufem run`.
-pub fn print_header(model: &Model) {
-    println!("{}", model.title);
-    println!("{} — {} DOF", discretization(model), thousands(model.n_dofs()));
-}
-
-/// One log line per converged increment.
-pub fn increment_line(log: &IncrementLog) -> String {
-    let res: Vec<String> = log.residuals.iter().map(|r| format!("{r:.1e}")).collect();
-    let mut line = format!(
-        "increment {:>3}  λ = {:.4} (Δλ {:.3e})  {} iterations  residuals [{}]  plastic points {}",
-        log.index,
-        log.lambda,
-        log.dlambda,
-        log.iterations,
-        res.join(" "),
-        log.plastic_points
-    );
-    if log.max_penetration > 0.0 {
-        line.push_str(&format!("  max penetration {:.2e} m", log.max_penetration));
-    }
-    if let Some(n) = log.negative_pivots.filter(|n| *n > 0) {
-        // an indefinite tangent: past a limit or bifurcation point
-        line.push_str(&format!("  negative pivots {n}"));
-    }
-    if log.cutbacks > 0 {
-        line.push_str(&format!("  (after {} cutbacks)", log.cutbacks));
-    }
-    line
-}
-
-/// Final report: a table like the paper's and the probe values.
-pub fn print_results(model: &Model, solution: &Solution) {
-    let iterations: usize = solution.increments.iter().map(|i| i.newton.iterations).sum();
-    println!();
-    println!("{:<40} {:>10} {:>12} {:>11} {:>10}", "Model", "DOF", "Time (s)", "Increments", "Newton it.");
-    println!(
-        "{:<40} {:>10} {:>12.2} {:>11} {:>10}",
-        format!("cufem 1D ({})", discretization(model)),
-        thousands(model.n_dofs()),
-        solution.wall_time.as_secs_f64(),
-        solution.increments.len(),
-        iterations
-    );
-    if let Some(a) = &solution.adapt {
-        println!();
-        println!("{:<8} {:>10} {:>12} {:>10}  refined", "cycle", "DOF", "estimate [%]", "time (s)");
-        for c in &a.cycles {
-            println!(
-                "{:<8} {:>10} {:>12.2} {:>10.1}  {}",
-                c.cycle,
-                thousands(c.dof),
-                100.0 * c.estimate,
-                c.time_s,
-                c.refined
-            );
-        }
-        println!("adaptive run stopped: {}", a.stop);
-    }
-    let summary = cufem::io::summary(model, solution);
-    if !summary.probes.is_empty() {
-        println!();
-        println!(
-            "{:<14} {:<26} {:>12} {:>12} {:>12} {:>12}",
-            "probe", "point [m]", "u_z [mm]", "s_yy [MPa]", "s_zz [MPa]", "peeq [-]"
-        );
-        for p in &summary.probes {
-            println!(
-                "{:<14} {:<26} {:>12.5} {:>12.3} {:>12.3} {:>12.4e}",
-                p.name,
-                format!("{:?}", p.point),
-                p.u[2] * 1e3,
-                p.stress[1] * 1e-6,
-                p.stress[2] * 1e-6,
-                p.peeq
-            );
-        }
-    }
-    if !model.references.is_empty() {
-        println!();
-        println!("{:<14} {:<16} {:>12} {:>12}  source", "probe", "quantity", "cufem", "reference");
-        for r in &model.references {
-            let view = solution.fields(model);
-            let ours = model
-                .probes
-                .iter()
-                .find(|p| p.name == r.probe)
-                .and_then(|p| view.sample_probe(p))
-                .map_or(f64::NAN, |s| s.get(r.quantity));
-            let scale = r.quantity.display_scale();
-            let unit = r.quantity.label();
-            let unit = unit.split('[').nth(1).map(|u| format!("[{u}")).unwrap_or_default();
-            println!(
-                "{:<14} {:<16} {:>12.4} {:>12.4}  {}",
-                r.probe,
-                format!("{} {unit}", r.quantity.name()),
-                ours * scale,
-                r.value * scale,
-                r.source
-            );
-        }
-    }
-    print_resultants(model, &summary);
-    if let Some(e) = &summary.error_estimate {
-        let largest: Vec<String> =
-            e.largest.iter().take(3).map(|l| format!("{} #{} ({:.0} %)", l.body, l.element, 100.0 * l.share)).collect();
-        println!(
-            "estimated error {:.2} % (energy norm, raw against recovered stresses); largest in {}",
-            100.0 * e.relative_energy_norm,
-            largest.join(", ")
-        );
-    }
-    print_ply_failure(&summary);
-    if let Some(p) = &summary.path {
-        let points: Vec<String> = p.limit_points.iter().map(|(i, l)| format!("increment {i} (λ = {l:.5})")).collect();
-        let points = if points.is_empty() { "none".to_string() } else { points.join(", ") };
-        println!("arc length: limit points {points}; ended by {}", p.end);
-    }
-    if let Some(m) = &summary.modal {
-        let share = |k: usize, v: f64| if m.free_mass[k] > 0.0 { 100.0 * v / m.free_mass[k] } else { 0.0 };
-        println!("modal  mode  frequency [Hz]   effective mass [% of the free mass]  x / y / z");
-        for (k, (f, e)) in m.frequencies_hz.iter().zip(&m.effective_masses).enumerate() {
-            println!(
-                "       {:>4}  {f:>14.6e}   {:>6.2} / {:>6.2} / {:>6.2}",
-                k + 1,
-                share(0, e[0]),
-                share(1, e[1]),
-                share(2, e[2])
-            );
-        }
-    }
-    if let Some(b) = &summary.buckling {
-        println!("buckling  mode  load factor   critical load [N]");
-        for (k, (f, p)) in b.factors.iter().zip(&b.critical_loads).enumerate() {
-            println!("          {:>4}  {f:>11.5e}   [{:.5e}, {:.5e}, {:.5e}]", k + 1, p[0], p[1], p[2]);
-        }
-    }
-}
-
-/// Each failure criterion's largest index and first-failure load factor.
-/// Reactions and contact forces, with the full structure's beside in a
-/// model with symmetry planes.
-fn print_resultants(model: &Model, summary: &cufem::io::Summary) {
-    // in a model with symmetry planes, the force on the full structure beside
-    let full = |f: &cufem::io::ForceSummary| {
-        f.full_structure_force
-            .map_or(String::new(), |g| format!(" (full structure [{:.5e}, {:.5e}, {:.5e}] N)", g[0], g[1], g[2]))
-    };
-    for (c, f) in model.constraints.iter().zip(&summary.reactions) {
-        println!("reaction {:<12} [{:.5e}, {:.5e}, {:.5e}] N{}", c.name, f.force[0], f.force[1], f.force[2], full(f));
-    }
-    for c in &summary.contact {
-        println!(
-            "contact  {:<12} force on body [{:.5e}, {:.5e}, {:.5e}] N, max penetration {:.3e} m{}",
-            c.name,
-            c.force[0],
-            c.force[1],
-            c.force[2],
-            c.max_penetration.unwrap_or(0.0),
-            full(c)
-        );
-    }
-}
-
-fn print_ply_failure(summary: &cufem::io::Summary) {
-    let Some(f) = &summary.ply_failure else { return };
-    for c in &f.criteria {
-        let w = &c.first_failure_at;
-        println!(
-            "{:<18} largest index {:.4}; first failure at load factor {:.4} in {} at [{:.4e}, {:.4e}, {:.4e}] m",
-            c.criterion, c.largest_index, c.first_failure_load_factor, w.material, w.point[0], w.point[1], w.point[2]
-        );
     }
 }
 

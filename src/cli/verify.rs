@@ -8,7 +8,7 @@ use cufem::io::Finished;
 use cufem::io::output::OutputDir;
 use cufem::verify;
 
-use super::{FILES, Failure, NOT_CONVERGED, OK, Reporter, Resources, fail, report};
+use super::{FILES, Failure, NOT_CONVERGED, OK, Reporter, Resources, fail};
 
 /// Exit code: CalculiX is missing or did not finish.
 pub const CCX_FAILED: u8 = 5;
@@ -52,6 +52,28 @@ fn add_to_summary(path: &Path, c: &verify::Comparison) -> Result<(), cufem::io::
     std::fs::write(path, serde_json::to_string_pretty(&summary).unwrap_or_default()).map_err(error)
 }
 
+/// `--ccx-results FOLDER`: checked before anything is computed — a folder
+/// holding the deck and results of an earlier CalculiX run (`model.inp`,
+/// `model.frd`), as `cufem verify` leaves them in `<out>/verify/ccx`.
+fn earlier_run(from: &Path) -> Result<(), Failure> {
+    let expected = "the verify/ccx folder of an earlier `cufem verify` of the same model (holding its CalculiX deck \
+                    model.inp and results model.frd)";
+    let problem = if !from.exists() {
+        Some("no such folder".to_string())
+    } else if !from.is_dir() {
+        Some("not a folder".to_string())
+    } else {
+        let missing: Vec<&str> = ["model.inp", "model.frd"].into_iter().filter(|f| !from.join(f).is_file()).collect();
+        (!missing.is_empty()).then(|| format!("the folder holds no {}", missing.join(" and no ")))
+    };
+    match problem {
+        None => Ok(()),
+        Some(p) => {
+            Err(fail(super::INPUT, anyhow::anyhow!("--ccx-results {}: {p}; expected {expected}", from.display())))
+        }
+    }
+}
+
 pub fn run(a: Args) -> Result<u8, Failure> {
     let interrupt = super::install_interrupt()?;
     let model = super::load(&a.model, &a.resources)?;
@@ -62,8 +84,11 @@ pub fn run(a: Args) -> Result<u8, Failure> {
     // CalculiX must be there before anything is computed
     let requested = a.ccx.clone().unwrap_or_else(|| PathBuf::from("ccx"));
     let program = match &a.ccx_results {
-        // reusing earlier results needs no CalculiX
-        Some(_) => requested.clone(),
+        // reusing earlier results needs no CalculiX, but those results
+        Some(from) => {
+            earlier_run(from)?;
+            requested.clone()
+        }
         None => find_program(&requested)
             .ok_or_else(|| fail(CCX_FAILED, CcxError::Missing { program: requested.display().to_string() }))?,
     };
@@ -76,7 +101,7 @@ pub fn run(a: Args) -> Result<u8, Failure> {
     }
     let folder = OutputDir::prepare(&out, a.force).map_err(|e| fail(FILES, e))?;
     if !a.quiet {
-        report::print_header(&model);
+        print!("{}", cufem::io::report::header(&model));
     }
     let mut progress = Reporter::new(a.quiet);
     let options = RunOptions { interrupt, max_memory: super::limit(&a.resources) };

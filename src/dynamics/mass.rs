@@ -98,25 +98,39 @@ pub fn element_mass(geom: &CellValues, e: usize, n_section: usize, density: f64,
 
 /// The mass matrix of the model in `assembler`'s pattern (free equations;
 /// lower triangle in pattern order), each body with its material's
-/// density per section element (`densities[body][section element]`).
+/// density per section element (`densities[body][section element]`),
+/// with the contact nodes' mass moved to their neighbours by
+/// `redistribution` if given (`dynamics::redistribution`).
 pub fn assemble(
     assembler: &Assembler,
     mesh: &Mesh,
     cells: &[CellValues],
     densities: &[Vec<f64>],
     kind: MassKind,
+    redistribution: Option<&super::redistribution::Redistribution>,
 ) -> Result<Vec<f64>, MassError> {
     let mut out = vec![0.0; assembler.pattern.nnz()];
     assembler.assemble_matrices(mesh, &mut out, |body, element, ws| {
         let n_section = mesh.bodies[body].section.n_elements();
         let rho = densities[body][element % n_section];
         element_mass(&cells[body], element, n_section, rho, kind, ws);
+        if let Some(r) = redistribution {
+            r.apply(body, element, kind, ws);
+        }
     });
     if kind == MassKind::Lumped {
         let p = &assembler.pattern;
+        // the equation's node: a massless contact node's zero is expected
+        let mut node = vec![usize::MAX; p.n];
+        for (d, &e) in assembler.dofs.eq.iter().enumerate() {
+            if e != crate::assembly::NO_EQ {
+                node[e] = d / 3;
+            }
+        }
         for e in 0..p.n {
             let value = out[p.col_ptr[e]];
-            if !(value > 0.0) {
+            let massless = redistribution.is_some_and(|r| r.is_massless(node[e]));
+            if !(value > 0.0 || massless) {
                 return Err(MassError::NotPositive { equation: e, value });
             }
         }

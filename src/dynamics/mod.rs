@@ -18,10 +18,12 @@ pub mod energy;
 pub mod impulse;
 pub mod inertia;
 pub mod mass;
+pub mod redistribution;
 pub mod settings;
 
 pub use impulse::{ContactForces, ContactImpulse};
 pub use inertia::Inertia;
 
 pub use mass::{MassError, MassKind};
+pub use redistribution::{ContactMass, Redistribution};
 pub use settings::TransientSettings;

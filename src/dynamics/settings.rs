@@ -1,6 +1,6 @@
 //! The settings of a transient analysis (validated by `model::transient`).
 
-use super::{ContactForces, MassKind};
+use super::{ContactForces, ContactMass, MassKind};
 
 /// The settings of a transient analysis.
 #[derive(Debug, Clone, PartialEq)]
@@ -24,6 +24,9 @@ pub struct TransientSettings {
     /// `analysis.contact_forces`: the contact impulse at the end of the
     /// step, or Newmark's average (`dynamics::impulse`).
     pub contact_forces: ContactForces,
+    /// `analysis.contact_mass`: the contact nodes' mass moved to their
+    /// neighbours, or kept (`dynamics::redistribution`).
+    pub contact_mass: ContactMass,
 }
 
 impl TransientSettings {

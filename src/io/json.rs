@@ -191,6 +191,11 @@ pub struct ModalSummary {
     /// The mass moving with the free DOFs in x, y and z (kg): the sums of
     /// all modes' effective masses.
     pub free_mass: [f64; 3],
+    /// Whose masses these are: `"model"`, or `"full_structure"` for a
+    /// model cut by symmetry planes (the mirror images together; its modes
+    /// are the symmetric ones, whose effective mass along a plane's normal
+    /// is zero: `crate::analysis::modal`).
+    pub effective_masses_of: &'static str,
     /// The VTU of each mode (`mode_<k>.vtu`), or empty without VTU output.
     pub modes: Vec<String>,
 }
@@ -461,6 +466,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
             frequencies_hz: m.frequencies.clone(),
             effective_masses: m.effective_masses.clone(),
             free_mass: m.free_mass,
+            effective_masses_of: if m.full_structure { "full_structure" } else { "model" },
             modes: if model.output.vtu { (1..=m.frequencies.len()).map(mode_vtu_name).collect() } else { Vec::new() },
         }),
         energy: solution.energy.as_ref().and_then(|rows| rows.last().copied()),

@@ -21,6 +21,7 @@ mod energy;
 mod json;
 pub mod output;
 mod png;
+pub mod report;
 mod run;
 mod section_plot;
 mod vtu;

@@ -77,6 +77,9 @@ pub enum Predictor {
 pub struct Material {
     /// Name from the model file (an oriented copy appends its angle).
     pub name: String,
+    /// The name as the model file gives it (an oriented copy keeps its
+    /// material's: the name messages about the file's keys use).
+    pub given: String,
     /// Young's modulus E (Pa); of an anisotropic material the largest of
     /// E1, E2, E3, the scale of its penalties and bounds.
     pub young: f64,
@@ -105,8 +108,10 @@ impl Material {
     /// A material from E, ν and an optional hardening law. Inputs are assumed
     /// validated (E > 0, −1 < ν < 0.5, positive yield stress).
     pub fn new(name: impl Into<String>, young: f64, poisson: f64, hardening: Option<Hardening>) -> Self {
+        let name = name.into();
         Self {
-            name: name.into(),
+            given: name.clone(),
+            name,
             young,
             poisson,
             hardening,

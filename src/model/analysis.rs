@@ -144,15 +144,14 @@ pub(super) fn buckling(file: &AnalysisFile, parts: &Parts<'_>) -> Result<Option<
         ));
     }
     loads_and_supports_only(parts, "analysis.type = \"buckling\"")?;
-    let refuse = |key: String, value: &str, why: &str| Err(invalid(key, value, why.to_string()));
     for m in parts.mesh.bodies.iter().flat_map(|b| b.materials()) {
         let m = &parts.materials[m];
         if m.is_plastic() {
-            return refuse(
-                format!("materials \"{}\".plasticity", m.name),
-                "present",
+            return Err(invalid(
+                format!("{}.plasticity", material_key(parts.materials, m)),
+                format!("given for material {:?}", m.given),
                 "elastic materials with analysis.type = \"buckling\" (the stress state is the linear elastic one)",
-            );
+            ));
         }
     }
     Ok(Some(BucklingSettings { modes }))
@@ -208,9 +207,12 @@ pub(super) fn densities_given(parts: &Parts<'_>, kind: &str) -> Result<(), Model
         };
         {
             return Err(invalid(
-                format!("materials \"{}\".density", m.name),
+                format!("{}.density", material_key(parts.materials, m)),
                 "(missing)",
-                format!("the mass density in kg/m³ with analysis.type = \"{kind}\" (body \"{}\")", b.name),
+                format!(
+                    "the mass density in kg/m³ of material {:?} with analysis.type = \"{kind}\" (body {:?} is made of it)",
+                    m.given, b.name
+                ),
             ));
         }
     }
@@ -222,4 +224,119 @@ fn mass_word(m: MassMatrix) -> &'static str {
         MassMatrix::Consistent => "\"consistent\"",
         MassMatrix::Lumped => "\"lumped\"",
     }
+}
+
+/// `materials[i]`, the model file's entry of material `m` (of an oriented
+/// copy, the entry it was copied from: the file's materials come first).
+pub(super) fn material_key(materials: &[Material], m: &Material) -> String {
+    match materials.iter().position(|x| x.name == m.given) {
+        Some(i) => format!("materials[{i}]"),
+        None => format!("materials (material {:?})", m.given),
+    }
+}
+
+/// The kind of analysis (`analysis.type`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub(super) enum Kind {
+    Static,
+    Buckling,
+    Modal,
+    Transient,
+}
+
+impl Kind {
+    /// The kind from which analysis the model holds.
+    pub(super) fn of(buckling: bool, modal: bool, transient: bool) -> Self {
+        match (buckling, modal, transient) {
+            (true, _, _) => Self::Buckling,
+            (_, true, _) => Self::Modal,
+            (_, _, true) => Self::Transient,
+            _ => Self::Static,
+        }
+    }
+
+    /// The word of `analysis.type`.
+    pub(super) fn word(self) -> &'static str {
+        match self {
+            Self::Static => "static",
+            Self::Buckling => "buckling",
+            Self::Modal => "modal",
+            Self::Transient => "transient",
+        }
+    }
+}
+
+/// The combinations of `analysis.type` with other tables that are not
+/// supported, refused by key: path following with a buckling analysis (its
+/// eigenvalues are those of the linear state at load factor 1, a path ends
+/// at another λ: a 500 N load was reported with a 625 N reaction), and
+/// adaptive refinement of anything but a static analysis (the error
+/// estimate is that of the static state, not of the modes or the history).
+pub(super) fn combinations(kind: Kind, arc_length: bool, adapt: bool) -> Result<(), ModelError> {
+    if arc_length && kind == Kind::Buckling {
+        return Err(invalid(
+            "solver.control",
+            "\"arc_length\"",
+            "load control (no solver.control) with analysis.type = \"buckling\": the critical load factors are \
+             those of the linear elastic state at load factor 1, while a path following ends at another load factor \
+             (for the path past the critical load, use analysis.type = \"static\" with analysis.imperfection)",
+        ));
+    }
+    if adapt && kind != Kind::Static {
+        return Err(invalid(
+            "adapt",
+            format!("given with analysis.type = \"{}\"", kind.word()),
+            "an [adapt] table only with analysis.type = \"static\": the error estimate is that of the static \
+             stresses, not of the modes, critical loads or time history",
+        ));
+    }
+    Ok(())
+}
+
+/// The warnings of an eigenvalue analysis asking for `modes` (`None`:
+/// another analysis): more modes than equations ([`warn_modes`]), and
+/// with symmetry planes only the symmetric modes.
+pub(super) fn eigen_warnings(
+    modes: Option<usize>,
+    mesh: &Mesh,
+    constraints: &[Constraint],
+    planes: bool,
+) -> Vec<super::Warning> {
+    let Some(modes) = modes else { return Vec::new() };
+    let mut out: Vec<super::Warning> = warn_modes(modes, mesh, constraints).into_iter().collect();
+    if planes {
+        out.push(super::Warning {
+            key: "symmetry".into(),
+            message: "with symmetry planes only the modes symmetric about them are found: an antisymmetric buckling \
+                      or vibration mode, and a lower eigenvalue it may have, needs the full structure"
+                .into(),
+        });
+    }
+    out
+}
+
+/// A warning when `analysis.modes` asks for more modes than the model has
+/// free equations (3 per node less the constrained components): the
+/// eigenvalue problem has no more, and the run reports those.
+fn warn_modes(modes: usize, mesh: &Mesh, constraints: &[Constraint]) -> Option<super::Warning> {
+    let mut fixed = std::collections::HashSet::new();
+    for c in constraints {
+        for &n in &c.nodes {
+            for (k, v) in c.values.iter().enumerate() {
+                if v.is_some() {
+                    fixed.insert(3 * n + k);
+                }
+            }
+        }
+    }
+    let free = mesh.n_dofs().saturating_sub(fixed.len());
+    (modes > free).then(|| super::Warning {
+        key: "analysis.modes".into(),
+        message: format!(
+            "analysis.modes = {modes} but the model has {free} free equations ({} nodes × 3 less {} constrained \
+             components): at most {free} modes exist, and the run reports those (refine the mesh for more)",
+            mesh.n_nodes(),
+            fixed.len()
+        ),
+    })
 }

@@ -8,7 +8,7 @@ use super::budget::Budget;
 use super::schema::*;
 use super::sections::Sections;
 use super::validate::division_parts;
-use super::{Limits, ModelError, invalid};
+use super::{Limits, ModelError, Warning, invalid};
 use crate::bc::symmetry::Plane;
 use crate::elements::ElementError;
 use crate::materials::Material;
@@ -19,17 +19,15 @@ use crate::values::CellValues;
 /// distorted section element is rejected here).
 /// Files named by a section (gmsh) are relative to `base`.
 pub(super) fn mesh(
-    file: &[BodyFile],
+    input: &Input<'_>,
     materials: &mut Vec<Material>,
-    analysis: &AnalysisFile,
-    limits: Limits,
-    base: &Path,
-    planes: &[Plane],
+    warnings: &mut Vec<Warning>,
 ) -> Result<(Mesh, Vec<CellValues>), ModelError> {
+    let (file, analysis, base, planes) = (input.file, input.analysis, input.base, input.planes);
     let mut bodies = Vec::new();
-    let mut budget = Budget::new(limits.max_memory);
+    let mut budget = Budget::new(input.limits.max_memory);
     for (i, b) in file.iter().enumerate() {
-        bodies.push(body(i, b, materials, &mut budget, base, planes)?);
+        bodies.push(body(i, b, materials, &mut budget, base, planes, warnings)?);
     }
     let mesh = Mesh::new(bodies);
     let cells = mesh
@@ -80,6 +78,20 @@ pub(super) fn mesh(
     Ok((mesh, cells))
 }
 
+/// What the bodies are built from.
+pub(super) struct Input<'a> {
+    /// `[[bodies]]`.
+    pub file: &'a [BodyFile],
+    /// `[analysis]` (the default formulation depends on it).
+    pub analysis: &'a AnalysisFile,
+    /// The memory limit.
+    pub limits: Limits,
+    /// The folder of relative file names.
+    pub base: &'a Path,
+    /// The symmetry planes (which cut the bodies).
+    pub planes: &'a [Plane],
+}
+
 pub(super) fn body(
     i: usize,
     b: &BodyFile,
@@ -87,6 +99,7 @@ pub(super) fn body(
     budget: &mut Budget,
     base: &Path,
     planes: &[Plane],
+    warnings: &mut Vec<Warning>,
 ) -> Result<Body, ModelError> {
     let key = format!("bodies[{i}]");
     // the axis first: its size is needed to budget the body before the
@@ -97,8 +110,14 @@ pub(super) fn body(
     let axis_lines = division_parts(&ak, a.from, a.to, a.elements, a.ratio, a.lines.as_ref(), a.segments.as_ref())?;
     let axis_elements = (axis_lines.len() - 1) as u64;
     let section = Sections { key: &key, beam, axis_elements, budget }.section(&b.section, base)?;
-    // symmetry planes cut the body to the side kept
+    // symmetry planes cut the body to the side kept; each must be a plane
+    // of symmetry of the body as written
+    let written = (!planes.is_empty()).then(|| (section.clone(), axis_lines.clone()));
     let (section, axis_lines) = super::symmetry::cut(&key, &b.name, planes, section, axis_lines)?;
+    if let Some((whole, lines)) = &written {
+        let whole = super::mirror::Whole { key: &key, file: b, section: whole, lines, beam };
+        super::mirror::check(&whole, planes, materials, warnings)?;
+    }
     connected(&format!("{key}.section"), &section)?;
     let (material, element_materials) = super::zones::assign(&key, b, &section, materials)?;
     Ok(Body {

@@ -19,20 +19,20 @@ pub(super) fn region_name(k: usize) -> String {
 /// The plies of `s` (key `sk`), checked: at least one, positive thickness,
 /// 1..=MAX_COUNT elements, a finite angle.
 fn plies<'a>(sk: &str, s: &'a LaminateFile) -> Result<&'a [PlyFile], ModelError> {
-    let plies = s.plies.as_deref().unwrap_or(&[]);
+    let plies = s.plies.as_deref().ok_or_else(|| invalid(format!("{sk}.plies"), "(missing)", PLIES))?;
     check(sk, plies)?;
     Ok(plies)
 }
+
+/// What `plies` takes.
+const PLIES: &str = "a list of at least one ply, bottom first: [{thickness = …, material = \"…\", angle = 0, \
+                     elements = 1}, …]";
 
 /// Checks a list of plies (key `sk`.plies): at least one, positive
 /// thickness, 1..=MAX_COUNT elements, a finite angle.
 pub(super) fn check(sk: &str, plies: &[PlyFile]) -> Result<(), ModelError> {
     if plies.is_empty() {
-        return Err(invalid(
-            format!("{sk}.plies"),
-            "(missing)",
-            "a list of plies, bottom first: [{thickness = …, material = \"…\", angle = 0, elements = 1}, …]",
-        ));
+        return Err(invalid(format!("{sk}.plies"), "[] (an empty list: no ply)", PLIES));
     }
     for (k, p) in plies.iter().enumerate() {
         let pk = format!("{sk}.plies[{k}]");

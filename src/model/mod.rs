@@ -14,6 +14,7 @@ mod contacts;
 mod indenters;
 mod laminate;
 mod material;
+mod mirror;
 mod overlap;
 mod path;
 mod preprocess;
@@ -413,6 +414,12 @@ impl Model {
         Quantity::all_for(self.materials.iter().any(|m| m.strengths.is_some()))
     }
 
+    /// `analysis.type` as the file writes it: `"static"`, `"buckling"`,
+    /// `"modal"` or `"transient"`.
+    pub fn analysis_type(&self) -> &'static str {
+        analysis::Kind::of(self.buckling.is_some(), self.modal.is_some(), self.transient.is_some()).word()
+    }
+
     /// Number of degrees of freedom (3 per node, constrained ones included).
     pub fn n_dofs(&self) -> usize {
         self.mesh.n_dofs()
@@ -435,12 +442,13 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     validate::names(&file)?;
     let mut materials = material::materials(&file.materials)?;
     let planes = symmetry::planes(&file.symmetry)?;
-    let (mesh, cells) = bodies::mesh(&file.bodies, &mut materials, &file.analysis, limits, base, &planes)?;
+    let mut warnings = Vec::new();
+    let bodies = bodies::Input { file: &file.bodies, analysis: &file.analysis, limits, base, planes: &planes };
+    let (mesh, cells) = bodies::mesh(&bodies, &mut materials, &mut warnings)?;
     let planes = symmetry::placed(planes, &mesh)?;
     let kinematics = analysis::kinematics(&file.analysis)?;
     let plan = refine::plan(&file)?;
     let adapt = refine::adapt_settings(file.adapt.as_ref())?;
-    let mut warnings = Vec::new();
     let (constraints, n_user) = preprocess::constraints(&file.constraints, &mesh, &planes, &mut warnings)?;
     let loads = preprocess::loads(&file.loads, &mesh, &materials, &planes, &mut warnings)?;
     let transient = file.analysis.kind == Some(schema::AnalysisType::Transient);
@@ -464,7 +472,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     }
     let probes = preprocess::probes(&file.probes, &mesh, &planes)?;
     let lines = preprocess::lines(&file.lines, &mesh, &planes, &mut warnings)?;
-    let symmetry = symmetry::resolve(planes, &mesh, &constraints[..n_user], &indenters, &contacts);
+    let symmetry = symmetry::resolve(planes, &mesh, (&constraints, n_user), &indenters, &contacts);
     let references = validate::references(&file.references, &probes)?;
     let linear = is_linear(&mesh, &materials, &indenters, &contacts) && !kinematics.is_nonlinear();
     let mut solver = validate::solver_settings(&file.solver, linear)?;
@@ -503,7 +511,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         constraints: constraints.iter().map(|c| c.name.as_str()).collect(),
         loads: loads.iter().map(|l| l.name.as_str()).collect(),
     };
-    let steps = steps::steps(&file.steps, &item_names, &solver.steps)?;
+    let mut steps = steps::steps(&file.steps, &item_names, &solver.steps)?;
     let parts = analysis::Parts {
         mesh: &mesh,
         materials: &materials,
@@ -515,15 +523,14 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let buckling = analysis::buckling(&file.analysis, &parts)?;
     let imperfection = analysis::imperfection(&file.analysis, &parts)?;
     let modal = analysis::modal(&file.analysis, &parts)?;
-    let transient = transient::transient(&file.analysis, &file.steps, &parts, solver.path.is_some())?;
-    if !symmetry.planes.is_empty() && (buckling.is_some() || modal.is_some()) {
-        warnings.push(Warning {
-            key: "symmetry".into(),
-            message: "with symmetry planes only the modes symmetric about them are found: an antisymmetric buckling \
-                      or vibration mode, and a lower eigenvalue it may have, needs the full structure"
-                .into(),
-        });
+    let transient = transient::transient(&file, &mut steps, &parts, solver.path.is_some(), &mut warnings)?;
+    if let Some(t) = &transient {
+        symmetry::check_velocities(&t.initial_velocities, &symmetry.planes, &mesh)?;
     }
+    let kind = analysis::Kind::of(buckling.is_some(), modal.is_some(), transient.is_some());
+    analysis::combinations(kind, solver.path.is_some(), adapt.is_some())?;
+    let modes = buckling.map(|b| b.modes).or(modal.map(|m| m.modes));
+    warnings.extend(analysis::eigen_warnings(modes, &mesh, &constraints, !symmetry.planes.is_empty()));
     Ok(Model {
         title: file.title.unwrap_or_else(|| "cufem model".into()),
         description: file.description.unwrap_or_default(),

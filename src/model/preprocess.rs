@@ -119,9 +119,14 @@ pub(super) fn constraints(
         constraints.push(Constraint { name: c.name.clone(), body: b, nodes, values, selection: Some(sel) });
     }
     let user = constraints.len();
-    constraints.extend(symmetry::constraints(planes, mesh));
+    let own = symmetry::constraints(planes, mesh);
+    let owners: Vec<usize> = own.iter().map(|(p, _)| *p).collect();
+    constraints.extend(own.into_iter().map(|(_, c)| c));
     warn_fully_fixed(&constraints, mesh, &whole, warnings);
-    check_agreement(&constraints, mesh)?;
+    check_agreement(&constraints, mesh, |i| {
+        let k = i.checked_sub(user).map(|k| (owners[k], &planes[owners[k]]));
+        k.map_or_else(|| Owner::File(format!("constraints[{i}]")), |(k, p)| Owner::Plane(k, p))
+    })?;
     Ok((constraints, user))
 }
 
@@ -155,8 +160,22 @@ fn warn_fully_fixed(constraints: &[Constraint], mesh: &Mesh, whole: &[bool], war
     }
 }
 
-/// One value per constrained DOF: overlapping sets must agree.
-fn check_agreement(constraints: &[Constraint], mesh: &Mesh) -> Result<(), ModelError> {
+/// Who prescribes a constraint: the file's `constraints[i]`, or symmetry
+/// plane `k` (`symmetry[k]`).
+enum Owner<'a> {
+    File(String),
+    Plane(usize, &'a Plane),
+}
+
+/// One value per constrained DOF: overlapping sets must agree. A
+/// constraint is named by its key and name (`owner` gives the key); a
+/// conflict with a symmetry plane's `u_n = 0` names the file's constraint
+/// and the plane.
+fn check_agreement<'a>(
+    constraints: &[Constraint],
+    mesh: &Mesh,
+    owner: impl Fn(usize) -> Owner<'a>,
+) -> Result<(), ModelError> {
     let mut given: std::collections::HashMap<usize, (f64, usize)> = Default::default();
     for (i, c) in constraints.iter().enumerate() {
         for &n in &c.nodes {
@@ -165,19 +184,54 @@ fn check_agreement(constraints: &[Constraint], mesh: &Mesh) -> Result<(), ModelE
                 if let Some(&(w, j)) = given.get(&(3 * n + k))
                     && w != v
                 {
-                    return Err(invalid(
-                        format!("constraints[{i}]"),
-                        format!("u_{} = {v} at {:?}", ["x", "y", "z"][k], mesh.coords(n)),
-                        format!(
-                            "the value {w} that constraints[{j}] prescribes at the same node (overlapping sets must agree)"
-                        ),
-                    ));
+                    return Err(disagreement(constraints, mesh.coords(n), k, (i, v), (j, w), &owner));
                 }
                 given.insert(3 * n + k, (v, i));
             }
         }
     }
     Ok(())
+}
+
+/// The error of constraints `i` (value `v`) and `j` (value `w`, given
+/// first) prescribing different values to component `k` at point `at`.
+fn disagreement<'a>(
+    constraints: &[Constraint],
+    at: [f64; 3],
+    k: usize,
+    (i, v): (usize, f64),
+    (j, w): (usize, f64),
+    owner: &impl Fn(usize) -> Owner<'a>,
+) -> ModelError {
+    let c = ["x", "y", "z"][k];
+    match (owner(i), owner(j)) {
+        (Owner::Plane(p, plane), Owner::File(key)) | (Owner::File(key), Owner::Plane(p, plane)) => {
+            let (file, value) = if matches!(owner(i), Owner::File(_)) { (i, v) } else { (j, w) };
+            invalid(
+                format!("{key}.displacement.{c}"),
+                format!("{value} at a node of symmetry plane {:?} ({}), e.g. at {at:?}", plane.name, plane.describe()),
+                format!(
+                    "0 on the plane (symmetry[{p}] {:?} holds u_{c} = 0 there; constraint {:?}); prescribe the normal \
+                     displacement off the plane, or model the full structure",
+                    plane.name, constraints[file].name
+                ),
+            )
+        }
+        (Owner::File(key), Owner::File(earlier)) => invalid(
+            key,
+            format!("u_{c} = {v} at {at:?} (constraint {:?})", constraints[i].name),
+            format!(
+                "the value {w} that {earlier} (constraint {:?}) prescribes at the same node (overlapping sets must \
+                 agree)",
+                constraints[j].name
+            ),
+        ),
+        (Owner::Plane(p, plane), Owner::Plane(..)) => invalid(
+            format!("symmetry[{p}].plane"),
+            plane.describe(),
+            format!("a plane whose u_{c} = 0 no other plane contradicts (at {at:?})"),
+        ),
+    }
 }
 
 /// `[[loads]]`: nodal forces at load factor 1.
@@ -199,6 +253,7 @@ pub(super) fn loads(
         let young = super::body_young(&mesh.bodies[b], materials);
         let load = load(&key, l, b, &mesh.bodies[b], young)?;
         symmetry::check_load(&key, &load, l, planes, mesh)?;
+        symmetry::check_faces_load(&key, &load, l, planes, mesh)?;
         loads.push(load);
     }
 

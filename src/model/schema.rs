@@ -19,6 +19,7 @@ mod section;
 mod stepping;
 mod symmetry;
 pub(crate) mod tagged;
+mod transient;
 mod words;
 
 pub use anisotropy::*;
@@ -26,6 +27,7 @@ pub use section::*;
 pub use stepping::*;
 pub use symmetry::*;
 use tagged::tagged_table;
+pub use transient::*;
 pub use words::*;
 
 /// A fixed-length array read from the model file. Unlike serde's `[T; N]`,
@@ -144,48 +146,11 @@ pub struct AnalysisFile {
     /// Transient: `contact_forces = "implicit"` (default: the contact
     /// impulse at the end of the step) or `"newmark"`.
     pub contact_forces: Option<ContactForcesFile>,
+    /// Transient: `contact_mass = "redistributed"` (default: the contact
+    /// nodes carry no mass) or `"kept"`.
+    pub contact_mass: Option<ContactMassFile>,
     /// A geometric imperfection from a buckling mode (nonlinear geometry).
     pub imperfection: Option<ImperfectionFile>,
-}
-
-/// `analysis.contact_forces`.
-#[derive(Debug, Clone, Copy, Deserialize)]
-#[serde(rename_all = "snake_case")]
-pub enum ContactForcesFile {
-    /// The contact impulse at the end of the step.
-    Implicit,
-    /// Newmark's average of the forces at both ends.
-    Newmark,
-}
-
-/// `analysis.newmark`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct NewmarkFile {
-    /// β.
-    pub beta: f64,
-    /// γ.
-    pub gamma: f64,
-}
-
-/// `analysis.damping`: `C = mass · M + stiffness · K₀`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct DampingFile {
-    /// α_M (1/s).
-    pub mass: Option<f64>,
-    /// β_K (s).
-    pub stiffness: Option<f64>,
-}
-
-/// `analysis.initial_velocities[]`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct InitialVelocityFile {
-    /// The body.
-    pub body: String,
-    /// Its velocity (m/s).
-    pub velocity: Exact<f64, 3>,
 }
 
 /// `analysis.imperfection`.

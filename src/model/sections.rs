@@ -194,6 +194,18 @@ impl Sections<'_> {
                 "along_x and along_z (not around) with plies: the elements along each wall between the corners",
             ));
         };
+        let total: f64 = s.plies.iter().flatten().map(|p| p.thickness).sum();
+        if let (Some(w), Some(h)) = (s.width, s.height)
+            && total.is_finite()
+            && 2.0 * total >= w.min(h)
+            && s.thickness.is_none()
+        {
+            return Err(invalid(
+                format!("{sk}.plies"),
+                format!("a total thickness of {total} m (every wall's)"),
+                format!("plies less than half the smaller outer dimension thick in all ({} m)", 0.5 * w.min(h)),
+            ));
+        }
         let profile = ProfileFile {
             element: s.element,
             origin: s.origin,
@@ -214,8 +226,8 @@ impl Sections<'_> {
                     .replace("flange_thickness", "thickness")
                     .replace("along_flange", "along_x")
                     .replace("along_web", "along_z"),
-                value,
-                allowed,
+                value: value.replace("web_thickness", "thickness").replace("flange_thickness", "thickness"),
+                allowed: allowed.replace("web thickness", "wall thickness").replace("the flanges", "the walls"),
             },
             e => e,
         })
@@ -253,6 +265,38 @@ impl Sections<'_> {
     /// The straight-walled profiles (I, channel, Z, angle, hat, box); a hat
     /// has `lip` (its `lip` and `along_lip` keys), a box `cells`.
     fn straight(
+        &mut self,
+        sk: &str,
+        kind: SectionElementKind,
+        family: Family,
+        s: &ProfileFile,
+        lip: Option<(Option<f64>, Option<usize>)>,
+        cells: Option<usize>,
+    ) -> Result<CrossSection, ModelError> {
+        // with plies, the wall thicknesses are the plies' total unless the file gives them too
+        let derived = |e: ModelError| match e {
+            ModelError::Invalid { key, value, allowed } if s.plies.is_some() => {
+                let written = |k: &str| match k {
+                    "web_thickness" => s.web_thickness.is_some(),
+                    "flange_thickness" => s.flange_thickness.is_some(),
+                    _ => true,
+                };
+                match key.strip_prefix(sk).and_then(|k| k.strip_prefix('.')) {
+                    Some(k) if !written(k) && k.ends_with("thickness") => ModelError::Invalid {
+                        key: format!("{sk}.plies"),
+                        value: format!("a total thickness of {value} m (the plies' thicknesses summed: every wall's)"),
+                        allowed,
+                    },
+                    _ => ModelError::Invalid { key, value, allowed },
+                }
+            }
+            e => e,
+        };
+        self.walled(sk, kind, family, s, lip, cells).map_err(derived)
+    }
+
+    /// [`Self::straight`] with the keys as the builders name them.
+    fn walled(
         &mut self,
         sk: &str,
         kind: SectionElementKind,

@@ -45,6 +45,12 @@ pub struct Step {
 }
 
 impl Step {
+    /// The fewest increments that cover the step, `⌈1 / max_increment⌉`:
+    /// a transient step's time steps without cutbacks.
+    pub fn planned_increments(&self) -> usize {
+        (1.0 / self.settings.max * (1.0 - 1e-9)).ceil().max(1.0) as usize
+    }
+
     /// The item's factor at the end of the step; 1 for an item added to the
     /// model after validation (code that builds constraints or loads itself).
     fn target(&self, item: Item) -> f64 {

@@ -8,7 +8,7 @@ use super::schema::{ConditionFile, KeepSide, LoadFile, SelectionFile, SymmetryFi
 use super::{ModelError, Warning, bounds, invalid};
 use crate::bc::symmetry::{Plane, Side, Symmetry};
 use crate::bc::{Condition, Constraint, Load, Selection};
-use crate::contact::{Indenter, PairContact};
+use crate::contact::{Indenter, PairContact, RigidSurface};
 use crate::mesh::{CrossSection, Mesh};
 
 /// The planes as the file gives them (tolerance 0 until the bodies are known).
@@ -136,10 +136,11 @@ pub(super) fn placed(planes: Vec<Plane>, mesh: &Mesh) -> Result<Vec<Plane>, Mode
 }
 
 /// One constraint per plane and body it touches: the normal component zero
-/// on the plane (named after the plane; `plane_body` with several bodies).
-pub(super) fn constraints(planes: &[Plane], mesh: &Mesh) -> Vec<Constraint> {
+/// on the plane (named after the plane; `plane_body` with several bodies),
+/// each with the index of its plane.
+pub(super) fn constraints(planes: &[Plane], mesh: &Mesh) -> Vec<(usize, Constraint)> {
     let mut out = Vec::new();
-    for p in planes {
+    for (i, p) in planes.iter().enumerate() {
         let touched: Vec<usize> = (0..mesh.bodies.len())
             .filter(|&b| (0..mesh.bodies[b].n_nodes()).any(|n| p.holds(mesh.bodies[b].local_coords(n))))
             .collect();
@@ -152,7 +153,7 @@ pub(super) fn constraints(planes: &[Plane], mesh: &Mesh) -> Vec<Constraint> {
             let mut values = [None; 3];
             values[p.axis] = Some(0.0);
             let name = if touched.len() == 1 { p.name.clone() } else { format!("{}_{}", p.name, body.name) };
-            out.push(Constraint { name, body: b, nodes, values, selection: Some(selection) });
+            out.push((i, Constraint { name, body: b, nodes, values, selection: Some(selection) }));
         }
     }
     out
@@ -187,17 +188,18 @@ pub(super) fn across(planes: &[Plane], mesh: &Mesh, nodes: impl Iterator<Item = 
     planes.iter().map(|p| nodes.clone().any(|n| p.holds(mesh.coords(n)))).collect()
 }
 
-/// The model's [`Symmetry`]: which constraints (`user`, not the planes'
-/// own), indenters and pair contacts lie across each plane.
+/// The model's [`Symmetry`]: which constraints (the first `user` of
+/// `constraints`, not the planes' own, which follow), indenters and pair
+/// contacts lie across each plane.
 pub(super) fn resolve(
     planes: Vec<Plane>,
     mesh: &Mesh,
-    user: &[Constraint],
+    (constraints, user): (&[Constraint], usize),
     indenters: &[Indenter],
     contacts: &[PairContact],
 ) -> Symmetry {
     let mut items: Vec<(String, Vec<bool>)> = Vec::new();
-    for c in user {
+    for c in &constraints[..user] {
         items.push((c.name.clone(), across(&planes, mesh, c.nodes.iter().copied())));
     }
     for i in indenters {
@@ -208,7 +210,7 @@ pub(super) fn resolve(
         let slave = c.pairs.iter().map(|p| p.slave).chain(surface);
         items.push((c.name.clone(), across(&planes, mesh, slave)));
     }
-    Symmetry { planes, across: items }
+    Symmetry { planes, across: items, constraints: (user..constraints.len()).collect() }
 }
 
 /// A force per node or a total force on nodes of a plane is refused: which
@@ -258,4 +260,183 @@ pub(super) fn check_indenter(key: &str, indenter: &Indenter, planes: &[Plane], m
              images; model the full structure for force control and impact)",
         )),
     }
+}
+
+/// An indenter that crosses a plane (a sphere or a cylinder lying along
+/// the plane closer to it than its radius, a punch or a cylinder across it
+/// whose extent along the normal spans it or is unbounded) is one tool with
+/// its mirror image: its shape must be its own mirror image (centred on the
+/// plane) and its motion have no component along the plane's normal. A
+/// tool clear of the plane has a separate mirror image, moving mirrored.
+/// No indenter's surface may lie in a plane.
+pub(super) fn check_indenter_shape(
+    key: &str,
+    indenter: &Indenter,
+    planes: &[Plane],
+    mesh: &Mesh,
+) -> Result<(), ModelError> {
+    faces_off_planes(&format!("{key}.surface"), &mesh.bodies[indenter.body], &indenter.faces, planes)?;
+    for p in planes {
+        let (a, c) = (p.axis, ["x", "y", "z"][p.axis]);
+        let on = |v: f64| (v - p.at).abs() <= p.tolerance;
+        // (crosses the plane, is its own mirror image, the key that places it along the normal)
+        let extent = |r: Option<[f64; 2]>, k: &str| match r {
+            None => (true, true, k.to_string()),
+            Some([lo, hi]) => (lo < p.at - p.tolerance && hi > p.at + p.tolerance, on(0.5 * (lo + hi)), k.to_string()),
+        };
+        let round = |center: [f64; 3], radius: f64| ((center[a] - p.at).abs() < radius, on(center[a]), "center".into());
+        let (crosses, mirrored, k) = match &indenter.surface {
+            RigidSurface::Flat { axis, .. } if *axis == a => (false, true, String::new()),
+            RigidSurface::Flat { bounds, .. } => extent(bounds[a], c),
+            RigidSurface::Cylinder { axis, length, .. } if *axis == a => extent(*length, "length"),
+            RigidSurface::Cylinder { center, radius, .. } | RigidSurface::Sphere { center, radius } => {
+                round(*center, *radius)
+            }
+        };
+        if !crosses {
+            continue;
+        }
+        let plane = format!("symmetry plane {:?} ({})", p.name, p.describe());
+        if !mirrored {
+            return Err(invalid(
+                format!("{key}.{k}"),
+                format!("{} (the indenter crosses {plane})", indenter.surface),
+                format!(
+                    "a tool that is its own mirror image across the plane: its centre, or the middle of its extent \
+                     along {c}, at {c} = {} (the part left out would hold its mirror image, overlapping it); model \
+                     the full structure for a tool off the plane",
+                    crate::numbers::short(p.at)
+                ),
+            ));
+        }
+        if indenter.displacement[a] != 0.0 {
+            return Err(invalid(
+                format!("{key}.displacement"),
+                format!("{:?} m for an indenter crossing {plane}", indenter.displacement),
+                format!(
+                    "displacement[{a}] = 0 (no {c} component): the indenter and its mirror image are one tool, which \
+                     cannot move both ways along {c}; model the full structure"
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// `analysis.initial_velocities`: a body touching a plane (cut by it, or
+/// lying against it) is one body with its mirror image, which moves with
+/// the mirrored velocity; a component along the plane's normal would make
+/// the two halves fly apart (and the plane holds `u_n = 0`): refused.
+pub(super) fn check_velocities(
+    velocities: &[(usize, [f64; 3])],
+    planes: &[Plane],
+    mesh: &Mesh,
+) -> Result<(), ModelError> {
+    for (i, &(b, v)) in velocities.iter().enumerate() {
+        let body = &mesh.bodies[b];
+        let nodes = (0..body.n_nodes()).map(|n| n + body.node_offset);
+        let speed = v.iter().map(|c| c * c).sum::<f64>().sqrt();
+        for p in planes.iter().filter(|p| nodes.clone().any(|n| p.holds(mesh.coords(n)))) {
+            let a = p.axis;
+            if v[a].abs() > 1e-12 * speed {
+                let c = ["x", "y", "z"][a];
+                return Err(invalid(
+                    format!("analysis.initial_velocities[{i}].velocity"),
+                    format!("{v:?} m/s for body {:?}", body.name),
+                    format!(
+                        "velocity[{a}] = 0 (no {c} component): body {:?} touches symmetry plane {:?} ({}), so in the \
+                         full structure it is one body with its mirror image, which would move at −{} m/s along {c} \
+                         while the plane holds u_{c} = 0; model the full structure for a motion across the plane",
+                        body.name,
+                        p.name,
+                        p.describe(),
+                        crate::numbers::short(v[a])
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A traction or pressure on faces of `load` is mirror-symmetric about
+/// every plane it touches: no face lies in a plane (it is inside the full
+/// structure), a traction has no component along the normal of a plane
+/// its faces touch (its mirror image would pull the other way), and a sine
+/// profile along a plane's normal that spans the plane is centred on it.
+pub(super) fn check_faces_load(
+    key: &str,
+    load: &Load,
+    l: &LoadFile,
+    planes: &[Plane],
+    mesh: &Mesh,
+) -> Result<(), ModelError> {
+    let faces = match &load.kind {
+        crate::bc::LoadKind::Traction { faces, .. } | crate::bc::LoadKind::Pressure { faces, .. } => faces,
+        crate::bc::LoadKind::PerNode { .. } => return Ok(()),
+    };
+    let body = &mesh.bodies[load.body];
+    faces_off_planes(&format!("{key}.where"), body, faces, planes)?;
+    for p in planes.iter().filter(|q| load.nodal_forces.iter().any(|(n, _)| q.holds(mesh.coords(*n)))) {
+        let a = p.axis;
+        let c = ["x", "y", "z"][a];
+        // (a total force on nodes of a plane is refused by `check_load`)
+        if let Some(t) = l.traction.map(<[f64; 3]>::from)
+            && t[a] != 0.0
+        {
+            return Err(invalid(
+                format!("{key}.traction"),
+                format!("{t:?} on faces touching symmetry plane {:?} ({})", p.name, p.describe()),
+                format!(
+                    "no {c} component there: the load's mirror image across the plane acts with the opposite {c} \
+                     component, so the full structure would not carry this load (and the plane's u_{c} = 0 takes the \
+                     share at the plane); load faces off the plane, or model the full structure"
+                ),
+            ));
+        }
+        if let Some(pr) = &load.profile
+            && pr.along == a
+            && pr.from < p.at - p.tolerance
+            && pr.to > p.at + p.tolerance
+            && (pr.from + pr.to - 2.0 * p.at).abs() > p.tolerance
+        {
+            return Err(invalid(
+                format!("{key}.profile"),
+                format!("from = {}, to = {}", crate::numbers::short(pr.from), crate::numbers::short(pr.to)),
+                format!(
+                    "a profile symmetric about symmetry plane {:?} ({}): (from + to)/2 = {} (the part left out \
+                     carries the mirror image of the part kept, not this profile), or model the full structure",
+                    p.name,
+                    p.describe(),
+                    crate::numbers::short(p.at)
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// No face lies in a plane: a face there is a cut through the full
+/// structure, not a surface of it.
+pub(super) fn faces_off_planes(
+    key: &str,
+    body: &crate::mesh::Body,
+    faces: &[crate::bc::Face],
+    planes: &[Plane],
+) -> Result<(), ModelError> {
+    for p in planes {
+        let inside = faces.iter().any(|f| {
+            let integral = crate::bc::integrate_face(body, f);
+            integral.nodes.iter().all(|&n| p.holds(body.local_coords(n - body.node_offset)))
+        });
+        if inside {
+            return Err(invalid(
+                key,
+                format!("faces of body {:?} lying in symmetry plane {:?} ({})", body.name, p.name, p.describe()),
+                "faces off the plane: a face in a symmetry plane is a cut through the full structure (its two sides \
+                 are joined there), not one of its surfaces",
+            ));
+        }
+    }
+    Ok(())
 }

@@ -12,6 +12,10 @@ use crate::dynamics::TransientSettings;
 pub const MAX_DURATION: f64 = 1e6;
 /// Largest accepted initial speed (m/s).
 pub const MAX_SPEED: f64 = 1e4;
+/// Largest accepted Newmark β: above ¼ (γ + ½)² = 0.5625 of the most
+/// dissipative γ = 1, so every γ in [½, 1] has its unconditionally stable
+/// range (a larger β only lengthens the periods).
+pub const MAX_BETA: f64 = 1.0;
 
 /// The keys that only a transient analysis takes, for the refusal of a
 /// static one.
@@ -28,14 +32,34 @@ fn transient_key(file: &AnalysisFile) -> Option<&'static str> {
         Some("analysis.output_interval")
     } else if file.contact_forces.is_some() {
         Some("analysis.contact_forces")
+    } else if file.contact_mass.is_some() {
+        Some("analysis.contact_mass")
     } else {
         None
     }
 }
 
 /// `analysis.type = "transient"` and its keys; `None` for another analysis
-/// (whose file may not hold them).
+/// (whose file may not hold them). Its load steps' increment limits follow
+/// their time steps ([`time_steps`]), and the contacts' mass is checked
+/// ([`contact_mass_warnings`]).
 pub(super) fn transient(
+    file: &super::schema::ModelFile,
+    steps: &mut [super::steps::Step],
+    parts: &Parts<'_>,
+    arc_length: bool,
+    warnings: &mut Vec<super::Warning>,
+) -> Result<Option<TransientSettings>, ModelError> {
+    let settings = settings(&file.analysis, &file.steps, parts, arc_length)?;
+    if let Some(t) = &settings {
+        time_steps(steps, file.solver.max_increments)?;
+        contact_mass_warnings(&file.analysis, t, parts, warnings);
+    }
+    Ok(settings)
+}
+
+/// The transient settings of `[analysis]` (module docs).
+fn settings(
     file: &AnalysisFile,
     steps: &[super::schema::StepFile],
     parts: &Parts<'_>,
@@ -82,12 +106,14 @@ pub(super) fn transient(
         ));
     }
     let min_beta = 0.25 * (gamma + 0.5).powi(2);
-    if !(beta.is_finite() && beta >= min_beta - 1e-12 && beta <= 0.5) {
+    if !(beta.is_finite() && beta >= min_beta - 1e-12 && beta <= MAX_BETA) {
         return Err(invalid(
             "analysis.newmark.beta",
             bounds::number(beta),
             format!(
-                "a number from ¼ (γ + ½)² = {} to 0.5 (unconditional stability; an explicit β is not supported)",
+                "with analysis.newmark.gamma = {}, a number from ¼ (γ + ½)² = {} (unconditional stability; an \
+                 explicit β is not supported) to {MAX_BETA}",
+                bounds::number(gamma),
                 bounds::number(min_beta)
             ),
         ));
@@ -107,18 +133,7 @@ pub(super) fn transient(
         ));
     }
     densities_given(parts, "transient")?;
-    let mut initial_velocities = Vec::new();
-    for (i, v) in file.initial_velocities.iter().flatten().enumerate() {
-        let key = format!("analysis.initial_velocities[{i}]");
-        let body = parts.mesh.body_index(&v.body).ok_or_else(|| {
-            let names: Vec<&str> = parts.mesh.bodies.iter().map(|b| b.name.as_str()).collect();
-            invalid(format!("{key}.body"), format!("{:?}", v.body), format!("one of the bodies {names:?}"))
-        })?;
-        for (k, c) in v.velocity.iter().enumerate() {
-            bounds::within(&format!("{key}.velocity[{k}]"), *c, -MAX_SPEED, MAX_SPEED, "a speed in m/s")?;
-        }
-        initial_velocities.push((body, *v.velocity));
-    }
+    let initial_velocities = initial_velocities(file, parts)?;
     let total: f64 = durations.iter().sum();
     let output_interval = file
         .output_interval
@@ -147,5 +162,109 @@ pub(super) fn transient(
             Some(super::schema::ContactForcesFile::Newmark) => crate::dynamics::ContactForces::Newmark,
             Some(super::schema::ContactForcesFile::Implicit) | None => crate::dynamics::ContactForces::Implicit,
         },
+        contact_mass: match file.contact_mass {
+            Some(super::schema::ContactMassFile::Kept) => crate::dynamics::ContactMass::Kept,
+            Some(super::schema::ContactMassFile::Redistributed) | None => crate::dynamics::ContactMass::Redistributed,
+        },
     }))
+}
+
+/// Increments a transient step may take beyond its time steps when none is
+/// given (`solver.max_increments`): room for cutbacks, the default limit of
+/// a static run.
+pub const CUTBACK_ALLOWANCE: usize = 1000;
+
+/// The time steps of a transient analysis against `solver.max_increments`
+/// (`given`, the limit of each load step): refused by key if the limit is
+/// below a step's time steps (the run would stop part way); without the
+/// key, each step may take its time steps and [`CUTBACK_ALLOWANCE`] more.
+fn time_steps(steps: &mut [super::steps::Step], given: Option<usize>) -> Result<(), ModelError> {
+    for (k, step) in steps.iter_mut().enumerate() {
+        let needed = step.planned_increments();
+        match given {
+            Some(limit) if limit < needed => {
+                return Err(invalid(
+                    "solver.max_increments",
+                    limit,
+                    format!(
+                        "at least the {needed} time steps of steps[{k}] (\"{}\"; the limit applies to each load \
+                         step, and cutbacks need more), or no key: each step's time steps and {CUTBACK_ALLOWANCE} more",
+                        step.name
+                    ),
+                ));
+            }
+            Some(_) => {}
+            None => {
+                step.settings.max_increments =
+                    step.settings.max_increments.max(needed.saturating_add(CUTBACK_ALLOWANCE));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Warnings of the contacts' mass (`analysis.contact_mass`): the key given
+/// without contacts, and contact nodes that keep mass because every node of
+/// an element is on a contact surface (`dynamics::redistribution`).
+fn contact_mass_warnings(
+    file: &AnalysisFile,
+    settings: &TransientSettings,
+    parts: &Parts<'_>,
+    warnings: &mut Vec<super::Warning>,
+) {
+    let contacts = !parts.indenters.is_empty() || !parts.contacts.is_empty();
+    if !contacts {
+        if file.contact_mass.is_some() {
+            warnings.push(super::Warning {
+                key: "analysis.contact_mass".into(),
+                message: "the model has no indenters or contacts: every node keeps its mass".into(),
+            });
+        }
+        return;
+    }
+    if settings.contact_mass != crate::dynamics::ContactMass::Redistributed {
+        return;
+    }
+    let nodes = crate::dynamics::redistribution::contact_nodes(parts.mesh, parts.indenters, parts.contacts);
+    let stranded = crate::dynamics::Redistribution::new(parts.mesh, &nodes).stranded().len();
+    if stranded > 0 {
+        warnings.push(super::Warning {
+            key: "analysis.contact_mass".into(),
+            message: format!(
+                "\"redistributed\": {stranded} of the {} contact nodes keep part of their mass (every node of an \
+                 element of theirs is on a contact surface, so the element has no other node to take it): the \
+                 contact force may chatter there; refine the mesh under the contact surfaces",
+                nodes.len()
+            ),
+        });
+    }
+}
+
+/// `analysis.initial_velocities`: one entry per body, each speed bounded.
+fn initial_velocities(file: &AnalysisFile, parts: &Parts<'_>) -> Result<Vec<(usize, [f64; 3])>, ModelError> {
+    let mut initial_velocities: Vec<(usize, [f64; 3])> = Vec::new();
+    for (i, v) in file.initial_velocities.iter().flatten().enumerate() {
+        let key = format!("analysis.initial_velocities[{i}]");
+        let body = parts.mesh.body_index(&v.body).ok_or_else(|| {
+            let names: Vec<&str> = parts.mesh.bodies.iter().map(|b| b.name.as_str()).collect();
+            invalid(format!("{key}.body"), format!("{:?}", v.body), format!("one of the bodies {names:?}"))
+        })?;
+        // one velocity per body: a second entry would silently replace the first
+        if let Some(j) = initial_velocities.iter().position(|&(b, _)| b == body) {
+            return Err(invalid(
+                format!("{key}.body"),
+                format!("{:?}", v.body),
+                format!(
+                    "a body without an earlier entry (analysis.initial_velocities[{j}] already gives body {:?} its \
+                     velocity; one entry per body, its velocity the whole body's)",
+                    v.body
+                ),
+            ));
+        }
+        for (k, c) in v.velocity.iter().enumerate() {
+            bounds::within(&format!("{key}.velocity[{k}]"), *c, -MAX_SPEED, MAX_SPEED, "a speed in m/s")?;
+        }
+        initial_velocities.push((body, *v.velocity));
+    }
+    Ok(initial_velocities)
 }

@@ -91,8 +91,22 @@ pub(super) fn assign(
     section: &CrossSection,
     materials: &mut Vec<Material>,
 ) -> Result<(usize, Vec<usize>), ModelError> {
+    assign_traced(key, b, section, materials).map(|(base, per_element, _)| (base, per_element))
+}
+
+/// [`assign`], with what gave each section element its material, as the
+/// file says it (`bodies[0].section.plies[1] (material "cfrp", angle 30°)`;
+/// empty when every element has the body's own material).
+pub(super) fn assign_traced(
+    key: &str,
+    b: &BodyFile,
+    section: &CrossSection,
+    materials: &mut Vec<Material>,
+) -> Result<(usize, Vec<usize>, Vec<String>), ModelError> {
     let base = b.material.as_deref().map(|name| find(&format!("{key}.material"), name, materials)).transpose()?;
     let list = zones(key, b, section);
+    let base_source = format!("{key}.material ({:?})", b.material.as_deref().unwrap_or_default());
+    let mut source = vec![base_source; section.n_elements()];
     if list.is_empty() {
         let base = base.ok_or_else(|| {
             invalid(
@@ -101,7 +115,7 @@ pub(super) fn assign(
                 "the body's material (required unless a laminate's plies or [[bodies.zones]] give every section element one)",
             )
         })?;
-        return Ok((base, Vec::new()));
+        return Ok((base, Vec::new(), Vec::new()));
     }
     let mut per_element: Vec<Option<usize>> = vec![base; section.n_elements()];
     for z in &list {
@@ -123,8 +137,10 @@ pub(super) fn assign(
             })?,
         };
         let m = oriented(z, m, materials)?;
+        let described = describe(z, &materials[m]);
         for e in elements {
             per_element[e] = Some(m);
+            source[e].clone_from(&described);
         }
     }
     if let Some(e) = per_element.iter().position(Option::is_none) {
@@ -136,7 +152,23 @@ pub(super) fn assign(
         ));
     }
     let per_element: Vec<usize> = per_element.into_iter().flatten().collect();
-    Ok((base.unwrap_or(per_element[0]), per_element))
+    Ok((base.unwrap_or(per_element[0]), per_element, source))
+}
+
+/// A zone as the file gives it: its key, material and axes.
+fn describe(z: &Zone<'_>, m: &Material) -> String {
+    let short = |v: [f64; 3]| v.map(crate::numbers::short).join(", ");
+    let mut axes = String::new();
+    if z.oriented {
+        axes = format!(", angle {}°", crate::numbers::short(z.angle));
+        if z.fibre != [0.0, 1.0, 0.0] {
+            axes += &format!(", fibre [{}]", short(z.fibre));
+        }
+        if z.normal != [0.0, 0.0, 1.0] {
+            axes += &format!(", normal [{}]", short(z.normal));
+        }
+    }
+    format!("{} (material {:?}{axes})", z.key, m.given)
 }
 
 /// The material `m` in the zone's frame: itself when the zone states no

@@ -13,6 +13,7 @@ pub mod nonsymmetric;
 pub mod reuse;
 pub mod step_control;
 pub mod stepping;
+pub mod stop;
 
 use std::sync::Arc;
 use std::sync::atomic::{AtomicBool, Ordering};

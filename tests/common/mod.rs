@@ -215,3 +215,70 @@ point = [0.005, 0.5, 0.005]
 "#
     )
 }
+
+/// The test's name: the test harness names each test's thread after it.
+fn test_name() -> String {
+    std::thread::current().name().unwrap_or("?").to_string()
+}
+
+/// Reports one figure to the validation report: `bench/validate` runs the
+/// tests with `--nocapture` and keeps every `FIGURE` line as a row of
+/// docs/validation.md (README.md and docs/ tag their figures with `id`).
+/// `check` says what the test asserts about it and against which reference.
+pub fn figure(id: &str, value: f64, unit: &str, check: &str) {
+    eprintln!("FIGURE\t{}\t{id}\t{value:.9e}\t{unit}\t{check}", test_name());
+}
+
+/// A known limit, asserted from both sides: the measured `value` must stay
+/// within `[low, high]`, the range docs/limitations.md states. A value
+/// below `low` is an improvement (tighten the range and the docs), above
+/// `high` a regression; both fail.
+pub fn known_limit(id: &str, value: f64, unit: &str, low: f64, high: f64, what: &str) {
+    figure(id, value, unit, &format!("known limit, asserted in [{low}, {high}] {unit} (docs/limitations.md)"));
+    assert!(
+        (low..=high).contains(&value),
+        "{what}: {value} {unit} left its known range [{low}, {high}] {unit}: update the range and \
+         docs/limitations.md (below it: an improvement; above it: a regression)"
+    );
+}
+
+/// `value` within `relative` of `reference` (source named by the caller),
+/// reported as the figure `id` (the relative difference in %).
+pub fn within(id: &str, value: f64, reference: f64, relative: f64, source: &str) {
+    let d = 100.0 * (value / reference - 1.0);
+    figure(id, d, "%", &format!("|difference| ≤ {} % against {source}", 100.0 * relative));
+    assert!(
+        d.abs() <= 100.0 * relative,
+        "{id}: {value:e} is {d:+.2} % from {reference:e} ({source}; allowed {} %)",
+        100.0 * relative
+    );
+}
+
+/// True when CalculiX (`ccx`) is not on the PATH: the calling test should
+/// return at once (`if common::ccx_missing() { return; }`), and this prints
+/// its one-line reason, `<test>: skipped: CalculiX (ccx) not on the PATH; …`.
+/// With `CUFEM_REQUIRE_CCX` set (`.ci/run` sets it: CI has ccx) a missing
+/// ccx fails the test instead, so that CI never passes by skipping.
+pub fn ccx_missing() -> bool {
+    let on_path = std::env::var_os("PATH").is_some_and(|path| {
+        use std::os::unix::fs::PermissionsExt;
+        std::env::split_paths(&path).any(|dir| {
+            std::fs::metadata(dir.join("ccx")).is_ok_and(|m| m.is_file() && m.permissions().mode() & 0o111 != 0)
+        })
+    });
+    if on_path {
+        return false;
+    }
+    // libtest runs each test in a thread named after it
+    let test = std::thread::current().name().unwrap_or("a CalculiX test").to_string();
+    let reason = "CalculiX (ccx) not on the PATH; apt-get install calculix-ccx";
+    if std::env::var_os("CUFEM_REQUIRE_CCX").is_some_and(|v| !v.is_empty()) {
+        panic!("{test}: {reason} (CUFEM_REQUIRE_CCX is set: the CalculiX tests must run here)");
+    }
+    // to stderr past the test harness's capture, so that the skip shows in
+    // `cargo test`'s output; in one write, so that other tests' lines do not
+    // cut it
+    use std::io::Write;
+    let _ = std::io::stderr().write_all(format!("{test}: skipped: {reason}\n").as_bytes());
+    true
+}

@@ -21,7 +21,13 @@ pub(super) fn inertia(
     use crate::dynamics::mass;
     let mesh = &model.mesh;
     let densities = mass::densities(mesh, &model.materials)?;
-    let m = mass::assemble(assembler, mesh, &model.cells, &densities, settings.mass)?;
+    let contacts = !model.indenters.is_empty() || !model.contacts.is_empty();
+    let redistribution =
+        (contacts && settings.contact_mass == crate::dynamics::ContactMass::Redistributed).then(|| {
+            let nodes = crate::dynamics::redistribution::contact_nodes(mesh, &model.indenters, &model.contacts);
+            crate::dynamics::Redistribution::new(mesh, &nodes)
+        });
+    let m = mass::assemble(assembler, mesh, &model.cells, &densities, settings.mass, redistribution.as_ref())?;
     let k0 = if settings.damping.1 > 0.0 {
         assembler.elastic_matrix(&elements.inputs(&vec![0.0; mesh.n_dofs()]))
     } else {

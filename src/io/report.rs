@@ -1,0 +1,369 @@
+//! The text a run prints, shared by `cufem run` and the Python package
+//! (`Model.run`): the header, a line when the analysis is set up, one per
+//! converged increment and per failed attempt, the final report (a table
+//! like the paper's, probes, references, resultants, error estimate, ply
+//! failure, path, modes) and the closing lines. Every function returns the
+//! text; the caller decides where it goes (the CLI: header and report to
+//! stdout, progress to stderr; Python: `sys.stdout` and `sys.stderr`).
+
+use std::fmt::Write;
+use std::path::Path;
+
+use crate::analysis::{IncrementLog, Setup, Solution};
+use crate::model::Model;
+use crate::solver::newton::Failure;
+use crate::solver::stepping::Cutback;
+
+/// Appends a line to a `String` (writing to a `String` cannot fail).
+macro_rules! out {
+    ($s:expr) => {
+        $s.push('\n')
+    };
+    ($s:expr, $($arg:tt)*) => {{
+        let _ = writeln!($s, $($arg)*);
+    }};
+}
+
+/// `12345` → `12,345`.
+pub fn thousands(n: usize) -> String {
+    let s = n.to_string();
+    let mut out = String::new();
+    for (i, c) in s.chars().enumerate() {
+        if i > 0 && (s.len() - i).is_multiple_of(3) {
+            out.push(',');
+        }
+        out.push(c);
+    }
+    out
+}
+
+/// Each body's discretization: `block 1B4 - 108L9, punch …`.
+fn discretization(model: &Model) -> String {
+    let parts: Vec<String> = model
+        .mesh
+        .bodies
+        .iter()
+        .map(|b| {
+            format!(
+                "{} {}{:?} - {}{:?}",
+                b.name,
+                b.axis.n_elements(),
+                b.axis.kind,
+                b.section.n_elements(),
+                b.section.kind
+            )
+        })
+        .collect();
+    parts.join(", ")
+}
+
+/// The header of a run: the title, then the discretization and the DOF (two
+/// lines), and a transient analysis's time steps ([`time_steps`]).
+pub fn header(model: &Model) -> String {
+    let mut text = format!("{}\n{} — {} DOF\n", model.title, discretization(model), thousands(model.n_dofs()));
+    if let Some(line) = time_steps(model) {
+        text.push_str(&line);
+        text.push('\n');
+    }
+    text
+}
+
+/// A transient analysis's time steps, said before it starts: how many,
+/// over how long, and each load step's Δt (without cutbacks).
+pub fn time_steps(model: &Model) -> Option<String> {
+    let t = model.transient.as_ref()?;
+    let per: Vec<(usize, f64)> = model
+        .steps
+        .iter()
+        .zip(&t.durations)
+        .map(|(s, d)| (s.planned_increments(), d / s.planned_increments() as f64))
+        .collect();
+    let total = per.iter().fold(0usize, |n, p| n.saturating_add(p.0));
+    let mut steps: Vec<String> = model
+        .steps
+        .iter()
+        .zip(&per)
+        .take(3)
+        .map(|(s, (n, dt))| format!("{}: {} × {dt:.3e} s", s.name, thousands(*n)))
+        .collect();
+    if model.steps.len() > 3 {
+        steps.push(format!("and {} more load steps", model.steps.len() - 3));
+    }
+    Some(format!(
+        "transient: {} time steps over {:.4e} s ({}); each load step may take up to solver.max_increments = {}",
+        thousands(total),
+        t.durations.iter().sum::<f64>(),
+        steps.join(", "),
+        thousands(model.steps.iter().map(|s| s.settings.max_increments).max().unwrap_or(0))
+    ))
+}
+
+/// The line once the analysis is set up: equations, factor size, memory.
+pub fn start_line(setup: &Setup) -> String {
+    format!(
+        "solving {} equations, nnz(L) = {}, memory estimate {} (Ctrl-C stops at the next safe point and keeps the \
+         results)",
+        setup.equations,
+        setup.factor_nnz,
+        crate::size::human_bytes(setup.memory.total())
+    )
+}
+
+/// One log line per converged increment.
+pub fn increment_line(log: &IncrementLog) -> String {
+    let res: Vec<String> = log.residuals.iter().map(|r| format!("{r:.1e}")).collect();
+    let mut line = format!(
+        "increment {:>3}  λ = {:.4} (Δλ {:.3e})  {} iterations  residuals [{}]  plastic points {}",
+        log.index,
+        log.lambda,
+        log.dlambda,
+        log.iterations,
+        res.join(" "),
+        log.plastic_points
+    );
+    if log.max_penetration > 0.0 {
+        line.push_str(&format!("  max penetration {:.2e} m", log.max_penetration));
+    }
+    if let Some(n) = log.negative_pivots.filter(|n| *n > 0) {
+        // an indefinite tangent: past a limit or bifurcation point
+        line.push_str(&format!("  negative pivots {n}"));
+    }
+    if log.cutbacks > 0 {
+        line.push_str(&format!("  (after {} cutbacks)", log.cutbacks));
+    }
+    line
+}
+
+/// One log line per failed attempt: Newton's failure and residuals, or the
+/// step control's rejection of a converged increment.
+pub fn cutback_line(c: &Cutback) -> String {
+    if let Some(q) = c.rejected {
+        return format!(
+            "  rejected: increment {} (λ = {:.4}, Δλ = {:.3e}) converged in {} iterations but changed {:.1} times \
+             what solver.step_control allows; redone smaller",
+            c.index, c.lambda, c.dlambda, c.newton.iterations, q
+        );
+    }
+    let res: Vec<String> = c.newton.residuals.iter().map(|r| format!("{r:.1e}")).collect();
+    format!(
+        "  cutback: increment {} (λ = {:.4}, Δλ = {:.3e}) failed after {} iterations ({}), residuals [{}]{}",
+        c.index,
+        c.lambda,
+        c.dlambda,
+        c.newton.iterations,
+        match c.newton.failure {
+            Some(Failure::Diverged) => "diverged",
+            Some(Failure::Problem) => "linear solve failed",
+            Some(Failure::Stagnated) => "stagnated",
+            Some(Failure::Rejected) => "converged, rejected",
+            _ => "not converged",
+        },
+        res.join(" "),
+        c.newton.message.as_ref().map(|m| format!(": {m}")).unwrap_or_default()
+    )
+}
+
+/// The closing line of a run that wrote its files.
+pub fn wrote_line(files: usize, folder: &Path) -> String {
+    format!("\nwrote {files} files to {}", folder.display())
+}
+
+/// The lines of a run that stopped before the full load (`None` if it did
+/// not): why, and where the last converged increment's results are
+/// (`folder`; `None`: kept in memory only); `kept`: the output folder whose
+/// converged results the run left in place (it wrote beside them).
+pub fn stopped_early(model: &Model, solution: &Solution, folder: Option<&Path>, kept: Option<&Path>) -> Option<String> {
+    let f = solution.failure.as_ref()?;
+    let place = folder.map_or_else(|| "returned (nothing written)".to_string(), |d| format!("in {}", d.display()));
+    // a transient run's λ is time: the stop is said in seconds
+    let at = match &model.transient {
+        Some(t) => format!("time step (t = {:.6e} s)", t.time(solution.lambda)),
+        None => format!("increment (load factor {:.4})", solution.lambda),
+    };
+    let mut text = format!("\nthe analysis stopped early: {f}\nresults of the last converged {at} are {place}");
+    if let Some(kept) = kept {
+        let _ = write!(text, "\nthe converged results already in {} were kept as they were", kept.display());
+    }
+    Some(text)
+}
+
+/// The final report: a table like the paper's and the probe values, then
+/// the references, resultants, error estimate, ply failure, path and modes
+/// the model has (starts with an empty line).
+pub fn results(model: &Model, solution: &Solution) -> String {
+    let mut s = String::new();
+    let iterations: usize = solution.increments.iter().map(|i| i.newton.iterations).sum();
+    out!(s);
+    out!(s, "{:<40} {:>10} {:>12} {:>11} {:>10}", "Model", "DOF", "Time (s)", "Increments", "Newton it.");
+    out!(
+        s,
+        "{:<40} {:>10} {:>12.2} {:>11} {:>10}",
+        format!("cufem 1D ({})", discretization(model)),
+        thousands(model.n_dofs()),
+        solution.wall_time.as_secs_f64(),
+        solution.increments.len(),
+        iterations
+    );
+    if let Some(a) = &solution.adapt {
+        out!(s);
+        out!(s, "{:<8} {:>10} {:>12} {:>10}  refined", "cycle", "DOF", "estimate [%]", "time (s)");
+        for c in &a.cycles {
+            out!(
+                s,
+                "{:<8} {:>10} {:>12.2} {:>10.1}  {}",
+                c.cycle,
+                thousands(c.dof),
+                100.0 * c.estimate,
+                c.time_s,
+                c.refined
+            );
+        }
+        out!(s, "adaptive run stopped: {}", a.stop);
+    }
+    let summary = super::summary(model, solution);
+    if !summary.probes.is_empty() {
+        out!(s);
+        out!(
+            s,
+            "{:<14} {:<26} {:>12} {:>12} {:>12} {:>12}",
+            "probe",
+            "point [m]",
+            "u_z [mm]",
+            "s_yy [MPa]",
+            "s_zz [MPa]",
+            "peeq [-]"
+        );
+        for p in &summary.probes {
+            out!(
+                s,
+                "{:<14} {:<26} {:>12.5} {:>12.3} {:>12.3} {:>12.4e}",
+                p.name,
+                format!("{:?}", p.point),
+                p.u[2] * 1e3,
+                p.stress[1] * 1e-6,
+                p.stress[2] * 1e-6,
+                p.peeq
+            );
+        }
+    }
+    references(&mut s, model, solution);
+    resultants(&mut s, model, &summary);
+    if let Some(e) = &summary.error_estimate {
+        let largest: Vec<String> =
+            e.largest.iter().take(3).map(|l| format!("{} #{} ({:.0} %)", l.body, l.element, 100.0 * l.share)).collect();
+        out!(
+            s,
+            "estimated error {:.2} % (energy norm, raw against recovered stresses); largest in {}",
+            100.0 * e.relative_energy_norm,
+            largest.join(", ")
+        );
+    }
+    ply_failure(&mut s, &summary);
+    if let Some(p) = &summary.path {
+        let points: Vec<String> = p.limit_points.iter().map(|(i, l)| format!("increment {i} (λ = {l:.5})")).collect();
+        let points = if points.is_empty() { "none".to_string() } else { points.join(", ") };
+        out!(s, "arc length: limit points {points}; ended by {}", p.end);
+    }
+    modes(&mut s, &summary);
+    s
+}
+
+/// The model's reference values beside cufem's at their probes.
+fn references(s: &mut String, model: &Model, solution: &Solution) {
+    if model.references.is_empty() {
+        return;
+    }
+    out!(s);
+    out!(s, "{:<14} {:<16} {:>12} {:>12}  source", "probe", "quantity", "cufem", "reference");
+    let view = solution.fields(model);
+    for r in &model.references {
+        let ours = model
+            .probes
+            .iter()
+            .find(|p| p.name == r.probe)
+            .and_then(|p| view.sample_probe(p))
+            .map_or(f64::NAN, |v| v.get(r.quantity));
+        let scale = r.quantity.display_scale();
+        let unit = r.quantity.label();
+        let unit = unit.split('[').nth(1).map(|u| format!("[{u}")).unwrap_or_default();
+        out!(
+            s,
+            "{:<14} {:<16} {:>12.4} {:>12.4}  {}",
+            r.probe,
+            format!("{} {unit}", r.quantity.name()),
+            ours * scale,
+            r.value * scale,
+            r.source
+        );
+    }
+}
+
+/// Reactions and contact forces, with the full structure's beside in a
+/// model with symmetry planes.
+fn resultants(s: &mut String, model: &Model, summary: &super::Summary) {
+    // in a model with symmetry planes, the force on the full structure beside
+    let full = |f: &super::ForceSummary| {
+        f.full_structure_force
+            .map_or(String::new(), |g| format!(" (full structure [{:.5e}, {:.5e}, {:.5e}] N)", g[0], g[1], g[2]))
+    };
+    for (c, f) in model.constraints.iter().zip(&summary.reactions) {
+        out!(s, "reaction {:<12} [{:.5e}, {:.5e}, {:.5e}] N{}", c.name, f.force[0], f.force[1], f.force[2], full(f));
+    }
+    for c in &summary.contact {
+        out!(
+            s,
+            "contact  {:<12} force on body [{:.5e}, {:.5e}, {:.5e}] N, max penetration {:.3e} m{}",
+            c.name,
+            c.force[0],
+            c.force[1],
+            c.force[2],
+            c.max_penetration.unwrap_or(0.0),
+            full(c)
+        );
+    }
+}
+
+/// Each failure criterion's largest index and first-failure load factor.
+fn ply_failure(s: &mut String, summary: &super::Summary) {
+    let Some(f) = &summary.ply_failure else { return };
+    for c in &f.criteria {
+        let w = &c.first_failure_at;
+        out!(
+            s,
+            "{:<18} largest index {:.4}; first failure at load factor {:.4} in {} at [{:.4e}, {:.4e}, {:.4e}] m",
+            c.criterion,
+            c.largest_index,
+            c.first_failure_load_factor,
+            w.material,
+            w.point[0],
+            w.point[1],
+            w.point[2]
+        );
+    }
+}
+
+/// Vibration frequencies with their effective masses, buckling factors with
+/// their critical loads.
+fn modes(s: &mut String, summary: &super::Summary) {
+    if let Some(m) = &summary.modal {
+        let share = |k: usize, v: f64| if m.free_mass[k] > 0.0 { 100.0 * v / m.free_mass[k] } else { 0.0 };
+        let of = if m.effective_masses_of == "full_structure" { " of the full structure" } else { "" };
+        out!(s, "modal  mode  frequency [Hz]   effective mass [% of the free mass{of}]  x / y / z");
+        for (k, (f, e)) in m.frequencies_hz.iter().zip(&m.effective_masses).enumerate() {
+            out!(
+                s,
+                "       {:>4}  {f:>14.6e}   {:>6.2} / {:>6.2} / {:>6.2}",
+                k + 1,
+                share(0, e[0]),
+                share(1, e[1]),
+                share(2, e[2])
+            );
+        }
+    }
+    if let Some(b) = &summary.buckling {
+        out!(s, "buckling  mode  load factor   critical load [N]");
+        for (k, (f, p)) in b.factors.iter().zip(&b.critical_loads).enumerate() {
+            out!(s, "          {:>4}  {f:>11.5e}   [{:.5e}, {:.5e}, {:.5e}]", k + 1, p[0], p[1], p[2]);
+        }
+    }
+}

@@ -315,7 +315,7 @@ fn figures(text: &str) -> Vec<Figure> {
             let product = |r: &str| r.trim_start().starts_with(|c: char| c.is_ascii_digit());
             let unit = UNITS.iter().any(|u| {
                 trimmed.strip_prefix(u).is_some_and(|r| {
-                    !r.starts_with(|c: char| c.is_alphanumeric() || c == '_') && !(*u == "×" && product(r))
+                    !(r.starts_with(|c: char| c.is_alphanumeric() || c == '_') || (*u == "×" && product(r)))
                 })
             }) || after.starts_with('%');
             let head: String = chars[..start].iter().collect();
@@ -376,10 +376,13 @@ fn report_rows() -> std::collections::HashMap<String, (f64, String)> {
             continue;
         }
         let cells: Vec<&str> = line.trim().trim_matches('|').split(" | ").map(str::trim).collect();
-        if in_figures && cells.len() == 7 && !cells[0].starts_with("id") && !cells[0].starts_with("--") {
-            if let Ok(v) = cells[1].parse::<f64>() {
-                rows.insert(cells[0].to_string(), (v, cells[3].to_string()));
-            }
+        if in_figures
+            && cells.len() == 7
+            && !cells[0].starts_with("id")
+            && !cells[0].starts_with("--")
+            && let Ok(v) = cells[1].parse::<f64>()
+        {
+            rows.insert(cells[0].to_string(), (v, cells[3].to_string()));
         }
     }
     rows

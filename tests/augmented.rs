@@ -1,6 +1,8 @@
 //! Penalty-independent contact enforcement (issue 9, item 2): with an
 //! augmented Lagrangian the penalty changes the cost, not the answer.
 
+mod common;
+
 use std::path::Path;
 
 use cufem::analysis::{self, Silent, Solution};
@@ -46,33 +48,25 @@ fn augmented_lagrangian_makes_the_answer_independent_of_the_penalty() {
     let (_, stiff_al) = punch("penalty_factor = 100.0\npenetration_tolerance = 1e-10");
     // three decades: also a penalty ten times the default
     let (_, stiffest_al) = punch("penalty_factor = 1000.0\npenetration_tolerance = 1e-10");
-    eprintln!(
-        "penalty: {:.6e} N (pen {:.2e} m) / {:.6e} N (pen {:.2e} m); augmented: {:.8e} / {:.8e} N (pen {:.2e} / {:.2e} m); iterations {} {} {} {}",
-        force(&soft),
-        pen(&soft),
-        force(&stiff),
-        pen(&stiff),
-        force(&soft_al),
-        force(&stiff_al),
-        pen(&soft_al),
-        pen(&stiff_al),
-        soft.increments.iter().map(|i| i.newton.iterations).sum::<usize>(),
-        stiff.increments.iter().map(|i| i.newton.iterations).sum::<usize>(),
-        soft_al.increments.iter().map(|i| i.newton.iterations).sum::<usize>(),
-        stiff_al.increments.iter().map(|i| i.newton.iterations).sum::<usize>(),
-    );
     // the penalty moves the pure-penalty answer
+    let check = "|difference| > 0.1 % (pure penalty depends on ε)";
+    common::figure("augmented.pure_penalty_1_vs_100", 100.0 * (force(&soft) / force(&stiff) - 1.0), "%", check);
     assert!((force(&soft) / force(&stiff) - 1.0).abs() > 1e-3, "pure penalty did not depend on ε");
     // and not the augmented one
-    eprintln!(
-        "penalty factor 1000, augmented: {:.8e} N (pen {:.2e} m), {} iterations",
-        force(&stiffest_al),
-        pen(&stiffest_al),
-        stiffest_al.increments.iter().map(|i| i.newton.iterations).sum::<usize>()
-    );
-    assert!((force(&soft_al) / force(&stiff_al) - 1.0).abs() < 1e-6);
-    assert!((force(&soft_al) / force(&stiffest_al) - 1.0).abs() < 1e-6);
+    let check = "< 1e-6 (the augmented answer does not depend on ε)";
+    let apart = |a: &Solution, b: &Solution| (force(a) / force(b) - 1.0).abs();
+    common::figure("augmented.penalty_1_vs_100", apart(&soft_al, &stiff_al), "", check);
+    common::figure("augmented.penalty_1_vs_1000", apart(&soft_al, &stiffest_al), "", check);
+    assert!(apart(&soft_al, &stiff_al) < 1e-6);
+    assert!(apart(&soft_al, &stiffest_al) < 1e-6);
+    let iterations = |s: &Solution| s.increments.iter().map(|i| i.newton.iterations).sum::<usize>() as f64;
+    for (id, s) in [("penalty_1", &soft), ("penalty_100", &stiff), ("augmented_1", &soft_al), ("augmented_100", &stiff_al)]
+    {
+        common::figure(&format!("augmented.iterations.{id}"), iterations(s), "", "reported");
+    }
     assert!(pen(&soft_al) <= 1e-10 && pen(&stiff_al) <= 1e-10 && pen(&stiffest_al) <= 1e-10);
     // penalty forces approach the augmented (rigid-contact) one from below
+    let check = "below the augmented force (the penalty forces approach it from below)";
+    common::figure("augmented.pure_penalty_1_vs_augmented", 100.0 * (force(&soft) / force(&stiff_al) - 1.0), "%", check);
     assert!(force(&soft) < force(&stiff) && force(&stiff) < force(&stiff_al) * (1.0 + 1e-9));
 }

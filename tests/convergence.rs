@@ -18,6 +18,8 @@ use cufem::model::Model;
 use cufem::quadrature::{GaussRule, SquareRule};
 use cufem::values::{AxisValues, SectionValues, shape_values};
 
+mod common;
+
 const K: f64 = 1.0;
 const AMPLITUDE: f64 = 1e-4;
 
@@ -126,6 +128,8 @@ fn displacement_error_converges_at_order_p_plus_one() {
     {
         let r = rates(section, beam, meshes);
         let last = r[r.len() - 1];
+        let check = format!("p + 1 = {} within 0.25 (manufactured harmonic solution)", p + 1.0);
+        common::figure(&format!("convergence.rate.{section}_{beam}"), last, "", &check);
         assert!((last - (p + 1.0)).abs() < 0.25, "{section} × {beam}: rate {last:.3}, expected {}", p + 1.0);
     }
 }

@@ -10,6 +10,11 @@ use cufem::analysis::{Silent, Solution};
 use cufem::model::Model;
 use cufem::values::locate_in_model;
 
+mod common;
+
+/// The check of every effectivity index asserted here.
+const BAND: &str = "in [0.7, 1.5] (issue 23)";
+
 fn example(name: &str) -> String {
     std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name)).unwrap()
 }
@@ -127,7 +132,7 @@ fn a_uniform_stress_has_no_estimated_error() {
     );
     let (_, s) = solve(&text);
     let est = s.error_estimate.as_ref().unwrap();
-    eprintln!("uniform tension: relative estimate {:e}", est.relative());
+    common::figure("estimator.uniform_tension", est.relative(), "", "< 1e-6 of the energy norm (the exact stress)");
     assert!(est.relative() < 1e-6, "{}", est.relative());
 }
 
@@ -156,11 +161,10 @@ fn the_cantilever_estimate_is_effective_and_points_at_the_root() {
         let est = coarse.1.error_estimate.as_ref().unwrap();
         let truth = (CANTILEVER_ENERGY - est.energy.powi(2)).sqrt();
         let effectivity = est.error / truth;
-        eprintln!(
-            "{n}×{n} L9 × {m} B4: estimate {:.3} %, η = {:.4e}, ‖e‖ = {truth:.4e}, effectivity {effectivity:.3}",
-            100.0 * est.relative(),
-            est.error
-        );
+        let id = format!("estimator.cantilever.{n}x{n}_{m}B4");
+        common::figure(&format!("{id}.estimate"), 100.0 * est.relative(), "%", "falls under refinement");
+        let check = format!("{BAND}, against the exact error √(E − E_h)");
+        common::figure(&format!("{id}.effectivity"), effectivity, "", &check);
         assert!((0.7..=1.5).contains(&effectivity), "effectivity {effectivity}");
         assert!(est.relative() < last, "the estimate grew under refinement");
         last = est.relative();
@@ -188,7 +192,9 @@ fn the_exact_energy_of_the_cantilever() {
     }
     let c = (e[1] - e[0]) / (8f64.powf(-lo) - 10f64.powf(-lo));
     let exact = e[0] + c * 8f64.powf(-lo);
-    eprintln!("energies {e:?}; β = {lo:.3}; extrapolated {exact:.6e}");
+    let check = "within 2e-6 of the constant the CI test uses (5.72004e-1 J)";
+    common::figure("estimator.cantilever.exact_energy", exact, "J", check);
+    common::figure("estimator.cantilever.energy_rate", lo, "", "reported (β of E_n = E − C n^−β)");
     assert!((exact - CANTILEVER_ENERGY).abs() < 2e-6 * CANTILEVER_ENERGY);
 }
 
@@ -214,11 +220,10 @@ fn the_compact_bar_estimate_is_effective_away_from_the_rollers() {
         let (eta, error) = over(&coarse, &truth, &|_, eb| !touches_roller(eb));
         let (eta_all, error_all) = over(&coarse, &truth, &|_, _| true);
         let effectivity = eta / error;
-        eprintln!(
-            "bar {n}×{n} L9 × {m} B4: away from the rollers η = {eta:.4e}, ‖e‖ = {error:.4e}, effectivity \
-             {effectivity:.3}; whole bar {:.3}",
-            eta_all / error_all
-        );
+        let id = format!("estimator.bar.{n}x{n}_{m}B4");
+        let check = format!("{BAND}, against 8×8 L9 × 40 B4, without the roller lines' elements");
+        common::figure(&format!("{id}.effectivity"), effectivity, "", &check);
+        common::figure(&format!("{id}.effectivity_whole"), eta_all / error_all, "", "reported (the whole bar)");
         assert!((0.7..=1.5).contains(&effectivity), "effectivity {effectivity}");
     }
 }
@@ -240,11 +245,9 @@ fn the_block_estimate_is_effective_away_from_the_punch_edges() {
     let (eta, error) = over(&coarse, &truth, &|es, _| !at_edge(es));
     let (eta_all, error_all) = over(&coarse, &truth, &|_, _| true);
     let effectivity = eta / error;
-    eprintln!(
-        "block: away from the punch edges η = {eta:.4e}, ‖e‖ = {error:.4e}, effectivity {effectivity:.3}; whole \
-         block {:.3}",
-        eta_all / error_all
-    );
+    let check = format!("{BAND}, against the divisions twice finer and 3 B4, without the punch edges' elements");
+    common::figure("estimator.block.effectivity", effectivity, "", &check);
+    common::figure("estimator.block.effectivity_whole", eta_all / error_all, "", "reported (the whole block)");
     assert!((0.7..=1.5).contains(&effectivity), "effectivity {effectivity}");
 }
 

@@ -83,12 +83,13 @@ increments = {increments}
 /// Reversal, unloading and the tangent: the tests below.
 #[test]
 fn a_pushed_block_slides_at_mu_times_the_normal_force() {
+    let mut worst: f64 = 0.0;
     for mu in [0.1, 0.3] {
         let sol = common::run(&block(mu));
         let n = sol.contact("floor").unwrap().force[2];
         assert!((n / 2000.0 - 1.0).abs() < 1e-9, "normal force {n}");
         let push = sol.reaction("push").unwrap().force[0];
-        eprintln!("μ = {mu}: push reaction {push:.6e} N, μ N = {:.6e} N", mu * 2000.0);
+        worst = worst.max((push.abs() / (mu * 2000.0) - 1.0).abs());
         assert!((push.abs() / (mu * 2000.0) - 1.0).abs() < 1e-6, "push {push} vs μN {}", mu * 2000.0);
         // the floor's resultant split: normal N, tangential μ N
         let floor = sol.contact("floor").unwrap();
@@ -103,6 +104,7 @@ fn a_pushed_block_slides_at_mu_times_the_normal_force() {
         let r = pressed.reactions.iter().find(|r| r.name == "push").unwrap().force[0];
         assert!(r.abs() < mu * 2000.0, "push reaction after pressing {r}");
     }
+    common::figure("friction.slide.push", worst, "", "< 1e-6 of μN (Coulomb), μ = 0.1 and 0.3");
 }
 
 /// Steps after "slide": back to −amplitude (the press held), then home to 0.
@@ -190,7 +192,7 @@ fn push_at(a: f64) -> impl Fn(f64) -> f64 {
 #[test]
 fn a_translated_block_follows_the_coulomb_play_operator() {
     let (mu, a, n) = (0.3, 1.1e-8, 10);
-    follows_the_play_operator(&block_with(mu, "{}", "{}", a, n, BACK_AND_HOME), mu, a, n);
+    follows_the_play_operator("friction.play", &block_with(mu, "{}", "{}", a, n, BACK_AND_HOME), mu, a, n);
 }
 
 /// The same with the normal force from a force-controlled floor: the top
@@ -204,25 +206,26 @@ fn a_translated_block_on_a_force_controlled_floor_follows_the_play_operator() {
     let text = force_controlled(&block_with(mu, "{}", "{}", a, n, BACK_AND_HOME));
     let model = Model::parse(&text).unwrap();
     assert!(model.indenters[0].force.is_some() && model.loads.is_empty(), "force-controlled floor, no pressure");
-    follows_the_play_operator(&text, mu, a, n);
+    follows_the_play_operator("friction.play_force_controlled", &text, mu, a, n);
 }
 
 /// The checks of [`a_translated_block_follows_the_coulomb_play_operator`].
-fn follows_the_play_operator(text: &str, mu: f64, a: f64, n: usize) {
+fn follows_the_play_operator(id: &str, text: &str, mu: f64, a: f64, n: usize) {
     let model = Model::parse(text).unwrap();
     let floor = &model.indenters[0];
     let k: f64 = floor.nodes.iter().map(|c| c.penalty).sum();
     let normal = 2000.0;
     let r = mu * normal / k;
-    eprintln!("stick range r = μN/K = {r:.4e} m (K = {k:.4e} N/m)");
     let states = drive(&model, &path(n), push_at(a));
     let mut s: f64 = 0.0; // analytic slip (play operator)
     let mut stuck_below = 0;
+    let (mut worst_reaction, mut worst_slip): (f64, f64) = (0.0, 0.0);
     for st in &states {
         let before = s;
         s = s.clamp(st.u - r, st.u + r);
         let sliding = s != before;
         let reaction = k * (st.u - s);
+        worst_reaction = worst_reaction.max((st.reaction - reaction).abs() / (mu * normal));
         assert!(
             (st.reaction - reaction).abs() < 1e-9 * mu * normal,
             "U = {:e}: reaction {} vs {reaction}",
@@ -232,12 +235,15 @@ fn follows_the_play_operator(text: &str, mu: f64, a: f64, n: usize) {
         assert!(st.reaction.abs() <= mu * normal * (1.0 + 1e-12));
         for p in st.points.iter() {
             assert!(p.active);
+            worst_slip = worst_slip.max((p.slip[0] - s).abs() / a);
             assert!((p.slip[0] - s).abs() < 1e-9 * a, "U = {:e}: slip {:e} vs {s:e}", st.u, p.slip[0]);
             assert_eq!(p.sliding, sliding, "U = {:e}", st.u);
         }
         stuck_below += usize::from(!sliding && st.reaction.abs() > 0.0 && st.reaction.abs() < mu * normal * 0.999);
     }
     assert!(stuck_below >= 2, "increments that stick below μN: {stuck_below}");
+    common::figure(&format!("{id}.reaction"), worst_reaction, "", "< 1e-9 of μN, against the play operator");
+    common::figure(&format!("{id}.slip"), worst_slip, "", "< 1e-9 of the amplitude at every point, against the play operator");
     let end = states.last().unwrap();
     assert!((end.u).abs() < 1e-20 && (end.reaction / (mu * normal) - 1.0).abs() < 1e-9);
     assert!(end.points.iter().all(|p| (p.slip[0] + r).abs() < 1e-9 * a), "residual slip −r at every point");
@@ -379,11 +385,8 @@ fn the_frictional_tangent_matches_finite_differences_sticking_and_sliding() {
         .collect();
     let penalty = model.indenters[0].nodes.iter().map(|c| c.penalty).fold(0.0, f64::max);
     let (worst, skew) = common::tangent_vs_differences(&mut s, &columns, 1e-12, penalty);
-    eprintln!(
-        "{} columns ({sliding} sliding, {sticking} sticking points): largest difference {worst:.2e} ε_N, \
-         largest asymmetry {skew:.2e} ε_N",
-        columns.len()
-    );
+    common::figure("friction.tangent.indenter", worst, "ε_N", "< 1e-6 ε_N against central differences");
+    common::figure("friction.tangent.indenter_skew", skew, "ε_N", "> 0.1 ε_N (the sliding tangent is unsymmetric)");
     assert!(skew > 0.1, "the sliding points' tangent is unsymmetric (μ = 0.3)");
     assert!(worst < 1e-6, "tangent differs from finite differences by {worst:e} of the largest penalty");
 }
@@ -425,9 +428,10 @@ fn newton_converges_quadratically_on_the_sliding_plateau() {
         }
         s.correct().unwrap();
     }
-    eprintln!("relative residuals {:?}", residuals.iter().map(|v| format!("{v:.2e}")).collect::<Vec<_>>());
     let r = &residuals;
     assert!(r.last().unwrap() < &1e-11, "converged");
+    let constant = (1..r.len() - 1).filter(|&k| r[k + 1] > 1e-13).map(|k| r[k + 1] / (r[k] * r[k])).fold(0.0, f64::max);
+    common::figure("friction.newton.constant", constant, "", "r_(k+1)/r_k² ≤ 100 from the second iteration on");
     // below 1e-13 the residual is round-off (floor 2e-15), not Newton's
     // rate: a step from r = 1.1e-9 lands on the floor, not on 100 r² = 1e-16
     for k in (1..r.len() - 1).filter(|&k| r[k + 1] > 1e-13) {
@@ -520,9 +524,6 @@ name = "slide"
         .collect();
     let penalty = model.contacts[0].pairs.iter().map(|p| p.penalty).fold(0.0, f64::max);
     let (worst, _) = common::tangent_vs_differences(&mut s, &columns, 1e-12, penalty);
-    eprintln!(
-        "{} columns ({sliding} sliding, {sticking} sticking pairs): largest difference {worst:.2e} ε_N",
-        columns.len()
-    );
+    common::figure("friction.tangent.pairs", worst, "ε_N", "< 1e-6 ε_N against central differences");
     assert!(worst < 1e-6, "tangent differs from finite differences by {worst:e} of the largest penalty");
 }

@@ -5,6 +5,8 @@ use cufem::analysis::{self, Silent};
 use cufem::bc::Constraint;
 use cufem::model::Model;
 
+mod common;
+
 /// A distorted section of four quads (moved interior point and skewed
 /// outer corners), element type `sk`, swept along 3 beam elements of type `bk`.
 fn distorted_block(sk: &str, bk: &str) -> String {
@@ -47,6 +49,7 @@ fn linear_field(x: [f64; 3]) -> [f64; 3] {
 /// equal to the field's symmetric gradient.
 #[test]
 fn patch_test_distorted_sections_all_beam_types() {
+    let mut largest: f64 = 0.0;
     for sk in ["L9", "L16"] {
         for bk in ["B2", "B3", "B4"] {
             let mut model = Model::parse(&distorted_block(sk, bk)).unwrap();
@@ -74,7 +77,7 @@ fn patch_test_distorted_sections_all_beam_types() {
                     worst = worst.max((sol.u[3 * n + k] - exact[k]).abs() / scale);
                 }
             }
-            eprintln!("patch {sk} × {bk}: largest relative nodal error {worst:e}");
+            largest = largest.max(worst);
             // issue #2 asks for 1e-10 relative; observed ≤ 6e-15 (round-off)
             assert!(worst < 1e-10, "{sk}{bk}: nodal error {worst:e}");
             // strain at interior points is the symmetric gradient
@@ -91,6 +94,8 @@ fn patch_test_distorted_sections_all_beam_types() {
             }
         }
     }
+    // issue #2 asks for 1e-10 relative
+    common::figure("linear.patch.nodal_error", largest, "", "< 1e-10 of the field at every node (issue 2)");
 }
 
 fn cantilever(nx: usize, ny: usize) -> String {
@@ -137,10 +142,16 @@ fn cantilever_tip_deflection_matches_timoshenko_and_converges() {
     let exact = p * l.powi(3) / (3.0 * e * i) + p * l / (5.0 / 6.0 * g * b * b);
     assert!((exact - 5.759e-4).abs() < 5e-8);
     let mut errors = Vec::new();
-    for (nx, ny) in [(1, 2), (2, 5), (4, 10)] {
+    for (nx, ny, id) in [(1, 2, "1x1_2B4"), (2, 5, "2x2_5B4"), (4, 10, "4x4_10B4")] {
         let (uz, model, sol) = tip_deflection(&cantilever(nx, ny), [0.05, 1.0, 0.05]);
         let err = (-uz - exact).abs() / exact;
         errors.push(err);
+        let id = format!("linear.cantilever.{id}");
+        if nx == 2 {
+            common::within(&id, -uz, exact, 0.02, "Timoshenko, κ = 5/6");
+        } else {
+            common::figure(&id, 100.0 * (-uz / exact - 1.0), "%", "against Timoshenko; falls under refinement");
+        }
         // reactions balance the applied load (internal forces sum to zero)
         let r = sol.reaction("root").unwrap().force;
         let applied = model.loads[0].resultant();
@@ -148,8 +159,6 @@ fn cantilever_tip_deflection_matches_timoshenko_and_converges() {
             assert!((r[k] + applied[k]).abs() < 1e-9 * 1000.0, "reaction {k}: {} vs {}", r[k], applied[k]);
         }
     }
-    eprintln!("relative errors (1×1 L9, 2 B4), (2×2, 5), (4×4, 10): {errors:?}");
-    assert!(errors[1] < 0.02, "5 B4 × 2×2 L9: error {}", errors[1]);
     // approaching the beam solution under refinement
     assert!(errors[0] > errors[1] && errors[1] > errors[2], "{errors:?}");
 }
@@ -193,8 +202,6 @@ total_force = [0.0, 0.0, -10.0]
     let view = sol.fields(&model);
     let pts = [[0.015, 1.0, 0.00075], [0.015, 1.0, 0.02925], [0.00075, 1.0, 0.015], [0.02925, 1.0, 0.015]];
     let uz: f64 = pts.iter().map(|&x| view.sample_point(None, x).unwrap().u[2]).sum::<f64>() / 4.0;
-    let err = (-uz - exact).abs() / exact;
-    eprintln!("tube tip deflection {uz:e} m, Timoshenko {exact:e} m, relative error {err:.4}");
-    // issue #2 asks for 3 %; observed 0.56 %
-    assert!(err < 0.03, "tube: {uz:e} vs {exact:e} (error {err})");
+    // issue #2 asks for 3 %
+    common::within("linear.tube.tip", -uz, exact, 0.03, "Timoshenko with Cowper's κ");
 }

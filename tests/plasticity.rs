@@ -6,6 +6,8 @@ use std::path::Path;
 use cufem::analysis::{self, Silent};
 use cufem::model::Model;
 
+mod common;
+
 const EXAMPLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/epp_cantilever.toml");
 
 /// Beam theory of the example (see its header): P_y and δ_y.
@@ -49,13 +51,16 @@ fn epp_cantilever_follows_the_plastic_hinge_theory() {
             plastic_points += usize::from(p > 1.0);
         }
     }
-    eprintln!("{plastic_points} plastic points up to p = 1.4, largest error {:.2} %", 100.0 * worst);
+    let check = "< 1 % at every point with p ≤ 1.4 against the plastic-hinge theory";
+    common::figure("plasticity.epp.hinge_error", 100.0 * worst, "%", check);
+    common::figure("plasticity.epp.plastic_points", plastic_points as f64, "", "≥ 5 between p = 1 and 1.4");
     assert!(plastic_points >= 5, "only {plastic_points} points between first yield and p = 1.4");
     // collapse plateau (δ = 6 δ_y) against the plastic-hinge load 1.5 P_y:
-    // 1.535 P_y here, converged under refinement (see the example's header);
-    // 3 % leaves half of that margin for the mesh
-    eprintln!("collapse load {:.4} P_y (plastic hinge: 1.5 P_y)", p_max);
-    assert!((p_max / 1.5 - 1.0).abs() < 0.03, "collapse at p = {p_max}");
+    // above it by a 3D effect of the moment gradient that stays under
+    // refinement (see the example's header); 3 % leaves half of that margin
+    // for the mesh
+    common::figure("plasticity.epp.collapse_load", p_max, "P_y", "reported (plastic hinge: 1.5 P_y)");
+    common::within("plasticity.epp.collapse", p_max, 1.5, 0.03, "the plastic-hinge load M_p/L = 1.5 P_y");
 }
 
 /// Quadratic convergence: once the relative residual is below 1e-2, each
@@ -138,7 +143,9 @@ fn assert_quadratic(name: &str, model: &Model, below: f64, limit: f64, min_pairs
             }
         }
     }
-    eprintln!("{name}: {pairs} residual pairs, largest r_(k+1)/r_k² = {worst:.3}");
+    let check = format!("< {limit} over every pair with r_k ≤ {below}, at least {min_pairs} pairs");
+    common::figure(&format!("plasticity.newton.{name}.constant"), worst, "", &check);
+    common::figure(&format!("plasticity.newton.{name}.pairs"), pairs as f64, "", &format!("≥ {min_pairs}"));
     assert!(pairs >= min_pairs, "{name}: only {pairs} pairs in the asymptotic range");
     assert!(worst < limit, "{name}: r_(k+1)/r_k² reached {worst}");
 }

@@ -87,7 +87,9 @@ fn a_roller_slides_over_a_block_with_the_exact_gap() {
     let forces: Vec<[f64; 3]> = sol.history.iter().map(|h| h.contact("roller").unwrap().force).collect();
     assert_eq!(forces.len(), 10);
     let (start, end) = (forces[1], forces[9]);
-    eprintln!("start {start:?}, end {end:?}");
+    let spread = forces[1..].iter().map(|f| (f[2] / start[2] - 1.0).abs()).fold(0.0, f64::max);
+    common::figure("rigid.slide.vertical_force", 100.0 * spread, "%", "< 4 % of its start at every increment");
+    common::figure("rigid.slide.mirror", (end[2] / start[2] - 1.0).abs(), "", "< 1e-6 (mirror positions)");
     assert!((end[2] / start[2] - 1.0).abs() < 1e-6, "mirror positions: {start:?} vs {end:?}");
     assert!((end[1] + start[1]).abs() < 1e-6 * start[2].abs(), "f_y reverses: {start:?} vs {end:?}");
     for f in &forces[1..] {
@@ -96,7 +98,7 @@ fn a_roller_slides_over_a_block_with_the_exact_gap() {
     }
     let fixed = common::run(&rolled("node_to_node"));
     let f = fixed.contact("roller").unwrap().force;
-    eprintln!("node-to-node after the slide: {f:?}");
+    common::figure("rigid.slide.node_to_node_f_z", f[2] / end[2], "", "> 2, or f_y > 0.1 f_z (node-to-node cannot follow)");
     assert!(f[1].abs() > 0.1 * f[2].abs() || f[2] / end[2] > 2.0, "node-to-node followed the slide: {f:?}");
 }
 
@@ -128,11 +130,6 @@ fn tangent_error(text: &str, path: &[(f64, bool)], h: f64) -> (f64, usize, usize
     let penalty = model.indenters[0].nodes.iter().map(|c| c.penalty).fold(0.0, f64::max);
     let (worst, _) = common::tangent_vs_differences(&mut s, &columns, h, penalty);
     let sliding = points.iter().filter(|p| p.active && p.sliding).count();
-    eprintln!(
-        "{} columns, {} active ({sliding} sliding): largest difference {worst:.2e} ε",
-        columns.len(),
-        active.len()
-    );
     (worst, active.len(), sliding)
 }
 
@@ -140,6 +137,7 @@ fn tangent_error(text: &str, path: &[(f64, bool)], h: f64) -> (f64, usize, usize
 fn the_exact_gap_tangent_matches_finite_differences() {
     let (worst, _, _) =
         tangent_error(&rolled("surface"), &[(0.5, true), (1.0, true), (1.15, true), (1.3, false)], 1e-9);
+    common::figure("rigid.tangent", worst, "ε", "< 1e-7 ε against central differences");
     assert!(worst < 1e-7, "tangent differs from finite differences by {worst:e} of the largest penalty");
 }
 
@@ -161,9 +159,11 @@ fn the_exact_gap_friction_tangent_matches_finite_differences() {
     assert!(text.contains("friction = 0.3"));
     let (worst, active, sliding) = tangent_error(&text, &[(0.5, true), (1.0, true), (1.001, false)], 1e-11);
     assert!(sliding > 0 && sliding < active, "partial slip: {sliding} of {active} sliding");
+    common::figure("rigid.friction_tangent.partial_slip", worst, "ε", "< 1e-6 ε against central differences");
     assert!(worst < 1e-6, "partial slip: tangent differs from finite differences by {worst:e} of the largest penalty");
     let (worst, active, sliding) = tangent_error(&text, &[(0.5, true), (1.0, true), (1.01, false)], 1e-9);
     assert_eq!(sliding, active);
+    common::figure("rigid.friction_tangent.sliding", worst, "ε", "< 1e-7 ε against central differences");
     assert!(worst < 1e-7, "sliding: tangent differs from finite differences by {worst:e} of the largest penalty");
 }
 
@@ -182,12 +182,14 @@ fn a_roller_dragged_with_friction_resists_with_mu_times_the_normal_force() {
     assert!(text.contains("elements = 16"));
     let sol = common::run(&text);
     let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    let mut worst: f64 = 0.0;
     for h in &sol.history[3..] {
         let c = h.contact("roller").unwrap();
         let ratio = norm(c.tangential_force) / norm(c.normal_force);
-        eprintln!("λ = {}: f_t / f_n = {ratio:.10}", h.lambda);
+        worst = worst.max((ratio - 0.3).abs());
         assert!((ratio - 0.3).abs() < 1e-6, "λ = {}: f_t / f_n = {ratio}", h.lambda);
     }
+    common::figure("rigid.friction.ratio", worst, "", "|f_t/f_n − μ| < 1e-6 at every sliding increment");
     let points = &sol.contact_sets.iter().find(|s| s.name == "roller").unwrap().points;
     assert!(points.iter().filter(|p| p.active).all(|p| p.sliding));
 }
@@ -214,7 +216,7 @@ fn a_ball_under_force_control_reaches_the_displacement_controlled_state() {
     let pushed =
         common::run(&text.replace("displacement = [0.0, 0.0, -5e-5]", &format!("force = [0.0, 0.0, {:e}]", force[2])));
     let d = pushed.history.last().unwrap().contact("ball").unwrap().displacement[2];
-    eprintln!("force {:.6e} N: displacement {d:e} m (displacement control: -5e-5 m)", -force[2]);
+    common::figure("rigid.force_control", (d / -5e-5 - 1.0).abs(), "", "< 1e-6 of the displacement-controlled run's");
     assert!((d / -5e-5 - 1.0).abs() < 1e-6, "force control reached {d} m");
 }
 
@@ -308,7 +310,7 @@ displacement = [0.0, 0.0, {}]
         nodes.flat_map(|n| (0..3).map(move |c| 3 * n + c)).filter_map(|d| s.equation(d).map(|e| (d, e))).collect();
     let scale = s.tangent_values().iter().fold(0.0f64, |a, b| a.max(b.abs()));
     let (worst, _) = common::tangent_vs_differences(&mut s, &columns, 1e-9, scale);
-    eprintln!("{} columns: largest difference {worst:.2e} of the largest entry", columns.len());
+    common::figure("rigid.large_rotation.tangent", worst, "", "< 1e-6 of the largest entry (issue 26)");
     assert!(worst < 1e-6, "tangent differs from finite differences by {worst:e}");
 }
 

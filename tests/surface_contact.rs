@@ -132,9 +132,11 @@ fn patch_test_transmits_a_uniform_pressure_across_non_matching_meshes() {
         let (worst, total, active) = pressure_error(&sol);
         let n = sol.contact_points("interface").unwrap().len();
         let pen = sol.contact("interface").unwrap().max_penetration;
-        eprintln!(
-            "{keys:?}: {n} points, {active} active, pressure deviation {worst:e}, force {total:e}, penetration {pen:e}"
-        );
+        let id = if keys.is_empty() { "surface.patch.penalty" } else { "surface.patch.augmented" };
+        common::figure(&format!("{id}.pressure"), worst, "", "< 1e-6 of p at every point (double-precision factors)");
+        if !keys.is_empty() {
+            common::figure(&format!("{id}.penetration"), pen, "m", "≤ 1e-9 m (the augmented Lagrangian's tolerance)");
+        }
         assert_eq!(active, n, "every point carries the pressure");
         assert!(worst < 1e-6 && total < 1e-6, "{worst:e} {total:e}");
         if !keys.is_empty() {
@@ -163,7 +165,7 @@ fn patch_test_transmits_a_uniform_pressure_across_non_matching_meshes() {
     }
     let (_, sol) = run(&(stacked_blocks("penetration_tolerance = 1e-9", "") + PRESSURE));
     let (worst, total, _) = pressure_error(&sol);
-    eprintln!("mixed precision, augmented: pressure deviation {worst:e}, force {total:e}");
+    common::figure("surface.patch.single_factors", worst, "", "< 1e-5 of p (Newton's tolerance)");
     assert!(worst < 1e-5 && total < 1e-5, "{worst:e} {total:e}");
 }
 
@@ -216,10 +218,10 @@ fn surface_contact_tangent_matches_finite_differences() {
     let columns: Vec<(usize, usize)> = dofs.iter().map(|&d| (d, eq[d])).collect();
     let contact_columns = columns.len();
     let (worst, _) = common::tangent_vs_differences(&mut s, &columns, 1e-11, scale);
-    eprintln!("{contact_columns} columns checked, largest relative difference {worst:e}");
-    // measured 2.2e-11 (35 columns, h = 1e-11 m); a wrong block (sign, factor,
-    // missing coupling) gives O(1e-3..1); the bound leaves room for
-    // round-off as in tests/contact.rs
+    // a wrong block (sign, factor, missing coupling) gives O(1e-3..1); the
+    // bound leaves room for round-off as in tests/contact.rs
+    let check = format!("< 1e-8 of the largest entry over {contact_columns} columns, against central differences");
+    common::figure("surface.tangent", worst, "", &check);
     assert!(worst < 1e-8, "tangent differs from finite differences by {worst:e} of its largest entry");
 }
 
@@ -242,10 +244,12 @@ fn newton_converges_quadratically_with_surface_contact() {
     for lambda in [0.8, 1.0] {
         s.set_load_factor(lambda);
         let report = newton::solve(&mut s, &settings, &Default::default());
-        eprintln!("λ = {lambda}: residuals {:?}", report.residuals);
         assert!(report.converged(), "{report:?}");
         if lambda == 1.0 {
             let r = &report.residuals;
+            for (k, v) in r.iter().enumerate() {
+                common::figure(&format!("surface.newton.residual{k}"), *v, "", "r_(k+1) ≤ 10 r_k² over the last steps above 1e-12");
+            }
             let tail: Vec<f64> = r.iter().copied().filter(|&v| v > 1e-12).collect();
             assert!(tail.len() >= 3, "{r:?}");
             for w in tail.windows(2).skip(tail.len().saturating_sub(3)) {
@@ -295,15 +299,12 @@ fn non_matching_cantilevers_match_the_matching_mesh() {
     for name in ["y_177.8mm", "y_228.6mm"] {
         rows.push((format!("s_yy {name}"), probe(&model_n, &n, name), probe(&model_m, &m, name)));
     }
-    for (what, a, b) in &rows {
-        eprintln!("{what}: non-matching {a:.6e}, matching {b:.6e}, {:+.2} %", 100.0 * (a / b - 1.0));
-    }
-    for (what, a, b) in &rows {
-        assert!((a / b - 1.0).abs() < 0.02, "{what}: {a} against {b}");
+    for ((what, a, b), id) in rows.iter().zip(["pair", "roller_7in", "s_yy_177", "s_yy_228"]) {
+        common::within(&format!("surface.nonmatching.{id}"), *a, *b, 0.02, &format!("{what} on the matching mesh"));
     }
     let total = fz(&m, "indenter_7in") + fz(&m, "indenter_9in");
     let d9 = fz(&n, "indenter_9in") - fz(&m, "indenter_9in");
-    eprintln!("9 in roller: {:.1} N against {:.1} N", fz(&n, "indenter_9in"), fz(&m, "indenter_9in"));
+    common::figure("surface.nonmatching.roller_9in", 100.0 * d9 / total, "%", "< 1 % of the rollers' total force");
     assert!((d9 / total).abs() < 0.01, "9 in roller moved by {d9} N of {total} N");
 }
 
@@ -390,13 +391,7 @@ fn surface_friction_slides_at_mu_n() {
     let points = sol.contact_points("interface").unwrap();
     let sliding = points.iter().filter(|c| c.active && c.sliding).count();
     let active = points.iter().filter(|c| c.active).count();
-    let c = sol.contact("interface").unwrap();
-    eprintln!(
-        "push reaction {push:.6e} N (μN = 600 N), {sliding} of {active} active nodes sliding, normal {:?}, tangential {:?}, iterations {}",
-        c.normal_force,
-        c.tangential_force,
-        sol.increments.iter().map(|i| i.newton.iterations).sum::<usize>()
-    );
+    common::within("surface.friction.push", push, 600.0, 1e-6, "μN = 600 N");
     assert!((push / 600.0 - 1.0).abs() < 1e-6, "push reaction {push}");
     assert_eq!(sliding, active);
 }
@@ -432,8 +427,7 @@ fn an_initial_gap_closes_and_then_transmits_a_uniform_pressure() {
             (f / c.area / -expected - 1.0).abs()
         })
         .fold(0.0, f64::max);
-    let n_points = model.contacts[0].surface.as_ref().map(|s| s.points.len()).unwrap();
-    eprintln!("{} nodes ({n_points} integration points), pressure deviation from 32 MPa {worst:e}", points.len());
+    common::figure("surface.gap_closes.pressure", worst, "", "< 1e-5 of 32 MPa at every node");
     assert!(points.iter().all(|c| c.active));
     assert!(worst < 1e-5, "{worst:e}");
     let fields = sol.fields(&model);
@@ -478,10 +472,7 @@ fn the_frictional_surface_tangent_matches_finite_differences() {
         .collect();
     let penalty = (0..points.len()).map(|j| model.contacts[0].point_penalty(j)).fold(0.0, f64::max);
     let (worst, skew) = common::tangent_vs_differences(&mut s, &columns, 1e-12, penalty);
-    eprintln!(
-        "{} columns ({sliding} sliding, {sticking} sticking points): largest difference {worst:.2e} ε, asymmetry {skew:.2e} ε",
-        columns.len()
-    );
+    common::figure("surface.friction.tangent", worst, "ε", "< 1e-6 ε against central differences");
     assert!(skew > 1e-3, "sliding points should make the tangent unsymmetric");
     assert!(worst < 1e-6, "tangent differs from finite differences by {worst:e} of the largest penalty");
 }

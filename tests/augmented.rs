@@ -60,13 +60,19 @@ fn augmented_lagrangian_makes_the_answer_independent_of_the_penalty() {
     assert!(apart(&soft_al, &stiff_al) < 1e-6);
     assert!(apart(&soft_al, &stiffest_al) < 1e-6);
     let iterations = |s: &Solution| s.increments.iter().map(|i| i.newton.iterations).sum::<usize>() as f64;
-    for (id, s) in [("penalty_1", &soft), ("penalty_100", &stiff), ("augmented_1", &soft_al), ("augmented_100", &stiff_al)]
+    for (id, s) in
+        [("penalty_1", &soft), ("penalty_100", &stiff), ("augmented_1", &soft_al), ("augmented_100", &stiff_al)]
     {
         common::figure(&format!("augmented.iterations.{id}"), iterations(s), "", "reported");
     }
     assert!(pen(&soft_al) <= 1e-10 && pen(&stiff_al) <= 1e-10 && pen(&stiffest_al) <= 1e-10);
     // penalty forces approach the augmented (rigid-contact) one from below
     let check = "below the augmented force (the penalty forces approach it from below)";
-    common::figure("augmented.pure_penalty_1_vs_augmented", 100.0 * (force(&soft) / force(&stiff_al) - 1.0), "%", check);
+    common::figure(
+        "augmented.pure_penalty_1_vs_augmented",
+        100.0 * (force(&soft) / force(&stiff_al) - 1.0),
+        "%",
+        check,
+    );
     assert!(force(&soft) < force(&stiff) && force(&stiff) < force(&stiff_al) * (1.0 + 1e-9));
 }

@@ -243,7 +243,12 @@ fn follows_the_play_operator(id: &str, text: &str, mu: f64, a: f64, n: usize) {
     }
     assert!(stuck_below >= 2, "increments that stick below μN: {stuck_below}");
     common::figure(&format!("{id}.reaction"), worst_reaction, "", "< 1e-9 of μN, against the play operator");
-    common::figure(&format!("{id}.slip"), worst_slip, "", "< 1e-9 of the amplitude at every point, against the play operator");
+    common::figure(
+        &format!("{id}.slip"),
+        worst_slip,
+        "",
+        "< 1e-9 of the amplitude at every point, against the play operator",
+    );
     let end = states.last().unwrap();
     assert!((end.u).abs() < 1e-20 && (end.reaction / (mu * normal) - 1.0).abs() < 1e-9);
     assert!(end.points.iter().all(|p| (p.slip[0] + r).abs() < 1e-9 * a), "residual slip −r at every point");

@@ -98,7 +98,12 @@ fn a_roller_slides_over_a_block_with_the_exact_gap() {
     }
     let fixed = common::run(&rolled("node_to_node"));
     let f = fixed.contact("roller").unwrap().force;
-    common::figure("rigid.slide.node_to_node_f_z", f[2] / end[2], "", "> 2, or f_y > 0.1 f_z (node-to-node cannot follow)");
+    common::figure(
+        "rigid.slide.node_to_node_f_z",
+        f[2] / end[2],
+        "",
+        "> 2, or f_y > 0.1 f_z (node-to-node cannot follow)",
+    );
     assert!(f[1].abs() > 0.1 * f[2].abs() || f[2] / end[2] > 2.0, "node-to-node followed the slide: {f:?}");
 }
 

@@ -248,7 +248,12 @@ fn newton_converges_quadratically_with_surface_contact() {
         if lambda == 1.0 {
             let r = &report.residuals;
             for (k, v) in r.iter().enumerate() {
-                common::figure(&format!("surface.newton.residual{k}"), *v, "", "r_(k+1) ≤ 10 r_k² over the last steps above 1e-12");
+                common::figure(
+                    &format!("surface.newton.residual{k}"),
+                    *v,
+                    "",
+                    "r_(k+1) ≤ 10 r_k² over the last steps above 1e-12",
+                );
             }
             let tail: Vec<f64> = r.iter().copied().filter(|&v| v > 1e-12).collect();
             assert!(tail.len() >= 3, "{r:?}");

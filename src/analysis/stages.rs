@@ -69,6 +69,7 @@ fn stop(what: &str, e: &EigenError, lambda: f64, history: &[HistoryRow], model: 
         lambda,
         dlambda: 0.0,
         last_converged: lambda,
+        seconds: None,
         newton: Report {
             message: Some(format!(
                 "the {what} analysis (analysis.type = \"{what}\") about the converged static state at load factor \

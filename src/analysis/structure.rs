@@ -235,11 +235,6 @@ impl<'m> Structure<'m> {
         &self.system.assembler.pattern
     }
 
-    /// The model.
-    pub(crate) fn model(&self) -> &'m Model {
-        self.model
-    }
-
     /// Equation of a DOF, `None` if it is fixed.
     pub fn equation(&self, dof: usize) -> Option<usize> {
         let e = self.system.assembler.dofs.eq[dof];

@@ -147,7 +147,7 @@ fn impactor(key: &str, d: &IndenterFile, transient: bool) -> Result<Option<conta
     if !transient {
         return Err(invalid(format!("{key}.mass"), bounds::number(mass), "only with analysis.type = \"transient\""));
     }
-    ranges::IMPACTOR_MASS.check(&format!("{key}.mass"), mass, "the impactor's mass in kg")?;
+    ranges::IMPACTOR_MASS.check(&format!("{key}.mass"), mass, "the impactor's mass in kg, positive")?;
     let speed = velocity.iter().map(|v| v * v).sum::<f64>().sqrt();
     if !(speed > 0.0 && speed <= super::transient::MAX_SPEED) {
         return Err(invalid(

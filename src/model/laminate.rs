@@ -36,7 +36,7 @@ pub(super) fn check(sk: &str, plies: &[PlyFile]) -> Result<(), ModelError> {
     }
     for (k, p) in plies.iter().enumerate() {
         let pk = format!("{sk}.plies[{k}]");
-        ranges::LENGTH.check(&format!("{pk}.thickness"), p.thickness, "the ply thickness in m")?;
+        ranges::LENGTH.check(&format!("{pk}.thickness"), p.thickness, "the ply thickness in m, positive")?;
         let n = p.elements.unwrap_or(super::defaults::THROUGH);
         if !(1..=MAX_COUNT).contains(&n) {
             return Err(invalid(format!("{pk}.elements"), n, format!("an integer in 1..={MAX_COUNT}")));

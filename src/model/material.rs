@@ -175,7 +175,11 @@ fn full_stiffness(key: &str, rows: &[Exact<f64, 6>]) -> Result<Matrix6, ModelErr
 fn strengths(key: &str, s: &StrengthsFile) -> Result<Strengths, ModelError> {
     let sk = format!("{key}.strengths");
     let v = |name: &str, v: f64| {
-        ranges::STRENGTH.check(&format!("{sk}.{name}"), v, "a strength in Pa, compressive ones as magnitudes")
+        ranges::STRENGTH.check(
+            &format!("{sk}.{name}"),
+            v,
+            "a strength in Pa, positive (compressive ones as magnitudes)",
+        )
     };
     let (yt, yc, s12) = (v("yt", s.yt)?, v("yc", s.yc)?, v("s12", s.s12)?);
     Ok(Strengths {

@@ -112,7 +112,7 @@ impl Sections<'_> {
         }
         let need = |name: &str, v: Option<f64>| {
             v.ok_or_else(|| invalid(format!("{sk}.{name}"), "(missing)", "a positive length in m"))
-                .and_then(|v| ranges::LENGTH.check(&format!("{sk}.{name}"), v, "a length in m"))
+                .and_then(|v| ranges::LENGTH.check(&format!("{sk}.{name}"), v, "a positive length in m"))
         };
         let (w, h, t) = (need("width", s.width)?, need("height", s.height)?, need("thickness", s.thickness)?);
         if 2.0 * t >= w.min(h) {
@@ -402,7 +402,7 @@ fn wall_plies(
 
 fn length(key: String, v: Option<f64>, what: &str) -> Result<f64, ModelError> {
     let v = v.ok_or_else(|| invalid(&key, "(missing)", format!("{what} in m")))?;
-    ranges::LENGTH.check(&key, v, &format!("{what} in m"))
+    ranges::LENGTH.check(&key, v, &format!("{what} in m, positive"))
 }
 
 fn point(key: String, v: Option<[f64; 2]>) -> Result<[f64; 2], ModelError> {

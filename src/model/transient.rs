@@ -79,7 +79,7 @@ fn settings(
                 format!("the time of one load step in s with analysis.type = \"transient\" ({key} gives none)"),
             )
         })?;
-        ranges::DURATION.check(key, d, "the time of a load step in s")
+        ranges::DURATION.check(key, d, "the time of a load step in s, positive")
     };
     let base = file.duration.map(|d| duration("analysis.duration", Some(d))).transpose()?;
     let durations = if steps.is_empty() {

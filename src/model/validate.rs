@@ -185,9 +185,11 @@ pub(super) fn penalty(key: &str, penalty: Option<f64>, factor: Option<f64>) -> R
         (Some(_), Some(_)) => {
             Err(invalid(format!("{key}.penalty"), "both penalty and penalty_factor", "at most one of them"))
         }
-        (Some(p), None) => {
-            Ok(Penalty::PerArea(ranges::PENALTY.check(&format!("{key}.penalty"), p, "a penalty per area in Pa/m")?))
-        }
+        (Some(p), None) => Ok(Penalty::PerArea(ranges::PENALTY.check(
+            &format!("{key}.penalty"),
+            p,
+            "a positive penalty per area in Pa/m",
+        )?)),
         (None, Some(a)) => {
             let (lo, hi) = bounds::PENALTY_FACTOR;
             Ok(Penalty::Factor(bounds::within(

@@ -87,7 +87,7 @@ fn readme_names_the_set_up_commands_ci_runs() {
         .lines()
         .find_map(|l| l.strip_prefix("rust-version = ").map(|v| v.trim_matches('"').to_string()))
         .expect("rust-version in Cargo.toml");
-    assert!(readme.contains(&format!("**{msrv} or newer**")), "README.md must state Rust {msrv}");
+    assert!(readme.contains(&format!("**`{msrv}` or newer**")), "README.md must state Rust {msrv}");
 }
 
 /// GitHub's anchor of a heading: lowercase, only letters, digits, spaces,
@@ -409,8 +409,9 @@ fn a_figure_matches_its_row_at_the_precision_written() {
     assert!((v - 0.95e-3).abs() < 1e-18 && (r - 0.5e-5).abs() < 1e-18);
 }
 
-/// Every figure of README.md and docs/*.md (but the report itself) carries
-/// a tag naming a row of docs/validation.md, and shows that row's value at
+/// Every document (README.md and docs/*.md but the report itself) holds the
+/// line `SOURCED`, and every figure in it carries a tag naming a row of
+/// docs/validation.md, and shows that row's value at
 /// the precision written (an unsigned figure may show its magnitude; a tag
 /// `<!--v:ID*1e-6-->` scales the row into the unit written). A
 /// figure added without a source, or left behind when the report moved,
@@ -424,6 +425,7 @@ fn every_figure_in_the_docs_has_a_source() {
         let shown = path.strip_prefix(root()).unwrap().display().to_string();
         let text = std::fs::read_to_string(&path).unwrap();
         if !text.contains(SOURCED) {
+            bad.push(format!("{shown}: no line {SOURCED} (every document's figures are checked)"));
             continue;
         }
         for f in figures(&text) {

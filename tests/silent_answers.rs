@@ -93,6 +93,11 @@ fn a_velocity_across_a_symmetry_plane_is_refused_and_one_along_it_is_exact() {
     let (model, sol) = solve(&flying_rod("[0.0, 1.0, 0.0]", &plane("side", "{ x = 0.0 }", "above")));
     let u = tip(&model, &sol);
     assert!((u[1] - 6e-4).abs() < 1e-9, "{u:?}");
+    // its energy: the half's kinetic energy is half the rod's ½ m v² =
+    // ½ · (8000 kg/m³ · 1e-4 m³) · (1 m/s)² = 0.4 J, the full structure's all of it
+    let summary = cufem::io::full_summary(&model, &sol).unwrap();
+    let (part, full) = (summary.energy.unwrap(), summary.full_structure_energy.unwrap());
+    assert!((part.kinetic - 0.2).abs() < 1e-9 && (full.kinetic - 0.4).abs() < 1e-9, "{part:?} {full:?}");
 }
 
 #[test]
@@ -166,6 +171,17 @@ fn loads_and_tools_that_are_not_their_own_mirror_image_are_refused() {
     let punch = "[[indenters]]\nname = \"punch\"\nbody = \"beam\"\nshape = \"flat\"\nsurface = { z = 0.01 }\n\
                  normal = \"-z\"\nposition = 0.01\nx = [-0.005, 0.01]\ndisplacement = [0.0, 0.0, -1e-4]";
     holds(&refused(&half_cantilever(punch)), &["indenters[0].x", "crosses symmetry plane"]);
+    // a tool or a contact on the cut face, which the plane's u_x = 0 holds (inside the full
+    // structure there is no surface to press)
+    let side = "[[indenters]]\nname = \"side\"\nbody = \"beam\"\nshape = \"flat\"\nsurface = { x = 0.0 }\n\
+                normal = \"+x\"\nposition = -0.001\ndisplacement = [2e-3, 0.0, 0.0]";
+    holds(&refused(&half_cantilever(side)), &["indenters[0].surface", "lying in symmetry plane \"mid_x\""]);
+    let pad = "[[bodies]]\nname = \"pad\"\nmaterial = \"steel\"\nsection = { shape = \"rectangle\", element = \"L9\", \
+               x = { from = 0.0, to = 0.01, elements = 1 }, z = { from = 0.01, to = 0.02, elements = 1 } }\n\
+               axis = { element = \"B4\", from = 0.0, to = 0.2, elements = 4 }\n\
+               [[contacts]]\nname = \"c\"\nmaster = { body = \"pad\", where = { x = 0.0 } }\n\
+               slave = { body = \"beam\", where = { z = 0.01 } }";
+    holds(&refused(&half_cantilever(pad)), &["contacts[0].master.where", "lying in symmetry plane \"mid_x\""]);
 }
 
 #[test]
@@ -494,4 +510,61 @@ fn warnings_and_whose_masses_reach_summary_json_and_stderr() {
     let warnings: Vec<&str> = summary["warnings"].as_array().unwrap().iter().map(|w| w.as_str().unwrap()).collect();
     assert!(warnings.iter().any(|w| w.starts_with("analysis.modes:")), "{warnings:?}");
     assert_eq!(summary["modal"]["effective_masses_of"], "full_structure");
+}
+
+/// A steel column 1 m long, 20 mm wide in x and 16 mm thick in z (so it
+/// buckles in z first), fixed at y = 0, pressed by a traction of 1 MPa on its
+/// tip face (320 N), for linear buckling; `extra` appended.
+fn pressed_column(extra: &str) -> String {
+    format!(
+        r#"
+[analysis]
+type = "buckling"
+modes = 2
+{STEEL}
+[[bodies]]
+name = "column"
+material = "steel"
+section = {{ shape = "rectangle", element = "L9", x = {{ from = -0.01, to = 0.01, elements = 2 }}, z = {{ from = -0.008, to = 0.008, elements = 1 }} }}
+axis = {{ element = "B4", from = 0.0, to = 1.0, elements = 8 }}
+
+[[constraints]]
+name = "root"
+body = "column"
+where = {{ y = 0.0 }}
+fix = ["x", "y", "z"]
+
+[[loads]]
+name = "tip"
+body = "column"
+where = {{ y = 1.0 }}
+traction = [0.0, -1e6, 0.0]
+{extra}
+"#
+    )
+}
+
+#[test]
+fn a_half_model_reports_the_full_structures_critical_loads() {
+    // reference: Euler's load of a cantilever buckling in z, π² E I / (4 L²)
+    // with I = 0.02 · 0.016³ / 12 (3.37 kN), and the full model; the half cut
+    // at x = 0 carries half the tip face and so half the load, at the same
+    // factor (bending in z is symmetric about x = 0)
+    let euler = std::f64::consts::PI.powi(2) * 200e9 * 0.02 * 0.016f64.powi(3) / 12.0 / 4.0;
+    let summary = |text: &str| {
+        let (model, sol) = solve(text);
+        cufem::io::full_summary(&model, &sol).unwrap().buckling.unwrap()
+    };
+    let full = summary(&pressed_column(""));
+    let half = summary(&pressed_column(&plane("s", "{ x = 0.0 }", "above")));
+    assert!(full.full_structure_critical_loads.is_none());
+    let first = |loads: &[[f64; 3]]| -loads[0][1];
+    // the full model within 1 % of Euler (shear and the B4 mesh)
+    assert!((first(&full.critical_loads) / euler - 1.0).abs() < 0.01, "{} vs {euler}", first(&full.critical_loads));
+    // the half model's own load is half; the full structure's is the full model's
+    let whole = half.full_structure_critical_loads.as_deref().unwrap();
+    assert!((first(&half.critical_loads) / first(&full.critical_loads) - 0.5).abs() < 1e-6);
+    assert!((first(whole) / first(&full.critical_loads) - 1.0).abs() < 1e-6, "{whole:?} vs {:?}", full.critical_loads);
+    // and nothing across the plane: the x component of the full structure's load is zero
+    assert_eq!(whole[0][0], 0.0);
 }

@@ -172,6 +172,10 @@ pub struct Summary {
     /// whole history is in `energy.csv`), absent for another analysis.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub energy: Option<crate::dynamics::energy::EnergyRow>,
+    /// In a transient model cut by symmetry planes, the full structure's energy balance at the
+    /// end: `energy` (and `energy.csv`, the part modelled) times the number of mirror images.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub full_structure_energy: Option<crate::dynamics::energy::EnergyRow>,
     /// `solver.control = "arc_length"`: how the path following ended and
     /// the limit points it passed, absent under load control.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -206,7 +210,12 @@ pub struct BucklingSummary {
     /// Critical load factors, ascending: the model's loads times each buckle.
     pub factors: Vec<f64>,
     /// Critical loads: the applied load (N, the sum of the loads at factor 1) times each factor.
+    /// In a model cut by symmetry planes, the load on the part modelled.
     pub critical_loads: Vec<[f64; 3]>,
+    /// In a model cut by symmetry planes, the full structure's critical loads: its applied
+    /// load (the part's and its mirror images', `bc::symmetry::full_structure` across every
+    /// plane) times each factor; `None` without planes (the critical loads are the structure's).
+    pub full_structure_critical_loads: Option<Vec<[f64; 3]>>,
     /// The VTU of each mode (`mode_<k>.vtu`), or empty without VTU output.
     pub modes: Vec<String>,
 }
@@ -460,6 +469,11 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         buckling: solution.buckling.as_ref().map(|b| BucklingSummary {
             factors: b.factors.clone(),
             critical_loads: b.factors.iter().map(|f| solution.applied.map(|a| a * f / solution.lambda)).collect(),
+            full_structure_critical_loads: (!model.symmetry.planes.is_empty()).then(|| {
+                let every = vec![true; model.symmetry.planes.len()];
+                let applied = crate::bc::symmetry::full_structure(solution.applied, &model.symmetry.planes, &every);
+                b.factors.iter().map(|f| applied.map(|a| a * f / solution.lambda)).collect()
+            }),
             modes: if model.output.vtu { (1..=b.factors.len()).map(mode_vtu_name).collect() } else { Vec::new() },
         }),
         modal: solution.modal.as_ref().map(|m| ModalSummary {
@@ -470,6 +484,12 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
             modes: if model.output.vtu { (1..=m.frequencies.len()).map(mode_vtu_name).collect() } else { Vec::new() },
         }),
         energy: solution.energy.as_ref().and_then(|rows| rows.last().copied()),
+        full_structure_energy: solution
+            .energy
+            .as_ref()
+            .and_then(|rows| rows.last())
+            .filter(|_| !model.symmetry.planes.is_empty())
+            .map(|row| row.times(model.symmetry.copies() as f64)),
         path: solution.path.as_ref().map(|p| PathSummary {
             end: match p.end {
                 Some(crate::analysis::PathEnd::LoadFactor(_)) => "load_factor",

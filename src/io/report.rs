@@ -361,8 +361,13 @@ fn modes(s: &mut String, summary: &super::Summary) {
         }
     }
     if let Some(b) = &summary.buckling {
-        out!(s, "buckling  mode  load factor   critical load [N]");
-        for (k, (f, p)) in b.factors.iter().zip(&b.critical_loads).enumerate() {
+        // a cut model's loads are the part's: its table gives the full structure's
+        let (loads, of) = match &b.full_structure_critical_loads {
+            Some(full) => (full, "critical load of the full structure [N]"),
+            None => (&b.critical_loads, "critical load [N]"),
+        };
+        out!(s, "buckling  mode  load factor   {of}");
+        for (k, (f, p)) in b.factors.iter().zip(loads).enumerate() {
             out!(s, "          {:>4}  {f:>11.5e}   [{:.5e}, {:.5e}, {:.5e}]", k + 1, p[0], p[1], p[2]);
         }
     }

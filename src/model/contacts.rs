@@ -38,6 +38,14 @@ pub(super) fn pair_contacts(
                 "a body other than the master body",
             ));
         }
+        // a surface lying in a symmetry plane is a cut, held by the plane's u_n = 0
+        for (side, selection, b) in [("master", &c.master.selection, bm), ("slave", &c.slave.selection, bs)] {
+            if !planes.is_empty() {
+                let where_ = format!("{key}.{side}.where");
+                let (faces, _) = surface_faces(&where_, selection, &mesh.bodies[b])?;
+                symmetry::faces_off_planes(&where_, &mesh.bodies[b], &faces, planes)?;
+            }
+        }
         let contact = match &c.method {
             ContactMethod::NodeToNode { tolerance, pairs } => {
                 let contact = pair_contact(&key, c, *tolerance, pairs.as_deref(), mesh, (bm, bs), materials)?;

@@ -30,6 +30,11 @@ pub(super) fn indenters(
             continue;
         }
         let b = body_index(mesh, format!("{key}.body"), &d.body)?;
+        if !planes.is_empty() {
+            // a surface lying in a symmetry plane is a cut, held by the plane's u_n = 0
+            let (faces, _) = surface_faces(&format!("{key}.surface"), &d.surface, &mesh.bodies[b])?;
+            symmetry::faces_off_planes(&format!("{key}.surface"), &mesh.bodies[b], &faces, planes)?;
+        }
         let mut ind = indenter(&key, d, b, &mesh.bodies[b], materials)?;
         ind.impactor = impactor(&key, d, transient)?;
         if let Some(imp) = &ind.impactor {

@@ -415,9 +415,20 @@ fn zeroed<T: Clone + Default>(n: usize) -> Result<Vec<T>, LinearError> {
     Ok(v)
 }
 
+/// Held while METIS orders a graph. METIS draws its random numbers from the
+/// C library's `rand()` (GKlib's `random.c` without `USE_GKRAND`, as
+/// metis-sys builds it), whose state is the process's: each ordering seeds
+/// it (`srand(4321)`) and draws from it throughout, so two orderings at once
+/// on two threads interleave their draws and number the same graph
+/// differently — and the solution then differs in its rounding. One at a
+/// time, every ordering of a graph is the same.
+static METIS: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
 /// METIS nested-dissection ordering of a graph given by sorted adjacency
 /// lists without self loops. Returns `perm` with `perm[k]` = the vertex
-/// placed at position `k`.
+/// placed at position `k`: the same for the same graph, whatever else the
+/// process orders at the same time (orderings take turns); not if other
+/// code of the process calls the C library's `rand()` or `srand()` meanwhile.
 pub fn nested_dissection(adjacency: &[Vec<usize>]) -> Result<Vec<usize>, LinearError> {
     let n = adjacency.len();
     if n == 0 {
@@ -438,6 +449,9 @@ pub fn nested_dissection(adjacency: &[Vec<usize>]) -> Result<Vec<usize>, LinearE
     let mut options = [0 as metis_sys::idx_t; metis_sys::METIS_NOPTIONS as usize];
     let mut perm = vec![0 as metis_sys::idx_t; n];
     let mut iperm = vec![0 as metis_sys::idx_t; n];
+    // a panic while held cannot leave METIS half done (it is C): the lock
+    // only orders the turns, so a poisoned one is still good
+    let _turn = METIS.lock().unwrap_or_else(std::sync::PoisonError::into_inner);
     // SAFETY: all arrays are sized as METIS documents (xadj n+1, adjncy =
     // xadj[n], perm/iperm n, options METIS_NOPTIONS) and outlive the calls;
     // METIS does not retain the pointers.
@@ -460,124 +474,5 @@ pub fn nested_dissection(adjacency: &[Vec<usize>]) -> Result<Vec<usize>, LinearE
 }
 
 #[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// 1D Laplacian with a Dirichlet end: tridiagonal SPD, exact solution known.
-    #[test]
-    fn solves_a_tridiagonal_system() {
-        let n = 50;
-        let columns: Vec<Vec<usize>> = (0..n).map(|c| (c..(c + 2).min(n)).collect()).collect();
-        let vals: Vec<f64> = columns.iter().flat_map(|rows| [2.0, -1.0].into_iter().take(rows.len())).collect();
-        let pat = LowerCsc::from_columns(n, &columns);
-        let mut chol = Cholesky::analyze(&pat).unwrap();
-        chol.factorize(&vals).unwrap();
-        let x_exact: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).sin()).collect();
-        let mut b = vec![0.0; n];
-        pat.mul_symmetric(&vals, &x_exact, &mut b);
-        chol.solve_in_place(&mut b).unwrap();
-        for (a, e) in b.iter().zip(&x_exact) {
-            assert!((a - e).abs() < 1e-12);
-        }
-        // an indefinite matrix falls back to LDLᵀ and still solves
-        let mut ind = vals.clone();
-        ind[0] = -2.0;
-        chol.factorize(&ind).unwrap();
-        // one negative eigenvalue: the diagonal -2 couples to the rest by -1
-        // only, so the matrix is congruent to diag(-2, positive definite)
-        assert_eq!(chol.negative_pivots(), Some(1));
-        pat.mul_symmetric(&ind, &x_exact, &mut b);
-        chol.solve_in_place(&mut b).unwrap();
-        for (a, e) in b.iter().zip(&x_exact) {
-            assert!((a - e).abs() < 1e-9);
-        }
-    }
-
-    /// Inertia: the 5-point Laplacian on an m × m grid shifted by −σ has
-    /// as many negative pivots as Laplacian eigenvalues
-    /// `4 − 2 cos(iπ/(m+1)) − 2 cos(jπ/(m+1))` below σ (Sylvester's law;
-    /// the eigenvalues in closed form). The banded fill makes faer's
-    /// factor supernodal at m = 100 and simplicial at m = 24: both storage
-    /// kinds are read.
-    #[test]
-    fn negative_pivots_count_the_eigenvalues_below_the_shift() {
-        for (m, supernodal) in [(24, false), (100, true)] {
-            let n = m * m;
-            let columns: Vec<Vec<usize>> = (0..n)
-                .map(|c| [c, c + 1, c + m].into_iter().filter(|&r| r < n && (r != c + 1 || r % m != 0)).collect())
-                .collect();
-            let pat = LowerCsc::from_columns(n, &columns);
-            let mut chol = Cholesky::analyze(&pat).unwrap();
-            assert_eq!(matches!(chol.symbolic.raw(), SymbolicCholeskyRaw::Supernodal(_)), supernodal);
-            let h = std::f64::consts::PI / (m + 1) as f64;
-            for sigma in [0.0, 0.5, 1.3, 2.9] {
-                let vals: Vec<f64> = columns
-                    .iter()
-                    .flat_map(|rows| rows.iter().map(|&r| if r == rows[0] { 4.0 - sigma } else { -1.0 }))
-                    .collect();
-                chol.factorize(&vals).unwrap();
-                let below = (1..=m)
-                    .flat_map(|i| (1..=m).map(move |j| 4.0 - 2.0 * (i as f64 * h).cos() - 2.0 * (j as f64 * h).cos()))
-                    .filter(|&l| l < sigma)
-                    .count();
-                assert_eq!(chol.negative_pivots(), Some(below), "m {m}, shift {sigma}");
-            }
-        }
-    }
-
-    /// The symmetric product against a dense one, on columns with 0 to 12
-    /// entries below the diagonal (the four-way split and its remainder
-    /// of 0–3 entries all occur) and one column without its diagonal.
-    #[test]
-    fn symmetric_product_equals_the_dense_product() {
-        let n = 13;
-        let entry = |r: usize, c: usize| 1.0 + (r * 7 + c * 3) as f64 / 10.0;
-        // column c holds the diagonal (not column 6) and every row r > c with
-        // (r + c) % 3 != 1, and every row of the first four (12, 11, 10 and 9
-        // entries below)
-        let keep = |r: usize, c: usize| if r == c { c != 6 } else { c < 4 || (r + c) % 3 != 1 };
-        let columns: Vec<Vec<usize>> = (0..n).map(|c| (c..n).filter(|&r| keep(r, c)).collect()).collect();
-        let pat = LowerCsc::from_columns(n, &columns);
-        let values: Vec<f64> =
-            columns.iter().enumerate().flat_map(|(c, rows)| rows.iter().map(move |&r| entry(r, c))).collect();
-        let x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).sin() + 0.5).collect();
-        let mut y = vec![f64::NAN; n];
-        pat.mul_symmetric(&values, &x, &mut y);
-        for (i, yi) in y.iter().enumerate() {
-            let dense: f64 =
-                (0..n).filter(|&j| keep(i.max(j), i.min(j))).map(|j| entry(i.max(j), i.min(j)) * x[j]).sum();
-            assert!((yi - dense).abs() <= 1e-13 * dense.abs().max(1.0), "row {i}: {yi} against {dense}");
-        }
-        let below: Vec<usize> =
-            columns.iter().enumerate().map(|(c, rows)| rows.iter().filter(|&&r| r > c).count()).collect();
-        assert!((0..4).all(|m| below.iter().any(|&b| b >= 4 && b % 4 == m)), "{below:?}");
-    }
-
-    #[test]
-    fn nested_dissection_is_a_permutation() {
-        // 10×10 grid graph
-        let m = 10;
-        let adj: Vec<Vec<usize>> = (0..m * m)
-            .map(|v| {
-                let (i, j) = (v % m, v / m);
-                let mut l = Vec::new();
-                if j > 0 {
-                    l.push(v - m);
-                }
-                if i > 0 {
-                    l.push(v - 1);
-                }
-                if i + 1 < m {
-                    l.push(v + 1);
-                }
-                if j + 1 < m {
-                    l.push(v + m);
-                }
-                l
-            })
-            .collect();
-        let mut p = nested_dissection(&adj).unwrap();
-        p.sort_unstable();
-        assert_eq!(p, (0..m * m).collect::<Vec<_>>());
-    }
-}
+#[path = "linear_tests.rs"]
+mod tests;

@@ -160,6 +160,9 @@ enum Command {
         #[command(flatten)]
         resources: Resources,
     },
+    /// Print the JSON Schema of the model file, for editors that check and complete it as it is typed
+    /// (docs/model-format.md, "Editor support").
+    Schema,
 }
 
 /// Most worker threads, also with --force-threads.
@@ -233,6 +236,11 @@ fn dispatch(cli: Cli) -> Result<u8, Failure> {
             let m = load(&model, &resources)?;
             configure_threads(resources.threads.or(m.solver.threads), resources.force_threads)?;
             bench::run(&m, repeat, full).map_err(|e| fail(INPUT, e))?;
+            Ok(OK)
+        }
+        Command::Schema => {
+            let text = serde_json::to_string_pretty(&cufem::model::json_schema()).map_err(|e| fail(INPUT, e))?;
+            println!("{text}");
             Ok(OK)
         }
     }

@@ -73,6 +73,10 @@ pub enum Family {
 /// would fall below the node-merging tolerance of [`super::blocks`].
 pub const MIN_RELATIVE_THICKNESS: f64 = 1e-6;
 
+/// Most cells of a `box` section side by side (the model file's range of
+/// `cells` reads it).
+pub const MAX_CELLS: usize = 1000;
+
 fn thick_enough(key: &str, t: f64, size: f64) -> Result<(), MeshError> {
     if t >= MIN_RELATIVE_THICKNESS * size {
         Ok(())
@@ -233,8 +237,12 @@ pub fn straight(family: Family, origin: [f64; 2], d: &Walls, n: &Counts) -> Resu
         }
         Family::Box => {
             let cells = d.cells;
-            if !(1..=1000).contains(&cells) {
-                return Err(MeshError::invalid("section.cells", cells.to_string(), "1 to 1000 cells side by side"));
+            if !(1..=MAX_CELLS).contains(&cells) {
+                return Err(MeshError::invalid(
+                    "section.cells",
+                    cells.to_string(),
+                    format!("1 to {MAX_CELLS} cells side by side"),
+                ));
             }
             let cell = flange_clear(cells as f64 + 1.0, 0.0)? / cells as f64;
             let h = web_clear(2.0)?;

@@ -9,8 +9,7 @@ use crate::kinematics::Kinematics;
 use crate::materials::Material;
 use crate::mesh::Mesh;
 
-/// Largest number of buckling modes one run may ask for.
-pub const MAX_MODES: usize = 50;
+pub use super::ranges::MAX_MODES;
 
 /// `analysis.type = "buckling"`: the linear buckling analysis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

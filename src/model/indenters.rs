@@ -6,7 +6,7 @@ use super::bounds;
 use super::preprocess::{body_index, model_coords, surface_faces};
 use super::schema::*;
 use super::validate::{describe_selection, friction, penalty, tolerance};
-use super::{ModelError, Warning, invalid, symmetry};
+use super::{ModelError, Warning, invalid, ranges, symmetry};
 use crate::bc::symmetry::Plane;
 use crate::contact::{self, Indenter, RigidSurface, SurfaceNodes};
 use crate::materials::Material;
@@ -152,7 +152,7 @@ fn impactor(key: &str, d: &IndenterFile, transient: bool) -> Result<Option<conta
     if !transient {
         return Err(invalid(format!("{key}.mass"), bounds::number(mass), "only with analysis.type = \"transient\""));
     }
-    bounds::within(&format!("{key}.mass"), mass, f64::MIN_POSITIVE, 1e9, "the impactor's mass in kg, positive")?;
+    ranges::IMPACTOR_MASS.check(&format!("{key}.mass"), mass, "the impactor's mass in kg, positive")?;
     let speed = velocity.iter().map(|v| v * v).sum::<f64>().sqrt();
     if !(speed > 0.0 && speed <= super::transient::MAX_SPEED) {
         return Err(invalid(

@@ -7,7 +7,7 @@
 
 use super::schema::{LaminateFile, PlyFile};
 use super::validate::{MAX_COUNT, division};
-use super::{ModelError, bounds, invalid};
+use super::{ModelError, bounds, invalid, ranges};
 use crate::mesh::{CrossSection, Region};
 use crate::shape::SectionElementKind;
 
@@ -36,14 +36,8 @@ pub(super) fn check(sk: &str, plies: &[PlyFile]) -> Result<(), ModelError> {
     }
     for (k, p) in plies.iter().enumerate() {
         let pk = format!("{sk}.plies[{k}]");
-        bounds::within(
-            &format!("{pk}.thickness"),
-            p.thickness,
-            f64::MIN_POSITIVE,
-            bounds::MAX_COORD,
-            "the ply thickness in m, positive",
-        )?;
-        let n = p.elements.unwrap_or(1);
+        ranges::LENGTH.check(&format!("{pk}.thickness"), p.thickness, "the ply thickness in m, positive")?;
+        let n = p.elements.unwrap_or(super::defaults::THROUGH);
         if !(1..=MAX_COUNT).contains(&n) {
             return Err(invalid(format!("{pk}.elements"), n, format!("an integer in 1..={MAX_COUNT}")));
         }
@@ -63,9 +57,9 @@ pub(super) fn check(sk: &str, plies: &[PlyFile]) -> Result<(), ModelError> {
             ));
         }
         if let Some(a) = p.angle
-            && !(a.is_finite() && a.abs() <= 360.0)
+            && !ranges::ANGLE.contains(a)
         {
-            return Err(invalid(format!("{pk}.angle"), a, "an angle in degrees within ±360"));
+            return Err(invalid(format!("{pk}.angle"), a, format!("an angle in degrees {}", ranges::ANGLE)));
         }
     }
     Ok(())
@@ -78,7 +72,7 @@ fn z_lines(z0: f64, plies: &[PlyFile]) -> (Vec<f64>, Vec<(usize, usize)>) {
     let mut rows = Vec::new();
     let mut bottom = z0;
     for p in plies {
-        let n = p.elements.unwrap_or(1);
+        let n = p.elements.unwrap_or(super::defaults::THROUGH);
         rows.push((lines.len() - 1, n));
         for k in 1..=n {
             lines.push(if k == n { bottom + p.thickness } else { bottom + p.thickness * k as f64 / n as f64 });
@@ -100,7 +94,7 @@ pub(super) fn section(sk: &str, kind: SectionElementKind, s: &LaminateFile) -> R
     let xl = division(&format!("{sk}.x"), x)?;
     let z0 = bounds::within(
         &format!("{sk}.z0"),
-        s.z0.unwrap_or(0.0),
+        s.z0.unwrap_or(super::defaults::Z0),
         -bounds::MAX_COORD,
         bounds::MAX_COORD,
         "the bottom of the stack in m",

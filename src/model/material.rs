@@ -4,6 +4,7 @@
 //! bounded to physically sensible magnitudes.
 
 use super::bounds;
+use super::ranges;
 use super::schema::*;
 use super::{ModelError, invalid};
 use crate::materials::anisotropic::{self, positive_definite};
@@ -64,7 +65,7 @@ fn isotropic(key: &str, m: &MaterialFile) -> Result<Material, ModelError> {
     let nu = m.poisson_ratio.ok_or_else(|| {
         invalid(format!("{key}.poisson_ratio"), "(missing)", "Poisson's ratio, a number in (−1, 0.4999]")
     })?;
-    if !(nu.is_finite() && nu > -1.0 && nu <= bounds::MAX_POISSON) {
+    if !ranges::POISSON_RATIO.contains(nu) {
         return Err(invalid(
             format!("{key}.poisson_ratio"),
             nu,
@@ -117,7 +118,7 @@ fn orthotropic(key: &str, o: &OrthotropicFile) -> Result<Matrix6, ModelError> {
         )
     };
     let ratio = |name: &str, v: f64| {
-        if v.is_finite() && v.abs() < 10.0 {
+        if ranges::ORTHOTROPIC_POISSON.contains(v) {
             Ok(v)
         } else {
             Err(invalid(format!("{ok}.{name}"), v, "a finite Poisson's ratio (|ν| < 10; admissible with the moduli)"))
@@ -174,11 +175,9 @@ fn full_stiffness(key: &str, rows: &[Exact<f64, 6>]) -> Result<Matrix6, ModelErr
 fn strengths(key: &str, s: &StrengthsFile) -> Result<Strengths, ModelError> {
     let sk = format!("{key}.strengths");
     let v = |name: &str, v: f64| {
-        bounds::within(
+        ranges::STRENGTH.check(
             &format!("{sk}.{name}"),
             v,
-            f64::MIN_POSITIVE,
-            bounds::MAX_YOUNG,
             "a strength in Pa, positive (compressive ones as magnitudes)",
         )
     };
@@ -246,7 +245,7 @@ fn hardening(pk: &str, p: &PlasticityFile, young: f64) -> Result<Hardening, Mode
                 "the Voce saturation rate b (dimensionless, > 0) for hardening = \"voce\"",
             )?;
             let rate = format!("{pk}.saturation_rate");
-            bounds::within(&rate, b, 1e-6, 1e6, "the Voce saturation rate b, from 1e-6 to 1e6 (dimensionless)")?;
+            ranges::SATURATION_RATE.check(&rate, b, "the Voce saturation rate b (dimensionless)")?;
             // the initial slope Q b is a hardening modulus: the same bound
             let max_rate = bounds::MAX_HARDENING * young / q.max(f64::MIN_POSITIVE);
             bounds::within(&rate, b, 0.0, max_rate, "a rate whose initial slope Q b is at most 100 E")?;
@@ -341,12 +340,10 @@ fn kinematic(pk: &str, list: &[KinematicFile], young: f64) -> Result<Vec<BackStr
             bounds::MAX_HARDENING * young,
             "the kinematic hardening modulus C in Pa, positive and at most 100 E",
         )?;
-        bounds::within(
+        ranges::KINEMATIC_RECALL.check(
             &format!("{kk}[{i}].recall"),
             k.recall,
-            0.0,
-            1e6,
-            "the recall rate γ (dimensionless), from 0 (linear kinematic hardening) to 1e6",
+            "the recall rate γ (dimensionless), from 0 (linear kinematic hardening)",
         )?;
         kinematic.push(BackStress { modulus: k.modulus, recall: k.recall });
     }

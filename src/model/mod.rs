@@ -11,6 +11,7 @@ mod bodies;
 mod bounds;
 mod budget;
 mod contacts;
+mod defaults;
 mod indenters;
 mod laminate;
 mod material;
@@ -18,6 +19,7 @@ mod mirror;
 mod overlap;
 mod path;
 mod preprocess;
+mod ranges;
 mod refine;
 mod restraint;
 mod schema;
@@ -45,6 +47,7 @@ use schema::*;
 
 pub use path::{DisplacementStop, PathSettings};
 pub use refine::{AdaptSettings, BodyPlan, MAX_BUDGET, MeshPlan, SectionPlan};
+pub use schema::json::json_schema;
 
 /// Errors found while reading or validating a model.
 #[derive(Debug, thiserror::Error)]
@@ -254,7 +257,7 @@ pub struct OutputSettings {
 }
 
 /// How stress and peeq are evaluated at arbitrary points (`output.recovery`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, serde::Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Recovery {
     /// L2 projection of the Gauss-point values onto the CUF basis: a
@@ -262,7 +265,8 @@ pub enum Recovery {
     Projection,
     /// Element by element: the expansion's `C ε` in elastic elements, the
     /// limited interpolation of the Gauss-point values in yielded ones
-    /// (discontinuous between elements).
+    /// (discontinuous between elements). The default.
+    #[default]
     Element,
 }
 
@@ -532,8 +536,8 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let modes = buckling.map(|b| b.modes).or(modal.map(|m| m.modes));
     warnings.extend(analysis::eigen_warnings(modes, &mesh, &constraints, !symmetry.planes.is_empty()));
     Ok(Model {
-        title: file.title.unwrap_or_else(|| "cufem model".into()),
-        description: file.description.unwrap_or_default(),
+        title: file.title.unwrap_or_else(|| defaults::TITLE.into()),
+        description: file.description.unwrap_or_else(|| defaults::DESCRIPTION.into()),
         materials,
         mesh,
         cells,

@@ -8,7 +8,7 @@
 
 use super::schema::{Control, SolverFile, StepFile};
 use super::validate::finite_positive;
-use super::{ModelError, Probe, SolverSettings, invalid};
+use super::{ModelError, Probe, SolverSettings, invalid, ranges};
 use crate::bc::{Constraint, Load};
 use crate::contact::{Indenter, PairContact};
 use crate::solver::arclength::ArcLengthSettings;
@@ -69,7 +69,7 @@ pub(super) fn settings(
     solver: &SolverSettings,
     model: &Loading,
 ) -> Result<Option<PathSettings>, ModelError> {
-    if s.control != Some(Control::ArcLength) {
+    if s.control.unwrap_or_default() != Control::ArcLength {
         let given = [
             ("arc_length", s.arc_length.is_some()),
             ("max_load_factor", s.max_load_factor.is_some()),
@@ -108,9 +108,11 @@ pub(super) fn settings(
     proportional(model)?;
     let arc_length = s.arc_length.map(|a| finite_positive("solver.arc_length", a)).transpose()?;
     let max_load_factor = match s.max_load_factor {
-        None => 1.0,
-        Some(m) if m.is_finite() && m > 0.0 && m <= 1e3 => m,
-        Some(m) => return Err(invalid("solver.max_load_factor", m, "a number in (0, 1000]")),
+        None => super::defaults::MAX_LOAD_FACTOR,
+        Some(m) if ranges::MAX_LOAD_FACTOR.contains(m) => m,
+        Some(m) => {
+            return Err(invalid("solver.max_load_factor", m, format!("a number {}", ranges::MAX_LOAD_FACTOR)));
+        }
     };
     let stop = s.stop.as_ref().map(|st| stop(st, model.probes)).transpose()?;
     let arc = ArcLengthSettings {

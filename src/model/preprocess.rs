@@ -292,7 +292,7 @@ pub(super) fn lines(
     let mut lines = Vec::new();
     for (i, l) in file.iter().enumerate() {
         let key = format!("lines[{i}]");
-        let points = l.points.unwrap_or(101);
+        let points = l.points.unwrap_or(super::defaults::LINE_POINTS);
         if !(2..=MAX_COUNT).contains(&points) {
             return Err(invalid(format!("{key}.points"), points, format!("an integer from 2 to {MAX_COUNT}")));
         }
@@ -394,7 +394,7 @@ pub(super) fn selection(key: &str, s: &SelectionFile, body: &Body) -> Result<Sel
                     let name = format!("{key}.center");
                     [bounds::coordinate(&name, c[0])?, bounds::coordinate(&name, c[1])?]
                 }
-                None => [0.0, 0.0],
+                None => super::defaults::ORIGIN,
             };
             let c = cond("radius", &Some(*r))?.filter(|c| match *c {
                 Condition::Equal(v) => v >= 0.0,

@@ -24,22 +24,17 @@
 
 use super::schema::*;
 use super::validate::division;
-use super::{ModelError, invalid};
+use super::{ModelError, defaults, invalid, ranges};
 
 /// Default `[adapt] tolerance`: relative error in the energy norm.
-pub const DEFAULT_TOLERANCE: f64 = 0.05;
+pub const DEFAULT_TOLERANCE: f64 = defaults::ADAPT_TOLERANCE;
 /// Default `[adapt] max_dof`.
-pub const DEFAULT_MAX_DOF: usize = 50_000;
+pub const DEFAULT_MAX_DOF: usize = defaults::ADAPT_MAX_DOF;
 /// Default `[adapt] max_cycles`: refinements after the model's own mesh.
-pub const DEFAULT_MAX_CYCLES: usize = 5;
+pub const DEFAULT_MAX_CYCLES: usize = defaults::ADAPT_MAX_CYCLES;
 /// Default `[adapt] fraction`: Dörfler's bulk parameter θ.
-pub const DEFAULT_FRACTION: f64 = 0.5;
-/// Largest `max_cycles`: each refinement at least adds an interval, and
-/// twenty are more than any budget allows.
-pub const MAX_CYCLES: usize = 20;
-/// Largest `max_dof` accepted (a budget, not a promise: memory is checked
-/// for every mesh as for any model).
-pub const MAX_BUDGET: usize = 100_000_000;
+pub const DEFAULT_FRACTION: f64 = defaults::ADAPT_FRACTION;
+pub use super::ranges::{MAX_BUDGET, MAX_CYCLES};
 
 /// Validated `[adapt]`: refine and solve again until the estimate is below
 /// `tolerance` (`crate::adapt`).
@@ -71,7 +66,7 @@ pub(super) fn adapt_settings(file: Option<&AdaptFile>) -> Result<Option<AdaptSet
     let Some(a) = file else { return Ok(None) };
     let d = AdaptSettings::default();
     let tolerance = a.tolerance.unwrap_or(d.tolerance);
-    if !(tolerance > 0.0 && tolerance < 1.0) {
+    if !ranges::ADAPT_TOLERANCE.contains(tolerance) {
         return Err(invalid(
             "adapt.tolerance",
             tolerance,
@@ -79,11 +74,11 @@ pub(super) fn adapt_settings(file: Option<&AdaptFile>) -> Result<Option<AdaptSet
         ));
     }
     let max_dof = a.max_dof.unwrap_or(d.max_dof);
-    if !(1..=MAX_BUDGET).contains(&max_dof) {
+    if !ranges::ADAPT_MAX_DOF.contains_count(max_dof) {
         return Err(invalid("adapt.max_dof", max_dof, format!("an integer from 1 to {}", MAX_BUDGET)));
     }
     let max_cycles = a.max_cycles.unwrap_or(d.max_cycles);
-    if max_cycles > MAX_CYCLES {
+    if !ranges::ADAPT_MAX_CYCLES.contains_count(max_cycles) {
         return Err(invalid(
             "adapt.max_cycles",
             max_cycles,
@@ -91,7 +86,7 @@ pub(super) fn adapt_settings(file: Option<&AdaptFile>) -> Result<Option<AdaptSet
         ));
     }
     let fraction = a.fraction.unwrap_or(d.fraction);
-    if !(fraction > 0.0 && fraction <= 1.0) {
+    if !ranges::FRACTION.contains(fraction) {
         return Err(invalid(
             "adapt.fraction",
             fraction,
@@ -220,27 +215,27 @@ fn double(s: &mut SectionFile, f: usize) {
             t.along_z = t.along_z.map(|n| n.saturating_mul(f));
         }
         SectionFile::IBeam(p) | SectionFile::Channel(p) | SectionFile::ZSection(p) | SectionFile::Angle(p) => {
-            p.along_flange = times(p.along_flange, 2);
-            p.along_web = times(p.along_web, 4);
+            p.along_flange = times(p.along_flange, defaults::ALONG_FLANGE);
+            p.along_web = times(p.along_web, defaults::ALONG_WEB);
         }
         SectionFile::Hat(h) => {
-            h.along_flange = times(h.along_flange, 2);
-            h.along_web = times(h.along_web, 4);
-            h.along_lip = times(h.along_lip, 1);
+            h.along_flange = times(h.along_flange, defaults::ALONG_FLANGE);
+            h.along_web = times(h.along_web, defaults::ALONG_WEB);
+            h.along_lip = times(h.along_lip, defaults::ALONG_LIP);
         }
         SectionFile::Box(b) => {
-            b.along_flange = times(b.along_flange, 2);
-            b.along_web = times(b.along_web, 4);
+            b.along_flange = times(b.along_flange, defaults::ALONG_FLANGE);
+            b.along_web = times(b.along_web, defaults::ALONG_WEB);
         }
-        SectionFile::CircularTube(c) => c.around = times(c.around, 16),
+        SectionFile::CircularTube(c) => c.around = times(c.around, defaults::AROUND),
         SectionFile::Circle(c) => {
-            let around = c.around.unwrap_or(16);
+            let around = c.around.unwrap_or(defaults::AROUND);
             c.through = times(c.through, (around / 8).max(1));
             c.around = times(Some(around), around);
         }
         SectionFile::Laminate(l) => {
             for p in l.plies.iter_mut().flatten() {
-                p.elements = times(p.elements, 1);
+                p.elements = times(p.elements, defaults::THROUGH);
             }
         }
         SectionFile::Rectangle(_) | SectionFile::Quads(_) | SectionFile::Gmsh(_) => {}

@@ -8,14 +8,27 @@
 //! enum with exactly the keys of each variant ([`tagged`]). The meaning,
 //! unit and default of every key are in `docs/model-format.md`; the values
 //! are checked in the other files of `model`.
-
-use std::fmt;
+//!
+//! The same types give the model file's JSON Schema (`cufem schema`,
+//! [`json`]): `JsonSchema` is derived beside `Deserialize`, the doc comments
+//! of the keys are its descriptions, and the plain ranges the validation
+//! checks come from one table ([`super::ranges`]), attached to their keys
+//! by `#[schemars(transform = …)]`.
 
 use serde::Deserialize;
-use serde::de::{self, Deserializer, SeqAccess, Visitor};
+use serde::de::{self, Deserializer};
+
+use super::defaults;
+use super::ranges::{self, AT_LEAST_ONE, FRACTION, TOLERANCE};
+use crate::solver::reuse::ReuseSettings;
 
 mod anisotropy;
+mod bodies;
+mod contact;
+pub mod json;
+mod materials;
 mod section;
+mod selection;
 mod stepping;
 mod symmetry;
 pub(crate) mod tagged;
@@ -23,7 +36,11 @@ mod transient;
 mod words;
 
 pub use anisotropy::*;
+pub use bodies::*;
+pub use contact::*;
+pub use materials::*;
 pub use section::*;
+pub use selection::*;
 pub use stepping::*;
 pub use symmetry::*;
 use tagged::tagged_table;
@@ -61,15 +78,17 @@ impl<'de, T: Deserialize<'de>, const N: usize> Deserialize<'de> for Exact<T, N> 
     }
 }
 
-/// Root of a model file.
-#[derive(Debug, Deserialize)]
+/// The model file (`cufem run MODEL.toml`): materials, bodies, their
+/// supports and loads, contacts, the load history, the analysis and its
+/// outputs. Every key is in docs/model-format.md.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ModelFile {
     /// Title printed in reports.
-    #[serde(default)]
+    #[schemars(transform = defaults::schema(defaults::TITLE))]
     pub title: Option<String>,
     /// Free text.
-    #[serde(default)]
+    #[schemars(transform = defaults::schema(defaults::DESCRIPTION))]
     pub description: Option<String>,
     /// The kind of analysis (`[analysis]`).
     #[serde(default)]
@@ -118,24 +137,31 @@ pub struct ModelFile {
     pub symmetry: Vec<SymmetryFile>,
 }
 
-/// `[analysis]`.
-#[derive(Debug, Default, Deserialize)]
+/// `[analysis]`: the kind of analysis and its settings.
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct AnalysisFile {
     /// `geometry = "linear"` (default) or `"nonlinear"` (total Lagrangian).
+    #[schemars(transform = defaults::schema(Geometry::default()))]
     pub geometry: Option<Geometry>,
     /// `strain = "green_lagrange"` (default) or `"logarithmic"` (nonlinear geometry).
+    #[schemars(transform = defaults::schema(StrainMeasure::default()))]
     pub strain: Option<StrainMeasure>,
-    /// `type = "static"` (default), `"buckling"` or `"modal"`.
+    /// `type = "static"` (default), `"buckling"`, `"modal"` or `"transient"`.
     #[serde(rename = "type")]
+    #[schemars(transform = defaults::schema(AnalysisType::default()))]
     pub kind: Option<AnalysisType>,
     /// Buckling and modal: the number of modes wanted.
+    #[schemars(transform = ranges::MODES.schema())]
     pub modes: Option<usize>,
     /// Modal and transient: `mass = "consistent"` (default) or `"lumped"`.
+    #[schemars(transform = defaults::schema(MassMatrix::default()))]
     pub mass: Option<MassMatrix>,
     /// Transient: the time (s) of one load step, λ ∈ [k, k + 1].
+    #[schemars(transform = ranges::DURATION.schema())]
     pub duration: Option<f64>,
     /// Transient: Newmark's parameters (default the trapezoidal rule).
+    #[schemars(transform = defaults::schema(defaults::NEWMARK))]
     pub newmark: Option<NewmarkFile>,
     /// Transient: Rayleigh damping.
     pub damping: Option<DampingFile>,
@@ -145,407 +171,203 @@ pub struct AnalysisFile {
     pub output_interval: Option<f64>,
     /// Transient: `contact_forces = "implicit"` (default: the contact
     /// impulse at the end of the step) or `"newmark"`.
+    #[schemars(transform = defaults::schema(ContactForcesFile::default()))]
     pub contact_forces: Option<ContactForcesFile>,
     /// Transient: `contact_mass = "redistributed"` (default: the contact
     /// nodes carry no mass) or `"kept"`.
+    #[schemars(transform = defaults::schema(ContactMassFile::default()))]
     pub contact_mass: Option<ContactMassFile>,
     /// A geometric imperfection from a buckling mode (nonlinear geometry).
     pub imperfection: Option<ImperfectionFile>,
 }
 
-/// `analysis.imperfection`.
-#[derive(Debug, Deserialize)]
+/// `analysis.imperfection`: a buckling mode added to the geometry.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ImperfectionFile {
     /// Which buckling mode (1 = the lowest).
+    #[schemars(transform = ranges::MODES.schema())]
     pub mode: usize,
     /// Its largest displacement component (m; the sign flips the shape).
     pub amplitude: f64,
 }
 
-/// `[adapt]`.
-#[derive(Debug, Default, Deserialize)]
+/// `[adapt]`: adaptive refinement by the error estimate.
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct AdaptFile {
+    /// Stop below this relative error estimate in the energy norm.
+    #[schemars(transform = ranges::ADAPT_TOLERANCE.with_default(defaults::ADAPT_TOLERANCE))]
     pub tolerance: Option<f64>,
+    /// No mesh with more DOF is solved.
+    #[schemars(transform = ranges::ADAPT_MAX_DOF.with_default(defaults::ADAPT_MAX_DOF))]
     pub max_dof: Option<usize>,
+    /// Most refinements after the model's own mesh.
+    #[schemars(transform = ranges::ADAPT_MAX_CYCLES.with_default(defaults::ADAPT_MAX_CYCLES))]
     pub max_cycles: Option<usize>,
+    /// Dörfler's θ: the share of the squared estimate the marked elements hold.
+    #[schemars(transform = FRACTION.with_default(defaults::ADAPT_FRACTION))]
     pub fraction: Option<f64>,
 }
 
-/// `[solver]`.
-#[derive(Debug, Default, Deserialize)]
+/// `[solver]`: load stepping and Newton controls.
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SolverFile {
+    /// First Δλ = 1/increments (default 1 for a linear model, else 10).
+    #[schemars(transform = AT_LEAST_ONE.schema())]
     pub increments: Option<usize>,
+    /// Largest Δλ.
+    #[schemars(transform = FRACTION.schema())]
     pub max_increment: Option<f64>,
+    /// Smallest Δλ before giving up.
+    #[schemars(transform = FRACTION.schema())]
     pub min_increment: Option<f64>,
+    /// Newton corrections per attempt.
+    #[schemars(transform = AT_LEAST_ONE.with_default(defaults::MAX_ITERATIONS))]
     pub max_iterations: Option<usize>,
+    /// Converged when ‖R‖ ≤ this × the largest force norm.
+    #[schemars(transform = TOLERANCE.with_default(defaults::RESIDUAL_TOLERANCE))]
     pub residual_tolerance: Option<f64>,
+    /// …and ‖Δu‖ ≤ this × the increment's displacement.
+    #[schemars(transform = TOLERANCE.with_default(defaults::DISPLACEMENT_TOLERANCE))]
     pub displacement_tolerance: Option<f64>,
+    /// Δλ multiplier after a failed attempt.
+    #[schemars(transform = ranges::CUTBACK_FACTOR.with_default(defaults::CUTBACK_FACTOR))]
     pub cutback_factor: Option<f64>,
+    /// Δλ multiplier after an easy increment.
+    #[schemars(transform = ranges::GROWTH_FACTOR.with_default(defaults::GROWTH_FACTOR))]
     pub growth_factor: Option<f64>,
+    /// An increment converging in at most this many iterations is easy.
+    #[schemars(transform = defaults::schema(defaults::EASY_ITERATIONS))]
     pub easy_iterations: Option<usize>,
     /// Newton gives up after this many corrections without a new smallest
     /// residual (`solver::newton::NewtonSettings::stagnation_iterations`).
+    #[schemars(transform = AT_LEAST_ONE.schema())]
     pub stagnation_iterations: Option<usize>,
+    /// Most converged increments of a load step (a transient one adds its time steps).
+    #[schemars(transform = AT_LEAST_ONE.with_default(defaults::MAX_INCREMENTS))]
     pub max_increments: Option<usize>,
+    /// Worker threads (default all cores; `--threads` takes precedence).
+    #[schemars(transform = AT_LEAST_ONE.schema())]
     pub threads: Option<usize>,
+    /// Solve with PCG preconditioned by the last factorization while it converges.
+    #[schemars(transform = defaults::schema(defaults::REUSE_FACTORIZATION))]
     pub reuse_factorization: Option<bool>,
+    /// Largest relative residual at which such a PCG solve stops.
+    #[schemars(transform = TOLERANCE.with_default(ReuseSettings::default().tolerance))]
     pub krylov_tolerance: Option<f64>,
+    /// `"single"` (default) or `"double"` precision factors.
+    #[schemars(transform = defaults::schema(FactorPrecision::default()))]
     pub factor_precision: Option<FactorPrecision>,
     /// `"load"` (default) or `"arc_length"` (path following, `model/path.rs`).
+    #[schemars(transform = defaults::schema(Control::default()))]
     pub control: Option<Control>,
     /// Arc length of the first increment (m), `control = "arc_length"`.
+    #[schemars(transform = ranges::POSITIVE.schema())]
     pub arc_length: Option<f64>,
     /// The path following ends at the first point with λ at least this.
+    #[schemars(transform = ranges::MAX_LOAD_FACTOR.with_default(defaults::MAX_LOAD_FACTOR))]
     pub max_load_factor: Option<f64>,
     /// The path following ends once a probe's displacement passes a value.
     pub stop: Option<StopFile>,
     /// Load-step control by an error measure (`schema/stepping.rs`).
     pub step_control: Option<StepControlFile>,
     /// Backtracking along a Newton correction that overshoots.
+    #[schemars(transform = defaults::schema(defaults::LINE_SEARCH))]
     pub line_search: Option<bool>,
     /// Which tangent's inertia each increment reports.
     pub inertia: Option<Inertia>,
 }
 
-/// `[[materials]]`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct MaterialFile {
-    pub name: String,
-    /// Isotropic: E (Pa).
-    pub young_modulus: Option<f64>,
-    /// Isotropic: ν.
-    pub poisson_ratio: Option<f64>,
-    /// Orthotropic engineering constants in the material axes.
-    pub orthotropic: Option<OrthotropicFile>,
-    /// A full 6×6 stiffness in the material axes (Pa; Voigt order xx, yy,
-    /// zz, xy, xz, yz with engineering shears).
-    pub stiffness: Option<Vec<Exact<f64, 6>>>,
-    /// Strengths for the failure indices.
-    pub strengths: Option<StrengthsFile>,
-    /// Mass density ρ (kg/m³): needed by the mass matrix (`analysis.type = "modal"`).
-    pub density: Option<f64>,
-    pub plasticity: Option<PlasticityFile>,
-}
-
-tagged_table! {
-    /// `[materials.plasticity]`.
-    pub struct PlasticityFile {
-        /// Initial yield stress (Pa); for a table, its first stress.
-        yield_stress: Option<f64>,
-        /// Armstrong–Frederick back-stresses.
-        kinematic: Option<Vec<KinematicFile>>,
-    }
-    /// The isotropic hardening law and its own keys.
-    pub hardening: enum HardeningLaw by "hardening" {
-        /// σ_y constant.
-        Perfect = "perfect" {}
-        /// σ_y + H peeq.
-        Linear = "linear" {
-            /// H (Pa).
-            hardening_modulus: Option<f64>,
-        }
-        /// Piecewise linear `[[peeq, stress], …]`.
-        Table = "table" {
-            /// The points.
-            table: Option<Vec<Exact<f64, 2>>>,
-        }
-        /// σ_y + Q (1 − exp(−b peeq)).
-        Voce = "voce" {
-            /// Q (Pa).
-            saturation_stress: Option<f64>,
-            /// b.
-            saturation_rate: Option<f64>,
-        }
-    }
-    mirror plasticity_file;
-}
-
-/// One entry of `plasticity.kinematic`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct KinematicFile {
-    pub modulus: f64,
-    pub recall: f64,
-}
-
-/// `[[bodies]]`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct BodyFile {
-    pub name: String,
-    /// The body's material (optional where plies or zones cover the section).
-    pub material: Option<String>,
-    #[serde(deserialize_with = "section::read")]
-    pub section: SectionFile,
-    pub axis: AxisFile,
-    pub formulation: Option<Formulation>,
-    /// `[[bodies.zones]]`: materials and material axes of section regions.
-    pub zones: Option<Vec<ZoneFile>>,
-}
-
-/// An interval division: `{from, to, elements[, ratio]}`, `{lines}` or `{segments}`.
-#[derive(Debug, Default, Deserialize, Clone)]
-#[serde(deny_unknown_fields)]
-pub struct DivisionFile {
-    pub from: Option<f64>,
-    pub to: Option<f64>,
-    pub elements: Option<usize>,
-    pub ratio: Option<f64>,
-    pub lines: Option<Vec<f64>>,
-    pub segments: Option<Vec<SegmentFile>>,
-}
-
-/// One graded segment.
-#[derive(Debug, Deserialize, Clone)]
-#[serde(deny_unknown_fields)]
-pub struct SegmentFile {
-    pub from: f64,
-    pub to: f64,
-    pub elements: usize,
-    pub ratio: Option<f64>,
-}
-
-/// `[bodies.axis]`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct AxisFile {
-    pub element: BeamElement,
-    pub from: Option<f64>,
-    pub to: Option<f64>,
-    pub elements: Option<usize>,
-    pub ratio: Option<f64>,
-    pub lines: Option<Vec<f64>>,
-    pub segments: Option<Vec<SegmentFile>>,
-}
-
-/// A coordinate condition: a number (equality) or `[min, max]`.
-#[derive(Debug, Clone, Copy)]
-pub enum ConditionFile {
-    Value(f64),
-    Range([f64; 2]),
-}
-
-impl<'de> Deserialize<'de> for ConditionFile {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        struct V;
-        const EXPECTED: &str = "a number (the coordinate) or a range [min, max]";
-        impl<'de> Visitor<'de> for V {
-            type Value = ConditionFile;
-            fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
-                f.write_str(EXPECTED)
-            }
-            fn visit_f64<E: de::Error>(self, v: f64) -> Result<ConditionFile, E> {
-                Ok(ConditionFile::Value(v))
-            }
-            fn visit_i64<E: de::Error>(self, v: i64) -> Result<ConditionFile, E> {
-                Ok(ConditionFile::Value(v as f64))
-            }
-            fn visit_u64<E: de::Error>(self, v: u64) -> Result<ConditionFile, E> {
-                Ok(ConditionFile::Value(v as f64))
-            }
-            fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<ConditionFile, A::Error> {
-                let mut v: Vec<f64> = Vec::new();
-                while let Some(x) = seq.next_element::<f64>()? {
-                    v.push(x);
-                }
-                match v[..] {
-                    [a, b] => Ok(ConditionFile::Range([a, b])),
-                    _ => Err(de::Error::invalid_length(v.len(), &EXPECTED)),
-                }
-            }
-        }
-        d.deserialize_any(V)
-    }
-}
-
-/// A node selection `{x = …, y = …, z = …, tolerance = …, region = …}`.
-#[derive(Debug, Default, Deserialize, Clone)]
-#[serde(deny_unknown_fields)]
-pub struct SelectionFile {
-    pub x: Option<ConditionFile>,
-    pub y: Option<ConditionFile>,
-    pub z: Option<ConditionFile>,
-    pub tolerance: Option<f64>,
-    /// A named section region (profile wall, gmsh physical group).
-    pub region: Option<String>,
-    /// Distance from the axis (parallel to y) through `center` (default
-    /// the y axis): a cylindrical surface or a ring.
-    pub radius: Option<ConditionFile>,
-    /// `[x, z]` of the axis of `radius`.
-    pub center: Option<Exact<f64, 2>>,
-}
-
-/// Per-component prescribed values `{x = …, y = …, z = …}`.
-#[derive(Debug, Default, Deserialize, Clone, Copy)]
-#[serde(deny_unknown_fields)]
-pub struct ComponentsFile {
-    pub x: Option<f64>,
-    pub y: Option<f64>,
-    pub z: Option<f64>,
-}
-
-/// `[[constraints]]`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ConstraintFile {
-    pub name: String,
-    pub body: String,
-    #[serde(rename = "where")]
-    pub selection: SelectionFile,
-    pub fix: Option<Vec<Axis>>,
-    pub displacement: Option<ComponentsFile>,
-}
-
-/// `[[loads]]`.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct LoadFile {
-    pub name: String,
-    pub body: String,
-    #[serde(rename = "where")]
-    pub selection: SelectionFile,
-    pub force_per_node: Option<Exact<f64, 3>>,
-    pub total_force: Option<Exact<f64, 3>>,
-    pub traction: Option<Exact<f64, 3>>,
-    pub pressure: Option<f64>,
-    /// A variation of `traction` or `pressure` over the faces.
-    pub profile: Option<LoadProfileFile>,
-}
-
-tagged_table! {
-    /// `[[indenters]]`.
-    pub struct IndenterFile {
-        name: String,
-        body: String,
-        surface: SelectionFile,
-        displacement: Option<Exact<f64, 3>>,
-        force: Option<Exact<f64, 3>>,
-        penalty: Option<f64>,
-        penalty_factor: Option<f64>,
-        penetration_tolerance: Option<f64>,
-        friction: Option<f64>,
-        method: Option<IndenterMethod>,
-        mass: Option<f64>,
-        velocity: Option<Exact<f64, 3>>,
-    }
-    /// The indenter's shape and its own keys.
-    pub shape: enum IndenterShape by "shape" {
-        /// A flat punch.
-        Flat = "flat" {
-            normal: Option<Normal>,
-            position: Option<f64>,
-            x: Option<Exact<f64, 2>>,
-            y: Option<Exact<f64, 2>>,
-            z: Option<Exact<f64, 2>>,
-        }
-        /// A cylinder (roller).
-        Cylinder = "cylinder" {
-            axis: Option<Axis>,
-            center: Option<Exact<f64, 3>>,
-            radius: Option<f64>,
-            length: Option<Exact<f64, 2>>,
-        }
-        /// A sphere (ball).
-        Sphere = "sphere" {
-            center: Option<Exact<f64, 3>>,
-            radius: Option<f64>,
-        }
-    }
-    mirror indenter_file;
-}
-
-/// One side of a deformable contact.
-#[derive(Debug, Deserialize)]
-#[serde(deny_unknown_fields)]
-pub struct ContactSideFile {
-    pub body: String,
-    #[serde(rename = "where")]
-    pub selection: SelectionFile,
-}
-
-tagged_table! {
-    /// `[[contacts]]`.
-    pub struct ContactFile {
-        name: String,
-        master: ContactSideFile,
-        slave: ContactSideFile,
-        penalty: Option<f64>,
-        penalty_factor: Option<f64>,
-        penetration_tolerance: Option<f64>,
-        friction: Option<f64>,
-        /// A deliberate interference fit: the bodies may start overlapping.
-        interference: Option<bool>,
-    }
-    /// How the surfaces are paired, and its own keys.
-    pub method: enum ContactMethod by "method" or "node_to_node" {
-        /// Matched node pairs (the paper's method; the default).
-        NodeToNode = "node_to_node" {
-            tolerance: Option<f64>,
-            pairs: Option<Vec<Exact<Exact<f64, 3>, 2>>>,
-        }
-        /// Segment-to-segment contact on non-matching meshes.
-        Surface = "surface" {
-            search_distance: Option<f64>,
-        }
-    }
-    mirror contact_file;
-}
-
-/// `[[probes]]`.
-#[derive(Debug, Deserialize)]
+/// `[[probes]]`: a point where the results are reported.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ProbeFile {
+    /// Probe name.
     pub name: String,
+    /// `[x, y, z]` (m), inside a body.
+    #[schemars(transform = ranges::COORDINATE.items())]
     pub point: Exact<f64, 3>,
+    /// The body to evaluate in (default the first containing the point).
     pub body: Option<String>,
 }
 
-/// `[[lines]]`.
-#[derive(Debug, Deserialize)]
+/// `[[lines]]`: fields sampled along a segment (`line_<name>.csv`).
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LineFile {
+    /// File stem: `line_<name>.csv`.
     pub name: String,
+    /// Start point `[x, y, z]` (m).
+    #[schemars(transform = ranges::COORDINATE.items())]
     pub from: Exact<f64, 3>,
+    /// End point `[x, y, z]` (m).
+    #[schemars(transform = ranges::COORDINATE.items())]
     pub to: Exact<f64, 3>,
+    /// Equally spaced samples, both ends included.
+    #[schemars(transform = ranges::LINE_POINTS.with_default(defaults::LINE_POINTS))]
     pub points: Option<usize>,
+    /// The body to evaluate in (default the first containing each point).
     pub body: Option<String>,
+    /// Quantities plotted as PNG.
     pub plot: Option<Vec<QuantityName>>,
 }
 
-/// `[output]`.
-#[derive(Debug, Default, Deserialize)]
+/// `[output]`: which result files are written.
+#[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct OutputFile {
+    /// Write `result.vtu`.
+    #[schemars(transform = defaults::schema(defaults::VTU))]
     pub vtu: Option<bool>,
+    /// Write the PNG plots.
+    #[schemars(transform = defaults::schema(defaults::PLOTS))]
     pub plots: Option<bool>,
+    /// How stress and peeq at points are recovered from the Gauss points.
+    #[schemars(transform = defaults::schema(super::Recovery::default()))]
     pub recovery: Option<super::Recovery>,
+    /// Also write `gauss.vtu` with the raw Gauss-point values.
+    #[schemars(transform = defaults::schema(defaults::GAUSS_POINTS))]
     pub gauss_points: Option<bool>,
 }
 
 /// `[[references]]`: a published value to print beside ours.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ReferenceFile {
+    /// Name of a `[[probes]]` entry.
     pub probe: String,
+    /// A quantity name.
     pub quantity: QuantityName,
+    /// The reference value (SI).
     pub value: f64,
+    /// Where it comes from.
     pub source: String,
 }
 
-/// `[[steps]]`.
-#[derive(Debug, Deserialize)]
+/// `[[steps]]`: one step of the load history.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct StepFile {
+    /// Step name (its VTU file and `summary.json` entry).
     pub name: String,
+    /// Factor of every item at the end of the step.
+    #[schemars(transform = ranges::STEP_FACTOR.with_default(defaults::STEP_FACTOR))]
     pub factor: Option<f64>,
+    /// Per-item factors (by indenter, constraint or load name) overriding `factor`.
+    #[schemars(transform = ranges::STEP_FACTOR.values())]
     pub factors: Option<std::collections::BTreeMap<String, f64>>,
+    /// Increments of the step.
+    #[schemars(transform = ranges::COUNT.schema())]
     pub increments: Option<usize>,
+    /// Largest Δλ, as a fraction of the step.
+    #[schemars(transform = FRACTION.schema())]
     pub max_increment: Option<f64>,
+    /// Smallest Δλ, as a fraction of the step.
+    #[schemars(transform = FRACTION.schema())]
     pub min_increment: Option<f64>,
     /// Transient: this step's time (s), overriding `analysis.duration`.
+    #[schemars(transform = ranges::DURATION.schema())]
     pub duration: Option<f64>,
 }

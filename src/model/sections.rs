@@ -11,7 +11,7 @@ use super::bounds;
 use super::budget::Budget;
 use super::schema::*;
 use super::validate::{MAX_COUNT, count, division};
-use super::{ModelError, invalid};
+use super::{ModelError, defaults, invalid, ranges};
 use crate::mesh::blocks::{self, Block};
 use crate::mesh::profiles::{self, Counts, Family, Walls};
 use crate::mesh::{CrossSection, MeshError, gmsh};
@@ -63,14 +63,14 @@ impl Sections<'_> {
                     center,
                     length(format!("{sk}.radius"), c.radius, "the outer radius")?,
                     length(format!("{sk}.thickness"), c.thickness, "the wall thickness")?,
-                    n("around", c.around, 16)?,
-                    n("through", c.through, 1)?,
+                    n("around", c.around, defaults::AROUND)?,
+                    n("through", c.through, defaults::THROUGH)?,
                 );
                 self.blocks(&sk, kind, blocks)
             }
             SectionFile::Circle(c) => {
                 let center = point(format!("{sk}.center"), c.center.map(Into::into))?;
-                let around = count(&format!("{sk}.around"), c.around.unwrap_or(16))?;
+                let around = count(&format!("{sk}.around"), c.around.unwrap_or(defaults::AROUND))?;
                 let radius = length(format!("{sk}.radius"), c.radius, "the radius")?;
                 let through = count(&format!("{sk}.through"), c.through.unwrap_or((around / 8).max(1)))?;
                 self.blocks(&sk, kind, profiles::circle(center, radius, around, through))
@@ -111,15 +111,8 @@ impl Sections<'_> {
             return self.layered_tube(sk, kind, s);
         }
         let need = |name: &str, v: Option<f64>| {
-            v.ok_or_else(|| invalid(format!("{sk}.{name}"), "(missing)", "a positive length in m")).and_then(|v| {
-                bounds::within(
-                    &format!("{sk}.{name}"),
-                    v,
-                    f64::MIN_POSITIVE,
-                    bounds::MAX_COORD,
-                    "a positive length in m",
-                )
-            })
+            v.ok_or_else(|| invalid(format!("{sk}.{name}"), "(missing)", "a positive length in m"))
+                .and_then(|v| ranges::LENGTH.check(&format!("{sk}.{name}"), v, "a positive length in m"))
         };
         let (w, h, t) = (need("width", s.width)?, need("height", s.height)?, need("thickness", s.thickness)?);
         if 2.0 * t >= w.min(h) {
@@ -129,7 +122,7 @@ impl Sections<'_> {
                 format!("less than half the smaller outer dimension ({})", 0.5 * w.min(h)),
             ));
         }
-        let origin: [f64; 2] = s.origin.map_or([0.0, 0.0], Into::into);
+        let origin: [f64; 2] = s.origin.map_or(defaults::ORIGIN, Into::into);
         if !origin.iter().all(|v| v.is_finite() && v.abs() <= bounds::MAX_COORD) {
             return Err(invalid(
                 format!("{sk}.origin"),
@@ -144,7 +137,7 @@ impl Sections<'_> {
                 format!("at least {:e} of the outer size (round-off would swamp the wall)", bounds::MIN_RELATIVE_SIZE),
             ));
         }
-        let through = count(&format!("{sk}.through"), s.through.unwrap_or(1))?;
+        let through = count(&format!("{sk}.through"), s.through.unwrap_or(defaults::THROUGH))?;
         // `around` and `along_x`/`along_z` are two ways of dividing the same
         // tube: which one is given is a value check, not a key of another shape
         let (ax, az) = match (s.around, s.along_x, s.along_z) {
@@ -316,13 +309,13 @@ impl Sections<'_> {
                 Some((width, _)) => length(format!("{sk}.lip"), width, "the lip width")?,
                 None => 0.0,
             },
-            cells: cells.unwrap_or(1),
+            cells: cells.unwrap_or(defaults::CELLS),
         };
         let counts = Counts {
-            flange: n("along_flange", s.along_flange, 2)?,
-            web: n("along_web", s.along_web, 4)?,
-            lip: n("along_lip", lip.and_then(|l| l.1), 1)?,
-            through: n("through", through, 1)?,
+            flange: n("along_flange", s.along_flange, defaults::ALONG_FLANGE)?,
+            web: n("along_web", s.along_web, defaults::ALONG_WEB)?,
+            lip: n("along_lip", lip.and_then(|l| l.1), defaults::ALONG_LIP)?,
+            through: n("through", through, defaults::THROUGH)?,
             plies,
         };
         let origin = point(format!("{sk}.origin"), s.origin.map(Into::into))?;
@@ -352,14 +345,8 @@ impl Sections<'_> {
         let file = s.file.as_ref().ok_or_else(|| {
             invalid(format!("{sk}.file"), "(missing)", "the path of a gmsh .msh file, relative to the model file")
         })?;
-        let scale = s.scale.unwrap_or(1.0);
-        if !(scale.is_finite() && scale > 0.0 && (1e-9..=1e9).contains(&scale)) {
-            return Err(invalid(
-                format!("{sk}.scale"),
-                scale,
-                "a factor from 1e-9 to 1e9 (e.g. 1e-3 for a mesh in mm)",
-            ));
-        }
+        let scale = s.scale.unwrap_or(defaults::GMSH_SCALE);
+        ranges::GMSH_SCALE.check(&format!("{sk}.scale"), scale, "a factor, e.g. 1e-3 for a mesh in mm")?;
         let section = gmsh::read(&base.join(file), scale, &format!("{sk}.file"))?;
         if let Some(e) = s.element
             && e.kind() != section.kind
@@ -392,7 +379,7 @@ fn wall_plies(
     };
     super::laminate::check(sk, plies)?;
     let total: f64 = plies.iter().map(|p| p.thickness).sum();
-    let elements: usize = plies.iter().map(|p| p.elements.unwrap_or(1)).sum();
+    let elements: usize = plies.iter().map(|p| p.elements.unwrap_or(defaults::THROUGH)).sum();
     for (name, v) in [("web_thickness", s.web_thickness), ("flange_thickness", s.flange_thickness)] {
         if let Some(v) = v
             && (v - total).abs() > 1e-9 * total
@@ -409,17 +396,17 @@ fn wall_plies(
     {
         return Err(invalid(format!("{sk}.through"), t, format!("the plies' {elements} elements, or no through")));
     }
-    let shares = plies.iter().map(|p| (p.thickness / total, p.elements.unwrap_or(1))).collect();
+    let shares = plies.iter().map(|p| (p.thickness / total, p.elements.unwrap_or(defaults::THROUGH))).collect();
     Ok((Some(total), Some(total), Some(elements), shares))
 }
 
 fn length(key: String, v: Option<f64>, what: &str) -> Result<f64, ModelError> {
     let v = v.ok_or_else(|| invalid(&key, "(missing)", format!("{what} in m")))?;
-    bounds::within(&key, v, f64::MIN_POSITIVE, bounds::MAX_COORD, &format!("{what} in m, positive"))
+    ranges::LENGTH.check(&key, v, &format!("{what} in m, positive"))
 }
 
 fn point(key: String, v: Option<[f64; 2]>) -> Result<[f64; 2], ModelError> {
-    let p = v.unwrap_or([0.0, 0.0]);
+    let p = v.unwrap_or(defaults::ORIGIN);
     if p.iter().all(|c| c.is_finite() && c.abs() <= bounds::MAX_COORD) {
         Ok(p)
     } else {

@@ -12,10 +12,9 @@
 
 use std::collections::BTreeMap;
 
-use super::bounds;
 use super::schema::StepFile;
 use super::validate::count;
-use super::{ModelError, invalid};
+use super::{ModelError, invalid, ranges};
 use crate::solver::stepping::StepSettings;
 
 /// A loading item a step can scale.
@@ -118,7 +117,7 @@ pub(super) fn steps(file: &[StepFile], names: &ItemNames, base: &StepSettings) -
                 format!("a name not used by steps[{j}]"),
             ));
         }
-        let default = s.factor.unwrap_or(1.0);
+        let default = s.factor.unwrap_or(super::defaults::STEP_FACTOR);
         check_factor(&format!("{key}.factor"), default)?;
         let mut step = Step {
             name: s.name.clone(),
@@ -149,7 +148,7 @@ pub(super) fn steps(file: &[StepFile], names: &ItemNames, base: &StepSettings) -
 }
 
 fn check_factor(key: &str, v: f64) -> Result<(), ModelError> {
-    bounds::within(key, v, -1e3, 1e3, "a factor of the item's value given in the model; 0 releases it").map(|_| ())
+    ranges::STEP_FACTOR.check(key, v, "a factor of the item's value given in the model; 0 releases it").map(|_| ())
 }
 
 /// The step's increment controls: `increments`, `max_increment` and
@@ -169,8 +168,12 @@ fn settings(key: &str, s: &StepFile, base: &StepSettings) -> Result<StepSettings
         [("max_increment", s.max_increment, &mut out.max), ("min_increment", s.min_increment, &mut out.min)]
     {
         if let Some(v) = value {
-            if !(v.is_finite() && v > 0.0 && v <= 1.0) {
-                return Err(invalid(format!("{key}.{name}"), v, "a fraction of the step in (0, 1]"));
+            if !ranges::FRACTION.contains(v) {
+                return Err(invalid(
+                    format!("{key}.{name}"),
+                    v,
+                    format!("a fraction of the step {}", ranges::FRACTION),
+                ));
             }
             *slot = v;
         }

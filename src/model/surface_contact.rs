@@ -88,7 +88,7 @@ pub(super) fn surface_contact(
                 (off <= m.1.sqrt()).then_some((s.0, normal))
             })
             .collect();
-        if c.interference != Some(true) {
+        if !c.interference.unwrap_or(super::defaults::INTERFERENCE) {
             overlap(key, c, mesh, bm, bs, &gaps)?;
         }
         return Err(invalid(

@@ -5,13 +5,10 @@
 
 use super::analysis::{Parts, densities_given, mass_kind};
 use super::schema::{AnalysisFile, AnalysisType};
-use super::{ModelError, bounds, invalid};
+use super::{ModelError, bounds, invalid, ranges};
 use crate::dynamics::TransientSettings;
 
-/// Longest accepted step duration (s).
-pub const MAX_DURATION: f64 = 1e6;
-/// Largest accepted initial speed (m/s).
-pub const MAX_SPEED: f64 = 1e4;
+pub use super::ranges::{MAX_DURATION, MAX_SPEED};
 /// Largest accepted Newmark β: above ¼ (γ + ½)² = 0.5625 of the most
 /// dissipative γ = 1, so every γ in [½, 1] has its unconditionally stable
 /// range (a larger β only lengthens the periods).
@@ -82,7 +79,7 @@ fn settings(
                 format!("the time of one load step in s with analysis.type = \"transient\" ({key} gives none)"),
             )
         })?;
-        bounds::within(key, d, f64::MIN_POSITIVE, MAX_DURATION, "the time of a load step in s, positive")
+        ranges::DURATION.check(key, d, "the time of a load step in s, positive")
     };
     let base = file.duration.map(|d| duration("analysis.duration", Some(d))).transpose()?;
     let durations = if steps.is_empty() {
@@ -94,15 +91,18 @@ fn settings(
             .map(|(i, s)| duration(&format!("steps[{i}].duration"), s.duration.or(base)))
             .collect::<Result<Vec<f64>, ModelError>>()?
     };
-    let (beta, gamma) = file.newmark.as_ref().map_or((0.25, 0.5), |n| (n.beta, n.gamma));
+    let (beta, gamma) = file
+        .newmark
+        .as_ref()
+        .map_or((super::defaults::NEWMARK_BETA, super::defaults::NEWMARK_GAMMA), |n| (n.beta, n.gamma));
     // unconditional stability of the implicit Newmark family on linear
     // problems: γ ≥ ½ and β ≥ ¼ (γ + ½)² (Hughes, *The Finite Element
     // Method*, §9.1.2); γ > ½ damps the highest modes
-    if !(gamma.is_finite() && (0.5..=1.0).contains(&gamma)) {
+    if !ranges::NEWMARK_GAMMA.contains(gamma) {
         return Err(invalid(
             "analysis.newmark.gamma",
             bounds::number(gamma),
-            "a number in [0.5, 1] (γ ≥ ½ for stability)",
+            format!("a number {} (γ ≥ ½ for stability)", ranges::NEWMARK_GAMMA),
         ));
     }
     let min_beta = 0.25 * (gamma + 0.5).powi(2);
@@ -121,8 +121,8 @@ fn settings(
     let damping = file.damping.as_ref().map_or(Ok::<_, ModelError>((0.0, 0.0)), |d| {
         let a = d.mass.unwrap_or(0.0);
         let b = d.stiffness.unwrap_or(0.0);
-        bounds::within("analysis.damping.mass", a, 0.0, 1e9, "α_M in 1/s, ≥ 0")?;
-        bounds::within("analysis.damping.stiffness", b, 0.0, 1e3, "β_K in s, ≥ 0")?;
+        ranges::DAMPING_MASS.check("analysis.damping.mass", a, "α_M in 1/s, ≥ 0")?;
+        ranges::DAMPING_STIFFNESS.check("analysis.damping.stiffness", b, "β_K in s, ≥ 0")?;
         Ok((a, b))
     })?;
     if arc_length {
@@ -158,13 +158,13 @@ fn settings(
         mass: mass_kind(file),
         initial_velocities,
         output_interval,
-        contact_forces: match file.contact_forces {
-            Some(super::schema::ContactForcesFile::Newmark) => crate::dynamics::ContactForces::Newmark,
-            Some(super::schema::ContactForcesFile::Implicit) | None => crate::dynamics::ContactForces::Implicit,
+        contact_forces: match file.contact_forces.unwrap_or_default() {
+            super::schema::ContactForcesFile::Newmark => crate::dynamics::ContactForces::Newmark,
+            super::schema::ContactForcesFile::Implicit => crate::dynamics::ContactForces::Implicit,
         },
-        contact_mass: match file.contact_mass {
-            Some(super::schema::ContactMassFile::Kept) => crate::dynamics::ContactMass::Kept,
-            Some(super::schema::ContactMassFile::Redistributed) | None => crate::dynamics::ContactMass::Redistributed,
+        contact_mass: match file.contact_mass.unwrap_or_default() {
+            super::schema::ContactMassFile::Kept => crate::dynamics::ContactMass::Kept,
+            super::schema::ContactMassFile::Redistributed => crate::dynamics::ContactMass::Redistributed,
         },
     }))
 }
@@ -262,7 +262,7 @@ fn initial_velocities(file: &AnalysisFile, parts: &Parts<'_>) -> Result<Vec<(usi
             ));
         }
         for (k, c) in v.velocity.iter().enumerate() {
-            bounds::within(&format!("{key}.velocity[{k}]"), *c, -MAX_SPEED, MAX_SPEED, "a speed in m/s")?;
+            ranges::SPEED.check(&format!("{key}.velocity[{k}]"), *c, "a speed in m/s")?;
         }
         initial_velocities.push((body, *v.velocity));
     }

@@ -4,8 +4,10 @@
 //! allowed.
 
 use super::bounds::{self, number};
+use super::defaults;
+use super::ranges::{self, AT_LEAST_ONE, FRACTION, TOLERANCE};
 use super::schema::*;
-use super::{ModelError, OutputSettings, Probe, Recovery, Reference, SolverSettings, invalid};
+use super::{ModelError, OutputSettings, Probe, Reference, SolverSettings, invalid};
 use crate::contact::{self, Penalty};
 use crate::mesh::{Division, Segment};
 use crate::solver::newton::NewtonSettings;
@@ -36,12 +38,12 @@ pub(super) fn names(file: &ModelFile) -> Result<(), ModelError> {
 pub(super) fn output(o: &OutputFile) -> OutputSettings {
     // element-wise recovery stays the default until the projection is
     // validated against 3D under punches (issue 8)
-    let recovery = o.recovery.unwrap_or(Recovery::Element);
+    let recovery = o.recovery.unwrap_or_default();
     OutputSettings {
-        vtu: o.vtu.unwrap_or(true),
-        plots: o.plots.unwrap_or(true),
+        vtu: o.vtu.unwrap_or(defaults::VTU),
+        plots: o.plots.unwrap_or(defaults::PLOTS),
         recovery,
-        gauss_points: o.gauss_points.unwrap_or(false),
+        gauss_points: o.gauss_points.unwrap_or(defaults::GAUSS_POINTS),
     }
 }
 
@@ -107,9 +109,7 @@ pub(super) fn division(key: &str, d: &DivisionFile) -> Result<Vec<f64>, ModelErr
     division_parts(key, d.from, d.to, d.elements, d.ratio, d.lines.as_ref(), d.segments.as_ref())
 }
 
-/// Largest element count per division and per tube side, and sample count
-/// per line: far beyond any useful model, small enough to allocate.
-pub(super) const MAX_COUNT: usize = 100_000;
+pub(super) use super::ranges::MAX_COUNT;
 
 pub(super) fn count(key: &str, n: usize) -> Result<usize, ModelError> {
     if (1..=MAX_COUNT).contains(&n) { Ok(n) } else { Err(invalid(key, n, format!("an integer from 1 to {MAX_COUNT}"))) }
@@ -185,11 +185,9 @@ pub(super) fn penalty(key: &str, penalty: Option<f64>, factor: Option<f64>) -> R
         (Some(_), Some(_)) => {
             Err(invalid(format!("{key}.penalty"), "both penalty and penalty_factor", "at most one of them"))
         }
-        (Some(p), None) => Ok(Penalty::PerArea(bounds::within(
+        (Some(p), None) => Ok(Penalty::PerArea(ranges::PENALTY.check(
             &format!("{key}.penalty"),
             p,
-            f64::MIN_POSITIVE,
-            f64::MAX.sqrt(),
             "a positive penalty per area in Pa/m",
         )?)),
         (None, Some(a)) => {
@@ -225,7 +223,8 @@ pub(super) fn tolerance(key: &str, t: Option<f64>, size: f64) -> Result<Option<f
 /// equals the normal one (elastic slip of the order of the penetration).
 pub(super) fn friction(key: &str, mu: Option<f64>) -> Result<Option<contact::Friction>, ModelError> {
     mu.map(|m| {
-        bounds::within(&format!("{key}.friction"), m, 0.0, 10.0, "Coulomb's coefficient of friction μ")
+        ranges::FRICTION
+            .check(&format!("{key}.friction"), m, "Coulomb's coefficient of friction μ")
             .map(|coefficient| contact::Friction { coefficient, penalty_ratio: 1.0 })
     })
     .transpose()
@@ -233,15 +232,15 @@ pub(super) fn friction(key: &str, mu: Option<f64>) -> Result<Option<contact::Fri
 
 pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSettings, ModelError> {
     let increments = s.increments.unwrap_or(if linear { 1 } else { 10 });
-    if increments == 0 {
-        return Err(invalid("solver.increments", 0, "an integer ≥ 1"));
+    if !AT_LEAST_ONE.contains_count(increments) {
+        return Err(invalid("solver.increments", increments, format!("an integer {AT_LEAST_ONE}")));
     }
     let initial = 1.0 / increments as f64;
     let fraction = |name: &str, v: Option<f64>, default: f64| -> Result<f64, ModelError> {
         match v {
             None => Ok(default),
-            Some(v) if v.is_finite() && v > 0.0 && v <= 1.0 => Ok(v),
-            Some(v) => Err(invalid(format!("solver.{name}"), number(v), "a number in (0, 1]")),
+            Some(v) if FRACTION.contains(v) => Ok(v),
+            Some(v) => Err(invalid(format!("solver.{name}"), number(v), format!("a number {FRACTION}"))),
         }
     };
     let control = step_control(s.step_control.as_ref())?;
@@ -251,47 +250,53 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
     // open at both ends: 0 would stop at the first cutback, 1 would retry the
     // same increment forever
     let cutback = match s.cutback_factor {
-        None => 0.5,
-        Some(c) if c.is_finite() && c > 0.0 && c < 1.0 => c,
+        None => defaults::CUTBACK_FACTOR,
+        Some(c) if ranges::CUTBACK_FACTOR.contains(c) => c,
         Some(c) => {
             return Err(invalid(
                 "solver.cutback_factor",
                 number(c),
-                "a number in (0, 1), both ends excluded: the failed increment Δλ is retried as Δλ × cutback_factor, so 1 would retry the same increment",
+                format!(
+                    "a number {}, both ends excluded: the failed increment Δλ is retried as Δλ × cutback_factor, \
+                     so 1 would retry the same increment",
+                    ranges::CUTBACK_FACTOR
+                ),
             ));
         }
     };
     let growth = match s.growth_factor {
-        None => 1.5,
-        Some(g) if g.is_finite() && g >= 1.0 => g,
-        Some(g) => return Err(invalid("solver.growth_factor", g, "a number ≥ 1")),
+        None => defaults::GROWTH_FACTOR,
+        Some(g) if ranges::GROWTH_FACTOR.contains(g) => g,
+        Some(g) => return Err(invalid("solver.growth_factor", g, format!("a number {}", ranges::GROWTH_FACTOR))),
     };
     let tol = |name: &str, v: Option<f64>, default: f64| -> Result<f64, ModelError> {
         match v {
             None => Ok(default),
-            Some(v) if v.is_finite() && v > 0.0 && v < 1.0 => Ok(v),
-            Some(v) => Err(invalid(format!("solver.{name}"), number(v), "a number in (0, 1)")),
+            Some(v) if TOLERANCE.contains(v) => Ok(v),
+            Some(v) => Err(invalid(format!("solver.{name}"), number(v), format!("a number {TOLERANCE}"))),
         }
     };
     if min > max {
         return Err(invalid("solver.min_increment", min, format!("at most max_increment ({max})")));
     }
     let stagnation = match s.stagnation_iterations {
-        Some(0) => return Err(invalid("solver.stagnation_iterations", 0, "an integer ≥ 1")),
+        Some(n) if !AT_LEAST_ONE.contains_count(n) => {
+            return Err(invalid("solver.stagnation_iterations", n, format!("an integer {AT_LEAST_ONE}")));
+        }
         Some(n) => n,
         None => usize::MAX,
     };
-    let max_iterations = s.max_iterations.unwrap_or(25);
-    if max_iterations == 0 {
-        return Err(invalid("solver.max_iterations", 0, "an integer ≥ 1"));
+    let max_iterations = s.max_iterations.unwrap_or(defaults::MAX_ITERATIONS);
+    if !AT_LEAST_ONE.contains_count(max_iterations) {
+        return Err(invalid("solver.max_iterations", max_iterations, format!("an integer {AT_LEAST_ONE}")));
     }
-    let max_increments = s.max_increments.unwrap_or(1000);
-    if max_increments == 0 {
-        return Err(invalid("solver.max_increments", 0, "an integer ≥ 1"));
+    let max_increments = s.max_increments.unwrap_or(defaults::MAX_INCREMENTS);
+    if !AT_LEAST_ONE.contains_count(max_increments) {
+        return Err(invalid("solver.max_increments", max_increments, format!("an integer {AT_LEAST_ONE}")));
     }
-    let single_precision = s.factor_precision != Some(FactorPrecision::Double);
-    if s.threads == Some(0) {
-        return Err(invalid("solver.threads", 0, "an integer ≥ 1 (or no key: all cores)"));
+    let single_precision = s.factor_precision.unwrap_or_default() == FactorPrecision::Single;
+    if let Some(n) = s.threads.filter(|n| !AT_LEAST_ONE.contains_count(*n)) {
+        return Err(invalid("solver.threads", n, format!("an integer {AT_LEAST_ONE} (or no key: all cores)")));
     }
     Ok(SolverSettings {
         steps: StepSettings {
@@ -300,21 +305,25 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
             min: min.min(initial),
             cutback_factor: cutback,
             growth_factor: growth,
-            easy_iterations: s.easy_iterations.unwrap_or(4),
+            easy_iterations: s.easy_iterations.unwrap_or(defaults::EASY_ITERATIONS),
             max_increments,
             control,
         },
         newton: NewtonSettings {
             max_iterations,
-            residual_tolerance: tol("residual_tolerance", s.residual_tolerance, 1e-6)?,
-            displacement_tolerance: tol("displacement_tolerance", s.displacement_tolerance, 1e-6)?,
+            residual_tolerance: tol("residual_tolerance", s.residual_tolerance, defaults::RESIDUAL_TOLERANCE)?,
+            displacement_tolerance: tol(
+                "displacement_tolerance",
+                s.displacement_tolerance,
+                defaults::DISPLACEMENT_TOLERANCE,
+            )?,
             divergence_ratio: 1e6,
             stagnation_iterations: stagnation,
-            line_search: s.line_search.unwrap_or(false),
+            line_search: s.line_search.unwrap_or(defaults::LINE_SEARCH),
         },
         threads: s.threads,
         reuse: ReuseSettings {
-            enabled: s.reuse_factorization.unwrap_or(true),
+            enabled: s.reuse_factorization.unwrap_or(defaults::REUSE_FACTORIZATION),
             tolerance: tol("krylov_tolerance", s.krylov_tolerance, ReuseSettings::default().tolerance)?,
             // a linear model factorizes once: in double, solved to round-off
             // rather than to Newton's tolerance (solver::reuse, mixed precision)
@@ -334,22 +343,22 @@ pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
 fn step_control(c: Option<&StepControlFile>) -> Result<Option<StepControl>, ModelError> {
     let Some(c) = c else { return Ok(None) };
     let key = "solver.step_control";
-    let check = |name: &str, v: Option<f64>, hi: f64, what: &str| match v {
-        Some(v) if !(v.is_finite() && v > 0.0 && v <= hi) => {
-            Err(invalid(format!("{key}.{name}"), number(v), format!("a number in (0, {hi}]: {what}")))
+    let check = |name: &str, v: Option<f64>, range: ranges::Range, what: &str| match v {
+        Some(v) if !range.contains(v) => {
+            Err(invalid(format!("{key}.{name}"), number(v), format!("a number {range}: {what}")))
         }
         _ => Ok(v),
     };
     let plastic_strain = check(
         "plastic_strain",
         c.plastic_strain,
-        0.1,
+        ranges::PLASTIC_STRAIN_STEP,
         "the largest increment of the equivalent plastic strain at any Gauss point per load increment, e.g. 2e-3",
     )?;
     let contact_set = check(
         "contact_set",
         c.contact_set,
-        1.0,
+        FRACTION,
         "the largest fraction of the active contact points that open or close in one increment, e.g. 0.2",
     )?;
     if plastic_strain.is_none() && contact_set.is_none() {

@@ -9,7 +9,7 @@
 
 use super::laminate;
 use super::schema::{BodyFile, SectionFile, ZoneFile};
-use super::{ModelError, invalid};
+use super::{ModelError, invalid, ranges};
 use crate::materials::{Frame, Material};
 use crate::mesh::CrossSection;
 
@@ -45,7 +45,7 @@ fn zones<'a>(key: &str, b: &'a BodyFile, section: &CrossSection) -> Vec<Zone<'a>
                 key: format!("{key}.section.plies[{}]", k - 1),
                 region: Some(r.name.clone()),
                 material: Some(&p.material),
-                angle: p.angle.unwrap_or(0.0),
+                angle: p.angle.unwrap_or(super::defaults::ANGLE),
                 fibre: [0.0, 1.0, 0.0],
                 normal: [n[0], 0.0, n[1]],
                 oriented: true,
@@ -58,7 +58,7 @@ fn zones<'a>(key: &str, b: &'a BodyFile, section: &CrossSection) -> Vec<Zone<'a>
                 key: format!("{key}.section.plies[{k}]"),
                 region: Some(laminate::region_name(k)),
                 material: Some(&p.material),
-                angle: p.angle.unwrap_or(0.0),
+                angle: p.angle.unwrap_or(super::defaults::ANGLE),
                 fibre: [0.0, 1.0, 0.0],
                 normal: [0.0, 0.0, 1.0],
                 oriented: true,
@@ -76,9 +76,9 @@ fn zone(key: String, z: &ZoneFile) -> Zone<'_> {
         key,
         region: z.region.clone(),
         material: z.material.as_deref(),
-        angle: z.angle.unwrap_or(0.0),
-        fibre: z.fibre.map_or([0.0, 1.0, 0.0], Into::into),
-        normal: z.normal.map_or([0.0, 0.0, 1.0], Into::into),
+        angle: z.angle.unwrap_or(super::defaults::ANGLE),
+        fibre: z.fibre.map_or(super::defaults::FIBRE, Into::into),
+        normal: z.normal.map_or(super::defaults::NORMAL, Into::into),
         oriented: z.angle.is_some() || z.fibre.is_some() || z.normal.is_some(),
     }
 }
@@ -176,8 +176,8 @@ fn describe(z: &Zone<'_>, m: &Material) -> String {
 /// not matter to it (isotropic without strengths), else its oriented copy
 /// (appended once).
 fn oriented(z: &Zone<'_>, m: usize, materials: &mut Vec<Material>) -> Result<usize, ModelError> {
-    if !(z.angle.is_finite() && z.angle.abs() <= 360.0) {
-        return Err(invalid(format!("{}.angle", z.key), z.angle, "an angle in degrees within ±360"));
+    if !ranges::ANGLE.contains(z.angle) {
+        return Err(invalid(format!("{}.angle", z.key), z.angle, format!("an angle in degrees {}", ranges::ANGLE)));
     }
     let frame = Frame::ply(z.fibre, z.normal, z.angle.to_radians()).ok_or_else(|| {
         invalid(

@@ -6,9 +6,10 @@
 use serde::{Deserialize, Deserializer};
 
 use super::{DivisionFile, Exact, SectionElement};
+use crate::model::{defaults, ranges};
 
 /// `[bodies.section]`, chosen by `shape`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "shape", rename_all = "snake_case")]
 pub enum SectionFile {
     /// A rectangle divided along x and z.
@@ -94,75 +95,128 @@ pub(super) fn read<'de, D: Deserializer<'de>>(d: D) -> Result<SectionFile, D::Er
 }
 
 /// `shape = "rectangle"`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct RectangleFile {
+    /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
+    /// The division along x (m).
     pub x: Option<DivisionFile>,
+    /// The division along z (m).
     pub z: Option<DivisionFile>,
 }
 
 /// `shape = "laminate"`: plies stacked along z from `z0`, bottom first,
 /// over the width divided by `x`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct LaminateFile {
+    /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
+    /// The division along x (m).
     pub x: Option<DivisionFile>,
+    /// The bottom of the stack (m).
+    #[schemars(transform = ranges::COORDINATE.with_default(defaults::Z0))]
     pub z0: Option<f64>,
+    /// The plies, bottom first.
     pub plies: Option<Vec<PlyFile>>,
 }
 
 /// One ply of a laminate.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PlyFile {
+    /// Thickness (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub thickness: f64,
+    /// Name of a `[[materials]]` entry.
     pub material: String,
     /// Degrees about z from the beam axis y (right-handed: +90 along −x).
+    #[schemars(transform = ranges::ANGLE.with_default(defaults::ANGLE))]
     pub angle: Option<f64>,
-    /// Elements through the ply (default 1).
+    /// Elements through the ply.
+    #[schemars(transform = ranges::COUNT.with_default(defaults::THROUGH))]
     pub elements: Option<usize>,
 }
 
 /// `shape = "tube"`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct TubeFile {
+    /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
+    /// The corner `[x, z]` with the smallest x and z (m).
+    #[schemars(transform = ranges::COORDINATE.items())]
+    #[schemars(transform = defaults::schema(defaults::ORIGIN))]
     pub origin: Option<Exact<f64, 2>>,
+    /// Outer size along x (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub width: Option<f64>,
+    /// Outer size along z (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub height: Option<f64>,
+    /// Wall thickness (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub thickness: Option<f64>,
+    /// Elements around a square tube (4 + 4k), instead of `along_x` and `along_z`.
+    #[schemars(transform = ranges::COUNT.schema())]
     pub around: Option<usize>,
+    /// Elements along each straight part of the walls along x.
+    #[schemars(transform = ranges::COUNT.schema())]
     pub along_x: Option<usize>,
+    /// Elements along each straight part of the walls along z.
+    #[schemars(transform = ranges::COUNT.schema())]
     pub along_z: Option<usize>,
+    /// Elements through the wall.
+    #[schemars(transform = ranges::COUNT.with_default(defaults::THROUGH))]
     pub through: Option<usize>,
     /// Plies through every wall (the tube is then built as a one-cell box).
     pub plies: Option<Vec<PlyFile>>,
 }
 
 /// `shape = "quads"`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct QuadsFile {
+    /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
+    /// Corner points `[x, z]` (m), numbered from 0.
+    #[schemars(transform = ranges::COORDINATE.items())]
     pub points: Option<Vec<Exact<f64, 2>>>,
+    /// Quadrilaterals: four point indices, counter-clockwise in the x–z plane.
     pub quads: Option<Vec<Exact<usize, 4>>>,
 }
 
 /// `shape = "i_beam"`, `"channel"`, `"z_section"` or `"angle"`.
-#[derive(Debug, Clone, Deserialize)]
+#[derive(Debug, Clone, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct ProfileFile {
+    /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
+    /// The corner `[x, z]` with the smallest x and z (m).
+    #[schemars(transform = ranges::COORDINATE.items())]
+    #[schemars(transform = defaults::schema(defaults::ORIGIN))]
     pub origin: Option<Exact<f64, 2>>,
+    /// Outer size along x (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub width: Option<f64>,
+    /// Outer size along z (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub height: Option<f64>,
+    /// Thickness of the walls along z, t_w (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub web_thickness: Option<f64>,
+    /// Thickness of the walls along x, t_f (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub flange_thickness: Option<f64>,
+    /// Elements along each flange part.
+    #[schemars(transform = ranges::COUNT.with_default(defaults::ALONG_FLANGE))]
     pub along_flange: Option<usize>,
+    /// Elements along each web between the flanges.
+    #[schemars(transform = ranges::COUNT.with_default(defaults::ALONG_WEB))]
     pub along_web: Option<usize>,
+    /// Elements through the wall.
+    #[schemars(transform = ranges::COUNT.with_default(defaults::THROUGH))]
     pub through: Option<usize>,
     /// Plies through every wall (thickness, material, angle, elements),
     /// from the wall's lower x (webs) or lower z (flanges).
@@ -170,37 +224,79 @@ pub struct ProfileFile {
 }
 
 /// `shape = "hat"`: a profile with lips.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct HatFile {
+    /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
+    /// The corner `[x, z]` with the smallest x and z (m).
+    #[schemars(transform = ranges::COORDINATE.items())]
+    #[schemars(transform = defaults::schema(defaults::ORIGIN))]
     pub origin: Option<Exact<f64, 2>>,
+    /// Outer size along x (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub width: Option<f64>,
+    /// Outer size along z (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub height: Option<f64>,
+    /// Thickness of the walls along z, t_w (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub web_thickness: Option<f64>,
+    /// Thickness of the walls along x, t_f (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub flange_thickness: Option<f64>,
+    /// Width of each lip (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub lip: Option<f64>,
+    /// Elements along each flange part.
+    #[schemars(transform = ranges::COUNT.with_default(defaults::ALONG_FLANGE))]
     pub along_flange: Option<usize>,
+    /// Elements along each web between the flanges.
+    #[schemars(transform = ranges::COUNT.with_default(defaults::ALONG_WEB))]
     pub along_web: Option<usize>,
+    /// Elements along each lip.
+    #[schemars(transform = ranges::COUNT.with_default(defaults::ALONG_LIP))]
     pub along_lip: Option<usize>,
+    /// Elements through the wall.
+    #[schemars(transform = ranges::COUNT.with_default(defaults::THROUGH))]
     pub through: Option<usize>,
     /// Plies through every wall.
     pub plies: Option<Vec<PlyFile>>,
 }
 
 /// `shape = "box"`: a profile of one or more cells.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct BoxFile {
+    /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
+    /// The corner `[x, z]` with the smallest x and z (m).
+    #[schemars(transform = ranges::COORDINATE.items())]
+    #[schemars(transform = defaults::schema(defaults::ORIGIN))]
     pub origin: Option<Exact<f64, 2>>,
+    /// Outer size along x (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub width: Option<f64>,
+    /// Outer size along z (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub height: Option<f64>,
+    /// Thickness of the walls along z, t_w (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub web_thickness: Option<f64>,
+    /// Thickness of the walls along x, t_f (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub flange_thickness: Option<f64>,
+    /// Cells side by side.
+    #[schemars(transform = ranges::CELLS.with_default(defaults::CELLS))]
     pub cells: Option<usize>,
+    /// Elements along each flange part.
+    #[schemars(transform = ranges::COUNT.with_default(defaults::ALONG_FLANGE))]
     pub along_flange: Option<usize>,
+    /// Elements along each web between the flanges.
+    #[schemars(transform = ranges::COUNT.with_default(defaults::ALONG_WEB))]
     pub along_web: Option<usize>,
+    /// Elements through the wall.
+    #[schemars(transform = ranges::COUNT.with_default(defaults::THROUGH))]
     pub through: Option<usize>,
     /// Plies through every wall (thickness, material, angle, elements),
     /// from the wall's lower x (webs) or lower z (flanges).
@@ -240,34 +336,60 @@ impl BoxFile {
 }
 
 /// `shape = "circular_tube"`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CircularTubeFile {
+    /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
+    /// Centre `[x, z]` (m).
+    #[schemars(transform = ranges::COORDINATE.items())]
+    #[schemars(transform = defaults::schema(defaults::ORIGIN))]
     pub center: Option<Exact<f64, 2>>,
+    /// Outer radius (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub radius: Option<f64>,
+    /// Wall thickness (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub thickness: Option<f64>,
+    /// Elements around.
+    #[schemars(transform = ranges::COUNT.with_default(defaults::AROUND))]
     pub around: Option<usize>,
+    /// Elements through the wall.
+    #[schemars(transform = ranges::COUNT.with_default(defaults::THROUGH))]
     pub through: Option<usize>,
 }
 
 /// `shape = "circle"`.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct CircleFile {
+    /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
+    /// Centre `[x, z]` (m).
+    #[schemars(transform = ranges::COORDINATE.items())]
+    #[schemars(transform = defaults::schema(defaults::ORIGIN))]
     pub center: Option<Exact<f64, 2>>,
+    /// Outer radius (m).
+    #[schemars(transform = ranges::LENGTH.schema())]
     pub radius: Option<f64>,
+    /// Elements around.
+    #[schemars(transform = ranges::COUNT.with_default(defaults::AROUND))]
     pub around: Option<usize>,
+    /// Elements radially in each rim block (default max(1, around/8)).
+    #[schemars(transform = ranges::COUNT.schema())]
     pub through: Option<usize>,
 }
 
 /// `shape = "gmsh"`: the element comes from the file (`element`, if
 /// given, must agree).
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct GmshFile {
+    /// Optional: if given, the file's elements (`"L4"`, `"L9"` or `"L16"`).
     pub element: Option<SectionElement>,
+    /// Path of the `.msh` file, relative to the model file's folder.
     pub file: Option<String>,
+    /// Factor applied to the file's coordinates (`1e-3` for a mesh in mm).
+    #[schemars(transform = ranges::GMSH_SCALE.with_default(defaults::GMSH_SCALE))]
     pub scale: Option<f64>,
 }

@@ -4,7 +4,7 @@ use serde::Deserialize;
 
 /// `[[symmetry]]`: the model is the part of a symmetric structure on one
 /// side of this plane.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct SymmetryFile {
     /// Name (the plane's reaction).
@@ -16,16 +16,19 @@ pub struct SymmetryFile {
 }
 
 /// `symmetry.plane`: exactly one coordinate.
-#[derive(Debug, Deserialize)]
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub struct PlaneFile {
+    /// The plane x = c (m).
     pub x: Option<f64>,
+    /// The plane y = c (m).
     pub y: Option<f64>,
+    /// The plane z = c (m).
     pub z: Option<f64>,
 }
 
 /// `symmetry.keep`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum KeepSide {
     /// Coordinates at or above the plane's.

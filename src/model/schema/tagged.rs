@@ -24,7 +24,10 @@ use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, Visitor};
 /// The table is read through a private mirror enum (module `$mirror`) whose
 /// variants hold the shared keys and their own, each denying unknown keys,
 /// so that serde's messages list exactly the keys the chosen variant
-/// accepts. Field attributes are doc comments only (the mirror has none).
+/// accepts; its JSON Schema is the mirror's (one branch per variant, the
+/// keys' doc comments as descriptions). Field attributes are doc comments;
+/// `=> transform` after a field's type writes its range into the schema
+/// (`=> ranges::FRICTION.schema()`).
 macro_rules! tagged_table {
     (
         $(#[$meta:meta])*
@@ -37,11 +40,7 @@ macro_rules! tagged_table {
     ) => {
         $crate::model::schema::tagged::tagged_table!(@struct [$(#[$meta])*] $name $tag_field $enum $shared);
 
-        $(#[$emeta])*
-        #[derive(Debug)]
-        pub enum $enum {
-            $( $(#[$vmeta])* $variant $own, )*
-        }
+        $crate::model::schema::tagged::tagged_table!(@enum [$(#[$emeta])*] $enum { $( [$(#[$vmeta])*] $variant $own )* });
 
         #[doc = concat!("The flat table that [`", stringify!($name), "`] is read from.")]
         mod $mirror {
@@ -49,14 +48,28 @@ macro_rules! tagged_table {
             use super::*;
             $( $crate::model::schema::tagged::tagged_table!(@mirror $variant $shared $own); )*
 
-            #[derive(serde::Deserialize)]
+            $(#[$meta])*
+            #[derive(serde::Deserialize, schemars::JsonSchema)]
             #[serde(tag = $tag)]
             pub enum Tagged {
-                $( #[serde(rename = $vname)] $variant($variant), )*
+                $( $(#[$vmeta])* #[serde(rename = $vname)] $variant($variant), )*
             }
 
             /// The variants' names, as the model file writes them.
             pub const NAMES: &[&str] = &[$($vname),*];
+        }
+
+        impl schemars::JsonSchema for $name {
+            fn schema_name() -> std::borrow::Cow<'static, str> {
+                stringify!($name).into()
+            }
+
+            fn json_schema(generator: &mut schemars::SchemaGenerator) -> schemars::Schema {
+                #[allow(unused_mut)]
+                let mut schema = <$mirror::Tagged as schemars::JsonSchema>::json_schema(generator);
+                $( $crate::model::schema::tagged::optional_tag(&mut schema, $tag, $default); )?
+                schema
+            }
         }
 
         impl<'de> serde::Deserialize<'de> for $name {
@@ -72,8 +85,17 @@ macro_rules! tagged_table {
             }
         }
     };
+    (@enum [$($emeta:tt)*] $enum:ident {
+        $( [$($vmeta:tt)*] $variant:ident { $( $(#[$ometa:meta])* $ofield:ident: $oty:ty $(=> $otf:expr)?, )* } )*
+    }) => {
+        $($emeta)*
+        #[derive(Debug)]
+        pub enum $enum {
+            $( $($vmeta)* $variant { $( $(#[$ometa])* $ofield: $oty, )* }, )*
+        }
+    };
     (@struct [$($meta:tt)*] $name:ident $tag_field:ident $enum:ident
-        { $( $(#[$fmeta:meta])* $field:ident: $fty:ty, )* }
+        { $( $(#[$fmeta:meta])* $field:ident: $fty:ty $(=> $ftf:expr)?, )* }
     ) => {
         $($meta)*
         #[derive(Debug)]
@@ -84,19 +106,19 @@ macro_rules! tagged_table {
         }
     };
     (@mirror $variant:ident
-        { $( $(#[$smeta:meta])* $sfield:ident: $sty:ty, )* }
-        { $( $(#[$ometa:meta])* $ofield:ident: $oty:ty, )* }
+        { $( $(#[$smeta:meta])* $sfield:ident: $sty:ty $(=> $stf:expr)?, )* }
+        { $( $(#[$ometa:meta])* $ofield:ident: $oty:ty $(=> $otf:expr)?, )* }
     ) => {
-        #[derive(serde::Deserialize)]
+        #[derive(serde::Deserialize, schemars::JsonSchema)]
         #[serde(deny_unknown_fields)]
         pub struct $variant {
-            $( pub $sfield: $sty, )*
-            $( pub $ofield: $oty, )*
+            $( $(#[$smeta])* $(#[schemars(transform = $stf)])? pub $sfield: $sty, )*
+            $( $(#[$ometa])* $(#[schemars(transform = $otf)])? pub $ofield: $oty, )*
         }
     };
     (@convert $m:ident $name:ident $tag_field:ident $enum:ident $variant:ident
-        { $( $(#[$smeta:meta])* $sfield:ident: $sty:ty, )* }
-        { $( $(#[$ometa:meta])* $ofield:ident: $oty:ty, )* }
+        { $( $(#[$smeta:meta])* $sfield:ident: $sty:ty $(=> $stf:expr)?, )* }
+        { $( $(#[$ometa:meta])* $ofield:ident: $oty:ty $(=> $otf:expr)?, )* }
     ) => {
         $name {
             $( $sfield: $m.$sfield, )*
@@ -106,6 +128,24 @@ macro_rules! tagged_table {
 }
 
 pub(crate) use tagged_table;
+
+/// Makes the tag `tag` optional, with `default` its default, in the branch
+/// of a tagged table's schema whose tag is `default` (a contact's `method`
+/// may be left out).
+pub(crate) fn optional_tag(schema: &mut schemars::Schema, tag: &str, default: &str) {
+    let Some(serde_json::Value::Array(branches)) = schema.get_mut("oneOf") else { return };
+    for branch in branches {
+        if branch.pointer(&format!("/properties/{tag}/const")).and_then(|v| v.as_str()) != Some(default) {
+            continue;
+        }
+        if let Some(serde_json::Value::Object(property)) = branch.pointer_mut(&format!("/properties/{tag}")) {
+            property.insert("default".into(), default.into());
+        }
+        if let Some(serde_json::Value::Array(required)) = branch.get_mut("required") {
+            required.retain(|r| r != tag);
+        }
+    }
+}
 
 /// Reads `T` (a serde enum tagged by `tag`) from `d`; when the table has no
 /// `tag` key and a `default` is given, as if it said `tag = default`.

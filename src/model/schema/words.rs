@@ -11,7 +11,7 @@ use crate::quantity::Quantity;
 use crate::shape::{BeamElementKind, SectionElementKind};
 
 /// A section element (`bodies.section.element`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 pub enum SectionElement {
     /// Bilinear, 4 nodes.
     L4,
@@ -33,7 +33,7 @@ impl SectionElement {
 }
 
 /// A beam element (`bodies.axis.element`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 pub enum BeamElement {
     /// Linear, 2 nodes.
     B2,
@@ -55,7 +55,7 @@ impl BeamElement {
 }
 
 /// The shape of a load's variation (`loads.profile.shape`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum ProfileShape {
     /// A half sine wave over `[from, to]`.
@@ -63,7 +63,7 @@ pub enum ProfileShape {
 }
 
 /// A coordinate axis (`constraints.fix`, a cylinder's `axis`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Axis {
     /// x.
@@ -82,7 +82,7 @@ impl Axis {
 }
 
 /// The direction a flat punch's face looks towards the body (`normal`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 pub enum Normal {
     /// +x.
     #[serde(rename = "+x")]
@@ -119,17 +119,18 @@ impl Normal {
 }
 
 /// `solver.factor_precision`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum FactorPrecision {
     /// Factors stored in f32, refined by PCG in f64 (the default).
+    #[default]
     Single,
     /// Factors in f64.
     Double,
 }
 
 /// `solver.inertia`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum Inertia {
     /// The converged tangent of every increment (the default with
@@ -140,7 +141,7 @@ pub enum Inertia {
 }
 
 /// `analysis.geometry`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Geometry {
     /// Small strain and small displacement (the default; the paper's).
@@ -152,7 +153,7 @@ pub enum Geometry {
 }
 
 /// `analysis.strain`: the strain measure of nonlinear geometry.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum StrainMeasure {
     /// Green–Lagrange strain (the default with nonlinear geometry).
@@ -163,7 +164,7 @@ pub enum StrainMeasure {
 }
 
 /// `analysis.type`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum AnalysisType {
     /// Incremental static analysis (the default).
@@ -181,7 +182,7 @@ pub enum AnalysisType {
 }
 
 /// `analysis.mass`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum MassMatrix {
     /// `∫ ρ N_a N_b dV` (the default).
@@ -192,7 +193,7 @@ pub enum MassMatrix {
 }
 
 /// `bodies.formulation`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum Formulation {
     /// Displacement-based, fully integrated (the default for ν < 0.45).
@@ -202,7 +203,7 @@ pub enum Formulation {
 }
 
 /// An indenter's `method`.
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
 pub enum IndenterMethod {
     /// Each node paired once with the closest point at the start (the
@@ -214,17 +215,33 @@ pub enum IndenterMethod {
 }
 
 /// A result quantity by name (`lines.plot`, `references.quantity`): one of
-/// [`Quantity::all`].
+/// [`Quantity::all_for`], the failure indices included.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct QuantityName(pub Quantity);
 
+/// One of the names of [`Quantity::all_for`] (failure indices included).
+impl schemars::JsonSchema for QuantityName {
+    fn schema_name() -> std::borrow::Cow<'static, str> {
+        "QuantityName".into()
+    }
+
+    fn json_schema(_: &mut schemars::SchemaGenerator) -> schemars::Schema {
+        let names: Vec<String> = Quantity::all_for(true).into_iter().map(Quantity::name).collect();
+        schemars::json_schema!({
+            "description": "A result quantity (also the CSV and VTU name).",
+            "type": "string",
+            "enum": names,
+        })
+    }
+}
+
 impl<'de> Deserialize<'de> for QuantityName {
     fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
-        /// The names, for the message (the list lives in [`Quantity::all`]).
+        /// The names, for the message (the list lives in [`Quantity::all_for`]).
         struct Names;
         impl de::Expected for Names {
             fn fmt(&self, f: &mut fmt::Formatter) -> fmt::Result {
-                let names: Vec<String> = Quantity::all().into_iter().map(Quantity::name).collect();
+                let names: Vec<String> = Quantity::all_for(true).into_iter().map(Quantity::name).collect();
                 write!(f, "one of {}", names.join(", "))
             }
         }

@@ -1,286 +1,314 @@
-//! The house rules of ARCHITECTURE.md that a test can check: no import
-//! cycle between the top-level modules of `src/`, nor between the files
-//! (submodules) of any module directory, and no source file over 600 lines
-//! (a long file is a sign it holds more than one idea).
+//! The house rules of ARCHITECTURE.md that a test can check, read from the
+//! syntax tree (`syn`), not from the characters of the source:
+//!
+//! * **The module tree** is followed from `src/lib.rs` and `src/main.rs`
+//!   through their `mod` items (`#[path]` honoured); every `.rs` file under
+//!   `src/` must be in it, so no check misses a file.
+//! * **No import cycle** between the top-level modules of a crate, nor
+//!   between the files (submodules) of any module directory. `a → b` when
+//!   the code of `a` (outside `#[cfg(test)]` items: what a test reads is not
+//!   a dependency of the code) names `b`: in a `use` item, in any path of
+//!   the syntax tree (types, expressions, patterns, attributes), or in a
+//!   path inside a macro call's tokens; a name a `use` item brought in is
+//!   followed to what it names. `model` never reads `post` or `analysis`,
+//!   `values` never `elements`, `solver` never `analysis`.
+//! * **No function over 120 lines**: every `fn` item, method, associated
+//!   function and default trait method, nested ones and tests included,
+//!   from its `fn` keyword to its closing brace. (Functions written inside
+//!   a `macro_rules!` body are tokens, not items, and are not counted.)
+//! * **Long files are reviewed, not capped**: a file over 600 lines must be
+//!   listed in [`LONG_FILES`] with a one-line reason why it is one idea; a
+//!   listed file that is no longer over 600 lines (or no longer exists)
+//!   fails the test too, so the list is always the current set of reviewed
+//!   outliers. A hard cap bent the code: files were cut where the counter
+//!   said, not where the concepts part.
+//!
+//! Each check is shown to fail on a small source written for it (the
+//! `*_is_caught` tests below).
 
 use std::collections::{BTreeMap, BTreeSet};
 use std::path::{Path, PathBuf};
 
-fn sources(dir: &Path, out: &mut Vec<PathBuf>) {
-    for e in std::fs::read_dir(dir).unwrap() {
-        let p = e.unwrap().path();
-        if p.is_dir() {
-            sources(&p, out);
-        } else if p.extension().is_some_and(|x| x == "rs") {
-            out.push(p);
-        }
-    }
-}
+use syn::visit::{self, Visit};
+
+/// The longest a function may be, in lines.
+const MAX_FN_LINES: usize = 120;
+
+/// Above this many lines a file must be in [`LONG_FILES`].
+const LONG_FILE_LINES: usize = 600;
+
+/// Files over [`LONG_FILE_LINES`] lines, reviewed: `(path under src/,
+/// why it stays one file)`.
+const LONG_FILES: &[(&str, &str)] = &[];
 
 fn src() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
 }
 
-/// Top-level module of a source file (`src/model/mod.rs` → `model`).
-fn module_of(path: &Path) -> String {
-    let rel = path.strip_prefix(src()).unwrap();
-    let first = rel.components().next().unwrap().as_os_str().to_string_lossy().into_owned();
-    first.trim_end_matches(".rs").to_string()
+/// One source file of a crate.
+struct Source {
+    /// Path under `src/` (`model/bodies.rs`).
+    file: String,
+    /// Module path in its crate (`[model, bodies]`; `[]` for the root).
+    module: Vec<String>,
+    /// Reached through a `#[cfg(test)] mod`: test code only.
+    test: bool,
+    /// Line count of the file.
+    lines: usize,
+    ast: syn::File,
 }
 
-/// `a → b` when a file of module `a` names `crate::b` outside comments.
-fn dependencies() -> BTreeMap<String, BTreeSet<String>> {
-    let mut files = Vec::new();
-    sources(&src(), &mut files);
-    let mut deps: BTreeMap<String, BTreeSet<String>> = BTreeMap::new();
-    for f in files {
-        let m = module_of(&f);
-        if m == "lib" || m == "main" {
-            continue;
-        }
-        let text = std::fs::read_to_string(&f).unwrap();
-        let entry = deps.entry(m.clone()).or_default();
-        for line in text.lines().filter(|l| !l.trim_start().starts_with("//")) {
-            let mut rest = line;
-            while let Some(i) = rest.find("crate::") {
-                rest = &rest[i + 7..];
-                let name: String = rest.chars().take_while(|c| c.is_ascii_lowercase() || *c == '_').collect();
-                if !name.is_empty() && name != m {
-                    entry.insert(name);
-                }
-            }
-        }
-    }
-    deps
+fn parse(file: &str, text: &str) -> syn::File {
+    syn::parse_file(text).unwrap_or_else(|e| {
+        let at = e.span().start();
+        panic!("{file}:{}:{}: {e}", at.line, at.column + 1)
+    })
 }
 
-#[test]
-fn modules_form_no_import_cycle() {
-    let deps = dependencies();
-    // depth-first search for a back edge
-    fn visit(
-        m: &str,
-        deps: &BTreeMap<String, BTreeSet<String>>,
-        path: &mut Vec<String>,
-        done: &mut BTreeSet<String>,
-    ) -> Option<Vec<String>> {
-        if let Some(i) = path.iter().position(|p| p == m) {
-            let mut cycle = path[i..].to_vec();
-            cycle.push(m.to_string());
-            return Some(cycle);
-        }
-        if done.contains(m) {
-            return None;
-        }
-        path.push(m.to_string());
-        for d in deps.get(m).into_iter().flatten() {
-            if let Some(c) = visit(d, deps, path, done) {
-                return Some(c);
-            }
-        }
-        path.pop();
-        done.insert(m.to_string());
-        None
-    }
-    let mut done = BTreeSet::new();
-    for m in deps.keys() {
-        if let Some(cycle) = visit(m, &deps, &mut Vec::new(), &mut done) {
-            panic!("import cycle: {}", cycle.join(" → "));
-        }
-    }
-    // the layering ARCHITECTURE.md describes: the model does not read results
-    for (low, high) in [("model", "post"), ("model", "analysis"), ("values", "elements"), ("solver", "analysis")] {
-        assert!(!deps[low].contains(high), "{low} depends on {high}");
-    }
+/// `#[cfg(test)]` among `attrs`.
+fn is_test(attrs: &[syn::Attribute]) -> bool {
+    attrs.iter().any(|a| match &a.meta {
+        syn::Meta::List(l) => l.path.is_ident("cfg") && l.tokens.to_string() == "test",
+        _ => false,
+    })
 }
 
-#[test]
-fn no_source_file_is_over_600_lines() {
-    let mut files = Vec::new();
-    sources(&src(), &mut files);
-    let long: Vec<String> = files
-        .iter()
-        .filter_map(|f| {
-            let n = std::fs::read_to_string(f).unwrap().lines().count();
-            (n > 600).then(|| format!("{} ({n} lines)", f.display()))
-        })
-        .collect();
-    assert!(long.is_empty(), "split these: {long:?}");
+/// The value of a `#[path = "…"]` attribute.
+fn path_attribute(attrs: &[syn::Attribute]) -> Option<String> {
+    attrs.iter().find_map(|a| match &a.meta {
+        syn::Meta::NameValue(nv) if nv.path.is_ident("path") => match &nv.value {
+            syn::Expr::Lit(syn::ExprLit { lit: syn::Lit::Str(s), .. }) => Some(s.value()),
+            _ => None,
+        },
+        _ => None,
+    })
 }
 
-/// Source text with comments, string and character literals blanked out
-/// (kept as spaces, so that braces and paths in them are not read as code).
-fn code_only(text: &str) -> Vec<char> {
-    let s: Vec<char> = text.chars().collect();
-    let mut out = s.clone();
-    let mut i = 0;
-    let blank = |out: &mut Vec<char>, from: usize, to: usize| {
-        for c in &mut out[from..to.min(s.len())] {
-            if *c != '\n' {
-                *c = ' ';
-            }
-        }
-    };
-    while i < s.len() {
-        let next = |k: usize| s.get(i + k).copied().unwrap_or('\0');
-        if s[i] == '/' && next(1) == '/' {
-            let end = (i..s.len()).find(|&j| s[j] == '\n').unwrap_or(s.len());
-            blank(&mut out, i, end);
-            i = end;
-        } else if s[i] == '/' && next(1) == '*' {
-            let end = (i + 2..s.len()).find(|&j| s[j] == '*' && s.get(j + 1) == Some(&'/')).map_or(s.len(), |j| j + 2);
-            blank(&mut out, i, end);
-            i = end;
-        } else if s[i] == 'r' && (next(1) == '"' || next(1) == '#') && (i == 0 || !is_ident(s[i - 1])) {
-            // raw string r"…" or r#"…"#
-            let hashes = (1..).take_while(|&k| next(k) == '#').count();
-            if next(1 + hashes) != '"' {
-                i += 1;
-                continue;
-            }
-            let close: Vec<char> = std::iter::once('"').chain(std::iter::repeat_n('#', hashes)).collect();
-            let start = i + 2 + hashes;
-            let end = (start..s.len()).find(|&j| s[j..].starts_with(&close)).map_or(s.len(), |j| j + close.len());
-            blank(&mut out, i, end);
-            i = end;
-        } else if s[i] == '"' {
-            let mut j = i + 1;
-            while j < s.len() && s[j] != '"' {
-                j += if s[j] == '\\' { 2 } else { 1 };
-            }
-            blank(&mut out, i, j + 1);
-            i = j + 1;
-        } else if s[i] == '\'' && (next(1) == '\\' || next(2) == '\'') {
-            // a character literal, not a lifetime
-            let mut j = i + 1;
-            while j < s.len() && s[j] != '\'' {
-                j += if s[j] == '\\' { 2 } else { 1 };
-            }
-            blank(&mut out, i, j + 1);
-            i = j + 1;
-        } else {
-            i += 1;
-        }
-    }
-    out
-}
-
-fn is_ident(c: char) -> bool {
-    c.is_alphanumeric() || c == '_'
-}
-
-/// Removes `#[cfg(test)] mod … { … }` blocks: in them `super` is the file
-/// itself, and what a test reads is not a dependency of the code.
-fn without_test_modules(code: &mut Vec<char>) {
-    let text: String = code.iter().collect();
-    let mut cut = Vec::new();
-    let mut from = 0;
-    while let Some(k) = text[from..].find("#[cfg(test)]") {
-        let at = from + k;
-        let after = text[at + 12..].trim_start();
-        from = at + 12;
-        if !after.starts_with("mod ") {
-            continue;
-        }
-        let open_byte = at + 12 + (text[at + 12..].len() - after.len()) + after.find('{').unwrap_or(0);
-        let open = text[..open_byte].chars().count();
-        let start = text[..at].chars().count();
-        let mut depth = 0;
-        for (j, &c) in code.iter().enumerate().skip(open) {
-            depth += (c == '{') as i32 - (c == '}') as i32;
-            if depth == 0 {
-                cut.push((start, j + 1));
-                break;
-            }
-        }
-    }
-    for (a, b) in cut.into_iter().rev() {
-        code.drain(a..b.min(code.len()));
-    }
-}
-
-/// Every path that starts with `crate::`, `super::` or `self::` in `code`,
-/// `use` groups (`use super::{a, b::{c, d}}`) expanded, as written.
-fn paths_in(code: &[char]) -> Vec<Vec<String>> {
-    fn skip_ws(s: &[char], i: &mut usize) {
-        while *i < s.len() && s[*i].is_whitespace() {
-            *i += 1;
-        }
-    }
-    fn path(s: &[char], i: &mut usize, mut prefix: Vec<String>, out: &mut Vec<Vec<String>>) {
-        loop {
-            skip_ws(s, i);
-            if *i < s.len() && s[*i] == '{' {
-                *i += 1;
-                loop {
-                    path(s, i, prefix.clone(), out);
-                    skip_ws(s, i);
-                    match s.get(*i) {
-                        Some(',') => *i += 1,
-                        Some('}') => {
-                            *i += 1;
-                            return;
-                        }
-                        _ => return,
-                    }
-                    skip_ws(s, i);
-                    if s.get(*i) == Some(&'}') {
-                        *i += 1;
-                        return;
-                    }
-                }
-            }
-            let start = *i;
-            while *i < s.len() && (is_ident(s[*i]) || s[*i] == '*') {
-                *i += 1;
-            }
-            if *i == start {
-                out.push(prefix);
-                return;
-            }
-            prefix.push(s[start..*i].iter().collect());
-            skip_ws(s, i);
-            if s.get(*i) == Some(&':') && s.get(*i + 1) == Some(&':') {
-                *i += 2;
-            } else {
-                out.push(prefix);
-                return;
-            }
-        }
-    }
+/// The files of the crate whose root is `src/{root}`, found by following
+/// its `mod` items from the root.
+fn crate_sources(root: &str) -> Vec<Source> {
     let mut out = Vec::new();
-    let mut i = 0;
-    while i < code.len() {
-        let starts = ["crate", "super", "self"].iter().any(|w| {
-            let w: Vec<char> = w.chars().collect();
-            code[i..].starts_with(&w) && (i == 0 || !is_ident(code[i - 1]) && code[i - 1] != ':')
-        });
-        if starts {
-            let before = i;
-            path(code, &mut i, Vec::new(), &mut out);
-            i = i.max(before + 1);
-        } else {
-            i += 1;
-        }
-    }
+    load(&src().join(root), Vec::new(), false, true, &mut out);
     out
 }
 
-/// The module path of a source file (`src/model/bodies.rs` → `[model,
-/// bodies]`, `src/model/mod.rs` → `[model]`, `src/lib.rs` → `[]`).
-fn module_path(file: &Path) -> Vec<String> {
-    let rel = file.strip_prefix(src()).unwrap();
-    let mut parts: Vec<String> = rel.iter().map(|c| c.to_string_lossy().into_owned()).collect();
-    let last = parts.pop().unwrap();
-    let stem = last.trim_end_matches(".rs");
-    if !(parts.is_empty() && (stem == "lib" || stem == "main")) && stem != "mod" {
-        parts.push(stem.to_string());
+/// Reads the file of module `module` and, recursively, the files of the
+/// modules it declares with `mod name;`. `mod_rs`: the file is a crate
+/// root, a `mod.rs` or reached by `#[path]`, so its children sit next to
+/// it rather than in a directory named after it.
+fn load(path: &Path, module: Vec<String>, test: bool, mod_rs: bool, out: &mut Vec<Source>) {
+    let file = path.strip_prefix(src()).unwrap().to_string_lossy().into_owned();
+    let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{file}: {e}"));
+    let ast = parse(&file, &text);
+    let here = path.parent().unwrap();
+    let children = if mod_rs { here.to_path_buf() } else { here.join(path.file_stem().unwrap()) };
+    for item in &ast.items {
+        let syn::Item::Mod(m) = item else { continue };
+        if m.content.is_some() {
+            continue; // inline: its items are part of this file
+        }
+        let name = m.ident.to_string();
+        let mut sub = module.clone();
+        sub.push(name.clone());
+        let test = test || is_test(&m.attrs);
+        if let Some(p) = path_attribute(&m.attrs) {
+            load(&here.join(p), sub, test, true, out);
+        } else if children.join(format!("{name}.rs")).is_file() {
+            load(&children.join(format!("{name}.rs")), sub, test, false, out);
+        } else {
+            load(&children.join(&name).join("mod.rs"), sub, test, true, out);
+        }
     }
-    parts
+    out.push(Source { file, module, test, lines: text.lines().count(), ast });
 }
 
-/// A path as written in the file of module `module`, made absolute
-/// (`super::bounds::within` in `model::material` → `[model, bounds, within]`).
+/// The library's files and the binary's.
+fn crates() -> [Vec<Source>; 2] {
+    [crate_sources("lib.rs"), crate_sources("main.rs")]
+}
+
+#[test]
+fn every_source_file_is_in_the_module_tree() {
+    fn files(dir: &Path, out: &mut BTreeSet<String>) {
+        for e in std::fs::read_dir(dir).unwrap() {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                files(&p, out);
+            } else if p.extension().is_some_and(|x| x == "rs") {
+                out.insert(p.strip_prefix(src()).unwrap().to_string_lossy().into_owned());
+            }
+        }
+    }
+    let mut on_disk = BTreeSet::new();
+    files(&src(), &mut on_disk);
+    let [lib, bin] = crates();
+    let reached: BTreeSet<String> = lib.iter().chain(&bin).map(|s| s.file.clone()).collect();
+    let orphans: Vec<&String> = on_disk.difference(&reached).collect();
+    assert!(orphans.is_empty(), "files no `mod` item reaches: {orphans:?}");
+    // the tree is read as rustc reads it: a `#[path]` test file is a
+    // submodule of the file that declares it
+    let kinematic = lib.iter().find(|s| s.file == "materials/kinematic_tests.rs").unwrap();
+    assert_eq!(kinematic.module, ["materials", "kinematic", "tests"]);
+    assert!(kinematic.test);
+    let schema = lib.iter().find(|s| s.file == "model/schema/section.rs").unwrap();
+    assert_eq!(schema.module, ["model", "schema", "section"]);
+}
+
+// ---------------------------------------------------------------- imports
+
+/// The attributes of an item (those `#[cfg(test)]` is looked for in).
+fn item_attributes(item: &syn::Item) -> &[syn::Attribute] {
+    use syn::Item;
+    match item {
+        Item::Const(i) => &i.attrs,
+        Item::Enum(i) => &i.attrs,
+        Item::ExternCrate(i) => &i.attrs,
+        Item::Fn(i) => &i.attrs,
+        Item::ForeignMod(i) => &i.attrs,
+        Item::Impl(i) => &i.attrs,
+        Item::Macro(i) => &i.attrs,
+        Item::Mod(i) => &i.attrs,
+        Item::Static(i) => &i.attrs,
+        Item::Struct(i) => &i.attrs,
+        Item::Trait(i) => &i.attrs,
+        Item::TraitAlias(i) => &i.attrs,
+        Item::Type(i) => &i.attrs,
+        Item::Union(i) => &i.attrs,
+        Item::Use(i) => &i.attrs,
+        _ => &[],
+    }
+}
+
+/// The paths a file's code names, as written, with the module they are
+/// written in; and the names its `use` items bring in.
+#[derive(Default)]
+struct Names {
+    /// The module being read (the file's, then inline modules').
+    module: Vec<String>,
+    /// `(module, path as written)`.
+    written: Vec<(Vec<String>, Vec<String>)>,
+    /// Per module: a name brought in by `use` → the path it names, as written.
+    aliases: BTreeMap<Vec<String>, BTreeMap<String, Vec<String>>>,
+    /// Inline (non-test) modules met.
+    inline: Vec<Vec<String>>,
+}
+
+impl Names {
+    fn of(source: &Source) -> Self {
+        let mut names = Names { module: source.module.clone(), ..Names::default() };
+        names.visit_file(&source.ast);
+        names
+    }
+
+    /// Expands a `use` tree (`super::{a, b::{c as d, *}}`) below `prefix`.
+    fn use_tree(&mut self, tree: &syn::UseTree, mut prefix: Vec<String>) {
+        let (path, name) = match tree {
+            syn::UseTree::Path(p) => {
+                prefix.push(p.ident.to_string());
+                return self.use_tree(&p.tree, prefix);
+            }
+            syn::UseTree::Group(g) => {
+                for t in &g.items {
+                    self.use_tree(t, prefix.clone());
+                }
+                return;
+            }
+            syn::UseTree::Glob(_) => (prefix, None),
+            syn::UseTree::Name(n) if n.ident == "self" => {
+                let name = prefix.last().cloned();
+                (prefix, name)
+            }
+            syn::UseTree::Name(n) => {
+                prefix.push(n.ident.to_string());
+                let name = prefix.last().cloned();
+                (prefix, name)
+            }
+            syn::UseTree::Rename(r) => {
+                if r.ident != "self" {
+                    prefix.push(r.ident.to_string());
+                }
+                (prefix, Some(r.rename.to_string()).filter(|n| n != "_"))
+            }
+        };
+        if let Some(name) = name {
+            self.aliases.entry(self.module.clone()).or_default().insert(name, path.clone());
+        }
+        self.written.push((self.module.clone(), path));
+    }
+
+    /// Every `a::b::c` chain of identifiers in a macro call's tokens.
+    fn tokens(&mut self, tokens: proc_macro2::TokenStream) {
+        use proc_macro2::TokenTree;
+        let tokens: Vec<TokenTree> = tokens.into_iter().collect();
+        let colons = |i: usize| {
+            matches!((tokens.get(i), tokens.get(i + 1)), (Some(TokenTree::Punct(a)), Some(TokenTree::Punct(b)))
+                if a.as_char() == ':' && b.as_char() == ':')
+        };
+        let mut i = 0;
+        while i < tokens.len() {
+            match &tokens[i] {
+                TokenTree::Group(g) => self.tokens(g.stream()),
+                TokenTree::Ident(first) if !(i >= 2 && colons(i - 2)) => {
+                    let mut path = vec![first.to_string()];
+                    while colons(i + 1) {
+                        let Some(TokenTree::Ident(next)) = tokens.get(i + 3) else { break };
+                        path.push(next.to_string());
+                        i += 3;
+                    }
+                    self.written.push((self.module.clone(), path));
+                }
+                _ => {}
+            }
+            i += 1;
+        }
+    }
+}
+
+impl<'ast> Visit<'ast> for Names {
+    fn visit_item(&mut self, item: &'ast syn::Item) {
+        if !is_test(item_attributes(item)) {
+            visit::visit_item(self, item);
+        }
+    }
+
+    fn visit_impl_item_fn(&mut self, f: &'ast syn::ImplItemFn) {
+        if !is_test(&f.attrs) {
+            visit::visit_impl_item_fn(self, f);
+        }
+    }
+
+    fn visit_item_mod(&mut self, m: &'ast syn::ItemMod) {
+        if m.content.is_some() {
+            self.module.push(m.ident.to_string());
+            self.inline.push(self.module.clone());
+            visit::visit_item_mod(self, m);
+            self.module.pop();
+        }
+    }
+
+    fn visit_item_use(&mut self, u: &'ast syn::ItemUse) {
+        if u.leading_colon.is_none() {
+            self.use_tree(&u.tree, Vec::new());
+        }
+    }
+
+    fn visit_path(&mut self, p: &'ast syn::Path) {
+        if p.leading_colon.is_none() {
+            let path = p.segments.iter().map(|s| s.ident.to_string()).collect();
+            self.written.push((self.module.clone(), path));
+        }
+        visit::visit_path(self, p);
+    }
+
+    fn visit_macro(&mut self, m: &'ast syn::Macro) {
+        self.tokens(m.tokens.clone());
+        visit::visit_macro(self, m);
+    }
+}
+
+/// A path as written in module `module` made absolute
+/// (`super::bounds::within` in `model::material` → `[model, bounds, within]`);
+/// `None` for a path that starts elsewhere (`std::…`, `Self::…`, a local).
 fn absolute(module: &[String], written: &[String]) -> Option<Vec<String>> {
     let mut base: Vec<String> = match written.first()?.as_str() {
         "crate" => Vec::new(),
@@ -297,67 +325,54 @@ fn absolute(module: &[String], written: &[String]) -> Option<Vec<String>> {
     Some(base)
 }
 
-/// The submodules of the module in directory `dir`: its `.rs` files (but
-/// `mod.rs`) and its subdirectories.
-fn submodules(dir: &Path) -> BTreeSet<String> {
-    std::fs::read_dir(dir)
-        .unwrap()
-        .filter_map(|e| {
-            let p = e.unwrap().path();
-            let name = p.file_name()?.to_string_lossy().into_owned();
-            if p.is_dir() {
-                Some(name)
-            } else {
-                let stem = name.strip_suffix(".rs")?;
-                (stem != "mod" && stem != "lib" && stem != "main").then(|| stem.to_string())
-            }
-        })
-        .collect()
+/// `absolute`, with a first name a `use` item of the module brought in
+/// replaced by what it names (`use super::bounds; bounds::within` →
+/// `[model, bounds, within]`).
+fn resolve(names: &Names, module: &[String], written: &[String], depth: usize) -> Option<Vec<String>> {
+    if let Some(path) = absolute(module, written) {
+        return Some(path);
+    }
+    let named = names.aliases.get(module)?.get(written.first()?)?;
+    if depth > 8 || named.as_slice() == written {
+        return None;
+    }
+    let mut path = resolve(names, module, named, depth + 1)?;
+    path.extend(written[1..].iter().cloned());
+    Some(path)
 }
 
-/// For every module directory (`src/model`, `src/analysis/structure`, …):
-/// `a → b` when a file of submodule `a` names submodule `b` of the same
-/// module (`use super::b`, `super::b::f`, `crate::model::b::X`).
-fn file_dependencies() -> BTreeMap<String, BTreeMap<String, BTreeSet<String>>> {
-    let mut files = Vec::new();
-    sources(&src(), &mut files);
-    let mut levels: BTreeMap<String, BTreeMap<String, BTreeSet<String>>> = BTreeMap::new();
-    for f in files {
-        let module = module_path(&f);
-        let mut code = code_only(&std::fs::read_to_string(&f).unwrap());
-        without_test_modules(&mut code);
-        for written in paths_in(&code) {
-            let Some(target) = absolute(&module, &written) else { continue };
-            // the deepest module holding both the file and the target
+/// A directed graph between sibling modules.
+type Graph = BTreeMap<String, BTreeSet<String>>;
+
+/// For every module of a crate that has submodules (`crate` for the root,
+/// `model`, `analysis::structure`, …): `a → b` when the code of submodule
+/// `a` names submodule `b` or something inside it.
+fn import_graphs(sources: &[Source]) -> BTreeMap<String, Graph> {
+    let names: Vec<Names> = sources.iter().filter(|s| !s.test).map(Names::of).collect();
+    let mut modules: BTreeSet<Vec<String>> = sources.iter().map(|s| s.module.clone()).collect();
+    modules.extend(names.iter().flat_map(|n| n.inline.iter().cloned()));
+    let mut graphs: BTreeMap<String, Graph> = BTreeMap::new();
+    for n in &names {
+        for (module, written) in &n.written {
+            let Some(target) = resolve(n, module, written, 0) else { continue };
+            // the deepest module holding both the code and the target
             let common = module.iter().zip(&target).take_while(|(a, b)| a == b).count();
             if common >= module.len() || common >= target.len() {
-                continue; // the file names itself, one of its own submodules or an ancestor
+                continue; // the code names itself, one of its own submodules or an ancestor
             }
-            let parent = &module[..common];
-            let dir = parent.iter().fold(src(), |d, p| d.join(p));
-            if !submodules(&dir).contains(&target[common]) {
-                continue; // an item of the parent (e.g. `super::ModelError`), not a file
+            if !modules.contains(&target[..=common]) {
+                continue; // an item of the parent (e.g. `super::ModelError`), not a module
             }
-            levels
-                .entry(if parent.is_empty() { "crate".into() } else { parent.join("::") })
-                .or_default()
-                .entry(module[common].clone())
-                .or_default()
-                .insert(target[common].clone());
+            let parent = if common == 0 { "crate".to_string() } else { module[..common].join("::") };
+            graphs.entry(parent).or_default().entry(module[common].clone()).or_default().insert(target[common].clone());
         }
     }
-    levels
+    graphs
 }
 
 /// Every cycle found by a depth-first search (one per back edge).
-fn cycles(deps: &BTreeMap<String, BTreeSet<String>>) -> Vec<Vec<String>> {
-    fn visit(
-        m: &str,
-        deps: &BTreeMap<String, BTreeSet<String>>,
-        path: &mut Vec<String>,
-        done: &mut BTreeSet<String>,
-        found: &mut Vec<Vec<String>>,
-    ) {
+fn cycles(deps: &Graph) -> Vec<Vec<String>> {
+    fn visit(m: &str, deps: &Graph, path: &mut Vec<String>, done: &mut BTreeSet<String>, found: &mut Vec<Vec<String>>) {
         if let Some(i) = path.iter().position(|p| p == m) {
             let mut cycle = path[i..].to_vec();
             cycle.push(m.to_string());
@@ -381,96 +396,235 @@ fn cycles(deps: &BTreeMap<String, BTreeSet<String>>) -> Vec<Vec<String>> {
     found
 }
 
-#[test]
-fn files_within_a_module_form_no_import_cycle() {
-    let levels = file_dependencies();
-    // the check reads what it should: model's files depend on each other
-    let model = &levels["model"];
-    assert!(model["material"].contains("bounds") && model["bodies"].contains("validate"), "{model:?}");
-    let found: Vec<String> = levels
+/// Every cycle of every graph, as `level: a → b → a`.
+fn all_cycles(graphs: &BTreeMap<String, Graph>) -> Vec<String> {
+    graphs
         .iter()
         .flat_map(|(level, deps)| cycles(deps).into_iter().map(move |c| format!("{level}: {}", c.join(" → "))))
-        .collect();
-    assert!(found.is_empty(), "import cycles between the files of a module:\n{}", found.join("\n"));
+        .collect()
+}
+
+#[test]
+fn modules_and_files_form_no_import_cycle() {
+    let [lib, bin] = crates();
+    let graphs = import_graphs(&lib);
+    // the check reads what it should: the library's layers and model's files
+    let top = &graphs["crate"];
+    assert!(top["analysis"].contains("model") && top["model"].contains("mesh"), "{top:?}");
+    let model = &graphs["model"];
+    assert!(model["material"].contains("bounds") && model["bodies"].contains("validate"), "{model:?}");
+    // the layering ARCHITECTURE.md describes: the model does not read results
+    for (low, high) in [("model", "post"), ("model", "analysis"), ("values", "elements"), ("solver", "analysis")] {
+        assert!(!top.get(low).is_some_and(|d| d.contains(high)), "{low} depends on {high}");
+    }
+    let mut found = all_cycles(&graphs);
+    found.extend(all_cycles(&import_graphs(&bin)).into_iter().map(|c| format!("main.rs {c}")));
+    assert!(found.is_empty(), "import cycles:\n{}", found.join("\n"));
+}
+
+/// Sources written for a test: `(file, module path, text)`.
+fn fake(files: &[(&str, &[&str], &str)]) -> Vec<Source> {
+    files
+        .iter()
+        .map(|(file, module, text)| Source {
+            file: file.to_string(),
+            module: module.iter().map(|s| s.to_string()).collect(),
+            test: false,
+            lines: text.lines().count(),
+            ast: parse(file, text),
+        })
+        .collect()
+}
+
+/// Two modules naming each other — through a `use` and through a path in
+/// a macro call — are a cycle; a path is followed through a name a `use`
+/// brought in; a test module's reading is not an edge.
+#[test]
+fn an_import_cycle_is_caught() {
+    let sources = fake(&[
+        ("lib.rs", &[], "pub mod a; pub mod b; pub mod c;"),
+        ("a.rs", &["a"], "use crate::b::Thing;\npub fn f(_: Thing) {}"),
+        ("b.rs", &["b"], "pub struct Thing;\npub fn g() { assert!(crate::a::ok()); }"),
+        ("c/mod.rs", &["c"], "mod x; mod y;"),
+        ("c/x.rs", &["c", "x"], "use crate::c;\npub fn h() -> usize { c::y::z::depth() }"),
+        ("c/y/mod.rs", &["c", "y"], "pub mod z;\n#[cfg(test)]\nmod tests { use super::super::x; }"),
+        ("c/y/z.rs", &["c", "y", "z"], "pub fn depth() -> usize { 0 }"),
+    ]);
+    let graphs = import_graphs(&sources);
+    assert_eq!(graphs["crate"]["a"], BTreeSet::from(["b".to_string()]));
+    assert_eq!(graphs["crate"]["b"], BTreeSet::from(["a".to_string()]));
+    assert_eq!(all_cycles(&graphs), ["crate: a → b → a"]);
+    // `c::y::z::depth` is followed through `use crate::c` to the file c/y/z.rs
+    assert_eq!(graphs["c"]["x"], BTreeSet::from(["y".to_string()]));
+    assert!(!graphs["c"].contains_key("y"), "the test module's `use` is not an edge: {:?}", graphs["c"]);
 }
 
 /// The path reader on the forms the sources use.
 #[test]
-fn paths_are_read_from_use_groups_and_inline_paths() {
-    let code = code_only(
-        "use super::{bounds, schema::*, validate::{count, division}};\n// use super::comment\nlet s = \"super::string\";\n\
-         let x = super::contacts::overlap(a);\nuse crate::model::{\n    sections::check,\n};\n",
-    );
-    let got: Vec<String> = paths_in(&code).iter().map(|p| p.join("::")).collect();
-    assert_eq!(
-        got,
-        [
-            "super::bounds",
-            "super::schema::*",
-            "super::validate::count",
-            "super::validate::division",
-            "super::contacts::overlap",
-            "crate::model::sections::check"
-        ]
-    );
-    let module = ["model".to_string(), "bodies".to_string()];
-    let abs = |p: &[&str]| absolute(&module, &p.iter().map(|s| s.to_string()).collect::<Vec<_>>()).unwrap();
-    assert_eq!(abs(&["super", "sections", "profile"]), ["model", "sections", "profile"]);
-    assert_eq!(abs(&["super", "super", "mesh"]), ["mesh"]);
+fn paths_are_read_from_use_groups_inline_paths_and_macros() {
+    let sources = fake(&[(
+        "model/bodies.rs",
+        &["model", "bodies"],
+        "use super::{bounds, schema::*, validate::{count, division as div}};\n// use super::comment\n\
+         fn f() { let s = \"super::string\"; let x = super::contacts::overlap(a); div(); }\n\
+         use crate::model::{\n    sections::check,\n};\nfn g() { println!(\"{}\", super::super::mesh::size()); }\n",
+    )]);
+    let names = Names::of(&sources[0]);
+    let got: BTreeSet<String> =
+        names.written.iter().filter_map(|(m, w)| resolve(&names, m, w, 0)).map(|p| p.join("::")).collect();
+    let want = [
+        "model::bounds",
+        "model::schema",
+        "model::validate::count",
+        "model::validate::division", // the call `div()` too
+        "model::contacts::overlap",
+        "model::sections::check",
+        "mesh::size", // in a macro call
+    ];
+    assert_eq!(got, want.iter().map(|s| s.to_string()).collect::<BTreeSet<_>>());
 }
 
-/// Every function of `src/` (`fn` items and methods), with its line count
-/// from the `fn` line to its closing brace: `(file:line name, lines)`.
-fn function_lengths() -> Vec<(String, usize)> {
-    let mut files = Vec::new();
-    sources(&src(), &mut files);
-    let mut out = Vec::new();
-    for path in files {
-        let text = std::fs::read_to_string(&path).unwrap();
-        let code: String = code_only(&text).into_iter().collect();
-        let chars: Vec<char> = code.chars().collect();
-        let line_at = |i: usize| chars[..i].iter().filter(|&&c| c == '\n').count() + 1;
-        let mut i = 0;
-        while let Some(k) = code[char_byte(&chars, i)..].find("fn ") {
-            let at = chars.len().min(i + code[char_byte(&chars, i)..][..k].chars().count());
-            i = at + 3;
-            if at > 0 && is_ident(chars[at - 1]) {
-                continue;
-            }
-            let name: String = chars[at + 3..].iter().take_while(|c| is_ident(**c)).collect();
-            // the body opens at the first `{` before any `;` (a trait
-            // method without a body ends at its `;`)
-            let Some(open) = (at..chars.len()).find(|&j| chars[j] == '{' || chars[j] == ';') else { break };
-            if chars[open] == ';' || name.is_empty() {
-                continue;
-            }
-            let mut depth = 0i32;
-            let close = (open..chars.len()).find(|&j| {
-                depth += (chars[j] == '{') as i32 - (chars[j] == '}') as i32;
-                depth == 0
-            });
-            let Some(close) = close else { break };
-            let shown = format!("{}:{} {name}", path.strip_prefix(src()).unwrap().display(), line_at(at));
-            out.push((shown, line_at(close) - line_at(at) + 1));
+// -------------------------------------------------------------- functions
+
+/// Every function of a file (`fn` items, methods, associated and default
+/// trait functions, nested ones): `(name, line of its `fn`, lines from
+/// its `fn` keyword to its closing brace)`.
+#[derive(Default)]
+struct Functions(Vec<(String, usize, usize)>);
+
+impl Functions {
+    fn add(&mut self, sig: &syn::Signature, body: &syn::Block) {
+        let first = sig.fn_token.span.start().line;
+        let last = body.brace_token.span.close().end().line;
+        self.0.push((sig.ident.to_string(), first, last - first + 1));
+    }
+}
+
+impl<'ast> Visit<'ast> for Functions {
+    fn visit_item_fn(&mut self, f: &'ast syn::ItemFn) {
+        self.add(&f.sig, &f.block);
+        visit::visit_item_fn(self, f);
+    }
+
+    fn visit_impl_item_fn(&mut self, f: &'ast syn::ImplItemFn) {
+        self.add(&f.sig, &f.block);
+        visit::visit_impl_item_fn(self, f);
+    }
+
+    fn visit_trait_item_fn(&mut self, f: &'ast syn::TraitItemFn) {
+        if let Some(body) = &f.default {
+            self.add(&f.sig, body);
         }
+        visit::visit_trait_item_fn(self, f);
+    }
+}
+
+/// Every function of `sources`: `(file:line name, lines)`.
+fn function_lengths(sources: &[Source]) -> Vec<(String, usize)> {
+    let mut out = Vec::new();
+    for s in sources {
+        let mut fns = Functions::default();
+        fns.visit_file(&s.ast);
+        out.extend(fns.0.into_iter().map(|(name, line, n)| (format!("{}:{line} {name}", s.file), n)));
     }
     out
-}
-
-/// Byte offset of char index `i`.
-fn char_byte(chars: &[char], i: usize) -> usize {
-    chars[..i].iter().map(|c| c.len_utf8()).sum()
 }
 
 /// No function in `src/` is over 120 lines: a longer one does more than one
 /// job. (No exception today; one would be listed here with its reason.)
 #[test]
 fn no_function_is_over_120_lines() {
-    let long: Vec<(String, usize)> = function_lengths().into_iter().filter(|(_, n)| *n > 120).collect();
-    assert!(long.is_empty(), "split these (or list them with a reason): {long:?}");
-    // the measure itself: GMRES (about 100 lines, with nested loops and
-    // braces in comments) is found whole
-    let all = function_lengths();
-    let gmres = all.iter().find(|(f, _)| f.starts_with("solver/krylov.rs:") && f.ends_with(" gmres"));
-    assert!(gmres.is_some_and(|(_, n)| (80..=120).contains(n)), "{gmres:?} among {} functions", all.len());
+    let [lib, bin] = crates();
+    let all: Vec<(String, usize)> = function_lengths(&lib).into_iter().chain(function_lengths(&bin)).collect();
+    let long: Vec<&(String, usize)> = all.iter().filter(|(_, n)| *n > MAX_FN_LINES).collect();
+    assert!(long.is_empty(), "split these by concept: {long:?}");
+    // the measure itself: GMRES (about 100 lines, nested loops) is found
+    // whole, and so is a function with an array type in its signature
+    let find = |file: &str, name: &str| {
+        all.iter().find(|(f, _)| f.starts_with(&format!("{file}:")) && f.ends_with(&format!(" {name}"))).map(|p| p.1)
+    };
+    let gmres = find("solver/krylov.rs", "gmres");
+    assert!(gmres.is_some_and(|n| (80..=MAX_FN_LINES).contains(&n)), "{gmres:?} among {} functions", all.len());
+    let overlaps = find("mesh/section.rs", "check_overlaps"); // `quads: &[[usize; 4]]`
+    assert!(overlaps.is_some_and(|n| (30..=60).contains(&n)), "{overlaps:?}");
+}
+
+/// A 121-line function whose signature holds `[f64; 3]` is found with its
+/// length, as a method, an associated function, a default trait method and
+/// a nested function; 120 lines pass.
+#[test]
+fn a_long_function_is_caught() {
+    let body = |n: usize| "    let _x = 1;\n".repeat(n - 3);
+    let text = format!(
+        "fn free(a: [f64; 3]) -> [f64; 3] {{\n{}    a\n}}\n\
+         struct S;\nimpl S {{\n    fn method(&self, b: &[[usize; 4]]) {{\n{}    }}\n    fn assoc() -> [u8; 2] {{\n{}    [0; 2]\n}}\n}}\n\
+         trait T {{\n    fn required(c: [f64; 3]);\n    fn provided(c: [f64; 3]) {{\n{}    }}\n}}\n\
+         fn outer() {{\n    fn inner(d: [i32; 1]) {{\n{}    }}\n}}\n\
+         fn fits(e: [f64; 3]) {{\n{}    let _e = e;\n}}\n",
+        body(121),
+        body(122),
+        body(121),
+        body(122),
+        body(122),
+        body(120),
+    );
+    let sources = fake(&[("fake.rs", &[], text.as_str())]);
+    let found: BTreeMap<String, usize> =
+        function_lengths(&sources).into_iter().map(|(f, n)| (f.rsplit(' ').next().unwrap().to_string(), n)).collect();
+    let long: BTreeSet<&str> = found.iter().filter(|(_, n)| **n > MAX_FN_LINES).map(|(f, _)| f.as_str()).collect();
+    assert_eq!(found["free"], 121);
+    // `outer` holds the 121-line `inner`
+    assert_eq!(long, BTreeSet::from(["free", "method", "assoc", "provided", "outer", "inner"]), "{found:?}");
+    assert_eq!(found["fits"], 120);
+    assert!(!found.contains_key("required"));
+}
+
+// ------------------------------------------------------------------ files
+
+/// What is wrong with the long files: `files` are `(path, lines)`, `listed`
+/// the reviewed outliers `(path, reason)`.
+fn long_file_review(files: &[(String, usize)], listed: &[(&str, &str)]) -> Vec<String> {
+    let mut problems = Vec::new();
+    for (f, n) in files {
+        if *n > LONG_FILE_LINES && !listed.iter().any(|(l, _)| l == f) {
+            problems.push(format!(
+                "{f} has {n} lines: split it by concept, or list it in LONG_FILES with why it is one idea"
+            ));
+        }
+    }
+    for (l, reason) in listed {
+        match files.iter().find(|(f, _)| f == l) {
+            None => problems.push(format!("{l} is listed in LONG_FILES but does not exist: remove it")),
+            Some((_, n)) if *n <= LONG_FILE_LINES => {
+                problems.push(format!("{l} has {n} lines, no longer over {LONG_FILE_LINES}: remove it from LONG_FILES"))
+            }
+            Some(_) if reason.trim().is_empty() => {
+                problems.push(format!("{l} is listed in LONG_FILES without a reason"))
+            }
+            Some(_) => {}
+        }
+    }
+    problems
+}
+
+#[test]
+fn long_files_are_listed_with_a_reason() {
+    let [lib, bin] = crates();
+    let files: Vec<(String, usize)> = lib.iter().chain(&bin).map(|s| (s.file.clone(), s.lines)).collect();
+    let problems = long_file_review(&files, LONG_FILES);
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+}
+
+/// An unlisted long file, a listed file that shrank, one that is gone and
+/// one without a reason each fail; a listed long file passes.
+#[test]
+fn an_unreviewed_long_file_is_caught() {
+    let files = [("a.rs".to_string(), 601), ("b.rs".to_string(), 600), ("c.rs".to_string(), 700), ("d.rs".into(), 650)];
+    let listed = [("b.rs", "one idea"), ("c.rs", "one idea"), ("gone.rs", "one idea"), ("d.rs", " ")];
+    let problems = long_file_review(&files, &listed);
+    assert_eq!(problems.len(), 4, "{problems:#?}");
+    for (p, file) in problems.iter().zip(["a.rs has 601", "b.rs has 600", "gone.rs", "d.rs"]) {
+        assert!(p.starts_with(file), "{p}");
+    }
+    assert!(long_file_review(&files[2..3], &listed[1..2]).is_empty());
 }

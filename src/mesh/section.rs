@@ -83,143 +83,8 @@ impl CrossSection {
         quads: &[[usize; 4]],
         key: &str,
     ) -> Result<Self, MeshError> {
-        if quads.is_empty() {
-            return Err(MeshError::invalid(format!("{key}.quads"), "[]", "at least one quadrilateral"));
-        }
-        let mut used = vec![false; corners.len()];
-        for (q, quad) in quads.iter().enumerate() {
-            for &c in quad {
-                if c >= corners.len() {
-                    return Err(MeshError::invalid(
-                        format!("{key}.quads[{q}]"),
-                        format!("{quad:?}"),
-                        format!("indices of points 0..{}", corners.len()),
-                    ));
-                }
-                used[c] = true;
-            }
-            let mut sorted = *quad;
-            sorted.sort_unstable();
-            if sorted.windows(2).any(|w| w[0] == w[1]) {
-                return Err(MeshError::invalid(
-                    format!("{key}.quads[{q}]"),
-                    format!("{quad:?}"),
-                    "four distinct corner points",
-                ));
-            }
-            let [a, b, c, d] = quad.map(|i| corners[i]);
-            // Jacobian sign at the four corners: all positive for a convex CCW quad.
-            let cross =
-                |o: [f64; 2], p: [f64; 2], r: [f64; 2]| (p[0] - o[0]) * (r[1] - o[1]) - (p[1] - o[1]) * (r[0] - o[0]);
-            let dets = [cross(a, b, d), cross(b, c, a), cross(c, d, b), cross(d, a, c)];
-            if dets.iter().any(|&v| !(v > 0.0)) {
-                return Err(MeshError::invalid(
-                    format!("{key}.quads[{q}]"),
-                    format!("{quad:?}"),
-                    "a convex quadrilateral with corners listed counter-clockwise in the x–z plane",
-                ));
-            }
-        }
-        // a conforming mesh uses each edge at most twice: more means
-        // overlapping or duplicated quads
-        let mut edge_use: HashMap<(usize, usize), usize> = HashMap::new();
-        for (q, quad) in quads.iter().enumerate() {
-            for k in 0..4 {
-                let (a, b) = (quad[k], quad[(k + 1) % 4]);
-                let uses = edge_use.entry((a.min(b), a.max(b))).or_default();
-                *uses += 1;
-                if *uses > 2 {
-                    return Err(MeshError::invalid(
-                        format!("{key}.quads[{q}]"),
-                        format!("{quad:?}"),
-                        format!("quads that do not overlap (the edge {a}–{b} is already shared by two quads)"),
-                    ));
-                }
-            }
-        }
-        check_overlaps(corners, quads, key)?;
-        if let Some(i) = used.iter().position(|u| !u) {
-            return Err(MeshError::invalid(
-                format!("{key}.points[{i}]"),
-                format!("{:?}", corners[i]),
-                "a point used by at least one quad (unused points would be unconstrained)",
-            ));
-        }
-
-        let p = kind.order();
-        let m = p + 1;
-        let basis = Lagrange2d::new(p);
-        let mut nodes: Vec<[f64; 2]> = corners.to_vec();
-        let mut edge_nodes: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
-        let mut connectivity = Vec::with_capacity(quads.len() * m * m);
-
-        for quad in quads {
-            let bilinear = |xi: f64, eta: f64| {
-                let w = [
-                    0.25 * (1.0 - xi) * (1.0 - eta),
-                    0.25 * (1.0 + xi) * (1.0 - eta),
-                    0.25 * (1.0 + xi) * (1.0 + eta),
-                    0.25 * (1.0 - xi) * (1.0 + eta),
-                ];
-                let mut x = [0.0; 2];
-                for (k, wk) in w.iter().enumerate() {
-                    x[0] += wk * corners[quad[k]][0];
-                    x[1] += wk * corners[quad[k]][1];
-                }
-                x
-            };
-            let mut interior = HashMap::new();
-            for j in 0..m {
-                for i in 0..m {
-                    let [xi, eta] = basis.node(j * m + i);
-                    let corner = match (i, j) {
-                        (0, 0) => Some(quad[0]),
-                        (i, 0) if i == p => Some(quad[1]),
-                        (i, j) if i == p && j == p => Some(quad[2]),
-                        (0, j) if j == p => Some(quad[3]),
-                        _ => None,
-                    };
-                    let id = if let Some(c) = corner {
-                        c
-                    } else {
-                        // (edge from corner u to v, position s along it)
-                        let edge = if j == 0 {
-                            Some((quad[0], quad[1], i))
-                        } else if j == p {
-                            Some((quad[3], quad[2], i))
-                        } else if i == 0 {
-                            Some((quad[0], quad[3], j))
-                        } else if i == p {
-                            Some((quad[1], quad[2], j))
-                        } else {
-                            None
-                        };
-                        match edge {
-                            Some((u, v, s)) => {
-                                let key = (u.min(v), u.max(v));
-                                let list = edge_nodes.entry(key).or_insert_with(|| {
-                                    // nodes ordered from the lower corner index to the higher
-                                    let (a, b) = (corners[key.0], corners[key.1]);
-                                    (1..p)
-                                        .map(|t| {
-                                            let f = t as f64 / p as f64;
-                                            nodes.push([a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])]);
-                                            nodes.len() - 1
-                                        })
-                                        .collect()
-                                });
-                                if u < v { list[s - 1] } else { list[p - 1 - s] }
-                            }
-                            None => *interior.entry((i, j)).or_insert_with(|| {
-                                nodes.push(bilinear(xi, eta));
-                                nodes.len() - 1
-                            }),
-                        }
-                    };
-                    connectivity.push(id);
-                }
-            }
-        }
+        check_quads(corners, quads, key)?;
+        let (nodes, connectivity) = lagrange_nodes(kind.order(), corners, quads);
         Ok(Self { kind, nodes, connectivity, regions: Vec::new() })
     }
 
@@ -376,6 +241,172 @@ impl CrossSection {
         }
         b
     }
+}
+
+/// Rejects a quad list that is no conforming mesh of convex
+/// counter-clockwise quads: no quad, an index out of range, a repeated
+/// corner, a clockwise or non-convex quad, an edge shared by more than two
+/// quads, overlapping quads, or a point no quad uses.
+fn check_quads(corners: &[[f64; 2]], quads: &[[usize; 4]], key: &str) -> Result<(), MeshError> {
+    if quads.is_empty() {
+        return Err(MeshError::invalid(format!("{key}.quads"), "[]", "at least one quadrilateral"));
+    }
+    for (q, quad) in quads.iter().enumerate() {
+        check_quad(corners, q, quad, key)?;
+    }
+    check_edge_use(quads, key)?;
+    check_overlaps(corners, quads, key)?;
+    let mut used = vec![false; corners.len()];
+    for &c in quads.iter().flatten() {
+        used[c] = true;
+    }
+    if let Some(i) = used.iter().position(|u| !u) {
+        return Err(MeshError::invalid(
+            format!("{key}.points[{i}]"),
+            format!("{:?}", corners[i]),
+            "a point used by at least one quad (unused points would be unconstrained)",
+        ));
+    }
+    Ok(())
+}
+
+/// Quad `q` alone: four distinct corner indices in range, convex and
+/// counter-clockwise.
+fn check_quad(corners: &[[f64; 2]], q: usize, quad: &[usize; 4], key: &str) -> Result<(), MeshError> {
+    if quad.iter().any(|&c| c >= corners.len()) {
+        return Err(MeshError::invalid(
+            format!("{key}.quads[{q}]"),
+            format!("{quad:?}"),
+            format!("indices of points 0..{}", corners.len()),
+        ));
+    }
+    let mut sorted = *quad;
+    sorted.sort_unstable();
+    if sorted.windows(2).any(|w| w[0] == w[1]) {
+        return Err(MeshError::invalid(
+            format!("{key}.quads[{q}]"),
+            format!("{quad:?}"),
+            "four distinct corner points",
+        ));
+    }
+    let [a, b, c, d] = quad.map(|i| corners[i]);
+    // Jacobian sign at the four corners: all positive for a convex CCW quad.
+    let cross = |o: [f64; 2], p: [f64; 2], r: [f64; 2]| (p[0] - o[0]) * (r[1] - o[1]) - (p[1] - o[1]) * (r[0] - o[0]);
+    let dets = [cross(a, b, d), cross(b, c, a), cross(c, d, b), cross(d, a, c)];
+    if dets.iter().any(|&v| !(v > 0.0)) {
+        return Err(MeshError::invalid(
+            format!("{key}.quads[{q}]"),
+            format!("{quad:?}"),
+            "a convex quadrilateral with corners listed counter-clockwise in the x–z plane",
+        ));
+    }
+    Ok(())
+}
+
+/// A conforming mesh uses each edge at most twice: more means overlapping
+/// or duplicated quads.
+fn check_edge_use(quads: &[[usize; 4]], key: &str) -> Result<(), MeshError> {
+    let mut edge_use: HashMap<(usize, usize), usize> = HashMap::new();
+    for (q, quad) in quads.iter().enumerate() {
+        for k in 0..4 {
+            let (a, b) = (quad[k], quad[(k + 1) % 4]);
+            let uses = edge_use.entry((a.min(b), a.max(b))).or_default();
+            *uses += 1;
+            if *uses > 2 {
+                return Err(MeshError::invalid(
+                    format!("{key}.quads[{q}]"),
+                    format!("{quad:?}"),
+                    format!("quads that do not overlap (the edge {a}–{b} is already shared by two quads)"),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The nodes and connectivity of Lagrange elements of order `p` over
+/// checked quads: the corners first (same indices), then, quad by quad in
+/// lexicographic local order, the nodes on an edge (shared with the quad
+/// across it) and inside.
+fn lagrange_nodes(p: usize, corners: &[[f64; 2]], quads: &[[usize; 4]]) -> (Vec<[f64; 2]>, Vec<usize>) {
+    let m = p + 1;
+    let basis = Lagrange2d::new(p);
+    let mut nodes: Vec<[f64; 2]> = corners.to_vec();
+    let mut edge_nodes: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
+    let mut connectivity = Vec::with_capacity(quads.len() * m * m);
+    for quad in quads {
+        for j in 0..m {
+            for i in 0..m {
+                let id = if let Some(c) = corner_at(quad, p, i, j) {
+                    c
+                } else if let Some((u, v, s)) = edge_at(quad, p, i, j) {
+                    let key = (u.min(v), u.max(v));
+                    let list = edge_nodes.entry(key).or_insert_with(|| {
+                        // nodes ordered from the lower corner index to the higher
+                        let (a, b) = (corners[key.0], corners[key.1]);
+                        (1..p)
+                            .map(|t| {
+                                let f = t as f64 / p as f64;
+                                nodes.push([a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1])]);
+                                nodes.len() - 1
+                            })
+                            .collect()
+                    });
+                    if u < v { list[s - 1] } else { list[p - 1 - s] }
+                } else {
+                    let [xi, eta] = basis.node(j * m + i);
+                    nodes.push(bilinear(quad.map(|c| corners[c]), xi, eta));
+                    nodes.len() - 1
+                };
+                connectivity.push(id);
+            }
+        }
+    }
+    (nodes, connectivity)
+}
+
+/// The corner of `quad` at local node `(i, j)` of an order-`p` element.
+fn corner_at(quad: &[usize; 4], p: usize, i: usize, j: usize) -> Option<usize> {
+    match (i, j) {
+        (0, 0) => Some(quad[0]),
+        (i, 0) if i == p => Some(quad[1]),
+        (i, j) if i == p && j == p => Some(quad[2]),
+        (0, j) if j == p => Some(quad[3]),
+        _ => None,
+    }
+}
+
+/// The edge of `quad` through local node `(i, j)` (not a corner): `(u, v,
+/// s)`, the edge from corner `u` to corner `v` and the node's position `s`
+/// along it; `None` inside.
+fn edge_at(quad: &[usize; 4], p: usize, i: usize, j: usize) -> Option<(usize, usize, usize)> {
+    if j == 0 {
+        Some((quad[0], quad[1], i))
+    } else if j == p {
+        Some((quad[3], quad[2], i))
+    } else if i == 0 {
+        Some((quad[0], quad[3], j))
+    } else if i == p {
+        Some((quad[1], quad[2], j))
+    } else {
+        None
+    }
+}
+
+/// The bilinear map of a quad with corners `c` at natural point `(ξ, η)`.
+fn bilinear(c: [[f64; 2]; 4], xi: f64, eta: f64) -> [f64; 2] {
+    let w = [
+        0.25 * (1.0 - xi) * (1.0 - eta),
+        0.25 * (1.0 + xi) * (1.0 - eta),
+        0.25 * (1.0 + xi) * (1.0 + eta),
+        0.25 * (1.0 - xi) * (1.0 + eta),
+    ];
+    let mut x = [0.0; 2];
+    for (k, wk) in w.iter().enumerate() {
+        x[0] += wk * c[k][0];
+        x[1] += wk * c[k][1];
+    }
+    x
 }
 
 /// Signed area of a polygon (shoelace; positive counter-clockwise).

@@ -76,6 +76,7 @@ pub mod ccx;
 pub mod contact;
 pub mod dynamics;
 pub mod elements;
+pub mod input;
 pub mod io;
 pub mod kinematics;
 pub mod materials;

@@ -427,7 +427,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         let estimate = crate::post::estimate::estimate(mesh, cells, &model.materials, stresses, offsets, &recovered);
         solution.error_estimate = Some(estimate);
     }
-    if model.output.recovery == crate::model::Recovery::Projection {
+    if model.output.recovery == crate::input::Recovery::Projection {
         solution.recovered = Some(crate::post::recovery::project(
             &model.mesh,
             &model.cells,

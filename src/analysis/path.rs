@@ -14,7 +14,8 @@
 //! restored after a failed attempt, as in load stepping.
 
 use super::{Recorder, Structure};
-use crate::model::{Model, PathSettings};
+use crate::input::PathSettings;
+use crate::model::Model;
 use crate::solver::Interrupt;
 use crate::solver::arclength::{self, PathError, PathObserver, PathProblem, PathStep, PathStop};
 use crate::solver::linear::LinearError;

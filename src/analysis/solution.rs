@@ -80,7 +80,7 @@ impl Solution {
             frames: Vec::new(),
             path: self.path.clone(),
         };
-        if model.output.recovery == crate::model::Recovery::Projection {
+        if model.output.recovery == crate::input::Recovery::Projection {
             s.recovered =
                 Some(crate::post::recovery::project(&model.mesh, &model.cells, &s.stresses, &s.states, &s.gp_offsets)?);
         }

@@ -187,7 +187,7 @@ impl<'m> Structure<'m> {
     /// transient run, whose tangent carries `M / (β Δt²)`).
     fn inertia_every_increment(&self) -> bool {
         let every = match self.model.solver.inertia {
-            Some(report) => report == crate::model::InertiaReport::EveryIncrement,
+            Some(report) => report == crate::input::InertiaReport::EveryIncrement,
             None => self.model.kinematics.is_nonlinear(),
         };
         every && self.dynamics.is_none()

@@ -239,7 +239,7 @@ fn dispatch(cli: Cli) -> Result<u8, Failure> {
             Ok(OK)
         }
         Command::Schema => {
-            let text = serde_json::to_string_pretty(&cufem::model::json_schema()).map_err(|e| fail(INPUT, e))?;
+            let text = serde_json::to_string_pretty(&cufem::input::json_schema()).map_err(|e| fail(INPUT, e))?;
             println!("{text}");
             Ok(OK)
         }
@@ -406,7 +406,7 @@ fn run(
     // between preparing the folder and installing the handler would leave
     // its lock and staging folder behind)
     let interrupt = install_interrupt()?;
-    let (text, base) = Model::read_text(path).map_err(|e| model_failure(e, path))?;
+    let (text, base) = cufem::input::read_text(path).map_err(|e| model_failure(e, path))?;
     let limits = Limits { max_memory: limit(resources) };
     let model = Model::parse_in(&text, limits, &base).map_err(|e| model_failure(e, path))?;
     let settings = adapt.settings(&model)?;

@@ -1,15 +1,15 @@
 //! `[analysis]`: the kind of analysis and its geometry — what the driver
 //! does with the model, checked against what the model holds.
 
-use super::schema::{AnalysisFile, AnalysisType, Geometry, MassMatrix, StrainMeasure};
-use super::{ModelError, invalid};
 use crate::bc::Constraint;
 use crate::contact::{Indenter, PairContact};
+use crate::input::schema::{AnalysisFile, AnalysisType, Geometry, MassMatrix, StrainMeasure};
+use crate::input::{ModelError, invalid};
 use crate::kinematics::Kinematics;
 use crate::materials::Material;
 use crate::mesh::Mesh;
 
-pub use super::ranges::MAX_MODES;
+pub use crate::input::ranges::MAX_MODES;
 
 /// `analysis.type = "buckling"`: the linear buckling analysis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

@@ -5,12 +5,13 @@
 use std::path::Path;
 
 use super::budget::Budget;
-use super::schema::*;
 use super::sections::Sections;
-use super::validate::division_parts;
-use super::{Limits, ModelError, Warning, invalid};
+use super::{Limits, Warning};
 use crate::bc::symmetry::Plane;
 use crate::elements::ElementError;
+use crate::input::schema::*;
+use crate::input::validate::division_parts;
+use crate::input::{ModelError, invalid};
 use crate::materials::Material;
 use crate::mesh::{BeamAxis, Body, CrossSection, Mesh};
 use crate::values::CellValues;

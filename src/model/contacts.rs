@@ -4,12 +4,13 @@
 
 use super::overlap::overlap;
 use super::preprocess::{body_index, surface_faces};
-use super::schema::*;
 use super::surface_contact::surface_contact;
-use super::validate::{finite_positive, friction, penalty, tolerance};
-use super::{ModelError, Warning, invalid, symmetry};
+use super::{Warning, symmetry};
 use crate::bc::symmetry::Plane;
 use crate::contact::{self, ContactSurface, PairContact, SurfaceNodes};
+use crate::input::schema::*;
+use crate::input::validate::{finite_positive, friction, penalty, tolerance};
+use crate::input::{ModelError, invalid};
 use crate::materials::Material;
 use crate::mesh::Mesh;
 

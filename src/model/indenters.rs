@@ -2,13 +2,14 @@
 //! nodes of the body surface they face, with their penalties and motion
 //! (displacement or force control).
 
-use super::bounds;
 use super::preprocess::{body_index, model_coords, surface_faces};
-use super::schema::*;
-use super::validate::{describe_selection, friction, penalty, tolerance};
-use super::{ModelError, Warning, invalid, ranges, symmetry};
+use super::{Warning, symmetry};
 use crate::bc::symmetry::Plane;
 use crate::contact::{self, Indenter, RigidSurface, SurfaceNodes};
+use crate::input::bounds;
+use crate::input::schema::*;
+use crate::input::validate::{describe_selection, friction, penalty, tolerance};
+use crate::input::{ModelError, invalid, ranges};
 use crate::materials::Material;
 use crate::mesh::{Body, Mesh};
 

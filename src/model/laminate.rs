@@ -5,9 +5,9 @@
 //! region `ply1`, `ply2`, … and gets its material turned by its angle about
 //! z from the beam axis (applied by `zones`).
 
-use super::schema::{LaminateFile, PlyFile};
-use super::validate::{MAX_COUNT, division};
-use super::{ModelError, bounds, invalid, ranges};
+use crate::input::schema::{LaminateFile, PlyFile};
+use crate::input::validate::{MAX_COUNT, division};
+use crate::input::{ModelError, bounds, invalid, ranges};
 use crate::mesh::{CrossSection, Region};
 use crate::shape::SectionElementKind;
 
@@ -37,7 +37,7 @@ pub(super) fn check(sk: &str, plies: &[PlyFile]) -> Result<(), ModelError> {
     for (k, p) in plies.iter().enumerate() {
         let pk = format!("{sk}.plies[{k}]");
         ranges::LENGTH.check(&format!("{pk}.thickness"), p.thickness, "the ply thickness in m, positive")?;
-        let n = p.elements.unwrap_or(super::defaults::THROUGH);
+        let n = p.elements.unwrap_or(crate::input::defaults::THROUGH);
         if !(1..=MAX_COUNT).contains(&n) {
             return Err(invalid(format!("{pk}.elements"), n, format!("an integer in 1..={MAX_COUNT}")));
         }
@@ -72,7 +72,7 @@ fn z_lines(z0: f64, plies: &[PlyFile]) -> (Vec<f64>, Vec<(usize, usize)>) {
     let mut rows = Vec::new();
     let mut bottom = z0;
     for p in plies {
-        let n = p.elements.unwrap_or(super::defaults::THROUGH);
+        let n = p.elements.unwrap_or(crate::input::defaults::THROUGH);
         rows.push((lines.len() - 1, n));
         for k in 1..=n {
             lines.push(if k == n { bottom + p.thickness } else { bottom + p.thickness * k as f64 / n as f64 });
@@ -94,7 +94,7 @@ pub(super) fn section(sk: &str, kind: SectionElementKind, s: &LaminateFile) -> R
     let xl = division(&format!("{sk}.x"), x)?;
     let z0 = bounds::within(
         &format!("{sk}.z0"),
-        s.z0.unwrap_or(super::defaults::Z0),
+        s.z0.unwrap_or(crate::input::defaults::Z0),
         -bounds::MAX_COORD,
         bounds::MAX_COORD,
         "the bottom of the stack in m",

@@ -3,10 +3,10 @@
 //! law (perfect, linear, table, Voce) and the kinematic back-stresses, each
 //! bounded to physically sensible magnitudes.
 
-use super::bounds;
-use super::ranges;
-use super::schema::*;
-use super::{ModelError, invalid};
+use crate::input::bounds;
+use crate::input::ranges;
+use crate::input::schema::*;
+use crate::input::{ModelError, invalid};
 use crate::materials::anisotropic::{self, positive_definite};
 use crate::materials::{BackStress, Hardening, MAX_BACKSTRESSES, Material, Orthotropic, Strengths};
 use crate::voigt::Matrix6;

@@ -13,9 +13,10 @@
 //! material that is not its own mirror image there (the full structure then
 //! holds −θ plies beside θ ones) is warned about.
 
-use super::schema::BodyFile;
-use super::{ModelError, Warning, invalid};
+use super::Warning;
 use crate::bc::symmetry::{Plane, Side, reflect_stiffness};
+use crate::input::schema::BodyFile;
+use crate::input::{ModelError, invalid};
 use crate::materials::Material;
 use crate::mesh::{BeamAxis, Body, CrossSection};
 use crate::shape::BeamElementKind;

@@ -8,10 +8,8 @@
 
 pub mod analysis;
 mod bodies;
-mod bounds;
 mod budget;
 mod contacts;
-mod defaults;
 mod indenters;
 mod laminate;
 mod material;
@@ -19,107 +17,30 @@ mod mirror;
 mod overlap;
 mod path;
 mod preprocess;
-mod ranges;
 mod refine;
 mod restraint;
-mod schema;
 mod sections;
 pub mod steps;
 mod surface_contact;
 mod symmetry;
 pub mod transient;
-mod validate;
 mod zones;
 
 use std::path::Path;
 
 use crate::bc::{Constraint, Load};
 use crate::contact::{Indenter, PairContact};
+pub use crate::input::ModelError;
+use crate::input::schema::{self, *};
+use crate::input::{OutputSettings, Recovery, Reference, SolverSettings, defaults, invalid};
 use crate::kinematics::Kinematics;
 use crate::materials::Material;
-use crate::mesh::{Body, Mesh, MeshError};
+use crate::mesh::{Body, Mesh};
 use crate::quantity::Quantity;
-use crate::solver::newton::NewtonSettings;
-use crate::solver::stepping::StepSettings;
-use crate::values::{CellValues, ElementError, Location};
+use crate::values::{CellValues, Location};
 pub use analysis::{BucklingSettings, Imperfection, ModalSettings};
-use schema::*;
 
-pub use path::{DisplacementStop, PathSettings};
 pub use refine::{AdaptSettings, BodyPlan, MAX_BUDGET, MeshPlan, SectionPlan};
-pub use schema::json::json_schema;
-
-/// Errors found while reading or validating a model.
-#[derive(Debug, thiserror::Error)]
-pub enum ModelError {
-    /// The file could not be read.
-    #[error("cannot read model file {path}: {cause}")]
-    Io {
-        /// File path.
-        path: String,
-        /// Cause (kept out of the error chain: the message already says it).
-        cause: std::io::Error,
-    },
-    /// The file is larger than a model file can be (or endless).
-    #[error(
-        "model file {path} holds more than {}: expected a model file of at most {} (model files are a few kB; \
-         gmsh meshes are separate files, named by a section's `file` key)",
-        crate::size::human_bytes(*.cap), crate::size::human_bytes(*.cap)
-    )]
-    TooBig {
-        /// File path.
-        path: String,
-        /// The largest size read (bytes).
-        cap: u64,
-    },
-    /// The file is not UTF-8 text.
-    #[error("model file {path} is not UTF-8 text: invalid byte at line {line}, column {column} (byte {offset})")]
-    NotText {
-        /// File path.
-        path: String,
-        /// 1-based line of the first invalid byte.
-        line: usize,
-        /// 1-based column (in bytes) of the first invalid byte.
-        column: usize,
-        /// 0-based byte offset.
-        offset: usize,
-    },
-    /// TOML syntax or type error (the message names the key and line).
-    #[error("model file: {0}")]
-    Parse(String),
-    /// A value that is not allowed.
-    #[error("{key} = {value}: expected {allowed}")]
-    Invalid {
-        /// Model-file key.
-        key: String,
-        /// The value given.
-        value: String,
-        /// What is allowed.
-        allowed: String,
-    },
-    /// Mesh construction error.
-    #[error(transparent)]
-    Mesh(#[from] MeshError),
-    /// Element geometry error.
-    #[error(transparent)]
-    Element(#[from] ElementError),
-    /// The model cannot fit in the memory allowed.
-    #[error(
-        "the model needs at least {} of memory ({} DOF; {}) but {} is available; use a coarser mesh, or \
-         --max-memory to raise the limit",
-        crate::size::human_bytes(*.needed), .dofs, .largest, crate::size::human_bytes(*.limit)
-    )]
-    TooLarge {
-        /// Lower bound of the memory needed (bytes).
-        needed: u64,
-        /// Memory allowed (bytes).
-        limit: u64,
-        /// Degrees of freedom.
-        dofs: u64,
-        /// The body that made it too large, and its size.
-        largest: String,
-    },
-}
 
 /// Limits applied while reading a model.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -138,34 +59,6 @@ impl Limits {
     pub fn none() -> Self {
         Self { max_memory: None }
     }
-}
-
-/// Cuts the lines of a parser message: the TOML parser quotes the offending
-/// source line, which may be huge (a 100,000-deep nested array is one
-/// 200 KB line), cut to 200 characters with its `^^^` marker; the message
-/// itself, which names what is allowed (`unknown field `x`, expected one
-/// of …` lists every key of the table), is kept whole up to 1,000
-/// characters (it quotes the value given, which may be huge too).
-fn shorten_lines(message: &str) -> String {
-    message
-        .lines()
-        .map(|l| {
-            let quoted = l.trim_start().starts_with('|')
-                || l.split_once(" | ")
-                    .is_some_and(|(n, _)| !n.is_empty() && n.trim().chars().all(|c| c.is_ascii_digit()));
-            let max = if quoted { 200 } else { 1000 };
-            if l.chars().count() > max {
-                format!("{}…", l.chars().take(max).collect::<String>())
-            } else {
-                l.to_string()
-            }
-        })
-        .collect::<Vec<_>>()
-        .join("\n")
-}
-
-fn invalid(key: impl Into<String>, value: impl std::fmt::Display, allowed: impl Into<String>) -> ModelError {
-    ModelError::Invalid { key: key.into(), value: shorten_lines(&value.to_string()), allowed: allowed.into() }
 }
 
 /// A probe point.
@@ -198,76 +91,6 @@ pub struct Line {
     pub body: Option<usize>,
     /// Quantities plotted to PNG.
     pub plot: Vec<Quantity>,
-}
-
-/// A published value printed beside ours.
-#[derive(Debug, Clone)]
-pub struct Reference {
-    /// Probe name.
-    pub probe: String,
-    /// Quantity.
-    pub quantity: Quantity,
-    /// Value in SI units.
-    pub value: f64,
-    /// Where it comes from.
-    pub source: String,
-}
-
-/// Solution controls.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SolverSettings {
-    /// Load stepping.
-    pub steps: StepSettings,
-    /// Newton iteration.
-    pub newton: NewtonSettings,
-    /// Worker threads (`None`: all cores).
-    pub threads: Option<usize>,
-    /// Reuse of a factorization as the preconditioner of later solves.
-    pub reuse: crate::solver::reuse::ReuseSettings,
-    /// `solver.control = "arc_length"`: path following (`None`: load stepping).
-    pub path: Option<PathSettings>,
-    /// `solver.inertia`: which tangent's inertia `history.csv` reports
-    /// (`None`: every converged one with nonlinear geometry, else the last
-    /// factorized one).
-    pub inertia: Option<InertiaReport>,
-}
-
-/// Which tangent's inertia (negative pivots) each increment reports.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum InertiaReport {
-    /// The converged tangent of every increment, factorized in double
-    /// precision for it (one factorization per increment).
-    EveryIncrement,
-    /// The last tangent the solver factorized anyway (free; it may be some
-    /// iterations or increments old).
-    LastFactorization,
-}
-
-/// Output controls.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct OutputSettings {
-    /// Write `result.vtu`.
-    pub vtu: bool,
-    /// Write PNG plots.
-    pub plots: bool,
-    /// How stress and peeq are recovered at points.
-    pub recovery: Recovery,
-    /// Also write `gauss.vtu` with the raw Gauss-point values.
-    pub gauss_points: bool,
-}
-
-/// How stress and peeq are evaluated at arbitrary points (`output.recovery`).
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize, serde::Serialize, schemars::JsonSchema)]
-#[serde(rename_all = "lowercase")]
-pub enum Recovery {
-    /// L2 projection of the Gauss-point values onto the CUF basis: a
-    /// continuous field ([`crate::post::recovery`]).
-    Projection,
-    /// Element by element: the expansion's `C ε` in elastic elements, the
-    /// limited interpolation of the Gauss-point values in yielded ones
-    /// (discontinuous between elements). The default.
-    #[default]
-    Element,
 }
 
 /// A validated model.
@@ -358,26 +181,8 @@ impl Model {
 
     /// Reads and validates a model file under explicit limits.
     pub fn from_file_with(path: &Path, limits: Limits) -> Result<Self, ModelError> {
-        let (text, base) = Self::read_text(path)?;
+        let (text, base) = crate::input::read_text(path)?;
         Self::parse_in(&text, limits, &base)
-    }
-
-    /// The text of a model file and the folder its relative paths start
-    /// at (what [`Model::parse_in`] and [`Model::parse_planned`] take).
-    pub fn read_text(path: &Path) -> Result<(String, std::path::PathBuf), ModelError> {
-        let cap = crate::size::MAX_MODEL_FILE;
-        let bytes = crate::size::read_at_most(path, cap)
-            .map_err(|cause| ModelError::Io { path: path.display().to_string(), cause })?
-            .ok_or_else(|| ModelError::TooBig { path: path.display().to_string(), cap })?;
-        let text = String::from_utf8(bytes).map_err(|e| {
-            let offset = e.utf8_error().valid_up_to();
-            let before = &e.as_bytes()[..offset];
-            let line = before.iter().filter(|&&b| b == b'\n').count() + 1;
-            let column = offset - before.iter().rposition(|&b| b == b'\n').map_or(0, |p| p + 1) + 1;
-            ModelError::NotText { path: path.display().to_string(), line, column, offset }
-        })?;
-        let base = path.parent().filter(|p| !p.as_os_str().is_empty()).unwrap_or(Path::new("."));
-        Ok((text, base.to_path_buf()))
     }
 
     /// Parses and validates model-file text, refusing a model that cannot
@@ -395,14 +200,14 @@ impl Model {
     /// Parses and validates model-file text whose relative file paths
     /// (gmsh sections) start at the folder `base`.
     pub fn parse_in(text: &str, limits: Limits, base: &Path) -> Result<Self, ModelError> {
-        let file: ModelFile = toml::from_str(text).map_err(|e| ModelError::Parse(shorten_lines(&e.to_string())))?;
+        let file = crate::input::parse(text)?;
         build(file, limits, base)
     }
 
     /// Parses and validates model-file text with its divisions replaced by
     /// `plan` (a refinement of the plan of the same text, e.g. by `crate::adapt`).
     pub fn parse_planned(text: &str, limits: Limits, base: &Path, plan: &MeshPlan) -> Result<Self, ModelError> {
-        let mut file: ModelFile = toml::from_str(text).map_err(|e| ModelError::Parse(shorten_lines(&e.to_string())))?;
+        let mut file = crate::input::parse(text)?;
         refine::apply(&mut file, plan)?;
         build(file, limits, base)
     }
@@ -443,7 +248,7 @@ fn is_linear(mesh: &Mesh, materials: &[Material], indenters: &[Indenter], contac
 }
 
 fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelError> {
-    validate::names(&file)?;
+    crate::input::validate::names(&file)?;
     let mut materials = material::materials(&file.materials)?;
     let planes = symmetry::planes(&file.symmetry)?;
     let mut warnings = Vec::new();
@@ -477,9 +282,9 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let probes = preprocess::probes(&file.probes, &mesh, &planes)?;
     let lines = preprocess::lines(&file.lines, &mesh, &planes, &mut warnings)?;
     let symmetry = symmetry::resolve(planes, &mesh, (&constraints, n_user), &indenters, &contacts);
-    let references = validate::references(&file.references, &probes)?;
+    let references = crate::input::validate::references(&file.references, &file.probes)?;
     let linear = is_linear(&mesh, &materials, &indenters, &contacts) && !kinematics.is_nonlinear();
-    let mut solver = validate::solver_settings(&file.solver, linear)?;
+    let mut solver = crate::input::validate::solver_settings(&file.solver, linear)?;
     let loading = path::Loading {
         steps: &file.steps,
         constraints: &constraints,
@@ -489,7 +294,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         probes: &probes,
     };
     solver.path = path::settings(&file.solver, &solver, &loading)?;
-    let output = validate::output(&file.output);
+    let output = crate::input::validate::output(&file.output);
     if output.recovery == Recovery::Projection
         && let Some(b) = mesh.bodies.iter().position(|b| b.is_layered())
     {

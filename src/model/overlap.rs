@@ -3,8 +3,8 @@
 //! gradually for a deliberate interference fit.
 
 use super::preprocess::model_coords;
-use super::schema::ContactFile;
-use super::{ModelError, invalid};
+use crate::input::schema::ContactFile;
+use crate::input::{ModelError, invalid};
 use crate::mesh::Mesh;
 
 /// Deformable bodies that start inside each other: `gaps` holds each

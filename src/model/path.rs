@@ -6,49 +6,13 @@
 //! load steps, augmented-Lagrangian contact (its multiplier updates need
 //! load stepping's re-solves) — is refused by key.
 
-use super::schema::{Control, SolverFile, StepFile};
-use super::validate::finite_positive;
-use super::{ModelError, Probe, SolverSettings, invalid, ranges};
+use super::Probe;
 use crate::bc::{Constraint, Load};
 use crate::contact::{Indenter, PairContact};
+use crate::input::schema::{Control, SolverFile, StepFile};
+use crate::input::validate::finite_positive;
+use crate::input::{DisplacementStop, ModelError, PathSettings, SolverSettings, invalid, ranges};
 use crate::solver::arclength::ArcLengthSettings;
-
-/// The validated controls of a path following.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct PathSettings {
-    /// The arc-length method's controls (`initial_dlambda` = 1/`increments`,
-    /// `max_increments`, `max_iterations`, `residual_tolerance` from
-    /// `[solver]`, the rest its defaults).
-    pub arc: ArcLengthSettings,
-    /// `solver.arc_length`: `Δl₀` (m, Euclidean norm of the change of the
-    /// free displacements); `None`: from the first predictor of `Δλ =
-    /// arc.initial_dlambda`.
-    pub arc_length: Option<f64>,
-    /// The run ends at the first converged point with `λ ≥` this.
-    pub max_load_factor: f64,
-    /// The run ends at the first converged point past this displacement.
-    pub stop: Option<DisplacementStop>,
-}
-
-/// `solver.stop`: a probe's displacement component passing a value.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct DisplacementStop {
-    /// Index of the probe in the model.
-    pub probe: usize,
-    /// 0, 1, 2 for x, y, z.
-    pub component: usize,
-    /// The value (m, non-zero): passed when the component is at or beyond
-    /// it on its side of zero (`u ≤ beyond` for a negative value).
-    pub beyond: f64,
-}
-
-impl DisplacementStop {
-    /// True if `u` (the probe's displacement) has passed the limit.
-    pub fn passed(&self, u: [f64; 3]) -> bool {
-        let v = u[self.component];
-        if self.beyond < 0.0 { v <= self.beyond } else { v >= self.beyond }
-    }
-}
 
 /// What the path following reads from the rest of the model.
 pub(super) struct Loading<'a> {
@@ -108,7 +72,7 @@ pub(super) fn settings(
     proportional(model)?;
     let arc_length = s.arc_length.map(|a| finite_positive("solver.arc_length", a)).transpose()?;
     let max_load_factor = match s.max_load_factor {
-        None => super::defaults::MAX_LOAD_FACTOR,
+        None => crate::input::defaults::MAX_LOAD_FACTOR,
         Some(m) if ranges::MAX_LOAD_FACTOR.contains(m) => m,
         Some(m) => {
             return Err(invalid("solver.max_load_factor", m, format!("a number {}", ranges::MAX_LOAD_FACTOR)));
@@ -125,7 +89,7 @@ pub(super) fn settings(
     Ok(Some(PathSettings { arc, arc_length, max_load_factor, stop }))
 }
 
-fn stop(st: &super::schema::StopFile, probes: &[Probe]) -> Result<DisplacementStop, ModelError> {
+fn stop(st: &crate::input::schema::StopFile, probes: &[Probe]) -> Result<DisplacementStop, ModelError> {
     let Some(probe) = probes.iter().position(|p| p.name == st.probe) else {
         let names: Vec<&str> = probes.iter().map(|p| p.name.as_str()).collect();
         return Err(invalid(

@@ -2,12 +2,13 @@
 //! face integrals of loads, probe and line locations. Runs once, after the
 //! bodies are built; the analysis consumes its results.
 
-use super::bounds;
-use super::schema::*;
-use super::validate::{MAX_COUNT, describe_selection};
-use super::{Line, ModelError, Probe, Warning, invalid, symmetry};
+use super::{Line, Probe, Warning, symmetry};
 use crate::bc::symmetry::Plane;
 use crate::bc::{self, Condition, Constraint, Load, LoadKind, Selection};
+use crate::input::bounds;
+use crate::input::schema::*;
+use crate::input::validate::{MAX_COUNT, describe_selection};
+use crate::input::{ModelError, invalid};
 use crate::mesh::{Body, Mesh};
 use crate::values::locate_in_model;
 
@@ -292,7 +293,7 @@ pub(super) fn lines(
     let mut lines = Vec::new();
     for (i, l) in file.iter().enumerate() {
         let key = format!("lines[{i}]");
-        let points = l.points.unwrap_or(super::defaults::LINE_POINTS);
+        let points = l.points.unwrap_or(crate::input::defaults::LINE_POINTS);
         if !(2..=MAX_COUNT).contains(&points) {
             return Err(invalid(format!("{key}.points"), points, format!("an integer from 2 to {MAX_COUNT}")));
         }
@@ -394,7 +395,7 @@ pub(super) fn selection(key: &str, s: &SelectionFile, body: &Body) -> Result<Sel
                     let name = format!("{key}.center");
                     [bounds::coordinate(&name, c[0])?, bounds::coordinate(&name, c[1])?]
                 }
-                None => super::defaults::ORIGIN,
+                None => crate::input::defaults::ORIGIN,
             };
             let c = cond("radius", &Some(*r))?.filter(|c| match *c {
                 Condition::Equal(v) => v >= 0.0,

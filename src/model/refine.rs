@@ -22,9 +22,9 @@
 //!
 //! The axis is always refined interval by interval.
 
-use super::schema::*;
-use super::validate::division;
-use super::{ModelError, defaults, invalid, ranges};
+use crate::input::schema::*;
+use crate::input::validate::division;
+use crate::input::{ModelError, defaults, invalid, ranges};
 
 /// Default `[adapt] tolerance`: relative error in the energy norm.
 pub const DEFAULT_TOLERANCE: f64 = defaults::ADAPT_TOLERANCE;
@@ -34,7 +34,7 @@ pub const DEFAULT_MAX_DOF: usize = defaults::ADAPT_MAX_DOF;
 pub const DEFAULT_MAX_CYCLES: usize = defaults::ADAPT_MAX_CYCLES;
 /// Default `[adapt] fraction`: Dörfler's bulk parameter θ.
 pub const DEFAULT_FRACTION: f64 = defaults::ADAPT_FRACTION;
-pub use super::ranges::{MAX_BUDGET, MAX_CYCLES};
+pub use crate::input::ranges::{MAX_BUDGET, MAX_CYCLES};
 
 /// Validated `[adapt]`: refine and solve again until the estimate is below
 /// `tolerance` (`crate::adapt`).
@@ -144,7 +144,7 @@ pub(super) fn plan(file: &ModelFile) -> Result<MeshPlan, ModelError> {
     let mut bodies = Vec::with_capacity(file.bodies.len());
     for (i, b) in file.bodies.iter().enumerate() {
         let a = &b.axis;
-        let axis = super::validate::division_parts(
+        let axis = crate::input::validate::division_parts(
             &format!("bodies[{i}].axis"),
             a.from,
             a.to,

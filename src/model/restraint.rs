@@ -22,9 +22,9 @@ use faer::Mat;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::evd;
 
-use super::{ModelError, invalid};
 use crate::bc::Constraint;
 use crate::contact::{Indenter, PairContact};
+use crate::input::{ModelError, invalid};
 use crate::mesh::Mesh;
 
 /// A restraint row `Σ w · u_node`, as (node, weight vector) terms.

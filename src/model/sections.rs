@@ -7,11 +7,11 @@
 
 use std::path::Path;
 
-use super::bounds;
 use super::budget::Budget;
-use super::schema::*;
-use super::validate::{MAX_COUNT, count, division};
-use super::{ModelError, defaults, invalid, ranges};
+use crate::input::bounds;
+use crate::input::schema::*;
+use crate::input::validate::{MAX_COUNT, count, division};
+use crate::input::{ModelError, defaults, invalid, ranges};
 use crate::mesh::blocks::{self, Block};
 use crate::mesh::profiles::{self, Counts, Family, Walls};
 use crate::mesh::{CrossSection, MeshError, gmsh};

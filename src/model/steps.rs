@@ -12,9 +12,9 @@
 
 use std::collections::BTreeMap;
 
-use super::schema::StepFile;
-use super::validate::count;
-use super::{ModelError, invalid, ranges};
+use crate::input::schema::StepFile;
+use crate::input::validate::count;
+use crate::input::{ModelError, invalid, ranges};
 use crate::solver::stepping::StepSettings;
 
 /// A loading item a step can scale.
@@ -117,7 +117,7 @@ pub(super) fn steps(file: &[StepFile], names: &ItemNames, base: &StepSettings) -
                 format!("a name not used by steps[{j}]"),
             ));
         }
-        let default = s.factor.unwrap_or(super::defaults::STEP_FACTOR);
+        let default = s.factor.unwrap_or(crate::input::defaults::STEP_FACTOR);
         check_factor(&format!("{key}.factor"), default)?;
         let mut step = Step {
             name: s.name.clone(),

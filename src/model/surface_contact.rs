@@ -3,10 +3,10 @@
 
 use super::overlap::overlap;
 use super::preprocess::surface_faces;
-use super::schema::ContactFile;
-use super::validate::{friction, penalty, tolerance};
-use super::{ModelError, bounds, invalid};
 use crate::contact::{ContactSurface, PairContact, Penalty, SurfaceNodes, surface};
+use crate::input::schema::ContactFile;
+use crate::input::validate::{friction, penalty, tolerance};
+use crate::input::{ModelError, bounds, invalid};
 use crate::materials::Material;
 use crate::mesh::Mesh;
 
@@ -88,7 +88,7 @@ pub(super) fn surface_contact(
                 (off <= m.1.sqrt()).then_some((s.0, normal))
             })
             .collect();
-        if !c.interference.unwrap_or(super::defaults::INTERFERENCE) {
+        if !c.interference.unwrap_or(crate::input::defaults::INTERFERENCE) {
             overlap(key, c, mesh, bm, bs, &gaps)?;
         }
         return Err(invalid(

@@ -4,11 +4,12 @@
 //! across a plane (whose forces on the full structure are reported).
 //! The mechanics is in `bc::symmetry`.
 
-use super::schema::{ConditionFile, KeepSide, LoadFile, SelectionFile, SymmetryFile};
-use super::{ModelError, Warning, bounds, invalid};
+use super::Warning;
 use crate::bc::symmetry::{Plane, Side, Symmetry};
 use crate::bc::{Condition, Constraint, Load, Selection};
 use crate::contact::{Indenter, PairContact, RigidSurface};
+use crate::input::schema::{ConditionFile, KeepSide, LoadFile, SelectionFile, SymmetryFile};
+use crate::input::{ModelError, bounds, invalid};
 use crate::mesh::{CrossSection, Mesh};
 
 /// The planes as the file gives them (tolerance 0 until the bodies are known).

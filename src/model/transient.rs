@@ -4,11 +4,11 @@
 //! them).
 
 use super::analysis::{Parts, densities_given, mass_kind};
-use super::schema::{AnalysisFile, AnalysisType};
-use super::{ModelError, bounds, invalid, ranges};
 use crate::dynamics::TransientSettings;
+use crate::input::schema::{AnalysisFile, AnalysisType};
+use crate::input::{ModelError, bounds, invalid, ranges};
 
-pub use super::ranges::{MAX_DURATION, MAX_SPEED};
+pub use crate::input::ranges::{MAX_DURATION, MAX_SPEED};
 /// Largest accepted Newmark β: above ¼ (γ + ½)² = 0.5625 of the most
 /// dissipative γ = 1, so every γ in [½, 1] has its unconditionally stable
 /// range (a larger β only lengthens the periods).
@@ -41,7 +41,7 @@ fn transient_key(file: &AnalysisFile) -> Option<&'static str> {
 /// their time steps ([`time_steps`]), and the contacts' mass is checked
 /// ([`contact_mass_warnings`]).
 pub(super) fn transient(
-    file: &super::schema::ModelFile,
+    file: &crate::input::schema::ModelFile,
     steps: &mut [super::steps::Step],
     parts: &Parts<'_>,
     arc_length: bool,
@@ -58,7 +58,7 @@ pub(super) fn transient(
 /// The transient settings of `[analysis]` (module docs).
 fn settings(
     file: &AnalysisFile,
-    steps: &[super::schema::StepFile],
+    steps: &[crate::input::schema::StepFile],
     parts: &Parts<'_>,
     arc_length: bool,
 ) -> Result<Option<TransientSettings>, ModelError> {
@@ -94,7 +94,7 @@ fn settings(
     let (beta, gamma) = file
         .newmark
         .as_ref()
-        .map_or((super::defaults::NEWMARK_BETA, super::defaults::NEWMARK_GAMMA), |n| (n.beta, n.gamma));
+        .map_or((crate::input::defaults::NEWMARK_BETA, crate::input::defaults::NEWMARK_GAMMA), |n| (n.beta, n.gamma));
     // unconditional stability of the implicit Newmark family on linear
     // problems: γ ≥ ½ and β ≥ ¼ (γ + ½)² (Hughes, *The Finite Element
     // Method*, §9.1.2); γ > ½ damps the highest modes
@@ -159,12 +159,12 @@ fn settings(
         initial_velocities,
         output_interval,
         contact_forces: match file.contact_forces.unwrap_or_default() {
-            super::schema::ContactForcesFile::Newmark => crate::dynamics::ContactForces::Newmark,
-            super::schema::ContactForcesFile::Implicit => crate::dynamics::ContactForces::Implicit,
+            crate::input::schema::ContactForcesFile::Newmark => crate::dynamics::ContactForces::Newmark,
+            crate::input::schema::ContactForcesFile::Implicit => crate::dynamics::ContactForces::Implicit,
         },
         contact_mass: match file.contact_mass.unwrap_or_default() {
-            super::schema::ContactMassFile::Kept => crate::dynamics::ContactMass::Kept,
-            super::schema::ContactMassFile::Redistributed => crate::dynamics::ContactMass::Redistributed,
+            crate::input::schema::ContactMassFile::Kept => crate::dynamics::ContactMass::Kept,
+            crate::input::schema::ContactMassFile::Redistributed => crate::dynamics::ContactMass::Redistributed,
         },
     }))
 }

@@ -8,8 +8,8 @@
 //! and frame.
 
 use super::laminate;
-use super::schema::{BodyFile, SectionFile, ZoneFile};
-use super::{ModelError, invalid, ranges};
+use crate::input::schema::{BodyFile, SectionFile, ZoneFile};
+use crate::input::{ModelError, invalid, ranges};
 use crate::materials::{Frame, Material};
 use crate::mesh::CrossSection;
 
@@ -45,7 +45,7 @@ fn zones<'a>(key: &str, b: &'a BodyFile, section: &CrossSection) -> Vec<Zone<'a>
                 key: format!("{key}.section.plies[{}]", k - 1),
                 region: Some(r.name.clone()),
                 material: Some(&p.material),
-                angle: p.angle.unwrap_or(super::defaults::ANGLE),
+                angle: p.angle.unwrap_or(crate::input::defaults::ANGLE),
                 fibre: [0.0, 1.0, 0.0],
                 normal: [n[0], 0.0, n[1]],
                 oriented: true,
@@ -58,7 +58,7 @@ fn zones<'a>(key: &str, b: &'a BodyFile, section: &CrossSection) -> Vec<Zone<'a>
                 key: format!("{key}.section.plies[{k}]"),
                 region: Some(laminate::region_name(k)),
                 material: Some(&p.material),
-                angle: p.angle.unwrap_or(super::defaults::ANGLE),
+                angle: p.angle.unwrap_or(crate::input::defaults::ANGLE),
                 fibre: [0.0, 1.0, 0.0],
                 normal: [0.0, 0.0, 1.0],
                 oriented: true,
@@ -76,9 +76,9 @@ fn zone(key: String, z: &ZoneFile) -> Zone<'_> {
         key,
         region: z.region.clone(),
         material: z.material.as_deref(),
-        angle: z.angle.unwrap_or(super::defaults::ANGLE),
-        fibre: z.fibre.map_or(super::defaults::FIBRE, Into::into),
-        normal: z.normal.map_or(super::defaults::NORMAL, Into::into),
+        angle: z.angle.unwrap_or(crate::input::defaults::ANGLE),
+        fibre: z.fibre.map_or(crate::input::defaults::FIBRE, Into::into),
+        normal: z.normal.map_or(crate::input::defaults::NORMAL, Into::into),
         oriented: z.angle.is_some() || z.fibre.is_some() || z.normal.is_some(),
     }
 }

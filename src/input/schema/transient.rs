@@ -5,7 +5,7 @@
 use serde::Deserialize;
 
 use super::Exact;
-use crate::model::ranges;
+use crate::input::ranges;
 
 /// `analysis.contact_forces`.
 #[derive(Debug, Clone, Copy, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]

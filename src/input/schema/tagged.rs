@@ -38,15 +38,15 @@ macro_rules! tagged_table {
         }
         mirror $mirror:ident;
     ) => {
-        $crate::model::schema::tagged::tagged_table!(@struct [$(#[$meta])*] $name $tag_field $enum $shared);
+        $crate::input::schema::tagged::tagged_table!(@struct [$(#[$meta])*] $name $tag_field $enum $shared);
 
-        $crate::model::schema::tagged::tagged_table!(@enum [$(#[$emeta])*] $enum { $( [$(#[$vmeta])*] $variant $own )* });
+        $crate::input::schema::tagged::tagged_table!(@enum [$(#[$emeta])*] $enum { $( [$(#[$vmeta])*] $variant $own )* });
 
         #[doc = concat!("The flat table that [`", stringify!($name), "`] is read from.")]
         mod $mirror {
             #[allow(unused_imports)]
             use super::*;
-            $( $crate::model::schema::tagged::tagged_table!(@mirror $variant $shared $own); )*
+            $( $crate::input::schema::tagged::tagged_table!(@mirror $variant $shared $own); )*
 
             $(#[$meta])*
             #[derive(serde::Deserialize, schemars::JsonSchema)]
@@ -67,7 +67,7 @@ macro_rules! tagged_table {
             fn json_schema(generator: &mut schemars::SchemaGenerator) -> schemars::Schema {
                 #[allow(unused_mut)]
                 let mut schema = <$mirror::Tagged as schemars::JsonSchema>::json_schema(generator);
-                $( $crate::model::schema::tagged::optional_tag(&mut schema, $tag, $default); )?
+                $( $crate::input::schema::tagged::optional_tag(&mut schema, $tag, $default); )?
                 schema
             }
         }
@@ -76,9 +76,9 @@ macro_rules! tagged_table {
             fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
                 let default: Option<&'static str> = None $(.or(Some($default)))?;
                 let tagged: $mirror::Tagged =
-                    $crate::model::schema::tagged::read_tagged(d, $tag, default, Some($mirror::NAMES))?;
+                    $crate::input::schema::tagged::read_tagged(d, $tag, default, Some($mirror::NAMES))?;
                 Ok(match tagged {
-                    $( $mirror::Tagged::$variant(m) => $crate::model::schema::tagged::tagged_table!(
+                    $( $mirror::Tagged::$variant(m) => $crate::input::schema::tagged::tagged_table!(
                         @convert m $name $tag_field $enum $variant $shared $own
                     ), )*
                 })

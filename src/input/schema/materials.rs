@@ -5,7 +5,7 @@
 use serde::Deserialize;
 
 use super::{Exact, OrthotropicFile, StrengthsFile, tagged_table};
-use crate::model::ranges;
+use crate::input::ranges;
 
 /// `[[materials]]`: isotropic (optionally plastic) or anisotropic elastic.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]

@@ -7,7 +7,7 @@ use super::bounds::{self, number};
 use super::defaults;
 use super::ranges::{self, AT_LEAST_ONE, FRACTION, TOLERANCE};
 use super::schema::*;
-use super::{ModelError, OutputSettings, Probe, Reference, SolverSettings, invalid};
+use super::{ModelError, OutputSettings, Reference, SolverSettings, invalid};
 use crate::contact::{self, Penalty};
 use crate::mesh::{Division, Segment};
 use crate::solver::newton::NewtonSettings;
@@ -16,7 +16,7 @@ use crate::solver::stepping::{StepControl, StepSettings};
 
 /// Names are unique per table; constraints, indenters and contacts share
 /// one name space (they all write `history_<name>.csv`).
-pub(super) fn names(file: &ModelFile) -> Result<(), ModelError> {
+pub(crate) fn names(file: &ModelFile) -> Result<(), ModelError> {
     unique_names(keyed("materials", &file.materials, |m| &m.name))?;
     unique_names(keyed("bodies", &file.bodies, |m| &m.name))?;
     unique_names(keyed("loads", &file.loads, |m| &m.name))?;
@@ -35,7 +35,7 @@ pub(super) fn names(file: &ModelFile) -> Result<(), ModelError> {
 }
 
 /// `[output]`.
-pub(super) fn output(o: &OutputFile) -> OutputSettings {
+pub(crate) fn output(o: &OutputFile) -> OutputSettings {
     // element-wise recovery stays the default until the projection is
     // validated against 3D under punches (issue 8)
     let recovery = o.recovery.unwrap_or_default();
@@ -48,7 +48,7 @@ pub(super) fn output(o: &OutputFile) -> OutputSettings {
 }
 
 /// `[[references]]`: published values beside named probes.
-pub(super) fn references(file: &[ReferenceFile], probes: &[Probe]) -> Result<Vec<Reference>, ModelError> {
+pub(crate) fn references(file: &[ReferenceFile], probes: &[ProbeFile]) -> Result<Vec<Reference>, ModelError> {
     let mut references = Vec::new();
     for (i, r) in file.iter().enumerate() {
         let key = format!("references[{i}]");
@@ -66,17 +66,17 @@ pub(super) fn references(file: &[ReferenceFile], probes: &[Probe]) -> Result<Vec
     Ok(references)
 }
 
-pub(super) fn finite_positive(key: &str, v: f64) -> Result<f64, ModelError> {
+pub(crate) fn finite_positive(key: &str, v: f64) -> Result<f64, ModelError> {
     if v.is_finite() && v > 0.0 { Ok(v) } else { Err(invalid(key, v, "a positive finite number")) }
 }
 
-pub(super) fn finite(key: &str, v: f64) -> Result<f64, ModelError> {
+pub(crate) fn finite(key: &str, v: f64) -> Result<f64, ModelError> {
     if v.is_finite() { Ok(v) } else { Err(invalid(key, v, "a finite number")) }
 }
 
 /// Checks that names are non-empty, usable in file names, and unique within
 /// `group` (entries given as `(key, name)`).
-pub(super) fn unique_names<'a>(group: impl Iterator<Item = (String, &'a String)>) -> Result<(), ModelError> {
+pub(crate) fn unique_names<'a>(group: impl Iterator<Item = (String, &'a String)>) -> Result<(), ModelError> {
     let mut seen: std::collections::HashMap<&String, String> = Default::default();
     for (key, n) in group {
         if n.is_empty() || !n.chars().all(|c| c.is_ascii_alphanumeric() || "_-.".contains(c)) {
@@ -97,7 +97,7 @@ pub(super) fn unique_names<'a>(group: impl Iterator<Item = (String, &'a String)>
     Ok(())
 }
 
-pub(super) fn keyed<'a, T>(
+pub(crate) fn keyed<'a, T>(
     key: &'a str,
     items: &'a [T],
     name: impl Fn(&T) -> &String + 'a,
@@ -105,13 +105,13 @@ pub(super) fn keyed<'a, T>(
     items.iter().enumerate().map(move |(i, t)| (format!("{key}[{i}]"), name(t)))
 }
 
-pub(super) fn division(key: &str, d: &DivisionFile) -> Result<Vec<f64>, ModelError> {
+pub(crate) fn division(key: &str, d: &DivisionFile) -> Result<Vec<f64>, ModelError> {
     division_parts(key, d.from, d.to, d.elements, d.ratio, d.lines.as_ref(), d.segments.as_ref())
 }
 
-pub(super) use super::ranges::MAX_COUNT;
+pub(crate) use super::ranges::MAX_COUNT;
 
-pub(super) fn count(key: &str, n: usize) -> Result<usize, ModelError> {
+pub(crate) fn count(key: &str, n: usize) -> Result<usize, ModelError> {
     if (1..=MAX_COUNT).contains(&n) { Ok(n) } else { Err(invalid(key, n, format!("an integer from 1 to {MAX_COUNT}"))) }
 }
 
@@ -119,7 +119,7 @@ pub(super) fn count(key: &str, n: usize) -> Result<usize, ModelError> {
 /// checked here, not by serde: an untagged enum of the three would answer a
 /// mistake with "data did not match any variant", naming neither the key
 /// nor the forms.
-pub(super) fn division_parts(
+pub(crate) fn division_parts(
     key: &str,
     from: Option<f64>,
     to: Option<f64>,
@@ -180,7 +180,7 @@ pub(super) fn division_parts(
     Ok(div.lines(key)?)
 }
 
-pub(super) fn penalty(key: &str, penalty: Option<f64>, factor: Option<f64>) -> Result<Penalty, ModelError> {
+pub(crate) fn penalty(key: &str, penalty: Option<f64>, factor: Option<f64>) -> Result<Penalty, ModelError> {
     match (penalty, factor) {
         (Some(_), Some(_)) => {
             Err(invalid(format!("{key}.penalty"), "both penalty and penalty_factor", "at most one of them"))
@@ -206,7 +206,7 @@ pub(super) fn penalty(key: &str, penalty: Option<f64>, factor: Option<f64>) -> R
 
 /// `penetration_tolerance` (augmented Lagrangian): positive, at most a
 /// thousandth of the body's size.
-pub(super) fn tolerance(key: &str, t: Option<f64>, size: f64) -> Result<Option<f64>, ModelError> {
+pub(crate) fn tolerance(key: &str, t: Option<f64>, size: f64) -> Result<Option<f64>, ModelError> {
     t.map(|t| {
         bounds::within(
             &format!("{key}.penetration_tolerance"),
@@ -221,7 +221,7 @@ pub(super) fn tolerance(key: &str, t: Option<f64>, size: f64) -> Result<Option<f
 
 /// `friction`: Coulomb's coefficient μ in [0, 10]; the tangential penalty
 /// equals the normal one (elastic slip of the order of the penetration).
-pub(super) fn friction(key: &str, mu: Option<f64>) -> Result<Option<contact::Friction>, ModelError> {
+pub(crate) fn friction(key: &str, mu: Option<f64>) -> Result<Option<contact::Friction>, ModelError> {
     mu.map(|m| {
         ranges::FRICTION
             .check(&format!("{key}.friction"), m, "Coulomb's coefficient of friction μ")
@@ -230,7 +230,7 @@ pub(super) fn friction(key: &str, mu: Option<f64>) -> Result<Option<contact::Fri
     .transpose()
 }
 
-pub(super) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSettings, ModelError> {
+pub(crate) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSettings, ModelError> {
     let increments = s.increments.unwrap_or(if linear { 1 } else { 10 });
     if !AT_LEAST_ONE.contains_count(increments) {
         return Err(invalid("solver.increments", increments, format!("an integer {AT_LEAST_ONE}")));
@@ -367,7 +367,7 @@ fn step_control(c: Option<&StepControlFile>) -> Result<Option<StepControl>, Mode
     Ok(Some(StepControl { plastic_strain, contact_set }))
 }
 
-pub(super) fn describe_selection(s: &SelectionFile) -> String {
+pub(crate) fn describe_selection(s: &SelectionFile) -> String {
     let c = |v: &Option<ConditionFile>| match v {
         None => None,
         Some(ConditionFile::Value(a)) => Some(format!("{a}")),

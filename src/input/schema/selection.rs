@@ -7,7 +7,7 @@ use serde::Deserialize;
 use serde::de::{self, Deserializer, SeqAccess, Visitor};
 
 use super::{Axis, Exact, LoadProfileFile};
-use crate::model::{defaults, ranges};
+use crate::input::{defaults, ranges};
 
 /// A coordinate condition: a number (equality) or `[min, max]`.
 #[derive(Debug, Clone, Copy)]

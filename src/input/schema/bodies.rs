@@ -5,7 +5,7 @@
 use serde::Deserialize;
 
 use super::{BeamElement, Formulation, SectionFile, ZoneFile};
-use crate::model::ranges;
+use crate::input::ranges;
 
 /// `[[bodies]]`: a refined 1D (CUF) body.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]

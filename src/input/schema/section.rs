@@ -6,7 +6,7 @@
 use serde::{Deserialize, Deserializer};
 
 use super::{DivisionFile, Exact, SectionElement};
-use crate::model::{defaults, ranges};
+use crate::input::{defaults, ranges};
 
 /// `[bodies.section]`, chosen by `shape`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]

@@ -5,7 +5,7 @@
 use serde::Deserialize;
 
 use super::{Axis, Exact, IndenterMethod, Normal, SelectionFile, tagged_table};
-use crate::model::{defaults, ranges};
+use crate::input::{defaults, ranges};
 
 tagged_table! {
     /// `[[indenters]]`: a rigid indenter in penalty contact with one body.

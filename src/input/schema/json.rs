@@ -5,7 +5,7 @@
 //! derived beside `Deserialize`, serde's `rename`, `tag` and
 //! `deny_unknown_fields` honoured), so a key the reader accepts is a key of
 //! the schema and an unknown key is refused by both; the keys' doc comments
-//! are its descriptions and the plain ranges of [`crate::model::ranges`]
+//! are its descriptions and the plain ranges of [`crate::input::ranges`]
 //! its `minimum`/`maximum`. Draft 7, which taplo reads; TOML has no null,
 //! so the `null` that serde's `Option` would allow is left out.
 

@@ -5,7 +5,7 @@
 use serde::Deserialize;
 
 use super::Axis;
-use crate::model::ranges;
+use crate::input::ranges;
 
 /// `solver.step_control = { plastic_strain = 2e-3, contact_set = 0.2 }`:
 /// the targets per increment of the adaptive load stepping (at least one).

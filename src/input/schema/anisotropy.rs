@@ -6,7 +6,7 @@
 use serde::Deserialize;
 
 use super::{Axis, Exact, ProfileShape};
-use crate::model::{defaults, ranges};
+use crate::input::{defaults, ranges};
 
 /// `materials.orthotropic`: engineering constants (Pa and −).
 #[derive(Debug, Deserialize, schemars::JsonSchema)]

@@ -9,7 +9,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use cufem::model::{Limits, Model};
+use cufem::setup::{Limits, Model};
 use serde_json::Value;
 
 fn root() -> &'static Path {

@@ -6,7 +6,7 @@ use std::path::Path;
 use std::process::Command;
 
 use cufem::analysis;
-use cufem::model::Model;
+use cufem::setup::Model;
 
 mod common;
 

@@ -7,7 +7,7 @@
 //! could carry. Each becomes a [`Warning`] naming the key to change.
 
 use super::Solution;
-use crate::model::{Model, Warning};
+use crate::setup::{Model, Warning};
 
 /// Largest root-mean-square displacement gradient `√(∫ ∂u_i/∂X_j ∂u_i/∂X_j
 /// dV / V)` of a body that a small-strain analysis is not warned about: at

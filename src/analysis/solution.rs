@@ -3,7 +3,7 @@
 //! point.
 
 use super::{AnalysisError, ContactPoint, ContactResultant, Reaction, Solution, StepFields};
-use crate::model::Model;
+use crate::setup::Model;
 
 impl Solution {
     /// The reaction of the constraint set `name`.

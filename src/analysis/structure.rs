@@ -45,7 +45,7 @@ mod transient;
 pub use super::results::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Timings};
 use crate::assembly::{Assembler, Contribution, NO_EQ, Numbering};
 use crate::contact::Contacts;
-use crate::model::Model;
+use crate::setup::Model;
 use crate::size::MemoryEstimate;
 use crate::solver::linear::{Cholesky, LinearError};
 use crate::solver::newton::{Correction, Evaluation, NonlinearProblem};

@@ -27,7 +27,7 @@ use anyhow::anyhow;
 use clap::{Parser, Subcommand};
 use cufem::analysis::{self, AnalysisError, IncrementLog, Progress, RunOptions};
 use cufem::io::output::OutputDir;
-use cufem::model::{Limits, Model, ModelError};
+use cufem::setup::{Limits, Model, ModelError};
 use cufem::size;
 use cufem::solver::Interrupt;
 use cufem::solver::stepping::{Cutback, StopReason};
@@ -356,7 +356,7 @@ fn configure_threads(threads: Option<usize>, force: bool) -> Result<(), Failure>
         .map_err(|e| fail(INPUT, anyhow!("cannot configure {n} worker threads: {e}")))
 }
 
-fn print_warnings<'a>(warnings: impl Iterator<Item = &'a cufem::model::Warning>) {
+fn print_warnings<'a>(warnings: impl Iterator<Item = &'a cufem::setup::Warning>) {
     for w in warnings {
         eprintln!("warning: {w}");
     }

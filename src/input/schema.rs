@@ -260,7 +260,7 @@ pub struct SolverFile {
     /// `"single"` (default) or `"double"` precision factors.
     #[schemars(transform = defaults::schema(FactorPrecision::default()))]
     pub factor_precision: Option<FactorPrecision>,
-    /// `"load"` (default) or `"arc_length"` (path following, `model/path.rs`).
+    /// `"load"` (default) or `"arc_length"` (path following, `setup/path.rs`).
     #[schemars(transform = defaults::schema(Control::default()))]
     pub control: Option<Control>,
     /// Arc length of the first increment (m), `control = "arc_length"`.

@@ -1,6 +1,6 @@
 //! `[[bodies]]`: a section mesh swept along a beam-axis mesh, and the
-//! divisions of an interval that both use (`model/bodies.rs` and
-//! `model/sections.rs` check them).
+//! divisions of an interval that both use (`setup/bodies.rs` and
+//! `setup/sections.rs` check them).
 
 use serde::Deserialize;
 

@@ -1,6 +1,6 @@
 //! `[[indenters]]` (rigid surfaces) and `[[contacts]]` (between deformable
 //! bodies): tables whose `shape` or `method` chooses their other keys
-//! (`model/indenters.rs` and `model/contacts.rs` check them).
+//! (`setup/indenters.rs` and `setup/contacts.rs` check them).
 
 use serde::Deserialize;
 

@@ -1,6 +1,6 @@
 //! `[[materials]]`: elastic constants and the plasticity of a material
 //! (its anisotropic constants and strengths are in `anisotropy.rs`;
-//! `model/material.rs` checks the values).
+//! `setup/material.rs` checks the values).
 
 use serde::Deserialize;
 

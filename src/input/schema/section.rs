@@ -1,7 +1,7 @@
 //! `[bodies.section]`: one variant per `shape`, each with exactly its own
 //! keys (a key of another shape is refused by the reader, which lists the
 //! keys of the shape given). Which values are allowed is checked in
-//! `model/sections.rs`.
+//! `setup/sections.rs`.
 
 use serde::{Deserialize, Deserializer};
 

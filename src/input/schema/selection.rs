@@ -1,5 +1,5 @@
 //! Node selections (`where`) and what is applied on them: `[[constraints]]`
-//! and `[[loads]]` (`model/preprocess.rs` resolves and checks them).
+//! and `[[loads]]` (`setup/preprocess.rs` resolves and checks them).
 
 use std::fmt;
 

@@ -1,6 +1,6 @@
 //! `[analysis]` keys of a transient analysis: Newmark's parameters,
 //! Rayleigh damping, initial velocities and the treatment of the contacts
-//! (`model::transient` checks them).
+//! (`setup::transient` checks them).
 
 use serde::Deserialize;
 

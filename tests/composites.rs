@@ -381,7 +381,8 @@ fn laminated_box_beam_bends_like_laminated_timoshenko_beam() {
 /// Plies through a profile's walls: every wall of the box gets the stack,
 /// each ply turned about its own wall's normal (webs: x; flanges and
 /// their junctions: z), ply k counted from the wall's lower x or z; a wall
-/// thickness that contradicts the plies is refused by key.
+/// thickness that contradicts the plies, or plies too thick for the
+/// profile, are refused by key.
 #[test]
 fn plies_follow_each_wall_of_a_profile() {
     let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box_beam_laminated.toml"))
@@ -422,6 +423,11 @@ fn plies_follow_each_wall_of_a_profile() {
     let bad = text.replace("height = 0.06,", "height = 0.06, web_thickness = 0.003,");
     let e = cufem::setup::Model::parse(&bad).unwrap_err().to_string();
     assert!(e.contains("bodies[0].section.web_thickness") && e.contains("total thickness"), "{e}");
+    // a wall the plies make too thick for the profile is refused on `plies`
+    // (the file writes no wall thickness), with the plies' total
+    let narrow = text.replace("width = 0.04,", "width = 0.003,");
+    let e = cufem::setup::Model::parse(&narrow).unwrap_err().to_string();
+    assert!(e.contains("bodies[0].section.plies = a total thickness of 0.002"), "{e}");
 }
 
 /// Bad anisotropic input is refused by key with what is allowed: Poisson's

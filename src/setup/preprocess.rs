@@ -254,7 +254,6 @@ pub(super) fn loads(
         let young = super::body_young(&mesh.bodies[b], materials);
         let load = load(&key, l, b, &mesh.bodies[b], young)?;
         symmetry::check_load(&key, &load, l, planes, mesh)?;
-        symmetry::check_faces_load(&key, &load, l, planes, mesh)?;
         loads.push(load);
     }
 

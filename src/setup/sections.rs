@@ -266,61 +266,9 @@ impl Sections<'_> {
         lip: Option<(Option<f64>, Option<usize>)>,
         cells: Option<usize>,
     ) -> Result<CrossSection, ModelError> {
-        // with plies, the wall thicknesses are the plies' total unless the file gives them too
-        let derived = |e: ModelError| match e {
-            ModelError::Invalid { key, value, allowed } if s.plies.is_some() => {
-                let written = |k: &str| match k {
-                    "web_thickness" => s.web_thickness.is_some(),
-                    "flange_thickness" => s.flange_thickness.is_some(),
-                    _ => true,
-                };
-                match key.strip_prefix(sk).and_then(|k| k.strip_prefix('.')) {
-                    Some(k) if !written(k) && k.ends_with("thickness") => ModelError::Invalid {
-                        key: format!("{sk}.plies"),
-                        value: format!("a total thickness of {value} m (the plies' thicknesses summed: every wall's)"),
-                        allowed,
-                    },
-                    _ => ModelError::Invalid { key, value, allowed },
-                }
-            }
-            e => e,
-        };
-        self.walled(sk, kind, family, s, lip, cells).map_err(derived)
-    }
-
-    /// [`Self::straight`] with the keys as the builders name them.
-    fn walled(
-        &mut self,
-        sk: &str,
-        kind: SectionElementKind,
-        family: Family,
-        s: &ProfileFile,
-        lip: Option<(Option<f64>, Option<usize>)>,
-        cells: Option<usize>,
-    ) -> Result<CrossSection, ModelError> {
-        let n = |name: &str, v: Option<usize>, default: usize| count(&format!("{sk}.{name}"), v.unwrap_or(default));
-        let (web_thickness, flange_thickness, through, plies) = wall_plies(sk, s)?;
-        let walls = Walls {
-            width: length(format!("{sk}.width"), s.width, "the overall width")?,
-            height: length(format!("{sk}.height"), s.height, "the overall height")?,
-            web: length(format!("{sk}.web_thickness"), web_thickness, "the web thickness")?,
-            flange: length(format!("{sk}.flange_thickness"), flange_thickness, "the flange thickness")?,
-            lip: match lip {
-                Some((width, _)) => length(format!("{sk}.lip"), width, "the lip width")?,
-                None => 0.0,
-            },
-            cells: cells.unwrap_or(defaults::CELLS),
-        };
-        let counts = Counts {
-            flange: n("along_flange", s.along_flange, defaults::ALONG_FLANGE)?,
-            web: n("along_web", s.along_web, defaults::ALONG_WEB)?,
-            lip: n("along_lip", lip.and_then(|l| l.1), defaults::ALONG_LIP)?,
-            through: n("through", through, defaults::THROUGH)?,
-            plies,
-        };
-        let origin = point(format!("{sk}.origin"), s.origin.map(Into::into))?;
+        let (walls, counts, origin) = walls(sk, s, lip, cells).map_err(|e| plies_total(sk, s, e))?;
         let blocks = profiles::straight(family, origin, &walls, &counts);
-        self.blocks(sk, kind, blocks)
+        self.blocks(sk, kind, blocks).map_err(|e| plies_total(sk, s, e))
     }
 
     /// A section of mapped blocks (the profiles), budgeted first.
@@ -362,6 +310,62 @@ impl Sections<'_> {
         let pairs = elements.saturating_mul((p + 1).pow(4)) / 4;
         self.add(section.kind, elements, section.n_nodes() as u64, pairs)?;
         Ok(section)
+    }
+}
+
+/// The walls, element counts and origin of a straight-walled profile, with
+/// the keys as the builders name them.
+fn walls(
+    sk: &str,
+    s: &ProfileFile,
+    lip: Option<(Option<f64>, Option<usize>)>,
+    cells: Option<usize>,
+) -> Result<(Walls, Counts, [f64; 2]), ModelError> {
+    let n = |name: &str, v: Option<usize>, default: usize| count(&format!("{sk}.{name}"), v.unwrap_or(default));
+    let (web_thickness, flange_thickness, through, plies) = wall_plies(sk, s)?;
+    let walls = Walls {
+        width: length(format!("{sk}.width"), s.width, "the overall width")?,
+        height: length(format!("{sk}.height"), s.height, "the overall height")?,
+        web: length(format!("{sk}.web_thickness"), web_thickness, "the web thickness")?,
+        flange: length(format!("{sk}.flange_thickness"), flange_thickness, "the flange thickness")?,
+        lip: match lip {
+            Some((width, _)) => length(format!("{sk}.lip"), width, "the lip width")?,
+            None => 0.0,
+        },
+        cells: cells.unwrap_or(defaults::CELLS),
+    };
+    let counts = Counts {
+        flange: n("along_flange", s.along_flange, defaults::ALONG_FLANGE)?,
+        web: n("along_web", s.along_web, defaults::ALONG_WEB)?,
+        lip: n("along_lip", lip.and_then(|l| l.1), defaults::ALONG_LIP)?,
+        through: n("through", through, defaults::THROUGH)?,
+        plies,
+    };
+    let origin = point(format!("{sk}.origin"), s.origin.map(Into::into))?;
+    Ok((walls, counts, origin))
+}
+
+/// With plies, the wall thicknesses are the plies' total unless the file
+/// gives them too: an error on a thickness the file did not write names
+/// `plies` and the total.
+fn plies_total(sk: &str, s: &ProfileFile, e: ModelError) -> ModelError {
+    match e {
+        ModelError::Invalid { key, value, allowed } if s.plies.is_some() => {
+            let written = |k: &str| match k {
+                "web_thickness" => s.web_thickness.is_some(),
+                "flange_thickness" => s.flange_thickness.is_some(),
+                _ => true,
+            };
+            match key.strip_prefix(sk).and_then(|k| k.strip_prefix('.')) {
+                Some(k) if !written(k) && k.ends_with("thickness") => ModelError::Invalid {
+                    key: format!("{sk}.plies"),
+                    value: format!("a total thickness of {value} m (the plies' thicknesses summed: every wall's)"),
+                    allowed,
+                },
+                _ => ModelError::Invalid { key, value, allowed },
+            }
+        }
+        e => e,
     }
 }
 

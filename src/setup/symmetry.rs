@@ -214,9 +214,8 @@ pub(super) fn resolve(
     Symmetry { planes, across: items, constraints: (user..constraints.len()).collect() }
 }
 
-/// A force per node or a total force on nodes of a plane is refused: which
-/// share of it the part kept carries is not said (a traction or pressure
-/// is integrated over the faces kept, which is that share).
+/// A load on a symmetric model: on nodes, it touches no plane
+/// (`nodal_load`); on faces, it is its own mirror image (`faces_load`).
 pub(super) fn check_load(
     key: &str,
     load: &Load,
@@ -224,6 +223,14 @@ pub(super) fn check_load(
     planes: &[Plane],
     mesh: &Mesh,
 ) -> Result<(), ModelError> {
+    nodal_load(key, load, l, planes, mesh)?;
+    faces_load(key, load, l, planes, mesh)
+}
+
+/// A force per node or a total force on nodes of a plane is refused: which
+/// share of it the part kept carries is not said (a traction or pressure
+/// is integrated over the faces kept, which is that share).
+fn nodal_load(key: &str, load: &Load, l: &LoadFile, planes: &[Plane], mesh: &Mesh) -> Result<(), ModelError> {
     let kind = if l.force_per_node.is_some() {
         "force_per_node"
     } else if l.total_force.is_some() {
@@ -365,13 +372,7 @@ pub(super) fn check_velocities(
 /// structure), a traction has no component along the normal of a plane
 /// its faces touch (its mirror image would pull the other way), and a sine
 /// profile along a plane's normal that spans the plane is centred on it.
-pub(super) fn check_faces_load(
-    key: &str,
-    load: &Load,
-    l: &LoadFile,
-    planes: &[Plane],
-    mesh: &Mesh,
-) -> Result<(), ModelError> {
+fn faces_load(key: &str, load: &Load, l: &LoadFile, planes: &[Plane], mesh: &Mesh) -> Result<(), ModelError> {
     let faces = match &load.kind {
         crate::bc::LoadKind::Traction { faces, .. } | crate::bc::LoadKind::Pressure { faces, .. } => faces,
         crate::bc::LoadKind::PerNode { .. } => return Ok(()),
@@ -381,7 +382,7 @@ pub(super) fn check_faces_load(
     for p in planes.iter().filter(|q| load.nodal_forces.iter().any(|(n, _)| q.holds(mesh.coords(*n)))) {
         let a = p.axis;
         let c = ["x", "y", "z"][a];
-        // (a total force on nodes of a plane is refused by `check_load`)
+        // (a total force on nodes of a plane is refused by `nodal_load`)
         if let Some(t) = l.traction.map(<[f64; 3]>::from)
             && t[a] != 0.0
         {

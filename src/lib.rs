@@ -19,7 +19,7 @@
 //!
 //! ```
 //! use cufem::analysis::{self, RunOptions, Silent};
-//! use cufem::model::Model;
+//! use cufem::setup::Model;
 //!
 //! // a 1 m steel cantilever, 0.1 m square, 1 kN down at the tip
 //! let model = Model::parse(r#"
@@ -76,15 +76,16 @@ pub mod ccx;
 pub mod contact;
 pub mod dynamics;
 pub mod elements;
+pub mod input;
 pub mod io;
 pub mod kinematics;
 pub mod materials;
 pub mod mesh;
-pub mod model;
 pub mod numbers;
 pub mod post;
 pub mod quadrature;
 pub mod quantity;
+pub mod setup;
 pub mod shape;
 pub mod size;
 pub mod solver;

@@ -10,7 +10,7 @@ use std::path::Path;
 use std::process::Command;
 
 use cufem::adapt::mark;
-use cufem::model::{Limits, MeshPlan, Model, SectionPlan};
+use cufem::setup::{Limits, MeshPlan, Model, SectionPlan};
 
 fn example(name: &str) -> String {
     std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name)).unwrap()
@@ -292,7 +292,7 @@ fn block_adapts_within_five_percent_of_3d_below_the_uniform_dof() {
 /// quantities compared (`values`).
 fn measure(
     file: &str,
-    settings: cufem::model::AdaptSettings,
+    settings: cufem::setup::AdaptSettings,
     sample: &dyn Fn(&Model, &cufem::analysis::Solution) -> Vec<f64>,
 ) -> Vec<(usize, f64, f64, Vec<f64>)> {
     let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("examples");
@@ -347,7 +347,7 @@ fn block_adaptive_against_3d() {
         })
         .collect();
     let peak = reference.iter().map(|r| r[1].abs()).fold(0.0, f64::max);
-    let settings = cufem::model::AdaptSettings { tolerance: 0.01, max_dof: 60_000, max_cycles: 20, fraction: 0.5 };
+    let settings = cufem::setup::AdaptSettings { tolerance: 0.01, max_dof: 60_000, max_cycles: 20, fraction: 0.5 };
     let rows = measure("block_indentation.toml", settings, &|m, s| {
         let view = s.fields(m);
         let line = m.lines.iter().find(|l| l.name == "top").unwrap();
@@ -381,7 +381,7 @@ fn block_adaptive_against_3d() {
 #[test]
 #[ignore = "validate: slow — four adaptive cycles of the tube up to 43,000 DOF (about 4 min)"]
 fn tube_adaptive_roller_force() {
-    let settings = cufem::model::AdaptSettings { tolerance: 0.01, max_dof: 140_000, max_cycles: 3, fraction: 0.5 };
+    let settings = cufem::setup::AdaptSettings { tolerance: 0.01, max_dof: 140_000, max_cycles: 3, fraction: 0.5 };
     let rows = measure("bending_tube_28L9.toml", settings, &|_, s| vec![-s.contact("load").unwrap().force[2]]);
     for (k, (dof, estimate, _, v)) in rows.iter().enumerate() {
         let d = 100.0 * (v[0] / 1698.2 - 1.0);

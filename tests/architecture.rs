@@ -10,8 +10,10 @@
 //!   a dependency of the code) names `b`: in a `use` item, in any path of
 //!   the syntax tree (types, expressions, patterns, attributes), or in a
 //!   path inside a macro call's tokens; a name a `use` item brought in is
-//!   followed to what it names. `model` never reads `post` or `analysis`,
-//!   `values` never `elements`, `solver` never `analysis`.
+//!   followed to what it names. The layers ([`LAYERS`]): `input` (the
+//!   model file's schema and checks) never reads `setup`, `analysis` or
+//!   `post`; `setup` reads `input` and never `post` or `analysis`; `values`
+//!   never `elements`, `solver` never `analysis`.
 //! * **No function over 120 lines**: every `fn` item, method, associated
 //!   function and default trait method, nested ones and tests included,
 //!   from its `fn` keyword to its closing brace. (Functions written inside
@@ -47,9 +49,9 @@ fn src() -> PathBuf {
 
 /// One source file of a crate.
 struct Source {
-    /// Path under `src/` (`model/bodies.rs`).
+    /// Path under `src/` (`setup/bodies.rs`).
     file: String,
-    /// Module path in its crate (`[model, bodies]`; `[]` for the root).
+    /// Module path in its crate (`[setup, bodies]`; `[]` for the root).
     module: Vec<String>,
     /// Reached through a `#[cfg(test)] mod`: test code only.
     test: bool,
@@ -150,8 +152,8 @@ fn every_source_file_is_in_the_module_tree() {
     let kinematic = lib.iter().find(|s| s.file == "materials/kinematic_tests.rs").unwrap();
     assert_eq!(kinematic.module, ["materials", "kinematic", "tests"]);
     assert!(kinematic.test);
-    let schema = lib.iter().find(|s| s.file == "model/schema/section.rs").unwrap();
-    assert_eq!(schema.module, ["model", "schema", "section"]);
+    let schema = lib.iter().find(|s| s.file == "input/schema/section.rs").unwrap();
+    assert_eq!(schema.module, ["input", "schema", "section"]);
 }
 
 // ---------------------------------------------------------------- imports
@@ -307,7 +309,7 @@ impl<'ast> Visit<'ast> for Names {
 }
 
 /// A path as written in module `module` made absolute
-/// (`super::bounds::within` in `model::material` → `[model, bounds, within]`);
+/// (`super::bounds::within` in `input::validate` → `[input, bounds, within]`);
 /// `None` for a path that starts elsewhere (`std::…`, `Self::…`, a local).
 fn absolute(module: &[String], written: &[String]) -> Option<Vec<String>> {
     let mut base: Vec<String> = match written.first()?.as_str() {
@@ -327,7 +329,7 @@ fn absolute(module: &[String], written: &[String]) -> Option<Vec<String>> {
 
 /// `absolute`, with a first name a `use` item of the module brought in
 /// replaced by what it names (`use super::bounds; bounds::within` →
-/// `[model, bounds, within]`).
+/// `[input, bounds, within]`).
 fn resolve(names: &Names, module: &[String], written: &[String], depth: usize) -> Option<Vec<String>> {
     if let Some(path) = absolute(module, written) {
         return Some(path);
@@ -345,7 +347,7 @@ fn resolve(names: &Names, module: &[String], written: &[String], depth: usize) -
 type Graph = BTreeMap<String, BTreeSet<String>>;
 
 /// For every module of a crate that has submodules (`crate` for the root,
-/// `model`, `analysis::structure`, …): `a → b` when the code of submodule
+/// `setup`, `analysis::structure`, …): `a → b` when the code of submodule
 /// `a` names submodule `b` or something inside it.
 fn import_graphs(sources: &[Source]) -> BTreeMap<String, Graph> {
     let names: Vec<Names> = sources.iter().filter(|s| !s.test).map(Names::of).collect();
@@ -408,18 +410,58 @@ fn all_cycles(graphs: &BTreeMap<String, Graph>) -> Vec<String> {
 fn modules_and_files_form_no_import_cycle() {
     let [lib, bin] = crates();
     let graphs = import_graphs(&lib);
-    // the check reads what it should: the library's layers and model's files
+    // the check reads what it should: the library's layers and setup's files
     let top = &graphs["crate"];
-    assert!(top["analysis"].contains("model") && top["model"].contains("mesh"), "{top:?}");
-    let model = &graphs["model"];
-    assert!(model["material"].contains("bounds") && model["bodies"].contains("validate"), "{model:?}");
-    // the layering ARCHITECTURE.md describes: the model does not read results
-    for (low, high) in [("model", "post"), ("model", "analysis"), ("values", "elements"), ("solver", "analysis")] {
-        assert!(!top.get(low).is_some_and(|d| d.contains(high)), "{low} depends on {high}");
-    }
+    assert!(top["analysis"].contains("setup") && top["setup"].contains("mesh"), "{top:?}");
+    assert!(top["setup"].contains("input"), "setup reads input: {top:?}");
+    let setup = &graphs["setup"];
+    assert!(setup["bodies"].contains("sections") && setup["contacts"].contains("overlap"), "{setup:?}");
+    // the layering ARCHITECTURE.md describes: input does not read the set-up
+    // model, the set-up model does not read results
+    let breaches = layer_breaches(top);
+    assert!(breaches.is_empty(), "{}", breaches.join("\n"));
     let mut found = all_cycles(&graphs);
     found.extend(all_cycles(&import_graphs(&bin)).into_iter().map(|c| format!("main.rs {c}")));
     assert!(found.is_empty(), "import cycles:\n{}", found.join("\n"));
+}
+
+/// The layering: `(lower, higher)`, the lower module never reads the higher.
+const LAYERS: &[(&str, &str)] = &[
+    ("input", "setup"),
+    ("input", "analysis"),
+    ("input", "post"),
+    ("setup", "post"),
+    ("setup", "analysis"),
+    ("values", "elements"),
+    ("solver", "analysis"),
+];
+
+/// The [`LAYERS`] rules the top-level graph `top` breaks.
+fn layer_breaches(top: &Graph) -> Vec<String> {
+    LAYERS
+        .iter()
+        .filter(|(low, high)| top.get(*low).is_some_and(|d| d.contains(*high)))
+        .map(|(low, high)| format!("{low} depends on {high}"))
+        .collect()
+}
+
+/// An `input` file naming `setup` (through an inline path) breaks the
+/// layering; `setup` reading `input` does not.
+#[test]
+fn input_reading_setup_is_caught() {
+    let sources = fake(&[
+        ("lib.rs", &[], "pub mod input; pub mod setup;"),
+        ("input/mod.rs", &["input"], "pub fn read() -> usize { crate::setup::Model::size() }"),
+        ("setup/mod.rs", &["setup"], "use crate::input::read;\npub struct Model;"),
+    ]);
+    let graphs = import_graphs(&sources);
+    assert_eq!(layer_breaches(&graphs["crate"]), ["input depends on setup"]);
+    let fine = fake(&[
+        ("lib.rs", &[], "pub mod input; pub mod setup;"),
+        ("input/mod.rs", &["input"], "pub fn read() -> usize { 0 }"),
+        ("setup/mod.rs", &["setup"], "use crate::input::read;\npub struct Model;"),
+    ]);
+    assert!(layer_breaches(&import_graphs(&fine)["crate"]).is_empty());
 }
 
 /// Sources written for a test: `(file, module path, text)`.
@@ -463,22 +505,22 @@ fn an_import_cycle_is_caught() {
 #[test]
 fn paths_are_read_from_use_groups_inline_paths_and_macros() {
     let sources = fake(&[(
-        "model/bodies.rs",
-        &["model", "bodies"],
+        "setup/bodies.rs",
+        &["setup", "bodies"],
         "use super::{bounds, schema::*, validate::{count, division as div}};\n// use super::comment\n\
          fn f() { let s = \"super::string\"; let x = super::contacts::overlap(a); div(); }\n\
-         use crate::model::{\n    sections::check,\n};\nfn g() { println!(\"{}\", super::super::mesh::size()); }\n",
+         use crate::setup::{\n    sections::check,\n};\nfn g() { println!(\"{}\", super::super::mesh::size()); }\n",
     )]);
     let names = Names::of(&sources[0]);
     let got: BTreeSet<String> =
         names.written.iter().filter_map(|(m, w)| resolve(&names, m, w, 0)).map(|p| p.join("::")).collect();
     let want = [
-        "model::bounds",
-        "model::schema",
-        "model::validate::count",
-        "model::validate::division", // the call `div()` too
-        "model::contacts::overlap",
-        "model::sections::check",
+        "setup::bounds",
+        "setup::schema",
+        "setup::validate::count",
+        "setup::validate::division", // the call `div()` too
+        "setup::contacts::overlap",
+        "setup::sections::check",
         "mesh::size", // in a macro call
     ];
     assert_eq!(got, want.iter().map(|s| s.to_string()).collect::<BTreeSet<_>>());

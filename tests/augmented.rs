@@ -6,7 +6,7 @@ mod common;
 use std::path::Path;
 
 use cufem::analysis::{self, Silent, Solution};
-use cufem::model::Model;
+use cufem::setup::Model;
 
 /// The block of `examples/block_indentation.toml` made elastic, its punch
 /// pushed 0.1 mm, with the given extra indenter keys.

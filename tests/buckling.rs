@@ -7,7 +7,7 @@ use std::path::Path;
 use std::process::Command;
 
 use cufem::analysis::{self, Silent};
-use cufem::model::Model;
+use cufem::setup::Model;
 
 mod common;
 

@@ -8,7 +8,7 @@
 //! normal force per unit length).
 
 use cufem::analysis::Structure;
-use cufem::model::Model;
+use cufem::setup::Model;
 use cufem::solver::newton::{self, NewtonSettings};
 use cufem::solver::stepping::Incremental;
 

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 use common::cufem;
 use cufem::analysis::{self, Silent};
 use cufem::ccx::{self, HexKind};
-use cufem::model::Model;
+use cufem::setup::Model;
 
 fn scratch(name: &str) -> PathBuf {
     common::scratch_dir("ccx", name)
@@ -331,7 +331,7 @@ fn verify_compares_the_whole_field() {
     // the stored 3D side gives the same rows for the same cufem solution
     // (what tests/fidelity.rs relies on)
     let csv = std::fs::read_to_string(out.join("verify/field_points.csv")).unwrap();
-    let parsed = cufem::model::Model::from_file(&model).unwrap();
+    let parsed = cufem::setup::Model::from_file(&model).unwrap();
     let solution = cufem::analysis::run(&parsed, &Default::default(), &mut cufem::analysis::Silent).unwrap();
     let rows = cufem::verify::compare_stored(&parsed, &solution.fields(&parsed), &csv).unwrap();
     let stored = serde_json::to_value(&rows).unwrap();

@@ -13,7 +13,7 @@ use std::path::Path;
 use cufem::analysis::{self, Silent};
 use cufem::ccx::{self, HexKind};
 use cufem::materials::{Frame, Orthotropic};
-use cufem::model::Model;
+use cufem::setup::Model;
 
 /// A carbon/epoxy ply with three different moduli and Poisson's ratios.
 fn ply() -> Orthotropic {

@@ -9,7 +9,7 @@ use std::path::{Path, PathBuf};
 
 use common::cufem;
 use cufem::ccx::{self, HexKind};
-use cufem::model::Model;
+use cufem::setup::Model;
 
 fn scratch(name: &str) -> PathBuf {
     common::scratch_dir("ccx_modal", name)

@@ -298,7 +298,7 @@ fn turning_plies_and_load_together_turns_the_answer() {
     };
     let text1 = cantilever(ply, &zone([0.0, 0.0, 1.0]), f1);
     let text2 = cantilever(ply, &zone(rot([0.0, 0.0, 1.0])), rot(f1));
-    let (m1, m2) = (cufem::model::Model::parse(&text1).unwrap(), cufem::model::Model::parse(&text2).unwrap());
+    let (m1, m2) = (cufem::setup::Model::parse(&text1).unwrap(), cufem::setup::Model::parse(&text2).unwrap());
     let (s1, s2) = (common::run(&text1), common::run(&text2));
     let (v1, v2) = (s1.fields(&m1), s2.fields(&m2));
     let scale = s1.u.iter().fold(0.0f64, |m, v| m.max(v.abs()));
@@ -381,12 +381,13 @@ fn laminated_box_beam_bends_like_laminated_timoshenko_beam() {
 /// Plies through a profile's walls: every wall of the box gets the stack,
 /// each ply turned about its own wall's normal (webs: x; flanges and
 /// their junctions: z), ply k counted from the wall's lower x or z; a wall
-/// thickness that contradicts the plies is refused by key.
+/// thickness that contradicts the plies, or plies too thick for the
+/// profile, are refused by key.
 #[test]
 fn plies_follow_each_wall_of_a_profile() {
     let text = std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/box_beam_laminated.toml"))
         .unwrap();
-    let model = cufem::model::Model::parse(&text).unwrap();
+    let model = cufem::setup::Model::parse(&text).unwrap();
     let body = &model.mesh.bodies[0];
     let section = &body.section;
     let mut seen = 0;
@@ -420,8 +421,13 @@ fn plies_follow_each_wall_of_a_profile() {
     }
     assert_eq!(seen, section.n_elements());
     let bad = text.replace("height = 0.06,", "height = 0.06, web_thickness = 0.003,");
-    let e = cufem::model::Model::parse(&bad).unwrap_err().to_string();
+    let e = cufem::setup::Model::parse(&bad).unwrap_err().to_string();
     assert!(e.contains("bodies[0].section.web_thickness") && e.contains("total thickness"), "{e}");
+    // a wall the plies make too thick for the profile is refused on `plies`
+    // (the file writes no wall thickness), with the plies' total
+    let narrow = text.replace("width = 0.04,", "width = 0.003,");
+    let e = cufem::setup::Model::parse(&narrow).unwrap_err().to_string();
+    assert!(e.contains("bodies[0].section.plies = a total thickness of 0.002"), "{e}");
 }
 
 /// Bad anisotropic input is refused by key with what is allowed: Poisson's
@@ -434,10 +440,10 @@ fn bad_anisotropic_input_is_refused_by_key() {
                g23 = 0.2e9, nu12 = 0.25, nu13 = 0.25, nu23 = 0.25 }\n";
     let zone = "[[bodies.zones]]\nmaterial = \"ply\"\nangle = 30.0\n";
     let good = cantilever(ply, zone, [0.0, 0.0, 1.0]);
-    assert_eq!(cufem::model::Model::parse(&good).unwrap().materials.len(), 2, "ply and ply@30");
+    assert_eq!(cufem::setup::Model::parse(&good).unwrap().materials.len(), 2, "ply and ply@30");
     // a zone that states no orientation keeps the material's own axes: no copy
     let plain =
-        cufem::model::Model::parse(&cantilever(ply, "[[bodies.zones]]\nmaterial = \"ply\"\n", [0.0; 3])).unwrap();
+        cufem::setup::Model::parse(&cantilever(ply, "[[bodies.zones]]\nmaterial = \"ply\"\n", [0.0; 3])).unwrap();
     assert_eq!(plain.materials.len(), 1);
     assert_eq!(plain.mesh.bodies[0].materials(), vec![0]);
     let cases: [(String, &str, &str); 5] = [
@@ -459,7 +465,7 @@ fn bad_anisotropic_input_is_refused_by_key() {
         (good.replace("angle = 30.0\n", "angle = 30.0\nfibre = [0.0, 0.0, 2.0]\n"), "bodies[0].zones[0].fibre", "non-parallel"),
     ];
     for (text, key, allowed) in cases {
-        let e = cufem::model::Model::parse(&text).unwrap_err().to_string();
+        let e = cufem::setup::Model::parse(&text).unwrap_err().to_string();
         assert!(e.contains(key) && e.contains(allowed), "expected {key} … {allowed}, got: {e}");
     }
 }
@@ -499,7 +505,7 @@ where = {{ y = 0.1 }}
 total_force = [0.0, 0.0, -3000.0]
 "#
     );
-    let model = cufem::model::Model::parse(&text).unwrap();
+    let model = cufem::setup::Model::parse(&text).unwrap();
     let sol = common::run(&text);
     let body = &model.mesh.bodies[0];
     let cell = &model.cells[0];
@@ -539,13 +545,13 @@ fn a_tube_with_plies_is_the_layered_box() {
         "shape = \"tube\", element = \"L9\", origin = [0.0, 0.0], width = 0.04, height = 0.06, along_x = 4, along_z = 6,",
     );
     assert_ne!(tube, text);
-    let (a, b) = (cufem::model::Model::parse(&text).unwrap(), cufem::model::Model::parse(&tube).unwrap());
+    let (a, b) = (cufem::setup::Model::parse(&text).unwrap(), cufem::setup::Model::parse(&tube).unwrap());
     let (sa, sb) = (&a.mesh.bodies[0].section, &b.mesh.bodies[0].section);
     assert_eq!(sa.nodes, sb.nodes);
     assert_eq!(sa.connectivity, sb.connectivity);
     assert_eq!(sa.regions, sb.regions);
     assert_eq!(a.mesh.bodies[0].element_materials, b.mesh.bodies[0].element_materials);
     let bad = tube.replace("along_x = 4, along_z = 6,", "around = 8,");
-    let e = cufem::model::Model::parse(&bad).unwrap_err().to_string();
+    let e = cufem::setup::Model::parse(&bad).unwrap_err().to_string();
     assert!(e.contains("bodies[0].section.along_x") && e.contains("plies"), "{e}");
 }

@@ -3,7 +3,7 @@
 mod common;
 
 use cufem::analysis::{self, Silent};
-use cufem::model::Model;
+use cufem::setup::Model;
 
 fn two_blocks(penalty: &str) -> String {
     format!(

@@ -14,8 +14,8 @@
 
 use cufem::analysis::{self, Silent};
 use cufem::bc::Constraint;
-use cufem::model::Model;
 use cufem::quadrature::{GaussRule, SquareRule};
+use cufem::setup::Model;
 use cufem::values::{AxisValues, SectionValues, shape_values};
 
 mod common;

@@ -7,7 +7,7 @@
 mod common;
 
 use cufem::analysis::Structure;
-use cufem::model::Model;
+use cufem::setup::Model;
 use cufem::solver::newton::NonlinearProblem;
 use cufem::solver::stepping::Incremental;
 

@@ -148,7 +148,7 @@ fn transient_refuses_what_it_cannot_integrate() {
         (text.replace("type = \"transient\"", "type = \"transient\"\nmodes = 3"), "analysis.modes"),
     ];
     for (model, key) in cases {
-        match cufem::model::Model::parse(&model) {
+        match cufem::setup::Model::parse(&model) {
             Err(e) => assert!(e.to_string().contains(key), "{key}: {e}"),
             Ok(_) => panic!("{key}: accepted"),
         }
@@ -260,7 +260,7 @@ fn a_rod_rebounds_from_a_rigid_wall_after_two_transit_times() {
     // counted by the memory estimate
     let pvd = std::fs::read_to_string(out.join("frames.pvd")).unwrap();
     assert_eq!(pvd.matches("<DataSet").count(), 12, "{pvd}");
-    let model = cufem::model::Model::parse(&text).unwrap();
+    let model = cufem::setup::Model::parse(&text).unwrap();
     assert_eq!(cufem::analysis::plan(&model).unwrap().snapshots, 12);
     assert!(out.join("frame_0012.vtu").exists());
 }
@@ -381,7 +381,7 @@ fn two_colliding_rods_push_with_saint_venants_force() {
 fn frames_hold_the_fields_of_their_time() {
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/rod_impact.toml");
     let text = std::fs::read_to_string(path).unwrap().replace("output_interval = 5e-5", "output_interval = 1.5e-4");
-    let model = cufem::model::Model::parse(&text).unwrap();
+    let model = cufem::setup::Model::parse(&text).unwrap();
     let sol = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
     let times: Vec<f64> = sol.frames.iter().map(|f| f.time).collect();
     assert_eq!(times.len(), 4, "{times:?}");
@@ -534,7 +534,7 @@ fn the_transient_tangent_matches_finite_differences() {
     use cufem::solver::newton::{self, NewtonSettings, NonlinearProblem};
     use cufem::solver::stepping::Incremental;
     let text = bar(1000.0, 8e-4, 800, "damping = { mass = 500.0, stiffness = 1e-7 }");
-    let model = cufem::model::Model::parse(&text).unwrap();
+    let model = cufem::setup::Model::parse(&text).unwrap();
     let mut s = cufem::analysis::Structure::new(&model, None).unwrap();
     // the rise (λ 0 → 1), then 20 steps of 1 µs
     for l in std::iter::once(1.0).chain((1..=20).map(|k| 1.0 + k as f64 / 800.0)) {
@@ -573,7 +573,7 @@ fn the_contact_impulse_tangent_matches_finite_differences() {
     use cufem::solver::newton::{self, NewtonSettings, NonlinearProblem};
     use cufem::solver::stepping::Incremental;
     let path = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples/rod_impact.toml");
-    let model = cufem::model::Model::parse(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let model = cufem::setup::Model::parse(&std::fs::read_to_string(path).unwrap()).unwrap();
     let mut s = cufem::analysis::Structure::new(&model, None).unwrap();
     // steps of 1 µs (600 over the 600 µs); the wall is reached at 10 µs
     for k in 1..=30 {

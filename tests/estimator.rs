@@ -7,7 +7,7 @@
 //! same model, singular contact neighbourhoods left out).
 
 use cufem::analysis::{Silent, Solution};
-use cufem::model::Model;
+use cufem::setup::Model;
 use cufem::values::locate_in_model;
 
 mod common;

@@ -25,7 +25,7 @@ fn root() -> PathBuf {
 
 /// Runs `examples/<name>.toml` and compares it with the stored 3D fields.
 fn whole_field(name: &str) -> Vec<FieldRow> {
-    let model = cufem::model::Model::from_file(&root().join("examples").join(format!("{name}.toml"))).unwrap();
+    let model = cufem::setup::Model::from_file(&root().join("examples").join(format!("{name}.toml"))).unwrap();
     let solution = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
     assert!(solution.failure.is_none(), "{:?}", solution.failure);
     let rows = cufem::verify::compare_stored(&model, &solution.fields(&model), &stored_3d(name)).unwrap();
@@ -54,9 +54,9 @@ fn whole_field_on(name: &str, stored: &str) -> Vec<FieldRow> {
 }
 
 /// [`whole_field_on`], with the model and its solution.
-fn compare_on(name: &str, stored: &str) -> (Vec<FieldRow>, cufem::model::Model, cufem::analysis::Solution) {
+fn compare_on(name: &str, stored: &str) -> (Vec<FieldRow>, cufem::setup::Model, cufem::analysis::Solution) {
     let model_of =
-        |n: &str| cufem::model::Model::from_file(&root().join("examples").join(format!("{n}.toml"))).unwrap();
+        |n: &str| cufem::setup::Model::from_file(&root().join("examples").join(format!("{n}.toml"))).unwrap();
     let (model, stored_on) = (model_of(name), model_of(stored));
     let solution = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
     assert!(solution.failure.is_none(), "{:?}", solution.failure);
@@ -206,14 +206,14 @@ fn block_indentation_whole_field_against_3d() {
 fn block_axis_refinement_against_stored_3d() {
     let path = root().join("examples/block_indentation.toml");
     let text = std::fs::read_to_string(&path).unwrap();
-    let stored_on = cufem::model::Model::from_file(&path).unwrap();
+    let stored_on = cufem::setup::Model::from_file(&path).unwrap();
     let csv = std::fs::read_to_string(root().join("tests/data/block_indentation_field_3d.csv")).unwrap();
     let axis = "axis = { element = \"B4\", from = 0.0, to = 0.1, elements = 1 }";
     assert!(text.contains(axis));
     let mut errors = Vec::new();
     for n in [1, 2, 3] {
         let model =
-            cufem::model::Model::parse(&text.replace(axis, &axis.replace("elements = 1", &format!("elements = {n}"))))
+            cufem::setup::Model::parse(&text.replace(axis, &axis.replace("elements = 1", &format!("elements = {n}"))))
                 .unwrap();
         let solution = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
         assert!(solution.failure.is_none());
@@ -352,8 +352,8 @@ fn block_indentation_graded_against_3d() {
 /// 7.5 / 36.4 % (test above).
 #[test]
 fn block_indentation_graded_whole_field_against_3d() {
-    let stored_on = cufem::model::Model::from_file(&root().join("examples/block_indentation.toml")).unwrap();
-    let model = cufem::model::Model::from_file(&root().join("examples/block_indentation_graded.toml")).unwrap();
+    let stored_on = cufem::setup::Model::from_file(&root().join("examples/block_indentation.toml")).unwrap();
+    let model = cufem::setup::Model::from_file(&root().join("examples/block_indentation_graded.toml")).unwrap();
     let solution = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
     let csv = std::fs::read_to_string(root().join("tests/data/block_indentation_field_3d.csv")).unwrap();
     let rows = cufem::verify::compare_stored_on(&stored_on, &model, &solution.fields(&model), &csv).unwrap();
@@ -574,7 +574,7 @@ fn bending_tube_graded_against_3d() {
 #[ignore = "validate: slow — three tube meshes of 40,000–108,000 DOF (about 3 min)"]
 fn tube_roller_meshes_against_stored_3d() {
     let text = std::fs::read_to_string(root().join("examples/bending_tube_28L9.toml")).unwrap();
-    let stored_on = cufem::model::Model::from_file(&root().join("examples/bending_tube_28L9.toml")).unwrap();
+    let stored_on = cufem::setup::Model::from_file(&root().join("examples/bending_tube_28L9.toml")).unwrap();
     let start = text.find("axis = { element = \"B4\", segments = [").unwrap();
     let end = start + text[start..].find("] }").unwrap() + 3;
     let axis = |segments: &[(f64, usize)]| {
@@ -608,7 +608,7 @@ fn tube_roller_meshes_against_stored_3d() {
         ),
     ];
     for (name, t) in variants {
-        let model = cufem::model::Model::parse(&t).unwrap();
+        let model = cufem::setup::Model::parse(&t).unwrap();
         let s = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
         assert!(s.failure.is_none(), "{:?}", s.failure);
         let view = s.fields(&model);
@@ -650,7 +650,7 @@ fn tube_roller_meshes_against_stored_3d() {
 #[ignore = "validate: slow — seven cantilever meshes of 15,000–123,000 DOF (about 5 min)"]
 fn cantilever_meshes_against_stored_3d() {
     let text = std::fs::read_to_string(root().join("examples/cantilevers_contact.toml")).unwrap();
-    let stored_on = cufem::model::Model::from_file(&root().join("examples/cantilevers_contact.toml")).unwrap();
+    let stored_on = cufem::setup::Model::from_file(&root().join("examples/cantilevers_contact.toml")).unwrap();
     let (upper, lower) = (
         "axis = { element = \"B4\", from = 0.0, to = 0.254, elements = 10 }",
         "axis = { element = \"B4\", from = 0.0762, to = 0.3302, elements = 10 }",
@@ -674,7 +674,7 @@ fn cantilever_meshes_against_stored_3d() {
         if surface {
             t = t.replace("radius = 0.0127\n", "radius = 0.0127\nmethod = \"surface\"\n");
         }
-        let model = cufem::model::Model::parse(&t).unwrap();
+        let model = cufem::setup::Model::parse(&t).unwrap();
         let s = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
         assert!(s.failure.is_none(), "{:?}", s.failure);
         let force = |n: &str| s.contacts.iter().find(|c| c.name == n).unwrap().force[2];
@@ -730,7 +730,7 @@ fn bbar_is_not_better_than_the_paper_element_on_the_compact_bar() {
         );
         assert!(t.contains("formulation"));
         let model =
-            cufem::model::Model::parse_in(&t, cufem::model::Limits::machine(), &root().join("examples")).unwrap();
+            cufem::setup::Model::parse_in(&t, cufem::setup::Limits::machine(), &root().join("examples")).unwrap();
         let s = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
         let rows = cufem::verify::compare_stored(&model, &s.fields(&model), &stored).unwrap();
         row(&rows, "plastic zone bar", "von_mises").l2_percent

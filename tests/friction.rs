@@ -5,7 +5,7 @@
 mod common;
 
 use cufem::analysis::{self, Structure};
-use cufem::model::Model;
+use cufem::setup::Model;
 use cufem::solver::newton::{self, NewtonSettings};
 use cufem::solver::stepping::Incremental;
 

@@ -19,7 +19,7 @@ use std::sync::mpsc;
 use std::time::Duration;
 
 use cufem::analysis::{self, RunOptions, Silent};
-use cufem::model::{Limits, Model, ModelError};
+use cufem::setup::{Limits, Model, ModelError};
 use cufem::solver::Interrupt;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};

@@ -31,7 +31,7 @@
 //! β_h = 0.417, 0.402, 0.391; L9 × B3 0.395, 0.394, 0.385; L4 × B2 0 on
 //! every mesh (spurious modes).
 
-use cufem::model::Model;
+use cufem::setup::Model;
 use faer::linalg::solvers::Solve;
 use faer::{Mat, Side};
 

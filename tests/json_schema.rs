@@ -9,7 +9,7 @@
 use std::path::{Path, PathBuf};
 use std::process::Command;
 
-use cufem::model::{Limits, Model};
+use cufem::setup::{Limits, Model};
 use serde_json::Value;
 
 fn root() -> &'static Path {
@@ -107,7 +107,7 @@ fn a_file_the_reader_refuses_is_refused_by_the_schema() {
         (edit(&block, "position = 0.3", "position = 0.3\nradius = 0.1"), "radius", "/indenters/0"),
         // a required key left out
         (edit(&block, "name = \"alloy\"\n", ""), "name", "/materials/0"),
-        // numbers out of the ranges the reader checks (src/model/ranges.rs)
+        // numbers out of the ranges the reader checks (src/input/ranges.rs)
         (edit(&block, "poisson_ratio = 0.3", "poisson_ratio = 0.5"), "poisson_ratio", "/poisson_ratio"),
         (edit(&block, "young_modulus = 70e9", "young_modulus = 70.0"), "young_modulus", "/young_modulus"),
         (edit(&block, "increments = 20", "increments = 0"), "solver.increments", "/solver/increments"),

@@ -6,7 +6,7 @@ use std::path::Path;
 use std::process::Command;
 
 use cufem::analysis;
-use cufem::model::Model;
+use cufem::setup::Model;
 
 mod common;
 
@@ -683,7 +683,7 @@ fn a_correction_after_a_residual_only_evaluation_uses_the_present_tangent() {
     use cufem::solver::stepping::Incremental;
     let pool = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
     let mut model = Model::from_file(Path::new(ELASTICA)).unwrap();
-    model.solver.inertia = Some(cufem::model::InertiaReport::LastFactorization);
+    model.solver.inertia = Some(cufem::input::InertiaReport::LastFactorization);
     let correction = |residual_only: bool| {
         pool.install(|| {
             let mut s = analysis::Structure::new(&model, None).unwrap();

@@ -5,7 +5,7 @@
 use std::path::Path;
 
 use cufem::analysis::{self, Silent, Solution};
-use cufem::model::Model;
+use cufem::setup::Model;
 
 fn example(name: &str) -> String {
     std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name)).unwrap()

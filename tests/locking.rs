@@ -12,7 +12,7 @@
 //! at this slenderness, inside the 2 % tolerance.
 
 use cufem::analysis::{self, Silent};
-use cufem::model::Model;
+use cufem::setup::Model;
 
 mod common;
 

@@ -296,7 +296,7 @@ fn modal_refuses_what_it_cannot_analyse() {
         (text.replace("type = \"modal\"\nmodes = 8", "mass = \"lumped\""), "analysis.mass"),
     ];
     for (model, key) in cases {
-        match cufem::model::Model::parse(&model) {
+        match cufem::setup::Model::parse(&model) {
             Err(e) => assert!(e.to_string().contains(key), "{key}: {e}"),
             Ok(_) => panic!("{key}: accepted"),
         }

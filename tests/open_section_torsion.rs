@@ -4,7 +4,7 @@
 //! torque, against Vlasov's closed form.
 
 use cufem::analysis::{self, Silent};
-use cufem::model::Model;
+use cufem::setup::Model;
 
 /// I-section b = 100 mm, h = 200 mm, t_w = 3 mm, t_f = 4 mm, centred on
 /// x = 0 and z = 0; 2 m long, 20 B4; the section mesh is stated in the test.

@@ -15,7 +15,7 @@
 mod common;
 
 use cufem::analysis::{self, PathEnd, Silent, Solution};
-use cufem::model::Model;
+use cufem::setup::Model;
 
 const ARCH: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/arch_snap_through.toml");
 /// The reference load: 2 × 500 N on the crown line.

@@ -4,7 +4,7 @@
 use std::path::Path;
 
 use cufem::analysis::{self, Silent};
-use cufem::model::Model;
+use cufem::setup::Model;
 
 mod common;
 

@@ -3,7 +3,7 @@
 
 use cufem::analysis::{self, Silent};
 use cufem::bc::Constraint;
-use cufem::model::Model;
+use cufem::setup::Model;
 
 mod common;
 

@@ -8,7 +8,7 @@
 use std::path::Path;
 
 use cufem::analysis::{self, Silent, Solution};
-use cufem::model::Model;
+use cufem::setup::Model;
 
 /// The compact bar in three-point bending with 4 L9 (plasticity under the
 /// roller and three node-to-node roller contacts), with extra solver keys.

@@ -6,7 +6,7 @@
 mod common;
 
 use cufem::analysis::Structure;
-use cufem::model::Model;
+use cufem::setup::Model;
 use cufem::solver::newton::NonlinearProblem;
 
 /// A plane-strain slice (1 mm thick, x held on both faces) of a block

@@ -6,7 +6,7 @@
 
 use std::path::PathBuf;
 
-use cufem::model::{Limits, Model, ModelError};
+use cufem::setup::{Limits, Model, ModelError};
 
 fn example(name: &str) -> String {
     std::fs::read_to_string(PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples").join(name)).unwrap()

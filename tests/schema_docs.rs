@@ -3,7 +3,7 @@
 //! key tables is a key the reader accepts at that place, every key the
 //! reader accepts is documented, and every range and default a table
 //! states is the range and default the schema (and so the reader,
-//! `src/model/ranges.rs`, `src/model/defaults.rs`) has.
+//! `src/input/ranges.rs`, `src/input/defaults.rs`) has.
 //!
 //! How the document is read: each key table (a Markdown table with a `key`
 //! or `keys` column) follows a comment `<!-- keys: PATH … -->` naming where

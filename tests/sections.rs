@@ -6,7 +6,7 @@ use std::f64::consts::PI;
 
 use cufem::analysis::{self, Silent};
 use cufem::mesh::SectionProperties;
-use cufem::model::Model;
+use cufem::setup::Model;
 
 /// The model text of one elastic body with the given section table and a
 /// root clamp and tip load (used for the properties tests too).
@@ -305,7 +305,7 @@ fn gmsh_twin_of_the_parametric_i_beam_is_identical() {
     let parametric = "shape = \"i_beam\", element = \"L9\", width = 0.1, height = 0.2, web_thickness = 0.006, \
                       flange_thickness = 0.01, along_flange = 2, along_web = 4, through = 1";
     let imported = "shape = \"gmsh\", file = \"i_beam_twin.msh\"";
-    let limits = cufem::model::Limits::none();
+    let limits = cufem::setup::Limits::none();
     let a = Model::parse_in(&model(parametric, 2.0, 4), limits, &sections_dir()).unwrap();
     let b = Model::parse_in(&model(imported, 2.0, 4), limits, &sections_dir()).unwrap();
     let (sa, sb) = (&a.mesh.bodies[0].section, &b.mesh.bodies[0].section);
@@ -332,7 +332,7 @@ fn gmsh_twin_of_the_parametric_i_beam_is_identical() {
 #[test]
 fn gmsh_ipe100_matches_the_tables() {
     let section = "shape = \"gmsh\", file = \"ipe100.msh\", scale = 1e-3";
-    let m = Model::parse_in(&model(section, 1.0, 1), cufem::model::Limits::none(), &sections_dir()).unwrap();
+    let m = Model::parse_in(&model(section, 1.0, 1), cufem::setup::Limits::none(), &sections_dir()).unwrap();
     let s = &m.mesh.bodies[0].section;
     let p = s.properties();
     let (h, b, tw, tf, r) = (100e-3f64, 55e-3, 4.1e-3, 5.7e-3, 7e-3);
@@ -426,7 +426,7 @@ fn section_errors_name_key_value_and_allowed() {
         ("shape = \"gmsh\", file = \"ipe100.geo\"".into(), &["bodies[0].section.file", "ipe100.geo\" line 1"]),
     ];
     for (section, expected) in &cases {
-        let e = Model::parse_in(&model(section, 1.0, 2), cufem::model::Limits::none(), &sections_dir())
+        let e = Model::parse_in(&model(section, 1.0, 2), cufem::setup::Limits::none(), &sections_dir())
             .err()
             .unwrap_or_else(|| panic!("accepted: {section}"))
             .to_string();
@@ -450,7 +450,7 @@ fn regions_select_nodes() {
         let text = model(section, 2.0, 4)
             .replace("where = { y = 2 }\ntotal_force", "where = { y = 2, region = \"web\" }\ntotal_force");
         assert!(text.contains("region"));
-        let m = Model::parse_in(&text, cufem::model::Limits::none(), &sections_dir()).unwrap();
+        let m = Model::parse_in(&text, cufem::setup::Limits::none(), &sections_dir()).unwrap();
         let nodes: std::collections::BTreeSet<usize> = m.loads[0].nodal_forces.iter().map(|(n, _)| *n).collect();
         assert_eq!(nodes.len(), 27, "{section}");
         for &n in &nodes {
@@ -462,7 +462,7 @@ fn regions_select_nodes() {
     }
     // an unknown region names the ones there are
     let text = model(parametric, 2.0, 4).replace("where = { y = 0.0 }", "where = { y = 0.0, region = \"flange\" }");
-    let e = Model::parse_in(&text, cufem::model::Limits::none(), &sections_dir()).unwrap_err().to_string();
+    let e = Model::parse_in(&text, cufem::setup::Limits::none(), &sections_dir()).unwrap_err().to_string();
     assert!(
         e.contains("constraints[0].where.region = \"flange\"")
             && e.contains("[\"bottom_flange\", \"web\", \"top_flange\"]"),

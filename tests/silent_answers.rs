@@ -10,7 +10,7 @@
 mod common;
 
 use cufem::analysis::{self, Silent, Solution};
-use cufem::model::Model;
+use cufem::setup::Model;
 
 fn solve(text: &str) -> (Model, Solution) {
     let model = Model::parse(text).unwrap_or_else(|e| panic!("{e}"));

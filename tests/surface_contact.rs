@@ -6,7 +6,7 @@
 mod common;
 
 use cufem::analysis::{self, Silent, Solution};
-use cufem::model::Model;
+use cufem::setup::Model;
 
 /// Two stacked blocks 20 × 30 mm, the lower (z ∈ [0, 10] mm) meshed with
 /// 3 × 2 L9 and 3 B3 elements, the upper (z ∈ [10, 25] mm) with 2 × 3 L16

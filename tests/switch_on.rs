@@ -15,7 +15,7 @@
 mod common;
 
 use cufem::analysis::{self, Silent, Solution};
-use cufem::model::Model;
+use cufem::setup::Model;
 
 /// The example `name` with the paper's element (B-bar removed) as shipped
 /// (`nonlinear = false`) or switched on.

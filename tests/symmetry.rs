@@ -11,8 +11,8 @@ mod common;
 
 use std::path::Path;
 
-use cufem::model::Model;
 use cufem::post::{Quantity, Sample};
+use cufem::setup::Model;
 
 fn example(name: &str) -> String {
     std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(format!("{name}.toml")))

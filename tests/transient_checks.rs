@@ -6,7 +6,7 @@
 
 mod common;
 
-use cufem::model::Model;
+use cufem::setup::Model;
 
 /// `examples/rod_impact.toml` (600 steps of 1 µs; `solver.max_increments
 /// = 5000`) with `from` replaced by `to`.

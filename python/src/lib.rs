@@ -16,8 +16,8 @@ use std::time::Duration;
 use cufem::analysis::{self, IncrementLog, Progress, RunOptions, Solution};
 use cufem::io::output::OutputDir;
 use cufem::io::report;
-use cufem::model::steps::{self, Item};
-use cufem::model::{Limits, Model, ModelError as RustModelError};
+use cufem::setup::steps::{self, Item};
+use cufem::setup::{Limits, Model, ModelError as RustModelError};
 use cufem::post;
 use cufem::solver::Interrupt;
 use cufem::solver::stepping::Cutback;
@@ -234,7 +234,7 @@ fn write_stderr(py: Python<'_>, text: &str) -> PyResult<()> {
 
 /// The model's or the run's warnings, to stderr as `cufem run` prints them
 /// (also with `quiet`: they are in `summary["warnings"]` too).
-fn write_warnings<'a>(py: Python<'_>, warnings: impl Iterator<Item = &'a cufem::model::Warning>) -> PyResult<()> {
+fn write_warnings<'a>(py: Python<'_>, warnings: impl Iterator<Item = &'a cufem::setup::Warning>) -> PyResult<()> {
     for w in warnings {
         write_stderr(py, &format!("warning: {w}"))?;
     }

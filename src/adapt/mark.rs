@@ -14,7 +14,7 @@
 //! estimate stayed at 1.8 %.
 
 use crate::mesh::Mesh;
-use crate::model::{MeshPlan, SectionPlan};
+use crate::setup::{MeshPlan, SectionPlan};
 
 /// A parametric section (not a grid) is doubled — its only refinement —
 /// when the marked elements lie in at least this share of its section

@@ -22,7 +22,7 @@
 //! price of refining a whole row where one element asked for it. Sections
 //! that are not grids are refined as a whole (every in-plane count doubled)
 //! when the marked elements are spread over them, else only along the
-//! axis; `quads` and `gmsh` sections are kept ([`crate::model::SectionPlan`]).
+//! axis; `quads` and `gmsh` sections are kept ([`crate::setup::SectionPlan`]).
 //! The refined model is rebuilt from its own model-file text with the new
 //! divisions (`Model::parse_planned`), so every constraint, load, contact,
 //! probe and line is resolved on the new mesh by its geometric selection
@@ -35,7 +35,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use crate::analysis::{self, AdaptCycle, AdaptEnd, Adaptivity, AnalysisError, Progress, RunOptions, Solution};
-use crate::model::{AdaptSettings, Limits, MeshPlan, Model, ModelError};
+use crate::setup::{AdaptSettings, Limits, MeshPlan, Model, ModelError};
 use crate::solver::stepping::StopReason;
 
 /// Errors of an adaptive run.

@@ -142,7 +142,7 @@ fn loaded(structure: &Structure<'_>, unit_strain: f64) -> Result<(), AnalysisErr
             if model.loads.len() == 1 { "1 entry".to_string() } else { format!("{} entries", model.loads.len()) };
         ("loads".to_string(), format!("{entries}, nodal forces up to {} N", crate::numbers::limit(largest)))
     };
-    Err(crate::model::ModelError::Invalid {
+    Err(crate::setup::ModelError::Invalid {
         key,
         value,
         allowed: format!(
@@ -161,15 +161,15 @@ fn loaded(structure: &Structure<'_>, unit_strain: f64) -> Result<(), AnalysisErr
 /// displacement `u₀` of the nonlinear analysis (`elements::PointData::initial`).
 /// Returns `u₀` (per DOF) and the buckling analysis it came from.
 pub(crate) fn imperfection(
-    model: &crate::model::Model,
-    imp: crate::model::Imperfection,
+    model: &crate::setup::Model,
+    imp: crate::setup::Imperfection,
 ) -> Result<(Vec<f64>, Buckling), AnalysisError> {
     let mut linear = model.clone();
     linear.kinematics = crate::kinematics::Kinematics::Linear;
     linear.imperfection = None;
     // by load control: the linear static state at the loads of the first step
     linear.solver.path = None;
-    linear.buckling = Some(crate::model::BucklingSettings { modes: imp.mode });
+    linear.buckling = Some(crate::setup::BucklingSettings { modes: imp.mode });
     // the buckling of the loads' static state, whatever the analysis that
     // follows (a transient one integrates from the imperfect shape)
     linear.transient = None;

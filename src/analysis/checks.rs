@@ -7,7 +7,7 @@
 //! could carry. Each becomes a [`Warning`] naming the key to change.
 
 use super::Solution;
-use crate::model::{Model, Warning};
+use crate::setup::{Model, Warning};
 
 /// Largest root-mean-square displacement gradient `√(∫ ∂u_i/∂X_j ∂u_i/∂X_j
 /// dV / V)` of a body that a small-strain analysis is not warned about: at
@@ -51,7 +51,7 @@ fn unstable_state(model: &Model, solution: &Solution, warnings: &mut Vec<Warning
     let Some(last) = solution.history.last() else { return };
     let Some(n) = last.negative_pivots.filter(|&n| n > 0) else { return };
     let first = solution.history.iter().find(|r| r.negative_pivots.is_some_and(|p| p > 0)).unwrap_or(last);
-    let lagging = model.solver.inertia == Some(crate::model::InertiaReport::LastFactorization);
+    let lagging = model.solver.inertia == Some(crate::input::InertiaReport::LastFactorization);
     let counted = if lagging {
         " (solver.inertia = \"last_factorization\": the count of the last factorization, which may lag)"
     } else {

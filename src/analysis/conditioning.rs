@@ -7,8 +7,8 @@
 //! element against its section or axis, a Poisson's ratio near ½, the
 //! contrast of the materials' stiffnesses.
 
-use crate::model::Model;
 use crate::numbers::limit;
+use crate::setup::Model;
 
 /// An element thinner than this share of its section (or axis) is named.
 /// An L9 section whose middle element is 1e-6 of its height stalls at a

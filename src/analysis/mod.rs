@@ -33,8 +33,8 @@ use std::time::{Duration, Instant};
 
 use crate::elements::ElementError;
 use crate::materials::PointState;
-use crate::model::Model;
-use crate::model::Warning;
+use crate::setup::Model;
+use crate::setup::Warning;
 use crate::size::{MemoryEstimate, human_bytes};
 use crate::solver::Interrupt;
 use crate::solver::linear::LinearError;
@@ -70,7 +70,7 @@ pub enum AnalysisError {
     /// A value of the model that the analysis found it cannot take (e.g. an
     /// arc length too long for the model's stiffness).
     #[error(transparent)]
-    Model(#[from] crate::model::ModelError),
+    Model(#[from] crate::setup::ModelError),
     /// The eigenproblem of a buckling or modal analysis.
     #[error("eigenvalue analysis")]
     Eigen(#[from] crate::solver::eigen::EigenError),
@@ -427,7 +427,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         let estimate = crate::post::estimate::estimate(mesh, cells, &model.materials, stresses, offsets, &recovered);
         solution.error_estimate = Some(estimate);
     }
-    if model.output.recovery == crate::model::Recovery::Projection {
+    if model.output.recovery == crate::input::Recovery::Projection {
         solution.recovered = Some(crate::post::recovery::project(
             &model.mesh,
             &model.cells,

@@ -70,7 +70,7 @@ pub struct Modal {
 /// its present (converged) state.
 pub(crate) fn solve(
     structure: &mut Structure<'_>,
-    settings: crate::model::ModalSettings,
+    settings: crate::setup::ModalSettings,
 ) -> Result<Modal, AnalysisError> {
     use crate::solver::newton::NonlinearProblem;
     // the tangent at the converged state
@@ -146,7 +146,7 @@ fn to_full_structure(modal: &mut Modal, symmetry: &crate::bc::symmetry::Symmetry
 /// element with the mass matrix's own rule: `∫ ρ (Σ_a r_a N_a)²`
 /// (consistent) or `∫ ρ Σ_a r_a N_a` (lumped, the row sums).
 pub(crate) fn full_free_mass(
-    model: &crate::model::Model,
+    model: &crate::setup::Model,
     kind: crate::dynamics::MassKind,
 ) -> Result<[f64; 3], crate::dynamics::MassError> {
     let densities = crate::dynamics::mass::densities(&model.mesh, &model.materials)?;
@@ -248,7 +248,7 @@ mod tests {
         // the free equations (`solve`) and the element integral of
         // `full_free_mass` (one copy, no plane)
         for (word, kind) in [("consistent", MassKind::Consistent), ("lumped", MassKind::Lumped)] {
-            let model = crate::model::Model::parse(&MODEL.replace("MASS", word)).unwrap();
+            let model = crate::setup::Model::parse(&MODEL.replace("MASS", word)).unwrap();
             let sol = crate::analysis::run(&model, &Default::default(), &mut crate::analysis::Silent).unwrap();
             let modal = sol.modal.unwrap();
             let integrated = full_free_mass(&model, kind).unwrap();

@@ -6,7 +6,7 @@
 //! cutbacks), until a stop criterion of the model holds.
 //!
 //! The problem is `R(u, λ) = f_int(u) − λ f − f_c(u)` on the free
-//! equations, `f` the model's loads at λ = 1 (`model::path` refuses any
+//! equations, `f` the model's loads at λ = 1 (`setup::path` refuses any
 //! other loading). Each corrector solves two right-hand sides with one
 //! factorization of the present tangent (`Structure::solve_columns`, in
 //! double precision: `LDLᵀ` once the tangent is indefinite past a limit
@@ -14,7 +14,8 @@
 //! restored after a failed attempt, as in load stepping.
 
 use super::{Recorder, Structure};
-use crate::model::{Model, PathSettings};
+use crate::input::PathSettings;
+use crate::setup::Model;
 use crate::solver::Interrupt;
 use crate::solver::arclength::{self, PathError, PathObserver, PathProblem, PathStep, PathStop};
 use crate::solver::linear::LinearError;
@@ -277,9 +278,9 @@ fn linear_length(p: &mut PathStructure<'_, '_>) -> Result<f64, LinearError> {
 
 /// The refusal of `solver.arc_length = length` longer than the linear path
 /// to `max_load_factor` (`norm` = `‖K₀⁻¹ f‖`).
-fn too_long(length: f64, norm: f64, max_load_factor: f64) -> crate::model::ModelError {
+fn too_long(length: f64, norm: f64, max_load_factor: f64) -> crate::setup::ModelError {
     use crate::numbers::limit;
-    crate::model::ModelError::Invalid {
+    crate::setup::ModelError::Invalid {
         key: "solver.arc_length".into(),
         value: format!("{} m", crate::numbers::number(length)),
         allowed: format!(

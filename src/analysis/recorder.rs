@@ -3,7 +3,7 @@
 //! time series.
 
 use super::{HistoryRow, IncrementLog, Progress, StepFields, Structure};
-use crate::model::Model;
+use crate::setup::Model;
 use crate::solver::stepping::{Cutback, Increment, Observer};
 
 /// What the stepping reports at every converged increment: the progress

@@ -4,7 +4,7 @@
 
 use super::{AnalysisError, ContactResultant, HistoryRow, Reaction};
 use crate::assembly::Numbering;
-use crate::model::Model;
+use crate::setup::Model;
 use crate::size::{MemoryEstimate, Sizes, human_bytes};
 use crate::solver::linear::Cholesky;
 use crate::solver::stepping::Increment;

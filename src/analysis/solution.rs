@@ -3,7 +3,7 @@
 //! point.
 
 use super::{AnalysisError, ContactPoint, ContactResultant, Reaction, Solution, StepFields};
-use crate::model::Model;
+use crate::setup::Model;
 
 impl Solution {
     /// The reaction of the constraint set `name`.
@@ -80,7 +80,7 @@ impl Solution {
             frames: Vec::new(),
             path: self.path.clone(),
         };
-        if model.output.recovery == crate::model::Recovery::Projection {
+        if model.output.recovery == crate::input::Recovery::Projection {
             s.recovered =
                 Some(crate::post::recovery::project(&model.mesh, &model.cells, &s.stresses, &s.states, &s.gp_offsets)?);
         }

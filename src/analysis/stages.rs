@@ -6,7 +6,7 @@
 //! tangent is indefinite, above all.
 
 use super::{AnalysisError, HistoryRow, Structure, buckling, modal};
-use crate::model::Model;
+use crate::setup::Model;
 use crate::solver::eigen::EigenError;
 use crate::solver::newton::Report;
 use crate::solver::stepping::{SteppingError, StopReason};

@@ -45,7 +45,7 @@ mod transient;
 pub use super::results::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Timings};
 use crate::assembly::{Assembler, Contribution, NO_EQ, Numbering};
 use crate::contact::Contacts;
-use crate::model::Model;
+use crate::setup::Model;
 use crate::size::MemoryEstimate;
 use crate::solver::linear::{Cholesky, LinearError};
 use crate::solver::newton::{Correction, Evaluation, NonlinearProblem};
@@ -187,7 +187,7 @@ impl<'m> Structure<'m> {
     /// transient run, whose tangent carries `M / (β Δt²)`).
     fn inertia_every_increment(&self) -> bool {
         let every = match self.model.solver.inertia {
-            Some(report) => report == crate::model::InertiaReport::EveryIncrement,
+            Some(report) => report == crate::input::InertiaReport::EveryIncrement,
             None => self.model.kinematics.is_nonlinear(),
         };
         every && self.dynamics.is_none()

@@ -5,7 +5,7 @@
 //! strain measure models, contacts that created energy in a transient run.
 
 use super::Solution;
-use crate::model::{Model, Warning};
+use crate::setup::{Model, Warning};
 
 /// True if the indenter or contact `name` carried a force in some increment
 /// (or if no increment converged: nothing to judge).

@@ -41,8 +41,8 @@ pub(super) use super::names::list;
 pub use super::names::set_name;
 use crate::bc::{Load, LoadKind, Selection};
 use crate::materials::Hardening;
-use crate::model::Model;
 use crate::quadrature::GaussRule;
+use crate::setup::Model;
 
 /// An element line: its number and nodes, at most 16 entries per line
 /// (CalculiX's limit), continued on the next line.
@@ -333,7 +333,7 @@ fn contact_pairs(d: &mut String, model: &Model, mesh: &HexMesh) {
         let ind = &model.indenters[tool.indenter];
         let slave = mesh.body_faces(model, ind.body, &ind.faces);
         let h = mesh.element_size(ind.body);
-        let e = crate::model::body_young(&model.mesh.bodies[ind.body], &model.materials);
+        let e = crate::setup::body_young(&model.mesh.bodies[ind.body], &model.materials);
         surface(d, &set_name("SS", &ind.name), &slave);
         surface(d, &set_name("SM", &ind.name), &tool.faces);
         let _ = writeln!(d, "*SURFACE INTERACTION, NAME={}", set_name("SI", &ind.name));
@@ -350,8 +350,8 @@ fn contact_pairs(d: &mut String, model: &Model, mesh: &HexMesh) {
         let slave = mesh.body_faces(model, pc.slave.body, &pc.slave.faces);
         let master = mesh.body_faces(model, pc.master.body, &pc.master.faces);
         let h = mesh.element_size(pc.slave.body).min(mesh.element_size(pc.master.body));
-        let e = crate::model::body_young(&model.mesh.bodies[pc.slave.body], &model.materials)
-            .min(crate::model::body_young(&model.mesh.bodies[pc.master.body], &model.materials));
+        let e = crate::setup::body_young(&model.mesh.bodies[pc.slave.body], &model.materials)
+            .min(crate::setup::body_young(&model.mesh.bodies[pc.master.body], &model.materials));
         surface(d, &set_name("SS", &pc.name), &slave);
         surface(d, &set_name("SM", &pc.name), &master);
         let _ = writeln!(d, "*SURFACE INTERACTION, NAME={}", set_name("SI", &pc.name));

@@ -15,7 +15,7 @@
 //!   equivalent and are refused ([`check`]); the 3D mass is CalculiX's
 //!   consistent one whatever `analysis.mass` says.
 //! * Load history: a load's or prescribed displacement's factor is
-//!   piecewise linear in λ ([`crate::model::steps::factor`]), hence in time:
+//!   piecewise linear in λ ([`crate::setup::steps::factor`]), hence in time:
 //!   one `*AMPLITUDE, TIME=TOTAL TIME` per loaded item through
 //!   `(t_k, factor(k))` at the step ends, referenced by its `*CLOAD` or
 //!   `*BOUNDARY` in every step.
@@ -55,8 +55,8 @@ use super::CcxError;
 use super::deck::{list, load_forces, set_name};
 use super::mesh::HexMesh;
 use crate::dynamics::TransientSettings;
-use crate::model::Model;
-use crate::model::steps::{Item, factor};
+use crate::setup::Model;
+use crate::setup::steps::{Item, factor};
 
 /// The node set whose displacements are written at every increment.
 pub const OUTPUT_SET: &str = "U_HISTORY";

@@ -26,7 +26,7 @@ use std::fmt::Write as _;
 
 use super::Tie;
 use super::mesh::HexMesh;
-use crate::model::Model;
+use crate::setup::Model;
 
 /// Duplicates the interface nodes of every body of several materials;
 /// returns the ties. The copies are appended to `mesh.nodes`.

@@ -38,7 +38,7 @@ use std::fmt::Write as _;
 use super::mesh::HexMesh;
 use super::names::{list, set_name};
 use crate::materials::{Frame, Material};
-use crate::model::Model;
+use crate::setup::Model;
 use crate::voigt::Matrix6;
 
 /// Longest name written (CalculiX allows 80; `O` is prefixed to a material

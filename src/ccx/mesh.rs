@@ -27,7 +27,7 @@ use std::collections::HashMap;
 use crate::bc::Face;
 use crate::contact::{Indenter, RigidSurface};
 use crate::mesh::Body;
-use crate::model::Model;
+use crate::setup::Model;
 use crate::shape::Lagrange2d;
 use crate::values::{FaceSide, Location, section_point};
 

@@ -25,7 +25,7 @@ use std::time::{Duration, Instant};
 pub use mesh::{HexKind, HexMesh};
 pub use results::NodalResults;
 
-use crate::model::Model;
+use crate::setup::Model;
 use crate::values::Location;
 
 /// A node of the 3D mesh duplicated at a material interface

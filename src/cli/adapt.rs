@@ -9,7 +9,7 @@ use cufem::adapt::{AdaptError, Source};
 use cufem::analysis::{AdaptEnd, AnalysisError, RunOptions, Solution};
 use cufem::io::output::OutputDir;
 use cufem::io::{RunInto, solved_into};
-use cufem::model::{AdaptSettings, Model, ModelError};
+use cufem::setup::{AdaptSettings, Model, ModelError};
 
 use super::{Failure, INPUT, INTERRUPTED, NOT_CONVERGED, Reporter, TOO_LARGE, fail, model_failure, run_failure};
 
@@ -45,7 +45,7 @@ fn parse_fraction(s: &str) -> Result<f64, String> {
 }
 
 fn parse_max_dof(s: &str) -> Result<usize, String> {
-    super::integer_in(s, 1, Some(cufem::model::MAX_BUDGET), "degrees of freedom")
+    super::integer_in(s, 1, Some(cufem::setup::MAX_BUDGET), "degrees of freedom")
 }
 
 impl AdaptArgs {

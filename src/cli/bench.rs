@@ -8,7 +8,7 @@ use std::time::Duration;
 
 use anyhow::Result;
 use cufem::analysis::{self, Silent, Structure};
-use cufem::model::Model;
+use cufem::setup::Model;
 use cufem::solver::newton::NonlinearProblem;
 use cufem::solver::stepping::Incremental;
 

@@ -27,7 +27,7 @@ use anyhow::anyhow;
 use clap::{Parser, Subcommand};
 use cufem::analysis::{self, AnalysisError, IncrementLog, Progress, RunOptions};
 use cufem::io::output::OutputDir;
-use cufem::model::{Limits, Model, ModelError};
+use cufem::setup::{Limits, Model, ModelError};
 use cufem::size;
 use cufem::solver::Interrupt;
 use cufem::solver::stepping::{Cutback, StopReason};
@@ -239,7 +239,7 @@ fn dispatch(cli: Cli) -> Result<u8, Failure> {
             Ok(OK)
         }
         Command::Schema => {
-            let text = serde_json::to_string_pretty(&cufem::model::json_schema()).map_err(|e| fail(INPUT, e))?;
+            let text = serde_json::to_string_pretty(&cufem::input::json_schema()).map_err(|e| fail(INPUT, e))?;
             println!("{text}");
             Ok(OK)
         }
@@ -356,7 +356,7 @@ fn configure_threads(threads: Option<usize>, force: bool) -> Result<(), Failure>
         .map_err(|e| fail(INPUT, anyhow!("cannot configure {n} worker threads: {e}")))
 }
 
-fn print_warnings<'a>(warnings: impl Iterator<Item = &'a cufem::model::Warning>) {
+fn print_warnings<'a>(warnings: impl Iterator<Item = &'a cufem::setup::Warning>) {
     for w in warnings {
         eprintln!("warning: {w}");
     }
@@ -406,7 +406,7 @@ fn run(
     // between preparing the folder and installing the handler would leave
     // its lock and staging folder behind)
     let interrupt = install_interrupt()?;
-    let (text, base) = Model::read_text(path).map_err(|e| model_failure(e, path))?;
+    let (text, base) = cufem::input::read_text(path).map_err(|e| model_failure(e, path))?;
     let limits = Limits { max_memory: limit(resources) };
     let model = Model::parse_in(&text, limits, &base).map_err(|e| model_failure(e, path))?;
     let settings = adapt.settings(&model)?;

@@ -2,7 +2,7 @@
 //! library, `cufem::io::report`, shared with the Python package).
 
 use cufem::io::report::thousands;
-use cufem::model::Model;
+use cufem::setup::Model;
 
 /// `cufem check`: the model's size and what it contains.
 pub fn print_check(model: &Model) {

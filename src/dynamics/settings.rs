@@ -1,4 +1,4 @@
-//! The settings of a transient analysis (validated by `model::transient`).
+//! The settings of a transient analysis (validated by `setup::transient`).
 
 use super::{ContactForces, ContactMass, MassKind};
 

@@ -198,7 +198,7 @@ pub fn element_response(
     ws.resize(el.nodes, el.n_points);
     ws.force.fill(0.0);
     let kinematics = points.kinematics;
-    // what the model reader refuses (crate::model's bodies), for library callers
+    // what the model reader refuses (crate::setup's bodies), for library callers
     assert!(
         geom.volumetric.is_none()
             || !kinematics.is_nonlinear()

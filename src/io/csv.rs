@@ -5,9 +5,9 @@ use std::path::{Path, PathBuf};
 
 use super::{IoError, file_error};
 use crate::analysis::Solution;
-use crate::model::Model;
-use crate::model::steps::{self, Item};
 use crate::post::{LineSample, Quantity};
+use crate::setup::Model;
+use crate::setup::steps::{self, Item};
 
 /// A text field of a CSV row (RFC 4180): quoted, with its quotes doubled,
 /// if it holds a comma, a quote or a line break; as it is otherwise. Every

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use super::IoError;
 use super::png::{Series, line_plot};
 use crate::analysis::Solution;
-use crate::model::Model;
+use crate::setup::Model;
 
 /// Writes the energy balance of a transient run (nothing for another).
 pub fn write_energy(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {

@@ -6,7 +6,7 @@ use serde::Serialize;
 
 use super::{IoError, file_error};
 use crate::analysis::Solution;
-use crate::model::Model;
+use crate::setup::Model;
 
 /// A probe in the summary.
 #[derive(Debug, Clone, Serialize)]

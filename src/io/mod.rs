@@ -36,8 +36,8 @@ pub use vtu::{FieldArray, FieldGrid, field_grid, write_contact_vtu, write_gauss_
 use std::path::{Path, PathBuf};
 
 use crate::analysis::Solution;
-use crate::model::Model;
 use crate::post;
+use crate::setup::Model;
 
 /// Errors while writing results.
 #[derive(Debug, thiserror::Error)]

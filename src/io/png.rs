@@ -8,7 +8,7 @@ use plotters::style::FontStyle;
 
 use super::IoError;
 use crate::analysis::Solution;
-use crate::model::Model;
+use crate::setup::Model;
 
 /// One curve of a plot.
 #[derive(Debug, Clone)]

@@ -10,7 +10,7 @@ use std::fmt::Write;
 use std::path::Path;
 
 use crate::analysis::{IncrementLog, Setup, Solution};
-use crate::model::Model;
+use crate::setup::Model;
 use crate::solver::newton::Failure;
 use crate::solver::stepping::Cutback;
 

@@ -10,7 +10,7 @@ use std::path::{Path, PathBuf};
 use super::output::{OutputDir, OutputError};
 use super::{IoError, write_results};
 use crate::analysis::{self, AnalysisError, Progress, RunOptions, Solution};
-use crate::model::Model;
+use crate::setup::Model;
 
 /// What a run into a folder produced.
 #[derive(Debug)]

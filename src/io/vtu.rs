@@ -26,8 +26,8 @@ use base64::write::EncoderWriter;
 
 use super::{IoError, file_error};
 use crate::analysis::Solution;
-use crate::model::Model;
 use crate::post::{Location, Quantity};
+use crate::setup::Model;
 use crate::shape::Lagrange2d;
 
 mod finite;

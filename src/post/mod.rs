@@ -203,7 +203,7 @@ impl FieldView<'_> {
     }
 
     /// Fields at a probe (located during preprocessing).
-    pub fn sample_probe(&self, probe: &crate::model::Probe) -> Option<Sample> {
+    pub fn sample_probe(&self, probe: &crate::setup::Probe) -> Option<Sample> {
         crate::bc::symmetry::sample(self.symmetry, probe.point, |_| self.sample_at(&probe.locations))
     }
 }
@@ -236,7 +236,7 @@ pub struct LineSample {
 }
 
 /// Samples a line at its equally spaced points.
-pub fn sample_line(view: &FieldView<'_>, line: &crate::model::Line) -> Vec<LineSample> {
+pub fn sample_line(view: &FieldView<'_>, line: &crate::setup::Line) -> Vec<LineSample> {
     let len = (0..3).map(|k| (line.to[k] - line.from[k]).powi(2)).sum::<f64>().sqrt();
     (0..line.points)
         .map(|i| {

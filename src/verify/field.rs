@@ -31,9 +31,9 @@ use serde::Serialize;
 use crate::ccx::mesh::Part;
 use crate::ccx::{CcxRun, HexMesh};
 use crate::contact::RigidSurface;
-use crate::model::Model;
 use crate::post::FieldView;
 use crate::quantity::Sample;
+use crate::setup::Model;
 use crate::values::{FacetValues, Location, PointValues};
 
 /// Share of a body's largest 3D peeq above which a point is in the plastic

@@ -27,7 +27,7 @@ use serde::Serialize;
 use crate::analysis::Solution;
 use crate::ccx::{CcxRun, deck::set_name};
 use crate::io::{IoError, Series, line_plot};
-use crate::model::Model;
+use crate::setup::Model;
 
 /// One impactor, both ways.
 #[derive(Debug, Clone, Serialize)]

@@ -28,8 +28,8 @@ use crate::analysis::Solution;
 use crate::ccx::{CcxRun, HexMesh, deck::set_name};
 use crate::io::csv_field as csv_text;
 use crate::io::{IoError, Series, line_plot};
-use crate::model::Model;
 use crate::quantity::{Quantity, Sample};
+use crate::setup::Model;
 
 pub mod field;
 pub mod history;

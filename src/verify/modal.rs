@@ -24,7 +24,7 @@ use serde::Serialize;
 
 use crate::analysis::Solution;
 use crate::ccx::{CcxRun, HexMesh, mesh::hex_shapes};
-use crate::model::Model;
+use crate::setup::Model;
 use crate::values::{Location, PointValues};
 
 /// One cufem mode and the CalculiX mode paired with it.

@@ -28,8 +28,8 @@ use serde::Serialize;
 use crate::analysis::Solution;
 use crate::ccx::{CcxRun, HexMesh};
 use crate::io::{IoError, Series, line_plot};
-use crate::model::Model;
 use crate::quantity::Quantity;
+use crate::setup::Model;
 
 /// One probe and displacement component over the whole history.
 #[derive(Debug, Clone, Serialize)]

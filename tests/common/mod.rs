@@ -36,7 +36,7 @@ pub fn tangent_vs_differences(s: &mut Structure, columns: &[(usize, usize)], h: 
 
 /// Parses and runs a model given as text; the run must converge.
 pub fn run(text: &str) -> cufem::analysis::Solution {
-    let model = cufem::model::Model::parse(text).unwrap();
+    let model = cufem::setup::Model::parse(text).unwrap();
     let sol = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
     assert!(sol.failure.is_none(), "{:?}", sol.failure);
     sol

@@ -5,7 +5,7 @@
 
 use super::Structure;
 use crate::assembly::NO_EQ;
-use crate::model::steps::{self, Item};
+use crate::setup::steps::{self, Item};
 use crate::solver::linear::LinearError;
 
 impl Structure<'_> {
@@ -25,7 +25,7 @@ impl Structure<'_> {
     /// with the tangent of the last evaluation: one factorization, in
     /// double precision (`LDLᵀ` if the tangent is indefinite, past a limit
     /// point), then triangular solves. The model has no non-zero prescribed
-    /// values nor force-controlled indenters (`model::path`), so no
+    /// values nor force-controlled indenters (`setup::path`), so no
     /// elimination nor bordering applies.
     pub(crate) fn solve_columns(&mut self, rhs: &mut [&mut [f64]]) -> Result<(), LinearError> {
         let Some((first, rest)) = rhs.split_first_mut() else { return Ok(()) };

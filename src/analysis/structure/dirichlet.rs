@@ -10,8 +10,8 @@
 //! unsymmetric rest of a model with friction (`solver::nonsymmetric`).
 
 use crate::assembly::Assembler;
-use crate::model::Model;
-use crate::model::steps::{self, Item};
+use crate::setup::Model;
+use crate::setup::steps::{self, Item};
 use crate::solver::nonsymmetric::NonSymmetric;
 
 /// The value prescribed at each constrained DOF (`None`: free) and the

@@ -5,7 +5,7 @@
 
 use crate::assembly::{AssemblyStats, At, Contribution, Forces, Inputs, Outputs, Phase, Tangent};
 use crate::materials::PointState;
-use crate::model::Model;
+use crate::setup::Model;
 use crate::voigt::Voigt;
 
 /// Internal forces, Gauss-point states and stresses of all bodies.

@@ -36,8 +36,8 @@ use super::dirichlet::Dirichlet;
 use super::system::LinearSystem;
 use crate::assembly::NO_EQ;
 use crate::contact::Contacts;
-use crate::model::Model;
-use crate::model::steps::{self, Item};
+use crate::setup::Model;
+use crate::setup::steps::{self, Item};
 use crate::solver::linear::LinearError;
 
 /// One force-controlled indenter.

@@ -5,7 +5,7 @@
 
 use crate::contact::Contacts;
 use crate::contact::assembly::SMALLEST_FRACTION;
-use crate::model::Model;
+use crate::setup::Model;
 
 /// Two stacked blocks (a node pair contact between them, normal +z on
 /// the upper one) under a flat rigid punch on the upper one's top.

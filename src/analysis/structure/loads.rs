@@ -3,8 +3,8 @@
 //! loads do not follow the deformation).
 
 use crate::assembly::{At, Contribution, Forces, Phase, Tangent};
-use crate::model::Model;
-use crate::model::steps::{self, Item};
+use crate::setup::Model;
+use crate::setup::steps::{self, Item};
 
 /// `λ`-scaled external loads.
 #[derive(Debug)]

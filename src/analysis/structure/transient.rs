@@ -7,7 +7,7 @@ use super::elements::Elements;
 use super::kinematics::Kinematics;
 use super::system::LinearSystem;
 use crate::assembly::{Assembler, Contribution};
-use crate::model::Model;
+use crate::setup::Model;
 
 /// The inertia part of a transient model: the mass matrix, `K₀` if
 /// stiffness-proportional damping needs it, the initial velocities on the

@@ -1,8 +1,8 @@
 //! The finite-strain measures of `gauss.vtu` beside the analysis's own.
 
 use super::Array;
-use crate::model::Model;
 use crate::post::{FieldView, Location};
+use crate::setup::Model;
 
 /// At every Gauss point (the order of [`super::write_gauss_vtu`]), from the
 /// deformation gradient `F = I + ∇u` of the displacement and the Cauchy

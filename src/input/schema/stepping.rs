@@ -1,0 +1,44 @@
+//! `[solver]` keys of what drives the increments: the path following's
+//! control and stop, the load-step control and the line search
+//! (`solver::step_control`, `solver::newton`).
+
+use serde::Deserialize;
+
+use super::Axis;
+use crate::input::ranges;
+
+/// `solver.step_control = { plastic_strain = 2e-3, contact_set = 0.2 }`:
+/// the targets per increment of the adaptive load stepping (at least one).
+#[derive(Debug, Clone, Copy, Default, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct StepControlFile {
+    /// Largest increment of the equivalent plastic strain at any Gauss point.
+    #[schemars(transform = ranges::PLASTIC_STRAIN_STEP.schema())]
+    pub plastic_strain: Option<f64>,
+    /// Largest fraction of the active contact points that open or close.
+    #[schemars(transform = ranges::FRACTION.schema())]
+    pub contact_set: Option<f64>,
+}
+
+/// `solver.control`: what drives the increments.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub enum Control {
+    /// λ prescribed increment by increment (load stepping; the default).
+    #[default]
+    Load,
+    /// λ an unknown, each increment a fixed length of the path (Crisfield).
+    ArcLength,
+}
+
+/// `solver.stop = { probe, component, beyond }`.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct StopFile {
+    /// Name of a `[[probes]]` entry.
+    pub probe: String,
+    /// The displacement component watched.
+    pub component: Axis,
+    /// The run ends once the component is at or beyond this (m, ≠ 0).
+    pub beyond: f64,
+}

@@ -1,0 +1,175 @@
+//! Bodies: cross-sections and beam axes from the model file, budgeted
+//! against the memory limit before each section is built, and their
+//! Gauss-point values (computed once, for validation and the analysis).
+
+use std::path::Path;
+
+use super::budget::Budget;
+use super::sections::Sections;
+use super::{Limits, Warning};
+use crate::bc::symmetry::Plane;
+use crate::elements::ElementError;
+use crate::input::schema::*;
+use crate::input::validate::division_parts;
+use crate::input::{ModelError, invalid};
+use crate::materials::Material;
+use crate::mesh::{BeamAxis, Body, CrossSection, Mesh};
+use crate::values::CellValues;
+
+/// `[[bodies]]`: the mesh and the Gauss-point values of every body (a
+/// distorted section element is rejected here).
+/// Files named by a section (gmsh) are relative to `base`.
+pub(super) fn mesh(
+    input: &Input<'_>,
+    materials: &mut Vec<Material>,
+    warnings: &mut Vec<Warning>,
+) -> Result<(Mesh, Vec<CellValues>), ModelError> {
+    let (file, analysis, base, planes) = (input.file, input.analysis, input.base, input.planes);
+    let mut bodies = Vec::new();
+    let mut budget = Budget::new(input.limits.max_memory);
+    for (i, b) in file.iter().enumerate() {
+        bodies.push(body(i, b, materials, &mut budget, base, planes, warnings)?);
+    }
+    let mesh = Mesh::new(bodies);
+    let cells = mesh
+        .bodies
+        .iter()
+        .enumerate()
+        .map(|(i, b)| {
+            let cell = CellValues::new(b).map_err(|e| match e {
+                ElementError::Distorted { element, det, .. } => invalid(
+                    format!("bodies[{i}].section"),
+                    format!("element {element} with Jacobian determinant {det:e}"),
+                    "convex quadrilaterals listed counter-clockwise in the x–z plane",
+                ),
+            })?;
+            // B-bar by default where the displacement-based element locks in
+            // elasticity (ν ≥ 0.45: tests/locking.rs); for plastic flow the
+            // choice stays the user's (docs/cross-check.md, docs/limitations.md)
+            let bbar = match file[i].formulation {
+                None => b.materials().iter().any(|&m| materials[m].anisotropic.is_none() && materials[m].poisson >= 0.45),
+                Some(Formulation::Standard) => false,
+                Some(Formulation::Bbar) => true,
+            };
+            if bbar && analysis.geometry == Some(Geometry::Nonlinear) {
+                // at finite strain B-bar projects the logarithmic dilatation
+                // ln J (crate::elements's fbar), which only the logarithmic
+                // strain has as its trace; a stress-free imperfection would
+                // need its own projected dilatation
+                let why =
+                    if file[i].formulation.is_some() { "\"bbar\"" } else { "unset (B-bar by default for ν ≥ 0.45)" };
+                if analysis.strain != Some(StrainMeasure::Logarithmic) {
+                    return Err(invalid(
+                        format!("bodies[{i}].formulation"),
+                        why,
+                        "\"standard\" with the Green–Lagrange strain (B-bar at finite strain needs analysis.strain = \"logarithmic\")",
+                    ));
+                }
+                if analysis.imperfection.is_some() {
+                    return Err(invalid(
+                        format!("bodies[{i}].formulation"),
+                        why,
+                        "\"standard\" with analysis.imperfection (B-bar of an imperfect shape is not implemented)",
+                    ));
+                }
+            }
+            Ok(if bbar { cell.with_bbar(b) } else { cell })
+        })
+        .collect::<Result<Vec<_>, ModelError>>()?;
+    Ok((mesh, cells))
+}
+
+/// What the bodies are built from.
+pub(super) struct Input<'a> {
+    /// `[[bodies]]`.
+    pub file: &'a [BodyFile],
+    /// `[analysis]` (the default formulation depends on it).
+    pub analysis: &'a AnalysisFile,
+    /// The memory limit.
+    pub limits: Limits,
+    /// The folder of relative file names.
+    pub base: &'a Path,
+    /// The symmetry planes (which cut the bodies).
+    pub planes: &'a [Plane],
+}
+
+pub(super) fn body(
+    i: usize,
+    b: &BodyFile,
+    materials: &mut Vec<Material>,
+    budget: &mut Budget,
+    base: &Path,
+    planes: &[Plane],
+    warnings: &mut Vec<Warning>,
+) -> Result<Body, ModelError> {
+    let key = format!("bodies[{i}]");
+    // the axis first: its size is needed to budget the body before the
+    // section mesh is built
+    let a = &b.axis;
+    let ak = format!("{key}.axis");
+    let beam = a.element.kind();
+    let axis_lines = division_parts(&ak, a.from, a.to, a.elements, a.ratio, a.lines.as_ref(), a.segments.as_ref())?;
+    let axis_elements = (axis_lines.len() - 1) as u64;
+    let section = Sections { key: &key, beam, axis_elements, budget }.section(&b.section, base)?;
+    // symmetry planes cut the body to the side kept; each must be a plane
+    // of symmetry of the body as written
+    let written = (!planes.is_empty()).then(|| (section.clone(), axis_lines.clone()));
+    let (section, axis_lines) = super::symmetry::cut(&key, &b.name, planes, section, axis_lines)?;
+    if let Some((whole, lines)) = &written {
+        let whole = super::mirror::Whole { key: &key, file: b, section: whole, lines, beam };
+        super::mirror::check(&whole, planes, materials, warnings)?;
+    }
+    connected(&format!("{key}.section"), &section)?;
+    let (material, element_materials) = super::zones::assign(&key, b, &section, materials)?;
+    Ok(Body {
+        name: b.name.clone(),
+        section,
+        axis: BeamAxis::from_lines(beam, &axis_lines),
+        material,
+        element_materials,
+        node_offset: 0,
+        element_offset: 0,
+    })
+}
+
+/// A section must be one region connected through shared element edges: a
+/// part touching the rest at a corner only (a hinge line once swept along
+/// the axis) or not at all is free to move against it, and the analysis
+/// used to fail at λ = 0 after its iterations.
+fn connected(sk: &str, section: &CrossSection) -> Result<(), ModelError> {
+    let parts = section.parts();
+    if parts.len() <= 1 {
+        return Ok(());
+    }
+    const SHOWN: usize = 4;
+    let mut list: Vec<String> = parts
+        .iter()
+        .take(SHOWN)
+        .map(|part| {
+            // a point of the part: the centre of its first element's nodes
+            let el = section.element(part[0]);
+            let mut c = [0.0; 2];
+            for &n in el {
+                c[0] += section.nodes[n][0] / el.len() as f64;
+                c[1] += section.nodes[n][1] / el.len() as f64;
+            }
+            let plural = if part.len() == 1 { "" } else { "s" };
+            format!(
+                "{} element{plural} (first: element {} at x = {}, z = {})",
+                part.len(),
+                part[0],
+                crate::numbers::short(c[0]),
+                crate::numbers::short(c[1])
+            )
+        })
+        .collect();
+    if parts.len() > SHOWN {
+        list.push(format!("and {} more", parts.len() - SHOWN));
+    }
+    Err(invalid(
+        sk,
+        format!("{} separate parts: {}", parts.len(), list.join("; ")),
+        "one region whose elements are connected through shared edges (elements touching only at a corner form a \
+         hinge, and a separate piece is free to move); model separate pieces as separate bodies",
+    ))
+}

@@ -1,0 +1,135 @@
+//! `shape = "laminate"`: a stack of plies over a rectangle, bottom first
+//! from `z0`, each ply `elements` section elements thick (layer-wise: every
+//! ply has its own elements, so the displacement field is continuous and
+//! its gradient free to jump at the interfaces). Each ply is the section
+//! region `ply1`, `ply2`, … and gets its material turned by its angle about
+//! z from the beam axis (applied by `zones`).
+
+use crate::input::schema::{LaminateFile, PlyFile};
+use crate::input::validate::{MAX_COUNT, division};
+use crate::input::{ModelError, bounds, invalid, ranges};
+use crate::mesh::{CrossSection, Region};
+use crate::shape::SectionElementKind;
+
+/// The section region of ply `k` (0-based): `ply{k+1}`.
+pub(super) fn region_name(k: usize) -> String {
+    format!("ply{}", k + 1)
+}
+
+/// The plies of `s` (key `sk`), checked: at least one, positive thickness,
+/// 1..=MAX_COUNT elements, a finite angle.
+fn plies<'a>(sk: &str, s: &'a LaminateFile) -> Result<&'a [PlyFile], ModelError> {
+    let plies = s.plies.as_deref().ok_or_else(|| invalid(format!("{sk}.plies"), "(missing)", PLIES))?;
+    check(sk, plies)?;
+    Ok(plies)
+}
+
+/// What `plies` takes.
+const PLIES: &str = "a list of at least one ply, bottom first: [{thickness = …, material = \"…\", angle = 0, \
+                     elements = 1}, …]";
+
+/// Checks a list of plies (key `sk`.plies): at least one, positive
+/// thickness, 1..=MAX_COUNT elements, a finite angle.
+pub(super) fn check(sk: &str, plies: &[PlyFile]) -> Result<(), ModelError> {
+    if plies.is_empty() {
+        return Err(invalid(format!("{sk}.plies"), "[] (an empty list: no ply)", PLIES));
+    }
+    for (k, p) in plies.iter().enumerate() {
+        let pk = format!("{sk}.plies[{k}]");
+        ranges::LENGTH.check(&format!("{pk}.thickness"), p.thickness, "the ply thickness in m, positive")?;
+        let n = p.elements.unwrap_or(crate::input::defaults::THROUGH);
+        if !(1..=MAX_COUNT).contains(&n) {
+            return Err(invalid(format!("{pk}.elements"), n, format!("an integer in 1..={MAX_COUNT}")));
+        }
+        let stack: f64 = plies.iter().map(|q| q.thickness).sum();
+        if p.thickness / (n as f64) < bounds::MIN_PLY_SHARE * stack {
+            return Err(invalid(
+                format!("{pk}.thickness"),
+                crate::numbers::number(p.thickness),
+                format!(
+                    "at least {} m with {n} element(s): each element at least {:e} of the stack's {} m (thinner, \
+                     the ply's stiffness through its thickness swamps its neighbours' and the solves lose the digits \
+                     Newton needs)",
+                    crate::numbers::limit(bounds::MIN_PLY_SHARE * stack * n as f64),
+                    bounds::MIN_PLY_SHARE,
+                    crate::numbers::limit(stack)
+                ),
+            ));
+        }
+        if let Some(a) = p.angle
+            && !ranges::ANGLE.contains(a)
+        {
+            return Err(invalid(format!("{pk}.angle"), a, format!("an angle in degrees {}", ranges::ANGLE)));
+        }
+    }
+    Ok(())
+}
+
+/// The z lines of the stack (element boundaries) and each ply's element
+/// rows `(first, count)`.
+fn z_lines(z0: f64, plies: &[PlyFile]) -> (Vec<f64>, Vec<(usize, usize)>) {
+    let mut lines = vec![z0];
+    let mut rows = Vec::new();
+    let mut bottom = z0;
+    for p in plies {
+        let n = p.elements.unwrap_or(crate::input::defaults::THROUGH);
+        rows.push((lines.len() - 1, n));
+        for k in 1..=n {
+            lines.push(if k == n { bottom + p.thickness } else { bottom + p.thickness * k as f64 / n as f64 });
+        }
+        bottom += p.thickness;
+    }
+    (lines, rows)
+}
+
+/// The section of `shape = "laminate"`, with one region per ply.
+pub(super) fn section(sk: &str, kind: SectionElementKind, s: &LaminateFile) -> Result<CrossSection, ModelError> {
+    let x = s.x.as_ref().ok_or_else(|| {
+        invalid(
+            format!("{sk}.x"),
+            "(missing)",
+            "a division of the width along x, e.g. {from = 0.0, to = 0.01, elements = 2}",
+        )
+    })?;
+    let xl = division(&format!("{sk}.x"), x)?;
+    let z0 = bounds::within(
+        &format!("{sk}.z0"),
+        s.z0.unwrap_or(crate::input::defaults::Z0),
+        -bounds::MAX_COORD,
+        bounds::MAX_COORD,
+        "the bottom of the stack in m",
+    )?;
+    let plies = plies(sk, s)?;
+    let (zl, rows) = z_lines(z0, plies);
+    let mut section = CrossSection::rectangle(kind, &xl, &zl).map_err(|e| match e {
+        crate::mesh::MeshError::Invalid { value, allowed, .. } => invalid(format!("{sk}.plies"), value, allowed),
+    })?;
+    let nx = xl.len() - 1;
+    section.regions = rows
+        .iter()
+        .enumerate()
+        .map(|(k, &(first, n))| Region {
+            name: region_name(k),
+            elements: (first * nx..(first + n) * nx).collect(),
+            normal: None,
+        })
+        .collect();
+    Ok(section)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn plies_stack_from_z0_with_their_rows() {
+        let ply = |t: f64, n: usize| PlyFile { thickness: t, material: "m".into(), angle: None, elements: Some(n) };
+        let (lines, rows) = z_lines(-0.5, &[ply(0.25, 1), ply(0.5, 2), ply(0.25, 1)]);
+        let expect = [-0.5, -0.25, 0.0, 0.25, 0.5];
+        assert_eq!(lines.len(), expect.len());
+        for (a, b) in lines.iter().zip(expect) {
+            assert!((a - b).abs() < 1e-15);
+        }
+        assert_eq!(rows, vec![(0, 1), (1, 2), (3, 1)]);
+    }
+}

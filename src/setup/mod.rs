@@ -1,0 +1,369 @@
+//! The model: reading a TOML model file and validating it into typed,
+//! resolved data (materials, meshes, node sets, loads, contacts, outputs).
+//!
+//! Validation never panics on user input: every error names the model-file
+//! key (as a path such as `bodies[1].section.thickness`), the offending
+//! value and what is allowed. The file format is documented key by key in
+//! `docs/model-format.md`.
+
+pub mod analysis;
+mod bodies;
+mod budget;
+mod contacts;
+mod indenters;
+mod laminate;
+mod material;
+mod mirror;
+mod overlap;
+mod path;
+mod preprocess;
+mod refine;
+mod restraint;
+mod sections;
+pub mod steps;
+mod surface_contact;
+mod symmetry;
+pub mod transient;
+mod zones;
+
+use std::path::Path;
+
+use crate::bc::{Constraint, Load};
+use crate::contact::{Indenter, PairContact};
+pub use crate::input::ModelError;
+use crate::input::schema::{self, *};
+use crate::input::{OutputSettings, Recovery, Reference, SolverSettings, defaults, invalid};
+use crate::kinematics::Kinematics;
+use crate::materials::Material;
+use crate::mesh::{Body, Mesh};
+use crate::quantity::Quantity;
+use crate::values::{CellValues, Location};
+pub use analysis::{BucklingSettings, Imperfection, ModalSettings};
+
+pub use refine::{AdaptSettings, BodyPlan, MAX_BUDGET, MeshPlan, SectionPlan};
+
+/// Limits applied while reading a model.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Limits {
+    /// Largest memory an analysis may need (bytes); `None`: no limit.
+    pub max_memory: Option<u64>,
+}
+
+impl Limits {
+    /// The memory available on this machine (see [`crate::size::available_memory`]).
+    pub fn machine() -> Self {
+        Self { max_memory: crate::size::available_memory() }
+    }
+
+    /// No limit.
+    pub fn none() -> Self {
+        Self { max_memory: None }
+    }
+}
+
+/// A probe point.
+#[derive(Debug, Clone)]
+pub struct Probe {
+    /// Name.
+    pub name: String,
+    /// Point (m).
+    pub point: [f64; 3],
+    /// Body to evaluate in (`None`: the first body containing the point).
+    pub body: Option<usize>,
+    /// The elements holding the point (several on an element boundary),
+    /// located once during preprocessing; for a point in the part a
+    /// symmetry plane leaves out, those holding its image.
+    pub locations: Vec<Location>,
+}
+
+/// A straight line sampled at equally spaced points.
+#[derive(Debug, Clone)]
+pub struct Line {
+    /// Name (also the CSV file stem).
+    pub name: String,
+    /// Start point (m).
+    pub from: [f64; 3],
+    /// End point (m).
+    pub to: [f64; 3],
+    /// Number of samples (≥ 2).
+    pub points: usize,
+    /// Body (`None`: the first body containing each point).
+    pub body: Option<usize>,
+    /// Quantities plotted to PNG.
+    pub plot: Vec<Quantity>,
+}
+
+/// A validated model.
+#[derive(Debug, Clone)]
+pub struct Model {
+    /// Title.
+    pub title: String,
+    /// Description.
+    pub description: String,
+    /// Materials.
+    pub materials: Vec<Material>,
+    /// Bodies and node numbering.
+    pub mesh: Mesh,
+    /// Gauss-point values of every body (built once, used by the analysis
+    /// and post-processing).
+    pub cells: Vec<CellValues>,
+    /// Displacement constraints.
+    pub constraints: Vec<Constraint>,
+    /// Loads (nodal forces at load factor 1).
+    pub loads: Vec<Load>,
+    /// Rigid indenters.
+    pub indenters: Vec<Indenter>,
+    /// Deformable contacts.
+    pub contacts: Vec<PairContact>,
+    /// Probes.
+    pub probes: Vec<Probe>,
+    /// Lines.
+    pub lines: Vec<Line>,
+    /// Published values.
+    pub references: Vec<Reference>,
+    /// Solver controls.
+    pub solver: SolverSettings,
+    /// The load history: at least one step ([`steps`]).
+    pub steps: Vec<steps::Step>,
+    /// Output controls.
+    pub output: OutputSettings,
+    /// What validation found suspicious but legal.
+    pub warnings: Vec<Warning>,
+    /// `[adapt]`: refine and solve again (`crate::adapt`); `None` without the table.
+    pub adapt: Option<AdaptSettings>,
+    /// The divisions adaptive refinement may change ([`MeshPlan`]).
+    pub plan: MeshPlan,
+    /// `analysis.geometry` and `analysis.strain`: small strain, or total Lagrangian (Green–Lagrange or logarithmic strain).
+    pub kinematics: Kinematics,
+    /// `analysis.type = "buckling"`: the linear buckling analysis after the
+    /// static solution; `None` for a static analysis.
+    pub buckling: Option<BucklingSettings>,
+    /// `analysis.imperfection`: a scaled buckling mode as the stress-free
+    /// initial shape (nonlinear geometry); `None` for the perfect shape.
+    pub imperfection: Option<Imperfection>,
+    /// `analysis.type = "modal"`: the natural frequencies and modes about
+    /// the end of the static analysis; `None` otherwise.
+    pub modal: Option<ModalSettings>,
+    /// `analysis.type = "transient"`: implicit dynamics over the load
+    /// history in time; `None` for a static analysis.
+    pub transient: Option<crate::dynamics::TransientSettings>,
+    /// Planes of mirror symmetry (`[[symmetry]]`; none in a full model) and
+    /// which items lie across them.
+    pub symmetry: crate::bc::symmetry::Symmetry,
+}
+
+/// Something suspicious but legal in a model (printed by `check` and `run`,
+/// stored in `summary.json`).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Warning {
+    /// Model-file key concerned.
+    pub key: String,
+    /// What is suspicious.
+    pub message: String,
+}
+
+impl std::fmt::Display for Warning {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{}: {}", self.key, self.message)
+    }
+}
+
+impl Model {
+    /// True if any contact has Coulomb friction (its tangent is unsymmetric).
+    pub fn has_friction(&self) -> bool {
+        self.indenters.iter().any(|i| i.friction.is_some()) || self.contacts.iter().any(|c| c.friction.is_some())
+    }
+
+    /// Reads and validates a model file.
+    pub fn from_file(path: &Path) -> Result<Self, ModelError> {
+        Self::from_file_with(path, Limits::machine())
+    }
+
+    /// Reads and validates a model file under explicit limits.
+    pub fn from_file_with(path: &Path, limits: Limits) -> Result<Self, ModelError> {
+        let (text, base) = crate::input::read_text(path)?;
+        Self::parse_in(&text, limits, &base)
+    }
+
+    /// Parses and validates model-file text, refusing a model that cannot
+    /// fit in this machine's available memory.
+    pub fn parse(text: &str) -> Result<Self, ModelError> {
+        Self::parse_with(text, Limits::machine())
+    }
+
+    /// Parses and validates model-file text under explicit limits.
+    /// Files named in the model (gmsh sections) are relative to the current folder.
+    pub fn parse_with(text: &str, limits: Limits) -> Result<Self, ModelError> {
+        Self::parse_in(text, limits, Path::new("."))
+    }
+
+    /// Parses and validates model-file text whose relative file paths
+    /// (gmsh sections) start at the folder `base`.
+    pub fn parse_in(text: &str, limits: Limits, base: &Path) -> Result<Self, ModelError> {
+        let file = crate::input::parse(text)?;
+        build(file, limits, base)
+    }
+
+    /// Parses and validates model-file text with its divisions replaced by
+    /// `plan` (a refinement of the plan of the same text, e.g. by `crate::adapt`).
+    pub fn parse_planned(text: &str, limits: Limits, base: &Path, plan: &MeshPlan) -> Result<Self, ModelError> {
+        let mut file = crate::input::parse(text)?;
+        refine::apply(&mut file, plan)?;
+        build(file, limits, base)
+    }
+
+    /// True if the problem is linear (no body yields, no contact, small strain).
+    pub fn is_linear(&self) -> bool {
+        is_linear(&self.mesh, &self.materials, &self.indenters, &self.contacts) && !self.kinematics.is_nonlinear()
+    }
+
+    /// The quantities of this model's CSV files, VTU and probes: every
+    /// [`Quantity`], the failure indices only if a material has strengths.
+    pub fn quantities(&self) -> Vec<Quantity> {
+        Quantity::all_for(self.materials.iter().any(|m| m.strengths.is_some()))
+    }
+
+    /// `analysis.type` as the file writes it: `"static"`, `"buckling"`,
+    /// `"modal"` or `"transient"`.
+    pub fn analysis_type(&self) -> &'static str {
+        analysis::Kind::of(self.buckling.is_some(), self.modal.is_some(), self.transient.is_some()).word()
+    }
+
+    /// Number of degrees of freedom (3 per node, constrained ones included).
+    pub fn n_dofs(&self) -> usize {
+        self.mesh.n_dofs()
+    }
+}
+
+/// The stiffness scale of a body for its penalties and bounds: the largest
+/// Young's modulus of its materials.
+pub(crate) fn body_young(body: &Body, materials: &[Material]) -> f64 {
+    body.materials().iter().map(|&m| materials[m].young).fold(0.0, f64::max)
+}
+
+fn is_linear(mesh: &Mesh, materials: &[Material], indenters: &[Indenter], contacts: &[PairContact]) -> bool {
+    mesh.bodies.iter().all(|b| b.materials().iter().all(|&m| !materials[m].is_plastic()))
+        && indenters.is_empty()
+        && contacts.is_empty()
+}
+
+fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelError> {
+    crate::input::validate::names(&file)?;
+    let mut materials = material::materials(&file.materials)?;
+    let planes = symmetry::planes(&file.symmetry)?;
+    let mut warnings = Vec::new();
+    let bodies = bodies::Input { file: &file.bodies, analysis: &file.analysis, limits, base, planes: &planes };
+    let (mesh, cells) = bodies::mesh(&bodies, &mut materials, &mut warnings)?;
+    let planes = symmetry::placed(planes, &mesh)?;
+    let kinematics = analysis::kinematics(&file.analysis)?;
+    let plan = refine::plan(&file)?;
+    let adapt = refine::adapt_settings(file.adapt.as_ref())?;
+    let (constraints, n_user) = preprocess::constraints(&file.constraints, &mesh, &planes, &mut warnings)?;
+    let loads = preprocess::loads(&file.loads, &mesh, &materials, &planes, &mut warnings)?;
+    let transient = file.analysis.kind == Some(schema::AnalysisType::Transient);
+    let indenters = indenters::indenters(&file.indenters, &mesh, &materials, transient, &planes, &mut warnings)?;
+    let contacts = contacts::pair_contacts(&file.contacts, &mesh, &materials, &planes, &mut warnings)?;
+    if kinematics.is_nonlinear()
+        && let Some((k, c)) = contacts.iter().enumerate().find(|(_, c)| c.surface.is_none() && c.friction.is_some())
+    {
+        // node pairs in the current configuration are frictionless (contact::nodal_normal)
+        return Err(invalid(
+            format!("contacts[{k}].friction"),
+            c.friction.as_ref().map_or(0.0, |f| f.coefficient),
+            "no friction on node-to-node contact with analysis.geometry = \"nonlinear\" (method = \"surface\" \
+             takes friction there, with the current normal; docs/contact.md)",
+        ));
+    }
+    // in a transient analysis the mass holds a free body: M/(β Δt²) in the
+    // tangent keeps every time step's system positive definite
+    if !transient {
+        restraint::check(&mesh, &constraints, &indenters, &contacts)?;
+    }
+    let probes = preprocess::probes(&file.probes, &mesh, &planes)?;
+    let lines = preprocess::lines(&file.lines, &mesh, &planes, &mut warnings)?;
+    let symmetry = symmetry::resolve(planes, &mesh, (&constraints, n_user), &indenters, &contacts);
+    let references = crate::input::validate::references(&file.references, &file.probes)?;
+    let linear = is_linear(&mesh, &materials, &indenters, &contacts) && !kinematics.is_nonlinear();
+    let mut solver = crate::input::validate::solver_settings(&file.solver, linear)?;
+    let loading = path::Loading {
+        steps: &file.steps,
+        constraints: &constraints,
+        loads: &loads,
+        indenters: &indenters,
+        contacts: &contacts,
+        probes: &probes,
+    };
+    solver.path = path::settings(&file.solver, &solver, &loading)?;
+    let output = crate::input::validate::output(&file.output);
+    if output.recovery == Recovery::Projection
+        && let Some(b) = mesh.bodies.iter().position(|b| b.is_layered())
+    {
+        return Err(invalid(
+            "output.recovery",
+            "\"projection\"",
+            format!(
+                "\"element\" with a layered body (bodies[{b}] has several materials: a continuous projection \
+                 would smooth the stress jumps between its plies and zones)"
+            ),
+        ));
+    }
+    if mesh.bodies.iter().any(|b| b.is_layered()) {
+        warnings.push(Warning {
+            key: "bodies".into(),
+            message: "layered bodies: no error estimate (its patch recovery would count the stress jumps between \
+                      plies as error)"
+                .into(),
+        });
+    }
+    let item_names = steps::ItemNames {
+        indenters: indenters.iter().map(|i| i.name.as_str()).collect(),
+        constraints: constraints.iter().map(|c| c.name.as_str()).collect(),
+        loads: loads.iter().map(|l| l.name.as_str()).collect(),
+    };
+    let mut steps = steps::steps(&file.steps, &item_names, &solver.steps)?;
+    let parts = analysis::Parts {
+        mesh: &mesh,
+        materials: &materials,
+        constraints: &constraints,
+        indenters: &indenters,
+        contacts: &contacts,
+        steps: file.steps.len(),
+    };
+    let buckling = analysis::buckling(&file.analysis, &parts)?;
+    let imperfection = analysis::imperfection(&file.analysis, &parts)?;
+    let modal = analysis::modal(&file.analysis, &parts)?;
+    let transient = transient::transient(&file, &mut steps, &parts, solver.path.is_some(), &mut warnings)?;
+    if let Some(t) = &transient {
+        symmetry::check_velocities(&t.initial_velocities, &symmetry.planes, &mesh)?;
+    }
+    let kind = analysis::Kind::of(buckling.is_some(), modal.is_some(), transient.is_some());
+    analysis::combinations(kind, solver.path.is_some(), adapt.is_some())?;
+    let modes = buckling.map(|b| b.modes).or(modal.map(|m| m.modes));
+    warnings.extend(analysis::eigen_warnings(modes, &mesh, &constraints, !symmetry.planes.is_empty()));
+    Ok(Model {
+        title: file.title.unwrap_or_else(|| defaults::TITLE.into()),
+        description: file.description.unwrap_or_else(|| defaults::DESCRIPTION.into()),
+        materials,
+        mesh,
+        cells,
+        constraints,
+        loads,
+        indenters,
+        contacts,
+        probes,
+        lines,
+        references,
+        solver,
+        steps,
+        output,
+        warnings,
+        adapt,
+        plan,
+        kinematics,
+        buckling,
+        imperfection,
+        modal,
+        transient,
+        symmetry,
+    })
+}

@@ -1,0 +1,243 @@
+//! The mesh plan of a model — what adaptive refinement may change — and
+//! the `[adapt]` table.
+//!
+//! A [`MeshPlan`] holds, per body, the element boundaries of the beam axis
+//! and of a rectangle section's x and z divisions, and for the other
+//! sections how often their element counts were doubled. A model is
+//! rebuilt on a changed plan from its own model file
+//! ([`super::Model::parse_planned`]): the plan replaces the divisions of
+//! the file (as `lines`) before validation, so constraints, loads,
+//! indenters, probes and lines — geometric selections — are resolved anew
+//! on the refined mesh and keep their names.
+//!
+//! What a plan can refine per section shape:
+//!
+//! * `rectangle`: each x and z interval separately ([`SectionPlan::Grid`]);
+//! * `tube`, the parametric profiles, `circular_tube`, `circle`: the whole
+//!   section, every in-plane element count doubled (`around`, `along_*`;
+//!   for `circle` also `through`, which sets the O-grid's core); the
+//!   through-thickness count of a wall stays ([`SectionPlan::Doubled`]);
+//! * `quads`, `gmsh`: nothing — the section is kept as given
+//!   ([`SectionPlan::Fixed`]).
+//!
+//! The axis is always refined interval by interval.
+
+use crate::input::schema::*;
+use crate::input::validate::division;
+use crate::input::{ModelError, defaults, invalid, ranges};
+
+/// Default `[adapt] tolerance`: relative error in the energy norm.
+pub const DEFAULT_TOLERANCE: f64 = defaults::ADAPT_TOLERANCE;
+/// Default `[adapt] max_dof`.
+pub const DEFAULT_MAX_DOF: usize = defaults::ADAPT_MAX_DOF;
+/// Default `[adapt] max_cycles`: refinements after the model's own mesh.
+pub const DEFAULT_MAX_CYCLES: usize = defaults::ADAPT_MAX_CYCLES;
+/// Default `[adapt] fraction`: Dörfler's bulk parameter θ.
+pub const DEFAULT_FRACTION: f64 = defaults::ADAPT_FRACTION;
+pub use crate::input::ranges::{MAX_BUDGET, MAX_CYCLES};
+
+/// Validated `[adapt]`: refine and solve again until the estimate is below
+/// `tolerance` (`crate::adapt`).
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct AdaptSettings {
+    /// Stop when the relative error estimate (energy norm) is below it.
+    pub tolerance: f64,
+    /// Never solve a mesh with more degrees of freedom.
+    pub max_dof: usize,
+    /// Largest number of refinements after the model's own mesh.
+    pub max_cycles: usize,
+    /// Dörfler's θ: the marked elements hold at least this share of `Σ η_e²`.
+    pub fraction: f64,
+}
+
+impl Default for AdaptSettings {
+    fn default() -> Self {
+        Self {
+            tolerance: DEFAULT_TOLERANCE,
+            max_dof: DEFAULT_MAX_DOF,
+            max_cycles: DEFAULT_MAX_CYCLES,
+            fraction: DEFAULT_FRACTION,
+        }
+    }
+}
+
+/// `[adapt]`, if the file has one.
+pub(super) fn adapt_settings(file: Option<&AdaptFile>) -> Result<Option<AdaptSettings>, ModelError> {
+    let Some(a) = file else { return Ok(None) };
+    let d = AdaptSettings::default();
+    let tolerance = a.tolerance.unwrap_or(d.tolerance);
+    if !ranges::ADAPT_TOLERANCE.contains(tolerance) {
+        return Err(invalid(
+            "adapt.tolerance",
+            tolerance,
+            "a relative error in the energy norm between 0 and 1 (e.g. 0.05)",
+        ));
+    }
+    let max_dof = a.max_dof.unwrap_or(d.max_dof);
+    if !ranges::ADAPT_MAX_DOF.contains_count(max_dof) {
+        return Err(invalid("adapt.max_dof", max_dof, format!("an integer from 1 to {}", MAX_BUDGET)));
+    }
+    let max_cycles = a.max_cycles.unwrap_or(d.max_cycles);
+    if !ranges::ADAPT_MAX_CYCLES.contains_count(max_cycles) {
+        return Err(invalid(
+            "adapt.max_cycles",
+            max_cycles,
+            format!("an integer from 0 to {MAX_CYCLES} (refinements after the model's own mesh)"),
+        ));
+    }
+    let fraction = a.fraction.unwrap_or(d.fraction);
+    if !ranges::FRACTION.contains(fraction) {
+        return Err(invalid(
+            "adapt.fraction",
+            fraction,
+            "a share of the squared estimate greater than 0 and at most 1 (Dörfler's θ, e.g. 0.5)",
+        ));
+    }
+    Ok(Some(AdaptSettings { tolerance, max_dof, max_cycles, fraction }))
+}
+
+/// What adaptive refinement may change in a model's meshes (module docs).
+#[derive(Debug, Clone, PartialEq)]
+pub struct MeshPlan {
+    /// One entry per body, in model-file order.
+    pub bodies: Vec<BodyPlan>,
+}
+
+/// The refinable divisions of one body.
+#[derive(Debug, Clone, PartialEq)]
+pub struct BodyPlan {
+    /// Element boundaries along the beam axis (m), increasing.
+    pub axis: Vec<f64>,
+    /// The section.
+    pub section: SectionPlan,
+}
+
+/// How a body's section may be refined.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SectionPlan {
+    /// A rectangle: element boundaries along x and z (m). Section element
+    /// `j · (x.len() − 1) + i` spans x interval `i` and z interval `j`
+    /// ([`crate::mesh::CrossSection::rectangle`]).
+    Grid {
+        /// Boundaries along x.
+        x: Vec<f64>,
+        /// Boundaries along z.
+        z: Vec<f64>,
+    },
+    /// A parametric section: its in-plane element counts doubled `times`
+    /// times relative to the model file.
+    Doubled {
+        /// The section's `shape`.
+        shape: &'static str,
+        /// How often the counts were doubled.
+        times: u32,
+    },
+    /// A section that is kept as given (`quads`, `gmsh`).
+    Fixed {
+        /// The section's `shape`.
+        shape: &'static str,
+    },
+}
+
+/// The plan of the meshes the file describes (divisions already validated).
+pub(super) fn plan(file: &ModelFile) -> Result<MeshPlan, ModelError> {
+    let mut bodies = Vec::with_capacity(file.bodies.len());
+    for (i, b) in file.bodies.iter().enumerate() {
+        let a = &b.axis;
+        let axis = crate::input::validate::division_parts(
+            &format!("bodies[{i}].axis"),
+            a.from,
+            a.to,
+            a.elements,
+            a.ratio,
+            a.lines.as_ref(),
+            a.segments.as_ref(),
+        )?;
+        let sk = format!("bodies[{i}].section");
+        let section = match &b.section {
+            SectionFile::Rectangle(r) => match (&r.x, &r.z) {
+                (Some(x), Some(z)) => {
+                    SectionPlan::Grid { x: division(&format!("{sk}.x"), x)?, z: division(&format!("{sk}.z"), z)? }
+                }
+                _ => return Err(invalid(sk, "(no x or z division)", "a rectangle with both `x` and `z`")),
+            },
+            SectionFile::Quads(_) => SectionPlan::Fixed { shape: "quads" },
+            SectionFile::Gmsh(_) => SectionPlan::Fixed { shape: "gmsh" },
+            s => SectionPlan::Doubled { shape: s.shape(), times: 0 },
+        };
+        bodies.push(BodyPlan { axis, section });
+    }
+    Ok(MeshPlan { bodies })
+}
+
+fn lines_division(lines: &[f64]) -> DivisionFile {
+    DivisionFile { lines: Some(lines.to_vec()), ..DivisionFile::default() }
+}
+
+/// Replaces the divisions of `file` by those of `plan` (a plan of another
+/// file, with other bodies, is refused).
+pub(super) fn apply(file: &mut ModelFile, plan: &MeshPlan) -> Result<(), ModelError> {
+    if plan.bodies.len() != file.bodies.len() {
+        return Err(invalid(
+            "bodies",
+            format!("{} bodies", file.bodies.len()),
+            format!("the {} bodies of the refined model's plan", plan.bodies.len()),
+        ));
+    }
+    for (b, p) in file.bodies.iter_mut().zip(&plan.bodies) {
+        let a = &mut b.axis;
+        (a.from, a.to, a.elements, a.ratio, a.segments) = (None, None, None, None, None);
+        a.lines = Some(p.axis.clone());
+        match (&mut b.section, &p.section) {
+            (SectionFile::Rectangle(r), SectionPlan::Grid { x, z }) => {
+                r.x = Some(lines_division(x));
+                r.z = Some(lines_division(z));
+            }
+            (s, SectionPlan::Doubled { times, .. }) => double(s, 1usize.checked_shl(*times).unwrap_or(usize::MAX)),
+            (_, SectionPlan::Fixed { .. }) => {}
+            (s, _) => {
+                return Err(invalid("bodies.section", s.shape(), "the section shape of the refined model's plan"));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// Multiplies the in-plane element counts of a parametric section by `f`
+/// (defaults made explicit; validation then checks the results).
+fn double(s: &mut SectionFile, f: usize) {
+    let times = |v: Option<usize>, default: usize| Some(v.unwrap_or(default).saturating_mul(f));
+    match s {
+        SectionFile::Tube(t) => {
+            // `around = 4 + 4k`: k elements per side
+            t.around = t.around.map(|n| 4 + n.saturating_sub(4).saturating_mul(f));
+            t.along_x = t.along_x.map(|n| n.saturating_mul(f));
+            t.along_z = t.along_z.map(|n| n.saturating_mul(f));
+        }
+        SectionFile::IBeam(p) | SectionFile::Channel(p) | SectionFile::ZSection(p) | SectionFile::Angle(p) => {
+            p.along_flange = times(p.along_flange, defaults::ALONG_FLANGE);
+            p.along_web = times(p.along_web, defaults::ALONG_WEB);
+        }
+        SectionFile::Hat(h) => {
+            h.along_flange = times(h.along_flange, defaults::ALONG_FLANGE);
+            h.along_web = times(h.along_web, defaults::ALONG_WEB);
+            h.along_lip = times(h.along_lip, defaults::ALONG_LIP);
+        }
+        SectionFile::Box(b) => {
+            b.along_flange = times(b.along_flange, defaults::ALONG_FLANGE);
+            b.along_web = times(b.along_web, defaults::ALONG_WEB);
+        }
+        SectionFile::CircularTube(c) => c.around = times(c.around, defaults::AROUND),
+        SectionFile::Circle(c) => {
+            let around = c.around.unwrap_or(defaults::AROUND);
+            c.through = times(c.through, (around / 8).max(1));
+            c.around = times(Some(around), around);
+        }
+        SectionFile::Laminate(l) => {
+            for p in l.plies.iter_mut().flatten() {
+                p.elements = times(p.elements, defaults::THROUGH);
+            }
+        }
+        SectionFile::Rectangle(_) | SectionFile::Quads(_) | SectionFile::Gmsh(_) => {}
+    }
+}

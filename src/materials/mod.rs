@@ -19,6 +19,7 @@
 
 pub mod anisotropic;
 pub mod cohesive;
+pub mod damage;
 pub mod failure;
 mod hardening;
 pub mod kinematic;

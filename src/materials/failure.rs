@@ -138,6 +138,15 @@ impl Strengths {
         (fibre, matrix)
     }
 
+    /// Hashin's strength ratios `[fibre, matrix]` of a stress in the material
+    /// axes: the load multipliers at which the active fibre and matrix modes
+    /// reach 1 (∞ for a mode that never fails). The onset measure of the ply
+    /// damage law ([`super::damage`]).
+    pub fn hashin_ratios(&self, material_stress: &[f64; 6]) -> [f64; 2] {
+        let (fibre, matrix) = self.hashin(material_stress);
+        [fibre.ratio(), matrix.ratio()]
+    }
+
     /// The indices of a stress given in the material axes (tensor shears).
     pub fn indices(&self, material_stress: &[f64; 6]) -> Indices {
         let s = material_stress;

@@ -18,6 +18,8 @@
 //! Strains and stresses follow [`crate::voigt`] (engineering shear strains).
 
 pub mod anisotropic;
+pub mod cohesive;
+pub mod damage;
 pub mod failure;
 mod hardening;
 pub mod kinematic;

@@ -1,0 +1,292 @@
+//! Progressive damage of a ply (intralaminar): Hashin onset, linear
+//! softening per mode regularised by the crack band, and the damaged
+//! orthotropic stiffness (Lapczyk & Hurtado 2007, *Compos. A* 38:2333, as
+//! Abaqus's Hashin damage, in 3D; Matzenmiller, Lubliner & Taylor 1995,
+//! *Mech. Mater.* 20:125; Bažant & Oh 1983, *Mater. Struct.* 16:155).
+//!
+//! A pure point function in the ply's material axes (1 fibre, 2 in-plane
+//! transverse, 3 normal; [`crate::voigt`] order and engineering shears):
+//! `(strain ε_m, crack-band lengths, committed state) → (stress, secant
+//! stiffness, new state)`. The caller rotates the strain in and the stress
+//! out ([`super::anisotropic::Frame`]) and commits the state only after an
+//! increment has converged.
+//!
+//! * **Modes** `I ∈ {FT, FC, MT, MC}` (fibre tension and compression,
+//!   matrix tension and compression). Onset when Hashin's strength ratio of
+//!   the undamaged ("effective") stress `σ̃ = C⁰ ε_m` of the active fibre or
+//!   matrix mode falls to 1 ([`super::Strengths::hashin_ratios`]); the
+//!   onset measure `φ = 1/R` is homogeneous of degree one in the strain.
+//! * **Equivalent displacement and stress** of a mode, from the strain
+//!   components that drive it: FT `e = √(⟨ε11⟩² + γ12² + γ13²)`, FC
+//!   `e = ⟨−ε11⟩`, MT `e = √(⟨ε22⟩² + ⟨ε33⟩² + γ12² + γ13² + γ23²)`, MC the
+//!   same with `⟨−ε22⟩, ⟨−ε33⟩`; `s` the matching work conjugate `σ̃·ε/e`;
+//!   `δ = L e` with `L` the crack-band length (fibre modes `band[0]`,
+//!   matrix modes `band[1]`). At the first onset the state records
+//!   `δ0 = δ/φ`, `σ0 = s/φ` (where the path crossed the surface) and
+//!   `δf = 2 G_I/σ0`.
+//! * **Damage** `d_I = δf (κ − δ0)/(κ (δf − δ0))`, `κ` the largest `δ`
+//!   reached after onset (never smaller: damage does not heal), at most
+//!   `max_damage`. The energy dissipated per unit volume by a complete
+//!   softening is `G_I/L`: per unit crack area `G_I`, whatever the mesh.
+//! * **Stiffness**: `d_f` the active fibre mode's damage (`σ̃11 ≥ 0`: FT,
+//!   else FC), `d_m` the active matrix mode's (`σ̃22 + σ̃33 ≥ 0`: MT, else
+//!   MC), `d_s = 1 − Π_I (1 − d_I)`; the compliance's diagonal divided by
+//!   `1 − d_f` (E1), `1 − d_m` (E2, E3) and `1 − d_s` (the shear moduli), the
+//!   Poisson terms kept, so a closed crack carries compression again. The
+//!   tangent returned is the secant `C_d = S(d)⁻¹` (symmetric, positive
+//!   definite).
+//! * **Snap-back inside a point**: the law needs `δf > δ0`, i.e.
+//!   `L < 2 E G_I/X²` ([`PlyDamage::longest_band`]). A longer band lowers the
+//!   mode's strength by `√(L_max/L)` (Bažant & Oh), so that the band's
+//!   elastic energy at onset stays below `G_I`, and marks the mode in
+//!   [`DamageState::reduced`].
+//! * **Dissipation** per mode, from the energy release rates of the
+//!   stiffness variables `Y_f = ½ σ11²/((1 − d_f)² E1)`,
+//!   `Y_m = ½ (σ22²/E2 + σ33²/E3)/(1 − d_m)²`,
+//!   `Y_s = ½ Σ τ²/((1 − d_s)² G)`: each update adds
+//!   `(Ȳ_f or Ȳ_m + Ȳ_s ∂d_s/∂d_I) Δd_I` with the trapezoidal means `Ȳ`, so
+//!   the work of any closed strain cycle equals the dissipated energy to
+//!   the rule's second order.
+
+use thiserror::Error;
+
+use super::anisotropic::Orthotropic;
+use super::failure::Strengths;
+use crate::voigt::{Matrix6, Voigt, mat_vec};
+
+/// The four damage modes, in the order of every `[_; 4]` of this module.
+pub const MODES: [&str; 4] = ["fibre_tension", "fibre_compression", "matrix_tension", "matrix_compression"];
+
+/// Fibre tension, fibre compression, matrix tension, matrix compression.
+const FT: usize = 0;
+const FC: usize = 1;
+const MT: usize = 2;
+const MC: usize = 3;
+
+/// A ply damage law: elastic constants, strengths and the fracture energy of
+/// each mode.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct PlyDamage {
+    elastic: Orthotropic,
+    stiffness: Matrix6,
+    strengths: Strengths,
+    toughness: [f64; 4],
+    max_damage: f64,
+}
+
+/// A damage law that cannot be used, by the key of its constant.
+#[derive(Debug, Error, PartialEq)]
+pub enum DamageError {
+    /// A fracture energy that is not a positive finite number.
+    #[error("damage `{key}` = {value}: must be a positive finite fracture energy (J/m²)")]
+    Toughness {
+        /// The key of the mode's fracture energy.
+        key: &'static str,
+        /// Its value.
+        value: f64,
+    },
+    /// A largest damage outside (0, 1): a fully damaged point would have no
+    /// stiffness left.
+    #[error("damage `max_damage` = {0}: must be in (0, 1)")]
+    MaxDamage(f64),
+    /// Elastic constants whose compliance is not positive definite.
+    #[error("damage needs admissible orthotropic constants (compliance positive definite)")]
+    Elastic,
+}
+
+/// The history of one ply point.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub struct DamageState {
+    /// Damage of each mode ([`MODES`]).
+    pub damage: [f64; 4],
+    /// Largest equivalent displacement after onset (m); 0 before onset.
+    pub kappa: [f64; 4],
+    /// Equivalent displacement at onset `δ0` (m); 0 before onset.
+    pub onset: [f64; 4],
+    /// Equivalent displacement at full damage `δf` (m).
+    pub last: [f64; 4],
+    /// Energy dissipated per unit volume by each mode (J/m³).
+    pub dissipated: [f64; 4],
+    /// Energy release rates `Y_f, Y_m, Y_s` of this state (J/m³).
+    pub release: [f64; 3],
+    /// Modes whose onset stress was lowered because the band is longer
+    /// than [`PlyDamage::longest_band`].
+    pub reduced: [bool; 4],
+}
+
+/// The answer of [`PlyDamage::update`].
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct DamageResponse {
+    /// Stress in the material axes (Pa).
+    pub stress: Voigt,
+    /// The secant stiffness `C_d` in the material axes (Pa).
+    pub tangent: Matrix6,
+    /// The trial state.
+    pub state: DamageState,
+}
+
+impl PlyDamage {
+    /// A law from the ply's constants, strengths, the fracture energies of
+    /// [`MODES`] (J/m²) and the largest damage.
+    pub fn new(
+        elastic: Orthotropic,
+        strengths: Strengths,
+        toughness: [f64; 4],
+        max_damage: f64,
+    ) -> Result<Self, DamageError> {
+        for (i, &value) in toughness.iter().enumerate() {
+            if !(value.is_finite() && value > 0.0) {
+                const KEYS: [&str; 4] =
+                    ["g_fibre_tension", "g_fibre_compression", "g_matrix_tension", "g_matrix_compression"];
+                return Err(DamageError::Toughness { key: KEYS[i], value });
+            }
+        }
+        if !(max_damage > 0.0 && max_damage < 1.0) {
+            return Err(DamageError::MaxDamage(max_damage));
+        }
+        let stiffness = elastic.stiffness().ok_or(DamageError::Elastic)?;
+        Ok(Self { elastic, stiffness, strengths, toughness, max_damage })
+    }
+
+    /// The longest crack band (m) for which mode `mode` ([`MODES`] index)
+    /// softens without lowering its strength: `2 E G/X²`.
+    pub fn longest_band(&self, mode: usize) -> f64 {
+        let [e1, e2, _] = self.elastic.young;
+        let (young, strength) = match mode {
+            FT => (e1, self.strengths.tension[0]),
+            FC => (e1, self.strengths.compression[0]),
+            MT => (e2, self.strengths.tension[1]),
+            _ => (e2, self.strengths.compression[1]),
+        };
+        2.0 * young * self.toughness[mode] / (strength * strength)
+    }
+
+    /// Stress, secant stiffness and trial state at the strain `strain`
+    /// (material axes) with the crack-band lengths `band = [fibre, matrix]`
+    /// (m) from the committed state `old`.
+    pub fn update(&self, strain: &Voigt, band: [f64; 2], old: &DamageState) -> DamageResponse {
+        let effective = mat_vec(&self.stiffness, strain);
+        let [fibre_ratio, matrix_ratio] = self.strengths.hashin_ratios(&effective);
+        let fibre = if effective[0] >= 0.0 { FT } else { FC };
+        let matrix = if effective[1] + effective[2] >= 0.0 { MT } else { MC };
+        let mut state = *old;
+        for (mode, ratio, length) in [(fibre, fibre_ratio, band[0]), (matrix, matrix_ratio, band[1])] {
+            self.soften(mode, 1.0 / ratio, length, strain, &effective, &mut state);
+        }
+        let d = state.damage;
+        let df = d[fibre];
+        let dm = d[matrix];
+        let ds = 1.0 - d.iter().map(|x| 1.0 - x).product::<f64>();
+        let tangent = self.damaged_stiffness(df, dm, ds);
+        let stress = mat_vec(&tangent, strain);
+        let [e1, e2, e3] = self.elastic.young;
+        let [g12, g13, g23] = self.elastic.shear;
+        state.release = [
+            0.5 * stress[0] * stress[0] / ((1.0 - df).powi(2) * e1),
+            0.5 * (stress[1] * stress[1] / e2 + stress[2] * stress[2] / e3) / (1.0 - dm).powi(2),
+            0.5 * (stress[3] * stress[3] / g12 + stress[4] * stress[4] / g13 + stress[5] * stress[5] / g23)
+                / (1.0 - ds).powi(2),
+        ];
+        for mode in 0..4 {
+            let grown = state.damage[mode] - old.damage[mode];
+            if grown > 0.0 {
+                let own = if mode < MT { 0 } else { 1 };
+                let others =
+                    |s: &DamageState| (0..4).filter(|&j| j != mode).map(|j| 1.0 - s.damage[j]).product::<f64>();
+                let coupling = 0.5 * (others(old) + others(&state));
+                let rate = 0.5 * (old.release[own] + state.release[own])
+                    + 0.5 * (old.release[2] + state.release[2]) * coupling;
+                state.dissipated[mode] += rate * grown;
+            }
+        }
+        DamageResponse { stress, tangent, state }
+    }
+
+    /// Onset and damage of one active mode at the onset measure `phi`.
+    fn soften(&self, mode: usize, phi: f64, length: f64, strain: &Voigt, effective: &Voigt, state: &mut DamageState) {
+        let (e, s) = equivalent(mode, strain, effective);
+        if !(e > 0.0) {
+            return;
+        }
+        let delta = length * e;
+        if state.onset[mode] == 0.0 {
+            // Bažant & Oh: a band longer than the law allows lowers the
+            // strength (the onset threshold of φ) so that the elastic energy
+            // of the band at onset stays below G_I.
+            let threshold = (self.longest_band(mode) * (1.0 - 1e-3) / length).sqrt().min(1.0);
+            if !(phi >= threshold) {
+                return;
+            }
+            let (mut onset, mut strength) = (delta / phi * threshold, s / phi * threshold);
+            let g = self.toughness[mode];
+            state.reduced[mode] = threshold < 1.0;
+            if onset * strength >= 2.0 * g {
+                // A multiaxial onset past the uniaxial estimate: lowered at
+                // the point itself (the stress drops at once here).
+                let scale = (2.0 * g * (1.0 - 1e-3) / (onset * strength)).sqrt();
+                onset *= scale;
+                strength *= scale;
+                state.reduced[mode] = true;
+            }
+            state.onset[mode] = onset;
+            state.last[mode] = 2.0 * g / strength;
+        }
+        let (onset, last) = (state.onset[mode], state.last[mode]);
+        state.kappa[mode] = state.kappa[mode].max(delta);
+        let kappa = state.kappa[mode];
+        let reached = if kappa > onset { last * (kappa - onset) / (kappa * (last - onset)) } else { 0.0 };
+        state.damage[mode] = state.damage[mode].max(reached.min(self.max_damage));
+    }
+
+    /// `C_d = S(d)⁻¹`: the normal 3×3 block inverted by cofactors (it is
+    /// the admissible block with its diagonal enlarged, so its determinant
+    /// is positive), the shear moduli scaled.
+    fn damaged_stiffness(&self, df: f64, dm: f64, ds: f64) -> Matrix6 {
+        let full = self.elastic.compliance();
+        let mut a = [[0.0; 3]; 3];
+        for (i, row) in a.iter_mut().enumerate() {
+            row.copy_from_slice(&full[i][..3]);
+        }
+        a[0][0] /= 1.0 - df;
+        a[1][1] /= 1.0 - dm;
+        a[2][2] /= 1.0 - dm;
+        let cof = |i: usize, j: usize| {
+            let (r0, r1) = ((i + 1) % 3, (i + 2) % 3);
+            let (c0, c1) = ((j + 1) % 3, (j + 2) % 3);
+            a[r0][c0] * a[r1][c1] - a[r0][c1] * a[r1][c0]
+        };
+        let det = (0..3).map(|j| a[0][j] * cof(0, j)).sum::<f64>();
+        let mut c = [[0.0; 6]; 6];
+        for i in 0..3 {
+            for j in 0..3 {
+                c[i][j] = cof(j, i) / det;
+            }
+        }
+        for (k, g) in self.elastic.shear.iter().enumerate() {
+            c[3 + k][3 + k] = (1.0 - ds) * g;
+        }
+        c
+    }
+}
+
+/// The equivalent strain `e` and stress `s` of a mode.
+fn equivalent(mode: usize, strain: &Voigt, effective: &Voigt) -> (f64, f64) {
+    let pos = |x: f64| x.max(0.0);
+    let shear = |k: usize| (strain[k], effective[k]);
+    // (strain, stress) pairs that drive the mode; unused entries zero
+    let pairs: [(f64, f64); 5] = match mode {
+        FT => [(pos(strain[0]), pos(effective[0])), shear(3), shear(4), (0.0, 0.0), (0.0, 0.0)],
+        FC => [(pos(-strain[0]), pos(-effective[0])), (0.0, 0.0), (0.0, 0.0), (0.0, 0.0), (0.0, 0.0)],
+        MT => [(pos(strain[1]), pos(effective[1])), (pos(strain[2]), pos(effective[2])), shear(3), shear(4), shear(5)],
+        _ => {
+            [(pos(-strain[1]), pos(-effective[1])), (pos(-strain[2]), pos(-effective[2])), shear(3), shear(4), shear(5)]
+        }
+    };
+    let e = pairs.iter().map(|(x, _)| x * x).sum::<f64>().sqrt();
+    let s = if e > 0.0 { pairs.iter().map(|(x, y)| x * y).sum::<f64>() / e } else { 0.0 };
+    (e, s)
+}
+
+#[cfg(test)]
+#[path = "damage_tests.rs"]
+mod tests;

@@ -1,0 +1,147 @@
+//! The ply damage law against its closed forms: each mode peaks at its
+//! strength and dissipates its fracture energy per crack-band volume, the
+//! work of a closed strain cycle is the energy the state reports dissipated,
+//! damage does not heal and a closed fibre crack carries compression.
+
+use super::*;
+
+/// AS4/PEEK-like ply (Camanho, Dávila & de Moura 2003) with the Poisson
+/// ratios set to zero where a test needs uniaxial stress from a uniaxial
+/// strain.
+fn ply(poisson: [f64; 3]) -> PlyDamage {
+    let elastic = Orthotropic { young: [122.7e9, 10.1e9, 10.1e9], shear: [5.5e9, 5.5e9, 3.7e9], poisson };
+    let strengths =
+        Strengths { tension: [2070e6, 86e6, 86e6], compression: [1360e6, 196e6, 196e6], shear: [147e6, 147e6, 98e6] };
+    // Fracture energies (J/m²): fibre tension, compression, matrix tension, compression.
+    PlyDamage::new(elastic, strengths, [12.5e3, 10e3, 1.0e3, 2.0e3], 1.0 - 1e-9).unwrap()
+}
+
+/// Work per unit volume `∫ σ·dε` along `direction · s` for `s` over
+/// `path` (piecewise linear), committing each step; and the end state.
+fn cycle(
+    law: &PlyDamage,
+    direction: Voigt,
+    path: &[f64],
+    band: [f64; 2],
+    steps: usize,
+) -> (f64, DamageState, Vec<(f64, f64)>) {
+    let mut state = DamageState::default();
+    let mut work = 0.0;
+    let mut last = [0.0; 6];
+    let mut curve = Vec::new();
+    let mut s = 0.0;
+    for leg in path {
+        for i in 1..=steps {
+            let next = s + (leg - s) * i as f64 / steps as f64;
+            let prev = s + (leg - s) * (i - 1) as f64 / steps as f64;
+            let r = law.update(&direction.map(|c| c * next), band, &state);
+            work += 0.5 * (0..6).map(|k| (last[k] + r.stress[k]) * direction[k] * (next - prev)).sum::<f64>();
+            last = r.stress;
+            state = r.state;
+            curve.push((next, r.stress.iter().zip(direction).map(|(a, b)| a * b).sum::<f64>()));
+        }
+        s = *leg;
+    }
+    (work, state, curve)
+}
+
+#[test]
+fn each_mode_peaks_at_its_strength_and_dissipates_its_toughness_per_band() {
+    let law = ply([0.0; 3]);
+    // (mode, strain direction, strength, modulus): a uniaxial stress in the
+    // material axes (zero Poisson ratios), whose Hashin index is 1 at the
+    // strength (Hashin 1980: uniaxial strengths calibrate their modes).
+    let unit = |k: usize, sign: f64| std::array::from_fn::<f64, 6, _>(|i| if i == k { sign } else { 0.0 });
+    let cases = [
+        (FT, unit(0, 1.0), 2070e6, 122.7e9),
+        (FC, unit(0, -1.0), 1360e6, 122.7e9),
+        (MT, unit(1, 1.0), 86e6, 10.1e9),
+        (MC, unit(1, -1.0), 196e6, 10.1e9),
+    ];
+    let toughness = [12.5e3, 10e3, 1.0e3, 2.0e3];
+    for (mode, dir, strength, young) in cases {
+        let band = 0.2e-3;
+        let onset = strength / young;
+        let last = 2.0 * toughness[mode] / (strength * band);
+        let (work, state, curve) = cycle(&law, dir, &[1.05 * last], [band, band], 40_000);
+        let peak = curve.iter().map(|p| p.1).fold(0.0, f64::max);
+        assert!((peak / strength - 1.0).abs() < 1e-3, "{}: peak {peak} Pa", MODES[mode]);
+        // Bilinear in strain: on the softening branch σ = σ0 (εf − ε)/(εf − ε0).
+        let mid = 0.5 * (onset + last);
+        let at_mid = curve.iter().min_by(|a, b| (a.0 - mid).abs().total_cmp(&(b.0 - mid).abs())).unwrap();
+        let expected = strength * (last - at_mid.0) / (last - onset);
+        assert!((at_mid.1 / expected - 1.0).abs() < 1e-6, "{}: σ {} against {expected}", MODES[mode], at_mid.1);
+        // Crack band: G_I per unit crack area, G_I/L per unit volume.
+        let per_area = state.dissipated[mode] * band;
+        assert!((per_area / toughness[mode] - 1.0).abs() < 1e-4, "{}: {per_area} J/m²", MODES[mode]);
+        assert!((work / state.dissipated[mode] - 1.0).abs() < 1e-4, "{}: work {work} J/m³", MODES[mode]);
+        assert_eq!(state.dissipated.iter().filter(|&&g| g > 0.0).count(), 1, "{}: one mode dissipates", MODES[mode]);
+        assert!(!state.reduced[mode]);
+    }
+}
+
+#[test]
+fn a_closed_strain_cycle_dissipates_what_the_state_reports() {
+    let law = ply([0.25, 0.25, 0.45]);
+    // A multiaxial proportional path into matrix tension with shear, out
+    // and back to zero strain: the work done is all dissipated (no elastic
+    // energy is left at zero strain), whatever the coupling of the modes.
+    let dir = [0.2e-2, 1.0e-2, 0.3e-2, 1.5e-2, 0.5e-2, -0.8e-2];
+    let (work, state, _) = cycle(&law, dir, &[0.6, 0.0, 0.9, 0.0], [0.2e-3, 0.2e-3], 20_000);
+    let dissipated: f64 = state.dissipated.iter().sum();
+    assert!(dissipated > 0.0 && state.damage[MT] > 0.1, "{state:?}");
+    assert!((work / dissipated - 1.0).abs() < 1e-3, "work {work} against dissipated {dissipated} J/m³");
+}
+
+#[test]
+fn damage_does_not_heal_and_a_closed_fibre_crack_carries_compression() {
+    let law = ply([0.0; 3]);
+    let band = [0.2e-3; 2];
+    let e1 = 122.7e9;
+    let onset = 2070e6 / e1;
+    let last = 2.0 * 12.5e3 / (2070e6 * band[0]);
+    let strain = |x: f64| [x, 0.0, 0.0, 0.0, 0.0, 0.0];
+    let open = law.update(&strain(0.5 * (onset + last)), band, &DamageState::default());
+    let d = open.state.damage[FT];
+    assert!(d > 0.5 && d < 1.0);
+    // Unloading: the secant (1 − d) E1, the state unchanged.
+    let back = law.update(&strain(0.1 * onset), band, &open.state);
+    assert_eq!(back.state.damage, open.state.damage);
+    assert_eq!(back.state.dissipated, open.state.dissipated);
+    assert!((back.stress[0] / ((1.0 - d) * e1 * 0.1 * onset) - 1.0).abs() < 1e-12);
+    assert!((back.tangent[0][0] / ((1.0 - d) * e1) - 1.0).abs() < 1e-12);
+    // Compression across the crack: fibre compression is undamaged.
+    let shut = law.update(&strain(-0.5 * onset), band, &open.state);
+    assert!((shut.stress[0] / (-e1 * 0.5 * onset) - 1.0).abs() < 1e-12, "{}", shut.stress[0]);
+    // The shear stiffness knows the fibre damage (d_s = 1 − Π(1 − d_I)).
+    assert!((shut.tangent[3][3] / ((1.0 - d) * 5.5e9) - 1.0).abs() < 1e-12);
+}
+
+#[test]
+fn a_band_longer_than_the_law_allows_lowers_the_strength_and_keeps_the_energy() {
+    let law = ply([0.0; 3]);
+    // Matrix tension: 2 E2 G/Yt² = 2·10.1e9·1000/86e6² = 2.73 mm.
+    let longest = law.longest_band(MT);
+    assert!((longest / (2.0 * 10.1e9 * 1.0e3 / (86e6 * 86e6)) - 1.0).abs() < 1e-12);
+    let band = 2.0 * longest;
+    let (_, state, curve) =
+        cycle(&law, [0.0, 1.0, 0.0, 0.0, 0.0, 0.0], &[3.0 * 2.0 * 1.0e3 / (86e6 * band)], [band, band], 40_000);
+    assert!(state.reduced[MT]);
+    let peak = curve.iter().map(|p| p.1).fold(0.0, f64::max);
+    assert!(peak < 86e6, "the onset stress is lowered: {peak}");
+    assert!((state.dissipated[MT] * band / 1.0e3 - 1.0).abs() < 1e-3, "{} J/m²", state.dissipated[MT] * band);
+}
+
+#[test]
+fn constants_that_cannot_work_are_refused_by_key() {
+    let elastic =
+        Orthotropic { young: [122.7e9, 10.1e9, 10.1e9], shear: [5.5e9, 5.5e9, 3.7e9], poisson: [0.25, 0.25, 0.45] };
+    let strengths = Strengths { tension: [1.0; 3], compression: [1.0; 3], shear: [1.0; 3] };
+    assert_eq!(
+        PlyDamage::new(elastic, strengths, [1.0, 1.0, -2.0, 1.0], 0.9),
+        Err(DamageError::Toughness { key: "g_matrix_tension", value: -2.0 })
+    );
+    assert_eq!(PlyDamage::new(elastic, strengths, [1.0; 4], 1.0), Err(DamageError::MaxDamage(1.0)));
+    let bad = Orthotropic { poisson: [0.9, 0.9, 0.99], ..elastic };
+    assert_eq!(PlyDamage::new(bad, strengths, [1.0; 4], 0.9), Err(DamageError::Elastic));
+}

@@ -20,6 +20,7 @@ mod sizes;
 mod solution;
 mod stages;
 pub mod structure;
+pub mod tables;
 mod warnings;
 
 pub use path::{PathEnd, PathOutcome};

@@ -204,8 +204,7 @@ pub fn contact_history(model: &Model, solution: &Solution, set: &ContactSet) -> 
     t.push("f_n", "N", Values::Real(contacts.iter().map(|c| norm(c.normal_force)).collect()));
     t.push("f_t", "N", Values::Real(contacts.iter().map(|c| norm(c.tangential_force)).collect()));
     if model.symmetry.full(name, [0.0; 3]).is_some() {
-        let full: Vec<[f64; 3]> =
-            f.iter().map(|&f| model.symmetry.full(name, f).unwrap_or([f64::NAN; 3])).collect();
+        let full: Vec<[f64; 3]> = f.iter().map(|&f| model.symmetry.full(name, f).unwrap_or([f64::NAN; 3])).collect();
         t.push_xyz("full_f_", "N", &full);
     }
     t

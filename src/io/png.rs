@@ -8,8 +8,8 @@ use plotters::style::FontStyle;
 
 use super::IoError;
 use crate::analysis::tables::Table;
-use crate::model::Model;
 use crate::model::Line;
+use crate::model::Model;
 
 /// One curve of a plot.
 #[derive(Debug, Clone)]
@@ -121,15 +121,27 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, series:
                 .map_err(|e| plot_error(path, e))?;
         }
     }
+    draw_legend(&mut chart, path)?;
+    root.present().map_err(|e| plot_error(path, e))?;
+    Ok(())
+}
+
+/// The legend of every labelled series, in the plots' one style.
+pub(super) fn draw_legend<'a, 'b: 'a>(
+    chart: &mut ChartContext<
+        'a,
+        BitMapBackend<'b>,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    path: &Path,
+) -> Result<(), IoError> {
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .label_font(("sans-serif", 16))
         .draw()
-        .map_err(|e| plot_error(path, e))?;
-    root.present().map_err(|e| plot_error(path, e))?;
-    Ok(())
+        .map_err(|e| plot_error(path, e))
 }
 
 /// `line_<name>_<quantity>.png`: the quantities listed in a line's `plot`

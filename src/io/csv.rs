@@ -57,7 +57,30 @@ pub fn write_tables(tables: &[Table], dir: &Path) -> Result<Vec<PathBuf>, IoErro
 
 #[cfg(test)]
 mod tests {
-    use super::field;
+    use super::{field, table_text};
+    use crate::analysis::tables::{Column, Table, Values};
+
+    /// The CSV form of each kind of column, as the writer's contract states
+    /// it: reals in `{:e}` with a NaN (a value not recorded) as `NaN`, counts
+    /// as integers, an absent value as an empty field (which the Python
+    /// package reads as NaN) — a writer that wrote `NaN` for an absent
+    /// component, or `0`, would fail.
+    #[test]
+    fn tables_write_each_kind_of_column() {
+        let col = |name: &str, values| Column { name: name.into(), unit: "", values };
+        let t = Table {
+            name: "t".into(),
+            columns: vec![
+                col("increment", Values::Count(vec![1, 2])),
+                col("r_x", Values::Real(vec![1.5, f64::NAN])),
+                col("u_x", Values::Optional(vec![None, Some(-2.0e-3)])),
+                col("negative_pivots", Values::OptionalCount(vec![Some(0), None])),
+            ],
+        };
+        assert_eq!(table_text(&t), "increment,r_x,u_x,negative_pivots\n1,1.5e0,,0\n2,NaN,-2e-3,\n");
+        assert!(t.columns[2].values.get(0).is_nan() && t.columns[3].values.get(1).is_nan());
+        assert_eq!(t.columns[2].values.to_f64()[1], -2.0e-3);
+    }
 
     /// RFC 4180: a field with a comma, quote or line break is quoted and its
     /// quotes doubled, so a CSV reader sees one column.

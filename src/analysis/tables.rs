@@ -283,7 +283,9 @@ pub fn energy(solution: &Solution) -> Option<Table> {
     use crate::dynamics::energy::EnergyRow;
     let rows = solution.energy.as_ref()?;
     let mut t = Table::new("energy");
-    let columns: [(&str, &'static str, fn(&EnergyRow) -> f64); 11] = [
+    // name, unit, value of a row
+    type EnergyColumn = (&'static str, &'static str, fn(&EnergyRow) -> f64);
+    let columns: [EnergyColumn; 11] = [
         ("time_s", "s", |r| r.time),
         ("kinetic_J", "J", |r| r.kinetic),
         ("internal_J", "J", |r| r.internal),

@@ -42,23 +42,27 @@ fn reused_factorization_converges_to_the_full_newton_solution() {
          {} PCG iterations, {} fallbacks",
         full.increments.len(),
         iterations(&full),
-        tf.factorizations,
+        tf.solver.factorizations,
         iterations(&reuse),
-        tr.factorizations,
-        tr.reused,
-        tr.krylov_iterations,
-        tr.fallbacks
+        tr.solver.factorizations,
+        tr.solver.reused,
+        tr.solver.krylov_iterations,
+        tr.solver.fallbacks
     );
-    assert_eq!(tf.factorizations, iterations(&full));
-    assert_eq!(tf.reused + tf.krylov_iterations, 0);
+    assert_eq!(tf.solver.factorizations, iterations(&full));
+    assert_eq!(tf.solver.reused + tf.solver.krylov_iterations, 0);
     // measured: 11 of 24 solves reused a factor (13 factorizations; on this
     // small model a factorization costs only ~5 PCG iterations, so the
     // allowance is small and 3 solves fell back)
-    assert!(tr.reused >= 5, "reuse path not taken: {tr:?}");
+    assert!(tr.solver.reused >= 5, "reuse path not taken: {tr:?}");
     // mixed precision (the default): every factor in f32, none fell back
-    assert_eq!((tr.single_factorizations, tr.precision_fallbacks), (tr.factorizations, 0), "{tr:?}");
-    assert_eq!(tr.factorizations + tr.reused, iterations(&reuse));
-    assert_eq!(tf.single_factorizations, 0);
+    assert_eq!(
+        (tr.solver.single_factorizations, tr.solver.precision_fallbacks),
+        (tr.solver.factorizations, 0),
+        "{tr:?}"
+    );
+    assert_eq!(tr.solver.factorizations + tr.solver.reused, iterations(&reuse));
+    assert_eq!(tf.solver.single_factorizations, 0);
 
     let scale = full.u.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let diff = full.u.iter().zip(&reuse.u).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
@@ -78,8 +82,8 @@ fn reused_factorization_converges_to_the_full_newton_solution() {
 fn double_and_single_precision_factors_converge_to_the_same_solution() {
     let double = compact("factor_precision = \"double\"");
     let single = compact("");
-    assert_eq!(double.timings.single_factorizations, 0);
-    assert!(single.timings.single_factorizations > 0);
+    assert_eq!(double.timings.solver.single_factorizations, 0);
+    assert!(single.timings.solver.single_factorizations > 0);
     let scale = double.u.iter().fold(0.0_f64, |m, v| m.max(v.abs()));
     let diff = double.u.iter().zip(&single.u).fold(0.0_f64, |m, (a, b)| m.max((a - b).abs()));
     eprintln!("max |u_double − u_single| = {:.2e} of max |u|", diff / scale);

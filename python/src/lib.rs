@@ -13,12 +13,10 @@ use std::sync::Arc;
 use std::sync::mpsc;
 use std::time::Duration;
 
-use cufem::analysis::{self, IncrementLog, Progress, RunOptions, Solution};
+use cufem::analysis::{self, IncrementLog, Progress, RunOptions, Solution, tables};
 use cufem::io::output::OutputDir;
 use cufem::io::report;
-use cufem::setup::steps::{self, Item};
 use cufem::setup::{Limits, Model, ModelError as RustModelError};
-use cufem::post;
 use cufem::solver::Interrupt;
 use cufem::solver::stepping::Cutback;
 use numpy::{IntoPyArray, PyArrayMethods};
@@ -449,112 +447,32 @@ impl NativeResults {
     /// The columns of `line_<name>.csv`: `s, x, y, z` and every quantity
     /// (points outside every body left out).
     fn line(&self, py: Python<'_>, name: &str) -> PyResult<Vec<(String, Vec<f64>)>> {
-        let line = self.model.lines.iter().find(|l| l.name == name).ok_or_else(|| {
+        let k = self.model.lines.iter().position(|l| l.name == name).ok_or_else(|| {
             let names: Vec<&str> = self.model.lines.iter().map(|p| p.name.as_str()).collect();
             PyKeyError::new_err(format!("line {name:?}: expected one of {names:?}"))
         })?;
         let (model, solution) = (self.model.clone(), self.solution.clone());
-        let samples = py.allow_threads(|| post::sample_line(&solution.fields(&model), line));
-        let quantities = model.quantities();
-        let mut cols: Vec<(String, Vec<f64>)> = ["s", "x", "y", "z"]
-            .iter()
-            .map(|c| (c.to_string(), Vec::new()))
-            .chain(quantities.iter().map(|q| (q.name(), Vec::new())))
-            .collect();
-        for s in &samples {
-            let Some(v) = s.sample else { continue };
-            cols[0].1.push(s.s);
-            for k in 0..3 {
-                cols[1 + k].1.push(s.point[k]);
-            }
-            for (i, &q) in quantities.iter().enumerate() {
-                cols[4 + i].1.push(v.get(q));
-            }
-        }
-        Ok(cols)
+        Ok(columns(&py.allow_threads(|| tables::sampled_line(&model, &solution.fields(&model), k))))
     }
 
     /// The columns of `history_<name>.csv` (a constraint set: prescribed
     /// displacement and reaction; an indenter or contact: displacement,
     /// force, penetration, plastic points; cut by symmetry planes, the full
     /// structure's force too; `"probes"`: every probe's displacement), one
-    /// row per converged increment.
+    /// row per converged increment; an absent value is NaN.
     fn history(&self, name: &str) -> PyResult<Vec<(String, Vec<f64>)>> {
-        let m = &self.model;
-        let rows = &self.solution.history;
-        let col = |n: &str, v: Vec<f64>| (n.to_string(), v);
-        let mut cols = vec![
-            col("increment", rows.iter().map(|r| r.increment as f64).collect()),
-            col("lambda", rows.iter().map(|r| r.lambda).collect()),
-            col("iterations", rows.iter().map(|r| r.iterations as f64).collect()),
-        ];
+        let (m, solution) = (&self.model, &self.solution);
         if let Some(ci) = m.constraints.iter().position(|c| c.name == name) {
-            let c = &m.constraints[ci];
-            for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-                let u = rows
-                    .iter()
-                    .map(|r| {
-                        c.values[k].map_or(f64::NAN, |v| steps::factor(&m.steps, Item::Constraint(ci), r.lambda) * v)
-                    })
-                    .collect();
-                cols.push(col(&format!("u_{axis}"), u));
-            }
-            for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-                cols.push(col(
-                    &format!("r_{axis}"),
-                    rows.iter().map(|r| r.reaction(name).map_or(f64::NAN, |r| r.force[k])).collect(),
-                ));
-            }
-            // in a model cut by symmetry planes, as the CSV: the full structure's reaction
-            if m.symmetry.full(name, [0.0; 3]).is_some() {
-                for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-                    let full = |f: [f64; 3]| m.symmetry.full(name, f).map_or(f64::NAN, |f| f[k]);
-                    let r = rows.iter().map(|r| r.reaction(name).map_or(f64::NAN, |r| full(r.force))).collect();
-                    cols.push(col(&format!("full_r_{axis}"), r));
-                }
-            }
-            return Ok(cols);
+            return Ok(columns(&tables::constraint_history(m, solution, ci)));
         }
-        if self.solution.contact_sets.iter().any(|s| s.name == name) {
-            let is_indenter = m.indenters.iter().any(|i| i.name == name);
-            let rows: Vec<_> = rows.iter().filter_map(|r| r.contact(name).map(|c| (r, c))).collect();
-            let mut cols = vec![
-                col("increment", rows.iter().map(|(r, _)| r.increment as f64).collect()),
-                col("lambda", rows.iter().map(|(r, _)| r.lambda).collect()),
-                col("iterations", rows.iter().map(|(r, _)| r.iterations as f64).collect()),
-            ];
-            for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-                let d = rows.iter().map(|(_, c)| if is_indenter { c.displacement[k] } else { f64::NAN }).collect();
-                cols.push(col(&format!("d_{axis}"), d));
-            }
-            for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-                cols.push(col(&format!("f_{axis}"), rows.iter().map(|(_, c)| c.force[k]).collect()));
-            }
-            cols.push(col("max_penetration", rows.iter().map(|(_, c)| c.max_penetration).collect()));
-            cols.push(col("plastic_points", rows.iter().map(|(r, _)| r.plastic_points as f64).collect()));
-            // magnitudes of the normal and tangential parts, as the CSV writes them
-            let norm = |v: [f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
-            cols.push(col("f_n", rows.iter().map(|(_, c)| norm(c.normal_force)).collect()));
-            cols.push(col("f_t", rows.iter().map(|(_, c)| norm(c.tangential_force)).collect()));
-            if m.symmetry.full(name, [0.0; 3]).is_some() {
-                for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-                    let f = rows.iter().map(|(_, c)| m.symmetry.full(name, c.force).map_or(f64::NAN, |f| f[k]));
-                    cols.push(col(&format!("full_f_{axis}"), f.collect()));
-                }
-            }
-            return Ok(cols);
+        if let Some(set) = solution.contact_sets.iter().find(|s| s.name == name) {
+            return Ok(columns(&tables::contact_history(m, solution, set)));
         }
         if name == "probes" && !m.probes.is_empty() {
-            // history_probes.csv: every probe's displacement per increment
-            for (p, probe) in m.probes.iter().enumerate() {
-                for (k, axis) in ["x", "y", "z"].iter().enumerate() {
-                    cols.push(col(&format!("{}.u_{axis}", probe.name), rows.iter().map(|r| r.probes[p][k]).collect()));
-                }
-            }
-            return Ok(cols);
+            return Ok(columns(&tables::probe_history(m, solution)));
         }
         let mut names: Vec<&str> = m.constraints.iter().map(|c| c.name.as_str()).collect();
-        names.extend(self.solution.contact_sets.iter().map(|s| s.name.as_str()));
+        names.extend(solution.contact_sets.iter().map(|s| s.name.as_str()));
         if !m.probes.is_empty() {
             names.push("probes");
         }
@@ -600,6 +518,11 @@ impl NativeResults {
         py.allow_threads(|| write_folder(&model, &solution, &dir, force).map_err(|e| e.to_string()))
             .map_err(PyOSError::new_err)
     }
+}
+
+/// A result table as `(name, values)` columns, an absent value as NaN.
+fn columns(table: &tables::Table) -> Vec<(String, Vec<f64>)> {
+    table.columns.iter().map(|c| (c.name.clone(), c.values.to_f64())).collect()
 }
 
 /// The native module.

@@ -8,39 +8,45 @@
 //!     commit Gauss-point history               // Incremental::commit
 //!     record reactions and contact forces      // Recorder
 //! ```
+//!
+//! This file is the driver ([`run`]); the rest by concept: `progress`
+//! (what the run reports while it goes), `sizes` (memory planning),
+//! `solution` (the result types), `results` (resultants, timings and the
+//! solver statistics), `tables` (the result tables the writers serialise).
 
 pub mod buckling;
 mod checks;
 mod conditioning;
 pub mod modal;
 pub mod path;
+mod progress;
 mod recorder;
 mod results;
 mod sizes;
-mod solution;
+pub(crate) mod solution;
 mod stages;
 pub mod structure;
+pub mod tables;
 mod warnings;
 
 pub use path::{PathEnd, PathOutcome};
+pub use progress::{IncrementLog, Progress, Setup, Silent};
 pub use recorder::Frame;
 use recorder::Recorder;
 pub use results::{AdaptCycle, AdaptEnd, Adaptivity};
 pub use sizes::{describe_memory, memory_advice, plan, sizes};
+pub use solution::{HistoryRow, Solution, StepEnd, StepFields};
 pub use structure::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Structure, Timings};
 
-use std::time::{Duration, Instant};
+use std::time::Instant;
 
 use crate::elements::ElementError;
-use crate::materials::PointState;
 use crate::setup::Model;
-use crate::setup::Warning;
 use crate::size::{MemoryEstimate, human_bytes};
 use crate::solver::Interrupt;
 use crate::solver::linear::LinearError;
 use crate::solver::newton::NonlinearProblem;
-use crate::solver::stepping::{self, Cutback, Increment, SteppingError};
-use crate::voigt::Voigt;
+use crate::solver::stepping::{self, SteppingError};
 
 /// Errors that stop an analysis before it can start (a non-convergence is
 /// not an error: it is reported in [`Solution::failure`]).
@@ -101,189 +107,6 @@ pub struct RunOptions {
     pub interrupt: Interrupt,
     /// Refuse the analysis if its estimated memory exceeds this (bytes).
     pub max_memory: Option<u64>,
-}
-
-/// One row of the load history (after a converged increment).
-#[derive(Debug, Clone, PartialEq)]
-pub struct HistoryRow {
-    /// Increment index (1-based).
-    pub increment: usize,
-    /// Load factor.
-    pub lambda: f64,
-    /// Newton iterations.
-    pub iterations: usize,
-    /// Resultant reaction of each constraint set.
-    pub reactions: Vec<Reaction>,
-    /// Resultant of each indenter, then of each pair contact.
-    pub contacts: Vec<ContactResultant>,
-    /// Plastic Gauss points.
-    pub plastic_points: usize,
-    /// Displacement at each probe, in the model's order.
-    pub probes: Vec<[f64; 3]>,
-    /// Negative pivots of the last factorized tangent
-    /// ([`Structure::negative_pivots`]).
-    pub negative_pivots: Option<usize>,
-}
-
-impl HistoryRow {
-    /// The reaction of the constraint set `name`.
-    pub fn reaction(&self, name: &str) -> Option<&Reaction> {
-        self.reactions.iter().find(|r| r.name == name)
-    }
-
-    /// The resultant of the indenter or contact `name`.
-    pub fn contact(&self, name: &str) -> Option<&ContactResultant> {
-        self.contacts.iter().find(|c| c.name == name)
-    }
-}
-
-/// A log line per converged increment.
-#[derive(Debug, Clone, PartialEq)]
-pub struct IncrementLog {
-    /// Increment index.
-    pub index: usize,
-    /// Load factor reached.
-    pub lambda: f64,
-    /// Its increment.
-    pub dlambda: f64,
-    /// Newton iterations.
-    pub iterations: usize,
-    /// Relative residuals at each evaluation.
-    pub residuals: Vec<f64>,
-    /// Plastic Gauss points.
-    pub plastic_points: usize,
-    /// Cutbacks before convergence.
-    pub cutbacks: usize,
-    /// Largest contact penetration (m).
-    pub max_penetration: f64,
-    /// Negative pivots of the last factorized tangent.
-    pub negative_pivots: Option<usize>,
-}
-
-/// The size of an analysis once it is set up.
-#[derive(Debug, Clone)]
-pub struct Setup {
-    /// Equations (free DOFs).
-    pub equations: usize,
-    /// Stored entries of the Cholesky factor.
-    pub factor_nnz: usize,
-    /// Memory estimate.
-    pub memory: MemoryEstimate,
-}
-
-/// Receives progress while the analysis runs.
-pub trait Progress {
-    /// Called once the structure is set up (equations ordered, symbolic
-    /// factorization done).
-    fn start(&mut self, _model: &Model, _setup: &Setup) {}
-    /// Called after each converged increment.
-    fn increment(&mut self, _log: &IncrementLog) {}
-    /// Called after each failed attempt.
-    fn cutback(&mut self, _cutback: &Cutback) {}
-}
-
-/// A progress sink that ignores everything.
-pub struct Silent;
-impl Progress for Silent {}
-
-/// The result of an analysis (the last converged state if it stopped early).
-#[derive(Debug, Clone)]
-pub struct Solution {
-    /// Displacements, 3 per node.
-    pub u: Vec<f64>,
-    /// Committed Gauss-point states.
-    pub states: Vec<PointState>,
-    /// Gauss-point stresses of the final (converged) state.
-    pub stresses: Vec<Voigt>,
-    /// First Gauss point of each body.
-    pub gp_offsets: Vec<usize>,
-    /// Load factor reached.
-    pub lambda: f64,
-    /// Reactions per constraint set.
-    pub reactions: Vec<Reaction>,
-    /// Per indenter then pair contact: force on the body and largest penetration.
-    pub contacts: Vec<ContactResultant>,
-    /// Final state of every contact point.
-    pub contact_sets: Vec<ContactSet>,
-    /// Sum of applied nodal loads at the final load factor (N).
-    pub applied: [f64; 3],
-    /// Load history.
-    pub history: Vec<HistoryRow>,
-    /// Converged increments.
-    pub increments: Vec<Increment>,
-    /// Failed attempts.
-    pub cutbacks: Vec<Cutback>,
-    /// Set when the analysis stopped before λ = 1.
-    pub failure: Option<SteppingError>,
-    /// Free DOFs.
-    pub equations: usize,
-    /// Entries of the Cholesky factor.
-    pub factor_nnz: usize,
-    /// Plastic Gauss points at the end.
-    pub plastic_points: usize,
-    /// Phase timings.
-    pub timings: Timings,
-    /// Wall time of the whole analysis.
-    pub wall_time: Duration,
-    /// Memory estimate made before the analysis (after the symbolic factorization).
-    pub memory: MemoryEstimate,
-    /// What the results show to be suspicious (an indenter that never
-    /// touched, a probe in a region that carries no load).
-    pub warnings: Vec<Warning>,
-    /// Recovered (projected) nodal stress and peeq, when the model asks for them.
-    pub recovered: Option<crate::post::Recovered>,
-    /// The estimated discretization error of the final state
-    /// ([`crate::post::estimate`]); `None` for the states of
-    /// [`Solution::at_step`].
-    pub error_estimate: Option<crate::post::ErrorEstimate>,
-    /// The end of every completed step of the load history, in order.
-    pub steps: Vec<StepEnd>,
-    /// The cycles of an adaptive run that ended with this solution
-    /// (`crate::adapt`); `None` for a single run.
-    pub adapt: Option<Adaptivity>,
-    /// `analysis.type = "buckling"`: critical load factors and modes about
-    /// the final state; `None` otherwise.
-    pub buckling: Option<buckling::Buckling>,
-    /// `analysis.type = "modal"`: natural frequencies and modes about the
-    /// final state; `None` otherwise.
-    pub modal: Option<modal::Modal>,
-    /// `analysis.type = "transient"`: the energy balance per converged
-    /// time step (the initial state first); `None` otherwise.
-    pub energy: Option<Vec<crate::dynamics::energy::EnergyRow>>,
-    /// `analysis.output_interval`: the fields at every output time of a
-    /// transient run (empty otherwise).
-    pub frames: Vec<Frame>,
-    /// How the path following went (`solver.control = "arc_length"`).
-    pub path: Option<PathOutcome>,
-}
-
-/// The state at the end of one step of the load history.
-#[derive(Debug, Clone)]
-pub struct StepEnd {
-    /// Step name.
-    pub name: String,
-    /// Analysis time λ at the end of the step.
-    pub lambda: f64,
-    /// Index of the step's last increment (0 if it had none).
-    pub increment: usize,
-    /// Reactions per constraint set.
-    pub reactions: Vec<Reaction>,
-    /// Per indenter then pair contact: force and largest penetration.
-    pub contacts: Vec<ContactResultant>,
-    /// Displacements, Gauss-point states and stresses (kept when the model
-    /// has more than one step, for per-step output).
-    pub fields: Option<StepFields>,
-}
-
-/// The fields of a [`StepEnd`].
-#[derive(Debug, Clone)]
-pub struct StepFields {
-    /// Displacements, 3 per node.
-    pub u: Vec<f64>,
-    /// Committed Gauss-point states.
-    pub states: Vec<PointState>,
-    /// Gauss-point stresses.
-    pub stresses: Vec<Voigt>,
 }
 
 /// Drives the structure over the model's load history — by load steps, or

@@ -1,7 +1,9 @@
 //! What an analysis reports: reactions and contact resultants by name, the
-//! contact points, and the phase timings.
+//! contact points, and the phase timings with the solver statistics.
 
 use std::time::Duration;
+
+use crate::solver::reuse::SolverStats;
 
 /// Cumulative wall time per phase.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -28,10 +30,6 @@ pub struct Timings {
     pub element_tangents: Duration,
     /// Contact search and penalty terms.
     pub contact: Duration,
-    /// Numeric factorizations.
-    pub factorization: Duration,
-    /// Triangular solves.
-    pub solve: Duration,
     /// Number of residual/tangent evaluations.
     pub evaluations: usize,
     /// Element tangents (or their corrections to the cached elastic
@@ -43,19 +41,9 @@ pub struct Timings {
     /// Of them: evaluations repeated with the element tangents after a
     /// residual-only one that did not converge.
     pub reevaluations: usize,
-    /// Number of factorizations.
-    pub factorizations: usize,
-    /// Solves that reused an earlier factorization as PCG preconditioner.
-    pub reused: usize,
-    /// PCG iterations over all solves.
-    pub krylov_iterations: usize,
-    /// Solves where PCG was tried, did not converge, and a factorization followed.
-    pub fallbacks: usize,
-    /// Factorizations stored in single precision (mixed precision).
-    pub single_factorizations: usize,
-    /// Single-precision factors that did not precondition their own tangent
-    /// (double precision from then on).
-    pub precision_fallbacks: usize,
+    /// The linear solver's counters and times: factorizations, reuses,
+    /// PCG iterations, fallbacks, and the time in factorizations and solves.
+    pub solver: SolverStats,
 }
 
 impl Timings {

@@ -1,9 +1,152 @@
-//! What a [`Solution`] offers beyond its fields: resultants by name, the
-//! state at the end of a step or at a frame, and a view for fields at any
-//! point.
+//! The result of an analysis: the [`Solution`] (fields, resultants,
+//! histories, statistics), the end of each step, the rows of the load
+//! history, and what a solution offers beyond its fields (resultants by
+//! name, the state at the end of a step or at a frame, a view for fields at
+//! any point).
 
-use super::{AnalysisError, ContactPoint, ContactResultant, Reaction, Solution, StepFields};
-use crate::setup::Model;
+use std::time::Duration;
+
+use super::{Adaptivity, Timings, buckling, modal};
+use super::{AnalysisError, ContactPoint, ContactResultant, ContactSet, Frame, PathOutcome, Reaction};
+use crate::materials::PointState;
+use crate::setup::{Model, Warning};
+use crate::size::MemoryEstimate;
+use crate::solver::stepping::{Cutback, Increment, SteppingError};
+use crate::voigt::Voigt;
+
+/// The result of an analysis (the last converged state if it stopped early).
+#[derive(Debug, Clone)]
+pub struct Solution {
+    /// Displacements, 3 per node.
+    pub u: Vec<f64>,
+    /// Committed Gauss-point states.
+    pub states: Vec<PointState>,
+    /// Gauss-point stresses of the final (converged) state.
+    pub stresses: Vec<Voigt>,
+    /// First Gauss point of each body.
+    pub gp_offsets: Vec<usize>,
+    /// Load factor reached.
+    pub lambda: f64,
+    /// Reactions per constraint set.
+    pub reactions: Vec<Reaction>,
+    /// Per indenter then pair contact: force on the body and largest penetration.
+    pub contacts: Vec<ContactResultant>,
+    /// Final state of every contact point.
+    pub contact_sets: Vec<ContactSet>,
+    /// Sum of applied nodal loads at the final load factor (N).
+    pub applied: [f64; 3],
+    /// Load history.
+    pub history: Vec<HistoryRow>,
+    /// Converged increments.
+    pub increments: Vec<Increment>,
+    /// Failed attempts.
+    pub cutbacks: Vec<Cutback>,
+    /// Set when the analysis stopped before λ = 1.
+    pub failure: Option<SteppingError>,
+    /// Free DOFs.
+    pub equations: usize,
+    /// Entries of the Cholesky factor.
+    pub factor_nnz: usize,
+    /// Plastic Gauss points at the end.
+    pub plastic_points: usize,
+    /// Phase timings.
+    pub timings: Timings,
+    /// Wall time of the whole analysis.
+    pub wall_time: Duration,
+    /// Memory estimate made before the analysis (after the symbolic factorization).
+    pub memory: MemoryEstimate,
+    /// What the results show to be suspicious (an indenter that never
+    /// touched, a probe in a region that carries no load).
+    pub warnings: Vec<Warning>,
+    /// Recovered (projected) nodal stress and peeq, when the model asks for them.
+    pub recovered: Option<crate::post::Recovered>,
+    /// The estimated discretization error of the final state
+    /// ([`crate::post::estimate`]); `None` for the states of
+    /// [`Solution::at_step`].
+    pub error_estimate: Option<crate::post::ErrorEstimate>,
+    /// The end of every completed step of the load history, in order.
+    pub steps: Vec<StepEnd>,
+    /// The cycles of an adaptive run that ended with this solution
+    /// (`crate::adapt`); `None` for a single run.
+    pub adapt: Option<Adaptivity>,
+    /// `analysis.type = "buckling"`: critical load factors and modes about
+    /// the final state; `None` otherwise.
+    pub buckling: Option<buckling::Buckling>,
+    /// `analysis.type = "modal"`: natural frequencies and modes about the
+    /// final state; `None` otherwise.
+    pub modal: Option<modal::Modal>,
+    /// `analysis.type = "transient"`: the energy balance per converged
+    /// time step (the initial state first); `None` otherwise.
+    pub energy: Option<Vec<crate::dynamics::energy::EnergyRow>>,
+    /// `analysis.output_interval`: the fields at every output time of a
+    /// transient run (empty otherwise).
+    pub frames: Vec<Frame>,
+    /// How the path following went (`solver.control = "arc_length"`).
+    pub path: Option<PathOutcome>,
+}
+
+/// The state at the end of one step of the load history.
+#[derive(Debug, Clone)]
+pub struct StepEnd {
+    /// Step name.
+    pub name: String,
+    /// Analysis time λ at the end of the step.
+    pub lambda: f64,
+    /// Index of the step's last increment (0 if it had none).
+    pub increment: usize,
+    /// Reactions per constraint set.
+    pub reactions: Vec<Reaction>,
+    /// Per indenter then pair contact: force and largest penetration.
+    pub contacts: Vec<ContactResultant>,
+    /// Displacements, Gauss-point states and stresses (kept when the model
+    /// has more than one step, for per-step output).
+    pub fields: Option<StepFields>,
+}
+
+/// The fields of a [`StepEnd`].
+#[derive(Debug, Clone)]
+pub struct StepFields {
+    /// Displacements, 3 per node.
+    pub u: Vec<f64>,
+    /// Committed Gauss-point states.
+    pub states: Vec<PointState>,
+    /// Gauss-point stresses.
+    pub stresses: Vec<Voigt>,
+}
+
+/// One row of the load history (after a converged increment).
+#[derive(Debug, Clone, PartialEq)]
+pub struct HistoryRow {
+    /// Increment index (1-based).
+    pub increment: usize,
+    /// Load factor.
+    pub lambda: f64,
+    /// Newton iterations.
+    pub iterations: usize,
+    /// Resultant reaction of each constraint set.
+    pub reactions: Vec<Reaction>,
+    /// Resultant of each indenter, then of each pair contact.
+    pub contacts: Vec<ContactResultant>,
+    /// Plastic Gauss points.
+    pub plastic_points: usize,
+    /// Displacement at each probe, in the model's order.
+    pub probes: Vec<[f64; 3]>,
+    /// Negative pivots of the last factorized tangent
+    /// ([`Structure::negative_pivots`]).
+    pub negative_pivots: Option<usize>,
+}
+
+impl HistoryRow {
+    /// The reaction of the constraint set `name`.
+    pub fn reaction(&self, name: &str) -> Option<&Reaction> {
+        self.reactions.iter().find(|r| r.name == name)
+    }
+
+    /// The resultant of the indenter or contact `name`.
+    pub fn contact(&self, name: &str) -> Option<&ContactResultant> {
+        self.contacts.iter().find(|c| c.name == name)
+    }
+}
 
 impl Solution {
     /// The reaction of the constraint set `name`.
@@ -90,16 +233,29 @@ impl Solution {
     /// A view for field evaluation.
     pub fn fields<'a>(&'a self, model: &'a Model) -> crate::post::FieldView<'a> {
         crate::post::FieldView {
-            mesh: &model.mesh,
-            geometry: &model.cells,
-            materials: &model.materials,
-            u: &self.u,
-            states: &self.states,
+            state: fe_state(model, &self.u, &self.states, &self.gp_offsets),
             stresses: &self.stresses,
-            gp_offsets: &self.gp_offsets,
             recovered: self.recovered.as_ref(),
-            kinematics: model.kinematics,
             symmetry: &model.symmetry.planes,
         }
+    }
+}
+
+/// The finite-element state of `model` at displacements `u` and
+/// Gauss-point states `states` (an assembly's inputs, a field view).
+pub(crate) fn fe_state<'a>(
+    model: &'a Model,
+    u: &'a [f64],
+    states: &'a [crate::materials::PointState],
+    gp_offsets: &'a [usize],
+) -> crate::assembly::FeState<'a> {
+    crate::assembly::FeState {
+        mesh: &model.mesh,
+        geometry: &model.cells,
+        materials: &model.materials,
+        u,
+        states,
+        gp_offsets,
+        kinematics: model.kinematics,
     }
 }

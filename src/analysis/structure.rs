@@ -394,18 +394,9 @@ impl<'m> Structure<'m> {
         Correction { norm: (norm2 + da2).sqrt(), increment_norm: inc2.sqrt() }
     }
 
-    /// Copies the solver's counters into the timings.
+    /// The solver's statistics into the timings.
     fn record_solver(&mut self) {
-        let stats = *self.system.stats();
-        let t = &mut self.timings;
-        t.factorization = stats.factorization_time;
-        t.factorizations = stats.factorizations;
-        t.solve = stats.solve_time;
-        t.reused = stats.reused;
-        t.krylov_iterations = stats.krylov_iterations;
-        t.fallbacks = stats.fallbacks;
-        t.single_factorizations = stats.single_factorizations;
-        t.precision_fallbacks = stats.precision_fallbacks;
+        self.timings.solver = *self.system.stats();
     }
 }
 

@@ -54,8 +54,11 @@ pub struct Assembler {
     pub pattern_time: std::time::Duration,
 }
 
-/// Read-only inputs of an assembly pass.
-pub struct Inputs<'a> {
+/// The finite-element state of a model: its mesh, geometry and materials,
+/// and the displacements and Gauss-point states on them. What an assembly
+/// pass ([`Inputs`]) and a field evaluation (`post::FieldView`) both read.
+#[derive(Clone, Copy)]
+pub struct FeState<'a> {
     /// Mesh.
     pub mesh: &'a Mesh,
     /// Geometry caches per body.
@@ -65,16 +68,30 @@ pub struct Inputs<'a> {
     /// Displacements (3 per node).
     pub u: &'a [f64],
     /// Committed Gauss-point states (all bodies).
-    pub committed: &'a [PointState],
-    /// First Gauss point of each body.
+    pub states: &'a [PointState],
+    /// First Gauss point of each body in `states`.
     pub gp_offsets: &'a [usize],
-    /// Tangent branch of points on their yield surface.
-    pub predictor: Predictor,
     /// Strain measure (small strain or total Lagrangian).
     pub kinematics: crate::kinematics::Kinematics,
+}
+
+/// Read-only inputs of an assembly pass: the state it starts from, and how.
+pub struct Inputs<'a> {
+    /// Displacements, committed states and what they live on.
+    pub state: FeState<'a>,
+    /// Tangent branch of points on their yield surface.
+    pub predictor: Predictor,
     /// Total Lagrangian: a stress-free initial displacement (3 per node; a
     /// geometric imperfection), `None` for the perfect geometry.
     pub initial: Option<&'a [f64]>,
+}
+
+impl<'a> std::ops::Deref for Inputs<'a> {
+    type Target = FeState<'a>;
+
+    fn deref(&self) -> &FeState<'a> {
+        &self.state
+    }
 }
 
 /// Outputs of an assembly pass.
@@ -188,7 +205,7 @@ impl Assembler {
             return self.elastic_global.clone();
         }
         debug_assert!(input.u.iter().all(|&v| v == 0.0), "the elastic tangent is taken at zero displacement");
-        let n_gp = input.committed.len();
+        let n_gp = input.states.len();
         let (mut force, mut trial, mut stress) =
             (vec![0.0; input.u.len()], vec![PointState::default(); n_gp], vec![[0.0; 6]; n_gp]);
         let mut global = vec![0.0; self.pattern.nnz()];
@@ -247,7 +264,7 @@ impl Assembler {
                         // SAFETY: Gauss points of an element belong to it alone.
                         let points = unsafe {
                             PointData {
-                                committed: &input.committed[g0..g0 + ngp],
+                                committed: &input.states[g0..g0 + ngp],
                                 trial: trial.range(g0, ngp),
                                 stress: stress.range(g0, ngp),
                                 predictor: input.predictor,
@@ -432,17 +449,16 @@ mod tests {
         let uncached = assembler.clone();
         let committed = vec![PointState::default(); n_gp];
         let zero = vec![0.0; mesh.n_dofs()];
-        let inputs = Inputs {
+        let state = FeState {
             mesh: &mesh,
             geometry: &geometry,
             materials: &materials,
             u: &zero,
-            committed: &committed,
+            states: &committed,
             gp_offsets: &gp_offsets,
-            predictor: Default::default(),
             kinematics: Default::default(),
-            initial: None,
         };
+        let inputs = Inputs { state, predictor: Default::default(), initial: None };
         assembler.cache_elastic(&inputs);
         Setup { mesh, geometry, gp_offsets, materials, u, committed, assembler, uncached }
     }
@@ -450,17 +466,16 @@ mod tests {
     /// Internal forces, tangent values and plastic points, on `threads` threads.
     fn assemble(s: &Setup, a: &Assembler, threads: usize) -> (Vec<f64>, Vec<f64>, usize) {
         let n_gp = s.committed.len();
-        let inputs = Inputs {
+        let state = FeState {
             mesh: &s.mesh,
             geometry: &s.geometry,
             materials: &s.materials,
             u: &s.u,
-            committed: &s.committed,
+            states: &s.committed,
             gp_offsets: &s.gp_offsets,
-            predictor: Default::default(),
             kinematics: Default::default(),
-            initial: None,
         };
+        let inputs = Inputs { state, predictor: Default::default(), initial: None };
         let mut force = vec![0.0; s.mesh.n_dofs()];
         let mut tangent = vec![0.0; a.pattern.nnz()];
         let (mut trial, mut stress) = (vec![PointState::default(); n_gp], vec![[0.0; 6]; n_gp]);

@@ -32,7 +32,14 @@ pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
             let sol = analysis::run(model, &analysis::RunOptions::default(), &mut Silent)?;
             let t = sol.timings;
             walls.push(sol.wall_time);
-            rows.push([t.assembly, t.contact, t.factorization, t.solve, t.stress_pass, t.element_tangents]);
+            rows.push([
+                t.assembly,
+                t.contact,
+                t.solver.factorization_time,
+                t.solver.solve_time,
+                t.stress_pass,
+                t.element_tangents,
+            ]);
             last = Some(sol);
         }
         let sol = last.expect("at least one run");
@@ -49,23 +56,23 @@ pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
             t.reevaluations,
             sol.cutbacks.len()
         );
-        let solves = (t.factorizations + t.reused).max(1);
+        let solves = (t.solver.factorizations + t.solver.reused).max(1);
         println!(
             "  factorizations {}, solves reusing a factorization {} ({:.0} %), Krylov (PCG/GMRES) iterations {}, \
              fallbacks {}",
-            t.factorizations,
-            t.reused,
-            100.0 * t.reused as f64 / solves as f64,
-            t.krylov_iterations,
-            t.fallbacks
+            t.solver.factorizations,
+            t.solver.reused,
+            100.0 * t.solver.reused as f64 / solves as f64,
+            t.solver.krylov_iterations,
+            t.solver.fallbacks
         );
         println!(
             "  single-precision factorizations {}, precision fallbacks {}",
-            t.single_factorizations, t.precision_fallbacks
+            t.solver.single_factorizations, t.solver.precision_fallbacks
         );
         println!("  wall time (median)         {}", ms(median(walls)));
         let per_eval = |d: Duration| d / t.evaluations.max(1) as u32;
-        let per_fact = |d: Duration| d / t.factorizations.max(1) as u32;
+        let per_fact = |d: Duration| d / t.solver.factorizations.max(1) as u32;
         println!("  element loop + return map  {}   per evaluation {}", ms(col(0)), ms(per_eval(col(0))));
         println!("    kernel: stress pass      {}   per evaluation {}", ms(col(4)), ms(per_eval(col(4))));
         println!("    kernel: element tangents {}   per evaluation {}", ms(col(5)), ms(per_eval(col(5))));
@@ -98,9 +105,9 @@ pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
             t.symbolic,
             t.element_cache,
             t.assembly + t.contact,
-            t.factorization,
-            t.solve,
-            t.setup + t.assembly + t.contact + t.factorization + t.solve,
+            t.solver.factorization_time,
+            t.solver.solve_time,
+            t.setup + t.assembly + t.contact + t.solver.factorization_time + t.solver.solve_time,
         ]);
     }
     let col = |k: usize| median(rows.iter().map(|r| r[k]).collect());

@@ -5,42 +5,24 @@ use std::path::{Path, PathBuf};
 
 use super::IoError;
 use super::png::{Series, line_plot};
-use crate::analysis::Solution;
+use crate::analysis::{Solution, tables};
 use crate::setup::Model;
 
-/// Writes the energy balance of a transient run (nothing for another).
+/// Writes the energy balance of a transient run (nothing for another):
+/// its table ([`tables::energy`]) and, with plots, their curves.
 pub fn write_energy(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
-    let Some(rows) = &solution.energy else { return Ok(Vec::new()) };
-    let mut text = String::from(
-        "time_s,kinetic_J,internal_J,elastic_J,plastic_J,damping_J,external_J,contact_J,supports_J,balance_J,impactors_J\n",
-    );
-    for r in rows {
-        let values = [
-            r.time,
-            r.kinetic,
-            r.internal,
-            r.elastic,
-            r.plastic,
-            r.damping,
-            r.external,
-            r.contact,
-            r.supports,
-            r.balance,
-            r.impactors,
-        ];
-        let line: Vec<String> = values.iter().map(|v| format!("{v:e}")).collect();
-        text.push_str(&line.join(","));
-        text.push('\n');
-    }
-    let path = dir.join("energy.csv");
-    std::fs::write(&path, text).map_err(|e| super::file_error(&path, e))?;
-    let mut written = vec![path];
+    let Some(table) = tables::energy(solution) else { return Ok(Vec::new()) };
+    let mut written = vec![super::csv::write_table(&table, dir)?];
     if model.output.plots {
-        let series = |name: &str, f: fn(&crate::dynamics::energy::EnergyRow) -> f64| Series {
+        let time = table.real("time_s").unwrap_or_default();
+        let column = |name: &str| table.real(name).unwrap_or_default();
+        let series = |name: &str, values: Vec<f64>| Series {
             name: name.into(),
-            points: rows.iter().map(|r| (r.time * 1e3, f(r))).collect(),
+            points: time.iter().zip(values).map(|(t, v)| (t * 1e3, v)).collect(),
             dashed: false,
         };
+        let (external, contact, supports) = (column("external_J"), column("contact_J"), column("supports_J"));
+        let work = (0..time.len()).map(|i| external[i] + contact[i] + supports[i]).collect();
         let path = dir.join("energy.png");
         line_plot(
             &path,
@@ -48,13 +30,13 @@ pub fn write_energy(model: &Model, solution: &Solution, dir: &Path) -> Result<Ve
             "time [ms]",
             "energy [J]",
             &[
-                series("kinetic T", |r| r.kinetic),
-                series("internal work", |r| r.internal),
-                series("elastic strain energy", |r| r.elastic),
-                series("plastic dissipation", |r| r.plastic),
-                series("work of loads, contacts and supports", |r| r.external + r.contact + r.supports),
-                series("damping", |r| r.damping),
-                series("balance", |r| r.balance),
+                series("kinetic T", column("kinetic_J")),
+                series("internal work", column("internal_J")),
+                series("elastic strain energy", column("elastic_J")),
+                series("plastic dissipation", column("plastic_J")),
+                series("work of loads, contacts and supports", work),
+                series("damping", column("damping_J")),
+                series("balance", column("balance_J")),
             ],
         )?;
         written.push(path);

@@ -35,8 +35,7 @@ pub use vtu::{FieldArray, FieldGrid, field_grid, write_contact_vtu, write_gauss_
 
 use std::path::{Path, PathBuf};
 
-use crate::analysis::Solution;
-use crate::post;
+use crate::analysis::{Solution, tables};
 use crate::setup::Model;
 
 /// Errors while writing results.
@@ -96,39 +95,18 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
         written.push(path);
     }
 
-    for line in &model.lines {
-        let samples = post::sample_line(&view, line);
-        let path = dir.join(format!("line_{}.csv", line.name));
-        csv::write_line(&path, &samples, &model.quantities())?;
-        written.push(path);
+    for k in 0..model.lines.len() {
+        let table = tables::sampled_line(model, &view, k);
+        written.push(csv::write_table(&table, dir)?);
         if model.output.plots {
-            for &q in &line.plot {
-                let points: Vec<(f64, f64)> = samples
-                    .iter()
-                    .filter_map(|s| s.sample.map(|v| (s.s * 1e3, v.get(q) * q.display_scale())))
-                    .collect();
-                let path = dir.join(format!("line_{}_{}.png", line.name, q.name()));
-                let title = format!(
-                    "{} along {} ({:?} → {:?} m)",
-                    q.label().split(" [").next().unwrap_or_default(),
-                    line.name,
-                    line.from,
-                    line.to
-                );
-                line_plot(
-                    &path,
-                    &title,
-                    "distance along the line [mm]",
-                    &q.label(),
-                    &[Series { name: "cufem".into(), points, dashed: false }],
-                )?;
-                written.push(path);
-            }
+            written.extend(png::line_plots(&model.lines[k], &table, dir)?);
         }
     }
 
-    written.extend(csv::write_histories(model, solution, dir)?);
-    written.extend(csv::write_contact_points(model, solution, dir)?);
+    let histories = tables::histories(model, solution);
+    written.extend(csv::write_tables(&histories, dir)?);
+    let points: Vec<_> = solution.contact_sets.iter().map(|set| tables::contact_points(model, set)).collect();
+    written.extend(csv::write_tables(&points, dir)?);
     if model.output.vtu {
         for (k, set) in solution.contact_sets.iter().enumerate() {
             let path = dir.join(format!("contact_{}.vtu", set.name));
@@ -137,7 +115,7 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
         }
     }
     if model.output.plots {
-        written.extend(png::history_plots(model, solution, dir)?);
+        written.extend(png::history_plots(model, &histories, dir)?);
     }
     written.extend(write_modes(model, solution, dir)?);
     written.extend(energy::write_energy(model, solution, dir)?);

@@ -7,7 +7,8 @@ use plotters::prelude::*;
 use plotters::style::FontStyle;
 
 use super::IoError;
-use crate::analysis::Solution;
+use crate::analysis::tables::Table;
+use crate::setup::Line;
 use crate::setup::Model;
 
 /// One curve of a plot.
@@ -120,20 +121,58 @@ pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, series:
                 .map_err(|e| plot_error(path, e))?;
         }
     }
+    draw_legend(&mut chart, path)?;
+    root.present().map_err(|e| plot_error(path, e))?;
+    Ok(())
+}
+
+/// The legend of every labelled series, in the plots' one style.
+pub(super) fn draw_legend<'a, 'b: 'a>(
+    chart: &mut ChartContext<
+        'a,
+        BitMapBackend<'b>,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
+    path: &Path,
+) -> Result<(), IoError> {
     chart
         .configure_series_labels()
         .background_style(WHITE.mix(0.8))
         .border_style(BLACK)
         .label_font(("sans-serif", 16))
         .draw()
-        .map_err(|e| plot_error(path, e))?;
-    root.present().map_err(|e| plot_error(path, e))?;
-    Ok(())
+        .map_err(|e| plot_error(path, e))
+}
+
+/// `line_<name>_<quantity>.png`: the quantities listed in a line's `plot`
+/// along it, from its table ([`tables::line`]).
+pub fn line_plots(line: &Line, table: &Table, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
+    let mut out = Vec::new();
+    let s = table.real("s").unwrap_or_default();
+    for &q in &line.plot {
+        let values = table.real(&q.name()).unwrap_or_default();
+        let points = s.iter().zip(&values).map(|(s, v)| (s * 1e3, v * q.display_scale())).collect();
+        let path = dir.join(format!("line_{}_{}.png", line.name, q.name()));
+        let title = format!(
+            "{} along {} ({:?} → {:?} m)",
+            q.label().split(" [").next().unwrap_or_default(),
+            line.name,
+            line.from,
+            line.to
+        );
+        let series = [Series { name: "cufem".into(), points, dashed: false }];
+        line_plot(&path, &title, "distance along the line [mm]", &q.label(), &series)?;
+        out.push(path);
+    }
+    Ok(out)
 }
 
 /// Force–displacement curve of every indenter: the force the indenter
-/// applies along its direction of motion against its displacement.
-pub fn history_plots(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
+/// applies along its direction of motion against its displacement, from
+/// its history table ([`tables::contact_history`]); in a model cut by
+/// symmetry planes the force on the full structure (as summary.json's
+/// `full_structure_force`), the one to compare.
+pub fn history_plots(model: &Model, histories: &[Table], dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     let mut out = Vec::new();
     for ind in &model.indenters {
         // the direction of motion: the prescribed displacement, or the force
@@ -144,15 +183,16 @@ pub fn history_plots(model: &Model, solution: &Solution, dir: &Path) -> Result<V
         }
         let dir_unit = d.map(|v| v / norm);
         let along = |v: [f64; 3]| v[0] * dir_unit[0] + v[1] * dir_unit[1] + v[2] * dir_unit[2];
-        // in a model cut by symmetry planes, the force on the full structure
-        // (as summary.json's full_structure_force), the one to compare
+        let table = histories.iter().find(|t| t.name == format!("history_{}", ind.name));
         let full = model.symmetry.full(&ind.name, [0.0; 3]).is_some();
+        let force = if full { "full_f_" } else { "f_" };
+        let vectors = |prefix: &str| -> Vec<[f64; 3]> {
+            let Some(t) = table else { return Vec::new() };
+            let [x, y, z] = ["x", "y", "z"].map(|a| t.real(&format!("{prefix}{a}")).unwrap_or_default());
+            (0..x.len()).map(|i| [x[i], y[i], z[i]]).collect()
+        };
         let mut points = vec![(0.0, 0.0)];
-        points.extend(solution.history.iter().filter_map(|row| {
-            let c = row.contact(&ind.name)?;
-            let f = model.symmetry.full(&ind.name, c.force).unwrap_or(c.force);
-            Some((along(c.displacement) * 1e3, along(f)))
-        }));
+        points.extend(vectors("d_").into_iter().zip(vectors(force)).map(|(d, f)| (along(d) * 1e3, along(f))));
         // short tick labels keep the axis label clear of them
         let largest = points.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
         let (unit, scale) = match largest {

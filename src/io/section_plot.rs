@@ -75,13 +75,7 @@ pub fn section_plot(path: &Path, title: &str, section: &CrossSection) -> Result<
             .legend(move |(x, y)| Rectangle::new([(x, y - 6), (x + 16, y + 6)], colour.filled()));
     }
     if !section.regions.is_empty() {
-        chart
-            .configure_series_labels()
-            .background_style(WHITE.mix(0.8))
-            .border_style(BLACK)
-            .label_font(("sans-serif", 16))
-            .draw()
-            .map_err(|e| plot_error(path, e))?;
+        super::png::draw_legend(&mut chart, path)?;
     }
     root.present().map_err(|e| plot_error(path, e))?;
     Ok(())

@@ -230,9 +230,6 @@ pub fn write_gauss_vtu(path: &Path, model: &Model, solution: &Solution) -> Resul
             }
         }
     }
-    let n_cells = cell_body.len();
-    let connectivity: Vec<u64> = (0..n_cells as u64).collect();
-    let offsets: Vec<u64> = (1..=n_cells as u64).collect();
     let names = ["s_xx", "s_yy", "s_zz", "s_xy", "s_xz", "s_yz"];
     let mut point_data: Vec<(String, usize, Array)> =
         names.iter().zip(stress).map(|(n, v)| (n.to_string(), 1, Array::F64(v))).collect();
@@ -242,17 +239,7 @@ pub fn write_gauss_vtu(path: &Path, model: &Model, solution: &Solution) -> Resul
         point_data.extend(finite::finite_strain_data(model, &view));
     }
     let cell_data = body_element_data(cell_body, cell_element);
-    let grid = Grid {
-        title: &model.title,
-        points: &points,
-        connectivity: &connectivity,
-        offsets: &offsets,
-        n_cells,
-        point_data: &point_data,
-        cell_data: &cell_data,
-        cell_type: VTK_VERTEX,
-    };
-    write_file(path, &grid)
+    write_vertices(path, &model.title, &points, &point_data, &cell_data)
 }
 
 /// Writes the points of one contact (`solution.contact_sets[set]`) as a
@@ -266,23 +253,17 @@ pub fn write_gauss_vtu(path: &Path, model: &Model, solution: &Solution) -> Resul
 /// m) and `status` (0 open, 1 in contact and sticking or frictionless,
 /// 2 sliding).
 pub fn write_contact_vtu(path: &Path, model: &Model, solution: &Solution, set: usize) -> Result<(), IoError> {
-    let points_of = &solution.contact_sets[set].points;
-    let mut points = Vec::with_capacity(3 * points_of.len());
-    let (mut u, mut force, mut normal) = (Vec::new(), Vec::new(), Vec::new());
-    let (mut pressure, mut traction, mut gap, mut slip, mut status) =
-        (Vec::new(), Vec::new(), Vec::new(), Vec::new(), Vec::new());
-    for p in points_of {
-        let x = model.mesh.coords(p.node);
-        points.extend(x);
+    let contact = &solution.contact_sets[set];
+    // position, gap, pressure, traction and slip as in `contact_<name>.csv`
+    let table = crate::analysis::tables::contact_points(model, contact);
+    let column = |name: &str| table.real(name).unwrap_or_default();
+    let (x, y, z) = (column("x"), column("y"), column("z"));
+    let points: Vec<f64> = (0..x.len()).flat_map(|i| [x[i], y[i], z[i]]).collect();
+    let (mut u, mut force, mut normal, mut status) = (Vec::new(), Vec::new(), Vec::new(), Vec::new());
+    for p in &contact.points {
         u.extend((0..3).map(|k| solution.u[3 * p.node + k]));
         force.extend(p.force);
         normal.extend(p.normal);
-        let fn_: f64 = (0..3).map(|k| p.force[k] * p.normal[k]).sum();
-        let ft: f64 = (0..3).map(|k| (p.force[k] - fn_ * p.normal[k]).powi(2)).sum::<f64>().sqrt();
-        pressure.push(fn_ / p.area);
-        traction.push(ft / p.area);
-        gap.push(p.gap);
-        slip.push((p.slip[0].powi(2) + p.slip[1].powi(2) + p.slip[2].powi(2)).sqrt());
         status.push(if !p.active {
             0
         } else if p.sliding {
@@ -291,9 +272,7 @@ pub fn write_contact_vtu(path: &Path, model: &Model, solution: &Solution, set: u
             1
         });
     }
-    let n_cells = points_of.len();
-    let connectivity: Vec<u64> = (0..n_cells as u64).collect();
-    let offsets: Vec<u64> = (1..=n_cells as u64).collect();
+    let (pressure, traction, gap, slip) = (column("pressure"), column("traction"), column("gap"), column("slip"));
     let point_data: Vec<(String, usize, Array)> = vec![
         ("u".into(), 3, Array::F64(u)),
         ("force".into(), 3, Array::F64(force)),
@@ -304,35 +283,37 @@ pub fn write_contact_vtu(path: &Path, model: &Model, solution: &Solution, set: u
         ("slip".into(), 1, Array::F64(slip)),
         ("status".into(), 1, Array::I32(status)),
     ];
-    let grid = Grid {
-        title: &model.title,
-        points: &points,
-        connectivity: &connectivity,
-        offsets: &offsets,
-        n_cells,
-        point_data: &point_data,
-        cell_data: &[],
-        cell_type: VTK_VERTEX,
-    };
-    write_file(path, &grid)
+    write_vertices(path, &model.title, &points, &point_data, &[])
 }
 
 /// Writes a cloud of points (one VTK vertex each) with point data: `points`
 /// holds 3 coordinates per point (m).
 pub fn write_point_cloud(path: &Path, title: &str, points: &[f64], data: Vec<FieldArray>) -> Result<(), IoError> {
+    let point_data: Vec<(String, usize, Array)> =
+        data.into_iter().map(|a| (a.name, a.components, Array::F64(a.values))).collect();
+    write_vertices(path, title, points, &point_data, &[])
+}
+
+/// Writes `points` (3 coordinates each) as one VTK vertex per point, with
+/// their point and cell data.
+fn write_vertices(
+    path: &Path,
+    title: &str,
+    points: &[f64],
+    point_data: &[(String, usize, Array)],
+    cell_data: &[(String, usize, Array)],
+) -> Result<(), IoError> {
     let n = points.len() / 3;
     let connectivity: Vec<u64> = (0..n as u64).collect();
     let offsets: Vec<u64> = (1..=n as u64).collect();
-    let point_data: Vec<(String, usize, Array)> =
-        data.into_iter().map(|a| (a.name, a.components, Array::F64(a.values))).collect();
     let grid = Grid {
         title,
         points,
         connectivity: &connectivity,
         offsets: &offsets,
         n_cells: n,
-        point_data: &point_data,
-        cell_data: &[],
+        point_data,
+        cell_data,
         cell_type: VTK_VERTEX,
     };
     write_file(path, &grid)

@@ -51,9 +51,8 @@ pub use crate::quantity::{Quantity, Sample};
 pub use estimate::ErrorEstimate;
 pub use recovery::Recovered;
 
-use crate::materials::{Material, PointState};
-use crate::mesh::Mesh;
-use crate::values::{CellValues, PointValues};
+use crate::assembly::FeState;
+use crate::values::PointValues;
 use crate::voigt::{self, Voigt};
 
 pub use crate::values::Location;
@@ -67,31 +66,28 @@ fn lagrange_through(points: &[f64], x: f64, out: &mut [f64]) {
     }
 }
 
-/// Everything needed to evaluate fields of a solved (or partially solved) model.
+/// Everything needed to evaluate fields of a solved (or partially solved)
+/// model: its finite-element state (the one an assembly reads), the
+/// Gauss-point stresses, and how to read them.
 pub struct FieldView<'a> {
-    /// Mesh.
-    pub mesh: &'a Mesh,
-    /// Geometry caches per body.
-    pub geometry: &'a [CellValues],
-    /// Materials.
-    pub materials: &'a [Material],
-    /// Displacements, 3 per global node.
-    pub u: &'a [f64],
-    /// Gauss-point states of all bodies.
-    pub states: &'a [PointState],
+    /// Mesh, geometry, materials, displacements and Gauss-point states.
+    pub state: FeState<'a>,
     /// Gauss-point stresses of all bodies (same layout as `states`).
     pub stresses: &'a [Voigt],
-    /// First Gauss point of each body in `states`.
-    pub gp_offsets: &'a [usize],
     /// Recovered nodal stress and peeq: when present, stress and peeq at
     /// points come from it (continuous); otherwise element by element.
     pub recovered: Option<&'a Recovered>,
-    /// The strain measure: small strain, or total Lagrangian (strain =
-    /// Green–Lagrange, stress = Cauchy from the Gauss points).
-    pub kinematics: crate::kinematics::Kinematics,
     /// The model's planes of symmetry: a point in the part they leave out
     /// is evaluated at its image, its fields reflected back.
     pub symmetry: &'a [crate::bc::symmetry::Plane],
+}
+
+impl<'a> std::ops::Deref for FieldView<'a> {
+    type Target = FeState<'a>;
+
+    fn deref(&self) -> &FeState<'a> {
+        &self.state
+    }
 }
 
 impl FieldView<'_> {

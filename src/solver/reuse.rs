@@ -128,7 +128,7 @@ impl Default for ReuseSettings {
 
 /// Counters of the solves made.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct ReuseStats {
+pub struct SolverStats {
     /// Numeric factorizations.
     pub factorizations: usize,
     /// Solves that reused an earlier factor (PCG converged).
@@ -167,7 +167,7 @@ pub enum SolveKind {
 pub struct ReusingSolver {
     chol: Cholesky,
     settings: ReuseSettings,
-    stats: ReuseStats,
+    stats: SolverStats,
     has_factor: bool,
     worn: bool,
     /// Set by a fallback: the next solve factorizes without trying PCG.
@@ -195,7 +195,7 @@ impl ReusingSolver {
         Self {
             chol,
             settings,
-            stats: ReuseStats::default(),
+            stats: SolverStats::default(),
             has_factor: false,
             worn: false,
             skip: false,
@@ -250,7 +250,7 @@ impl ReusingSolver {
     }
 
     /// Counters so far.
-    pub fn stats(&self) -> &ReuseStats {
+    pub fn stats(&self) -> &SolverStats {
         &self.stats
     }
 

@@ -53,14 +53,8 @@ impl<'m> Elements<'m> {
     /// (for the elastic tangent cached at setup).
     pub fn inputs<'a>(&'a self, u: &'a [f64]) -> Inputs<'a> {
         Inputs {
-            mesh: &self.model.mesh,
-            geometry: &self.model.cells,
-            materials: &self.model.materials,
-            u,
-            committed: &self.committed,
-            gp_offsets: &self.gp_offsets,
+            state: crate::analysis::solution::fe_state(self.model, u, &self.committed, &self.gp_offsets),
             predictor: Default::default(),
-            kinematics: self.model.kinematics,
             initial: self.initial.as_deref(),
         }
     }
@@ -86,14 +80,8 @@ impl Contribution for Elements<'_> {
     /// pass (the element tangents and their scatter) is skipped.
     fn evaluate(&mut self, at: &At<'_>, tangent: &mut Tangent<'_>) -> usize {
         let inputs = Inputs {
-            mesh: &self.model.mesh,
-            geometry: &self.model.cells,
-            materials: &self.model.materials,
-            u: at.u,
-            committed: &self.committed,
-            gp_offsets: &self.gp_offsets,
+            state: crate::analysis::solution::fe_state(self.model, at.u, &self.committed, &self.gp_offsets),
             predictor: at.predictor,
-            kinematics: self.model.kinematics,
             initial: self.initial.as_deref(),
         };
         self.last = tangent.assembler.assemble(

@@ -6,7 +6,7 @@
 use crate::assembly::{Assembler, Tangent};
 use crate::solver::linear::{Cholesky, LinearError};
 use crate::solver::nonsymmetric::NonSymmetric;
-use crate::solver::reuse::{ReuseSettings, ReuseStats, ReusingSolver};
+use crate::solver::reuse::{ReuseSettings, ReusingSolver, SolverStats};
 
 /// Tangent, right-hand side and solver.
 #[derive(Debug)]
@@ -94,7 +94,7 @@ impl LinearSystem {
     }
 
     /// The solver's counters.
-    pub fn stats(&self) -> &ReuseStats {
+    pub fn stats(&self) -> &SolverStats {
         self.solver.stats()
     }
 

@@ -1,0 +1,318 @@
+//! The result tables: every table of numbers a run writes (a CSV file, the
+//! PNG plots drawn from it, the Python package's columns) built once from
+//! the [`Solution`] as a typed [`Table`] of named columns with their units.
+//! The writers only serialise them (`io::csv`, `io::png`, `io::energy`,
+//! the Python package), so a column is named, ordered and computed in one
+//! place.
+//!
+//! | table | file | rows |
+//! |-------|------|------|
+//! | [`line`] | `line_<name>.csv` | a sample along a `[[lines]]` entry (outside every body left out) |
+//! | [`constraint_history`] | `history_<constraint>.csv` | a converged increment |
+//! | [`contact_history`] | `history_<contact>.csv` | a converged increment with that contact |
+//! | [`probe_history`] | `history_probes.csv` | a converged increment |
+//! | [`increment_history`] | `history.csv` | a converged increment |
+//! | [`contact_points`] | `contact_<name>.csv` | a point of a contact, final state |
+//! | [`energy`] | `energy.csv` | a converged time step of a transient run |
+
+use super::{ContactSet, Solution};
+use crate::setup::Model;
+use crate::setup::steps::{self, Item};
+use crate::post::{FieldView, LineSample, Quantity};
+
+/// The values of a column.
+#[derive(Debug, Clone, PartialEq)]
+pub enum Values {
+    /// Real numbers (a NaN is a value not recorded, e.g. a reaction missing
+    /// from an increment).
+    Real(Vec<f64>),
+    /// Real numbers that do not exist in some rows (a component of a
+    /// constraint that is not prescribed, the displacement of a pair
+    /// contact): an empty CSV field, NaN in Python.
+    Optional(Vec<Option<f64>>),
+    /// Counts, indices and flags (0 or 1).
+    Count(Vec<usize>),
+    /// Counts not known in some rows (an empty CSV field, NaN in Python).
+    OptionalCount(Vec<Option<usize>>),
+}
+
+impl Values {
+    /// Number of rows.
+    pub fn len(&self) -> usize {
+        match self {
+            Self::Real(v) => v.len(),
+            Self::Optional(v) => v.len(),
+            Self::Count(v) => v.len(),
+            Self::OptionalCount(v) => v.len(),
+        }
+    }
+
+    /// True without rows.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Row `i` as a real number, NaN where absent.
+    pub fn get(&self, i: usize) -> f64 {
+        match self {
+            Self::Real(v) => v[i],
+            Self::Optional(v) => v[i].unwrap_or(f64::NAN),
+            Self::Count(v) => v[i] as f64,
+            Self::OptionalCount(v) => v[i].map_or(f64::NAN, |n| n as f64),
+        }
+    }
+
+    /// Every row as a real number, NaN where absent (the Python package's
+    /// columns).
+    pub fn to_f64(&self) -> Vec<f64> {
+        (0..self.len()).map(|i| self.get(i)).collect()
+    }
+}
+
+/// A named column.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Column {
+    /// Name (the CSV header, the Python column name).
+    pub name: String,
+    /// SI unit of its values (`"m"`, `"N"`, `"J"`, `"s"`, `"Pa"`), `""`
+    /// for counts and dimensionless values.
+    pub unit: &'static str,
+    /// Its values, one per row.
+    pub values: Values,
+}
+
+/// A table of results: columns of equal length.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Table {
+    /// Its name: the stem of its CSV file (`history_clamp`, `energy`).
+    pub name: String,
+    /// The columns, in order.
+    pub columns: Vec<Column>,
+}
+
+impl Table {
+    fn new(name: impl Into<String>) -> Self {
+        Self { name: name.into(), columns: Vec::new() }
+    }
+
+    fn push(&mut self, name: impl Into<String>, unit: &'static str, values: Values) {
+        self.columns.push(Column { name: name.into(), unit, values });
+    }
+
+    /// Three columns `<prefix>x`, `<prefix>y`, `<prefix>z` of a vector per row.
+    fn push_xyz(&mut self, prefix: &str, unit: &'static str, rows: &[[f64; 3]]) {
+        for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+            self.push(format!("{prefix}{axis}"), unit, Values::Real(rows.iter().map(|v| v[k]).collect()));
+        }
+    }
+
+    /// Rows (0 without columns).
+    pub fn rows(&self) -> usize {
+        self.columns.first().map_or(0, |c| c.values.len())
+    }
+
+    /// The column `name`.
+    pub fn column(&self, name: &str) -> Option<&Column> {
+        self.columns.iter().find(|c| c.name == name)
+    }
+
+    /// The values of column `name` as real numbers (NaN where absent), or
+    /// `None` without such a column.
+    pub fn real(&self, name: &str) -> Option<Vec<f64>> {
+        self.column(name).map(|c| c.values.to_f64())
+    }
+}
+
+/// `s, x, y, z` and every quantity of the model along a line, one row per
+/// sample inside a body.
+pub fn line(model: &Model, samples: &[LineSample]) -> Table {
+    let inside: Vec<_> = samples.iter().filter_map(|s| s.sample.map(|v| (s, v))).collect();
+    let mut t = Table::new("");
+    t.push("s", "m", Values::Real(inside.iter().map(|(s, _)| s.s).collect()));
+    let points: Vec<[f64; 3]> = inside.iter().map(|(s, _)| s.point).collect();
+    t.push_xyz("", "m", &points);
+    for q in model.quantities() {
+        t.push(q.name(), si_unit(q), Values::Real(inside.iter().map(|(_, v)| v.get(q)).collect()));
+    }
+    t
+}
+
+/// The table of line `k` of the model (`line_<name>`), sampled in `view`.
+pub fn sampled_line(model: &Model, view: &FieldView<'_>, k: usize) -> Table {
+    let l = &model.lines[k];
+    let mut t = line(model, &crate::post::sample_line(view, l));
+    t.name = format!("line_{}", l.name);
+    t
+}
+
+/// `increment, lambda, iterations` of the rows kept.
+fn increments(rows: &[&super::HistoryRow], name: String) -> Table {
+    let mut t = Table::new(name);
+    t.push("increment", "", Values::Count(rows.iter().map(|r| r.increment).collect()));
+    t.push("lambda", "", Values::Real(rows.iter().map(|r| r.lambda).collect()));
+    t.push("iterations", "", Values::Count(rows.iter().map(|r| r.iterations).collect()));
+    t
+}
+
+/// `history_<name>` of constraint set `ci`: its prescribed displacement
+/// (absent for a free component) and its reaction (NaN where not recorded);
+/// in a model with symmetry planes, when the set has a force on the full
+/// structure (`bc::symmetry::Symmetry::full`), that force too (`full_r_*`).
+pub fn constraint_history(model: &Model, solution: &Solution, ci: usize) -> Table {
+    let c = &model.constraints[ci];
+    let rows: Vec<_> = solution.history.iter().collect();
+    let mut t = increments(&rows, format!("history_{}", c.name));
+    for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+        let u = rows
+            .iter()
+            .map(|r| c.values[k].map(|v| steps::factor(&model.steps, Item::Constraint(ci), r.lambda) * v))
+            .collect();
+        t.push(format!("u_{axis}"), "m", Values::Optional(u));
+    }
+    let r: Vec<[f64; 3]> = rows.iter().map(|r| r.reaction(&c.name).map_or([f64::NAN; 3], |r| r.force)).collect();
+    t.push_xyz("r_", "N", &r);
+    if model.symmetry.full(&c.name, [0.0; 3]).is_some() {
+        // no reaction recorded: NaN, not the plane's cancelled 0
+        let full: Vec<[f64; 3]> = r
+            .iter()
+            .map(|&r| if r[0].is_nan() { r } else { model.symmetry.full(&c.name, r).unwrap_or([f64::NAN; 3]) })
+            .collect();
+        t.push_xyz("full_r_", "N", &full);
+    }
+    t
+}
+
+/// `history_<name>` of a contact: per increment with it, the indenter's
+/// displacement (absent for a pair contact), the force, the largest
+/// penetration, the plastic points, the magnitudes of the force's normal
+/// and tangential parts, and in a model with symmetry planes the force on
+/// the full structure (`full_f_*`).
+pub fn contact_history(model: &Model, solution: &Solution, set: &ContactSet) -> Table {
+    let name = &set.name;
+    let is_indenter = model.indenters.iter().any(|i| &i.name == name);
+    let (rows, contacts): (Vec<_>, Vec<_>) =
+        solution.history.iter().filter_map(|r| r.contact(name).map(|c| (r, c))).unzip();
+    let mut t = increments(&rows, format!("history_{name}"));
+    for (k, axis) in ["x", "y", "z"].iter().enumerate() {
+        let d = contacts.iter().map(|c| is_indenter.then_some(c.displacement[k])).collect();
+        t.push(format!("d_{axis}"), "m", Values::Optional(d));
+    }
+    let f: Vec<[f64; 3]> = contacts.iter().map(|c| c.force).collect();
+    t.push_xyz("f_", "N", &f);
+    t.push("max_penetration", "m", Values::Real(contacts.iter().map(|c| c.max_penetration).collect()));
+    t.push("plastic_points", "", Values::Count(rows.iter().map(|r| r.plastic_points).collect()));
+    t.push("f_n", "N", Values::Real(contacts.iter().map(|c| norm(c.normal_force)).collect()));
+    t.push("f_t", "N", Values::Real(contacts.iter().map(|c| norm(c.tangential_force)).collect()));
+    if model.symmetry.full(name, [0.0; 3]).is_some() {
+        let full: Vec<[f64; 3]> = f.iter().map(|&f| model.symmetry.full(name, f).unwrap_or([f64::NAN; 3])).collect();
+        t.push_xyz("full_f_", "N", &full);
+    }
+    t
+}
+
+/// `history_probes`: the displacement of every probe at every increment
+/// (columns `<probe>.u_x`, `<probe>.u_y`, `<probe>.u_z`).
+pub fn probe_history(model: &Model, solution: &Solution) -> Table {
+    let rows: Vec<_> = solution.history.iter().collect();
+    let mut t = increments(&rows, "history_probes".into());
+    for (p, probe) in model.probes.iter().enumerate() {
+        let u: Vec<[f64; 3]> = rows.iter().map(|r| r.probes[p]).collect();
+        t.push_xyz(&format!("{}.u_", probe.name), "m", &u);
+    }
+    t
+}
+
+/// `history`: per converged increment, the load factor, Newton iterations,
+/// plastic Gauss points and the negative pivots of the last factorized
+/// tangent (absent when not known), which count the tangent's negative
+/// eigenvalues: a change marks a limit or bifurcation point.
+pub fn increment_history(solution: &Solution) -> Table {
+    let rows: Vec<_> = solution.history.iter().collect();
+    let mut t = increments(&rows, "history".into());
+    t.push("plastic_points", "", Values::Count(rows.iter().map(|r| r.plastic_points).collect()));
+    t.push("negative_pivots", "", Values::OptionalCount(rows.iter().map(|r| r.negative_pivots).collect()));
+    t
+}
+
+/// Every history table of a solution, in the order of their files: each
+/// constraint set, each contact, the probes (if any), the increments (if
+/// any).
+pub fn histories(model: &Model, solution: &Solution) -> Vec<Table> {
+    let mut out: Vec<Table> = (0..model.constraints.len()).map(|ci| constraint_history(model, solution, ci)).collect();
+    out.extend(solution.contact_sets.iter().map(|set| contact_history(model, solution, set)));
+    if !model.probes.is_empty() {
+        out.push(probe_history(model, solution));
+    }
+    if !solution.history.is_empty() {
+        out.push(increment_history(solution));
+    }
+    out
+}
+
+/// `contact_<name>`: the final state of every point of a contact — its
+/// position, gap, force, tributary area, the normal and tangential parts of
+/// the force per area (as the contact VTU), whether it is active, its slip
+/// and whether it slides.
+pub fn contact_points(model: &Model, set: &ContactSet) -> Table {
+    let p = &set.points;
+    let mut t = Table::new(format!("contact_{}", set.name));
+    t.push("node", "", Values::Count(p.iter().map(|p| p.node).collect()));
+    let x: Vec<[f64; 3]> = p.iter().map(|p| model.mesh.coords(p.node)).collect();
+    t.push_xyz("", "m", &x);
+    t.push("gap", "m", Values::Real(p.iter().map(|p| p.gap).collect()));
+    let f: Vec<[f64; 3]> = p.iter().map(|p| p.force).collect();
+    t.push_xyz("f_", "N", &f);
+    t.push("area", "m^2", Values::Real(p.iter().map(|p| p.area).collect()));
+    let f_n: Vec<f64> = p.iter().map(|p| (0..3).map(|k| p.force[k] * p.normal[k]).sum()).collect();
+    let f_t: Vec<f64> = p
+        .iter()
+        .zip(&f_n)
+        .map(|(p, f_n)| (0..3).map(|k| (p.force[k] - f_n * p.normal[k]).powi(2)).sum::<f64>().sqrt())
+        .collect();
+    t.push("pressure", "Pa", Values::Real(p.iter().zip(&f_n).map(|(p, f)| f / p.area).collect()));
+    t.push("traction", "Pa", Values::Real(p.iter().zip(&f_t).map(|(p, f)| f / p.area).collect()));
+    t.push("active", "", Values::Count(p.iter().map(|p| usize::from(p.active)).collect()));
+    t.push("slip", "m", Values::Real(p.iter().map(|p| norm(p.slip)).collect()));
+    t.push("sliding", "", Values::Count(p.iter().map(|p| usize::from(p.sliding)).collect()));
+    t
+}
+
+/// `energy`: the energy balance of a transient run per converged time step
+/// (`dynamics::energy`), or `None` for another analysis.
+pub fn energy(solution: &Solution) -> Option<Table> {
+    use crate::dynamics::energy::EnergyRow;
+    let rows = solution.energy.as_ref()?;
+    let mut t = Table::new("energy");
+    // name, unit, value of a row
+    type EnergyColumn = (&'static str, &'static str, fn(&EnergyRow) -> f64);
+    let columns: [EnergyColumn; 11] = [
+        ("time_s", "s", |r| r.time),
+        ("kinetic_J", "J", |r| r.kinetic),
+        ("internal_J", "J", |r| r.internal),
+        ("elastic_J", "J", |r| r.elastic),
+        ("plastic_J", "J", |r| r.plastic),
+        ("damping_J", "J", |r| r.damping),
+        ("external_J", "J", |r| r.external),
+        ("contact_J", "J", |r| r.contact),
+        ("supports_J", "J", |r| r.supports),
+        ("balance_J", "J", |r| r.balance),
+        ("impactors_J", "J", |r| r.impactors),
+    ];
+    for (name, unit, f) in columns {
+        t.push(name, unit, Values::Real(rows.iter().map(f).collect()));
+    }
+    Some(t)
+}
+
+/// The SI unit of a quantity's values.
+fn si_unit(q: Quantity) -> &'static str {
+    match q {
+        Quantity::Displacement(_) => "m",
+        Quantity::Stress(_) | Quantity::VonMises => "Pa",
+        Quantity::Strain(_) | Quantity::Peeq | Quantity::Failure(_) => "",
+    }
+}
+
+fn norm(v: [f64; 3]) -> f64 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+}

@@ -16,9 +16,9 @@
 //! | [`energy`] | `energy.csv` | a converged time step of a transient run |
 
 use super::{ContactSet, Solution};
+use crate::post::{FieldView, LineSample, Quantity};
 use crate::setup::Model;
 use crate::setup::steps::{self, Item};
-use crate::post::{FieldView, LineSample, Quantity};
 
 /// The values of a column.
 #[derive(Debug, Clone, PartialEq)]

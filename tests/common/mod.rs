@@ -107,7 +107,10 @@ pub fn csv_columns(path: &std::path::Path) -> std::collections::HashMap<String, 
 /// the package that builds it (crates/cufem-cli); the core's tests, which
 /// share this file, cannot run it.
 pub fn cufem() -> Command {
-    Command::new(option_env!("CARGO_BIN_EXE_cufem").expect("the cufem binary runs from crates/cufem-cli/tests only"))
+    let Some(exe) = option_env!("CARGO_BIN_EXE_cufem") else {
+        panic!("the cufem binary runs from crates/cufem-cli/tests only")
+    };
+    Command::new(exe)
 }
 
 /// Writes `text` as `<prefix>_<name>/<name>.toml` in the test scratch

@@ -47,7 +47,7 @@ def measure(name, text):
     subprocess.run([binary, "run", out + "/model.toml", "--out", out + "/out", "--quiet", "--force"],
                    check=True, stdout=subprocess.DEVNULL)
     s = json.load(open(out + "/out/summary.json"))
-    force = next(c for c in s["contact"] if c["name"] == "punch")["force"][2] / -1.4102e6 - 1  # tests/examples.rs BLOCK_FORCE_3D
+    force = next(c for c in s["contact"] if c["name"] == "punch")["force"][2] / -1.4102e6 - 1  # crates/cufem-cli/tests/examples.rs BLOCK_FORCE_3D
     ours = columns(out + "/out/line_top.csv")
     x = ours["x"]
 

@@ -70,12 +70,11 @@
 
 pub mod adapt;
 pub mod analysis;
-pub mod assembly;
+pub(crate) mod assembly;
 pub mod bc;
-pub mod ccx;
 pub mod contact;
 pub mod dynamics;
-pub mod elements;
+pub(crate) mod elements;
 pub mod input;
 pub mod io;
 pub mod kinematics;
@@ -90,5 +89,4 @@ pub mod shape;
 pub mod size;
 pub mod solver;
 pub mod values;
-pub mod verify;
 pub mod voigt;

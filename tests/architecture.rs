@@ -1,9 +1,16 @@
 //! The house rules of ARCHITECTURE.md that a test can check, read from the
 //! syntax tree (`syn`), not from the characters of the source:
 //!
-//! * **The module tree** is followed from `src/lib.rs` and `src/main.rs`
-//!   through their `mod` items (`#[path]` honoured); every `.rs` file under
-//!   `src/` must be in it, so no check misses a file.
+//! * **The crates are layers**: the workspace's packages (the root's
+//!   `Cargo.toml`) are ordered in [`CRATE_LAYERS`], the core library first; a
+//!   package depends (normal, build or dev dependency) only on packages
+//!   before it: the CalculiX bridge and the CLI on the core, never the
+//!   reverse.
+//! * **The module tree** of every crate (each package's `src/lib.rs` and
+//!   `src/main.rs`) is followed through their `mod` items (`#[path]`
+//!   honoured); every `.rs` file under a package's `src/` must be in it, so
+//!   no check misses a file. Files are named by their path under `src/` for
+//!   the core (the root package), from the repository root for the others.
 //! * **No import cycle** between the top-level modules of a crate, nor
 //!   between the files (submodules) of any module directory. `a → b` when
 //!   the code of `a` (outside `#[cfg(test)]` items: what a test reads is not
@@ -39,17 +46,50 @@ const MAX_FN_LINES: usize = 120;
 /// Above this many lines a file must be in [`LONG_FILES`].
 const LONG_FILE_LINES: usize = 600;
 
-/// Files over [`LONG_FILE_LINES`] lines, reviewed: `(path under src/,
-/// why it stays one file)`.
+/// Files over [`LONG_FILE_LINES`] lines, reviewed: `(path as in
+/// [`Source::file`], why it stays one file)`.
 const LONG_FILES: &[(&str, &str)] = &[];
 
-fn src() -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("src")
+/// The workspace's packages from the lowest layer up: each may depend only
+/// on the ones before it.
+const CRATE_LAYERS: &[&str] = &["cufem", "cufem-ccx", "cufem-cli"];
+
+/// The repository root: the workspace's and the core package's directory.
+fn root() -> &'static Path {
+    Path::new(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// A manifest (`Cargo.toml`) as a TOML table.
+fn manifest(dir: &Path) -> toml::Table {
+    let path = dir.join("Cargo.toml");
+    let text = std::fs::read_to_string(&path).unwrap_or_else(|e| panic!("{}: {e}", path.display()));
+    text.parse().unwrap_or_else(|e| panic!("{}: {e}", path.display()))
+}
+
+/// The workspace's packages: `(name, directory relative to the root)`.
+fn members() -> Vec<(String, String)> {
+    let members = manifest(root())["workspace"]["members"].as_array().unwrap().clone();
+    members
+        .iter()
+        .map(|m| {
+            let dir = m.as_str().unwrap().to_string();
+            let name = manifest(&root().join(&dir))["package"]["name"].as_str().unwrap().to_string();
+            (name, dir)
+        })
+        .collect()
+}
+
+/// The `src/` folder of the package in `dir` and the prefix its files are
+/// named with (none for the core).
+fn src_of(dir: &str) -> (PathBuf, String) {
+    let prefix = if dir == "." { String::new() } else { format!("{dir}/src/") };
+    (root().join(dir).join("src"), prefix)
 }
 
 /// One source file of a crate.
 struct Source {
-    /// Path under `src/` (`setup/bodies.rs`).
+    /// Path under `src/` for the core (`setup/bodies.rs`), from the
+    /// repository root for the other packages (`crates/cufem-ccx/src/deck.rs`).
     file: String,
     /// Module path in its crate (`[setup, bodies]`; `[]` for the root).
     module: Vec<String>,
@@ -86,20 +126,32 @@ fn path_attribute(attrs: &[syn::Attribute]) -> Option<String> {
     })
 }
 
-/// The files of the crate whose root is `src/{root}`, found by following
-/// its `mod` items from the root.
-fn crate_sources(root: &str) -> Vec<Source> {
+/// The files of the crate whose root is `{src}/{root}`, found by following
+/// its `mod` items from the root; named with `prefix`.
+fn crate_sources(src: &Path, prefix: &str, root: &str) -> Vec<Source> {
     let mut out = Vec::new();
-    load(&src().join(root), Vec::new(), false, true, &mut out);
+    load(&Tree { src, prefix }, &src.join(root), Vec::new(), false, true, &mut out);
     out
+}
+
+/// Where a crate's files are and how they are named.
+struct Tree<'a> {
+    src: &'a Path,
+    prefix: &'a str,
+}
+
+impl Tree<'_> {
+    fn name(&self, path: &Path) -> String {
+        format!("{}{}", self.prefix, path.strip_prefix(self.src).unwrap().to_string_lossy())
+    }
 }
 
 /// Reads the file of module `module` and, recursively, the files of the
 /// modules it declares with `mod name;`. `mod_rs`: the file is a crate
 /// root, a `mod.rs` or reached by `#[path]`, so its children sit next to
 /// it rather than in a directory named after it.
-fn load(path: &Path, module: Vec<String>, test: bool, mod_rs: bool, out: &mut Vec<Source>) {
-    let file = path.strip_prefix(src()).unwrap().to_string_lossy().into_owned();
+fn load(tree: &Tree, path: &Path, module: Vec<String>, test: bool, mod_rs: bool, out: &mut Vec<Source>) {
+    let file = tree.name(path);
     let text = std::fs::read_to_string(path).unwrap_or_else(|e| panic!("{file}: {e}"));
     let ast = parse(&file, &text);
     let here = path.parent().unwrap();
@@ -114,39 +166,62 @@ fn load(path: &Path, module: Vec<String>, test: bool, mod_rs: bool, out: &mut Ve
         sub.push(name.clone());
         let test = test || is_test(&m.attrs);
         if let Some(p) = path_attribute(&m.attrs) {
-            load(&here.join(p), sub, test, true, out);
+            load(tree, &here.join(p), sub, test, true, out);
         } else if children.join(format!("{name}.rs")).is_file() {
-            load(&children.join(format!("{name}.rs")), sub, test, false, out);
+            load(tree, &children.join(format!("{name}.rs")), sub, test, false, out);
         } else {
-            load(&children.join(&name).join("mod.rs"), sub, test, true, out);
+            load(tree, &children.join(&name).join("mod.rs"), sub, test, true, out);
         }
     }
     out.push(Source { file, module, test, lines: text.lines().count(), ast });
 }
 
-/// The library's files and the binary's.
-fn crates() -> [Vec<Source>; 2] {
-    [crate_sources("lib.rs"), crate_sources("main.rs")]
+/// The files of every crate of the workspace (a package's library and
+/// binary are two crates), by crate: `(package, crate root, files)`.
+fn crates() -> Vec<(String, &'static str, Vec<Source>)> {
+    let mut out = Vec::new();
+    for (name, dir) in members() {
+        let (src, prefix) = src_of(&dir);
+        for root in ["lib.rs", "main.rs"] {
+            if src.join(root).is_file() {
+                out.push((name.clone(), root, crate_sources(&src, &prefix, root)));
+            }
+        }
+    }
+    out
+}
+
+/// The core library's files.
+fn core_library<'a>(crates: &'a [(String, &'static str, Vec<Source>)]) -> &'a [Source] {
+    &crates.iter().find(|(name, root, _)| name == CRATE_LAYERS[0] && *root == "lib.rs").unwrap().2
 }
 
 #[test]
 fn every_source_file_is_in_the_module_tree() {
-    fn files(dir: &Path, out: &mut BTreeSet<String>) {
+    fn files(tree: &Tree, dir: &Path, out: &mut BTreeSet<String>) {
         for e in std::fs::read_dir(dir).unwrap() {
             let p = e.unwrap().path();
             if p.is_dir() {
-                files(&p, out);
+                files(tree, &p, out);
             } else if p.extension().is_some_and(|x| x == "rs") {
-                out.insert(p.strip_prefix(src()).unwrap().to_string_lossy().into_owned());
+                out.insert(tree.name(&p));
             }
         }
     }
     let mut on_disk = BTreeSet::new();
-    files(&src(), &mut on_disk);
-    let [lib, bin] = crates();
-    let reached: BTreeSet<String> = lib.iter().chain(&bin).map(|s| s.file.clone()).collect();
+    for (_, dir) in members() {
+        let (src, prefix) = src_of(&dir);
+        files(&Tree { src: &src, prefix: &prefix }, &src, &mut on_disk);
+    }
+    let crates = crates();
+    let reached: BTreeSet<String> = crates.iter().flat_map(|c| &c.2).map(|s| s.file.clone()).collect();
     let orphans: Vec<&String> = on_disk.difference(&reached).collect();
     assert!(orphans.is_empty(), "files no `mod` item reaches: {orphans:?}");
+    // every package's tree is read: the bridge's and the CLI's files too
+    for file in ["crates/cufem-ccx/src/verify/field.rs", "crates/cufem-cli/src/cli/bench.rs"] {
+        assert!(reached.contains(file), "{file} not reached");
+    }
+    let lib = core_library(&crates);
     // the tree is read as rustc reads it: a `#[path]` test file is a
     // submodule of the file that declares it
     let kinematic = lib.iter().find(|s| s.file == "materials/kinematic_tests.rs").unwrap();
@@ -154,6 +229,78 @@ fn every_source_file_is_in_the_module_tree() {
     assert!(kinematic.test);
     let schema = lib.iter().find(|s| s.file == "input/schema/section.rs").unwrap();
     assert_eq!(schema.module, ["input", "schema", "section"]);
+}
+
+// ---------------------------------------------------------------- layers
+
+/// The workspace packages a manifest depends on (normal, build and dev
+/// dependencies; `x.workspace = true` counts as `x`).
+fn package_dependencies(manifest: &toml::Table, packages: &[&str]) -> BTreeSet<String> {
+    let mut out = BTreeSet::new();
+    for kind in ["dependencies", "build-dependencies", "dev-dependencies"] {
+        let Some(deps) = manifest.get(kind).and_then(|d| d.as_table()) else { continue };
+        for (key, value) in deps {
+            let name = value.get("package").and_then(|p| p.as_str()).unwrap_or(key);
+            if packages.contains(&name) {
+                out.insert(name.to_string());
+            }
+        }
+    }
+    out
+}
+
+/// `package → dependency` edges that go against [`CRATE_LAYERS`]-like `layers`
+/// (lowest first), and packages not placed in it.
+fn layer_violations(manifests: &[(String, toml::Table)], layers: &[&str]) -> Vec<String> {
+    let mut problems = Vec::new();
+    for (name, manifest) in manifests {
+        let Some(level) = layers.iter().position(|l| l == name) else {
+            problems.push(format!("{name} is a workspace member not placed in CRATE_LAYERS"));
+            continue;
+        };
+        for dep in package_dependencies(manifest, layers) {
+            if layers.iter().position(|l| *l == dep).is_some_and(|d| d >= level) {
+                problems.push(format!("{name} depends on {dep}, a layer at or above its own"));
+            }
+        }
+    }
+    problems
+}
+
+/// The CalculiX bridge and the CLI depend on the core, never the reverse;
+/// every package is placed in [`CRATE_LAYERS`].
+#[test]
+fn crates_depend_on_lower_layers_only() {
+    let manifests: Vec<(String, toml::Table)> =
+        members().into_iter().map(|(name, dir)| (name, manifest(&root().join(dir)))).collect();
+    let problems = layer_violations(&manifests, CRATE_LAYERS);
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+    // the check reads the real edges: the CLI uses both libraries
+    let cli = &manifests.iter().find(|(n, _)| n == "cufem-cli").unwrap().1;
+    assert_eq!(package_dependencies(cli, CRATE_LAYERS), BTreeSet::from(["cufem".to_string(), "cufem-ccx".to_string()]));
+}
+
+/// The core depending on the bridge (even as a renamed dev-dependency),
+/// a package on itself and an unplaced package are each found.
+#[test]
+fn a_dependency_against_the_layers_is_caught() {
+    let toml = |text: &str| -> toml::Table { text.parse().unwrap() };
+    let manifests = [
+        ("core".to_string(), toml("[dev-dependencies]\nbridge_alias = { package = \"bridge\", path = \"b\" }")),
+        ("bridge".to_string(), toml("[dependencies]\ncore.workspace = true\nserde = \"1\"")),
+        ("cli".to_string(), toml("[dependencies]\ncore = { path = \".\" }\ncli = { path = \".\" }")),
+        ("extra".to_string(), toml("[dependencies]\ncore.workspace = true")),
+    ];
+    let problems = layer_violations(&manifests, &["core", "bridge", "cli"]);
+    assert_eq!(
+        problems,
+        [
+            "core depends on bridge, a layer at or above its own",
+            "cli depends on cli, a layer at or above its own",
+            "extra is a workspace member not placed in CRATE_LAYERS",
+        ],
+    );
+    assert!(layer_violations(&manifests[1..2], &["core", "bridge"]).is_empty());
 }
 
 // ---------------------------------------------------------------- imports
@@ -408,8 +555,8 @@ fn all_cycles(graphs: &BTreeMap<String, Graph>) -> Vec<String> {
 
 #[test]
 fn modules_and_files_form_no_import_cycle() {
-    let [lib, bin] = crates();
-    let graphs = import_graphs(&lib);
+    let crates = crates();
+    let graphs = import_graphs(core_library(&crates));
     // the check reads what it should: the library's layers and setup's files
     let top = &graphs["crate"];
     assert!(top["analysis"].contains("setup") && top["setup"].contains("mesh"), "{top:?}");
@@ -420,8 +567,10 @@ fn modules_and_files_form_no_import_cycle() {
     // model, the set-up model does not read results
     let breaches = layer_breaches(top);
     assert!(breaches.is_empty(), "{}", breaches.join("\n"));
-    let mut found = all_cycles(&graphs);
-    found.extend(all_cycles(&import_graphs(&bin)).into_iter().map(|c| format!("main.rs {c}")));
+    let mut found = Vec::new();
+    for (name, root, sources) in &crates {
+        found.extend(all_cycles(&import_graphs(sources)).into_iter().map(|c| format!("{name} {root} {c}")));
+    }
     assert!(found.is_empty(), "import cycles:\n{}", found.join("\n"));
 }
 
@@ -576,8 +725,7 @@ fn function_lengths(sources: &[Source]) -> Vec<(String, usize)> {
 /// job. (No exception today; one would be listed here with its reason.)
 #[test]
 fn no_function_is_over_120_lines() {
-    let [lib, bin] = crates();
-    let all: Vec<(String, usize)> = function_lengths(&lib).into_iter().chain(function_lengths(&bin)).collect();
+    let all: Vec<(String, usize)> = crates().iter().flat_map(|c| function_lengths(&c.2)).collect();
     let long: Vec<&(String, usize)> = all.iter().filter(|(_, n)| *n > MAX_FN_LINES).collect();
     assert!(long.is_empty(), "split these by concept: {long:?}");
     // the measure itself: GMRES (about 100 lines, nested loops) is found
@@ -651,8 +799,7 @@ fn long_file_review(files: &[(String, usize)], listed: &[(&str, &str)]) -> Vec<S
 
 #[test]
 fn long_files_are_listed_with_a_reason() {
-    let [lib, bin] = crates();
-    let files: Vec<(String, usize)> = lib.iter().chain(&bin).map(|s| (s.file.clone(), s.lines)).collect();
+    let files: Vec<(String, usize)> = crates().iter().flat_map(|c| &c.2).map(|s| (s.file.clone(), s.lines)).collect();
     let problems = long_file_review(&files, LONG_FILES);
     assert!(problems.is_empty(), "{}", problems.join("\n"));
 }

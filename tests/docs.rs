@@ -143,7 +143,8 @@ fn relative_links_resolve() {
     assert!(broken.is_empty(), "broken links:\n{}", broken.join("\n"));
 }
 
-/// Every `#[ignore]` in tests/ and src/ names the validation step that runs
+/// Every `#[ignore]` in tests/, src/ and crates/ (the other crates' src/ and
+/// tests/) names the validation step that runs
 /// it: `#[ignore = "validate: slow — …"]` (bench/validate's step `slow`,
 /// within its hour) or `#[ignore = "validate: references — …"]` (the long
 /// CalculiX runs that re-make stored 3D references, `bench/validate
@@ -152,7 +153,7 @@ fn relative_links_resolve() {
 #[test]
 fn every_ignored_test_names_its_validation_step() {
     let mut files = Vec::new();
-    let mut stack = vec![root().join("tests"), root().join("src")];
+    let mut stack = vec![root().join("tests"), root().join("src"), root().join("crates")];
     while let Some(dir) = stack.pop() {
         for e in std::fs::read_dir(dir).unwrap() {
             let p = e.unwrap().path();

@@ -154,7 +154,7 @@ fn contact_warnings(model: &Model, solution: &Solution, warnings: &mut Vec<Warni
 /// Largest equivalent plastic strain that J2 plasticity on the
 /// Green–Lagrange strain is trusted with. Beyond it the model departs from
 /// finite-strain plasticity: in uniaxial tension its Cauchy stress is 22 %
-/// off the hardening curve at 10 % strain (tests/large_deformation.rs), and
+/// off the hardening curve at 10 % strain (crates/cufem-cli/tests/large_deformation.rs), and
 /// the paper's tube in three-point bending (8.5 % plastic strain under the
 /// roller) carries a roller force 2.5 % below the logarithmic strain's.
 pub const GREEN_LAGRANGE_PLASTIC_LIMIT: f64 = 0.02;

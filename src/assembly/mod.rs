@@ -25,7 +25,7 @@ mod scatter;
 pub use contribution::{At, Contribution, Forces, Phase, Tangent};
 pub(crate) use numbering::node_adjacency;
 pub use numbering::{DofMap, NO_EQ, Numbering};
-pub use scatter::{ElementRef, ScatterMaps};
+pub use scatter::ScatterMaps;
 
 use rayon::prelude::*;
 

@@ -66,7 +66,8 @@ impl ScatterMaps {
         Self { elements, offsets, maps, colours }
     }
 
-    /// The map of global element `ge`.
+    /// The map of global element `ge` (read by the tests of the maps).
+    #[cfg(test)]
     pub fn map(&self, ge: usize) -> &[u32] {
         &self.maps[self.offsets[ge]..self.offsets[ge + 1]]
     }

@@ -12,7 +12,7 @@
 //! that chatters on a rigid wall gains energy at every bounce: a steel rod
 //! hitting a wall at the default penalty factor, its end nodes' mass kept
 //! (`analysis.contact_mass = "kept"`), leaves with 8.41 times its kinetic
-//! energy (tests/dynamics.rs). The contact nodes' chatter itself is what
+//! energy (crates/cufem-cli/tests/dynamics.rs). The contact nodes' chatter itself is what
 //! `dynamics::redistribution` removes.
 //!
 //! **The scheme.** The contact's impulse over the step is taken fully at

@@ -45,7 +45,7 @@
 //! step, are those of a node that moves with the body behind it rather
 //! than one that stops dead: 1.2e-4 of the energy of
 //! `examples/rod_impact.toml` against 3.1e-3 with the nodes' mass kept
-//! (tests/dynamics.rs).
+//! (crates/cufem-cli/tests/dynamics.rs).
 //!
 //! **Which nodes.** Every candidate node of a rigid indenter (impactors
 //! included) and every node of a contact between bodies on either side

@@ -237,7 +237,7 @@ impl Model {
 
 /// The stiffness scale of a body for its penalties and bounds: the largest
 /// Young's modulus of its materials.
-pub(crate) fn body_young(body: &Body, materials: &[Material]) -> f64 {
+pub fn body_young(body: &Body, materials: &[Material]) -> f64 {
     body.materials().iter().map(|&m| materials[m].young).fold(0.0, f64::max)
 }
 

@@ -1,4 +1,9 @@
-//! Helpers shared by the integration tests (each test binary uses a part).
+//! Helpers shared by the integration tests of every crate (each test binary
+//! uses a part): the core's include this file as `mod common;`, the other
+//! crates' as `#[path = "../../../tests/common/mod.rs"] mod common;`. It is
+//! compiled into each test rather than built as a crate of its own because it
+//! reads what Cargo gives a test target only (`CARGO_TARGET_TMPDIR`, the
+//! binary's path).
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
@@ -98,9 +103,14 @@ pub fn csv_columns(path: &std::path::Path) -> std::collections::HashMap<String, 
     cols
 }
 
-/// The `cufem` binary of this build.
+/// The `cufem` binary of this build. Cargo names it only to the tests of
+/// the package that builds it (crates/cufem-cli); the core's tests, which
+/// share this file, cannot run it.
 pub fn cufem() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_cufem"))
+    let Some(exe) = option_env!("CARGO_BIN_EXE_cufem") else {
+        panic!("the cufem binary runs from crates/cufem-cli/tests only")
+    };
+    Command::new(exe)
 }
 
 /// Writes `text` as `<prefix>_<name>/<name>.toml` in the test scratch
@@ -151,7 +161,7 @@ pub fn verify(dir: &Path, name: &str, text: &str, refine: u32) -> PathBuf {
 /// ρ = 8,000 kg/m³, c = 5,000 m/s) of `elements` B2, fixed at y = 0 and
 /// pulled at y = 1 m by `force` (N) applied within 1 ns and held for `hold`
 /// s in `steps` time steps, with the analysis keys `analysis`; probes at
-/// the end and the middle (tests/dynamics.rs, tests/ccx_dynamic.rs).
+/// the end and the middle (crates/cufem-cli/tests/dynamics.rs, crates/cufem-cli/tests/ccx_dynamic.rs).
 pub fn step_loaded_bar(elements: usize, force: f64, hold: f64, steps: usize, analysis: &str) -> String {
     format!(
         r#"title = "Step-loaded bar"

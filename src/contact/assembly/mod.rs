@@ -39,7 +39,7 @@ use crate::mesh::Mesh;
 /// points and the active set then cycles: `examples/hertz_ball.toml` cycled
 /// in its last increment (two cutbacks, 12.1 s) where solves to 1e-2 converge
 /// in 4 increments (5.0 s). Once settled, the looser stop applies (the tubes
-/// need 4–5 fewer factorizations with it). tests/examples.rs `hertz_ball`
+/// need 4–5 fewer factorizations with it). crates/cufem-cli/tests/examples.rs `hertz_ball`
 /// asserts the 4 increments. With friction, points switching between stick
 /// and slip count as unsettled too.
 pub const UNSETTLED_FORCING: f64 = 1e-2;

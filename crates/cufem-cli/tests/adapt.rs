@@ -1,0 +1,398 @@
+//! Adaptive refinement (`cufem::adapt`, `cufem run --adapt`): Dörfler
+//! marking picks the largest estimates, the intervals holding them are the
+//! ones halved, the refined meshes have the DOF counts of their divisions,
+//! names survive, and the CLI runs cycles until the budget with the
+//! estimate falling.
+
+#[path = "../../../tests/common/mod.rs"]
+mod common;
+
+use std::path::Path;
+use std::process::Command;
+
+use cufem::adapt::mark;
+use cufem::setup::{Limits, MeshPlan, Model, SectionPlan};
+
+fn example(name: &str) -> String {
+    std::fs::read_to_string(Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join("examples").join(name))
+        .unwrap()
+}
+
+/// The Timoshenko cantilever with `nx` × `nz` L9 over the section and `ny`
+/// B4 along the axis.
+fn cantilever(nx: usize, nz: usize, ny: usize) -> String {
+    let text = example("cantilever_timoshenko.toml");
+    let section = "x = { from = 0.0, to = 0.1, elements = 2 }, z = { from = 0.0, to = 0.1, elements = 2 }";
+    assert!(text.contains(section) && text.contains("to = 1.0, elements = 5 }"));
+    text.replace(
+        section,
+        &format!("x = {{ from = 0.0, to = 0.1, elements = {nx} }}, z = {{ from = 0.0, to = 0.1, elements = {nz} }}"),
+    )
+    .replace("to = 1.0, elements = 5 }", &format!("to = 1.0, elements = {ny} }}"))
+}
+
+/// DOF of one body of L9 × B4 on `nx` × `nz` × `ny` intervals.
+fn dof_l9_b4(nx: usize, nz: usize, ny: usize) -> usize {
+    3 * (2 * nx + 1) * (2 * nz + 1) * (3 * ny + 1)
+}
+
+fn planned(text: &str, plan: &MeshPlan) -> Model {
+    Model::parse_planned(text, Limits::none(), Path::new("."), plan).unwrap()
+}
+
+#[test]
+fn dorfler_marks_the_fewest_largest_elements() {
+    // η² = 0.01, 9, 0.04, 4, 1: total 14.05
+    let eta = [0.1, 3.0, 0.2, 2.0, 1.0];
+    assert_eq!(mark::dorfler(&eta, 0.5), vec![1], "9 ≥ 0.5 · 14.05 alone");
+    assert_eq!(mark::dorfler(&eta, 0.8), vec![1, 3], "9 + 4 ≥ 11.24, 9 < 11.24");
+    assert_eq!(mark::dorfler(&eta, 0.95), vec![1, 3, 4], "14 ≥ 13.35");
+    assert_eq!(mark::dorfler(&eta, 1.0).len(), 5);
+    assert!(mark::dorfler(&[0.0; 4], 0.5).is_empty(), "nothing to refine where the estimate is zero");
+}
+
+#[test]
+fn split_halves_only_the_marked_intervals() {
+    let lines = [0.0, 1.0, 3.0, 4.0];
+    assert_eq!(mark::split(&lines, &[false, true, false]), vec![0.0, 1.0, 2.0, 3.0, 4.0]);
+    assert_eq!(mark::split(&lines, &[true, false, true]), vec![0.0, 0.5, 1.0, 3.0, 3.5, 4.0]);
+    assert_eq!(mark::split(&lines, &[false; 3]), lines.to_vec());
+}
+
+/// The model's own plan rebuilds the same mesh: refinement starts from
+/// exactly what the file describes (graded divisions included).
+#[test]
+fn the_plan_of_a_file_rebuilds_its_mesh() {
+    let text = example("block_indentation.toml");
+    let model = Model::parse_with(&text, Limits::none()).unwrap();
+    let again = planned(&text, &model.plan);
+    assert_eq!(again.n_dofs(), model.n_dofs());
+    let (a, b) = (&model.mesh.bodies[0], &again.mesh.bodies[0]);
+    assert_eq!(a.section.nodes, b.section.nodes);
+    assert_eq!(a.axis.nodes, b.axis.nodes);
+    let SectionPlan::Grid { x, z } = &model.plan.bodies[0].section else { panic!("the block is a grid") };
+    assert_eq!((x.len() - 1, z.len() - 1, model.plan.bodies[0].axis.len() - 1), (18, 6, 1));
+}
+
+/// One element with a large estimate in a known place: its x, z and axis
+/// intervals — and only they — are split, and the refined mesh has the
+/// DOF count of the new divisions; probes, lines and constraints are still
+/// there by name.
+#[test]
+fn the_marked_element_s_intervals_are_split() {
+    let (nx, nz, ny) = (4, 3, 5);
+    let text = cantilever(nx, nz, ny);
+    let model = Model::parse_with(&text, Limits::none()).unwrap();
+    assert_eq!(model.n_dofs(), dof_l9_b4(nx, nz, ny));
+    let body = &model.mesh.bodies[0];
+    // section element (i = 2, j = 1) in beam element 3
+    let (i, j, k) = (2, 1, 3);
+    let hot = k * body.section.n_elements() + j * nx + i;
+    let mut eta = vec![1e-3; model.mesh.n_elements()];
+    eta[hot] = 1.0;
+    let second = (k + 1) * body.section.n_elements() + 3; // a smaller one elsewhere: (3, 0) in k + 1
+    eta[second] = 0.5;
+    let marked = mark::dorfler(&eta, 0.5);
+    assert_eq!(marked, vec![hot]);
+    let marks = mark::intervals(&model.mesh, &model.plan, &marked);
+    let m = &marks[0];
+    assert_eq!(m.x, (0..nx).map(|a| a == i).collect::<Vec<_>>());
+    assert_eq!(m.z, (0..nz).map(|b| b == j).collect::<Vec<_>>());
+    assert_eq!(m.axis, (0..ny).map(|c| c == k).collect::<Vec<_>>());
+    let plan = mark::refine(&model.plan, &marks);
+    let SectionPlan::Grid { x, .. } = &plan.bodies[0].section else { panic!() };
+    let h = 0.1 / nx as f64;
+    assert!((x[i + 1] - (i as f64 + 0.5) * h).abs() < 1e-15, "the new x line halves interval {i}: {x:?}");
+    let refined = planned(&text, &plan);
+    assert_eq!(refined.n_dofs(), dof_l9_b4(nx + 1, nz + 1, ny + 1));
+    // with θ = 0.9 the second element joins: its intervals too
+    let plan = mark::refine(&model.plan, &mark::intervals(&model.mesh, &model.plan, &mark::dorfler(&eta, 0.9)));
+    assert_eq!(planned(&text, &plan).n_dofs(), dof_l9_b4(nx + 2, nz + 2, ny + 2));
+    assert!(refined.probes.iter().any(|p| p.name == "tip"));
+    assert_eq!(refined.constraints.len(), model.constraints.len());
+    assert_eq!(refined.constraints[0].name, model.constraints[0].name);
+}
+
+/// A thin-walled tube is refined as a whole (every count doubled) when the
+/// marked elements are spread over its ring, and only along the axis when
+/// they lie in a few of its elements.
+#[test]
+fn a_parametric_section_is_doubled_or_kept() {
+    let text = example("bending_tube_20L9.toml");
+    let model = Model::parse_with(&text, Limits::none()).unwrap();
+    let body = &model.mesh.bodies[0];
+    let ns = body.section.n_elements();
+    assert_eq!(ns, 20);
+    assert_eq!(model.plan.bodies[0].section, SectionPlan::Doubled { shape: "tube", times: 0 });
+    // marked: every section element of beam element 0
+    let all: Vec<usize> = (0..ns).collect();
+    let plan = mark::refine(&model.plan, &mark::intervals(&model.mesh, &model.plan, &all));
+    assert_eq!(plan.bodies[0].section, SectionPlan::Doubled { shape: "tube", times: 1 });
+    let refined = planned(&text, &plan);
+    assert_eq!(refined.mesh.bodies[0].section.n_elements(), 36, "around = 4 + 4·8");
+    assert_eq!(refined.mesh.bodies[0].axis.n_elements(), 23);
+    // marked: half the ring less one, over two slices
+    let some: Vec<usize> = (0..ns / 2 - 1).map(|s| 5 * ns + s).chain([7 * ns]).collect();
+    let plan = mark::refine(&model.plan, &mark::intervals(&model.mesh, &model.plan, &some));
+    assert_eq!(plan.bodies[0].section, SectionPlan::Doubled { shape: "tube", times: 0 });
+    let n_section_nodes = body.section.n_nodes();
+    assert_eq!(planned(&text, &plan).n_dofs(), 3 * n_section_nodes * (3 * 24 + 1));
+}
+
+#[test]
+fn the_adapt_table_is_typed_and_checked() {
+    let base = cantilever(2, 2, 5);
+    let with = |table: &str| Model::parse_with(&format!("{base}\n[adapt]\n{table}\n"), Limits::none());
+    let m = with("tolerance = 0.02\nmax_dof = 9000\nmax_cycles = 3").unwrap();
+    let a = m.adapt.unwrap();
+    assert_eq!((a.tolerance, a.max_dof, a.max_cycles, a.fraction), (0.02, 9000, 3, 0.5));
+    assert!(Model::parse_with(&base, Limits::none()).unwrap().adapt.is_none());
+    let err = with("tolerence = 0.02").unwrap_err().to_string();
+    assert!(err.contains("tolerence") && err.contains("max_dof") && err.contains("fraction"), "{err}");
+    for (table, key) in [
+        ("tolerance = 1.5", "adapt.tolerance"),
+        ("tolerance = -0.1", "adapt.tolerance"),
+        ("max_dof = 0", "adapt.max_dof"),
+        ("max_cycles = 99", "adapt.max_cycles"),
+        ("fraction = 0.0", "adapt.fraction"),
+    ] {
+        let err = with(table).unwrap_err().to_string();
+        assert!(err.contains(key) && err.contains("expected"), "{table}: {err}");
+    }
+}
+
+/// `cufem run --adapt` through the CLI: cycles until the DOF budget stops
+/// it, the estimate falling from cycle to cycle, every mesh within the
+/// budget, the cycles in summary.json and the last cycle's results written
+/// (its DOF, its probe).
+#[test]
+fn cli_run_adapt_refines_until_the_budget() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("adapt_cli");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let model = dir.join("cantilever.toml");
+    std::fs::write(&model, cantilever(1, 1, 2)).unwrap();
+    let budget = 6000;
+    let out = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", model.to_str().unwrap(), "--adapt", "0.001", "--max-dof", &budget.to_string(), "--out"])
+        .arg(dir.join("out"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "{stderr}\n{stdout}");
+    assert!(stderr.contains("cycle 0:") && stderr.contains("cycle 1:"), "{stderr}");
+    assert!(stdout.contains("adaptive run stopped: the next mesh"), "{stdout}");
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("out/summary.json")).unwrap()).unwrap();
+    let cycles = s["adapt"].as_array().unwrap();
+    assert!(cycles.len() >= 3, "{cycles:?}");
+    for (k, c) in cycles.iter().enumerate() {
+        assert_eq!(c["cycle"].as_u64().unwrap() as usize, k);
+        assert!(c["dof"].as_u64().unwrap() as usize <= budget);
+    }
+    for w in cycles.windows(2) {
+        assert!(w[1]["dof"].as_u64() > w[0]["dof"].as_u64());
+        let (a, b) = (w[0]["estimate"].as_f64().unwrap(), w[1]["estimate"].as_f64().unwrap());
+        assert!(b < a, "the estimate did not fall: {a} → {b}");
+    }
+    let last = cycles.last().unwrap();
+    assert_eq!(s["dof"], last["dof"], "the results are the last cycle's");
+    assert_eq!(s["error_estimate"]["relative_energy_norm"], last["estimate"]);
+    assert!(s["adapt_stop"].as_str().unwrap().contains("budget"));
+    assert_eq!(s["probes"][0]["name"], "tip");
+    // a single run has neither key
+    let out = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", model.to_str().unwrap(), "--quiet", "--out"])
+        .arg(dir.join("single"))
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let single = std::fs::read_to_string(dir.join("single/summary.json")).unwrap();
+    assert!(!single.contains("\"adapt\""));
+}
+
+#[test]
+fn cli_refuses_bad_adapt_options() {
+    let model = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join("examples/cantilever_timoshenko.toml");
+    for (args, needle) in [
+        (vec!["--adapt", "2"], "between 0 and 1"),
+        (vec!["--adapt", "0.05", "--max-dof", "0"], "--max-dof"),
+        (vec!["--max-dof", "1000"], "--adapt TOL or an [adapt] table"),
+        (vec!["--adapt", "0.05", "--max-dof", "100"], "adapt.max_dof = 100"),
+        (vec!["--adapt", "0.05", "--fraction", "0"], "Dörfler's θ"),
+        (vec!["--adapt", "0.05", "--fraction", "1.5"], "Dörfler's θ"),
+        (vec!["--fraction", "0.3"], "--fraction is an option of an adaptive run"),
+    ] {
+        let out = Command::new(env!("CARGO_BIN_EXE_cufem"))
+            .arg("run")
+            .arg(&model)
+            .args(&args)
+            .args(["--out", Path::new(env!("CARGO_TARGET_TMPDIR")).join("adapt_bad").to_str().unwrap(), "--force"])
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{args:?}: {stderr}");
+        assert!(stderr.contains(needle), "{args:?}: {stderr}");
+    }
+}
+
+/// Issue 23's "`--adapt` on the block reaches σ_zz under the punch within
+/// 5 % of 3D with fewer DOF than the uniform refinements": `cufem run
+/// examples/block_indentation_graded.toml --adapt 0.01 --max-dof 38325
+/// --fraction 0.2` through the CLI. σ_zz along the top line under the punch
+/// (x ∈ [0.21, 0.29] m) against CalculiX C3D20R (145,767 DOF,
+/// tests/data/block_calculix_top.csv), in % of the 3D peak; the uniform
+/// refinement of the paper's mesh needs 38,325 DOF (36 × 12 L9 × 2 B4) for
+/// 4.4 % (docs/cross-check.md, bench/block_refinement.py), that of the
+/// graded mesh 36,309 DOF (24 × 9 × 6 B3) for 9.4 % (crates/cufem-cli/tests/fidelity.rs).
+/// Measured: cycle 0 (9,009 DOF) 6.0 %, cycle 1 (29,835 DOF: x 16 → 22,
+/// z 6 → 8, axis 3 → 6) 3.5 %, punch force −0.22 %. With θ = 0.5 the first
+/// refinement has 46,683 DOF (3.5 %), over the budget.
+#[test]
+fn block_adapts_within_five_percent_of_3d_below_the_uniform_dof() {
+    let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("adapt_block");
+    let out = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .arg("run")
+        .arg(root.join("examples/block_indentation_graded.toml"))
+        .args(["--adapt", "0.01", "--max-dof", "38325", "--fraction", "0.2", "--quiet", "--force", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let s: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap();
+    let dof = s["dof"].as_u64().unwrap();
+    assert!(s["adapt"].as_array().unwrap().len() >= 2 && dof < 38_325, "{dof} DOF after {:?}", s["adapt"]);
+    let (ours, reference) = (
+        common::csv_columns(&dir.join("line_top.csv")),
+        common::csv_columns(&root.join("tests/data/block_calculix_top.csv")),
+    );
+    let peak = reference["s_zz"].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    let worst = (0..reference["x"].len())
+        .filter(|&i| (0.21 - 1e-9..=0.29 + 1e-9).contains(&reference["x"][i]))
+        .map(|i| {
+            assert!((ours["x"][i] - reference["x"][i]).abs() < 1e-12);
+            (ours["s_zz"][i] - reference["s_zz"][i]).abs() / peak
+        })
+        .fold(0.0, f64::max);
+    for (k, c) in s["adapt"].as_array().unwrap().iter().enumerate() {
+        let id = format!("adapt_graded.cycle{k}");
+        common::figure(&format!("{id}.dof"), c["dof"].as_f64().unwrap(), "DOF", "the last below 38,325");
+        common::figure(&format!("{id}.estimate"), 100.0 * c["estimate"].as_f64().unwrap(), "%", "reported");
+    }
+    let check = "≤ 5 % of the 3D peak at every station x ∈ [0.21, 0.29] m (CalculiX C3D20R)";
+    common::figure("adapt_graded.s_zz", 100.0 * worst, "%", check);
+    assert!(worst <= 0.05, "σ_zz {:.2} % of the 3D peak", 100.0 * worst);
+    let punch = s["contact"].as_array().unwrap().iter().find(|c| c["name"] == "punch").unwrap();
+    let force = punch["force"][2].as_f64().unwrap();
+    common::figure("adapt_graded.force", 100.0 * (force / -1.4102e6 - 1.0), "%", "reported, against 3D (1.4102 MN)");
+}
+
+/// One cycle of a measured adaptive run: DOF, estimate, time, and the
+/// quantities compared (`values`).
+fn measure(
+    file: &str,
+    settings: cufem::setup::AdaptSettings,
+    sample: &dyn Fn(&Model, &cufem::analysis::Solution) -> Vec<f64>,
+) -> Vec<(usize, f64, f64, Vec<f64>)> {
+    let dir = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join("examples");
+    let text = example(file);
+    let limits = Limits::machine();
+    let model = Model::parse_in(&text, limits, &dir).unwrap();
+    let source = cufem::adapt::Source { text: &text, base: &dir, limits };
+    let mut rows = Vec::new();
+    let (_, solution) = cufem::adapt::run(
+        model,
+        source,
+        &settings,
+        &Default::default(),
+        &mut cufem::analysis::Silent,
+        &mut |c, m, s| {
+            let values = sample(m, s);
+            println!(
+                "cycle {}: {} DOF, estimate {:.2} %, {:.1} s, {values:?}  {}",
+                c.cycle,
+                c.dof,
+                100.0 * c.estimate,
+                c.time_s,
+                c.refined
+            );
+            rows.push((c.dof, c.estimate, c.time_s, values));
+        },
+    )
+    .unwrap();
+    println!("stopped: {}", solution.adapt.unwrap().stop);
+    rows
+}
+
+/// The block under `--adapt` from the paper's mesh against the 3D solution
+/// along the top line (x ∈ [0.21, 0.29] m, σ_zz in % of the 3D peak, as
+/// bench/block_refinement.py; CalculiX C3D20R refine 2,
+/// tests/data/block_calculix_top.csv) and the 3D punch force (1.4102 MN),
+/// with a budget of 60,000 DOF (docs/verification.md, "Adaptive
+/// refinement"). What the docs claim: the punch force within 0.6 % of 3D
+/// from cycle 1 on, and σ_zz under the punch within 6 % of the 3D peak at
+/// the last cycle, from 14.8 % on the paper's mesh.
+#[test]
+#[ignore = "validate: slow — three adaptive cycles of the block up to 55,000 DOF (about 3 min)"]
+fn block_adaptive_against_3d() {
+    let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+    let reference: Vec<[f64; 3]> = std::fs::read_to_string(root.join("tests/data/block_calculix_top.csv"))
+        .unwrap()
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with('x'))
+        .map(|l| {
+            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+            [v[0], v[1], v[2]]
+        })
+        .collect();
+    let peak = reference.iter().map(|r| r[1].abs()).fold(0.0, f64::max);
+    let settings = cufem::setup::AdaptSettings { tolerance: 0.01, max_dof: 60_000, max_cycles: 20, fraction: 0.5 };
+    let rows = measure("block_indentation.toml", settings, &|m, s| {
+        let view = s.fields(m);
+        let line = m.lines.iter().find(|l| l.name == "top").unwrap();
+        let samples = cufem::post::sample_line(&view, line);
+        let szz = reference
+            .iter()
+            .zip(&samples)
+            .filter(|(r, _)| (0.21 - 1e-9..=0.29 + 1e-9).contains(&r[0]))
+            .map(|(r, p)| (p.sample.as_ref().unwrap().stress[2] - r[1]).abs() / peak)
+            .fold(0.0, f64::max);
+        let force = s.contact("punch").unwrap().force[2];
+        vec![100.0 * szz, 100.0 * (force / -1.4102e6 - 1.0)]
+    });
+    for (k, (dof, estimate, _, v)) in rows.iter().enumerate() {
+        common::figure(&format!("adapt_block.cycle{k}.dof"), *dof as f64, "", "reported");
+        common::figure(&format!("adapt_block.cycle{k}.estimate"), 100.0 * estimate, "%", "reported");
+        common::figure(&format!("adapt_block.cycle{k}.s_zz"), v[0], "%", "last cycle ≤ 6 % of the 3D peak");
+        common::figure(&format!("adapt_block.cycle{k}.force"), v[1], "%", "from cycle 1: |force − 3D| ≤ 0.6 %");
+        if k >= 1 {
+            assert!(v[1].abs() <= 0.6, "cycle {k}: punch force {:+.2} % from 3D", v[1]);
+        }
+    }
+    let last = rows.last().unwrap();
+    assert!(rows.len() >= 3 && last.3[0] <= 6.0, "{} cycles; σ_zz at the last {:.2} %", rows.len(), last.3[0]);
+}
+
+/// The thin-walled tube under `--adapt`: the loading roller's force per
+/// cycle against 3D (CalculiX C3D20R, refine 1 of the paper's mesh:
+/// 1,698.2 N), four cycles. What the docs claim: cycles 3 and later settle
+/// within 0.6 % of 3D, from −3.45 % on the paper's mesh.
+#[test]
+#[ignore = "validate: slow — four adaptive cycles of the tube up to 43,000 DOF (about 4 min)"]
+fn tube_adaptive_roller_force() {
+    let settings = cufem::setup::AdaptSettings { tolerance: 0.01, max_dof: 140_000, max_cycles: 3, fraction: 0.5 };
+    let rows = measure("bending_tube_28L9.toml", settings, &|_, s| vec![-s.contact("load").unwrap().force[2]]);
+    for (k, (dof, estimate, _, v)) in rows.iter().enumerate() {
+        let d = 100.0 * (v[0] / 1698.2 - 1.0);
+        common::figure(&format!("adapt_tube.cycle{k}.dof"), *dof as f64, "", "reported");
+        common::figure(&format!("adapt_tube.cycle{k}.estimate"), 100.0 * estimate, "%", "reported");
+        common::figure(&format!("adapt_tube.cycle{k}.force"), d, "%", "from cycle 3: |force − 3D| ≤ 0.6 %");
+        if k >= 3 {
+            assert!(d.abs() <= 0.6, "cycle {k}: roller force {d:+.2} % from 3D");
+        }
+    }
+    assert_eq!(rows.len(), 4, "cycles 0–3");
+}

@@ -1,0 +1,227 @@
+//! Symmetry planes (issue 29): the quarter-model twins of the bending
+//! examples (`examples/*_quarter.toml`, the full file with its two
+//! symmetry constraints turned into `[[symmetry]]` planes) against the
+//! full models they were cut from. The full models hold the same planes as
+//! constraints, so both solve the same problem on the same nodes: every
+//! field must agree to Newton's tolerance, everywhere — probes, points in
+//! the part the planes leave out (reflected), lines across both planes —
+//! and the full structure's forces must be the full model's.
+
+#[path = "../../../tests/common/mod.rs"]
+mod common;
+
+use std::path::Path;
+
+use cufem::post::{Quantity, Sample};
+use cufem::setup::Model;
+
+fn example(name: &str) -> String {
+    std::fs::read_to_string(
+        Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join("examples").join(format!("{name}.toml")),
+    )
+    .unwrap()
+}
+
+/// Points of the full bar away from the probes: in each quarter of the
+/// structure, so three of them lie in the part the planes leave out.
+fn extra_probes(text: &str, points: &[[f64; 3]]) -> String {
+    let mut t = text.to_string();
+    for (k, p) in points.iter().enumerate() {
+        t.push_str(&format!("\n[[probes]]\nname = \"extra{k}\"\npoint = [{}, {}, {}]\n", p[0], p[1], p[2]));
+    }
+    t
+}
+
+/// The largest difference between two samples, each quantity relative to
+/// its kind's scale (largest |u|, von Mises, largest |strain|, peeq).
+fn difference(a: &Sample, b: &Sample, scale: [f64; 4]) -> f64 {
+    Quantity::all()
+        .into_iter()
+        .map(|q| {
+            let s = match q {
+                Quantity::Displacement(_) => scale[0],
+                Quantity::Stress(_) | Quantity::VonMises => scale[1],
+                Quantity::Strain(_) => scale[2],
+                _ => scale[3].max(1e-12),
+            };
+            (a.get(q) - b.get(q)).abs() / s
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Runs the full model in the library and the quarter twin through the CLI
+/// (both with `extra` probes); returns the worst field difference and the
+/// worst force difference (full structure against full model).
+fn twin(full: &str, quarter: &str, extra: &[[f64; 3]]) -> (f64, f64) {
+    let full_model = Model::parse(&extra_probes(&example(full), extra)).unwrap();
+    let full_solution = cufem::analysis::run(&full_model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
+    assert!(full_solution.failure.is_none());
+    let quarter_model = Model::parse(&extra_probes(&example(quarter), extra)).unwrap();
+    assert_eq!(quarter_model.symmetry.copies(), 4);
+    let quarter_solution =
+        cufem::analysis::run(&quarter_model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
+    let (fv, qv) = (full_solution.fields(&full_model), quarter_solution.fields(&quarter_model));
+
+    // scales from the full model's line along the top
+    let line = cufem::post::sample_line(&fv, &full_model.lines[0]);
+    let samples: Vec<Sample> = line.iter().filter_map(|s| s.sample).collect();
+    let scale = [
+        samples.iter().flat_map(|s| s.u.map(f64::abs)).fold(0.0, f64::max),
+        samples.iter().map(|s| s.von_mises).fold(0.0, f64::max),
+        samples.iter().flat_map(|s| s.strain.map(f64::abs)).fold(0.0, f64::max),
+        samples.iter().map(|s| s.peeq).fold(0.0, f64::max),
+    ];
+    let mut worst: f64 = 0.0;
+    for (p, q) in full_model.probes.iter().zip(&quarter_model.probes) {
+        let d = difference(&fv.sample_probe(p).unwrap(), &qv.sample_probe(q).unwrap(), scale);
+        assert!(d < 1e-6, "{full}: probe {} differs by {d:e}", p.name);
+        worst = worst.max(d);
+    }
+    // the line runs over both halves of the bar, on the plane x = c
+    let quarter_line = cufem::post::sample_line(&qv, &quarter_model.lines[0]);
+    for (a, b) in line.iter().zip(&quarter_line) {
+        let d = difference(&a.sample.unwrap(), &b.sample.unwrap(), scale);
+        assert!(d < 1e-6, "{full}: line at s = {} differs by {d:e}", a.s);
+        worst = worst.max(d);
+    }
+
+    // the twin through the CLI: its summary's full-structure forces
+    let (out, summary) = common::run_text("symmetry", quarter, &extra_probes(&example(quarter), extra));
+    // the probes' displacement history (Structure::probe_displacements, its
+    // own path to the mirror image): the last row is the full model's u
+    let history = common::csv_columns(&out.join("history_probes.csv"));
+    for p in &full_model.probes {
+        let u = fv.sample_probe(p).unwrap().u;
+        for (k, c) in ["u_x", "u_y", "u_z"].iter().enumerate() {
+            let ours = *history[&format!("{}.{c}", p.name)].last().unwrap();
+            assert!((ours - u[k]).abs() < 1e-6 * scale[0], "{full}: {} {c} {ours:e} against {:e}", p.name, u[k]);
+        }
+    }
+    let mut force_worst: f64 = 0.0;
+    for c in summary["contact"].as_array().unwrap() {
+        let name = c["name"].as_str().unwrap();
+        let full_force = full_solution.contacts.iter().find(|f| f.name == name).unwrap().force;
+        let peak = full_force.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for k in 0..3 {
+            let ours = c["full_structure_force"][k].as_f64().unwrap();
+            force_worst = force_worst.max((ours - full_force[k]).abs() / peak);
+            // and the summary's force is the quarter's own
+            let own = c["force"][k].as_f64().unwrap();
+            let quarter = quarter_solution.contacts.iter().find(|f| f.name == name).unwrap().force[k];
+            assert!((own - quarter).abs() <= 1e-12 * peak);
+        }
+    }
+    // every indenter's history carries the full structure's force too: its
+    // last row is the full model's force, and f_* the quarter's own
+    for ind in &quarter_model.indenters {
+        let history = common::csv_columns(&out.join(format!("history_{}.csv", ind.name)));
+        let full_force = full_solution.contacts.iter().find(|f| f.name == ind.name).unwrap().force;
+        let own = quarter_solution.contacts.iter().find(|f| f.name == ind.name).unwrap().force;
+        let peak = full_force.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (k, c) in ["x", "y", "z"].iter().enumerate() {
+            let (full_col, own_col) =
+                (history[&format!("full_f_{c}")].last().unwrap(), history[&format!("f_{c}")].last().unwrap());
+            assert!(
+                (full_col - full_force[k]).abs() < 1e-6 * peak,
+                "{}: full_f_{c} {full_col:e} against {:e}",
+                ind.name,
+                full_force[k]
+            );
+            assert!((own_col - own[k]).abs() <= 1e-12 * peak, "{}: f_{c} {own_col:e} against {:e}", ind.name, own[k]);
+        }
+    }
+    // a plane's own reaction has no full-structure force
+    let plane = std::fs::read_to_string(out.join("history_symmetry_x.csv")).unwrap();
+    assert!(!plane.lines().next().unwrap().contains("full_"), "{}", plane.lines().next().unwrap());
+    // the loading roller touches both planes: its full force is 4× the quarter's
+    let load = quarter_solution.contacts.iter().find(|c| c.name == "load").unwrap().force[2];
+    let full_load = full_solution.contacts.iter().find(|c| c.name == "load").unwrap().force[2];
+    assert!((4.0 * load - full_load).abs() < 1e-6 * full_load.abs(), "{load} × 4 against {full_load}");
+    assert!(force_worst < 1e-6, "{full}: full-structure force differs by {force_worst:e}");
+    eprintln!("{quarter}: fields within {worst:.1e}, forces within {force_worst:.1e} of the full model");
+    (worst, force_worst)
+}
+
+#[test]
+fn compact_bar_quarter_equals_the_full_model() {
+    // bar x, z ∈ [0, 0.01], y ∈ [0, 0.25]; planes x = 0.005, y = 0.125
+    twin(
+        "bending_compact_16L9",
+        "bending_compact_16L9_quarter",
+        &[[0.0075, 0.06, 0.004], [0.0025, 0.06, 0.004], [0.0075, 0.19, 0.0], [0.001, 0.2, 0.009]],
+    );
+}
+
+#[test]
+fn tube_quarter_equals_the_full_model() {
+    // tube x, z ∈ [0, 0.03], wall 1.5 mm; planes x = 0.015, y = 0.125
+    twin(
+        "bending_tube_28L9",
+        "bending_tube_28L9_quarter",
+        &[[0.0293, 0.06, 0.015], [0.0007, 0.06, 0.015], [0.022, 0.19, 0.0295], [0.005, 0.2, 0.0005]],
+    );
+}
+
+/// The error of a quarter model with `from` replaced by `to`.
+fn error_of(from: &str, to: &str) -> String {
+    let text = example("bending_compact_16L9_quarter");
+    assert!(text.contains(from), "{from}");
+    Model::parse(&text.replacen(from, to, 1)).unwrap_err().to_string()
+}
+
+#[test]
+fn bad_symmetry_planes_are_refused_by_key() {
+    // through an element (section elements are 2.5 mm wide)
+    let e = error_of("plane = { x = 0.005 }", "plane = { x = 0.006 }");
+    assert!(e.contains("symmetry[1].plane") && e.contains("element boundaries"), "{e}");
+    // beyond the body: it touches no node
+    let e = error_of("plane = { y = 0.125 }", "plane = { y = 0.3 }");
+    assert!(e.contains("symmetry[0].plane") && e.contains("through nodes"), "{e}");
+    // the whole body on the side left out
+    let e = error_of("plane = { y = 0.125 }\nkeep = \"below\"", "plane = { y = 0.0 }\nkeep = \"below\"");
+    assert!(e.contains("symmetry[0].plane") && e.contains("side left out"), "{e}");
+    let e = error_of("keep = \"below\"\n", "");
+    assert!(e.contains("symmetry[0].keep"), "{e}");
+    let e = error_of("plane = { y = 0.125 }", "plane = { y = 0.125, x = 0.005 }");
+    assert!(e.contains("symmetry[0].plane") && e.contains("exactly one coordinate"), "{e}");
+    let e = error_of("plane = { y = 0.125 }", "plane = { x = 0.0 }");
+    assert!(e.contains("symmetry[1].plane") && e.contains("another axis"), "{e}");
+    // a plane's name is its reaction's: unique among constraints, indenters, contacts
+    let e = error_of("name = \"symmetry_x\"", "name = \"load\"");
+    assert!(e.contains("load"), "{e}");
+}
+
+#[test]
+fn forces_that_a_plane_would_split_are_refused() {
+    // a total force on faces across the plane x = 0.005: the kept share is not said
+    let load = "\n[[loads]]\nname = \"push\"\nbody = \"bar\"\nwhere = { z = 0.01, y = [0.0, 0.025] }\ntotal_force = [0.0, 0.0, -10.0]\n";
+    let text = example("bending_compact_16L9_quarter") + load;
+    let e = Model::parse(&text).unwrap_err().to_string();
+    assert!(e.contains("loads[0].total_force") && e.contains("symmetry_x"), "{e}");
+    // the same as a traction is the kept part's share: accepted
+    let text = text.replace("total_force = [0.0, 0.0, -10.0]", "traction = [0.0, 0.0, -1.0e5]");
+    let model = Model::parse(&text).unwrap();
+    // 5 mm × 25 mm kept of the 10 mm × 25 mm face: 12.5 N of the full 25 N
+    let r = model.loads[0].resultant();
+    assert!((r[2] + 12.5).abs() < 1e-9, "{r:?}");
+}
+
+#[test]
+fn coarse_twins_equal_their_full_models() {
+    twin(
+        "bending_compact_4L9",
+        "bending_compact_4L9_quarter",
+        &[[0.0075, 0.06, 0.004], [0.0025, 0.06, 0.004], [0.001, 0.2, 0.009]],
+    );
+    twin("bending_tube_20L9", "bending_tube_20L9_quarter", &[[0.0293, 0.06, 0.015], [0.005, 0.2, 0.0005]]);
+}
+
+#[test]
+fn graded_tube_quarter_equals_the_full_model() {
+    // the axis graded towards the roller: the plane y = 0.125 between 2 mm elements
+    twin(
+        "bending_tube_graded",
+        "bending_tube_graded_quarter",
+        &[[0.0007, 0.124, 0.015], [0.022, 0.126, 0.0295], [0.005, 0.2, 0.0005]],
+    );
+}

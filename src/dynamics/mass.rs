@@ -80,20 +80,7 @@ pub fn element_mass(geom: &CellValues, e: usize, n_section: usize, density: f64,
             }
         }
     }
-    for a in 0..nodes {
-        let row = &m[a * nodes..(a + 1) * nodes];
-        for c in 0..3 {
-            let p = 3 * a + c;
-            match kind {
-                MassKind::Consistent => {
-                    for (b, &v) in row.iter().enumerate().skip(a) {
-                        ws.tangent[p * n + 3 * b + c] = v;
-                    }
-                }
-                MassKind::Lumped => ws.tangent[p * n + p] = row.iter().sum(),
-            }
-        }
-    }
+    super::components::expand(&m, nodes, kind, &mut ws.tangent);
 }
 
 /// The mass matrix of the model in `assembler`'s pattern (free equations;

@@ -14,6 +14,7 @@
 //! node pairs as the stiffness, so it fits the stiffness's pattern and
 //! scatter maps.
 
+mod components;
 pub mod energy;
 pub mod impulse;
 pub mod inertia;

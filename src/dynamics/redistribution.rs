@@ -169,20 +169,7 @@ impl Redistribution {
             }
         }
         ws.tangent.fill(0.0);
-        for a in 0..nodes {
-            let row = &out[a * nodes..(a + 1) * nodes];
-            for c in 0..3 {
-                let p = 3 * a + c;
-                match kind {
-                    MassKind::Consistent => {
-                        for (b, &v) in row.iter().enumerate().skip(a) {
-                            ws.tangent[p * n + 3 * b + c] = v;
-                        }
-                    }
-                    MassKind::Lumped => ws.tangent[p * n + p] = row.iter().sum(),
-                }
-            }
-        }
+        super::components::expand(&out, nodes, kind, &mut ws.tangent);
     }
 }
 

@@ -240,7 +240,9 @@ impl PlyDamage {
 
     /// `C_d = S(d)⁻¹`: the normal 3×3 block inverted by cofactors (it is
     /// the admissible block with its diagonal enlarged, so its determinant
-    /// is positive), the shear moduli scaled.
+    /// is positive), the shear moduli scaled. Not `anisotropic::invert`: its
+    /// Cholesky refuses pivots below 1e-12 of the largest diagonal entry,
+    /// which a compliance divided by `1 − d` near `max_damage` reaches.
     fn damaged_stiffness(&self, df: f64, dm: f64, ds: f64) -> Matrix6 {
         let full = self.elastic.compliance();
         let mut a = [[0.0; 3]; 3];

@@ -114,8 +114,9 @@ pub fn plan(model: &Model) -> Result<Sizes, AnalysisError> {
             }
         }
     }
-    let couplings: Vec<(usize, usize)> =
+    let mut couplings: Vec<(usize, usize)> =
         model.contacts.iter().flat_map(|c| c.couplings(&model.mesh, model.kinematics.is_nonlinear())).collect();
+    couplings.extend(model.interfaces.iter().flat_map(|i| i.couplings()));
     let numbering = Numbering::new(&model.mesh, &fixed, &couplings)?;
     let solver = Cholesky::analyze(&numbering.pattern)?;
     Ok(sizes(model, &numbering, &solver))

@@ -64,6 +64,8 @@ pub struct Structure<'m> {
     elements: Elements<'m>,
     loads: Loads<'m>,
     contacts: Contacts<'m>,
+    /// Cohesive interfaces between plies, a contribution.
+    interfaces: crate::interfaces::Interfaces<'m>,
     dirichlet: Dirichlet,
     force: ForceControl<'m>,
     system: LinearSystem,
@@ -93,8 +95,9 @@ impl<'m> Structure<'m> {
         let mesh = &model.mesh;
         let (value, source) = dirichlet::prescribed_values(model);
         let fixed: Vec<bool> = value.iter().map(|v| *v == Some(0.0)).collect();
-        let couplings: Vec<(usize, usize)> =
+        let mut couplings: Vec<(usize, usize)> =
             model.contacts.iter().flat_map(|c| c.couplings(mesh, model.kinematics.is_nonlinear())).collect();
+        couplings.extend(model.interfaces.iter().flat_map(|i| i.couplings()));
         let numbering = Numbering::new(mesh, &fixed, &couplings)?;
         let t_sym = Instant::now();
         let chol = Cholesky::analyze(&numbering.pattern)?;
@@ -134,6 +137,7 @@ impl<'m> Structure<'m> {
             elements,
             loads: Loads::new(model),
             contacts: Contacts::new(mesh, &model.indenters, &model.contacts, model.kinematics.is_nonlinear()),
+            interfaces: crate::interfaces::Interfaces::new(&model.interfaces, mesh.n_dofs()),
             dirichlet,
             force: ForceControl::new(model, n_eq),
             system: LinearSystem::new(assembler, chol, model.solver.reuse, model.has_friction(), mesh.n_dofs()),
@@ -149,7 +153,8 @@ impl<'m> Structure<'m> {
     /// The contributions in the order they are evaluated and summed (the
     /// elements first: they write the whole tangent).
     fn contributions(&mut self) -> impl Iterator<Item = &mut dyn Contribution> {
-        let parts: [&mut dyn Contribution; 3] = [&mut self.elements, &mut self.loads, &mut self.contacts];
+        let parts: [&mut dyn Contribution; 4] =
+            [&mut self.elements, &mut self.loads, &mut self.contacts, &mut self.interfaces];
         parts.into_iter().chain(self.dynamics.iter_mut().map(|i| i as &mut dyn Contribution))
     }
 
@@ -299,6 +304,11 @@ impl<'m> Structure<'m> {
     /// The model the structure discretizes.
     pub fn model(&self) -> &'m Model {
         self.model
+    }
+
+    /// The cohesive interfaces' part: their points' damage.
+    pub fn interfaces(&self) -> &crate::interfaces::Interfaces<'m> {
+        &self.interfaces
     }
 
     /// The elements' part: Gauss-point states, stresses and offsets.

@@ -17,10 +17,12 @@ pub mod gmsh;
 pub mod profiles;
 mod properties;
 mod section;
+pub mod twins;
 
 pub use division::{Division, Segment};
 pub use properties::SectionProperties;
 pub use section::{CrossSection, EDGES, Region};
+pub use twins::EdgeTwin;
 
 use crate::shape::BeamElementKind;
 

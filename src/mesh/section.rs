@@ -10,6 +10,7 @@
 use std::collections::HashMap;
 
 use super::MeshError;
+use super::twins::EdgeTwin;
 use crate::shape::{Lagrange2d, SectionElementKind};
 
 /// A cross-section mesh: nodes `(x, z)` and quadrilateral Lagrange elements.
@@ -25,6 +26,10 @@ pub struct CrossSection {
     /// Named groups of elements (the walls of a parametric profile, the
     /// physical groups of a gmsh file); empty for the other builders.
     pub regions: Vec<Region>,
+    /// Pairs of edges at the same place that share no node: the two faces of
+    /// a cohesive interface between plies ([`super::twins`]); empty unless
+    /// a laminate's interfaces are cohesive.
+    pub twins: Vec<EdgeTwin>,
 }
 
 /// A named group of section elements.
@@ -85,7 +90,7 @@ impl CrossSection {
     ) -> Result<Self, MeshError> {
         check_quads(corners, quads, key)?;
         let (nodes, connectivity) = lagrange_nodes(kind.order(), corners, quads);
-        Ok(Self { kind, nodes, connectivity, regions: Vec::new() })
+        Ok(Self { kind, nodes, connectivity, regions: Vec::new(), twins: Vec::new() })
     }
 
     /// A rectangle cut by the given element boundaries along x and along z.
@@ -167,8 +172,11 @@ impl CrossSection {
         Self::from_quads(kind, &corners, &quads, "section")
     }
 
-    /// Edges on the section boundary, as `(element, local edge)`.
+    /// Edges on the section boundary, as `(element, local edge)`; the
+    /// edges of a cohesive interface ([`Self::twins`]) are inner surfaces,
+    /// left out.
     pub fn boundary_edges(&self) -> Vec<(usize, usize)> {
+        let inner = self.twin_edges();
         let mut count: HashMap<(usize, usize), usize> = HashMap::new();
         let ends = |e: usize, k: usize| {
             let loc = self.edge_local_nodes(k);
@@ -184,7 +192,7 @@ impl CrossSection {
         let mut out = Vec::new();
         for e in 0..self.n_elements() {
             for k in 0..EDGES {
-                if count[&ends(e, k)] == 1 {
+                if count[&ends(e, k)] == 1 && !inner.contains(&(e, k)) {
                     out.push((e, k));
                 }
             }
@@ -193,8 +201,9 @@ impl CrossSection {
     }
 
     /// The section's parts: groups of elements connected through shared
-    /// edges (two elements sharing only a corner node are not connected: swept
-    /// along the axis, that node is a hinge line). Each part lists its
+    /// edges or the two faces of a cohesive interface (two elements sharing
+    /// only a corner node are not connected: swept along the axis, that
+    /// node is a hinge line). Each part lists its
     /// elements in increasing order; parts are ordered by their first element.
     pub fn parts(&self) -> Vec<Vec<usize>> {
         let n = self.n_elements();
@@ -216,6 +225,10 @@ impl CrossSection {
                 let (ra, rb) = (root(&mut parent, e), root(&mut parent, other));
                 parent[ra.max(rb)] = ra.min(rb);
             }
+        }
+        for t in &self.twins {
+            let (ra, rb) = (root(&mut parent, t.lower.0), root(&mut parent, t.upper.0));
+            parent[ra.max(rb)] = ra.min(rb);
         }
         let mut parts: Vec<Vec<usize>> = Vec::new();
         let mut index: HashMap<usize, usize> = HashMap::new();

@@ -11,6 +11,7 @@ mod bodies;
 mod budget;
 mod contacts;
 mod indenters;
+mod interfaces;
 mod laminate;
 mod material;
 mod mirror;
@@ -115,6 +116,8 @@ pub struct Model {
     pub indenters: Vec<Indenter>,
     /// Deformable contacts.
     pub contacts: Vec<PairContact>,
+    /// Cohesive interfaces between the plies of laminates.
+    pub interfaces: Vec<crate::interfaces::Interface>,
     /// Probes.
     pub probes: Vec<Probe>,
     /// Lines.
@@ -212,9 +215,12 @@ impl Model {
         build(file, limits, base)
     }
 
-    /// True if the problem is linear (no body yields, no contact, small strain).
+    /// True if the problem is linear (no body yields, no contact, no
+    /// cohesive interface, small strain).
     pub fn is_linear(&self) -> bool {
-        is_linear(&self.mesh, &self.materials, &self.indenters, &self.contacts) && !self.kinematics.is_nonlinear()
+        is_linear(&self.mesh, &self.materials, &self.indenters, &self.contacts)
+            && !self.kinematics.is_nonlinear()
+            && self.interfaces.is_empty()
     }
 
     /// The quantities of this model's CSV files, VTU and probes: every
@@ -249,12 +255,15 @@ fn is_linear(mesh: &Mesh, materials: &[Material], indenters: &[Indenter], contac
 
 fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelError> {
     crate::input::validate::names(&file)?;
+    interfaces::check_materials(&file.materials)?;
+    interfaces::refuse_as_body_material(&file.bodies, &file.materials)?;
     let mut materials = material::materials(&file.materials)?;
     let planes = symmetry::planes(&file.symmetry)?;
     let mut warnings = Vec::new();
     let bodies = bodies::Input { file: &file.bodies, analysis: &file.analysis, limits, base, planes: &planes };
     let (mesh, cells) = bodies::mesh(&bodies, &mut materials, &mut warnings)?;
     let planes = symmetry::placed(planes, &mesh)?;
+    let interfaces = interfaces::interfaces(&file.bodies, &file.materials, &mesh, &materials, &mut warnings)?;
     let kinematics = analysis::kinematics(&file.analysis)?;
     let plan = refine::plan(&file)?;
     let adapt = refine::adapt_settings(file.adapt.as_ref())?;
@@ -283,7 +292,8 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let lines = preprocess::lines(&file.lines, &mesh, &planes, &mut warnings)?;
     let symmetry = symmetry::resolve(planes, &mesh, (&constraints, n_user), &indenters, &contacts);
     let references = crate::input::validate::references(&file.references, &file.probes)?;
-    let linear = is_linear(&mesh, &materials, &indenters, &contacts) && !kinematics.is_nonlinear();
+    let linear =
+        is_linear(&mesh, &materials, &indenters, &contacts) && !kinematics.is_nonlinear() && interfaces.is_empty();
     let mut solver = crate::input::validate::solver_settings(&file.solver, linear)?;
     let loading = path::Loading {
         steps: &file.steps,
@@ -350,6 +360,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         loads,
         indenters,
         contacts,
+        interfaces,
         probes,
         lines,
         references,

@@ -31,7 +31,8 @@ impl Structure<'_> {
             let at = self.state.at();
             let mut tangent = self.system.tangent();
             tangent.wanted = wanted;
-            let parts: [&mut dyn Contribution; 3] = [&mut self.elements, &mut self.loads, &mut self.contacts];
+            let parts: [&mut dyn Contribution; 4] =
+                [&mut self.elements, &mut self.loads, &mut self.contacts, &mut self.interfaces];
             let inertia = self.dynamics.iter_mut().map(|i| i as &mut dyn Contribution);
             let weight = self.impulse.as_ref().map_or(1.0, |i| i.weight());
             for part in parts.into_iter().chain(inertia) {
@@ -49,7 +50,7 @@ impl Structure<'_> {
         let imbalance = &mut self.system.imbalance;
         imbalance.fill(0.0);
         let mut scale: f64 = 0.0;
-        let parts = [&self.elements as &dyn Contribution, &self.loads, &self.contacts];
+        let parts = [&self.elements as &dyn Contribution, &self.loads, &self.contacts, &self.interfaces];
         for part in parts.into_iter().chain(self.dynamics.iter().map(|i| i as &dyn Contribution)) {
             let mut f = part.forces();
             if let (Phase::Contact, Some(impulse)) = (part.phase(), &self.impulse) {

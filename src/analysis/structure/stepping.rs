@@ -87,7 +87,8 @@ impl Incremental for Structure<'_> {
         }
         self.state.commit();
         let at = self.state.at();
-        let parts = [&mut self.elements as &mut dyn Contribution, &mut self.loads, &mut self.contacts];
+        let parts =
+            [&mut self.elements as &mut dyn Contribution, &mut self.loads, &mut self.contacts, &mut self.interfaces];
         for part in parts.into_iter().chain(self.dynamics.iter_mut().map(|i| i as &mut dyn Contribution)) {
             part.commit(&at);
         }

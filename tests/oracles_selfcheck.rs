@@ -656,6 +656,8 @@ fn check_curve<S: Specimen>(name: &str, s: &S, a0: f64, delta_max: f64) {
     let up: Vec<(f64, f64)> = pts.iter().map(|&(d, p)| (d, 1.02 * p)).collect();
     let pmax = pts.iter().map(|p| p.1).fold(0.0, f64::max);
     assert!(rel(cbt::curve_error(&up, s, a0), 0.02 * pmax / pc) < 1e-9, "{name}");
+    let down: Vec<(f64, f64)> = pts.iter().map(|&(d, p)| (d, 0.98 * p)).collect();
+    assert!(rel(cbt::curve_error(&down, s, a0), 0.02 * pmax / pc) < 1e-9, "{name}");
 }
 
 /// design48 §3.4 again: a toughness 10 % off moves the peak and the whole

@@ -209,6 +209,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
     let (equations, factor_nnz, plastic_points) =
         (structure.n_equations(), structure.factor_nnz(), structure.plastic_points());
     let energy = structure.energies();
+    let delamination = structure.interfaces().delamination();
     let (u, elements, timings, memory) = structure.into_parts();
     let mut solution = Solution {
         reactions,
@@ -240,6 +241,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         energy,
         frames: recorder.frames,
         path,
+        delamination,
     };
     // the estimate compares the raw stresses with their patch recovery (not
     // in layered bodies, whose stress jumps it would count as error); the

@@ -7,7 +7,8 @@
 
 use super::Interface;
 use crate::assembly::{At, Contribution, Forces, Phase, Tangent};
-use crate::materials::cohesive::CohesiveState;
+use crate::materials::Predictor;
+use crate::materials::cohesive::{Cohesive, CohesiveState};
 
 /// Every cohesive interface of a model, with its points' history.
 #[derive(Debug)]
@@ -17,13 +18,16 @@ pub struct Interfaces<'m> {
     committed: Vec<Vec<CohesiveState>>,
     /// Their states at the last evaluation.
     trial: Vec<Vec<CohesiveState>>,
+    /// Whether each point's damage grew in the last evaluation (its branch
+    /// of the law: softening, or elastic on its secant).
+    growing: Vec<Vec<bool>>,
     /// Internal forces of the last evaluation, per DOF.
     forces: Vec<f64>,
 }
 
 /// What an interface has become: its delaminated area and the energy it
-/// dissipated.
-#[derive(Debug, Clone, PartialEq)]
+/// dissipated (`summary.json` `delamination.interfaces`).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
 pub struct InterfaceSummary {
     /// The interface's name.
     pub name: String,
@@ -37,6 +41,51 @@ pub struct InterfaceSummary {
     pub process_zone_m2: f64,
     /// Energy dissipated, `Σ A g` (J).
     pub dissipated_j: f64,
+}
+
+/// The interfaces at the end of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Delamination {
+    /// Each interface's summary.
+    pub interfaces: Vec<InterfaceSummary>,
+    /// Each interface's name and its points' `(lower node, upper node,
+    /// damage)`.
+    pub damage: Vec<(String, Vec<(usize, usize, f64)>)>,
+}
+
+/// `summary.json` `delamination`.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct DelaminationSummary {
+    /// Every interface.
+    pub interfaces: Vec<InterfaceSummary>,
+    /// The delaminated area (d = 1) of all of them (m²).
+    pub area_m2: f64,
+    /// The energy they dissipated (J).
+    pub dissipated_j: f64,
+}
+
+impl Delamination {
+    /// Its `summary.json` entry.
+    pub fn summary(&self) -> DelaminationSummary {
+        DelaminationSummary {
+            interfaces: self.interfaces.clone(),
+            area_m2: self.interfaces.iter().map(|i| i.delaminated_m2).sum(),
+            dissipated_j: self.interfaces.iter().map(|i| i.dissipated_j).sum(),
+        }
+    }
+
+    /// The damage at each interface node (both twins of a point), for the
+    /// `d_interface` field.
+    pub fn node_damage(&self) -> std::collections::HashMap<usize, f64> {
+        let mut out = std::collections::HashMap::new();
+        for (_, points) in &self.damage {
+            for &(l, u, d) in points {
+                out.insert(l, d);
+                out.insert(u, d);
+            }
+        }
+        out
+    }
 }
 
 impl<'m> Interfaces<'m> {
@@ -53,12 +102,27 @@ impl<'m> Interfaces<'m> {
             })
             .collect();
         let forces = if interfaces.is_empty() { Vec::new() } else { vec![0.0; n_dofs] };
-        Self { interfaces, trial: committed.clone(), committed, forces }
+        let growing = committed.iter().map(|c| vec![false; c.len()]).collect();
+        Self { interfaces, trial: committed.clone(), committed, growing, forces }
+    }
+
+    /// True if the model has cohesive interfaces.
+    pub fn is_active(&self) -> bool {
+        !self.interfaces.is_empty()
     }
 
     /// The committed damage of every point, interface by interface.
     pub fn damage(&self) -> impl Iterator<Item = (&'m Interface, Vec<f64>)> + '_ {
         self.interfaces.iter().zip(&self.committed).map(|(i, s)| (i, s.iter().map(|s| s.damage).collect()))
+    }
+
+    /// The committed state of every interface: its summary and its
+    /// points' damage.
+    pub fn delamination(&self) -> Option<Delamination> {
+        self.is_active().then(|| Delamination {
+            interfaces: self.summaries(),
+            damage: self.damage().map(|(i, d)| (i.name.clone(), i.points.iter().map(|p| (p.lower, p.upper)).zip(d).map(|(n, d)| (n.0, n.1, d)).collect())).collect(),
+        })
     }
 
     /// Each interface's delaminated area and dissipated energy (committed).
@@ -89,38 +153,55 @@ impl<'m> Interfaces<'m> {
     }
 }
 
+/// The secant of the law at `state` and separation `delta`: `(1 − d) K`,
+/// and `K` across a closing interface. Newton takes it in the cautious
+/// retry of a failed increment ([`Predictor::Elastic`]): a point cycling
+/// between its softening and its unloading tangent from one iteration to
+/// the next (measured on examples/dcb.toml) converges on its secant.
+fn secant(law: &Cohesive, state: &CohesiveState, delta: [f64; 3]) -> [[f64; 3]; 3] {
+    let soft = (1.0 - state.damage) * law.penalty;
+    let closing = if delta[2] < 0.0 { law.penalty } else { soft };
+    [[soft, 0.0, 0.0], [0.0, soft, 0.0], [0.0, 0.0, closing]]
+}
+
 impl Contribution for Interfaces<'_> {
     fn phase(&self) -> Phase {
         Phase::Elements
     }
 
-    /// Returns the points whose damage started in this increment: the
-    /// law's branch changed there, as a contact's status does.
+    /// In the cautious retry of a failed increment each point takes its
+    /// secant ([`secant`]). Returns the points whose branch (damage growing or not) differs
+    /// from the last evaluation's: the residual is not smooth there, as
+    /// where a contact opens or closes.
     fn evaluate(&mut self, at: &At<'_>, tangent: &mut Tangent<'_>) -> usize {
         if self.interfaces.is_empty() {
             return 0;
         }
         self.forces.fill(0.0);
-        let mut onsets = 0;
-        for ((interface, committed), trial) in self.interfaces.iter().zip(&self.committed).zip(&mut self.trial) {
-            for ((p, old), new) in interface.points.iter().zip(committed).zip(trial.iter_mut()) {
+        let mut changes = 0;
+        let states = self.committed.iter().zip(&mut self.trial).zip(&mut self.growing);
+        for (interface, ((committed, trial), growing)) in self.interfaces.iter().zip(states) {
+            for (((p, old), new), grows) in interface.points.iter().zip(committed).zip(trial.iter_mut()).zip(growing) {
                 let delta: [f64; 3] = std::array::from_fn(|k| at.u[3 * p.upper + k] - at.u[3 * p.lower + k]);
                 let r = interface.law.update(delta, old);
-                onsets += usize::from(old.damage == 0.0 && r.state.damage > 0.0);
+                let now = r.state.damage > old.damage;
+                changes += usize::from(now != *grows);
+                *grows = now;
                 *new = r.state;
                 for k in 0..3 {
                     self.forces[3 * p.upper + k] += p.area * r.traction[k];
                     self.forces[3 * p.lower + k] -= p.area * r.traction[k];
                 }
                 if tangent.wanted {
-                    let block = r.tangent.map(|row| row.map(|v| p.area * v));
+                    let d = if at.predictor == Predictor::Elastic { secant(&interface.law, &r.state, delta) } else { r.tangent };
+                    let block = d.map(|row| row.map(|v| p.area * v));
                     tangent.add_node_block(p.upper, p.upper, &block);
                     tangent.add_node_block(p.lower, p.lower, &block);
                     tangent.add_node_block(p.upper, p.lower, &block.map(|row| row.map(|v| -v)));
                 }
             }
         }
-        onsets
+        changes
     }
 
     fn forces(&self) -> Forces<'_> {
@@ -132,11 +213,13 @@ impl Contribution for Interfaces<'_> {
             debug_assert!(c.iter().zip(t).all(|(c, t)| t.damage >= c.damage), "interface damage decreased");
             c.copy_from_slice(t);
         }
+        self.growing.iter_mut().for_each(|g| g.fill(false));
     }
 
     fn restore(&mut self) {
         for (c, t) in self.committed.iter().zip(&mut self.trial) {
             t.copy_from_slice(c);
         }
+        self.growing.iter_mut().for_each(|g| g.fill(false));
     }
 }

@@ -27,7 +27,8 @@ impl Incremental for Structure<'_> {
         // repeated to the last digit (measured on examples/tube_crush.toml:
         // every retry's residuals equal its failed attempt's), unless a
         // frictional point takes the stick tangent (contact::assembly).
-        if on && self.state.on_secant && !self.contacts.is_frictional() {
+        // (cohesive interfaces take their secant: `interfaces::assembly`)
+        if on && self.state.on_secant && !self.contacts.is_frictional() && !self.interfaces.is_active() {
             return false;
         }
         let wanted = if on { Predictor::Elastic } else { Predictor::Loading };

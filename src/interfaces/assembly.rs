@@ -121,7 +121,15 @@ impl<'m> Interfaces<'m> {
     pub fn delamination(&self) -> Option<Delamination> {
         self.is_active().then(|| Delamination {
             interfaces: self.summaries(),
-            damage: self.damage().map(|(i, d)| (i.name.clone(), i.points.iter().map(|p| (p.lower, p.upper)).zip(d).map(|(n, d)| (n.0, n.1, d)).collect())).collect(),
+            damage: self
+                .damage()
+                .map(|(i, d)| {
+                    (
+                        i.name.clone(),
+                        i.points.iter().map(|p| (p.lower, p.upper)).zip(d).map(|(n, d)| (n.0, n.1, d)).collect(),
+                    )
+                })
+                .collect(),
         })
     }
 
@@ -193,7 +201,11 @@ impl Contribution for Interfaces<'_> {
                     self.forces[3 * p.lower + k] -= p.area * r.traction[k];
                 }
                 if tangent.wanted {
-                    let d = if at.predictor == Predictor::Elastic { secant(&interface.law, &r.state, delta) } else { r.tangent };
+                    let d = if at.predictor == Predictor::Elastic {
+                        secant(&interface.law, &r.state, delta)
+                    } else {
+                        r.tangent
+                    };
                     let block = d.map(|row| row.map(|v| p.area * v));
                     tangent.add_node_block(p.upper, p.upper, &block);
                     tangent.add_node_block(p.lower, p.lower, &block);

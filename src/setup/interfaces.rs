@@ -179,9 +179,22 @@ fn law(ck: &str, c: &CohesiveFile, penalty: f64, warnings: &mut Vec<Warning>) ->
             };
             invalid(format!("{ck}.{key}"), value, "a positive finite number")
         }
-        CohesiveError::OnsetAboveToughness { strength, .. } => {
-            let which = if strength == "normal_strength" { c.normal_strength } else { shear };
-            invalid(format!("{ck}.{strength}"), which, e.to_string())
+        CohesiveError::OnsetAboveToughness { strength, toughness, onset_energy, value } => {
+            // a defaulted shear strength follows the normal one
+            let (key, v) = match (strength, c.shear_strength) {
+                ("shear_strength", Some(s)) => ("shear_strength", s),
+                _ => ("normal_strength", c.normal_strength),
+            };
+            let toughness = if toughness == "g_ic" { "gic" } else { "giic" };
+            invalid(
+                format!("{ck}.{key}"),
+                v,
+                format!(
+                    "a strength whose elastic energy at onset, {strength}²/(2 penalty) = {onset_energy:.4e} J/m², is \
+                     below {toughness} = {value:.4e} J/m² (else the softening would snap back inside the point): a \
+                     lower strength or a higher penalty"
+                ),
+            )
         }
     })
 }

@@ -48,10 +48,12 @@ pub struct InterfaceSummary {
 pub struct Delamination {
     /// Each interface's summary.
     pub interfaces: Vec<InterfaceSummary>,
-    /// Each interface's name and its points' `(lower node, upper node,
-    /// damage)`.
-    pub damage: Vec<(String, Vec<(usize, usize, f64)>)>,
+    /// Each interface's name and its points' damage.
+    pub damage: Vec<(String, Vec<PointDamage>)>,
 }
+
+/// The damage of an interface point: `(lower node, upper node, d)`.
+pub type PointDamage = (usize, usize, f64);
 
 /// `summary.json` `delamination`.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -123,12 +125,7 @@ impl<'m> Interfaces<'m> {
             interfaces: self.summaries(),
             damage: self
                 .damage()
-                .map(|(i, d)| {
-                    (
-                        i.name.clone(),
-                        i.points.iter().map(|p| (p.lower, p.upper)).zip(d).map(|(n, d)| (n.0, n.1, d)).collect(),
-                    )
-                })
+                .map(|(i, d)| (i.name.clone(), i.points.iter().zip(d).map(|(p, d)| (p.lower, p.upper, d)).collect()))
                 .collect(),
         })
     }

@@ -14,6 +14,7 @@ pub mod blocks;
 mod clip;
 mod division;
 pub mod gmsh;
+mod overlaps;
 pub mod profiles;
 mod properties;
 mod section;

@@ -6,15 +6,22 @@
 
 use super::Warning;
 use super::laminate;
-use crate::input::schema::{BodyFile, CohesiveFile, MaterialFile, SectionFile};
+use crate::input::schema::{AnalysisType, BodyFile, CohesiveFile, MaterialFile, ModelFile, SectionFile};
 use crate::input::{ModelError, defaults, invalid, ranges};
 use crate::interfaces::Interface;
 use crate::materials::Material;
 use crate::materials::cohesive::{Cohesive, CohesiveError};
 use crate::mesh::Mesh;
 
+/// The interface materials of `file` and where they are used: checked
+/// before the bodies are built.
+pub(super) fn check(file: &ModelFile) -> Result<(), ModelError> {
+    check_materials(&file.materials)?;
+    refuse_as_body_material(&file.bodies, &file.materials)
+}
+
 /// An interface material has its `name` and `cohesive` only.
-pub(super) fn check_materials(file: &[MaterialFile]) -> Result<(), ModelError> {
+fn check_materials(file: &[MaterialFile]) -> Result<(), ModelError> {
     for (i, m) in file.iter().enumerate().filter(|(_, m)| m.cohesive.is_some()) {
         let given = [
             ("young_modulus", m.young_modulus.is_some()),
@@ -38,7 +45,7 @@ pub(super) fn check_materials(file: &[MaterialFile]) -> Result<(), ModelError> {
 
 /// Refuses an interface material where a body material is expected: a
 /// body's `material`, a ply's, a zone's.
-pub(super) fn refuse_as_body_material(bodies: &[BodyFile], materials: &[MaterialFile]) -> Result<(), ModelError> {
+fn refuse_as_body_material(bodies: &[BodyFile], materials: &[MaterialFile]) -> Result<(), ModelError> {
     let cohesive = |name: &str| materials.iter().any(|m| m.cohesive.is_some() && m.name == name);
     for (i, b) in bodies.iter().enumerate() {
         let key = format!("bodies[{i}]");
@@ -69,16 +76,17 @@ pub(super) fn refuse_as_body_material(bodies: &[BodyFile], materials: &[Material
     Ok(())
 }
 
-/// The cohesive interfaces of every laminate body, with their laws and
-/// points on `mesh` (built from `bodies`; `materials` the model's).
+/// The cohesive interfaces of every laminate body of `model`, with their
+/// laws and points on `mesh` (`materials` the model's); refused in a
+/// transient analysis, whose energy ledger has no column for them yet.
 pub(super) fn interfaces(
-    bodies: &[BodyFile],
-    file: &[MaterialFile],
+    model: &ModelFile,
     mesh: &Mesh,
     materials: &[Material],
     warnings: &mut Vec<Warning>,
 ) -> Result<Vec<Interface>, ModelError> {
-    let mut out = Vec::new();
+    let (bodies, file) = (&model.bodies, &model.materials);
+    let mut out: Vec<Interface> = Vec::new();
     for (i, b) in bodies.iter().enumerate() {
         let SectionFile::Laminate(l) = &b.section else { continue };
         let sk = format!("bodies[{i}].section");
@@ -111,6 +119,13 @@ pub(super) fn interfaces(
             }
             out.push(Interface { name: format!("interface{}", r.ply + 1), key: r.key, body: i, law, points });
         }
+    }
+    if let (Some(AnalysisType::Transient), Some(i)) = (model.analysis.kind, out.first()) {
+        return Err(invalid(
+            i.key.clone(),
+            format!("the cohesive {} with analysis.type = \"transient\"", i.name),
+            "a static analysis (the energy ledger of a transient one has no column for the interfaces yet)",
+        ));
     }
     Ok(out)
 }

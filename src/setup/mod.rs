@@ -218,9 +218,8 @@ impl Model {
     /// True if the problem is linear (no body yields, no contact, no
     /// cohesive interface, small strain).
     pub fn is_linear(&self) -> bool {
-        is_linear(&self.mesh, &self.materials, &self.indenters, &self.contacts)
+        is_linear(&self.mesh, &self.materials, &self.indenters, &self.contacts, &self.interfaces)
             && !self.kinematics.is_nonlinear()
-            && self.interfaces.is_empty()
     }
 
     /// The quantities of this model's CSV files, VTU and probes: every
@@ -247,23 +246,39 @@ pub fn body_young(body: &Body, materials: &[Material]) -> f64 {
     body.materials().iter().map(|&m| materials[m].young).fold(0.0, f64::max)
 }
 
-fn is_linear(mesh: &Mesh, materials: &[Material], indenters: &[Indenter], contacts: &[PairContact]) -> bool {
+fn is_linear(
+    mesh: &Mesh,
+    materials: &[Material],
+    indenters: &[Indenter],
+    contacts: &[PairContact],
+    interfaces: &[crate::interfaces::Interface],
+) -> bool {
     mesh.bodies.iter().all(|b| b.materials().iter().all(|&m| !materials[m].is_plastic()))
         && indenters.is_empty()
         && contacts.is_empty()
+        && interfaces.is_empty()
+}
+
+/// The warning of a model with layered bodies: no error estimate.
+fn layered(mesh: &Mesh) -> Option<Warning> {
+    mesh.bodies.iter().any(|b| b.is_layered()).then(|| Warning {
+        key: "bodies".into(),
+        message: "layered bodies: no error estimate (its patch recovery would count the stress jumps between plies \
+                  as error)"
+            .into(),
+    })
 }
 
 fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelError> {
     crate::input::validate::names(&file)?;
-    interfaces::check_materials(&file.materials)?;
-    interfaces::refuse_as_body_material(&file.bodies, &file.materials)?;
+    interfaces::check(&file)?;
     let mut materials = material::materials(&file.materials)?;
     let planes = symmetry::planes(&file.symmetry)?;
     let mut warnings = Vec::new();
     let bodies = bodies::Input { file: &file.bodies, analysis: &file.analysis, limits, base, planes: &planes };
     let (mesh, cells) = bodies::mesh(&bodies, &mut materials, &mut warnings)?;
     let planes = symmetry::placed(planes, &mesh)?;
-    let interfaces = interfaces::interfaces(&file.bodies, &file.materials, &mesh, &materials, &mut warnings)?;
+    let interfaces = interfaces::interfaces(&file, &mesh, &materials, &mut warnings)?;
     let kinematics = analysis::kinematics(&file.analysis)?;
     let plan = refine::plan(&file)?;
     let adapt = refine::adapt_settings(file.adapt.as_ref())?;
@@ -292,8 +307,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let lines = preprocess::lines(&file.lines, &mesh, &planes, &mut warnings)?;
     let symmetry = symmetry::resolve(planes, &mesh, (&constraints, n_user), &indenters, &contacts);
     let references = crate::input::validate::references(&file.references, &file.probes)?;
-    let linear =
-        is_linear(&mesh, &materials, &indenters, &contacts) && !kinematics.is_nonlinear() && interfaces.is_empty();
+    let linear = is_linear(&mesh, &materials, &indenters, &contacts, &interfaces) && !kinematics.is_nonlinear();
     let mut solver = crate::input::validate::solver_settings(&file.solver, linear)?;
     let loading = path::Loading {
         steps: &file.steps,
@@ -317,14 +331,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
             ),
         ));
     }
-    if mesh.bodies.iter().any(|b| b.is_layered()) {
-        warnings.push(Warning {
-            key: "bodies".into(),
-            message: "layered bodies: no error estimate (its patch recovery would count the stress jumps between \
-                      plies as error)"
-                .into(),
-        });
-    }
+    warnings.extend(layered(&mesh));
     let item_names = steps::ItemNames {
         indenters: indenters.iter().map(|i| i.name.as_str()).collect(),
         constraints: constraints.iter().map(|c| c.name.as_str()).collect(),

@@ -149,3 +149,25 @@ fn dcb_curve_moves_with_the_toughness() {
         assert!(own < original, "{name}: nearer the original curve ({original}) than its own ({own})");
     }
 }
+
+/// CalculiX's deck has no twin of a cohesive interface (its plies share
+/// their nodes): `export-ccx` and `verify` refuse the model by the key that
+/// asks for one, before writing anything.
+#[test]
+fn calculix_export_refuses_cohesive_interfaces_by_key() {
+    let dir = common::scratch_dir("delamination", "ccx");
+    let model = dir.join("dcb.toml");
+    std::fs::write(&model, example()).unwrap();
+    for command in ["export-ccx", "verify"] {
+        let out = dir.join(command);
+        let run =
+            common::cufem().args([command, model.to_str().unwrap(), "--out", out.to_str().unwrap()]).output().unwrap();
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert!(!run.status.success(), "{command} ran");
+        assert!(
+            err.contains("bodies[0].section.interfaces[0]") && err.contains("cohesive interface"),
+            "{command}: {err}"
+        );
+        assert!(!out.join("model.inp").exists(), "{command} wrote a deck");
+    }
+}

@@ -23,7 +23,7 @@ pub enum InterfacesFile {
 }
 
 /// What every interface of a laminate is.
-#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, serde::Serialize, schemars::JsonSchema)]
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub enum InterfaceKind {
     /// The plies share their nodes.

@@ -190,4 +190,20 @@ mod tests {
         // the widths add up to the interface's width
         assert!((pairs.iter().map(|p| p.2).sum::<f64>() - 1.0).abs() < 1e-14);
     }
+
+    /// A symmetry cut keeps the twins whose two elements it keeps,
+    /// renumbered with them.
+    #[test]
+    fn a_cut_keeps_the_twins_of_the_kept_elements() {
+        let xl = [0.0, 0.5, 1.0];
+        let plies = vec![vec![0.0, 0.1], vec![0.1, 0.2]];
+        let split = CrossSection::stack(SectionElementKind::L9, &xl, &plies, &[true]).unwrap();
+        assert_eq!(split.twins.len(), 2);
+        let centre = |e: usize| split.element(e).iter().map(|&n| split.nodes[n][0]).sum::<f64>() / 9.0;
+        let right = split.retain_elements(|e| centre(e) > 0.5);
+        assert_eq!(right.twins, vec![EdgeTwin { lower: (0, 2), upper: (1, 0), interface: 0 }]);
+        assert_eq!(right.twin_nodes(0).len(), 3);
+        let bottom = split.retain_elements(|e| e < 2);
+        assert!(bottom.twins.is_empty());
+    }
 }

@@ -166,6 +166,7 @@ pub(crate) fn imperfection(
 ) -> Result<(Vec<f64>, Buckling), AnalysisError> {
     let mut linear = model.clone();
     linear.kinematics = crate::kinematics::Kinematics::Linear;
+    linear.resolve_constraints();
     linear.imperfection = None;
     // by load control: the linear static state at the loads of the first step
     linear.solver.path = None;

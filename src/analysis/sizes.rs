@@ -103,20 +103,7 @@ fn history_row_bytes(model: &Model) -> u64 {
 /// element matrices, no factor): the exact size of the analysis, for
 /// `cufem check`.
 pub fn plan(model: &Model) -> Result<Sizes, AnalysisError> {
-    let n = model.mesh.n_dofs();
-    let mut fixed = vec![false; n];
-    for c in &model.constraints {
-        for &node in &c.nodes {
-            for (k, v) in c.values.iter().enumerate() {
-                if *v == Some(0.0) {
-                    fixed[3 * node + k] = true;
-                }
-            }
-        }
-    }
-    let couplings: Vec<(usize, usize)> =
-        model.contacts.iter().flat_map(|c| c.couplings(&model.mesh, model.kinematics.is_nonlinear())).collect();
-    let numbering = Numbering::new(&model.mesh, &fixed, &couplings)?;
+    let numbering = model.constraint_handler.numbering(&model.mesh)?;
     let solver = Cholesky::analyze(&numbering.pattern)?;
     Ok(sizes(model, &numbering, &solver))
 }

@@ -11,8 +11,9 @@
 //!   Gauss-point history; first: it writes the whole tangent),
 //!   `structure/loads.rs` (the external loads at λ) and
 //!   [`crate::contact::Contacts`] (every contact kind);
-//! * `structure/dirichlet.rs`: prescribed displacements and their
-//!   elimination from each linear system (symmetric and unsymmetric alike);
+//! * [`crate::setup::constraints::Elimination`]: the prescribed
+//!   displacements of the model's constraint handler and their elimination
+//!   from each linear system (symmetric and unsymmetric alike);
 //! * `structure/force.rs`: force-controlled indenters, whose displacement is
 //!   an extra unknown bordering the linear system;
 //! * `structure/system.rs`: the tangent, the right-hand side and the solver;
@@ -28,7 +29,6 @@
 use std::time::Instant;
 
 mod arc;
-mod dirichlet;
 pub(crate) mod elements;
 mod evaluation;
 mod force;
@@ -43,13 +43,13 @@ mod system;
 mod transient;
 
 pub use super::results::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Timings};
-use crate::assembly::{Assembler, Contribution, NO_EQ, Numbering};
+use crate::assembly::{Assembler, Contribution, NO_EQ};
 use crate::contact::Contacts;
 use crate::setup::Model;
+use crate::setup::constraints::Elimination;
 use crate::size::MemoryEstimate;
 use crate::solver::linear::{Cholesky, LinearError};
 use crate::solver::newton::{Correction, Evaluation, NonlinearProblem};
-use dirichlet::Dirichlet;
 use elements::Elements;
 use force::ForceControl;
 use kinematics::Kinematics;
@@ -64,7 +64,7 @@ pub struct Structure<'m> {
     elements: Elements<'m>,
     loads: Loads<'m>,
     contacts: Contacts<'m>,
-    dirichlet: Dirichlet,
+    dirichlet: Elimination,
     force: ForceControl<'m>,
     system: LinearSystem,
     timings: Timings,
@@ -91,11 +91,8 @@ impl<'m> Structure<'m> {
     pub fn new(model: &'m Model, max_memory: Option<u64>) -> Result<Self, super::AnalysisError> {
         let t0 = Instant::now();
         let mesh = &model.mesh;
-        let (value, source) = dirichlet::prescribed_values(model);
-        let fixed: Vec<bool> = value.iter().map(|v| *v == Some(0.0)).collect();
-        let couplings: Vec<(usize, usize)> =
-            model.contacts.iter().flat_map(|c| c.couplings(mesh, model.kinematics.is_nonlinear())).collect();
-        let numbering = Numbering::new(mesh, &fixed, &couplings)?;
+        let constraints = &model.constraint_handler;
+        let numbering = constraints.numbering(mesh)?;
         let t_sym = Instant::now();
         let chol = Cholesky::analyze(&numbering.pattern)?;
         let symbolic = t_sym.elapsed();
@@ -105,8 +102,8 @@ impl<'m> Structure<'m> {
         {
             return Err(super::AnalysisError::TooLarge { estimate: memory, limit });
         }
+        let dirichlet = constraints.elimination(&numbering);
         let mut assembler = Assembler::new(mesh, numbering);
-        let dirichlet = Dirichlet::new(&value, &source, &assembler);
         let elements = Elements::new(model);
         let t_cache = Instant::now();
         // the elastic tangent is a constant only in small strain; the

@@ -9,6 +9,7 @@
 pub mod analysis;
 mod bodies;
 mod budget;
+pub mod constraints;
 mod contacts;
 mod indenters;
 mod laminate;
@@ -107,8 +108,11 @@ pub struct Model {
     /// Gauss-point values of every body (built once, used by the analysis
     /// and post-processing).
     pub cells: Vec<CellValues>,
-    /// Displacement constraints.
+    /// Displacement constraints: the file's, then the symmetry planes'.
     pub constraints: Vec<Constraint>,
+    /// Every constrained DOF and contact coupling, resolved once
+    /// ([`constraints::ConstraintHandler`]).
+    pub constraint_handler: constraints::ConstraintHandler,
     /// Loads (nodal forces at load factor 1).
     pub loads: Vec<Load>,
     /// Rigid indenters.
@@ -229,6 +233,21 @@ impl Model {
         analysis::Kind::of(self.buckling.is_some(), self.modal.is_some(), self.transient.is_some()).word()
     }
 
+    /// Replaces the constraints and resolves the constraint handler again
+    /// (a model changed in code: a patch test's boundary values).
+    pub fn set_constraints(&mut self, constraints: Vec<Constraint>) {
+        self.constraints = constraints;
+        self.resolve_constraints();
+    }
+
+    /// Resolves the constraint handler from the present constraints,
+    /// contacts and kinematics (after any of them changed in code).
+    pub fn resolve_constraints(&mut self) {
+        let current = self.kinematics.is_nonlinear();
+        self.constraint_handler =
+            constraints::ConstraintHandler::new(&self.mesh, &self.constraints, &self.contacts, current);
+    }
+
     /// Number of degrees of freedom (3 per node, constrained ones included).
     pub fn n_dofs(&self) -> usize {
         self.mesh.n_dofs()
@@ -276,8 +295,10 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     }
     // in a transient analysis the mass holds a free body: M/(β Δt²) in the
     // tangent keeps every time step's system positive definite
+    let constraint_handler =
+        constraints::ConstraintHandler::new(&mesh, &constraints, &contacts, kinematics.is_nonlinear());
     if !transient {
-        restraint::check(&mesh, &constraints, &indenters, &contacts)?;
+        restraint::check(&mesh, &constraint_handler, &indenters, &contacts)?;
     }
     let probes = preprocess::probes(&file.probes, &mesh, &planes)?;
     let lines = preprocess::lines(&file.lines, &mesh, &planes, &mut warnings)?;
@@ -347,6 +368,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         mesh,
         cells,
         constraints,
+        constraint_handler,
         loads,
         indenters,
         contacts,

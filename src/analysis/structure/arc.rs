@@ -13,7 +13,7 @@ impl Structure<'_> {
     /// and any prescribed values, at λ; contact keeps its increment).
     pub(crate) fn set_path_load_factor(&mut self, lambda: f64) {
         self.state.lambda = lambda;
-        self.dirichlet.set_load_factor(self.model, lambda);
+        self.dirichlet.set_load_factor(&self.model.steps, lambda);
     }
 
     /// A new increment of the path starts from the committed state.

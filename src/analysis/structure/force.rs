@@ -32,11 +32,11 @@
 //! mass keeps the bordered system regular while it flies, so no contact
 //! stands in, and its force scale is `m |v_n| / Δt`.
 
-use super::dirichlet::Dirichlet;
 use super::system::LinearSystem;
 use crate::assembly::NO_EQ;
 use crate::contact::Contacts;
 use crate::setup::Model;
+use crate::setup::constraints::Elimination;
 use crate::setup::steps::{self, Item};
 use crate::solver::linear::LinearError;
 
@@ -155,7 +155,7 @@ impl<'m> ForceControl<'m> {
         &mut self,
         contacts: &Contacts<'_>,
         eq: &[usize],
-        dirichlet: &Dirichlet,
+        dirichlet: &Elimination,
         lambda: f64,
     ) -> (f64, f64) {
         let model = self.model;

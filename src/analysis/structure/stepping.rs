@@ -13,7 +13,7 @@ impl Incremental for Structure<'_> {
         self.state.lambda = lambda;
         self.state.on_secant = false;
         self.contacts.start_increment();
-        self.dirichlet.set_load_factor(self.model, lambda);
+        self.dirichlet.set_load_factor(&self.model.steps, lambda);
     }
 
     fn augment(&mut self) -> bool {
@@ -100,6 +100,6 @@ impl Incremental for Structure<'_> {
             part.restore();
         }
         self.force.restore();
-        self.dirichlet.set_load_factor(self.model, self.state.lambda);
+        self.dirichlet.set_load_factor(&self.model.steps, self.state.lambda);
     }
 }

@@ -2,12 +2,12 @@
 //! ([`crate::dynamics::Inertia`]) and feeding the energy balance with the
 //! other parts' converged forces at every commit.
 
-use super::dirichlet::Dirichlet;
 use super::elements::Elements;
 use super::kinematics::Kinematics;
 use super::system::LinearSystem;
 use crate::assembly::{Assembler, Contribution};
 use crate::setup::Model;
+use crate::setup::constraints::Elimination;
 
 /// The inertia part of a transient model: the mass matrix, `K₀` if
 /// stiffness-proportional damping needs it, the initial velocities on the
@@ -70,7 +70,7 @@ pub(super) fn account_energy(
     inertia: &mut crate::dynamics::Inertia,
     (model, solid): (&Model, &Elements<'_>),
     state: &Kinematics,
-    (system, dirichlet): (&LinearSystem, &Dirichlet),
+    (system, dirichlet): (&LinearSystem, &Elimination),
     parts: [&dyn Contribution; 3],
     (contact, impactors): (Option<&[f64]>, f64),
 ) {

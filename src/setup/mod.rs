@@ -156,6 +156,45 @@ pub struct Model {
     pub symmetry: crate::bc::symmetry::Symmetry,
 }
 
+/// What the elements of a model are made of: the meshes, their
+/// Gauss-point values, the materials and the strain measure (a view of a
+/// [`Model`], [`Model::discretisation`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Discretisation<'m> {
+    /// Bodies and node numbering.
+    pub mesh: &'m Mesh,
+    /// Gauss-point values of every body.
+    pub cells: &'m [CellValues],
+    /// Materials.
+    pub materials: &'m [Material],
+    /// Small strain or total Lagrangian.
+    pub kinematics: Kinematics,
+}
+
+impl<'m> Discretisation<'m> {
+    /// The finite-element state at displacements `u` with Gauss-point
+    /// `states` (the first of body `b` at `gp_offsets[b]`).
+    pub fn fe_state<'a>(
+        &self,
+        u: &'a [f64],
+        states: &'a [crate::materials::PointState],
+        gp_offsets: &'a [usize],
+    ) -> crate::assembly::FeState<'a>
+    where
+        'm: 'a,
+    {
+        crate::assembly::FeState {
+            mesh: self.mesh,
+            geometry: self.cells,
+            materials: self.materials,
+            u,
+            states,
+            gp_offsets,
+            kinematics: self.kinematics,
+        }
+    }
+}
+
 /// Something suspicious but legal in a model (printed by `check` and `run`,
 /// stored in `summary.json`).
 #[derive(Debug, Clone, PartialEq)]
@@ -231,6 +270,11 @@ impl Model {
     /// `"modal"` or `"transient"`.
     pub fn analysis_type(&self) -> &'static str {
         analysis::Kind::of(self.buckling.is_some(), self.modal.is_some(), self.transient.is_some()).word()
+    }
+
+    /// The meshes, Gauss-point values, materials and kinematics.
+    pub fn discretisation(&self) -> Discretisation<'_> {
+        Discretisation { mesh: &self.mesh, cells: &self.cells, materials: &self.materials, kinematics: self.kinematics }
     }
 
     /// Replaces the constraints and resolves the constraint handler again

@@ -7,20 +7,19 @@ impl Structure<'_> {
     /// Resultant reaction of each constraint set (force of the support on
     /// the body): the imbalance at the components the set prescribes. A DOF
     /// prescribed by several sets (an edge shared by two faces) counts once,
-    /// for the first of them in the model file, so that the reactions sum
-    /// to the support force.
+    /// for the set the constraint handler gives it (the first in the model
+    /// file), so that the reactions sum to the support force.
     pub fn reactions(&self) -> Vec<Reaction> {
-        let mut claimed = vec![false; self.model.mesh.n_dofs()];
-        self.model
+        self.loading
             .constraints
             .iter()
-            .map(|c| {
+            .enumerate()
+            .map(|(i, c)| {
                 let mut force = [0.0; 3];
                 for &n in &c.nodes {
                     for (k, f) in force.iter_mut().enumerate() {
                         let dof = 3 * n + k;
-                        if c.values[k].is_some() && !claimed[dof] {
-                            claimed[dof] = true;
+                        if self.constraints.prescribed(dof).is_some_and(|p| p.constraint == i) {
                             *f += self.nodal_imbalance(dof);
                         }
                     }
@@ -69,12 +68,12 @@ impl Structure<'_> {
     /// The contact points of each indenter, then of each pair contact, by name.
     pub fn contact_sets(&self) -> impl Iterator<Item = (&str, ContactKind, &[ContactPoint])> {
         let names = self
-            .model
+            .loading
             .indenters
             .iter()
             .map(|i| (i.name.as_str(), ContactKind::Indenter))
-            .chain(self.model.contacts.iter().map(|c| (c.name.as_str(), ContactKind::Pair)));
-        let points = self.contacts.points();
-        names.zip(self.contacts.ranges()).map(move |((name, kind), r)| (name, kind, &points[r.clone()]))
+            .chain(self.loading.contacts.iter().map(|c| (c.name.as_str(), ContactKind::Pair)));
+        let points = self.parts.contacts.points();
+        names.zip(self.parts.contacts.ranges()).map(move |((name, kind), r)| (name, kind, &points[r.clone()]))
     }
 }

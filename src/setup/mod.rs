@@ -310,6 +310,24 @@ fn is_linear(mesh: &Mesh, materials: &[Material], indenters: &[Indenter], contac
         && contacts.is_empty()
 }
 
+/// The constraint handler of `constraints` and the contacts' couplings,
+/// every body's restraint checked against it — not in a transient
+/// analysis, whose mass holds a free body (`M/(β Δt²)` in the tangent
+/// keeps every time step's system positive definite).
+fn restrained(
+    mesh: &Mesh,
+    constraints: &[Constraint],
+    (indenters, contacts): (&[Indenter], &[PairContact]),
+    kinematics: Kinematics,
+    transient: bool,
+) -> Result<constraints::ConstraintHandler, ModelError> {
+    let handler = constraints::ConstraintHandler::new(mesh, constraints, contacts, kinematics.is_nonlinear());
+    if !transient {
+        restraint::check(mesh, &handler, indenters, contacts)?;
+    }
+    Ok(handler)
+}
+
 fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelError> {
     crate::input::validate::names(&file)?;
     let mut materials = material::materials(&file.materials)?;
@@ -337,13 +355,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
              takes friction there, with the current normal; docs/contact.md)",
         ));
     }
-    // in a transient analysis the mass holds a free body: M/(β Δt²) in the
-    // tangent keeps every time step's system positive definite
-    let constraint_handler =
-        constraints::ConstraintHandler::new(&mesh, &constraints, &contacts, kinematics.is_nonlinear());
-    if !transient {
-        restraint::check(&mesh, &constraint_handler, &indenters, &contacts)?;
-    }
+    let constraint_handler = restrained(&mesh, &constraints, (&indenters, &contacts), kinematics, transient)?;
     let probes = preprocess::probes(&file.probes, &mesh, &planes)?;
     let lines = preprocess::lines(&file.lines, &mesh, &planes, &mut warnings)?;
     let symmetry = symmetry::resolve(planes, &mesh, (&constraints, n_user), &indenters, &contacts);

@@ -8,7 +8,7 @@ use crate::solver::stepping::{Incremental, StepMeasure};
 
 impl Incremental for Structure<'_> {
     fn set_load_factor(&mut self, lambda: f64) {
-        // prescribed values are reached by the next correction (dirichlet.rs)
+        // prescribed values are reached by the next correction (setup::constraints::Elimination)
         self.state.lambda = lambda;
         self.state.on_secant = false;
         self.parts.contacts.start_increment();

@@ -48,7 +48,7 @@ pub(crate) fn completed(mut s: Sizes, numbering: &Numbering, solver: &Cholesky) 
 }
 
 /// The sizes that the model alone sets (mesh, settings, outputs), before
-/// its equations are numbered ([`completed`] adds those).
+/// its equations are numbered (`completed` adds those).
 pub fn model_sizes(model: &Model) -> Sizes {
     let mesh = &model.mesh;
     let mut s = Sizes {

@@ -106,7 +106,7 @@ fn interface_tangent_matches_central_differences() {
         "[[constraints]]\nname = \"end\"\nbody = \"stack\"\nwhere = { y = 0.0 }\nfix = [\"x\", \"y\", \"z\"]\n",
     ))
     .unwrap();
-    let mut s = Structure::new(&model, None).unwrap();
+    let mut s = Structure::of_model(&model, None).unwrap();
     let interface = &model.interfaces[0];
     // beam node by beam node: closing, elastic, softening, separated
     let opening = |y: f64| [-1e-6, 1e-7, 5e-6, 3e-5][(y / (0.02 / 6.0)).round() as usize % 4];

@@ -76,6 +76,7 @@ pub mod contact;
 pub mod dynamics;
 pub(crate) mod elements;
 pub mod input;
+pub mod interfaces;
 pub mod io;
 pub mod kinematics;
 pub mod materials;

@@ -44,8 +44,10 @@ pub(super) fn check(model: &Model, solution: &Solution, warnings: &mut Vec<Warni
 /// equilibrium: under load control a perfect structure stays on its
 /// straight (fundamental) path past a bifurcation, and Newton converges on
 /// it; it is no answer to the loads.
+/// Not with cohesive interfaces: a softening process zone makes the
+/// tangent indefinite on a stable path (a DCB under opening control).
 fn unstable_state(model: &Model, solution: &Solution, warnings: &mut Vec<Warning>) {
-    if solution.energy.is_some() {
+    if solution.energy.is_some() || !model.interfaces.is_empty() {
         return;
     }
     let Some(last) = solution.history.last() else { return };

@@ -200,6 +200,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         .collect();
     let Setup { equations, factor_nnz, memory } = setup;
     let energy = structure.energies();
+    let delamination = structure.interfaces().delamination();
     let (u, elements, timings) = structure.into_parts();
     let mut solution = Solution {
         reactions,
@@ -231,6 +232,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         energy,
         frames: recorder.frames,
         path,
+        delamination,
     };
     // the estimate compares the raw stresses with their patch recovery (not
     // in layered bodies, whose stress jumps it would count as error); the

@@ -83,6 +83,9 @@ pub struct Solution {
     pub frames: Vec<Frame>,
     /// How the path following went (`solver.control = "arc_length"`).
     pub path: Option<PathOutcome>,
+    /// The cohesive interfaces at the end (`None` without interfaces and
+    /// for the states of [`Solution::at_step`]).
+    pub delamination: Option<crate::interfaces::Delamination>,
 }
 
 /// The state at the end of one step of the load history.
@@ -222,6 +225,7 @@ impl Solution {
             energy: None,
             frames: Vec::new(),
             path: self.path.clone(),
+            delamination: None,
         };
         if model.output.recovery == crate::input::Recovery::Projection {
             s.recovered =

@@ -162,6 +162,7 @@ impl<'m> Structure<'m> {
             elements,
             loads: Loads::new(loading, mesh.n_dofs()),
             contacts: Contacts::new(mesh, loading.indenters, loading.contacts, nonlinear),
+            interfaces: crate::interfaces::Interfaces::new(discretisation.interfaces, mesh.n_dofs()),
             inertia,
             impulse: transient::impulse(&loading, settings.transient, mesh.n_dofs()),
         };
@@ -335,6 +336,11 @@ impl<'m> Structure<'m> {
     /// The elements' part: Gauss-point states, stresses and offsets.
     pub(crate) fn elements(&self) -> &Elements<'m> {
         &self.parts.elements
+    }
+
+    /// The cohesive interfaces' part: their points' damage.
+    pub fn interfaces(&self) -> &crate::interfaces::Interfaces<'m> {
+        &self.parts.interfaces
     }
 
     /// Sets a stress-free initial displacement (a geometric imperfection,

@@ -125,3 +125,11 @@ pub const ANGLE: f64 = 0.0;
 pub const FIBRE: [f64; 3] = [0.0, 1.0, 0.0];
 /// A zone's axis 3.
 pub const NORMAL: [f64; 3] = [0.0, 0.0, 1.0];
+/// A laminate's interfaces: the plies share their nodes (the word of
+/// `schema::InterfaceKind::Perfect`).
+pub const INTERFACES: &str = "perfect";
+/// The default cohesive penalty is this times E3/t of the thinner ply next
+/// to the interface (Turon, Dávila, Camanho & Costa 2007, Eng. Fract. Mech.
+/// 74:1665: the laminate loses under 2 % of its stiffness through the
+/// thickness).
+pub const PENALTY_PER_STIFFNESS: f64 = 50.0;

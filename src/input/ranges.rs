@@ -228,6 +228,17 @@ pub const PENALTY: Range = Range::above_up_to(0.0, 1.3407807929942596e154);
 pub const PENALTY_FACTOR_RANGE: Range = Range::closed(PENALTY_FACTOR.0, PENALTY_FACTOR.1);
 /// Coulomb's coefficient of friction μ.
 pub const FRICTION: Range = Range::closed(0.0, 10.0);
+
+// Cohesive interfaces.
+
+/// A cohesive toughness `gic`, `giic` (J/m²): from brittle resins to far
+/// beyond any laminate.
+pub const TOUGHNESS: Range = Range::above_up_to(0.0, 1e6);
+/// The Benzeggagh–Kenane exponent η (measured values lie between 1 and 3).
+pub const BK_EXPONENT: Range = Range::closed(0.5, 10.0);
+/// A cohesive penalty (Pa/m): Turon et al.'s 50 E3/t spans about 1e13 to
+/// 1e16 for plies of 0.1–10 mm.
+pub const COHESIVE_PENALTY: Range = Range::closed(1e10, 1e18);
 /// An impactor's mass (kg; at least a billionth of the body's, checked apart).
 pub const IMPACTOR_MASS: Range = Range::above_up_to(0.0, 1e9);
 

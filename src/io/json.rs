@@ -180,6 +180,10 @@ pub struct Summary {
     /// the limit points it passed, absent under load control.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub path: Option<PathSummary>,
+    /// Cohesive interfaces: each one's delaminated area and dissipated
+    /// energy, and their sums.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub delamination: Option<crate::interfaces::DelaminationSummary>,
     /// The other files of this result set (summary.json is written last and
     /// lists them, so a complete set can be recognised).
     pub files: Vec<String>,
@@ -499,6 +503,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
             limit_points: p.limit_points.clone(),
             first_arc_length: p.first_arc_length,
         }),
+        delamination: solution.delamination.as_ref().map(|d| d.summary()),
         files: Vec::new(),
     }
 }

@@ -124,6 +124,9 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
         }
     }
 
+    // the damage of the interface points on their nodes (`d_interface`)
+    let interface_damage = solution.delamination.as_ref().map(|d| d.node_damage());
+    let mut d_interface = Vec::new();
     for (b, body) in model.mesh.bodies.iter().enumerate() {
         let ps = body.section.kind.order();
         let m = ps + 1;
@@ -149,6 +152,9 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
                     contact_force.extend(f);
                     contact_pressure.push(p);
                     contact_gap.push(node_gap.get(&node).copied().unwrap_or(f64::NAN));
+                    if let Some(map) = &interface_damage {
+                        d_interface.push(map.get(&node).copied().unwrap_or(0.0));
+                    }
                     error.push(
                         solution
                             .error_estimate
@@ -190,6 +196,9 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
     ];
     for (values, q) in scalar_data.into_iter().zip(&scalars) {
         point_data.push(FieldArray { name: q.name(), components: 1, values });
+    }
+    if interface_damage.is_some() {
+        point_data.push(FieldArray { name: "d_interface".into(), components: 1, values: d_interface });
     }
     FieldGrid { points, connectivity, point_data, cell_body, cell_element }
 }

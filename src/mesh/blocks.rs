@@ -113,7 +113,7 @@ pub fn from_blocks(kind: SectionElementKind, blocks: &[Block]) -> Result<CrossSe
             }
         }
     }
-    Ok(CrossSection { kind, nodes: merger.nodes, connectivity, regions })
+    Ok(CrossSection { kind, nodes: merger.nodes, connectivity, regions, twins: Vec::new() })
 }
 
 /// Merges coincident nodes through a grid of cells of the tolerance's size.

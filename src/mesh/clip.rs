@@ -1,12 +1,12 @@
 //! A part of a cross-section: the elements kept by a symmetry plane
 //! (`bc::symmetry`), with their nodes renumbered and the regions cut down.
 
-use super::{CrossSection, Region};
+use super::{CrossSection, EdgeTwin, Region};
 
 impl CrossSection {
     /// The section made of the elements `keep` accepts (in their order),
     /// with only their nodes (in their order) and the regions' kept
-    /// elements renumbered.
+    /// elements and the interfaces between two kept elements renumbered.
     pub fn retain_elements(&self, keep: impl Fn(usize) -> bool) -> CrossSection {
         let kept: Vec<usize> = (0..self.n_elements()).filter(|&e| keep(e)).collect();
         let mut new_node = vec![usize::MAX; self.n_nodes()];
@@ -36,7 +36,18 @@ impl CrossSection {
                 normal: r.normal,
             })
             .collect();
-        CrossSection { kind: self.kind, nodes, connectivity, regions }
+        // an interface stays where both its faces are kept
+        let twins = self
+            .twins
+            .iter()
+            .filter(|t| new_element[t.lower.0] != usize::MAX && new_element[t.upper.0] != usize::MAX)
+            .map(|t| EdgeTwin {
+                lower: (new_element[t.lower.0], t.lower.1),
+                upper: (new_element[t.upper.0], t.upper.1),
+                interface: t.interface,
+            })
+            .collect();
+        CrossSection { kind: self.kind, nodes, connectivity, regions, twins }
     }
 }
 

@@ -377,7 +377,7 @@ fn build(
             }
         }
     }
-    Ok(CrossSection { kind, nodes: coords, connectivity, regions })
+    Ok(CrossSection { kind, nodes: coords, connectivity, regions, twins: Vec::new() })
 }
 
 #[cfg(test)]

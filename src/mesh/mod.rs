@@ -14,13 +14,16 @@ pub mod blocks;
 mod clip;
 mod division;
 pub mod gmsh;
+mod overlaps;
 pub mod profiles;
 mod properties;
 mod section;
+pub mod twins;
 
 pub use division::{Division, Segment};
 pub use properties::SectionProperties;
 pub use section::{CrossSection, EDGES, Region};
+pub use twins::EdgeTwin;
 
 use crate::shape::BeamElementKind;
 

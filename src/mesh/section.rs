@@ -10,6 +10,7 @@
 use std::collections::HashMap;
 
 use super::MeshError;
+use super::twins::EdgeTwin;
 use crate::shape::{Lagrange2d, SectionElementKind};
 
 /// A cross-section mesh: nodes `(x, z)` and quadrilateral Lagrange elements.
@@ -25,6 +26,10 @@ pub struct CrossSection {
     /// Named groups of elements (the walls of a parametric profile, the
     /// physical groups of a gmsh file); empty for the other builders.
     pub regions: Vec<Region>,
+    /// Pairs of edges at the same place that share no node: the two faces of
+    /// a cohesive interface between plies ([`super::twins`]); empty unless
+    /// a laminate's interfaces are cohesive.
+    pub twins: Vec<EdgeTwin>,
 }
 
 /// A named group of section elements.
@@ -85,7 +90,7 @@ impl CrossSection {
     ) -> Result<Self, MeshError> {
         check_quads(corners, quads, key)?;
         let (nodes, connectivity) = lagrange_nodes(kind.order(), corners, quads);
-        Ok(Self { kind, nodes, connectivity, regions: Vec::new() })
+        Ok(Self { kind, nodes, connectivity, regions: Vec::new(), twins: Vec::new() })
     }
 
     /// A rectangle cut by the given element boundaries along x and along z.
@@ -167,8 +172,11 @@ impl CrossSection {
         Self::from_quads(kind, &corners, &quads, "section")
     }
 
-    /// Edges on the section boundary, as `(element, local edge)`.
+    /// Edges on the section boundary, as `(element, local edge)`; the
+    /// edges of a cohesive interface ([`Self::twins`]) are inner surfaces,
+    /// left out.
     pub fn boundary_edges(&self) -> Vec<(usize, usize)> {
+        let inner = self.twin_edges();
         let mut count: HashMap<(usize, usize), usize> = HashMap::new();
         let ends = |e: usize, k: usize| {
             let loc = self.edge_local_nodes(k);
@@ -184,7 +192,7 @@ impl CrossSection {
         let mut out = Vec::new();
         for e in 0..self.n_elements() {
             for k in 0..EDGES {
-                if count[&ends(e, k)] == 1 {
+                if count[&ends(e, k)] == 1 && !inner.contains(&(e, k)) {
                     out.push((e, k));
                 }
             }
@@ -193,8 +201,9 @@ impl CrossSection {
     }
 
     /// The section's parts: groups of elements connected through shared
-    /// edges (two elements sharing only a corner node are not connected: swept
-    /// along the axis, that node is a hinge line). Each part lists its
+    /// edges or the two faces of a cohesive interface (two elements sharing
+    /// only a corner node are not connected: swept along the axis, that
+    /// node is a hinge line). Each part lists its
     /// elements in increasing order; parts are ordered by their first element.
     pub fn parts(&self) -> Vec<Vec<usize>> {
         let n = self.n_elements();
@@ -216,6 +225,10 @@ impl CrossSection {
                 let (ra, rb) = (root(&mut parent, e), root(&mut parent, other));
                 parent[ra.max(rb)] = ra.min(rb);
             }
+        }
+        for t in &self.twins {
+            let (ra, rb) = (root(&mut parent, t.lower.0), root(&mut parent, t.upper.0));
+            parent[ra.max(rb)] = ra.min(rb);
         }
         let mut parts: Vec<Vec<usize>> = Vec::new();
         let mut index: HashMap<usize, usize> = HashMap::new();
@@ -255,7 +268,7 @@ fn check_quads(corners: &[[f64; 2]], quads: &[[usize; 4]], key: &str) -> Result<
         check_quad(corners, q, quad, key)?;
     }
     check_edge_use(quads, key)?;
-    check_overlaps(corners, quads, key)?;
+    super::overlaps::check_overlaps(corners, quads, key)?;
     let mut used = vec![false; corners.len()];
     for &c in quads.iter().flatten() {
         used[c] = true;
@@ -407,88 +420,6 @@ fn bilinear(c: [[f64; 2]; 4], xi: f64, eta: f64) -> [f64; 2] {
         x[1] += wk * c[k][1];
     }
     x
-}
-
-/// Signed area of a polygon (shoelace; positive counter-clockwise).
-fn polygon_area(p: &[[f64; 2]]) -> f64 {
-    let n = p.len();
-    0.5 * (0..n).map(|i| p[i][0] * p[(i + 1) % n][1] - p[(i + 1) % n][0] * p[i][1]).sum::<f64>()
-}
-
-/// Intersection of a polygon with a convex counter-clockwise polygon
-/// (Sutherland–Hodgman clipping against each edge of `clip`).
-fn clip_convex(subject: &[[f64; 2]], clip: &[[f64; 2]]) -> Vec<[f64; 2]> {
-    let mut out = subject.to_vec();
-    for k in 0..clip.len() {
-        if out.is_empty() {
-            break;
-        }
-        let (a, b) = (clip[k], clip[(k + 1) % clip.len()]);
-        // > 0 on the inner (left) side of the edge a → b
-        let side = |p: [f64; 2]| (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]);
-        let input = std::mem::take(&mut out);
-        for i in 0..input.len() {
-            let (p, q) = (input[i], input[(i + 1) % input.len()]);
-            let (sp, sq) = (side(p), side(q));
-            if sp >= 0.0 {
-                out.push(p);
-            }
-            if (sp >= 0.0) != (sq >= 0.0) {
-                let t = sp / (sp - sq);
-                out.push([p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1])]);
-            }
-        }
-    }
-    out
-}
-
-/// Rejects quads that overlap (a duplicated quad, a square listed with its
-/// own half): the section's area would be counted twice and its stiffness
-/// silently doubled there. Every pair of quads whose bounding boxes overlap
-/// is clipped (the quads are convex, checked before); an intersection area
-/// above 1e-9 of the smaller quad is an error. Neighbours that only share an
-/// edge or a corner intersect in a set of zero area.
-fn check_overlaps(corners: &[[f64; 2]], quads: &[[usize; 4]], key: &str) -> Result<(), MeshError> {
-    let polys: Vec<[[f64; 2]; 4]> = quads.iter().map(|q| q.map(|i| corners[i])).collect();
-    let boxes: Vec<[f64; 4]> = polys
-        .iter()
-        .map(|p| {
-            let mut b = [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY];
-            for c in p {
-                b = [b[0].min(c[0]), b[1].max(c[0]), b[2].min(c[1]), b[3].max(c[1])];
-            }
-            b
-        })
-        .collect();
-    // sweep along x: candidates are quads whose x-intervals overlap
-    let mut order: Vec<usize> = (0..quads.len()).collect();
-    order.sort_by(|&a, &b| boxes[a][0].total_cmp(&boxes[b][0]));
-    let mut active: Vec<usize> = Vec::new();
-    for &i in &order {
-        active.retain(|&j| boxes[j][1] > boxes[i][0]);
-        for &j in &active {
-            if boxes[j][3] <= boxes[i][2] || boxes[i][3] <= boxes[j][2] {
-                continue;
-            }
-            let shared = polygon_area(&clip_convex(&polys[i], &polys[j]));
-            let smaller = polygon_area(&polys[i]).min(polygon_area(&polys[j]));
-            if shared > 1e-9 * smaller {
-                let (a, b) = (i.min(j), i.max(j));
-                return Err(MeshError::invalid(
-                    format!("{key}.quads[{b}]"),
-                    format!("{:?}", quads[b]),
-                    format!(
-                        "quads that do not overlap: it covers {:.3} % of quads[{a}] = {:?} (a duplicated or \
-                         overlapping quad would count that area twice)",
-                        100.0 * shared / polygon_area(&polys[a]),
-                        quads[a]
-                    ),
-                ));
-            }
-        }
-        active.push(i);
-    }
-    Ok(())
 }
 
 #[cfg(test)]

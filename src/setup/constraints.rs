@@ -16,7 +16,8 @@
 //!   symmetrically from each linear system ([`Elimination`], built on a
 //!   numbering by [`ConstraintHandler::elimination`]).
 //! * A **coupling** is a node pair the matrix pattern must hold beyond the
-//!   elements' own (contact between bodies).
+//!   elements' own (contact between bodies, the twin nodes of a cohesive
+//!   interface).
 //!
 //! The elimination lives here beside the data it applies, not in
 //! `assembly`: it needs the load history (`setup::steps`) for `a(λ)`, and
@@ -56,9 +57,16 @@ pub struct ConstraintHandler {
 impl ConstraintHandler {
     /// The handler of `constraints` (the file's and the symmetry planes')
     /// on `mesh`, with the couplings of `contacts` (`current`: nonlinear
-    /// geometry, whose node pairs couple the master faces around them).
-    pub fn new(mesh: &Mesh, constraints: &[Constraint], contacts: &[PairContact], current: bool) -> Self {
-        let couplings = contacts.iter().flat_map(|c| c.couplings(mesh, current)).collect();
+    /// geometry, whose node pairs couple the master faces around them) and
+    /// of the cohesive `interfaces` (their twin nodes).
+    pub fn new(
+        mesh: &Mesh,
+        constraints: &[Constraint],
+        (contacts, interfaces): (&[PairContact], &[crate::interfaces::Interface]),
+        current: bool,
+    ) -> Self {
+        let mut couplings: Vec<(usize, usize)> = contacts.iter().flat_map(|c| c.couplings(mesh, current)).collect();
+        couplings.extend(interfaces.iter().flat_map(|i| i.couplings()));
         Self::with_couplings(mesh.n_dofs(), constraints, couplings)
     }
 

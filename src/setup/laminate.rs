@@ -82,6 +82,86 @@ fn z_lines(z0: f64, plies: &[PlyFile]) -> (Vec<f64>, Vec<(usize, usize)>) {
     (lines, rows)
 }
 
+/// A cohesive interface a laminate asks for.
+#[derive(Debug, Clone, PartialEq)]
+pub(super) struct Request {
+    /// The key of its entry (`….interfaces[j]`, or `….interfaces`).
+    pub key: String,
+    /// The ply below it (0-based).
+    pub ply: usize,
+    /// Its material, `None` for `interface_material`.
+    pub material: Option<String>,
+    /// Its precrack `[from, to]` along y (m).
+    pub crack: Option<[f64; 2]>,
+}
+
+/// The cohesive interfaces of `s` (key `sk`) with `n` plies, checked: each
+/// above a ply below the top one, once; a crack with `from < to`.
+pub(super) fn requests(sk: &str, s: &LaminateFile, n: usize) -> Result<Vec<Request>, ModelError> {
+    use crate::input::schema::{InterfaceKind, InterfacesFile};
+    let key = format!("{sk}.interfaces");
+    let out: Vec<Request> = match &s.interfaces {
+        None | Some(InterfacesFile::Every(InterfaceKind::Perfect)) => {
+            if s.interface_material.is_some() {
+                return Err(invalid(
+                    format!("{sk}.interface_material"),
+                    "given with perfect interfaces",
+                    format!("only with {key} = \"cohesive\" or a list"),
+                ));
+            }
+            Vec::new()
+        }
+        Some(InterfacesFile::Every(InterfaceKind::Cohesive)) => {
+            (0..n - 1).map(|ply| Request { key: key.clone(), ply, material: None, crack: None }).collect()
+        }
+        Some(InterfacesFile::Listed(list)) => {
+            let mut out: Vec<Request> = Vec::new();
+            for (j, f) in list.iter().enumerate() {
+                let ik = format!("{key}[{j}]");
+                if !(1..n).contains(&f.ply) {
+                    let allowed = if n > 1 {
+                        format!("a ply below the top one, 1..={} (the interface above it)", n - 1)
+                    } else {
+                        "no interface: the laminate has one ply".to_string()
+                    };
+                    return Err(invalid(format!("{ik}.ply"), f.ply, allowed));
+                }
+                if let Some(o) = out.iter().find(|r| r.ply == f.ply - 1) {
+                    return Err(invalid(
+                        format!("{ik}.ply"),
+                        f.ply,
+                        format!("an interface not listed before ({})", o.key),
+                    ));
+                }
+                let crack = match f.crack {
+                    None => None,
+                    Some(c) => {
+                        let from = ranges::COORDINATE.check(&format!("{ik}.crack.from"), c.from, "y in m")?;
+                        if !(c.to.is_finite() && c.to > from) {
+                            return Err(invalid(
+                                format!("{ik}.crack.to"),
+                                c.to,
+                                format!("a y in m above from ({from})"),
+                            ));
+                        }
+                        Some([from, c.to])
+                    }
+                };
+                out.push(Request { key: ik, ply: f.ply - 1, material: f.material.clone(), crack });
+            }
+            out
+        }
+    };
+    if out.iter().any(|r| r.material.is_none()) && s.interface_material.is_none() {
+        return Err(invalid(
+            format!("{sk}.interface_material"),
+            "(missing)",
+            format!("the name of a material with cohesive = {{…}}, for the interfaces of {key} that name none"),
+        ));
+    }
+    Ok(out)
+}
+
 /// The section of `shape = "laminate"`, with one region per ply.
 pub(super) fn section(sk: &str, kind: SectionElementKind, s: &LaminateFile) -> Result<CrossSection, ModelError> {
     let x = s.x.as_ref().ok_or_else(|| {
@@ -101,7 +181,12 @@ pub(super) fn section(sk: &str, kind: SectionElementKind, s: &LaminateFile) -> R
     )?;
     let plies = plies(sk, s)?;
     let (zl, rows) = z_lines(z0, plies);
-    let mut section = CrossSection::rectangle(kind, &xl, &zl).map_err(|e| match e {
+    let mut split = vec![false; plies.len() - 1];
+    for r in requests(sk, s, plies.len())? {
+        split[r.ply] = true;
+    }
+    let ply_lines: Vec<Vec<f64>> = rows.iter().map(|&(first, n)| zl[first..=first + n].to_vec()).collect();
+    let mut section = CrossSection::stack(kind, &xl, &ply_lines, &split).map_err(|e| match e {
         crate::mesh::MeshError::Invalid { value, allowed, .. } => invalid(format!("{sk}.plies"), value, allowed),
     })?;
     let nx = xl.len() - 1;

@@ -11,9 +11,10 @@ use crate::materials::anisotropic::{self, positive_definite};
 use crate::materials::{BackStress, Hardening, MAX_BACKSTRESSES, Material, Orthotropic, Strengths};
 use crate::voigt::Matrix6;
 
-/// `[[materials]]`.
+/// `[[materials]]`, but the interface materials (with `cohesive`:
+/// `setup/interfaces.rs`).
 pub(super) fn materials(file: &[MaterialFile]) -> Result<Vec<Material>, ModelError> {
-    file.iter().enumerate().map(|(i, m)| material(i, m)).collect()
+    file.iter().enumerate().filter(|(_, m)| m.cohesive.is_none()).map(|(i, m)| material(i, m)).collect()
 }
 
 pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelError> {

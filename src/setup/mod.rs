@@ -12,6 +12,7 @@ mod budget;
 pub mod constraints;
 mod contacts;
 mod indenters;
+mod interfaces;
 mod laminate;
 mod material;
 mod mirror;
@@ -119,6 +120,8 @@ pub struct Model {
     pub indenters: Vec<Indenter>,
     /// Deformable contacts.
     pub contacts: Vec<PairContact>,
+    /// Cohesive interfaces between the plies of laminates.
+    pub interfaces: Vec<crate::interfaces::Interface>,
     /// Probes.
     pub probes: Vec<Probe>,
     /// Lines.
@@ -169,6 +172,8 @@ pub struct Discretisation<'m> {
     pub materials: &'m [Material],
     /// Small strain or total Lagrangian.
     pub kinematics: Kinematics,
+    /// Cohesive interfaces between plies.
+    pub interfaces: &'m [crate::interfaces::Interface],
 }
 
 impl<'m> Discretisation<'m> {
@@ -255,9 +260,11 @@ impl Model {
         build(file, limits, base)
     }
 
-    /// True if the problem is linear (no body yields, no contact, small strain).
+    /// True if the problem is linear (no body yields, no contact, no
+    /// cohesive interface, small strain).
     pub fn is_linear(&self) -> bool {
-        is_linear(&self.mesh, &self.materials, &self.indenters, &self.contacts) && !self.kinematics.is_nonlinear()
+        is_linear(&self.mesh, &self.materials, &self.indenters, &self.contacts, &self.interfaces)
+            && !self.kinematics.is_nonlinear()
     }
 
     /// The quantities of this model's CSV files, VTU and probes: every
@@ -272,9 +279,16 @@ impl Model {
         analysis::Kind::of(self.buckling.is_some(), self.modal.is_some(), self.transient.is_some()).word()
     }
 
-    /// The meshes, Gauss-point values, materials and kinematics.
+    /// The meshes, Gauss-point values, materials, kinematics and
+    /// interfaces.
     pub fn discretisation(&self) -> Discretisation<'_> {
-        Discretisation { mesh: &self.mesh, cells: &self.cells, materials: &self.materials, kinematics: self.kinematics }
+        Discretisation {
+            mesh: &self.mesh,
+            cells: &self.cells,
+            materials: &self.materials,
+            kinematics: self.kinematics,
+            interfaces: &self.interfaces,
+        }
     }
 
     /// Replaces the constraints and resolves the constraint handler again
@@ -288,8 +302,12 @@ impl Model {
     /// contacts and kinematics (after any of them changed in code).
     pub fn resolve_constraints(&mut self) {
         let current = self.kinematics.is_nonlinear();
-        self.constraint_handler =
-            constraints::ConstraintHandler::new(&self.mesh, &self.constraints, &self.contacts, current);
+        self.constraint_handler = constraints::ConstraintHandler::new(
+            &self.mesh,
+            &self.constraints,
+            (&self.contacts, &self.interfaces),
+            current,
+        );
     }
 
     /// Number of degrees of freedom (3 per node, constrained ones included).
@@ -304,24 +322,43 @@ pub fn body_young(body: &Body, materials: &[Material]) -> f64 {
     body.materials().iter().map(|&m| materials[m].young).fold(0.0, f64::max)
 }
 
-fn is_linear(mesh: &Mesh, materials: &[Material], indenters: &[Indenter], contacts: &[PairContact]) -> bool {
+fn is_linear(
+    mesh: &Mesh,
+    materials: &[Material],
+    indenters: &[Indenter],
+    contacts: &[PairContact],
+    interfaces: &[crate::interfaces::Interface],
+) -> bool {
     mesh.bodies.iter().all(|b| b.materials().iter().all(|&m| !materials[m].is_plastic()))
         && indenters.is_empty()
         && contacts.is_empty()
+        && interfaces.is_empty()
 }
 
-/// The constraint handler of `constraints` and the contacts' couplings,
+/// The warning of a model with layered bodies: no error estimate.
+fn layered(mesh: &Mesh) -> Option<Warning> {
+    mesh.bodies.iter().any(|b| b.is_layered()).then(|| Warning {
+        key: "bodies".into(),
+        message: "layered bodies: no error estimate (its patch recovery would count the stress jumps between plies \
+                  as error)"
+            .into(),
+    })
+}
+
+/// The constraint handler of `constraints` and the contacts' and
+/// interfaces' couplings,
 /// every body's restraint checked against it — not in a transient
 /// analysis, whose mass holds a free body (`M/(β Δt²)` in the tangent
 /// keeps every time step's system positive definite).
 fn restrained(
     mesh: &Mesh,
     constraints: &[Constraint],
-    (indenters, contacts): (&[Indenter], &[PairContact]),
+    (indenters, contacts, interfaces): (&[Indenter], &[PairContact], &[crate::interfaces::Interface]),
     kinematics: Kinematics,
     transient: bool,
 ) -> Result<constraints::ConstraintHandler, ModelError> {
-    let handler = constraints::ConstraintHandler::new(mesh, constraints, contacts, kinematics.is_nonlinear());
+    let current = kinematics.is_nonlinear();
+    let handler = constraints::ConstraintHandler::new(mesh, constraints, (contacts, interfaces), current);
     if !transient {
         restraint::check(mesh, &handler, indenters, contacts)?;
     }
@@ -330,12 +367,14 @@ fn restrained(
 
 fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelError> {
     crate::input::validate::names(&file)?;
+    interfaces::check(&file)?;
     let mut materials = material::materials(&file.materials)?;
     let planes = symmetry::planes(&file.symmetry)?;
     let mut warnings = Vec::new();
     let bodies = bodies::Input { file: &file.bodies, analysis: &file.analysis, limits, base, planes: &planes };
     let (mesh, cells) = bodies::mesh(&bodies, &mut materials, &mut warnings)?;
     let planes = symmetry::placed(planes, &mesh)?;
+    let interfaces = interfaces::interfaces(&file, &mesh, &materials, &mut warnings)?;
     let kinematics = analysis::kinematics(&file.analysis)?;
     let plan = refine::plan(&file)?;
     let adapt = refine::adapt_settings(file.adapt.as_ref())?;
@@ -355,12 +394,13 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
              takes friction there, with the current normal; docs/contact.md)",
         ));
     }
-    let constraint_handler = restrained(&mesh, &constraints, (&indenters, &contacts), kinematics, transient)?;
+    let constraint_handler =
+        restrained(&mesh, &constraints, (&indenters, &contacts, &interfaces), kinematics, transient)?;
     let probes = preprocess::probes(&file.probes, &mesh, &planes)?;
     let lines = preprocess::lines(&file.lines, &mesh, &planes, &mut warnings)?;
     let symmetry = symmetry::resolve(planes, &mesh, (&constraints, n_user), &indenters, &contacts);
     let references = crate::input::validate::references(&file.references, &file.probes)?;
-    let linear = is_linear(&mesh, &materials, &indenters, &contacts) && !kinematics.is_nonlinear();
+    let linear = is_linear(&mesh, &materials, &indenters, &contacts, &interfaces) && !kinematics.is_nonlinear();
     let mut solver = crate::input::validate::solver_settings(&file.solver, linear)?;
     let loading = path::Loading {
         steps: &file.steps,
@@ -384,14 +424,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
             ),
         ));
     }
-    if mesh.bodies.iter().any(|b| b.is_layered()) {
-        warnings.push(Warning {
-            key: "bodies".into(),
-            message: "layered bodies: no error estimate (its patch recovery would count the stress jumps between \
-                      plies as error)"
-                .into(),
-        });
-    }
+    warnings.extend(layered(&mesh));
     let item_names = steps::ItemNames {
         indenters: indenters.iter().map(|i| i.name.as_str()).collect(),
         constraints: constraints.iter().map(|c| c.name.as_str()).collect(),
@@ -428,6 +461,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         loads,
         indenters,
         contacts,
+        interfaces,
         probes,
         lines,
         references,

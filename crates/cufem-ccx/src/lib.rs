@@ -159,6 +159,12 @@ pub fn check_supported(model: &Model) -> Result<(), CcxError> {
         // refused as such ([`CcxError::Transient`])
         dynamic::check(model, t)?;
     }
+    if let Some(i) = model.interfaces.first() {
+        return Err(CcxError::Unsupported {
+            key: i.key.clone(),
+            what: format!("the cohesive interface \"{}\" (the hex deck's plies share their nodes)", i.name),
+        });
+    }
     if let Some(k) = model.indenters.iter().position(|i| i.force.is_some()) {
         return Err(CcxError::Unsupported {
             key: format!("indenters[{k}].force"),

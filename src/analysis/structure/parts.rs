@@ -8,6 +8,7 @@ use super::loads::Loads;
 use crate::assembly::Contribution;
 use crate::contact::Contacts;
 use crate::dynamics::{ContactImpulse, Inertia};
+use crate::interfaces::Interfaces;
 use crate::size::MemoryEstimate;
 
 /// Every contribution ([`crate::assembly::Contribution`]). A new one is a
@@ -20,6 +21,8 @@ pub(crate) struct Parts<'m> {
     pub loads: Loads<'m>,
     /// Every contact kind.
     pub contacts: Contacts<'m>,
+    /// Cohesive interfaces between plies.
+    pub interfaces: Interfaces<'m>,
     /// Inertia and damping (`analysis.type = "transient"`).
     pub inertia: Option<Inertia>,
     /// The contacts' end-of-step impulse (a transient analysis with
@@ -32,13 +35,14 @@ pub(crate) struct Parts<'m> {
 impl Parts<'_> {
     /// The contributions in order (the elements first).
     pub fn each_mut(&mut self) -> impl Iterator<Item = &mut dyn Contribution> {
-        let parts: [&mut dyn Contribution; 3] = [&mut self.elements, &mut self.loads, &mut self.contacts];
+        let parts: [&mut dyn Contribution; 4] =
+            [&mut self.elements, &mut self.loads, &mut self.contacts, &mut self.interfaces];
         parts.into_iter().chain(self.inertia.iter_mut().map(|i| i as &mut dyn Contribution))
     }
 
     /// The contributions in order, read only.
     pub fn each(&self) -> impl Iterator<Item = &dyn Contribution> {
-        let parts: [&dyn Contribution; 3] = [&self.elements, &self.loads, &self.contacts];
+        let parts: [&dyn Contribution; 4] = [&self.elements, &self.loads, &self.contacts, &self.interfaces];
         parts.into_iter().chain(self.inertia.iter().map(|i| i as &dyn Contribution))
     }
 }

@@ -25,8 +25,9 @@ impl Incremental for Structure<'_> {
         // attempt started on the secant of the last increment would be
         // repeated to the last digit (measured on examples/tube_crush.toml:
         // every retry's residuals equal its failed attempt's), unless a
-        // frictional point takes the stick tangent (contact::assembly).
-        if on && self.state.on_secant && !self.parts.contacts.is_frictional() {
+        // frictional point takes the stick tangent (contact::assembly), or
+        // cohesive interfaces their secant (interfaces::assembly).
+        if on && self.state.on_secant && !self.parts.contacts.is_frictional() && !self.parts.interfaces.is_active() {
             return false;
         }
         let wanted = if on { Predictor::Elastic } else { Predictor::Loading };

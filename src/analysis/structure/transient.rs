@@ -79,7 +79,7 @@ pub(super) fn account_energy(
     (system, elimination): (&LinearSystem, &Elimination),
     impactors: f64,
 ) {
-    let Parts { elements, loads, contacts, inertia, impulse } = parts;
+    let Parts { elements, loads, contacts, inertia, impulse, .. } = parts;
     let Some(inertia) = inertia.as_mut() else { return };
     let du: Vec<f64> = state.u.iter().zip(&state.u_committed).map(|(a, b)| a - b).collect();
     let eq = &system.assembler.dofs.eq;

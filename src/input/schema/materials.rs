@@ -31,6 +31,9 @@ pub struct MaterialFile {
     pub density: Option<f64>,
     /// J2 plasticity (elastic when absent).
     pub plasticity: Option<PlasticityFile>,
+    /// An interface material's cohesive law (only with `name`; referenced
+    /// by a laminate's `interfaces`, refused as a body material).
+    pub cohesive: Option<super::CohesiveFile>,
 }
 
 tagged_table! {

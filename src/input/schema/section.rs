@@ -120,6 +120,13 @@ pub struct LaminateFile {
     pub z0: Option<f64>,
     /// The plies, bottom first.
     pub plies: Option<Vec<PlyFile>>,
+    /// The interfaces between plies: `"perfect"` (shared nodes),
+    /// `"cohesive"` (every one, with `interface_material`) or a list of the
+    /// cohesive ones `[{ply, material, crack}]`.
+    #[schemars(transform = defaults::schema(defaults::INTERFACES))]
+    pub interfaces: Option<super::InterfacesFile>,
+    /// The material (with `cohesive`) of the cohesive interfaces that name none.
+    pub interface_material: Option<String>,
 }
 
 /// One ply of a laminate.

@@ -1,0 +1,173 @@
+//! Delamination through cohesive interfaces (issue 48): the double
+//! cantilever beam of `examples/dcb.toml` against corrected beam theory
+//! with the same constants (`tests/common/cbt.rs`: Williams 1989's crack
+//! correction χh; self-checked in tests/oracles_selfcheck.rs) — the
+//! compliance of a held crack, the load–opening curve through onset, and
+//! that the curve moves with G_Ic.
+
+#[path = "../../../tests/common/cbt.rs"]
+mod cbt;
+#[path = "../../../tests/common/mod.rs"]
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use cbt::Specimen;
+use serde_json::Value;
+
+/// The example's text.
+fn example() -> String {
+    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join("examples/dcb.toml");
+    std::fs::read_to_string(path).unwrap()
+}
+
+/// Runs a model text through the CLI: the output folder and the summary;
+/// the run must reach its end if `complete`.
+fn run_cli(name: &str, text: &str, complete: bool) -> (PathBuf, Value) {
+    let dir = common::scratch_dir("delamination", name);
+    let model = dir.join(format!("{name}.toml"));
+    std::fs::write(&model, text).unwrap();
+    let out = dir.join("out");
+    let run = common::cufem()
+        .args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"])
+        .output()
+        .unwrap();
+    assert!(run.status.success() || !complete, "{name}: {}", String::from_utf8_lossy(&run.stderr));
+    let summary: Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert!(summary["converged"] == true || !complete, "{name}");
+    (out, summary)
+}
+
+/// The example's specimen: B = 25.4 mm, h = 1.56 mm, 100 mm long, G_Ic
+/// `gic`.
+fn specimen(gic: f64) -> cbt::Dcb {
+    let material = cbt::Material::as4_peek();
+    cbt::Dcb { material: material.with_toughness(gic, material.giic), width: 0.0254, arm: 0.00156, length: 0.1 }
+}
+
+/// The precrack's tip: midway between the last cracked interface nodes
+/// (y = 32.75 mm) and the first intact ones (32.875 mm) (examples/dcb.toml).
+const A0: f64 = 0.0328125;
+
+/// The load–opening points `(δ, P)` of a run of the example: P = `load` × λ,
+/// δ the difference of the arm-end probes.
+fn curve(out: &Path, load: f64) -> Vec<(f64, f64)> {
+    let c = common::csv_columns(&out.join("history_probes.csv"));
+    let (up, down) = (&c["upper_end.u_z"], &c["lower_end.u_z"]);
+    c["lambda"].iter().zip(up.iter().zip(down)).map(|(l, (u, d))| (u - d, load * l)).collect()
+}
+
+/// The example with G_Ic scaled by `factor`.
+fn with_toughness(factor: f64) -> String {
+    let text = example();
+    assert!(text.contains("gic = 969.0"));
+    text.replace("gic = 969.0", &format!("gic = {}", 969.0 * factor))
+}
+
+/// The held-crack compliance δ/P at 10 N (far below onset: no point
+/// damages) with the precrack to `to` (m), against CBT's
+/// `C = 8 (a + χh)³/(E11 B h³)` at `a`, the midpoint between the last
+/// cracked and the first intact nodes. Measured: −0.44 % at a = 32.8 mm,
+/// −0.45 % at 39.9 mm; asserted 1 % (design48 §3.1).
+#[test]
+fn held_crack_compliance_matches_corrected_beam_theory() {
+    for (name, to, a) in [("held_a33", 0.0328, A0), ("held_a40", 0.0399, 0.0399375)] {
+        let text = example()
+            .replace("to = 0.0328 }", &format!("to = {to} }}"))
+            .replace("200.0]", "10.0]")
+            .replace("-200.0]", "-10.0]");
+        let solver = text.find("[solver]").unwrap();
+        let text = format!("{}[solver]\nincrements = 1\n", &text[..solver]);
+        let (out, summary) = run_cli(name, &text, true);
+        let (d, p) = *curve(&out, 10.0).last().unwrap();
+        let c = d / p;
+        let exact = specimen(969.0).compliance(a);
+        eprintln!("{name}: C = {c:.5e} m/N, CBT {exact:.5e} ({:+.3} %)", 100.0 * (c / exact - 1.0));
+        assert!((c / exact - 1.0).abs() < 0.01, "{name}: C = {c:e} against {exact:e}");
+        // nothing grew: the delaminated area is the precrack's
+        let area = summary["delamination"]["area_m2"].as_f64().unwrap();
+        assert_eq!(summary["delamination"]["interfaces"][0]["process_zone_m2"].as_f64().unwrap(), 0.0);
+        assert!((area / 0.0254 - a).abs() < 0.2e-3, "{name}: delaminated {area} m²");
+    }
+}
+
+/// The whole computed curve within 3 % of P_c of CBT (issue 48): up to
+/// onset and on the propagation branch as far as the example traces it
+/// (δ = 4.5 mm, past the peak at 4.19 mm; docs/limitations.md). Measured:
+/// 2.76 % at worst, at the CBT curve's cusp (the cohesive zone rounds the
+/// peak; 1.3 % below it), 0.6 % on the branch; the crack grew to about
+/// 34 mm.
+#[test]
+fn dcb_curve_follows_corrected_beam_theory() {
+    let (out, summary) = run_cli("dcb", &example(), true);
+    let points = curve(&out, 200.0);
+    let dcb = specimen(969.0);
+    let (dc, pc) = dcb.onset(A0);
+    let error = cbt::curve_error(&points, &dcb, A0);
+    let last = points.last().unwrap();
+    eprintln!(
+        "DCB: P_c = {pc:.2} N at {:.3} mm; {} points to δ = {:.3} mm; curve error {:.2} % of P_c",
+        1e3 * dc,
+        points.len(),
+        1e3 * last.0,
+        100.0 * error
+    );
+    assert!(last.0 > dc + 0.25e-3, "the curve stops at δ = {} before passing the peak", last.0);
+    assert!(points.iter().filter(|p| p.0 > dc).count() >= 1);
+    assert!(error < 0.03, "curve error {error}");
+    // the crack grew past the precrack, and it dissipated energy
+    let d = &summary["delamination"];
+    let a = d["area_m2"].as_f64().unwrap() / 0.0254;
+    let dissipated = d["dissipated_j"].as_f64().unwrap();
+    eprintln!("DCB: crack {:.3} mm, dissipated {dissipated:.3e} J", 1e3 * a);
+    assert!(a > A0 + 0.5e-3, "crack {a}");
+    assert!(dissipated > 0.0);
+}
+
+/// G_Ic changed by ±10 % moves the curve out of the 3 % band around the
+/// original closed form, and nearer to the closed form of the changed
+/// toughness (design48 §3.4's robust form). Measured: +10 %: error against
+/// the original 8.05 %, against its own 1.48 %; −10 %: 3.25 % and 2.16 %
+/// (its arc length stalls at δ = 4.2 mm, just past its own peak at 3.98 mm,
+/// so its curve holds the peak region only: a margin of 0.25 % over the
+/// tolerance, measured, not chosen).
+#[test]
+fn dcb_curve_moves_with_the_toughness() {
+    for (name, factor) in [("gic_up", 1.1), ("gic_down", 0.9)] {
+        // (the arc length may stall earlier on the changed branch: the
+        // points it traced are compared)
+        let (out, _) = run_cli(name, &with_toughness(factor), false);
+        let points = curve(&out, 200.0);
+        let original = cbt::curve_error(&points, &specimen(969.0), A0);
+        let own = cbt::curve_error(&points, &specimen(969.0 * factor), A0);
+        eprintln!(
+            "{name}: error against the original CBT {:.2} %, against its own {:.2} %",
+            100.0 * original,
+            100.0 * own
+        );
+        assert!(original > 0.03, "{name}: within 3 % of the original curve ({original})");
+        assert!(own < original, "{name}: nearer the original curve ({original}) than its own ({own})");
+    }
+}
+
+/// CalculiX's deck has no twin of a cohesive interface (its plies share
+/// their nodes): `export-ccx` and `verify` refuse the model by the key that
+/// asks for one, before writing anything.
+#[test]
+fn calculix_export_refuses_cohesive_interfaces_by_key() {
+    let dir = common::scratch_dir("delamination", "ccx");
+    let model = dir.join("dcb.toml");
+    std::fs::write(&model, example()).unwrap();
+    for command in ["export-ccx", "verify"] {
+        let out = dir.join(command);
+        let run =
+            common::cufem().args([command, model.to_str().unwrap(), "--out", out.to_str().unwrap()]).output().unwrap();
+        let err = String::from_utf8_lossy(&run.stderr);
+        assert!(!run.status.success(), "{command} ran");
+        assert!(
+            err.contains("bodies[0].section.interfaces[0]") && err.contains("cohesive interface"),
+            "{command}: {err}"
+        );
+        assert!(!out.join("model.inp").exists(), "{command} wrote a deck");
+    }
+}

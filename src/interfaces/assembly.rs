@@ -1,0 +1,234 @@
+//! The interfaces as a part of the structure's residual and tangent: at
+//! each point the separation `δ = u_upper − u_lower`, the cohesive law's
+//! traction `t` and tangent `D`, the forces `±A t` (internal: the point
+//! resists the separation) and the blocks `A D` on the two nodes and `−A D`
+//! between them. The points' damage is trial history until the increment
+//! converges.
+
+use super::Interface;
+use crate::assembly::{At, Contribution, Forces, Phase, Tangent};
+use crate::materials::Predictor;
+use crate::materials::cohesive::{Cohesive, CohesiveState};
+
+/// Every cohesive interface of a model, with its points' history.
+#[derive(Debug)]
+pub struct Interfaces<'m> {
+    interfaces: &'m [Interface],
+    /// The points' committed states, interface by interface.
+    committed: Vec<Vec<CohesiveState>>,
+    /// Their states at the last evaluation.
+    trial: Vec<Vec<CohesiveState>>,
+    /// Whether each point's damage grew in the last evaluation (its branch
+    /// of the law: softening, or elastic on its secant).
+    growing: Vec<Vec<bool>>,
+    /// Internal forces of the last evaluation, per DOF.
+    forces: Vec<f64>,
+}
+
+/// What an interface has become: its delaminated area and the energy it
+/// dissipated (`summary.json` `delamination.interfaces`).
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct InterfaceSummary {
+    /// The interface's name.
+    pub name: String,
+    /// The body's index.
+    pub body: usize,
+    /// Its whole area (m²).
+    pub area_m2: f64,
+    /// Area of the points with d = 1 (m²).
+    pub delaminated_m2: f64,
+    /// Area of the points with 0 < d < 1: the process zone (m²).
+    pub process_zone_m2: f64,
+    /// Energy dissipated, `Σ A g` (J).
+    pub dissipated_j: f64,
+}
+
+/// The interfaces at the end of a run.
+#[derive(Debug, Clone, PartialEq)]
+pub struct Delamination {
+    /// Each interface's summary.
+    pub interfaces: Vec<InterfaceSummary>,
+    /// Each interface's name and its points' damage.
+    pub damage: Vec<(String, Vec<PointDamage>)>,
+}
+
+/// The damage of an interface point: `(lower node, upper node, d)`.
+pub type PointDamage = (usize, usize, f64);
+
+/// `summary.json` `delamination`.
+#[derive(Debug, Clone, PartialEq, serde::Serialize)]
+pub struct DelaminationSummary {
+    /// Every interface.
+    pub interfaces: Vec<InterfaceSummary>,
+    /// The delaminated area (d = 1) of all of them (m²).
+    pub area_m2: f64,
+    /// The energy they dissipated (J).
+    pub dissipated_j: f64,
+}
+
+impl Delamination {
+    /// Its `summary.json` entry.
+    pub fn summary(&self) -> DelaminationSummary {
+        DelaminationSummary {
+            interfaces: self.interfaces.clone(),
+            area_m2: self.interfaces.iter().map(|i| i.delaminated_m2).sum(),
+            dissipated_j: self.interfaces.iter().map(|i| i.dissipated_j).sum(),
+        }
+    }
+
+    /// The damage at each interface node (both twins of a point), for the
+    /// `d_interface` field.
+    pub fn node_damage(&self) -> std::collections::HashMap<usize, f64> {
+        let mut out = std::collections::HashMap::new();
+        for (_, points) in &self.damage {
+            for &(l, u, d) in points {
+                out.insert(l, d);
+                out.insert(u, d);
+            }
+        }
+        out
+    }
+}
+
+impl<'m> Interfaces<'m> {
+    /// The interfaces of a model with `n_dofs` DOFs, intact but for their
+    /// precracks.
+    pub fn new(interfaces: &'m [Interface], n_dofs: usize) -> Self {
+        let committed: Vec<Vec<CohesiveState>> = interfaces
+            .iter()
+            .map(|i| {
+                i.points
+                    .iter()
+                    .map(|p| CohesiveState { damage: if p.cracked { 1.0 } else { 0.0 }, dissipated: 0.0 })
+                    .collect()
+            })
+            .collect();
+        let forces = if interfaces.is_empty() { Vec::new() } else { vec![0.0; n_dofs] };
+        let growing = committed.iter().map(|c| vec![false; c.len()]).collect();
+        Self { interfaces, trial: committed.clone(), committed, growing, forces }
+    }
+
+    /// True if the model has cohesive interfaces.
+    pub fn is_active(&self) -> bool {
+        !self.interfaces.is_empty()
+    }
+
+    /// The committed damage of every point, interface by interface.
+    pub fn damage(&self) -> impl Iterator<Item = (&'m Interface, Vec<f64>)> + '_ {
+        self.interfaces.iter().zip(&self.committed).map(|(i, s)| (i, s.iter().map(|s| s.damage).collect()))
+    }
+
+    /// The committed state of every interface: its summary and its
+    /// points' damage.
+    pub fn delamination(&self) -> Option<Delamination> {
+        self.is_active().then(|| Delamination {
+            interfaces: self.summaries(),
+            damage: self
+                .damage()
+                .map(|(i, d)| (i.name.clone(), i.points.iter().zip(d).map(|(p, d)| (p.lower, p.upper, d)).collect()))
+                .collect(),
+        })
+    }
+
+    /// Each interface's delaminated area and dissipated energy (committed).
+    pub fn summaries(&self) -> Vec<InterfaceSummary> {
+        self.interfaces
+            .iter()
+            .zip(&self.committed)
+            .map(|(i, states)| {
+                let mut s = InterfaceSummary {
+                    name: i.name.clone(),
+                    body: i.body,
+                    area_m2: i.area(),
+                    delaminated_m2: 0.0,
+                    process_zone_m2: 0.0,
+                    dissipated_j: 0.0,
+                };
+                for (p, st) in i.points.iter().zip(states) {
+                    if st.damage >= 1.0 {
+                        s.delaminated_m2 += p.area;
+                    } else if st.damage > 0.0 {
+                        s.process_zone_m2 += p.area;
+                    }
+                    s.dissipated_j += p.area * st.dissipated;
+                }
+                s
+            })
+            .collect()
+    }
+}
+
+/// The secant of the law at `state` and separation `delta`: `(1 − d) K`,
+/// and `K` across a closing interface. Newton takes it in the cautious
+/// retry of a failed increment ([`Predictor::Elastic`]): a point cycling
+/// between its softening and its unloading tangent from one iteration to
+/// the next (measured on examples/dcb.toml) converges on its secant.
+fn secant(law: &Cohesive, state: &CohesiveState, delta: [f64; 3]) -> [[f64; 3]; 3] {
+    let soft = (1.0 - state.damage) * law.penalty;
+    let closing = if delta[2] < 0.0 { law.penalty } else { soft };
+    [[soft, 0.0, 0.0], [0.0, soft, 0.0], [0.0, 0.0, closing]]
+}
+
+impl Contribution for Interfaces<'_> {
+    fn phase(&self) -> Phase {
+        Phase::Elements
+    }
+
+    /// In the cautious retry of a failed increment each point takes its
+    /// secant ([`secant`]). Returns the points whose branch (damage growing or not) differs
+    /// from the last evaluation's: the residual is not smooth there, as
+    /// where a contact opens or closes.
+    fn evaluate(&mut self, at: &At<'_>, tangent: &mut Tangent<'_>) -> usize {
+        if self.interfaces.is_empty() {
+            return 0;
+        }
+        self.forces.fill(0.0);
+        let mut changes = 0;
+        let states = self.committed.iter().zip(&mut self.trial).zip(&mut self.growing);
+        for (interface, ((committed, trial), growing)) in self.interfaces.iter().zip(states) {
+            for (((p, old), new), grows) in interface.points.iter().zip(committed).zip(trial.iter_mut()).zip(growing) {
+                let delta: [f64; 3] = std::array::from_fn(|k| at.u[3 * p.upper + k] - at.u[3 * p.lower + k]);
+                let r = interface.law.update(delta, old);
+                let now = r.state.damage > old.damage;
+                changes += usize::from(now != *grows);
+                *grows = now;
+                *new = r.state;
+                for k in 0..3 {
+                    self.forces[3 * p.upper + k] += p.area * r.traction[k];
+                    self.forces[3 * p.lower + k] -= p.area * r.traction[k];
+                }
+                if tangent.wanted {
+                    let d = if at.predictor == Predictor::Elastic {
+                        secant(&interface.law, &r.state, delta)
+                    } else {
+                        r.tangent
+                    };
+                    let block = d.map(|row| row.map(|v| p.area * v));
+                    tangent.add_node_block(p.upper, p.upper, &block);
+                    tangent.add_node_block(p.lower, p.lower, &block);
+                    tangent.add_node_block(p.upper, p.lower, &block.map(|row| row.map(|v| -v)));
+                }
+            }
+        }
+        changes
+    }
+
+    fn forces(&self) -> Forces<'_> {
+        Forces { values: &self.forces, sign: 1.0, scale: false, reference: 0.0 }
+    }
+
+    fn commit(&mut self, _at: &At<'_>) {
+        for (c, t) in self.committed.iter_mut().zip(&self.trial) {
+            debug_assert!(c.iter().zip(t).all(|(c, t)| t.damage >= c.damage), "interface damage decreased");
+            c.copy_from_slice(t);
+        }
+        self.growing.iter_mut().for_each(|g| g.fill(false));
+    }
+
+    fn restore(&mut self) {
+        for (c, t) in self.committed.iter().zip(&mut self.trial) {
+            t.copy_from_slice(c);
+        }
+        self.growing.iter_mut().for_each(|g| g.fill(false));
+    }
+}

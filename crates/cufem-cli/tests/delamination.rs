@@ -114,6 +114,12 @@ fn dcb_curve_follows_corrected_beam_theory() {
     );
     assert!(last.0 > dc + 0.25e-3, "the curve stops at δ = {} before passing the peak", last.0);
     assert!(points.iter().filter(|p| p.0 > dc).count() >= 1);
+    // Known limit (docs/limitations.md, "Delamination … is static and
+    // partial"): the arc length stalls about a millimetre of crack growth
+    // past the peak. Measured: δ = 4.576 mm, crack 33.83 mm. Asserted from
+    // both sides, so a solver that traces further fails here and the limit
+    // is lifted from the docs with it.
+    assert!((4.45e-3..4.75e-3).contains(&last.0), "the DCB's trace now ends at δ = {} m", last.0);
     assert!(error < 0.03, "curve error {error}");
     // the crack grew past the precrack, and it dissipated energy
     let d = &summary["delamination"];
@@ -121,6 +127,7 @@ fn dcb_curve_follows_corrected_beam_theory() {
     let dissipated = d["dissipated_j"].as_f64().unwrap();
     eprintln!("DCB: crack {:.3} mm, dissipated {dissipated:.3e} J", 1e3 * a);
     assert!(a > A0 + 0.5e-3, "crack {a}");
+    assert!(a < A0 + 1.5e-3, "crack {a}: the trace now goes further (known limit above)");
     assert!(dissipated > 0.0);
 }
 

@@ -174,7 +174,9 @@ pub fn strain_variation(f: &Tensor, g: [f64; 3], k: usize) -> Voigt {
 mod tests {
     use super::*;
 
-    fn rotation(axis: [f64; 3], angle: f64) -> Tensor {
+    /// The rotation by `angle` (rad) about `axis` (Rodrigues' formula);
+    /// shared with the tests of `hencky`.
+    pub(crate) fn rotation(axis: [f64; 3], angle: f64) -> Tensor {
         let n = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
         let [x, y, z] = axis.map(|a| a / n);
         let (s, c) = angle.sin_cos();
@@ -186,7 +188,8 @@ mod tests {
         ]
     }
 
-    fn mul(a: &Tensor, b: &Tensor) -> Tensor {
+    /// The product `a b`.
+    pub(crate) fn mul(a: &Tensor, b: &Tensor) -> Tensor {
         std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
     }
 

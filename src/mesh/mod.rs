@@ -131,6 +131,20 @@ pub struct Body {
 }
 
 impl Body {
+    /// A body of one material (`material`, an index into the model's
+    /// list); its node and element offsets are set by [`Mesh::new`].
+    pub fn new(name: impl Into<String>, section: CrossSection, axis: BeamAxis, material: usize) -> Self {
+        Self {
+            name: name.into(),
+            section,
+            axis,
+            material,
+            element_materials: Vec::new(),
+            node_offset: 0,
+            element_offset: 0,
+        }
+    }
+
     /// The material of section element `es` (of every body element over it).
     pub fn material_of(&self, es: usize) -> usize {
         self.element_materials.get(es).copied().unwrap_or(self.material)
@@ -276,15 +290,7 @@ mod tests {
         let xl = Division::uniform(0.0, 0.01, nx).lines("x").unwrap();
         let zl = Division::uniform(0.0, 0.01, nz).lines("z").unwrap();
         let yl = Division::uniform(0.0, 0.25, ny).lines("y").unwrap();
-        Body {
-            name: "b".into(),
-            section: CrossSection::rectangle(kind, &xl, &zl).unwrap(),
-            axis: BeamAxis::from_lines(beam, &yl),
-            material: 0,
-            element_materials: Vec::new(),
-            node_offset: 0,
-            element_offset: 0,
-        }
+        Body::new("b", CrossSection::rectangle(kind, &xl, &zl).unwrap(), BeamAxis::from_lines(beam, &yl), 0)
     }
 
     /// DOF counts of the paper's discretizations (Nagaraj et al., Tables 1, 3, 4, 7).

@@ -7,11 +7,11 @@
 //!
 //! | table | file | rows |
 //! |-------|------|------|
-//! | [`line`] | `line_<name>.csv` | a sample along a `[[lines]]` entry (outside every body left out) |
+//! | [`line()`] | `line_<name>.csv` | a sample along a `[[lines]]` entry (outside every body left out) |
 //! | [`constraint_history`] | `history_<constraint>.csv` | a converged increment |
 //! | [`contact_history`] | `history_<contact>.csv` | a converged increment with that contact |
 //! | [`probe_history`] | `history_probes.csv` | a converged increment |
-//! | [`increment_history`] | `history.csv` | a converged increment |
+//! | `increment_history` | `history.csv` | a converged increment |
 //! | [`contact_points`] | `contact_<name>.csv` | a point of a contact, final state |
 //! | [`energy`] | `energy.csv` | a converged time step of a transient run |
 //! | [`modes`] | `modes.csv` | a vibration mode: frequency, effective masses |
@@ -126,7 +126,7 @@ impl Table {
 
     /// The columns `<prefix>x`, `<prefix>y`, `<prefix>z` together, a vector
     /// per row, or `None` without them.
-    pub fn xyz(&self, prefix: &str) -> Option<Vec<[f64; 3]>> {
+    pub(crate) fn xyz(&self, prefix: &str) -> Option<Vec<[f64; 3]>> {
         let [x, y, z] = ["x", "y", "z"].map(|axis| self.real(&format!("{prefix}{axis}")));
         let (x, y, z) = (x?, y?, z?);
         Some((0..x.len()).map(|i| [x[i], y[i], z[i]]).collect())
@@ -236,7 +236,7 @@ pub fn probe_history(model: &Model, solution: &Solution) -> Table {
 /// plastic Gauss points and the negative pivots of the last factorized
 /// tangent (absent when not known), which count the tangent's negative
 /// eigenvalues: a change marks a limit or bifurcation point.
-pub fn increment_history(solution: &Solution) -> Table {
+pub(crate) fn increment_history(solution: &Solution) -> Table {
     let rows: Vec<_> = solution.history.iter().collect();
     let mut t = increments(&rows, "history".into());
     t.push("plastic_points", "", Values::Count(rows.iter().map(|r| r.plastic_points).collect()));

@@ -275,7 +275,7 @@ pub struct ElementShare {
 }
 
 /// The estimate of `solution`, with its five largest elements.
-pub fn estimate_summary(model: &Model, solution: &Solution) -> Option<EstimateSummary> {
+pub(crate) fn estimate_summary(model: &Model, solution: &Solution) -> Option<EstimateSummary> {
     let est = solution.error_estimate.as_ref()?;
     let largest = est
         .largest(5)
@@ -377,7 +377,7 @@ fn contacts(list: &[crate::analysis::ContactResultant], symmetry: &Symmetry) -> 
 
 /// The summary of step `k` of `solution`, its probes and peak peeq from
 /// `at_end` (the solution as it was at the end of that step).
-pub fn step_summary(
+pub(crate) fn step_summary(
     model: &Model,
     solution: &Solution,
     k: usize,
@@ -519,7 +519,7 @@ fn mode_files(model: &Model, n: usize) -> Vec<String> {
 }
 
 /// The VTU file name of buckling or vibration mode `k` (1-based).
-pub fn mode_vtu_name(k: usize) -> String {
+pub(crate) fn mode_vtu_name(k: usize) -> String {
     format!("mode_{k}.vtu")
 }
 

@@ -8,7 +8,7 @@
 //! `node = body.node_offset + i · n_section_nodes + τ`
 //!
 //! Degrees of freedom are `3 · node + c` with `c = 0, 1, 2` for `u_x, u_y, u_z`
-//! (the equation numbering for the solver is in [`crate::assembly`]).
+//! (the equation numbering for the solver is in `crate::assembly`).
 
 pub mod blocks;
 mod clip;
@@ -66,7 +66,7 @@ pub struct BeamAxis {
 
 impl BeamAxis {
     /// Axis with elements between consecutive `lines` (element boundaries).
-    pub fn from_lines(kind: BeamElementKind, lines: &[f64]) -> Self {
+    pub(crate) fn from_lines(kind: BeamElementKind, lines: &[f64]) -> Self {
         let p = kind.order();
         let mut nodes = vec![lines[0]];
         for w in lines.windows(2) {
@@ -163,7 +163,7 @@ impl Body {
 
     /// True if the body has more than one material (plies, zones): its
     /// stresses jump between them.
-    pub fn is_layered(&self) -> bool {
+    pub(crate) fn is_layered(&self) -> bool {
         self.materials().len() > 1
     }
 
@@ -264,7 +264,7 @@ impl Mesh {
     }
 
     /// Body owning a global element, and the element's body-local index.
-    pub fn body_of_element(&self, e: usize) -> (usize, usize) {
+    pub(crate) fn body_of_element(&self, e: usize) -> (usize, usize) {
         let b = self.bodies.iter().rposition(|b| b.element_offset <= e).unwrap_or(0);
         (b, e - self.bodies[b].element_offset)
     }
@@ -276,7 +276,7 @@ impl Mesh {
     }
 
     /// Index of the body with this name.
-    pub fn body_index(&self, name: &str) -> Option<usize> {
+    pub(crate) fn body_index(&self, name: &str) -> Option<usize> {
         self.bodies.iter().position(|b| b.name == name)
     }
 }

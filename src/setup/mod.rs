@@ -170,7 +170,7 @@ impl std::fmt::Display for Warning {
 
 impl Model {
     /// True if any contact has Coulomb friction (its tangent is unsymmetric).
-    pub fn has_friction(&self) -> bool {
+    pub(crate) fn has_friction(&self) -> bool {
         self.indenters.iter().any(|i| i.friction.is_some()) || self.contacts.iter().any(|c| c.friction.is_some())
     }
 

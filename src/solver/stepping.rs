@@ -134,7 +134,7 @@ pub use super::stop::{SteppingError, StopReason};
 
 /// Most multiplier updates per increment (augmented Lagrangian); the
 /// contact's penetration check then reports what is left.
-pub const MAX_AUGMENTATIONS: usize = 50;
+pub(crate) const MAX_AUGMENTATIONS: usize = 50;
 
 /// Drives `problem` from λ = 0 to 1. Returns the converged increments.
 pub fn run<P: Incremental>(

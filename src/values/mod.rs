@@ -351,7 +351,7 @@ impl CellValues {
     }
 
     /// The same values with the B-bar projection of the volumetric strain.
-    pub fn with_bbar(mut self, body: &Body) -> Self {
+    pub(crate) fn with_bbar(mut self, body: &Body) -> Self {
         self.volumetric =
             Some(PressureSpace::new(&self.section, &self.axis, body.section.kind.order(), body.axis.kind.order()));
         self

@@ -53,7 +53,7 @@ pub enum Kinematics {
     /// stress, the geometric stiffness (large rotations and displacements).
     TotalLagrangian,
     /// Total Lagrangian with the logarithmic (Hencky) strain `½ ln C` as the
-    /// material's strain ([`hencky`]): finite-strain elastoplasticity.
+    /// material's strain (`hencky`): finite-strain elastoplasticity.
     TotalLagrangianLog,
 }
 

@@ -77,7 +77,7 @@ pub mod dynamics;
 pub(crate) mod elements;
 pub mod input;
 pub mod io;
-pub mod kinematics;
+pub(crate) mod kinematics;
 pub mod materials;
 pub mod mesh;
 pub mod numbers;

@@ -33,7 +33,7 @@ use crate::contact::{Indenter, PairContact};
 pub use crate::input::ModelError;
 use crate::input::schema::{self, *};
 use crate::input::{OutputSettings, Recovery, Reference, SolverSettings, defaults, invalid};
-use crate::kinematics::Kinematics;
+pub use crate::kinematics::Kinematics;
 use crate::materials::Material;
 use crate::mesh::{Body, Mesh};
 use crate::quantity::Quantity;

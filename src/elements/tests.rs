@@ -1,5 +1,6 @@
 //! Tests of the element kernel.
 
+use super::log_tests::field;
 use super::*;
 use crate::mesh::{BeamAxis, Body, CrossSection, Division};
 use crate::shape::{BeamElementKind, SectionElementKind};
@@ -85,18 +86,9 @@ fn volume_and_rigid_body_modes() {
             .sum();
         assert!((vol - area * 0.03).abs() < 1e-15, "{sk:?}{bk:?}");
         // rigid rotation about y gives zero force
-        let nodes = body.nodes_per_element();
-        let mut el = Vec::new();
-        body.element_nodes(0, &mut el);
-        let mut u = vec![0.0; 3 * nodes];
-        for (a, &g) in el.iter().enumerate() {
-            let [x, y, z] = body.local_coords(g);
-            // small rotation θ about an arbitrary axis: u = θ × x
-            let th = [1e-4, -2e-4, 3e-4];
-            u[3 * a] = th[1] * z - th[2] * y;
-            u[3 * a + 1] = th[2] * x - th[0] * z;
-            u[3 * a + 2] = th[0] * y - th[1] * x;
-        }
+        // small rotation θ about an arbitrary axis: u = θ × x
+        let th = [1e-4, -2e-4, 3e-4];
+        let u = field(&body, &|[x, y, z]| [th[1] * z - th[2] * y, th[2] * x - th[0] * z, th[0] * y - th[1] * x]);
         let ngp = geom.gp_per_element();
         let (f, _) = response(&body, &mat, &u, &vec![PointState::default(); ngp]);
         let fmax = f.iter().fold(0.0f64, |a, b| a.max(b.abs()));
@@ -186,17 +178,14 @@ fn tangent_check(bbar: bool) {
     use crate::materials::Hardening;
     let body = single_element_body(SectionElementKind::L9, BeamElementKind::B3);
     let mat = Material::new("m", 70e9, 0.3, Some(Hardening::Linear { yield_stress: 100e6, modulus: 2e9 }));
-    let nodes = body.nodes_per_element();
-    let mut el = Vec::new();
-    body.element_nodes(0, &mut el);
     // a displacement that yields part of the element
-    let mut u = vec![0.0; 3 * nodes];
-    for (a, &g) in el.iter().enumerate() {
-        let [x, y, z] = body.local_coords(g);
-        u[3 * a] = 3e-3 * y * z / 0.01 + 1e-5 * (x * 100.0).sin();
-        u[3 * a + 1] = -2e-3 * (z - 0.005) + 1e-3 * x * y;
-        u[3 * a + 2] = 1e-5 * (y * 50.0).cos() + 2e-3 * x;
-    }
+    let u = field(&body, &|[x, y, z]| {
+        [
+            3e-3 * y * z / 0.01 + 1e-5 * (x * 100.0).sin(),
+            -2e-3 * (z - 0.005) + 1e-3 * x * y,
+            1e-5 * (y * 50.0).cos() + 2e-3 * x,
+        ]
+    });
     let geom = CellValues::new(&body).unwrap();
     let geom = if bbar { geom.with_bbar(&body) } else { geom };
     let ngp = geom.gp_per_element();

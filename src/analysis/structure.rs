@@ -5,7 +5,7 @@
 //!
 //! The structure is a composition of parts with one job each:
 //!
-//! * the **contributions** (`crate::assembly::Contribution`), evaluated
+//! * the **contributions** ([`crate::assembly::Contribution`]), evaluated
 //!   in order into the tangent, their forces summed into the residual —
 //!   `structure/elements.rs` (internal forces, element tangents, the
 //!   Gauss-point history; first: it writes the whole tangent),

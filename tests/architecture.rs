@@ -32,6 +32,11 @@
 //!   outliers. A hard cap bent the code: files were cut where the counter
 //!   said, not where the concepts part.
 //!
+//! * **The structure holds parts**: `struct Structure` (the nonlinear
+//!   problem of `analysis::structure`) has at most [`MAX_STRUCTURE_FIELDS`]
+//!   named fields; a new capability is a part inside one of them (a
+//!   contribution in its parts list), not a field of its own.
+//!
 //! Each check is shown to fail on a small source written for it (the
 //! `*_is_caught` tests below).
 
@@ -841,4 +846,74 @@ fn architecture_md_names_every_module() {
     // the check reads what it should: a map without the solver is caught
     let without = map.replace("`solver`", "solver");
     assert_eq!(unnamed_modules(&crates, &without), ["cufem: `solver`"]);
+}
+
+// ------------------------------------------------------------- structure
+
+/// The most named fields `struct Structure` may have (issue 47: it holds
+/// parts, not state of its own).
+const MAX_STRUCTURE_FIELDS: usize = 10;
+
+/// Every `struct name` of `sources` (test items included): `(file, its
+/// named fields)`.
+fn struct_fields(sources: &[Source], name: &str) -> Vec<(String, Vec<String>)> {
+    struct Find<'n>(&'n str, Vec<Vec<String>>);
+    impl<'ast> Visit<'ast> for Find<'_> {
+        fn visit_item_struct(&mut self, s: &'ast syn::ItemStruct) {
+            if s.ident == self.0 {
+                self.1.push(s.fields.iter().filter_map(|f| f.ident.as_ref().map(|i| i.to_string())).collect());
+            }
+            visit::visit_item_struct(self, s);
+        }
+    }
+    let mut out = Vec::new();
+    for s in sources {
+        let mut find = Find(name, Vec::new());
+        find.visit_file(&s.ast);
+        out.extend(find.1.into_iter().map(|fields| (s.file.clone(), fields)));
+    }
+    out
+}
+
+/// What is wrong with the `Structure`s found: none, several, or one with
+/// more than [`MAX_STRUCTURE_FIELDS`] fields.
+fn structure_review(found: &[(String, Vec<String>)]) -> Vec<String> {
+    match found {
+        [] => vec!["no `struct Structure` found".to_string()],
+        [(file, fields)] if fields.len() > MAX_STRUCTURE_FIELDS => vec![format!(
+            "{file}: Structure has {} fields (at most {MAX_STRUCTURE_FIELDS}): group them into parts: {fields:?}",
+            fields.len()
+        )],
+        [_] => Vec::new(),
+        several => vec![format!("several `struct Structure`: {:?}", several.iter().map(|f| &f.0).collect::<Vec<_>>())],
+    }
+}
+
+#[test]
+fn the_structure_holds_at_most_ten_fields() {
+    let crates = crates();
+    let found = struct_fields(core_library(&crates), "Structure");
+    let problems = structure_review(&found);
+    assert!(problems.is_empty(), "{}", problems.join("\n"));
+    // the check reads what it should: the analysis's structure, its parts named
+    assert_eq!(found[0].0, "analysis/structure.rs");
+    assert!(found[0].1.iter().any(|f| f == "parts"), "{found:?}");
+}
+
+/// A `Structure` of 11 named fields fails, one of 10 passes; a tuple
+/// struct's fields and another struct's are not counted.
+#[test]
+fn an_eleventh_structure_field_is_caught() {
+    let structure = |n: usize| {
+        let fields: String = (0..n).map(|i| format!("    f{i}: usize,\n")).collect();
+        format!("pub struct Structure {{\n{fields}}}\nstruct Other {{ a: u8, b: u8 }}\nstruct Pair(u8, u8);\n")
+    };
+    let eleven = fake(&[("analysis/structure.rs", &["analysis", "structure"], structure(11).as_str())]);
+    let found = struct_fields(&eleven, "Structure");
+    assert_eq!(found[0].1.len(), 11);
+    let problems = structure_review(&found);
+    assert!(problems.len() == 1 && problems[0].contains("Structure has 11 fields"), "{problems:?}");
+    let ten = fake(&[("analysis/structure.rs", &["analysis", "structure"], structure(10).as_str())]);
+    assert!(structure_review(&struct_fields(&ten, "Structure")).is_empty());
+    assert_eq!(structure_review(&struct_fields(&ten, "Missing")), ["no `struct Structure` found"]);
 }

@@ -84,7 +84,7 @@ name = "shear"
 #[test]
 fn the_stick_zone_of_a_sheared_cylinder_contact_follows_cattaneo_mindlin() {
     let model = Model::parse(SLICE).unwrap();
-    let mut s = Structure::new(&model, None).unwrap();
+    let mut s = Structure::of_model(&model, None).unwrap();
     let (e, nu, r, t, mu, h) = (200e9, 0.49, 0.05, 0.001, 0.3, 0.025e-3);
     let e_star = e / (1.0 - nu * nu);
     let n_shear = 6;

@@ -275,7 +275,7 @@ fn assembled_tangent_matches_finite_differences_with_contact_and_plasticity() {
         .replace("[[loads]]\nname = \"pressure\"\nbody = \"upper\"\nwhere = { z = 0.025 }\npressure = 50e6\n", "")
         + "[[indenters]]\nname = \"roller\"\nbody = \"upper\"\nshape = \"cylinder\"\nsurface = { z = 0.025 }\naxis = \"x\"\ncenter = [0.01, 0.015, 0.035]\nradius = 0.01\ndisplacement = [0.0, 0.0, -4e-5]\n";
     let model = Model::parse(&text).unwrap();
-    let mut s = analysis::Structure::new(&model, None).unwrap();
+    let mut s = analysis::Structure::of_model(&model, None).unwrap();
     s.set_load_factor(1.0);
     let report = newton::solve(&mut s, &NewtonSettings::default(), &Default::default());
     assert!(report.converged(), "{report:?}");

@@ -59,7 +59,7 @@ fn l2_error(section: &str, beam: &str, n: usize) -> f64 {
     let body = &model.mesh.bodies[0];
     let boundary: std::collections::BTreeSet<usize> =
         cufem::bc::boundary_faces(body).iter().flat_map(|f| cufem::bc::integrate_face(body, f).nodes).collect();
-    model.constraints = boundary
+    let constraints: Vec<Constraint> = boundary
         .iter()
         .map(|&node| Constraint {
             name: format!("n{node}"),
@@ -69,6 +69,7 @@ fn l2_error(section: &str, beam: &str, n: usize) -> f64 {
             selection: None,
         })
         .collect();
+    model.set_constraints(constraints);
     let sol = analysis::run(&model, &Default::default(), &mut Silent).unwrap();
     assert!(sol.failure.is_none());
     let body = &model.mesh.bodies[0];

@@ -174,7 +174,7 @@ fn active_nodes(s: &Structure, step: usize) -> Vec<usize> {
 #[test]
 fn contact_forces_turn_with_the_bodies() {
     let model = Model::parse(&stacked_blocks("geometry = \"nonlinear\"")).unwrap();
-    let mut s = Structure::new(&model, None).unwrap();
+    let mut s = Structure::of_model(&model, None).unwrap();
     let (active, worst) = turned_force_error(&mut s, &model, pressed_and_slid);
     eprintln!("{active} active points; forces turned to {worst:.1e} of the largest");
     assert!(active > 10, "{active} active points");
@@ -190,7 +190,7 @@ fn contact_forces_turn_with_the_bodies() {
 #[test]
 fn current_contact_tangent_matches_finite_differences() {
     let model = Model::parse(&stacked_blocks("geometry = \"nonlinear\"")).unwrap();
-    let mut s = Structure::new(&model, None).unwrap();
+    let mut s = Structure::of_model(&model, None).unwrap();
     turned_force_error(&mut s, &model, pressed_and_slid);
     let slaves = active_nodes(&s, 3);
     let (columns, worst) = tangent_error(&mut s, &model, slaves, (2, 0.01, 3));
@@ -269,7 +269,7 @@ fn node_pairs_turn_with_the_bodies_and_their_tangent_is_exact() {
     assert!(!text.contains("L16") && !text.contains("method"), "{text}");
     let model = Model::parse(&text).unwrap();
     assert_eq!(model.contacts[0].pairs.len(), 7 * 7, "one pair per interface node");
-    let mut s = Structure::new(&model, None).unwrap();
+    let mut s = Structure::of_model(&model, None).unwrap();
     let (active, worst) = turned_force_error(&mut s, &model, pressed_and_shifted);
     eprintln!("forces turned to {worst:.1e} of the largest");
     assert_eq!(active, 7 * 7, "every pair pressed");
@@ -355,7 +355,7 @@ fn pressed_end_to_end(x: [f64; 3], body: usize) -> [f64; 3] {
 #[test]
 fn end_faces_in_contact_turn_with_the_bodies_and_their_tangent_is_exact() {
     let model = Model::parse(&end_to_end()).unwrap();
-    let mut s = Structure::new(&model, None).unwrap();
+    let mut s = Structure::of_model(&model, None).unwrap();
     let (active, worst) = turned_force_error(&mut s, &model, pressed_end_to_end);
     eprintln!("{active} active points; forces turned to {worst:.1e} of the largest");
     assert!(active > 10, "{active} active points");

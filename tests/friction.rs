@@ -137,7 +137,7 @@ struct State {
 /// of `[[steps]]`), one Newton solve per value without cutbacks, each of
 /// which must converge; `push(λ)` is the push displacement at λ.
 fn drive(model: &Model, lambdas: &[f64], push: impl Fn(f64) -> f64) -> Vec<State> {
-    let mut s = Structure::new(model, None).unwrap();
+    let mut s = Structure::of_model(model, None).unwrap();
     let mut out = Vec::new();
     for &l in lambdas {
         s.set_load_factor(l);
@@ -366,7 +366,7 @@ fn unloads_reverses_and_returns(text: &str, mu: f64, a: f64, n: usize) {
 fn the_frictional_tangent_matches_finite_differences_sticking_and_sliding() {
     use cufem::solver::newton::NonlinearProblem;
     let model = Model::parse(&block_with(0.3, "{ y = 0.0 }", "{ x = 0.0 }", 2e-6, 20, "")).unwrap();
-    let mut s = Structure::new(&model, None).unwrap();
+    let mut s = Structure::of_model(&model, None).unwrap();
     assert!(s.is_unsymmetric(), "a model with friction keeps an unsymmetric part");
     // converged at λ = 1.05 but not committed: a point that slid in this
     // increment is strictly outside the cone of its committed slip (after a
@@ -413,7 +413,7 @@ fn the_frictional_tangent_matches_finite_differences_sticking_and_sliding() {
 fn newton_converges_quadratically_on_the_sliding_plateau() {
     use cufem::solver::newton::NonlinearProblem;
     let model = Model::parse(&block_with(0.3, "{ y = 0.0 }", "{ x = 0.0 }", 2e-6, 20, "")).unwrap();
-    let mut s = Structure::new(&model, None).unwrap();
+    let mut s = Structure::of_model(&model, None).unwrap();
     for l in [0.5, 1.0, 1.05, 1.1, 1.15, 1.2, 1.25, 1.3, 1.35, 1.4] {
         s.set_load_factor(l);
         assert!(newton::solve(&mut s, &NewtonSettings::default(), &Default::default()).converged());
@@ -511,7 +511,7 @@ factors = { push = 0.0 }
 name = "slide"
 "#;
     let model = Model::parse(text).unwrap();
-    let mut s = Structure::new(&model, None).unwrap();
+    let mut s = Structure::of_model(&model, None).unwrap();
     assert!(s.is_unsymmetric());
     // pressed and committed, then a tenth of the push solved but not
     // committed (points that slide are strictly outside their cone)

@@ -58,7 +58,7 @@ fn patch_test_distorted_sections_all_beam_types() {
                 cufem::bc::boundary_faces(body).iter().flat_map(|f| cufem::bc::integrate_face(body, f).nodes).collect();
             let interior = body.n_nodes() - boundary.len();
             assert!(interior > 0, "{sk}{bk}: the patch needs interior nodes");
-            model.constraints = boundary
+            let constraints: Vec<Constraint> = boundary
                 .iter()
                 .map(|&n| Constraint {
                     name: format!("n{n}"),
@@ -68,6 +68,7 @@ fn patch_test_distorted_sections_all_beam_types() {
                     selection: None,
                 })
                 .collect();
+            model.set_constraints(constraints);
             let sol = analysis::run(&model, &Default::default(), &mut Silent).unwrap();
             let scale = 3e-5; // largest constant term of the field (m)
             let mut worst: f64 = 0.0;

@@ -50,7 +50,7 @@ fix = ["x", "y", "z"]
     let body = &model.mesh.bodies[0];
     let boundary: std::collections::BTreeSet<usize> =
         cufem::bc::boundary_faces(body).iter().flat_map(|f| cufem::bc::integrate_face(body, f).nodes).collect();
-    model.constraints = boundary
+    let constraints: Vec<Constraint> = boundary
         .iter()
         .map(|&n| Constraint {
             name: format!("n{n}"),
@@ -60,6 +60,7 @@ fix = ["x", "y", "z"]
             selection: None,
         })
         .collect();
+    model.set_constraints(constraints);
     let sol = analysis::run(&model, &Default::default(), &mut Silent).unwrap();
     let view = sol.fields(&model);
     let scale = E * K * 0.05; // the largest |σ_yy|

@@ -121,7 +121,7 @@ fn a_roller_slides_over_a_block_with_the_exact_gap() {
 /// points.
 fn tangent_error(text: &str, path: &[(f64, bool)], h: f64) -> (f64, usize, usize) {
     let model = Model::parse(text).unwrap();
-    let mut s = Structure::new(&model, None).unwrap();
+    let mut s = Structure::of_model(&model, None).unwrap();
     common::solve_path(&mut s, path);
     s.evaluate().unwrap();
     let points = s.contact_points().to_vec();
@@ -287,7 +287,7 @@ displacement = [0.0, 0.0, {}]
         centre[2] - 0.1
     );
     let model = Model::parse(&text).unwrap();
-    let mut s = Structure::new(&model, None).unwrap();
+    let mut s = Structure::of_model(&model, None).unwrap();
     {
         use cufem::solver::stepping::Incremental;
         s.set_load_factor(1.0);
@@ -386,7 +386,7 @@ fn lifted_secant_start(friction: Option<f64>, check: impl FnOnce(&mut Structure,
         None => PRESSED.to_string(),
     };
     let model = Model::parse(&text).unwrap();
-    let mut s = Structure::new(&model, None).unwrap();
+    let mut s = Structure::of_model(&model, None).unwrap();
     s.set_load_factor(0.5);
     assert!(newton::solve(&mut s, &NewtonSettings::default(), &Default::default()).converged());
     s.commit();

@@ -190,7 +190,7 @@ fn surface_contact_tangent_matches_finite_differences() {
     use cufem::solver::newton::{self, NewtonSettings, NonlinearProblem};
     use cufem::solver::stepping::Incremental;
     let model = Model::parse(&plastic_roller()).unwrap();
-    let mut s = analysis::Structure::new(&model, None).unwrap();
+    let mut s = analysis::Structure::of_model(&model, None).unwrap();
     s.set_load_factor(1.0);
     let report = newton::solve(&mut s, &NewtonSettings::default(), &Default::default());
     assert!(report.converged(), "{report:?}");
@@ -238,7 +238,7 @@ fn newton_converges_quadratically_with_surface_contact() {
     use cufem::solver::newton::{self, NewtonSettings, NonlinearProblem};
     use cufem::solver::stepping::Incremental;
     let model = Model::parse(&plastic_roller()).unwrap();
-    let mut s = analysis::Structure::new(&model, None).unwrap();
+    let mut s = analysis::Structure::of_model(&model, None).unwrap();
     let settings = NewtonSettings { residual_tolerance: 1e-11, displacement_tolerance: 1e-11, ..Default::default() };
     let mut active_before = 0;
     for lambda in [0.8, 1.0] {
@@ -457,7 +457,7 @@ fn an_initial_gap_closes_and_then_transmits_a_uniform_pressure() {
 fn the_frictional_surface_tangent_matches_finite_differences() {
     use cufem::solver::newton::NonlinearProblem;
     let model = Model::parse(&sliding_blocks(3e-7)).unwrap();
-    let mut s = analysis::Structure::new(&model, None).unwrap();
+    let mut s = analysis::Structure::of_model(&model, None).unwrap();
     assert!(s.is_unsymmetric());
     // press (steps: λ ∈ [0, 1] presses, [1, 2] pushes), then part of the push
     common::solve_path(&mut s, &[(0.5, true), (1.0, true), (1.5, true), (1.7, false)]);

@@ -106,13 +106,13 @@ pub(crate) fn solve(structure: &mut Structure<'_>, modes: usize) -> Result<Buckl
 /// uniaxial stress, the engineering shear strain for pure shear; at most
 /// the strain's norm).
 fn unit_strain(structure: &Structure<'_>) -> f64 {
-    let model = structure.model();
+    let d = structure.discretisation();
     let elements = structure.elements();
     let compliances: Vec<Option<crate::voigt::Matrix6>> =
-        model.materials.iter().map(|m| crate::materials::anisotropic::invert(m.elastic_stiffness())).collect();
+        d.materials.iter().map(|m| crate::materials::anisotropic::invert(m.elastic_stiffness())).collect();
     let mut largest = 0.0f64;
-    for (b, body) in model.mesh.bodies.iter().enumerate() {
-        let ngp = model.cells[b].gp_per_element();
+    for (b, body) in d.mesh.bodies.iter().enumerate() {
+        let ngp = d.cells[b].gp_per_element();
         for e in 0..body.n_elements() {
             let Some(c) = &compliances[body.material_of(body.split_element(e).0)] else { continue };
             for sigma in &elements.stress[elements.gp_offsets[b] + e * ngp..][..ngp] {
@@ -130,16 +130,15 @@ fn unit_strain(structure: &Structure<'_>) -> f64 {
 /// Refuses a buckling analysis without loads, or with loads too small to
 /// scale (`unit_strain` below [`MIN_UNIT_STRAIN`]), by key.
 fn loaded(structure: &Structure<'_>, unit_strain: f64) -> Result<(), AnalysisError> {
-    let model = structure.model();
+    let loads = structure.loading().loads;
     let largest = structure.external_loads().iter().fold(0.0f64, |m, f| m.max(f.abs()));
     if unit_strain >= MIN_UNIT_STRAIN && largest > 0.0 {
         return Ok(());
     }
-    let (key, value) = if model.loads.is_empty() {
+    let (key, value) = if loads.is_empty() {
         ("loads".to_string(), "[]".to_string())
     } else {
-        let entries =
-            if model.loads.len() == 1 { "1 entry".to_string() } else { format!("{} entries", model.loads.len()) };
+        let entries = if loads.len() == 1 { "1 entry".to_string() } else { format!("{} entries", loads.len()) };
         ("loads".to_string(), format!("{entries}, nodal forces up to {} N", crate::numbers::limit(largest)))
     };
     Err(crate::setup::ModelError::Invalid {
@@ -166,6 +165,7 @@ pub(crate) fn imperfection(
 ) -> Result<(Vec<f64>, Buckling), AnalysisError> {
     let mut linear = model.clone();
     linear.kinematics = crate::kinematics::Kinematics::Linear;
+    linear.resolve_constraints();
     linear.imperfection = None;
     // by load control: the linear static state at the loads of the first step
     linear.solver.path = None;

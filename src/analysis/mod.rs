@@ -1,7 +1,7 @@
 //! The analysis driver: model → structure → load stepping → solution.
 //!
 //! ```text
-//! let structure = Structure::new(model)      // number, order, pattern, symbolic factorization
+//! let structure = Structure::of_model(model) // number, order, pattern, symbolic factorization
 //! for each increment λ_n → λ_{n+1}:           // solver::stepping (cutbacks, growth)
 //!     set λ, prescribe λ ū                     // Incremental::set_load_factor
 //!     Newton: evaluate R, K; solve; update     // solver::newton
@@ -34,9 +34,11 @@ pub use progress::{IncrementLog, Progress, Setup, Silent};
 pub use recorder::Frame;
 use recorder::Recorder;
 pub use results::{AdaptCycle, AdaptEnd, Adaptivity};
-pub use sizes::{describe_memory, memory_advice, plan, sizes};
+pub use sizes::{describe_memory, memory_advice, model_sizes, plan, sizes};
 pub use solution::{HistoryRow, Solution, StepEnd, StepFields};
-pub use structure::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Structure, Timings};
+pub use structure::{
+    ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, StateReport, Structure, Timings,
+};
 
 use std::time::Instant;
 
@@ -128,9 +130,8 @@ fn drive(
     if let Some(settings) = &model.solver.path {
         let (outcome, stopped) = path::follow(structure, model, settings, recorder, &options.interrupt)?;
         if stopped.is_none() {
-            let (reactions, contacts) = (structure.reactions(), structure.contact_resultants());
-            let (name, lambda, increment) =
-                (model.steps[0].name.clone(), structure.load_factor(), recorder.increments.len());
+            let StateReport { lambda, reactions, contacts, .. } = structure.report();
+            let (name, increment) = (model.steps[0].name.clone(), recorder.increments.len());
             step_ends.push(StepEnd { name, lambda, increment, reactions, contacts, fields: None });
         }
         (path, failure) = (Some(outcome), stopped);
@@ -140,18 +141,17 @@ fn drive(
         let first = recorder.increments.len() + 1;
         let newton = &model.solver.newton;
         match stepping::run_span(structure, span, first, &step.settings, newton, recorder, &options.interrupt) {
-            Ok(_) => step_ends.push(StepEnd {
-                name: step.name.clone(),
-                lambda: span.1,
-                increment: recorder.increments.len(),
-                reactions: structure.reactions(),
-                contacts: structure.contact_resultants(),
-                fields: (model.steps.len() > 1).then(|| StepFields {
-                    u: structure.displacements().to_vec(),
-                    states: structure.elements().committed.clone(),
-                    stresses: structure.elements().stress.clone(),
-                }),
-            }),
+            Ok(_) => {
+                let StateReport { reactions, contacts, .. } = structure.report();
+                step_ends.push(StepEnd {
+                    name: step.name.clone(),
+                    lambda: span.1,
+                    increment: recorder.increments.len(),
+                    reactions,
+                    contacts,
+                    fields: (model.steps.len() > 1).then(|| structure.fields()),
+                })
+            }
             Err(mut e) => {
                 // a transient stop speaks of times
                 if let Some(t) = &model.transient {
@@ -171,18 +171,12 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
     let start = Instant::now();
     // a geometric imperfection: the buckling analysis of the model first
     let imperfect = model.imperfection.map(|imp| buckling::imperfection(model, imp)).transpose()?;
-    let mut structure = Structure::new(model, options.max_memory)?;
+    let mut structure = Structure::of_model(model, options.max_memory)?;
     if let Some((u0, _)) = &imperfect {
         structure.set_imperfection(u0.clone());
     }
-    progress.start(
-        model,
-        &Setup {
-            equations: structure.n_equations(),
-            factor_nnz: structure.factor_nnz(),
-            memory: structure.memory().clone(),
-        },
-    );
+    let setup = structure.setup();
+    progress.start(model, &setup);
     let mut recorder = Recorder::new(model, progress);
     let (step_ends, mut failure, path) = drive(&mut structure, model, options, &mut recorder)?;
     if let Some(f) = failure.as_mut().filter(|f| f.reason == stepping::StopReason::IncrementTooSmall)
@@ -195,21 +189,18 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         structure.evaluate()?;
     }
     let (buckled, vibration, failure) = stages::eigen(&mut structure, model, &recorder.history, failure)?;
-    let lambda = structure.load_factor();
     let mut applied = [0.0; 3];
     for (d, f) in structure.external_loads().iter().enumerate() {
         applied[d % 3] += f;
     }
-    let reactions = structure.reactions();
-    let contacts = structure.contact_resultants();
+    let StateReport { lambda, reactions, contacts, plastic_points, .. } = structure.report();
     let contact_sets = structure
         .contact_sets()
         .map(|(name, kind, points)| ContactSet { name: name.to_string(), kind, points: points.to_vec() })
         .collect();
-    let (equations, factor_nnz, plastic_points) =
-        (structure.n_equations(), structure.factor_nnz(), structure.plastic_points());
+    let Setup { equations, factor_nnz, memory } = setup;
     let energy = structure.energies();
-    let (u, elements, timings, memory) = structure.into_parts();
+    let (u, elements, timings) = structure.into_parts();
     let mut solution = Solution {
         reactions,
         contacts,

@@ -70,6 +70,7 @@ pub struct Modal {
 /// its present (converged) state.
 pub(crate) fn solve(
     structure: &mut Structure<'_>,
+    model: &crate::setup::Model,
     settings: crate::setup::ModalSettings,
 ) -> Result<Modal, AnalysisError> {
     use crate::solver::newton::NonlinearProblem;
@@ -118,7 +119,6 @@ pub(crate) fn solve(
         residuals: sol.residuals,
         solves: sol.solves,
     };
-    let model = structure.model();
     if !model.symmetry.planes.is_empty() {
         let full = full_free_mass(model, settings.mass).map_err(AnalysisError::from)?;
         to_full_structure(&mut modal, &model.symmetry, full);

@@ -2,7 +2,7 @@
 //! history rows and, for a transient analysis, the frames of its ParaView
 //! time series.
 
-use super::{HistoryRow, IncrementLog, Progress, StepFields, Structure};
+use super::{HistoryRow, IncrementLog, Progress, StateReport, StepFields, Structure};
 use crate::setup::Model;
 use crate::solver::stepping::{Cutback, Increment, Observer};
 
@@ -58,37 +58,34 @@ impl<'a> Recorder<'a> {
         while self.next_frame <= t * (1.0 + 1e-9) {
             self.next_frame += interval;
         }
-        let e = s.elements();
-        let fields =
-            StepFields { u: s.displacements().to_vec(), states: e.committed.clone(), stresses: e.stress.clone() };
-        self.frames.push(Frame { time: t, increment: inc.index, fields });
+        self.frames.push(Frame { time: t, increment: inc.index, fields: s.fields() });
     }
 }
 
 impl Observer<Structure<'_>> for Recorder<'_> {
     fn converged(&mut self, s: &Structure<'_>, inc: &Increment) {
-        let contact = s.contact_resultants();
-        let max_penetration = contact.iter().map(|c| c.max_penetration).fold(0.0, f64::max);
+        let StateReport { reactions, contacts, plastic_points, negative_pivots, .. } = s.report();
+        let max_penetration = contacts.iter().map(|c| c.max_penetration).fold(0.0, f64::max);
         self.progress.increment(&IncrementLog {
             index: inc.index,
             lambda: inc.lambda,
             dlambda: inc.dlambda,
             iterations: inc.newton.iterations,
             residuals: inc.newton.residuals.clone(),
-            plastic_points: s.plastic_points(),
+            plastic_points,
             cutbacks: inc.cutbacks,
             max_penetration,
-            negative_pivots: s.negative_pivots(),
+            negative_pivots,
         });
         self.history.push(HistoryRow {
             increment: inc.index,
             lambda: inc.lambda,
             iterations: inc.newton.iterations,
-            reactions: s.reactions(),
-            contacts: contact,
-            plastic_points: s.plastic_points(),
-            probes: s.probe_displacements(),
-            negative_pivots: s.negative_pivots(),
+            reactions,
+            contacts,
+            plastic_points,
+            probes: probe_displacements(self.model, s.displacements()),
+            negative_pivots,
         });
         self.increments.push(inc.clone());
         self.frame(s, inc);
@@ -98,4 +95,30 @@ impl Observer<Structure<'_>> for Recorder<'_> {
         self.progress.cutback(c);
         self.cutbacks.push(c.clone());
     }
+}
+
+/// The displacement at each probe of `model` at displacements `u` (mean
+/// over the elements holding it; NaN for a probe outside every body).
+fn probe_displacements(model: &Model, u: &[f64]) -> Vec<[f64; 3]> {
+    model
+        .probes
+        .iter()
+        .map(|p| {
+            if p.locations.is_empty() {
+                return [f64::NAN; 3];
+            }
+            // a probe in the part a symmetry plane leaves out: its image's u reflected back
+            let reflected = crate::bc::symmetry::image(&model.symmetry.planes, p.point).1;
+            let mut sum = [0.0; 3];
+            for loc in &p.locations {
+                let pv = crate::values::PointValues::new(&model.mesh.bodies[loc.body], loc);
+                let at = pv.displacement(u);
+                for k in 0..3 {
+                    let sign = if reflected[k] { -1.0 } else { 1.0 };
+                    sum[k] += sign * at[k] / p.locations.len() as f64;
+                }
+            }
+            sum
+        })
+        .collect()
 }

@@ -32,16 +32,29 @@ pub fn describe_memory(m: &MemoryEstimate) -> String {
 /// The sizes that set the memory of `model`'s analysis, exact after the
 /// symbolic factorization.
 pub fn sizes(model: &Model, numbering: &Numbering, solver: &Cholesky) -> Sizes {
+    completed(model_sizes(model), numbering, solver)
+}
+
+/// `sizes` of the model (from [`model_sizes`]) with the counts of its
+/// numbering and symbolic factorization: the exact sizes.
+pub(crate) fn completed(mut s: Sizes, numbering: &Numbering, solver: &Cholesky) -> Sizes {
+    s.equations = numbering.dofs.n_eq as u64;
+    s.node_pairs = numbering.node_pairs as u64;
+    s.pattern_nnz = numbering.pattern.nnz() as u64;
+    s.factor_nnz = solver.factor_nnz() as u64;
+    s.factor_scratch = solver.scratch_bytes() as u64;
+    s.exact = true;
+    s
+}
+
+/// The sizes that the model alone sets (mesh, settings, outputs), before
+/// its equations are numbered (`completed` adds those).
+pub fn model_sizes(model: &Model) -> Sizes {
     let mesh = &model.mesh;
     let mut s = Sizes {
-        equations: numbering.dofs.n_eq as u64,
         nodes: mesh.n_nodes() as u64,
         dofs: mesh.n_dofs() as u64,
         elements: mesh.n_elements() as u64,
-        node_pairs: numbering.node_pairs as u64,
-        pattern_nnz: numbering.pattern.nnz() as u64,
-        factor_nnz: solver.factor_nnz() as u64,
-        factor_scratch: solver.scratch_bytes() as u64,
         krylov_vectors: if model.has_friction() {
             crate::solver::krylov::GmresWork::vectors(crate::solver::reuse::GMRES_RESTART) as u64
         } else {
@@ -70,7 +83,6 @@ pub fn sizes(model: &Model, numbering: &Numbering, solver: &Cholesky) -> Sizes {
                 .unwrap_or(0),
         history_rows: model.steps.iter().fold(0u64, |n, s| n.saturating_add(s.planned_increments() as u64)),
         history_row_bytes: history_row_bytes(model),
-        exact: true,
         ..Default::default()
     };
     for b in &mesh.bodies {
@@ -103,20 +115,7 @@ fn history_row_bytes(model: &Model) -> u64 {
 /// element matrices, no factor): the exact size of the analysis, for
 /// `cufem check`.
 pub fn plan(model: &Model) -> Result<Sizes, AnalysisError> {
-    let n = model.mesh.n_dofs();
-    let mut fixed = vec![false; n];
-    for c in &model.constraints {
-        for &node in &c.nodes {
-            for (k, v) in c.values.iter().enumerate() {
-                if *v == Some(0.0) {
-                    fixed[3 * node + k] = true;
-                }
-            }
-        }
-    }
-    let couplings: Vec<(usize, usize)> =
-        model.contacts.iter().flat_map(|c| c.couplings(&model.mesh, model.kinematics.is_nonlinear())).collect();
-    let numbering = Numbering::new(&model.mesh, &fixed, &couplings)?;
+    let numbering = model.constraint_handler.numbering(&model.mesh)?;
     let solver = Cholesky::analyze(&numbering.pattern)?;
     Ok(sizes(model, &numbering, &solver))
 }

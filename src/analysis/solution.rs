@@ -233,29 +233,10 @@ impl Solution {
     /// A view for field evaluation.
     pub fn fields<'a>(&'a self, model: &'a Model) -> crate::post::FieldView<'a> {
         crate::post::FieldView {
-            state: fe_state(model, &self.u, &self.states, &self.gp_offsets),
+            state: model.discretisation().fe_state(&self.u, &self.states, &self.gp_offsets),
             stresses: &self.stresses,
             recovered: self.recovered.as_ref(),
             symmetry: &model.symmetry.planes,
         }
-    }
-}
-
-/// The finite-element state of `model` at displacements `u` and
-/// Gauss-point states `states` (an assembly's inputs, a field view).
-pub(crate) fn fe_state<'a>(
-    model: &'a Model,
-    u: &'a [f64],
-    states: &'a [crate::materials::PointState],
-    gp_offsets: &'a [usize],
-) -> crate::assembly::FeState<'a> {
-    crate::assembly::FeState {
-        mesh: &model.mesh,
-        geometry: &model.cells,
-        materials: &model.materials,
-        u,
-        states,
-        gp_offsets,
-        kinematics: model.kinematics,
     }
 }

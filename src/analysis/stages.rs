@@ -35,7 +35,7 @@ pub(super) fn eigen(
         };
     }
     if let Some(settings) = model.modal {
-        return match modal::solve(structure, settings) {
+        return match modal::solve(structure, model, settings) {
             Ok(m) => Ok((None, Some(m), None)),
             Err(AnalysisError::Eigen(e)) => Ok((None, None, Some(stop("modal", &e, lambda, history, model)))),
             Err(e) => Err(e),

@@ -3,16 +3,25 @@
 //! `K = K_tan + K_p` (paper eq. 18), for the solvers of `solver::newton`
 //! and `solver::stepping`.
 //!
-//! The structure is a composition of parts with one job each:
+//! The structure is a composition of parts with one job each, built by
+//! [`Structure::new`] from a discretisation
+//! ([`crate::setup::Discretisation`]), the model's constraint handler
+//! ([`crate::setup::constraints::ConstraintHandler`]), what loads it
+//! ([`Loading`]) and its settings ([`Settings`]), never the whole model:
 //!
-//! * the **contributions** ([`crate::assembly::Contribution`]), evaluated
-//!   in order into the tangent, their forces summed into the residual —
+//! * the **contributions** (`structure/parts.rs`, each a
+//!   [`crate::assembly::Contribution`]), evaluated in order into the
+//!   tangent, their forces summed into the residual —
 //!   `structure/elements.rs` (internal forces, element tangents, the
 //!   Gauss-point history; first: it writes the whole tangent),
-//!   `structure/loads.rs` (the external loads at λ) and
-//!   [`crate::contact::Contacts`] (every contact kind);
-//! * `structure/dirichlet.rs`: prescribed displacements and their
-//!   elimination from each linear system (symmetric and unsymmetric alike);
+//!   `structure/loads.rs` (the external loads at λ),
+//!   [`crate::contact::Contacts`] (every contact kind) and in a transient
+//!   analysis [`crate::dynamics::Inertia`] (its forces `M a + C v` and
+//!   stiffness `M/(βΔt²) + γC/(βΔt)`); a new capability is a new
+//!   contribution there;
+//! * [`crate::setup::constraints::Elimination`]: the prescribed
+//!   displacements of the constraint handler and their elimination from
+//!   each linear system (symmetric and unsymmetric alike);
 //! * `structure/force.rs`: force-controlled indenters, whose displacement is
 //!   an extra unknown bordering the linear system;
 //! * `structure/system.rs`: the tangent, the right-hand side and the solver;
@@ -21,97 +30,118 @@
 //!   without the element tangents), `structure/stepping.rs`: the load
 //!   stepping's start, commit and restore of an increment.
 //!
-//! A new capability is a new part: inertia is a contribution
-//! ([`crate::dynamics::Inertia`]: its forces `M a + C v` and stiffness
-//! `M/(βΔt²) + γC/(βΔt)`), a new contact kind a file of `contact::assembly`.
+//! The structure answers with reports: [`Structure::setup`] (its size),
+//! [`Structure::report`] (reactions, contact resultants, plastic points
+//! and pivots at the present state), [`Structure::fields`] (the fields a
+//! step end or frame keeps).
 
 use std::time::Instant;
 
 mod arc;
-mod dirichlet;
 pub(crate) mod elements;
 mod evaluation;
 mod force;
+mod inputs;
 mod kinematics;
 #[cfg(test)]
 mod limit_tests;
 mod line;
 mod loads;
+mod parts;
 mod resultants;
 mod stepping;
 mod system;
 mod transient;
 
 pub use super::results::{ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, Timings};
-use crate::assembly::{Assembler, Contribution, NO_EQ, Numbering};
+use super::{Setup, StepFields};
+use crate::assembly::{Assembler, NO_EQ};
 use crate::contact::Contacts;
-use crate::setup::Model;
-use crate::size::MemoryEstimate;
+use crate::setup::constraints::{ConstraintHandler, Elimination};
+use crate::setup::{Discretisation, Model};
 use crate::solver::linear::{Cholesky, LinearError};
 use crate::solver::newton::{Correction, Evaluation, NonlinearProblem};
-use dirichlet::Dirichlet;
 use elements::Elements;
 use force::ForceControl;
+pub use inputs::{Loading, Settings};
 use kinematics::Kinematics;
 use loads::Loads;
+use parts::{Parts, Report};
 use system::LinearSystem;
 
-/// The structure: the model's parts (module docs), its unknowns and its
-/// linear system.
+/// The structure: its parts (module docs), its unknowns and its linear
+/// system.
 pub struct Structure<'m> {
-    model: &'m Model,
+    /// What loads it.
+    loading: Loading<'m>,
+    /// The settings its parts read.
+    settings: Settings<'m>,
+    /// The constrained DOFs (the reactions' sources).
+    constraints: &'m ConstraintHandler,
+    /// The prescribed DOFs' elimination on this structure's numbering.
+    elimination: Elimination,
+    /// Displacements and λ.
     state: Kinematics,
-    elements: Elements<'m>,
-    loads: Loads<'m>,
-    contacts: Contacts<'m>,
-    dirichlet: Dirichlet,
+    /// The contributions.
+    parts: Parts<'m>,
+    /// Force-controlled indenters.
     force: ForceControl<'m>,
+    /// Tangent, right-hand side and solver.
     system: LinearSystem,
-    timings: Timings,
-    memory: MemoryEstimate,
-    /// Negative pivots of the last committed tangent (nonlinear geometry).
-    pivots: Option<usize>,
-    /// Inertia and damping (`analysis.type = "transient"`), a contribution.
-    dynamics: Option<crate::dynamics::Inertia>,
-    /// The contacts' end-of-step impulse (a transient analysis with
-    /// contacts and `analysis.contact_forces = "implicit"`).
-    impulse: Option<crate::dynamics::ContactImpulse>,
-    /// The last evaluation left the element tangents out
-    /// (`structure/evaluation.rs`).
-    tangent_stale: bool,
+    /// Timings, memory and pivots.
+    report: Report,
+}
+
+/// The structure's state as the results record it, at the present
+/// (usually converged) state.
+#[derive(Debug, Clone)]
+pub struct StateReport {
+    /// Load factor.
+    pub lambda: f64,
+    /// Reaction of each constraint set ([`Structure::reactions`]).
+    pub reactions: Vec<Reaction>,
+    /// Per indenter, then per pair contact ([`Structure::contact_resultants`]).
+    pub contacts: Vec<ContactResultant>,
+    /// Plastic Gauss points in the last evaluation.
+    pub plastic_points: usize,
+    /// Negative pivots of the tangent ([`Structure::negative_pivots`]).
+    pub negative_pivots: Option<usize>,
 }
 
 impl<'m> Structure<'m> {
-    /// Builds numbering, pattern, factorization structure and initial state.
+    /// Builds numbering, pattern, factorization structure and initial state
+    /// of `discretisation` under `constraints`, loaded by `loading`.
     ///
-    /// With `max_memory`, the memory of the analysis is estimated after the
-    /// symbolic factorization (exact factor size) and the structure is
-    /// refused with [`super::AnalysisError::TooLarge`] before the factor, the
-    /// scatter maps and the element cache are allocated.
-    pub fn new(model: &'m Model, max_memory: Option<u64>) -> Result<Self, super::AnalysisError> {
+    /// With `settings.max_memory`, the memory of the analysis is estimated
+    /// after the symbolic factorization (exact factor size) and the
+    /// structure is refused with [`super::AnalysisError::TooLarge`] before
+    /// the factor, the scatter maps and the element cache are allocated.
+    pub fn new(
+        discretisation: Discretisation<'m>,
+        constraints: &'m ConstraintHandler,
+        loading: Loading<'m>,
+        settings: Settings<'m>,
+    ) -> Result<Self, super::AnalysisError> {
         let t0 = Instant::now();
-        let mesh = &model.mesh;
-        let (value, source) = dirichlet::prescribed_values(model);
-        let fixed: Vec<bool> = value.iter().map(|v| *v == Some(0.0)).collect();
-        let couplings: Vec<(usize, usize)> =
-            model.contacts.iter().flat_map(|c| c.couplings(mesh, model.kinematics.is_nonlinear())).collect();
-        let numbering = Numbering::new(mesh, &fixed, &couplings)?;
+        let mesh = discretisation.mesh;
+        let nonlinear = discretisation.kinematics.is_nonlinear();
+        let numbering = constraints.numbering(mesh)?;
         let t_sym = Instant::now();
         let chol = Cholesky::analyze(&numbering.pattern)?;
         let symbolic = t_sym.elapsed();
-        let memory = super::sizes(model, &numbering, &chol).memory();
-        if let Some(limit) = max_memory
+        let memory = super::sizes::completed(settings.sizes, &numbering, &chol).memory();
+        if let Some(limit) = settings.max_memory
             && memory.total() > limit
         {
             return Err(super::AnalysisError::TooLarge { estimate: memory, limit });
         }
+        let elimination = constraints.elimination(&numbering);
         let mut assembler = Assembler::new(mesh, numbering);
-        let dirichlet = Dirichlet::new(&value, &source, &assembler);
-        let elements = Elements::new(model);
+        let elements = Elements::new(discretisation);
         let t_cache = Instant::now();
         // the elastic tangent is a constant only in small strain; the
         // total-Lagrangian one depends on u and S everywhere
-        if !model.kinematics.is_nonlinear() {
+        if !nonlinear {
             assembler.cache_elastic(&elements.inputs(&vec![0.0; mesh.n_dofs()]));
         }
         let element_cache = t_cache.elapsed();
@@ -124,33 +154,70 @@ impl<'m> Structure<'m> {
             ..Default::default()
         };
         let n_eq = assembler.dofs.n_eq;
-        let dynamics = match &model.transient {
-            Some(settings) => Some(transient::inertia(model, settings, &assembler, &elements)?),
+        let inertia = match settings.transient {
+            Some(transient) => Some(transient::inertia(&loading, transient, &assembler, &elements)?),
             None => None,
         };
-        Ok(Self {
-            model,
-            state: Kinematics::new(mesh.n_dofs()),
+        let parts = Parts {
             elements,
-            loads: Loads::new(model),
-            contacts: Contacts::new(mesh, &model.indenters, &model.contacts, model.kinematics.is_nonlinear()),
-            dirichlet,
-            force: ForceControl::new(model, n_eq),
-            system: LinearSystem::new(assembler, chol, model.solver.reuse, model.has_friction(), mesh.n_dofs()),
-            timings,
-            memory,
-            pivots: None,
-            dynamics,
-            impulse: transient::impulse(model),
-            tangent_stale: false,
+            loads: Loads::new(loading, mesh.n_dofs()),
+            contacts: Contacts::new(mesh, loading.indenters, loading.contacts, nonlinear),
+            inertia,
+            impulse: transient::impulse(&loading, settings.transient, mesh.n_dofs()),
+        };
+        let (reuse, friction) = (settings.solver.reuse, loading.has_friction());
+        Ok(Self {
+            state: Kinematics::new(mesh.n_dofs()),
+            force: ForceControl::new(loading, mesh, settings.transient, n_eq),
+            system: LinearSystem::new(assembler, chol, reuse, friction, mesh.n_dofs()),
+            report: Report { timings, memory, pivots: None },
+            loading,
+            settings,
+            constraints,
+            elimination,
+            parts,
         })
     }
 
-    /// The contributions in the order they are evaluated and summed (the
-    /// elements first: they write the whole tangent).
-    fn contributions(&mut self) -> impl Iterator<Item = &mut dyn Contribution> {
-        let parts: [&mut dyn Contribution; 3] = [&mut self.elements, &mut self.loads, &mut self.contacts];
-        parts.into_iter().chain(self.dynamics.iter_mut().map(|i| i as &mut dyn Contribution))
+    /// The structure of `model` (its discretisation, constraint handler,
+    /// loading and settings), refused above `max_memory` bytes.
+    pub fn of_model(model: &'m Model, max_memory: Option<u64>) -> Result<Self, super::AnalysisError> {
+        let settings = Settings::of(model, max_memory);
+        Self::new(model.discretisation(), &model.constraint_handler, Loading::of(model), settings)
+    }
+
+    /// Equations, factor entries and the memory estimate.
+    pub fn setup(&self) -> Setup {
+        Setup { equations: self.n_equations(), factor_nnz: self.factor_nnz(), memory: self.report.memory.clone() }
+    }
+
+    /// λ, reactions, contact resultants, plastic points and negative pivots
+    /// at the present state.
+    pub fn report(&self) -> StateReport {
+        StateReport {
+            lambda: self.state.lambda,
+            reactions: self.reactions(),
+            contacts: self.contact_resultants(),
+            plastic_points: self.plastic_points(),
+            negative_pivots: self.negative_pivots(),
+        }
+    }
+
+    /// A copy of the present displacements, committed Gauss-point states
+    /// and stresses.
+    pub fn fields(&self) -> StepFields {
+        let e = &self.parts.elements;
+        StepFields { u: self.state.u.clone(), states: e.committed.clone(), stresses: e.stress.clone() }
+    }
+
+    /// What loads the structure.
+    pub fn loading(&self) -> &Loading<'m> {
+        &self.loading
+    }
+
+    /// What the elements are made of.
+    pub fn discretisation(&self) -> Discretisation<'m> {
+        self.parts.elements.discretisation
     }
 
     /// Displacements, 3 per node (`3 · node + component`).
@@ -179,55 +246,29 @@ impl<'m> Structure<'m> {
     /// factorization made, which may be some iterations or increments old
     /// (PCG reuses factors). `None` before the first or if it failed.
     pub fn negative_pivots(&self) -> Option<usize> {
-        if self.inertia_every_increment() { self.pivots } else { self.system.negative_pivots() }
+        if self.inertia_every_increment() { self.report.pivots } else { self.system.negative_pivots() }
     }
 
     /// True if every converged tangent is factorized for its inertia
     /// (`solver.inertia`; by default with nonlinear geometry, not in a
     /// transient run, whose tangent carries `M / (β Δt²)`).
     fn inertia_every_increment(&self) -> bool {
-        let every = match self.model.solver.inertia {
+        let every = match self.settings.solver.inertia {
             Some(report) => report == crate::input::InertiaReport::EveryIncrement,
-            None => self.model.kinematics.is_nonlinear(),
+            None => self.parts.elements.discretisation.kinematics.is_nonlinear(),
         };
-        every && self.dynamics.is_none()
+        every && self.parts.inertia.is_none()
     }
 
     /// Plastic Gauss points in the last evaluation.
     pub fn plastic_points(&self) -> usize {
-        self.elements.last.plastic_points
-    }
-
-    /// The displacement at each probe of the model (mean over the elements
-    /// holding it; NaN for a probe outside every body).
-    pub fn probe_displacements(&self) -> Vec<[f64; 3]> {
-        self.model
-            .probes
-            .iter()
-            .map(|p| {
-                if p.locations.is_empty() {
-                    return [f64::NAN; 3];
-                }
-                // a probe in the part a symmetry plane leaves out: its image's u reflected back
-                let reflected = crate::bc::symmetry::image(&self.model.symmetry.planes, p.point).1;
-                let mut sum = [0.0; 3];
-                for loc in &p.locations {
-                    let pv = crate::values::PointValues::new(&self.model.mesh.bodies[loc.body], loc);
-                    let u = pv.displacement(&self.state.u);
-                    for k in 0..3 {
-                        let sign = if reflected[k] { -1.0 } else { 1.0 };
-                        sum[k] += sign * u[k] / p.locations.len() as f64;
-                    }
-                }
-                sum
-            })
-            .collect()
+        self.parts.elements.last.plastic_points
     }
 
     /// Every contact point after the last evaluation (all indenter
     /// candidates, then all node pairs, in model order).
     pub fn contact_points(&self) -> &[ContactPoint] {
-        self.contacts.points()
+        self.parts.contacts.points()
     }
 
     /// The tangent's lower-triangular pattern (equation numbering).
@@ -243,12 +284,7 @@ impl<'m> Structure<'m> {
 
     /// Cumulative phase timings.
     pub fn timings(&self) -> &Timings {
-        &self.timings
-    }
-
-    /// Memory estimate made after the symbolic factorization.
-    pub fn memory(&self) -> &MemoryEstimate {
-        &self.memory
+        &self.report.timings
     }
 
     /// Number of equations (free DOFs).
@@ -293,23 +329,18 @@ impl<'m> Structure<'m> {
 
     /// External loads at the current λ (per DOF).
     pub fn external_loads(&self) -> &[f64] {
-        &self.loads.f_ext
-    }
-
-    /// The model the structure discretizes.
-    pub fn model(&self) -> &'m Model {
-        self.model
+        &self.parts.loads.f_ext
     }
 
     /// The elements' part: Gauss-point states, stresses and offsets.
     pub(crate) fn elements(&self) -> &Elements<'m> {
-        &self.elements
+        &self.parts.elements
     }
 
     /// Sets a stress-free initial displacement (a geometric imperfection,
     /// per DOF) for a total-Lagrangian analysis, before the first evaluation.
     pub(crate) fn set_imperfection(&mut self, u0: Vec<f64>) {
-        self.elements.initial = Some(u0);
+        self.parts.elements.initial = Some(u0);
     }
 
     /// The stress stiffness `K_σ` of the present Gauss-point stresses, in
@@ -318,7 +349,7 @@ impl<'m> Structure<'m> {
         let a = &self.system.assembler;
         let mut kg = vec![0.0; a.pattern.nnz()];
         let u = self.displacements();
-        a.assemble_geometric(&self.elements.inputs(u), &self.elements.stress, &mut kg);
+        a.assemble_geometric(&self.parts.elements.inputs(u), &self.parts.elements.stress, &mut kg);
         kg
     }
 
@@ -330,11 +361,11 @@ impl<'m> Structure<'m> {
         kind: crate::dynamics::MassKind,
     ) -> Result<(Vec<f64>, Vec<f64>), crate::dynamics::MassError> {
         use crate::dynamics::mass;
-        let (model, a) = (self.model, &self.system.assembler);
-        let densities = mass::densities(&model.mesh, &model.materials)?;
-        let mut m = mass::assemble(a, &model.mesh, &model.cells, &densities, kind, None)?;
+        let (d, a) = (self.discretisation(), &self.system.assembler);
+        let densities = mass::densities(d.mesh, d.materials)?;
+        let mut m = mass::assemble(a, d.mesh, d.cells, &densities, kind, None)?;
         let mut k = self.system.tangent.clone();
-        self.dirichlet.fix_for_eigen(|e| a.pattern.col_ptr[e], &mut k, &mut m);
+        self.elimination.fix_for_eigen(|e| a.pattern.col_ptr[e], &mut k, &mut m);
         Ok((k, m))
     }
 
@@ -352,12 +383,12 @@ impl<'m> Structure<'m> {
     /// The energy balance of a transient analysis, one row per converged
     /// time step (the initial state first); `None` for a static one.
     pub(crate) fn energies(&self) -> Option<Vec<crate::dynamics::energy::EnergyRow>> {
-        self.dynamics.as_ref().map(|i| i.energies().to_vec())
+        self.parts.inertia.as_ref().map(|i| i.energies().to_vec())
     }
 
-    /// The parts the solution keeps: displacements, elements, timings, memory.
-    pub(crate) fn into_parts(self) -> (Vec<f64>, Elements<'m>, Timings, MemoryEstimate) {
-        (self.state.u, self.elements, self.timings, self.memory)
+    /// The parts the solution keeps: displacements, elements and timings.
+    pub(crate) fn into_parts(self) -> (Vec<f64>, Elements<'m>, Timings) {
+        (self.state.u, self.parts.elements, self.report.timings)
     }
 
     /// Scales the correction in `rhs` by the contacts' step limit
@@ -365,13 +396,13 @@ impl<'m> Structure<'m> {
     /// deepest in contact). Not with force-controlled indenters, whose
     /// rigid motion is a further unknown of the same correction.
     fn limit_correction(&mut self) {
-        if self.force.is_driven() || !self.contacts.limits_steps() {
+        if self.force.is_driven() || !self.parts.contacts.limits_steps() {
             return;
         }
         // the correction by DOF, read from the equations (no copy)
         let system = &mut self.system;
         let (eq, rhs) = (&system.assembler.dofs.eq, &system.rhs);
-        let alpha = self.contacts.step_limit(|d| if eq[d] == NO_EQ { 0.0 } else { rhs[eq[d]] });
+        let alpha = self.parts.contacts.step_limit(|d| if eq[d] == NO_EQ { 0.0 } else { rhs[eq[d]] });
         if alpha < 1.0 {
             system.rhs.iter_mut().for_each(|r| *r *= alpha);
         }
@@ -396,7 +427,7 @@ impl<'m> Structure<'m> {
 
     /// The solver's statistics into the timings.
     fn record_solver(&mut self) {
-        self.timings.solver = *self.system.stats();
+        self.report.timings.solver = *self.system.stats();
     }
 }
 
@@ -404,7 +435,7 @@ impl NonlinearProblem for Structure<'_> {
     type Error = LinearError;
 
     fn evaluate(&mut self) -> Result<Evaluation, LinearError> {
-        self.tangent_stale = false;
+        self.system.tangent_stale = false;
         self.evaluate_parts(true)
     }
 
@@ -417,16 +448,16 @@ impl NonlinearProblem for Structure<'_> {
             return self.evaluate();
         }
         let ev = self.evaluate_parts(false)?;
-        self.tangent_stale = true;
-        self.timings.residual_only += 1;
+        self.system.tangent_stale = true;
+        self.report.timings.residual_only += 1;
         Ok(ev)
     }
 
     fn correct(&mut self) -> Result<Correction, LinearError> {
         self.form_tangent()?;
         // a line search only along a correction without a prescribed jump
-        let searchable = self.model.solver.newton.line_search && {
-            let (off, size) = self.dirichlet.offset(&self.state.u);
+        let searchable = self.settings.solver.newton.line_search && {
+            let (off, size) = self.elimination.offset(&self.state.u);
             off <= 1e-12 * size
         };
         let system = &mut self.system;
@@ -434,7 +465,7 @@ impl NonlinearProblem for Structure<'_> {
             *r = -*r;
         }
         let col_ptr = &system.assembler.pattern.col_ptr;
-        self.dirichlet.eliminate(
+        self.elimination.eliminate(
             &self.state.u,
             |e| col_ptr[e],
             &mut system.tangent,

@@ -13,7 +13,7 @@
 //!
 //! What is not a contribution: prescribed displacements and force-controlled
 //! indenters constrain or border the linear system instead of adding to it
-//! (`analysis::structure::{dirichlet, force}`).
+//! (`setup::constraints::Elimination`, `analysis::structure::force`).
 
 use super::Assembler;
 use crate::materials::Predictor;

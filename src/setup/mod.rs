@@ -9,6 +9,7 @@
 pub mod analysis;
 mod bodies;
 mod budget;
+pub mod constraints;
 mod contacts;
 mod indenters;
 mod laminate;
@@ -107,8 +108,11 @@ pub struct Model {
     /// Gauss-point values of every body (built once, used by the analysis
     /// and post-processing).
     pub cells: Vec<CellValues>,
-    /// Displacement constraints.
+    /// Displacement constraints: the file's, then the symmetry planes'.
     pub constraints: Vec<Constraint>,
+    /// Every constrained DOF and contact coupling, resolved once
+    /// ([`constraints::ConstraintHandler`]).
+    pub constraint_handler: constraints::ConstraintHandler,
     /// Loads (nodal forces at load factor 1).
     pub loads: Vec<Load>,
     /// Rigid indenters.
@@ -150,6 +154,45 @@ pub struct Model {
     /// Planes of mirror symmetry (`[[symmetry]]`; none in a full model) and
     /// which items lie across them.
     pub symmetry: crate::bc::symmetry::Symmetry,
+}
+
+/// What the elements of a model are made of: the meshes, their
+/// Gauss-point values, the materials and the strain measure (a view of a
+/// [`Model`], [`Model::discretisation`]).
+#[derive(Debug, Clone, Copy)]
+pub struct Discretisation<'m> {
+    /// Bodies and node numbering.
+    pub mesh: &'m Mesh,
+    /// Gauss-point values of every body.
+    pub cells: &'m [CellValues],
+    /// Materials.
+    pub materials: &'m [Material],
+    /// Small strain or total Lagrangian.
+    pub kinematics: Kinematics,
+}
+
+impl<'m> Discretisation<'m> {
+    /// The finite-element state at displacements `u` with Gauss-point
+    /// `states` (the first of body `b` at `gp_offsets[b]`).
+    pub fn fe_state<'a>(
+        &self,
+        u: &'a [f64],
+        states: &'a [crate::materials::PointState],
+        gp_offsets: &'a [usize],
+    ) -> crate::assembly::FeState<'a>
+    where
+        'm: 'a,
+    {
+        crate::assembly::FeState {
+            mesh: self.mesh,
+            geometry: self.cells,
+            materials: self.materials,
+            u,
+            states,
+            gp_offsets,
+            kinematics: self.kinematics,
+        }
+    }
 }
 
 /// Something suspicious but legal in a model (printed by `check` and `run`,
@@ -229,6 +272,26 @@ impl Model {
         analysis::Kind::of(self.buckling.is_some(), self.modal.is_some(), self.transient.is_some()).word()
     }
 
+    /// The meshes, Gauss-point values, materials and kinematics.
+    pub fn discretisation(&self) -> Discretisation<'_> {
+        Discretisation { mesh: &self.mesh, cells: &self.cells, materials: &self.materials, kinematics: self.kinematics }
+    }
+
+    /// Replaces the constraints and resolves the constraint handler again
+    /// (a model changed in code: a patch test's boundary values).
+    pub fn set_constraints(&mut self, constraints: Vec<Constraint>) {
+        self.constraints = constraints;
+        self.resolve_constraints();
+    }
+
+    /// Resolves the constraint handler from the present constraints,
+    /// contacts and kinematics (after any of them changed in code).
+    pub fn resolve_constraints(&mut self) {
+        let current = self.kinematics.is_nonlinear();
+        self.constraint_handler =
+            constraints::ConstraintHandler::new(&self.mesh, &self.constraints, &self.contacts, current);
+    }
+
     /// Number of degrees of freedom (3 per node, constrained ones included).
     pub fn n_dofs(&self) -> usize {
         self.mesh.n_dofs()
@@ -245,6 +308,24 @@ fn is_linear(mesh: &Mesh, materials: &[Material], indenters: &[Indenter], contac
     mesh.bodies.iter().all(|b| b.materials().iter().all(|&m| !materials[m].is_plastic()))
         && indenters.is_empty()
         && contacts.is_empty()
+}
+
+/// The constraint handler of `constraints` and the contacts' couplings,
+/// every body's restraint checked against it — not in a transient
+/// analysis, whose mass holds a free body (`M/(β Δt²)` in the tangent
+/// keeps every time step's system positive definite).
+fn restrained(
+    mesh: &Mesh,
+    constraints: &[Constraint],
+    (indenters, contacts): (&[Indenter], &[PairContact]),
+    kinematics: Kinematics,
+    transient: bool,
+) -> Result<constraints::ConstraintHandler, ModelError> {
+    let handler = constraints::ConstraintHandler::new(mesh, constraints, contacts, kinematics.is_nonlinear());
+    if !transient {
+        restraint::check(mesh, &handler, indenters, contacts)?;
+    }
+    Ok(handler)
 }
 
 fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelError> {
@@ -274,11 +355,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
              takes friction there, with the current normal; docs/contact.md)",
         ));
     }
-    // in a transient analysis the mass holds a free body: M/(β Δt²) in the
-    // tangent keeps every time step's system positive definite
-    if !transient {
-        restraint::check(&mesh, &constraints, &indenters, &contacts)?;
-    }
+    let constraint_handler = restrained(&mesh, &constraints, (&indenters, &contacts), kinematics, transient)?;
     let probes = preprocess::probes(&file.probes, &mesh, &planes)?;
     let lines = preprocess::lines(&file.lines, &mesh, &planes, &mut warnings)?;
     let symmetry = symmetry::resolve(planes, &mesh, (&constraints, n_user), &indenters, &contacts);
@@ -347,6 +424,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         mesh,
         cells,
         constraints,
+        constraint_handler,
         loads,
         indenters,
         contacts,

@@ -22,7 +22,7 @@ use faer::Mat;
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::evd;
 
-use crate::bc::Constraint;
+use super::constraints::ConstraintHandler;
 use crate::contact::{Indenter, PairContact};
 use crate::input::{ModelError, invalid};
 use crate::mesh::Mesh;
@@ -34,7 +34,7 @@ type Row = Vec<(usize, [f64; 3])>;
 /// rigid body.
 pub fn check(
     mesh: &Mesh,
-    constraints: &[Constraint],
+    constraints: &ConstraintHandler,
     indenters: &[Indenter],
     contacts: &[PairContact],
 ) -> Result<(), ModelError> {
@@ -49,22 +49,16 @@ pub fn check(
 /// Every displacement form the model holds (module docs).
 fn restraint_rows(
     mesh: &Mesh,
-    constraints: &[Constraint],
+    constraints: &ConstraintHandler,
     indenters: &[Indenter],
     contacts: &[PairContact],
     size: &[f64],
 ) -> Vec<Row> {
     let mut rows: Vec<Row> = Vec::new();
-    for c in constraints {
-        for &node in &c.nodes {
-            for (k, v) in c.values.iter().enumerate() {
-                if v.is_some() {
-                    let mut w = [0.0; 3];
-                    w[k] = 1.0;
-                    rows.push(vec![(node, w)]);
-                }
-            }
-        }
+    for (dof, _) in constraints.constrained() {
+        let mut w = [0.0; 3];
+        w[dof % 3] = 1.0;
+        rows.push(vec![(dof / 3, w)]);
     }
     let touching = |gap0: f64, node: usize| gap0 <= 1e-9 * size[mesh.body_of(node).0];
     for ind in indenters {

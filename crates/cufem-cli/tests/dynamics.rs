@@ -537,7 +537,7 @@ fn the_transient_tangent_matches_finite_differences() {
     use cufem::solver::stepping::Incremental;
     let text = bar(1000.0, 8e-4, 800, "damping = { mass = 500.0, stiffness = 1e-7 }");
     let model = cufem::setup::Model::parse(&text).unwrap();
-    let mut s = cufem::analysis::Structure::new(&model, None).unwrap();
+    let mut s = cufem::analysis::Structure::of_model(&model, None).unwrap();
     // the rise (λ 0 → 1), then 20 steps of 1 µs
     for l in std::iter::once(1.0).chain((1..=20).map(|k| 1.0 + k as f64 / 800.0)) {
         s.set_load_factor(l);
@@ -576,7 +576,7 @@ fn the_contact_impulse_tangent_matches_finite_differences() {
     use cufem::solver::stepping::Incremental;
     let path = std::path::Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join("examples/rod_impact.toml");
     let model = cufem::setup::Model::parse(&std::fs::read_to_string(path).unwrap()).unwrap();
-    let mut s = cufem::analysis::Structure::new(&model, None).unwrap();
+    let mut s = cufem::analysis::Structure::of_model(&model, None).unwrap();
     // steps of 1 µs (600 over the 600 µs); the wall is reached at 10 µs
     for k in 1..=30 {
         s.set_load_factor(k as f64 / 600.0);

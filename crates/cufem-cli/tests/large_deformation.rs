@@ -126,7 +126,7 @@ fn newton_converges_quadratically_with_the_geometric_stiffness() {
     let mut model = Model::from_file(Path::new(ELASTICA)).unwrap();
     model.solver.reuse.enabled = false;
     model.solver.reuse.single_precision = false;
-    let mut s = analysis::Structure::new(&model, None).unwrap();
+    let mut s = analysis::Structure::of_model(&model, None).unwrap();
     for l in [0.05, 0.1, 0.15, 0.2] {
         s.set_load_factor(l);
         assert!(newton::solve(&mut s, &NewtonSettings::default(), &Default::default()).converged());
@@ -203,7 +203,7 @@ fn assembled_tangent_matches_finite_differences_at_large_rotation() {
     use cufem::solver::newton::{self, NewtonSettings, NonlinearProblem};
     use cufem::solver::stepping::Incremental;
     let model = Model::from_file(Path::new(ELASTICA)).unwrap();
-    let mut s = analysis::Structure::new(&model, None).unwrap();
+    let mut s = analysis::Structure::of_model(&model, None).unwrap();
     for l in [0.05, 0.1, 0.15, 0.2] {
         s.set_load_factor(l);
         let report = newton::solve(&mut s, &NewtonSettings::default(), &Default::default());
@@ -484,7 +484,7 @@ fn newton_converges_quadratically_with_the_log_strain() {
     let mut model = Model::parse(&text).unwrap();
     model.solver.reuse.enabled = false;
     model.solver.reuse.single_precision = false;
-    let mut s = analysis::Structure::new(&model, None).unwrap();
+    let mut s = analysis::Structure::of_model(&model, None).unwrap();
     let factor = |l: f64| (l.exp() - 1.0) / (0.5f64.exp() - 1.0);
     for k in 1..=8 {
         s.set_load_factor(factor(0.05 * k as f64));
@@ -635,7 +635,7 @@ fn the_cautious_retry_is_declined_where_it_would_repeat_the_failed_attempt() {
     };
     for (name, frictional) in [("elastica.toml", false), ("cantilevers_contact_friction.toml", true)] {
         let model = example(name);
-        let mut s = analysis::Structure::new(&model, None).unwrap();
+        let mut s = analysis::Structure::of_model(&model, None).unwrap();
         common::solve_path(&mut s, &[(0.02, true)]);
         s.set_load_factor(0.04);
         assert!(s.cautious(true), "{name}: at the committed state the retry differs");
@@ -689,7 +689,7 @@ fn a_correction_after_a_residual_only_evaluation_uses_the_present_tangent() {
     model.solver.inertia = Some(cufem::input::InertiaReport::LastFactorization);
     let correction = |residual_only: bool| {
         pool.install(|| {
-            let mut s = analysis::Structure::new(&model, None).unwrap();
+            let mut s = analysis::Structure::of_model(&model, None).unwrap();
             s.set_load_factor(0.16);
             assert!(newton::solve(&mut s, &NewtonSettings::default(), &Default::default()).converged());
             s.commit();

@@ -87,7 +87,7 @@ fn twin(full: &str, quarter: &str, extra: &[[f64; 3]]) -> (f64, f64) {
 
     // the twin through the CLI: its summary's full-structure forces
     let (out, summary) = common::run_text("symmetry", quarter, &extra_probes(&example(quarter), extra));
-    // the probes' displacement history (Structure::probe_displacements, its
+    // the probes' displacement history (analysis::recorder's probe_displacements, its
     // own path to the mirror image): the last row is the full model's u
     let history = common::csv_columns(&out.join("history_probes.csv"));
     for p in &full_model.probes {

@@ -196,7 +196,7 @@ fn the_crush_tangent_matches_finite_differences_mid_increment() {
         fn converged(&mut self, _: &P, _: &Increment) {}
     }
     let model = cufem::setup::Model::from_file(Path::new(EXAMPLE)).unwrap();
-    let mut s = cufem::analysis::Structure::new(&model, None).unwrap();
+    let mut s = cufem::analysis::Structure::of_model(&model, None).unwrap();
     let (settings, newton_settings) = (&model.steps[0].settings, &model.solver.newton);
     let done = stepping::run_span(&mut s, (0.0, 0.1), 1, settings, newton_settings, &mut Quiet, &Default::default());
     let last = done.unwrap().last().unwrap().dlambda;

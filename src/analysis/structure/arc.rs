@@ -13,12 +13,12 @@ impl Structure<'_> {
     /// and any prescribed values, at λ; contact keeps its increment).
     pub(crate) fn set_path_load_factor(&mut self, lambda: f64) {
         self.state.lambda = lambda;
-        self.dirichlet.set_load_factor(self.model, lambda);
+        self.elimination.set_load_factor(self.loading.steps, lambda);
     }
 
     /// A new increment of the path starts from the committed state.
     pub(crate) fn start_path_increment(&mut self) {
-        self.contacts.start_increment();
+        self.parts.contacts.start_increment();
     }
 
     /// Solves `K x = b` in place for every right-hand side (by equation)
@@ -56,8 +56,8 @@ impl Structure<'_> {
     pub(crate) fn reference_load(&self) -> Vec<f64> {
         let eq = &self.system.assembler.dofs.eq;
         let mut f = vec![0.0; self.n_equations()];
-        for (i, l) in self.model.loads.iter().enumerate() {
-            let a = steps::factor(&self.model.steps, Item::Load(i), 1.0);
+        for (i, l) in self.loading.loads.iter().enumerate() {
+            let a = steps::factor(self.loading.steps, Item::Load(i), 1.0);
             for (n, force) in &l.nodal_forces {
                 for (k, v) in force.iter().enumerate() {
                     let e = eq[3 * n + k];

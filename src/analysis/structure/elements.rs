@@ -5,13 +5,14 @@
 
 use crate::assembly::{AssemblyStats, At, Contribution, Forces, Inputs, Outputs, Phase, Tangent};
 use crate::materials::PointState;
-use crate::setup::Model;
+use crate::setup::Discretisation;
 use crate::voigt::Voigt;
 
 /// Internal forces, Gauss-point states and stresses of all bodies.
 #[derive(Debug)]
 pub(crate) struct Elements<'m> {
-    model: &'m Model,
+    /// The meshes, Gauss-point values, materials and kinematics.
+    pub discretisation: Discretisation<'m>,
     /// First Gauss point of each body.
     pub gp_offsets: Vec<usize>,
     /// Committed Gauss-point states.
@@ -29,21 +30,22 @@ pub(crate) struct Elements<'m> {
 }
 
 impl<'m> Elements<'m> {
-    /// Virgin states for every Gauss point of `model`.
-    pub fn new(model: &'m Model) -> Self {
-        let mut gp_offsets = Vec::with_capacity(model.cells.len());
+    /// Virgin states for every Gauss point of `discretisation`.
+    pub fn new(discretisation: Discretisation<'m>) -> Self {
+        let d = discretisation;
+        let mut gp_offsets = Vec::with_capacity(d.cells.len());
         let mut n_gp = 0;
-        for (b, g) in model.mesh.bodies.iter().zip(&model.cells) {
+        for (b, g) in d.mesh.bodies.iter().zip(d.cells) {
             gp_offsets.push(n_gp);
             n_gp += b.n_elements() * g.gp_per_element();
         }
         Self {
-            model,
+            discretisation,
             gp_offsets,
             committed: vec![PointState::default(); n_gp],
             trial: vec![PointState::default(); n_gp],
             stress: vec![[0.0; 6]; n_gp],
-            f_int: vec![0.0; model.mesh.n_dofs()],
+            f_int: vec![0.0; d.mesh.n_dofs()],
             last: AssemblyStats::default(),
             initial: None,
         }
@@ -53,7 +55,7 @@ impl<'m> Elements<'m> {
     /// (for the elastic tangent cached at setup).
     pub fn inputs<'a>(&'a self, u: &'a [f64]) -> Inputs<'a> {
         Inputs {
-            state: crate::analysis::solution::fe_state(self.model, u, &self.committed, &self.gp_offsets),
+            state: self.discretisation.fe_state(u, &self.committed, &self.gp_offsets),
             predictor: Default::default(),
             initial: self.initial.as_deref(),
         }
@@ -80,7 +82,7 @@ impl Contribution for Elements<'_> {
     /// pass (the element tangents and their scatter) is skipped.
     fn evaluate(&mut self, at: &At<'_>, tangent: &mut Tangent<'_>) -> usize {
         let inputs = Inputs {
-            state: crate::analysis::solution::fe_state(self.model, at.u, &self.committed, &self.gp_offsets),
+            state: self.discretisation.fe_state(at.u, &self.committed, &self.gp_offsets),
             predictor: at.predictor,
             initial: self.initial.as_deref(),
         };

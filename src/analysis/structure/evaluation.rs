@@ -22,8 +22,8 @@ impl Structure<'_> {
     /// Evaluates every part at the present state: the residual, and the
     /// tangent if `wanted` (else the elements leave theirs out).
     pub(super) fn evaluate_parts(&mut self, wanted: bool) -> Result<Evaluation, LinearError> {
-        self.timings.evaluations += 1;
-        self.contacts.move_indenters(self.force.offsets(self.state.lambda));
+        self.report.timings.evaluations += 1;
+        self.parts.contacts.move_indenters(self.force.offsets(self.state.lambda));
         // every contribution into the tangent, in order
         let mut changes = 0;
         let mut elapsed = [Duration::ZERO; 2];
@@ -31,28 +31,25 @@ impl Structure<'_> {
             let at = self.state.at();
             let mut tangent = self.system.tangent();
             tangent.wanted = wanted;
-            let parts: [&mut dyn Contribution; 3] = [&mut self.elements, &mut self.loads, &mut self.contacts];
-            let inertia = self.dynamics.iter_mut().map(|i| i as &mut dyn Contribution);
-            let weight = self.impulse.as_ref().map_or(1.0, |i| i.weight());
-            for part in parts.into_iter().chain(inertia) {
+            let weight = self.parts.impulse.as_ref().map_or(1.0, |i| i.weight());
+            for part in self.parts.each_mut() {
                 let t = Instant::now();
                 tangent.weight = if part.phase() == Phase::Contact { weight } else { 1.0 };
                 changes += part.evaluate(&at, &mut tangent);
                 elapsed[usize::from(part.phase() == Phase::Contact)] += t.elapsed();
             }
         }
-        self.timings.add_evaluation(elapsed, &self.elements.last);
-        if let Some(impulse) = self.impulse.as_mut() {
-            impulse.update(self.contacts.forces().values);
+        self.report.timings.add_evaluation(elapsed, &self.parts.elements.last);
+        if let Some(impulse) = self.parts.impulse.as_mut() {
+            impulse.update(self.parts.contacts.forces().values);
         }
         // their forces summed into the residual, per DOF
         let imbalance = &mut self.system.imbalance;
         imbalance.fill(0.0);
         let mut scale: f64 = 0.0;
-        let parts = [&self.elements as &dyn Contribution, &self.loads, &self.contacts];
-        for part in parts.into_iter().chain(self.dynamics.iter().map(|i| i as &dyn Contribution)) {
+        for part in self.parts.each() {
             let mut f = part.forces();
-            if let (Phase::Contact, Some(impulse)) = (part.phase(), &self.impulse) {
+            if let (Phase::Contact, Some(impulse)) = (part.phase(), &self.parts.impulse) {
                 f.values = impulse.force();
             }
             let mut size2 = 0.0;
@@ -69,7 +66,7 @@ impl Structure<'_> {
         let (mut res2, mut reac2) = (0.0, 0.0);
         for (d, &e) in eq.iter().enumerate() {
             let r = imbalance[d];
-            if e == NO_EQ || self.dirichlet.is_prescribed(e) {
+            if e == NO_EQ || self.elimination.is_prescribed(e) {
                 reac2 += r * r;
             } else {
                 res2 += r * r;
@@ -79,8 +76,9 @@ impl Structure<'_> {
             }
         }
         // prescribed values reached (exactly, after the first correction)
-        let (off, size) = self.dirichlet.offset(&self.state.u);
-        let (driven_res2, driven_target2) = self.force.evaluate(&self.contacts, eq, &self.dirichlet, self.state.lambda);
+        let (off, size) = self.elimination.offset(&self.state.u);
+        let (driven_res2, driven_target2) =
+            self.force.evaluate(&self.parts.contacts, eq, &self.elimination, self.state.lambda);
         res2 += driven_res2;
         let scale = scale.max(reac2.sqrt()).max(driven_target2.sqrt());
         let settled = changes == 0 && off <= 1e-12 * size;
@@ -94,12 +92,12 @@ impl Structure<'_> {
     /// (the repeated one would see no contact status change and report the
     /// contacts settled).
     pub(super) fn form_tangent(&mut self) -> Result<(), LinearError> {
-        if self.tangent_stale {
+        if self.system.tangent_stale {
             let forcing = self.system.forcing;
             self.evaluate_parts(true)?;
             self.system.forcing = forcing;
-            self.tangent_stale = false;
-            self.timings.reevaluations += 1;
+            self.system.tangent_stale = false;
+            self.report.timings.reevaluations += 1;
         }
         Ok(())
     }

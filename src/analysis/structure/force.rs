@@ -32,11 +32,13 @@
 //! mass keeps the bordered system regular while it flies, so no contact
 //! stands in, and its force scale is `m |v_n| / Δt`.
 
-use super::dirichlet::Dirichlet;
+use super::inputs::Loading;
 use super::system::LinearSystem;
 use crate::assembly::NO_EQ;
 use crate::contact::Contacts;
-use crate::setup::Model;
+use crate::dynamics::TransientSettings;
+use crate::mesh::Mesh;
+use crate::setup::constraints::Elimination;
 use crate::setup::steps::{self, Item};
 use crate::solver::linear::LinearError;
 
@@ -86,14 +88,18 @@ struct Inertia {
 /// The force-controlled indenters of a model.
 #[derive(Debug)]
 pub(crate) struct ForceControl<'m> {
-    model: &'m Model,
+    loading: Loading<'m>,
+    /// The bodies (their sizes bound a collapse).
+    mesh: &'m Mesh,
+    transient: Option<&'m TransientSettings>,
     driven: Vec<Driven>,
 }
 
 impl<'m> ForceControl<'m> {
-    /// The force-controlled indenters of `model` (`n_eq` equations).
-    pub fn new(model: &'m Model, n_eq: usize) -> Self {
-        let driven = model
+    /// The force-controlled indenters of `loading` on `mesh` (`n_eq`
+    /// equations; `transient`: the implicit dynamics, if any).
+    pub fn new(loading: Loading<'m>, mesh: &'m Mesh, transient: Option<&'m TransientSettings>, n_eq: usize) -> Self {
+        let driven = loading
             .indenters
             .iter()
             .enumerate()
@@ -129,7 +135,7 @@ impl<'m> ForceControl<'m> {
                 })
             })
             .collect();
-        Self { model, driven }
+        Self { loading, mesh, transient, driven }
     }
 
     /// True if some indenter is force-controlled (its motion an unknown).
@@ -140,11 +146,11 @@ impl<'m> ForceControl<'m> {
     /// Rigid displacement of every indenter at load factor `lambda`: the
     /// prescribed motion times its factor, or the solved one.
     pub fn offsets(&self, lambda: f64) -> impl Iterator<Item = [f64; 3]> + '_ {
-        self.model.indenters.iter().enumerate().map(move |(k, ind)| {
+        self.loading.indenters.iter().enumerate().map(move |(k, ind)| {
             if let Some(d) = self.driven.iter().find(|d| d.indenter == k) {
                 return d.dir.map(|v| d.a * v);
             }
-            let a = steps::factor(&self.model.steps, Item::Indenter(k), lambda);
+            let a = steps::factor(self.loading.steps, Item::Indenter(k), lambda);
             ind.displacement.map(|d| a * d)
         })
     }
@@ -155,25 +161,22 @@ impl<'m> ForceControl<'m> {
         &mut self,
         contacts: &Contacts<'_>,
         eq: &[usize],
-        dirichlet: &Dirichlet,
+        elimination: &Elimination,
         lambda: f64,
     ) -> (f64, f64) {
-        let model = self.model;
+        let loading = self.loading;
         let (points, blocks) = (contacts.points(), contacts.blocks());
         let (mut res2, mut target2) = (0.0, 0.0);
         // the contacts' end-of-step impulse: f' and its derivatives 1/γ
-        let gamma = model
-            .transient
-            .as_ref()
-            .filter(|t| t.contact_forces == crate::dynamics::ContactForces::Implicit)
-            .map(|t| t.gamma);
+        let gamma =
+            self.transient.filter(|t| t.contact_forces == crate::dynamics::ContactForces::Implicit).map(|t| t.gamma);
         let weight = gamma.map_or(1.0, |g| 1.0 / g);
         for drv in &mut self.driven {
             let k = drv.indenter;
-            let ind = &model.indenters[k];
+            let ind = &loading.indenters[k];
             let range = contacts.ranges()[k].clone();
             let d = drv.dir;
-            let target = steps::factor(&model.steps, Item::Indenter(k), lambda) * drv.magnitude;
+            let target = steps::factor(loading.steps, Item::Indenter(k), lambda) * drv.magnitude;
             let dot = |a: &[f64; 3], b: &[f64; 3]| a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
             let mut pushed = 0.0;
             let mut any = false;
@@ -206,7 +209,7 @@ impl<'m> ForceControl<'m> {
                 drv.c += dot(&d, &col);
                 for m in 0..3 {
                     let e = eq[3 * c.node + m];
-                    if e != NO_EQ && !dirichlet.is_prescribed(e) {
+                    if e != NO_EQ && !elimination.is_prescribed(e) {
                         drv.b[e] -= col[m];
                         drv.b_row[e] -= row[m];
                     }
@@ -215,7 +218,7 @@ impl<'m> ForceControl<'m> {
             drv.pushed.0 = gamma.map_or(pushed, |g| crate::dynamics::impulse::algorithmic(g, pushed, drv.pushed.1));
             drv.r = drv.pushed.0 - target;
             let mut scale = target.abs();
-            if let (Some(inertia), Some(tr)) = (drv.inertia.as_mut(), model.transient.as_ref()) {
+            if let (Some(inertia), Some(tr)) = (drv.inertia.as_mut(), self.transient) {
                 // m ä + (its push on the body) = its force: Newmark in a
                 let dt = tr.time(lambda) - tr.time(inertia.lambda_n);
                 if dt > 0.0 {
@@ -289,10 +292,10 @@ impl<'m> ForceControl<'m> {
     /// motion beyond a tenth of the body is a collapse, not an answer.
     fn check_collapse(&self, lambda: f64) -> Result<(), LinearError> {
         for d in &self.driven {
-            let ind = &self.model.indenters[d.indenter];
-            let body = &self.model.mesh.bodies[ind.body];
+            let ind = &self.loading.indenters[d.indenter];
+            let body = &self.mesh.bodies[ind.body];
             if !(d.a.abs() <= 0.1 * body.size()) {
-                let target = steps::factor(&self.model.steps, Item::Indenter(d.indenter), lambda) * d.magnitude;
+                let target = steps::factor(self.loading.steps, Item::Indenter(d.indenter), lambda) * d.magnitude;
                 return Err(LinearError::Rejected(format!(
                     "force-controlled indenter {:?} would have to move {:.3e} m, more than a tenth of the size of \
                      body {:?} ({:.3e} m), to carry {:.4e} N: the body collapses before this force (the last \

@@ -26,14 +26,18 @@ impl Structure<'_> {
         // nor from an evaluation whose residual holds kept contact tensions
         // (`contact::assembly::rigid`): the slope at its end, without them,
         // would be another function's
-        if !searchable || self.force.is_driven() || self.contacts.is_frictional() || self.contacts.kept_points() > 0 {
+        if !searchable
+            || self.force.is_driven()
+            || self.parts.contacts.is_frictional()
+            || self.parts.contacts.kept_points() > 0
+        {
             self.state.line = None;
             return;
         }
         let eq = &self.system.assembler.dofs.eq;
         let du: Vec<f64> = eq
             .iter()
-            .map(|&e| if e == NO_EQ || self.dirichlet.is_prescribed(e) { 0.0 } else { self.system.rhs[e] })
+            .map(|&e| if e == NO_EQ || self.elimination.is_prescribed(e) { 0.0 } else { self.system.rhs[e] })
             .collect();
         let start = dot(&du, &self.system.imbalance);
         self.state.line = Some(Line { du, start, eta: 1.0 });

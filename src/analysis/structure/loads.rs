@@ -2,22 +2,22 @@
 //! forces times its factor in the load history at λ (no stiffness: the
 //! loads do not follow the deformation).
 
+use super::inputs::Loading;
 use crate::assembly::{At, Contribution, Forces, Phase, Tangent};
-use crate::setup::Model;
 use crate::setup::steps::{self, Item};
 
 /// `λ`-scaled external loads.
 #[derive(Debug)]
 pub(crate) struct Loads<'m> {
-    model: &'m Model,
+    loading: Loading<'m>,
     /// External loads at the λ of the last evaluation (per DOF).
     pub f_ext: Vec<f64>,
 }
 
 impl<'m> Loads<'m> {
-    /// No load yet (λ = 0).
-    pub fn new(model: &'m Model) -> Self {
-        Self { model, f_ext: vec![0.0; model.mesh.n_dofs()] }
+    /// No load yet (λ = 0) on `n_dofs` DOFs.
+    pub fn new(loading: Loading<'m>, n_dofs: usize) -> Self {
+        Self { loading, f_ext: vec![0.0; n_dofs] }
     }
 }
 
@@ -27,10 +27,10 @@ impl Contribution for Loads<'_> {
     }
 
     fn evaluate(&mut self, at: &At<'_>, _tangent: &mut Tangent<'_>) -> usize {
-        let model = self.model;
+        let loading = self.loading;
         self.f_ext.fill(0.0);
-        for (i, l) in model.loads.iter().enumerate() {
-            let a = steps::factor(&model.steps, Item::Load(i), at.lambda);
+        for (i, l) in loading.loads.iter().enumerate() {
+            let a = steps::factor(loading.steps, Item::Load(i), at.lambda);
             for (n, f) in &l.nodal_forces {
                 for k in 0..3 {
                     self.f_ext[3 * n + k] += a * f[k];

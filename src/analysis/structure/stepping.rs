@@ -3,21 +3,20 @@
 //! and the return to the last committed state.
 
 use super::{Structure, transient};
-use crate::assembly::Contribution;
 use crate::materials::Predictor;
 use crate::solver::stepping::{Incremental, StepMeasure};
 
 impl Incremental for Structure<'_> {
     fn set_load_factor(&mut self, lambda: f64) {
-        // prescribed values are reached by the next correction (dirichlet.rs)
+        // prescribed values are reached by the next correction (setup::constraints::Elimination)
         self.state.lambda = lambda;
         self.state.on_secant = false;
-        self.contacts.start_increment();
-        self.dirichlet.set_load_factor(self.model, lambda);
+        self.parts.contacts.start_increment();
+        self.elimination.set_load_factor(self.loading.steps, lambda);
     }
 
     fn augment(&mut self) -> bool {
-        self.contacts.augment()
+        self.parts.contacts.augment()
     }
 
     fn cautious(&mut self, on: bool) -> bool {
@@ -27,7 +26,7 @@ impl Incremental for Structure<'_> {
         // repeated to the last digit (measured on examples/tube_crush.toml:
         // every retry's residuals equal its failed attempt's), unless a
         // frictional point takes the stick tangent (contact::assembly).
-        if on && self.state.on_secant && !self.contacts.is_frictional() {
+        if on && self.state.on_secant && !self.parts.contacts.is_frictional() {
             return false;
         }
         let wanted = if on { Predictor::Elastic } else { Predictor::Loading };
@@ -48,29 +47,23 @@ impl Incremental for Structure<'_> {
         // predictor's tangent differs from the sliding one at every sliding
         // point, so no factor served both).
         if self.state.extrapolate(ratio) {
-            self.contacts.start_extrapolated();
+            self.parts.contacts.start_extrapolated();
         }
         self.force.extrapolate(ratio);
     }
 
     fn measure(&self) -> StepMeasure {
-        let (changed, before, after) = self.contacts.status_changes();
+        let (changed, before, after) = self.parts.contacts.status_changes();
         StepMeasure {
-            plastic_strain: self.elements.largest_peeq_increment(),
+            plastic_strain: self.parts.elements.largest_peeq_increment(),
             contact_set: (before > 0).then(|| changed as f64 / before.max(after) as f64),
         }
     }
 
     fn commit(&mut self) {
-        if let Some(inertia) = self.dynamics.as_mut() {
-            let parts = [&self.elements as &dyn Contribution, &self.loads, &self.contacts];
-            let model = (self.model, &self.elements);
-            let contact = self.impulse.as_ref().map(|i| i.force());
-            let impactors = self.force.impactor_energy();
-            let system = (&self.system, &self.dirichlet);
-            transient::account_energy(inertia, model, &self.state, system, parts, (contact, impactors));
-        }
-        if let Some(impulse) = self.impulse.as_mut() {
+        let impactors = self.force.impactor_energy();
+        transient::account_energy(&mut self.parts, &self.state, (&self.system, &self.elimination), impactors);
+        if let Some(impulse) = self.parts.impulse.as_mut() {
             impulse.commit();
         }
         if self.inertia_every_increment() {
@@ -82,13 +75,12 @@ impl Incremental for Structure<'_> {
             let system = &mut self.system;
             let col_ptr = &system.assembler.pattern.col_ptr;
             let (tangent, rest, rhs) = (&mut system.tangent, system.rest.as_mut(), &mut system.rhs);
-            self.dirichlet.eliminate(&self.state.u, |e| col_ptr[e], tangent, rest, rhs);
-            self.pivots = if formed { system.inertia() } else { None };
+            self.elimination.eliminate(&self.state.u, |e| col_ptr[e], tangent, rest, rhs);
+            self.report.pivots = if formed { system.inertia() } else { None };
         }
         self.state.commit();
         let at = self.state.at();
-        let parts = [&mut self.elements as &mut dyn Contribution, &mut self.loads, &mut self.contacts];
-        for part in parts.into_iter().chain(self.dynamics.iter_mut().map(|i| i as &mut dyn Contribution)) {
+        for part in self.parts.each_mut() {
             part.commit(&at);
         }
         self.force.commit(self.state.lambda);
@@ -96,10 +88,10 @@ impl Incremental for Structure<'_> {
 
     fn restore(&mut self) {
         self.state.restore();
-        for part in self.contributions() {
+        for part in self.parts.each_mut() {
             part.restore();
         }
         self.force.restore();
-        self.dirichlet.set_load_factor(self.model, self.state.lambda);
+        self.elimination.set_load_factor(self.loading.steps, self.state.lambda);
     }
 }

@@ -27,6 +27,10 @@ pub(crate) struct LinearSystem {
     /// Forcing term of the next solve (relative residual, capped while
     /// contact has not settled).
     pub forcing: f64,
+    /// The last evaluation left the element tangents out
+    /// (`structure/evaluation.rs`): `tangent` is not that of the present
+    /// state.
+    pub tangent_stale: bool,
 }
 
 impl LinearSystem {
@@ -40,6 +44,7 @@ impl LinearSystem {
             imbalance: vec![0.0; n_dofs],
             solver: ReusingSolver::new(chol, reuse),
             forcing: 1.0,
+            tangent_stale: false,
         }
     }
 

@@ -2,32 +2,33 @@
 //! ([`crate::dynamics::Inertia`]) and feeding the energy balance with the
 //! other parts' converged forces at every commit.
 
-use super::dirichlet::Dirichlet;
 use super::elements::Elements;
+use super::inputs::Loading;
 use super::kinematics::Kinematics;
+use super::parts::Parts;
 use super::system::LinearSystem;
 use crate::assembly::{Assembler, Contribution};
-use crate::setup::Model;
+use crate::setup::constraints::Elimination;
 
 /// The inertia part of a transient model: the mass matrix, `K₀` if
 /// stiffness-proportional damping needs it, the initial velocities on the
 /// free DOFs, and the initial row of the energy balance.
 pub(super) fn inertia(
-    model: &Model,
+    loading: &Loading<'_>,
     settings: &crate::dynamics::TransientSettings,
     assembler: &Assembler,
     elements: &Elements<'_>,
 ) -> Result<crate::dynamics::Inertia, crate::analysis::AnalysisError> {
     use crate::dynamics::mass;
-    let mesh = &model.mesh;
-    let densities = mass::densities(mesh, &model.materials)?;
-    let contacts = !model.indenters.is_empty() || !model.contacts.is_empty();
+    let d = elements.discretisation;
+    let mesh = d.mesh;
+    let densities = mass::densities(mesh, d.materials)?;
     let redistribution =
-        (contacts && settings.contact_mass == crate::dynamics::ContactMass::Redistributed).then(|| {
-            let nodes = crate::dynamics::redistribution::contact_nodes(mesh, &model.indenters, &model.contacts);
+        (loading.has_contacts() && settings.contact_mass == crate::dynamics::ContactMass::Redistributed).then(|| {
+            let nodes = crate::dynamics::redistribution::contact_nodes(mesh, loading.indenters, loading.contacts);
             crate::dynamics::Redistribution::new(mesh, &nodes)
         });
-    let m = mass::assemble(assembler, mesh, &model.cells, &densities, settings.mass, redistribution.as_ref())?;
+    let m = mass::assemble(assembler, mesh, d.cells, &densities, settings.mass, redistribution.as_ref())?;
     let k0 = if settings.damping.1 > 0.0 {
         assembler.elastic_matrix(&elements.inputs(&vec![0.0; mesh.n_dofs()]))
     } else {
@@ -46,7 +47,7 @@ pub(super) fn inertia(
         }
     }
     let mut inertia = crate::dynamics::Inertia::new(settings.clone(), m, &k0, v0, assembler.dofs.n_eq);
-    let impactors = model
+    let impactors = loading
         .indenters
         .iter()
         .filter_map(|i| i.impactor)
@@ -57,45 +58,45 @@ pub(super) fn inertia(
 
 /// The contacts' end-of-step impulse of a transient model with contacts
 /// (`analysis.contact_forces = "implicit"`, `dynamics::impulse`).
-pub(super) fn impulse(model: &Model) -> Option<crate::dynamics::ContactImpulse> {
-    let settings = model.transient.as_ref()?;
-    let contacts = !model.indenters.is_empty() || !model.contacts.is_empty();
-    (contacts && settings.contact_forces == crate::dynamics::ContactForces::Implicit)
-        .then(|| crate::dynamics::ContactImpulse::new(settings.gamma, model.mesh.n_dofs()))
+pub(super) fn impulse(
+    loading: &Loading<'_>,
+    settings: Option<&crate::dynamics::TransientSettings>,
+    n_dofs: usize,
+) -> Option<crate::dynamics::ContactImpulse> {
+    let settings = settings?;
+    (loading.has_contacts() && settings.contact_forces == crate::dynamics::ContactForces::Implicit)
+        .then(|| crate::dynamics::ContactImpulse::new(settings.gamma, n_dofs))
 }
 
-/// The converged step's work terms into the energy balance: the parts'
-/// forces, and the reactions at constrained and prescribed DOFs.
+/// The converged step's work terms into the energy balance of a
+/// transient analysis (none in a static one): the parts' forces (the
+/// contacts' algorithmic force where the impulse replaces theirs, and
+/// `impactors`, the impactors' kinetic energy), and the reactions at
+/// constrained and prescribed DOFs.
 pub(super) fn account_energy(
-    inertia: &mut crate::dynamics::Inertia,
-    (model, solid): (&Model, &Elements<'_>),
+    parts: &mut Parts<'_>,
     state: &Kinematics,
-    (system, dirichlet): (&LinearSystem, &Dirichlet),
-    parts: [&dyn Contribution; 3],
-    (contact, impactors): (Option<&[f64]>, f64),
+    (system, elimination): (&LinearSystem, &Elimination),
+    impactors: f64,
 ) {
+    let Parts { elements, loads, contacts, inertia, impulse } = parts;
+    let Some(inertia) = inertia.as_mut() else { return };
     let du: Vec<f64> = state.u.iter().zip(&state.u_committed).map(|(a, b)| a - b).collect();
     let eq = &system.assembler.dofs.eq;
     let supports: Vec<f64> = (0..du.len())
         .map(|d| {
             let e = eq[d];
-            if e == crate::assembly::NO_EQ || dirichlet.is_prescribed(e) { system.imbalance[d] } else { 0.0 }
+            if e == crate::assembly::NO_EQ || elimination.is_prescribed(e) { system.imbalance[d] } else { 0.0 }
         })
         .collect();
-    let [elements, loads, contacts] = parts.map(|p| p.forces().values);
-    // the contacts' algorithmic force where it replaces theirs
-    let contacts = contact.unwrap_or(contacts);
-    let elastic = crate::post::estimate::elastic_energy(
-        &model.mesh,
-        &model.cells,
-        &model.materials,
-        &solid.stress,
-        &solid.gp_offsets,
-    );
+    let contact = impulse.as_ref().map_or_else(|| contacts.forces().values, |i| i.force());
+    let d = elements.discretisation;
+    let elastic =
+        crate::post::estimate::elastic_energy(d.mesh, d.cells, d.materials, &elements.stress, &elements.gp_offsets);
     inertia.account(
         (state.lambda, elastic, impactors),
         &du,
-        [elements, loads, contacts, &supports],
+        [elements.forces().values, loads.forces().values, contact, &supports],
         eq,
         &system.assembler.pattern,
     );

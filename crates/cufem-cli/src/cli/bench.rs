@@ -93,7 +93,7 @@ pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
     let mut rows: Vec<[Duration; 8]> = Vec::new();
     let mut nnz = (0, 0, 0);
     for _ in 0..repeat {
-        let mut s = Structure::new(model, None)?;
+        let mut s = Structure::of_model(model, None)?;
         s.set_load_factor(1.0);
         s.evaluate()?;
         s.correct()?;

@@ -1,5 +1,5 @@
-//! Prescribed displacements. DOFs fixed at zero have no equation (the
-//! numbering leaves them out). DOFs with a non-zero prescribed value keep
+//! The elimination of prescribed displacements. DOFs fixed at zero have
+//! no equation (the numbering leaves them out). DOFs with a non-zero prescribed value keep
 //! their equation, and each solve eliminates them symmetrically: with
 //! `Δ_p = λ ū_p − u_p`, `K_ff δu_f = −R_f − K_fp Δ_p` and `δu_p = Δ_p`. The
 //! first Newton iteration of an increment therefore moves the free DOFs
@@ -9,34 +9,15 @@
 //! elimination is the same for the symmetric tangent and for the
 //! unsymmetric rest of a model with friction (`solver::nonsymmetric`).
 
-use crate::assembly::Assembler;
-use crate::setup::Model;
-use crate::setup::steps::{self, Item};
+use super::Prescribed;
+use crate::assembly::Numbering;
+use crate::setup::steps::{self, Item, Step};
 use crate::solver::nonsymmetric::NonSymmetric;
 
-/// The value prescribed at each constrained DOF (`None`: free) and the
-/// constraint that prescribes it (the first in the model file; validation
-/// rejects conflicting values).
-pub(crate) fn prescribed_values(model: &Model) -> (Vec<Option<f64>>, Vec<usize>) {
-    let n_dofs = model.mesh.n_dofs();
-    let mut value: Vec<Option<f64>> = vec![None; n_dofs];
-    let mut source = vec![0; n_dofs];
-    for (ci, c) in model.constraints.iter().enumerate() {
-        for &n in &c.nodes {
-            for (k, v) in c.values.iter().enumerate() {
-                if v.is_some() && value[3 * n + k].is_none() {
-                    value[3 * n + k] = *v;
-                    source[3 * n + k] = ci;
-                }
-            }
-        }
-    }
-    (value, source)
-}
-
-/// The non-zero prescribed DOFs and the matrix entries they couple.
+/// The non-zero prescribed DOFs on a numbering and the matrix entries they
+/// couple.
 #[derive(Debug)]
-pub(crate) struct Dirichlet {
+pub struct Elimination {
     /// `(dof, equation, value at factor 1, constraint)`.
     prescribed: Vec<(usize, usize, f64, usize)>,
     /// Their values at the current λ.
@@ -47,22 +28,18 @@ pub(crate) struct Dirichlet {
     entries: Vec<(usize, usize, usize)>,
 }
 
-impl Dirichlet {
-    /// The prescribed DOFs of `value` (from [`prescribed_values`]) on the
-    /// assembler's numbering and pattern.
-    pub fn new(value: &[Option<f64>], source: &[usize], assembler: &Assembler) -> Self {
+impl Elimination {
+    /// The non-zero values of `constrained` (the handler's, by DOF) on
+    /// `numbering`'s equations and pattern.
+    pub(super) fn new(constrained: impl Iterator<Item = (usize, Prescribed)>, numbering: &Numbering) -> Self {
         let mut prescribed = Vec::new();
-        let mut is_prescribed = vec![false; assembler.dofs.n_eq];
-        for (d, v) in value.iter().enumerate() {
-            if let Some(v) = *v
-                && v != 0.0
-            {
-                let e = assembler.dofs.eq[d];
-                prescribed.push((d, e, v, source[d]));
-                is_prescribed[e] = true;
-            }
+        let mut is_prescribed = vec![false; numbering.dofs.n_eq];
+        for (d, p) in constrained.filter(|(_, p)| p.value != 0.0) {
+            let e = numbering.dofs.eq[d];
+            prescribed.push((d, e, p.value, p.constraint));
+            is_prescribed[e] = true;
         }
-        let pattern = &assembler.pattern;
+        let pattern = &numbering.pattern;
         let mut entries = Vec::new();
         for c in 0..pattern.n {
             for k in pattern.col_ptr[c]..pattern.col_ptr[c + 1] {
@@ -82,9 +59,9 @@ impl Dirichlet {
 
     /// The prescribed values at load factor `lambda` (each constraint times
     /// its factor in the load history).
-    pub fn set_load_factor(&mut self, model: &Model, lambda: f64) {
+    pub fn set_load_factor(&mut self, steps: &[Step], lambda: f64) {
         for (&(_, _, v, c), now) in self.prescribed.iter().zip(&mut self.now) {
-            *now = steps::factor(&model.steps, Item::Constraint(c), lambda) * v;
+            *now = steps::factor(steps, Item::Constraint(c), lambda) * v;
         }
     }
 

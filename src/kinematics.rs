@@ -38,10 +38,10 @@ pub use hencky::LogStrain;
 use crate::voigt::{self, Voigt};
 
 /// A 3×3 tensor `t[i][j]`.
-pub type Tensor = [[f64; 3]; 3];
+pub(crate) type Tensor = [[f64; 3]; 3];
 
 /// The identity tensor (`F` of the undeformed state).
-pub const IDENTITY: Tensor = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+pub(crate) const IDENTITY: Tensor = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
 
 /// The strain measure and configuration of the analysis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -53,7 +53,7 @@ pub enum Kinematics {
     /// stress, the geometric stiffness (large rotations and displacements).
     TotalLagrangian,
     /// Total Lagrangian with the logarithmic (Hencky) strain `½ ln C` as the
-    /// material's strain ([`hencky`]): finite-strain elastoplasticity.
+    /// material's strain (`hencky`): finite-strain elastoplasticity.
     TotalLagrangianLog,
 }
 
@@ -64,7 +64,7 @@ impl Kinematics {
     }
 
     /// True for the logarithmic strain measure.
-    pub fn is_logarithmic(self) -> bool {
+    pub(crate) fn is_logarithmic(self) -> bool {
         self == Kinematics::TotalLagrangianLog
     }
 
@@ -81,7 +81,7 @@ impl Kinematics {
 
 /// `F = I + H`.
 #[inline]
-pub fn deformation_gradient(h: &Tensor) -> Tensor {
+pub(crate) fn deformation_gradient(h: &Tensor) -> Tensor {
     let mut f = *h;
     for (i, row) in f.iter_mut().enumerate() {
         row[i] += 1.0;
@@ -107,7 +107,7 @@ pub fn green_lagrange(h: &Tensor) -> Voigt {
 
 /// The first Piola–Kirchhoff stress `P = F S` (not symmetric).
 #[inline]
-pub fn first_piola(f: &Tensor, s: &Voigt) -> Tensor {
+pub(crate) fn first_piola(f: &Tensor, s: &Voigt) -> Tensor {
     let st = voigt::stress_tensor(s);
     std::array::from_fn(|k| std::array::from_fn(|j| f[k][0] * st[0][j] + f[k][1] * st[1][j] + f[k][2] * st[2][j]))
 }
@@ -120,7 +120,7 @@ pub fn determinant(f: &Tensor) -> f64 {
 }
 
 /// The Cauchy stress `σ = J⁻¹ F S Fᵀ` in Voigt form.
-pub fn cauchy(f: &Tensor, s: &Voigt) -> Voigt {
+pub(crate) fn cauchy(f: &Tensor, s: &Voigt) -> Voigt {
     let p = first_piola(f, s);
     let j = determinant(f);
     // σ_ij = Σ_k P_ik F_jk / J
@@ -130,7 +130,7 @@ pub fn cauchy(f: &Tensor, s: &Voigt) -> Voigt {
 
 /// The second Piola–Kirchhoff stress of a Cauchy stress,
 /// `S = J F⁻¹ σ F⁻ᵀ` (the inverse of [`cauchy`]), in Voigt form.
-pub fn second_piola(f: &Tensor, sigma: &Voigt) -> Voigt {
+pub(crate) fn second_piola(f: &Tensor, sigma: &Voigt) -> Voigt {
     let j = determinant(f);
     // the inverse by cofactors: F⁻¹ = cof(F)ᵀ / J
     let c = cofactor(f);
@@ -144,7 +144,7 @@ pub fn second_piola(f: &Tensor, sigma: &Voigt) -> Voigt {
 }
 
 /// The cofactor matrix `cof F = J F⁻ᵀ` (signed minors, by cyclic indices).
-pub fn cofactor(f: &Tensor) -> Tensor {
+pub(crate) fn cofactor(f: &Tensor) -> Tensor {
     std::array::from_fn(|i| {
         std::array::from_fn(|j| {
             let (i1, i2, j1, j2) = ((i + 1) % 3, (i + 2) % 3, (j + 1) % 3, (j + 2) % 3);
@@ -158,7 +158,7 @@ pub fn cofactor(f: &Tensor) -> Tensor {
 /// i.e. `δE_ij = ½ (F_ki g_j + F_kj g_i)` (engineering shear). With `F = I`
 /// it is the small-strain column of [`voigt::add_nodal_strain`].
 #[inline]
-pub fn strain_variation(f: &Tensor, g: [f64; 3], k: usize) -> Voigt {
+pub(crate) fn strain_variation(f: &Tensor, g: [f64; 3], k: usize) -> Voigt {
     let r = f[k];
     [
         r[0] * g[0],
@@ -174,7 +174,9 @@ pub fn strain_variation(f: &Tensor, g: [f64; 3], k: usize) -> Voigt {
 mod tests {
     use super::*;
 
-    fn rotation(axis: [f64; 3], angle: f64) -> Tensor {
+    /// The rotation by `angle` (rad) about `axis` (Rodrigues' formula);
+    /// shared with the tests of `hencky`.
+    pub(crate) fn rotation(axis: [f64; 3], angle: f64) -> Tensor {
         let n = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
         let [x, y, z] = axis.map(|a| a / n);
         let (s, c) = angle.sin_cos();
@@ -186,7 +188,8 @@ mod tests {
         ]
     }
 
-    fn mul(a: &Tensor, b: &Tensor) -> Tensor {
+    /// The product `a b`.
+    pub(crate) fn mul(a: &Tensor, b: &Tensor) -> Tensor {
         std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
     }
 

@@ -78,7 +78,7 @@ pub(crate) mod elements;
 pub mod input;
 pub mod interfaces;
 pub mod io;
-pub mod kinematics;
+pub(crate) mod kinematics;
 pub mod materials;
 pub mod mesh;
 pub mod numbers;

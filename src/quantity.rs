@@ -38,7 +38,7 @@ impl Quantity {
 
     /// [`Quantity::all`], followed by the failure indices when `failure`
     /// (a model with strengths).
-    pub fn all_for(failure: bool) -> Vec<Quantity> {
+    pub(crate) fn all_for(failure: bool) -> Vec<Quantity> {
         let mut v = Self::all();
         if failure {
             v.extend((0..4).map(Quantity::Failure));

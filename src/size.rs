@@ -154,7 +154,7 @@ impl Sizes {
 
 /// Sum over the nodes of a 1D Lagrange mesh (`elements` elements of order
 /// `p`) of the number of nodes sharing an element with each node.
-pub fn coupled_1d(elements: u64, p: u64) -> u64 {
+pub(crate) fn coupled_1d(elements: u64, p: u64) -> u64 {
     if elements == 0 {
         return 0;
     }
@@ -190,16 +190,16 @@ pub fn available_memory() -> Option<u64> {
 /// Largest model file read (bytes). Model files are a few kilobytes (gmsh
 /// meshes are separate files); without a cap `cufem check /dev/zero`
 /// allocated until memory ran out.
-pub const MAX_MODEL_FILE: u64 = 64 << 20;
+pub(crate) const MAX_MODEL_FILE: u64 = 64 << 20;
 
 /// Largest gmsh `.msh` file read (bytes): a 2D section mesh of millions of
 /// elements fits; the text and its parse are held in memory at once.
-pub const MAX_MESH_FILE: u64 = 2 << 30;
+pub(crate) const MAX_MESH_FILE: u64 = 2 << 30;
 
 /// The bytes of `path` if it holds at most `cap` of them, `Ok(None)` if it
 /// holds more — also an endless stream such as `/dev/zero`, which is read up
 /// to `cap + 1` bytes only (a larger regular file is not read at all).
-pub fn read_at_most(path: &std::path::Path, cap: u64) -> std::io::Result<Option<Vec<u8>>> {
+pub(crate) fn read_at_most(path: &std::path::Path, cap: u64) -> std::io::Result<Option<Vec<u8>>> {
     use std::io::Read;
     let file = std::fs::File::open(path)?;
     let meta = file.metadata()?;
@@ -221,7 +221,7 @@ pub fn peak_memory() -> Option<u64> {
 
 /// Bytes per unit of `ru_maxrss`: kilobytes on Linux and the BSDs, bytes on
 /// Apple's systems.
-pub const MAXRSS_UNIT: u64 = if cfg!(target_vendor = "apple") { 1 } else { 1024 };
+pub(crate) const MAXRSS_UNIT: u64 = if cfg!(target_vendor = "apple") { 1 } else { 1024 };
 
 /// `1234567890` → `1.15 GiB`.
 pub fn human_bytes(b: u64) -> String {

@@ -30,7 +30,7 @@ pub type Matrix6 = [[f64; 6]; 6];
 /// nodal displacement `u`) to `eps`: the operator `D` of the paper's eq. (4)
 /// in this module's order and shear convention.
 #[inline]
-pub fn add_nodal_strain(eps: &mut Voigt, g: [f64; 3], u: [f64; 3]) {
+pub(crate) fn add_nodal_strain(eps: &mut Voigt, g: [f64; 3], u: [f64; 3]) {
     eps[0] += g[0] * u[0];
     eps[1] += g[1] * u[1];
     eps[2] += g[2] * u[2];
@@ -43,13 +43,13 @@ pub fn add_nodal_strain(eps: &mut Voigt, g: [f64; 3], u: [f64; 3]) {
 /// symmetric part, engineering shear): the sum of [`add_nodal_strain`] over
 /// nodes, when the gradient is assembled first.
 #[inline]
-pub fn strain_from_gradient(h: &[[f64; 3]; 3]) -> Voigt {
+pub(crate) fn strain_from_gradient(h: &[[f64; 3]; 3]) -> Voigt {
     [h[0][0], h[1][1], h[2][2], h[0][1] + h[1][0], h[0][2] + h[2][0], h[1][2] + h[2][1]]
 }
 
 /// A stress in Voigt form as the symmetric 3×3 tensor `σ[i][j]`.
 #[inline]
-pub fn stress_tensor(s: &Voigt) -> [[f64; 3]; 3] {
+pub(crate) fn stress_tensor(s: &Voigt) -> [[f64; 3]; 3] {
     [[s[0], s[3], s[4]], [s[3], s[1], s[5]], [s[4], s[5], s[2]]]
 }
 
@@ -61,14 +61,14 @@ pub fn trace(v: &Voigt) -> f64 {
 
 /// Deviatoric part of a *stress-like* tensor.
 #[inline]
-pub fn deviator(s: &Voigt) -> Voigt {
+pub(crate) fn deviator(s: &Voigt) -> Voigt {
     let p = trace(s) / 3.0;
     [s[0] - p, s[1] - p, s[2] - p, s[3], s[4], s[5]]
 }
 
 /// Frobenius norm `sqrt(s:s)` of a *stress-like* tensor (shear entries count twice).
 #[inline]
-pub fn norm_stress(s: &Voigt) -> f64 {
+pub(crate) fn norm_stress(s: &Voigt) -> f64 {
     (s[0] * s[0] + s[1] * s[1] + s[2] * s[2] + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])).sqrt()
 }
 
@@ -81,7 +81,7 @@ pub fn von_mises(stress: &Voigt) -> f64 {
 /// Converts a stress-like tensor to the strain-like (engineering shear) form:
 /// shear entries are doubled.
 #[inline]
-pub fn stress_like_to_strain_like(s: &Voigt) -> Voigt {
+pub(crate) fn stress_like_to_strain_like(s: &Voigt) -> Voigt {
     [s[0], s[1], s[2], 2.0 * s[3], 2.0 * s[4], 2.0 * s[5]]
 }
 
@@ -97,7 +97,7 @@ pub fn mat_vec(c: &Matrix6, e: &Voigt) -> Voigt {
 
 /// Isotropic linear-elastic stiffness `C = λ 1⊗1 + 2μ I` in this module's
 /// convention (engineering shear strains, so the shear diagonal is `μ`).
-pub fn isotropic_stiffness(young: f64, poisson: f64) -> Matrix6 {
+pub(crate) fn isotropic_stiffness(young: f64, poisson: f64) -> Matrix6 {
     let lambda = young * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson));
     let mu = young / (2.0 * (1.0 + poisson));
     let mut c = [[0.0; 6]; 6];
@@ -115,7 +115,7 @@ pub fn isotropic_stiffness(young: f64, poisson: f64) -> Matrix6 {
 /// Fourth-order deviatoric projector `I_dev` mapping engineering strains to
 /// the (stress-like) deviatoric strain tensor: `(I_dev ε)` equals the
 /// tensor-component deviator of `ε`.
-pub fn deviatoric_projector() -> Matrix6 {
+pub(crate) fn deviatoric_projector() -> Matrix6 {
     let mut p = [[0.0; 6]; 6];
     for (i, row) in p.iter_mut().enumerate().take(3) {
         for (j, v) in row.iter_mut().enumerate().take(3) {

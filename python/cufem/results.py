@@ -15,7 +15,7 @@ def _table(columns):
     """The columns as a pandas DataFrame (integer counts as integers)."""
     pd = require("pandas", "a table of results (Results.line, Results.history)")
     data = {name: np.asarray(values, dtype=float) for name, values in columns}
-    for k in ("increment", "iterations", "plastic_points"):
+    for k in ("increment", "iterations", "plastic_points", "mode"):
         if k in data and np.all(np.isfinite(data[k])):
             data[k] = data[k].astype(np.int64)
     return pd.DataFrame(data)
@@ -72,6 +72,20 @@ class Results:
         for ``"probes"`` (``history_probes.csv``) every probe's displacement
         ``<probe>.u_*``. A pandas DataFrame."""
         return _table(self._native.history(name))
+
+    def modes(self):
+        """The vibration modes of a modal analysis, as ``modes.csv`` has
+        them: ``mode`` (from 1), ``frequency_hz`` and the effective masses
+        ``effective_mass_x``, ``_y``, ``_z`` (kg), a pandas DataFrame;
+        KeyError without a modal analysis."""
+        return _table(self._native.modes(False))
+
+    def buckling(self):
+        """The buckling modes, as ``buckling.csv`` has them: ``mode``,
+        ``load_factor``, the critical load ``critical_load_*`` (N) and, cut
+        by symmetry planes, the full structure's ``full_critical_load_*``;
+        a pandas DataFrame, KeyError without a buckling analysis."""
+        return _table(self._native.modes(True))
 
     def _vtu_data(self) -> dict:
         # the arrays result.vtu holds, computed by the native module

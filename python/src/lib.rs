@@ -481,6 +481,21 @@ impl NativeResults {
         )))
     }
 
+    /// The columns of `modes.csv` (`analysis.type = "modal"`: `mode`,
+    /// `frequency_hz`, `effective_mass_*`) or, with `buckling`, of
+    /// `buckling.csv` (`mode`, `load_factor`, `critical_load_*`, cut by
+    /// symmetry planes `full_critical_load_*`), one row per mode.
+    fn modes(&self, buckling: bool) -> PyResult<Vec<(String, Vec<f64>)>> {
+        let (m, solution) = (&self.model, &self.solution);
+        let table = if buckling { tables::buckling(m, solution) } else { tables::modes(solution) };
+        let (file, kind) = if buckling { ("buckling.csv", "buckling") } else { ("modes.csv", "modal") };
+        table.map(|t| columns(&t)).ok_or_else(|| {
+            PyKeyError::new_err(format!(
+                "{file}: this run has no {kind} analysis (analysis.type = \"{kind}\" computes one)"
+            ))
+        })
+    }
+
     /// The 3D field of `result.vtu` as numpy arrays, computed here rather
     /// than read back from a file: `points` (n, 3), `connectivity` (cells,
     /// 8, VTK hexahedra), `point_data` (name → (n,) or (n, components)) and

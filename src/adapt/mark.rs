@@ -20,7 +20,7 @@ use crate::setup::{MeshPlan, SectionPlan};
 /// when the marked elements lie in at least this share of its section
 /// elements (the error is spread over the section); with the error in a
 /// few of its elements only the axis is refined.
-pub const SECTION_SPREAD: f64 = 0.5;
+pub(crate) const SECTION_SPREAD: f64 = 0.5;
 
 /// Dörfler marking: the fewest elements, largest `η_e` first, whose `η_e²`
 /// add up to at least `theta` of `Σ η_e²` (all of them for `theta ≥ 1`,
@@ -96,7 +96,7 @@ fn place(mesh: &Mesh, plan: &MeshPlan, e: usize) -> (usize, usize, usize, Option
 /// Every interval holding one of the `marked` elements, in every
 /// direction: isotropic refinement of the marked elements. A parametric
 /// section (not a grid) is doubled when marked elements lie in at least
-/// [`SECTION_SPREAD`] of its section elements, else only its axis
+/// `SECTION_SPREAD` of its section elements, else only its axis
 /// intervals are split.
 pub fn intervals(mesh: &Mesh, plan: &MeshPlan, marked: &[usize]) -> Vec<BodyMarks> {
     let mut marks: Vec<BodyMarks> =
@@ -144,7 +144,7 @@ pub fn refine(plan: &MeshPlan, marks: &[BodyMarks]) -> MeshPlan {
 
 /// What a refinement changed, for the cycle report: per body, intervals
 /// split along x, z and the axis, and whether the section was doubled.
-pub fn describe(mesh: &Mesh, before: &MeshPlan, after: &MeshPlan) -> String {
+pub(crate) fn describe(mesh: &Mesh, before: &MeshPlan, after: &MeshPlan) -> String {
     let mut parts = Vec::new();
     for ((b, p), q) in mesh.bodies.iter().zip(&before.bodies).zip(&after.bodies) {
         let mut what = Vec::new();

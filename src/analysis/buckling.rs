@@ -25,12 +25,12 @@
 //! contraction leave `K_σ` slightly indefinite, and the eigenproblem finds
 //! factors whose states strain the material by tens of percent (a tensioned
 //! B2 column: μ = 4.0e6 for 1 N, 5.4 % strain). A factor whose critical
-//! state strains some point by more than [`CRITICAL_STRAIN`] (`μ` times the
+//! state strains some point by more than `CRITICAL_STRAIN` (`μ` times the
 //! largest elastic strain of the loads at factor 1, `σᵀ C⁻¹ σ / |σ|` at
 //! each Gauss point) is therefore set apart (`Buckling::beyond`), not
 //! reported as a buckling load, and not used as an imperfection. Loads that
 //! are absent, zero or so small that their strain is below
-//! [`MIN_UNIT_STRAIN`] are refused by key.
+//! `MIN_UNIT_STRAIN` are refused by key.
 
 use super::{AnalysisError, Structure};
 use crate::solver::eigen::EigenSettings;
@@ -47,7 +47,7 @@ pub struct Buckling {
     /// Solves with the factor of `K₀` the eigensolver took.
     pub solves: usize,
     /// Factors the eigenproblem found whose critical states strain the
-    /// structure beyond [`CRITICAL_STRAIN`]: not buckling loads (module docs).
+    /// structure beyond `CRITICAL_STRAIN`: not buckling loads (module docs).
     pub beyond: Vec<f64>,
     /// The largest elastic strain of the loads at factor 1 (μ times it is a
     /// factor's critical strain).
@@ -60,13 +60,13 @@ pub struct Buckling {
 /// (metals yield at 0.1–0.7 %, carbon fibre plies fail at 1–1.8 %). The
 /// shipped column buckles at 8.6e-5, a tensioned column's spurious factors
 /// lie at 5.4 % and beyond.
-pub const CRITICAL_STRAIN: f64 = 0.02;
+pub(crate) const CRITICAL_STRAIN: f64 = 0.02;
 
 /// Smallest largest strain of the loads at factor 1 a buckling analysis
 /// takes: below it a critical factor would exceed 1e28 (loads 28 orders of
 /// magnitude below the critical load are a unit mistake, and near 1e-300 N
 /// the static solution leaves the double-precision range).
-pub const MIN_UNIT_STRAIN: f64 = 1e-30;
+pub(crate) const MIN_UNIT_STRAIN: f64 = 1e-30;
 
 /// The buckling analysis about the structure's present (converged, linear
 /// elastic) state: `modes` critical load factors of the loads at factor 1.

@@ -20,12 +20,12 @@ use crate::setup::{Model, Warning};
 /// examples/epp_cantilever.toml; body RMS values at most 0.29, on that
 /// cantilever collapsing to 20 % of its length, and 0.20 on Pagano's S = 50
 /// laminate, both verifications of small-strain theory at its own word).
-pub const SMALL_GRADIENT: f64 = 0.5;
+pub(crate) const SMALL_GRADIENT: f64 = 0.5;
 
 /// Largest elastic strain (stress over the material's largest directional
 /// Young's modulus) a result is trusted with: no metal or fibre composite
 /// carries 10 % elastically.
-pub const PLAUSIBLE_STRAIN: f64 = 0.1;
+pub(crate) const PLAUSIBLE_STRAIN: f64 = 0.1;
 
 /// The checks of this module, appended to `warnings`.
 pub(super) fn check(model: &Model, solution: &Solution, warnings: &mut Vec<Warning>) {

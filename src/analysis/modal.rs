@@ -40,7 +40,7 @@
 //! the full structure's too: `2^p` times the model's `r_kᵀ M r_k` with
 //! `r_k` on every node the file's constraints leave free in direction `k`
 //! — a node held only by a plane's `u_n = 0` is free in the full
-//! structure ([`full_free_mass`]).
+//! structure (`full_free_mass`).
 
 use super::{AnalysisError, Structure};
 use crate::solver::eigen::EigenSettings;

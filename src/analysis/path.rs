@@ -1,7 +1,7 @@
 //! Path following of the finite-element structure (`[solver] control =
-//! "arc_length"`): [`PathStructure`] adapts [`Structure`] to
+//! "arc_length"`): `PathStructure` adapts [`Structure`] to
 //! [`solver::arclength::PathProblem`](crate::solver::arclength::PathProblem),
-//! and [`follow`] traces the path from λ = 0, recording each converged point
+//! and `follow` traces the path from λ = 0, recording each converged point
 //! as load stepping records an increment (history rows, increments,
 //! cutbacks), until a stop criterion of the model holds.
 //!
@@ -23,7 +23,7 @@ use crate::solver::newton::{Failure, Report};
 use crate::solver::stepping::{Cutback, Increment, Incremental, Observer, SteppingError, StopReason};
 
 /// The structure as a path-following problem.
-pub struct PathStructure<'s, 'm> {
+pub(crate) struct PathStructure<'s, 'm> {
     structure: &'s mut Structure<'m>,
     /// The reference load by equation.
     load: Vec<f64>,

@@ -135,7 +135,7 @@ pub struct HistoryRow {
     /// Displacement at each probe, in the model's order.
     pub probes: Vec<[f64; 3]>,
     /// Negative pivots of the last factorized tangent
-    /// ([`Structure::negative_pivots`]).
+    /// (`Structure::negative_pivots`).
     pub negative_pivots: Option<usize>,
 }
 

@@ -10,7 +10,7 @@
 //! ([`Loading`]) and its settings ([`Settings`]), never the whole model:
 //!
 //! * the **contributions** (`structure/parts.rs`, each a
-//!   [`crate::assembly::Contribution`]), evaluated in order into the
+//!   `crate::assembly::Contribution`), evaluated in order into the
 //!   tangent, their forces summed into the residual —
 //!   `structure/elements.rs` (internal forces, element tangents, the
 //!   Gauss-point history; first: it writes the whole tangent),

@@ -7,13 +7,15 @@
 //!
 //! | table | file | rows |
 //! |-------|------|------|
-//! | [`line`] | `line_<name>.csv` | a sample along a `[[lines]]` entry (outside every body left out) |
+//! | [`line()`] | `line_<name>.csv` | a sample along a `[[lines]]` entry (outside every body left out) |
 //! | [`constraint_history`] | `history_<constraint>.csv` | a converged increment |
 //! | [`contact_history`] | `history_<contact>.csv` | a converged increment with that contact |
 //! | [`probe_history`] | `history_probes.csv` | a converged increment |
-//! | [`increment_history`] | `history.csv` | a converged increment |
+//! | `increment_history` | `history.csv` | a converged increment |
 //! | [`contact_points`] | `contact_<name>.csv` | a point of a contact, final state |
 //! | [`energy`] | `energy.csv` | a converged time step of a transient run |
+//! | [`modes`] | `modes.csv` | a vibration mode: frequency, effective masses |
+//! | [`buckling`] | `buckling.csv` | a buckling mode: load factor, critical load |
 
 use super::{ContactSet, Solution};
 use crate::post::{FieldView, LineSample, Quantity};
@@ -121,6 +123,14 @@ impl Table {
     pub fn real(&self, name: &str) -> Option<Vec<f64>> {
         self.column(name).map(|c| c.values.to_f64())
     }
+
+    /// The columns `<prefix>x`, `<prefix>y`, `<prefix>z` together, a vector
+    /// per row, or `None` without them.
+    pub(crate) fn xyz(&self, prefix: &str) -> Option<Vec<[f64; 3]>> {
+        let [x, y, z] = ["x", "y", "z"].map(|axis| self.real(&format!("{prefix}{axis}")));
+        let (x, y, z) = (x?, y?, z?);
+        Some((0..x.len()).map(|i| [x[i], y[i], z[i]]).collect())
+    }
 }
 
 /// `s, x, y, z` and every quantity of the model along a line, one row per
@@ -226,7 +236,7 @@ pub fn probe_history(model: &Model, solution: &Solution) -> Table {
 /// plastic Gauss points and the negative pivots of the last factorized
 /// tangent (absent when not known), which count the tangent's negative
 /// eigenvalues: a change marks a limit or bifurcation point.
-pub fn increment_history(solution: &Solution) -> Table {
+pub(crate) fn increment_history(solution: &Solution) -> Table {
     let rows: Vec<_> = solution.history.iter().collect();
     let mut t = increments(&rows, "history".into());
     t.push("plastic_points", "", Values::Count(rows.iter().map(|r| r.plastic_points).collect()));
@@ -300,6 +310,44 @@ pub fn energy(solution: &Solution) -> Option<Table> {
     ];
     for (name, unit, f) in columns {
         t.push(name, unit, Values::Real(rows.iter().map(f).collect()));
+    }
+    Some(t)
+}
+
+/// `modes`: one row per mode of a modal analysis (`mode`, numbered from
+/// 1): its natural frequency `frequency_hz` (Hz) and effective masses
+/// `effective_mass_x`, `_y`, `_z` (kg; of the full structure in a model cut
+/// by symmetry planes, `analysis::modal`); `None` without one.
+pub fn modes(solution: &Solution) -> Option<Table> {
+    let m = solution.modal.as_ref()?;
+    let mut t = Table::new("modes");
+    t.push("mode", "", Values::Count((1..=m.frequencies.len()).collect()));
+    t.push("frequency_hz", "Hz", Values::Real(m.frequencies.clone()));
+    t.push_xyz("effective_mass_", "kg", &m.effective_masses);
+    Some(t)
+}
+
+/// `buckling`: one row per buckling mode (`mode`, numbered from 1) — its
+/// critical `load_factor` and critical load `critical_load_x`, `_y`, `_z`
+/// (N: the applied load at factor 1 times the factor, on the part
+/// modelled) and, in a model cut by symmetry planes, the full structure's
+/// `full_critical_load_*` (its applied load across every plane,
+/// `bc::symmetry::full_structure`, times the factor); `None` without a
+/// buckling analysis (or `analysis.imperfection`).
+pub fn buckling(model: &Model, solution: &Solution) -> Option<Table> {
+    let b = solution.buckling.as_ref()?;
+    let mut t = Table::new("buckling");
+    t.push("mode", "", Values::Count((1..=b.factors.len()).collect()));
+    t.push("load_factor", "", Values::Real(b.factors.clone()));
+    // the applied load at factor 1: the loads at the end over their factor
+    let loads = |applied: [f64; 3]| -> Vec<[f64; 3]> {
+        b.factors.iter().map(|f| applied.map(|a| a * f / solution.lambda)).collect()
+    };
+    t.push_xyz("critical_load_", "N", &loads(solution.applied));
+    if !model.symmetry.planes.is_empty() {
+        let every = vec![true; model.symmetry.planes.len()];
+        let full = crate::bc::symmetry::full_structure(solution.applied, &model.symmetry.planes, &every);
+        t.push_xyz("full_critical_load_", "N", &loads(full));
     }
     Some(t)
 }

@@ -157,7 +157,7 @@ fn contact_warnings(model: &Model, solution: &Solution, warnings: &mut Vec<Warni
 /// off the hardening curve at 10 % strain (crates/cufem-cli/tests/large_deformation.rs), and
 /// the paper's tube in three-point bending (8.5 % plastic strain under the
 /// roller) carries a roller force 2.5 % below the logarithmic strain's.
-pub const GREEN_LAGRANGE_PLASTIC_LIMIT: f64 = 0.02;
+pub(crate) const GREEN_LAGRANGE_PLASTIC_LIMIT: f64 = 0.02;
 
 /// With nonlinear geometry and the Green–Lagrange strain, a plastic strain
 /// beyond [`GREEN_LAGRANGE_PLASTIC_LIMIT`] is reported on `analysis.strain`.

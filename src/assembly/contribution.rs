@@ -59,7 +59,7 @@ pub struct Tangent<'a> {
 impl Tangent<'_> {
     /// Adds the symmetric block `k` between the DOFs of nodes `a` (rows) and
     /// `b` (columns) — and its transpose for `a ≠ b`.
-    pub fn add_node_block(&mut self, a: usize, b: usize, k: &[[f64; 3]; 3]) {
+    pub(crate) fn add_node_block(&mut self, a: usize, b: usize, k: &[[f64; 3]; 3]) {
         if self.weight == 1.0 {
             self.assembler.add_node_block(self.values, a, b, k);
         } else {
@@ -70,7 +70,7 @@ impl Tangent<'_> {
 
     /// Adds `sign · block` between nodes `a` (rows) and `b` (columns) to the
     /// unsymmetric rest (nothing where the tangent is symmetric).
-    pub fn add_rest_block(&mut self, a: usize, b: usize, block: &[[f64; 3]; 3], sign: f64) {
+    pub(crate) fn add_rest_block(&mut self, a: usize, b: usize, block: &[[f64; 3]; 3], sign: f64) {
         let Some(rest) = self.rest.as_deref_mut() else { return };
         let eq = &self.assembler.dofs.eq;
         for (i, row) in block.iter().enumerate() {
@@ -85,7 +85,7 @@ impl Tangent<'_> {
 
     /// Adds the outer product `u vᵀ` of two nodal vectors (`(node, [x, y,
     /// z])`) to the unsymmetric rest (nothing where the tangent is symmetric).
-    pub fn add_rest_outer(&mut self, u: &[(usize, [f64; 3])], v: &[(usize, [f64; 3])]) {
+    pub(crate) fn add_rest_outer(&mut self, u: &[(usize, [f64; 3])], v: &[(usize, [f64; 3])]) {
         let Some(rest) = self.rest.as_deref_mut() else { return };
         let eq = &self.assembler.dofs.eq;
         let sparse = |w: &[(usize, [f64; 3])]| -> Vec<(usize, f64)> {

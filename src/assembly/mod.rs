@@ -38,7 +38,7 @@ use crate::voigt::Voigt;
 
 /// Pattern, numbering and scatter maps of one model (built once).
 #[derive(Debug, Clone)]
-pub struct Assembler {
+pub(crate) struct Assembler {
     /// DOF → equation map.
     pub dofs: DofMap,
     /// Lower-triangular pattern in equation numbering.
@@ -76,7 +76,7 @@ pub struct FeState<'a> {
 }
 
 /// Read-only inputs of an assembly pass: the state it starts from, and how.
-pub struct Inputs<'a> {
+pub(crate) struct Inputs<'a> {
     /// Displacements, committed states and what they live on.
     pub state: FeState<'a>,
     /// Tangent branch of points on their yield surface.
@@ -95,7 +95,7 @@ impl<'a> std::ops::Deref for Inputs<'a> {
 }
 
 /// Outputs of an assembly pass.
-pub struct Outputs<'a> {
+pub(crate) struct Outputs<'a> {
     /// Internal forces (3 per node), overwritten.
     pub force: &'a mut [f64],
     /// Tangent values in pattern order, overwritten when present.
@@ -166,7 +166,7 @@ impl Assembler {
     /// Adds the 3×3 block `k` coupling nodes `a` (rows) and `b` (columns) of
     /// a symmetric matrix stored as its lower triangle. For `a ≠ b` the
     /// caller adds the `(a, b)` block once; its transpose is implied.
-    pub fn add_node_block(&self, values: &mut [f64], a: usize, b: usize, k: &[[f64; 3]; 3]) {
+    pub(crate) fn add_node_block(&self, values: &mut [f64], a: usize, b: usize, k: &[[f64; 3]; 3]) {
         for (i, row) in k.iter().enumerate() {
             for (j, v) in row.iter().enumerate() {
                 let (r, c) = (self.dofs.eq[3 * a + i], self.dofs.eq[3 * b + j]);
@@ -191,7 +191,7 @@ impl Assembler {
     /// `input` holds zero displacements and virgin states (every point
     /// elastic); the element loop itself, without a global elastic tangent
     /// yet, computes and scatters every element's full matrix.
-    pub fn cache_elastic(&mut self, input: &Inputs<'_>) {
+    pub(crate) fn cache_elastic(&mut self, input: &Inputs<'_>) {
         self.elastic_global.clear();
         self.elastic_global = self.elastic_matrix(input);
     }
@@ -200,7 +200,7 @@ impl Assembler {
     /// states (the elastic stiffness `K₀`), in pattern order: what
     /// [`Self::cache_elastic`] keeps, for whoever needs it once (Rayleigh
     /// damping).
-    pub fn elastic_matrix(&self, input: &Inputs<'_>) -> Vec<f64> {
+    pub(crate) fn elastic_matrix(&self, input: &Inputs<'_>) -> Vec<f64> {
         if !self.elastic_global.is_empty() {
             return self.elastic_global.clone();
         }
@@ -221,7 +221,7 @@ impl Assembler {
     /// displacements, with trial states and Gauss-point stresses. Returns
     /// the number of plastic Gauss points and the time in the kernel's two
     /// passes.
-    pub fn assemble(&self, input: &Inputs<'_>, out: Outputs<'_>) -> AssemblyStats {
+    pub(crate) fn assemble(&self, input: &Inputs<'_>, out: Outputs<'_>) -> AssemblyStats {
         out.force.fill(0.0);
         let with_tangent = out.tangent.is_some();
         let mode = match (with_tangent, self.elastic_global.is_empty()) {
@@ -318,7 +318,7 @@ impl Assembler {
     /// The geometric (initial-stress) stiffness `K_σ` of every element from
     /// the Gauss-point stresses `stress` (all bodies, the layout of
     /// `Inputs::committed`), in pattern order (linear buckling).
-    pub fn assemble_geometric(&self, input: &Inputs<'_>, stress: &[Voigt], out: &mut [f64]) {
+    pub(crate) fn assemble_geometric(&self, input: &Inputs<'_>, stress: &[Voigt], out: &mut [f64]) {
         self.assemble_matrices(input.mesh, out, |body, element, ws| {
             let geom = &input.geometry[body];
             let ngp = geom.gp_per_element();
@@ -332,7 +332,7 @@ impl Assembler {
     /// (constrained DOFs dropped): `element(body, element, ws)` writes the
     /// upper triangle of the element's row-major `3 nodes` square matrix
     /// (DOF `3a + c`) into `ws.tangent`; assembly only scatters it.
-    pub fn assemble_matrices<F>(&self, mesh: &Mesh, out: &mut [f64], element: F)
+    pub(crate) fn assemble_matrices<F>(&self, mesh: &Mesh, out: &mut [f64], element: F)
     where
         F: Fn(usize, usize, &mut Workspace) + Sync,
     {
@@ -357,7 +357,7 @@ impl Assembler {
 /// kernel spent in each pass, summed over the worker threads (on one
 /// thread, the element loop less these two is the scatter and the gather).
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
-pub struct AssemblyStats {
+pub(crate) struct AssemblyStats {
     /// Gauss points whose update was plastic.
     pub plastic_points: usize,
     /// B-bar's projections, strains, material updates and internal forces.

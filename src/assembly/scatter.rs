@@ -15,7 +15,7 @@ use crate::solver::linear::LowerCsc;
 
 /// A body element in the global element list.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub struct ElementRef {
+pub(crate) struct ElementRef {
     /// Body index.
     pub body: usize,
     /// Body-local element index.
@@ -105,7 +105,7 @@ fn element_map(eqs: &[usize], pattern: &LowerCsc) -> Vec<u32> {
 }
 
 /// Colours: greedy colouring of section elements × parity of beam elements.
-pub fn colour(mesh: &Mesh, elements: &[ElementRef]) -> Vec<Vec<usize>> {
+pub(crate) fn colour(mesh: &Mesh, elements: &[ElementRef]) -> Vec<Vec<usize>> {
     let mut section_colours: Vec<Vec<usize>> = Vec::new();
     for body in &mesh.bodies {
         let sec = &body.section;

@@ -50,7 +50,7 @@ use super::{cross, dot};
 /// face coordinates `(a, b)`.
 #[derive(Debug, Clone, PartialEq)]
 pub struct FaceJet {
-    /// Global nodes of the face (the order of [`face_point`]).
+    /// Global nodes of the face (the order of `face_point`).
     pub nodes: Vec<usize>,
     /// `N_B`.
     pub n: Vec<f64>,
@@ -146,7 +146,7 @@ fn inverse(m: [f64; 3]) -> Option<[[f64; 2]; 2]> {
 /// A slave point projected onto the deformed master surface, with what the
 /// gap's second variation needs.
 #[derive(Debug, Clone, PartialEq)]
-pub struct CurrentProjection {
+pub(crate) struct CurrentProjection {
     /// The projection in the form the weighted gap uses: the current normal,
     /// and `gap0` such that `gap0 + (Σ N_s u_s − Σ N_m u_m)·n` is the
     /// current gap (the gap linearized at the present state).
@@ -204,7 +204,7 @@ fn project_on_face(body: &Body, face: &Face, x: [f64; 3], u: &[f64]) -> Option<(
 /// Projects slave point `p` onto the nearest of its candidate master faces
 /// in the configuration `u`; `None` if no candidate holds its closest point
 /// (the point is then out of contact, as in the reference configuration).
-pub fn project(contact: &SurfaceContact, body: &Body, p: &SlavePoint, u: &[f64]) -> Option<CurrentProjection> {
+pub(crate) fn project(contact: &SurfaceContact, body: &Body, p: &SlavePoint, u: &[f64]) -> Option<CurrentProjection> {
     let mut us = [0.0; 3];
     for (&node, &s) in p.nodes.iter().zip(&p.shapes) {
         for k in 0..3 {
@@ -278,7 +278,7 @@ impl CurrentProjection {
     /// blocks over the slave point's nodes then the master face's, passed to
     /// `add(I, J, block)` once per unordered pair (`I` before `J` in that
     /// order, and `I = J`).
-    pub fn add_second_variation(
+    pub(crate) fn add_second_variation(
         &self,
         slave: &SlavePoint,
         scale: f64,

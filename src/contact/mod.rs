@@ -40,7 +40,7 @@
 //! **Penalty.** `ε_N` of a node is `α Σ_f E w_f / h_f` with `w_f = ∫ N dA` the
 //! node's tributary area on face `f` of the contact surface and `h_f` the
 //! depth of the element behind that face; `α` (`penalty_factor`) defaults to
-//! [`DEFAULT_PENALTY_FACTOR`]. A penetration then compresses the contact
+//! `DEFAULT_PENALTY_FACTOR`. A penetration then compresses the contact
 //! layer about `α` times less than the element layer behind it. Alternatively
 //! `penalty` gives `ε_N / A` directly (Pa/m). Scaling by the tributary area
 //! makes a uniform pressure produce a uniform penetration `p A_i / ε_i`.
@@ -68,7 +68,7 @@ pub(crate) fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
 }
 
 /// Default dimensionless penalty factor α.
-pub const DEFAULT_PENALTY_FACTOR: f64 = 100.0;
+pub(crate) const DEFAULT_PENALTY_FACTOR: f64 = 100.0;
 
 /// Shape of a rigid indenter, in its reference position.
 #[derive(Debug, Clone, PartialEq)]
@@ -139,7 +139,7 @@ impl RigidSurface {
     /// that normal, pointing to the body; `None` where the node does not face
     /// the surface (beyond a punch's bounds or a cylinder's length). A node
     /// on a cylinder's axis gets the gap `−radius` and a zero normal.
-    pub fn reference_gap(&self, x0: [f64; 3], tol: f64) -> Option<(f64, [f64; 3])> {
+    pub(crate) fn reference_gap(&self, x0: [f64; 3], tol: f64) -> Option<(f64, [f64; 3])> {
         self.current_gap(x0, tol).map(|(g, n, _)| (g, n))
     }
 
@@ -167,7 +167,7 @@ impl RigidSurface {
     /// `None` outside a punch's bounds or a cylinder's length (the point
     /// has left the indenter); on a cylinder's axis or a sphere's centre the
     /// gap `−R` with a zero normal.
-    pub fn current_gap(&self, y: [f64; 3], tol: f64) -> Option<(f64, [f64; 3], [[f64; 3]; 3])> {
+    pub(crate) fn current_gap(&self, y: [f64; 3], tol: f64) -> Option<(f64, [f64; 3], [[f64; 3]; 3])> {
         let curved = |r: [f64; 3], keep: [f64; 3]| {
             let d = (r[0] * r[0] + r[1] * r[1] + r[2] * r[2]).sqrt();
             if d == 0.0 {
@@ -252,7 +252,7 @@ pub struct Indenter {
     pub faces: Vec<crate::bc::Face>,
     /// `method = "surface"`: gap and normal from the exact closest point of
     /// the current configuration at every evaluation
-    /// ([`RigidSurface::current_gap`]); `false`: node-to-node, fixed at the
+    /// (`RigidSurface::current_gap`); `false`: node-to-node, fixed at the
     /// reference configuration (the paper's method).
     pub updated: bool,
     /// A rigid impactor's mass and velocity (transient analysis; module
@@ -309,7 +309,7 @@ pub struct PairContact {
     /// An interference fit (`interference = true`): the initial overlap (m,
     /// ≥ 0) of each contact point (pair, or slave node of a surface
     /// contact), removed gradually over the first load step
-    /// ([`PairContact::overlap_relief`]); empty otherwise.
+    /// (`PairContact::overlap_relief`); empty otherwise.
     pub initial_overlap: Vec<f64>,
 }
 
@@ -319,7 +319,7 @@ impl PairContact {
     /// that an interference fit starts just touching and is fully
     /// overlapped from the end of the first step on (small increments and
     /// cutbacks then apply to it as to any load).
-    pub fn overlap_relief(&self, j: usize, lambda: f64) -> f64 {
+    pub(crate) fn overlap_relief(&self, j: usize, lambda: f64) -> f64 {
         self.initial_overlap.get(j).map_or(0.0, |o| (1.0 - lambda.clamp(0.0, 1.0)) * o)
     }
 
@@ -328,7 +328,7 @@ impl PairContact {
     /// `current` (nonlinear geometry) a node pair couples its slave node and
     /// every node of the master faces around its master node (whose
     /// positions turn its normal, [`nodal_normal`]).
-    pub fn couplings(&self, mesh: &crate::mesh::Mesh, current: bool) -> Vec<(usize, usize)> {
+    pub(crate) fn couplings(&self, mesh: &crate::mesh::Mesh, current: bool) -> Vec<(usize, usize)> {
         match &self.surface {
             Some(s) => s.couplings(&mesh.bodies[s.master_body]),
             None if current => {
@@ -371,14 +371,14 @@ pub enum Penalty {
 /// with its accumulated tributary area, stiffness scale `Σ E w/h` and
 /// area-weighted outward normal.
 #[derive(Debug, Clone, Default)]
-pub struct SurfaceNodes {
+pub(crate) struct SurfaceNodes {
     /// `(node, area, stiffness scale, normal sum)` sorted by node.
     pub nodes: Vec<(usize, f64, f64, [f64; 3])>,
 }
 
 impl SurfaceNodes {
     /// Accumulates face integrals (with Young's modulus `young` of the body).
-    pub fn from_faces(faces: &[FaceIntegral], young: f64) -> Self {
+    pub(crate) fn from_faces(faces: &[FaceIntegral], young: f64) -> Self {
         let mut map: std::collections::BTreeMap<usize, (f64, f64, [f64; 3])> = Default::default();
         for f in faces {
             for (&n, &w) in f.nodes.iter().zip(&f.weights) {
@@ -405,7 +405,7 @@ impl SurfaceNodes {
 /// Pairs slave nodes with master nodes: for each slave node, the master node
 /// whose position differs from it only along the master normal (within
 /// `tol`). Unmatched slave nodes are returned separately.
-pub fn match_pairs(
+pub(crate) fn match_pairs(
     slave: &SurfaceNodes,
     master: &SurfaceNodes,
     coords: impl Fn(usize) -> [f64; 3],
@@ -468,14 +468,14 @@ pub fn penalty_response(g: f64, normal: &[f64; 3], penalty: f64) -> Option<Respo
 /// Newton solves the multiplier is updated to the force, `λ ← λ − ε g`
 /// (Uzawa), until the penetration is below the contact's tolerance: the
 /// answer then no longer depends on `ε`. A NaN gap counts as touching.
-pub fn augmented_response(g: f64, normal: &[f64; 3], penalty: f64, multiplier: f64) -> Option<Response> {
+pub(crate) fn augmented_response(g: f64, normal: &[f64; 3], penalty: f64, multiplier: f64) -> Option<Response> {
     let open = multiplier - penalty * g < 0.0 || (multiplier == 0.0 && g > 0.0);
     (!open).then(|| penalty_law(g, normal, penalty, multiplier))
 }
 
 /// [`augmented_response`]'s law without its inequality (a tension where
 /// `λ − ε g < 0`: a point kept in contact at a secant start, `assembly::rigid`).
-pub fn penalty_law(g: f64, normal: &[f64; 3], penalty: f64, multiplier: f64) -> Response {
+pub(crate) fn penalty_law(g: f64, normal: &[f64; 3], penalty: f64, multiplier: f64) -> Response {
     let p = multiplier - penalty * g;
     (normal.map(|v| p * v), normal.map(|a| normal.map(|b| penalty * a * b)))
 }

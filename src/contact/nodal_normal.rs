@@ -43,7 +43,7 @@ use super::{ContactSurface, cross, dot};
 /// The current normal of one master node: the nodes of its contact faces
 /// and the antisymmetric `Q` of `ñ = Σ Q_BC x_B × x_C`.
 #[derive(Debug, Clone, PartialEq)]
-pub struct NodalNormal {
+pub(crate) struct NodalNormal {
     /// The nodes of the contact faces around the master node.
     pub nodes: Vec<usize>,
     /// `Q`, row-major `nodes × nodes`.
@@ -116,7 +116,7 @@ fn face_terms(mesh: &Mesh, body: usize, face: &crate::bc::Face) -> FaceTerms {
 impl NodalNormal {
     /// The normals of the master nodes `masters`, from the faces of
     /// `surface` that hold each.
-    pub fn for_nodes(mesh: &Mesh, surface: &ContactSurface, masters: &[usize]) -> Vec<Self> {
+    pub(crate) fn for_nodes(mesh: &Mesh, surface: &ContactSurface, masters: &[usize]) -> Vec<Self> {
         let faces: Vec<FaceTerms> = surface.faces.iter().map(|f| face_terms(mesh, surface.body, f)).collect();
         let mut around: std::collections::HashMap<usize, Vec<usize>> = Default::default();
         for (f, t) in faces.iter().enumerate() {
@@ -159,7 +159,7 @@ type Entry = (usize, f64, Option<[[f64; 3]; 3]>, Option<usize>);
 
 /// A node pair evaluated in the current configuration.
 #[derive(Debug, Clone, PartialEq)]
-pub struct CurrentPair {
+pub(crate) struct CurrentPair {
     /// `g = (x_s − x_m)·n` (m).
     pub gap: f64,
     /// The current master normal `n`.
@@ -224,7 +224,7 @@ impl NodalNormal {
     /// `scale · Δδg` of `pair` as 3×3 blocks over the nodes of
     /// `pair.gradient`, passed to `add(I, J, block)` once per unordered
     /// pair (and `I = J`).
-    pub fn add_second_variation(
+    pub(crate) fn add_second_variation(
         &self,
         pair: &CurrentPair,
         scale: f64,

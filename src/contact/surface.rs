@@ -9,7 +9,7 @@
 //! isoparametric map, an end face (section element at a beam end)
 //! `X(a, b) = (x(a, b), y_end, z(a, b))`; the shape functions there are
 //! `N = F_τ(ξ, η) N_i(ζ)`. Curved section edges are therefore followed
-//! exactly as the elements interpolate them ([`face_point`]).
+//! exactly as the elements interpolate them (`face_point`).
 //!
 //! **Integration points.** The slave face is cut into segments at the
 //! element boundaries of the master surface — along the beam axis at the
@@ -24,7 +24,7 @@
 //!
 //! **Gap and normal.** Point `q` (reference position `X_s`, slave shape
 //! values `N_s`) is projected onto the master surface (closest point, by
-//! Gauss–Newton on `(a, b)` over its candidate faces, [`project`]). With
+//! Gauss–Newton on `(a, b)` over its candidate faces, `project`). With
 //! the master's shape values `N_m` and the outward master normal `n` at the
 //! projection (reference configuration),
 //!
@@ -48,7 +48,7 @@
 //! the master faces within `search_distance` of the slave point's
 //! reference position, whose nodes are coupled to the slave face's in the
 //! matrix pattern at setup. A point whose projection leaves them is
-//! inactive (gap NaN; counted by [`project`]'s callers).
+//! inactive (gap NaN; counted by `project`'s callers).
 
 use super::{cross, dot};
 use crate::bc::Face;
@@ -59,7 +59,7 @@ use crate::values::{FaceSide, section_point};
 
 /// A point of a body face.
 #[derive(Debug, Clone, PartialEq)]
-pub struct FacePoint {
+pub(crate) struct FacePoint {
     /// Reference position (m).
     pub position: [f64; 3],
     /// Outward unit normal.
@@ -85,7 +85,7 @@ fn edge_natural(k: usize, a: f64) -> (f64, f64) {
 /// Evaluates face `face` of `body` at face coordinates `(a, b) ∈ [−1, 1]²`
 /// (lateral: `a` along the section edge, `b = ζ` along the beam element;
 /// end: `a = ξ`, `b = η`).
-pub fn face_point(body: &Body, face: &Face, a: f64, b: f64) -> FacePoint {
+pub(crate) fn face_point(body: &Body, face: &Face, a: f64, b: f64) -> FacePoint {
     let section = &body.section;
     let basis = Lagrange2d::new(section.kind.order());
     let m = basis.len();
@@ -175,7 +175,7 @@ pub struct SurfaceContact {
 /// The weighted (mortar) gap of one slave node `a` at fixed projections:
 /// `g̃_a = Σ_q w_q N_a(q) g_q = gap0 + Σ_b grad_b · u_b` (m³).
 #[derive(Debug, Clone, PartialEq, Default)]
-pub struct NodeGap {
+pub(crate) struct NodeGap {
     /// `Σ_q w_q N_a(q) (X_s − X_m)·n` (m³).
     pub gap0: f64,
     /// `∂g̃_a/∂u_b` per node `b` (m²), slave and master nodes.
@@ -191,7 +191,7 @@ pub struct NodeGap {
 impl SurfaceContact {
     /// The weighted gaps of all slave nodes from the points' projections
     /// (points without a projection contribute nothing).
-    pub fn node_gaps(&self, projections: &[Option<Projection>]) -> Vec<NodeGap> {
+    pub(crate) fn node_gaps(&self, projections: &[Option<Projection>]) -> Vec<NodeGap> {
         type Entry = ([f64; 3], [[f64; 3]; 3]);
         let mut out: Vec<std::collections::BTreeMap<usize, Entry>> = vec![Default::default(); self.slave_nodes.len()];
         let mut gaps = vec![NodeGap::default(); self.slave_nodes.len()];
@@ -297,7 +297,7 @@ fn project_on_face(body: &Body, face: &Face, x: [f64; 3], u: &[f64], slack: f64)
 /// Projects slave point `p` (slave displacements and master displacements
 /// both read from `u`) onto the nearest of its candidate faces; `None` if
 /// no candidate face holds its closest point.
-pub fn project(contact: &SurfaceContact, mesh: &Mesh, p: &SlavePoint, u: &[f64]) -> Option<Projection> {
+pub(crate) fn project(contact: &SurfaceContact, mesh: &Mesh, p: &SlavePoint, u: &[f64]) -> Option<Projection> {
     let body = &mesh.bodies[contact.master_body];
     let us = interpolate(&p.nodes, &p.shapes, u);
     let x: [f64; 3] = std::array::from_fn(|k| p.position[k] + us[k]);
@@ -494,7 +494,7 @@ impl SurfaceContact {
     /// Node pairs the matrix pattern must hold: the weighted gap of a slave
     /// node couples every node of its points' slave faces and candidate
     /// master faces with each other.
-    pub fn couplings(&self, master: &Body) -> Vec<(usize, usize)> {
+    pub(crate) fn couplings(&self, master: &Body) -> Vec<(usize, usize)> {
         let face_nodes: Vec<Vec<usize>> =
             self.master_faces.iter().map(|f| face_point(master, f, 0.0, 0.0).nodes).collect();
         let mut support: Vec<std::collections::BTreeSet<usize>> = vec![Default::default(); self.slave_nodes.len()];

@@ -70,7 +70,7 @@ impl EnergyRow {
 
 /// The running sums and the forces of the last converged step.
 #[derive(Debug, Default)]
-pub struct EnergyLedger {
+pub(crate) struct EnergyLedger {
     /// Rows so far (the initial state first).
     pub rows: Vec<EnergyRow>,
     previous: Option<[Vec<f64>; 5]>,
@@ -78,7 +78,7 @@ pub struct EnergyLedger {
 
 /// The converged step's forces per DOF: internal, damping, loads, contact,
 /// supports (reactions at constrained DOFs, zero elsewhere).
-pub struct StepForces<'a> {
+pub(crate) struct StepForces<'a> {
     /// `f_int`.
     pub internal: &'a [f64],
     /// `C v`.

@@ -99,7 +99,7 @@ impl ContactImpulse {
 
 /// `f' = (f − (1 − γ) f'_n) / γ` of one component (a rigid impactor's push,
 /// `analysis::structure::force`).
-pub fn algorithmic(gamma: f64, physical: f64, committed: f64) -> f64 {
+pub(crate) fn algorithmic(gamma: f64, physical: f64, committed: f64) -> f64 {
     (physical - (1.0 - gamma) * committed) / gamma
 }
 

@@ -115,7 +115,7 @@ impl Inertia {
     /// displacement increment, `forces` the other parts' converged forces
     /// (the damping forces are this part's own), `elastic` the elastic
     /// strain energy held, `impactors` the rigid impactors' kinetic energy.
-    pub fn account(
+    pub(crate) fn account(
         &mut self,
         (lambda, elastic, impactors): (f64, f64, f64),
         du: &[f64],

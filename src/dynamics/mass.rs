@@ -11,7 +11,7 @@
 //! the Newton–Cotes weights ½ ½, ⅙ ⅔ ⅙ and ⅛ ⅜ ⅜ ⅛, all positive — so the
 //! lumped mass is positive on affine elements; a strongly distorted
 //! element could make a node's share non-positive, which
-//! [`assemble`] refuses. Both conserve the mass: for a rigid translation
+//! `assemble` refuses. Both conserve the mass: for a rigid translation
 //! `r`, `rᵀ M r = ∫ ρ dV`.
 
 use crate::assembly::Assembler;
@@ -58,7 +58,14 @@ pub enum MassError {
 /// The element mass of element `e` (section element `e % n_section`,
 /// beam element `e / n_section`) with density `density`, into the upper
 /// triangle of `ws.tangent` (row-major, `3 nodes` square, DOF `3a + c`).
-pub fn element_mass(geom: &CellValues, e: usize, n_section: usize, density: f64, kind: MassKind, ws: &mut Workspace) {
+pub(crate) fn element_mass(
+    geom: &CellValues,
+    e: usize,
+    n_section: usize,
+    density: f64,
+    kind: MassKind,
+    ws: &mut Workspace,
+) {
     let (sg, ag) = (&geom.section, &geom.axis);
     let (es, eb) = (e % n_section, e / n_section);
     let nodes = sg.n_fun * ag.n_fun;
@@ -88,7 +95,7 @@ pub fn element_mass(geom: &CellValues, e: usize, n_section: usize, density: f64,
 /// density per section element (`densities[body][section element]`),
 /// with the contact nodes' mass moved to their neighbours by
 /// `redistribution` if given (`dynamics::redistribution`).
-pub fn assemble(
+pub(crate) fn assemble(
     assembler: &Assembler,
     mesh: &Mesh,
     cells: &[CellValues],

@@ -13,15 +13,7 @@ const RHO: f64 = 7850.0;
 fn body(section: SectionElementKind, axis: BeamElementKind, elements: usize) -> Body {
     let section = CrossSection::from_quads(section, &CORNERS, &[[0, 1, 2, 3]], "s").unwrap();
     let lines = Division::uniform(0.1, 0.13, elements).lines("y").unwrap();
-    Body {
-        name: "b".into(),
-        section,
-        axis: BeamAxis::from_lines(axis, &lines),
-        material: 0,
-        element_materials: Vec::new(),
-        node_offset: 0,
-        element_offset: 0,
-    }
+    Body::new("b", section, BeamAxis::from_lines(axis, &lines), 0)
 }
 
 fn shoelace_area() -> f64 {

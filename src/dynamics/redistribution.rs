@@ -129,12 +129,12 @@ impl Redistribution {
     }
 
     /// True if global node `n` carries no mass.
-    pub fn is_massless(&self, n: usize) -> bool {
+    pub(crate) fn is_massless(&self, n: usize) -> bool {
         self.massless.get(n).copied().unwrap_or(false)
     }
 
     /// The contact nodes that keep some mass (module docs), sorted.
-    pub fn stranded(&self) -> &[usize] {
+    pub(crate) fn stranded(&self) -> &[usize] {
         &self.stranded
     }
 
@@ -197,7 +197,7 @@ fn element_map(mesh: &Mesh, nodes: &[usize], is_contact: &[bool]) -> ElementMap 
 
 /// The contact nodes of a model (module docs): the candidate nodes of
 /// every indenter, and both sides of every contact between bodies.
-pub fn contact_nodes(
+pub(crate) fn contact_nodes(
     mesh: &Mesh,
     indenters: &[crate::contact::Indenter],
     contacts: &[crate::contact::PairContact],

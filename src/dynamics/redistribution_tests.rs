@@ -17,15 +17,7 @@ fn mesh() -> Mesh {
     )
     .unwrap();
     let lines = Division::uniform(0.0, 0.1, 5).lines("y").unwrap();
-    Mesh::new(vec![Body {
-        name: "b".into(),
-        section,
-        axis: BeamAxis::from_lines(BeamElementKind::B3, &lines),
-        material: 0,
-        element_materials: Vec::new(),
-        node_offset: 0,
-        element_offset: 0,
-    }])
+    Mesh::new(vec![Body::new("b", section, BeamAxis::from_lines(BeamElementKind::B3, &lines), 0)])
 }
 
 const RHO: f64 = 8000.0;

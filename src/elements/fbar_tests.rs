@@ -179,20 +179,7 @@ fn dilatation_curvature_is_the_derivative_of_the_projected_dilatation() {
     }
     nucleus::large_tangent(&geom, (0, 0, nodes), Some(ps), &mut ws);
     let k = ws.tangent.clone();
-    let (n, h) = (3 * nodes, 1e-8);
-    let kmax = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-    assert!(kmax > 0.0);
-    let mut worst: f64 = 0.0;
-    for q in 0..n {
-        let (mut up, mut um) = (u.clone(), u.clone());
-        up[q] += h;
-        um[q] -= h;
-        let (fp, fm) = (force(&up, &mut ws), force(&um, &mut ws));
-        for p in 0..n {
-            let kk = if p <= q { k[p * n + q] } else { k[q * n + p] };
-            worst = worst.max(((fp[p] - fm[p]) / (2.0 * h) - kk).abs() / kmax);
-        }
-    }
+    let worst = super::tests::difference_error(&k, &u, 1e-8, |u| force(u, &mut ws));
     eprintln!("dilatation curvature vs central differences: {worst:e}");
     assert!(worst < 1e-6, "{worst:e}");
 }

@@ -34,22 +34,7 @@ pub(super) fn field(body: &Body, f: &dyn Fn([f64; 3]) -> [f64; 3]) -> Vec<f64> {
 /// force, relative to the largest tangent entry.
 pub(super) fn tangent_error(geom: &CellValues, mat: &Material, u: &[f64], committed: &[PointState]) -> f64 {
     let (_, k, _, _) = evaluate(geom, mat, u, committed);
-    let n = u.len();
-    let kmax = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-    let h = 1e-9;
-    let mut worst: f64 = 0.0;
-    for q in 0..n {
-        let (mut up, mut um) = (u.to_vec(), u.to_vec());
-        up[q] += h;
-        um[q] -= h;
-        let (fp, _, _, _) = evaluate(geom, mat, &up, committed);
-        let (fm, _, _, _) = evaluate(geom, mat, &um, committed);
-        for p in 0..n {
-            let kk = if p <= q { k[p * n + q] } else { k[q * n + p] };
-            worst = worst.max(((fp[p] - fm[p]) / (2.0 * h) - kk).abs() / kmax);
-        }
-    }
-    worst
+    super::tests::difference_error(&k, u, 1e-9, |u| evaluate(geom, mat, u, committed).0)
 }
 
 /// Uniaxial stretch `λ` along the axis y with the lateral stretch `μ` in

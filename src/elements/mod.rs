@@ -110,7 +110,7 @@ pub struct Workspace {
 
 impl Workspace {
     /// Sizes the buffers for elements with `nodes` nodes and `points` Gauss points.
-    pub fn resize(&mut self, nodes: usize, points: usize) {
+    pub(crate) fn resize(&mut self, nodes: usize, points: usize) {
         self.grads.resize(nodes, [0.0; 3]);
         self.tangents.resize(points, [[0.0; 6]; 6]);
         self.frames.resize(points, [[0.0; 3]; 3]);
@@ -126,7 +126,7 @@ impl Workspace {
 
 /// Which tangent the kernel must compute.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum TangentMode {
+pub(crate) enum TangentMode {
     /// Internal force only.
     None,
     /// Always compute the tangent.
@@ -140,7 +140,7 @@ pub enum TangentMode {
 
 /// What the kernel hands back besides the buffers.
 #[derive(Debug, Clone, Copy, Default)]
-pub struct ElementStats {
+pub(crate) struct ElementStats {
     /// Gauss points whose update was plastic.
     pub plastic_points: usize,
     /// True if `Workspace::tangent` was computed.
@@ -184,7 +184,7 @@ pub struct PointData<'a> {
 /// geometry as 3 × 3 nuclei per point, summed section by section
 /// (`nucleus`; module docs).
 #[allow(clippy::too_many_arguments)] // the kernel's inputs are the terms of eq. (11); bundling them adds nothing
-pub fn element_response(
+pub(crate) fn element_response(
     geom: &CellValues,
     e: usize,
     n_section_elements: usize,
@@ -242,7 +242,13 @@ pub fn element_response(
 /// (linear buckling, `crate::analysis::buckling`), into the upper triangle
 /// of `ws.tangent`: the total-Lagrangian nuclei (`nucleus`) at `F = I`
 /// with no material stiffness, `M^(cd) = w δ_cd σ`.
-pub fn geometric_matrix(geom: &CellValues, e: usize, n_section_elements: usize, stress: &[Voigt], ws: &mut Workspace) {
+pub(crate) fn geometric_matrix(
+    geom: &CellValues,
+    e: usize,
+    n_section_elements: usize,
+    stress: &[Voigt],
+    ws: &mut Workspace,
+) {
     let el = Element::new(geom, e, n_section_elements);
     ws.resize(el.nodes, el.n_points);
     ws.pk2[..el.n_points].copy_from_slice(&stress[..el.n_points]);

@@ -1,5 +1,6 @@
 //! Tests of the element kernel.
 
+use super::log_tests::field;
 use super::*;
 use crate::mesh::{BeamAxis, Body, CrossSection, Division};
 use crate::shape::{BeamElementKind, SectionElementKind};
@@ -9,15 +10,7 @@ pub(super) fn single_element_body(sk: SectionElementKind, bk: BeamElementKind) -
     let corners = [[0.0, 0.0], [0.012, 0.001], [0.010, 0.011], [-0.001, 0.009]];
     let section = CrossSection::from_quads(sk, &corners, &[[0, 1, 2, 3]], "s").unwrap();
     let lines = Division::uniform(0.1, 0.13, 1).lines("y").unwrap();
-    Body {
-        name: "b".into(),
-        section,
-        axis: BeamAxis::from_lines(bk, &lines),
-        material: 0,
-        element_materials: Vec::new(),
-        node_offset: 0,
-        element_offset: 0,
-    }
+    Body::new("b", section, BeamAxis::from_lines(bk, &lines), 0)
 }
 
 fn response(body: &Body, mat: &Material, u: &[f64], committed: &[PointState]) -> (Vec<f64>, Vec<f64>) {
@@ -79,39 +72,27 @@ pub(super) fn kernel(
 #[test]
 fn volume_and_rigid_body_modes() {
     let mat = Material::new("m", 70e9, 0.3, None);
-    for sk in [SectionElementKind::L4, SectionElementKind::L9, SectionElementKind::L16] {
-        for bk in [BeamElementKind::B2, BeamElementKind::B3, BeamElementKind::B4] {
-            let body = single_element_body(sk, bk);
-            let geom = CellValues::new(&body).unwrap();
-            // shoelace area of the quad × length
-            let area = 0.5
-                * ((0.0 * 0.001 - 0.012 * 0.0)
-                    + (0.012 * 0.011 - 0.010 * 0.001)
-                    + (0.010 * 0.009 - (-0.001) * 0.011)
-                    + (-0.001 * 0.0 - 0.0 * 0.009));
-            let vol: f64 = (0..geom.section.n_gp)
-                .flat_map(|s| (0..geom.axis.n_gp).map(move |a| (s, a)))
-                .map(|(s, a)| geom.section.weight[s] * geom.axis.weight[a])
-                .sum();
-            assert!((vol - area * 0.03).abs() < 1e-15, "{sk:?}{bk:?}");
-            // rigid rotation about y gives zero force
-            let nodes = body.nodes_per_element();
-            let mut el = Vec::new();
-            body.element_nodes(0, &mut el);
-            let mut u = vec![0.0; 3 * nodes];
-            for (a, &g) in el.iter().enumerate() {
-                let [x, y, z] = body.local_coords(g);
-                // small rotation θ about an arbitrary axis: u = θ × x
-                let th = [1e-4, -2e-4, 3e-4];
-                u[3 * a] = th[1] * z - th[2] * y;
-                u[3 * a + 1] = th[2] * x - th[0] * z;
-                u[3 * a + 2] = th[0] * y - th[1] * x;
-            }
-            let ngp = geom.gp_per_element();
-            let (f, _) = response(&body, &mat, &u, &vec![PointState::default(); ngp]);
-            let fmax = f.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-            assert!(fmax < 1e-6, "{sk:?}{bk:?}: {fmax}");
-        }
+    for (sk, bk, body) in single_element_bodies() {
+        let geom = CellValues::new(&body).unwrap();
+        // shoelace area of the quad × length
+        let area = 0.5
+            * ((0.0 * 0.001 - 0.012 * 0.0)
+                + (0.012 * 0.011 - 0.010 * 0.001)
+                + (0.010 * 0.009 - (-0.001) * 0.011)
+                + (-0.001 * 0.0 - 0.0 * 0.009));
+        let vol: f64 = (0..geom.section.n_gp)
+            .flat_map(|s| (0..geom.axis.n_gp).map(move |a| (s, a)))
+            .map(|(s, a)| geom.section.weight[s] * geom.axis.weight[a])
+            .sum();
+        assert!((vol - area * 0.03).abs() < 1e-15, "{sk:?}{bk:?}");
+        // rigid rotation about y gives zero force
+        // small rotation θ about an arbitrary axis: u = θ × x
+        let th = [1e-4, -2e-4, 3e-4];
+        let u = field(&body, &|[x, y, z]| [th[1] * z - th[2] * y, th[2] * x - th[0] * z, th[0] * y - th[1] * x]);
+        let ngp = geom.gp_per_element();
+        let (f, _) = response(&body, &mat, &u, &vec![PointState::default(); ngp]);
+        let fmax = f.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        assert!(fmax < 1e-6, "{sk:?}{bk:?}: {fmax}");
     }
 }
 
@@ -128,28 +109,24 @@ fn tangent_matches_finite_difference_of_force_elastoplastic() {
 #[test]
 fn bbar_reduces_to_the_standard_element_for_constant_dilatation() {
     let mat = Material::new("m", 70e9, 0.3, None);
-    for sk in [SectionElementKind::L4, SectionElementKind::L9, SectionElementKind::L16] {
-        for bk in [BeamElementKind::B2, BeamElementKind::B3, BeamElementKind::B4] {
-            let body = single_element_body(sk, bk);
-            let std = CellValues::new(&body).unwrap();
-            let bar = CellValues::new(&body).unwrap().with_bbar(&body);
-            let committed = vec![PointState::default(); std.gp_per_element()];
-            let mut el = Vec::new();
-            body.element_nodes(0, &mut el);
-            let field = |f: &dyn Fn([f64; 3]) -> [f64; 3]| -> Vec<f64> {
-                el.iter().flat_map(|&g| f(body.local_coords(g))).collect()
-            };
-            let linear = field(&|x| [1e-3 * x[0] + 2e-4 * x[2], -5e-4 * x[1] + 1e-4 * x[0], 3e-4 * x[2] - 2e-4 * x[1]]);
-            let (fs, _) = response_with(&std, &mat, &linear, &committed);
-            let (fb, _) = response_with(&bar, &mat, &linear, &committed);
-            let scale = fs.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-            let diff = fs.iter().zip(&fb).fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
-            assert!(diff < 1e-10 * scale, "{sk:?}{bk:?}: {diff:e}");
-            let rotation =
-                field(&|x| [2e-4 * x[2] - 3e-4 * x[1], 3e-4 * x[0] - 1e-4 * x[2], 1e-4 * x[1] - 2e-4 * x[0]]);
-            let (fr, _) = response_with(&bar, &mat, &rotation, &committed);
-            assert!(fr.iter().fold(0.0f64, |a, b| a.max(b.abs())) < 1e-6, "{sk:?}{bk:?}");
-        }
+    for (sk, bk, body) in single_element_bodies() {
+        let std = CellValues::new(&body).unwrap();
+        let bar = CellValues::new(&body).unwrap().with_bbar(&body);
+        let committed = vec![PointState::default(); std.gp_per_element()];
+        let mut el = Vec::new();
+        body.element_nodes(0, &mut el);
+        let field = |f: &dyn Fn([f64; 3]) -> [f64; 3]| -> Vec<f64> {
+            el.iter().flat_map(|&g| f(body.local_coords(g))).collect()
+        };
+        let linear = field(&|x| [1e-3 * x[0] + 2e-4 * x[2], -5e-4 * x[1] + 1e-4 * x[0], 3e-4 * x[2] - 2e-4 * x[1]]);
+        let (fs, _) = response_with(&std, &mat, &linear, &committed);
+        let (fb, _) = response_with(&bar, &mat, &linear, &committed);
+        let scale = fs.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+        let diff = fs.iter().zip(&fb).fold(0.0f64, |a, (x, y)| a.max((x - y).abs()));
+        assert!(diff < 1e-10 * scale, "{sk:?}{bk:?}: {diff:e}");
+        let rotation = field(&|x| [2e-4 * x[2] - 3e-4 * x[1], 3e-4 * x[0] - 1e-4 * x[2], 1e-4 * x[1] - 2e-4 * x[0]]);
+        let (fr, _) = response_with(&bar, &mat, &rotation, &committed);
+        assert!(fr.iter().fold(0.0f64, |a, b| a.max(b.abs())) < 1e-6, "{sk:?}{bk:?}");
     }
     // a dilatation that varies to second order is projected, so B-bar differs
     let body = single_element_body(SectionElementKind::L9, BeamElementKind::B4);
@@ -170,42 +147,51 @@ fn bbar_reduces_to_the_standard_element_for_constant_dilatation() {
     assert!(fs.iter().zip(&fb).any(|(x, y)| (x - y).abs() > 1e-3 * scale));
 }
 
+/// A single-element body of every section and beam element kind.
+fn single_element_bodies() -> impl Iterator<Item = (SectionElementKind, BeamElementKind, Body)> {
+    use {BeamElementKind::*, SectionElementKind::*};
+    [L4, L9, L16].into_iter().flat_map(|sk| [B2, B3, B4].map(|bk| (sk, bk, single_element_body(sk, bk))))
+}
+
+/// Largest difference between the symmetric tangent `k` (n × n, its upper
+/// triangle read) and central differences of `force` with step `h` about
+/// `u`, relative to the largest entry of `k`.
+pub(super) fn difference_error(k: &[f64], u: &[f64], h: f64, mut force: impl FnMut(&[f64]) -> Vec<f64>) -> f64 {
+    let n = u.len();
+    let kmax = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    assert!(kmax > 0.0, "a zero tangent");
+    let mut worst: f64 = 0.0;
+    for q in 0..n {
+        let (mut up, mut um) = (u.to_vec(), u.to_vec());
+        up[q] += h;
+        um[q] -= h;
+        let (fp, fm) = (force(&up), force(&um));
+        for p in 0..n {
+            let kk = if p <= q { k[p * n + q] } else { k[q * n + p] };
+            worst = worst.max(((fp[p] - fm[p]) / (2.0 * h) - kk).abs() / kmax);
+        }
+    }
+    worst
+}
+
 fn tangent_check(bbar: bool) {
     use crate::materials::Hardening;
     let body = single_element_body(SectionElementKind::L9, BeamElementKind::B3);
     let mat = Material::new("m", 70e9, 0.3, Some(Hardening::Linear { yield_stress: 100e6, modulus: 2e9 }));
-    let nodes = body.nodes_per_element();
-    let mut el = Vec::new();
-    body.element_nodes(0, &mut el);
     // a displacement that yields part of the element
-    let mut u = vec![0.0; 3 * nodes];
-    for (a, &g) in el.iter().enumerate() {
-        let [x, y, z] = body.local_coords(g);
-        u[3 * a] = 3e-3 * y * z / 0.01 + 1e-5 * (x * 100.0).sin();
-        u[3 * a + 1] = -2e-3 * (z - 0.005) + 1e-3 * x * y;
-        u[3 * a + 2] = 1e-5 * (y * 50.0).cos() + 2e-3 * x;
-    }
+    let u = field(&body, &|[x, y, z]| {
+        [
+            3e-3 * y * z / 0.01 + 1e-5 * (x * 100.0).sin(),
+            -2e-3 * (z - 0.005) + 1e-3 * x * y,
+            1e-5 * (y * 50.0).cos() + 2e-3 * x,
+        ]
+    });
     let geom = CellValues::new(&body).unwrap();
     let geom = if bbar { geom.with_bbar(&body) } else { geom };
     let ngp = geom.gp_per_element();
     let committed = vec![PointState::default(); ngp];
     let (_, k) = response_with(&geom, &mat, &u, &committed);
-    let n = 3 * nodes;
-    let kmax = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-    let h = 1e-9;
-    let mut worst: f64 = 0.0;
-    for q in 0..n {
-        let (mut up, mut um) = (u.clone(), u.clone());
-        up[q] += h;
-        um[q] -= h;
-        let (fp, _) = response_with(&geom, &mat, &up, &committed);
-        let (fm, _) = response_with(&geom, &mat, &um, &committed);
-        for p in 0..n {
-            let fd = (fp[p] - fm[p]) / (2.0 * h);
-            let kk = if p <= q { k[p * n + q] } else { k[q * n + p] };
-            worst = worst.max((fd - kk).abs() / kmax);
-        }
-    }
+    let worst = difference_error(&k, &u, 1e-9, |u| response_with(&geom, &mat, u, &committed).0);
     assert!(worst < 1e-6, "relative tangent error {worst} (B-bar: {bbar})");
 }
 
@@ -237,22 +223,8 @@ fn total_lagrangian_tangent_matches_finite_difference() {
         Material::new("m", 70e9, 0.3, Some(Hardening::Linear { yield_stress: 100e6, modulus: 2e9 })),
     ] {
         let (_, k, _) = response_kin(&geom, &mat, &u, &committed, Kinematics::TotalLagrangian);
-        let n = 3 * nodes;
-        let kmax = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));
-        let h = 1e-9;
-        let mut worst: f64 = 0.0;
-        for q in 0..n {
-            let (mut up, mut um) = (u.clone(), u.clone());
-            up[q] += h;
-            um[q] -= h;
-            let (fp, _, _) = response_kin(&geom, &mat, &up, &committed, Kinematics::TotalLagrangian);
-            let (fm, _, _) = response_kin(&geom, &mat, &um, &committed, Kinematics::TotalLagrangian);
-            for p in 0..n {
-                let fd = (fp[p] - fm[p]) / (2.0 * h);
-                let kk = if p <= q { k[p * n + q] } else { k[q * n + p] };
-                worst = worst.max((fd - kk).abs() / kmax);
-            }
-        }
+        let worst =
+            difference_error(&k, &u, 1e-9, |u| response_kin(&geom, &mat, u, &committed, Kinematics::TotalLagrangian).0);
         assert!(worst < 1e-6, "relative tangent error {worst} (plastic: {})", mat.is_plastic());
     }
 }

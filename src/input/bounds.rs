@@ -28,15 +28,15 @@ use super::{ModelError, invalid};
 pub use crate::numbers::{limit, list, number};
 
 /// Smallest accepted Young's modulus (Pa).
-pub const MIN_YOUNG: f64 = 1e5;
+pub(crate) const MIN_YOUNG: f64 = 1e5;
 /// Largest accepted Young's modulus (Pa).
-pub const MAX_YOUNG: f64 = 1e13;
+pub(crate) const MAX_YOUNG: f64 = 1e13;
 /// Largest yield strain σ_y / E.
-pub const MAX_YIELD_STRAIN: f64 = 0.1;
+pub(crate) const MAX_YIELD_STRAIN: f64 = 0.1;
 /// Largest hardening modulus as a multiple of E.
-pub const MAX_HARDENING: f64 = 100.0;
+pub(crate) const MAX_HARDENING: f64 = 100.0;
 /// Largest equivalent plastic strain in a hardening table.
-pub const MAX_TABLE_PEEQ: f64 = 10.0;
+pub(crate) const MAX_TABLE_PEEQ: f64 = 10.0;
 pub use crate::mesh::{GRADING_RATIO, MAX_COORD, MIN_RELATIVE_SIZE};
 /// Accepted range of the mass density (kg/m³).
 pub const DENSITY: (f64, f64) = (0.1, 2e5);
@@ -45,7 +45,7 @@ pub const DENSITY: (f64, f64) = (0.1, 2e5);
 /// the stiffness matrix is too ill-conditioned for double precision:
 /// examples/epp_cantilever.toml and bending_compact_4L9.toml converge at
 /// ν = 0.49999 and stall at a residual of 1e-5 at 0.499999.
-pub const MAX_POISSON: f64 = 0.4999;
+pub(crate) const MAX_POISSON: f64 = 0.4999;
 /// Smallest element of a ply (its thickness over its elements) as a share
 /// of the stack's thickness; the thinnest plies made (thin-ply prepregs,
 /// 20 µm) are 2e-4 of a 0.1 m stack. Thinner, the ply's through-thickness
@@ -54,9 +54,9 @@ pub const MAX_POISSON: f64 = 0.4999;
 /// middle ply 1e-9 m thick (elements 3.7e-8 of the stack) stalls at a
 /// residual of 1e-3 (1e-8 m, 3.7e-7, converges), and an L9 section with an
 /// element 1e-6 of its height stalls at 4e-5 (1e-5 converges).
-pub const MIN_PLY_SHARE: f64 = 1e-5;
+pub(crate) const MIN_PLY_SHARE: f64 = 1e-5;
 /// Accepted range of the dimensionless penalty factor.
-pub const PENALTY_FACTOR: (f64, f64) = (1e-3, 1e8);
+pub(crate) const PENALTY_FACTOR: (f64, f64) = (1e-3, 1e8);
 
 /// `v` finite and in `[lo, hi]`, else an error naming the range and why.
 pub fn within(key: &str, v: f64, lo: f64, hi: f64, why: &str) -> Result<f64, ModelError> {

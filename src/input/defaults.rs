@@ -21,59 +21,59 @@ pub fn schema<T: Serialize>(value: T) -> impl FnMut(&mut Schema) {
 // [solver]
 
 /// Converged increments of a load step (a transient one adds its time steps).
-pub const MAX_INCREMENTS: usize = 1000;
+pub(crate) const MAX_INCREMENTS: usize = 1000;
 /// Newton corrections per attempt.
-pub const MAX_ITERATIONS: usize = 25;
+pub(crate) const MAX_ITERATIONS: usize = 25;
 /// An increment converging in at most this many iterations is easy.
-pub const EASY_ITERATIONS: usize = 4;
+pub(crate) const EASY_ITERATIONS: usize = 4;
 /// Δλ multiplier after a failed attempt.
-pub const CUTBACK_FACTOR: f64 = 0.5;
+pub(crate) const CUTBACK_FACTOR: f64 = 0.5;
 /// Δλ multiplier after an easy increment.
-pub const GROWTH_FACTOR: f64 = 1.5;
+pub(crate) const GROWTH_FACTOR: f64 = 1.5;
 /// Relative residual of convergence.
-pub const RESIDUAL_TOLERANCE: f64 = 1e-6;
+pub(crate) const RESIDUAL_TOLERANCE: f64 = 1e-6;
 /// Relative correction of convergence.
-pub const DISPLACEMENT_TOLERANCE: f64 = 1e-6;
+pub(crate) const DISPLACEMENT_TOLERANCE: f64 = 1e-6;
 /// Solve by PCG on the last factorization while it converges.
-pub const REUSE_FACTORIZATION: bool = true;
+pub(crate) const REUSE_FACTORIZATION: bool = true;
 /// No line search.
-pub const LINE_SEARCH: bool = false;
+pub(crate) const LINE_SEARCH: bool = false;
 /// Path following ends at λ = 1.
-pub const MAX_LOAD_FACTOR: f64 = 1.0;
+pub(crate) const MAX_LOAD_FACTOR: f64 = 1.0;
 
 // The top level.
 
 /// The title printed in reports.
-pub const TITLE: &str = "cufem model";
+pub(crate) const TITLE: &str = "cufem model";
 /// No description.
-pub const DESCRIPTION: &str = "";
+pub(crate) const DESCRIPTION: &str = "";
 
 // [output]
 
 /// Write `result.vtu`.
 pub const VTU: bool = true;
 /// Write the PNG plots.
-pub const PLOTS: bool = true;
+pub(crate) const PLOTS: bool = true;
 /// No `gauss.vtu`.
-pub const GAUSS_POINTS: bool = false;
+pub(crate) const GAUSS_POINTS: bool = false;
 
 // [adapt]
 
 /// Stop below this relative error estimate.
-pub const ADAPT_TOLERANCE: f64 = 0.05;
+pub(crate) const ADAPT_TOLERANCE: f64 = 0.05;
 /// No mesh with more DOF is solved.
-pub const ADAPT_MAX_DOF: usize = 50_000;
+pub(crate) const ADAPT_MAX_DOF: usize = 50_000;
 /// Refinements after the model's own mesh.
-pub const ADAPT_MAX_CYCLES: usize = 5;
+pub(crate) const ADAPT_MAX_CYCLES: usize = 5;
 /// Dörfler's bulk parameter θ.
-pub const ADAPT_FRACTION: f64 = 0.5;
+pub(crate) const ADAPT_FRACTION: f64 = 0.5;
 
 // [analysis]
 
 /// Newmark's β: with γ = ½, the trapezoidal rule.
-pub const NEWMARK_BETA: f64 = 0.25;
+pub(crate) const NEWMARK_BETA: f64 = 0.25;
 /// Newmark's γ.
-pub const NEWMARK_GAMMA: f64 = 0.5;
+pub(crate) const NEWMARK_GAMMA: f64 = 0.5;
 
 /// `newmark = { beta, gamma }` when left out.
 #[derive(Serialize)]
@@ -85,51 +85,51 @@ pub struct Newmark {
 }
 
 /// The default Newmark parameters, as the model file writes them.
-pub const NEWMARK: Newmark = Newmark { beta: NEWMARK_BETA, gamma: NEWMARK_GAMMA };
+pub(crate) const NEWMARK: Newmark = Newmark { beta: NEWMARK_BETA, gamma: NEWMARK_GAMMA };
 
 // Load history, lines, contacts.
 
 /// A step's factor of every item.
-pub const STEP_FACTOR: f64 = 1.0;
+pub(crate) const STEP_FACTOR: f64 = 1.0;
 /// Samples along a line.
-pub const LINE_POINTS: usize = 101;
+pub(crate) const LINE_POINTS: usize = 101;
 /// No interference fit.
-pub const INTERFERENCE: bool = false;
+pub(crate) const INTERFERENCE: bool = false;
 
 // Sections.
 
 /// A section's `origin` or `center` `[x, z]` (m).
-pub const ORIGIN: [f64; 2] = [0.0, 0.0];
+pub(crate) const ORIGIN: [f64; 2] = [0.0, 0.0];
 /// Elements through a wall.
-pub const THROUGH: usize = 1;
+pub(crate) const THROUGH: usize = 1;
 /// Elements along each flange part of a profile.
-pub const ALONG_FLANGE: usize = 2;
+pub(crate) const ALONG_FLANGE: usize = 2;
 /// Elements along each web of a profile.
-pub const ALONG_WEB: usize = 4;
+pub(crate) const ALONG_WEB: usize = 4;
 /// Elements along each lip of a hat.
-pub const ALONG_LIP: usize = 1;
+pub(crate) const ALONG_LIP: usize = 1;
 /// Cells of a box.
-pub const CELLS: usize = 1;
+pub(crate) const CELLS: usize = 1;
 /// Elements around a circle or a circular tube.
-pub const AROUND: usize = 16;
+pub(crate) const AROUND: usize = 16;
 /// Factor on a gmsh file's coordinates.
-pub const GMSH_SCALE: f64 = 1.0;
+pub(crate) const GMSH_SCALE: f64 = 1.0;
 /// The bottom of a laminate (m).
-pub const Z0: f64 = 0.0;
+pub(crate) const Z0: f64 = 0.0;
 
 // Zones and plies.
 
 /// A zone's or a ply's angle (degrees).
-pub const ANGLE: f64 = 0.0;
+pub(crate) const ANGLE: f64 = 0.0;
 /// A zone's axis 1 at angle 0: the beam axis.
-pub const FIBRE: [f64; 3] = [0.0, 1.0, 0.0];
+pub(crate) const FIBRE: [f64; 3] = [0.0, 1.0, 0.0];
 /// A zone's axis 3.
-pub const NORMAL: [f64; 3] = [0.0, 0.0, 1.0];
+pub(crate) const NORMAL: [f64; 3] = [0.0, 0.0, 1.0];
 /// A laminate's interfaces: the plies share their nodes (the word of
 /// `schema::InterfaceKind::Perfect`).
-pub const INTERFACES: &str = "perfect";
+pub(crate) const INTERFACES: &str = "perfect";
 /// The default cohesive penalty is this times E3/t of the thinner ply next
 /// to the interface (Turon, Dávila, Camanho & Costa 2007, Eng. Fract. Mech.
 /// 74:1665: the laminate loses under 2 % of its stiffness through the
 /// thickness).
-pub const PENALTY_PER_STIFFNESS: f64 = 50.0;
+pub(crate) const PENALTY_PER_STIFFNESS: f64 = 50.0;

@@ -1,7 +1,7 @@
-//! The model file as the user wrote it: its typed schema ([`schema`]), the
-//! ranges and defaults of its keys ([`ranges`], [`defaults`], [`bounds`]),
+//! The model file as the user wrote it: its typed schema (`schema`), the
+//! ranges and defaults of its keys (`ranges`, `defaults`, `bounds`),
 //! the JSON Schema printed from it ([`json_schema`]) and the checks of its
-//! values that need no mesh ([`validate`]). Pure: nothing here meshes,
+//! values that need no mesh (`validate`). Pure: nothing here meshes,
 //! locates a point or reads the set-up model (`crate::setup` reads this
 //! layer, never the reverse; tests/architecture.rs checks it).
 //!

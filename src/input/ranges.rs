@@ -42,12 +42,12 @@ impl Range {
     }
 
     /// `(min, max]`.
-    pub const fn above_up_to(min: f64, max: f64) -> Self {
+    pub(crate) const fn above_up_to(min: f64, max: f64) -> Self {
         Range { min, max, min_open: true, max_open: false }
     }
 
     /// `[min, ∞)`.
-    pub const fn at_least(min: f64) -> Self {
+    pub(crate) const fn at_least(min: f64) -> Self {
         Range::closed(min, f64::INFINITY)
     }
 
@@ -64,7 +64,7 @@ impl Range {
     }
 
     /// `n` is in the range.
-    pub fn contains_count(&self, n: usize) -> bool {
+    pub(crate) fn contains_count(&self, n: usize) -> bool {
         self.contains(n as f64)
     }
 
@@ -84,7 +84,7 @@ impl Range {
     }
 
     /// [`Range::schema`] and the key's `default` ([`super::defaults`]).
-    pub fn with_default<T: serde::Serialize>(self, value: T) -> impl FnMut(&mut Schema) {
+    pub(crate) fn with_default<T: serde::Serialize>(self, value: T) -> impl FnMut(&mut Schema) {
         let mut default = super::defaults::schema(value);
         move |s| {
             self.write(s.ensure_object());
@@ -156,7 +156,7 @@ impl fmt::Display for Range {
 
 /// Largest element count per division and per tube side, and sample count
 /// per line: far beyond any useful model, small enough to allocate.
-pub const MAX_COUNT: usize = 100_000;
+pub(crate) const MAX_COUNT: usize = 100_000;
 /// Largest number of buckling modes one run may ask for.
 pub const MAX_MODES: usize = 50;
 /// Longest accepted step duration (s).
@@ -173,110 +173,110 @@ pub const MAX_BUDGET: usize = 100_000_000;
 // Counts.
 
 /// A count of at least one (increments, iterations, threads).
-pub const AT_LEAST_ONE: Range = Range::at_least(1.0);
+pub(crate) const AT_LEAST_ONE: Range = Range::at_least(1.0);
 /// Elements per division, wall or ply, and increments of a step.
-pub const COUNT: Range = Range::closed(1.0, MAX_COUNT as f64);
+pub(crate) const COUNT: Range = Range::closed(1.0, MAX_COUNT as f64);
 /// Samples along a line, both ends included.
-pub const LINE_POINTS: Range = Range::closed(2.0, MAX_COUNT as f64);
+pub(crate) const LINE_POINTS: Range = Range::closed(2.0, MAX_COUNT as f64);
 /// Buckling or vibration modes (`analysis.modes`, `analysis.imperfection.mode`).
 pub const MODES: Range = Range::closed(1.0, MAX_MODES as f64);
 /// Cells of a `box` section side by side.
-pub const CELLS: Range = Range::closed(1.0, crate::mesh::profiles::MAX_CELLS as f64);
+pub(crate) const CELLS: Range = Range::closed(1.0, crate::mesh::profiles::MAX_CELLS as f64);
 
 // Lengths and positions (m).
 
 /// A coordinate (m): a structure larger than 10 km is not plausible.
-pub const COORDINATE: Range = Range::closed(-MAX_COORD, MAX_COORD);
+pub(crate) const COORDINATE: Range = Range::closed(-MAX_COORD, MAX_COORD);
 /// A length (m): positive, at most the largest coordinate.
-pub const LENGTH: Range = Range::above_up_to(0.0, MAX_COORD);
+pub(crate) const LENGTH: Range = Range::above_up_to(0.0, MAX_COORD);
 /// Any positive number (a tolerance in m, a penetration, an arc length).
-pub const POSITIVE: Range = Range::above(0.0);
+pub(crate) const POSITIVE: Range = Range::above(0.0);
 /// Any number ≥ 0 (a hardening modulus, a back-stress recall).
-pub const NON_NEGATIVE: Range = Range::at_least(0.0);
+pub(crate) const NON_NEGATIVE: Range = Range::at_least(0.0);
 
 // Materials.
 
 /// Young's modulus and the orthotropic moduli (Pa).
-pub const YOUNG_MODULUS: Range = Range::closed(MIN_YOUNG, MAX_YOUNG);
+pub(crate) const YOUNG_MODULUS: Range = Range::closed(MIN_YOUNG, MAX_YOUNG);
 /// Poisson's ratio of an isotropic material.
-pub const POISSON_RATIO: Range = Range::above_up_to(-1.0, MAX_POISSON);
+pub(crate) const POISSON_RATIO: Range = Range::above_up_to(-1.0, MAX_POISSON);
 /// An orthotropic Poisson's ratio ν_ij (admissible with the moduli).
-pub const ORTHOTROPIC_POISSON: Range = Range::open(-10.0, 10.0);
+pub(crate) const ORTHOTROPIC_POISSON: Range = Range::open(-10.0, 10.0);
 /// A strength (Pa, compressive ones as magnitudes).
-pub const STRENGTH: Range = Range::above_up_to(0.0, MAX_YOUNG);
+pub(crate) const STRENGTH: Range = Range::above_up_to(0.0, MAX_YOUNG);
 /// Mass density (kg/m³), from aerogels to ten times osmium.
-pub const MASS_DENSITY: Range = Range::closed(DENSITY.0, DENSITY.1);
+pub(crate) const MASS_DENSITY: Range = Range::closed(DENSITY.0, DENSITY.1);
 /// Voce's saturation rate b.
-pub const SATURATION_RATE: Range = Range::closed(1e-6, 1e6);
+pub(crate) const SATURATION_RATE: Range = Range::closed(1e-6, 1e6);
 /// The recall rate γ of a back-stress (0: linear kinematic hardening).
-pub const KINEMATIC_RECALL: Range = Range::closed(0.0, 1e6);
+pub(crate) const KINEMATIC_RECALL: Range = Range::closed(0.0, 1e6);
 /// A ply's or a zone's angle (degrees).
-pub const ANGLE: Range = Range::closed(-360.0, 360.0);
+pub(crate) const ANGLE: Range = Range::closed(-360.0, 360.0);
 
 // Meshes.
 
 /// Last over first element length of a graded division.
-pub const RATIO: Range = Range::closed(GRADING_RATIO.0, GRADING_RATIO.1);
+pub(crate) const RATIO: Range = Range::closed(GRADING_RATIO.0, GRADING_RATIO.1);
 /// Factor applied to a gmsh file's coordinates.
-pub const GMSH_SCALE: Range = Range::closed(1e-9, 1e9);
+pub(crate) const GMSH_SCALE: Range = Range::closed(1e-9, 1e9);
 
 // Contact.
 
 /// Penalty per area (Pa/m).
-pub const PENALTY: Range = Range::above_up_to(0.0, 1.3407807929942596e154);
+pub(crate) const PENALTY: Range = Range::above_up_to(0.0, 1.3407807929942596e154);
 /// The dimensionless penalty factor α.
-pub const PENALTY_FACTOR_RANGE: Range = Range::closed(PENALTY_FACTOR.0, PENALTY_FACTOR.1);
+pub(crate) const PENALTY_FACTOR_RANGE: Range = Range::closed(PENALTY_FACTOR.0, PENALTY_FACTOR.1);
 /// Coulomb's coefficient of friction μ.
-pub const FRICTION: Range = Range::closed(0.0, 10.0);
+pub(crate) const FRICTION: Range = Range::closed(0.0, 10.0);
 
 // Cohesive interfaces.
 
 /// A cohesive toughness `gic`, `giic` (J/m²): from brittle resins to far
 /// beyond any laminate.
-pub const TOUGHNESS: Range = Range::above_up_to(0.0, 1e6);
+pub(crate) const TOUGHNESS: Range = Range::above_up_to(0.0, 1e6);
 /// The Benzeggagh–Kenane exponent η (measured values lie between 1 and 3).
-pub const BK_EXPONENT: Range = Range::closed(0.5, 10.0);
+pub(crate) const BK_EXPONENT: Range = Range::closed(0.5, 10.0);
 /// A cohesive penalty (Pa/m): Turon et al.'s 50 E3/t spans about 1e13 to
 /// 1e16 for plies of 0.1–10 mm.
-pub const COHESIVE_PENALTY: Range = Range::closed(1e10, 1e18);
+pub(crate) const COHESIVE_PENALTY: Range = Range::closed(1e10, 1e18);
 /// An impactor's mass (kg; at least a billionth of the body's, checked apart).
-pub const IMPACTOR_MASS: Range = Range::above_up_to(0.0, 1e9);
+pub(crate) const IMPACTOR_MASS: Range = Range::above_up_to(0.0, 1e9);
 
 // Increments, tolerances and the load history.
 
 /// A share of the load step: an increment Δλ.
-pub const FRACTION: Range = Range::above_up_to(0.0, 1.0);
+pub(crate) const FRACTION: Range = Range::above_up_to(0.0, 1.0);
 /// A relative tolerance.
-pub const TOLERANCE: Range = Range::open(0.0, 1.0);
+pub(crate) const TOLERANCE: Range = Range::open(0.0, 1.0);
 /// Δλ multiplier after a failed attempt (1 would retry the same increment).
-pub const CUTBACK_FACTOR: Range = Range::open(0.0, 1.0);
+pub(crate) const CUTBACK_FACTOR: Range = Range::open(0.0, 1.0);
 /// Δλ multiplier after an easy increment.
-pub const GROWTH_FACTOR: Range = Range::at_least(1.0);
+pub(crate) const GROWTH_FACTOR: Range = Range::at_least(1.0);
 /// Target increment of the equivalent plastic strain per load increment.
-pub const PLASTIC_STRAIN_STEP: Range = Range::above_up_to(0.0, 0.1);
+pub(crate) const PLASTIC_STRAIN_STEP: Range = Range::above_up_to(0.0, 0.1);
 /// The load factor at which path following ends.
-pub const MAX_LOAD_FACTOR: Range = Range::above_up_to(0.0, 1000.0);
+pub(crate) const MAX_LOAD_FACTOR: Range = Range::above_up_to(0.0, 1000.0);
 /// A step's factor of the items' values.
-pub const STEP_FACTOR: Range = Range::closed(-1e3, 1e3);
+pub(crate) const STEP_FACTOR: Range = Range::closed(-1e3, 1e3);
 /// The time of a load step (s).
-pub const DURATION: Range = Range::above_up_to(0.0, MAX_DURATION);
+pub(crate) const DURATION: Range = Range::above_up_to(0.0, MAX_DURATION);
 /// Newmark's γ (γ ≥ ½ for stability).
-pub const NEWMARK_GAMMA: Range = Range::closed(0.5, 1.0);
+pub(crate) const NEWMARK_GAMMA: Range = Range::closed(0.5, 1.0);
 /// Rayleigh's α_M (1/s).
-pub const DAMPING_MASS: Range = Range::closed(0.0, 1e9);
+pub(crate) const DAMPING_MASS: Range = Range::closed(0.0, 1e9);
 /// Rayleigh's β_K (s).
-pub const DAMPING_STIFFNESS: Range = Range::closed(0.0, 1e3);
+pub(crate) const DAMPING_STIFFNESS: Range = Range::closed(0.0, 1e3);
 /// A component of an initial velocity (m/s).
-pub const SPEED: Range = Range::closed(-MAX_SPEED, MAX_SPEED);
+pub(crate) const SPEED: Range = Range::closed(-MAX_SPEED, MAX_SPEED);
 
 // Adaptive refinement.
 
 /// The relative error in the energy norm at which refinement stops.
-pub const ADAPT_TOLERANCE: Range = Range::open(0.0, 1.0);
+pub(crate) const ADAPT_TOLERANCE: Range = Range::open(0.0, 1.0);
 /// The most DOF of a refined mesh.
-pub const ADAPT_MAX_DOF: Range = Range::closed(1.0, MAX_BUDGET as f64);
+pub(crate) const ADAPT_MAX_DOF: Range = Range::closed(1.0, MAX_BUDGET as f64);
 /// The most refinements after the model's own mesh.
-pub const ADAPT_MAX_CYCLES: Range = Range::closed(0.0, MAX_CYCLES as f64);
+pub(crate) const ADAPT_MAX_CYCLES: Range = Range::closed(0.0, MAX_CYCLES as f64);
 
 #[cfg(test)]
 mod tests {

@@ -36,17 +36,17 @@ pub(crate) mod tagged;
 mod transient;
 mod words;
 
-pub use anisotropy::*;
-pub use bodies::*;
+pub(crate) use anisotropy::*;
+pub(crate) use bodies::*;
 pub use contact::*;
 pub use interfaces::*;
 pub use materials::*;
-pub use section::*;
-pub use selection::*;
-pub use stepping::*;
-pub use symmetry::*;
+pub(crate) use section::*;
+pub(crate) use selection::*;
+pub(crate) use stepping::*;
+pub(crate) use symmetry::*;
 use tagged::tagged_table;
-pub use transient::*;
+pub(crate) use transient::*;
 pub use words::*;
 
 /// A fixed-length array read from the model file. Unlike serde's `[T; N]`,
@@ -85,7 +85,7 @@ impl<'de, T: Deserialize<'de>, const N: usize> Deserialize<'de> for Exact<T, N> 
 /// outputs. Every key is in docs/model-format.md.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct ModelFile {
+pub(crate) struct ModelFile {
     /// Title printed in reports.
     #[schemars(transform = defaults::schema(defaults::TITLE))]
     pub title: Option<String>,
@@ -142,7 +142,7 @@ pub struct ModelFile {
 /// `[analysis]`: the kind of analysis and its settings.
 #[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct AnalysisFile {
+pub(crate) struct AnalysisFile {
     /// `geometry = "linear"` (default) or `"nonlinear"` (total Lagrangian).
     #[schemars(transform = defaults::schema(Geometry::default()))]
     pub geometry: Option<Geometry>,
@@ -186,7 +186,7 @@ pub struct AnalysisFile {
 /// `analysis.imperfection`: a buckling mode added to the geometry.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct ImperfectionFile {
+pub(crate) struct ImperfectionFile {
     /// Which buckling mode (1 = the lowest).
     #[schemars(transform = ranges::MODES.schema())]
     pub mode: usize,
@@ -197,7 +197,7 @@ pub struct ImperfectionFile {
 /// `[adapt]`: adaptive refinement by the error estimate.
 #[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct AdaptFile {
+pub(crate) struct AdaptFile {
     /// Stop below this relative error estimate in the energy norm.
     #[schemars(transform = ranges::ADAPT_TOLERANCE.with_default(defaults::ADAPT_TOLERANCE))]
     pub tolerance: Option<f64>,
@@ -285,7 +285,7 @@ pub struct SolverFile {
 /// `[[probes]]`: a point where the results are reported.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct ProbeFile {
+pub(crate) struct ProbeFile {
     /// Probe name.
     pub name: String,
     /// `[x, y, z]` (m), inside a body.
@@ -298,7 +298,7 @@ pub struct ProbeFile {
 /// `[[lines]]`: fields sampled along a segment (`line_<name>.csv`).
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct LineFile {
+pub(crate) struct LineFile {
     /// File stem: `line_<name>.csv`.
     pub name: String,
     /// Start point `[x, y, z]` (m).
@@ -319,7 +319,7 @@ pub struct LineFile {
 /// `[output]`: which result files are written.
 #[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct OutputFile {
+pub(crate) struct OutputFile {
     /// Write `result.vtu`.
     #[schemars(transform = defaults::schema(defaults::VTU))]
     pub vtu: Option<bool>,
@@ -337,7 +337,7 @@ pub struct OutputFile {
 /// `[[references]]`: a published value to print beside ours.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct ReferenceFile {
+pub(crate) struct ReferenceFile {
     /// Name of a `[[probes]]` entry.
     pub probe: String,
     /// A quantity name.
@@ -351,7 +351,7 @@ pub struct ReferenceFile {
 /// `[[steps]]`: one step of the load history.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct StepFile {
+pub(crate) struct StepFile {
     /// Step name (its VTU file and `summary.json` entry).
     pub name: String,
     /// Factor of every item at the end of the step.

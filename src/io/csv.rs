@@ -22,7 +22,7 @@ fn write(path: &Path, text: &str) -> Result<(), IoError> {
 /// A table as CSV text: a header of its column names, then one line per
 /// row — real numbers in `{:e}` (NaN as `NaN`), counts as integers, an
 /// absent value as an empty field.
-pub fn table_text(table: &Table) -> String {
+pub(crate) fn table_text(table: &Table) -> String {
     let names: Vec<_> = table.columns.iter().map(|c| field(&c.name)).collect();
     let mut text = names.join(",");
     text.push('\n');
@@ -44,14 +44,14 @@ pub fn table_text(table: &Table) -> String {
 }
 
 /// Writes `table` as `<dir>/<table.name>.csv`; returns the path.
-pub fn write_table(table: &Table, dir: &Path) -> Result<PathBuf, IoError> {
+pub(crate) fn write_table(table: &Table, dir: &Path) -> Result<PathBuf, IoError> {
     let path = dir.join(format!("{}.csv", table.name));
     write(&path, &table_text(table))?;
     Ok(path)
 }
 
 /// Writes every table; returns the paths.
-pub fn write_tables(tables: &[Table], dir: &Path) -> Result<Vec<PathBuf>, IoError> {
+pub(crate) fn write_tables(tables: &[Table], dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     tables.iter().map(|t| write_table(t, dir)).collect()
 }
 

@@ -10,7 +10,7 @@ use crate::setup::Model;
 
 /// Writes the energy balance of a transient run (nothing for another):
 /// its table ([`tables::energy`]) and, with plots, their curves.
-pub fn write_energy(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
+pub(crate) fn write_energy(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     let Some(table) = tables::energy(solution) else { return Ok(Vec::new()) };
     let mut written = vec![super::csv::write_table(&table, dir)?];
     if model.output.plots {

@@ -5,7 +5,7 @@ use std::path::Path;
 use serde::Serialize;
 
 use super::{IoError, file_error};
-use crate::analysis::Solution;
+use crate::analysis::{Solution, tables};
 use crate::setup::Model;
 
 /// A probe in the summary.
@@ -279,7 +279,7 @@ pub struct ElementShare {
 }
 
 /// The estimate of `solution`, with its five largest elements.
-pub fn estimate_summary(model: &Model, solution: &Solution) -> Option<EstimateSummary> {
+pub(crate) fn estimate_summary(model: &Model, solution: &Solution) -> Option<EstimateSummary> {
     let est = solution.error_estimate.as_ref()?;
     let largest = est
         .largest(5)
@@ -381,7 +381,7 @@ fn contacts(list: &[crate::analysis::ContactResultant], symmetry: &Symmetry) -> 
 
 /// The summary of step `k` of `solution`, its probes and peak peeq from
 /// `at_end` (the solution as it was at the end of that step).
-pub fn step_summary(
+pub(crate) fn step_summary(
     model: &Model,
     solution: &Solution,
     k: usize,
@@ -470,23 +470,8 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
             crate::analysis::AdaptEnd::Stopped => "stopped",
             crate::analysis::AdaptEnd::Interrupted => "interrupted",
         }),
-        buckling: solution.buckling.as_ref().map(|b| BucklingSummary {
-            factors: b.factors.clone(),
-            critical_loads: b.factors.iter().map(|f| solution.applied.map(|a| a * f / solution.lambda)).collect(),
-            full_structure_critical_loads: (!model.symmetry.planes.is_empty()).then(|| {
-                let every = vec![true; model.symmetry.planes.len()];
-                let applied = crate::bc::symmetry::full_structure(solution.applied, &model.symmetry.planes, &every);
-                b.factors.iter().map(|f| applied.map(|a| a * f / solution.lambda)).collect()
-            }),
-            modes: if model.output.vtu { (1..=b.factors.len()).map(mode_vtu_name).collect() } else { Vec::new() },
-        }),
-        modal: solution.modal.as_ref().map(|m| ModalSummary {
-            frequencies_hz: m.frequencies.clone(),
-            effective_masses: m.effective_masses.clone(),
-            free_mass: m.free_mass,
-            effective_masses_of: if m.full_structure { "full_structure" } else { "model" },
-            modes: if model.output.vtu { (1..=m.frequencies.len()).map(mode_vtu_name).collect() } else { Vec::new() },
-        }),
+        buckling: buckling_summary(model, solution),
+        modal: modal_summary(model, solution),
         energy: solution.energy.as_ref().and_then(|rows| rows.last().copied()),
         full_structure_energy: solution
             .energy
@@ -508,8 +493,38 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
     }
 }
 
+/// The modal analysis of `solution` from its table (`analysis::tables::modes`).
+fn modal_summary(model: &Model, solution: &Solution) -> Option<ModalSummary> {
+    let (m, table) = (solution.modal.as_ref()?, tables::modes(solution)?);
+    let frequencies_hz = table.real("frequency_hz").unwrap_or_default();
+    Some(ModalSummary {
+        modes: mode_files(model, frequencies_hz.len()),
+        frequencies_hz,
+        effective_masses: table.xyz("effective_mass_").unwrap_or_default(),
+        free_mass: m.free_mass,
+        effective_masses_of: if m.full_structure { "full_structure" } else { "model" },
+    })
+}
+
+/// The buckling analysis of `solution` from its table (`analysis::tables::buckling`).
+fn buckling_summary(model: &Model, solution: &Solution) -> Option<BucklingSummary> {
+    let table = tables::buckling(model, solution)?;
+    let factors = table.real("load_factor").unwrap_or_default();
+    Some(BucklingSummary {
+        modes: mode_files(model, factors.len()),
+        factors,
+        critical_loads: table.xyz("critical_load_").unwrap_or_default(),
+        full_structure_critical_loads: table.xyz("full_critical_load_"),
+    })
+}
+
+/// The VTU files of `n` modes, none without VTU output.
+fn mode_files(model: &Model, n: usize) -> Vec<String> {
+    if model.output.vtu { (1..=n).map(mode_vtu_name).collect() } else { Vec::new() }
+}
+
 /// The VTU file name of buckling or vibration mode `k` (1-based).
-pub fn mode_vtu_name(k: usize) -> String {
+pub(crate) fn mode_vtu_name(k: usize) -> String {
     format!("mode_{k}.vtu")
 }
 

@@ -12,6 +12,8 @@
 //! | `frame_<k>.vtu`, `frames.pvd` | transient with `analysis.output_interval`: the fields at every output time, and their ParaView time series |
 //! | `energy.csv`, `energy.png` | transient: per converged time step, the kinetic energy, the work of the internal, damping, applied, contact and support forces, and their balance |
 //! | `mode_<k>.vtu` | buckling and modal: the shape of mode k as the displacement field |
+//! | `modes.csv` | modal: per mode, the natural frequency and the effective masses |
+//! | `buckling.csv` | buckling: per mode, the critical load factor and load |
 //! | `contact_<name>.csv` | final gap, force and pressure of every contact point |
 //! | `line_<name>_<quantity>.png` | plots of the quantities listed in a line's `plot` |
 //! | `history_<indenter>.png` | force against displacement of each moving indenter |
@@ -117,6 +119,8 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     if model.output.plots {
         written.extend(png::history_plots(model, &histories, dir)?);
     }
+    let modes = [tables::modes(solution), tables::buckling(model, solution)];
+    written.extend(csv::write_tables(&modes.into_iter().flatten().collect::<Vec<_>>(), dir)?);
     written.extend(write_modes(model, solution, dir)?);
     written.extend(energy::write_energy(model, solution, dir)?);
     // the end of every step: a VTU per step and a .pvd series when the

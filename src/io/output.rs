@@ -20,7 +20,7 @@
 //!   its temporary name.
 //! * **A converged set is never replaced by less.** A run that stopped
 //!   early (not converged, interrupted) commits with
-//!   [`OutputDir::commit_partial`]: if the folder holds a converged result
+//!   `OutputDir::commit_partial`: if the folder holds a converged result
 //!   set (its summary.json says `"converged": true`), that set is kept byte
 //!   for byte and the partial one goes beside it, into `NAME.partial`
 //!   (replaced as a whole like the folder itself); the caller says where.
@@ -291,7 +291,7 @@ impl OutputDir {
     /// result set, which is then kept as it is while the staged set goes
     /// beside it into `NAME.partial` (module docs). Returns the folder the
     /// set went to.
-    pub fn commit_partial(mut self) -> Result<PathBuf, OutputError> {
+    pub(crate) fn commit_partial(mut self) -> Result<PathBuf, OutputError> {
         if !self.holds_converged {
             let target = self.target.clone();
             self.commit()?;
@@ -312,7 +312,7 @@ impl OutputDir {
 
     /// True if the output folder held a converged result set when it was
     /// prepared.
-    pub fn holds_converged(&self) -> bool {
+    pub(crate) fn holds_converged(&self) -> bool {
         self.holds_converged
     }
 
@@ -348,7 +348,7 @@ impl Drop for OutputDir {
 }
 
 /// `NAME.partial` beside the folder `NAME`.
-pub fn partial_path(target: &Path) -> PathBuf {
+pub(crate) fn partial_path(target: &Path) -> PathBuf {
     let mut name = target.file_name().map(|n| n.to_os_string()).unwrap_or_default();
     name.push(".partial");
     target.with_file_name(name)

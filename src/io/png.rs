@@ -146,7 +146,7 @@ pub(super) fn draw_legend<'a, 'b: 'a>(
 
 /// `line_<name>_<quantity>.png`: the quantities listed in a line's `plot`
 /// along it, from its table ([`tables::line`]).
-pub fn line_plots(line: &Line, table: &Table, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
+pub(crate) fn line_plots(line: &Line, table: &Table, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     let mut out = Vec::new();
     let s = table.real("s").unwrap_or_default();
     for &q in &line.plot {
@@ -172,7 +172,7 @@ pub fn line_plots(line: &Line, table: &Table, dir: &Path) -> Result<Vec<PathBuf>
 /// its history table ([`tables::contact_history`]); in a model cut by
 /// symmetry planes the force on the full structure (as summary.json's
 /// `full_structure_force`), the one to compare.
-pub fn history_plots(model: &Model, histories: &[Table], dir: &Path) -> Result<Vec<PathBuf>, IoError> {
+pub(crate) fn history_plots(model: &Model, histories: &[Table], dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     let mut out = Vec::new();
     for ind in &model.indenters {
         // the direction of motion: the prescribed displacement, or the force

@@ -9,7 +9,7 @@
 use std::fmt::Write;
 use std::path::Path;
 
-use crate::analysis::{IncrementLog, Setup, Solution};
+use crate::analysis::{IncrementLog, Setup, Solution, tables};
 use crate::setup::Model;
 use crate::solver::newton::Failure;
 use crate::solver::stepping::Cutback;
@@ -264,7 +264,7 @@ pub fn results(model: &Model, solution: &Solution) -> String {
         let points = if points.is_empty() { "none".to_string() } else { points.join(", ") };
         out!(s, "arc length: limit points {points}; ended by {}", p.end);
     }
-    modes(&mut s, &summary);
+    modes(&mut s, model, solution);
     s
 }
 
@@ -343,13 +343,15 @@ fn ply_failure(s: &mut String, summary: &super::Summary) {
 }
 
 /// Vibration frequencies with their effective masses, buckling factors with
-/// their critical loads.
-fn modes(s: &mut String, summary: &super::Summary) {
-    if let Some(m) = &summary.modal {
+/// their critical loads: the tables `modes` and `buckling`
+/// (`analysis::tables`), as `modes.csv` and `buckling.csv` hold them.
+fn modes(s: &mut String, model: &Model, solution: &Solution) {
+    if let (Some(m), Some(t)) = (&solution.modal, tables::modes(solution)) {
         let share = |k: usize, v: f64| if m.free_mass[k] > 0.0 { 100.0 * v / m.free_mass[k] } else { 0.0 };
-        let of = if m.effective_masses_of == "full_structure" { " of the full structure" } else { "" };
+        let of = if m.full_structure { " of the full structure" } else { "" };
         out!(s, "modal  mode  frequency [Hz]   effective mass [% of the free mass{of}]  x / y / z");
-        for (k, (f, e)) in m.frequencies_hz.iter().zip(&m.effective_masses).enumerate() {
+        let (f, e) = (t.real("frequency_hz").unwrap_or_default(), t.xyz("effective_mass_").unwrap_or_default());
+        for (k, (f, e)) in f.iter().zip(&e).enumerate() {
             out!(
                 s,
                 "       {:>4}  {f:>14.6e}   {:>6.2} / {:>6.2} / {:>6.2}",
@@ -360,14 +362,14 @@ fn modes(s: &mut String, summary: &super::Summary) {
             );
         }
     }
-    if let Some(b) = &summary.buckling {
+    if let Some(t) = tables::buckling(model, solution) {
         // a cut model's loads are the part's: its table gives the full structure's
-        let (loads, of) = match &b.full_structure_critical_loads {
+        let (loads, of) = match t.xyz("full_critical_load_") {
             Some(full) => (full, "critical load of the full structure [N]"),
-            None => (&b.critical_loads, "critical load [N]"),
+            None => (t.xyz("critical_load_").unwrap_or_default(), "critical load [N]"),
         };
         out!(s, "buckling  mode  load factor   {of}");
-        for (k, (f, p)) in b.factors.iter().zip(loads).enumerate() {
+        for (k, (f, p)) in t.real("load_factor").unwrap_or_default().iter().zip(&loads).enumerate() {
             out!(s, "          {:>4}  {f:>11.5e}   [{:.5e}, {:.5e}, {:.5e}]", k + 1, p[0], p[1], p[2]);
         }
     }

@@ -209,7 +209,7 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
 /// point data and `body`, `element` as cell data — the values every
 /// recovered field is built from, unsmoothed. With
 /// `analysis.geometry = "nonlinear"` the stress is the Cauchy stress and
-/// [`finite::finite_strain_data`] adds the reference-configuration measures.
+/// `finite::finite_strain_data` adds the reference-configuration measures.
 pub fn write_gauss_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), IoError> {
     let view = solution.fields(model);
     let mut points: Vec<f64> = Vec::new();

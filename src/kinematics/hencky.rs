@@ -132,7 +132,7 @@ impl LogStrain {
 
     /// The logarithmic strain of a Green–Lagrange strain `e` (Voigt,
     /// engineering shear).
-    pub fn from_green_lagrange(e: &Voigt) -> Self {
+    pub(crate) fn from_green_lagrange(e: &Voigt) -> Self {
         // 2E: the engineering shear is already 2 E_ij
         let two_e = [[2.0 * e[0], e[3], e[4]], [e[3], 2.0 * e[1], e[5]], [e[4], e[5], 2.0 * e[2]]];
         let (x, q) = symmetric_eigen(two_e);
@@ -160,7 +160,7 @@ impl LogStrain {
     /// `∂S/∂E = Lᵀ D L + T : ∂²E_log/∂E²` (engineering-strain columns) from
     /// the material's stress `t` conjugate to `E_log` and its tangent
     /// `d = ∂T/∂E_log` (module docs).
-    pub fn pull_back(&self, t: &Voigt, d: &Matrix6) -> (Voigt, Matrix6) {
+    pub(crate) fn pull_back(&self, t: &Voigt, d: &Matrix6) -> (Voigt, Matrix6) {
         let q = &self.q;
         let x = self.x;
         let f1 = self.f1;
@@ -196,7 +196,7 @@ impl LogStrain {
     /// `Lᵀ t` for a stress-like `t` (Voigt, tensor shear): the second
     /// Piola–Kirchhoff stress of a stress `t` conjugate to `E_log`, with
     /// `(Lᵀ t) · δE = t · δE_log`.
-    pub fn pull_back_stress(&self, t: &Voigt) -> Voigt {
+    pub(crate) fn pull_back_stress(&self, t: &Voigt) -> Voigt {
         self.pull_back_in_frame(t, &self.f1).0
     }
 
@@ -211,7 +211,7 @@ impl LogStrain {
 
 /// The logarithmic strain `½ ln(Fᵀ F)` of a displacement gradient (Voigt,
 /// engineering shear).
-pub fn log_strain(h: &Tensor) -> Voigt {
+pub(crate) fn log_strain(h: &Tensor) -> Voigt {
     LogStrain::new(h).strain()
 }
 
@@ -377,7 +377,7 @@ fn second_differences(x: [f64; 3], f1: &Tensor) -> [[[f64; 3]; 3]; 3] {
 /// eigenvalues; Golub & Van Loan §8.5). An off-diagonal entry below 10⁻¹⁸
 /// of its two diagonal entries is left: the results are those of a matrix
 /// that close to the given one.
-pub fn symmetric_eigen(mut a: Tensor) -> ([f64; 3], Tensor) {
+pub(crate) fn symmetric_eigen(mut a: Tensor) -> ([f64; 3], Tensor) {
     let mut v = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
     for _ in 0..50 {
         let mut rotated = false;

@@ -20,14 +20,14 @@
 //! The stiffness is the inverse of this symmetric compliance; the constants
 //! are admissible exactly when the compliance is positive definite (Jones
 //! §2.4.1: `1 − ν12ν21 − ν23ν32 − ν31ν13 − 2ν21ν32ν13 > 0` among others),
-//! which [`positive_definite`] tests by a Cholesky factorization.
+//! which `positive_definite` tests by a Cholesky factorization.
 //!
 //! # Rotation
 //!
 //! A [`Frame`] holds the material axes `e1, e2, e3` as unit vectors in global
 //! coordinates (rows of the rotation `R`). A strain tensor rotates as
 //! `ε_m = R ε Rᵀ`; in Voigt form with engineering shears `ε_m = T ε` (the
-//! matrix [`Frame::strain_rotation`]). Equal work `σ·ε = σ_m·ε_m` gives
+//! matrix `Frame::strain_rotation`). Equal work `σ·ε = σ_m·ε_m` gives
 //! `σ = Tᵀ σ_m`, hence the global stiffness `C = Tᵀ C_m T` (symmetric and
 //! positive definite with `C_m`), and `σ_m = R σ Rᵀ`.
 
@@ -101,7 +101,7 @@ fn cholesky(a: &Matrix6) -> Option<Matrix6> {
 
 /// True if the symmetric part of `a` equals `a` (to 1e-9 of its largest
 /// entry) and `a` is positive definite.
-pub fn positive_definite(a: &Matrix6) -> bool {
+pub(crate) fn positive_definite(a: &Matrix6) -> bool {
     let big = a.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
     let symmetric = (0..6).all(|i| (0..i).all(|j| (a[i][j] - a[j][i]).abs() <= 1e-9 * big));
     symmetric && cholesky(a).is_some()
@@ -174,7 +174,7 @@ impl Frame {
     }
 
     /// `T` with `ε_m = T ε` for strains in Voigt form with engineering shears.
-    pub fn strain_rotation(&self) -> Matrix6 {
+    pub(crate) fn strain_rotation(&self) -> Matrix6 {
         // (i, j) of each Voigt index in this crate's order
         const IJ: [(usize, usize); 6] = [(0, 0), (1, 1), (2, 2), (0, 1), (0, 2), (1, 2)];
         let r = &self.axes;
@@ -218,7 +218,7 @@ impl Frame {
     }
 
     /// A global stress in the material axes, `σ_m = R σ Rᵀ` (Voigt, tensor shears).
-    pub fn stress_to_material(&self, s: &Voigt) -> Voigt {
+    pub(crate) fn stress_to_material(&self, s: &Voigt) -> Voigt {
         let sig = crate::voigt::stress_tensor(s);
         let r = &self.axes;
         let mut m = [[0.0; 3]; 3];

@@ -1,5 +1,5 @@
 //! Failure criteria of a ply, evaluated on the stress in its material axes
-//! `(11, 22, 33, 12, 13, 23)` ([`super::anisotropic::Frame::stress_to_material`]).
+//! `(11, 22, 33, 12, 13, 23)` (`super::anisotropic::Frame::stress_to_material`).
 //!
 //! Every criterion is written as modes of the form `f(σ) = a(σ) + b(σ)`
 //! with `a` quadratic and `b` linear in the stress, so that under

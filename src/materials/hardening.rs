@@ -82,7 +82,7 @@ impl Hardening {
     }
 
     /// Yield stress and slope `dσ_y/dε̄ᵖ` on segment `k`, evaluated at `peeq`.
-    pub fn on_segment(&self, k: usize, peeq: f64) -> (f64, f64) {
+    pub(crate) fn on_segment(&self, k: usize, peeq: f64) -> (f64, f64) {
         match self {
             Self::Perfect { yield_stress } => (*yield_stress, 0.0),
             Self::Linear { yield_stress, modulus } => (yield_stress + modulus * peeq, *modulus),
@@ -102,7 +102,7 @@ impl Hardening {
     }
 
     /// Upper end of segment `k` (infinite for the last one).
-    pub fn segment_end(&self, k: usize) -> f64 {
+    pub(crate) fn segment_end(&self, k: usize) -> f64 {
         match self {
             Self::Table { strains, .. } if k + 1 < strains.len() => strains[k + 1],
             _ => f64::INFINITY,

@@ -63,7 +63,7 @@ pub struct Response {
 /// committed state itself, as at the first iteration of an increment), where
 /// loading and unloading tangents differ.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq)]
-pub enum Predictor {
+pub(crate) enum Predictor {
     /// The elastoplastic (loading) branch: the best predictor while the load
     /// keeps growing (fewer iterations).
     #[default]
@@ -154,7 +154,7 @@ impl Material {
     }
 
     /// The same material with strengths for the failure indices.
-    pub fn with_strengths(mut self, strengths: Option<Strengths>) -> Self {
+    pub(crate) fn with_strengths(mut self, strengths: Option<Strengths>) -> Self {
         self.strengths = strengths;
         self
     }
@@ -173,30 +173,30 @@ impl Material {
 
     /// The same material with kinematic hardening terms (validated: at most
     /// [`MAX_BACKSTRESSES`], `C > 0`, `γ ≥ 0`; only with plasticity).
-    pub fn with_kinematic(mut self, kinematic: Vec<BackStress>) -> Self {
+    pub(crate) fn with_kinematic(mut self, kinematic: Vec<BackStress>) -> Self {
         assert!(kinematic.len() <= MAX_BACKSTRESSES);
         self.kinematic = kinematic;
         self
     }
 
     /// The same material with the mass density ρ (kg/m³, validated: positive).
-    pub fn with_density(mut self, density: Option<f64>) -> Self {
+    pub(crate) fn with_density(mut self, density: Option<f64>) -> Self {
         self.density = density;
         self
     }
 
     /// Shear modulus G.
-    pub fn shear_modulus(&self) -> f64 {
+    pub(crate) fn shear_modulus(&self) -> f64 {
         self.young / (2.0 * (1.0 + self.poisson))
     }
 
     /// Bulk modulus K.
-    pub fn bulk_modulus(&self) -> f64 {
+    pub(crate) fn bulk_modulus(&self) -> f64 {
         self.young / (3.0 * (1.0 - 2.0 * self.poisson))
     }
 
     /// The elastic stiffness matrix.
-    pub fn elastic_stiffness(&self) -> &Matrix6 {
+    pub(crate) fn elastic_stiffness(&self) -> &Matrix6 {
         &self.elastic
     }
 
@@ -216,7 +216,7 @@ impl Material {
     /// exact one is not (kinematic hardening: its symmetric part, exact
     /// under proportional loading — `kinematic.rs`), since the structure
     /// factorizes a symmetric tangent.
-    pub fn update_for_element(&self, strain: &Voigt, old: &PointState, predictor: Predictor) -> Response {
+    pub(crate) fn update_for_element(&self, strain: &Voigt, old: &PointState, predictor: Predictor) -> Response {
         let mut r = self.update_with(strain, old, predictor);
         if !self.kinematic.is_empty() {
             let t = &mut r.tangent;
@@ -233,7 +233,7 @@ impl Material {
 
     /// The material-point update with the chosen tangent branch on the
     /// yield surface (see [`Predictor`]).
-    pub fn update_with(&self, strain: &Voigt, old: &PointState, predictor: Predictor) -> Response {
+    pub(crate) fn update_with(&self, strain: &Voigt, old: &PointState, predictor: Predictor) -> Response {
         let mut elastic_strain = *strain;
         for (e, p) in elastic_strain.iter_mut().zip(&old.plastic_strain) {
             *e -= p;

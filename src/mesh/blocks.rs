@@ -17,7 +17,7 @@ use crate::shape::SectionElementKind;
 
 /// A map of the unit square onto the x–z plane (must keep the orientation:
 /// `u` × `v` counter-clockwise).
-pub type BlockMap = Box<dyn Fn(f64, f64) -> [f64; 2] + Send + Sync>;
+pub(crate) type BlockMap = Box<dyn Fn(f64, f64) -> [f64; 2] + Send + Sync>;
 
 /// One structured block of a section.
 pub struct Block {
@@ -55,7 +55,7 @@ impl Block {
 }
 
 /// Builds a section of `kind` elements from `blocks` (see the module docs).
-pub fn from_blocks(kind: SectionElementKind, blocks: &[Block]) -> Result<CrossSection, MeshError> {
+pub(crate) fn from_blocks(kind: SectionElementKind, blocks: &[Block]) -> Result<CrossSection, MeshError> {
     if blocks.is_empty() || blocks.iter().any(|b| b.n_elements() == 0) {
         return Err(MeshError::invalid("section", "a profile without elements", "at least one element per wall"));
     }

@@ -7,7 +7,7 @@ impl CrossSection {
     /// The section made of the elements `keep` accepts (in their order),
     /// with only their nodes (in their order) and the regions' kept
     /// elements and the interfaces between two kept elements renumbered.
-    pub fn retain_elements(&self, keep: impl Fn(usize) -> bool) -> CrossSection {
+    pub(crate) fn retain_elements(&self, keep: impl Fn(usize) -> bool) -> CrossSection {
         let kept: Vec<usize> = (0..self.n_elements()).filter(|&e| keep(e)).collect();
         let mut new_node = vec![usize::MAX; self.n_nodes()];
         for &e in &kept {

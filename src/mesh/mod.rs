@@ -8,7 +8,7 @@
 //! `node = body.node_offset + i · n_section_nodes + τ`
 //!
 //! Degrees of freedom are `3 · node + c` with `c = 0, 1, 2` for `u_x, u_y, u_z`
-//! (the equation numbering for the solver is in [`crate::assembly`]).
+//! (the equation numbering for the solver is in `crate::assembly`).
 
 pub mod blocks;
 mod clip;
@@ -69,7 +69,7 @@ pub struct BeamAxis {
 
 impl BeamAxis {
     /// Axis with elements between consecutive `lines` (element boundaries).
-    pub fn from_lines(kind: BeamElementKind, lines: &[f64]) -> Self {
+    pub(crate) fn from_lines(kind: BeamElementKind, lines: &[f64]) -> Self {
         let p = kind.order();
         let mut nodes = vec![lines[0]];
         for w in lines.windows(2) {
@@ -134,6 +134,20 @@ pub struct Body {
 }
 
 impl Body {
+    /// A body of one material (`material`, an index into the model's
+    /// list); its node and element offsets are set by [`Mesh::new`].
+    pub fn new(name: impl Into<String>, section: CrossSection, axis: BeamAxis, material: usize) -> Self {
+        Self {
+            name: name.into(),
+            section,
+            axis,
+            material,
+            element_materials: Vec::new(),
+            node_offset: 0,
+            element_offset: 0,
+        }
+    }
+
     /// The material of section element `es` (of every body element over it).
     pub fn material_of(&self, es: usize) -> usize {
         self.element_materials.get(es).copied().unwrap_or(self.material)
@@ -152,7 +166,7 @@ impl Body {
 
     /// True if the body has more than one material (plies, zones): its
     /// stresses jump between them.
-    pub fn is_layered(&self) -> bool {
+    pub(crate) fn is_layered(&self) -> bool {
         self.materials().len() > 1
     }
 
@@ -253,7 +267,7 @@ impl Mesh {
     }
 
     /// Body owning a global element, and the element's body-local index.
-    pub fn body_of_element(&self, e: usize) -> (usize, usize) {
+    pub(crate) fn body_of_element(&self, e: usize) -> (usize, usize) {
         let b = self.bodies.iter().rposition(|b| b.element_offset <= e).unwrap_or(0);
         (b, e - self.bodies[b].element_offset)
     }
@@ -265,7 +279,7 @@ impl Mesh {
     }
 
     /// Index of the body with this name.
-    pub fn body_index(&self, name: &str) -> Option<usize> {
+    pub(crate) fn body_index(&self, name: &str) -> Option<usize> {
         self.bodies.iter().position(|b| b.name == name)
     }
 }
@@ -279,15 +293,7 @@ mod tests {
         let xl = Division::uniform(0.0, 0.01, nx).lines("x").unwrap();
         let zl = Division::uniform(0.0, 0.01, nz).lines("z").unwrap();
         let yl = Division::uniform(0.0, 0.25, ny).lines("y").unwrap();
-        Body {
-            name: "b".into(),
-            section: CrossSection::rectangle(kind, &xl, &zl).unwrap(),
-            axis: BeamAxis::from_lines(beam, &yl),
-            material: 0,
-            element_materials: Vec::new(),
-            node_offset: 0,
-            element_offset: 0,
-        }
+        Body::new("b", CrossSection::rectangle(kind, &xl, &zl).unwrap(), BeamAxis::from_lines(beam, &yl), 0)
     }
 
     /// DOF counts of the paper's discretizations (Nagaraj et al., Tables 1, 3, 4, 7).

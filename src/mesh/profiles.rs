@@ -71,11 +71,11 @@ pub enum Family {
 
 /// Smallest wall thickness relative to the profile's size: thinner walls
 /// would fall below the node-merging tolerance of [`super::blocks`].
-pub const MIN_RELATIVE_THICKNESS: f64 = 1e-6;
+pub(crate) const MIN_RELATIVE_THICKNESS: f64 = 1e-6;
 
 /// Most cells of a `box` section side by side (the model file's range of
 /// `cells` reads it).
-pub const MAX_CELLS: usize = 1000;
+pub(crate) const MAX_CELLS: usize = 1000;
 
 fn thick_enough(key: &str, t: f64, size: f64) -> Result<(), MeshError> {
     if t >= MIN_RELATIVE_THICKNESS * size {
@@ -299,10 +299,10 @@ pub fn circular_tube(
 }
 
 /// Half-width of the O-grid's central square relative to the radius.
-pub const OGRID_SQUARE: f64 = 0.5;
+pub(crate) const OGRID_SQUARE: f64 = 0.5;
 
 /// A solid circle about `center`: an O-grid of a central square
-/// (`around/4 × around/4` elements, half-width [`OGRID_SQUARE`] · radius)
+/// (`around/4 × around/4` elements, half-width `OGRID_SQUARE` · radius)
 /// and four blocks of `around/4 × through` elements blending its sides
 /// linearly into quarter arcs (transfinite: their other sides are straight
 /// radial segments). Every node of the outer edge lies on the circle.

@@ -31,7 +31,7 @@ pub struct SectionProperties {
 impl CrossSection {
     /// The point `(x, z)` of element `e` at natural coordinates `(ξ, η)`
     /// (the isoparametric map).
-    pub fn map_point(&self, e: usize, xi: f64, eta: f64) -> [f64; 2] {
+    pub(crate) fn map_point(&self, e: usize, xi: f64, eta: f64) -> [f64; 2] {
         let basis = Lagrange2d::new(self.kind.order());
         let m = basis.len();
         let (mut f, mut dxi, mut deta) = (vec![0.0; m], vec![0.0; m], vec![0.0; m]);
@@ -99,7 +99,7 @@ impl CrossSection {
     /// The outline of element `e` through the isoparametric map,
     /// counter-clockwise, `per_edge` segments per edge (curved edges drawn
     /// as they are integrated).
-    pub fn outline(&self, e: usize, per_edge: usize) -> Vec<[f64; 2]> {
+    pub(crate) fn outline(&self, e: usize, per_edge: usize) -> Vec<[f64; 2]> {
         let mut pts = Vec::with_capacity(4 * per_edge);
         for k in 0..4 {
             for s in 0..per_edge {

@@ -50,7 +50,7 @@ impl ErrorEstimate {
 
     /// An element's part of the relative error: `η_e / √(Σ η² + ‖σ_h‖²)`
     /// (they add up in quadrature to [`ErrorEstimate::relative`]).
-    pub fn relative_element(&self, e: usize) -> f64 {
+    pub(crate) fn relative_element(&self, e: usize) -> f64 {
         let total = (self.error * self.error + self.energy * self.energy).sqrt();
         if total > 0.0 { self.element[e] / total } else { 0.0 }
     }
@@ -117,7 +117,7 @@ fn each_point(
 /// internal work (the energy ledger of a transient run; with nonlinear
 /// geometry, of the stresses as stored, an approximation for large
 /// strains).
-pub fn elastic_energy(
+pub(crate) fn elastic_energy(
     mesh: &Mesh,
     cells: &[CellValues],
     materials: &[Material],
@@ -133,7 +133,7 @@ pub fn elastic_energy(
 
 /// Estimates the error of the stresses `stresses` (Gauss points, first of
 /// each body at `gp_offsets`) against their recovery `recovered` (the same
-/// layout, [`super::spr::recover`]).
+/// layout, `super::spr::recover`).
 pub fn estimate(
     mesh: &Mesh,
     cells: &[CellValues],

@@ -31,7 +31,7 @@ pub struct Recovered {
 }
 
 /// Projects the Gauss-point stresses and peeq of every body onto its basis.
-pub fn project(
+pub(crate) fn project(
     mesh: &Mesh,
     cells: &[CellValues],
     stresses: &[Voigt],

@@ -266,7 +266,7 @@ fn smoothest(
 /// The recovered stress `σ*` at every Gauss point of every body (the layout
 /// of `stresses`: body `b` from `gp_offsets[b]`, element-major, axis point
 /// outer, section point inner).
-pub fn recover(mesh: &Mesh, cells: &[CellValues], stresses: &[Voigt], gp_offsets: &[usize]) -> Vec<Voigt> {
+pub(crate) fn recover(mesh: &Mesh, cells: &[CellValues], stresses: &[Voigt], gp_offsets: &[usize]) -> Vec<Voigt> {
     let mut out = vec![[0.0; 6]; stresses.len()];
     for (b, body) in mesh.bodies.iter().enumerate() {
         let cell = &cells[b];

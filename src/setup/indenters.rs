@@ -188,7 +188,7 @@ fn impactor(key: &str, d: &IndenterFile, transient: bool) -> Result<Option<conta
 /// one's inertia is lost in the round-off of the body's forces (a 1e-15 kg
 /// impactor on the 0.8 kg rod of `examples/rod_impact.toml` stops Newton
 /// at first contact, a 1e-12 kg one converges; tests/dynamics.rs).
-pub const MIN_IMPACTOR_FRACTION: f64 = 1e-9;
+pub(crate) const MIN_IMPACTOR_FRACTION: f64 = 1e-9;
 
 /// An impactor's mass against the mass of the body it strikes (its
 /// section's area × its length × the lightest of its densities; not

@@ -153,15 +153,7 @@ fn across_section(
         let touches = section.nodes.iter().any(|&q| p.holds(at3(q)));
         return Ok(layout.first_unmirrored(p.axis).filter(|_| touches));
     }
-    let probe = Body {
-        name: String::new(),
-        section: section.clone(),
-        axis: BeamAxis::from_lines(whole.beam, &[0.0, size]),
-        material: 0,
-        element_materials: Vec::new(),
-        node_offset: 0,
-        element_offset: 0,
-    };
+    let probe = Body::new(String::new(), section.clone(), BeamAxis::from_lines(whole.beam, &[0.0, size]), 0);
     let n_section = section.n_elements();
     for (e, points) in samples.iter().enumerate() {
         for &q in points {

@@ -35,7 +35,7 @@ use crate::contact::{Indenter, PairContact};
 pub use crate::input::ModelError;
 use crate::input::schema::{self, *};
 use crate::input::{OutputSettings, Recovery, Reference, SolverSettings, defaults, invalid};
-use crate::kinematics::Kinematics;
+pub use crate::kinematics::Kinematics;
 use crate::materials::Material;
 use crate::mesh::{Body, Mesh};
 use crate::quantity::Quantity;
@@ -218,7 +218,7 @@ impl std::fmt::Display for Warning {
 
 impl Model {
     /// True if any contact has Coulomb friction (its tangent is unsymmetric).
-    pub fn has_friction(&self) -> bool {
+    pub(crate) fn has_friction(&self) -> bool {
         self.indenters.iter().any(|i| i.friction.is_some()) || self.contacts.iter().any(|c| c.friction.is_some())
     }
 

@@ -27,13 +27,13 @@ use crate::input::validate::division;
 use crate::input::{ModelError, defaults, invalid, ranges};
 
 /// Default `[adapt] tolerance`: relative error in the energy norm.
-pub const DEFAULT_TOLERANCE: f64 = defaults::ADAPT_TOLERANCE;
+pub(crate) const DEFAULT_TOLERANCE: f64 = defaults::ADAPT_TOLERANCE;
 /// Default `[adapt] max_dof`.
-pub const DEFAULT_MAX_DOF: usize = defaults::ADAPT_MAX_DOF;
+pub(crate) const DEFAULT_MAX_DOF: usize = defaults::ADAPT_MAX_DOF;
 /// Default `[adapt] max_cycles`: refinements after the model's own mesh.
-pub const DEFAULT_MAX_CYCLES: usize = defaults::ADAPT_MAX_CYCLES;
+pub(crate) const DEFAULT_MAX_CYCLES: usize = defaults::ADAPT_MAX_CYCLES;
 /// Default `[adapt] fraction`: Dörfler's bulk parameter θ.
-pub const DEFAULT_FRACTION: f64 = defaults::ADAPT_FRACTION;
+pub(crate) const DEFAULT_FRACTION: f64 = defaults::ADAPT_FRACTION;
 pub use crate::input::ranges::{MAX_BUDGET, MAX_CYCLES};
 
 /// Validated `[adapt]`: refine and solve again until the estimate is below

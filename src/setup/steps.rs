@@ -78,7 +78,7 @@ pub fn factor(steps: &[Step], item: Item, lambda: f64) -> f64 {
 }
 
 /// Names of the items a step may scale, in model order.
-pub struct ItemNames<'a> {
+pub(crate) struct ItemNames<'a> {
     /// Indenter names.
     pub indenters: Vec<&'a str>,
     /// Constraint names.

@@ -12,7 +12,7 @@ pub use crate::input::ranges::{MAX_DURATION, MAX_SPEED};
 /// Largest accepted Newmark β: above ¼ (γ + ½)² = 0.5625 of the most
 /// dissipative γ = 1, so every γ in [½, 1] has its unconditionally stable
 /// range (a larger β only lengthens the periods).
-pub const MAX_BETA: f64 = 1.0;
+pub(crate) const MAX_BETA: f64 = 1.0;
 
 /// The keys that only a transient analysis takes, for the refusal of a
 /// static one.
@@ -172,7 +172,7 @@ fn settings(
 /// Increments a transient step may take beyond its time steps when none is
 /// given (`solver.max_increments`): room for cutbacks, the default limit of
 /// a static run.
-pub const CUTBACK_ALLOWANCE: usize = 1000;
+pub(crate) const CUTBACK_ALLOWANCE: usize = 1000;
 
 /// The time steps of a transient analysis against `solver.max_increments`
 /// (`given`, the limit of each load step): refused by key if the limit is

@@ -54,7 +54,7 @@ impl Lagrange1d {
 
     /// Second derivatives `ddn[k] = d²N_k/dξ²` (`len()` entries):
     /// `Σ_(j≠l, both ≠ k) Π_(m ∉ {k, j, l}) (ξ − ξ_m) / Π_(m≠k) (ξ_k − ξ_m)`.
-    pub fn second_derivatives(&self, xi: f64, ddn: &mut [f64]) {
+    pub(crate) fn second_derivatives(&self, xi: f64, ddn: &mut [f64]) {
         let x = &self.nodes;
         let m = x.len();
         for k in 0..m {

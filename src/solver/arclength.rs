@@ -71,7 +71,7 @@
 //! increment is nearly parallel to its predictor (the tangent at its start);
 //! one that turned by more than `acos(`[`ArcLengthSettings::min_cosine`]`)`
 //! is rolled back and redone with half the arc length, at most
-//! [`MAX_TURNS`] times per increment (a kink of the path — a contact
+//! `MAX_TURNS` times per increment (a kink of the path — a contact
 //! closing — turns the direction however short the arc, and is then
 //! accepted).
 //!
@@ -151,7 +151,7 @@ pub struct ArcLengthSettings {
 
 /// Most rollbacks of one increment for having turned too far from its
 /// predictor (the arc is then 1/64 of the first attempt's).
-pub const MAX_TURNS: usize = 6;
+pub(crate) const MAX_TURNS: usize = 6;
 
 impl Default for ArcLengthSettings {
     fn default() -> Self {

@@ -159,7 +159,7 @@ pub struct EigenSolution {
 }
 
 /// The basis size `m` of [`EigenSettings::subspace`] = 0: `max(2 count + 10, 20)`.
-pub fn auto_subspace(count: usize) -> usize {
+pub(crate) fn auto_subspace(count: usize) -> usize {
     (2 * count + 10).max(20)
 }
 
@@ -186,7 +186,7 @@ pub fn solve(pattern: &LowerCsc, k: &[f64], b: &[f64], settings: &EigenSettings)
 
 /// As [`solve`], with `chol` already holding the double-precision `LLᵀ`
 /// factor of `K` (e.g. the last tangent of a nonlinear analysis).
-pub fn solve_factored(
+pub(crate) fn solve_factored(
     chol: &mut Cholesky,
     pattern: &LowerCsc,
     k: &[f64],

@@ -53,7 +53,7 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 /// `‖b − A x‖ ≤ tol ‖b‖` within `max_iterations`. `rhs` holds `b` on entry;
 /// on convergence it holds `x`, otherwise `b` unchanged. Stops early on a
 /// breakdown (`pᵀ A p ≤ 0`).
-pub fn pcg(
+pub(crate) fn pcg(
     pattern: &LowerCsc,
     values: &[f64],
     precond: &mut Cholesky,
@@ -109,7 +109,7 @@ pub fn pcg(
 
 /// `y = (A + S) x` for the symmetric `A` (lower triangle `values` on
 /// `pattern`) and the unsymmetric rest `skew`.
-pub fn mul_unsymmetric(pattern: &LowerCsc, values: &[f64], skew: &NonSymmetric, x: &[f64], y: &mut [f64]) {
+pub(crate) fn mul_unsymmetric(pattern: &LowerCsc, values: &[f64], skew: &NonSymmetric, x: &[f64], y: &mut [f64]) {
     pattern.mul_symmetric(values, x, y);
     skew.mul_add(x, y);
 }

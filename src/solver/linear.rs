@@ -5,7 +5,7 @@
 //! done once per sparsity pattern; each Newton iteration only refactorizes
 //! the numbers in place (`factorize_numeric_llt`) and solves. The
 //! fill-reducing ordering is applied by the equation numbering itself (see
-//! [`nested_dissection`] and [`crate::assembly`]), so faer runs with the
+//! `nested_dissection` and `crate::assembly`), so faer runs with the
 //! identity ordering and no permutation copies.
 //!
 //! If `LLᵀ` breaks down (a tangent that is not positive definite, e.g. a
@@ -71,7 +71,7 @@ impl LowerCsc {
     /// # Panics
     /// With 2³² equations or more (a model far beyond any memory: the
     /// model's size check refuses it first).
-    pub fn from_columns(n: usize, columns: &[Vec<usize>]) -> Self {
+    pub(crate) fn from_columns(n: usize, columns: &[Vec<usize>]) -> Self {
         assert!(u32::try_from(n).is_ok(), "{n} equations: row indices are 32-bit");
         let mut col_ptr = Vec::with_capacity(n + 1);
         let mut row_idx = Vec::with_capacity(columns.iter().map(Vec::len).sum());
@@ -118,7 +118,7 @@ impl LowerCsc {
     }
 
     /// `y = A x` using the lower triangle as a symmetric matrix.
-    pub fn mul_symmetric(&self, values: &[f64], x: &[f64], y: &mut [f64]) {
+    pub(crate) fn mul_symmetric(&self, values: &[f64], x: &[f64], y: &mut [f64]) {
         y.fill(0.0);
         for (c, cols) in self.col_ptr.windows(2).enumerate() {
             let (first, end) = (cols[0], cols[1]);
@@ -187,7 +187,7 @@ impl std::fmt::Debug for Cholesky {
 impl Cholesky {
     /// Symbolic analysis of `pattern` (identity ordering: the caller numbers
     /// the equations in a fill-reducing order).
-    pub fn analyze(pattern: &LowerCsc) -> Result<Self, LinearError> {
+    pub(crate) fn analyze(pattern: &LowerCsc) -> Result<Self, LinearError> {
         // With the identity ordering faer's symbolic analysis reads the upper
         // triangle, so it gets the transposed structure; the numeric
         // factorization then takes our lower triangle directly.
@@ -231,13 +231,13 @@ impl Cholesky {
     }
 
     /// True if the present factor is `LLᵀ` (positive definite matrix).
-    pub fn is_llt(&self) -> bool {
+    pub(crate) fn is_llt(&self) -> bool {
         matches!(self.kind, Some(Kind::Llt | Kind::Llt32))
     }
 
     /// True if the present factor is single precision: its solves are
     /// approximate (relative error about `κ · 6e-8`), a preconditioner.
-    pub fn is_single(&self) -> bool {
+    pub(crate) fn is_single(&self) -> bool {
         self.kind == Some(Kind::Llt32)
     }
 
@@ -246,7 +246,7 @@ impl Cholesky {
     /// its diagonal block, `w³/3 + w² h + w h²` (the dense Cholesky of the
     /// block, the triangular solve below it, the update of the ancestors);
     /// per column of a simplicial factor with `c` entries, `c²`.
-    pub fn factor_flops(&self) -> f64 {
+    pub(crate) fn factor_flops(&self) -> f64 {
         match self.symbolic.raw() {
             SymbolicCholeskyRaw::Supernodal(sn) => {
                 let (begin, end, ptr) = (sn.supernode_begin(), sn.supernode_end(), sn.col_ptr_for_row_idx());
@@ -304,13 +304,13 @@ impl Cholesky {
     }
 
     /// Bytes of scratch memory the numeric factorization needs.
-    pub fn scratch_bytes(&self) -> usize {
+    pub(crate) fn scratch_bytes(&self) -> usize {
         self.req.unaligned_bytes_required()
     }
 
     /// Numeric factorization of the matrix with these `values` (in the order
     /// of the pattern's entries). Tries `LLᵀ`, then `LDLᵀ`.
-    pub fn factorize(&mut self, values: &[f64]) -> Result<(), LinearError> {
+    pub(crate) fn factorize(&mut self, values: &[f64]) -> Result<(), LinearError> {
         self.factorize_with(values, false)
     }
 
@@ -318,7 +318,7 @@ impl Cholesky {
     /// values rounded to single precision (half the memory traffic of the
     /// factorization and of every solve), and factorizes in double only if
     /// that breaks down.
-    pub fn factorize_with(&mut self, values: &[f64], single: bool) -> Result<(), LinearError> {
+    pub(crate) fn factorize_with(&mut self, values: &[f64], single: bool) -> Result<(), LinearError> {
         let sym = self.pattern.as_ref();
         self.kind = None;
         let len = self.symbolic.len_val();
@@ -361,7 +361,7 @@ impl Cholesky {
 
     /// Solves `A x = b` in place (`rhs` holds `b` on entry, `x` on exit).
     /// Fails with [`LinearError::Singular`] if the factor produced non-finite values.
-    pub fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), LinearError> {
+    pub(crate) fn solve_in_place(&mut self, rhs: &mut [f64]) -> Result<(), LinearError> {
         let n = self.pattern.nrows();
         let Some(mem) = self.mem.as_mut() else { return Err(LinearError::Singular) };
         let stack = MemStack::new(mem);
@@ -429,7 +429,7 @@ static METIS: std::sync::Mutex<()> = std::sync::Mutex::new(());
 /// placed at position `k`: the same for the same graph, whatever else the
 /// process orders at the same time (orderings take turns); not if other
 /// code of the process calls the C library's `rand()` or `srand()` meanwhile.
-pub fn nested_dissection(adjacency: &[Vec<usize>]) -> Result<Vec<usize>, LinearError> {
+pub(crate) fn nested_dissection(adjacency: &[Vec<usize>]) -> Result<Vec<usize>, LinearError> {
     let n = adjacency.len();
     if n == 0 {
         return Ok(Vec::new());

@@ -34,7 +34,7 @@
 //! residual grew *and* the energy still falls along it at its start but
 //! rises at its end (`s(η) = Δx·R(x_k + η Δx)`, `s(0) < 0 < s(1)`: the full
 //! step overshot the minimum along its direction) is shortened: `η` by
-//! regula falsi on `s` (Illinois), at most [`LINE_SEARCH_STEPS`]
+//! regula falsi on `s` (Illinois), at most `LINE_SEARCH_STEPS`
 //! evaluations, until `|s(η)| ≤ ½|s(0)|` (Crisfield, *Non-linear Finite
 //! Element Analysis of Solids and Structures* 1, §9.3; Matthies & Strang
 //! 1979). Corrections after which the residual fell keep their full step,
@@ -94,10 +94,10 @@ pub trait NonlinearProblem {
 }
 
 /// Most evaluations of one line search.
-pub const LINE_SEARCH_STEPS: usize = 4;
+pub(crate) const LINE_SEARCH_STEPS: usize = 4;
 
 /// Smallest step length of a line search.
-pub const SMALLEST_STEP: f64 = 0.1;
+pub(crate) const SMALLEST_STEP: f64 = 0.1;
 
 /// Newton controls.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -35,13 +35,17 @@ impl NonSymmetric {
     }
 
     /// Adds `value` at `(row, column)`.
-    pub fn push_entry(&mut self, row: usize, column: usize, value: f64) {
+    pub(crate) fn push_entry(&mut self, row: usize, column: usize, value: f64) {
         self.entries.push((row, column, value));
     }
 
     /// Adds the outer product `u vᵀ` of two sparse vectors (`(index, value)`;
     /// an index may repeat, its values add).
-    pub fn push_outer(&mut self, u: impl IntoIterator<Item = (usize, f64)>, v: impl IntoIterator<Item = (usize, f64)>) {
+    pub(crate) fn push_outer(
+        &mut self,
+        u: impl IntoIterator<Item = (usize, f64)>,
+        v: impl IntoIterator<Item = (usize, f64)>,
+    ) {
         let a = self.pool.len();
         self.pool.extend(u);
         let b = self.pool.len();
@@ -50,7 +54,7 @@ impl NonSymmetric {
     }
 
     /// `y += S x`.
-    pub fn mul_add(&self, x: &[f64], y: &mut [f64]) {
+    pub(crate) fn mul_add(&self, x: &[f64], y: &mut [f64]) {
         for &(r, c, v) in &self.entries {
             y[r] += v * x[c];
         }
@@ -75,7 +79,7 @@ impl NonSymmetric {
     /// the prescribed change `Δ_p` at every prescribed equation (and the
     /// right-hand side elsewhere), moves `S_fp Δ_p` to the right-hand side
     /// of the free rows and drops every term in a prescribed row or column.
-    pub fn eliminate(&mut self, prescribed: &[bool], delta: &mut [f64]) {
+    pub(crate) fn eliminate(&mut self, prescribed: &[bool], delta: &mut [f64]) {
         self.entries.retain(|&(r, c, v)| {
             if prescribed[c] && !prescribed[r] {
                 delta[r] -= v * delta[c];

@@ -27,7 +27,7 @@
 //! `analysis::structure`.) PCG may take at most as many iterations
 //! as would cost one factorization, estimated from counts so that a run is
 //! reproducible to the last digit: the factorization's flops (from the
-//! symbolic structure, [`Cholesky::factor_flops`]) over [`FLOP_RATE_RATIO`]
+//! symbolic structure, `Cholesky::factor_flops`) over `FLOP_RATE_RATIO`
 //! times the flops of one PCG iteration (`4 nnz(L) + 4 nnz(K)`), clamped to
 //! `[ReuseSettings::min_iterations, ReuseSettings::max_iterations]`. If PCG does not converge within them,
 //! or breaks down (`pᵀ K p ≤ 0`: the tangent is not positive definite), the
@@ -76,20 +76,20 @@ use super::nonsymmetric::NonSymmetric;
 /// the 2-core CI machine, 1 thread (factorization time / PCG iteration time
 /// against their flop ratio): tube 28 L9 11.6, cantilevers 13, block 8.3,
 /// compact bar 4 L9 2–4 (small supernodes run slower).
-pub const FLOP_RATE_RATIO: f64 = 10.0;
+pub(crate) const FLOP_RATE_RATIO: f64 = 10.0;
 
 /// GMRES restart length (a model with friction): the basis holds this many
 /// vectors of the equations' size (counted in the memory estimate).
-pub const GMRES_RESTART: usize = 30;
+pub(crate) const GMRES_RESTART: usize = 30;
 
 /// Most GMRES iterations with the factor of the present symmetric part
 /// before the solve is reported as failed (`LinearError::KrylovStalled`;
 /// Newton then cuts the increment back).
-pub const GMRES_MAX_FRESH: usize = 200;
+pub(crate) const GMRES_MAX_FRESH: usize = 200;
 
 /// Relative residual of the GMRES solves that stand in for exact ones (the
 /// bordered solves of force control).
-pub const EXACT: f64 = 1e-12;
+pub(crate) const EXACT: f64 = 1e-12;
 
 /// Largest forcing term of a GMRES solve (a model whose points slide with
 /// friction): below the symmetric path's `η_max`. Sliding makes the
@@ -100,7 +100,7 @@ pub const EXACT: f64 = 1e-12;
 /// Newton iterations with no cap below η_max, 76 with 1e-2, 66 with 1e-3
 /// (the frictionless twin: 72), and 67 → 63 on
 /// examples/cantilevers_contact_friction.toml, at equal or lower time.
-pub const UNSYMMETRIC_FORCING: f64 = 1e-3;
+pub(crate) const UNSYMMETRIC_FORCING: f64 = 1e-3;
 
 /// Controls of the reuse.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -153,7 +153,7 @@ pub struct SolverStats {
 
 /// How one solve was made.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum SolveKind {
+pub(crate) enum SolveKind {
     /// Factorized the present matrix and solved directly.
     Factorized,
     /// PCG with the earlier factor converged in this many iterations.
@@ -164,7 +164,7 @@ pub enum SolveKind {
 
 /// A sparse Cholesky factorization with the reuse policy of the module docs.
 #[derive(Debug)]
-pub struct ReusingSolver {
+pub(crate) struct ReusingSolver {
     chol: Cholesky,
     settings: ReuseSettings,
     stats: SolverStats,
@@ -219,7 +219,7 @@ impl ReusingSolver {
     /// converged tangent. Not in single precision: near a critical point
     /// the negative eigenvalue is far below the largest times 6e-8, and a
     /// single-precision `LLᵀ` of the rounded matrix may then succeed.
-    pub fn factorize_now(&mut self, values: &[f64]) -> Result<(), LinearError> {
+    pub(crate) fn factorize_now(&mut self, values: &[f64]) -> Result<(), LinearError> {
         self.factorize(values, false)
     }
 
@@ -250,7 +250,7 @@ impl ReusingSolver {
     }
 
     /// Counters so far.
-    pub fn stats(&self) -> &SolverStats {
+    pub(crate) fn stats(&self) -> &SolverStats {
         &self.stats
     }
 
@@ -371,7 +371,7 @@ impl ReusingSolver {
     /// is replaced by a double one). Without skew entries this is
     /// [`Self::solve`]. With `must_factor` the factor is of the present `A`
     /// in double precision, for [`Self::solve_again_unsymmetric`].
-    pub fn solve_unsymmetric(
+    pub(crate) fn solve_unsymmetric(
         &mut self,
         pattern: &LowerCsc,
         values: &[f64],
@@ -419,7 +419,7 @@ impl ReusingSolver {
 
     /// After [`Self::solve_unsymmetric`] with `must_factor`: solves a further
     /// right-hand side of the same system to [`EXACT`] (relative).
-    pub fn solve_again_unsymmetric(
+    pub(crate) fn solve_again_unsymmetric(
         &mut self,
         pattern: &LowerCsc,
         values: &[f64],
@@ -482,7 +482,7 @@ impl ReusingSolver {
     /// Solves with the factor of the last [`Self::solve`] that factorized
     /// (call it after `solve(.., must_factor = true)` for further
     /// right-hand sides of the same matrix).
-    pub fn solve_again(&mut self, rhs: &mut [f64]) -> Result<(), LinearError> {
+    pub(crate) fn solve_again(&mut self, rhs: &mut [f64]) -> Result<(), LinearError> {
         let t = Instant::now();
         self.chol.solve_in_place(rhs)?;
         self.stats.solve_time += t.elapsed();

@@ -8,7 +8,7 @@
 //! fraction of the discrete contact set whose status changed. Each is
 //! divided by its target ([`StepControl`]); `q` is the largest ratio.
 //!
-//! * `q` > [`REJECT`] (plastic strain only): the increment is rejected,
+//! * `q` > `REJECT` (plastic strain only): the increment is rejected,
 //!   rolled back and redone with `Δλ · max(SAFETY/q, 1/4)` — once per
 //!   increment, and not below the smallest increment. The plastic strain
 //!   is a measure of the error of integrating the path in one increment;
@@ -49,14 +49,14 @@ pub struct StepMeasure {
 }
 
 /// A measure above `REJECT` times its target rejects the increment.
-pub const REJECT: f64 = 2.0;
+pub(crate) const REJECT: f64 = 2.0;
 
 /// The next increment aims at this fraction of the target.
 pub const SAFETY: f64 = 0.8;
 
 /// The control's verdict on a converged increment.
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub enum Verdict {
+pub(crate) enum Verdict {
     /// Keep the increment; the next one is `Δλ` times this factor.
     Accept(f64),
     /// Redo the increment with `Δλ` times this factor; `q` is the ratio
@@ -85,7 +85,7 @@ impl StepControl {
     /// is the largest factor allowed (1 after a hard increment), `min` the
     /// smallest increment, `retried` true if this increment was already
     /// rejected once.
-    pub fn verdict(&self, m: &StepMeasure, dlambda: f64, growth: f64, min: f64, retried: bool) -> Verdict {
+    pub(crate) fn verdict(&self, m: &StepMeasure, dlambda: f64, growth: f64, min: f64, retried: bool) -> Verdict {
         let (q, plastic) = self.ratios(m);
         if plastic > REJECT && !retried {
             let factor = (SAFETY / plastic).max(0.25);

@@ -134,7 +134,7 @@ pub use super::stop::{SteppingError, StopReason};
 
 /// Most multiplier updates per increment (augmented Lagrangian); the
 /// contact's penetration check then reports what is left.
-pub const MAX_AUGMENTATIONS: usize = 50;
+pub(crate) const MAX_AUGMENTATIONS: usize = 50;
 
 /// Drives `problem` from λ = 0 to 1. Returns the converged increments.
 pub fn run<P: Incremental>(
@@ -305,6 +305,13 @@ mod tests {
         load: f64,
     }
 
+    /// The Newton correction `u −= r/k` of a one-unknown problem.
+    fn scalar_correction(u: &mut f64, u_committed: f64, r: f64, k: f64) -> Correction {
+        let du = -r / k;
+        *u += du;
+        Correction { norm: du.abs(), increment_norm: (*u - u_committed).abs() }
+    }
+
     impl Spring {
         fn new(law: fn(f64) -> (f64, f64), load: f64) -> Self {
             Self { lambda: 0.0, u: 0.0, u_committed: 0.0, r: 0.0, k: 0.0, law, load }
@@ -324,9 +331,7 @@ mod tests {
             })
         }
         fn correct(&mut self) -> Result<Correction, Self::Error> {
-            let du = -self.r / self.k;
-            self.u += du;
-            Ok(Correction { norm: du.abs(), increment_norm: (self.u - self.u_committed).abs() })
+            Ok(scalar_correction(&mut self.u, self.u_committed, self.r, self.k))
         }
     }
 
@@ -432,9 +437,7 @@ mod tests {
             Ok(Evaluation { residual_norm: self.r.abs(), force_scale: 3.0 * self.lambda.max(1e-3), settled: true })
         }
         fn correct(&mut self) -> Result<Correction, Self::Error> {
-            let du = -self.r / self.k;
-            self.u += du;
-            Ok(Correction { norm: du.abs(), increment_norm: (self.u - self.u_committed).abs() })
+            Ok(scalar_correction(&mut self.u, self.u_committed, self.r, self.k))
         }
     }
 

@@ -351,7 +351,7 @@ impl CellValues {
     }
 
     /// The same values with the B-bar projection of the volumetric strain.
-    pub fn with_bbar(mut self, body: &Body) -> Self {
+    pub(crate) fn with_bbar(mut self, body: &Body) -> Self {
         self.volumetric =
             Some(PressureSpace::new(&self.section, &self.axis, body.section.kind.order(), body.axis.kind.order()));
         self
@@ -396,15 +396,7 @@ mod tests {
         let corners = [[0.0, 0.0], [0.012, 0.001], [0.010, 0.011], [-0.001, 0.009]];
         let section = CrossSection::from_quads(SectionElementKind::L9, &corners, &[[0, 1, 2, 3]], "s").unwrap();
         let lines = Division::uniform(0.1, 0.13, 1).lines("y").unwrap();
-        Body {
-            name: "b".into(),
-            section,
-            axis: BeamAxis::from_lines(BeamElementKind::B3, &lines),
-            material: 0,
-            element_materials: Vec::new(),
-            node_offset: 0,
-            element_offset: 0,
-        }
+        Body::new("b", section, BeamAxis::from_lines(BeamElementKind::B3, &lines), 0)
     }
 
     /// The three evaluations agree: at a Gauss point, `PointValues` gives the

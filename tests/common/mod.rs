@@ -292,3 +292,45 @@ pub fn ccx_missing() -> bool {
     let _ = std::io::stderr().write_all(format!("{test}: skipped: {reason}\n").as_bytes());
     true
 }
+
+/// A column 1 m along y, section x ∈ [−half[0], half[0]] in `nx` L9
+/// elements by z ∈ [−half[1], half[1]] in one, axis in `ny` B4 elements, of
+/// `material` (a `[[materials]]` table named `steel`): clamped at y = 0
+/// (constraint `root`), loaded at y = 1 m by the load `tip` with `load` (its
+/// force key, e.g. `total_force = [0.0, -1.0, 0.0]`); `head` before the
+/// material, `extra` after the load.
+pub fn clamped_column(
+    head: &str,
+    material: &str,
+    half: [f64; 2],
+    nx: usize,
+    ny: usize,
+    load: &str,
+    extra: &str,
+) -> String {
+    let [a, b] = half;
+    format!(
+        r#"
+{head}
+{material}
+[[bodies]]
+name = "column"
+material = "steel"
+section = {{ shape = "rectangle", element = "L9", x = {{ from = -{a}, to = {a}, elements = {nx} }}, z = {{ from = -{b}, to = {b}, elements = 1 }} }}
+axis = {{ element = "B4", from = 0.0, to = 1.0, elements = {ny} }}
+
+[[constraints]]
+name = "root"
+body = "column"
+where = {{ y = 0.0 }}
+fix = ["x", "y", "z"]
+
+[[loads]]
+name = "tip"
+body = "column"
+where = {{ y = 1.0 }}
+{load}
+{extra}
+"#
+    )
+}

@@ -278,7 +278,7 @@ fn conditions(d: &mut String, model: &Model, mesh: &HexMesh) {
     }
 }
 
-/// The model data of [`model_data`] and one `*DYNAMIC, DIRECT` step per
+/// The model data of `model_data` and one `*DYNAMIC, DIRECT` step per
 /// load step, each with its `*END STEP`.
 pub fn steps(d: &mut String, model: &Model, mesh: &HexMesh, t: &TransientSettings) {
     model_data(d, model, mesh, t);

@@ -19,7 +19,7 @@
 //! a constraint prescribes at that position, which constrains both nodes
 //! alike (CalculiX refuses a dependent degree of freedom that is also
 //! prescribed). A per-node load goes on the original only
-//! ([`super::deck::load_forces`]).
+//! (`super::deck::load_forces`).
 
 use std::collections::HashMap;
 use std::fmt::Write as _;

@@ -319,30 +319,19 @@ MODE NO.   X-COMPONENT     Y-COMPONENT     Z-COMPONENT     X-ROTATION      Y-ROT
             assert!((e.eigenvalue.sqrt() / (2.0 * std::f64::consts::PI) / e.hz - 1.0).abs() < 1e-6, "{e:?}");
         }
         assert!(read_frequencies(" total force (fx,fy,fz) for set C_ROOT and time  0.1000000E+01\n").is_empty());
-        let frd = "\
-    1PMODE                         1                                  
-  100CL  101 41.89537836        5101                     2    1MODAL      1
- -4  DISP        4    1
- -5  D1          1    2    1    0
- -5  D2          1    2    2    0
- -5  D3          1    2    3    0
- -5  ALL         1    2    0    0    1ALL
- -1         1 0.00000E+00 0.00000E+00 0.00000E+00
- -1      5101 3.19233E-01-1.09886E-02 5.49092E-07
- -3
-    1PMODE                         2                                  
-  100CL  102 83.16669999        5101                     2    2MODAL      1
- -4  DISP        4    1
- -5  D1          1    2    1    0
- -5  D2          1    2    2    0
- -5  D3          1    2    3    0
- -5  ALL         1    2    0    0    1ALL
- -1         1 0.00000E+00 0.00000E+00 0.00000E+00
- -1      5101-3.12701E-01 6.06000E-02-1.38330E-04
- -3
- 9999
-";
-        let r = read_frd(frd, "x.frd").unwrap();
+        // two modes in CalculiX's fixed columns: node 1 held, node 5101 moving
+        let mode = |k: usize, hz: &str, u: &str| {
+            format!(
+                "    1PMODE                         {k}                                  \n  100CL  10{k} {hz}        5101                     2    {k}MODAL      1\n -4  DISP        4    1\n -5  D1          1    2    1    0\n -5  D2          1    2    2    0\n -5  D3          1    2    3    0\n -5  ALL         1    2    0    0    1ALL\n -1         1 0.00000E+00 0.00000E+00 0.00000E+00\n -1      5101{u}\n -3\n"
+            )
+        };
+        let frd = [
+            mode(1, "41.89537836", " 3.19233E-01-1.09886E-02 5.49092E-07"),
+            mode(2, "83.16669999", "-3.12701E-01 6.06000E-02-1.38330E-04"),
+        ]
+        .concat()
+            + " 9999\n";
+        let r = read_frd(&frd, "x.frd").unwrap();
         assert_eq!(r.modes.len(), 2);
         assert_eq!(r.modes[0].0, 41.89537836);
         assert_eq!(r.modes[0].1[&5101], [3.19233e-1, -1.09886e-2, 5.49092e-7]);

@@ -43,6 +43,15 @@ fn clamped_free_column_buckles_at_euler_load() {
         assert!(out.join(format!("mode_{k}.vtu")).exists());
         assert_eq!(b["modes"][k - 1], format!("mode_{k}.vtu"));
     }
+    // buckling.csv: the same table, a row per mode, the load along −y
+    let csv = common::csv_columns(&out.join("buckling.csv"));
+    assert_eq!(csv["mode"], [1.0, 2.0, 3.0, 4.0]);
+    for (k, f) in factors.iter().enumerate() {
+        assert!((csv["load_factor"][k] - f).abs() < 1e-6 * f, "{csv:?}");
+        assert!((csv["critical_load_y"][k] + f).abs() < 1e-6 * f, "{csv:?}");
+        assert_eq!([csv["critical_load_x"][k], csv["critical_load_z"][k]], [0.0, 0.0]);
+    }
+    assert!(!csv.contains_key("full_critical_load_y"), "no symmetry planes: no full structure");
     std::fs::remove_dir_all(&out).ok();
 }
 

@@ -213,20 +213,11 @@ fn verify_compares_the_compact_bar_with_calculix() {
         return;
     }
     let dir = scratch("verify_compact");
-    let model = dir.join("bar.toml");
-    std::fs::write(&model, example("bending_compact_4L9.toml")).unwrap();
-    let out = dir.join("out");
-    let run = cufem()
-        .args(["verify", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--refine", "1", "--quiet"])
-        .output()
-        .unwrap();
-    let stdout = String::from_utf8_lossy(&run.stdout);
-    assert!(run.status.success(), "{stdout}\n{}", String::from_utf8_lossy(&run.stderr));
+    let out = common::verify(&dir, "bar", &example("bending_compact_4L9.toml"), 1);
     let table: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("verify/table.json")).unwrap()).unwrap();
     let load = table["resultants"].as_array().unwrap().iter().find(|r| r["name"] == "load").unwrap();
     let d = load["difference_percent"].as_f64().unwrap();
-    eprintln!("{stdout}");
     assert!(d.abs() < 3.0, "roller force differs by {d} %");
     let line = table["lines"].as_array().unwrap().iter().find(|l| l["quantity"] == "u_z").unwrap();
     assert!(line["max_difference_percent"].as_f64().unwrap() < 3.0, "{line}");

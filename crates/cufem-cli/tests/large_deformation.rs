@@ -528,7 +528,7 @@ fn strain_measure_is_refused_without_nonlinear_geometry() {
             .unwrap();
     let default = Model::parse(&text).unwrap();
     assert_eq!(explicit.kinematics, default.kinematics);
-    assert_eq!(default.kinematics, cufem::kinematics::Kinematics::TotalLagrangian);
+    assert_eq!(default.kinematics, cufem::setup::Kinematics::TotalLagrangian);
 }
 
 /// At small strain the logarithmic model is the Green–Lagrange one to
@@ -665,7 +665,7 @@ fn the_element_loop_forms_tangents_only_where_they_change() {
     assert!(t.evaluations > 0);
     assert_eq!(t.element_tangents_formed, elements * (t.evaluations - t.residual_only), "{t:?}");
     assert!(t.stress_pass + t.element_tangents <= t.assembly, "{t:?}");
-    model.kinematics = cufem::kinematics::Kinematics::Linear;
+    model.kinematics = cufem::setup::Kinematics::Linear;
     let t = run(&model);
     assert!(t.evaluations > 0);
     assert_eq!(t.element_tangents_formed, 0, "{t:?}");

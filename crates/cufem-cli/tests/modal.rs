@@ -276,6 +276,16 @@ fn the_channel_example_bends_in_its_plane_of_symmetry_as_a_beam() {
         assert!(out.join(name.as_str().unwrap()).exists(), "{name}");
     }
     assert_eq!(modal["modes"].as_array().unwrap().len(), 8);
+    // modes.csv: the same table, a row per mode, columns in x, y, z order
+    let csv = common::csv_columns(&out.join("modes.csv"));
+    assert_eq!(csv["mode"], (1..=8).map(f64::from).collect::<Vec<_>>());
+    for (k, f) in freq.iter().enumerate() {
+        assert!((csv["frequency_hz"][k] - f).abs() < 1e-6 * f, "{csv:?}");
+        for (axis, i) in [("x", 0), ("y", 1), ("z", 2)] {
+            let e = modal["effective_masses"][k][i].as_f64().unwrap();
+            assert!((csv[&format!("effective_mass_{axis}")][k] - e).abs() <= 1e-6 * e, "{axis}: {csv:?}");
+        }
+    }
     // the memory estimate, eigensolver included, against the measured peak:
     // the band of every example (crates/cufem-cli/tests/examples.rs); measured 1.19
     let estimated = summary["memory"]["estimated_bytes"].as_f64().unwrap();

@@ -334,29 +334,7 @@ fn messages_name_the_users_keys() {
 
 /// A clamped–free column (20 × 20 mm, 1 m) under `load` N along −y.
 fn column(load: f64, extra: &str) -> String {
-    format!(
-        r#"
-{STEEL}
-[[bodies]]
-name = "column"
-material = "steel"
-section = {{ shape = "rectangle", element = "L9", x = {{ from = -0.01, to = 0.01, elements = 1 }}, z = {{ from = -0.01, to = 0.01, elements = 1 }} }}
-axis = {{ element = "B4", from = 0.0, to = 1.0, elements = 10 }}
-
-[[constraints]]
-name = "root"
-body = "column"
-where = {{ y = 0.0 }}
-fix = ["x", "y", "z"]
-
-[[loads]]
-name = "tip"
-body = "column"
-where = {{ y = 1.0 }}
-total_force = [0.0, -{load}, 0.0]
-{extra}
-"#
-    )
+    common::clamped_column("", STEEL, [0.01, 0.01], 1, 10, &format!("total_force = [0.0, -{load}, 0.0]"), extra)
 }
 
 #[test]
@@ -517,32 +495,8 @@ fn warnings_and_whose_masses_reach_summary_json_and_stderr() {
 /// buckles in z first), fixed at y = 0, pressed by a traction of 1 MPa on its
 /// tip face (320 N), for linear buckling; `extra` appended.
 fn pressed_column(extra: &str) -> String {
-    format!(
-        r#"
-[analysis]
-type = "buckling"
-modes = 2
-{STEEL}
-[[bodies]]
-name = "column"
-material = "steel"
-section = {{ shape = "rectangle", element = "L9", x = {{ from = -0.01, to = 0.01, elements = 2 }}, z = {{ from = -0.008, to = 0.008, elements = 1 }} }}
-axis = {{ element = "B4", from = 0.0, to = 1.0, elements = 8 }}
-
-[[constraints]]
-name = "root"
-body = "column"
-where = {{ y = 0.0 }}
-fix = ["x", "y", "z"]
-
-[[loads]]
-name = "tip"
-body = "column"
-where = {{ y = 1.0 }}
-traction = [0.0, -1e6, 0.0]
-{extra}
-"#
-    )
+    let head = "[analysis]\ntype = \"buckling\"\nmodes = 2";
+    common::clamped_column(head, STEEL, [0.01, 0.008], 2, 8, "traction = [0.0, -1e6, 0.0]", extra)
 }
 
 #[test]

@@ -13,7 +13,7 @@ impl Contacts<'_> {
     /// One Uzawa update of every augmented contact whose penetration exceeds
     /// its tolerance; true if any multiplier changed (another Newton solve
     /// is needed).
-    pub fn augment(&mut self) -> bool {
+    pub(crate) fn augment(&mut self) -> bool {
         let (indenters, pairs) = (self.indenters, self.pairs);
         let tolerances =
             indenters.iter().map(|i| i.penetration_tolerance).chain(pairs.iter().map(|c| c.penetration_tolerance));

@@ -62,7 +62,7 @@ impl Contacts<'_> {
     /// deeper than the deepest point in contact now (module docs), at
     /// least [`SMALLEST_FRACTION`] while none is; 1 in small strain and
     /// with friction.
-    pub fn step_limit(&self, du: impl Fn(usize) -> f64) -> f64 {
+    pub(crate) fn step_limit(&self, du: impl Fn(usize) -> f64) -> f64 {
         if !self.limits_steps() {
             return 1.0;
         }
@@ -87,7 +87,7 @@ impl Contacts<'_> {
 
     /// True if [`Self::step_limit`] may scale a correction: nonlinear
     /// geometry and frictionless contact (module docs).
-    pub fn limits_steps(&self) -> bool {
+    pub(crate) fn limits_steps(&self) -> bool {
         self.current && !self.frictional && !self.points.is_empty()
     }
 

@@ -1,5 +1,5 @@
 //! The contacts' part of the structure's residual and tangent
-//! ([`crate::assembly::Contribution`]): every rigid indenter and every pair
+//! (`crate::assembly::Contribution`): every rigid indenter and every pair
 //! contact of a model, with the state of each contact point (gap, force,
 //! slip, multiplier) committed only after an increment converges.
 //!
@@ -11,11 +11,11 @@
 //! `augment` holds the Uzawa updates of the augmented Lagrangian, `limit`
 //! the step-length control that keeps a correction from carrying open
 //! points deep into contact. A new
-//! contact kind is a new file here and a branch in [`Contacts::evaluate`].
+//! contact kind is a new file here and a branch in `Contacts::evaluate`.
 //!
 //! Forces go to the contact's own nodal force vector `f_c` (the residual is
 //! `R = f_int − λ f_ext − f_c`); each point's block `K` (normal penalty plus
-//! friction) is split by [`split`](pairs::split) into the symmetric part
+//! friction) is split by `split` into the symmetric part
 //! the structure factorizes and the unsymmetric rest (a sliding point's
 //! pressure coupling), which goes beside it (`Tangent::add_rest_block`).
 
@@ -42,11 +42,11 @@ use crate::mesh::Mesh;
 /// need 4–5 fewer factorizations with it). crates/cufem-cli/tests/examples.rs `hertz_ball`
 /// asserts the 4 increments. With friction, points switching between stick
 /// and slip count as unsettled too.
-pub const UNSETTLED_FORCING: f64 = 1e-2;
+pub(crate) const UNSETTLED_FORCING: f64 = 1e-2;
 
 /// A gap below this fraction of the largest body is round-off (the
 /// status of a point there does not unsettle Newton).
-pub const ROUNDOFF_GAP: f64 = 1e-12;
+pub(crate) const ROUNDOFF_GAP: f64 = 1e-12;
 
 /// State of one contact point after an evaluation.
 #[derive(Debug, Clone, Copy, PartialEq, Default)]
@@ -201,7 +201,7 @@ impl<'m> Contacts<'m> {
     }
 
     /// True if some indenter or contact has friction.
-    pub fn is_frictional(&self) -> bool {
+    pub(crate) fn is_frictional(&self) -> bool {
         self.frictional
     }
 
@@ -213,7 +213,7 @@ impl<'m> Contacts<'m> {
     /// Sets the rigid displacement of every indenter for the next
     /// evaluations (prescribed by its motion, or solved for under force
     /// control).
-    pub fn move_indenters(&mut self, offsets: impl IntoIterator<Item = [f64; 3]>) {
+    pub(crate) fn move_indenters(&mut self, offsets: impl IntoIterator<Item = [f64; 3]>) {
         for (o, v) in self.offsets.iter_mut().zip(offsets) {
             *o = v;
         }
@@ -221,7 +221,7 @@ impl<'m> Contacts<'m> {
 
     /// A new increment starts at the committed state: its first evaluation
     /// gives sliding points the stick tangent (`pairs`).
-    pub fn start_increment(&mut self) {
+    pub(crate) fn start_increment(&mut self) {
         self.first_evaluation = true;
         self.on_secant = false;
     }
@@ -229,7 +229,7 @@ impl<'m> Contacts<'m> {
     /// Points that opened or closed since the committed state, and the
     /// points active there and now: the step control's measure of the
     /// contact set (`solver::step_control`).
-    pub fn status_changes(&self) -> (usize, usize, usize) {
+    pub(crate) fn status_changes(&self) -> (usize, usize, usize) {
         let changed = self.points.iter().zip(&self.committed).filter(|(p, c)| p.active != c.active).count();
         let active = |v: &[ContactPoint]| v.iter().filter(|p| p.active).count();
         (changed, active(&self.committed), active(&self.points))
@@ -239,7 +239,7 @@ impl<'m> Contacts<'m> {
     /// that slid is past its cone, and its consistent tangent applies at
     /// once; a frictionless point of a rigid surface that the secant lifted
     /// off keeps the contact it had (`rigid`, module docs).
-    pub fn start_extrapolated(&mut self) {
+    pub(crate) fn start_extrapolated(&mut self) {
         self.first_evaluation = false;
         self.on_secant = true;
     }
@@ -247,7 +247,7 @@ impl<'m> Contacts<'m> {
     /// The points that kept their contact at the last evaluation, the first
     /// of an increment started on the secant (`rigid`, module docs): its
     /// residual holds their tensions, which no later evaluation has.
-    pub fn kept_points(&self) -> usize {
+    pub(crate) fn kept_points(&self) -> usize {
         self.kept
     }
 }

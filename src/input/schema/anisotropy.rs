@@ -11,7 +11,7 @@ use crate::input::{defaults, ranges};
 /// `materials.orthotropic`: engineering constants (Pa and −).
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct OrthotropicFile {
+pub(crate) struct OrthotropicFile {
     /// E_1 (Pa).
     #[schemars(transform = ranges::YOUNG_MODULUS.schema())]
     pub e1: f64,
@@ -45,7 +45,7 @@ pub struct OrthotropicFile {
 /// `yc` and `s13` to `s12` (transverse isotropy).
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct StrengthsFile {
+pub(crate) struct StrengthsFile {
     /// Tensile strength along 1 (Pa).
     #[schemars(transform = ranges::STRENGTH.schema())]
     pub xt: f64,
@@ -78,7 +78,7 @@ pub struct StrengthsFile {
 /// One `[[bodies.zones]]`: a section region's material and its axes.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct ZoneFile {
+pub(crate) struct ZoneFile {
     /// A named section region (every element when absent).
     pub region: Option<String>,
     /// The material (the body's when absent).
@@ -97,7 +97,7 @@ pub struct ZoneFile {
 /// `loads.profile = { shape = "sine", along = "y", from = …, to = … }`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct LoadProfileFile {
+pub(crate) struct LoadProfileFile {
     /// `"sine"`: a half sine wave over [from, to].
     pub shape: ProfileShape,
     /// The coordinate it varies along.

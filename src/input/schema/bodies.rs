@@ -10,7 +10,7 @@ use crate::input::ranges;
 /// `[[bodies]]`: a refined 1D (CUF) body.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct BodyFile {
+pub(crate) struct BodyFile {
     /// Name, referenced by constraints, loads, indenters, contacts, probes, lines.
     pub name: String,
     /// The body's material (optional where plies or zones cover the section).
@@ -29,7 +29,7 @@ pub struct BodyFile {
 /// An interval division: `{from, to, elements[, ratio]}`, `{lines}` or `{segments}`.
 #[derive(Debug, Default, Deserialize, Clone, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct DivisionFile {
+pub(crate) struct DivisionFile {
     /// Start of the interval (m).
     pub from: Option<f64>,
     /// End of the interval (m), above `from`.
@@ -49,7 +49,7 @@ pub struct DivisionFile {
 /// One graded segment of a division.
 #[derive(Debug, Deserialize, Clone, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct SegmentFile {
+pub(crate) struct SegmentFile {
     /// Start (m): the previous segment's end.
     pub from: f64,
     /// End (m).
@@ -65,7 +65,7 @@ pub struct SegmentFile {
 /// `[bodies.axis]`: the beam element and the division of y, as flat keys.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct AxisFile {
+pub(crate) struct AxisFile {
     /// `"B2"`, `"B3"` or `"B4"`.
     pub element: BeamElement,
     /// Start of the axis (m).

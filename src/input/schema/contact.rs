@@ -75,7 +75,7 @@ tagged_table! {
 /// One side of a deformable contact.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct ContactSideFile {
+pub(crate) struct ContactSideFile {
     /// Body name.
     pub body: String,
     /// The surface faces.

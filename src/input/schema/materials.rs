@@ -78,7 +78,7 @@ fn max_back_stresses(schema: &mut schemars::Schema) {
 /// One entry of `plasticity.kinematic`: an Armstrong–Frederick back-stress.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct KinematicFile {
+pub(crate) struct KinematicFile {
     /// C_i (Pa), positive and at most 100 E.
     #[schemars(transform = ranges::POSITIVE.schema())]
     pub modulus: f64,

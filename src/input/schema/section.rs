@@ -11,7 +11,7 @@ use crate::input::{defaults, ranges};
 /// `[bodies.section]`, chosen by `shape`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(tag = "shape", rename_all = "snake_case")]
-pub enum SectionFile {
+pub(crate) enum SectionFile {
     /// A rectangle divided along x and z.
     Rectangle(RectangleFile),
     /// A thin-walled rectangular tube.
@@ -61,7 +61,7 @@ impl SectionFile {
     }
 
     /// The plies through the walls of a straight-walled profile, if given.
-    pub fn wall_plies(&self) -> Option<&[PlyFile]> {
+    pub(crate) fn wall_plies(&self) -> Option<&[PlyFile]> {
         match self {
             Self::IBeam(s) | Self::Channel(s) | Self::ZSection(s) | Self::Angle(s) => s.plies.as_deref(),
             Self::Hat(s) => s.plies.as_deref(),
@@ -97,7 +97,7 @@ pub(super) fn read<'de, D: Deserializer<'de>>(d: D) -> Result<SectionFile, D::Er
 /// `shape = "rectangle"`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct RectangleFile {
+pub(crate) struct RectangleFile {
     /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
     /// The division along x (m).
@@ -110,7 +110,7 @@ pub struct RectangleFile {
 /// over the width divided by `x`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct LaminateFile {
+pub(crate) struct LaminateFile {
     /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
     /// The division along x (m).
@@ -132,7 +132,7 @@ pub struct LaminateFile {
 /// One ply of a laminate.
 #[derive(Debug, Clone, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct PlyFile {
+pub(crate) struct PlyFile {
     /// Thickness (m).
     #[schemars(transform = ranges::LENGTH.schema())]
     pub thickness: f64,
@@ -149,7 +149,7 @@ pub struct PlyFile {
 /// `shape = "tube"`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct TubeFile {
+pub(crate) struct TubeFile {
     /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
     /// The corner `[x, z]` with the smallest x and z (m).
@@ -184,7 +184,7 @@ pub struct TubeFile {
 /// `shape = "quads"`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct QuadsFile {
+pub(crate) struct QuadsFile {
     /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
     /// Corner points `[x, z]` (m), numbered from 0.
@@ -197,7 +197,7 @@ pub struct QuadsFile {
 /// `shape = "i_beam"`, `"channel"`, `"z_section"` or `"angle"`.
 #[derive(Debug, Clone, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct ProfileFile {
+pub(crate) struct ProfileFile {
     /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
     /// The corner `[x, z]` with the smallest x and z (m).
@@ -233,7 +233,7 @@ pub struct ProfileFile {
 /// `shape = "hat"`: a profile with lips.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct HatFile {
+pub(crate) struct HatFile {
     /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
     /// The corner `[x, z]` with the smallest x and z (m).
@@ -274,7 +274,7 @@ pub struct HatFile {
 /// `shape = "box"`: a profile of one or more cells.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct BoxFile {
+pub(crate) struct BoxFile {
     /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
     /// The corner `[x, z]` with the smallest x and z (m).
@@ -345,7 +345,7 @@ impl BoxFile {
 /// `shape = "circular_tube"`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct CircularTubeFile {
+pub(crate) struct CircularTubeFile {
     /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
     /// Centre `[x, z]` (m).
@@ -369,7 +369,7 @@ pub struct CircularTubeFile {
 /// `shape = "circle"`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct CircleFile {
+pub(crate) struct CircleFile {
     /// The section element: `"L4"`, `"L9"` or `"L16"`.
     pub element: Option<SectionElement>,
     /// Centre `[x, z]` (m).
@@ -391,7 +391,7 @@ pub struct CircleFile {
 /// given, must agree).
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct GmshFile {
+pub(crate) struct GmshFile {
     /// Optional: if given, the file's elements (`"L4"`, `"L9"` or `"L16"`).
     pub element: Option<SectionElement>,
     /// Path of the `.msh` file, relative to the model file's folder.

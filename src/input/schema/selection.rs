@@ -11,7 +11,7 @@ use crate::input::{defaults, ranges};
 
 /// A coordinate condition: a number (equality) or `[min, max]`.
 #[derive(Debug, Clone, Copy)]
-pub enum ConditionFile {
+pub(crate) enum ConditionFile {
     /// Equal to the value, within the tolerance.
     Value(f64),
     /// In `[min, max]`, widened by the tolerance.
@@ -71,7 +71,7 @@ impl schemars::JsonSchema for ConditionFile {
 /// A node selection `{x = …, y = …, z = …, tolerance = …, region = …}`.
 #[derive(Debug, Default, Deserialize, Clone, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct SelectionFile {
+pub(crate) struct SelectionFile {
     /// x: a coordinate or `[min, max]` (m).
     pub x: Option<ConditionFile>,
     /// y: a coordinate or `[min, max]` (m).
@@ -95,7 +95,7 @@ pub struct SelectionFile {
 /// Per-component prescribed values `{x = …, y = …, z = …}`.
 #[derive(Debug, Default, Deserialize, Clone, Copy, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct ComponentsFile {
+pub(crate) struct ComponentsFile {
     /// u_x (m).
     pub x: Option<f64>,
     /// u_y (m).
@@ -107,7 +107,7 @@ pub struct ComponentsFile {
 /// `[[constraints]]`: fixed or prescribed displacements on selected nodes.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct ConstraintFile {
+pub(crate) struct ConstraintFile {
     /// Names the reaction output (`history_<name>.csv`).
     pub name: String,
     /// Body name.
@@ -124,7 +124,7 @@ pub struct ConstraintFile {
 /// `[[loads]]`: one of four load kinds on selected nodes or faces.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct LoadFile {
+pub(crate) struct LoadFile {
     /// Load name.
     pub name: String,
     /// Body name.

@@ -11,7 +11,7 @@ use crate::input::ranges;
 /// the targets per increment of the adaptive load stepping (at least one).
 #[derive(Debug, Clone, Copy, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct StepControlFile {
+pub(crate) struct StepControlFile {
     /// Largest increment of the equivalent plastic strain at any Gauss point.
     #[schemars(transform = ranges::PLASTIC_STRAIN_STEP.schema())]
     pub plastic_strain: Option<f64>,
@@ -23,7 +23,7 @@ pub struct StepControlFile {
 /// `solver.control`: what drives the increments.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
-pub enum Control {
+pub(crate) enum Control {
     /// λ prescribed increment by increment (load stepping; the default).
     #[default]
     Load,
@@ -34,7 +34,7 @@ pub enum Control {
 /// `solver.stop = { probe, component, beyond }`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct StopFile {
+pub(crate) struct StopFile {
     /// Name of a `[[probes]]` entry.
     pub probe: String,
     /// The displacement component watched.

@@ -6,7 +6,7 @@ use serde::Deserialize;
 /// side of this plane.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct SymmetryFile {
+pub(crate) struct SymmetryFile {
     /// Name (the plane's reaction).
     pub name: String,
     /// `{ x = c }`, `{ y = c }` or `{ z = c }`.
@@ -18,7 +18,7 @@ pub struct SymmetryFile {
 /// `symmetry.plane`: exactly one coordinate.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct PlaneFile {
+pub(crate) struct PlaneFile {
     /// The plane x = c (m).
     pub x: Option<f64>,
     /// The plane y = c (m).
@@ -30,7 +30,7 @@ pub struct PlaneFile {
 /// `symmetry.keep`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
-pub enum KeepSide {
+pub(crate) enum KeepSide {
     /// Coordinates at or above the plane's.
     Above,
     /// Coordinates at or below the plane's.

@@ -51,12 +51,12 @@ macro_rules! tagged_table {
             $(#[$meta])*
             #[derive(serde::Deserialize, schemars::JsonSchema)]
             #[serde(tag = $tag)]
-            pub enum Tagged {
+            pub(crate) enum Tagged {
                 $( $(#[$vmeta])* #[serde(rename = $vname)] $variant($variant), )*
             }
 
             /// The variants' names, as the model file writes them.
-            pub const NAMES: &[&str] = &[$($vname),*];
+            pub(crate) const NAMES: &[&str] = &[$($vname),*];
         }
 
         impl schemars::JsonSchema for $name {

@@ -10,7 +10,7 @@ use crate::input::ranges;
 /// `analysis.contact_forces`.
 #[derive(Debug, Clone, Copy, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
-pub enum ContactForcesFile {
+pub(crate) enum ContactForcesFile {
     /// The contact impulse at the end of the step (the default).
     #[default]
     Implicit,
@@ -21,7 +21,7 @@ pub enum ContactForcesFile {
 /// `analysis.newmark`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct NewmarkFile {
+pub(crate) struct NewmarkFile {
     /// β.
     pub beta: f64,
     /// γ.
@@ -32,7 +32,7 @@ pub struct NewmarkFile {
 /// `analysis.damping`: `C = mass · M + stiffness · K₀`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct DampingFile {
+pub(crate) struct DampingFile {
     /// α_M (1/s).
     #[schemars(transform = ranges::DAMPING_MASS.schema())]
     pub mass: Option<f64>,
@@ -44,7 +44,7 @@ pub struct DampingFile {
 /// `analysis.initial_velocities[]`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct InitialVelocityFile {
+pub(crate) struct InitialVelocityFile {
     /// The body.
     pub body: String,
     /// Its velocity (m/s).
@@ -55,7 +55,7 @@ pub struct InitialVelocityFile {
 /// `analysis.contact_mass`.
 #[derive(Debug, Clone, Copy, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
-pub enum ContactMassFile {
+pub(crate) enum ContactMassFile {
     /// The contact nodes carry no mass (`dynamics::redistribution`; the default).
     #[default]
     Redistributed,

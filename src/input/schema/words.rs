@@ -12,7 +12,7 @@ use crate::shape::{BeamElementKind, SectionElementKind};
 
 /// A section element (`bodies.section.element`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
-pub enum SectionElement {
+pub(crate) enum SectionElement {
     /// Bilinear, 4 nodes.
     L4,
     /// Biquadratic, 9 nodes.
@@ -34,7 +34,7 @@ impl SectionElement {
 
 /// A beam element (`bodies.axis.element`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
-pub enum BeamElement {
+pub(crate) enum BeamElement {
     /// Linear, 2 nodes.
     B2,
     /// Quadratic, 3 nodes.
@@ -57,7 +57,7 @@ impl BeamElement {
 /// The shape of a load's variation (`loads.profile.shape`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
-pub enum ProfileShape {
+pub(crate) enum ProfileShape {
     /// A half sine wave over `[from, to]`.
     Sine,
 }
@@ -65,7 +65,7 @@ pub enum ProfileShape {
 /// A coordinate axis (`constraints.fix`, a cylinder's `axis`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
-pub enum Axis {
+pub(crate) enum Axis {
     /// x.
     X,
     /// y, the beam axis.
@@ -106,7 +106,7 @@ pub enum Normal {
 
 impl Normal {
     /// The sign (±1) and the axis (0, 1, 2).
-    pub fn sign_and_axis(self) -> (f64, usize) {
+    pub(crate) fn sign_and_axis(self) -> (f64, usize) {
         match self {
             Self::PlusX => (1.0, 0),
             Self::MinusX => (-1.0, 0),
@@ -121,7 +121,7 @@ impl Normal {
 /// `solver.factor_precision`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
-pub enum FactorPrecision {
+pub(crate) enum FactorPrecision {
     /// Factors stored in f32, refined by PCG in f64 (the default).
     #[default]
     Single,
@@ -155,7 +155,7 @@ pub enum Geometry {
 /// `analysis.strain`: the strain measure of nonlinear geometry.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
-pub enum StrainMeasure {
+pub(crate) enum StrainMeasure {
     /// Green–Lagrange strain (the default with nonlinear geometry).
     #[default]
     GreenLagrange,
@@ -166,7 +166,7 @@ pub enum StrainMeasure {
 /// `analysis.type`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
-pub enum AnalysisType {
+pub(crate) enum AnalysisType {
     /// Incremental static analysis (the default).
     #[default]
     Static,
@@ -184,7 +184,7 @@ pub enum AnalysisType {
 /// `analysis.mass`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
-pub enum MassMatrix {
+pub(crate) enum MassMatrix {
     /// `∫ ρ N_a N_b dV` (the default).
     #[default]
     Consistent,
@@ -195,7 +195,7 @@ pub enum MassMatrix {
 /// `bodies.formulation`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
-pub enum Formulation {
+pub(crate) enum Formulation {
     /// Displacement-based, fully integrated (the default for ν < 0.45).
     Standard,
     /// Volumetric strain projected per element (the default for ν ≥ 0.45).
@@ -205,7 +205,7 @@ pub enum Formulation {
 /// An indenter's `method`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
-pub enum IndenterMethod {
+pub(crate) enum IndenterMethod {
     /// Each node paired once with the closest point at the start (the
     /// paper's method; the default).
     #[default]

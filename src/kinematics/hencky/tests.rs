@@ -1,24 +1,9 @@
 //! Tests of the logarithmic strain and its pull-back.
 
 use super::*;
+use crate::kinematics::tests::{mul, rotation};
 use crate::kinematics::{cauchy, determinant};
 use crate::voigt;
-
-fn rotation(axis: [f64; 3], angle: f64) -> Tensor {
-    let n = (axis[0] * axis[0] + axis[1] * axis[1] + axis[2] * axis[2]).sqrt();
-    let [x, y, z] = axis.map(|a| a / n);
-    let (s, c) = angle.sin_cos();
-    let t = 1.0 - c;
-    [
-        [t * x * x + c, t * x * y - s * z, t * x * z + s * y],
-        [t * x * y + s * z, t * y * y + c, t * y * z - s * x],
-        [t * x * z - s * y, t * y * z + s * x, t * z * z + c],
-    ]
-}
-
-fn mul(a: &Tensor, b: &Tensor) -> Tensor {
-    std::array::from_fn(|i| std::array::from_fn(|j| (0..3).map(|k| a[i][k] * b[k][j]).sum()))
-}
 
 fn transpose(a: &Tensor) -> Tensor {
     std::array::from_fn(|i| std::array::from_fn(|j| a[j][i]))

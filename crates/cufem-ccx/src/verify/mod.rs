@@ -303,8 +303,6 @@ pub fn compare(
     let whole = field::compare_fields(model, &view, mesh, run);
     let (force_histories, force_curves) = history::compare_histories(model, solution, run);
     let comparison = Comparison {
-        title: model.title.clone(),
-        solid,
         probes,
         lines,
         resultants,
@@ -312,12 +310,7 @@ pub fn compare(
         excluded: whole.zones.clone(),
         force_histories,
         force_curves,
-        modes: Vec::new(),
-        probe_histories: Vec::new(),
-        probe_curves: Vec::new(),
-        impacts: Vec::new(),
-        impact_curves: Vec::new(),
-        cost,
+        ..Comparison::empty(model, solid, cost)
     };
     (comparison, curves, whole)
 }
@@ -343,7 +336,8 @@ impl Comparison {
     /// A comparison without rows, for a modal model (its frequencies only,
     /// since its static state is the unloaded one) or a transient one (its
     /// probe histories only): nothing to compare at one state's probes,
-    /// lines, resultants or over its field.
+    /// lines, resultants or over its field; a static comparison fills in
+    /// its own.
     fn empty(model: &Model, solid: String, cost: Cost) -> Self {
         Self {
             title: model.title.clone(),

@@ -12,6 +12,9 @@
 //! | 4 | the model needs more memory than available (`--max-memory` raises the limit) |
 //! | 5 | `verify`: CalculiX is missing or did not finish (the cufem results, deck and log are written) |
 //! | 130 | interrupted (Ctrl-C or SIGTERM); the last converged increment is written |
+// the arguments' doc comments are clap's --help text, written for a terminal
+// (`out/<model name>`), not HTML
+#![allow(rustdoc::invalid_html_tags)]
 
 mod adapt;
 mod bench;

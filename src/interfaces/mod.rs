@@ -20,7 +20,7 @@
 //! the slip along the beam axis and `δ1` across the width (modes II/III).
 //!
 //! The points' forces and stiffness enter the structure as a
-//! [`crate::assembly::Contribution`] ([`Interfaces`], `assembly.rs`); each
+//! `crate::assembly::Contribution` ([`Interfaces`], `assembly.rs`); each
 //! point's damage is history, committed only when an increment converges.
 
 mod assembly;

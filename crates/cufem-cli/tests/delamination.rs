@@ -132,13 +132,22 @@ fn dcb_curve_follows_corrected_beam_theory() {
 }
 
 /// G_Ic changed by ±10 % moves the curve out of the 3 % band around the
-/// original closed form, and nearer to the closed form of the changed
-/// toughness (design48 §3.4's robust form). Measured: MEASURE_UP;
-/// MEASURE_DOWN.
+/// original closed form, and keeps it within 3 % of the closed form of the
+/// changed toughness (design48 §3.4). Each run stops after 120 converged
+/// increments (of 100 to an opening of 5 mm: the changed toughness makes
+/// the crack front cut back about once per increment, so the whole branch
+/// would cost minutes), past both peaks (4.40 and 3.98 mm), where the
+/// curves part most. Measured: +10 %: 8.27 % against the original, 2.87 %
+/// against its own; −10 %: 4.47 % and 2.40 % (7.37 % against the original
+/// when run on to 4.44 mm).
 #[test]
 fn dcb_curve_moves_with_the_toughness() {
     for (name, factor) in [("gic_up", 1.1), ("gic_down", 0.9)] {
-        let (out, _) = run_cli(name, &with_toughness(factor), true);
+        let text = with_toughness(factor)
+            .replace("z = 0.005 }", "z = 0.0025 }")
+            .replace("z = -0.005 }", "z = -0.0025 }")
+            .replace("increments = 200", "increments = 100\nmax_increments = 120");
+        let (out, _) = run_cli(name, &text, false);
         let points = curve(&out);
         let original = cbt::curve_error(&points, &specimen(969.0), A0);
         let own = cbt::curve_error(&points, &specimen(969.0 * factor), A0);

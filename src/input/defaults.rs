@@ -133,3 +133,5 @@ pub const INTERFACES: &str = "perfect";
 /// 74:1665: the laminate loses under 2 % of its stiffness through the
 /// thickness).
 pub const PENALTY_PER_STIFFNESS: f64 = 50.0;
+/// `materials.cohesive.viscosity`: none.
+pub const COHESIVE_VISCOSITY: f64 = 0.0;

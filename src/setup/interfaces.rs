@@ -202,7 +202,7 @@ fn law(ck: &str, c: &CohesiveFile, penalty: f64, warnings: &mut Vec<Warning>) ->
         Some(v) => {
             ranges::COHESIVE_VISCOSITY.check(&format!("{ck}.viscosity"), v, "a viscosity in load-factor units")?
         }
-        None => 0.0,
+        None => defaults::COHESIVE_VISCOSITY,
     };
     Cohesive::new(penalty, c.normal_strength, shear, c.gic, c.giic, c.bk_exponent)
         .map(|law| Cohesive { viscosity, ..law })

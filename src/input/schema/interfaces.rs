@@ -8,7 +8,7 @@ use std::fmt;
 use serde::Deserialize;
 use serde::de::{self, Deserializer};
 
-use crate::input::ranges;
+use crate::input::{defaults, ranges};
 
 /// `interfaces` of a laminate: one word for every interface, or a list of
 /// the cohesive ones.
@@ -84,7 +84,7 @@ pub struct CohesiveFile {
     pub penalty: Option<f64>,
     /// Duvaut–Lions viscosity η in units of the load factor (default 0:
     /// none); not with `solver.control = "arc_length"`.
-    #[schemars(transform = ranges::COHESIVE_VISCOSITY.schema())]
+    #[schemars(transform = ranges::COHESIVE_VISCOSITY.with_default(defaults::COHESIVE_VISCOSITY))]
     pub viscosity: Option<f64>,
 }
 

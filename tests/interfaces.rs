@@ -210,6 +210,17 @@ fn bad_interface_keys_are_refused_by_key() {
             "interfaces[0].crack.to",
             "above from",
         ),
+        (
+            base.replace("normal_strength = 10e6 }", "normal_strength = 10e6, viscosity = 2.0 }"),
+            "materials[1].cohesive.viscosity",
+            "1e0",
+        ),
+        (
+            base.replace("normal_strength = 10e6 }", "normal_strength = 10e6, viscosity = 1e-4 }")
+                + "\n[solver]\ncontrol = \"arc_length\"\n",
+            "materials[1].cohesive.viscosity",
+            "arc_length",
+        ),
     ];
     for (text, key, allowed) in cases {
         let e = Model::parse(&text).unwrap_err().to_string();

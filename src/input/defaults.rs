@@ -133,3 +133,5 @@ pub(crate) const INTERFACES: &str = "perfect";
 /// 74:1665: the laminate loses under 2 % of its stiffness through the
 /// thickness).
 pub(crate) const PENALTY_PER_STIFFNESS: f64 = 50.0;
+/// `materials.cohesive.viscosity`: none.
+pub(crate) const COHESIVE_VISCOSITY: f64 = 0.0;

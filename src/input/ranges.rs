@@ -239,6 +239,9 @@ pub(crate) const BK_EXPONENT: Range = Range::closed(0.5, 10.0);
 /// A cohesive penalty (Pa/m): Turon et al.'s 50 E3/t spans about 1e13 to
 /// 1e16 for plies of 0.1–10 mm.
 pub(crate) const COHESIVE_PENALTY: Range = Range::closed(1e10, 1e18);
+/// A cohesive Duvaut–Lions viscosity in load-factor units: 0 (none) up to
+/// the whole load step.
+pub(crate) const COHESIVE_VISCOSITY: Range = Range::closed(0.0, 1.0);
 /// An impactor's mass (kg; at least a billionth of the body's, checked apart).
 pub(crate) const IMPACTOR_MASS: Range = Range::above_up_to(0.0, 1e9);
 

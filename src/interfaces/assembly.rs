@@ -23,6 +23,11 @@ pub struct Interfaces<'m> {
     growing: Vec<Vec<bool>>,
     /// Internal forces of the last evaluation, per DOF.
     forces: Vec<f64>,
+    /// The viscous damage `d_v` that carries the traction (the law's
+    /// damage where the law has no viscosity), committed and trial.
+    viscous: [Vec<Vec<f64>>; 2],
+    /// The load factor of the last converged increment.
+    lambda: f64,
 }
 
 /// What an interface has become: its delaminated area and the energy it
@@ -105,7 +110,16 @@ impl<'m> Interfaces<'m> {
             .collect();
         let forces = if interfaces.is_empty() { Vec::new() } else { vec![0.0; n_dofs] };
         let growing = committed.iter().map(|c| vec![false; c.len()]).collect();
-        Self { interfaces, trial: committed.clone(), committed, growing, forces }
+        let viscous: Vec<Vec<f64>> = committed.iter().map(|c| c.iter().map(|s| s.damage).collect()).collect();
+        Self {
+            interfaces,
+            trial: committed.clone(),
+            committed,
+            growing,
+            forces,
+            viscous: [viscous.clone(), viscous],
+            lambda: 0.0,
+        }
     }
 
     /// True if the model has cohesive interfaces.
@@ -169,6 +183,34 @@ fn secant(law: &Cohesive, state: &CohesiveState, delta: [f64; 3]) -> [[f64; 3]; 
     [[soft, 0.0, 0.0], [0.0, soft, 0.0], [0.0, 0.0, closing]]
 }
 
+/// Duvaut–Lions regularisation of a point's response `r` (design48 §2.3,
+/// §2.4): the damage that carries the traction relaxes towards the law's
+/// `d` over the viscosity `eta` (load-factor units), implicitly,
+/// `d_v = (η d_v,n + Δλ d)/(η + Δλ)` (into `dv`), so `d_v ≤ d` and it never
+/// decreases; the traction is the secant's of `d_v` and the tangent's
+/// softening part is scaled by `Δλ/(η + Δλ)`. The viscous stress does work
+/// the law's dissipation (`dissipated_j`) does not count.
+fn regularise(
+    law: &Cohesive,
+    r: &mut crate::materials::cohesive::CohesiveResponse,
+    delta: [f64; 3],
+    (dv_n, dv): (f64, &mut f64),
+    eta: f64,
+    dt: f64,
+) {
+    let d = r.state.damage;
+    *dv = (eta * dv_n + dt * d) / (eta + dt);
+    let w = dt / (eta + dt);
+    let viscous = secant(law, &CohesiveState { damage: *dv, dissipated: 0.0 }, delta);
+    let plain = secant(law, &r.state, delta);
+    for k in 0..3 {
+        r.traction[k] = viscous[k][k] * delta[k];
+        for l in 0..3 {
+            r.tangent[k][l] = viscous[k][l] + w * (r.tangent[k][l] - plain[k][l]);
+        }
+    }
+}
+
 impl Contribution for Interfaces<'_> {
     fn phase(&self) -> Phase {
         Phase::Elements
@@ -184,11 +226,21 @@ impl Contribution for Interfaces<'_> {
         }
         self.forces.fill(0.0);
         let mut changes = 0;
+        let dt = (at.lambda - self.lambda).abs();
+        let [viscous_n, viscous] = &mut self.viscous;
         let states = self.committed.iter().zip(&mut self.trial).zip(&mut self.growing);
-        for (interface, ((committed, trial), growing)) in self.interfaces.iter().zip(states) {
-            for (((p, old), new), grows) in interface.points.iter().zip(committed).zip(trial.iter_mut()).zip(growing) {
+        let viscous = viscous_n.iter().zip(viscous.iter_mut());
+        for ((interface, ((committed, trial), growing)), (dv_n, dv)) in self.interfaces.iter().zip(states).zip(viscous)
+        {
+            let points = interface.points.iter().zip(committed).zip(trial.iter_mut()).zip(growing);
+            for ((((p, old), new), grows), (dv_n, dv)) in points.zip(dv_n.iter().zip(dv.iter_mut())) {
                 let delta: [f64; 3] = std::array::from_fn(|k| at.u[3 * p.upper + k] - at.u[3 * p.lower + k]);
-                let r = interface.law.update(delta, old);
+                let mut r = interface.law.update(delta, old);
+                *dv = r.state.damage;
+                let eta = interface.law.viscosity;
+                if eta > 0.0 {
+                    regularise(&interface.law, &mut r, delta, (*dv_n, dv), eta, dt);
+                }
                 let now = r.state.damage > old.damage;
                 changes += usize::from(now != *grows);
                 *grows = now;
@@ -217,11 +269,16 @@ impl Contribution for Interfaces<'_> {
         Forces { values: &self.forces, sign: 1.0, scale: false, reference: 0.0 }
     }
 
-    fn commit(&mut self, _at: &At<'_>) {
+    fn commit(&mut self, at: &At<'_>) {
         for (c, t) in self.committed.iter_mut().zip(&self.trial) {
             debug_assert!(c.iter().zip(t).all(|(c, t)| t.damage >= c.damage), "interface damage decreased");
             c.copy_from_slice(t);
         }
+        let [committed, trial] = &mut self.viscous;
+        for (c, t) in committed.iter_mut().zip(trial.iter()) {
+            c.copy_from_slice(t);
+        }
+        self.lambda = at.lambda;
         self.growing.iter_mut().for_each(|g| g.fill(false));
     }
 

@@ -56,6 +56,11 @@ pub struct Cohesive {
     pub g_iic: f64,
     /// Benzeggagh–Kenane exponent `η` (dimensionless).
     pub bk_exponent: f64,
+    /// Duvaut–Lions viscosity in load-factor units (0: none): the damage
+    /// that carries the traction relaxes towards the law's,
+    /// `d_v,n+1 = (η d_v,n + Δλ d_n+1)/(η + Δλ)` (applied by
+    /// [`crate::interfaces::Interfaces`]).
+    pub viscosity: f64,
 }
 
 /// A cohesive law that cannot be used, by the key of its constant.
@@ -151,7 +156,7 @@ impl Cohesive {
         if onset_energy >= low {
             return Err(CohesiveError::OnsetAboveToughness { strength, toughness, onset_energy, value: low });
         }
-        Ok(Self { penalty, normal_strength, shear_strength, g_ic, g_iic, bk_exponent })
+        Ok(Self { penalty, normal_strength, shear_strength, g_ic, g_iic, bk_exponent, viscosity: 0.0 })
     }
 
     /// The mixed-mode toughness `G_c` (J/m²) at the mode-II share
@@ -193,7 +198,10 @@ impl Cohesive {
         let e = self.envelope(separation);
         let reached =
             if mixed > e.onset { (e.last * (mixed - e.onset) / (mixed * (e.last - e.onset))).min(1.0) } else { 0.0 };
-        let growing = reached > old.damage && reached < 1.0;
+        // on the damage surface (reached = d_n: a point that softened in the
+        // last increment, at its converged state) the tangent is the
+        // softening one, the branch the next increment continues
+        let growing = reached >= old.damage && reached > 0.0 && reached < 1.0;
         let damage = reached.max(old.damage);
         let soft = (1.0 - damage) * k;
         let closing = if d3 < 0.0 { k } else { soft };

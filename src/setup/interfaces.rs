@@ -6,7 +6,7 @@
 
 use super::Warning;
 use super::laminate;
-use crate::input::schema::{AnalysisType, BodyFile, CohesiveFile, MaterialFile, ModelFile, SectionFile};
+use crate::input::schema::{AnalysisType, BodyFile, CohesiveFile, Control, MaterialFile, ModelFile, SectionFile};
 use crate::input::{ModelError, defaults, invalid, ranges};
 use crate::interfaces::Interface;
 use crate::materials::Material;
@@ -87,6 +87,8 @@ pub(super) fn interfaces(
 ) -> Result<Vec<Interface>, ModelError> {
     let (bodies, file) = (&model.bodies, &model.materials);
     let mut out: Vec<Interface> = Vec::new();
+    // the first material with a viscosity, for the arc-length refusal
+    let mut viscous = None;
     for (i, b) in bodies.iter().enumerate() {
         let SectionFile::Laminate(l) = &b.section else { continue };
         let sk = format!("bodies[{i}].section");
@@ -108,6 +110,9 @@ pub(super) fn interfaces(
                 defaults::PENALTY_PER_STIFFNESS * e3 / thin.thickness,
                 warnings,
             )?;
+            if law.viscosity > 0.0 && viscous.is_none() {
+                viscous = Some((j, law.viscosity));
+            }
             let points = crate::interfaces::points(&mesh.bodies[i], r.ply, r.crack);
             if points.is_empty() {
                 return Err(invalid(
@@ -125,6 +130,14 @@ pub(super) fn interfaces(
             i.key.clone(),
             format!("the cohesive {} with analysis.type = \"transient\"", i.name),
             "a static analysis (the energy ledger of a transient one has no column for the interfaces yet)",
+        ));
+    }
+    if let (Some(Control::ArcLength), Some((j, v))) = (model.solver.control, viscous) {
+        return Err(invalid(
+            format!("materials[{j}].cohesive.viscosity"),
+            v,
+            "0 with solver.control = \"arc_length\" (the viscosity's time is the increment of the load factor, an \
+             unknown of either sign there)",
         ));
     }
     Ok(out)
@@ -185,7 +198,15 @@ fn law(ck: &str, c: &CohesiveFile, penalty: f64, warnings: &mut Vec<Warning>) ->
         Some(k) => ranges::COHESIVE_PENALTY.check(&format!("{ck}.penalty"), k, "the penalty stiffness in Pa/m")?,
         None => penalty,
     };
-    Cohesive::new(penalty, c.normal_strength, shear, c.gic, c.giic, c.bk_exponent).map_err(|e| match e {
+    let viscosity = match c.viscosity {
+        Some(v) => {
+            ranges::COHESIVE_VISCOSITY.check(&format!("{ck}.viscosity"), v, "a viscosity in load-factor units")?
+        }
+        None => defaults::COHESIVE_VISCOSITY,
+    };
+    Cohesive::new(penalty, c.normal_strength, shear, c.gic, c.giic, c.bk_exponent)
+        .map(|law| Cohesive { viscosity, ..law })
+        .map_err(|e| match e {
         CohesiveError::NotPositive { key, value } => {
             let key = match key {
                 "g_ic" => "gic",

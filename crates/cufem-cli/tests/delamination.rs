@@ -49,12 +49,14 @@ fn specimen(gic: f64) -> cbt::Dcb {
 /// (y = 32.75 mm) and the first intact ones (32.875 mm) (examples/dcb.toml).
 const A0: f64 = 0.0328125;
 
-/// The load–opening points `(δ, P)` of a run of the example: P = `load` × λ,
-/// δ the difference of the arm-end probes.
-fn curve(out: &Path, load: f64) -> Vec<(f64, f64)> {
+/// The load–opening points `(δ, P)` of a run of the example: P the
+/// reaction of the upper arm's face, δ the difference of the arm-end
+/// probes.
+fn curve(out: &Path) -> Vec<(f64, f64)> {
     let c = common::csv_columns(&out.join("history_probes.csv"));
+    let r = common::csv_columns(&out.join("history_upper_arm.csv"));
     let (up, down) = (&c["upper_end.u_z"], &c["lower_end.u_z"]);
-    c["lambda"].iter().zip(up.iter().zip(down)).map(|(l, (u, d))| (u - d, load * l)).collect()
+    up.iter().zip(down).zip(&r["r_z"]).map(|((u, d), p)| (u - d, *p)).collect()
 }
 
 /// The example with G_Ic scaled by `factor`.
@@ -64,7 +66,7 @@ fn with_toughness(factor: f64) -> String {
     text.replace("gic = 969.0", &format!("gic = {}", 969.0 * factor))
 }
 
-/// The held-crack compliance δ/P at 10 N (far below onset: no point
+/// The held-crack compliance δ/P at an opening of 0.25 mm (far below onset: no point
 /// damages) with the precrack to `to` (m), against CBT's
 /// `C = 8 (a + χh)³/(E11 B h³)` at `a`, the midpoint between the last
 /// cracked and the first intact nodes. Measured: −0.44 % at a = 32.8 mm,
@@ -72,14 +74,15 @@ fn with_toughness(factor: f64) -> String {
 #[test]
 fn held_crack_compliance_matches_corrected_beam_theory() {
     for (name, to, a) in [("held_a33", 0.0328, A0), ("held_a40", 0.0399, 0.0399375)] {
+        // an opening of 0.25 mm: below onset (4.19 mm)
         let text = example()
             .replace("to = 0.0328 }", &format!("to = {to} }}"))
-            .replace("200.0]", "10.0]")
-            .replace("-200.0]", "-10.0]");
+            .replace("z = 0.005 }", "z = 0.000125 }")
+            .replace("z = -0.005 }", "z = -0.000125 }");
         let solver = text.find("[solver]").unwrap();
         let text = format!("{}[solver]\nincrements = 1\n", &text[..solver]);
         let (out, summary) = run_cli(name, &text, true);
-        let (d, p) = *curve(&out, 10.0).last().unwrap();
+        let (d, p) = *curve(&out).last().unwrap();
         let c = d / p;
         let exact = specimen(969.0).compliance(a);
         eprintln!("{name}: C = {c:.5e} m/N, CBT {exact:.5e} ({:+.3} %)", 100.0 * (c / exact - 1.0));
@@ -92,19 +95,19 @@ fn held_crack_compliance_matches_corrected_beam_theory() {
 }
 
 /// The whole computed curve within 3 % of P_c of CBT (issue 48): up to
-/// onset and on the propagation branch as far as the example traces it
-/// (δ = 4.5 mm, past the peak at 4.19 mm; docs/limitations.md). Measured:
-/// 2.76 % at worst, at the CBT curve's cusp (the cohesive zone rounds the
-/// peak; 1.3 % below it), 0.6 % on the branch; the crack grew to about
-/// 34 mm.
+/// onset and along the propagation branch to an opening of 10 mm, where
+/// CBT's crack is 52.1 mm. Measured: 2.55 % at worst, at the CBT curve's
+/// cusp (the cohesive zone rounds the peak: 135.2 N against 138.7 N at
+/// δ = 4.2 mm), 0.4 % at 10 mm (90.2 N against 89.9 N); the crack grew to
+/// 51.5 mm.
 #[test]
 fn dcb_curve_follows_corrected_beam_theory() {
     let (out, summary) = run_cli("dcb", &example(), true);
-    let points = curve(&out, 200.0);
+    let points = curve(&out);
     let dcb = specimen(969.0);
     let (dc, pc) = dcb.onset(A0);
     let error = cbt::curve_error(&points, &dcb, A0);
-    let last = points.last().unwrap();
+    let last = *points.last().unwrap();
     eprintln!(
         "DCB: P_c = {pc:.2} N at {:.3} mm; {} points to δ = {:.3} mm; curve error {:.2} % of P_c",
         1e3 * dc,
@@ -112,39 +115,40 @@ fn dcb_curve_follows_corrected_beam_theory() {
         1e3 * last.0,
         100.0 * error
     );
-    assert!(last.0 > dc + 0.25e-3, "the curve stops at δ = {} before passing the peak", last.0);
-    assert!(points.iter().filter(|p| p.0 > dc).count() >= 1);
-    // Known limit (docs/limitations.md, "Delamination … is static and
-    // partial"): the arc length stalls about a millimetre of crack growth
-    // past the peak. Measured: δ = 4.576 mm, crack 33.83 mm. Asserted from
-    // both sides, so a solver that traces further fails here and the limit
-    // is lifted from the docs with it.
-    assert!((4.45e-3..4.75e-3).contains(&last.0), "the DCB's trace now ends at δ = {} m", last.0);
+    assert!((last.0 - 0.01).abs() < 1e-9, "the curve stops at δ = {} m", last.0);
+    assert!(points.iter().filter(|p| p.0 > dc).count() >= 100, "too few points on the branch");
     assert!(error < 0.03, "curve error {error}");
-    // the crack grew past the precrack, and it dissipated energy
+    // the crack: CBT's at the last opening, a + χh = K/P
     let d = &summary["delamination"];
     let a = d["area_m2"].as_f64().unwrap() / 0.0254;
+    let exact = dcb.branch_crack_closed(last.0);
     let dissipated = d["dissipated_j"].as_f64().unwrap();
-    eprintln!("DCB: crack {:.3} mm, dissipated {dissipated:.3e} J", 1e3 * a);
-    assert!(a > A0 + 0.5e-3, "crack {a}");
-    assert!(a < A0 + 1.5e-3, "crack {a}: the trace now goes further (known limit above)");
-    assert!(dissipated > 0.0);
+    eprintln!("DCB: crack {:.3} mm (CBT {:.3} mm), dissipated {dissipated:.4} J", 1e3 * a, 1e3 * exact);
+    assert!((a - exact).abs() < 1e-3, "crack {a} m against CBT's {exact} m");
+    // the law's dissipation is G_Ic times the new crack's area (the points
+    // of the process zone hold part of theirs: within 5 %)
+    let grown = 969.0 * 0.0254 * (a - A0);
+    assert!((dissipated / grown - 1.0).abs() < 0.05, "dissipated {dissipated} J against G_Ic ΔA = {grown} J");
 }
 
 /// G_Ic changed by ±10 % moves the curve out of the 3 % band around the
-/// original closed form, and nearer to the closed form of the changed
-/// toughness (design48 §3.4's robust form). Measured: +10 %: error against
-/// the original 8.05 %, against its own 1.48 %; −10 %: 3.25 % and 2.16 %
-/// (its arc length stalls at δ = 4.2 mm, just past its own peak at 3.98 mm,
-/// so its curve holds the peak region only: a margin of 0.25 % over the
-/// tolerance, measured, not chosen).
+/// original closed form, and keeps it within 3 % of the closed form of the
+/// changed toughness (design48 §3.4). Each run stops after 120 converged
+/// increments (of 100 to an opening of 5 mm: the changed toughness makes
+/// the crack front cut back about once per increment, so the whole branch
+/// would cost minutes), past both peaks (4.40 and 3.98 mm), where the
+/// curves part most. Measured: +10 %: 8.27 % against the original, 2.87 %
+/// against its own; −10 %: 4.47 % and 2.40 % (7.37 % against the original
+/// when run on to 4.44 mm).
 #[test]
 fn dcb_curve_moves_with_the_toughness() {
     for (name, factor) in [("gic_up", 1.1), ("gic_down", 0.9)] {
-        // (the arc length may stall earlier on the changed branch: the
-        // points it traced are compared)
-        let (out, _) = run_cli(name, &with_toughness(factor), false);
-        let points = curve(&out, 200.0);
+        let text = with_toughness(factor)
+            .replace("z = 0.005 }", "z = 0.0025 }")
+            .replace("z = -0.005 }", "z = -0.0025 }")
+            .replace("increments = 200", "increments = 100\nmax_increments = 120");
+        let (out, _) = run_cli(name, &text, false);
+        let points = curve(&out);
         let original = cbt::curve_error(&points, &specimen(969.0), A0);
         let own = cbt::curve_error(&points, &specimen(969.0 * factor), A0);
         eprintln!(
@@ -153,7 +157,7 @@ fn dcb_curve_moves_with_the_toughness() {
             100.0 * own
         );
         assert!(original > 0.03, "{name}: within 3 % of the original curve ({original})");
-        assert!(own < original, "{name}: nearer the original curve ({original}) than its own ({own})");
+        assert!(own < 0.03, "{name}: not within 3 % of its own curve ({own})");
     }
 }
 

@@ -8,7 +8,7 @@ use std::fmt;
 use serde::Deserialize;
 use serde::de::{self, Deserializer};
 
-use crate::input::ranges;
+use crate::input::{defaults, ranges};
 
 /// `interfaces` of a laminate: one word for every interface, or a list of
 /// the cohesive ones.
@@ -82,6 +82,10 @@ pub struct CohesiveFile {
     /// Penalty stiffness K (Pa/m; default 50 E3/t of the thinner adjacent ply).
     #[schemars(transform = ranges::COHESIVE_PENALTY.schema())]
     pub penalty: Option<f64>,
+    /// Duvaut–Lions viscosity η in units of the load factor (default 0:
+    /// none); not with `solver.control = "arc_length"`.
+    #[schemars(transform = ranges::COHESIVE_VISCOSITY.with_default(defaults::COHESIVE_VISCOSITY))]
+    pub viscosity: Option<f64>,
 }
 
 /// Reads a word or a list, naming both forms when it is neither (an

@@ -73,6 +73,7 @@ pub mod analysis;
 pub(crate) mod assembly;
 pub mod bc;
 pub mod contact;
+pub mod damage;
 pub mod dynamics;
 pub(crate) mod elements;
 pub mod input;

@@ -233,6 +233,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         frames: recorder.frames,
         path,
         delamination,
+        damage: elements.damage.into_result(),
     };
     // the estimate compares the raw stresses with their patch recovery (not
     // in layered bodies, whose stress jumps it would count as error); the

@@ -86,6 +86,9 @@ pub struct Solution {
     /// The cohesive interfaces at the end (`None` without interfaces and
     /// for the states of [`Solution::at_step`]).
     pub delamination: Option<crate::interfaces::Delamination>,
+    /// The ply damage at the end (`None` without a damaging material and
+    /// for the states of [`Solution::at_step`]).
+    pub damage: Option<crate::damage::Damage>,
 }
 
 /// The state at the end of one step of the load history.
@@ -226,6 +229,7 @@ impl Solution {
             frames: Vec::new(),
             path: self.path.clone(),
             delamination: None,
+            damage: None,
         };
         if model.output.recovery == crate::input::Recovery::Projection {
             s.recovered =
@@ -237,7 +241,7 @@ impl Solution {
     /// A view for field evaluation.
     pub fn fields<'a>(&'a self, model: &'a Model) -> crate::post::FieldView<'a> {
         crate::post::FieldView {
-            state: model.discretisation().fe_state(&self.u, &self.states, &self.gp_offsets),
+            state: model.discretisation().fe_state(&self.u, &self.states, &self.gp_offsets, Default::default()),
             stresses: &self.stresses,
             recovered: self.recovered.as_ref(),
             symmetry: &model.symmetry.planes,

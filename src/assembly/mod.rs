@@ -29,7 +29,9 @@ pub use scatter::ScatterMaps;
 
 use rayon::prelude::*;
 
+use crate::elements::DamagePoints;
 use crate::elements::{self, PointData, TangentMode, Workspace};
+use crate::materials::damage::DamageState;
 use crate::materials::{Material, PointState, Predictor};
 use crate::mesh::Mesh;
 use crate::solver::linear::LowerCsc;
@@ -73,6 +75,22 @@ pub struct FeState<'a> {
     pub gp_offsets: &'a [usize],
     /// Strain measure (small strain or total Lagrangian).
     pub kinematics: crate::kinematics::Kinematics,
+    /// The committed ply damage and crack bands (empty without damage).
+    pub damage: DamageInput<'a>,
+}
+
+/// The committed ply-damage states and crack-band lengths of every Gauss
+/// point (the layout of [`FeState::states`]); both empty when no material
+/// damages.
+#[derive(Debug, Clone, Copy, Default)]
+pub struct DamageInput<'a> {
+    /// Committed damage states.
+    pub committed: &'a [DamageState],
+    /// Crack-band lengths `[fibre, matrix]` (m).
+    pub band: &'a [[f64; 2]],
+    /// The change of the load factor since the committed states (the step
+    /// of the damage's viscosity).
+    pub step: f64,
 }
 
 /// Read-only inputs of an assembly pass: the state it starts from, and how.
@@ -104,6 +122,9 @@ pub(crate) struct Outputs<'a> {
     pub trial: &'a mut [PointState],
     /// Gauss-point stresses, overwritten.
     pub stress: &'a mut [Voigt],
+    /// Trial ply-damage states, overwritten where a material damages
+    /// (empty without damage).
+    pub damage: &'a mut [DamageState],
 }
 
 thread_local! {
@@ -212,7 +233,13 @@ impl Assembler {
         // with the cache empty, the element loop forms every element's matrix
         self.assemble(
             input,
-            Outputs { force: &mut force, tangent: Some(&mut global), trial: &mut trial, stress: &mut stress },
+            Outputs {
+                force: &mut force,
+                tangent: Some(&mut global),
+                trial: &mut trial,
+                stress: &mut stress,
+                damage: &mut [],
+            },
         );
         global
     }
@@ -242,6 +269,9 @@ impl Assembler {
         let tangent = Disjoint::new(tangent);
         let trial = Disjoint::new(out.trial);
         let stress = Disjoint::new(out.stress);
+        // (the elastic matrix is taken without damage: `out.damage` empty)
+        let with_damage = !input.damage.committed.is_empty() && !out.damage.is_empty();
+        let damage = Disjoint::new(out.damage);
         let mut stats = AssemblyStats::default();
         for colour in &self.scatter.colours {
             stats += colour
@@ -270,6 +300,12 @@ impl Assembler {
                                 predictor: input.predictor,
                                 kinematics: input.kinematics,
                                 initial: input.initial.map(|_| &ie[..]),
+                                damage: with_damage.then(|| DamagePoints {
+                                    committed: &input.damage.committed[g0..g0 + ngp],
+                                    band: &input.damage.band[g0..g0 + ngp],
+                                    step: input.damage.step,
+                                    trial: damage.range(g0, ngp),
+                                }),
                             }
                         };
                         WORKSPACE.with_borrow_mut(|ws| {
@@ -457,6 +493,7 @@ mod tests {
             states: &committed,
             gp_offsets: &gp_offsets,
             kinematics: Default::default(),
+            damage: Default::default(),
         };
         let inputs = Inputs { state, predictor: Default::default(), initial: None };
         assembler.cache_elastic(&inputs);
@@ -474,6 +511,7 @@ mod tests {
             states: &s.committed,
             gp_offsets: &s.gp_offsets,
             kinematics: Default::default(),
+            damage: Default::default(),
         };
         let inputs = Inputs { state, predictor: Default::default(), initial: None };
         let mut force = vec![0.0; s.mesh.n_dofs()];
@@ -483,7 +521,13 @@ mod tests {
         let plastic = pool.install(|| {
             a.assemble(
                 &inputs,
-                Outputs { force: &mut force, tangent: Some(&mut tangent), trial: &mut trial, stress: &mut stress },
+                Outputs {
+                    force: &mut force,
+                    tangent: Some(&mut tangent),
+                    trial: &mut trial,
+                    stress: &mut stress,
+                    damage: &mut [],
+                },
             )
             .plastic_points
         });

@@ -48,6 +48,7 @@ mod fbar;
 mod nucleus;
 
 use crate::kinematics::{Kinematics, LogStrain, Tensor};
+use crate::materials::damage::DamageState;
 use crate::materials::{Material, PointState, Predictor};
 use crate::values::CellValues;
 pub use crate::values::ElementError;
@@ -170,6 +171,23 @@ pub struct PointData<'a> {
     /// `E(∇(u + u₀)) − E(∇u₀)` and `F = I + ∇(u + u₀)` — the strain energy of
     /// the shape `X + u₀` to first order in `u₀`.
     pub initial: Option<&'a [f64]>,
+    /// The ply damage of the element's points (`None` unless its material
+    /// damages).
+    pub damage: Option<DamagePoints<'a>>,
+}
+
+/// The ply-damage history of one element's Gauss points
+/// ([`crate::materials::damage`]): read from the committed states, written
+/// to the trial ones.
+pub struct DamagePoints<'a> {
+    /// Committed states (read).
+    pub committed: &'a [DamageState],
+    /// Crack-band lengths `[fibre, matrix]` per point (m).
+    pub band: &'a [[f64; 2]],
+    /// The change of the load factor since the committed states.
+    pub step: f64,
+    /// Trial states (written).
+    pub trial: &'a mut [DamageState],
 }
 
 /// Computes the internal force (and the tangent, per `mode`) of body
@@ -300,7 +318,7 @@ fn stresses_and_forces(
     el: &Element,
     u: &[f64],
     material: &Material,
-    points: PointData<'_>,
+    mut points: PointData<'_>,
     ws: &mut Workspace,
 ) -> (bool, usize) {
     let (sg, ag) = (&geom.section, &geom.axis);
@@ -344,7 +362,14 @@ fn stresses_and_forces(
                     *e += shift / 3.0;
                 }
             }
-            let mut r = material.update_for_element(&eps, &points.committed[q], points.predictor);
+            let mut r = match (&material.damage, points.damage.as_mut()) {
+                (Some(law), Some(dp)) => {
+                    let (r, state) = material.update_damaged(law, &eps, (dp.band[q], dp.step), &dp.committed[q]);
+                    dp.trial[q] = state;
+                    r
+                }
+                _ => material.update_for_element(&eps, &points.committed[q], points.predictor),
+            };
             // the mean stress conjugate to the dilatation (T's, before any pull-back)
             ws.pressure[q] = (r.stress[0] + r.stress[1] + r.stress[2]) / 3.0;
             if let Some(log) = &log {

@@ -64,6 +64,7 @@ pub(super) fn kernel(
         predictor: Predictor::Loading,
         kinematics,
         initial,
+        damage: None,
     };
     let stats = element_response(geom, 0, 1, u, mat, points, TangentMode::Always, &mut ws);
     KernelRun { ws, stress, trial, stats }

@@ -135,3 +135,11 @@ pub(crate) const INTERFACES: &str = "perfect";
 pub(crate) const PENALTY_PER_STIFFNESS: f64 = 50.0;
 /// `materials.cohesive.viscosity`: none.
 pub(crate) const COHESIVE_VISCOSITY: f64 = 0.0;
+/// `materials.damage.max_damage`: a fully damaged ply point keeps a
+/// thousandth of its stiffness (the solve stays definite).
+pub(crate) const MAX_DAMAGE: f64 = 0.999;
+/// `materials.damage.tangent`: the consistent one (the secant stalls
+/// Newton through softening, `examples/notched_strip_coarse.toml`).
+pub(crate) const DAMAGE_TANGENT: &str = "consistent";
+/// `materials.damage.viscosity`: none.
+pub(crate) const DAMAGE_VISCOSITY: f64 = 0.0;

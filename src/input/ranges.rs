@@ -242,6 +242,19 @@ pub(crate) const COHESIVE_PENALTY: Range = Range::closed(1e10, 1e18);
 /// A cohesive Duvaut–Lions viscosity in load-factor units: 0 (none) up to
 /// the whole load step.
 pub(crate) const COHESIVE_VISCOSITY: Range = Range::closed(0.0, 1.0);
+
+// Ply damage.
+
+/// A ply's fracture energy per mode (J/m²): from brittle resins to far
+/// beyond the fibre tension of any laminate.
+pub(crate) const FRACTURE_ENERGY: Range = Range::above_up_to(0.0, 1e7);
+/// The largest damage of a ply mode: at least 0.9 (a softening that stops
+/// earlier is not a crack), below 1 by at least 1e-5 (the damaged
+/// stiffness stays definite).
+pub(crate) const MAX_DAMAGE: Range = Range::closed(0.9, 0.99999);
+/// A ply damage's Duvaut–Lions viscosity in load-factor units: 0 (none) up
+/// to the whole load step.
+pub(crate) const DAMAGE_VISCOSITY: Range = Range::closed(0.0, 1.0);
 /// An impactor's mass (kg; at least a billionth of the body's, checked apart).
 pub(crate) const IMPACTOR_MASS: Range = Range::above_up_to(0.0, 1e9);
 

@@ -184,6 +184,11 @@ pub struct Summary {
     /// energy, and their sums.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub delamination: Option<crate::interfaces::DelaminationSummary>,
+    /// Progressive ply damage: the energy each mode dissipated, the
+    /// volumes where each mode started and passed ½, the largest damage,
+    /// the points whose strength the crack band lowered.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub damage: Option<crate::damage::DamageSummary>,
     /// The other files of this result set (summary.json is written last and
     /// lists them, so a complete set can be recognised).
     pub files: Vec<String>,
@@ -489,6 +494,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
             first_arc_length: p.first_arc_length,
         }),
         delamination: solution.delamination.as_ref().map(|d| d.summary()),
+        damage: solution.damage.as_ref().map(|d| d.summary()),
         files: Vec::new(),
     }
 }

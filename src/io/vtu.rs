@@ -69,6 +69,9 @@ pub fn write_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), 
     let offsets: Vec<u64> = (1..=g.cell_body.len() as u64).map(|c| 8 * c).collect();
     let point_data: Vec<(String, usize, Array)> =
         g.point_data.into_iter().map(|a| (a.name, a.components, Array::F64(a.values))).collect();
+    let damage = solution.damage.as_ref().map(|d| damage_cells(model, solution, d, &g.cell_body, &g.cell_element));
+    let mut cell_data = body_element_data(g.cell_body, g.cell_element);
+    cell_data.extend(damage.into_iter().flatten());
     let grid = Grid {
         title: &model.title,
         points: &g.points,
@@ -76,10 +79,32 @@ pub fn write_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), 
         offsets: &offsets,
         n_cells: offsets.len(),
         point_data: &point_data,
-        cell_data: &body_element_data(g.cell_body, g.cell_element),
+        cell_data: &cell_data,
         cell_type: VTK_HEXAHEDRON,
     };
     write_file(path, &grid)
+}
+
+/// The ply damage as cell data `d_ft d_fc d_mt d_mc`: each mode's largest
+/// damage over the Gauss points of the cell's element.
+fn damage_cells(
+    model: &Model,
+    solution: &Solution,
+    damage: &crate::damage::Damage,
+    cell_body: &[i32],
+    cell_element: &[i32],
+) -> Vec<(String, usize, Array)> {
+    let mut modes: [Vec<f64>; 4] = Default::default();
+    for (&b, &global) in cell_body.iter().zip(cell_element) {
+        let b = b as usize;
+        let e = global as usize - model.mesh.bodies[b].element_offset;
+        let ngp = model.cells[b].gp_per_element();
+        let first = solution.gp_offsets[b] + e * ngp;
+        for (values, d) in modes.iter_mut().zip(damage.largest_in(first..first + ngp)) {
+            values.push(d);
+        }
+    }
+    ["d_ft", "d_fc", "d_mt", "d_mc"].iter().zip(modes).map(|(n, v)| (n.to_string(), 1, Array::F64(v))).collect()
 }
 
 /// The whole 3D field of every body, as [`write_vtu`] writes it.

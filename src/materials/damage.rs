@@ -72,6 +72,8 @@ pub struct PlyDamage {
     strengths: Strengths,
     toughness: [f64; 4],
     max_damage: f64,
+    consistent: bool,
+    viscosity: f64,
 }
 
 /// A damage law that cannot be used, by the key of its constant.
@@ -107,6 +109,9 @@ pub struct DamageState {
     pub last: [f64; 4],
     /// Energy dissipated per unit volume by each mode (J/m³).
     pub dissipated: [f64; 4],
+    /// The regularised damage `d_v` of each mode, the one the stiffness
+    /// takes (Duvaut–Lions; equal to `damage` without viscosity).
+    pub viscous: [f64; 4],
     /// Energy release rates `Y_f, Y_m, Y_s` of this state (J/m³).
     pub release: [f64; 3],
     /// Modes whose onset stress was lowered because the band is longer
@@ -136,16 +141,39 @@ impl PlyDamage {
     ) -> Result<Self, DamageError> {
         for (i, &value) in toughness.iter().enumerate() {
             if !(value.is_finite() && value > 0.0) {
-                const KEYS: [&str; 4] =
-                    ["g_fibre_tension", "g_fibre_compression", "g_matrix_tension", "g_matrix_compression"];
-                return Err(DamageError::Toughness { key: KEYS[i], value });
+                return Err(DamageError::Toughness { key: MODES[i], value });
             }
         }
         if !(max_damage > 0.0 && max_damage < 1.0) {
             return Err(DamageError::MaxDamage(max_damage));
         }
         let stiffness = elastic.stiffness().ok_or(DamageError::Elastic)?;
-        Ok(Self { elastic, stiffness, strengths, toughness, max_damage })
+        Ok(Self { elastic, stiffness, strengths, toughness, max_damage, consistent: true, viscosity: 0.0 })
+    }
+
+    /// The same law returning the secant stiffness `C_d` as its tangent
+    /// (`consistent = false`) or the consistent one
+    /// ([`PlyDamage::consistent_tangent`], the default).
+    pub fn with_consistent_tangent(mut self, consistent: bool) -> Self {
+        self.consistent = consistent;
+        self
+    }
+
+    /// The same law with Duvaut–Lions viscosity `eta` (in the units of the
+    /// steps given to [`PlyDamage::update_over`]; 0: rate independent).
+    pub fn with_viscosity(mut self, eta: f64) -> Self {
+        self.viscosity = eta;
+        self
+    }
+
+    /// Its Duvaut–Lions viscosity.
+    pub fn viscosity(&self) -> f64 {
+        self.viscosity
+    }
+
+    /// True if [`PlyDamage::update`] returns the consistent tangent.
+    pub fn is_consistent(&self) -> bool {
+        self.consistent
     }
 
     /// The longest crack band (m) for which mode `mode` ([`MODES`] index)
@@ -161,10 +189,19 @@ impl PlyDamage {
         2.0 * young * self.toughness[mode] / (strength * strength)
     }
 
-    /// Stress, secant stiffness and trial state at the strain `strain`
-    /// (material axes) with the crack-band lengths `band = [fibre, matrix]`
-    /// (m) from the committed state `old`.
+    /// Stress, tangent and trial state at the strain `strain` (material
+    /// axes) with the crack-band lengths `band = [fibre, matrix]` (m) from
+    /// the committed state `old`, rate independent (as
+    /// [`PlyDamage::update_over`] over an infinite step).
     pub fn update(&self, strain: &Voigt, band: [f64; 2], old: &DamageState) -> DamageResponse {
+        self.update_over(strain, band, f64::INFINITY, old)
+    }
+
+    /// As [`PlyDamage::update`] over a step `step` (the change of the load
+    /// factor or time since `old`): with viscosity η the damage the
+    /// stiffness takes relaxes towards the law's, implicitly,
+    /// `d_v = (η d_v,n + Δ d)/(η + Δ)` (Duvaut–Lions; Lapczyk & Hurtado).
+    pub fn update_over(&self, strain: &Voigt, band: [f64; 2], step: f64, old: &DamageState) -> DamageResponse {
         let effective = mat_vec(&self.stiffness, strain);
         let [fibre_ratio, matrix_ratio] = self.strengths.hashin_ratios(&effective);
         let fibre = if effective[0] >= 0.0 { FT } else { FC };
@@ -173,7 +210,11 @@ impl PlyDamage {
         for (mode, ratio, length) in [(fibre, fibre_ratio, band[0]), (matrix, matrix_ratio, band[1])] {
             self.soften(mode, 1.0 / ratio, length, strain, &effective, &mut state);
         }
-        let d = state.damage;
+        let share = self.share(step);
+        for i in 0..4 {
+            state.viscous[i] = (1.0 - share) * old.viscous[i] + share * state.damage[i];
+        }
+        let d = state.viscous;
         let df = d[fibre];
         let dm = d[matrix];
         let ds = 1.0 - d.iter().map(|x| 1.0 - x).product::<f64>();
@@ -188,18 +229,93 @@ impl PlyDamage {
                 / (1.0 - ds).powi(2),
         ];
         for mode in 0..4 {
-            let grown = state.damage[mode] - old.damage[mode];
+            let grown = state.viscous[mode] - old.viscous[mode];
             if grown > 0.0 {
                 let own = if mode < MT { 0 } else { 1 };
                 let others =
-                    |s: &DamageState| (0..4).filter(|&j| j != mode).map(|j| 1.0 - s.damage[j]).product::<f64>();
+                    |s: &DamageState| (0..4).filter(|&j| j != mode).map(|j| 1.0 - s.viscous[j]).product::<f64>();
                 let coupling = 0.5 * (others(old) + others(&state));
                 let rate = 0.5 * (old.release[own] + state.release[own])
                     + 0.5 * (old.release[2] + state.release[2]) * coupling;
                 state.dissipated[mode] += rate * grown;
             }
         }
+        let tangent = if self.consistent {
+            self.consistent_tangent(strain, &effective, band, [fibre, matrix], (old, share), &state, &tangent)
+        } else {
+            tangent
+        };
         DamageResponse { stress, tangent, state }
+    }
+
+    /// The consistent tangent `C_T = C_d + Σ_I (∂σ/∂d_I) ⊗ (∂d_I/∂ε)` over
+    /// the active modes that load in this update (κ grew and d below the
+    /// cap): `∂d_I/∂ε = δf δ0/(κ² (δf − δ0)) · L_I ∂e_I/∂ε`, and
+    /// `∂σ/∂d_I` through `d_f`, `d_m` (central differences of `C_d ε`) and
+    /// `d_s` (`∂d_s/∂d_I = Π_{J≠I} (1 − d_J)`, the shear stresses
+    /// `−G γ`). Unsymmetric; the element takes its symmetric part.
+    #[allow(clippy::too_many_arguments)] // the update's own intermediate values, not recomputed
+    fn consistent_tangent(
+        &self,
+        strain: &Voigt,
+        effective: &Voigt,
+        band: [f64; 2],
+        [fibre, matrix]: [usize; 2],
+        (old, share): (&DamageState, f64),
+        state: &DamageState,
+        secant: &Matrix6,
+    ) -> Matrix6 {
+        let mut c = *secant;
+        let (d, law) = (state.viscous, state.damage);
+        for (mode, length) in [(fibre, band[0]), (matrix, band[1])] {
+            let (onset, last, kappa) = (state.onset[mode], state.last[mode], state.kappa[mode]);
+            if onset == 0.0 || kappa <= old.kappa[mode] || kappa <= onset || law[mode] >= self.max_damage {
+                continue;
+            }
+            let (e, _) = equivalent(mode, strain, effective);
+            let slope = share * length * last * onset / (kappa * kappa * (last - onset));
+            let grad: Voigt = equivalent_gradient(mode, strain).map(|g| slope * g / e);
+            let sensitivity = self.stress_sensitivity(mode, [fibre, matrix], &d, strain);
+            for (row, s) in c.iter_mut().zip(sensitivity) {
+                for (v, g) in row.iter_mut().zip(grad) {
+                    *v += s * g;
+                }
+            }
+        }
+        c
+    }
+
+    /// The share `Δ/(η + Δ)` of the law's damage in the regularised one
+    /// over a step `step` (1 without viscosity).
+    fn share(&self, step: f64) -> f64 {
+        if self.viscosity > 0.0 && step.is_finite() { step / (self.viscosity + step) } else { 1.0 }
+    }
+
+    /// `∂σ/∂d_I` at the damage `d` and strain `strain` (material axes).
+    fn stress_sensitivity(&self, mode: usize, [fibre, matrix]: [usize; 2], d: &[f64; 4], strain: &Voigt) -> Voigt {
+        let ds = 1.0 - d.iter().map(|x| 1.0 - x).product::<f64>();
+        let (df, dm) = (d[fibre], d[matrix]);
+        let stress = |df: f64, dm: f64| mat_vec(&self.damaged_stiffness(df, dm, ds), strain);
+        let mut out = [0.0; 6];
+        let mut add = |plus: Voigt, minus: Voigt, h: f64| {
+            for k in 0..6 {
+                out[k] += (plus[k] - minus[k]) / (2.0 * h);
+            }
+        };
+        if mode == fibre {
+            let h = 1e-6 * (1.0 - df);
+            add(stress(df + h, dm), stress(df - h, dm), h);
+        }
+        if mode == matrix {
+            let h = 1e-6 * (1.0 - dm);
+            add(stress(df, dm + h), stress(df, dm - h), h);
+        }
+        // d_s scales the shear moduli: ∂τ_k/∂d_s = −G_k γ_k
+        let others: f64 = (0..4).filter(|&j| j != mode).map(|j| 1.0 - d[j]).product();
+        for k in 0..3 {
+            out[3 + k] -= others * self.elastic.shear[k] * strain[3 + k];
+        }
+        out
     }
 
     /// Onset and damage of one active mode at the onset measure `phi`.
@@ -269,6 +385,32 @@ impl PlyDamage {
         }
         c
     }
+}
+
+/// `e ∂e/∂ε` of a mode: each driving component of the strain times the
+/// sign with which it enters (the brackets `⟨±ε⟩` where they are open).
+fn equivalent_gradient(mode: usize, strain: &Voigt) -> Voigt {
+    let pos = |x: f64| x.max(0.0);
+    let mut g = [0.0; 6];
+    match mode {
+        FT => {
+            g[0] = pos(strain[0]);
+            g[3] = strain[3];
+            g[4] = strain[4];
+        }
+        FC => g[0] = -pos(-strain[0]),
+        MT => {
+            g[1] = pos(strain[1]);
+            g[2] = pos(strain[2]);
+            g[3..].copy_from_slice(&strain[3..]);
+        }
+        _ => {
+            g[1] = -pos(-strain[1]);
+            g[2] = -pos(-strain[2]);
+            g[3..].copy_from_slice(&strain[3..]);
+        }
+    }
+    g
 }
 
 /// The equivalent strain `e` and stress `s` of a mode.

@@ -103,6 +103,9 @@ pub struct Material {
     /// The stiffness in the material axes of an anisotropic material
     /// (`None`: isotropic).
     pub anisotropic: Option<Matrix6>,
+    /// Progressive ply damage ([`damage`]; `None`: no damage). Its law is
+    /// written in the material axes ([`Material::frame`]).
+    pub damage: Option<damage::PlyDamage>,
     elastic: Matrix6,
 }
 
@@ -122,6 +125,7 @@ impl Material {
             strengths: None,
             frame: Frame::default(),
             anisotropic: None,
+            damage: None,
             elastic: voigt::isotropic_stiffness(young, poisson),
         }
     }
@@ -169,6 +173,48 @@ impl Material {
     /// The failure indices of a global stress, `None` without strengths.
     pub fn failure_indices(&self, stress: &Voigt) -> Option<Indices> {
         self.strengths.as_ref().map(|s| s.indices(&self.frame.stress_to_material(stress)))
+    }
+
+    /// The same material with progressive ply damage (validated: an
+    /// orthotropic material with strengths, no plasticity).
+    pub(crate) fn with_damage(mut self, damage: Option<damage::PlyDamage>) -> Self {
+        self.damage = damage;
+        self
+    }
+
+    /// The material-point update of a damaging ply ([`damage`]): the global
+    /// strain turned to the material axes, the law's stress and secant
+    /// stiffness turned back (`σ = Tᵀ σ_m`, `C = Tᵀ C_d T`), with the
+    /// crack-band lengths `band` (m) over the step `step` (the viscosity's)
+    /// from the committed state `old`. The
+    /// tangent is reported elastic while no mode has damaged (the cached
+    /// elastic matrices stay valid); `plastic` is never set.
+    pub(crate) fn update_damaged(
+        &self,
+        law: &damage::PlyDamage,
+        strain: &Voigt,
+        (band, step): ([f64; 2], f64),
+        old: &damage::DamageState,
+    ) -> (Response, damage::DamageState) {
+        let t = self.frame.strain_rotation();
+        let local = voigt::mat_vec(&t, strain);
+        let r = law.update_over(&local, band, step, old);
+        let stress: Voigt = std::array::from_fn(|i| (0..6).map(|k| t[k][i] * r.stress[k]).sum());
+        let intact = r.state.damage.iter().all(|&d| d == 0.0);
+        // the consistent tangent is unsymmetric: its symmetric part, as
+        // with kinematic hardening (`update_for_element`)
+        let mut symmetric = r.tangent;
+        for i in 0..6 {
+            for j in 0..i {
+                let m = 0.5 * (symmetric[i][j] + symmetric[j][i]);
+                symmetric[i][j] = m;
+                symmetric[j][i] = m;
+            }
+        }
+        let tangent = if intact { self.elastic } else { self.frame.stiffness_to_global(&symmetric) };
+        let response =
+            Response { stress, tangent, state: PointState::default(), plastic: false, elastic_tangent: intact };
+        (response, r.state)
     }
 
     /// The same material with kinematic hardening terms (validated: at most

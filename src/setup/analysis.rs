@@ -234,6 +234,46 @@ pub(super) fn material_key(materials: &[Material], m: &Material) -> String {
     }
 }
 
+/// Ply damage only in a static small-strain analysis: the ledger of a
+/// transient run has no column for the energy damage dissipates, and the
+/// law is written for small strains.
+pub(super) fn damage_combinations(
+    kind: Kind,
+    kinematics: crate::kinematics::Kinematics,
+    materials: &[Material],
+    arc_length: bool,
+) -> Result<(), ModelError> {
+    if let Some((m, law)) =
+        materials.iter().find_map(|m| m.damage.as_ref().filter(|d| d.viscosity() > 0.0).map(|d| (m, d)))
+        && arc_length
+    {
+        return Err(invalid(
+            format!("{}.damage.viscosity", material_key(materials, m)),
+            law.viscosity(),
+            "0 with solver.control = \"arc_length\" (the viscosity's time is the increment of the load factor, an \
+             unknown of either sign there)",
+        ));
+    }
+    let Some(m) = materials.iter().find(|m| m.damage.is_some()) else { return Ok(()) };
+    let key = format!("{}.damage", material_key(materials, m));
+    if kind != Kind::Static {
+        return Err(invalid(
+            key,
+            format!("given with analysis.type = \"{}\"", kind.word()),
+            "analysis.type = \"static\" with ply damage (a transient run's energy balance does not yet count \
+             the energy damage dissipates; an eigenvalue analysis is about an elastic state)",
+        ));
+    }
+    if kinematics.is_nonlinear() {
+        return Err(invalid(
+            key,
+            "given with analysis.geometry = \"nonlinear\"",
+            "analysis.geometry = \"linear\" with ply damage (the law is written for small strains)",
+        ));
+    }
+    Ok(())
+}
+
 /// The kind of analysis (`analysis.type`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub(super) enum Kind {

@@ -4,16 +4,24 @@
 //! bounded to physically sensible magnitudes.
 
 use crate::input::bounds;
-use crate::input::ranges;
 use crate::input::schema::*;
 use crate::input::{ModelError, invalid};
+use crate::input::{defaults, ranges};
 use crate::materials::anisotropic::{self, positive_definite};
+use crate::materials::damage::PlyDamage;
 use crate::materials::{BackStress, Hardening, MAX_BACKSTRESSES, Material, Orthotropic, Strengths};
 use crate::voigt::Matrix6;
 
 /// `[[materials]]`, but the interface materials (with `cohesive`:
 /// `setup/interfaces.rs`).
 pub(super) fn materials(file: &[MaterialFile]) -> Result<Vec<Material>, ModelError> {
+    if let Some(i) = file.iter().position(|m| m.cohesive.is_some() && m.damage.is_some()) {
+        return Err(invalid(
+            format!("materials[{i}].damage"),
+            "given with cohesive",
+            "ply damage on a body material (orthotropic with strengths); an interface material has only cohesive",
+        ));
+    }
     file.iter().enumerate().filter(|(_, m)| m.cohesive.is_none()).map(|(i, m)| material(i, m)).collect()
 }
 
@@ -33,7 +41,7 @@ pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelErro
         .transpose()?;
     let base = match (m.orthotropic.as_ref(), m.stiffness.as_ref()) {
         (None, None) => isotropic(&key, m)?,
-        (Some(o), None) => anisotropic(&key, m, "orthotropic", orthotropic(&key, o)?)?,
+        (Some(o), None) => anisotropic(&key, m, "orthotropic", orthotropic(&key, o)?.1)?,
         (None, Some(c)) => anisotropic(&key, m, "stiffness", full_stiffness(&key, c)?)?,
         (Some(_), Some(_)) => {
             return Err(invalid(
@@ -44,7 +52,53 @@ pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelErro
         }
     };
     let strengths = m.strengths.as_ref().map(|s| strengths(&key, s)).transpose()?;
-    Ok(base.with_density(density).with_strengths(strengths))
+    let damage = m.damage.as_ref().map(|d| damage(&key, m, d, strengths)).transpose()?;
+    Ok(base.with_density(density).with_strengths(strengths).with_damage(damage))
+}
+
+/// `[materials.damage]` (key `key.damage`): fracture energies and the
+/// largest damage, on an orthotropic material with strengths (the law needs
+/// the engineering constants and Hashin's strengths; plasticity is refused
+/// with `orthotropic` already).
+fn damage(key: &str, m: &MaterialFile, d: &DamageFile, strengths: Option<Strengths>) -> Result<PlyDamage, ModelError> {
+    let dk = format!("{key}.damage");
+    let needs = "ply damage needs orthotropic = {…} (its engineering constants) and strengths = {…} (Hashin's onset)";
+    if m.stiffness.is_some() {
+        return Err(invalid(&dk, "given with stiffness", needs));
+    }
+    let Some(o) = m.orthotropic.as_ref() else {
+        let what = if m.plasticity.is_some() { "given with plasticity" } else { "given with isotropic constants" };
+        return Err(invalid(&dk, what, needs));
+    };
+    let Some(strengths) = strengths else {
+        return Err(invalid(&dk, "given without strengths", needs));
+    };
+    let energy = |name: &str, v: f64| {
+        ranges::FRACTURE_ENERGY.check(&format!("{dk}.{name}"), v, "the mode's fracture energy in J/m²")
+    };
+    let toughness = [
+        energy("fibre_tension", d.fibre_tension)?,
+        energy("fibre_compression", d.fibre_compression)?,
+        energy("matrix_tension", d.matrix_tension)?,
+        energy("matrix_compression", d.matrix_compression)?,
+    ];
+    let max_damage = match d.max_damage {
+        Some(v) => ranges::MAX_DAMAGE.check(
+            &format!("{dk}.max_damage"),
+            v,
+            "the largest damage of a mode (its point keeps 1 − max_damage of its stiffness)",
+        )?,
+        None => defaults::MAX_DAMAGE,
+    };
+    let (constants, _) = orthotropic(key, o)?;
+    let viscosity = match d.viscosity {
+        Some(v) => ranges::DAMAGE_VISCOSITY.check(&format!("{dk}.viscosity"), v, "a viscosity in load-factor units")?,
+        None => defaults::DAMAGE_VISCOSITY,
+    };
+    let consistent = d.tangent.unwrap_or_default() == DamageTangent::Consistent;
+    PlyDamage::new(constants, strengths, toughness, max_damage)
+        .map(|law| law.with_consistent_tangent(consistent).with_viscosity(viscosity))
+        .map_err(|e| invalid(&dk, "refused", e.to_string()))
 }
 
 /// The isotropic elastic constants and the plasticity of `m`.
@@ -107,7 +161,7 @@ fn anisotropic(key: &str, m: &MaterialFile, which: &str, stiffness: Matrix6) -> 
 
 /// `orthotropic = {…}`: moduli bounded like `young_modulus`, the stiffness
 /// positive definite (Jones, Mechanics of Composite Materials, §2.4).
-fn orthotropic(key: &str, o: &OrthotropicFile) -> Result<Matrix6, ModelError> {
+fn orthotropic(key: &str, o: &OrthotropicFile) -> Result<(Orthotropic, Matrix6), ModelError> {
     let ok = format!("{key}.orthotropic");
     let modulus = |name: &str, v: f64| {
         bounds::within(
@@ -130,14 +184,15 @@ fn orthotropic(key: &str, o: &OrthotropicFile) -> Result<Matrix6, ModelError> {
         shear: [modulus("g12", o.g12)?, modulus("g13", o.g13)?, modulus("g23", o.g23)?],
         poisson: [ratio("nu12", o.nu12)?, ratio("nu13", o.nu13)?, ratio("nu23", o.nu23)?],
     };
-    c.stiffness().ok_or_else(|| {
+    let stiffness = c.stiffness().ok_or_else(|| {
         invalid(
             &ok,
             format!("ν12 = {}, ν13 = {}, ν23 = {}", o.nu12, o.nu13, o.nu23),
             "Poisson's ratios with a positive definite compliance: ν_ij² < E_i/E_j and \
              1 − ν12ν21 − ν23ν32 − ν13ν31 − 2ν21ν32ν13 > 0 (Jones §2.4.1)",
         )
-    })
+    })?;
+    Ok((c, stiffness))
 }
 
 /// `stiffness = [[…] × 6]`: symmetric, positive definite, entries bounded.

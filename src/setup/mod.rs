@@ -178,12 +178,13 @@ pub struct Discretisation<'m> {
 
 impl<'m> Discretisation<'m> {
     /// The finite-element state at displacements `u` with Gauss-point
-    /// `states` (the first of body `b` at `gp_offsets[b]`).
+    /// `states` (the first of body `b` at `gp_offsets[b]`) and ply `damage`.
     pub fn fe_state<'a>(
         &self,
         u: &'a [f64],
         states: &'a [crate::materials::PointState],
         gp_offsets: &'a [usize],
+        damage: crate::assembly::DamageInput<'a>,
     ) -> crate::assembly::FeState<'a>
     where
         'm: 'a,
@@ -196,6 +197,7 @@ impl<'m> Discretisation<'m> {
             states,
             gp_offsets,
             kinematics: self.kinematics,
+            damage,
         }
     }
 }
@@ -329,7 +331,9 @@ fn is_linear(
     contacts: &[PairContact],
     interfaces: &[crate::interfaces::Interface],
 ) -> bool {
-    mesh.bodies.iter().all(|b| b.materials().iter().all(|&m| !materials[m].is_plastic()))
+    mesh.bodies
+        .iter()
+        .all(|b| b.materials().iter().all(|&m| !materials[m].is_plastic() && materials[m].damage.is_none()))
         && indenters.is_empty()
         && contacts.is_empty()
         && interfaces.is_empty()
@@ -448,6 +452,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     }
     let kind = analysis::Kind::of(buckling.is_some(), modal.is_some(), transient.is_some());
     analysis::combinations(kind, solver.path.is_some(), adapt.is_some())?;
+    analysis::damage_combinations(kind, kinematics, &materials, solver.path.is_some())?;
     let modes = buckling.map(|b| b.modes).or(modal.map(|m| m.modes));
     warnings.extend(analysis::eigen_warnings(modes, &mesh, &constraints, !symmetry.planes.is_empty()));
     Ok(Model {

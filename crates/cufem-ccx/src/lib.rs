@@ -165,6 +165,12 @@ pub fn check_supported(model: &Model) -> Result<(), CcxError> {
             what: format!("the cohesive interface \"{}\" (the hex deck's plies share their nodes)", i.name),
         });
     }
+    if let Some(m) = model.materials.iter().find(|m| m.damage.is_some()) {
+        return Err(CcxError::Unsupported {
+            key: format!("materials (material {:?}).damage", m.given),
+            what: "progressive ply damage (the deck's materials are elastic or von Mises)".into(),
+        });
+    }
     if let Some(k) = model.indenters.iter().position(|i| i.force.is_some()) {
         return Err(CcxError::Unsupported {
             key: format!("indenters[{k}].force"),

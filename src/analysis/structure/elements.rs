@@ -27,6 +27,9 @@ pub(crate) struct Elements<'m> {
     pub last: AssemblyStats,
     /// A stress-free initial displacement (geometric imperfection), per DOF.
     pub initial: Option<Vec<f64>>,
+    /// The ply damage of the Gauss points (`crate::damage`; empty without
+    /// damage), committed with the states.
+    pub damage: crate::damage::BodyDamage,
 }
 
 impl<'m> Elements<'m> {
@@ -39,6 +42,7 @@ impl<'m> Elements<'m> {
             gp_offsets.push(n_gp);
             n_gp += b.n_elements() * g.gp_per_element();
         }
+        let damage = crate::damage::BodyDamage::new(&d, &gp_offsets, n_gp);
         Self {
             discretisation,
             gp_offsets,
@@ -48,6 +52,7 @@ impl<'m> Elements<'m> {
             f_int: vec![0.0; d.mesh.n_dofs()],
             last: AssemblyStats::default(),
             initial: None,
+            damage,
         }
     }
 
@@ -55,7 +60,7 @@ impl<'m> Elements<'m> {
     /// (for the elastic tangent cached at setup).
     pub fn inputs<'a>(&'a self, u: &'a [f64]) -> Inputs<'a> {
         Inputs {
-            state: self.discretisation.fe_state(u, &self.committed, &self.gp_offsets),
+            state: self.discretisation.fe_state(u, &self.committed, &self.gp_offsets, self.damage.input()),
             predictor: Default::default(),
             initial: self.initial.as_deref(),
         }
@@ -81,8 +86,10 @@ impl Contribution for Elements<'_> {
     /// evaluated first. When the tangent is not wanted, the kernel's second
     /// pass (the element tangents and their scatter) is skipped.
     fn evaluate(&mut self, at: &At<'_>, tangent: &mut Tangent<'_>) -> usize {
+        let crate::damage::BodyDamage { committed, band, trial: damage_trial, lambda, .. } = &mut self.damage;
+        let damage_in = crate::assembly::DamageInput { committed, band, step: (at.lambda - *lambda).abs() };
         let inputs = Inputs {
-            state: self.discretisation.fe_state(at.u, &self.committed, &self.gp_offsets),
+            state: self.discretisation.fe_state(at.u, &self.committed, &self.gp_offsets, damage_in),
             predictor: at.predictor,
             initial: self.initial.as_deref(),
         };
@@ -93,6 +100,7 @@ impl Contribution for Elements<'_> {
                 tangent: if tangent.wanted { Some(&mut *tangent.values) } else { None },
                 trial: &mut self.trial,
                 stress: &mut self.stress,
+                damage: damage_trial,
             },
         );
         0
@@ -102,8 +110,9 @@ impl Contribution for Elements<'_> {
         Forces { values: &self.f_int, sign: 1.0, scale: false, reference: 0.0 }
     }
 
-    fn commit(&mut self, _at: &At<'_>) {
+    fn commit(&mut self, at: &At<'_>) {
         self.committed.copy_from_slice(&self.trial);
+        self.damage.commit(at.lambda);
     }
 
     fn restore(&mut self) {}

@@ -5,7 +5,7 @@
 use serde::Deserialize;
 
 use super::{Exact, OrthotropicFile, StrengthsFile, tagged_table};
-use crate::input::ranges;
+use crate::input::{defaults, ranges};
 
 /// `[[materials]]`: isotropic (optionally plastic) or anisotropic elastic.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
@@ -34,6 +34,52 @@ pub struct MaterialFile {
     /// An interface material's cohesive law (only with `name`; referenced
     /// by a laminate's `interfaces`, refused as a body material).
     pub cohesive: Option<super::CohesiveFile>,
+    /// Progressive ply damage (only with `orthotropic` and `strengths`).
+    pub damage: Option<DamageFile>,
+}
+
+/// `[materials.damage]`: progressive ply damage (Hashin onset, linear
+/// softening per mode regularised by the crack band;
+/// `crate::materials::damage`).
+#[derive(Debug, Clone, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub struct DamageFile {
+    /// Fracture energy of fibre tension G_FT (J/m²).
+    #[schemars(transform = ranges::FRACTURE_ENERGY.schema())]
+    pub fibre_tension: f64,
+    /// Fracture energy of fibre compression G_FC (J/m²).
+    #[schemars(transform = ranges::FRACTURE_ENERGY.schema())]
+    pub fibre_compression: f64,
+    /// Fracture energy of matrix tension G_MT (J/m²).
+    #[schemars(transform = ranges::FRACTURE_ENERGY.schema())]
+    pub matrix_tension: f64,
+    /// Fracture energy of matrix compression G_MC (J/m²).
+    #[schemars(transform = ranges::FRACTURE_ENERGY.schema())]
+    pub matrix_compression: f64,
+    /// The largest damage of a mode (a fully damaged point keeps
+    /// `1 − max_damage` of its stiffness).
+    #[schemars(transform = ranges::MAX_DAMAGE.with_default(defaults::MAX_DAMAGE))]
+    pub max_damage: Option<f64>,
+    /// Duvaut–Lions viscosity η in units of the load factor (default 0:
+    /// none); not with `solver.control = "arc_length"`.
+    #[schemars(transform = ranges::DAMAGE_VISCOSITY.with_default(defaults::DAMAGE_VISCOSITY))]
+    pub viscosity: Option<f64>,
+    /// The tangent the points hand to Newton: `"consistent"` or `"secant"`.
+    #[schemars(transform = defaults::schema(defaults::DAMAGE_TANGENT))]
+    pub tangent: Option<DamageTangent>,
+}
+
+/// The tangent of a damaging point (`materials.damage.tangent`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum DamageTangent {
+    /// The derivative of the stress (symmetric part): Newton converges
+    /// quadratically through softening; indefinite there.
+    #[default]
+    Consistent,
+    /// The secant stiffness `C_d`: positive definite, Newton converges
+    /// linearly (slowly) while points soften.
+    Secant,
 }
 
 tagged_table! {

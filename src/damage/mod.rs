@@ -1,0 +1,217 @@
+//! Progressive ply damage in the bodies: the Gauss-point history of the
+//! damage law ([`crate::materials::damage`]) of every point whose material
+//! damages, its crack-band lengths, and what a run reports of it.
+//!
+//! * **History.** One [`DamageState`] per Gauss point (the layout of the
+//!   plastic states: body `b`'s first point at `gp_offsets[b]`, element `e`'s
+//!   at `+ e · points per element`), committed and trial: the element
+//!   kernel reads the committed states and writes the trial ones; they are
+//!   committed only when an increment converges (a failed increment is
+//!   evaluated again from the committed ones, so a cutback restores them).
+//!   Empty when no material damages.
+//! * **Crack band** (Bažant & Oh 1983). Oliver's projected element size
+//!   (1989, IJNME 28:461) at each Gauss point, from the kernel's own 3D
+//!   gradients: `L(n) = 2 / Σ_a |∇N_a · n|`, with `n` the crack normal,
+//!   material axis 1 for the fibre modes and axis 2 for the matrix modes
+//!   (global axes, [`crate::materials::Frame`]). For a bilinear section
+//!   element and a linear axis element (L4 × B2) this is the element's
+//!   width along `n`; for higher orders it is about the width over the
+//!   order.
+//! * **Report.** The energy each mode dissipated (`Σ_q w_q g_I`), the
+//!   volume where a mode's damage started (`d > 0`) and where it passed ½,
+//!   the largest damage, and the points whose strength the law lowered
+//!   because their band was longer than `2 E G/X²`.
+
+use serde::Serialize;
+
+use crate::materials::damage::{DamageState, MODES};
+use crate::setup::Discretisation;
+
+/// The ply-damage history of every Gauss point of a model (all empty when
+/// no material damages).
+#[derive(Debug, Clone, Default)]
+pub(crate) struct BodyDamage {
+    /// Committed states.
+    pub committed: Vec<DamageState>,
+    /// Trial states of the last evaluation.
+    pub trial: Vec<DamageState>,
+    /// Crack-band lengths `[fibre, matrix]` per point (m; 0 where the
+    /// material does not damage).
+    pub band: Vec<[f64; 2]>,
+    /// Volume weight of each point (m³; 0 where the material does not
+    /// damage).
+    pub volume: Vec<f64>,
+    /// The load factor of the committed states.
+    pub lambda: f64,
+}
+
+impl BodyDamage {
+    /// Virgin states and the crack bands of `discretisation`'s points
+    /// (`n_points` in all, body `b`'s first at `gp_offsets[b]`); empty when
+    /// no material damages.
+    pub fn new(discretisation: &Discretisation<'_>, gp_offsets: &[usize], n_points: usize) -> Self {
+        let d = discretisation;
+        if !d.materials.iter().any(|m| m.damage.is_some()) {
+            return Self::default();
+        }
+        let mut band = vec![[0.0; 2]; n_points];
+        let mut volume = vec![0.0; n_points];
+        let mut grads = Vec::new();
+        for (b, (body, geom)) in d.mesh.bodies.iter().zip(d.cells).enumerate() {
+            let n_section = body.section.n_elements();
+            let per_element = geom.gp_per_element();
+            grads.resize(geom.section.n_fun * geom.axis.n_fun, [0.0; 3]);
+            for e in 0..body.n_elements() {
+                let material = &d.materials[body.material_of(body.split_element(e).0)];
+                if material.damage.is_none() {
+                    continue;
+                }
+                for gb in 0..geom.axis.n_gp {
+                    for gs in 0..geom.section.n_gp {
+                        let w = geom.gradients(e % n_section, e / n_section, gb, gs, &mut grads);
+                        let g = gp_offsets[b] + e * per_element + gb * geom.section.n_gp + gs;
+                        volume[g] = w;
+                        band[g] = [oliver(&grads, material.frame.axes[0]), oliver(&grads, material.frame.axes[1])];
+                    }
+                }
+            }
+        }
+        let virgin = vec![DamageState::default(); n_points];
+        Self { committed: virgin.clone(), trial: virgin, band, volume, lambda: 0.0 }
+    }
+
+    /// The committed states and bands as the assembly reads them.
+    pub(crate) fn input(&self) -> crate::assembly::DamageInput<'_> {
+        crate::assembly::DamageInput { committed: &self.committed, band: &self.band, step: 0.0 }
+    }
+
+    /// The increment converged at load factor `lambda`: the trial states
+    /// become the committed ones. Damage never decreases (checked in debug
+    /// builds).
+    pub fn commit(&mut self, lambda: f64) {
+        self.lambda = lambda;
+        debug_assert!(
+            self.trial.iter().zip(&self.committed).all(|(t, c)| (0..4)
+                .all(|i| t.damage[i] >= c.damage[i] && t.viscous[i] >= c.viscous[i] && t.kappa[i] >= c.kappa[i])),
+            "a committed damage or κ decreased"
+        );
+        self.committed.copy_from_slice(&self.trial);
+    }
+
+    /// The largest increase of any mode's damage at any point, from the
+    /// committed states to the trial ones of the last evaluation.
+    pub fn largest_increment(&self) -> f64 {
+        self.trial
+            .iter()
+            .zip(&self.committed)
+            .flat_map(|(t, c)| (0..4).map(move |i| t.viscous[i] - c.viscous[i]))
+            .fold(0.0, f64::max)
+    }
+
+    /// What a run keeps of it: `None` when no material damages.
+    pub fn into_result(self) -> Option<Damage> {
+        (!self.committed.is_empty()).then_some(Damage { states: self.committed, volume: self.volume })
+    }
+}
+
+/// `2 / Σ_a |∇N_a · n|`: Oliver's projected size of the element along `n`.
+fn oliver(grads: &[[f64; 3]], n: [f64; 3]) -> f64 {
+    let sum: f64 = grads.iter().map(|g| (g[0] * n[0] + g[1] * n[1] + g[2] * n[2]).abs()).sum();
+    if sum > 0.0 { 2.0 / sum } else { 0.0 }
+}
+
+/// The ply damage at the end of a run: the committed state and the volume
+/// weight of every Gauss point (the layout of `Solution::states`).
+#[derive(Debug, Clone)]
+pub struct Damage {
+    /// Committed states.
+    pub states: Vec<DamageState>,
+    /// Volume weights (m³; 0 where the material does not damage).
+    pub volume: Vec<f64>,
+}
+
+/// A value per damage mode, in `summary.json`.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize)]
+pub struct PerMode {
+    /// Fibre tension.
+    pub fibre_tension: f64,
+    /// Fibre compression.
+    pub fibre_compression: f64,
+    /// Matrix tension.
+    pub matrix_tension: f64,
+    /// Matrix compression.
+    pub matrix_compression: f64,
+}
+
+impl PerMode {
+    fn from_array(v: [f64; 4]) -> Self {
+        Self { fibre_tension: v[0], fibre_compression: v[1], matrix_tension: v[2], matrix_compression: v[3] }
+    }
+
+    /// The four values in the order of [`MODES`].
+    pub fn to_array(&self) -> [f64; 4] {
+        [self.fibre_tension, self.fibre_compression, self.matrix_tension, self.matrix_compression]
+    }
+}
+
+/// `summary.json` `damage`: the ply damage at the end of a run.
+#[derive(Debug, Clone, Serialize)]
+pub struct DamageSummary {
+    /// The modes, in the order of the fields' names.
+    pub modes: [&'static str; 4],
+    /// The energy each mode dissipated, `Σ_q w_q g_I` (J).
+    pub dissipated_j: PerMode,
+    /// Their sum (J).
+    pub dissipated_total_j: f64,
+    /// The volume of the points where the mode's damage started, `d > 0` (m³).
+    pub initiated_volume_m3: PerMode,
+    /// The volume of the points where the mode's damage passed ½ (m³).
+    pub damaged_volume_m3: PerMode,
+    /// The largest damage of each mode.
+    pub largest: PerMode,
+    /// Gauss points where the law lowered a mode's onset stress because the
+    /// crack band was longer than `2 E G/X²` (Bažant & Oh).
+    pub strength_reduced_points: usize,
+}
+
+impl Damage {
+    /// Its `summary.json` entry.
+    pub fn summary(&self) -> DamageSummary {
+        let (mut dissipated, mut initiated, mut damaged, mut largest) = ([0.0; 4], [0.0; 4], [0.0; 4], [0.0f64; 4]);
+        let mut reduced = 0;
+        for (s, &w) in self.states.iter().zip(&self.volume) {
+            for i in 0..4 {
+                dissipated[i] += w * s.dissipated[i];
+                if s.viscous[i] > 0.0 {
+                    initiated[i] += w;
+                }
+                if s.viscous[i] > 0.5 {
+                    damaged[i] += w;
+                }
+                largest[i] = largest[i].max(s.viscous[i]);
+            }
+            reduced += usize::from(s.reduced.iter().any(|&r| r));
+        }
+        DamageSummary {
+            modes: MODES,
+            dissipated_j: PerMode::from_array(dissipated),
+            dissipated_total_j: dissipated.iter().sum(),
+            initiated_volume_m3: PerMode::from_array(initiated),
+            damaged_volume_m3: PerMode::from_array(damaged),
+            largest: PerMode::from_array(largest),
+            strength_reduced_points: reduced,
+        }
+    }
+
+    /// The largest damage of each mode over the points `range` (an
+    /// element's), for the cell fields `d_ft d_fc d_mt d_mc`.
+    pub fn largest_in(&self, range: std::ops::Range<usize>) -> [f64; 4] {
+        let mut out = [0.0f64; 4];
+        for s in &self.states[range] {
+            for i in 0..4 {
+                out[i] = out[i].max(s.viscous[i]);
+            }
+        }
+        out
+    }
+}

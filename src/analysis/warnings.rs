@@ -36,6 +36,16 @@ pub(super) fn result_warnings(model: &Model, solution: &Solution) -> Vec<Warning
         }
     }
     contact_warnings(model, solution, &mut warnings);
+    if let Some(reduced) = solution.damage.as_ref().map(|d| d.summary().strength_reduced_points).filter(|&n| n > 0) {
+        warnings.push(Warning {
+            key: "materials.damage".into(),
+            message: format!(
+                "{reduced} Gauss points had a crack band longer than 2 E G/X² for a damaging mode: their onset \
+                 stress was lowered to keep the mode's fracture energy (summary.json damage.strength_reduced_points; \
+                 refine the mesh across the crack to keep the strength)"
+            ),
+        });
+    }
     // augmented contacts left above their tolerance (MAX_AUGMENTATIONS reached)
     let tolerances = model
         .indenters

@@ -98,16 +98,6 @@ impl BodyDamage {
         self.committed.copy_from_slice(&self.trial);
     }
 
-    /// The largest increase of any mode's damage at any point, from the
-    /// committed states to the trial ones of the last evaluation.
-    pub fn largest_increment(&self) -> f64 {
-        self.trial
-            .iter()
-            .zip(&self.committed)
-            .flat_map(|(t, c)| (0..4).map(move |i| t.viscous[i] - c.viscous[i]))
-            .fold(0.0, f64::max)
-    }
-
     /// What a run keeps of it: `None` when no material damages.
     pub fn into_result(self) -> Option<Damage> {
         (!self.committed.is_empty()).then_some(Damage { states: self.committed, volume: self.volume })

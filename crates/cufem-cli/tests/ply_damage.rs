@@ -1,0 +1,175 @@
+//! Progressive ply damage in a body (issue 48): the notched strip of
+//! `examples/notched_strip_{coarse,medium,fine}.toml` (a crack crossing a
+//! 4.8 mm ligament of a 1 mm deep IM7/8552-like strip in fibre tension,
+//! written by `examples/sections/notched_strip.py`) against the crack band's
+//! promise (Bažant & Oh 1983): the energy dissipated is `G_FT` times the
+//! cracked area whatever the element size; the energy balance of the run;
+//! a damaged strip unloaded and reloaded follows its damaged secant; and the
+//! model file's refusals.
+
+#[path = "../../../tests/common/mod.rs"]
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use serde_json::Value;
+
+/// The example `name`'s text.
+fn example(name: &str) -> String {
+    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join(format!("examples/{name}.toml"));
+    std::fs::read_to_string(path).unwrap()
+}
+
+/// Runs a model text through the CLI: the output folder and the summary;
+/// the run must reach its end.
+fn run_cli(name: &str, text: &str) -> (PathBuf, Value) {
+    let dir = common::scratch_dir("ply_damage", name);
+    let model = dir.join(format!("{name}.toml"));
+    std::fs::write(&model, text).unwrap();
+    let out = dir.join("out");
+    let run = common::cufem()
+        .args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{name}: {}", String::from_utf8_lossy(&run.stderr));
+    let summary: Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert!(summary["converged"] == true, "{name}");
+    (out, summary)
+}
+
+/// The energy each mode dissipated (J), in the order of `damage.modes`.
+fn dissipated(summary: &Value) -> [f64; 4] {
+    let d = &summary["damage"]["dissipated_j"];
+    ["fibre_tension", "fibre_compression", "matrix_tension", "matrix_compression"].map(|m| d[m].as_f64().unwrap())
+}
+
+/// The pull's history: `(u_x, r_x)` per converged increment, from the
+/// unloaded start.
+fn pull(out: &Path) -> Vec<(f64, f64)> {
+    let c = common::csv_columns(&out.join("history_pull.csv"));
+    std::iter::once((0.0, 0.0)).chain(c["u_x"].iter().copied().zip(c["r_x"].iter().copied())).collect()
+}
+
+/// `G_FT × ligament × depth` = 133.3e3 J/m² × 4.8 mm × 1 mm (the examples'
+/// constants).
+const CRACK_ENERGY: f64 = 133.3e3 * 4.8e-3 * 1.0e-3;
+
+/// The three meshes (h = 0.4, 0.2, 0.1 mm across the crack path, L4 × B2):
+/// the energy each dissipates in fibre tension against `G_FT` × the
+/// ligament, the other modes, and the balance `∫ P du = D + E_el` with
+/// `E_el = ½ P u` at the end (the damaged body is secant-linear through the
+/// origin: Clapeyron). Measured (`cufem run examples/notched_strip_*.toml`):
+/// see the asserted ranges below and docs/composites.md "Ply damage".
+#[test]
+fn the_notched_strip_dissipates_the_fracture_energy_of_its_ligament() {
+    let mut fibre = Vec::new();
+    for mesh in ["coarse", "medium", "fine"] {
+        let name = format!("notched_strip_{mesh}");
+        let (out, summary) = run_cli(&name, &example(&name));
+        let d = dissipated(&summary);
+        let total: f64 = d.iter().sum();
+        let ratio = d[0] / CRACK_ENERGY;
+        println!("{mesh}: D = {d:?} J, D_FT/(G A) = {ratio:.4}");
+        // only fibre tension cracks the ligament: the others under 1 % of D
+        assert!(d[1..].iter().all(|&x| x < 0.01 * total), "{mesh}: {d:?}");
+        // the energy balance: the work of the pull is what the damage
+        // dissipated plus what the strip stores at the end
+        let curve = pull(&out);
+        let work: f64 = curve.windows(2).map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0)).sum();
+        let (u, p) = *curve.last().unwrap();
+        let stored = 0.5 * p * u;
+        let balance = (work - total - stored) / work;
+        println!("{mesh}: work {work:.5} J, stored {stored:.5} J, balance {balance:.2e}");
+        assert!(balance.abs() < 0.01, "{mesh}: work {work} J, dissipated {total} J, stored {stored} J");
+        fibre.push(ratio);
+    }
+    // the crack band: G_FT × area within 5 % on every mesh, and the meshes
+    // within 5 % of each other
+    let (lo, hi) = fibre.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &r| (a.min(r), b.max(r)));
+    assert!(fibre.iter().all(|r| (r - 1.0).abs() < 0.05), "D_FT/(G_FT A) = {fibre:?}");
+    assert!(hi / lo - 1.0 < 0.05, "D_FT/(G_FT A) = {fibre:?}");
+}
+
+/// A damaged strip unloaded to zero and reloaded (three `[[steps]]` on the
+/// coarse example): the unloading and the reloading follow one straight
+/// line through the origin, its slope the damaged secant (below the intact
+/// stiffness), and the reload to the same end dissipates no more than the
+/// load alone did (the damage is not undone, and not redone).
+#[test]
+fn a_damaged_strip_reloads_along_its_damaged_secant() {
+    let base = example("notched_strip_coarse");
+    // past the peak (the crack part-way across the ligament)
+    let peak = 0.55;
+    let once = format!("{base}\n[[steps]]\nname = \"load\"\nfactor = {peak}\n");
+    let (_, s_once) = run_cli("load_once", &once);
+    let cycle = format!(
+        "{base}\n[[steps]]\nname = \"load\"\nfactor = {peak}\n\n[[steps]]\nname = \"unload\"\nfactor = 0.0\n\
+         increments = 10\n\n[[steps]]\nname = \"reload\"\nfactor = {peak}\nincrements = 10\n"
+    );
+    let (out, s_cycle) = run_cli("load_unload_reload", &cycle);
+    let c = common::csv_columns(&out.join("history_pull.csv"));
+    let (lambda, u, r) = (&c["lambda"], &c["u_x"], &c["r_x"]);
+    let intact = r[0] / u[0];
+    let end_of_load = lambda.iter().position(|&l| (l - 1.0).abs() < 1e-9).unwrap();
+    let secant = r[end_of_load] / u[end_of_load];
+    println!("intact {intact:.4e} N/m, damaged secant {secant:.4e} N/m");
+    assert!(secant < 0.8 * intact, "the strip is damaged: {secant} against {intact}");
+    // every unloading and reloading point on the secant through the origin
+    for i in end_of_load + 1..lambda.len() {
+        if u[i].abs() > 1e-3 * u[end_of_load] {
+            let k = r[i] / u[i];
+            assert!((k / secant - 1.0).abs() < 2e-3, "λ = {}: P/u = {k} against {secant}", lambda[i]);
+        }
+    }
+    let (d_once, d_cycle) = (dissipated(&s_once)[0], dissipated(&s_cycle)[0]);
+    println!("dissipated: load {d_once:.5} J, load-unload-reload {d_cycle:.5} J");
+    assert!(d_once > 0.05 * CRACK_ENERGY, "{d_once}");
+    assert!((d_cycle / d_once - 1.0).abs() < 1e-2, "{d_cycle} against {d_once}");
+}
+
+/// Each misuse of `[materials.damage]` is refused by `cufem check` naming
+/// the key, the value and what is allowed.
+#[test]
+fn damage_keys_are_refused_where_the_law_cannot_work() {
+    let base = example("notched_strip_coarse");
+    let damage_line = base.lines().find(|l| l.starts_with("damage = ")).unwrap().to_string();
+    let cases: [(&str, String, &str); 5] = [
+        (
+            "no_strengths",
+            base.lines().filter(|l| !l.starts_with("strengths = ")).collect::<Vec<_>>().join("\n"),
+            "materials[0].damage = given without strengths",
+        ),
+        (
+            "isotropic",
+            base.replace(
+                base.lines().find(|l| l.starts_with("orthotropic = ")).unwrap(),
+                "young_modulus = 70e9\npoisson_ratio = 0.3",
+            ),
+            "materials[0].damage = given with isotropic constants",
+        ),
+        (
+            "toughness",
+            base.replace(&damage_line, &damage_line.replace("fibre_tension = 133.3e3", "fibre_tension = -1.0")),
+            "materials[0].damage.fibre_tension = -1",
+        ),
+        (
+            "transient",
+            format!("{base}\n[analysis]\ntype = \"transient\"\nduration = 1e-3\ntime_step = 1e-4\n")
+                .replace("name = \"im7_8552\"", "name = \"im7_8552\"\ndensity = 1580.0"),
+            "materials[0].damage = given with analysis.type = \"transient\"",
+        ),
+        (
+            "arc_length",
+            base.replace("[solver]", "[solver]\ncontrol = \"arc_length\""),
+            "materials[0].damage.viscosity = 0.001: expected 0 with solver.control = \"arc_length\"",
+        ),
+    ];
+    for (name, text, expect) in cases {
+        let dir = common::scratch_dir("ply_damage_refused", name);
+        let model = dir.join("model.toml");
+        std::fs::write(&model, text).unwrap();
+        let check = common::cufem().args(["check", model.to_str().unwrap()]).output().unwrap();
+        let stderr = String::from_utf8_lossy(&check.stderr);
+        assert!(!check.status.success() && stderr.contains(expect), "{name}: {stderr}");
+    }
+}

@@ -59,7 +59,7 @@ const CRACK_ENERGY: f64 = 133.3e3 * 4.8e-3 * 1.0e-3;
 /// ligament, the other modes, and the balance `∫ P du = D + E_el` with
 /// `E_el = ½ P u` at the end (the damaged body is secant-linear through the
 /// origin: Clapeyron). Measured (`cufem run examples/notched_strip_*.toml`):
-/// see the asserted ranges below and docs/composites.md "Ply damage".
+/// D_FT/(G_FT A) = 1.059, 1.069, 1.069, the balance within 0.02 %.
 #[test]
 fn the_notched_strip_dissipates_the_fracture_energy_of_its_ligament() {
     let mut fibre = Vec::new();
@@ -83,11 +83,13 @@ fn the_notched_strip_dissipates_the_fracture_energy_of_its_ligament() {
         assert!(balance.abs() < 0.01, "{mesh}: work {work} J, dissipated {total} J, stored {stored} J");
         fibre.push(ratio);
     }
-    // the crack band: G_FT × area within 5 % on every mesh, and the meshes
-    // within 5 % of each other
+    // the crack band: the meshes within 5 % of each other (measured 1 %)
     let (lo, hi) = fibre.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &r| (a.min(r), b.max(r)));
-    assert!(fibre.iter().all(|r| (r - 1.0).abs() < 0.05), "D_FT/(G_FT A) = {fibre:?}");
     assert!(hi / lo - 1.0 < 0.05, "D_FT/(G_FT A) = {fibre:?}");
+    // ... and G_FT × area plus the viscosity's work: a known excess of
+    // 6–7 % at viscosity = 1e-3 (measured 1.059, 1.069, 1.069; 1.019 at
+    // 3e-4), asserted from both sides (docs/limitations.md "Ply damage")
+    assert!(fibre.iter().all(|&r| (1.04..1.09).contains(&r)), "D_FT/(G_FT A) = {fibre:?}");
 }
 
 /// A damaged strip unloaded to zero and reloaded (three `[[steps]]` on the
@@ -111,11 +113,15 @@ fn a_damaged_strip_reloads_along_its_damaged_secant() {
     let (lambda, u, r) = (&c["lambda"], &c["u_x"], &c["r_x"]);
     let intact = r[0] / u[0];
     let end_of_load = lambda.iter().position(|&l| (l - 1.0).abs() < 1e-9).unwrap();
-    let secant = r[end_of_load] / u[end_of_load];
-    println!("intact {intact:.4e} N/m, damaged secant {secant:.4e} N/m");
+    // the secant after the first unloading increment (over which the
+    // viscous damage catches up with the law's: Δλ = 0.1 ≫ η = 1e-3)
+    let secant = r[end_of_load + 1] / u[end_of_load + 1];
+    let at_load = r[end_of_load] / u[end_of_load];
+    println!("intact {intact:.4e} N/m, at the end of the load {at_load:.4e} N/m, damaged secant {secant:.4e} N/m");
     assert!(secant < 0.8 * intact, "the strip is damaged: {secant} against {intact}");
-    // every unloading and reloading point on the secant through the origin
-    for i in end_of_load + 1..lambda.len() {
+    assert!((at_load / secant - 1.0).abs() < 0.02, "{at_load} against {secant}");
+    // every later unloading and reloading point on the secant through the origin
+    for i in end_of_load + 2..lambda.len() {
         if u[i].abs() > 1e-3 * u[end_of_load] {
             let k = r[i] / u[i];
             assert!((k / secant - 1.0).abs() < 2e-3, "λ = {}: P/u = {k} against {secant}", lambda[i]);
@@ -153,15 +159,15 @@ fn damage_keys_are_refused_where_the_law_cannot_work() {
             "materials[0].damage.fibre_tension = -1",
         ),
         (
-            "transient",
-            format!("{base}\n[analysis]\ntype = \"transient\"\nduration = 1e-3\ntime_step = 1e-4\n")
+            "modal",
+            format!("{base}\n[analysis]\ntype = \"modal\"\n")
                 .replace("name = \"im7_8552\"", "name = \"im7_8552\"\ndensity = 1580.0"),
-            "materials[0].damage = given with analysis.type = \"transient\"",
+            "materials[0].damage = given with analysis.type = \"modal\"",
         ),
         (
-            "arc_length",
-            base.replace("[solver]", "[solver]\ncontrol = \"arc_length\""),
-            "materials[0].damage.viscosity = 0.001: expected 0 with solver.control = \"arc_length\"",
+            "max_damage",
+            base.replace(&damage_line, &damage_line.replace("viscosity = 1e-3", "viscosity = 1e-3, max_damage = 1.0")),
+            "materials[0].damage.max_damage = 1: expected",
         ),
     ];
     for (name, text, expect) in cases {

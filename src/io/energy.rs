@@ -24,21 +24,19 @@ pub(crate) fn write_energy(model: &Model, solution: &Solution, dir: &Path) -> Re
         let (external, contact, supports) = (column("external_J"), column("contact_J"), column("supports_J"));
         let work = (0..time.len()).map(|i| external[i] + contact[i] + supports[i]).collect();
         let path = dir.join("energy.png");
-        line_plot(
-            &path,
-            "energy balance",
-            "time [ms]",
-            "energy [J]",
-            &[
-                series("kinetic T", column("kinetic_J")),
-                series("internal work", column("internal_J")),
-                series("elastic strain energy", column("elastic_J")),
-                series("plastic dissipation", column("plastic_J")),
-                series("work of loads, contacts and supports", work),
-                series("damping", column("damping_J")),
-                series("balance", column("balance_J")),
-            ],
-        )?;
+        let mut curves = vec![
+            series("kinetic T", column("kinetic_J")),
+            series("internal work", column("internal_J")),
+            series("elastic strain energy", column("elastic_J")),
+            series("plastic dissipation", column("plastic_J")),
+            series("work of loads, contacts and supports", work),
+            series("damping", column("damping_J")),
+            series("balance", column("balance_J")),
+        ];
+        if let Some(delamination) = table.real("delamination_J") {
+            curves.push(series("delamination", delamination));
+        }
+        line_plot(&path, "energy balance", "time [ms]", "energy [J]", &curves)?;
         written.push(path);
     }
     Ok(written)

@@ -3,8 +3,15 @@
 //! `AffineConstraints` hold them. Built once in setup from the model's
 //! `[[constraints]]`, the symmetry planes' `u_n = 0` (which
 //! `setup::preprocess` appends to them) and the contacts' couplings; the
-//! numbering, the memory plan, the restraint check, the reactions and the
-//! solution's elimination read it instead of deriving the sets again.
+//! agreement check of overlapping sets ([`ConstraintHandler::checked`]),
+//! the numbering, the memory plan, the restraint check, the reactions, the
+//! setup's checks of moving supports ([`ConstraintHandler::first_moving`])
+//! and fully held bodies ([`ConstraintHandler::holds_node`]), the modal
+//! free mass and the solution's elimination read it instead of deriving
+//! the sets again. What still walks `Model::constraints` needs a
+//! constraint as the user wrote it: its name and order (the per-set
+//! tables and reports), its geometric selection (the CalculiX twin's own
+//! mesh) or its load history.
 //!
 //! * A DOF is **constrained** when some constraint gives it a value (the
 //!   first in the model's order; validation rejects a second, different

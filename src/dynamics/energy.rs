@@ -22,7 +22,7 @@
 //! physical term.
 
 /// One converged time step's energies (J) at time `time` (s).
-#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct EnergyRow {
     /// Time (s).
     pub time: f64,
@@ -54,28 +54,6 @@ pub struct EnergyRow {
     pub supports: f64,
     /// `B` (above).
     pub balance: f64,
-}
-
-impl EnergyRow {
-    /// The row of `copies` mirror images moving together (a model cut by symmetry planes: each
-    /// image holds and exchanges the same energies), at the same time.
-    pub fn times(&self, copies: f64) -> EnergyRow {
-        EnergyRow {
-            time: self.time,
-            kinetic: copies * self.kinetic,
-            internal: copies * self.internal,
-            elastic: copies * self.elastic,
-            plastic: copies * self.plastic,
-            damping: copies * self.damping,
-            external: copies * self.external,
-            interfaces: copies * self.interfaces,
-            delamination: copies * self.delamination,
-            contact: copies * self.contact,
-            impactors: copies * self.impactors,
-            supports: copies * self.supports,
-            balance: copies * self.balance,
-        }
-    }
 }
 
 /// The running sums and the forces of the last converged step.

@@ -1,9 +1,11 @@
 //! Delamination through cohesive interfaces (issue 48): the double
-//! cantilever beam of `examples/dcb.toml` against corrected beam theory
-//! with the same constants (`tests/common/cbt.rs`: Williams 1989's crack
-//! correction χh; self-checked in tests/oracles_selfcheck.rs) — the
-//! compliance of a held crack, the load–opening curve through onset, and
-//! that the curve moves with G_Ic.
+//! cantilever beam of `examples/dcb.toml` and the end-notched flexure of
+//! `examples/enf.toml` against corrected beam theory with the same
+//! constants (`tests/common/cbt.rs`: Williams 1989's crack correction χh,
+//! Wang & Williams 1992's 0.42χh; self-checked in
+//! tests/oracles_selfcheck.rs) — the compliance of a held crack, the
+//! load–displacement curves through onset, and that they move with G_Ic and
+//! G_IIc.
 
 #[path = "../../../tests/common/cbt.rs"]
 mod cbt;
@@ -15,10 +17,15 @@ use std::path::{Path, PathBuf};
 use cbt::Specimen;
 use serde_json::Value;
 
-/// The example's text.
-fn example() -> String {
-    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join("examples/dcb.toml");
+/// The text of `examples/<name>.toml`.
+fn read_example(name: &str) -> String {
+    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join(format!("examples/{name}.toml"));
     std::fs::read_to_string(path).unwrap()
+}
+
+/// The DCB example's text.
+fn example() -> String {
+    read_example("dcb")
 }
 
 /// Runs a model text through the CLI: the output folder and the summary;
@@ -158,6 +165,132 @@ fn dcb_curve_moves_with_the_toughness() {
         );
         assert!(original > 0.03, "{name}: within 3 % of the original curve ({original})");
         assert!(own < 0.03, "{name}: not within 3 % of its own curve ({own})");
+    }
+}
+
+/// The ENF example's specimen: B = 25.4 mm, h = 1.56 mm, half-span
+/// L = 51 mm, G_IIc `giic`.
+fn enf_specimen(giic: f64) -> cbt::Enf {
+    let material = cbt::Material::as4_peek();
+    cbt::Enf { material: material.with_toughness(material.gic, giic), width: 0.0254, arm: 0.00156, half_span: 0.051 }
+}
+
+/// The ENF precrack's tip: midway between the last cracked interface nodes
+/// (y = 39.25 mm) and the first intact ones (39.375 mm) (examples/enf.toml).
+const ENF_A0: f64 = 0.0393125;
+
+/// The load–deflection points `(δ, P)` of an ENF run: P the reaction of the
+/// load line (downward positive), δ its downward displacement.
+fn enf_curve(out: &Path) -> Vec<(f64, f64)> {
+    let c = common::csv_columns(&out.join("history_probes.csv"));
+    let r = common::csv_columns(&out.join("history_load.csv"));
+    c["load_line.u_z"].iter().zip(&r["r_z"]).map(|(u, p)| (-u, -p)).collect()
+}
+
+/// The error of the propagation branch alone: `max |P − P_CBT(δ)| / P_c`
+/// over the points past 1.05 δ_c of `reference` (the peak and the first
+/// 3 mm of growth left out: there the process zone rounds CBT's cusp).
+fn enf_branch_error(points: &[(f64, f64)], reference: &cbt::Enf) -> f64 {
+    let (dc, _) = reference.onset(ENF_A0);
+    let branch: Vec<(f64, f64)> = points.iter().copied().filter(|p| p.0 >= 1.05 * dc).collect();
+    assert!(branch.len() >= 20, "{} points on the branch", branch.len());
+    cbt::curve_error(&branch, reference, ENF_A0)
+}
+
+/// The ENF in three-point bending (design48 §3.2), a0 = 39.3 mm (A0 =
+/// 0.79 L: stable), deflected to 4.2 mm, where CBT's crack is 49.9 mm. The
+/// issue asks for the whole curve within 3 % of P_c; the model does not
+/// reach that at the peak, and that is asserted as a known limit from both
+/// sides (docs/limitations.md): the mode-II process zone (about 3 mm of 0 < d < 1)
+/// softens the curve before CBT's cusp, so the computed peak is 3.8 % below
+/// P_c and the whole-curve error 5.0 %, at the cusp. Before the peak the
+/// compliance is within 1 % of CBT (measured 0.56 % more compliant at
+/// δ = 0.35 mm), and past 1.05 δ_c the branch within 3 % (measured
+/// 2.4 %; CBT leaves out the beam's shear compliance, which raises the
+/// computed branch by about 1.5 % of P_c). The precracked arms slide
+/// without passing through each other (the law's compression penalty).
+#[test]
+fn enf_curve_follows_corrected_beam_theory() {
+    let (out, summary) = run_cli("enf", &read_example("enf"), true);
+    let points = enf_curve(&out);
+    let enf = enf_specimen(1719.0);
+    let (dc, pc) = enf.onset(ENF_A0);
+    let last = *points.last().unwrap();
+    assert!((last.0 - 0.0042).abs() < 1e-9, "the curve stops at δ = {} m", last.0);
+    // before onset: the compliance of the precracked beam
+    let (d0, p0) = points[0];
+    let c0 = d0 / p0;
+    eprintln!("ENF: C = {c0:.5e} m/N at δ = {:.3} mm, CBT {:.5e}", 1e3 * d0, enf.compliance(ENF_A0));
+    assert!(d0 < 0.1 * dc);
+    assert!((c0 / enf.compliance(ENF_A0) - 1.0).abs() < 0.01, "compliance {c0:e}");
+    let whole = cbt::curve_error(&points, &enf, ENF_A0);
+    let branch = enf_branch_error(&points, &enf);
+    let peak = points.iter().map(|p| p.1).fold(0.0, f64::max);
+    eprintln!(
+        "ENF: P_c = {pc:.2} N at {:.3} mm; peak {peak:.2} N ({:+.2} %); {} points; whole-curve error {:.2} %, branch \
+         past 1.05 δ_c {:.2} % of P_c",
+        1e3 * dc,
+        100.0 * (peak / pc - 1.0),
+        points.len(),
+        100.0 * whole,
+        100.0 * branch
+    );
+    assert!(points.iter().filter(|p| p.0 > 1.05 * dc).count() >= 50, "too few points on the branch");
+    assert!(branch < 0.03, "branch error {branch}");
+    common::known_limit("enf_whole_curve_error", 100.0 * whole, "%", 4.5, 5.5, "ENF whole-curve error");
+    common::known_limit("enf_peak_below_pc", 100.0 * (1.0 - peak / pc), "%", 3.3, 4.3, "ENF peak below P_c");
+    // CBT's crack at the last deflection lies in the process zone: past
+    // the delaminated points (d = 1), before the last damaged one
+    let i = &summary["delamination"]["interfaces"][0];
+    let cracked = i["delaminated_m2"].as_f64().unwrap() / 0.0254;
+    let damaged = cracked + i["process_zone_m2"].as_f64().unwrap() / 0.0254;
+    let exact = enf.branch_crack(ENF_A0, last.0);
+    eprintln!(
+        "ENF: d = 1 to {:.3} mm, d > 0 to {:.3} mm, CBT crack {:.3} mm",
+        1e3 * cracked,
+        1e3 * damaged,
+        1e3 * exact
+    );
+    assert!(cracked < exact && exact < damaged, "CBT's crack {exact} m outside [{cracked}, {damaged}] m");
+    // the dissipation lies between G_IIc times the delaminated and the
+    // damaged growth (a process-zone point has dissipated less than G_IIc)
+    let dissipated = i["dissipated_j"].as_f64().unwrap();
+    let (low, high) = (1719.0 * 0.0254 * (cracked - ENF_A0), 1719.0 * 0.0254 * (damaged - ENF_A0));
+    eprintln!("ENF: dissipated {dissipated:.4} J, G_IIc ΔA from {low:.4} to {high:.4} J");
+    assert!(low < dissipated && dissipated < high, "dissipated {dissipated} J");
+    // no interpenetration behind the crack: the opening just below and
+    // above the interface, δ3 ≥ −0.1 µm (the penalty lets the compressed
+    // faces overlap by p/K, p/(3.2e14 Pa/m))
+    let c = common::csv_columns(&out.join("history_probes.csv"));
+    for y in [5, 20, 35] {
+        let gap = c[&format!("above_{y}.u_z")].iter().zip(&c[&format!("below_{y}.u_z")]).map(|(a, b)| a - b);
+        let least = gap.fold(f64::INFINITY, f64::min);
+        eprintln!("ENF: least opening at y = {y} mm: {least:.3e} m");
+        assert!(least > -1e-7, "the arms pass through each other at y = {y} mm by {least} m");
+    }
+}
+
+/// G_IIc changed by ±10 % moves the ENF branch out of the 3 % band around
+/// the original closed form, and keeps it within 3 % of the closed form of
+/// the changed toughness (design48 §3.4; the branch error as in
+/// `enf_curve_follows_corrected_beam_theory`).
+#[test]
+fn enf_curve_moves_with_the_toughness() {
+    for (name, factor) in [("giic_up", 1.1), ("giic_down", 0.9)] {
+        let text = read_example("enf");
+        assert!(text.contains("giic = 1719.0"));
+        let text = text.replace("giic = 1719.0", &format!("giic = {}", 1719.0 * factor));
+        let (out, _) = run_cli(name, &text, true);
+        let points = enf_curve(&out);
+        let original = enf_branch_error(&points, &enf_specimen(1719.0));
+        let own = enf_branch_error(&points, &enf_specimen(1719.0 * factor));
+        eprintln!(
+            "{name}: branch error against the original CBT {:.2} %, against its own {:.2} %",
+            100.0 * original,
+            100.0 * own
+        );
+        assert!(original > 0.03, "{name}: within 3 % of the original branch ({original})");
+        assert!(own < 0.03, "{name}: not within 3 % of its own branch ({own})");
     }
 }
 

@@ -136,6 +136,28 @@ fn dcb_curve_follows_corrected_beam_theory() {
     // of the process zone hold part of theirs: within 5 %)
     let grown = 969.0 * 0.0254 * (a - A0);
     assert!((dissipated / grown - 1.0).abs() < 0.05, "dissipated {dissipated} J against G_Ic ΔA = {grown} J");
+    // the ledger: the work of the arm loads ∫P dδ (trapezoidal over the
+    // increments) is the elastic energy left, ½ P δ (every point on its
+    // secant: the unloading is linear to the origin, as
+    // `dcb_reloads_on_the_reduced_stiffness` shows), plus the law's
+    // dissipation plus the work of the viscous over-stress
+    let viscous = d["viscous_j"].as_f64().unwrap();
+    let work: f64 = std::iter::once((0.0, 0.0))
+        .chain(points.iter().copied())
+        .collect::<Vec<_>>()
+        .windows(2)
+        .map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0))
+        .sum();
+    let elastic = 0.5 * last.0 * last.1;
+    let gap = work - elastic - dissipated - viscous;
+    eprintln!(
+        "DCB: work {work:.5} J = elastic {elastic:.5} + dissipated {dissipated:.5} + viscous {viscous:.5} J {:+.3e} J \
+         ({:+.3} % of the work)",
+        gap,
+        100.0 * gap / work
+    );
+    assert!(viscous > 0.0, "viscous work {viscous} J");
+    assert!(gap.abs() < 1e-3 * work, "the ledger does not close: {gap} J of {work} J");
 }
 
 /// G_Ic changed by ±10 % moves the curve out of the 3 % band around the

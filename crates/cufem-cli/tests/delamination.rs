@@ -240,6 +240,114 @@ fn dcb_reloads_on_the_reduced_stiffness() {
     assert!(origin.0.abs() < 1e-12 && origin.1.abs() < 1e-6 * pm, "unloaded to {origin:?}");
 }
 
+/// The MMB example's specimen at G_II/G = `ratio` with toughnesses
+/// `(gic, giic)`: the lever is the one of the original toughness (the
+/// lever of the example), B = 25.4 mm, h = 1.56 mm, L = 51 mm.
+fn mmb_specimen(ratio: f64, gic: f64, giic: f64) -> cbt::Mmb {
+    let m = cbt::Material::as4_peek();
+    let mut mmb = cbt::Mmb::for_ratio(m, 0.0254, 0.00156, 0.051, MMB_A0, ratio);
+    mmb.material = m.with_toughness(gic, giic);
+    mmb
+}
+
+/// The MMB precrack's tip: midway between the last cracked interface nodes
+/// (y = 33.625 mm) and the first intact ones (33.75 mm) (examples/mmb.toml).
+const MMB_A0: f64 = 0.0336875;
+
+/// The largest gap between the CBT curves of `a` and `b` up to the
+/// opening `delta_max`, over `a`'s P_c (400 samples).
+fn cbt_gap(a: &cbt::Mmb, b: &cbt::Mmb, delta_max: f64) -> f64 {
+    let (_, pc) = a.onset(MMB_A0);
+    (1..=400)
+        .map(|i| {
+            let d = delta_max * f64::from(i) / 400.0;
+            (a.load(MMB_A0, d) - b.load(MMB_A0, d)).abs() / pc
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Which MMB ratio can catch a ±10 % toughness at the issue's 5 %
+/// (design48 §3.4), from the closed form alone: at G_II/G = 0.5 a ±10 %
+/// G_IIc moves the whole curve (to the crack limit, where the mode-II tip
+/// reaches the saddle) by at most 4.5 % of P_c — no test at 5 % catches it
+/// — and at 0.8 by 15.6 %/15.8 %, G_Ic ±10 % by 7.5 %/7.6 %: caught, but
+/// only on the propagation branch (the peak moves by ±3.6 % and ±1.4 %).
+#[test]
+fn mmb_ratio_that_can_catch_the_toughnesses() {
+    let (gic, giic) = (969.0, 1719.0);
+    for (ratio, gi, gii, low, high) in [
+        (0.5, gic, 1.1 * giic, 0.0, 0.05),
+        (0.5, gic, 0.9 * giic, 0.0, 0.05),
+        (0.8, gic, 1.1 * giic, 0.05, 1.0),
+        (0.8, gic, 0.9 * giic, 0.05, 1.0),
+        (0.8, 1.1 * gic, giic, 0.05, 1.0),
+        (0.8, 0.9 * gic, giic, 0.05, 1.0),
+    ] {
+        let original = mmb_specimen(ratio, gic, giic);
+        let changed = mmb_specimen(ratio, gi, gii);
+        let end = |m: &cbt::Mmb| m.branch_point(m.crack_limit() - 1e-4).0;
+        let gap = cbt_gap(&original, &changed, end(&original).min(end(&changed)));
+        let peak = changed.onset(MMB_A0).1 / original.onset(MMB_A0).1 - 1.0;
+        eprintln!(
+            "MMB {ratio}: G_Ic {gi:.1}, G_IIc {gii:.1}: curves {:.2} % of P_c apart, peak {:+.2} %",
+            100.0 * gap,
+            100.0 * peak
+        );
+        assert!(gap > low && gap < high, "MMB {ratio} ({gi}, {gii}): {gap}");
+        assert!(peak.abs() < 0.05, "the peak alone catches it: {peak}");
+    }
+}
+
+/// The MMB at G_II/G = 0.8 (`examples/mmb.toml`: the lever's two loads
+/// without the lever, arc length) up to the peak, where the arc length
+/// stalls (a known limit, docs/limitations.md): every point within 5 % of
+/// P_c of CBT (measured 3.25 %, near CBT's cusp, the process zone
+/// rounding the peak as in the ENF); the stall at 0.967 P_c (asserted in
+/// [0.95, 0.985]), before any growth, so the ±10 % toughness runs the issue
+/// asks for cannot fail here (`mmb_ratio_that_can_catch_the_toughnesses`:
+/// only the branch tells them apart).
+#[test]
+fn mmb_curve_follows_corrected_beam_theory_to_its_peak() {
+    let text = read_example("mmb");
+    let mmb = mmb_specimen(0.8, 969.0, 1719.0);
+    // the example's loads are the lever's at P = 500 N: P c/L over the
+    // end's 4 nodes, P (c + L)/L over the saddle's
+    let (c, l) = (mmb.lever, mmb.half_span);
+    let forces: Vec<f64> = text
+        .lines()
+        .filter_map(|s| s.strip_prefix("force_per_node = [0.0, 0.0, "))
+        .map(|s| s.trim_end_matches(']').parse().unwrap())
+        .collect();
+    assert_eq!(forces.len(), 2);
+    assert!((forces[0] / (500.0 * c / l / 4.0) - 1.0).abs() < 1e-12, "end load {}", forces[0]);
+    assert!((forces[1] / (-500.0 * (c + l) / l / 4.0) - 1.0).abs() < 1e-12, "saddle load {}", forces[1]);
+    let text = text.replace("max_load_factor = 0.88", "max_load_factor = 1.0");
+    let (out, summary) = run_cli("mmb", &text, false);
+    assert_eq!(summary["status"], "not_converged", "the arc length passed the peak");
+    let h = common::csv_columns(&out.join("history_probes.csv"));
+    let points: Vec<(f64, f64)> = h["lambda"]
+        .iter()
+        .zip(h["end.u_z"].iter().zip(&h["saddle.u_z"]))
+        .map(|(lambda, (end, saddle))| (c / l * end - (c + l) / l * saddle, 500.0 * lambda))
+        .collect();
+    let (dc, pc) = mmb.onset(MMB_A0);
+    let error = cbt::curve_error(&points, &mmb, MMB_A0);
+    let last = *points.last().unwrap();
+    eprintln!(
+        "MMB 0.8: c = {:.3} mm; P_c = {pc:.2} N at {:.3} mm; {} points to δ = {:.3} mm, P = {:.2} N; curve error \
+         {:.2} % of P_c",
+        1e3 * c,
+        1e3 * dc,
+        points.len(),
+        1e3 * last.0,
+        last.1,
+        100.0 * error
+    );
+    assert!(points.len() >= 10);
+    assert!(error < 0.05, "curve error {error}");
+    common::known_limit("mmb_arc_length_stall", last.1 / pc, "P_c", 0.95, 0.985, "MMB arc length stall");
+}
+
 /// The ENF example's specimen: B = 25.4 mm, h = 1.56 mm, half-span
 /// L = 51 mm, G_IIc `giic`.
 fn enf_specimen(giic: f64) -> cbt::Enf {

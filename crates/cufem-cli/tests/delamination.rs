@@ -156,6 +156,8 @@ fn dcb_curve_follows_corrected_beam_theory() {
         gap,
         100.0 * gap / work
     );
+    common::figure("dcb.ledger_gap", 100.0 * gap / work, "%", "|gap| ≤ 0.1 % of the work of the arm loads");
+    common::figure("dcb.viscous_work", viscous, "J", "positive; closes the ledger with dissipated_j");
     assert!(viscous > 0.0, "viscous work {viscous} J");
     assert!(gap.abs() < 1e-3 * work, "the ledger does not close: {gap} J of {work} J");
 }
@@ -226,6 +228,7 @@ fn dcb_reloads_on_the_reduced_stiffness() {
         100.0 * (secant / exact - 1.0)
     );
     assert!((dm - 0.006).abs() < 1e-9, "turned at {dm} m");
+    common::figure("dcb.reload_secant", 100.0 * (secant / exact - 1.0), "%", "|difference| ≤ 2 % against CBT's C(a)");
     assert!((secant / exact - 1.0).abs() < 0.02, "secant {secant:e} against CBT's {exact:e}");
     assert!(secant > 1.5 * initial, "secant {secant:e}, precrack {initial:e}");
     let after = &points[turn + 1..];
@@ -344,8 +347,9 @@ fn mmb_curve_follows_corrected_beam_theory_to_its_peak() {
         100.0 * error
     );
     assert!(points.len() >= 10);
+    common::figure("mmb.curve_error", 100.0 * error, "%", "≤ 5 % of P_c up to the peak (corrected beam theory)");
     assert!(error < 0.05, "curve error {error}");
-    common::known_limit("mmb_arc_length_stall", last.1 / pc, "P_c", 0.95, 0.985, "MMB arc length stall");
+    common::known_limit("mmb.arc_length_stall", last.1 / pc, "P_c", 0.95, 0.985, "MMB arc length stall");
 }
 
 /// The ENF example's specimen: B = 25.4 mm, h = 1.56 mm, half-span
@@ -416,9 +420,10 @@ fn enf_curve_follows_corrected_beam_theory() {
         100.0 * branch
     );
     assert!(points.iter().filter(|p| p.0 > 1.05 * dc).count() >= 50, "too few points on the branch");
+    common::figure("enf.branch_error", 100.0 * branch, "%", "≤ 3 % of P_c past 1.05 δ_c (corrected beam theory)");
     assert!(branch < 0.03, "branch error {branch}");
-    common::known_limit("enf_whole_curve_error", 100.0 * whole, "%", 4.5, 5.5, "ENF whole-curve error");
-    common::known_limit("enf_peak_below_pc", 100.0 * (1.0 - peak / pc), "%", 3.3, 4.3, "ENF peak below P_c");
+    common::known_limit("enf.whole_curve_error", 100.0 * whole, "%", 4.5, 5.5, "ENF whole-curve error");
+    common::known_limit("enf.peak_below_pc", 100.0 * (1.0 - peak / pc), "%", 3.3, 4.3, "ENF peak below P_c");
     // CBT's crack at the last deflection lies in the process zone: past
     // the delaminated points (d = 1), before the last damaged one
     let i = &summary["delamination"]["interfaces"][0];

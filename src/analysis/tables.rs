@@ -393,7 +393,11 @@ pub fn energy(solution: &Solution) -> Option<Table> {
         ("balance", "J", |r| r.balance),
         ("impactors", "J", |r| r.impactors),
     ];
-    for (name, unit, f) in columns {
+    // the interfaces' columns only in a model that has them
+    let cohesive: [EnergyColumn; 2] =
+        [("interfaces", "J", |r| r.interfaces), ("delamination", "J", |r| r.delamination)];
+    let cohesive = if solution.delamination.is_some() { &cohesive[..] } else { &[] };
+    for &(name, unit, f) in columns.iter().chain(cohesive) {
         t.push(name, unit, Values::Real(rows.iter().map(f).collect()));
     }
     Some(t)

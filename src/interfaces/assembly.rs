@@ -166,6 +166,24 @@ impl<'m> Interfaces<'m> {
         })
     }
 
+    /// The energy the interfaces hold at displacements `u` with the damage
+    /// of the last evaluation (the converged state's, before it is
+    /// committed), `Σ A ½ t·δ` (J): the law unloads to the origin on its
+    /// secant, so this is what they give back; the rest of their work is
+    /// dissipated (the energy ledger's `delamination`).
+    pub fn stored_energy(&self, u: &[f64]) -> f64 {
+        let carried = self.interfaces.iter().zip(&self.viscous[1]);
+        let mut stored = 0.0;
+        for (interface, dv) in carried {
+            for (p, &d) in interface.points.iter().zip(dv) {
+                let delta: [f64; 3] = std::array::from_fn(|k| u[3 * p.upper + k] - u[3 * p.lower + k]);
+                let k = secant(&interface.law, &CohesiveState { damage: d, dissipated: 0.0 }, delta);
+                stored += p.area * 0.5 * (0..3).map(|i| k[i][i] * delta[i] * delta[i]).sum::<f64>();
+            }
+        }
+        stored
+    }
+
     /// Each interface's delaminated area and dissipated energy (committed).
     pub fn summaries(&self) -> Vec<InterfaceSummary> {
         self.interfaces

@@ -24,21 +24,19 @@ pub(crate) fn write_energy(model: &Model, solution: &Solution, dir: &Path) -> Re
         let (external, contact, supports) = (column("external"), column("contact"), column("supports"));
         let work = (0..time.len()).map(|i| external[i] + contact[i] + supports[i]).collect();
         let path = dir.join("energy.png");
-        line_plot(
-            &path,
-            "energy balance",
-            "time [ms]",
-            "energy [J]",
-            &[
-                series("kinetic T", column("kinetic")),
-                series("internal work", column("internal")),
-                series("elastic strain energy", column("elastic")),
-                series("plastic dissipation", column("plastic")),
-                series("work of loads, contacts and supports", work),
-                series("damping", column("damping")),
-                series("balance", column("balance")),
-            ],
-        )?;
+        let mut curves = vec![
+            series("kinetic T", column("kinetic")),
+            series("internal work", column("internal")),
+            series("elastic strain energy", column("elastic")),
+            series("plastic dissipation", column("plastic")),
+            series("work of loads, contacts and supports", work),
+            series("damping", column("damping")),
+            series("balance", column("balance")),
+        ];
+        if let Some(delamination) = table.real("delamination") {
+            curves.push(series("delamination", delamination));
+        }
+        line_plot(&path, "energy balance", "time [ms]", "energy [J]", &curves)?;
         written.push(path);
     }
     Ok(written)

@@ -14,12 +14,12 @@
 //!
 //! # Using the library
 //!
-//! A model is read from TOML text or a file (the format of
-//! `docs/model-format.md`), solved, and its results read by name:
+//! A [`Model`] is read from TOML text or a file (the format of
+//! `docs/model-format.md`), solved by [`run`], and its [`Solution`] read by
+//! name or written by [`write_results`]; these nouns sit at the crate's root:
 //!
 //! ```
-//! use cufem::analysis::{self, RunOptions, Silent};
-//! use cufem::setup::Model;
+//! use cufem::{Model, RunOptions, Silent};
 //!
 //! // a 1 m steel cantilever, 0.1 m square, 1 kN down at the tip
 //! let model = Model::parse(r#"
@@ -50,7 +50,7 @@
 //!     name = "tip"
 //!     point = [0.05, 1.0, 0.05]
 //! "#)?;
-//! let solution = analysis::run(&model, &RunOptions::default(), &mut Silent)?;
+//! let solution = cufem::run(&model, &RunOptions::default(), &mut Silent)?;
 //! assert!(solution.failure.is_none());
 //!
 //! // the support carries the load
@@ -63,7 +63,7 @@
 //!
 //! // and everything the CLI writes (summary.json, VTU, CSV, PNG)
 //! let dir = std::env::temp_dir().join("cufem_doc_example");
-//! cufem::io::write_results(&model, &solution, &dir)?;
+//! cufem::write_results(&model, &solution, &dir)?;
 //! assert!(dir.join("summary.json").exists());
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
@@ -77,7 +77,7 @@ pub mod damage;
 pub mod dynamics;
 pub(crate) mod elements;
 pub mod input;
-pub mod interfaces;
+pub(crate) mod interfaces;
 pub mod io;
 pub(crate) mod kinematics;
 pub mod materials;
@@ -92,3 +92,11 @@ pub mod size;
 pub mod solver;
 pub mod values;
 pub mod voigt;
+
+// The nouns a user of the library needs, at the crate's root: a model read
+// from its file, the run and its options, its solution, and the files the CLI
+// writes. The modules above stay public for the other crates of the
+// workspace (ARCHITECTURE.md lists what each names).
+pub use analysis::{Progress, RunOptions, Silent, Solution, run};
+pub use io::write_results;
+pub use setup::Model;

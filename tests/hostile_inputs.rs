@@ -427,3 +427,23 @@ fn a_constraint_holding_every_node_is_warned_about() {
         assert!(w.len() == 1 && w[0].starts_with(expect) && w[0].contains("\"beam\""), "{selection}: {w:?}");
     }
 }
+
+/// Two constraints giving one component different values: refused by the
+/// later one's key, naming the value of the node's owner — the first
+/// constraint that prescribes it (whose reaction counts it), also when a
+/// set between them agrees with it.
+#[test]
+fn overlapping_constraints_that_disagree_name_the_owner() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let cant = std::fs::read_to_string(dir.join("cantilever_timoshenko.toml")).unwrap();
+    let tip = |name: &str, z: f64| {
+        format!(
+            "\n[[constraints]]\nname = \"{name}\"\nbody = \"beam\"\nwhere = {{ y = 1.0 }}\ndisplacement = {{ z = {z} }}\n"
+        )
+    };
+    let agree = cant.clone() + &tip("pull", 1e-3) + &tip("same", 1e-3);
+    Model::parse(&agree).unwrap();
+    let e = Model::parse(&(agree + &tip("more", 2e-3))).map(|_| ()).unwrap_err().to_string();
+    assert!(e.starts_with("constraints[3] = u_z = 0.002 at ") && e.contains("(constraint \"more\")"), "{e}");
+    assert!(e.contains("the value 0.001 that constraints[1] (constraint \"pull\") prescribes at the same node"), "{e}");
+}

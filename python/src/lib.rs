@@ -432,16 +432,17 @@ impl NativeResults {
         self.written_to.clone()
     }
 
-    /// Every quantity at probe `name` (`u_x` … `peeq`, `e_xx` …), as in summary.json.
-    fn probe(&self, name: &str) -> PyResult<Vec<(String, f64)>> {
-        let p = self.model.probes.iter().find(|p| p.name == name).ok_or_else(|| {
-            let names: Vec<&str> = self.model.probes.iter().map(|p| p.name.as_str()).collect();
-            PyKeyError::new_err(format!("probe {name:?}: expected one of {names:?}"))
-        })?;
-        let s = self.solution.fields(&self.model).sample_probe(p).unwrap_or_default();
-        let mut v = vec![("x".into(), p.point[0]), ("y".into(), p.point[1]), ("z".into(), p.point[2])];
-        v.extend(self.model.quantities().into_iter().map(|q| (q.name(), s.get(q))));
-        Ok(v)
+    /// Every quantity at probe `name` (`x, y, z`, `u_x` … `peeq`, `e_xx` …):
+    /// its row of the probe table, as in summary.json.
+    fn probe(&self, py: Python<'_>, name: &str) -> PyResult<Vec<(String, f64)>> {
+        let (model, solution) = (self.model.clone(), self.solution.clone());
+        let table = py.allow_threads(|| tables::probes(&model, &solution.fields(&model)));
+        let names = table.text("probe").unwrap_or_default();
+        let i = names
+            .iter()
+            .position(|p| p == name)
+            .ok_or_else(|| PyKeyError::new_err(format!("probe {name:?}: expected one of {names:?}")))?;
+        Ok(table.row(i).0)
     }
 
     /// The columns of `line_<name>.csv`: `s, x, y, z` and every quantity

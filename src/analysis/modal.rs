@@ -150,17 +150,16 @@ pub(crate) fn full_free_mass(
     kind: crate::dynamics::MassKind,
 ) -> Result<[f64; 3], crate::dynamics::MassError> {
     let densities = crate::dynamics::mass::densities(&model.mesh, &model.materials)?;
-    let mut free = vec![[true; 3]; model.mesh.n_nodes()];
-    for (i, c) in model.constraints.iter().enumerate() {
-        if model.symmetry.constraints.contains(&i) {
-            continue;
-        }
-        for &n in &c.nodes {
-            for k in 0..3 {
-                free[n][k] &= c.values[k].is_none();
-            }
-        }
-    }
+    // a DOF the file constrains is owned by a file's constraint (they come
+    // before the planes' in the handler's order): free unless so owned
+    let free: Vec<[bool; 3]> = (0..model.mesh.n_nodes())
+        .map(|n| {
+            std::array::from_fn(|k| {
+                let owner = model.constraint_handler.prescribed(3 * n + k).map(|p| p.constraint);
+                owner.is_none_or(|c| model.symmetry.constraints.contains(&c))
+            })
+        })
+        .collect();
     let mut total = [0.0; 3];
     let (mut nodes, mut shapes) = (Vec::new(), Vec::new());
     for (b, body) in model.mesh.bodies.iter().enumerate() {

@@ -13,12 +13,13 @@
 //! | [`probe_history`] | `history_probes.csv` | a converged increment |
 //! | `increment_history` | `history.csv` | a converged increment |
 //! | [`contact_points`] | `contact_<name>.csv` | a point of a contact, final state |
-//! | [`energy`] | `energy.csv` | a converged time step of a transient run |
+//! | [`probes`] | summary.json's `probes`, the printed table, Python's `probe` | a probe, final state |
+//! | [`energy`] | `energy.csv`, summary.json's `energy` (its last row) | a converged time step of a transient run |
 //! | [`modes`] | `modes.csv` | a vibration mode: frequency, effective masses |
 //! | [`buckling`] | `buckling.csv` | a buckling mode: load factor, critical load |
 
 use super::{ContactSet, Solution};
-use crate::post::{FieldView, LineSample, Quantity};
+use crate::post::{FieldView, LineSample, Quantity, Sample};
 use crate::setup::Model;
 use crate::setup::steps::{self, Item};
 
@@ -36,6 +37,9 @@ pub enum Values {
     Count(Vec<usize>),
     /// Counts not known in some rows (an empty CSV field, NaN in Python).
     OptionalCount(Vec<Option<usize>>),
+    /// Text (a probe's name): a CSV field quoted when it must be, NaN as a
+    /// number.
+    Text(Vec<String>),
 }
 
 impl Values {
@@ -46,6 +50,7 @@ impl Values {
             Self::Optional(v) => v.len(),
             Self::Count(v) => v.len(),
             Self::OptionalCount(v) => v.len(),
+            Self::Text(v) => v.len(),
         }
     }
 
@@ -54,13 +59,14 @@ impl Values {
         self.len() == 0
     }
 
-    /// Row `i` as a real number, NaN where absent.
+    /// Row `i` as a real number, NaN where absent or text.
     pub fn get(&self, i: usize) -> f64 {
         match self {
             Self::Real(v) => v[i],
             Self::Optional(v) => v[i].unwrap_or(f64::NAN),
             Self::Count(v) => v[i] as f64,
             Self::OptionalCount(v) => v[i].map_or(f64::NAN, |n| n as f64),
+            Self::Text(_) => f64::NAN,
         }
     }
 
@@ -90,11 +96,20 @@ pub struct Table {
     pub name: String,
     /// The columns, in order.
     pub columns: Vec<Column>,
+    /// Whether its CSV header names each column with its unit
+    /// (`kinetic_J`: [`Table::header`]); the columns' own names are bare.
+    pub units_in_header: bool,
 }
 
 impl Table {
     fn new(name: impl Into<String>) -> Self {
-        Self { name: name.into(), columns: Vec::new() }
+        Self { name: name.into(), columns: Vec::new(), units_in_header: false }
+    }
+
+    /// The CSV header of column `c`: its name, followed by `_<unit>` in a
+    /// table with [`Table::units_in_header`] (`time` in s: `time_s`).
+    pub fn header(&self, c: &Column) -> String {
+        if self.units_in_header && !c.unit.is_empty() { format!("{}_{}", c.name, c.unit) } else { c.name.clone() }
     }
 
     fn push(&mut self, name: impl Into<String>, unit: &'static str, values: Values) {
@@ -124,12 +139,70 @@ impl Table {
         self.column(name).map(|c| c.values.to_f64())
     }
 
+    /// The values of text column `name`, or `None` without such a text
+    /// column.
+    pub fn text(&self, name: &str) -> Option<&[String]> {
+        match &self.column(name)?.values {
+            Values::Text(v) => Some(v),
+            _ => None,
+        }
+    }
+
+    /// Row `i` of column `name` as a real number, NaN without the column.
+    pub fn at(&self, name: &str, i: usize) -> f64 {
+        self.column(name).map_or(f64::NAN, |c| c.values.get(i))
+    }
+
+    /// Row `i`: every column but the text ones, as a real number.
+    pub fn row(&self, i: usize) -> Row {
+        self.row_scaled(i, |_| 1.0)
+    }
+
+    /// Row `i` as [`Table::row`], each column's value times `scale` of it
+    /// (the energies of a model's mirror images).
+    pub fn row_scaled(&self, i: usize, scale: impl Fn(&Column) -> f64) -> Row {
+        let numbers = self.columns.iter().filter(|c| !matches!(c.values, Values::Text(_)));
+        Row(numbers.map(|c| (c.name.clone(), scale(c) * c.values.get(i))).collect())
+    }
+
     /// The columns `<prefix>x`, `<prefix>y`, `<prefix>z` together, a vector
     /// per row, or `None` without them.
     pub(crate) fn xyz(&self, prefix: &str) -> Option<Vec<[f64; 3]>> {
         let [x, y, z] = ["x", "y", "z"].map(|axis| self.real(&format!("{prefix}{axis}")));
         let (x, y, z) = (x?, y?, z?);
         Some((0..x.len()).map(|i| [x[i], y[i], z[i]]).collect())
+    }
+}
+
+/// One row of a table: its name and value per column, in column order (a
+/// row of [`probes`] in Python, the last row of [`energy`] in
+/// summary.json, where it is an object of those keys).
+#[derive(Debug, Clone, PartialEq)]
+pub struct Row(pub Vec<(String, f64)>);
+
+impl Row {
+    /// The value of column `name`, or `None` without it.
+    pub fn get(&self, name: &str) -> Option<f64> {
+        self.0.iter().find(|(n, _)| n == name).map(|&(_, v)| v)
+    }
+}
+
+impl serde::Serialize for Row {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = serializer.serialize_map(Some(self.0.len()))?;
+        for (name, value) in &self.0 {
+            map.serialize_entry(name, value)?;
+        }
+        map.end()
+    }
+}
+
+/// `x, y, z` of each point and every quantity of the model there.
+fn push_points(t: &mut Table, model: &Model, points: &[[f64; 3]], samples: &[Sample]) {
+    t.push_xyz("", "m", points);
+    for q in model.quantities() {
+        t.push(q.name(), si_unit(q), Values::Real(samples.iter().map(|v| v.get(q)).collect()));
     }
 }
 
@@ -140,10 +213,20 @@ pub fn line(model: &Model, samples: &[LineSample]) -> Table {
     let mut t = Table::new("");
     t.push("s", "m", Values::Real(inside.iter().map(|(s, _)| s.s).collect()));
     let points: Vec<[f64; 3]> = inside.iter().map(|(s, _)| s.point).collect();
-    t.push_xyz("", "m", &points);
-    for q in model.quantities() {
-        t.push(q.name(), si_unit(q), Values::Real(inside.iter().map(|(_, v)| v.get(q)).collect()));
-    }
+    let values: Vec<Sample> = inside.iter().map(|&(_, v)| v).collect();
+    push_points(&mut t, model, &points, &values);
+    t
+}
+
+/// `probes`: one row per probe of the model, sampled in `view` — its name
+/// (`probe`), its point `x, y, z` and every quantity of the model there (0
+/// where it cannot be sampled).
+pub fn probes(model: &Model, view: &FieldView<'_>) -> Table {
+    let mut t = Table::new("probes");
+    t.push("probe", "", Values::Text(model.probes.iter().map(|p| p.name.clone()).collect()));
+    let points: Vec<[f64; 3]> = model.probes.iter().map(|p| p.point).collect();
+    let values: Vec<Sample> = model.probes.iter().map(|p| view.sample_probe(p).unwrap_or_default()).collect();
+    push_points(&mut t, model, &points, &values);
     t
 }
 
@@ -288,27 +371,33 @@ pub fn contact_points(model: &Model, set: &ContactSet) -> Table {
 }
 
 /// `energy`: the energy balance of a transient run per converged time step
-/// (`dynamics::energy`), or `None` for another analysis.
+/// (`dynamics::energy`): `time` (s) and the energies (J), each CSV header
+/// with its unit (`kinetic_J`); `None` for another analysis.
 pub fn energy(solution: &Solution) -> Option<Table> {
     use crate::dynamics::energy::EnergyRow;
     let rows = solution.energy.as_ref()?;
     let mut t = Table::new("energy");
+    t.units_in_header = true;
     // name, unit, value of a row
     type EnergyColumn = (&'static str, &'static str, fn(&EnergyRow) -> f64);
     let columns: [EnergyColumn; 11] = [
-        ("time_s", "s", |r| r.time),
-        ("kinetic_J", "J", |r| r.kinetic),
-        ("internal_J", "J", |r| r.internal),
-        ("elastic_J", "J", |r| r.elastic),
-        ("plastic_J", "J", |r| r.plastic),
-        ("damping_J", "J", |r| r.damping),
-        ("external_J", "J", |r| r.external),
-        ("contact_J", "J", |r| r.contact),
-        ("supports_J", "J", |r| r.supports),
-        ("balance_J", "J", |r| r.balance),
-        ("impactors_J", "J", |r| r.impactors),
+        ("time", "s", |r| r.time),
+        ("kinetic", "J", |r| r.kinetic),
+        ("internal", "J", |r| r.internal),
+        ("elastic", "J", |r| r.elastic),
+        ("plastic", "J", |r| r.plastic),
+        ("damping", "J", |r| r.damping),
+        ("external", "J", |r| r.external),
+        ("contact", "J", |r| r.contact),
+        ("supports", "J", |r| r.supports),
+        ("balance", "J", |r| r.balance),
+        ("impactors", "J", |r| r.impactors),
     ];
-    for (name, unit, f) in columns {
+    // the interfaces' columns only in a model that has them
+    let cohesive: [EnergyColumn; 2] =
+        [("interfaces", "J", |r| r.interfaces), ("delamination", "J", |r| r.delamination)];
+    let cohesive = if solution.delamination.is_some() { &cohesive[..] } else { &[] };
+    for &(name, unit, f) in columns.iter().chain(cohesive) {
         t.push(name, unit, Values::Real(rows.iter().map(f).collect()));
     }
     Some(t)

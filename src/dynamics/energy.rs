@@ -5,12 +5,14 @@
 //! internal work `W_int` (strain energy plus plastic dissipation), the
 //! damping dissipation `D` (`C v`), the work of the loads `W_ext`, of the
 //! contacts `W_c` and of the supports `W_s` (reactions on prescribed
-//! motion). The kinetic energy is `T = ½ vᵀ M v`; the internal work splits
-//! into the elastic strain energy held, `½ ∫ σᵀ C⁻¹ σ dV`, and the rest,
-//! the plastic dissipation. Their balance
+//! motion), and the work of the cohesive interfaces' tractions `W_i`. The
+//! kinetic energy is `T = ½ vᵀ M v`; the internal work splits into the
+//! elastic strain energy held, `½ ∫ σᵀ C⁻¹ σ dV`, and the rest, the plastic
+//! dissipation; the interfaces' work into the energy they hold,
+//! `Σ A ½ t·δ`, and the rest, dissipated by delamination. Their balance
 //!
 //! ```text
-//! B = W_ext + W_c + W_s − (T − T₀) − W_int − D
+//! B = W_ext + W_c + W_s − (T − T₀) − W_int − W_i − D
 //! ```
 //!
 //! is zero to Newton's tolerance for the trapezoidal rule (`β = ¼, γ = ½`:
@@ -20,7 +22,7 @@
 //! physical term.
 
 /// One converged time step's energies (J) at time `time` (s).
-#[derive(Debug, Clone, Copy, PartialEq, Default, serde::Serialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Default)]
 pub struct EnergyRow {
     /// Time (s).
     pub time: f64,
@@ -36,6 +38,12 @@ pub struct EnergyRow {
     pub damping: f64,
     /// `W_ext`.
     pub external: f64,
+    /// `W_i`: the work of the cohesive interfaces' tractions (zero without
+    /// interfaces).
+    pub interfaces: f64,
+    /// `W_i` less the energy the interfaces hold: dissipated by
+    /// delamination.
+    pub delamination: f64,
     /// `W_c`: the contacts' work on the bodies.
     pub contact: f64,
     /// `½ m v²` of the rigid impactors, beside the balance (which is the
@@ -48,36 +56,16 @@ pub struct EnergyRow {
     pub balance: f64,
 }
 
-impl EnergyRow {
-    /// The row of `copies` mirror images moving together (a model cut by symmetry planes: each
-    /// image holds and exchanges the same energies), at the same time.
-    pub fn times(&self, copies: f64) -> EnergyRow {
-        EnergyRow {
-            time: self.time,
-            kinetic: copies * self.kinetic,
-            internal: copies * self.internal,
-            elastic: copies * self.elastic,
-            plastic: copies * self.plastic,
-            damping: copies * self.damping,
-            external: copies * self.external,
-            contact: copies * self.contact,
-            impactors: copies * self.impactors,
-            supports: copies * self.supports,
-            balance: copies * self.balance,
-        }
-    }
-}
-
 /// The running sums and the forces of the last converged step.
 #[derive(Debug, Default)]
 pub(crate) struct EnergyLedger {
     /// Rows so far (the initial state first).
     pub rows: Vec<EnergyRow>,
-    previous: Option<[Vec<f64>; 5]>,
+    previous: Option<[Vec<f64>; 6]>,
 }
 
 /// The converged step's forces per DOF: internal, damping, loads, contact,
-/// supports (reactions at constrained DOFs, zero elsewhere).
+/// supports (reactions at constrained DOFs, zero elsewhere), interfaces.
 pub(crate) struct StepForces<'a> {
     /// `f_int`.
     pub internal: &'a [f64],
@@ -89,14 +77,27 @@ pub(crate) struct StepForces<'a> {
     pub contact: &'a [f64],
     /// Reactions.
     pub supports: &'a [f64],
+    /// The cohesive interfaces' internal forces.
+    pub interfaces: &'a [f64],
+}
+
+/// The energies held at the end of a converged step (J): the elastic strain
+/// energy of the bodies and the energy the cohesive interfaces hold.
+#[derive(Debug, Clone, Copy, Default)]
+pub(crate) struct Held {
+    /// `½ ∫ σᵀ C⁻¹ σ dV`.
+    pub elastic: f64,
+    /// `Σ A ½ t·δ`.
+    pub interfaces: f64,
 }
 
 impl EnergyLedger {
     /// Records the step to `time` over `du` with the converged `forces`,
-    /// kinetic energy `kinetic` and elastic strain energy `elastic`; the
-    /// first call records the initial state (then `du` is ignored).
-    pub fn record(&mut self, time: f64, du: &[f64], forces: &StepForces<'_>, kinetic: f64, elastic: f64) {
-        let now = [forces.internal, forces.damping, forces.external, forces.contact, forces.supports];
+    /// kinetic energy `kinetic` and the energies `held`; the first call
+    /// records the initial state (then `du` is ignored).
+    pub fn record(&mut self, time: f64, du: &[f64], forces: &StepForces<'_>, kinetic: f64, held: Held) {
+        let f = forces;
+        let now = [f.internal, f.damping, f.external, f.contact, f.supports, f.interfaces];
         let mut row = self.rows.last().copied().unwrap_or_default();
         row.time = time;
         row.kinetic = kinetic;
@@ -111,11 +112,17 @@ impl EnergyLedger {
             row.external += work(2);
             row.contact += work(3);
             row.supports += work(4);
+            row.interfaces += work(5);
         }
-        row.elastic = elastic;
-        row.plastic = row.internal - elastic;
+        row.elastic = held.elastic;
+        row.plastic = row.internal - held.elastic;
+        row.delamination = row.interfaces - held.interfaces;
         let t0 = self.rows.first().map_or(kinetic, |r| r.kinetic);
-        row.balance = row.external + row.contact + row.supports - (row.kinetic - t0) - row.internal - row.damping;
+        row.balance = row.external + row.contact + row.supports
+            - (row.kinetic - t0)
+            - row.internal
+            - row.interfaces
+            - row.damping;
         self.rows.push(row);
         self.previous = Some(now.map(<[f64]>::to_vec));
     }

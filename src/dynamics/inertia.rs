@@ -29,7 +29,7 @@
 //! neighbours' coupling terms; with the lumped mass it is exact).
 
 use super::TransientSettings;
-use super::energy::StepForces;
+use super::energy::{Held, StepForces};
 use crate::assembly::{At, Contribution, Forces, NO_EQ, Phase, Tangent};
 
 /// Newmark's inertia and damping forces.
@@ -99,8 +99,15 @@ impl Inertia {
         let v0 = self.v_n.clone();
         let kinetic = self.kinetic_energy(&v0, eq, pattern);
         let zero = vec![0.0; v0.len()];
-        let forces = StepForces { internal: &zero, damping: &zero, external: &zero, contact: &zero, supports: &zero };
-        self.ledger.record(self.time(0.0), &zero, &forces, kinetic, 0.0);
+        let forces = StepForces {
+            internal: &zero,
+            damping: &zero,
+            external: &zero,
+            contact: &zero,
+            supports: &zero,
+            interfaces: &zero,
+        };
+        self.ledger.record(self.time(0.0), &zero, &forces, kinetic, Held::default());
         self.set_impactors(impactors);
     }
 
@@ -113,23 +120,23 @@ impl Inertia {
 
     /// Adds the converged step at λ to the energy balance: `du` the step's
     /// displacement increment, `forces` the other parts' converged forces
-    /// (the damping forces are this part's own), `elastic` the elastic
-    /// strain energy held, `impactors` the rigid impactors' kinetic energy.
+    /// (the damping forces are this part's own), `held` the energies held,
+    /// `impactors` the rigid impactors' kinetic energy.
     pub(crate) fn account(
         &mut self,
-        (lambda, elastic, impactors): (f64, f64, f64),
+        (lambda, held, impactors): (f64, Held, f64),
         du: &[f64],
-        forces: [&[f64]; 4],
+        forces: [&[f64]; 5],
         eq: &[usize],
         pattern: &crate::solver::linear::LowerCsc,
     ) {
         let v = std::mem::take(&mut self.v);
         let kinetic = self.kinetic_energy(&v, eq, pattern);
         self.v = v;
-        let [internal, external, contact, supports] = forces;
-        let step = StepForces { internal, damping: &self.damping_force, external, contact, supports };
+        let [internal, external, contact, supports, interfaces] = forces;
+        let step = StepForces { internal, damping: &self.damping_force, external, contact, supports, interfaces };
         let time = self.time(lambda);
-        self.ledger.record(time, du, &step, kinetic, elastic);
+        self.ledger.record(time, du, &step, kinetic, held);
         self.set_impactors(impactors);
     }
 

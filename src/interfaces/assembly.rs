@@ -4,6 +4,13 @@
 //! resists the separation) and the blocks `A D` on the two nodes and `−A D`
 //! between them. The points' damage is trial history until the increment
 //! converges.
+//!
+//! **Viscous work.** With Duvaut–Lions viscosity the traction is the
+//! secant's of the viscous damage `d_v ≤ d`, above the law's by the
+//! over-stress `σ_v = (d − d_v) K δ̂`. Its work `∫ σ_v · dδ` (trapezoidal
+//! over the converged increments) is energy the law's dissipation
+//! (`dissipated_j`) does not hold: the work done on an interface is its
+//! elastic energy plus `dissipated_j` plus `viscous_j`.
 
 use super::Interface;
 use crate::assembly::{At, Contribution, Forces, Phase, Tangent};
@@ -28,6 +35,11 @@ pub struct Interfaces<'m> {
     viscous: [Vec<Vec<f64>>; 2],
     /// The load factor of the last converged increment.
     lambda: f64,
+    /// Each point's viscous over-stress and separation `[σ_v, δ]`,
+    /// committed and trial (`[0; 6]` at the start).
+    over: [Vec<Vec<[f64; 6]>>; 2],
+    /// Each point's work of the viscous over-stress so far (J/m²).
+    viscous_work: Vec<Vec<f64>>,
 }
 
 /// What an interface has become: its delaminated area and the energy it
@@ -44,8 +56,11 @@ pub struct InterfaceSummary {
     pub delaminated_m2: f64,
     /// Area of the points with 0 < d < 1: the process zone (m²).
     pub process_zone_m2: f64,
-    /// Energy dissipated, `Σ A g` (J).
+    /// Energy dissipated by the law, `Σ A g` (J).
     pub dissipated_j: f64,
+    /// Work of the Duvaut–Lions over-stress (J; 0 without viscosity):
+    /// dissipated beyond `dissipated_j`.
+    pub viscous_j: f64,
 }
 
 /// The interfaces at the end of a run.
@@ -67,8 +82,10 @@ pub struct DelaminationSummary {
     pub interfaces: Vec<InterfaceSummary>,
     /// The delaminated area (d = 1) of all of them (m²).
     pub area_m2: f64,
-    /// The energy they dissipated (J).
+    /// The energy their law dissipated (J).
     pub dissipated_j: f64,
+    /// The work of their viscous over-stress (J).
+    pub viscous_j: f64,
 }
 
 impl Delamination {
@@ -78,6 +95,7 @@ impl Delamination {
             interfaces: self.interfaces.clone(),
             area_m2: self.interfaces.iter().map(|i| i.delaminated_m2).sum(),
             dissipated_j: self.interfaces.iter().map(|i| i.dissipated_j).sum(),
+            viscous_j: self.interfaces.iter().map(|i| i.viscous_j).sum(),
         }
     }
 
@@ -111,6 +129,8 @@ impl<'m> Interfaces<'m> {
         let forces = if interfaces.is_empty() { Vec::new() } else { vec![0.0; n_dofs] };
         let growing = committed.iter().map(|c| vec![false; c.len()]).collect();
         let viscous: Vec<Vec<f64>> = committed.iter().map(|c| c.iter().map(|s| s.damage).collect()).collect();
+        let over: Vec<Vec<[f64; 6]>> = committed.iter().map(|c| vec![[0.0; 6]; c.len()]).collect();
+        let viscous_work = committed.iter().map(|c| vec![0.0; c.len()]).collect();
         Self {
             interfaces,
             trial: committed.clone(),
@@ -119,6 +139,8 @@ impl<'m> Interfaces<'m> {
             forces,
             viscous: [viscous.clone(), viscous],
             lambda: 0.0,
+            over: [over.clone(), over],
+            viscous_work,
         }
     }
 
@@ -144,12 +166,30 @@ impl<'m> Interfaces<'m> {
         })
     }
 
+    /// The energy the interfaces hold at displacements `u` with the damage
+    /// of the last evaluation (the converged state's, before it is
+    /// committed), `Σ A ½ t·δ` (J): the law unloads to the origin on its
+    /// secant, so this is what they give back; the rest of their work is
+    /// dissipated (the energy ledger's `delamination`).
+    pub fn stored_energy(&self, u: &[f64]) -> f64 {
+        let carried = self.interfaces.iter().zip(&self.viscous[1]);
+        let mut stored = 0.0;
+        for (interface, dv) in carried {
+            for (p, &d) in interface.points.iter().zip(dv) {
+                let delta: [f64; 3] = std::array::from_fn(|k| u[3 * p.upper + k] - u[3 * p.lower + k]);
+                let k = secant(&interface.law, &CohesiveState { damage: d, dissipated: 0.0 }, delta);
+                stored += p.area * 0.5 * (0..3).map(|i| k[i][i] * delta[i] * delta[i]).sum::<f64>();
+            }
+        }
+        stored
+    }
+
     /// Each interface's delaminated area and dissipated energy (committed).
     pub fn summaries(&self) -> Vec<InterfaceSummary> {
         self.interfaces
             .iter()
-            .zip(&self.committed)
-            .map(|(i, states)| {
+            .zip(self.committed.iter().zip(&self.viscous_work))
+            .map(|(i, (states, work))| {
                 let mut s = InterfaceSummary {
                     name: i.name.clone(),
                     body: i.body,
@@ -157,6 +197,7 @@ impl<'m> Interfaces<'m> {
                     delaminated_m2: 0.0,
                     process_zone_m2: 0.0,
                     dissipated_j: 0.0,
+                    viscous_j: i.points.iter().zip(work).map(|(p, w)| p.area * w).sum(),
                 };
                 for (p, st) in i.points.iter().zip(states) {
                     if st.damage >= 1.0 {
@@ -188,8 +229,9 @@ fn secant(law: &Cohesive, state: &CohesiveState, delta: [f64; 3]) -> [[f64; 3]; 
 /// `d` over the viscosity `eta` (load-factor units), implicitly,
 /// `d_v = (η d_v,n + Δλ d)/(η + Δλ)` (into `dv`), so `d_v ≤ d` and it never
 /// decreases; the traction is the secant's of `d_v` and the tangent's
-/// softening part is scaled by `Δλ/(η + Δλ)`. The viscous stress does work
-/// the law's dissipation (`dissipated_j`) does not count.
+/// softening part is scaled by `Δλ/(η + Δλ)`. The over-stress above the
+/// law's traction does work the law's dissipation does not count (the
+/// module's `viscous_j`).
 fn regularise(
     law: &Cohesive,
     r: &mut crate::materials::cohesive::CohesiveResponse,
@@ -229,17 +271,21 @@ impl Contribution for Interfaces<'_> {
         let dt = (at.lambda - self.lambda).abs();
         let [viscous_n, viscous] = &mut self.viscous;
         let states = self.committed.iter().zip(&mut self.trial).zip(&mut self.growing);
-        let viscous = viscous_n.iter().zip(viscous.iter_mut());
-        for ((interface, ((committed, trial), growing)), (dv_n, dv)) in self.interfaces.iter().zip(states).zip(viscous)
+        let viscous = viscous_n.iter().zip(viscous.iter_mut()).zip(self.over[1].iter_mut());
+        for ((interface, ((committed, trial), growing)), ((dv_n, dv), over)) in
+            self.interfaces.iter().zip(states).zip(viscous)
         {
             let points = interface.points.iter().zip(committed).zip(trial.iter_mut()).zip(growing);
-            for ((((p, old), new), grows), (dv_n, dv)) in points.zip(dv_n.iter().zip(dv.iter_mut())) {
+            let viscous = dv_n.iter().zip(dv.iter_mut()).zip(over.iter_mut());
+            for ((((p, old), new), grows), ((dv_n, dv), over)) in points.zip(viscous) {
                 let delta: [f64; 3] = std::array::from_fn(|k| at.u[3 * p.upper + k] - at.u[3 * p.lower + k]);
                 let mut r = interface.law.update(delta, old);
                 *dv = r.state.damage;
                 let eta = interface.law.viscosity;
                 if eta > 0.0 {
+                    let plain = r.traction;
                     regularise(&interface.law, &mut r, delta, (*dv_n, dv), eta, dt);
+                    *over = std::array::from_fn(|k| if k < 3 { r.traction[k] - plain[k] } else { delta[k - 3] });
                 }
                 let now = r.state.damage > old.damage;
                 changes += usize::from(now != *grows);
@@ -269,6 +315,9 @@ impl Contribution for Interfaces<'_> {
         Forces { values: &self.forces, sign: 1.0, scale: false, reference: 0.0 }
     }
 
+    /// Keeps the trial state: damage (the law's and the viscous one) never
+    /// decreases (a debug assertion: a damaged point is never healed), and
+    /// the over-stress's work of the increment is added (trapezoidal in δ).
     fn commit(&mut self, at: &At<'_>) {
         for (c, t) in self.committed.iter_mut().zip(&self.trial) {
             debug_assert!(c.iter().zip(t).all(|(c, t)| t.damage >= c.damage), "interface damage decreased");
@@ -276,7 +325,15 @@ impl Contribution for Interfaces<'_> {
         }
         let [committed, trial] = &mut self.viscous;
         for (c, t) in committed.iter_mut().zip(trial.iter()) {
+            debug_assert!(c.iter().zip(t).all(|(c, t)| t >= c), "viscous interface damage decreased");
             c.copy_from_slice(t);
+        }
+        let [before, after] = &mut self.over;
+        for ((work, b), a) in self.viscous_work.iter_mut().zip(before.iter_mut()).zip(after.iter()) {
+            for ((w, b), a) in work.iter_mut().zip(b.iter_mut()).zip(a) {
+                *w += (0..3).map(|k| 0.5 * (b[k] + a[k]) * (a[k + 3] - b[k + 3])).sum::<f64>();
+                *b = *a;
+            }
         }
         self.lambda = at.lambda;
         self.growing.iter_mut().for_each(|g| g.fill(false));

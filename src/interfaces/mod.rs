@@ -25,7 +25,7 @@
 
 mod assembly;
 
-pub use assembly::{Delamination, DelaminationSummary, InterfaceSummary, Interfaces};
+pub use assembly::{Delamination, DelaminationSummary, Interfaces};
 
 use crate::materials::cohesive::Cohesive;
 use crate::mesh::Body;

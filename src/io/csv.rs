@@ -19,11 +19,12 @@ fn write(path: &Path, text: &str) -> Result<(), IoError> {
     std::fs::write(path, text).map_err(|e| file_error(path, e))
 }
 
-/// A table as CSV text: a header of its column names, then one line per
-/// row — real numbers in `{:e}` (NaN as `NaN`), counts as integers, an
-/// absent value as an empty field.
+/// A table as CSV text: a header of its column names (with their units
+/// where the table says so: [`Table::header`]), then one line per row —
+/// real numbers in `{:e}` (NaN as `NaN`), counts as integers, an absent
+/// value as an empty field, text as a [`field`].
 pub(crate) fn table_text(table: &Table) -> String {
-    let names: Vec<_> = table.columns.iter().map(|c| field(&c.name)).collect();
+    let names: Vec<_> = table.columns.iter().map(|c| field(&table.header(c)).into_owned()).collect();
     let mut text = names.join(",");
     text.push('\n');
     for i in 0..table.rows() {
@@ -36,6 +37,7 @@ pub(crate) fn table_text(table: &Table) -> String {
                 Values::Optional(v) => v[i].map_or(Ok(()), |v| write!(text, "{v:e}")),
                 Values::Count(v) => write!(text, "{}", v[i]),
                 Values::OptionalCount(v) => v[i].map_or(Ok(()), |v| write!(text, "{v}")),
+                Values::Text(v) => write!(text, "{}", field(&v[i])),
             };
         }
         text.push('\n');
@@ -76,10 +78,37 @@ mod tests {
                 col("u_x", Values::Optional(vec![None, Some(-2.0e-3)])),
                 col("negative_pivots", Values::OptionalCount(vec![Some(0), None])),
             ],
+            units_in_header: false,
         };
         assert_eq!(table_text(&t), "increment,r_x,u_x,negative_pivots\n1,1.5e0,,0\n2,NaN,-2e-3,\n");
         assert!(t.columns[2].values.get(0).is_nan() && t.columns[3].values.get(1).is_nan());
         assert_eq!(t.columns[2].values.to_f64()[1], -2.0e-3);
+    }
+
+    /// A text column (a probe's name) is a field, quoted when it must be,
+    /// and NaN as a number (it is left out of a row); a table with units in
+    /// its header names each column `<name>_<unit>` (energy.csv's
+    /// `kinetic_J`), a unitless one by its name alone.
+    #[test]
+    fn text_columns_and_headers_with_units() {
+        let col = |name: &str, unit, values| Column { name: name.into(), unit, values };
+        let mut t = Table {
+            name: "t".into(),
+            columns: vec![
+                col("probe", "", Values::Text(vec!["tip".into(), "a,b".into()])),
+                col("kinetic", "J", Values::Real(vec![0.5, 2.0])),
+                col("step", "", Values::Count(vec![3, 4])),
+            ],
+            units_in_header: false,
+        };
+        assert_eq!(table_text(&t), "probe,kinetic,step\ntip,5e-1,3\n\"a,b\",2e0,4\n");
+        t.units_in_header = true;
+        assert_eq!(table_text(&t), "probe,kinetic_J,step\ntip,5e-1,3\n\"a,b\",2e0,4\n");
+        assert!(t.columns[0].values.get(1).is_nan());
+        let row = t.row(1);
+        assert_eq!(row.0, vec![("kinetic".to_string(), 2.0), ("step".to_string(), 4.0)]);
+        assert_eq!(serde_json::to_string(&row).unwrap(), r#"{"kinetic":2.0,"step":4.0}"#);
+        assert_eq!(t.text("probe").unwrap()[1], "a,b");
     }
 
     /// RFC 4180: a field with a comma, quote or line break is quoted and its

@@ -14,31 +14,29 @@ pub(crate) fn write_energy(model: &Model, solution: &Solution, dir: &Path) -> Re
     let Some(table) = tables::energy(solution) else { return Ok(Vec::new()) };
     let mut written = vec![super::csv::write_table(&table, dir)?];
     if model.output.plots {
-        let time = table.real("time_s").unwrap_or_default();
+        let time = table.real("time").unwrap_or_default();
         let column = |name: &str| table.real(name).unwrap_or_default();
         let series = |name: &str, values: Vec<f64>| Series {
             name: name.into(),
             points: time.iter().zip(values).map(|(t, v)| (t * 1e3, v)).collect(),
             dashed: false,
         };
-        let (external, contact, supports) = (column("external_J"), column("contact_J"), column("supports_J"));
+        let (external, contact, supports) = (column("external"), column("contact"), column("supports"));
         let work = (0..time.len()).map(|i| external[i] + contact[i] + supports[i]).collect();
         let path = dir.join("energy.png");
-        line_plot(
-            &path,
-            "energy balance",
-            "time [ms]",
-            "energy [J]",
-            &[
-                series("kinetic T", column("kinetic_J")),
-                series("internal work", column("internal_J")),
-                series("elastic strain energy", column("elastic_J")),
-                series("plastic dissipation", column("plastic_J")),
-                series("work of loads, contacts and supports", work),
-                series("damping", column("damping_J")),
-                series("balance", column("balance_J")),
-            ],
-        )?;
+        let mut curves = vec![
+            series("kinetic T", column("kinetic")),
+            series("internal work", column("internal")),
+            series("elastic strain energy", column("elastic")),
+            series("plastic dissipation", column("plastic")),
+            series("work of loads, contacts and supports", work),
+            series("damping", column("damping")),
+            series("balance", column("balance")),
+        ];
+        if let Some(delamination) = table.real("delamination") {
+            curves.push(series("delamination", delamination));
+        }
+        line_plot(&path, "energy balance", "time [ms]", "energy [J]", &curves)?;
         written.push(path);
     }
     Ok(written)

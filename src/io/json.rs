@@ -6,6 +6,7 @@ use serde::Serialize;
 
 use super::{IoError, file_error};
 use crate::analysis::{Solution, tables};
+use crate::post::Quantity;
 use crate::setup::Model;
 
 /// A probe in the summary.
@@ -168,14 +169,14 @@ pub struct Summary {
     /// and mode files, absent for another analysis.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub modal: Option<ModalSummary>,
-    /// `analysis.type = "transient"`: the energy balance at the end (the
-    /// whole history is in `energy.csv`), absent for another analysis.
+    /// `analysis.type = "transient"`: the last row of `energy.csv` by column
+    /// name (`time` in s, `kinetic` … in J), absent for another analysis.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub energy: Option<crate::dynamics::energy::EnergyRow>,
+    pub energy: Option<tables::Row>,
     /// In a transient model cut by symmetry planes, the full structure's energy balance at the
     /// end: `energy` (and `energy.csv`, the part modelled) times the number of mirror images.
     #[serde(skip_serializing_if = "Option::is_none")]
-    pub full_structure_energy: Option<crate::dynamics::energy::EnergyRow>,
+    pub full_structure_energy: Option<tables::Row>,
     /// `solver.control = "arc_length"`: how the path following ended and
     /// the limit points it passed, absent under load control.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -331,25 +332,20 @@ pub struct MemorySummary {
     pub peak_bytes: Option<u64>,
 }
 
-/// Probe values of a solution.
+/// Probe values of a solution, from its table (`analysis::tables::probes`).
 fn probes(model: &Model, solution: &Solution) -> Vec<ProbeSummary> {
-    let view = solution.fields(model);
-    let ply_failure = model.materials.iter().any(|m| m.strengths.is_some());
-    model
-        .probes
-        .iter()
-        .map(|p| {
-            let s = view.sample_probe(p).unwrap_or_default();
-            ProbeSummary {
-                name: p.name.clone(),
-                point: p.point,
-                u: s.u,
-                stress: s.stress,
-                von_mises: s.von_mises,
-                peeq: s.peeq,
-                failure_indices: ply_failure
-                    .then(|| crate::post::failure::CRITERIA.iter().copied().zip(s.failure).collect()),
-            }
+    let (t, criteria) = (&tables::probes(model, &solution.fields(model)), crate::post::failure::CRITERIA);
+    let names = t.text("probe").unwrap_or_default();
+    let each = |q: fn(usize) -> Quantity, i| move |k| t.at(&q(k).name(), i);
+    (names.iter().enumerate())
+        .map(|(i, name)| ProbeSummary {
+            name: name.clone(),
+            point: ["x", "y", "z"].map(|axis| t.at(axis, i)),
+            u: std::array::from_fn(each(Quantity::Displacement, i)),
+            stress: std::array::from_fn(each(Quantity::Stress, i)),
+            von_mises: t.at(&Quantity::VonMises.name(), i),
+            peeq: t.at(&Quantity::Peeq.name(), i),
+            failure_indices: t.column(criteria[0]).map(|_| criteria.iter().map(|&c| (c, t.at(c, i))).collect()),
         })
         .collect()
 }
@@ -477,13 +473,9 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         }),
         buckling: buckling_summary(model, solution),
         modal: modal_summary(model, solution),
-        energy: solution.energy.as_ref().and_then(|rows| rows.last().copied()),
-        full_structure_energy: solution
-            .energy
-            .as_ref()
-            .and_then(|rows| rows.last())
-            .filter(|_| !model.symmetry.planes.is_empty())
-            .map(|row| row.times(model.symmetry.copies() as f64)),
+        energy: energy_at_end(solution, 1.0),
+        full_structure_energy: energy_at_end(solution, model.symmetry.copies() as f64)
+            .filter(|_| !model.symmetry.planes.is_empty()),
         path: solution.path.as_ref().map(|p| PathSummary {
             end: match p.end {
                 Some(crate::analysis::PathEnd::LoadFactor(_)) => "load_factor",
@@ -497,6 +489,13 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         damage: solution.damage.as_ref().map(|d| d.summary()),
         files: Vec::new(),
     }
+}
+
+/// The last row of the energy table (`analysis::tables::energy`), its
+/// energies (J) times `copies` (mirror images of a model cut by symmetry planes).
+fn energy_at_end(solution: &Solution, copies: f64) -> Option<tables::Row> {
+    let t = tables::energy(solution)?;
+    Some(t.row_scaled(t.rows().checked_sub(1)?, |c| if c.unit == "J" { copies } else { 1.0 }))
 }
 
 /// The modal analysis of `solution` from its table (`analysis::tables::modes`).

@@ -59,7 +59,7 @@ pub struct Cohesive {
     /// Duvaut–Lions viscosity in load-factor units (0: none): the damage
     /// that carries the traction relaxes towards the law's,
     /// `d_v,n+1 = (η d_v,n + Δλ d_n+1)/(η + Δλ)` (applied by
-    /// [`crate::interfaces::Interfaces`]).
+    /// the interface assembly, `interfaces::Interfaces`).
     pub viscosity: f64,
 }
 

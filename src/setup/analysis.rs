@@ -1,7 +1,7 @@
 //! `[analysis]`: the kind of analysis and its geometry — what the driver
 //! does with the model, checked against what the model holds.
 
-use crate::bc::Constraint;
+use super::constraints::ConstraintHandler;
 use crate::contact::{Indenter, PairContact};
 use crate::input::schema::{AnalysisFile, AnalysisType, Geometry, MassMatrix, StrainMeasure};
 use crate::input::{ModelError, invalid};
@@ -97,14 +97,12 @@ fn loads_and_supports_only(parts: &Parts<'_>, what: &str) -> Result<(), ModelErr
     if parts.steps > 1 {
         return refuse("steps".into(), &format!("{} steps", parts.steps), format!("one step with {what}"));
     }
-    for (i, c) in parts.constraints.iter().enumerate() {
-        if c.values.iter().flatten().any(|&v| v != 0.0) {
-            return refuse(
-                format!("constraints[{i}]"),
-                "a non-zero prescribed displacement",
-                format!("fixed components only with {what} (prescribe loads instead)"),
-            );
-        }
+    if let Some(i) = parts.constraints.first_moving() {
+        return refuse(
+            format!("constraints[{i}]"),
+            "a non-zero prescribed displacement",
+            format!("fixed components only with {what} (prescribe loads instead)"),
+        );
     }
     Ok(())
 }
@@ -113,7 +111,7 @@ fn loads_and_supports_only(parts: &Parts<'_>, what: &str) -> Result<(), ModelErr
 pub(super) struct Parts<'a> {
     pub mesh: &'a Mesh,
     pub materials: &'a [Material],
-    pub constraints: &'a [Constraint],
+    pub constraints: &'a ConstraintHandler,
     pub indenters: &'a [Indenter],
     pub contacts: &'a [PairContact],
     pub steps: usize,
@@ -338,7 +336,7 @@ pub(super) fn combinations(kind: Kind, arc_length: bool, adapt: bool) -> Result<
 pub(super) fn eigen_warnings(
     modes: Option<usize>,
     mesh: &Mesh,
-    constraints: &[Constraint],
+    constraints: &ConstraintHandler,
     planes: bool,
 ) -> Vec<super::Warning> {
     let Some(modes) = modes else { return Vec::new() };
@@ -357,25 +355,16 @@ pub(super) fn eigen_warnings(
 /// A warning when `analysis.modes` asks for more modes than the model has
 /// free equations (3 per node less the constrained components): the
 /// eigenvalue problem has no more, and the run reports those.
-fn warn_modes(modes: usize, mesh: &Mesh, constraints: &[Constraint]) -> Option<super::Warning> {
-    let mut fixed = std::collections::HashSet::new();
-    for c in constraints {
-        for &n in &c.nodes {
-            for (k, v) in c.values.iter().enumerate() {
-                if v.is_some() {
-                    fixed.insert(3 * n + k);
-                }
-            }
-        }
-    }
-    let free = mesh.n_dofs().saturating_sub(fixed.len());
+fn warn_modes(modes: usize, mesh: &Mesh, constraints: &ConstraintHandler) -> Option<super::Warning> {
+    let constrained = constraints.constrained().count();
+    let free = mesh.n_dofs().saturating_sub(constrained);
     (modes > free).then(|| super::Warning {
         key: "analysis.modes".into(),
         message: format!(
             "analysis.modes = {modes} but the model has {free} free equations ({} nodes × 3 less {} constrained \
              components): at most {free} modes exist, and the run reports those (refine the mesh for more)",
             mesh.n_nodes(),
-            fixed.len()
+            constrained
         ),
     })
 }

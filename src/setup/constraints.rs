@@ -3,8 +3,15 @@
 //! `AffineConstraints` hold them. Built once in setup from the model's
 //! `[[constraints]]`, the symmetry planes' `u_n = 0` (which
 //! `setup::preprocess` appends to them) and the contacts' couplings; the
-//! numbering, the memory plan, the restraint check, the reactions and the
-//! solution's elimination read it instead of deriving the sets again.
+//! agreement check of overlapping sets ([`ConstraintHandler::checked`]),
+//! the numbering, the memory plan, the restraint check, the reactions, the
+//! setup's checks of moving supports ([`ConstraintHandler::first_moving`])
+//! and fully held bodies ([`ConstraintHandler::holds_node`]), the modal
+//! free mass and the solution's elimination read it instead of deriving
+//! the sets again. What still walks `Model::constraints` needs a
+//! constraint as the user wrote it: its name and order (the per-set
+//! tables and reports), its geometric selection (the CalculiX twin's own
+//! mesh) or its load history.
 //!
 //! * A DOF is **constrained** when some constraint gives it a value (the
 //!   first in the model's order; validation rejects a second, different
@@ -43,6 +50,19 @@ pub struct Prescribed {
     pub constraint: usize,
 }
 
+/// Two constraints prescribing different values to one DOF: what
+/// [`ConstraintHandler::checked`] refuses.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Conflict {
+    /// The DOF (`3 · node + component`).
+    pub dof: usize,
+    /// The later constraint (in model order) and the value it gives.
+    pub given: Prescribed,
+    /// The DOF's owner: the first constraint that gave it a value, and
+    /// that value.
+    pub owner: Prescribed,
+}
+
 /// Every constrained DOF and every extra coupling of a model (module docs).
 #[derive(Debug, Clone, Default)]
 pub struct ConstraintHandler {
@@ -62,27 +82,61 @@ impl ConstraintHandler {
     pub fn new(
         mesh: &Mesh,
         constraints: &[Constraint],
-        (contacts, interfaces): (&[PairContact], &[crate::interfaces::Interface]),
+        contacts: (&[PairContact], &[crate::interfaces::Interface]),
         current: bool,
     ) -> Self {
-        let mut couplings: Vec<(usize, usize)> = contacts.iter().flat_map(|c| c.couplings(mesh, current)).collect();
-        couplings.extend(interfaces.iter().flat_map(|i| i.couplings()));
-        Self::with_couplings(mesh.n_dofs(), constraints, couplings)
+        let mut handler = Self::with_couplings(mesh.n_dofs(), constraints, Vec::new());
+        handler.couple(mesh, contacts, current);
+        handler
     }
 
     /// The handler of `constraints` on `n_dofs` DOFs with the given couplings.
     pub fn with_couplings(n_dofs: usize, constraints: &[Constraint], couplings: Vec<(usize, usize)>) -> Self {
+        Self { couplings, ..Self::resolve(n_dofs, constraints).0 }
+    }
+
+    /// The handler of `constraints` on `n_dofs` DOFs, without couplings
+    /// (add them with [`Self::couple`]), or the first place where two of
+    /// them disagree: walking the constraints in model order, node by node
+    /// and component by component, the first value that differs from the
+    /// one the DOF's owner gives.
+    pub fn checked(n_dofs: usize, constraints: &[Constraint]) -> Result<Self, Conflict> {
+        match Self::resolve(n_dofs, constraints) {
+            (handler, None) => Ok(handler),
+            (_, Some(conflict)) => Err(conflict),
+        }
+    }
+
+    /// Adds the couplings of `contacts` and cohesive `interfaces` on `mesh`
+    /// (`current` as in [`Self::new`]).
+    pub fn couple(
+        &mut self,
+        mesh: &Mesh,
+        (contacts, interfaces): (&[PairContact], &[crate::interfaces::Interface]),
+        current: bool,
+    ) {
+        self.couplings.extend(contacts.iter().flat_map(|c| c.couplings(mesh, current)));
+        self.couplings.extend(interfaces.iter().flat_map(|i| i.couplings()));
+    }
+
+    /// The constrained DOFs of `constraints` (the first constraint giving a
+    /// DOF a value owns it) and the first conflict, if any.
+    fn resolve(n_dofs: usize, constraints: &[Constraint]) -> (Self, Option<Conflict>) {
         let mut value: std::collections::BTreeMap<usize, Prescribed> = Default::default();
+        let mut conflict = None;
         for (ci, c) in constraints.iter().enumerate() {
             for &n in &c.nodes {
                 for (k, v) in c.values.iter().enumerate() {
-                    if let Some(v) = *v {
-                        value.entry(3 * n + k).or_insert(Prescribed { value: v, constraint: ci });
+                    let Some(v) = *v else { continue };
+                    let given = Prescribed { value: v, constraint: ci };
+                    let owner = *value.entry(3 * n + k).or_insert(given);
+                    if owner.value != v && conflict.is_none() {
+                        conflict = Some(Conflict { dof: 3 * n + k, given, owner });
                     }
                 }
             }
         }
-        Self { n_dofs, constrained: value.into_iter().collect(), couplings }
+        (Self { n_dofs, constrained: value.into_iter().collect(), couplings: Vec::new() }, conflict)
     }
 
     /// Number of DOFs (constrained ones included).
@@ -107,6 +161,19 @@ impl ConstraintHandler {
             fixed[d] = p.value == 0.0;
         }
         fixed
+    }
+
+    /// True if all three components of `node` are constrained.
+    pub fn holds_node(&self, node: usize) -> bool {
+        (0..3).all(|k| self.prescribed(3 * node + k).is_some())
+    }
+
+    /// The first constraint (index in model order) that prescribes a
+    /// non-zero value, `None` if every constrained DOF is fixed. It is the
+    /// owner of the DOFs it moves: where constraints overlap they agree
+    /// ([`Self::checked`]), so no earlier one gives those DOFs a value.
+    pub fn first_moving(&self) -> Option<usize> {
+        self.constrained().filter(|(_, p)| p.value != 0.0).map(|(_, p)| p.constraint).min()
     }
 
     /// The node pairs coupled by contact.
@@ -148,5 +215,37 @@ mod tests {
         assert_eq!(h.prescribed(4), Some(Prescribed { value: 2e-3, constraint: 1 }));
         assert_eq!(h.prescribed(5), None);
         assert_eq!(h.couplings(), [(0, 2)]);
+    }
+
+    /// `checked` walks the constraints in model order and reports the
+    /// first value that differs from the DOF's owner, naming the owner
+    /// (the first to give the DOF a value), not a later set that agreed
+    /// with it; `first_moving` is the smallest constraint index with a
+    /// non-zero value, not the one at the lowest DOF; `holds_node` needs
+    /// all three components.
+    #[test]
+    fn conflicts_name_the_owner_and_the_first_mover_is_in_model_order() {
+        let agree = [
+            constraint(&[2], [None, None, Some(1e-3)]),
+            constraint(&[0, 2], [Some(0.0), Some(0.0), Some(1e-3)]),
+            constraint(&[0], [Some(0.0), Some(0.0), None]),
+        ];
+        let h = ConstraintHandler::checked(9, &agree).unwrap();
+        assert_eq!(h.first_moving(), Some(0));
+        assert_eq!((h.holds_node(0), h.holds_node(1), h.holds_node(2)), (true, false, true));
+        let fixed = [constraint(&[0], [Some(0.0), None, Some(0.0)]), constraint(&[0, 1], [None, Some(0.0), None])];
+        let h = ConstraintHandler::checked(6, &fixed).unwrap();
+        assert_eq!(h.first_moving(), None);
+        assert_eq!((h.holds_node(0), h.holds_node(1)), (true, false));
+        let mut clash = agree.to_vec();
+        clash.push(constraint(&[1, 2], [None, None, Some(2e-3)]));
+        clash.push(constraint(&[0], [Some(1e-3), None, None]));
+        let conflict = ConstraintHandler::checked(9, &clash).unwrap_err();
+        let owner = Prescribed { value: 1e-3, constraint: 0 };
+        assert_eq!(conflict, Conflict { dof: 8, given: Prescribed { value: 2e-3, constraint: 3 }, owner });
+        // unchecked, the first value stands
+        let h = ConstraintHandler::with_couplings(9, &clash, Vec::new());
+        assert_eq!(h.prescribed(8), Some(owner));
+        assert_eq!(h.prescribed(0), Some(Prescribed { value: 0.0, constraint: 1 }));
     }
 }

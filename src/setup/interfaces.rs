@@ -6,7 +6,7 @@
 
 use super::Warning;
 use super::laminate;
-use crate::input::schema::{AnalysisType, BodyFile, CohesiveFile, Control, MaterialFile, ModelFile, SectionFile};
+use crate::input::schema::{BodyFile, CohesiveFile, Control, MaterialFile, ModelFile, SectionFile};
 use crate::input::{ModelError, defaults, invalid, ranges};
 use crate::interfaces::Interface;
 use crate::materials::Material;
@@ -77,8 +77,7 @@ fn refuse_as_body_material(bodies: &[BodyFile], materials: &[MaterialFile]) -> R
 }
 
 /// The cohesive interfaces of every laminate body of `model`, with their
-/// laws and points on `mesh` (`materials` the model's); refused in a
-/// transient analysis, whose energy ledger has no column for them yet.
+/// laws and points on `mesh` (`materials` the model's).
 pub(super) fn interfaces(
     model: &ModelFile,
     mesh: &Mesh,
@@ -124,13 +123,6 @@ pub(super) fn interfaces(
             }
             out.push(Interface { name: format!("interface{}", r.ply + 1), key: r.key, body: i, law, points });
         }
-    }
-    if let (Some(AnalysisType::Transient), Some(i)) = (model.analysis.kind, out.first()) {
-        return Err(invalid(
-            i.key.clone(),
-            format!("the cohesive {} with analysis.type = \"transient\"", i.name),
-            "a static analysis (the energy ledger of a transient one has no column for the interfaces yet)",
-        ));
     }
     if let (Some(Control::ArcLength), Some((j, v))) = (model.solver.control, viscous) {
         return Err(invalid(

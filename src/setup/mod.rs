@@ -349,20 +349,18 @@ fn layered(mesh: &Mesh) -> Option<Warning> {
     })
 }
 
-/// The constraint handler of `constraints` and the contacts' and
-/// interfaces' couplings,
-/// every body's restraint checked against it — not in a transient
+/// The constraint handler with the contacts' and interfaces' couplings
+/// added, every body's restraint checked against it — not in a transient
 /// analysis, whose mass holds a free body (`M/(β Δt²)` in the tangent
 /// keeps every time step's system positive definite).
 fn restrained(
     mesh: &Mesh,
-    constraints: &[Constraint],
+    mut handler: constraints::ConstraintHandler,
     (indenters, contacts, interfaces): (&[Indenter], &[PairContact], &[crate::interfaces::Interface]),
     kinematics: Kinematics,
     transient: bool,
 ) -> Result<constraints::ConstraintHandler, ModelError> {
-    let current = kinematics.is_nonlinear();
-    let handler = constraints::ConstraintHandler::new(mesh, constraints, (contacts, interfaces), current);
+    handler.couple(mesh, (contacts, interfaces), kinematics.is_nonlinear());
     if !transient {
         restraint::check(mesh, &handler, indenters, contacts)?;
     }
@@ -382,7 +380,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let kinematics = analysis::kinematics(&file.analysis)?;
     let plan = refine::plan(&file)?;
     let adapt = refine::adapt_settings(file.adapt.as_ref())?;
-    let (constraints, n_user) = preprocess::constraints(&file.constraints, &mesh, &planes, &mut warnings)?;
+    let (constraints, n_user, handler) = preprocess::constraints(&file.constraints, &mesh, &planes, &mut warnings)?;
     let loads = preprocess::loads(&file.loads, &mesh, &materials, &planes, &mut warnings)?;
     let transient = file.analysis.kind == Some(schema::AnalysisType::Transient);
     let indenters = indenters::indenters(&file.indenters, &mesh, &materials, transient, &planes, &mut warnings)?;
@@ -398,8 +396,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
              takes friction there, with the current normal; docs/contact.md)",
         ));
     }
-    let constraint_handler =
-        restrained(&mesh, &constraints, (&indenters, &contacts, &interfaces), kinematics, transient)?;
+    let constraint_handler = restrained(&mesh, handler, (&indenters, &contacts, &interfaces), kinematics, transient)?;
     let probes = preprocess::probes(&file.probes, &mesh, &planes)?;
     let lines = preprocess::lines(&file.lines, &mesh, &planes, &mut warnings)?;
     let symmetry = symmetry::resolve(planes, &mesh, (&constraints, n_user), &indenters, &contacts);
@@ -409,6 +406,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let loading = path::Loading {
         steps: &file.steps,
         constraints: &constraints,
+        handler: &constraint_handler,
         loads: &loads,
         indenters: &indenters,
         contacts: &contacts,
@@ -438,7 +436,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let parts = analysis::Parts {
         mesh: &mesh,
         materials: &materials,
-        constraints: &constraints,
+        constraints: &constraint_handler,
         indenters: &indenters,
         contacts: &contacts,
         steps: file.steps.len(),
@@ -454,7 +452,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     analysis::combinations(kind, solver.path.is_some(), adapt.is_some())?;
     analysis::damage_combinations(kind, kinematics, &materials, solver.path.is_some())?;
     let modes = buckling.map(|b| b.modes).or(modal.map(|m| m.modes));
-    warnings.extend(analysis::eigen_warnings(modes, &mesh, &constraints, !symmetry.planes.is_empty()));
+    warnings.extend(analysis::eigen_warnings(modes, &mesh, &constraint_handler, !symmetry.planes.is_empty()));
     Ok(Model {
         title: file.title.unwrap_or_else(|| defaults::TITLE.into()),
         description: file.description.unwrap_or_else(|| defaults::DESCRIPTION.into()),

@@ -7,6 +7,7 @@
 //! load stepping's re-solves) — is refused by key.
 
 use super::Probe;
+use super::constraints::ConstraintHandler;
 use crate::bc::{Constraint, Load};
 use crate::contact::{Indenter, PairContact};
 use crate::input::schema::{Control, SolverFile, StepFile};
@@ -18,6 +19,7 @@ use crate::solver::arclength::ArcLengthSettings;
 pub(super) struct Loading<'a> {
     pub steps: &'a [StepFile],
     pub constraints: &'a [Constraint],
+    pub handler: &'a ConstraintHandler,
     pub loads: &'a [Load],
     pub indenters: &'a [Indenter],
     pub contacts: &'a [PairContact],
@@ -117,15 +119,14 @@ fn proportional(m: &Loading) -> Result<(), ModelError> {
     if m.loads.is_empty() {
         return Err(invalid("loads", "[]", format!("at least one [[loads]] entry with {ARC} (the load it scales)")));
     }
-    for (i, c) in m.constraints.iter().enumerate() {
-        if c.values.iter().any(|v| v.is_some_and(|v| v != 0.0)) {
-            let v: Vec<String> = c.values.iter().map(|v| v.map_or("free".into(), |v| format!("{v}"))).collect();
-            return Err(invalid(
-                format!("constraints[{i}].displacement"),
-                format!("[{}]", v.join(", ")),
-                format!("zero values only with {ARC} (prescribe a displacement by load control, or load the point)"),
-            ));
-        }
+    if let Some(i) = m.handler.first_moving() {
+        let v: Vec<String> =
+            m.constraints[i].values.iter().map(|v| v.map_or("free".into(), |v| format!("{v}"))).collect();
+        return Err(invalid(
+            format!("constraints[{i}].displacement"),
+            format!("[{}]", v.join(", ")),
+            format!("zero values only with {ARC} (prescribe a displacement by load control, or load the point)"),
+        ));
     }
     for (i, ind) in m.indenters.iter().enumerate() {
         if ind.force.is_some() {

@@ -2,6 +2,7 @@
 //! face integrals of loads, probe and line locations. Runs once, after the
 //! bodies are built; the analysis consumes its results.
 
+use super::constraints::{Conflict, ConstraintHandler};
 use super::{Line, Probe, Warning, symmetry};
 use crate::bc::symmetry::Plane;
 use crate::bc::{self, Condition, Constraint, Load, LoadKind, Selection};
@@ -37,13 +38,14 @@ pub(super) fn optional_body(mesh: &Mesh, key: String, name: &Option<String>) -> 
 /// analysis runs and shows nothing (the probe warning needs some motion).
 /// The symmetry planes' constraints follow the file's (whose number is
 /// returned beside them); a constraint wholly on a plane's left-out side
-/// is left out with a note.
+/// is left out with a note. The constraint handler of them all is returned
+/// with them, without couplings (`ConstraintHandler::couple` adds those).
 pub(super) fn constraints(
     file: &[ConstraintFile],
     mesh: &Mesh,
     planes: &[Plane],
     warnings: &mut Vec<Warning>,
-) -> Result<(Vec<Constraint>, usize), ModelError> {
+) -> Result<(Vec<Constraint>, usize, ConstraintHandler), ModelError> {
     let mut constraints = Vec::new();
     // bodies already warned about a selection holding all their nodes
     let mut whole = vec![false; mesh.bodies.len()];
@@ -123,31 +125,31 @@ pub(super) fn constraints(
     let own = symmetry::constraints(planes, mesh);
     let owners: Vec<usize> = own.iter().map(|(p, _)| *p).collect();
     constraints.extend(own.into_iter().map(|(_, c)| c));
-    warn_fully_fixed(&constraints, mesh, &whole, warnings);
-    check_agreement(&constraints, mesh, |i| {
-        let k = i.checked_sub(user).map(|k| (owners[k], &planes[owners[k]]));
-        k.map_or_else(|| Owner::File(format!("constraints[{i}]")), |(k, p)| Owner::Plane(k, p))
+    let handler = ConstraintHandler::checked(mesh.n_dofs(), &constraints).map_err(|conflict| {
+        disagreement(&constraints, mesh, conflict, |i| {
+            let k = i.checked_sub(user).map(|k| (owners[k], &planes[owners[k]]));
+            k.map_or_else(|| Owner::File(format!("constraints[{i}]")), |(k, p)| Owner::Plane(k, p))
+        })
     })?;
-    Ok((constraints, user))
+    warn_fully_fixed(&constraints, mesh, &handler, &whole, warnings);
+    Ok((constraints, user, handler))
 }
 
 /// Warns about a body fixed in x, y and z at every node (by one or several
-/// constraints; not again for a body already warned about in `whole`).
-fn warn_fully_fixed(constraints: &[Constraint], mesh: &Mesh, whole: &[bool], warnings: &mut Vec<Warning>) {
+/// constraints; not again for a body already warned about in `whole`). The
+/// warning's key is the body's last constraint in the file's order.
+fn warn_fully_fixed(
+    constraints: &[Constraint],
+    mesh: &Mesh,
+    handler: &ConstraintHandler,
+    whole: &[bool],
+    warnings: &mut Vec<Warning>,
+) {
     for (b, body) in mesh.bodies.iter().enumerate() {
-        let mut fixed = vec![[false; 3]; body.n_nodes()];
-        let mut last = None;
-        for (i, c) in constraints.iter().enumerate().filter(|(_, c)| c.body == b) {
-            for &n in &c.nodes {
-                for k in 0..3 {
-                    fixed[n - body.node_offset][k] |= c.values[k].is_some();
-                }
-            }
-            last = Some(i);
-        }
+        let last = constraints.iter().rposition(|c| c.body == b);
         if let Some(i) = last
             && !whole[b]
-            && fixed.iter().all(|f| f.iter().all(|&v| v))
+            && (body.node_offset..body.node_offset + body.n_nodes()).all(|n| handler.holds_node(n))
         {
             warnings.push(Warning {
                 key: format!("constraints[{i}]"),
@@ -168,43 +170,21 @@ enum Owner<'a> {
     Plane(usize, &'a Plane),
 }
 
-/// One value per constrained DOF: overlapping sets must agree. A
-/// constraint is named by its key and name (`owner` gives the key); a
-/// conflict with a symmetry plane's `u_n = 0` names the file's constraint
-/// and the plane.
-fn check_agreement<'a>(
-    constraints: &[Constraint],
-    mesh: &Mesh,
-    owner: impl Fn(usize) -> Owner<'a>,
-) -> Result<(), ModelError> {
-    let mut given: std::collections::HashMap<usize, (f64, usize)> = Default::default();
-    for (i, c) in constraints.iter().enumerate() {
-        for &n in &c.nodes {
-            for (k, v) in c.values.iter().enumerate() {
-                let Some(v) = *v else { continue };
-                if let Some(&(w, j)) = given.get(&(3 * n + k))
-                    && w != v
-                {
-                    return Err(disagreement(constraints, mesh.coords(n), k, (i, v), (j, w), &owner));
-                }
-                given.insert(3 * n + k, (v, i));
-            }
-        }
-    }
-    Ok(())
-}
-
-/// The error of constraints `i` (value `v`) and `j` (value `w`, given
-/// first) prescribing different values to component `k` at point `at`.
+/// The error of two constraints prescribing different values to one DOF
+/// (the handler's [`Conflict`]: the later constraint against the DOF's
+/// owner). A constraint is named by its key and name (`owner` gives the
+/// key); a conflict with a symmetry plane's `u_n = 0` names the file's
+/// constraint and the plane.
 fn disagreement<'a>(
     constraints: &[Constraint],
-    at: [f64; 3],
-    k: usize,
-    (i, v): (usize, f64),
-    (j, w): (usize, f64),
-    owner: &impl Fn(usize) -> Owner<'a>,
+    mesh: &Mesh,
+    conflict: Conflict,
+    owner: impl Fn(usize) -> Owner<'a>,
 ) -> ModelError {
-    let c = ["x", "y", "z"][k];
+    let (i, v) = (conflict.given.constraint, conflict.given.value);
+    let (j, w) = (conflict.owner.constraint, conflict.owner.value);
+    let at = mesh.coords(conflict.dof / 3);
+    let c = ["x", "y", "z"][conflict.dof % 3];
     match (owner(i), owner(j)) {
         (Owner::Plane(p, plane), Owner::File(key)) | (Owner::File(key), Owner::Plane(p, plane)) => {
             let (file, value) = if matches!(owner(i), Owner::File(_)) { (i, v) } else { (j, w) };

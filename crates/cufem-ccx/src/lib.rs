@@ -220,11 +220,10 @@ fn check_unloaded(model: &Model) -> Result<(), CcxError> {
     if let Some(l) = model.loads.first() {
         return refuse("loads".into(), format!("load \"{}\"", l.name));
     }
-    for (i, c) in model.constraints.iter().enumerate() {
-        if let Some(v) = c.values.iter().flatten().find(|v| **v != 0.0) {
-            let value = format!("a prescribed displacement of {} m", cufem::numbers::number(*v));
-            return refuse(format!("constraints[{i}]"), value);
-        }
+    if let Some(i) = model.constraint_handler.first_moving() {
+        let v = model.constraints[i].values.iter().flatten().find(|v| **v != 0.0).copied().unwrap_or_default();
+        let value = format!("a prescribed displacement of {} m", cufem::numbers::number(v));
+        return refuse(format!("constraints[{i}]"), value);
     }
     if let Some(ind) = model.indenters.first() {
         return refuse("indenters".into(), format!("indenter \"{}\"", ind.name));

@@ -1,9 +1,11 @@
 //! Delamination through cohesive interfaces (issue 48): the double
-//! cantilever beam of `examples/dcb.toml` against corrected beam theory
-//! with the same constants (`tests/common/cbt.rs`: Williams 1989's crack
-//! correction χh; self-checked in tests/oracles_selfcheck.rs) — the
-//! compliance of a held crack, the load–opening curve through onset, and
-//! that the curve moves with G_Ic.
+//! cantilever beam of `examples/dcb.toml` and the end-notched flexure of
+//! `examples/enf.toml` against corrected beam theory with the same
+//! constants (`tests/common/cbt.rs`: Williams 1989's crack correction χh,
+//! Wang & Williams 1992's 0.42χh; self-checked in
+//! tests/oracles_selfcheck.rs) — the compliance of a held crack, the
+//! load–displacement curves through onset, and that they move with G_Ic and
+//! G_IIc.
 
 #[path = "../../../tests/common/cbt.rs"]
 mod cbt;
@@ -15,10 +17,15 @@ use std::path::{Path, PathBuf};
 use cbt::Specimen;
 use serde_json::Value;
 
-/// The example's text.
-fn example() -> String {
-    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join("examples/dcb.toml");
+/// The text of `examples/<name>.toml`.
+fn read_example(name: &str) -> String {
+    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join(format!("examples/{name}.toml"));
     std::fs::read_to_string(path).unwrap()
+}
+
+/// The DCB example's text.
+fn example() -> String {
+    read_example("dcb")
 }
 
 /// Runs a model text through the CLI: the output folder and the summary;
@@ -129,6 +136,30 @@ fn dcb_curve_follows_corrected_beam_theory() {
     // of the process zone hold part of theirs: within 5 %)
     let grown = 969.0 * 0.0254 * (a - A0);
     assert!((dissipated / grown - 1.0).abs() < 0.05, "dissipated {dissipated} J against G_Ic ΔA = {grown} J");
+    // the ledger: the work of the arm loads ∫P dδ (trapezoidal over the
+    // increments) is the elastic energy left, ½ P δ (every point on its
+    // secant: the unloading is linear to the origin, as
+    // `dcb_reloads_on_the_reduced_stiffness` shows), plus the law's
+    // dissipation plus the work of the viscous over-stress
+    let viscous = d["viscous_j"].as_f64().unwrap();
+    let work: f64 = std::iter::once((0.0, 0.0))
+        .chain(points.iter().copied())
+        .collect::<Vec<_>>()
+        .windows(2)
+        .map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0))
+        .sum();
+    let elastic = 0.5 * last.0 * last.1;
+    let gap = work - elastic - dissipated - viscous;
+    eprintln!(
+        "DCB: work {work:.5} J = elastic {elastic:.5} + dissipated {dissipated:.5} + viscous {viscous:.5} J {:+.3e} J \
+         ({:+.3} % of the work)",
+        gap,
+        100.0 * gap / work
+    );
+    common::figure("dcb.ledger_gap", 100.0 * gap / work, "%", "|gap| ≤ 0.1 % of the work of the arm loads");
+    common::figure("dcb.viscous_work", viscous, "J", "positive; closes the ledger with dissipated_j");
+    assert!(viscous > 0.0, "viscous work {viscous} J");
+    assert!(gap.abs() < 1e-3 * work, "the ledger does not close: {gap} J of {work} J");
 }
 
 /// G_Ic changed by ±10 % moves the curve out of the 3 % band around the
@@ -158,6 +189,293 @@ fn dcb_curve_moves_with_the_toughness() {
         );
         assert!(original > 0.03, "{name}: within 3 % of the original curve ({original})");
         assert!(own < 0.03, "{name}: not within 3 % of its own curve ({own})");
+    }
+}
+
+/// A damaged interface is never healed (design48 §3.6b): the DCB opened to
+/// 6 mm (CBT's crack 39.8 mm, from 32.8), closed to 0 and opened again to
+/// 5.5 mm in three `[[steps]]`. Unloading is linear to the origin and
+/// reloading retraces it: every point of both has the secant δ/P of the
+/// turn-around within 0.5 %, and that secant is CBT's compliance at the
+/// crack CBT reaches at 6 mm within 2 % (measured: see the output), far
+/// from the intact precrack's. A law that let d fall as the
+/// separation falls would unload on a stiffer path and reload on the
+/// precrack's compliance.
+#[test]
+fn dcb_reloads_on_the_reduced_stiffness() {
+    let text = example().replace("[solver]\nincrements = 200", "");
+    assert!(!text.contains("[solver]"));
+    let text = format!(
+        "{text}[solver]\nincrements = 10\n\n[[steps]]\nname = \"load\"\nfactor = 0.6\nincrements = 120\n\n\
+         [[steps]]\nname = \"unload\"\nfactor = 0.0\nincrements = 10\n\n\
+         [[steps]]\nname = \"reload\"\nfactor = 0.55\nincrements = 10\n"
+    );
+    let (out, _) = run_cli("reload", &text, true);
+    let points = curve(&out);
+    let lambda = &common::csv_columns(&out.join("history_probes.csv"))["lambda"];
+    let turn = lambda.iter().rposition(|&l| l <= 1.0 + 1e-9).unwrap();
+    let (dm, pm) = points[turn];
+    let secant = dm / pm;
+    let dcb = specimen(969.0);
+    let a = dcb.branch_crack_closed(dm);
+    let exact = dcb.compliance(a);
+    let initial = points[0].0 / points[0].1;
+    eprintln!(
+        "reload: turned at δ = {:.3} mm, P = {pm:.2} N; secant {secant:.5e} m/N, CBT {exact:.5e} at a = {:.3} mm \
+         ({:+.2} %); the precrack's {initial:.5e}",
+        1e3 * dm,
+        1e3 * a,
+        100.0 * (secant / exact - 1.0)
+    );
+    assert!((dm - 0.006).abs() < 1e-9, "turned at {dm} m");
+    common::figure("dcb.reload_secant", 100.0 * (secant / exact - 1.0), "%", "|difference| ≤ 2 % against CBT's C(a)");
+    assert!((secant / exact - 1.0).abs() < 0.02, "secant {secant:e} against CBT's {exact:e}");
+    assert!(secant > 1.5 * initial, "secant {secant:e}, precrack {initial:e}");
+    let after = &points[turn + 1..];
+    assert_eq!(after.len(), 20, "unload and reload increments");
+    let mut worst: f64 = 0.0;
+    for &(d, p) in after.iter().filter(|p| p.0 > 0.05 * dm) {
+        worst = worst.max((d / p / secant - 1.0).abs());
+    }
+    eprintln!("reload: unloading and reloading secants within {:.3} % of the turn-around's", 100.0 * worst);
+    assert!(worst < 0.005, "off the secant by {worst}");
+    let origin = after[9];
+    assert!(origin.0.abs() < 1e-12 && origin.1.abs() < 1e-6 * pm, "unloaded to {origin:?}");
+}
+
+/// The MMB example's specimen at G_II/G = `ratio` with toughnesses
+/// `(gic, giic)`: the lever is the one of the original toughness (the
+/// lever of the example), B = 25.4 mm, h = 1.56 mm, L = 51 mm.
+fn mmb_specimen(ratio: f64, gic: f64, giic: f64) -> cbt::Mmb {
+    let m = cbt::Material::as4_peek();
+    let mut mmb = cbt::Mmb::for_ratio(m, 0.0254, 0.00156, 0.051, MMB_A0, ratio);
+    mmb.material = m.with_toughness(gic, giic);
+    mmb
+}
+
+/// The MMB precrack's tip: midway between the last cracked interface nodes
+/// (y = 33.625 mm) and the first intact ones (33.75 mm) (examples/mmb.toml).
+const MMB_A0: f64 = 0.0336875;
+
+/// The largest gap between the CBT curves of `a` and `b` up to the
+/// opening `delta_max`, over `a`'s P_c (400 samples).
+fn cbt_gap(a: &cbt::Mmb, b: &cbt::Mmb, delta_max: f64) -> f64 {
+    let (_, pc) = a.onset(MMB_A0);
+    (1..=400)
+        .map(|i| {
+            let d = delta_max * f64::from(i) / 400.0;
+            (a.load(MMB_A0, d) - b.load(MMB_A0, d)).abs() / pc
+        })
+        .fold(0.0, f64::max)
+}
+
+/// Which MMB ratio can catch a ±10 % toughness at the issue's 5 %
+/// (design48 §3.4), from the closed form alone: at G_II/G = 0.5 a ±10 %
+/// G_IIc moves the whole curve (to the crack limit, where the mode-II tip
+/// reaches the saddle) by at most 4.5 % of P_c — no test at 5 % catches it
+/// — and at 0.8 by 15.6 %/15.8 %, G_Ic ±10 % by 7.5 %/7.6 %: caught, but
+/// only on the propagation branch (the peak moves by ±3.6 % and ±1.4 %).
+#[test]
+fn mmb_ratio_that_can_catch_the_toughnesses() {
+    let (gic, giic) = (969.0, 1719.0);
+    for (ratio, gi, gii, low, high) in [
+        (0.5, gic, 1.1 * giic, 0.0, 0.05),
+        (0.5, gic, 0.9 * giic, 0.0, 0.05),
+        (0.8, gic, 1.1 * giic, 0.05, 1.0),
+        (0.8, gic, 0.9 * giic, 0.05, 1.0),
+        (0.8, 1.1 * gic, giic, 0.05, 1.0),
+        (0.8, 0.9 * gic, giic, 0.05, 1.0),
+    ] {
+        let original = mmb_specimen(ratio, gic, giic);
+        let changed = mmb_specimen(ratio, gi, gii);
+        let end = |m: &cbt::Mmb| m.branch_point(m.crack_limit() - 1e-4).0;
+        let gap = cbt_gap(&original, &changed, end(&original).min(end(&changed)));
+        let peak = changed.onset(MMB_A0).1 / original.onset(MMB_A0).1 - 1.0;
+        eprintln!(
+            "MMB {ratio}: G_Ic {gi:.1}, G_IIc {gii:.1}: curves {:.2} % of P_c apart, peak {:+.2} %",
+            100.0 * gap,
+            100.0 * peak
+        );
+        assert!(gap > low && gap < high, "MMB {ratio} ({gi}, {gii}): {gap}");
+        assert!(peak.abs() < 0.05, "the peak alone catches it: {peak}");
+    }
+}
+
+/// The MMB at G_II/G = 0.8 (`examples/mmb.toml`: the lever's two loads
+/// without the lever, arc length) up to the peak, where the arc length
+/// stalls (a known limit, docs/limitations.md): every point within 5 % of
+/// P_c of CBT (measured 3.25 %, near CBT's cusp, the process zone
+/// rounding the peak as in the ENF); the stall at 0.967 P_c (asserted in
+/// [0.95, 0.985]), before any growth, so the ±10 % toughness runs the issue
+/// asks for cannot fail here (`mmb_ratio_that_can_catch_the_toughnesses`:
+/// only the branch tells them apart).
+#[test]
+fn mmb_curve_follows_corrected_beam_theory_to_its_peak() {
+    let text = read_example("mmb");
+    let mmb = mmb_specimen(0.8, 969.0, 1719.0);
+    // the example's loads are the lever's at P = 500 N: P c/L over the
+    // end's 4 nodes, P (c + L)/L over the saddle's
+    let (c, l) = (mmb.lever, mmb.half_span);
+    let forces: Vec<f64> = text
+        .lines()
+        .filter_map(|s| s.strip_prefix("force_per_node = [0.0, 0.0, "))
+        .map(|s| s.trim_end_matches(']').parse().unwrap())
+        .collect();
+    assert_eq!(forces.len(), 2);
+    assert!((forces[0] / (500.0 * c / l / 4.0) - 1.0).abs() < 1e-12, "end load {}", forces[0]);
+    assert!((forces[1] / (-500.0 * (c + l) / l / 4.0) - 1.0).abs() < 1e-12, "saddle load {}", forces[1]);
+    let text = text.replace("max_load_factor = 0.88", "max_load_factor = 1.0");
+    let (out, summary) = run_cli("mmb", &text, false);
+    assert_eq!(summary["status"], "not_converged", "the arc length passed the peak");
+    let h = common::csv_columns(&out.join("history_probes.csv"));
+    let points: Vec<(f64, f64)> = h["lambda"]
+        .iter()
+        .zip(h["end.u_z"].iter().zip(&h["saddle.u_z"]))
+        .map(|(lambda, (end, saddle))| (c / l * end - (c + l) / l * saddle, 500.0 * lambda))
+        .collect();
+    let (dc, pc) = mmb.onset(MMB_A0);
+    let error = cbt::curve_error(&points, &mmb, MMB_A0);
+    let last = *points.last().unwrap();
+    eprintln!(
+        "MMB 0.8: c = {:.3} mm; P_c = {pc:.2} N at {:.3} mm; {} points to δ = {:.3} mm, P = {:.2} N; curve error \
+         {:.2} % of P_c",
+        1e3 * c,
+        1e3 * dc,
+        points.len(),
+        1e3 * last.0,
+        last.1,
+        100.0 * error
+    );
+    assert!(points.len() >= 10);
+    common::figure("mmb.curve_error", 100.0 * error, "%", "≤ 5 % of P_c up to the peak (corrected beam theory)");
+    assert!(error < 0.05, "curve error {error}");
+    common::known_limit("mmb.arc_length_stall", last.1 / pc, "P_c", 0.95, 0.985, "MMB arc length stall");
+}
+
+/// The ENF example's specimen: B = 25.4 mm, h = 1.56 mm, half-span
+/// L = 51 mm, G_IIc `giic`.
+fn enf_specimen(giic: f64) -> cbt::Enf {
+    let material = cbt::Material::as4_peek();
+    cbt::Enf { material: material.with_toughness(material.gic, giic), width: 0.0254, arm: 0.00156, half_span: 0.051 }
+}
+
+/// The ENF precrack's tip: midway between the last cracked interface nodes
+/// (y = 39.25 mm) and the first intact ones (39.375 mm) (examples/enf.toml).
+const ENF_A0: f64 = 0.0393125;
+
+/// The load–deflection points `(δ, P)` of an ENF run: P the reaction of the
+/// load line (downward positive), δ its downward displacement.
+fn enf_curve(out: &Path) -> Vec<(f64, f64)> {
+    let c = common::csv_columns(&out.join("history_probes.csv"));
+    let r = common::csv_columns(&out.join("history_load.csv"));
+    c["load_line.u_z"].iter().zip(&r["r_z"]).map(|(u, p)| (-u, -p)).collect()
+}
+
+/// The error of the propagation branch alone: `max |P − P_CBT(δ)| / P_c`
+/// over the points past 1.05 δ_c of `reference` (the peak and the first
+/// 3 mm of growth left out: there the process zone rounds CBT's cusp).
+fn enf_branch_error(points: &[(f64, f64)], reference: &cbt::Enf) -> f64 {
+    let (dc, _) = reference.onset(ENF_A0);
+    let branch: Vec<(f64, f64)> = points.iter().copied().filter(|p| p.0 >= 1.05 * dc).collect();
+    assert!(branch.len() >= 20, "{} points on the branch", branch.len());
+    cbt::curve_error(&branch, reference, ENF_A0)
+}
+
+/// The ENF in three-point bending (design48 §3.2), a0 = 39.3 mm (A0 =
+/// 0.79 L: stable), deflected to 4.2 mm, where CBT's crack is 49.9 mm. The
+/// issue asks for the whole curve within 3 % of P_c; the model does not
+/// reach that at the peak, and that is asserted as a known limit from both
+/// sides (docs/limitations.md): the mode-II process zone (about 3 mm of 0 < d < 1)
+/// softens the curve before CBT's cusp, so the computed peak is 3.8 % below
+/// P_c and the whole-curve error 5.0 %, at the cusp. Before the peak the
+/// compliance is within 1 % of CBT (measured 0.56 % more compliant at
+/// δ = 0.35 mm), and past 1.05 δ_c the branch within 3 % (measured
+/// 2.4 %; CBT leaves out the beam's shear compliance, which raises the
+/// computed branch by about 1.5 % of P_c). The precracked arms slide
+/// without passing through each other (the law's compression penalty).
+#[test]
+fn enf_curve_follows_corrected_beam_theory() {
+    let (out, summary) = run_cli("enf", &read_example("enf"), true);
+    let points = enf_curve(&out);
+    let enf = enf_specimen(1719.0);
+    let (dc, pc) = enf.onset(ENF_A0);
+    let last = *points.last().unwrap();
+    assert!((last.0 - 0.0042).abs() < 1e-9, "the curve stops at δ = {} m", last.0);
+    // before onset: the compliance of the precracked beam
+    let (d0, p0) = points[0];
+    let c0 = d0 / p0;
+    eprintln!("ENF: C = {c0:.5e} m/N at δ = {:.3} mm, CBT {:.5e}", 1e3 * d0, enf.compliance(ENF_A0));
+    assert!(d0 < 0.1 * dc);
+    assert!((c0 / enf.compliance(ENF_A0) - 1.0).abs() < 0.01, "compliance {c0:e}");
+    let whole = cbt::curve_error(&points, &enf, ENF_A0);
+    let branch = enf_branch_error(&points, &enf);
+    let peak = points.iter().map(|p| p.1).fold(0.0, f64::max);
+    eprintln!(
+        "ENF: P_c = {pc:.2} N at {:.3} mm; peak {peak:.2} N ({:+.2} %); {} points; whole-curve error {:.2} %, branch \
+         past 1.05 δ_c {:.2} % of P_c",
+        1e3 * dc,
+        100.0 * (peak / pc - 1.0),
+        points.len(),
+        100.0 * whole,
+        100.0 * branch
+    );
+    assert!(points.iter().filter(|p| p.0 > 1.05 * dc).count() >= 50, "too few points on the branch");
+    common::figure("enf.branch_error", 100.0 * branch, "%", "≤ 3 % of P_c past 1.05 δ_c (corrected beam theory)");
+    assert!(branch < 0.03, "branch error {branch}");
+    common::known_limit("enf.whole_curve_error", 100.0 * whole, "%", 4.5, 5.5, "ENF whole-curve error");
+    common::known_limit("enf.peak_below_pc", 100.0 * (1.0 - peak / pc), "%", 3.3, 4.3, "ENF peak below P_c");
+    // CBT's crack at the last deflection lies in the process zone: past
+    // the delaminated points (d = 1), before the last damaged one
+    let i = &summary["delamination"]["interfaces"][0];
+    let cracked = i["delaminated_m2"].as_f64().unwrap() / 0.0254;
+    let damaged = cracked + i["process_zone_m2"].as_f64().unwrap() / 0.0254;
+    let exact = enf.branch_crack(ENF_A0, last.0);
+    eprintln!(
+        "ENF: d = 1 to {:.3} mm, d > 0 to {:.3} mm, CBT crack {:.3} mm",
+        1e3 * cracked,
+        1e3 * damaged,
+        1e3 * exact
+    );
+    assert!(cracked < exact && exact < damaged, "CBT's crack {exact} m outside [{cracked}, {damaged}] m");
+    // the dissipation lies between G_IIc times the delaminated and the
+    // damaged growth (a process-zone point has dissipated less than G_IIc)
+    let dissipated = i["dissipated_j"].as_f64().unwrap();
+    let (low, high) = (1719.0 * 0.0254 * (cracked - ENF_A0), 1719.0 * 0.0254 * (damaged - ENF_A0));
+    eprintln!("ENF: dissipated {dissipated:.4} J, G_IIc ΔA from {low:.4} to {high:.4} J");
+    assert!(low < dissipated && dissipated < high, "dissipated {dissipated} J");
+    // no interpenetration behind the crack: the opening just below and
+    // above the interface, δ3 ≥ −0.1 µm (the penalty lets the compressed
+    // faces overlap by p/K, p/(3.2e14 Pa/m))
+    let c = common::csv_columns(&out.join("history_probes.csv"));
+    for y in [5, 20, 35] {
+        let gap = c[&format!("above_{y}.u_z")].iter().zip(&c[&format!("below_{y}.u_z")]).map(|(a, b)| a - b);
+        let least = gap.fold(f64::INFINITY, f64::min);
+        eprintln!("ENF: least opening at y = {y} mm: {least:.3e} m");
+        assert!(least > -1e-7, "the arms pass through each other at y = {y} mm by {least} m");
+    }
+}
+
+/// G_IIc changed by ±10 % moves the ENF branch out of the 3 % band around
+/// the original closed form, and keeps it within 3 % of the closed form of
+/// the changed toughness (design48 §3.4; the branch error as in
+/// `enf_curve_follows_corrected_beam_theory`).
+#[test]
+fn enf_curve_moves_with_the_toughness() {
+    for (name, factor) in [("giic_up", 1.1), ("giic_down", 0.9)] {
+        let text = read_example("enf");
+        assert!(text.contains("giic = 1719.0"));
+        let text = text.replace("giic = 1719.0", &format!("giic = {}", 1719.0 * factor));
+        let (out, _) = run_cli(name, &text, true);
+        let points = enf_curve(&out);
+        let original = enf_branch_error(&points, &enf_specimen(1719.0));
+        let own = enf_branch_error(&points, &enf_specimen(1719.0 * factor));
+        eprintln!(
+            "{name}: branch error against the original CBT {:.2} %, against its own {:.2} %",
+            100.0 * original,
+            100.0 * own
+        );
+        assert!(original > 0.03, "{name}: within 3 % of the original branch ({original})");
+        assert!(own < 0.03, "{name}: not within 3 % of its own branch ({own})");
     }
 }
 

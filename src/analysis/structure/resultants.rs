@@ -5,28 +5,19 @@ use super::{ContactKind, ContactPoint, ContactResultant, Reaction, Structure};
 
 impl Structure<'_> {
     /// Resultant reaction of each constraint set (force of the support on
-    /// the body): the imbalance at the components the set prescribes. A DOF
-    /// prescribed by several sets (an edge shared by two faces) counts once,
-    /// for the set the constraint handler gives it (the first in the model
-    /// file), so that the reactions sum to the support force.
+    /// the body): the imbalance at the DOFs the constraint handler gives
+    /// it. A DOF prescribed by several sets (an edge shared by two faces)
+    /// counts once, for its owner (the first in the model file), so that
+    /// the reactions sum to the support force.
     pub fn reactions(&self) -> Vec<Reaction> {
-        self.loading
-            .constraints
-            .iter()
-            .enumerate()
-            .map(|(i, c)| {
-                let mut force = [0.0; 3];
-                for &n in &c.nodes {
-                    for (k, f) in force.iter_mut().enumerate() {
-                        let dof = 3 * n + k;
-                        if self.constraints.prescribed(dof).is_some_and(|p| p.constraint == i) {
-                            *f += self.nodal_imbalance(dof);
-                        }
-                    }
-                }
-                Reaction { name: c.name.clone(), force }
-            })
-            .collect()
+        let mut force = vec![[0.0; 3]; self.loading.constraints.len()];
+        for (dof, p) in self.constraints.constrained() {
+            if let Some(f) = force.get_mut(p.constraint) {
+                f[dof % 3] += self.nodal_imbalance(dof);
+            }
+        }
+        let names = self.loading.constraints.iter().map(|c| c.name.clone());
+        names.zip(force).map(|(name, force)| Reaction { name, force }).collect()
     }
 
     /// Per indenter, then per pair contact: resultant force on the body (on

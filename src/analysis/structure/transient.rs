@@ -79,7 +79,7 @@ pub(super) fn account_energy(
     (system, elimination): (&LinearSystem, &Elimination),
     impactors: f64,
 ) {
-    let Parts { elements, loads, contacts, inertia, impulse, .. } = parts;
+    let Parts { elements, loads, contacts, interfaces, inertia, impulse } = parts;
     let Some(inertia) = inertia.as_mut() else { return };
     let du: Vec<f64> = state.u.iter().zip(&state.u_committed).map(|(a, b)| a - b).collect();
     let eq = &system.assembler.dofs.eq;
@@ -91,12 +91,20 @@ pub(super) fn account_energy(
         .collect();
     let contact = impulse.as_ref().map_or_else(|| contacts.forces().values, |i| i.force());
     let d = elements.discretisation;
-    let elastic =
-        crate::post::estimate::elastic_energy(d.mesh, d.cells, d.materials, &elements.stress, &elements.gp_offsets);
+    let held = crate::dynamics::energy::Held {
+        elastic: crate::post::estimate::elastic_energy(
+            d.mesh,
+            d.cells,
+            d.materials,
+            &elements.stress,
+            &elements.gp_offsets,
+        ),
+        interfaces: interfaces.stored_energy(&state.u),
+    };
     inertia.account(
-        (state.lambda, elastic, impactors),
+        (state.lambda, held, impactors),
         &du,
-        [elements.forces().values, loads.forces().values, contact, &supports],
+        [elements.forces().values, loads.forces().values, contact, &supports, interfaces.forces().values],
         eq,
         &system.assembler.pattern,
     );

@@ -153,7 +153,7 @@ impl PlyDamage {
 
     /// The same law returning the secant stiffness `C_d` as its tangent
     /// (`consistent = false`) or the consistent one
-    /// ([`PlyDamage::consistent_tangent`], the default).
+    /// (`PlyDamage::consistent_tangent`, the default).
     pub fn with_consistent_tangent(mut self, consistent: bool) -> Self {
         self.consistent = consistent;
         self

@@ -95,8 +95,8 @@ fn the_notched_strip_dissipates_the_fracture_energy_of_its_ligament() {
 /// A damaged strip unloaded to zero and reloaded (three `[[steps]]` on the
 /// coarse example): the unloading and the reloading follow one straight
 /// line through the origin, its slope the damaged secant (below the intact
-/// stiffness), and the reload to the same end dissipates no more than the
-/// load alone did (the damage is not undone, and not redone).
+/// stiffness), and the reload resumes damaging only at the old end (the
+/// damage is not undone, and not redone short of where it stopped).
 #[test]
 fn a_damaged_strip_reloads_along_its_damaged_secant() {
     let base = example("notched_strip_coarse");
@@ -120,17 +120,27 @@ fn a_damaged_strip_reloads_along_its_damaged_secant() {
     println!("intact {intact:.4e} N/m, at the end of the load {at_load:.4e} N/m, damaged secant {secant:.4e} N/m");
     assert!(secant < 0.8 * intact, "the strip is damaged: {secant} against {intact}");
     assert!((at_load / secant - 1.0).abs() < 0.02, "{at_load} against {secant}");
-    // every later unloading and reloading point on the secant through the origin
+    // every later unloading and reloading point short of the old end on
+    // the secant through the origin (measured within 3.3e-5 of it)
+    let end = u[end_of_load];
     for i in end_of_load + 2..lambda.len() {
-        if u[i].abs() > 1e-3 * u[end_of_load] {
+        if u[i].abs() > 1e-3 * end && u[i] < 0.99 * end {
             let k = r[i] / u[i];
-            assert!((k / secant - 1.0).abs() < 2e-3, "λ = {}: P/u = {k} against {secant}", lambda[i]);
+            assert!((k / secant - 1.0).abs() < 1e-4, "λ = {}: P/u = {k} against {secant}", lambda[i]);
         }
     }
+    // Back at the old end the damage resumes a little: over the unloading the
+    // viscous damage caught up with the law's, so the crack front's
+    // neighbours reach their onset just before the old end (a known effect
+    // of the viscosity, docs/limitations.md "Ply damage"). Never stiffer
+    // than the secant (the damage is not undone); measured −0.34 % and
+    // 0.94 % more dissipation, asserted from both sides.
+    let k_end = r[lambda.len() - 1] / u[lambda.len() - 1];
+    assert!((-0.01..0.0).contains(&(k_end / secant - 1.0)), "{k_end} against {secant}");
     let (d_once, d_cycle) = (dissipated(&s_once)[0], dissipated(&s_cycle)[0]);
     println!("dissipated: load {d_once:.5} J, load-unload-reload {d_cycle:.5} J");
     assert!(d_once > 0.05 * CRACK_ENERGY, "{d_once}");
-    assert!((d_cycle / d_once - 1.0).abs() < 1e-2, "{d_cycle} against {d_once}");
+    assert!((1.0..1.02).contains(&(d_cycle / d_once)), "{d_cycle} against {d_once}");
 }
 
 /// Each misuse of `[materials.damage]` is refused by `cufem check` naming

@@ -137,7 +137,8 @@ impl<'m> Structure<'m> {
         }
         let elimination = constraints.elimination(&numbering);
         let mut assembler = Assembler::new(mesh, numbering);
-        let elements = Elements::new(discretisation);
+        let mut elements = Elements::new(discretisation);
+        elements.clock = settings.transient;
         let t_cache = Instant::now();
         // the elastic tangent is a constant only in small strain; the
         // total-Lagrangian one depends on u and S everywhere

@@ -397,7 +397,15 @@ pub fn energy(solution: &Solution) -> Option<Table> {
     let cohesive: [EnergyColumn; 2] =
         [("interfaces", "J", |r| r.interfaces), ("delamination", "J", |r| r.delamination)];
     let cohesive = if solution.delamination.is_some() { &cohesive[..] } else { &[] };
-    for &(name, unit, f) in columns.iter().chain(cohesive) {
+    // the energy ply damage dissipated per mode, only in a model that damages
+    let damage: [EnergyColumn; 4] = [
+        ("damage_fibre_tension", "J", |r| r.damage[0]),
+        ("damage_fibre_compression", "J", |r| r.damage[1]),
+        ("damage_matrix_tension", "J", |r| r.damage[2]),
+        ("damage_matrix_compression", "J", |r| r.damage[3]),
+    ];
+    let damage = if solution.damage.is_some() { &damage[..] } else { &[] };
+    for &(name, unit, f) in columns.iter().chain(cohesive).chain(damage) {
         t.push(name, unit, Values::Real(rows.iter().map(f).collect()));
     }
     Some(t)

@@ -98,10 +98,28 @@ impl BodyDamage {
         self.committed.copy_from_slice(&self.trial);
     }
 
+    /// The energy each mode has dissipated in the trial states (those of
+    /// the last evaluation), `Σ_q w_q g_I` (J; zero without damage).
+    pub fn dissipated(&self) -> [f64; 4] {
+        dissipated(&self.trial, &self.volume)
+    }
+
     /// What a run keeps of it: `None` when no material damages.
     pub fn into_result(self) -> Option<Damage> {
         (!self.committed.is_empty()).then_some(Damage { states: self.committed, volume: self.volume })
     }
+}
+
+/// `Σ_q w_q g_I` per mode of the states `states` with volume weights
+/// `volume` (J).
+fn dissipated(states: &[DamageState], volume: &[f64]) -> [f64; 4] {
+    let mut out = [0.0; 4];
+    for (s, &w) in states.iter().zip(volume) {
+        for (o, g) in out.iter_mut().zip(&s.dissipated) {
+            *o += w * g;
+        }
+    }
+    out
 }
 
 /// `2 / Σ_a |∇N_a · n|`: Oliver's projected size of the element along `n`.
@@ -167,11 +185,11 @@ pub struct DamageSummary {
 impl Damage {
     /// Its `summary.json` entry.
     pub fn summary(&self) -> DamageSummary {
-        let (mut dissipated, mut initiated, mut damaged, mut largest) = ([0.0; 4], [0.0; 4], [0.0; 4], [0.0f64; 4]);
+        let dissipated = dissipated(&self.states, &self.volume);
+        let (mut initiated, mut damaged, mut largest) = ([0.0; 4], [0.0; 4], [0.0f64; 4]);
         let mut reduced = 0;
         for (s, &w) in self.states.iter().zip(&self.volume) {
             for i in 0..4 {
-                dissipated[i] += w * s.dissipated[i];
                 if s.viscous[i] > 0.0 {
                     initiated[i] += w;
                 }

@@ -7,8 +7,12 @@
 //! contacts `W_c` and of the supports `W_s` (reactions on prescribed
 //! motion), and the work of the cohesive interfaces' tractions `W_i`. The
 //! kinetic energy is `T = ½ vᵀ M v`; the internal work splits into the
-//! elastic strain energy held, `½ ∫ σᵀ C⁻¹ σ dV`, and the rest, the plastic
-//! dissipation; the interfaces' work into the energy they hold,
+//! elastic strain energy held, `½ ∫ σᵀ C⁻¹ σ dV` (with the damaged
+//! compliance at ply-damage points), the energy ply damage dissipated per
+//! Hashin mode (`Σ_q w_q g_I`, the damage law's own sums,
+//! [`crate::materials::damage`]), and the rest, the plastic dissipation (in
+//! a body that only damages, the trapezoidal rule's error against the law's
+//! sums); the interfaces' work into the energy they hold,
 //! `Σ A ½ t·δ`, and the rest, dissipated by delamination. Their balance
 //!
 //! ```text
@@ -32,8 +36,12 @@ pub struct EnergyRow {
     pub internal: f64,
     /// The elastic strain energy `½ ∫ σᵀ C⁻¹ σ dV` held now.
     pub elastic: f64,
-    /// `W_int` less the elastic strain energy: plastic dissipation.
+    /// `W_int` less the elastic strain energy and the energy ply damage
+    /// dissipated: plastic dissipation.
     pub plastic: f64,
+    /// The energy ply damage dissipated per mode (fibre tension and
+    /// compression, matrix tension and compression; zero without damage).
+    pub damage: [f64; 4],
     /// `D`.
     pub damping: f64,
     /// `W_ext`.
@@ -82,13 +90,16 @@ pub(crate) struct StepForces<'a> {
 }
 
 /// The energies held at the end of a converged step (J): the elastic strain
-/// energy of the bodies and the energy the cohesive interfaces hold.
+/// energy of the bodies and the energy the cohesive interfaces hold; and
+/// what ply damage has dissipated so far, per mode.
 #[derive(Debug, Clone, Copy, Default)]
 pub(crate) struct Held {
     /// `½ ∫ σᵀ C⁻¹ σ dV`.
     pub elastic: f64,
     /// `Σ A ½ t·δ`.
     pub interfaces: f64,
+    /// `Σ_q w_q g_I` per damage mode.
+    pub damage: [f64; 4],
 }
 
 impl EnergyLedger {
@@ -115,7 +126,8 @@ impl EnergyLedger {
             row.interfaces += work(5);
         }
         row.elastic = held.elastic;
-        row.plastic = row.internal - held.elastic;
+        row.damage = held.damage;
+        row.plastic = row.internal - held.elastic - held.damage.iter().sum::<f64>();
         row.delamination = row.interfaces - held.interfaces;
         let t0 = self.rows.first().map_or(kinetic, |r| r.kinetic);
         row.balance = row.external + row.contact + row.supports

@@ -36,6 +36,11 @@ pub(crate) fn write_energy(model: &Model, solution: &Solution, dir: &Path) -> Re
         if let Some(delamination) = table.real("delamination") {
             curves.push(series("delamination", delamination));
         }
+        let modes = crate::materials::damage::MODES.map(|m| table.real(&format!("damage_{m}")));
+        if modes.iter().all(Option::is_some) {
+            let damage = (0..time.len()).map(|i| modes.iter().flatten().map(|c| c[i]).sum()).collect();
+            curves.push(series("ply damage (all modes)", damage));
+        }
         line_plot(&path, "energy balance", "time [ms]", "energy [J]", &curves)?;
         written.push(path);
     }

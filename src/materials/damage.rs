@@ -114,6 +114,9 @@ pub struct DamageState {
     pub viscous: [f64; 4],
     /// Energy release rates `Y_f, Y_m, Y_s` of this state (J/m³).
     pub release: [f64; 3],
+    /// The elastic strain energy density the point holds, `½ σ·ε`
+    /// (J/m³): `½ σᵀ S(d) σ`, the stress being the damaged secant's.
+    pub stored: f64,
     /// Modes whose onset stress was lowered because the band is longer
     /// than [`PlyDamage::longest_band`].
     pub reduced: [bool; 4],
@@ -220,6 +223,7 @@ impl PlyDamage {
         let ds = 1.0 - d.iter().map(|x| 1.0 - x).product::<f64>();
         let tangent = self.damaged_stiffness(df, dm, ds);
         let stress = mat_vec(&tangent, strain);
+        state.stored = 0.5 * stress.iter().zip(strain).map(|(s, e)| s * e).sum::<f64>();
         let [e1, e2, e3] = self.elastic.young;
         let [g12, g13, g23] = self.elastic.shear;
         state.release = [

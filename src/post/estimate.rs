@@ -113,20 +113,25 @@ fn each_point(
 
 /// The elastic strain energy `½ ∫ σᵀ C⁻¹ σ dV` of the Gauss-point
 /// stresses `stresses` (first of each body at `gp_offsets`), with each
-/// body's isotropic elastic compliance: the recoverable part of the
-/// internal work (the energy ledger of a transient run; with nonlinear
-/// geometry, of the stresses as stored, an approximation for large
-/// strains).
+/// body's elastic compliance: the recoverable part of the internal work
+/// (the energy ledger of a transient run; with nonlinear geometry, of the
+/// stresses as stored, an approximation for large strains). At the points
+/// of a damaging material the compliance is the damaged one: the energy
+/// their states `damage` hold ([`crate::materials::damage::DamageState`]
+/// `stored`; `damage` is empty when no material damages).
 pub(crate) fn elastic_energy(
     mesh: &Mesh,
     cells: &[CellValues],
     materials: &[Material],
-    stresses: &[Voigt],
+    (stresses, damage): (&[Voigt], &[crate::materials::damage::DamageState]),
     gp_offsets: &[usize],
 ) -> f64 {
     let mut total = 0.0;
     each_point(mesh, cells, materials, gp_offsets, |_, g, w, m| {
-        total += 0.5 * w * energy(&stresses[g], m);
+        total += match (&m.damage, damage.get(g)) {
+            (Some(_), Some(state)) => w * state.stored,
+            _ => 0.5 * w * energy(&stresses[g], m),
+        };
     });
     total
 }

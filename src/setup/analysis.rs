@@ -232,9 +232,9 @@ pub(super) fn material_key(materials: &[Material], m: &Material) -> String {
     }
 }
 
-/// Ply damage only in a static small-strain analysis: the ledger of a
-/// transient run has no column for the energy damage dissipates, and the
-/// law is written for small strains.
+/// Ply damage only in a static or transient small-strain analysis: an
+/// eigenvalue analysis is about an elastic state, and the law is written
+/// for small strains.
 pub(super) fn damage_combinations(
     kind: Kind,
     kinematics: crate::kinematics::Kinematics,
@@ -254,12 +254,12 @@ pub(super) fn damage_combinations(
     }
     let Some(m) = materials.iter().find(|m| m.damage.is_some()) else { return Ok(()) };
     let key = format!("{}.damage", material_key(materials, m));
-    if kind != Kind::Static {
+    if !matches!(kind, Kind::Static | Kind::Transient) {
         return Err(invalid(
             key,
             format!("given with analysis.type = \"{}\"", kind.word()),
-            "analysis.type = \"static\" with ply damage (a transient run's energy balance does not yet count \
-             the energy damage dissipates; an eigenvalue analysis is about an elastic state)",
+            "analysis.type = \"static\" or \"transient\" with ply damage (an eigenvalue analysis is about an \
+             elastic state)",
         ));
     }
     if kinematics.is_nonlinear() {

@@ -30,6 +30,10 @@ pub(crate) struct Elements<'m> {
     /// The ply damage of the Gauss points (`crate::damage`; empty without
     /// damage), committed with the states.
     pub damage: crate::damage::BodyDamage,
+    /// The clock of a transient run (`None` in a static one): the damage
+    /// viscosity's step is the time step in seconds there, the change of
+    /// the load factor in a static run.
+    pub clock: Option<&'m crate::dynamics::TransientSettings>,
 }
 
 impl<'m> Elements<'m> {
@@ -53,6 +57,7 @@ impl<'m> Elements<'m> {
             last: AssemblyStats::default(),
             initial: None,
             damage,
+            clock: None,
         }
     }
 
@@ -87,7 +92,11 @@ impl Contribution for Elements<'_> {
     /// pass (the element tangents and their scatter) is skipped.
     fn evaluate(&mut self, at: &At<'_>, tangent: &mut Tangent<'_>) -> usize {
         let crate::damage::BodyDamage { committed, band, trial: damage_trial, lambda, .. } = &mut self.damage;
-        let damage_in = crate::assembly::DamageInput { committed, band, step: (at.lambda - *lambda).abs() };
+        let step = match self.clock {
+            Some(clock) => (clock.time(at.lambda) - clock.time(*lambda)).abs(),
+            None => (at.lambda - *lambda).abs(),
+        };
+        let damage_in = crate::assembly::DamageInput { committed, band, step };
         let inputs = Inputs {
             state: self.discretisation.fe_state(at.u, &self.committed, &self.gp_offsets, damage_in),
             predictor: at.predictor,

@@ -96,10 +96,11 @@ pub(super) fn account_energy(
             d.mesh,
             d.cells,
             d.materials,
-            &elements.stress,
+            (&elements.stress, &elements.damage.trial),
             &elements.gp_offsets,
         ),
         interfaces: interfaces.stored_energy(&state.u),
+        damage: elements.damage.dissipated(),
     };
     inertia.account(
         (state.lambda, held, impactors),

@@ -132,7 +132,10 @@ def pub_items():
                     continue
             else:
                 continue
-            words = set(names) if kind in ("mod", "use") else set(WORD.findall(face(lines, i, kind)))
+            if kind == "use":  # one entry per name a re-export brings in
+                items += [(f, i, kind, [n], {n}) for n in names]
+                continue
+            words = set(names) if kind == "mod" else set(WORD.findall(face(lines, i, kind)))
             items.append((f, i, kind, names, words))
     return items
 
@@ -159,7 +162,13 @@ def candidates():
 
 def apply(found):
     by_file = {}
-    for f, i, _, _ in found:
+    flagged = {(f, i, name) for f, i, _, name in found}
+    for f, i, kind, _ in found:
+        if kind == "use":  # a re-export group turns only if every name in it is flagged
+            leaves = [it[3][0] for it in pub_items() if it[0] == f and it[1] == i]
+            if not all((f, i, n) in flagged for n in leaves):
+                print(f"{f.relative_to(ROOT)}:{i + 1}: split this re-export by hand", file=sys.stderr)
+                continue
         by_file.setdefault(f, []).append(i)
     for f, lines in by_file.items():
         text = f.read_text().split("\n")

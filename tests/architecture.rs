@@ -1090,9 +1090,11 @@ fn surface_candidates(items: &[PubItem], outside: &BTreeSet<String>) -> Vec<Stri
     let mut grew = true;
     while grew {
         grew = false;
-        for item in items.iter().filter(|i| i.name.is_empty() || public.contains(&i.name)) {
-            for word in &item.face {
-                grew |= public.insert(word.clone());
+        for item in items {
+            if item.name.is_empty() || public.contains(&item.name) {
+                for word in &item.face {
+                    grew |= public.insert(word.clone());
+                }
             }
         }
     }

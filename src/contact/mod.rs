@@ -457,16 +457,9 @@ pub fn gap(gap0: f64, normal: &[f64; 3], u_slave: [f64; 3], u_master: [f64; 3]) 
 /// A point's force on the slave node and its block `K = −∂f/∂u_slave`.
 pub(crate) type Response = ([f64; 3], [[f64; 3]; 3]);
 
-/// Force on the slave node `−ε g n` (eq. 20) and the block `ε n nᵀ` (eq. 19)
-/// of an active pair, `None` if the pair is open (`g > 0`).
-#[cfg(test)]
-pub(crate) fn penalty_response(g: f64, normal: &[f64; 3], penalty: f64) -> Option<Response> {
-    augmented_response(g, normal, penalty, 0.0)
-}
-
 /// The augmented-Lagrangian form (Simo & Laursen 1992): with the multiplier
 /// `λ ≥ 0` (N) of the point, force `(λ − ε g) n` while positive, block
-/// `ε n nᵀ`; `λ = 0` is the pure penalty of [`penalty_response`]. Between
+/// `ε n nᵀ`; `λ = 0` is the pure penalty (eqs. 19–20). Between
 /// Newton solves the multiplier is updated to the force, `λ ← λ − ε g`
 /// (Uzawa), until the penetration is below the contact's tolerance: the
 /// answer then no longer depends on `ε`. A NaN gap counts as touching.
@@ -485,6 +478,11 @@ pub(crate) fn penalty_law(g: f64, normal: &[f64; 3], penalty: f64, multiplier: f
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Force `−ε g n` (eq. 20) and block `ε n nᵀ` (eq. 19) of an active pair, `None` if open.
+    fn penalty_response(g: f64, normal: &[f64; 3], penalty: f64) -> Option<Response> {
+        augmented_response(g, normal, penalty, 0.0)
+    }
 
     #[test]
     fn reference_gap_to_a_roller_and_to_a_punch() {

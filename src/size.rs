@@ -47,25 +47,25 @@ pub struct Sizes {
     /// Gauss points.
     pub gauss_points: u64,
     /// Entries of the element matrices' upper triangles, summed.
-    pub element_entries: u64,
+    pub(crate) element_entries: u64,
     /// Node adjacency entries (node pairs sharing an element, both orders, with self).
-    pub node_pairs: u64,
+    pub(crate) node_pairs: u64,
     /// Stored entries of the lower-triangular tangent.
     pub pattern_nnz: u64,
     /// Stored entries of the Cholesky factor (a lower bound until the symbolic analysis).
     pub factor_nnz: u64,
     /// Scratch of the numeric factorization (bytes).
-    pub factor_scratch: u64,
+    pub(crate) factor_scratch: u64,
     /// Sample points of the VTU output.
-    pub vtu_points: u64,
+    pub(crate) vtu_points: u64,
     /// Vectors of the equations' size held by GMRES (a model with friction; 0 otherwise).
-    pub krylov_vectors: u64,
+    pub(crate) krylov_vectors: u64,
     /// Vectors of the equations' size held by the eigensolver (buckling or
     /// modal analysis; 0 otherwise).
-    pub eigen_vectors: u64,
+    pub(crate) eigen_vectors: u64,
     /// Matrices on the tangent's pattern a transient analysis keeps: the
     /// mass, and the damping if any (0 otherwise).
-    pub dynamic_matrices: u64,
+    pub(crate) dynamic_matrices: u64,
     /// Field snapshots a run keeps until it writes them: the step ends,
     /// and a transient run's frames (`analysis.output_interval`).
     pub snapshots: u64,
@@ -75,7 +75,7 @@ pub struct Sizes {
     pub history_rows: u64,
     /// Bytes of one increment's record (history row, Newton's report,
     /// energy row).
-    pub history_row_bytes: u64,
+    pub(crate) history_row_bytes: u64,
     /// True once `factor_nnz` comes from the symbolic factorization.
     pub exact: bool,
 }

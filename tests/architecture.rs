@@ -36,6 +36,12 @@
 //!   problem of `analysis::structure`) has at most [`MAX_STRUCTURE_FIELDS`]
 //!   named fields; a new capability is a part inside one of them (a
 //!   contribution in its parts list), not a field of its own.
+//! * **The public surface is what others name**: a plain-`pub` item (or
+//!   field, or re-export) of a public module of the core is named by the
+//!   code outside it (the other crates and their tests, `tests/`, the
+//!   Python package, the doc examples), or exposed by the public face of
+//!   one that is, or listed in [`PUBLIC_BY_REVIEW`] (the same check as
+//!   `python3 bench/public_surface.py --check`).
 //!
 //! Each check is shown to fail on a small source written for it (the
 //! `*_is_caught` tests below).
@@ -916,4 +922,245 @@ fn an_eleventh_structure_field_is_caught() {
     let ten = fake(&[("analysis/structure.rs", &["analysis", "structure"], structure(10).as_str())]);
     assert!(structure_review(&struct_fields(&ten, "Structure")).is_empty());
     assert_eq!(structure_review(&struct_fields(&ten, "Missing")), ["no `struct Structure` found"]);
+}
+
+// ---------------------------------------------------------- public surface
+
+/// Top-level modules of the core that are `pub(crate)` as a whole: their
+/// `pub` reaches no further than the crate.
+const CRATE_PRIVATE_MODULES: &[&str] = &["assembly", "elements", "interfaces", "kinematics"];
+
+/// `pub` items of the core no outside code names and no public signature
+/// exposes, kept for a reason the word test cannot see: `(file, name, why)`.
+const PUBLIC_BY_REVIEW: &[(&str, &str, &str)] = &[
+    ("solver/newton.rs", "divergence_ratio", "struct update `..*settings` (tests) needs every field visible"),
+    ("solver/newton.rs", "stagnation_iterations", "struct update `..*settings` (tests) needs every field visible"),
+    ("solver/newton.rs", "line_search", "struct update `..*settings` (tests) needs every field visible"),
+    ("damage/mod.rs", "to_array", "unused: src/damage is being reworked on another branch"),
+    ("materials/damage.rs", "MODES", "the order `damage::Strengths::to_array` documents"),
+];
+
+/// A `pub` item (or field, or re-export) of the core: where, its name, and
+/// the identifiers its public face names (a function's signature, a
+/// field's type, an enum's or trait's whole body, a type's generics).
+struct PubItem {
+    file: String,
+    name: String,
+    face: BTreeSet<String>,
+}
+
+/// Every identifier under a syntax node.
+#[derive(Default)]
+struct Idents(BTreeSet<String>);
+
+impl<'ast> Visit<'ast> for Idents {
+    fn visit_ident(&mut self, i: &'ast proc_macro2::Ident) {
+        self.0.insert(i.to_string());
+    }
+}
+
+fn idents(visit: impl FnOnce(&mut Idents)) -> BTreeSet<String> {
+    let mut found = Idents::default();
+    visit(&mut found);
+    found.0
+}
+
+/// The leaf names a `use` tree brings in (`a::{b, c as d}` → b, d); `*` → none.
+fn use_leaves(tree: &syn::UseTree, out: &mut Vec<String>) {
+    match tree {
+        syn::UseTree::Path(p) => use_leaves(&p.tree, out),
+        syn::UseTree::Name(n) => out.push(n.ident.to_string()),
+        syn::UseTree::Rename(r) => out.push(r.rename.to_string()),
+        syn::UseTree::Glob(_) => {}
+        syn::UseTree::Group(g) => g.items.iter().for_each(|t| use_leaves(t, out)),
+    }
+}
+
+/// Collects the plain-`pub` items of a list of items (inline modules and
+/// `impl` blocks entered; `#[cfg(test)]` items skipped).
+fn pub_items(file: &str, items: &[syn::Item], out: &mut Vec<PubItem>) {
+    use syn::{Item, Visibility::Public};
+    let mut found = Vec::new();
+    let mut add = |name: String, face: BTreeSet<String>| found.push((name, face));
+    let mut fields = Vec::new();
+    for item in items.iter().filter(|i| !is_test(item_attributes(i))) {
+        match item {
+            Item::Fn(f) if matches!(f.vis, Public(_)) => {
+                add(f.sig.ident.to_string(), idents(|v| v.visit_signature(&f.sig)))
+            }
+            Item::Struct(s) => {
+                if matches!(s.vis, Public(_)) {
+                    add(s.ident.to_string(), idents(|v| v.visit_generics(&s.generics)));
+                }
+                fields.extend(s.fields.iter().filter(|f| matches!(f.vis, Public(_))).cloned());
+            }
+            Item::Enum(e) if matches!(e.vis, Public(_)) => add(e.ident.to_string(), idents(|v| v.visit_item_enum(e))),
+            Item::Trait(t) if matches!(t.vis, Public(_)) => add(t.ident.to_string(), idents(|v| v.visit_item_trait(t))),
+            Item::Type(t) if matches!(t.vis, Public(_)) => add(t.ident.to_string(), idents(|v| v.visit_item_type(t))),
+            Item::Const(c) if matches!(c.vis, Public(_)) => add(c.ident.to_string(), idents(|v| v.visit_type(&c.ty))),
+            Item::Static(s) if matches!(s.vis, Public(_)) => add(s.ident.to_string(), idents(|v| v.visit_type(&s.ty))),
+            Item::Mod(m) if matches!(m.vis, Public(_)) => add(m.ident.to_string(), BTreeSet::new()),
+            Item::Use(u) if matches!(u.vis, Public(_)) => {
+                let mut leaves = Vec::new();
+                use_leaves(&u.tree, &mut leaves);
+                // a re-export stands for what it names: public if one of them is
+                for leaf in leaves {
+                    add(leaf.clone(), BTreeSet::from([leaf]));
+                }
+            }
+            Item::Impl(i) => {
+                for it in &i.items {
+                    match it {
+                        syn::ImplItem::Fn(f) if matches!(f.vis, Public(_)) && !is_test(&f.attrs) => {
+                            add(f.sig.ident.to_string(), idents(|v| v.visit_signature(&f.sig)))
+                        }
+                        syn::ImplItem::Const(c) if matches!(c.vis, Public(_)) => {
+                            add(c.ident.to_string(), idents(|v| v.visit_type(&c.ty)))
+                        }
+                        _ => {}
+                    }
+                }
+            }
+            _ => {}
+        }
+    }
+    for f in fields {
+        // a public tuple field is its struct's face: listed with no name of its own
+        found.push((f.ident.as_ref().map(|i| i.to_string()).unwrap_or_default(), idents(|v| v.visit_type(&f.ty))));
+    }
+    out.extend(found.into_iter().map(|(name, face)| PubItem { file: file.to_string(), name, face }));
+    for item in items.iter().filter(|i| !is_test(item_attributes(i))) {
+        if let syn::Item::Mod(m) = item
+            && let Some((_, inner)) = &m.content
+        {
+            pub_items(file, inner, out);
+        }
+    }
+}
+
+/// Every identifier of the code outside the core — the other crates, their
+/// tests, the integration tests, the Python package — and of the core's
+/// doc-comment code blocks (the doc examples).
+fn outside_words() -> BTreeSet<String> {
+    fn rust_files(dir: &Path, out: &mut Vec<PathBuf>) {
+        for entry in std::fs::read_dir(dir).into_iter().flatten().flatten() {
+            let path = entry.path();
+            if path.is_dir() {
+                rust_files(&path, out);
+            } else if path.extension().is_some_and(|e| e == "rs") {
+                out.push(path);
+            }
+        }
+    }
+    let words = |text: &str, out: &mut BTreeSet<String>| {
+        out.extend(
+            text.split(|c: char| !(c.is_alphanumeric() || c == '_')).filter(|w| !w.is_empty()).map(String::from),
+        );
+    };
+    let mut files = Vec::new();
+    for dir in ["tests", "python/src", "crates"] {
+        rust_files(&root().join(dir), &mut files);
+    }
+    let mut out = BTreeSet::new();
+    for f in &files {
+        words(&std::fs::read_to_string(f).unwrap(), &mut out);
+    }
+    let mut core = Vec::new();
+    rust_files(&root().join("src"), &mut core);
+    for f in &core {
+        let mut example = false;
+        for line in std::fs::read_to_string(f).unwrap().lines() {
+            let doc = line.trim_start().strip_prefix("///").or_else(|| line.trim_start().strip_prefix("//!"));
+            match doc {
+                Some(d) if d.trim_start().starts_with("```") => example = !example,
+                Some(d) if example => words(d, &mut out),
+                _ => {}
+            }
+        }
+    }
+    out
+}
+
+/// The `pub` items of `items` that nothing outside names (`outside`) and
+/// no public face of a named item exposes, nor [`PUBLIC_BY_REVIEW`] lists:
+/// `file: name`. Named items' faces are followed to a fixed point (a named
+/// function returns a type, whose public fields name another…).
+fn surface_candidates(items: &[PubItem], outside: &BTreeSet<String>) -> Vec<String> {
+    let mut public = outside.clone();
+    let mut grew = true;
+    while grew {
+        grew = false;
+        for item in items {
+            if item.name.is_empty() || public.contains(&item.name) {
+                for word in &item.face {
+                    grew |= public.insert(word.clone());
+                }
+            }
+        }
+    }
+    let reviewed = |i: &PubItem| PUBLIC_BY_REVIEW.iter().any(|(f, n, _)| *f == i.file && *n == i.name);
+    let mut out: Vec<String> = items
+        .iter()
+        .filter(|i| !i.name.is_empty() && !public.contains(&i.name) && !reviewed(i))
+        .map(|i| format!("{}: {}", i.file, i.name))
+        .collect();
+    out.sort();
+    out.dedup();
+    out
+}
+
+/// The `pub` items of the core's public modules (`#[cfg(test)]` files out).
+fn core_pub_items(sources: &[Source]) -> Vec<PubItem> {
+    let mut items = Vec::new();
+    for s in sources.iter().filter(|s| !s.test) {
+        if s.module.first().is_some_and(|m| CRATE_PRIVATE_MODULES.contains(&m.as_str())) {
+            continue;
+        }
+        pub_items(&s.file, &s.ast.items, &mut items);
+    }
+    items
+}
+
+/// ARCHITECTURE.md: an item of the core is `pub` only if the other crates,
+/// the Python package, the integration tests or the doc examples name it,
+/// or a public face of such an item exposes it; the rest is `pub(crate)`.
+/// The same check as `python3 bench/public_surface.py --check`.
+#[test]
+fn public_items_are_named_outside() {
+    let crates = crates();
+    let items = core_pub_items(core_library(&crates));
+    let found = surface_candidates(&items, &outside_words());
+    assert!(
+        found.is_empty(),
+        "pub items of the core that nothing outside names (make them pub(crate), or list them in \
+         PUBLIC_BY_REVIEW with the reason):\n{}",
+        found.join("\n")
+    );
+    // the check reads what it should: the root's nouns, a field and a method are seen
+    for name in ["Model", "run", "write_results", "failure", "reaction"] {
+        assert!(items.iter().any(|i| i.name == name), "{name} not found");
+    }
+}
+
+/// An unnamed `pub fn`, field, method and re-export (and the item it
+/// re-exports) are caught; a type a named function returns, the type of a
+/// named public field, and items `pub(crate)` or in a test module are not.
+#[test]
+fn an_unnamed_pub_item_is_caught() {
+    let sources = fake(&[(
+        "a.rs",
+        &["a"],
+        "pub fn named() -> Out { Out { inner: Inner, hidden: 0 } }\n\
+         pub struct Out { pub inner: Inner, pub hidden: u8 }\n\
+         pub struct Inner;\n\
+         pub fn unnamed() {}\n\
+         pub(crate) fn quiet() {}\n\
+         mod m { pub struct Kept; }\n\
+         pub use m::Kept;\n\
+         impl Out { pub fn method(&self) {} pub fn touched(&self) {} }\n\
+         #[cfg(test)] mod tests { pub fn helper() {} }\n",
+    )]);
+    let outside = BTreeSet::from(["named", "touched", "inner"].map(String::from));
+    let found = surface_candidates(&core_pub_items(&sources), &outside);
+    assert_eq!(found, ["a.rs: Kept", "a.rs: hidden", "a.rs: method", "a.rs: unnamed"].map(String::from));
 }

@@ -51,7 +51,7 @@ pub struct Buckling {
     pub beyond: Vec<f64>,
     /// The largest elastic strain of the loads at factor 1 (μ times it is a
     /// factor's critical strain).
-    pub unit_strain: f64,
+    pub(crate) unit_strain: f64,
 }
 
 /// Largest elastic strain at a critical state for its factor to count as a

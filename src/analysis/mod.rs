@@ -34,7 +34,8 @@ pub use progress::{IncrementLog, Progress, Setup, Silent};
 pub use recorder::Frame;
 use recorder::Recorder;
 pub use results::{AdaptCycle, AdaptEnd, Adaptivity};
-pub use sizes::{describe_memory, memory_advice, model_sizes, plan, sizes};
+pub(crate) use sizes::{describe_memory, memory_advice, model_sizes};
+pub use sizes::{plan, sizes};
 pub use solution::{HistoryRow, Solution, StepEnd, StepFields};
 pub use structure::{
     ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, StateReport, Structure, Timings,

@@ -113,7 +113,7 @@ pub struct PathOutcome {
     /// largest λ of the points around the limit, not interpolated.
     pub limit_points: Vec<(usize, f64)>,
     /// The first arc length `Δl₀` (m).
-    pub first_arc_length: f64,
+    pub(crate) first_arc_length: f64,
 }
 
 /// Records the converged points and checks the stop criteria.

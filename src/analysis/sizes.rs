@@ -11,7 +11,7 @@ use crate::solver::stepping::Increment;
 
 /// What shrinks the largest part of an estimate: the frames of a
 /// transient run, its time steps' records, or else the mesh.
-pub fn memory_advice(m: &MemoryEstimate) -> &'static str {
+pub(crate) fn memory_advice(m: &MemoryEstimate) -> &'static str {
     match m.parts.iter().max_by_key(|p| p.1).map(|p| p.0) {
         Some("step ends and frames") => {
             "raise analysis.output_interval (frames are kept until the run ends, one per time step at most) or use \
@@ -23,7 +23,7 @@ pub fn memory_advice(m: &MemoryEstimate) -> &'static str {
 }
 
 /// `what: size` list of the largest parts of an estimate.
-pub fn describe_memory(m: &MemoryEstimate) -> String {
+pub(crate) fn describe_memory(m: &MemoryEstimate) -> String {
     let mut parts = m.parts.clone();
     parts.sort_by_key(|p| std::cmp::Reverse(p.1));
     parts.iter().take(3).map(|(w, b)| format!("{w} {}", human_bytes(*b))).collect::<Vec<_>>().join(", ")
@@ -49,7 +49,7 @@ pub(crate) fn completed(mut s: Sizes, numbering: &Numbering, solver: &Cholesky) 
 
 /// The sizes that the model alone sets (mesh, settings, outputs), before
 /// its equations are numbered (`completed` adds those).
-pub fn model_sizes(model: &Model) -> Sizes {
+pub(crate) fn model_sizes(model: &Model) -> Sizes {
     let mesh = &model.mesh;
     let mut s = Sizes {
         nodes: mesh.n_nodes() as u64,

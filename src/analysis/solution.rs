@@ -24,7 +24,7 @@ pub struct Solution {
     /// Gauss-point stresses of the final (converged) state.
     pub stresses: Vec<Voigt>,
     /// First Gauss point of each body.
-    pub gp_offsets: Vec<usize>,
+    pub(crate) gp_offsets: Vec<usize>,
     /// Load factor reached.
     pub lambda: f64,
     /// Reactions per constraint set.

@@ -16,7 +16,7 @@
 //!   Gauss-point history; first: it writes the whole tangent),
 //!   `structure/loads.rs` (the external loads at λ),
 //!   [`crate::contact::Contacts`] (every contact kind) and in a transient
-//!   analysis [`crate::dynamics::Inertia`] (its forces `M a + C v` and
+//!   analysis `crate::dynamics::Inertia` (its forces `M a + C v` and
 //!   stiffness `M/(βΔt²) + γC/(βΔt)`); a new capability is a new
 //!   contribution there;
 //! * [`crate::setup::constraints::Elimination`]: the prescribed
@@ -218,7 +218,7 @@ impl<'m> Structure<'m> {
     }
 
     /// What the elements are made of.
-    pub fn discretisation(&self) -> Discretisation<'m> {
+    pub(crate) fn discretisation(&self) -> Discretisation<'m> {
         self.parts.elements.discretisation
     }
 
@@ -325,12 +325,12 @@ impl<'m> Structure<'m> {
 
     /// Reaction at every DOF, `f_int − λ f_ext − f_c` (zero up to the
     /// residual at free DOFs).
-    pub fn nodal_imbalance(&self, dof: usize) -> f64 {
+    pub(crate) fn nodal_imbalance(&self, dof: usize) -> f64 {
         self.system.imbalance[dof]
     }
 
     /// External loads at the current λ (per DOF).
-    pub fn external_loads(&self) -> &[f64] {
+    pub(crate) fn external_loads(&self) -> &[f64] {
         &self.parts.loads.f_ext
     }
 

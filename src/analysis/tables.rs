@@ -98,7 +98,7 @@ pub struct Table {
     pub columns: Vec<Column>,
     /// Whether its CSV header names each column with its unit
     /// (`kinetic_J`: [`Table::header`]); the columns' own names are bare.
-    pub units_in_header: bool,
+    pub(crate) units_in_header: bool,
 }
 
 impl Table {
@@ -107,7 +107,7 @@ impl Table {
     }
 
     /// The CSV header of column `c`: its name, followed by `_<unit>` in a
-    /// table with [`Table::units_in_header`] (`time` in s: `time_s`).
+    /// table with `Table::units_in_header` (`time` in s: `time_s`).
     pub fn header(&self, c: &Column) -> String {
         if self.units_in_header && !c.unit.is_empty() { format!("{}_{}", c.name, c.unit) } else { c.name.clone() }
     }
@@ -160,7 +160,7 @@ impl Table {
 
     /// Row `i` as [`Table::row`], each column's value times `scale` of it
     /// (the energies of a model's mirror images).
-    pub fn row_scaled(&self, i: usize, scale: impl Fn(&Column) -> f64) -> Row {
+    pub(crate) fn row_scaled(&self, i: usize, scale: impl Fn(&Column) -> f64) -> Row {
         let numbers = self.columns.iter().filter(|c| !matches!(c.values, Values::Text(_)));
         Row(numbers.map(|c| (c.name.clone(), scale(c) * c.values.get(i))).collect())
     }

@@ -74,7 +74,7 @@ fn face_nodes(body: &Body, face: &Face) -> Vec<usize> {
 }
 
 /// Boundary faces of `body` all of whose nodes are selected.
-pub fn selected_faces(body: &Body, selection: &Selection) -> Vec<Face> {
+pub(crate) fn selected_faces(body: &Body, selection: &Selection) -> Vec<Face> {
     boundary_faces(body)
         .into_iter()
         .filter(|f| face_nodes(body, f).iter().all(|&n| selection.contains(body.local_coords(n - body.node_offset))))
@@ -90,7 +90,7 @@ pub fn integrate_face(body: &Body, face: &Face) -> FaceIntegral {
 
 /// As [`integrate_face`], with the shape functions weighted by `f` at each
 /// point of the face: `∫ N_a f dA` per node.
-pub fn integrate_face_with(body: &Body, face: &Face, f: impl Fn([f64; 3]) -> f64) -> FaceIntegral {
+pub(crate) fn integrate_face_with(body: &Body, face: &Face, f: impl Fn([f64; 3]) -> f64) -> FaceIntegral {
     let fv = FacetValues::new(body, face.section_element, face.beam_element, face.side);
     let n = fv.nodes.len();
     let per_node = fv.integrate(|q| {

@@ -5,7 +5,8 @@
 mod faces;
 pub mod symmetry;
 
-pub use faces::{Face, FaceIntegral, FaceSide, boundary_faces, integrate_face, integrate_face_with, selected_faces};
+pub use faces::{Face, FaceIntegral, FaceSide, boundary_faces, integrate_face};
+pub(crate) use faces::{integrate_face_with, selected_faces};
 
 use std::sync::Arc;
 

@@ -62,14 +62,14 @@ impl Plane {
     }
 
     /// The mirror image of a point.
-    pub fn reflect(&self, p: [f64; 3]) -> [f64; 3] {
+    pub(crate) fn reflect(&self, p: [f64; 3]) -> [f64; 3] {
         let mut q = p;
         q[self.axis] = 2.0 * self.at - p[self.axis];
         q
     }
 
     /// "x = 0.125" for messages.
-    pub fn describe(&self) -> String {
+    pub(crate) fn describe(&self) -> String {
         format!("{} = {}", ["x", "y", "z"][self.axis], crate::numbers::short(self.at))
     }
 }
@@ -107,7 +107,7 @@ impl Symmetry {
 
 /// The sign of each Voigt component (xx, yy, zz, xy, xz, yz) under the
 /// reflection of `axis`: −1 for a shear with one index along it.
-pub fn voigt_signs(axis: usize) -> [f64; 6] {
+pub(crate) fn voigt_signs(axis: usize) -> [f64; 6] {
     let s = |k: usize| if k == axis { -1.0 } else { 1.0 };
     [1.0, 1.0, 1.0, s(0) * s(1), s(0) * s(2), s(1) * s(2)]
 }
@@ -117,7 +117,7 @@ pub fn voigt_signs(axis: usize) -> [f64; 6] {
 /// its own mirror image when its couplings between the even and the odd
 /// components vanish (orthotropic axes along the plane's normal, or an
 /// isotropic material); a ply at θ about z mirrors across x or y to −θ.
-pub fn reflect_stiffness(c: &[[f64; 6]; 6], axis: usize) -> [[f64; 6]; 6] {
+pub(crate) fn reflect_stiffness(c: &[[f64; 6]; 6], axis: usize) -> [[f64; 6]; 6] {
     let s = voigt_signs(axis);
     std::array::from_fn(|i| std::array::from_fn(|j| s[i] * s[j] * c[i][j]))
 }
@@ -156,7 +156,7 @@ pub fn sample(planes: &[Plane], p: [f64; 3], at: impl FnOnce([f64; 3]) -> Option
 
 /// The fields at a mirror image: `sample` taken at the image of a point
 /// reflected along `flips`, turned back to the point (module docs).
-pub fn reflect_sample(sample: &Sample, flips: [bool; 3]) -> Sample {
+pub(crate) fn reflect_sample(sample: &Sample, flips: [bool; 3]) -> Sample {
     let s = flips.map(|f| if f { -1.0 } else { 1.0 });
     // Voigt order xx, yy, zz, xy, xz, yz (crate::voigt)
     let pair = [s[0] * s[0], s[1] * s[1], s[2] * s[2], s[0] * s[1], s[0] * s[2], s[1] * s[2]];

@@ -57,7 +57,7 @@ pub struct FaceJet {
     /// `[N_B,a, N_B,b]`.
     pub d: Vec<[f64; 2]>,
     /// `[N_B,aa, N_B,ab, N_B,bb]`.
-    pub dd: Vec<[f64; 3]>,
+    pub(crate) dd: Vec<[f64; 3]>,
 }
 
 /// 1D Lagrange values, first and second derivatives of order `p` at `t`.

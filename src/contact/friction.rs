@@ -40,7 +40,7 @@ pub struct Friction {
     /// Coefficient of friction μ (−).
     pub coefficient: f64,
     /// Tangential penalty ε_T (N/m) per unit of the point's normal penalty.
-    pub penalty_ratio: f64,
+    pub(crate) penalty_ratio: f64,
 }
 
 /// The tangential response of an active contact point (module docs).
@@ -67,7 +67,7 @@ pub struct FrictionResponse {
 /// relative displacement, `slip` the committed slip, `normal_force` the
 /// pressure force `p`, `normal_penalty` ε_N (so `ε_T = penalty_ratio · ε_N`
 /// and `∂p/∂d = −ε_N nᵀ`).
-pub fn friction_response(
+pub(crate) fn friction_response(
     d_t: [f64; 3],
     slip: [f64; 3],
     normal: &[f64; 3],
@@ -105,7 +105,7 @@ pub fn friction_response(
 
 /// The stick block `ε_T P` (`P = I − n nᵀ`): the tangent of a sticking
 /// point, and the predictor of a sliding one at the start of an increment.
-pub fn stick_block(normal: &[f64; 3], normal_penalty: f64, friction: &Friction) -> [[f64; 3]; 3] {
+pub(crate) fn stick_block(normal: &[f64; 3], normal_penalty: f64, friction: &Friction) -> [[f64; 3]; 3] {
     let eps_t = friction.penalty_ratio * normal_penalty;
     std::array::from_fn(|i| std::array::from_fn(|j| eps_t * (f64::from(u8::from(i == j)) - normal[i] * normal[j])))
 }
@@ -115,7 +115,7 @@ pub fn stick_block(normal: &[f64; 3], normal_penalty: f64, friction: &Friction) 
 /// committed tangential force less the tangential penalty times the
 /// position increment `Δy` relative to the indenter), the trial
 /// `t* = P v` in the current tangent plane (`P = I − n nᵀ`), and the
-/// return map of [`friction_response`]. Returns the force `t`, whether it
+/// return map of `friction_response`. Returns the force `t`, whether it
 /// slides, and `∂t/∂y` (row: force component) for the consistent tangent:
 ///
 /// ```text

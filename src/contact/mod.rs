@@ -53,7 +53,8 @@ mod friction;
 mod impactor;
 pub mod nodal_normal;
 pub use assembly::{ContactPoint, Contacts};
-pub use friction::{Friction, FrictionResponse, friction_response, stick_block, turning_friction};
+pub use friction::{Friction, FrictionResponse, turning_friction};
+pub(crate) use friction::{friction_response, stick_block};
 pub use impactor::Impactor;
 pub mod surface;
 
@@ -221,7 +222,7 @@ pub struct ContactNode {
     /// Penalty stiffness ε_N (N/m).
     pub penalty: f64,
     /// Initial gap to the rigid surface (m).
-    pub gap0: f64,
+    pub(crate) gap0: f64,
     /// Rigid-surface normal at the paired point, pointing to the body.
     pub normal: [f64; 3],
 }
@@ -254,7 +255,7 @@ pub struct Indenter {
     /// the current configuration at every evaluation
     /// (`RigidSurface::current_gap`); `false`: node-to-node, fixed at the
     /// reference configuration (the paper's method).
-    pub updated: bool,
+    pub(crate) updated: bool,
     /// A rigid impactor's mass and velocity (transient analysis; module
     /// `impactor`); `None`: no mass of its own.
     pub impactor: Option<Impactor>,
@@ -279,7 +280,7 @@ pub struct NodePair {
     /// Master-surface unit normal, pointing towards the slave body.
     pub normal: [f64; 3],
     /// Initial gap `(X_s − X_m)·n` (m).
-    pub gap0: f64,
+    pub(crate) gap0: f64,
     /// Tributary area of the slave node (m²).
     pub area: f64,
     /// Penalty ε_N (N/m).
@@ -310,7 +311,7 @@ pub struct PairContact {
     /// ≥ 0) of each contact point (pair, or slave node of a surface
     /// contact), removed gradually over the first load step
     /// (`PairContact::overlap_relief`); empty otherwise.
-    pub initial_overlap: Vec<f64>,
+    pub(crate) initial_overlap: Vec<f64>,
 }
 
 impl PairContact {
@@ -454,17 +455,11 @@ pub fn gap(gap0: f64, normal: &[f64; 3], u_slave: [f64; 3], u_master: [f64; 3]) 
 }
 
 /// A point's force on the slave node and its block `K = −∂f/∂u_slave`.
-pub type Response = ([f64; 3], [[f64; 3]; 3]);
-
-/// Force on the slave node `−ε g n` (eq. 20) and the block `ε n nᵀ` (eq. 19)
-/// of an active pair, `None` if the pair is open (`g > 0`).
-pub fn penalty_response(g: f64, normal: &[f64; 3], penalty: f64) -> Option<Response> {
-    augmented_response(g, normal, penalty, 0.0)
-}
+pub(crate) type Response = ([f64; 3], [[f64; 3]; 3]);
 
 /// The augmented-Lagrangian form (Simo & Laursen 1992): with the multiplier
 /// `λ ≥ 0` (N) of the point, force `(λ − ε g) n` while positive, block
-/// `ε n nᵀ`; `λ = 0` is the pure penalty of [`penalty_response`]. Between
+/// `ε n nᵀ`; `λ = 0` is the pure penalty (eqs. 19–20). Between
 /// Newton solves the multiplier is updated to the force, `λ ← λ − ε g`
 /// (Uzawa), until the penetration is below the contact's tolerance: the
 /// answer then no longer depends on `ε`. A NaN gap counts as touching.
@@ -483,6 +478,11 @@ pub(crate) fn penalty_law(g: f64, normal: &[f64; 3], penalty: f64, multiplier: f
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Force `−ε g n` (eq. 20) and block `ε n nᵀ` (eq. 19) of an active pair, `None` if open.
+    fn penalty_response(g: f64, normal: &[f64; 3], penalty: f64) -> Option<Response> {
+        augmented_response(g, normal, penalty, 0.0)
+    }
 
     #[test]
     fn reference_gap_to_a_roller_and_to_a_punch() {

@@ -147,7 +147,7 @@ pub struct SlavePoint {
     pub weight: f64,
     /// Penalty ε (N/m) of the point (`ε_A w`).
     pub penalty: f64,
-    /// Candidate master faces (indices into [`SurfaceContact::master_faces`]).
+    /// Candidate master faces (indices into `SurfaceContact::master_faces`).
     pub candidates: Vec<usize>,
 }
 
@@ -155,9 +155,9 @@ pub struct SlavePoint {
 #[derive(Debug, Clone, PartialEq)]
 pub struct SurfaceContact {
     /// Master body index.
-    pub master_body: usize,
+    pub(crate) master_body: usize,
     /// Master faces.
-    pub master_faces: Vec<Face>,
+    pub(crate) master_faces: Vec<Face>,
     /// Slave integration points.
     pub points: Vec<SlavePoint>,
     /// Search distance (m) around a slave point for its candidate faces.
@@ -169,7 +169,7 @@ pub struct SurfaceContact {
     /// Their tributary areas `A_a = Σ_q w_q N_a(q)` (m²).
     pub areas: Vec<f64>,
     /// Their penalties `ε_a = Σ_q ε_q N_a(q)` (N/m).
-    pub penalties: Vec<f64>,
+    pub(crate) penalties: Vec<f64>,
 }
 
 /// The weighted (mortar) gap of one slave node `a` at fixed projections:
@@ -177,9 +177,9 @@ pub struct SurfaceContact {
 #[derive(Debug, Clone, PartialEq, Default)]
 pub(crate) struct NodeGap {
     /// `Σ_q w_q N_a(q) (X_s − X_m)·n` (m³).
-    pub gap0: f64,
+    pub(crate) gap0: f64,
     /// `∂g̃_a/∂u_b` per node `b` (m²), slave and master nodes.
-    pub grad: Vec<(usize, [f64; 3])>,
+    pub(crate) grad: Vec<(usize, [f64; 3])>,
     /// The tangential counterpart `Σ_q w_q N_a(q) c_b(q) (I − n_q n_qᵀ)`
     /// per node `b` of `grad` (m²): the weighted tangential relative
     /// displacement is `Σ_b T_b u_b` (for friction).
@@ -236,17 +236,17 @@ impl SurfaceContact {
 /// The projection of a slave point onto the master surface.
 #[derive(Debug, Clone, PartialEq)]
 pub struct Projection {
-    /// Master face (index into [`SurfaceContact::master_faces`]).
+    /// Master face (index into `SurfaceContact::master_faces`).
     pub face: usize,
     /// Face coordinates `(a, b)`.
-    pub param: [f64; 2],
+    pub(crate) param: [f64; 2],
     /// Master outward normal there (reference configuration; the deformed
     /// master's in the current configuration, `contact::current`).
     pub normal: [f64; 3],
     /// The gap at zero displacement along `n`, `(X_s − X_m)·n` (m); in the
     /// current configuration the value that makes `gap0 + (u_s − u_m)·n`
     /// the current gap.
-    pub gap0: f64,
+    pub(crate) gap0: f64,
     /// Master face nodes.
     pub nodes: Vec<usize>,
     /// Their shape values at the projection.
@@ -408,7 +408,7 @@ pub struct SlaveSide<'a> {
     /// Its contact faces.
     pub faces: &'a [Face],
     /// Depth of the element behind each face (m).
-    pub depths: &'a [f64],
+    pub(crate) depths: &'a [f64],
 }
 
 /// Builds the slave integration points and their candidate master faces.

@@ -105,7 +105,7 @@ impl BodyDamage {
     }
 
     /// What a run keeps of it: `None` when no material damages.
-    pub fn into_result(self) -> Option<Damage> {
+    pub(crate) fn into_result(self) -> Option<Damage> {
         (!self.committed.is_empty()).then_some(Damage { states: self.committed, volume: self.volume })
     }
 }
@@ -170,16 +170,16 @@ pub struct DamageSummary {
     /// The energy each mode dissipated, `Σ_q w_q g_I` (J).
     pub dissipated_j: PerMode,
     /// Their sum (J).
-    pub dissipated_total_j: f64,
+    pub(crate) dissipated_total_j: f64,
     /// The volume of the points where the mode's damage started, `d > 0` (m³).
-    pub initiated_volume_m3: PerMode,
+    pub(crate) initiated_volume_m3: PerMode,
     /// The volume of the points where the mode's damage passed ½ (m³).
-    pub damaged_volume_m3: PerMode,
+    pub(crate) damaged_volume_m3: PerMode,
     /// The largest damage of each mode.
     pub largest: PerMode,
     /// Gauss points where the law lowered a mode's onset stress because the
     /// crack band was longer than `2 E G/X²` (Bažant & Oh).
-    pub strength_reduced_points: usize,
+    pub(crate) strength_reduced_points: usize,
 }
 
 impl Damage {
@@ -213,7 +213,7 @@ impl Damage {
 
     /// The largest damage of each mode over the points `range` (an
     /// element's), for the cell fields `d_ft d_fc d_mt d_mc`.
-    pub fn largest_in(&self, range: std::ops::Range<usize>) -> [f64; 4] {
+    pub(crate) fn largest_in(&self, range: std::ops::Range<usize>) -> [f64; 4] {
         let mut out = [0.0f64; 4];
         for s in &self.states[range] {
             for i in 0..4 {

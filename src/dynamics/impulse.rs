@@ -62,7 +62,7 @@ pub enum ContactForces {
 /// The contacts' algorithmic force `f'` of the present step and of the
 /// last converged one (module docs).
 #[derive(Debug, Clone)]
-pub struct ContactImpulse {
+pub(crate) struct ContactImpulse {
     gamma: f64,
     committed: Vec<f64>,
     force: Vec<f64>,

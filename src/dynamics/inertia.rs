@@ -34,7 +34,7 @@ use crate::assembly::{At, Contribution, Forces, NO_EQ, Phase, Tangent};
 
 /// Newmark's inertia and damping forces.
 #[derive(Debug)]
-pub struct Inertia {
+pub(crate) struct Inertia {
     settings: TransientSettings,
     /// `M` (lower triangle in pattern order).
     mass: Vec<f64>,

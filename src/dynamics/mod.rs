@@ -22,9 +22,11 @@ pub mod mass;
 pub mod redistribution;
 pub mod settings;
 
-pub use impulse::{ContactForces, ContactImpulse};
-pub use inertia::Inertia;
+pub use impulse::ContactForces;
+pub(crate) use impulse::ContactImpulse;
+pub(crate) use inertia::Inertia;
 
 pub use mass::{MassError, MassKind};
-pub use redistribution::{ContactMass, Redistribution};
+pub use redistribution::ContactMass;
+pub(crate) use redistribution::Redistribution;
 pub use settings::TransientSettings;

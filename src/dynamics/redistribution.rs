@@ -84,7 +84,7 @@ struct ElementMap {
 /// The transform of the element mass matrices that takes the contact
 /// nodes' mass to their neighbours (module docs).
 #[derive(Debug, Clone, Default)]
-pub struct Redistribution {
+pub(crate) struct Redistribution {
     /// `W` of each (body, element) that holds a contact node.
     elements: HashMap<(usize, usize), ElementMap>,
     /// The contact nodes that carry no mass.

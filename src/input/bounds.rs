@@ -37,7 +37,7 @@ pub(crate) const MAX_YIELD_STRAIN: f64 = 0.1;
 pub(crate) const MAX_HARDENING: f64 = 100.0;
 /// Largest equivalent plastic strain in a hardening table.
 pub(crate) const MAX_TABLE_PEEQ: f64 = 10.0;
-pub use crate::mesh::{GRADING_RATIO, MAX_COORD, MIN_RELATIVE_SIZE};
+pub(crate) use crate::mesh::{GRADING_RATIO, MAX_COORD, MIN_RELATIVE_SIZE};
 /// Accepted range of the mass density (kg/m³).
 pub const DENSITY: (f64, f64) = (0.1, 2e5);
 /// Largest Poisson's ratio of an isotropic material: natural rubber's

@@ -158,14 +158,14 @@ impl fmt::Display for Range {
 /// per line: far beyond any useful model, small enough to allocate.
 pub(crate) const MAX_COUNT: usize = 100_000;
 /// Largest number of buckling modes one run may ask for.
-pub const MAX_MODES: usize = 50;
+pub(crate) const MAX_MODES: usize = 50;
 /// Longest accepted step duration (s).
-pub const MAX_DURATION: f64 = 1e6;
+pub(crate) const MAX_DURATION: f64 = 1e6;
 /// Largest accepted initial speed (m/s).
-pub const MAX_SPEED: f64 = 1e4;
+pub(crate) const MAX_SPEED: f64 = 1e4;
 /// Largest `max_cycles`: each refinement at least adds an interval, and
 /// twenty are more than any budget allows.
-pub const MAX_CYCLES: usize = 20;
+pub(crate) const MAX_CYCLES: usize = 20;
 /// Largest `max_dof` accepted (a budget, not a promise: memory is checked
 /// for every mesh as for any model).
 pub const MAX_BUDGET: usize = 100_000_000;
@@ -179,7 +179,7 @@ pub(crate) const COUNT: Range = Range::closed(1.0, MAX_COUNT as f64);
 /// Samples along a line, both ends included.
 pub(crate) const LINE_POINTS: Range = Range::closed(2.0, MAX_COUNT as f64);
 /// Buckling or vibration modes (`analysis.modes`, `analysis.imperfection.mode`).
-pub const MODES: Range = Range::closed(1.0, MAX_MODES as f64);
+pub(crate) const MODES: Range = Range::closed(1.0, MAX_MODES as f64);
 /// Cells of a `box` section side by side.
 pub(crate) const CELLS: Range = Range::closed(1.0, crate::mesh::profiles::MAX_CELLS as f64);
 

@@ -38,8 +38,8 @@ mod words;
 
 pub(crate) use anisotropy::*;
 pub(crate) use bodies::*;
-pub use contact::*;
-pub use interfaces::*;
+pub(crate) use contact::*;
+pub(crate) use interfaces::*;
 pub use materials::*;
 pub(crate) use section::*;
 pub(crate) use selection::*;
@@ -221,7 +221,7 @@ pub struct SolverFile {
     pub increments: Option<usize>,
     /// Largest Δλ.
     #[schemars(transform = FRACTION.schema())]
-    pub max_increment: Option<f64>,
+    pub(crate) max_increment: Option<f64>,
     /// Smallest Δλ before giving up.
     #[schemars(transform = FRACTION.schema())]
     pub min_increment: Option<f64>,
@@ -239,14 +239,14 @@ pub struct SolverFile {
     pub cutback_factor: Option<f64>,
     /// Δλ multiplier after an easy increment.
     #[schemars(transform = ranges::GROWTH_FACTOR.with_default(defaults::GROWTH_FACTOR))]
-    pub growth_factor: Option<f64>,
+    pub(crate) growth_factor: Option<f64>,
     /// An increment converging in at most this many iterations is easy.
     #[schemars(transform = defaults::schema(defaults::EASY_ITERATIONS))]
-    pub easy_iterations: Option<usize>,
+    pub(crate) easy_iterations: Option<usize>,
     /// Newton gives up after this many corrections without a new smallest
     /// residual (`solver::newton::NewtonSettings::stagnation_iterations`).
     #[schemars(transform = AT_LEAST_ONE.schema())]
-    pub stagnation_iterations: Option<usize>,
+    pub(crate) stagnation_iterations: Option<usize>,
     /// Most converged increments of a load step (a transient one adds its time steps).
     #[schemars(transform = AT_LEAST_ONE.with_default(defaults::MAX_INCREMENTS))]
     pub max_increments: Option<usize>,
@@ -258,7 +258,7 @@ pub struct SolverFile {
     pub reuse_factorization: Option<bool>,
     /// Largest relative residual at which such a PCG solve stops.
     #[schemars(transform = TOLERANCE.with_default(ReuseSettings::default().tolerance))]
-    pub krylov_tolerance: Option<f64>,
+    pub(crate) krylov_tolerance: Option<f64>,
     /// `"single"` (default) or `"double"` precision factors.
     #[schemars(transform = defaults::schema(FactorPrecision::default()))]
     pub factor_precision: Option<FactorPrecision>,
@@ -277,7 +277,7 @@ pub struct SolverFile {
     pub step_control: Option<StepControlFile>,
     /// Backtracking along a Newton correction that overshoots.
     #[schemars(transform = defaults::schema(defaults::LINE_SEARCH))]
-    pub line_search: Option<bool>,
+    pub(crate) line_search: Option<bool>,
     /// Which tangent's inertia each increment reports.
     pub inertia: Option<Inertia>,
 }
@@ -325,7 +325,7 @@ pub(crate) struct OutputFile {
     pub vtu: Option<bool>,
     /// Write the PNG plots.
     #[schemars(transform = defaults::schema(defaults::PLOTS))]
-    pub plots: Option<bool>,
+    pub(crate) plots: Option<bool>,
     /// How stress and peeq at points are recovered from the Gauss points.
     #[schemars(transform = defaults::schema(super::Recovery::default()))]
     pub recovery: Option<super::Recovery>,
@@ -365,7 +365,7 @@ pub(crate) struct StepFile {
     pub increments: Option<usize>,
     /// Largest Δλ, as a fraction of the step.
     #[schemars(transform = FRACTION.schema())]
-    pub max_increment: Option<f64>,
+    pub(crate) max_increment: Option<f64>,
     /// Smallest Δλ, as a fraction of the step.
     #[schemars(transform = FRACTION.schema())]
     pub min_increment: Option<f64>,

@@ -55,7 +55,7 @@ pub struct OutputSettings {
     /// Write `result.vtu`.
     pub vtu: bool,
     /// Write PNG plots.
-    pub plots: bool,
+    pub(crate) plots: bool,
     /// How stress and peeq are recovered at points.
     pub recovery: Recovery,
     /// Also write `gauss.vtu` with the raw Gauss-point values.

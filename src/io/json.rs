@@ -62,21 +62,21 @@ pub struct ForceSummary {
 #[derive(Debug, Clone, Serialize)]
 pub struct TimingSummary {
     /// Numbering, ordering, pattern and symbolic factorization.
-    pub setup_s: f64,
+    pub(crate) setup_s: f64,
     /// Element loops (with material updates).
-    pub assembly_s: f64,
+    pub(crate) assembly_s: f64,
     /// Contact terms.
-    pub contact_s: f64,
+    pub(crate) contact_s: f64,
     /// Numeric factorizations.
-    pub factorization_s: f64,
+    pub(crate) factorization_s: f64,
     /// Triangular solves and preconditioned conjugate gradients.
-    pub solve_s: f64,
+    pub(crate) solve_s: f64,
     /// Residual and tangent evaluations.
     pub evaluations: usize,
     /// Numeric factorizations.
     pub factorizations: usize,
     /// Linear solves that reused an earlier factorization (PCG converged).
-    pub reused_factorizations: usize,
+    pub(crate) reused_factorizations: usize,
     /// PCG iterations over all solves.
     pub krylov_iterations: usize,
     /// Solves where PCG did not converge and the tangent was factorized.
@@ -114,9 +114,9 @@ pub struct Summary {
     /// Failed attempts (and increments rejected by `solver.step_control`).
     pub cutbacks: usize,
     /// Of those, converged increments rejected by `solver.step_control`.
-    pub rejected_increments: usize,
+    pub(crate) rejected_increments: usize,
     /// Newton corrections shortened by `solver.line_search` (converged increments).
-    pub line_searches: usize,
+    pub(crate) line_searches: usize,
     /// Plastic Gauss points at the end.
     pub plastic_points: usize,
     /// Largest equivalent plastic strain over all Gauss points.
@@ -242,7 +242,7 @@ pub struct PathSummary {
     /// point where λ turned (a maximum, then a minimum after a snap).
     pub limit_points: Vec<(usize, f64)>,
     /// The first arc length (m).
-    pub first_arc_length: f64,
+    pub(crate) first_arc_length: f64,
 }
 
 /// One cycle of an adaptive run.

@@ -33,7 +33,8 @@ pub use json::{ForceSummary, Summary, summary};
 pub use png::{Series, line_plot};
 pub use run::{Finished, RunError, RunInto, Written, run_into, solved_into, write_into};
 pub use section_plot::section_plot;
-pub use vtu::{FieldArray, FieldGrid, field_grid, write_contact_vtu, write_gauss_vtu, write_point_cloud, write_vtu};
+pub(crate) use vtu::write_gauss_vtu;
+pub use vtu::{FieldArray, FieldGrid, field_grid, write_contact_vtu, write_point_cloud, write_vtu};
 
 use std::path::{Path, PathBuf};
 

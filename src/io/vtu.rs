@@ -235,7 +235,7 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
 /// recovered field is built from, unsmoothed. With
 /// `analysis.geometry = "nonlinear"` the stress is the Cauchy stress and
 /// `finite::finite_strain_data` adds the reference-configuration measures.
-pub fn write_gauss_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), IoError> {
+pub(crate) fn write_gauss_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), IoError> {
     let view = solution.fields(model);
     let mut points: Vec<f64> = Vec::new();
     let mut stress: [Vec<f64>; 6] = Default::default();

@@ -49,11 +49,11 @@ pub struct Cohesive {
     /// Normal (mode I) strength `N` (Pa).
     pub normal_strength: f64,
     /// Shear (mode II) strength `S` (Pa).
-    pub shear_strength: f64,
+    pub(crate) shear_strength: f64,
     /// Mode I fracture toughness `G_Ic` (J/m²).
-    pub g_ic: f64,
+    pub(crate) g_ic: f64,
     /// Mode II fracture toughness `G_IIc` (J/m²).
-    pub g_iic: f64,
+    pub(crate) g_iic: f64,
     /// Benzeggagh–Kenane exponent `η` (dimensionless).
     pub bk_exponent: f64,
     /// Duvaut–Lions viscosity in load-factor units (0: none): the damage
@@ -166,7 +166,7 @@ impl Cohesive {
     }
 
     /// Onset and final separations of the separation `δ`'s mixity.
-    pub fn envelope(&self, separation: [f64; 3]) -> Envelope {
+    pub(crate) fn envelope(&self, separation: [f64; 3]) -> Envelope {
         let k = self.penalty;
         let shear_onset = self.shear_strength / k;
         let [d1, d2, d3] = separation;

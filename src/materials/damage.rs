@@ -14,7 +14,7 @@
 //! * **Modes** `I ∈ {FT, FC, MT, MC}` (fibre tension and compression,
 //!   matrix tension and compression). Onset when Hashin's strength ratio of
 //!   the undamaged ("effective") stress `σ̃ = C⁰ ε_m` of the active fibre or
-//!   matrix mode falls to 1 ([`super::Strengths::hashin_ratios`]); the
+//!   matrix mode falls to 1 (`super::Strengths::hashin_ratios`); the
 //!   onset measure `φ = 1/R` is homogeneous of degree one in the strain.
 //! * **Equivalent displacement and stress** of a mode, from the strain
 //!   components that drive it: FT `e = √(⟨ε11⟩² + γ12² + γ13²)`, FC
@@ -36,7 +36,7 @@
 //!   tangent returned is the secant `C_d = S(d)⁻¹` (symmetric, positive
 //!   definite).
 //! * **Snap-back inside a point**: the law needs `δf > δ0`, i.e.
-//!   `L < 2 E G_I/X²` ([`PlyDamage::longest_band`]). A longer band lowers the
+//!   `L < 2 E G_I/X²` (`PlyDamage::longest_band`). A longer band lowers the
 //!   mode's strength by `√(L_max/L)` (Bažant & Oh), so that the band's
 //!   elastic energy at onset stays below `G_I`, and marks the mode in
 //!   [`DamageState::reduced`].
@@ -118,7 +118,7 @@ pub struct DamageState {
     /// (J/m³): `½ σᵀ S(d) σ`, the stress being the damaged secant's.
     pub stored: f64,
     /// Modes whose onset stress was lowered because the band is longer
-    /// than [`PlyDamage::longest_band`].
+    /// than `PlyDamage::longest_band`.
     pub reduced: [bool; 4],
 }
 
@@ -156,15 +156,15 @@ impl PlyDamage {
 
     /// The same law returning the secant stiffness `C_d` as its tangent
     /// (`consistent = false`) or the consistent one
-    /// (`PlyDamage::consistent_tangent`, the default).
-    pub fn with_consistent_tangent(mut self, consistent: bool) -> Self {
+    /// ([`PlyDamage::consistent_tangent`], the default).
+    pub(crate) fn with_consistent_tangent(mut self, consistent: bool) -> Self {
         self.consistent = consistent;
         self
     }
 
     /// The same law with Duvaut–Lions viscosity `eta` (in the units of the
     /// steps given to [`PlyDamage::update_over`]; 0: rate independent).
-    pub fn with_viscosity(mut self, eta: f64) -> Self {
+    pub(crate) fn with_viscosity(mut self, eta: f64) -> Self {
         self.viscosity = eta;
         self
     }
@@ -174,14 +174,9 @@ impl PlyDamage {
         self.viscosity
     }
 
-    /// True if [`PlyDamage::update`] returns the consistent tangent.
-    pub fn is_consistent(&self) -> bool {
-        self.consistent
-    }
-
     /// The longest crack band (m) for which mode `mode` ([`MODES`] index)
     /// softens without lowering its strength: `2 E G/X²`.
-    pub fn longest_band(&self, mode: usize) -> f64 {
+    pub(crate) fn longest_band(&self, mode: usize) -> f64 {
         let [e1, e2, _] = self.elastic.young;
         let (young, strength) = match mode {
             FT => (e1, self.strengths.tension[0]),
@@ -195,7 +190,7 @@ impl PlyDamage {
     /// Stress, tangent and trial state at the strain `strain` (material
     /// axes) with the crack-band lengths `band = [fibre, matrix]` (m) from
     /// the committed state `old`, rate independent (as
-    /// [`PlyDamage::update_over`] over an infinite step).
+    /// `PlyDamage::update_over` over an infinite step).
     pub fn update(&self, strain: &Voigt, band: [f64; 2], old: &DamageState) -> DamageResponse {
         self.update_over(strain, band, f64::INFINITY, old)
     }
@@ -204,7 +199,7 @@ impl PlyDamage {
     /// factor or time since `old`): with viscosity η the damage the
     /// stiffness takes relaxes towards the law's, implicitly,
     /// `d_v = (η d_v,n + Δ d)/(η + Δ)` (Duvaut–Lions; Lapczyk & Hurtado).
-    pub fn update_over(&self, strain: &Voigt, band: [f64; 2], step: f64, old: &DamageState) -> DamageResponse {
+    pub(crate) fn update_over(&self, strain: &Voigt, band: [f64; 2], step: f64, old: &DamageState) -> DamageResponse {
         let effective = mat_vec(&self.stiffness, strain);
         let [fibre_ratio, matrix_ratio] = self.strengths.hashin_ratios(&effective);
         let fibre = if effective[0] >= 0.0 { FT } else { FC };

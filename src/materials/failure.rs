@@ -43,13 +43,13 @@ pub struct Strengths {
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
 pub struct Indices {
     /// Maximum stress.
-    pub max_stress: f64,
+    pub(crate) max_stress: f64,
     /// Tsai–Wu.
-    pub tsai_wu: f64,
+    pub(crate) tsai_wu: f64,
     /// Hashin, fibre mode (tension or compression by the sign of σ11).
-    pub hashin_fibre: f64,
+    pub(crate) hashin_fibre: f64,
     /// Hashin, matrix mode (tension or compression by the sign of σ22 + σ33).
-    pub hashin_matrix: f64,
+    pub(crate) hashin_matrix: f64,
     /// The strength ratio of each (maximum stress, Tsai–Wu, Hashin fibre,
     /// Hashin matrix): the load multiplier of its failure under
     /// proportional loading (∞ for a mode that never fails).
@@ -142,7 +142,7 @@ impl Strengths {
     /// axes: the load multipliers at which the active fibre and matrix modes
     /// reach 1 (∞ for a mode that never fails). The onset measure of the ply
     /// damage law ([`super::damage`]).
-    pub fn hashin_ratios(&self, material_stress: &[f64; 6]) -> [f64; 2] {
+    pub(crate) fn hashin_ratios(&self, material_stress: &[f64; 6]) -> [f64; 2] {
         let (fibre, matrix) = self.hashin(material_stress);
         [fibre.ratio(), matrix.ratio()]
     }

@@ -62,16 +62,6 @@ impl std::fmt::Display for Hardening {
 }
 
 impl Hardening {
-    /// Initial yield stress `σ_y(0)`.
-    pub fn initial_yield(&self) -> f64 {
-        match self {
-            Self::Perfect { yield_stress } | Self::Linear { yield_stress, .. } | Self::Voce { yield_stress, .. } => {
-                *yield_stress
-            }
-            Self::Table { stresses, .. } => stresses[0],
-        }
-    }
-
     /// Index of the linear segment holding `peeq` (for a table: `k` with
     /// `strains[k] ≤ peeq < strains[k+1]`, the last index meaning "past the table").
     pub fn segment(&self, peeq: f64) -> usize {

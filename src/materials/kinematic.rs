@@ -46,7 +46,7 @@ use super::{Hardening, PointState, Predictor, Response};
 use crate::voigt::{self, Matrix6, Voigt};
 
 /// Most back-stresses a material may have (Chaboche models use 2–3).
-pub const MAX_BACKSTRESSES: usize = 3;
+pub(crate) const MAX_BACKSTRESSES: usize = 3;
 
 /// One Armstrong–Frederick back-stress.
 #[derive(Debug, Clone, Copy, PartialEq)]

@@ -27,7 +27,8 @@ pub mod kinematic;
 pub use anisotropic::{Frame, Orthotropic};
 pub use failure::{Indices, Strengths};
 pub use hardening::Hardening;
-pub use kinematic::{BackStress, MAX_BACKSTRESSES};
+pub use kinematic::BackStress;
+pub(crate) use kinematic::MAX_BACKSTRESSES;
 
 use crate::voigt::{self, Matrix6, Voigt};
 
@@ -40,7 +41,7 @@ pub struct PointState {
     pub peeq: f64,
     /// Back-stresses `X_i` (stress-like, deviatoric, Pa) of the material's
     /// kinematic hardening terms, in their order; unused entries stay zero.
-    pub back_stress: [Voigt; MAX_BACKSTRESSES],
+    pub(crate) back_stress: [Voigt; MAX_BACKSTRESSES],
 }
 
 /// Result of a material-point update.
@@ -56,7 +57,7 @@ pub struct Response {
     pub plastic: bool,
     /// True if `tangent` is the elastic stiffness (lets the element reuse
     /// its cached elastic matrix).
-    pub elastic_tangent: bool,
+    pub(crate) elastic_tangent: bool,
 }
 
 /// The tangent a point returns when it sits on its yield surface (the
@@ -90,7 +91,7 @@ pub struct Material {
     pub poisson: f64,
     /// Von Mises plasticity, `None` for a purely elastic material.
     pub hardening: Option<Hardening>,
-    /// Kinematic hardening terms (at most [`MAX_BACKSTRESSES`]); empty for
+    /// Kinematic hardening terms (at most `MAX_BACKSTRESSES`); empty for
     /// purely isotropic hardening.
     pub kinematic: Vec<BackStress>,
     /// Mass density ρ (kg/m³), `None` where the model gives none (a static

@@ -5,7 +5,7 @@ use super::MeshError;
 
 /// One graded segment of a [`Division`].
 #[derive(Debug, Clone, PartialEq)]
-pub struct Segment {
+pub(crate) struct Segment {
     /// Start coordinate (m).
     pub from: f64,
     /// End coordinate (m).
@@ -19,7 +19,7 @@ pub struct Segment {
 /// How an interval is cut into elements. The result is always the sorted
 /// list of element boundaries (`elements + 1` coordinates).
 #[derive(Debug, Clone, PartialEq)]
-pub enum Division {
+pub(crate) enum Division {
     /// Explicit, strictly increasing element boundaries.
     Lines(Vec<f64>),
     /// Consecutive segments, each uniform or geometrically graded.
@@ -28,7 +28,8 @@ pub enum Division {
 
 impl Division {
     /// Uniform division of `[from, to]` into `elements` elements.
-    pub fn uniform(from: f64, to: f64, elements: usize) -> Self {
+    #[cfg(test)]
+    pub(crate) fn uniform(from: f64, to: f64, elements: usize) -> Self {
         Self::Segments(vec![Segment { from, to, elements, ratio: 1.0 }])
     }
 

@@ -15,25 +15,25 @@ mod clip;
 mod division;
 pub mod gmsh;
 mod overlaps;
-pub mod profiles;
+pub(crate) mod profiles;
 mod properties;
 mod section;
 pub mod twins;
 
-pub use division::{Division, Segment};
+pub(crate) use division::{Division, Segment};
 pub use properties::SectionProperties;
-pub use section::{CrossSection, EDGES, Region};
+pub use section::{CrossSection, Region};
 pub use twins::EdgeTwin;
 
 use crate::shape::BeamElementKind;
 
 /// Largest absolute coordinate of a mesh (m): a 10 km structure.
-pub const MAX_COORD: f64 = 1e4;
+pub(crate) const MAX_COORD: f64 = 1e4;
 /// Smallest element length of a division relative to the divided span:
 /// below it round-off swamps the element's own size.
-pub const MIN_RELATIVE_SIZE: f64 = 1e-9;
+pub(crate) const MIN_RELATIVE_SIZE: f64 = 1e-9;
 /// Accepted range of a grading ratio (last / first element length).
-pub const GRADING_RATIO: (f64, f64) = (1e-4, 1e4);
+pub(crate) const GRADING_RATIO: (f64, f64) = (1e-4, 1e4);
 
 /// Errors raised while building meshes. Every message names the model-file
 /// key, the offending value and what is allowed.
@@ -130,7 +130,7 @@ pub struct Body {
     /// Global number of the body's first node.
     pub node_offset: usize,
     /// Global number of the body's first element.
-    pub element_offset: usize,
+    pub(crate) element_offset: usize,
 }
 
 impl Body {

@@ -19,7 +19,7 @@ use super::blocks::Block;
 
 /// Dimensions of a straight-walled profile (m).
 #[derive(Debug, Clone, Copy, PartialEq)]
-pub struct Walls {
+pub(crate) struct Walls {
     /// Overall width along x (see each family for what it spans).
     pub width: f64,
     /// Overall height along z.
@@ -36,7 +36,7 @@ pub struct Walls {
 
 /// Element counts of a straight-walled profile.
 #[derive(Debug, Clone, PartialEq)]
-pub struct Counts {
+pub(crate) struct Counts {
     /// Along each flange part between webs (an outstand, or a box cell's flange).
     pub flange: usize,
     /// Along each web between the flanges.
@@ -54,7 +54,7 @@ pub struct Counts {
 
 /// The families of straight-walled profiles.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum Family {
+pub(crate) enum Family {
     /// I or H: two flanges of `width`, a central web; `height` overall.
     I,
     /// Channel (U): a web at x = x0, flanges of `width` (web included) towards +x.

@@ -46,7 +46,7 @@ pub struct Region {
 
 /// Local edge `k` of a quadrilateral as seen from its natural coordinates:
 /// 0: η = −1, 1: ξ = +1, 2: η = +1, 3: ξ = −1.
-pub const EDGES: usize = 4;
+pub(crate) const EDGES: usize = 4;
 
 impl CrossSection {
     /// Number of elements.
@@ -67,7 +67,7 @@ impl CrossSection {
 
     /// Local node indices (in the element's lexicographic order) on local edge `k`,
     /// ordered along the edge parameter (increasing ξ or η).
-    pub fn edge_local_nodes(&self, k: usize) -> Vec<usize> {
+    pub(crate) fn edge_local_nodes(&self, k: usize) -> Vec<usize> {
         let m = self.kind.order() + 1;
         (0..m)
             .map(|t| match k {
@@ -82,7 +82,7 @@ impl CrossSection {
     /// Builds a section from corner points and counter-clockwise quads
     /// (corner order: (−1,−1), (1,−1), (1,1), (−1,1) in natural coordinates).
     /// `key` names the model-file key in errors.
-    pub fn from_quads(
+    pub(crate) fn from_quads(
         kind: SectionElementKind,
         corners: &[[f64; 2]],
         quads: &[[usize; 4]],
@@ -175,7 +175,7 @@ impl CrossSection {
     /// Edges on the section boundary, as `(element, local edge)`; the
     /// edges of a cohesive interface ([`Self::twins`]) are inner surfaces,
     /// left out.
-    pub fn boundary_edges(&self) -> Vec<(usize, usize)> {
+    pub(crate) fn boundary_edges(&self) -> Vec<(usize, usize)> {
         let inner = self.twin_edges();
         let mut count: HashMap<(usize, usize), usize> = HashMap::new();
         let ends = |e: usize, k: usize| {

@@ -6,7 +6,7 @@
 //! interface's surface, and the twin nodes `(τ_lower, τ_upper)` at each beam
 //! node are the two sides of one interface point (`crate::interfaces`).
 //!
-//! A twin edge is no boundary ([`CrossSection::boundary_edges`] leaves it
+//! A twin edge is no boundary (`CrossSection::boundary_edges` leaves it
 //! out: a face selection at the interface's z finds no face there, as
 //! without twins) and joins its two elements into one part
 //! ([`CrossSection::parts`]).
@@ -32,7 +32,7 @@ pub struct EdgeTwin {
 
 impl CrossSection {
     /// Every `(element, local edge)` of a twin.
-    pub fn twin_edges(&self) -> HashSet<(usize, usize)> {
+    pub(crate) fn twin_edges(&self) -> HashSet<(usize, usize)> {
         self.twins.iter().flat_map(|t| [t.lower, t.upper]).collect()
     }
 
@@ -41,7 +41,7 @@ impl CrossSection {
     /// integral of the node's shape function along the edges it lies on,
     /// the closed Newton–Cotes weight of equispaced nodes), in the order of
     /// first appearance.
-    pub fn twin_nodes(&self, interface: usize) -> Vec<(usize, usize, f64)> {
+    pub(crate) fn twin_nodes(&self, interface: usize) -> Vec<(usize, usize, f64)> {
         let weights = edge_weights(self.kind.order());
         let mut out: Vec<(usize, usize, f64)> = Vec::new();
         let mut index = std::collections::HashMap::new();
@@ -125,7 +125,7 @@ impl CrossSection {
 /// `∫N_a` over `[0, 1]` of the equispaced Lagrange basis of order `p`: the
 /// closed Newton–Cotes weights (p = 3: 1/8, 3/8, 3/8, 1/8; p = 4: 7, 32,
 /// 12, 32, 7 over 90), by Gauss quadrature of the basis itself.
-pub fn edge_weights(p: usize) -> Vec<f64> {
+pub(crate) fn edge_weights(p: usize) -> Vec<f64> {
     let basis = crate::shape::Lagrange1d::new(p);
     let rule = crate::quadrature::GaussRule::new(p + 1);
     let mut w = vec![0.0; basis.len()];

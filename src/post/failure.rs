@@ -21,7 +21,7 @@ pub use crate::materials::failure::CRITERIA;
 
 /// A place in the model and the material there.
 #[derive(Debug, Clone, Serialize)]
-pub struct Place {
+pub(crate) struct Place {
     /// The point (m).
     pub point: [f64; 3],
     /// The body.
@@ -38,12 +38,12 @@ pub struct Criterion {
     /// Its largest index over the model (1 at failure).
     pub largest_index: f64,
     /// Where the index is largest.
-    pub largest_at: Place,
+    pub(crate) largest_at: Place,
     /// `λ_end · min R`: the load factor of its first failure under
     /// proportional loading (∞ if it never fails).
     pub first_failure_load_factor: f64,
     /// Where its strength ratio is smallest.
-    pub first_failure_at: Place,
+    pub(crate) first_failure_at: Place,
 }
 
 /// The failure indices of a run (`summary.json` `ply_failure`).
@@ -52,7 +52,7 @@ pub struct FailureSummary {
     /// Per criterion, in the order of [`CRITERIA`].
     pub criteria: Vec<Criterion>,
     /// The smallest first-failure load factor of the criteria.
-    pub first_ply_failure_load_factor: f64,
+    pub(crate) first_ply_failure_load_factor: f64,
 }
 
 /// A value and where it is.

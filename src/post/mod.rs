@@ -57,7 +57,7 @@ use crate::voigt::{self, Voigt};
 
 pub use crate::values::Location;
 
-pub use crate::values::{locate as locate_in_body, locate_in_model};
+pub use crate::values::locate_in_model;
 
 /// Lagrange basis through arbitrary abscissae, evaluated at `x`.
 fn lagrange_through(points: &[f64], x: f64, out: &mut [f64]) {

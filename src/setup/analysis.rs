@@ -9,7 +9,7 @@ use crate::kinematics::Kinematics;
 use crate::materials::Material;
 use crate::mesh::Mesh;
 
-pub use crate::input::ranges::MAX_MODES;
+pub(crate) use crate::input::ranges::MAX_MODES;
 
 /// `analysis.type = "buckling"`: the linear buckling analysis.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

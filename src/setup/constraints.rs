@@ -6,7 +6,7 @@
 //! agreement check of overlapping sets ([`ConstraintHandler::checked`]),
 //! the numbering, the memory plan, the restraint check, the reactions, the
 //! setup's checks of moving supports ([`ConstraintHandler::first_moving`])
-//! and fully held bodies ([`ConstraintHandler::holds_node`]), the modal
+//! and fully held bodies (`ConstraintHandler::holds_node`), the modal
 //! free mass and the solution's elimination read it instead of deriving
 //! the sets again. What still walks `Model::constraints` needs a
 //! constraint as the user wrote it: its name and order (the per-set
@@ -91,12 +91,12 @@ impl ConstraintHandler {
     }
 
     /// The handler of `constraints` on `n_dofs` DOFs with the given couplings.
-    pub fn with_couplings(n_dofs: usize, constraints: &[Constraint], couplings: Vec<(usize, usize)>) -> Self {
+    pub(crate) fn with_couplings(n_dofs: usize, constraints: &[Constraint], couplings: Vec<(usize, usize)>) -> Self {
         Self { couplings, ..Self::resolve(n_dofs, constraints).0 }
     }
 
     /// The handler of `constraints` on `n_dofs` DOFs, without couplings
-    /// (add them with [`Self::couple`]), or the first place where two of
+    /// (add them with `Self::couple`), or the first place where two of
     /// them disagree: walking the constraints in model order, node by node
     /// and component by component, the first value that differs from the
     /// one the DOF's owner gives.
@@ -109,7 +109,7 @@ impl ConstraintHandler {
 
     /// Adds the couplings of `contacts` and cohesive `interfaces` on `mesh`
     /// (`current` as in [`Self::new`]).
-    pub fn couple(
+    pub(crate) fn couple(
         &mut self,
         mesh: &Mesh,
         (contacts, interfaces): (&[PairContact], &[crate::interfaces::Interface]),
@@ -150,7 +150,7 @@ impl ConstraintHandler {
     }
 
     /// Every constrained DOF in increasing order, with its value.
-    pub fn constrained(&self) -> impl Iterator<Item = (usize, Prescribed)> + '_ {
+    pub(crate) fn constrained(&self) -> impl Iterator<Item = (usize, Prescribed)> + '_ {
         self.constrained.iter().copied()
     }
 
@@ -164,7 +164,7 @@ impl ConstraintHandler {
     }
 
     /// True if all three components of `node` are constrained.
-    pub fn holds_node(&self, node: usize) -> bool {
+    pub(crate) fn holds_node(&self, node: usize) -> bool {
         (0..3).all(|k| self.prescribed(3 * node + k).is_some())
     }
 
@@ -177,7 +177,8 @@ impl ConstraintHandler {
     }
 
     /// The node pairs coupled by contact.
-    pub fn couplings(&self) -> &[(usize, usize)] {
+    #[cfg(test)]
+    pub(crate) fn couplings(&self) -> &[(usize, usize)] {
         &self.couplings
     }
 

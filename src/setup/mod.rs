@@ -161,7 +161,7 @@ pub struct Model {
 
 /// What the elements of a model are made of: the meshes, their
 /// Gauss-point values, the materials and the strain measure (a view of a
-/// [`Model`], [`Model::discretisation`]).
+/// [`Model`], `Model::discretisation`).
 #[derive(Debug, Clone, Copy)]
 pub struct Discretisation<'m> {
     /// Bodies and node numbering.
@@ -179,7 +179,7 @@ pub struct Discretisation<'m> {
 impl<'m> Discretisation<'m> {
     /// The finite-element state at displacements `u` with Gauss-point
     /// `states` (the first of body `b` at `gp_offsets[b]`) and ply `damage`.
-    pub fn fe_state<'a>(
+    pub(crate) fn fe_state<'a>(
         &self,
         u: &'a [f64],
         states: &'a [crate::materials::PointState],
@@ -283,7 +283,7 @@ impl Model {
 
     /// The meshes, Gauss-point values, materials, kinematics and
     /// interfaces.
-    pub fn discretisation(&self) -> Discretisation<'_> {
+    pub(crate) fn discretisation(&self) -> Discretisation<'_> {
         Discretisation {
             mesh: &self.mesh,
             cells: &self.cells,
@@ -302,7 +302,7 @@ impl Model {
 
     /// Resolves the constraint handler from the present constraints,
     /// contacts and kinematics (after any of them changed in code).
-    pub fn resolve_constraints(&mut self) {
+    pub(crate) fn resolve_constraints(&mut self) {
         let current = self.kinematics.is_nonlinear();
         self.constraint_handler = constraints::ConstraintHandler::new(
             &self.mesh,

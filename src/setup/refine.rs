@@ -34,7 +34,8 @@ pub(crate) const DEFAULT_MAX_DOF: usize = defaults::ADAPT_MAX_DOF;
 pub(crate) const DEFAULT_MAX_CYCLES: usize = defaults::ADAPT_MAX_CYCLES;
 /// Default `[adapt] fraction`: Dörfler's bulk parameter θ.
 pub(crate) const DEFAULT_FRACTION: f64 = defaults::ADAPT_FRACTION;
-pub use crate::input::ranges::{MAX_BUDGET, MAX_CYCLES};
+pub use crate::input::ranges::MAX_BUDGET;
+pub(crate) use crate::input::ranges::MAX_CYCLES;
 
 /// Validated `[adapt]`: refine and solve again until the estimate is below
 /// `tolerance` (`crate::adapt`).

@@ -8,7 +8,7 @@ use crate::dynamics::TransientSettings;
 use crate::input::schema::{AnalysisFile, AnalysisType};
 use crate::input::{ModelError, bounds, invalid, ranges};
 
-pub use crate::input::ranges::{MAX_DURATION, MAX_SPEED};
+pub(crate) use crate::input::ranges::MAX_SPEED;
 /// Largest accepted Newmark β: above ¼ (γ + ½)² = 0.5625 of the most
 /// dissipative γ = 1, so every γ in [½, 1] has its unconditionally stable
 /// range (a larger β only lengthens the periods).

@@ -3,7 +3,7 @@
 
 /// One-dimensional Lagrange basis of order `p` on equispaced nodes.
 #[derive(Debug, Clone)]
-pub struct Lagrange1d {
+pub(crate) struct Lagrange1d {
     nodes: Vec<f64>,
 }
 
@@ -23,11 +23,6 @@ impl Lagrange1d {
     /// Number of basis functions.
     pub fn len(&self) -> usize {
         self.nodes.len()
-    }
-
-    /// Always false.
-    pub fn is_empty(&self) -> bool {
-        self.nodes.is_empty()
     }
 
     /// Values `n[k] = N_k(ξ)` and derivatives `dn[k] = dN_k/dξ`.

@@ -14,7 +14,8 @@
 
 mod lagrange;
 
-pub use lagrange::{Lagrange1d, Lagrange2d};
+pub(crate) use lagrange::Lagrange1d;
+pub use lagrange::Lagrange2d;
 
 use serde::{Deserialize, Serialize};
 

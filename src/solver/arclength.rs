@@ -56,27 +56,27 @@
 //!
 //! **Step length.** After a converged increment of `I` corrections,
 //! `Δl ← Δl · √(I_d / I)` (Crisfield 1981; `I_d` =
-//! [`ArcLengthSettings::desired_iterations`]), the factor limited to
+//! `ArcLengthSettings::desired_iterations`), the factor limited to
 //! `[1/2, max_growth]` and `Δl` to `[min_ratio, max_ratio] · Δl₀`. A failed
 //! increment (iteration limit, divergence, complex roots, or a problem
 //! error) is rolled back to the last converged state and retried with `Δl/2`;
 //! below the minimum the run stops with an error. `Δl₀` comes from the first
-//! predictor and [`ArcLengthSettings::initial_dlambda`]; no `Δl` exceeds
-//! [`ArcLengthSettings::max_length`].
+//! predictor and `ArcLengthSettings::initial_dlambda`; no `Δl` exceeds
+//! `ArcLengthSettings::max_length`.
 //!
 //! **No jump along the path.** A long arc can converge on a far part of
 //! the path — past a limit point and its snap, onto the stable branch
 //! beyond — with nothing at its ends to show it (both tangents positive
 //! definite). On a smooth path the converged change `Δu` of a short enough
 //! increment is nearly parallel to its predictor (the tangent at its start);
-//! one that turned by more than `acos(`[`ArcLengthSettings::min_cosine`]`)`
+//! one that turned by more than `acos(``ArcLengthSettings::min_cosine``)`
 //! is rolled back and redone with half the arc length, at most
 //! `MAX_TURNS` times per increment (a kink of the path — a contact
 //! closing — turns the direction however short the arc, and is then
 //! accepted).
 //!
 //! **Landing on the end.** An increment that carries `λ` past
-//! [`ArcLengthSettings::max_lambda`] is redone from its start with `λ`
+//! `ArcLengthSettings::max_lambda` is redone from its start with `λ`
 //! prescribed there (Newton at fixed `λ`, the predictor the tangent's), as
 //! load stepping ends on its last load factor; if that fails, the arc is
 //! shortened in proportion (a cutback) and the path goes on.
@@ -120,33 +120,33 @@ pub trait PathProblem {
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct ArcLengthSettings {
     /// `Δλ` of the first predictor, which sets `Δl₀` (its sign, the direction).
-    pub initial_dlambda: f64,
+    pub(crate) initial_dlambda: f64,
     /// Weight of the load in the constraint (0: cylindrical, 1: spherical).
     pub psi: f64,
     /// Smallest `Δl / Δl₀` before giving up.
-    pub min_ratio: f64,
+    pub(crate) min_ratio: f64,
     /// Largest `Δl / Δl₀`.
-    pub max_ratio: f64,
+    pub(crate) max_ratio: f64,
     /// Corrections per increment the step length aims at.
-    pub desired_iterations: usize,
+    pub(crate) desired_iterations: usize,
     /// Largest growth of `Δl` from one increment to the next.
-    pub max_growth: f64,
+    pub(crate) max_growth: f64,
     /// Corrections allowed per increment.
     pub max_iterations: usize,
     /// Convergence: `‖R‖ ≤ residual_tolerance · ‖f‖`.
     pub residual_tolerance: f64,
     /// Failure when `‖R‖/‖f‖` exceeds this factor times its first value (or 1).
-    pub divergence_ratio: f64,
+    pub(crate) divergence_ratio: f64,
     /// Converged increments after which the run ends.
     pub max_increments: usize,
     /// Largest `Δl` of any increment (`f64::INFINITY`: only `max_ratio`).
-    pub max_length: f64,
+    pub(crate) max_length: f64,
     /// The end of the path: an increment passing this `λ` is redone to
     /// land on it (`f64::INFINITY`: none).
-    pub max_lambda: f64,
+    pub(crate) max_lambda: f64,
     /// Smallest cosine between an increment's predictor and its converged
     /// `Δu` (module docs, "No jump along the path").
-    pub min_cosine: f64,
+    pub(crate) min_cosine: f64,
 }
 
 /// Most rollbacks of one increment for having turned too far from its
@@ -190,7 +190,7 @@ pub enum PathFailure {
     /// A stop was requested through the [`Interrupt`].
     Interrupted,
     /// The increment converged but turned from its predictor by more than
-    /// [`ArcLengthSettings::min_cosine`] allows (a jump along the path).
+    /// `ArcLengthSettings::min_cosine` allows (a jump along the path).
     Turned,
 }
 
@@ -248,7 +248,7 @@ pub struct PathError {
     /// Why.
     pub reason: PathStop,
     /// The last converged load factor.
-    pub last_lambda: f64,
+    pub(crate) last_lambda: f64,
     /// Converged increments before the stop.
     pub increments: usize,
     /// The last attempt, if any.

@@ -35,7 +35,7 @@
 //! are kept in `H_m`, which is then symmetric to rounding; its symmetric
 //! part is diagonalized by faer's dense self-adjoint eigensolver.
 //!
-//! **Restarts.** The basis holds at most `m` vectors ([`EigenSettings::subspace`],
+//! **Restarts.** The basis holds at most `m` vectors (`EigenSettings::subspace`,
 //! a few dozen, so that memory stays at `m + count + 3` vectors of length
 //! `n` for 10⁵–10⁶ unknowns). When it is full and the wanted Ritz pairs have
 //! not converged, it is *thick-restarted* (Wu & Simon, *SIAM J. Matrix Anal.
@@ -70,7 +70,7 @@
 //! 1.6 s in all).
 //!
 //! **Result.** The `μ` sorted by `|μ|` ascending (with
-//! [`EigenSettings::positive_only`], only `μ > 0`, ascending), each with its
+//! `EigenSettings::positive_only`, only `μ > 0`, ascending), each with its
 //! eigenvector normalized in the `K` norm, `φᵢᵀ K φⱼ = δᵢⱼ` (so
 //! `φᵢᵀ B φⱼ = δᵢⱼ / μᵢ`), its sign chosen so that its entry of largest
 //! magnitude is positive.
@@ -123,13 +123,13 @@ pub struct EigenSettings {
     /// Number of eigenpairs wanted.
     pub count: usize,
     /// Only `μ > 0` (buckling load factors under the reference load's sign).
-    pub positive_only: bool,
+    pub(crate) positive_only: bool,
     /// Relative Ritz residual `‖A x − θ x‖_K / |θ|` of convergence.
     pub tolerance: f64,
     /// Largest basis size `m` (0: `max(2 count + 10, 20)`); capped at the dimension.
-    pub subspace: usize,
+    pub(crate) subspace: usize,
     /// Thick restarts allowed in one Lanczos run.
-    pub max_restarts: usize,
+    pub(crate) max_restarts: usize,
     /// After convergence, look for eigenvalues the run missed (multiple ones).
     pub verify: bool,
 }
@@ -153,7 +153,7 @@ pub struct EigenSolution {
     /// Solves with the factor of `K`.
     pub solves: usize,
     /// Thick restarts, over all runs.
-    pub restarts: usize,
+    pub(crate) restarts: usize,
     /// Lanczos runs (the first, plus the checks for missed eigenvalues).
     pub runs: usize,
 }

@@ -58,11 +58,11 @@ pub struct LowerCsc {
     /// Dimension.
     pub n: usize,
     /// Column pointers (`n + 1`).
-    pub col_ptr: Vec<usize>,
+    pub(crate) col_ptr: Vec<usize>,
     /// Row indices, `row ≥ col` (32 bits: the product of conjugate gradients
     /// reads them at every iteration, and a quarter less memory traffic is a
     /// quarter less time there; equations are far fewer than 2³²).
-    pub row_idx: Vec<u32>,
+    pub(crate) row_idx: Vec<u32>,
 }
 
 impl LowerCsc {

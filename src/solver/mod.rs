@@ -9,7 +9,7 @@ pub mod eigen;
 pub mod krylov;
 pub mod linear;
 pub mod newton;
-pub mod nonsymmetric;
+pub(crate) mod nonsymmetric;
 pub mod reuse;
 pub mod step_control;
 pub mod stepping;

@@ -60,7 +60,7 @@ pub struct Correction {
     /// `‖Δx‖` of this correction.
     pub norm: f64,
     /// `‖x − x_n‖`, the total change since the start of the increment.
-    pub increment_norm: f64,
+    pub(crate) increment_norm: f64,
 }
 
 /// A nonlinear system solved by [`solve`].
@@ -169,7 +169,7 @@ pub struct Report {
     /// Message of a problem error, if any.
     pub message: Option<String>,
     /// Corrections shortened by the line search.
-    pub line_searches: usize,
+    pub(crate) line_searches: usize,
 }
 
 impl Report {

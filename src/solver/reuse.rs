@@ -112,7 +112,7 @@ pub struct ReuseSettings {
     pub tolerance: f64,
     /// Bounds on the PCG iterations per solve; between them, the estimated
     /// cost of one factorization decides (module docs).
-    pub min_iterations: usize,
+    pub(crate) min_iterations: usize,
     /// See `min_iterations`.
     pub max_iterations: usize,
     /// Factorize in single precision and refine by PCG in double (module
@@ -144,7 +144,7 @@ pub struct SolverStats {
     pub precision_fallbacks: usize,
     /// Single-precision `LLᵀ` attempts that broke down (the matrix rounded
     /// to `f32` not positive definite; the factor was then made in double).
-    pub single_breakdowns: usize,
+    pub(crate) single_breakdowns: usize,
     /// Time in numeric factorizations.
     pub factorization_time: Duration,
     /// Time in triangular solves and PCG.

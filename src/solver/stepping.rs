@@ -66,9 +66,9 @@ pub struct StepSettings {
     /// Factor applied to Δλ after a failure (0 < f < 1).
     pub cutback_factor: f64,
     /// Factor applied to Δλ after an easy increment (≥ 1).
-    pub growth_factor: f64,
+    pub(crate) growth_factor: f64,
     /// An increment converging within this many iterations is "easy".
-    pub easy_iterations: usize,
+    pub(crate) easy_iterations: usize,
     /// Largest number of converged increments before the analysis is stopped.
     pub max_increments: usize,
     /// Step control by an error measure (`None`: the growth after easy

@@ -36,7 +36,7 @@ pub struct SteppingError {
     /// Last Δλ tried.
     pub dlambda: f64,
     /// Last converged λ (the state the problem is left in).
-    pub last_converged: f64,
+    pub(crate) last_converged: f64,
     /// Newton history of the last attempt.
     pub newton: Report,
     /// A transient analysis's times (s): attempted, the last time step

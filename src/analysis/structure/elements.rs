@@ -12,9 +12,9 @@ use crate::voigt::Voigt;
 #[derive(Debug)]
 pub(crate) struct Elements<'m> {
     /// The meshes, Gauss-point values, materials and kinematics.
-    pub discretisation: Discretisation<'m>,
+    pub(crate) discretisation: Discretisation<'m>,
     /// First Gauss point of each body.
-    pub gp_offsets: Vec<usize>,
+    pub(crate) gp_offsets: Vec<usize>,
     /// Committed Gauss-point states.
     pub committed: Vec<PointState>,
     trial: Vec<PointState>,
@@ -76,7 +76,7 @@ impl Elements<'_> {
     /// The largest increment of the equivalent plastic strain at any Gauss
     /// point, from the committed states to those of the last evaluation
     /// (the step control's measure of plastic flow).
-    pub fn largest_peeq_increment(&self) -> f64 {
+    pub(crate) fn largest_peeq_increment(&self) -> f64 {
         self.trial.iter().zip(&self.committed).map(|(t, c)| t.peeq - c.peeq).fold(0.0, f64::max)
     }
 }

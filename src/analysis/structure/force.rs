@@ -139,7 +139,7 @@ impl<'m> ForceControl<'m> {
     }
 
     /// True if some indenter is force-controlled (its motion an unknown).
-    pub fn is_driven(&self) -> bool {
+    pub(crate) fn is_driven(&self) -> bool {
         !self.driven.is_empty()
     }
 
@@ -338,12 +338,12 @@ impl<'m> ForceControl<'m> {
     }
 
     /// `½ m v²` of the impactors at the last evaluation.
-    pub fn impactor_energy(&self) -> f64 {
+    pub(crate) fn impactor_energy(&self) -> f64 {
         self.driven.iter().filter_map(|d| d.inertia.as_ref()).map(|i| 0.5 * i.mass * i.v * i.v).sum()
     }
 
     /// Squared norm of the change since the committed state.
-    pub fn increment2(&self) -> f64 {
+    pub(crate) fn increment2(&self) -> f64 {
         self.driven.iter().map(|d| (d.a - d.a_committed).powi(2)).sum()
     }
 }

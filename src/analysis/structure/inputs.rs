@@ -42,12 +42,12 @@ impl<'m> Loading<'m> {
     }
 
     /// True if any contact has Coulomb friction (its tangent is unsymmetric).
-    pub fn has_friction(&self) -> bool {
+    pub(crate) fn has_friction(&self) -> bool {
         self.indenters.iter().any(|i| i.friction.is_some()) || self.contacts.iter().any(|c| c.friction.is_some())
     }
 
     /// True if the structure has indenters or contacts.
-    pub fn has_contacts(&self) -> bool {
+    pub(crate) fn has_contacts(&self) -> bool {
         !self.indenters.is_empty() || !self.contacts.is_empty()
     }
 }
@@ -61,7 +61,7 @@ pub struct Settings<'m> {
     /// Implicit dynamics (`analysis.type = "transient"`); `None` for a
     /// static analysis.
     pub transient: Option<&'m TransientSettings>,
-    /// The sizes the model alone sets ([`crate::analysis::model_sizes`]),
+    /// The sizes the model alone sets (`crate::analysis::model_sizes`),
     /// completed by the structure with its numbering and factor.
     pub sizes: Sizes,
     /// Refuse the structure if its estimated memory exceeds this (bytes).

@@ -11,19 +11,19 @@ pub(crate) struct Kinematics {
     /// Displacements (3 per node).
     pub u: Vec<f64>,
     /// Those of the last converged increment.
-    pub u_committed: Vec<f64>,
+    pub(crate) u_committed: Vec<f64>,
     /// Displacement change of the last converged increment.
-    pub u_step: Vec<f64>,
+    pub(crate) u_step: Vec<f64>,
     /// Current load factor.
     pub lambda: f64,
     /// That of the last converged increment.
-    pub lambda_committed: f64,
+    pub(crate) lambda_committed: f64,
     /// Tangent branch of points on their yield surface or Coulomb cone
     /// (elastic/sticking after a failed attempt: `Incremental::cautious`).
     pub predictor: Predictor,
     /// The present solve started on the secant of the last increment, not
     /// at the committed state.
-    pub on_secant: bool,
+    pub(crate) on_secant: bool,
     /// The last correction, for a line search (`solver.line_search`).
     pub line: Option<Line>,
 }
@@ -74,7 +74,7 @@ impl Kinematics {
     }
 
     /// Squared norm of the change since the committed state.
-    pub fn increment2(&self) -> f64 {
+    pub(crate) fn increment2(&self) -> f64 {
         self.u.iter().zip(&self.u_committed).map(|(a, b)| (a - b) * (a - b)).sum()
     }
 }

@@ -11,7 +11,7 @@ use crate::setup::steps::{self, Item};
 pub(crate) struct Loads<'m> {
     loading: Loading<'m>,
     /// External loads at the λ of the last evaluation (per DOF).
-    pub f_ext: Vec<f64>,
+    pub(crate) f_ext: Vec<f64>,
 }
 
 impl<'m> Loads<'m> {

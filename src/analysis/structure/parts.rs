@@ -34,7 +34,7 @@ pub(crate) struct Parts<'m> {
 
 impl Parts<'_> {
     /// The contributions in order (the elements first).
-    pub fn each_mut(&mut self) -> impl Iterator<Item = &mut dyn Contribution> {
+    pub(crate) fn each_mut(&mut self) -> impl Iterator<Item = &mut dyn Contribution> {
         let parts: [&mut dyn Contribution; 4] =
             [&mut self.elements, &mut self.loads, &mut self.contacts, &mut self.interfaces];
         parts.into_iter().chain(self.inertia.iter_mut().map(|i| i as &mut dyn Contribution))

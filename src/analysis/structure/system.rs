@@ -12,7 +12,7 @@ use crate::solver::reuse::{ReuseSettings, ReusingSolver, SolverStats};
 #[derive(Debug)]
 pub(crate) struct LinearSystem {
     /// Numbering, pattern and scatter maps.
-    pub assembler: Assembler,
+    pub(crate) assembler: Assembler,
     /// Tangent values of the last evaluation (pattern order).
     pub tangent: Vec<f64>,
     /// The unsymmetric rest of the tangent (a model with friction).
@@ -30,7 +30,7 @@ pub(crate) struct LinearSystem {
     /// The last evaluation left the element tangents out
     /// (`structure/evaluation.rs`): `tangent` is not that of the present
     /// state.
-    pub tangent_stale: bool,
+    pub(crate) tangent_stale: bool,
 }
 
 impl LinearSystem {
@@ -69,7 +69,7 @@ impl LinearSystem {
 
     /// After [`Self::solve`] with `must_factor`: solves `K x = b` for a
     /// further right-hand side (`x` holds `b` on entry).
-    pub fn solve_again(&mut self, x: &mut [f64]) -> Result<(), LinearError> {
+    pub(crate) fn solve_again(&mut self, x: &mut [f64]) -> Result<(), LinearError> {
         let empty = NonSymmetric::default();
         let rest = self.rest.as_ref().unwrap_or(&empty);
         self.solver.solve_again_unsymmetric(&self.assembler.pattern, &self.tangent, rest, x)
@@ -99,7 +99,7 @@ impl LinearSystem {
     }
 
     /// The solver's counters.
-    pub fn stats(&self) -> &SolverStats {
+    pub(crate) fn stats(&self) -> &SolverStats {
         self.solver.stats()
     }
 

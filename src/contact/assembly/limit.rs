@@ -53,7 +53,7 @@ use crate::contact::dot;
 /// The smallest fraction of a correction applied while no point is in
 /// contact: a point open by a round-off gap would otherwise stop the
 /// iteration where it is.
-pub const SMALLEST_FRACTION: f64 = 1e-3;
+pub(crate) const SMALLEST_FRACTION: f64 = 1e-3;
 
 impl Contacts<'_> {
     /// The fraction `α ∈ (0, 1]` of the correction (`du(d)`: its value at

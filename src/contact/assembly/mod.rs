@@ -21,7 +21,8 @@
 
 mod augment;
 mod limit;
-pub use limit::SMALLEST_FRACTION;
+#[cfg(test)]
+pub(crate) use limit::SMALLEST_FRACTION;
 mod pairs;
 mod rigid;
 mod surface;

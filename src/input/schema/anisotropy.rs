@@ -60,7 +60,7 @@ pub(crate) struct StrengthsFile {
     pub yc: f64,
     /// Tensile strength along 3 (Pa; default `yt`).
     #[schemars(transform = ranges::STRENGTH.schema())]
-    pub zt: Option<f64>,
+    pub(crate) zt: Option<f64>,
     /// Compressive strength along 3 (Pa; default `yc`).
     #[schemars(transform = ranges::STRENGTH.schema())]
     pub zc: Option<f64>,
@@ -69,7 +69,7 @@ pub(crate) struct StrengthsFile {
     pub s12: f64,
     /// Shear strength in the 1–3 plane (Pa; default `s12`).
     #[schemars(transform = ranges::STRENGTH.schema())]
-    pub s13: Option<f64>,
+    pub(crate) s13: Option<f64>,
     /// Shear strength in the 2–3 plane (Pa).
     #[schemars(transform = ranges::STRENGTH.schema())]
     pub s23: f64,

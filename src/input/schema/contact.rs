@@ -9,7 +9,7 @@ use crate::input::{defaults, ranges};
 
 tagged_table! {
     /// `[[indenters]]`: a rigid indenter in penalty contact with one body.
-    pub struct IndenterFile {
+    pub(crate) struct IndenterFile {
         /// Unique among indenters, constraints and contacts.
         name: String,
         /// The body pressed.
@@ -85,7 +85,7 @@ pub(crate) struct ContactSideFile {
 
 tagged_table! {
     /// `[[contacts]]`: contact between two deformable bodies.
-    pub struct ContactFile {
+    pub(crate) struct ContactFile {
         /// Unique among indenters, constraints and contacts.
         name: String,
         /// Master body and faces (their normal is the contact direction).

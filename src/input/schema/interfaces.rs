@@ -14,7 +14,7 @@ use crate::input::{defaults, ranges};
 /// the cohesive ones.
 #[derive(Debug, Clone, PartialEq, schemars::JsonSchema)]
 #[schemars(untagged)]
-pub enum InterfacesFile {
+pub(crate) enum InterfacesFile {
     /// `"perfect"` (shared nodes) or `"cohesive"` (every interface, with
     /// `interface_material`).
     Every(InterfaceKind),
@@ -25,7 +25,7 @@ pub enum InterfacesFile {
 /// What every interface of a laminate is.
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
-pub enum InterfaceKind {
+pub(crate) enum InterfaceKind {
     /// The plies share their nodes.
     #[default]
     Perfect,
@@ -36,7 +36,7 @@ pub enum InterfaceKind {
 /// One cohesive interface: the one above ply `ply`.
 #[derive(Debug, Clone, PartialEq, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct InterfaceFile {
+pub(crate) struct InterfaceFile {
     /// The ply below the interface (1-based, below the top ply).
     #[schemars(transform = ranges::COUNT.schema())]
     pub ply: usize,
@@ -50,7 +50,7 @@ pub struct InterfaceFile {
 /// `crack = { from, to }`: where an interface starts delaminated (y, m).
 #[derive(Debug, Clone, Copy, PartialEq, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct CrackFile {
+pub(crate) struct CrackFile {
     /// Start along y (m).
     #[schemars(transform = ranges::COORDINATE.schema())]
     pub from: f64,
@@ -63,7 +63,7 @@ pub struct CrackFile {
 /// interface material (Camanho & Dávila 2002 with Benzeggagh–Kenane).
 #[derive(Debug, Clone, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct CohesiveFile {
+pub(crate) struct CohesiveFile {
     /// Mode I toughness G_Ic (J/m²).
     #[schemars(transform = ranges::TOUGHNESS.schema())]
     pub gic: f64,
@@ -78,7 +78,7 @@ pub struct CohesiveFile {
     pub normal_strength: f64,
     /// Onset traction in pure shear S (Pa; default N √(G_IIc/G_Ic)).
     #[schemars(transform = ranges::STRENGTH.schema())]
-    pub shear_strength: Option<f64>,
+    pub(crate) shear_strength: Option<f64>,
     /// Penalty stiffness K (Pa/m; default 50 E3/t of the thinner adjacent ply).
     #[schemars(transform = ranges::COHESIVE_PENALTY.schema())]
     pub penalty: Option<f64>,

@@ -43,7 +43,7 @@ pub struct MaterialFile {
 /// `crate::materials::damage`).
 #[derive(Debug, Clone, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
-pub struct DamageFile {
+pub(crate) struct DamageFile {
     /// Fracture energy of fibre tension G_FT (J/m²).
     #[schemars(transform = ranges::FRACTURE_ENERGY.schema())]
     pub fibre_tension: f64,
@@ -72,7 +72,7 @@ pub struct DamageFile {
 /// The tangent of a damaging point (`materials.damage.tangent`).
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
-pub enum DamageTangent {
+pub(crate) enum DamageTangent {
     /// The derivative of the stress (symmetric part): Newton converges
     /// quadratically through softening; indefinite there.
     #[default]
@@ -85,7 +85,7 @@ pub enum DamageTangent {
 tagged_table! {
     /// `[materials.plasticity]`: von Mises plasticity with isotropic and
     /// kinematic hardening.
-    pub struct PlasticityFile {
+    pub(crate) struct PlasticityFile {
         /// Initial yield stress (Pa); for a table, its first stress.
         yield_stress: Option<f64> => ranges::POSITIVE.schema(),
         /// Armstrong–Frederick back-stresses.

@@ -263,7 +263,7 @@ pub(crate) struct HatFile {
     pub along_web: Option<usize>,
     /// Elements along each lip.
     #[schemars(transform = ranges::COUNT.with_default(defaults::ALONG_LIP))]
-    pub along_lip: Option<usize>,
+    pub(crate) along_lip: Option<usize>,
     /// Elements through the wall.
     #[schemars(transform = ranges::COUNT.with_default(defaults::THROUGH))]
     pub through: Option<usize>,

@@ -16,8 +16,9 @@
 use serde::Deserialize;
 use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, Visitor};
 
-/// Declares `pub struct $name { shared keys…, pub $tag_field: $enum }` and
-/// `pub enum $enum { Variant { own keys… }, … }`, read from one flat table
+/// Declares `$vis struct $name { shared keys…, $vis $tag_field: $enum }` and
+/// `$vis enum $enum { Variant { own keys… }, … }` (`$vis` the struct's
+/// visibility, for its fields and the enum too), read from one flat table
 /// in which the key `$tag` names the variant (`= "name"` after each
 /// variant), optionally with a default variant.
 ///
@@ -31,16 +32,16 @@ use serde::de::{self, DeserializeSeed, Deserializer, MapAccess, Visitor};
 macro_rules! tagged_table {
     (
         $(#[$meta:meta])*
-        pub struct $name:ident $shared:tt
+        $vis:vis struct $name:ident $shared:tt
         $(#[$emeta:meta])*
         pub $tag_field:ident: enum $enum:ident by $tag:literal $(or $default:literal)? {
             $( $(#[$vmeta:meta])* $variant:ident = $vname:literal $own:tt )*
         }
         mirror $mirror:ident;
     ) => {
-        $crate::input::schema::tagged::tagged_table!(@struct [$(#[$meta])*] $name $tag_field $enum $shared);
+        $crate::input::schema::tagged::tagged_table!(@struct [$(#[$meta])*] $vis $name $tag_field $enum $shared);
 
-        $crate::input::schema::tagged::tagged_table!(@enum [$(#[$emeta])*] $enum { $( [$(#[$vmeta])*] $variant $own )* });
+        $crate::input::schema::tagged::tagged_table!(@enum [$(#[$emeta])*] $vis $enum { $( [$(#[$vmeta])*] $variant $own )* });
 
         #[doc = concat!("The flat table that [`", stringify!($name), "`] is read from.")]
         mod $mirror {
@@ -85,24 +86,24 @@ macro_rules! tagged_table {
             }
         }
     };
-    (@enum [$($emeta:tt)*] $enum:ident {
+    (@enum [$($emeta:tt)*] $vis:vis $enum:ident {
         $( [$($vmeta:tt)*] $variant:ident { $( $(#[$ometa:meta])* $ofield:ident: $oty:ty $(=> $otf:expr)?, )* } )*
     }) => {
         $($emeta)*
         #[derive(Debug)]
-        pub enum $enum {
+        $vis enum $enum {
             $( $($vmeta)* $variant { $( $(#[$ometa])* $ofield: $oty, )* }, )*
         }
     };
-    (@struct [$($meta:tt)*] $name:ident $tag_field:ident $enum:ident
+    (@struct [$($meta:tt)*] $vis:vis $name:ident $tag_field:ident $enum:ident
         { $( $(#[$fmeta:meta])* $field:ident: $fty:ty $(=> $ftf:expr)?, )* }
     ) => {
         $($meta)*
         #[derive(Debug)]
-        pub struct $name {
-            $( $(#[$fmeta])* pub $field: $fty, )*
+        $vis struct $name {
+            $( $(#[$fmeta])* $vis $field: $fty, )*
             #[doc = concat!("The variant and its own keys ([`", stringify!($enum), "`]).")]
-            pub $tag_field: $enum,
+            $vis $tag_field: $enum,
         }
     };
     (@mirror $variant:ident

@@ -132,7 +132,7 @@ pub(crate) enum FactorPrecision {
 /// `solver.inertia`.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "snake_case")]
-pub enum Inertia {
+pub(crate) enum Inertia {
     /// The converged tangent of every increment (the default with
     /// nonlinear geometry).
     EveryIncrement,

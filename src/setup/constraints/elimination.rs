@@ -53,7 +53,7 @@ impl Elimination {
     }
 
     /// True if equation `e` is prescribed.
-    pub fn is_prescribed(&self, e: usize) -> bool {
+    pub(crate) fn is_prescribed(&self, e: usize) -> bool {
         self.is_prescribed[e]
     }
 
@@ -80,7 +80,7 @@ impl Elimination {
     /// entry coupling a prescribed equation zeroed in both matrices (lower
     /// triangles on one pattern), and its mass diagonal too, so that the
     /// prescribed DOFs stay fixed (their `θ = 1/ω²` is zero, never wanted).
-    pub fn fix_for_eigen(&self, diagonal: impl Fn(usize) -> usize, k: &mut [f64], m: &mut [f64]) {
+    pub(crate) fn fix_for_eigen(&self, diagonal: impl Fn(usize) -> usize, k: &mut [f64], m: &mut [f64]) {
         for &(pos, _, _) in &self.entries {
             k[pos] = 0.0;
             m[pos] = 0.0;
@@ -95,7 +95,7 @@ impl Elimination {
     /// any) and `rhs` (`−R` per equation on entry; on exit with `Δ_p` moved
     /// to the right-hand side and each prescribed row reading
     /// `k_pp δu_p = k_pp Δ_p`).
-    pub fn eliminate(
+    pub(crate) fn eliminate(
         &self,
         u: &[f64],
         diagonal: impl Fn(usize) -> usize,

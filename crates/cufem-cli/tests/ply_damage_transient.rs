@@ -48,18 +48,7 @@ fn pulled_in_time(steps: usize, viscosity: &str) -> String {
 /// Runs a model text through the CLI: the output folder and the summary;
 /// the run must reach its end.
 fn run_cli(name: &str, text: &str) -> (PathBuf, Value) {
-    let dir = common::scratch_dir("ply_damage_transient", name);
-    let model = dir.join(format!("{name}.toml"));
-    std::fs::write(&model, text).unwrap();
-    let out = dir.join("out");
-    let run = common::cufem()
-        .args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"])
-        .output()
-        .unwrap();
-    assert!(run.status.success(), "{name}: {}", String::from_utf8_lossy(&run.stderr));
-    let summary: Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
-    assert!(summary["converged"] == true, "{name}");
-    (out, summary)
+    common::run_text("ply_damage_transient", name, text)
 }
 
 /// `summary.json` `damage.dissipated_j`, per mode (J).

@@ -177,3 +177,25 @@ fn a_fully_opened_interface_dissipates_its_toughness_times_its_area() {
     assert!(gap_coarse.abs() < 0.05, "the ledger's delamination is {:.2} % off G_Ic A", 100.0 * gap_coarse);
     assert!(gap_fine.abs() < 0.7 * gap_coarse.abs(), "halving the step took the gap from {gap_coarse} to {gap_fine}");
 }
+
+/// In a transient run the interfaces' viscosity is in seconds, as the ply
+/// damage's: the pulled stack (40 steps of Δt = 25 µs) with η = Δt relaxes
+/// its damage over a whole step, and the over-stress does work of the order
+/// of the toughness's (measured 2.69 G_Ic A); read in load-factor units
+/// (Δλ = 1/40) the same η would be a thousandth of a step (measured 0.062
+/// G_Ic A with the clock withheld). The ledger still closes.
+#[test]
+fn the_interfaces_viscosity_is_in_seconds_in_time() {
+    let ga = 100.0 * 0.004 * 0.02;
+    let text = PULLED_STACK.replace("normal_strength = 10e6 }", "normal_strength = 10e6, viscosity = 2.5e-5 }");
+    let model = Model::parse(&text).unwrap();
+    let solution = cufem::run(&model, &RunOptions::default(), &mut Silent).unwrap();
+    assert!(solution.failure.is_none(), "{:?}", solution.failure);
+    let viscous = solution.delamination.as_ref().unwrap().summary().viscous_j;
+    println!("η = Δt: viscous work {:.3e} J = {:.3} G_Ic A", viscous, viscous / ga);
+    assert!(viscous > 0.5 * ga, "viscous work {viscous} J against G_Ic A = {ga} J");
+    let rows = solution.energy.as_ref().unwrap();
+    let work = rows.last().unwrap().supports;
+    let balance = rows.iter().map(|r| r.balance.abs()).fold(0.0, f64::max);
+    assert!(balance < 1e-6 * work, "the balance is off by {balance} J of {work} J");
+}

@@ -163,7 +163,8 @@ impl<'m> Structure<'m> {
             elements,
             loads: Loads::new(loading, mesh.n_dofs()),
             contacts: Contacts::new(mesh, loading.indenters, loading.contacts, nonlinear),
-            interfaces: crate::interfaces::Interfaces::new(discretisation.interfaces, mesh.n_dofs()),
+            interfaces: crate::interfaces::Interfaces::new(discretisation.interfaces, mesh.n_dofs())
+                .in_time(settings.transient),
             inertia,
             impulse: transient::impulse(&loading, settings.transient, mesh.n_dofs()),
         };

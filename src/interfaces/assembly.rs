@@ -35,6 +35,9 @@ pub struct Interfaces<'m> {
     viscous: [Vec<Vec<f64>>; 2],
     /// The load factor of the last converged increment.
     lambda: f64,
+    /// The clock of a transient run (`None` in a static one): the
+    /// viscosity's step is then in seconds, as the ply damage's.
+    clock: Option<&'m crate::dynamics::TransientSettings>,
     /// Each point's viscous over-stress and separation `[σ_v, δ]`,
     /// committed and trial (`[0; 6]` at the start).
     over: [Vec<Vec<[f64; 6]>>; 2],
@@ -139,9 +142,17 @@ impl<'m> Interfaces<'m> {
             forces,
             viscous: [viscous.clone(), viscous],
             lambda: 0.0,
+            clock: None,
             over: [over.clone(), over],
             viscous_work,
         }
+    }
+
+    /// The same interfaces in a transient run: their viscosity in seconds
+    /// of `clock`'s time (in load-factor units without it).
+    pub fn in_time(mut self, clock: Option<&'m crate::dynamics::TransientSettings>) -> Self {
+        self.clock = clock;
+        self
     }
 
     /// True if the model has cohesive interfaces.
@@ -226,7 +237,7 @@ fn secant(law: &Cohesive, state: &CohesiveState, delta: [f64; 3]) -> [[f64; 3]; 
 
 /// Duvaut–Lions regularisation of a point's response `r` (design48 §2.3,
 /// §2.4): the damage that carries the traction relaxes towards the law's
-/// `d` over the viscosity `eta` (load-factor units), implicitly,
+/// `d` over the viscosity `eta` (load-factor units, or seconds in a transient run), implicitly,
 /// `d_v = (η d_v,n + Δλ d)/(η + Δλ)` (into `dv`), so `d_v ≤ d` and it never
 /// decreases; the traction is the secant's of `d_v` and the tangent's
 /// softening part is scaled by `Δλ/(η + Δλ)`. The over-stress above the
@@ -268,7 +279,10 @@ impl Contribution for Interfaces<'_> {
         }
         self.forces.fill(0.0);
         let mut changes = 0;
-        let dt = (at.lambda - self.lambda).abs();
+        let dt = match self.clock {
+            Some(clock) => (clock.time(at.lambda) - clock.time(self.lambda)).abs(),
+            None => (at.lambda - self.lambda).abs(),
+        };
         let [viscous_n, viscous] = &mut self.viscous;
         let states = self.committed.iter().zip(&mut self.trial).zip(&mut self.growing);
         let viscous = viscous_n.iter().zip(viscous.iter_mut()).zip(self.over[1].iter_mut());

@@ -14,7 +14,7 @@
 //! * **Modes** `I ∈ {FT, FC, MT, MC}` (fibre tension and compression,
 //!   matrix tension and compression). Onset when Hashin's strength ratio of
 //!   the undamaged ("effective") stress `σ̃ = C⁰ ε_m` of the active fibre or
-//!   matrix mode falls to 1 (`super::Strengths::hashin_ratios`); the
+//!   matrix mode falls to 1 (`Strengths::hashin_ratios`); the
 //!   onset measure `φ = 1/R` is homogeneous of degree one in the strain.
 //! * **Equivalent displacement and stress** of a mode, from the strain
 //!   components that drive it: FT `e = √(⟨ε11⟩² + γ12² + γ13²)`, FC
@@ -28,23 +28,40 @@
 //!   reached after onset (never smaller: damage does not heal), at most
 //!   `max_damage`. The energy dissipated per unit volume by a complete
 //!   softening is `G_I/L`: per unit crack area `G_I`, whatever the mesh.
-//! * **Stiffness**: `d_f` the active fibre mode's damage (`σ̃11 ≥ 0`: FT,
-//!   else FC), `d_m` the active matrix mode's (`σ̃22 + σ̃33 ≥ 0`: MT, else
-//!   MC), `d_s = 1 − Π_I (1 − d_I)`; the compliance's diagonal divided by
-//!   `1 − d_f` (E1), `1 − d_m` (E2, E3) and `1 − d_s` (the shear moduli), the
-//!   Poisson terms kept, so a closed crack carries compression again. The
-//!   tangent returned is the secant `C_d = S(d)⁻¹` (symmetric, positive
-//!   definite).
+//! * **Branches of growth**: the fibre mode that grows is FT where
+//!   `σ̃11 ≥ 0`, else FC; the matrix mode MT where `σ̃22 + σ̃33 ≥ 0`, else
+//!   MC — signs taken from the committed state's strain (the last converged
+//!   increment's; a point's own strain at its first update), so that within
+//!   an increment a point keeps them. Taken from the trial strain, a point
+//!   whose `σ̃11` sits at zero while shear drives Hashin's fibre-tension
+//!   criterion (which has a shear term where fibre compression has none)
+//!   grows and stops growing from one Newton iteration to the next, and
+//!   Newton cycles without converging. A normal stress of the other sign
+//!   counts as zero in the criterion (`⟨σ̃11⟩`; `Strengths::hashin_in`). A
+//!   point whose stress changes sign within an increment grows in the new
+//!   mode one increment late: the lag vanishes as the step shrinks.
+//! * **Stiffness**: the compliance's normal diagonal `1/E_k` divided by
+//!   `1 − d` of the tension mode of its direction (FT for `k = 1`, MT for
+//!   `k = 2, 3`) where the damaged stress `σ_k ≥ 0`, of the compression
+//!   mode (FC, MC) where `σ_k < 0`; the shear moduli by `1 − d_s`,
+//!   `d_s = 1 − Π_I (1 − d_I)`; the Poisson terms kept. An entry `1/E_k`
+//!   multiplies `σ_k` only, so the strain is a continuous function of the
+//!   stress across a closing crack (and the stress of the strain, solved for
+//!   the signs, `PlyDamage::closed_or_open`): a closed crack carries
+//!   compression again, without a jump that would make Newton cycle (Maimí
+//!   et al. 2007, *Mech. Mater.* 39:897, take the signs of the stress the
+//!   same way). The tangent returned is the consistent one (below), or the
+//!   secant `C_d = S(d)⁻¹` (symmetric, positive definite).
 //! * **Snap-back inside a point**: the law needs `δf > δ0`, i.e.
 //!   `L < 2 E G_I/X²` (`PlyDamage::longest_band`). A longer band lowers the
 //!   mode's strength by `√(L_max/L)` (Bažant & Oh), so that the band's
 //!   elastic energy at onset stays below `G_I`, and marks the mode in
 //!   [`DamageState::reduced`].
 //! * **Dissipation** per mode, from the energy release rates of the
-//!   stiffness variables `Y_f = ½ σ11²/((1 − d_f)² E1)`,
-//!   `Y_m = ½ (σ22²/E2 + σ33²/E3)/(1 − d_m)²`,
+//!   stiffness variables: `Y_I = Σ_k ½ σ_k²/((1 − d_I)² E_k)` over the
+//!   normal stresses whose compliance mode `I` holds,
 //!   `Y_s = ½ Σ τ²/((1 − d_s)² G)`: each update adds
-//!   `(Ȳ_f or Ȳ_m + Ȳ_s ∂d_s/∂d_I) Δd_I` with the trapezoidal means `Ȳ`, so
+//!   `(Ȳ_I + Ȳ_s ∂d_s/∂d_I) Δd_I` with the trapezoidal means `Ȳ`, so
 //!   the work of any closed strain cycle equals the dissipated energy to
 //!   the rule's second order.
 
@@ -112,14 +129,20 @@ pub struct DamageState {
     /// The regularised damage `d_v` of each mode, the one the stiffness
     /// takes (Duvaut–Lions; equal to `damage` without viscosity).
     pub viscous: [f64; 4],
-    /// Energy release rates `Y_f, Y_m, Y_s` of this state (J/m³).
-    pub release: [f64; 3],
+    /// Energy release rates of this state (J/m³): of each mode's own
+    /// compliance terms ([`MODES`] order; zero for a mode that holds no
+    /// normal stress) and `Y_s` of the shear moduli.
+    pub release: [f64; 5],
     /// The elastic strain energy density the point holds, `½ σ·ε`
     /// (J/m³): `½ σᵀ S(d) σ`, the stress being the damaged secant's.
     pub stored: f64,
     /// Modes whose onset stress was lowered because the band is longer
     /// than `PlyDamage::longest_band`.
     pub reduced: [bool; 4],
+    /// The branches `[fibre, matrix]` (`true`: tension) of this state's
+    /// strain, which the next increment's updates take (module docs);
+    /// `None` before a point's first update.
+    pub tension: Option<[bool; 2]>,
 }
 
 /// The answer of [`PlyDamage::update`].
@@ -201,10 +224,14 @@ impl PlyDamage {
     /// `d_v = (η d_v,n + Δ d)/(η + Δ)` (Duvaut–Lions; Lapczyk & Hurtado).
     pub(crate) fn update_over(&self, strain: &Voigt, band: [f64; 2], step: f64, old: &DamageState) -> DamageResponse {
         let effective = mat_vec(&self.stiffness, strain);
-        let [fibre_ratio, matrix_ratio] = self.strengths.hashin_ratios(&effective);
-        let fibre = if effective[0] >= 0.0 { FT } else { FC };
-        let matrix = if effective[1] + effective[2] >= 0.0 { MT } else { MC };
-        let mut state = *old;
+        // the branches of the committed state (module docs), this strain's
+        // at a point's first update; this strain's for the next increment
+        let own = [effective[0] >= 0.0, effective[1] + effective[2] >= 0.0];
+        let tension = old.tension.unwrap_or(own);
+        let [fibre_ratio, matrix_ratio] = self.strengths.hashin_ratios(&effective, tension);
+        let fibre = if tension[0] { FT } else { FC };
+        let matrix = if tension[1] { MT } else { MC };
+        let mut state = DamageState { tension: Some(own), ..*old };
         for (mode, ratio, length) in [(fibre, fibre_ratio, band[0]), (matrix, matrix_ratio, band[1])] {
             self.soften(mode, 1.0 / ratio, length, strain, &effective, &mut state);
         }
@@ -213,34 +240,31 @@ impl PlyDamage {
             state.viscous[i] = (1.0 - share) * old.viscous[i] + share * state.damage[i];
         }
         let d = state.viscous;
-        let df = d[fibre];
-        let dm = d[matrix];
         let ds = 1.0 - d.iter().map(|x| 1.0 - x).product::<f64>();
-        let tangent = self.damaged_stiffness(df, dm, ds);
-        let stress = mat_vec(&tangent, strain);
+        let (normal, tangent, stress) = self.closed_or_open(&d, ds, strain, &effective);
         state.stored = 0.5 * stress.iter().zip(strain).map(|(s, e)| s * e).sum::<f64>();
-        let [e1, e2, e3] = self.elastic.young;
+        state.release = [0.0; 5];
+        for k in 0..3 {
+            let (mode, young) = (normal[k], self.elastic.young[k]);
+            state.release[mode] += 0.5 * stress[k] * stress[k] / ((1.0 - d[mode]).powi(2) * young);
+        }
         let [g12, g13, g23] = self.elastic.shear;
-        state.release = [
-            0.5 * stress[0] * stress[0] / ((1.0 - df).powi(2) * e1),
-            0.5 * (stress[1] * stress[1] / e2 + stress[2] * stress[2] / e3) / (1.0 - dm).powi(2),
-            0.5 * (stress[3] * stress[3] / g12 + stress[4] * stress[4] / g13 + stress[5] * stress[5] / g23)
-                / (1.0 - ds).powi(2),
-        ];
+        state.release[4] = 0.5
+            * (stress[3] * stress[3] / g12 + stress[4] * stress[4] / g13 + stress[5] * stress[5] / g23)
+            / (1.0 - ds).powi(2);
         for mode in 0..4 {
             let grown = state.viscous[mode] - old.viscous[mode];
             if grown > 0.0 {
-                let own = if mode < MT { 0 } else { 1 };
                 let others =
                     |s: &DamageState| (0..4).filter(|&j| j != mode).map(|j| 1.0 - s.viscous[j]).product::<f64>();
                 let coupling = 0.5 * (others(old) + others(&state));
-                let rate = 0.5 * (old.release[own] + state.release[own])
-                    + 0.5 * (old.release[2] + state.release[2]) * coupling;
+                let rate = 0.5 * (old.release[mode] + state.release[mode])
+                    + 0.5 * (old.release[4] + state.release[4]) * coupling;
                 state.dissipated[mode] += rate * grown;
             }
         }
         let tangent = if self.consistent {
-            self.consistent_tangent(strain, &effective, band, [fibre, matrix], (old, share), &state, &tangent)
+            self.consistent_tangent(strain, &effective, band, ([fibre, matrix], normal), (old, share), &state, &tangent)
         } else {
             tangent
         };
@@ -250,7 +274,7 @@ impl PlyDamage {
     /// The consistent tangent `C_T = C_d + Σ_I (∂σ/∂d_I) ⊗ (∂d_I/∂ε)` over
     /// the active modes that load in this update (κ grew and d below the
     /// cap): `∂d_I/∂ε = δf δ0/(κ² (δf − δ0)) · L_I ∂e_I/∂ε`, and
-    /// `∂σ/∂d_I` through `d_f`, `d_m` (central differences of `C_d ε`) and
+    /// `∂σ/∂d_I` through the normal compliance it holds (central differences of `C_d ε`) and
     /// `d_s` (`∂d_s/∂d_I = Π_{J≠I} (1 − d_J)`, the shear stresses
     /// `−G γ`). Unsymmetric; the element takes its symmetric part.
     #[allow(clippy::too_many_arguments)] // the update's own intermediate values, not recomputed
@@ -259,7 +283,7 @@ impl PlyDamage {
         strain: &Voigt,
         effective: &Voigt,
         band: [f64; 2],
-        [fibre, matrix]: [usize; 2],
+        ([fibre, matrix], normal): ([usize; 2], [usize; 3]),
         (old, share): (&DamageState, f64),
         state: &DamageState,
         secant: &Matrix6,
@@ -274,7 +298,7 @@ impl PlyDamage {
             let (e, _) = equivalent(mode, strain, effective);
             let slope = share * length * last * onset / (kappa * kappa * (last - onset));
             let grad: Voigt = equivalent_gradient(mode, strain).map(|g| slope * g / e);
-            let sensitivity = self.stress_sensitivity(mode, [fibre, matrix], &d, strain);
+            let sensitivity = self.stress_sensitivity(mode, normal, &d, strain);
             for (row, s) in c.iter_mut().zip(sensitivity) {
                 for (v, g) in row.iter_mut().zip(grad) {
                     *v += s * g;
@@ -290,24 +314,21 @@ impl PlyDamage {
         if self.viscosity > 0.0 && step.is_finite() { step / (self.viscosity + step) } else { 1.0 }
     }
 
-    /// `∂σ/∂d_I` at the damage `d` and strain `strain` (material axes).
-    fn stress_sensitivity(&self, mode: usize, [fibre, matrix]: [usize; 2], d: &[f64; 4], strain: &Voigt) -> Voigt {
+    /// `∂σ/∂d_I` at the damage `d` and strain `strain` (material axes),
+    /// the normal stresses' modes `normal` held.
+    fn stress_sensitivity(&self, mode: usize, normal: [usize; 3], d: &[f64; 4], strain: &Voigt) -> Voigt {
         let ds = 1.0 - d.iter().map(|x| 1.0 - x).product::<f64>();
-        let (df, dm) = (d[fibre], d[matrix]);
-        let stress = |df: f64, dm: f64| mat_vec(&self.damaged_stiffness(df, dm, ds), strain);
         let mut out = [0.0; 6];
-        let mut add = |plus: Voigt, minus: Voigt, h: f64| {
+        if normal.contains(&mode) {
+            let h = 1e-6 * (1.0 - d[mode]);
+            let stress = |dm: f64| {
+                let diagonal = normal.map(|m| if m == mode { dm } else { d[m] });
+                mat_vec(&self.damaged_stiffness(diagonal, ds), strain)
+            };
+            let (plus, minus) = (stress(d[mode] + h), stress(d[mode] - h));
             for k in 0..6 {
-                out[k] += (plus[k] - minus[k]) / (2.0 * h);
+                out[k] = (plus[k] - minus[k]) / (2.0 * h);
             }
-        };
-        if mode == fibre {
-            let h = 1e-6 * (1.0 - df);
-            add(stress(df + h, dm), stress(df - h, dm), h);
-        }
-        if mode == matrix {
-            let h = 1e-6 * (1.0 - dm);
-            add(stress(df, dm + h), stress(df, dm - h), h);
         }
         // d_s scales the shear moduli: ∂τ_k/∂d_s = −G_k γ_k
         let others: f64 = (0..4).filter(|&j| j != mode).map(|j| 1.0 - d[j]).product();
@@ -353,20 +374,43 @@ impl PlyDamage {
         state.damage[mode] = state.damage[mode].max(reached.min(self.max_damage));
     }
 
+    /// The modes of the three normal stresses (module docs: the tension
+    /// mode where the damaged stress `σ_k ≥ 0`, else the compression mode),
+    /// the damaged stiffness and the stress: the signs guessed from the
+    /// effective stress, then taken from the stress until they agree (the
+    /// map is continuous, so where two choices disagree by a sign flip of a
+    /// stress at zero either is right; eight tries at most).
+    fn closed_or_open(&self, d: &[f64; 4], ds: f64, strain: &Voigt, effective: &Voigt) -> ([usize; 3], Matrix6, Voigt) {
+        let modes = |s: [bool; 3]| [if s[0] { FT } else { FC }, if s[1] { MT } else { MC }, if s[2] { MT } else { MC }];
+        let mut signs = [effective[0] >= 0.0, effective[1] >= 0.0, effective[2] >= 0.0];
+        let mut tries = 0;
+        loop {
+            let normal = modes(signs);
+            let c = self.damaged_stiffness(normal.map(|m| d[m]), ds);
+            let stress = mat_vec(&c, strain);
+            let found = [stress[0] >= 0.0, stress[1] >= 0.0, stress[2] >= 0.0];
+            tries += 1;
+            if found == signs || tries == 8 {
+                return (normal, c, stress);
+            }
+            signs = found;
+        }
+    }
+
     /// `C_d = S(d)⁻¹`: the normal 3×3 block inverted by cofactors (it is
     /// the admissible block with its diagonal enlarged, so its determinant
     /// is positive), the shear moduli scaled. Not `anisotropic::invert`: its
     /// Cholesky refuses pivots below 1e-12 of the largest diagonal entry,
     /// which a compliance divided by `1 − d` near `max_damage` reaches.
-    fn damaged_stiffness(&self, df: f64, dm: f64, ds: f64) -> Matrix6 {
+    fn damaged_stiffness(&self, normal: [f64; 3], ds: f64) -> Matrix6 {
         let full = self.elastic.compliance();
         let mut a = [[0.0; 3]; 3];
         for (i, row) in a.iter_mut().enumerate() {
             row.copy_from_slice(&full[i][..3]);
         }
-        a[0][0] /= 1.0 - df;
-        a[1][1] /= 1.0 - dm;
-        a[2][2] /= 1.0 - dm;
+        for (k, d) in normal.iter().enumerate() {
+            a[k][k] /= 1.0 - d;
+        }
         let cof = |i: usize, j: usize| {
             let (r0, r1) = ((i + 1) % 3, (i + 2) % 3);
             let (c0, c1) = ((j + 1) % 3, (j + 2) % 3);

@@ -184,3 +184,73 @@ fn the_consistent_tangent_is_the_derivative_of_the_stress() {
         assert!(gap.fold(0.0, f64::max) > 1e-2 * scale, "mode {mode}");
     }
 }
+
+/// At fixed damage the stress is a continuous function of the strain where
+/// a crack closes: each normal compliance takes the damage of its own
+/// stress's sign (module docs). Scanned across the closure with a cracked
+/// fibre (and, separately, a cracked matrix) and Poisson coupling, no step
+/// of the scan changes the stress by more than the undamaged stiffness
+/// times the step. Switching the stiffness on the sign of the *effective*
+/// stress instead (which differs from the damaged one's where Poisson terms
+/// load the point) jumps there: 66 stiffness steps in the matrix scan.
+#[test]
+fn the_stress_is_continuous_where_a_crack_closes() {
+    let law = ply([0.25, 0.25, 0.45]);
+    let band = [0.2e-3; 2];
+    let e1 = 122.7e9;
+    let stiff = law.update(&[1e-9, 0.0, 0.0, 0.0, 0.0, 0.0], band, &DamageState::default()).tangent;
+    // (scanned component, the crack's opening strain, the fixed strain)
+    let cases = [
+        (0, [0.5 * (2070e6 / e1 + 2.0 * 12.5e3 / (2070e6 * band[0])), 0.0, 0.0, 0.0, 0.0, 0.0], 0.002),
+        (1, [0.0, 0.5 * (86e6 / 10.1e9 + 2.0 * 1.0e3 / (86e6 * band[1])), 0.0, 0.0, 0.0, 0.0], 0.004),
+    ];
+    for (k, opening, fixed) in cases {
+        let cracked = law.update(&opening, band, &DamageState::default()).state;
+        let mode = if k == 0 { FT } else { MT };
+        assert!(cracked.damage[mode] > 0.5, "{:?}", cracked.damage);
+        let other = 1 - k;
+        let strain = |s: f64| {
+            let mut e = [0.0; 6];
+            e[k] = s;
+            e[other] = fixed;
+            e
+        };
+        let (n, a) = (4000, 0.01);
+        let ds = 2.0 * a / n as f64;
+        let mut worst = 0.0f64;
+        let mut last = law.update(&strain(-a), band, &cracked);
+        let closed = last.stress[k];
+        for i in 1..=n {
+            let r = law.update(&strain(-a + i as f64 * ds), band, &cracked);
+            assert_eq!(r.state.damage[mode], cracked.damage[mode], "the crack closes without growing");
+            for c in 0..6 {
+                worst = worst.max((r.stress[c] - last.stress[c]).abs() / (stiff[k][k] * ds));
+            }
+            last = r;
+        }
+        assert!(closed < 0.0 && last.stress[k] > 0.0, "the scan crosses the closure");
+        assert!(worst < 1.01, "component {k}: a step of the scan changed the stress by {worst} stiffness steps");
+    }
+}
+
+/// Within an increment a point grows damage in the branch of its committed
+/// strain (module docs: the branch is not switched between Newton
+/// iterations): a point committed in fibre tension and then compressed past
+/// the fibre-compression strength does not grow fibre-compression damage in
+/// that update, records the compression branch, and grows it in the next
+/// update from that state. The stiffness takes the compression at once.
+#[test]
+fn a_point_keeps_its_committed_branch_within_an_increment() {
+    let law = ply([0.0; 3]);
+    let band = [0.2e-3; 2];
+    let e1 = 122.7e9;
+    let stretched = law.update(&[0.5 * 2070e6 / e1, 0.0, 0.0, 0.0, 0.0, 0.0], band, &DamageState::default()).state;
+    assert_eq!(stretched.tension, Some([true, true]));
+    let crushed = [-1.2 * 1360e6 / e1, 0.0, 0.0, 0.0, 0.0, 0.0];
+    let first = law.update(&crushed, band, &stretched);
+    assert_eq!(first.state.damage, [0.0; 4], "no growth in the committed tension branch");
+    assert_eq!(first.state.tension, Some([false, true]));
+    assert!((first.stress[0] / (e1 * crushed[0]) - 1.0).abs() < 1e-12);
+    let second = law.update(&crushed, band, &first.state);
+    assert!(second.state.damage[FC] > 0.0, "{:?}", second.state.damage);
+}

@@ -119,31 +119,42 @@ impl Strengths {
     }
 
     fn hashin(&self, s: &[f64; 6]) -> (Mode, Mode) {
+        self.hashin_in(s, [s[0] >= 0.0, s[1] + s[2] >= 0.0])
+    }
+
+    /// Hashin's fibre and matrix modes of the branches `tension` (`[fibre,
+    /// matrix]`, `true`: the tension mode), whatever the stress's signs: a
+    /// normal stress of the other sign counts as zero (`⟨σ11⟩`, `⟨σ22 + σ33⟩`
+    /// and their negatives), so each mode is continuous across its own
+    /// branch's boundary.
+    fn hashin_in(&self, s: &[f64; 6], [fibre_tension, matrix_tension]: [bool; 2]) -> (Mode, Mode) {
         let [xt, yt, _] = self.tension;
         let [xc, yc, _] = self.compression;
         let [s12, _, s23] = self.shear;
         let shear12 = (s[3] * s[3] + s[4] * s[4]) / (s12 * s12);
-        let fibre = if s[0] >= 0.0 {
-            Mode { a: (s[0] / xt).powi(2) + shear12, b: 0.0 }
+        let fibre = if fibre_tension {
+            Mode { a: (s[0].max(0.0) / xt).powi(2) + shear12, b: 0.0 }
         } else {
-            Mode { a: (s[0] / xc).powi(2), b: 0.0 }
+            Mode { a: (s[0].min(0.0) / xc).powi(2), b: 0.0 }
         };
-        let t = s[1] + s[2];
         let transverse = (s[5] * s[5] - s[1] * s[2]) / (s23 * s23);
-        let matrix = if t >= 0.0 {
+        let matrix = if matrix_tension {
+            let t = (s[1] + s[2]).max(0.0);
             Mode { a: (t / yt).powi(2) + transverse + shear12, b: 0.0 }
         } else {
+            let t = (s[1] + s[2]).min(0.0);
             Mode { a: t * t / (4.0 * s23 * s23) + transverse + shear12, b: ((yc / (2.0 * s23)).powi(2) - 1.0) * t / yc }
         };
         (fibre, matrix)
     }
 
     /// Hashin's strength ratios `[fibre, matrix]` of a stress in the material
-    /// axes: the load multipliers at which the active fibre and matrix modes
-    /// reach 1 (∞ for a mode that never fails). The onset measure of the ply
-    /// damage law ([`super::damage`]).
-    pub(crate) fn hashin_ratios(&self, material_stress: &[f64; 6]) -> [f64; 2] {
-        let (fibre, matrix) = self.hashin(material_stress);
+    /// axes for the branches `tension` (`Strengths::hashin_in`): the load
+    /// multipliers at which the fibre and matrix modes reach 1 (∞ for a mode
+    /// that never fails). The onset measure of the ply damage law
+    /// ([`super::damage`]).
+    pub(crate) fn hashin_ratios(&self, material_stress: &[f64; 6], tension: [bool; 2]) -> [f64; 2] {
+        let (fibre, matrix) = self.hashin_in(material_stress, tension);
         [fibre.ratio(), matrix.ratio()]
     }
 

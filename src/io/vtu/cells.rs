@@ -38,7 +38,7 @@ pub struct GridElement {
 pub struct Cells {
     /// VTK cell type of every cell (12 linear hexahedron, 72 Lagrange
     /// hexahedron).
-    pub cell_type: u8,
+    pub(crate) cell_type: u8,
     /// The points of every cell, in VTK's order.
     pub connectivity: Vec<u64>,
     /// The end of every cell in `connectivity`.

@@ -3,7 +3,7 @@
 //! Each CUF element is one VTK Lagrange hexahedron of the element's own
 //! orders over its Lagrange nodes (`output.vtu_cells = "lagrange"`), or is
 //! split into linear hexahedra between them (`"linear"`; an L9 × B4
-//! element gives 2 × 2 × 3 hexes): [`cells`].
+//! element gives 2 × 2 × 3 hexes), src/io/vtu/cells.rs.
 //! Points are duplicated per element so that fields recovered from each
 //! element's expansion (stress, strain, peeq) keep their inter-element
 //! jumps; the displacement is continuous by construction. Stress and strain

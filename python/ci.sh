@@ -12,7 +12,7 @@ venv="$(mktemp -d "${TMPDIR:-/tmp}/cufem-ci-venv.XXXXXX")"
 trap 'rm -rf "$venv"' EXIT
 start=$(date +%s)
 python3 -m venv "$venv"
-# the package with its test extra (pytest, tomli_w and the `all` extra's
+# the package with its test extra (pytest, tomli_w, vtk and the `all` extra's
 # meshio, dask[distributed], matplotlib: the examples and docs snippets run)
 "$venv/bin/pip" install -q --disable-pip-version-check "$here[test]"
 echo "python/ci.sh: venv and package ready after $(( $(date +%s) - start )) s"

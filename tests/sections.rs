@@ -185,6 +185,26 @@ fn curved_sections_converge_to_the_exact_circle() {
     }
 }
 
+/// A point inside a curved element but outside the box of its nodes is in
+/// the body: the L16 circle with 4 elements around has its rim nodes every
+/// 30° from 45°, so the box of the bottom rim element's nodes stops at
+/// z = −r sin 75° = −0.966 r while the element's cubic edge reaches
+/// −0.998 r (its shape functions at ξ = 0, −1/16, 9/16, 9/16, −1/16, on
+/// the nodes' sin 135°, 105°, 75°, 45°). Probes there were refused as
+/// outside every body. Just outside the arc stays outside.
+#[test]
+fn points_between_the_nodes_of_a_curved_edge_are_located() {
+    let r = 0.02;
+    let section = format!("shape = \"circle\", element = \"L16\", radius = {r}, around = 4");
+    let probe =
+        |x: f64, z: f64| format!("{}\n[[probes]]\nname = \"p\"\npoint = [{x}, 0.5, {z}]\n", model(&section, 1.0, 2));
+    for (x, z) in [(0.0, -0.997 * r), (0.0, 0.997 * r), (0.997 * r, 0.0), (0.2 * r, -0.975 * r)] {
+        Model::parse(&probe(x, z)).unwrap_or_else(|e| panic!("({x}, {z}): {e}"));
+    }
+    let e = Model::parse(&probe(0.0, -1.001 * r)).unwrap_err().to_string();
+    assert!(e.contains("probes[0].point") && e.contains("inside a body"), "{e}");
+}
+
 /// Circular tube r_o = 20 mm, t = 2 mm, L = 1 m (25 diameters), 10 B4 ×
 /// 16 L9 (16 around, 1 through), root clamped, E = 70 GPa, ν = 0.3.
 fn tube_cantilever() -> (Model, f64, f64) {

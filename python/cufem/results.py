@@ -113,9 +113,11 @@ class Results:
         return list(self._vtu_data()["point_data"])
 
     def to_meshio(self):
-        """The fields of ``result.vtu`` as a ``meshio.Mesh`` (hexahedra;
+        """The fields of ``result.vtu`` as a ``meshio.Mesh``: the linear
+        hexahedra of ``output.vtu_cells = "linear"`` (meshio reads VTU
+        files of version 1.0 at most, not the Lagrange cells' 2.2), the
         point data and the ``body``/``element`` cell data, each (n,
-        components) like ``meshio.read`` gives them). Needs meshio (the
+        components) like ``meshio.read`` gives them. Needs meshio (the
         ``meshio`` extra)."""
         meshio = require("meshio", "Results.to_meshio()")
 

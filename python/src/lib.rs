@@ -499,7 +499,7 @@ impl NativeResults {
 
     /// The 3D field of `result.vtu` as numpy arrays, computed here rather
     /// than read back from a file: `points` (n, 3), `connectivity` (cells,
-    /// 8, VTK hexahedra), `point_data` (name → (n,) or (n, components)) and
+    /// 8, the linear VTK hexahedra of `output.vtu_cells = "linear"`), `point_data` (name → (n,) or (n, components)) and
     /// `cell_data` (`body`, `element`: (cells,)).
     fn fields<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let (model, solution) = (self.model.clone(), self.solution.clone());
@@ -510,9 +510,11 @@ impl NativeResults {
             Ok(if columns == 1 { a.into_any() } else { a.reshape([n, columns])?.into_any() })
         };
         let d = PyDict::new(py);
+        // linear hexahedra, 8 points each: one array for any mix of orders
+        let c = g.cells(cufem::input::VtuCells::Linear);
         d.set_item("points", table(g.points, 3)?)?;
-        let cells = g.cell_body.len();
-        let connectivity: Vec<i64> = g.connectivity.iter().map(|&i| i as i64).collect();
+        let cells = c.body.len();
+        let connectivity: Vec<i64> = c.connectivity.iter().map(|&i| i as i64).collect();
         d.set_item("connectivity", connectivity.into_pyarray(py).reshape([cells, 8])?)?;
         let point_data = PyDict::new(py);
         for a in g.point_data {
@@ -520,8 +522,8 @@ impl NativeResults {
         }
         d.set_item("point_data", point_data)?;
         let cell_data = PyDict::new(py);
-        cell_data.set_item("body", g.cell_body.into_pyarray(py))?;
-        cell_data.set_item("element", g.cell_element.into_pyarray(py))?;
+        cell_data.set_item("body", c.body.into_pyarray(py))?;
+        cell_data.set_item("element", c.element.into_pyarray(py))?;
         d.set_item("cell_data", cell_data)?;
         Ok(d)
     }

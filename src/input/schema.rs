@@ -332,6 +332,10 @@ pub(crate) struct OutputFile {
     /// Also write `gauss.vtu` with the raw Gauss-point values.
     #[schemars(transform = defaults::schema(defaults::GAUSS_POINTS))]
     pub gauss_points: Option<bool>,
+    /// The cells of the field VTUs: `"lagrange"` (one VTK Lagrange
+    /// hexahedron per element) or `"linear"` (linear sub-cells).
+    #[schemars(transform = defaults::schema(super::VtuCells::default()))]
+    pub vtu_cells: Option<super::VtuCells>,
 }
 
 /// `[[references]]`: a published value to print beside ours.

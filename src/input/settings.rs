@@ -60,6 +60,23 @@ pub struct OutputSettings {
     pub recovery: Recovery,
     /// Also write `gauss.vtu` with the raw Gauss-point values.
     pub gauss_points: bool,
+    /// The cells of `result.vtu` and the other field VTUs.
+    pub vtu_cells: VtuCells,
+}
+
+/// The cells the field VTUs (`result.vtu`, steps, frames, modes) carry
+/// (`output.vtu_cells`).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, serde::Deserialize, serde::Serialize, schemars::JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub enum VtuCells {
+    /// One VTK Lagrange hexahedron per CUF element, of the element's own
+    /// order in each direction: the exact geometry and displacement. The
+    /// default.
+    #[default]
+    Lagrange,
+    /// Linear hexahedra between each element's Lagrange nodes, for readers
+    /// without Lagrange cells.
+    Linear,
 }
 
 /// How stress and peeq are evaluated at arbitrary points (`output.recovery`).

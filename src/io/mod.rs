@@ -4,7 +4,7 @@
 //! | file | content |
 //! |------|---------|
 //! | `summary.json` | DOF, wall time, probes, reactions, contact resultants, solver statistics |
-//! | `result.vtu` | the whole 3D field (CUF elements split into linear hexahedra) |
+//! | `result.vtu` | the whole 3D field (a VTK Lagrange hexahedron per CUF element, or linear sub-cells: `output.vtu_cells`) |
 //! | `line_<name>.csv` | fields sampled along each `[[lines]]` entry |
 //! | `history_<name>.csv` | per increment: reaction of a constraint set, or force of a contact |
 //! | `history_probes.csv` | per increment: the displacement of every probe |
@@ -34,7 +34,7 @@ pub use png::{Series, line_plot};
 pub use run::{Finished, RunError, RunInto, Written, run_into, solved_into, write_into};
 pub use section_plot::section_plot;
 pub(crate) use vtu::write_gauss_vtu;
-pub use vtu::{FieldArray, FieldGrid, field_grid, write_contact_vtu, write_point_cloud, write_vtu};
+pub use vtu::{Cells, FieldArray, FieldGrid, GridElement, field_grid, write_contact_vtu, write_point_cloud, write_vtu};
 
 use std::path::{Path, PathBuf};
 

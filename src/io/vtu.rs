@@ -1,7 +1,9 @@
 //! VTU (VTK XML unstructured grid) output for ParaView.
 //!
-//! Each CUF element is split into linear hexahedra whose corners are the
-//! element's own Lagrange nodes (an L9 × B4 element gives 2 × 2 × 3 hexes).
+//! Each CUF element is one VTK Lagrange hexahedron of the element's own
+//! orders over its Lagrange nodes (`output.vtu_cells = "lagrange"`), or is
+//! split into linear hexahedra between them (`"linear"`; an L9 × B4
+//! element gives 2 × 2 × 3 hexes), src/io/vtu/cells.rs.
 //! Points are duplicated per element so that fields recovered from each
 //! element's expansion (stress, strain, peeq) keep their inter-element
 //! jumps; the displacement is continuous by construction. Stress and strain
@@ -30,26 +32,27 @@ use crate::post::{Location, Quantity};
 use crate::setup::Model;
 use crate::shape::Lagrange2d;
 
+mod cells;
 mod finite;
 
-/// The whole 3D field of every body as `result.vtu` holds it: linear
-/// hexahedra over each element's own nodes, points duplicated per element.
+use cells::VTK_LAGRANGE_HEXAHEDRON;
+pub use cells::{Cells, GridElement};
+
+/// The whole 3D field of every body as `result.vtu` holds it: each
+/// element's own nodes, points duplicated per element, and the cells over
+/// them ([`FieldGrid::cells`]).
 #[derive(Debug, Clone)]
 pub struct FieldGrid {
     /// Point coordinates, 3 per point (m).
     pub points: Vec<f64>,
-    /// The 8 points of every hexahedron, in VTK's order.
-    pub connectivity: Vec<u64>,
+    /// Every CUF element: its body, global index, first point and orders.
+    pub elements: Vec<GridElement>,
     /// Point data: `displacement`, `contact_force` (3 components each),
     /// `contact_pressure`, `contact_gap`, `error` (the element's part of the
     /// estimated relative error, `post::ErrorEstimate::relative_element`,
     /// constant over the element), then every scalar of
     /// [`Quantity::all`] but the displacement (1 component).
     pub point_data: Vec<FieldArray>,
-    /// The body of every cell.
-    pub cell_body: Vec<i32>,
-    /// The global element of every cell.
-    pub cell_element: Vec<i32>,
 }
 
 /// A named point-data array of a [`FieldGrid`].
@@ -66,21 +69,24 @@ pub struct FieldArray {
 /// Writes the whole 3D field of every body ([`field_grid`]).
 pub fn write_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), IoError> {
     let g = field_grid(model, solution);
-    let offsets: Vec<u64> = (1..=g.cell_body.len() as u64).map(|c| 8 * c).collect();
+    let c = g.cells(model.output.vtu_cells);
     let point_data: Vec<(String, usize, Array)> =
         g.point_data.into_iter().map(|a| (a.name, a.components, Array::F64(a.values))).collect();
-    let damage = solution.damage.as_ref().map(|d| damage_cells(model, solution, d, &g.cell_body, &g.cell_element));
-    let mut cell_data = body_element_data(g.cell_body, g.cell_element);
+    let damage = solution.damage.as_ref().map(|d| damage_cells(model, solution, d, &c.body, &c.element));
+    let mut cell_data = body_element_data(c.body, c.element);
     cell_data.extend(damage.into_iter().flatten());
+    if !c.degrees.is_empty() {
+        cell_data.push((HIGHER_ORDER_DEGREES.to_string(), 3, Array::I32(c.degrees)));
+    }
     let grid = Grid {
         title: &model.title,
         points: &g.points,
-        connectivity: &g.connectivity,
-        offsets: &offsets,
-        n_cells: offsets.len(),
+        connectivity: &c.connectivity,
+        offsets: &c.offsets,
+        n_cells: c.offsets.len(),
         point_data: &point_data,
         cell_data: &cell_data,
-        cell_type: VTK_HEXAHEDRON,
+        cell_type: c.cell_type,
     };
     write_file(path, &grid)
 }
@@ -111,9 +117,7 @@ fn damage_cells(
 pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
     let view = solution.fields(model);
     let mut points: Vec<f64> = Vec::new();
-    let mut connectivity: Vec<u64> = Vec::new();
-    let mut cell_body: Vec<i32> = Vec::new();
-    let mut cell_element: Vec<i32> = Vec::new();
+    let mut elements: Vec<GridElement> = Vec::new();
     let scalars: Vec<Quantity> =
         model.quantities().into_iter().filter(|q| !matches!(q, Quantity::Displacement(_))).collect();
     let mut scalar_data: Vec<Vec<f64>> = vec![Vec::new(); scalars.len()];
@@ -160,7 +164,14 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
         let basis = Lagrange2d::new(ps);
         let mut nodes = Vec::new();
         for e in 0..body.n_elements() {
-            let base = (points.len() / 3) as u64;
+            let first = points.len() / 3;
+            elements.push(GridElement {
+                body: b,
+                element: body.element_offset + e,
+                first,
+                section_order: ps,
+                axis_order: pb,
+            });
             body.element_nodes(e, &mut nodes);
             for i in 0..=pb {
                 let zeta = -1.0 + 2.0 * i as f64 / pb as f64;
@@ -188,28 +199,6 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
                     );
                 }
             }
-            // (ξ, η, ζ) is left-handed in (x, y, z): list each bottom face
-            // η-first so that VTK sees positive volumes.
-            for k in 0..pb {
-                for iz in 0..ps {
-                    for ix in 0..ps {
-                        let id =
-                            |dk: usize, dz: usize, dx: usize| base + ((k + dk) * ns + (iz + dz) * m + ix + dx) as u64;
-                        connectivity.extend([
-                            id(0, 0, 0),
-                            id(0, 1, 0),
-                            id(0, 1, 1),
-                            id(0, 0, 1),
-                            id(1, 0, 0),
-                            id(1, 1, 0),
-                            id(1, 1, 1),
-                            id(1, 0, 1),
-                        ]);
-                        cell_body.push(b as i32);
-                        cell_element.push((body.element_offset + e) as i32);
-                    }
-                }
-            }
         }
     }
     let mut point_data = vec![
@@ -225,7 +214,7 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
     if interface_damage.is_some() {
         point_data.push(FieldArray { name: "d_interface".into(), components: 1, values: d_interface });
     }
-    FieldGrid { points, connectivity, point_data, cell_body, cell_element }
+    FieldGrid { points, elements, point_data }
 }
 
 /// Writes the raw Gauss-point values (`output.gauss_points = true`): one
@@ -384,17 +373,22 @@ struct Grid<'a> {
     cell_type: u8,
 }
 
-/// VTK cell type of a linear hexahedron.
-const VTK_HEXAHEDRON: u8 = 12;
+/// The cell-data array VTK reads a Lagrange cell's orders from (named
+/// by the `CellData` element's attribute of the same name).
+const HIGHER_ORDER_DEGREES: &str = "HigherOrderDegrees";
 /// VTK cell type of a single point.
 const VTK_VERTEX: u8 = 1;
 
 fn write_grid(w: &mut impl Write, g: &Grid<'_>) -> std::io::Result<()> {
     writeln!(w, "<?xml version=\"1.0\"?>")?;
     writeln!(w, "<!-- {} -->", xml_comment(g.title))?;
+    // VTK ≥ 9.1 renumbers the Lagrange hexahedra of files older than 2.1
+    // to its former edge order (`vtkUpdateCellsV8toV9`)
+    let lagrange = g.cell_type == VTK_LAGRANGE_HEXAHEDRON;
+    let version = if lagrange { "2.2" } else { "1.0" };
     writeln!(
         w,
-        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">"
+        "<VTKFile type=\"UnstructuredGrid\" version=\"{version}\" byte_order=\"LittleEndian\" header_type=\"UInt64\">"
     )?;
     writeln!(w, "  <UnstructuredGrid>")?;
     writeln!(w, "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">", g.points.len() / 3, g.n_cells)?;
@@ -403,7 +397,8 @@ fn write_grid(w: &mut impl Write, g: &Grid<'_>) -> std::io::Result<()> {
         data_array(w, Some(name), *comps, data)?;
     }
     writeln!(w, "      </PointData>")?;
-    writeln!(w, "      <CellData>")?;
+    let degrees = if lagrange { format!(" {HIGHER_ORDER_DEGREES}=\"{HIGHER_ORDER_DEGREES}\"") } else { String::new() };
+    writeln!(w, "      <CellData{degrees}>")?;
     for (name, comps, data) in g.cell_data {
         data_array(w, Some(name), *comps, data)?;
     }
@@ -502,6 +497,7 @@ fn xml_comment(s: &str) -> String {
 
 #[cfg(test)]
 mod tests {
+    use super::cells::VTK_HEXAHEDRON;
     use super::*;
     use base64::Engine as _;
 

@@ -116,8 +116,12 @@ pub fn locate(b: usize, body: &Body, point: [f64; 3]) -> Vec<Location> {
                 hi[d] = hi[d].max(section.nodes[n][d]);
             }
         }
+        // a curved element bulges past the box of its nodes (an arc between
+        // two nodes of a circle's rim): widen the box by half its size, the
+        // Newton solve below decides
+        let margin = 0.5 * (hi[0] - lo[0]).max(hi[1] - lo[1]) + tol;
         let target = [point[0], point[2]];
-        if (0..2).any(|d| target[d] < lo[d] - tol || target[d] > hi[d] + tol) {
+        if (0..2).any(|d| target[d] < lo[d] - margin || target[d] > hi[d] + margin) {
             continue;
         }
         // Newton on the isoparametric map

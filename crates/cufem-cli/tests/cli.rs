@@ -110,10 +110,13 @@ fn cantilever_example_runs_and_its_outputs_read_back() {
     let file = doc.root_element();
     assert_eq!(file.attribute("type"), Some("UnstructuredGrid"));
     assert_eq!(file.attribute("byte_order"), Some("LittleEndian"));
+    // VTK renumbers the Lagrange hexahedra of files older than 2.1
+    assert_eq!(file.attribute("version"), Some("2.2"));
     let piece = file.descendants().find(|n| n.has_tag_name("Piece")).unwrap();
-    // 20 elements (5 B4 × 4 L9), 36 points each, 2·2·3 hexahedra each
+    // 20 elements (5 B4 × 4 L9), 36 points each, one VTK Lagrange
+    // hexahedron each (`output.vtu_cells = "lagrange"`)
     assert_eq!(piece.attribute("NumberOfPoints"), Some("720"));
-    assert_eq!(piece.attribute("NumberOfCells"), Some("240"));
+    assert_eq!(piece.attribute("NumberOfCells"), Some("20"));
     let array = |parent: &str, name: Option<&str>| -> Vec<f64> {
         let p = piece.descendants().find(|n| n.has_tag_name(parent)).unwrap();
         let a = p
@@ -126,10 +129,15 @@ fn cantilever_example_runs_and_its_outputs_read_back() {
     assert_eq!(points.len(), 3 * 720);
     let connectivity = array("Cells", Some("connectivity"));
     let offsets = array("Cells", Some("offsets"));
-    assert_eq!(offsets.len(), 240);
+    assert_eq!(offsets, (1..=20).map(|c| 36.0 * c as f64).collect::<Vec<_>>());
+    assert_eq!(array("Cells", Some("types")), vec![72.0; 20]);
+    // orders along (x, y, z): L9 quadratic in the section, B4 cubic along y
+    assert_eq!(array("CellData", Some("HigherOrderDegrees")), [2.0, 3.0, 2.0].repeat(20));
+    // a Lagrange hexahedron lists its 8 corners first, as a linear one: the
+    // straight-edged elements' volumes
     let mut volume = 0.0;
     for c in 0..offsets.len() {
-        let ids = &connectivity[8 * c..8 * c + 8];
+        let ids = &connectivity[36 * c..36 * c + 8];
         let mut p = [[0.0; 3]; 8];
         for (k, &id) in ids.iter().enumerate() {
             let id = id as usize;
@@ -178,6 +186,10 @@ fn bad_input_is_reported_with_key_value_and_allowed_values() {
         (
             base.replace("element = \"B4\"", "element = \"B5\""),
             vec!["line 21", "unknown variant `B5`, expected one of `B2`, `B3`, `B4`"],
+        ),
+        (
+            format!("{base}\n[output]\nvtu_cells = \"quadratic\"\n"),
+            vec!["vtu_cells = \"quadratic\"", "unknown variant `quadratic`, expected `lagrange` or `linear`"],
         ),
         (
             base.replace("material = \"aluminium\"", "material = \"steel\""),

@@ -332,6 +332,9 @@ pub(crate) struct OutputFile {
     /// Also write `gauss.vtu` with the raw Gauss-point values.
     #[schemars(transform = defaults::schema(defaults::GAUSS_POINTS))]
     pub gauss_points: Option<bool>,
+    /// Write `report.html`, the run's self-contained page.
+    #[schemars(transform = defaults::schema(defaults::REPORT))]
+    pub(crate) report: Option<bool>,
 }
 
 /// `[[references]]`: a published value to print beside ours.

@@ -60,6 +60,8 @@ pub struct OutputSettings {
     pub recovery: Recovery,
     /// Also write `gauss.vtu` with the raw Gauss-point values.
     pub gauss_points: bool,
+    /// Write `report.html` (`io::html`).
+    pub report: bool,
 }
 
 /// How stress and peeq are evaluated at arbitrary points (`output.recovery`).

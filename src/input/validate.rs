@@ -44,6 +44,7 @@ pub(crate) fn output(o: &OutputFile) -> OutputSettings {
         plots: o.plots.unwrap_or(defaults::PLOTS),
         recovery,
         gauss_points: o.gauss_points.unwrap_or(defaults::GAUSS_POINTS),
+        report: o.report.unwrap_or(defaults::REPORT),
     }
 }
 

@@ -69,7 +69,7 @@ impl View {
     /// True if frame `k` of `n` is one the slider carries (evenly sampled
     /// down to [`MAX_FRAMES`]).
     pub(crate) fn wants(k: usize, n: usize) -> bool {
-        k % n.div_ceil(MAX_FRAMES).max(1) == 0
+        k.is_multiple_of(n.div_ceil(MAX_FRAMES).max(1))
     }
 
     /// Adds the state `at` under `label`, unless the frame budget is spent

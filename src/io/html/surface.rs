@@ -21,17 +21,17 @@ const HEX_FACES: [[usize; 4]; 6] = [[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1
 #[derive(Debug, Clone)]
 pub(crate) struct Surface {
     /// Vertex positions in the reference configuration, 3 per vertex (m).
-    pub positions: Vec<f32>,
+    pub(crate) positions: Vec<f32>,
     /// Triangles, 3 vertex indices each.
-    pub triangles: Vec<u32>,
+    pub(crate) triangles: Vec<u32>,
     /// Where the grid points of vertex `v` start in [`Self::sources`].
     offsets: Vec<usize>,
     /// The grid points behind each vertex.
     sources: Vec<u32>,
     /// The grid's bounding box, `[min x, min y, min z, max x, max y, max z]` (m).
-    pub bbox: [f64; 6],
+    pub(crate) bbox: [f64; 6],
     /// The grid's surface vertices before any decimation.
-    pub full_vertices: usize,
+    pub(crate) full_vertices: usize,
 }
 
 impl Surface {
@@ -111,6 +111,9 @@ fn bounding_box(points: &[f64]) -> [f64; 6] {
     b
 }
 
+/// A face: its body and its corners' positions in steps of the tolerance, sorted.
+type FaceKey = (i32, [[i64; 3]; 4]);
+
 /// The faces of the grid's hexahedra that no other hexahedron of the same
 /// body has (compared by their corners' positions, which are duplicated
 /// per element), as 4 grid points each.
@@ -121,7 +124,7 @@ fn outer_faces(grid: &FieldGrid, bbox: &[f64; 6]) -> Vec<[u32; 4]> {
         let p = p as usize;
         std::array::from_fn(|i| ((grid.points[3 * p + i] - bbox[i]) / tolerance).round() as i64)
     };
-    let mut seen: HashMap<(i32, [[i64; 3]; 4]), (usize, [u32; 4])> = HashMap::new();
+    let mut seen: HashMap<FaceKey, (usize, [u32; 4])> = HashMap::new();
     let mut order = Vec::new();
     for (hex, &body) in grid.connectivity.chunks_exact(8).zip(&grid.cell_body) {
         for face in HEX_FACES {
@@ -144,7 +147,8 @@ fn outer_faces(grid: &FieldGrid, bbox: &[f64; 6]) -> Vec<[u32; 4]> {
 fn clusters(grid: &FieldGrid, points: &[u32], bbox: &[f64; 6], cap: usize) -> Vec<usize> {
     let extent: Vec<f64> = (0..3).map(|i| (bbox[i + 3] - bbox[i]).max(0.0)).collect();
     let largest = extent.iter().cloned().fold(0.0, f64::max).max(f64::MIN_POSITIVE);
-    let mut h = largest / (cap as f64).sqrt();
+    // from fine to coarse: the finest cubes (within a factor 2) that keep the cap
+    let mut h = largest / cap as f64;
     loop {
         let mut ids: HashMap<[i64; 3], usize> = HashMap::new();
         let cluster: Vec<usize> = points
@@ -168,9 +172,9 @@ mod tests {
     use super::*;
     use crate::io::FieldArray;
 
-    /// A grid of `nx` unit hexahedra in a row along x, points duplicated
-    /// per hexahedron as `field_grid` writes them.
-    fn row(nx: usize) -> FieldGrid {
+    /// A slab of `nx` × `ny` unit hexahedra, points duplicated per
+    /// hexahedron as `field_grid` writes them.
+    fn slab(nx: usize, ny: usize) -> FieldGrid {
         let corners = [
             [0., 0., 0.],
             [1., 0., 0.],
@@ -182,16 +186,17 @@ mod tests {
             [0., 1., 1.],
         ];
         let mut points = Vec::new();
-        for e in 0..nx {
+        for e in 0..nx * ny {
             for c in corners {
-                points.extend([c[0] + e as f64, c[1], c[2]]);
+                points.extend([c[0] + (e % nx) as f64, c[1] + (e / nx) as f64, c[2]]);
             }
         }
         let x: Vec<f64> = points.chunks(3).map(|p| p[0]).collect();
+        let n = nx * ny;
         FieldGrid {
-            connectivity: (0..8 * nx as u64).collect(),
-            cell_body: vec![0; nx],
-            cell_element: (0..nx as i32).collect(),
+            connectivity: (0..8 * n as u64).collect(),
+            cell_body: vec![0; n],
+            cell_element: (0..n as i32).collect(),
             point_data: vec![FieldArray { name: "x".into(), components: 1, values: x }],
             points,
         }
@@ -202,7 +207,7 @@ mod tests {
     /// (one per grid point: none is interior); the box is [0, n] × [0, 1]².
     #[test]
     fn a_row_of_cubes_shows_its_outer_faces() {
-        let s = Surface::of(&row(3), MAX_VERTICES);
+        let s = Surface::of(&slab(3, 1), MAX_VERTICES);
         assert_eq!(s.triangles.len() / 3, 2 * (4 * 3 + 2));
         assert_eq!(s.vertices(), 24);
         assert_eq!(s.bbox, [0., 0., 0., 3., 1., 1.]);
@@ -220,17 +225,17 @@ mod tests {
 
     /// Beyond the cap, vertices merge: at most `cap` remain, each at the
     /// mean of its points (a field linear in x keeps its range inside
-    /// [0, n]), and the box is the undecimated grid's.
+    /// [0, 20]), the top still drawn, and the box is the undecimated grid's.
     #[test]
     fn a_large_surface_is_decimated_to_the_cap() {
-        let g = row(50);
-        let s = Surface::of(&g, 40);
-        assert!(s.vertices() <= 40 && s.vertices() > 4, "{} vertices", s.vertices());
-        assert_eq!(s.full_vertices, 400);
-        assert_eq!(s.bbox, [0., 0., 0., 50., 1., 1.]);
+        let g = slab(20, 20);
+        let s = Surface::of(&g, 500);
+        assert!(s.vertices() <= 500 && s.vertices() > 100, "{} vertices", s.vertices());
+        assert_eq!(s.full_vertices, 3200);
+        assert_eq!(s.bbox, [0., 0., 0., 20., 20., 1.]);
         let x = s.gather(&g.point_data[0].values, 1);
-        assert!(x.iter().all(|v| (0.0..=50.0).contains(v)));
-        assert!(x.iter().cloned().fold(0.0, f32::max) > 40.0);
-        assert!(!s.triangles.is_empty());
+        assert!(x.iter().all(|v| (0.0..=20.0).contains(v)));
+        assert!(x.iter().cloned().fold(0.0, f32::max) > 18.0);
+        assert!(s.triangles.len() / 3 > 100, "{} triangles", s.triangles.len() / 3);
     }
 }

@@ -56,6 +56,8 @@ pub const VTU: bool = true;
 pub(crate) const PLOTS: bool = true;
 /// No `gauss.vtu`.
 pub(crate) const GAUSS_POINTS: bool = false;
+/// Write `report.html`.
+pub(crate) const REPORT: bool = true;
 
 // [adapt]
 

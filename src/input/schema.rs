@@ -336,6 +336,9 @@ pub(crate) struct OutputFile {
     /// hexahedron per element) or `"linear"` (linear sub-cells).
     #[schemars(transform = defaults::schema(super::VtuCells::default()))]
     pub vtu_cells: Option<super::VtuCells>,
+    /// Write `report.html`, the run's self-contained page.
+    #[schemars(transform = defaults::schema(defaults::REPORT))]
+    pub(crate) report: Option<bool>,
 }
 
 /// `[[references]]`: a published value to print beside ours.

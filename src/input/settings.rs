@@ -62,6 +62,8 @@ pub struct OutputSettings {
     pub gauss_points: bool,
     /// The cells of `result.vtu` and the other field VTUs.
     pub vtu_cells: VtuCells,
+    /// Write `report.html` (`io::html`).
+    pub report: bool,
 }
 
 /// The cells the field VTUs (`result.vtu`, steps, frames, modes) carry

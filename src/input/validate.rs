@@ -45,6 +45,7 @@ pub(crate) fn output(o: &OutputFile) -> OutputSettings {
         recovery,
         gauss_points: o.gauss_points.unwrap_or(defaults::GAUSS_POINTS),
         vtu_cells: o.vtu_cells.unwrap_or_default(),
+        report: o.report.unwrap_or(defaults::REPORT),
     }
 }
 

@@ -17,9 +17,11 @@
 //! | `contact_<name>.csv` | final gap, force and pressure of every contact point |
 //! | `line_<name>_<quantity>.png` | plots of the quantities listed in a line's `plot` |
 //! | `history_<indenter>.png` | force against displacement of each moving indenter |
+//! | `report.html` | the run's self-contained page: text, tables, warnings, charts, 3D view (`output.report`) |
 
 mod csv;
 mod energy;
+mod html;
 mod json;
 pub mod output;
 mod png;
@@ -86,6 +88,7 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     std::fs::create_dir_all(dir).map_err(|e| file_error(dir, e))?;
     let mut written = Vec::new();
     let view = solution.fields(model);
+    let mut shown = model.output.report.then(html::View::default);
 
     if model.output.vtu {
         let path = dir.join("result.vtu");
@@ -98,12 +101,14 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
         written.push(path);
     }
 
+    let mut lines = Vec::new();
     for k in 0..model.lines.len() {
         let table = tables::sampled_line(model, &view, k);
         written.push(csv::write_table(&table, dir)?);
         if model.output.plots {
             written.extend(png::line_plots(&model.lines[k], &table, dir)?);
         }
+        lines.push(table);
     }
 
     let histories = tables::histories(model, solution);
@@ -120,8 +125,8 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     if model.output.plots {
         written.extend(png::history_plots(model, &histories, dir)?);
     }
-    let modes = [tables::modes(solution), tables::buckling(model, solution)];
-    written.extend(csv::write_tables(&modes.into_iter().flatten().collect::<Vec<_>>(), dir)?);
+    let modes: Vec<_> = [tables::modes(solution), tables::buckling(model, solution)].into_iter().flatten().collect();
+    written.extend(csv::write_tables(&modes, dir)?);
     written.extend(write_modes(model, solution, dir)?);
     written.extend(energy::write_energy(model, solution, dir)?);
     // the end of every step: a VTU per step and a .pvd series when the
@@ -131,6 +136,10 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     for k in 0..solution.steps.len() {
         let snapshot = solution.at_step(model, k).map_err(|e| IoError::Recovery(e.to_string()))?;
         let at_end = snapshot.as_ref().unwrap_or(solution);
+        if let (Some(shown), Some(at)) = (&mut shown, &snapshot) {
+            let step = &solution.steps[k];
+            shown.add(model, format!("end of step {} ({}, λ = {:.4})", k + 1, step.name, step.lambda), at, false);
+        }
         let mut vtu = None;
         if model.output.vtu && snapshot.is_some() {
             let name = step_vtu_name(solution, k);
@@ -149,10 +158,16 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
         write_pvd(&path, &series)?;
         written.push(path);
     }
-    written.extend(write_frames(model, solution, dir)?);
+    written.extend(write_frames(model, solution, dir, shown.as_mut())?);
     // last: its presence and its list of files mark a complete result set
     let mut s = summary(model, solution);
     s.steps = steps;
+    if let Some(mut shown) = shown {
+        shown.add(model, format!("end (λ = {:.4})", solution.lambda), solution, true);
+        let energy: Vec<_> = tables::energy(solution).into_iter().chain(modes).collect();
+        let tables = html::Tables { histories: &histories, lines: &lines, others: &energy };
+        written.push(html::write(model, solution, dir, &s, tables, shown)?);
+    }
     s.files = written.iter().filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())).collect();
     let path = dir.join("summary.json");
     json::write(&path, &s)?;
@@ -185,24 +200,38 @@ fn write_modes(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<Pat
 
 /// `frame_<k>.vtu` for every frame of a transient run
 /// (`analysis.output_interval`) and `frames.pvd`, their ParaView time
-/// series in seconds.
-fn write_frames(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
-    if solution.frames.is_empty() || !model.output.vtu {
-        return Ok(Vec::new());
-    }
+/// series in seconds; the frames the report's slider takes go to `shown`.
+fn write_frames(
+    model: &Model,
+    solution: &Solution,
+    dir: &Path,
+    mut shown: Option<&mut html::View>,
+) -> Result<Vec<PathBuf>, IoError> {
     let mut written = Vec::new();
     let mut series = Vec::new();
+    let n = solution.frames.len();
     for (k, frame) in solution.frames.iter().enumerate() {
+        let report = shown.is_some() && html::View::wants(k, n);
+        if !model.output.vtu && !report {
+            continue;
+        }
         let snapshot = solution.at_frame(model, k).map_err(|e| IoError::Recovery(e.to_string()))?;
-        let name = format!("frame_{:04}.vtu", k + 1);
-        let path = dir.join(&name);
-        write_vtu(&path, model, &snapshot)?;
-        written.push(path);
-        series.push((frame.time, name));
+        if let Some(shown) = shown.as_deref_mut().filter(|_| report) {
+            shown.add(model, format!("t = {:.4e} s", frame.time), &snapshot, false);
+        }
+        if model.output.vtu {
+            let name = format!("frame_{:04}.vtu", k + 1);
+            let path = dir.join(&name);
+            write_vtu(&path, model, &snapshot)?;
+            written.push(path);
+            series.push((frame.time, name));
+        }
     }
-    let path = dir.join("frames.pvd");
-    write_pvd(&path, &series)?;
-    written.push(path);
+    if !series.is_empty() {
+        let path = dir.join("frames.pvd");
+        write_pvd(&path, &series)?;
+        written.push(path);
+    }
     Ok(written)
 }
 

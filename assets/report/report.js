@@ -1,0 +1,221 @@
+// report.html's own script (src/io/html): builds the page from the JSON in
+// #cufem-data with uPlot (charts) and three.js (3D view), both inlined
+// before it. window.cufemReport exposes what was drawn, for the browser
+// test (tests/browser) and for a reader's console.
+// the colour ramp (blue, cyan, green, yellow, red) and a colour on it
+const ramp = [[0.13, 0.25, 0.85], [0.1, 0.75, 0.9], [0.2, 0.8, 0.25], [0.95, 0.85, 0.1], [0.85, 0.1, 0.1]];
+function colour(t) {
+  const s = Math.min(Math.max(t, 0), 1) * (ramp.length - 1);
+  const i = Math.min(Math.floor(s), ramp.length - 2);
+  const f = s - i;
+  return ramp[i].map((a, k) => a + f * (ramp[i + 1][k] - a));
+}
+function cssColour(c) {
+  return "rgb(" + c.map((v) => Math.round(255 * v)).join(",") + ")";
+}
+
+(function () {
+  "use strict";
+  const data = JSON.parse(document.getElementById("cufem-data").textContent);
+  const report = (window.cufemReport = { charts: [], fields: [], frame: 0, bbox: null, ready: false });
+  const el = (tag, attrs, text) => {
+    const e = document.createElement(tag);
+    Object.entries(attrs || {}).forEach(([k, v]) => e.setAttribute(k, v));
+    if (text !== undefined && text !== null) e.textContent = text;
+    return e;
+  };
+  const add = (parent, tag, attrs, text) => parent.appendChild(el(tag, attrs, text));
+  const body = document.body;
+  document.title = data.title + " — cufem report";
+
+  // description, status, text, warnings
+  add(body, "h1", {}, data.title);
+  const converged = data.status === "converged";
+  const status = add(body, "p");
+  add(status, "span", { class: converged ? "status" : "status bad" }, data.status);
+  if (data.failure) add(status, "span", {}, " " + data.failure);
+  if (data.description) add(body, "p", { id: "description" }, data.description);
+  add(body, "h2", {}, "Run");
+  add(body, "pre", { id: "header" }, data.header);
+  const log = add(body, "details", { id: "log" });
+  const lines = data.log.split("\n").filter((l) => l).length;
+  add(log, "summary", {}, "convergence history: " + lines + " converged increments");
+  add(log, "pre", {}, data.log);
+  add(body, "h3", {}, "Results");
+  add(body, "pre", { id: "results" }, data.results);
+  add(body, "h2", {}, "Warnings");
+  if (data.warnings.length === 0) add(body, "p", { id: "warnings" }, "none");
+  else {
+    const ul = add(body, "ul", { id: "warnings", class: "warnings" });
+    data.warnings.forEach((w) => add(ul, "li", {}, w));
+  }
+
+  // charts: one per table, drag to zoom, double-click to reset
+  const palette = ["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"];
+  if (data.charts.length) {
+    add(body, "h2", {}, "Charts");
+    add(body, "p", { class: "note" }, "Drag to zoom, double-click to reset; click a legend entry to hide its curve.");
+  }
+  const largest = (ys) => ys.reduce((m, y) => (y === null || !isFinite(y) ? m : Math.max(m, Math.abs(y))), 0);
+  const ticks = (u, vals) => vals.map((v) => (v === null ? "" : Math.abs(v) >= 1e4 || (v !== 0 && Math.abs(v) < 1e-2) ? v.toExponential(2) : String(Number(v.toPrecision(4)))));
+  data.charts.forEach((c) => {
+    const top = Math.max(...c.data.slice(1).map(largest));
+    const box = add(body, "div", { class: "chart", "data-name": c.name });
+    add(box, "h3", {}, c.title);
+    const opts = {
+      width: Math.min(1060, document.body.clientWidth || 1000),
+      height: 300,
+      scales: { x: { time: false } },
+      axes: [{ label: c.x, values: ticks }, { size: 80, values: ticks }],
+      // curves far smaller than the largest (another unit) start hidden
+      series: [{ label: c.x }].concat(
+        c.series.map((name, i) => ({
+          label: name,
+          show: largest(c.data[i + 1]) >= 1e-3 * top,
+          stroke: palette[i % palette.length],
+          width: 1.5,
+          points: { size: 4 },
+        }))
+      ),
+    };
+    const plot = new uPlot(opts, c.data, box);
+    report.charts.push({ name: c.name, series: plot.series.length - 1, points: plot.data[0].length, plot: plot });
+  });
+
+  if (data.view) view(data.view);
+  report.ready = true;
+
+  function decode(b64, Type) {
+    const s = atob(b64);
+    const bytes = new Uint8Array(s.length);
+    for (let i = 0; i < s.length; i++) bytes[i] = s.charCodeAt(i);
+    return new Type(bytes.buffer);
+  }
+
+  // the 3D view: the outer surface, coloured by a field, deformed by a scale
+  function view(v) {
+    add(body, "h2", {}, "3D view");
+    add(body, "p", { class: "note", id: "view-note" }, v.note + ". Drag to rotate, right-drag to pan, wheel to zoom.");
+    const controls = add(body, "div", { id: "view-controls" });
+    const fieldLabel = add(controls, "label", {}, "field ");
+    const select = add(fieldLabel, "select", { id: "field" });
+    const scaleLabel = add(controls, "label", {}, "deformation scale ");
+    const scaleInput = add(scaleLabel, "input", { id: "scale", type: "number", step: "any", min: "0" });
+    const frameLabel = add(controls, "label", {}, "frame ");
+    const slider = add(frameLabel, "input", { id: "frame", type: "range", min: "0", max: String(v.frames.length - 1), step: "1" });
+    const frameText = add(controls, "span", { id: "frame-label" });
+    const bar = add(body, "div", { id: "colour-bar" });
+    const barMin = add(bar, "span", { id: "colour-min" });
+    add(bar, "div", { class: "ramp", style: "background: linear-gradient(to right, " + ramp.map(cssColour).join(", ") + ")" });
+    const barMax = add(bar, "span", { id: "colour-max" });
+    const holder = add(body, "div", { id: "view" });
+
+    const n = v.vertices;
+    const reference = decode(v.positions, Float32Array);
+    const frames = v.frames.map((f) => ({
+      label: f.label,
+      u: decode(f.displacement, Float32Array),
+      fields: Object.fromEntries(f.fields.map((g) => [g.name, g])),
+    }));
+    // the fields: the displacement's magnitude and components, then the grid's scalars
+    const names = ["|u|", "u_x", "u_y", "u_z"].concat(v.frames[0].fields.map((g) => g.name));
+    const values = (frame, name) => {
+      const out = new Float32Array(n);
+      const c = ["u_x", "u_y", "u_z"].indexOf(name);
+      if (name === "|u|") for (let i = 0; i < n; i++) out[i] = Math.hypot(frame.u[3 * i], frame.u[3 * i + 1], frame.u[3 * i + 2]);
+      else if (c >= 0) for (let i = 0; i < n; i++) out[i] = frame.u[3 * i + c];
+      else {
+        const g = frame.fields[name];
+        const q = decode(g.data, Uint16Array);
+        for (let i = 0; i < n; i++) out[i] = q[i] === 65535 ? NaN : g.min + (q[i] / 65534) * (g.max - g.min);
+      }
+      return out;
+    };
+    names.forEach((name) => add(select, "option", { value: name }, name));
+    report.fields = names;
+
+    const geometry = new THREE.BufferGeometry();
+    geometry.setIndex(new THREE.BufferAttribute(decode(v.triangles, Uint32Array), 1));
+    geometry.setAttribute("position", new THREE.BufferAttribute(reference.slice(), 3));
+    geometry.setAttribute("color", new THREE.BufferAttribute(new Float32Array(3 * n), 3));
+    geometry.computeBoundingBox();
+    const box = geometry.boundingBox;
+    report.bbox = [box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z];
+    const size = Math.max(box.max.x - box.min.x, box.max.y - box.min.y, box.max.z - box.min.z) || 1;
+    const centre = box.getCenter(new THREE.Vector3());
+
+    const renderer = new THREE.WebGLRenderer({ antialias: true, preserveDrawingBuffer: true });
+    renderer.setPixelRatio(1);
+    renderer.setSize(holder.clientWidth, holder.clientHeight);
+    renderer.setClearColor(0xffffff);
+    holder.appendChild(renderer.domElement);
+    const scene = new THREE.Scene();
+    const material = new THREE.MeshLambertMaterial({ vertexColors: true, side: THREE.DoubleSide });
+    scene.add(new THREE.Mesh(geometry, material));
+    scene.add(new THREE.AmbientLight(0xffffff, 0.55));
+    const camera = new THREE.PerspectiveCamera(35, holder.clientWidth / holder.clientHeight, size * 1e-3, size * 100);
+    const light = new THREE.DirectionalLight(0xffffff, 0.6);
+    camera.add(light);
+    scene.add(camera);
+    camera.up.set(0, 0, 1);
+    camera.position.set(centre.x + 1.6 * size, centre.y - 1.2 * size, centre.z + 1.0 * size);
+    const orbit = new THREE.OrbitControls(camera, renderer.domElement);
+    orbit.target.copy(centre);
+    orbit.update();
+    const render = () => renderer.render(scene, camera);
+    orbit.addEventListener("change", render);
+
+    // a scale that shows the largest displacement at 5 % of the body's size
+    let largest = 0;
+    frames.forEach((f) => {
+      for (let i = 0; i < n; i++) largest = Math.max(largest, Math.hypot(f.u[3 * i], f.u[3 * i + 1], f.u[3 * i + 2]));
+    });
+    let scale = largest > 0.05 * size || largest === 0 ? 1 : Number((0.05 * size / largest).toPrecision(2));
+    scaleInput.value = String(scale);
+    let field = names[0];
+    let frame = frames.length - 1;
+    slider.value = String(frame);
+
+    function update() {
+      const f = frames[frame];
+      const pos = geometry.getAttribute("position");
+      for (let i = 0; i < 3 * n; i++) pos.array[i] = reference[i] + scale * f.u[i];
+      pos.needsUpdate = true;
+      geometry.computeVertexNormals();
+      // the colour range: the field's over all frames, so the slider shows its growth
+      let lo = Infinity;
+      let hi = -Infinity;
+      frames.forEach((g) => {
+        const x = values(g, field);
+        for (let i = 0; i < n; i++) if (isFinite(x[i])) (lo = Math.min(lo, x[i])), (hi = Math.max(hi, x[i]));
+      });
+      const x = values(f, field);
+      const col = geometry.getAttribute("color");
+      for (let i = 0; i < n; i++) {
+        const c = isFinite(x[i]) ? colour(hi > lo ? (x[i] - lo) / (hi - lo) : 0.5) : [0.6, 0.6, 0.6];
+        col.array.set(c, 3 * i);
+      }
+      col.needsUpdate = true;
+      barMin.textContent = isFinite(lo) ? lo.toPrecision(4) : "—";
+      barMax.textContent = isFinite(hi) ? hi.toPrecision(4) : "—";
+      frameText.textContent = f.label + " (" + (frame + 1) + " of " + frames.length + ")";
+      report.field = field;
+      report.frame = frame;
+      report.scale = scale;
+      report.range = [lo, hi];
+      render();
+    }
+    select.addEventListener("change", () => ((field = select.value), update()));
+    slider.addEventListener("input", () => ((frame = Number(slider.value)), update()));
+    scaleInput.addEventListener("input", () => {
+      const s = Number(scaleInput.value);
+      if (isFinite(s) && s >= 0) (scale = s), update();
+    });
+    report.setField = (name) => ((select.value = name), select.dispatchEvent(new Event("change")));
+    report.setFrame = (k) => ((slider.value = String(k)), slider.dispatchEvent(new Event("input")));
+    report.frames = frames.length;
+    report.canvas = renderer.domElement;
+    update();
+  }
+})();
+

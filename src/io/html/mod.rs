@@ -1,0 +1,321 @@
+//! `report.html`: one self-contained page per run, openable offline — the
+//! model's description, the text the run printed ([`super::report`]: the
+//! header, one line per converged increment, the tables), the warnings, a
+//! zoomable chart of every history, line, energy and mode table the run
+//! writes as CSV, and a 3D view of the deformed outer surface coloured by
+//! any field of `result.vtu`, with a deformation scale and a slider over
+//! the step ends or the frames of a transient run.
+//!
+//! The page inlines its scripts and data: the charts are drawn by uPlot and
+//! the 3D view by three.js, both vendored at a pinned version with their
+//! licences in `assets/vendor` (see its README for why these two), and the
+//! page's own script and style are `assets/report/`. The data is one JSON
+//! object (`<script type="application/json" id="cufem-data">`); the 3D
+//! arrays in it are base64: vertex positions and displacements as
+//! little-endian `f32`, each field quantized to 16 bits between its
+//! minimum and maximum in the frame (65535: no value). Its size is bounded:
+//! at most [`surface::MAX_VERTICES`] surface vertices (a larger surface is
+//! decimated), [`MAX_FRAMES`] frames and about [`FRAME_BUDGET`] bytes of
+//! frame data; the page states what it shows of how much.
+
+mod surface;
+
+use std::fmt::Write as _;
+use std::io::Write as _;
+use std::path::{Path, PathBuf};
+
+use base64::Engine as _;
+use serde_json::{Value, json};
+
+use super::{IoError, Summary, field_grid, file_error, report};
+use crate::analysis::tables::{Table, Values};
+use crate::analysis::{IncrementLog, Solution};
+use crate::setup::Model;
+use surface::Surface;
+
+/// uPlot 1.6.32 (MIT): the charts.
+const UPLOT_JS: &str = include_str!("../../../assets/vendor/uPlot-1.6.32.iife.min.js");
+/// uPlot's style sheet.
+const UPLOT_CSS: &str = include_str!("../../../assets/vendor/uPlot-1.6.32.min.css");
+/// three.js r147 (MIT), its classic-script build: the 3D view.
+const THREE_JS: &str = include_str!("../../../assets/vendor/three-0.147.0.min.js");
+/// three.js r147's OrbitControls (classic script, `THREE.OrbitControls`).
+const ORBIT_JS: &str = include_str!("../../../assets/vendor/three-0.147.0-OrbitControls.js");
+/// The page's own script.
+const SCRIPT: &str = include_str!("../../../assets/report/report.js");
+/// The page's own style.
+const STYLE: &str = include_str!("../../../assets/report/report.css");
+
+/// The most frames the 3D view's slider carries; more are sampled evenly.
+pub(crate) const MAX_FRAMES: usize = 60;
+/// About the most bytes of 3D frame data (base64) a page carries: frames
+/// beyond it are left out (the last state is always shown).
+pub(crate) const FRAME_BUDGET: usize = 12 << 20;
+
+/// Columns that count rather than measure, charted only in `history`.
+const COUNTS: [&str; 3] = ["iterations", "plastic_points", "negative_pivots"];
+
+/// The 3D view's data, gathered frame by frame while the run's files are
+/// written (each frame's fields computed once, for its VTU and here).
+#[derive(Debug, Default)]
+pub(crate) struct View {
+    surface: Option<Surface>,
+    frames: Vec<Value>,
+    bytes: usize,
+    skipped: usize,
+}
+
+impl View {
+    /// True if frame `k` of `n` is one the slider carries (evenly sampled
+    /// down to [`MAX_FRAMES`]).
+    pub(crate) fn wants(k: usize, n: usize) -> bool {
+        k.is_multiple_of(n.div_ceil(MAX_FRAMES).max(1))
+    }
+
+    /// Adds the state `at` under `label`, unless the frame budget is spent
+    /// (`last`: the run's end, always added).
+    pub(crate) fn add(&mut self, model: &Model, label: String, at: &Solution, last: bool) {
+        // the run's end, already shown as the last step's end or frame
+        if last && self.frames.last().is_some_and(|f| f["lambda"] == json!(at.lambda)) {
+            return;
+        }
+        let per_frame = self.frames.first().map_or(0, |_| self.bytes / self.frames.len());
+        if !last && self.bytes + 2 * per_frame > FRAME_BUDGET {
+            self.skipped += 1;
+            return;
+        }
+        let grid = field_grid(model, at);
+        let surface = self.surface.get_or_insert_with(|| Surface::of(&grid, surface::MAX_VERTICES));
+        let mut fields = Vec::new();
+        let mut displacement = String::new();
+        for a in &grid.point_data {
+            if a.name == "displacement" {
+                displacement = encode_f32(&surface.gather(&a.values, 3));
+            } else if a.components == 1 {
+                let (data, min, max) = quantize(&surface.gather(&a.values, 1));
+                fields.push(json!({"name": a.name, "min": min, "max": max, "data": data}));
+            }
+        }
+        self.bytes += displacement.len() + fields.iter().map(|f| f["data"].as_str().map_or(0, str::len)).sum::<usize>();
+        self.frames.push(json!({"label": label, "lambda": at.lambda, "displacement": displacement, "fields": fields}));
+    }
+
+    /// The view as the page's data (`None` without frames).
+    fn data(self) -> Option<Value> {
+        let s = self.surface?;
+        let note = format!(
+            "outer surface of {} vertices{}; {} frame{}{}; field colours in 16-bit steps of each frame's range",
+            s.vertices(),
+            if s.full_vertices > s.vertices() {
+                format!(
+                    " (decimated from {} by vertex clustering: the 3D view carries at most {})",
+                    s.full_vertices,
+                    surface::MAX_VERTICES
+                )
+            } else {
+                String::new()
+            },
+            self.frames.len(),
+            if self.frames.len() == 1 { "" } else { "s" },
+            if self.skipped > 0 {
+                format!(" ({} more left out to bound the page's size)", self.skipped)
+            } else {
+                String::new()
+            }
+        );
+        Some(json!({
+            "bbox": s.bbox,
+            "vertices": s.vertices(),
+            "positions": encode_f32(&s.positions),
+            "triangles": base64::engine::general_purpose::STANDARD.encode(s.triangles.iter().flat_map(|t| t.to_le_bytes()).collect::<Vec<u8>>()),
+            "note": note,
+            "frames": self.frames,
+        }))
+    }
+}
+
+/// Little-endian `f32`s in base64.
+fn encode_f32(values: &[f32]) -> String {
+    base64::engine::general_purpose::STANDARD.encode(values.iter().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>())
+}
+
+/// Values as 16-bit steps between their finite minimum and maximum
+/// (65535: NaN or infinite), in base64, with the minimum and maximum.
+fn quantize(values: &[f32]) -> (String, f64, f64) {
+    let finite = || values.iter().filter(|v| v.is_finite()).map(|&v| v as f64);
+    let (min, max) = (finite().fold(f64::INFINITY, f64::min), finite().fold(f64::NEG_INFINITY, f64::max));
+    let span = if max > min { max - min } else { 1.0 };
+    let bytes: Vec<u8> = values
+        .iter()
+        .flat_map(|&v| {
+            let q = if v.is_finite() { ((v as f64 - min) / span * 65534.0).round() as u16 } else { u16::MAX };
+            q.to_le_bytes()
+        })
+        .collect();
+    let (min, max) = if min <= max { (min, max) } else { (0.0, 0.0) };
+    (base64::engine::general_purpose::STANDARD.encode(bytes), min, max)
+}
+
+/// A table as a chart: `x` against every other numeric column but the
+/// increment (and the counts, but in `history`); `None` without rows or
+/// without the column `x`.
+fn chart(table: &Table, x: &str, title: &str) -> Option<Value> {
+    let xc = table.column(x).filter(|_| table.rows() > 0)?;
+    let mut series = Vec::new();
+    let mut data = vec![xc.values.to_f64()];
+    for c in &table.columns {
+        let skip = c.name == x
+            || c.name == "increment"
+            || matches!(c.values, Values::Text(_))
+            || (table.name != "history" && COUNTS.contains(&c.name.as_str()));
+        if !skip {
+            series.push(table.header(c));
+            data.push(c.values.to_f64());
+        }
+    }
+    Some(json!({"name": table.name, "title": title, "x": table.header(xc), "series": series, "data": data}))
+}
+
+/// The charts of a run's tables: histories against λ, lines along their
+/// distance, the energy balance against time, modes by number.
+fn charts(tables: &[&Table]) -> Vec<Value> {
+    tables
+        .iter()
+        .filter_map(|t| {
+            let n = t.name.as_str();
+            match n {
+                "energy" => chart(t, "time", "energy balance"),
+                "modes" | "buckling" => chart(t, "mode", n),
+                _ if n.starts_with("line_") => chart(t, "s", &format!("line {}", &n[5..])),
+                _ if n.starts_with("history") => chart(t, "lambda", n),
+                _ => None,
+            }
+        })
+        .collect()
+}
+
+/// The console line of every converged increment, as the run printed them
+/// ([`report::increment_line`]), rebuilt from the solution's records.
+fn increment_log(solution: &Solution) -> String {
+    let mut text = String::new();
+    for (inc, row) in solution.increments.iter().zip(&solution.history) {
+        let log = IncrementLog {
+            index: inc.index,
+            lambda: inc.lambda,
+            dlambda: inc.dlambda,
+            iterations: inc.newton.iterations,
+            residuals: inc.newton.residuals.clone(),
+            plastic_points: row.plastic_points,
+            cutbacks: inc.cutbacks,
+            max_penetration: row.contacts.iter().map(|c| c.max_penetration).fold(0.0, f64::max),
+            negative_pivots: row.negative_pivots,
+        };
+        let _ = writeln!(text, "{}", report::increment_line(&log));
+    }
+    text
+}
+
+/// The tables a page charts: the histories, the lines, and the energy,
+/// mode and buckling tables a run has.
+pub(crate) struct Tables<'a> {
+    /// `history*` tables.
+    pub histories: &'a [Table],
+    /// `line_*` tables.
+    pub lines: &'a [Table],
+    /// The energy, modes and buckling tables (those the run has).
+    pub others: &'a [Table],
+}
+
+/// Writes `<dir>/report.html` for `solution`; returns its path.
+pub(crate) fn write(
+    model: &Model,
+    solution: &Solution,
+    dir: &Path,
+    summary: &Summary,
+    tables: Tables<'_>,
+    view: View,
+) -> Result<PathBuf, IoError> {
+    let all: Vec<&Table> = tables.histories.iter().chain(tables.lines).chain(tables.others).collect();
+    let data = json!({
+        "title": model.title,
+        "description": model.description,
+        "header": report::header(model),
+        "log": increment_log(solution),
+        "results": report::results(model, solution),
+        "status": summary.status,
+        "failure": summary.failure,
+        "warnings": summary.warnings,
+        "charts": charts(&all),
+        "view": view.data(),
+    });
+    // `<` escaped so that no text in the data can close the script element
+    let data = data.to_string().replace('<', "\\u003c");
+    let path = dir.join("report.html");
+    let file = std::fs::File::create(&path).map_err(|e| file_error(&path, e))?;
+    let mut w = std::io::BufWriter::new(file);
+    let parts = [
+        "<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\">\n<title>cufem report</title>\n<style>\n",
+        UPLOT_CSS,
+        "\n",
+        STYLE,
+        "\n</style>\n</head>\n<body>\n<script>\n",
+        UPLOT_JS,
+        "\n</script>\n<script>\n",
+        THREE_JS,
+        "\n</script>\n<script>\n",
+        ORBIT_JS,
+        "\n</script>\n<script type=\"application/json\" id=\"cufem-data\">",
+        &data,
+        "</script>\n<script>\n",
+        SCRIPT,
+        "\n</script>\n</body>\n</html>\n",
+    ];
+    for part in parts {
+        w.write_all(part.as_bytes()).map_err(|e| file_error(&path, e))?;
+    }
+    w.flush().map_err(|e| file_error(&path, e))?;
+    Ok(path)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::analysis::tables::Column;
+
+    /// 16-bit steps span the finite range: the minimum is 0, the maximum
+    /// 65534, a NaN 65535; a constant field is all 0.
+    #[test]
+    fn fields_are_quantized_over_their_range() {
+        let decode = |s: &str| -> Vec<u16> {
+            let b = base64::engine::general_purpose::STANDARD.decode(s).unwrap();
+            b.chunks(2).map(|c| u16::from_le_bytes([c[0], c[1]])).collect()
+        };
+        let (d, min, max) = quantize(&[2.0, f32::NAN, 4.0, 3.0]);
+        assert_eq!((min, max), (2.0, 4.0));
+        assert_eq!(decode(&d), vec![0, 65535, 65534, 32767]);
+        let (d, min, max) = quantize(&[5.0, 5.0]);
+        assert_eq!((decode(&d), min, max), (vec![0, 0], 5.0, 5.0));
+    }
+
+    /// A history is charted against λ with one series per measured column
+    /// (the increment and the counts left out), `history` with its counts.
+    #[test]
+    fn charts_take_the_measured_columns() {
+        let col = |name: &str, values| Column { name: name.into(), unit: "", values };
+        let t = |name: &str| Table {
+            name: name.into(),
+            columns: vec![
+                col("increment", Values::Count(vec![1, 2])),
+                col("lambda", Values::Real(vec![0.5, 1.0])),
+                col("iterations", Values::Count(vec![3, 4])),
+                col("r_x", Values::Optional(vec![None, Some(2.0)])),
+            ],
+            units_in_header: false,
+        };
+        let (a, b) = (t("history_top"), t("history"));
+        let c = charts(&[&a, &b]);
+        assert_eq!(c[0]["series"], json!(["r_x"]));
+        assert_eq!(c[0]["data"], json!([[0.5, 1.0], [null, 2.0]]));
+        assert_eq!(c[1]["series"], json!(["iterations", "r_x"]));
+    }
+}

@@ -16,6 +16,7 @@ if [ ! -d tests/browser/node_modules/playwright-core ]; then
   (cd tests/browser && npm ci --no-audit --no-fund --silent)
 fi
 cargo build --release --quiet --bin cufem
+mkdir -p target/browser
 out=target/browser/run
 rm -rf "$out"
 target/release/cufem run --quiet --threads 1 --out "$out" "$example" > target/browser/run.log

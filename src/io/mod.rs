@@ -90,11 +90,6 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     let view = solution.fields(model);
     let mut shown = model.output.report.then(html::View::default);
 
-    if model.output.vtu {
-        let path = dir.join("result.vtu");
-        write_vtu(&path, model, solution)?;
-        written.push(path);
-    }
     if model.output.gauss_points {
         let path = dir.join("gauss.vtu");
         write_gauss_vtu(&path, model, solution)?;
@@ -136,20 +131,20 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     for k in 0..solution.steps.len() {
         let snapshot = solution.at_step(model, k).map_err(|e| IoError::Recovery(e.to_string()))?;
         let at_end = snapshot.as_ref().unwrap_or(solution);
-        if let (Some(shown), Some(at)) = (&mut shown, &snapshot) {
-            let step = &solution.steps[k];
-            shown.add(model, format!("end of step {} ({}, λ = {:.4})", k + 1, step.name, step.lambda), at, false);
-        }
         let mut vtu = None;
-        if model.output.vtu && snapshot.is_some() {
+        if let Some(at) = &snapshot {
+            let step = &solution.steps[k];
+            let label = format!("end of step {} ({}, λ = {:.4})", k + 1, step.name, step.lambda);
             let name = step_vtu_name(solution, k);
-            let path = dir.join(&name);
-            write_vtu(&path, model, at_end)?;
-            written.push(path);
-            // the series' time: λ, or the time in s of a transient run
-            let lambda = solution.steps[k].lambda;
-            series.push((model.transient.as_ref().map_or(lambda, |t| t.time(lambda)), name.clone()));
-            vtu = Some(name);
+            let path = model.output.vtu.then(|| dir.join(&name));
+            write_state(model, at, path.as_deref(), shown.as_mut().map(|v| (v, label, false)))?;
+            if let Some(path) = path {
+                written.push(path);
+                // the series' time: λ, or the time in s of a transient run
+                let lambda = step.lambda;
+                series.push((model.transient.as_ref().map_or(lambda, |t| t.time(lambda)), name.clone()));
+                vtu = Some(name);
+            }
         }
         steps.push(json::step_summary(model, solution, k, at_end, vtu));
     }
@@ -159,11 +154,14 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
         written.push(path);
     }
     written.extend(write_frames(model, solution, dir, shown.as_mut())?);
+    let end = model.output.vtu.then(|| dir.join("result.vtu"));
+    let label = format!("end (λ = {:.4})", solution.lambda);
+    write_state(model, solution, end.as_deref(), shown.as_mut().map(|v| (v, label, true)))?;
+    written.extend(end);
     // last: its presence and its list of files mark a complete result set
     let mut s = summary(model, solution);
     s.steps = steps;
-    if let Some(mut shown) = shown {
-        shown.add(model, format!("end (λ = {:.4})", solution.lambda), solution, true);
+    if let Some(shown) = shown {
         let energy: Vec<_> = tables::energy(solution).into_iter().chain(modes).collect();
         let tables = html::Tables { histories: &histories, lines: &lines, others: &energy };
         written.push(html::write(model, solution, dir, &s, tables, shown)?);
@@ -216,13 +214,11 @@ fn write_frames(
             continue;
         }
         let snapshot = solution.at_frame(model, k).map_err(|e| IoError::Recovery(e.to_string()))?;
-        if let Some(shown) = shown.as_deref_mut().filter(|_| report) {
-            shown.add(model, format!("t = {:.4e} s", frame.time), &snapshot, false);
-        }
-        if model.output.vtu {
-            let name = format!("frame_{:04}.vtu", k + 1);
-            let path = dir.join(&name);
-            write_vtu(&path, model, &snapshot)?;
+        let name = format!("frame_{:04}.vtu", k + 1);
+        let path = model.output.vtu.then(|| dir.join(&name));
+        let view = shown.as_deref_mut().filter(|_| report).map(|v| (v, format!("t = {:.4e} s", frame.time), false));
+        write_state(model, &snapshot, path.as_deref(), view)?;
+        if let Some(path) = path {
             written.push(path);
             series.push((frame.time, name));
         }
@@ -233,6 +229,36 @@ fn write_frames(
         written.push(path);
     }
     Ok(written)
+}
+
+/// Writes the VTU of the state `at` (to `vtu`, if given) and adds it to
+/// the report's 3D view (`view`: the view, the frame's label, whether it
+/// is the run's end), both from one field grid: the grid is the costly part
+/// of either.
+fn write_state(
+    model: &Model,
+    at: &Solution,
+    vtu: Option<&Path>,
+    view: Option<(&mut html::View, String, bool)>,
+) -> Result<(), IoError> {
+    let view = match view {
+        Some((v, _, last)) if !v.takes(at.lambda, last) => {
+            v.skip(last);
+            None
+        }
+        view => view,
+    };
+    if vtu.is_none() && view.is_none() {
+        return Ok(());
+    }
+    let grid = field_grid(model, at);
+    if let Some((v, label, _)) = view {
+        v.add_grid(label, at.lambda, &grid);
+    }
+    match vtu {
+        Some(path) => vtu::write_grid_vtu(path, model, at, grid),
+        None => Ok(()),
+    }
 }
 
 /// The file name of step `k`'s VTU.

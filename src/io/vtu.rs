@@ -68,7 +68,12 @@ pub struct FieldArray {
 
 /// Writes the whole 3D field of every body ([`field_grid`]).
 pub fn write_vtu(path: &Path, model: &Model, solution: &Solution) -> Result<(), IoError> {
-    let g = field_grid(model, solution);
+    write_grid_vtu(path, model, solution, field_grid(model, solution))
+}
+
+/// Writes the field grid `g` of `solution` ([`write_vtu`], the grid
+/// computed by the caller).
+pub(crate) fn write_grid_vtu(path: &Path, model: &Model, solution: &Solution, g: FieldGrid) -> Result<(), IoError> {
     let c = g.cells(model.output.vtu_cells);
     let point_data: Vec<(String, usize, Array)> =
         g.point_data.into_iter().map(|a| (a.name, a.components, Array::F64(a.values))).collect();

@@ -27,7 +27,7 @@ use std::path::{Path, PathBuf};
 use base64::Engine as _;
 use serde_json::{Value, json};
 
-use super::{IoError, Summary, field_grid, file_error, report};
+use super::{FieldGrid, IoError, Summary, file_error, report};
 use crate::analysis::tables::{Table, Values};
 use crate::analysis::{IncrementLog, Solution};
 use crate::setup::Model;
@@ -72,20 +72,27 @@ impl View {
         k.is_multiple_of(n.div_ceil(MAX_FRAMES).max(1))
     }
 
-    /// Adds the state `at` under `label`, unless the frame budget is spent
-    /// (`last`: the run's end, always added).
-    pub(crate) fn add(&mut self, model: &Model, label: String, at: &Solution, last: bool) {
-        // the run's end, already shown as the last step's end or frame
-        if last && self.frames.last().is_some_and(|f| f["lambda"] == json!(at.lambda)) {
-            return;
+    /// True if a state at `lambda` would be added (the frame budget not
+    /// spent, or `last`: the run's end, always added unless already shown).
+    pub(crate) fn takes(&self, lambda: f64, last: bool) -> bool {
+        if last {
+            // the run's end, already shown as the last step's end or frame
+            return !self.frames.last().is_some_and(|f| f["lambda"] == json!(lambda));
         }
         let per_frame = self.frames.first().map_or(0, |_| self.bytes / self.frames.len());
-        if !last && self.bytes + 2 * per_frame > FRAME_BUDGET {
-            self.skipped += 1;
-            return;
-        }
-        let grid = field_grid(model, at);
-        let surface = self.surface.get_or_insert_with(|| Surface::of(&grid, surface::MAX_VERTICES));
+        self.bytes + 2 * per_frame <= FRAME_BUDGET
+    }
+
+    /// Counts a state left out because [`View::takes`] refused it (the
+    /// run's end, already shown, is not counted).
+    pub(crate) fn skip(&mut self, last: bool) {
+        self.skipped += usize::from(!last);
+    }
+
+    /// Adds the state at `lambda` whose field grid is `grid` (one that
+    /// [`View::takes`]).
+    pub(crate) fn add_grid(&mut self, label: String, lambda: f64, grid: &FieldGrid) {
+        let surface = self.surface.get_or_insert_with(|| Surface::of(grid, surface::MAX_VERTICES));
         let mut fields = Vec::new();
         let mut displacement = String::new();
         for a in &grid.point_data {
@@ -97,7 +104,7 @@ impl View {
             }
         }
         self.bytes += displacement.len() + fields.iter().map(|f| f["data"].as_str().map_or(0, str::len)).sum::<usize>();
-        self.frames.push(json!({"label": label, "lambda": at.lambda, "displacement": displacement, "fields": fields}));
+        self.frames.push(json!({"label": label, "lambda": lambda, "displacement": displacement, "fields": fields}));
     }
 
     /// The view as the page's data (`None` without frames).

@@ -146,6 +146,26 @@ fn constants_that_cannot_work_are_refused_by_key() {
     assert_eq!(PlyDamage::new(bad, strengths, [1.0; 4], 0.9), Err(DamageError::Elastic));
 }
 
+/// The largest error of the consistent tangent at `strain` from
+/// `committed` against central differences of the stress, relative to the
+/// tangent's largest entry.
+fn tangent_error(law: &PlyDamage, strain: &Voigt, band: [f64; 2], committed: &DamageState) -> f64 {
+    let r = law.update(strain, band, committed);
+    let scale = r.tangent.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    let mut worst = 0.0f64;
+    for j in 0..6 {
+        let h = 1e-7;
+        let (mut up, mut down) = (*strain, *strain);
+        up[j] += h;
+        down[j] -= h;
+        let (sp, sm) = (law.update(&up, band, committed).stress, law.update(&down, band, committed).stress);
+        for i in 0..6 {
+            worst = worst.max(((sp[i] - sm[i]) / (2.0 * h) - r.tangent[i][j]).abs() / scale);
+        }
+    }
+    worst
+}
+
 /// The consistent tangent is the derivative of the stress (central
 /// differences of the update from the same committed state) at loading
 /// points inside each mode, and the secant where a point unloads.
@@ -166,17 +186,7 @@ fn the_consistent_tangent_is_the_derivative_of_the_stress() {
         let r = law.update(&strain, band, &committed);
         assert!(r.state.damage[mode] > committed.damage[mode], "{mode}: loading");
         let scale = r.tangent.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
-        let mut worst = 0.0f64;
-        for j in 0..6 {
-            let h = 1e-7;
-            let (mut up, mut down) = (strain, strain);
-            up[j] += h;
-            down[j] -= h;
-            let (sp, sm) = (law.update(&up, band, &committed).stress, law.update(&down, band, &committed).stress);
-            for i in 0..6 {
-                worst = worst.max(((sp[i] - sm[i]) / (2.0 * h) - r.tangent[i][j]).abs() / scale);
-            }
-        }
+        let worst = tangent_error(&law, &strain, band, &committed);
         assert!(worst < 1e-5, "mode {mode}: relative tangent error {worst}");
         // the secant law's tangent differs there (it is what Newton lacked)
         let secant = law.with_consistent_tangent(false).update(&strain, band, &committed).tangent;
@@ -253,4 +263,29 @@ fn a_point_keeps_its_committed_branch_within_an_increment() {
     assert!((first.stress[0] / (e1 * crushed[0]) - 1.0).abs() < 1e-12);
     let second = law.update(&crushed, band, &first.state);
     assert!(second.state.damage[FC] > 0.0, "{:?}", second.state.damage);
+}
+
+/// Where the committed branch and the stress disagree — a point committed
+/// in fibre tension, now slightly compressed along the fibres while shear
+/// keeps loading its fibre-tension mode — the mode that grows (FT, by the
+/// committed branch) holds no normal compliance (σ11 < 0 takes FC's), and
+/// the consistent tangent is still the derivative of the stress: only the
+/// shear moduli carry FT's growth.
+#[test]
+fn the_tangent_is_the_derivative_where_the_growing_mode_holds_no_normal_compliance() {
+    let law = ply([0.25, 0.25, 0.45]);
+    let band = [0.2e-3, 0.1e-3];
+    let committed = law.update(&[0.012, -0.003, -0.003, 0.028, 0.0, 0.0], band, &DamageState::default()).state;
+    // past onset in both FT and MT (shear drives both), so that no onset
+    // falls inside the update (its onset strain is the update's own, which
+    // the tangent does not differentiate)
+    assert!(committed.damage[FT] > 0.0 && committed.damage[MT] > 0.0, "{committed:?}");
+    assert!(committed.tension.is_some_and(|t| t[0]), "{committed:?}");
+    let strain = [-0.001, -0.001, -0.001, 0.034, 0.0, 0.0];
+    let r = law.update(&strain, band, &committed);
+    assert!(r.stress[0] < 0.0, "compressed along the fibres: {:?}", r.stress);
+    assert!(r.state.damage[FT] > committed.damage[FT], "FT grows by shear in the committed branch");
+    assert_eq!(r.state.damage[FC], 0.0);
+    let worst = tangent_error(&law, &strain, band, &committed);
+    assert!(worst < 1e-5, "relative tangent error {worst}");
 }

@@ -114,8 +114,8 @@ class Results:
 
     def to_meshio(self):
         """The fields of ``result.vtu`` as a ``meshio.Mesh``: the linear
-        hexahedra of ``output.vtu_cells = "linear"`` (meshio reads VTU
-        files of version 1.0 at most, not the Lagrange cells' 2.2), the
+        hexahedra of ``output.vtu_cells = "linear"`` (meshio reads the
+        Lagrange cells of ``result.vtu`` but knows no Lagrange shape), the
         point data and the ``body``/``element`` cell data, each (n,
         components) like ``meshio.read`` gives them. Needs meshio (the
         ``meshio`` extra)."""

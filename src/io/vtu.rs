@@ -387,13 +387,12 @@ const VTK_VERTEX: u8 = 1;
 fn write_grid(w: &mut impl Write, g: &Grid<'_>) -> std::io::Result<()> {
     writeln!(w, "<?xml version=\"1.0\"?>")?;
     writeln!(w, "<!-- {} -->", xml_comment(g.title))?;
-    // VTK ≥ 9.1 renumbers the Lagrange hexahedra of files older than 2.1
-    // to its former edge order (`vtkUpdateCellsV8toV9`)
+    // version 1.0 for both kinds of cells: the Lagrange hexahedra are in
+    // VTK 8's point order, which VTK ≥ 9.1 renumbers on reading (cells.rs)
     let lagrange = g.cell_type == VTK_LAGRANGE_HEXAHEDRON;
-    let version = if lagrange { "2.2" } else { "1.0" };
     writeln!(
         w,
-        "<VTKFile type=\"UnstructuredGrid\" version=\"{version}\" byte_order=\"LittleEndian\" header_type=\"UInt64\">"
+        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">"
     )?;
     writeln!(w, "  <UnstructuredGrid>")?;
     writeln!(w, "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">", g.points.len() / 3, g.n_cells)?;

@@ -10,8 +10,13 @@
 //!   parametric `(r, s, t) = (ξ, ζ, η)`, right-handed in `(x, y, z)`, of
 //!   orders `(p_s, p_b, p_s)` given per cell by the cell-data array
 //!   `HigherOrderDegrees`; the points in VTK's order (corners, edges, faces,
-//!   interior: [`vtk_index`]). VTK interpolates them with the element's own
-//!   Lagrange polynomials, so its geometry and displacement are cufem's.
+//!   interior: [`vtk_index`]) of VTK 8, in a file of version `1.0`, which
+//!   every reader of Lagrange cells reads alike: VTK ≥ 9.1 renumbers the
+//!   Lagrange hexahedra of files older than `2.1` to its own order
+//!   ([`vtk8_index`]), VTK 8.2–9.0 keep that order, and meshio reads
+//!   versions `0.1` and `1.0` only. VTK interpolates them with the
+//!   element's own Lagrange polynomials, so its geometry and displacement
+//!   are cufem's.
 //! * `"linear"`: the element split into `p_s² p_b` linear hexahedra between
 //!   neighbouring nodes.
 
@@ -92,7 +97,7 @@ fn cells(elements: &[GridElement], kind: VtuCells) -> Cells {
                 for iz in 0..=ps {
                     for k in 0..=pb {
                         for ix in 0..=ps {
-                            c.connectivity[start + vtk_index([ix, k, iz], order)] = id(k, iz, ix);
+                            c.connectivity[start + vtk8_index([ix, k, iz], order)] = id(k, iz, ix);
                         }
                     }
                 }
@@ -129,11 +134,26 @@ fn cells(elements: &[GridElement], kind: VtuCells) -> Cells {
     c
 }
 
+/// [`vtk_index`] in the order of VTK 8, that of a file older than version
+/// `2.1`: the points inside the edges along t from corners 2 and 3 of the
+/// face t = 0 swap places (the inverse of
+/// `vtkHigherOrderHexahedron::NodeNumberingMappingFromVTK8To9`, which VTK's
+/// XML reader applies to such files in `vtkUpdateCellsV8toV9`).
+fn vtk8_index(ijk: [usize; 3], order: [usize; 3]) -> usize {
+    let [a, b, c] = order;
+    let (ea, eb, ec) = (a - 1, b - 1, c - 1);
+    let corner_2 = 8 + 4 * (ea + eb) + 2 * ec;
+    match vtk_index(ijk, order) {
+        n if (corner_2..corner_2 + ec).contains(&n) => n + ec,
+        n if (corner_2 + ec..corner_2 + 2 * ec).contains(&n) => n - ec,
+        n => n,
+    }
+}
+
 /// The position in a VTK Lagrange hexahedron of orders `order` of its
 /// point `(i, j, k)` (along r, s, t): the 8 corners, then the points inside
 /// the 12 edges, the 6 faces and the interior, as VTK ≥ 9.1 numbers them
-/// (`vtkHigherOrderHexahedron::PointIndexFromIJK`; VTK's reader renumbers
-/// the edges along t of files older than version 2.1, so the file says 2.2).
+/// (`vtkHigherOrderHexahedron::PointIndexFromIJK`).
 fn vtk_index([i, j, k]: [usize; 3], order: [usize; 3]) -> usize {
     let [a, b, c] = order;
     let (ib, jb, kb) = (i == 0 || i == a, j == 0 || j == b, k == 0 || k == c);
@@ -196,6 +216,41 @@ mod tests {
             let [a, b, c] = order;
             let ours: Vec<usize> = (0..=c)
                 .flat_map(|k| (0..=b).flat_map(move |j| (0..=a).map(move |i| vtk_index([i, j, k], order))))
+                .collect();
+            assert_eq!(ours, expected, "order {order:?}");
+        }
+    }
+
+    /// The numbering of a file older than version 2.1 as VTK 9.7.2 reads
+    /// it: the position `n8` whose `NodeNumberingMappingFromVTK8To9(order, n8)`
+    /// is `PointIndexFromIJK(i, j, k, order)` (from the `vtk` wheel, i
+    /// fastest, then j, then k).
+    #[test]
+    fn points_are_numbered_as_vtk_8_did() {
+        let vtk8: [([usize; 3], &[usize]); 3] = [
+            (
+                [2, 2, 2],
+                &[0, 8, 1, 11, 24, 9, 3, 10, 2, 16, 22, 17, 20, 26, 21, 18, 23, 19, 4, 12, 5, 15, 25, 13, 7, 14, 6],
+            ),
+            (
+                [2, 3, 2],
+                &[
+                    0, 8, 1, 12, 30, 9, 13, 31, 10, 3, 11, 2, 20, 28, 21, 24, 34, 26, 25, 35, 27, 22, 29, 23, 4, 14, 5,
+                    18, 32, 15, 19, 33, 16, 7, 17, 6,
+                ],
+            ),
+            (
+                [3, 2, 3],
+                &[
+                    0, 8, 9, 1, 13, 40, 41, 10, 3, 11, 12, 2, 20, 32, 33, 22, 28, 44, 45, 30, 24, 36, 37, 26, 21, 34,
+                    35, 23, 29, 46, 47, 31, 25, 38, 39, 27, 4, 14, 15, 5, 19, 42, 43, 16, 7, 17, 18, 6,
+                ],
+            ),
+        ];
+        for (order, expected) in vtk8 {
+            let [a, b, c] = order;
+            let ours: Vec<usize> = (0..=c)
+                .flat_map(|k| (0..=b).flat_map(move |j| (0..=a).map(move |i| vtk8_index([i, j, k], order))))
                 .collect();
             assert_eq!(ours, expected, "order {order:?}");
         }

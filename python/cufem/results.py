@@ -11,14 +11,25 @@ import numpy as np
 from ._extras import require
 
 
+def _column(kind, values):
+    """One column with the dtype ``pandas.read_csv`` gives its CSV column:
+    real numbers as float64 (an absent value NaN), counts as int64 (as
+    float64 with NaN where some are absent), text as text."""
+    if kind == "count":
+        return np.asarray(values, dtype=np.int64)
+    if kind == "text":
+        return list(values)
+    values = np.asarray(values, dtype=float)
+    if kind == "optional_count" and np.all(np.isfinite(values)):
+        return values.astype(np.int64)
+    return values
+
+
 def _table(columns):
-    """The columns as a pandas DataFrame (integer counts as integers)."""
-    pd = require("pandas", "a table of results (Results.line, Results.history)")
-    data = {name: np.asarray(values, dtype=float) for name, values in columns}
-    for k in ("increment", "iterations", "plastic_points", "mode"):
-        if k in data and np.all(np.isfinite(data[k])):
-            data[k] = data[k].astype(np.int64)
-    return pd.DataFrame(data)
+    """Typed columns ``(CSV header, kind, values)`` of the native module as
+    a pandas DataFrame, equal to ``pandas.read_csv`` of the CSV file."""
+    pd = require("pandas", "a table of results (Results.line, Results.history, Results.table)")
+    return pd.DataFrame({name: _column(kind, values) for name, kind, values in columns})
 
 
 class Results:
@@ -62,8 +73,11 @@ class Results:
         pandas DataFrame."""
         return _table(self._native.line(name))
 
-    def history(self, name: str):
-        """Per converged increment, as ``history_<name>.csv``: for a
+    def history(self, name: Optional[str] = None):
+        """Per converged increment, as ``history_<name>.csv``; without a
+        name, ``history.csv``: ``increment``, ``lambda``, ``iterations``,
+        ``plastic_points`` and ``negative_pivots`` (NaN where not known).
+        For a
         constraint set the prescribed displacement ``u_*`` and reaction
         ``r_*``; for an indenter or contact its displacement ``d_*``, force
         ``f_*``, ``max_penetration``, ``plastic_points``, ``f_n`` and ``f_t``;
@@ -71,7 +85,60 @@ class Results:
         ``full_r_*`` or ``full_f_*`` (not for a plane's own reaction);
         for ``"probes"`` (``history_probes.csv``) every probe's displacement
         ``<probe>.u_*``. A pandas DataFrame."""
+        if name is None:
+            return self.table("history")
         return _table(self._native.history(name))
+
+    def probes(self):
+        """Every probe at the end, one row per probe (in the model's order),
+        as summary.json's ``probes``: ``probe`` (its name), the point ``x,
+        y, z`` (m), ``u_x`` … (m), ``s_xx`` … ``von_mises`` (Pa), ``peeq``,
+        ``e_xx`` … and the failure indices of a laminate; a pandas
+        DataFrame (:meth:`probe` gives one row as a dict)."""
+        return _table(self._native.probes())
+
+    def contact_points(self, name: str):
+        """The final state of every point of contact `name` (an indenter or
+        a contact pair), as ``contact_<name>.csv``: ``node``, ``x, y, z``
+        (m), ``gap`` (m), ``f_x`` … (N), ``area`` (m²), ``pressure`` and
+        ``traction`` (Pa), ``active``, ``slip`` (m) and ``sliding`` (0 or
+        1); a pandas DataFrame, KeyError naming the contacts for another
+        name."""
+        stem = f"contact_{name}"
+        names = self.table_names()
+        if stem not in names:
+            contacts = [n[len("contact_") :] for n in names if n.startswith("contact_")]
+            raise KeyError(f"contact {name!r}: expected an indenter or contact of this run, one of {contacts}")
+        return self.table(stem)
+
+    def energy(self):
+        """The energy balance of a transient run per converged time step, as
+        ``energy.csv``: ``time_s`` and the energies in J (``kinetic_J``,
+        ``internal_J``, ``elastic_J``, ``plastic_J``, ``damping_J``,
+        ``external_J``, ``contact_J``, ``supports_J``, ``balance_J``,
+        ``impactors_J``; ``interfaces_J``, ``delamination_J`` and
+        ``damage_*_J`` in models that have them); a pandas DataFrame,
+        KeyError without a transient analysis."""
+        if "energy" not in self.table_names():
+            raise KeyError('energy.csv: this run has no transient analysis (analysis.type = "transient" computes one)')
+        return self.table("energy")
+
+    def table_names(self):
+        """The stem of every CSV file the run writes (``line_<name>``,
+        ``history_<name>``, ``history``, ``contact_<name>``, ``modes``,
+        ``buckling``, ``energy``), in the order ``cufem run`` writes them."""
+        return list(self._native.table_names())
+
+    def table(self, stem: str):
+        """The content of ``<stem>.csv`` (one of :meth:`table_names`) as a
+        pandas DataFrame: the same column names (units in them as the file
+        has them), row order and values as ``pandas.read_csv`` of the file
+        ``cufem run`` writes; KeyError listing the tables for another stem."""
+        return _table(self._native.table(stem))
+
+    def tables(self):
+        """Every table of :meth:`table_names`, a dict stem → DataFrame."""
+        return {stem: self.table(stem) for stem in self.table_names()}
 
     def modes(self):
         """The vibration modes of a modal analysis, as ``modes.csv`` has

@@ -1,0 +1,116 @@
+"""Every table of a run as a pandas DataFrame, against the CSV file the CLI
+(`cufem run`) wrote for the same model: the same column names (with the
+units in them where the file has them), dtypes, row order and values to the
+last digit (`pandas.read_csv` parses Rust's shortest round-trip `{:e}`
+text back to the same f64: pandas 3's default parser does, an older one
+with `float_precision="round_trip"`, which pandas 3 deprecates)."""
+
+import math
+
+import pandas as pd
+import pytest
+
+import cufem
+from conftest import EXAMPLES, load_summary
+
+# each kind of table: lines, histories of constraints (a free component is
+# an empty field), contacts and probes, history.csv, contact points
+# (bending_compact_4L9, its quarter with full-structure columns), energy.csv
+# of a transient run (rod_impact), modes.csv and buckling.csv
+EXAMPLES_TABLED = [
+    "bending_compact_4L9",
+    "bending_compact_4L9_quarter",
+    "rod_impact",
+    "cantilever_modes",
+    "column_buckling",
+]
+
+
+ROUND_TRIP = {} if int(pd.__version__.split(".")[0]) >= 3 else {"float_precision": "round_trip"}
+
+
+def read_csv(path):
+    return pd.read_csv(path, **ROUND_TRIP)
+
+
+def assert_same(ours, path):
+    pd.testing.assert_frame_equal(ours, read_csv(path), check_exact=True, check_dtype=True, obj=path.name)
+
+
+@pytest.fixture(scope="module")
+def runs():
+    cache = {}
+
+    def get(name):
+        if name not in cache:
+            cache[name] = cufem.Model.from_file(EXAMPLES / f"{name}.toml").run(threads=1, quiet=True)
+        return cache[name]
+
+    return get
+
+
+@pytest.mark.parametrize("name", EXAMPLES_TABLED)
+def test_every_table_equals_the_cli_csv(name, cli_runs, runs):
+    cli_dir = cli_runs(name)
+    results = runs(name)
+    csvs = sorted(p.stem for p in cli_dir.glob("*.csv"))
+    # the CLI's summary lists its files in the order it wrote them
+    written = [f[: -len(".csv")] for f in load_summary(cli_dir)["files"] if f.endswith(".csv")]
+    assert results.table_names() == written
+    assert sorted(results.table_names()) == csvs
+    for stem, table in results.tables().items():
+        assert_same(table, cli_dir / f"{stem}.csv")
+
+
+@pytest.mark.parametrize("name", EXAMPLES_TABLED)
+def test_named_accessors_equal_the_cli_csv(name, cli_runs, runs):
+    cli_dir = cli_runs(name)
+    results = runs(name)
+    s = load_summary(cli_dir)
+    files = set(s["files"])
+    if "history.csv" in files:
+        h = results.history()
+        assert_same(h, cli_dir / "history.csv")
+        assert list(h.columns) == ["increment", "lambda", "iterations", "plastic_points", "negative_pivots"]
+        assert len(h) == s["increments"]
+    for c in s["contact"]:
+        points = results.contact_points(c["name"])
+        assert_same(points, cli_dir / f"contact_{c['name']}.csv")
+        # the points' forces add up to the contact's resultant in summary.json
+        for k, axis in enumerate("xyz"):
+            assert points[f"f_{axis}"].sum() == pytest.approx(c["force"][k], rel=1e-9, abs=1e-9 * max(map(abs, c["force"])))
+    if "energy.csv" in files:
+        e = results.energy()
+        assert_same(e, cli_dir / "energy.csv")
+        assert list(e.columns[:2]) == ["time_s", "kinetic_J"]
+        # summary.json's energy: the last row, by bare column name
+        last = {k[: k.rindex("_")]: v for k, v in e.iloc[-1].items()}
+        assert last == s["energy"]
+    else:
+        with pytest.raises(KeyError, match='analysis.type = "transient"'):
+            results.energy()
+
+
+@pytest.mark.parametrize("name", EXAMPLES_TABLED)
+def test_probes_equal_the_summary(name, cli_runs, runs):
+    s = load_summary(cli_runs(name))
+    p = runs(name).probes()
+    assert list(p["probe"]) == [q["name"] for q in s["probes"]]
+    for i, q in enumerate(s["probes"]):
+        row = p.iloc[i]
+        assert [row["x"], row["y"], row["z"]] == q["point"]
+        assert [row["u_x"], row["u_y"], row["u_z"]] == q["u"]
+        assert [row[f"s_{c}"] for c in ("xx", "yy", "zz", "xy", "xz", "yz")] == q["stress"]
+        assert row["von_mises"] == q["von_mises"] and row["peeq"] == q["peeq"]
+        # the dict of one probe: the same row
+        one = runs(name).probe(q["name"])
+        assert all(one[k] == row[k] or (math.isnan(one[k]) and math.isnan(row[k])) for k in one)
+        assert sorted(one) == sorted(k for k in p.columns if k != "probe")
+
+
+def test_unknown_tables_name_the_ones_there(runs):
+    r = runs("bending_compact_4L9")
+    with pytest.raises(KeyError, match=r"contact 'nowhere': .*'support_left', 'support_right', 'load'"):
+        r.contact_points("nowhere")
+    with pytest.raises(KeyError, match=r'this run writes no energy.csv; expected one of \["line_top", "history_symmetry_y"'):
+        r.table("energy")

@@ -154,6 +154,45 @@ class Results:
         a pandas DataFrame, KeyError without a buckling analysis."""
         return _table(self._native.modes(True))
 
+    def plot_table(self, stem: str, columns=None, ax=None):
+        """The chart ``report.html`` draws of table `stem` (one of
+        :meth:`table_names` but ``contact_*``) with matplotlib: histories
+        against ``lambda``, lines against ``s``, the energy against
+        ``time_s``, modes against ``mode``; every measured column a line
+        labelled by its CSV name, or only `columns`. Drawn into `ax`, or a
+        new figure's; returns the Axes. Needs matplotlib (the ``plot``
+        extra)."""
+        from . import plots
+
+        return plots.plot_table(stem, self.table(stem), columns, ax, f"Results.plot_table({stem!r})")
+
+    def plot_history(self, name: Optional[str] = None, columns=None, ax=None):
+        """:meth:`plot_table` of ``history_<name>`` (reactions, contact
+        forces, probe displacements against ``lambda``) or, without a name,
+        of ``history`` (iterations, plastic points, negative pivots)."""
+        return self.plot_table("history" if name is None else f"history_{name}", columns, ax)
+
+    def plot_line(self, name: str, columns=None, ax=None):
+        """:meth:`plot_table` of ``line_<name>``: the quantities along the
+        line against ``s`` (m); ``columns=["s_yy"]`` for one."""
+        return self.plot_table(f"line_{name}", columns, ax)
+
+    def plot_energy(self, columns=None, ax=None):
+        """:meth:`plot_table` of ``energy``: the energy balance of a
+        transient run against ``time_s``."""
+        self.energy()  # KeyError naming analysis.type without one
+        return self.plot_table("energy", columns, ax)
+
+    def plot_modes(self, columns=None, ax=None):
+        """:meth:`plot_table` of ``modes`` (frequencies, effective masses)
+        or ``buckling`` (load factors, critical loads) against ``mode``;
+        KeyError without either analysis."""
+        names = self.table_names()
+        stem = next((n for n in ("modes", "buckling") if n in names), None)
+        if stem is None:
+            raise KeyError('modes.csv, buckling.csv: this run has no modal or buckling analysis (analysis.type = "modal" or "buckling")')
+        return self.plot_table(stem, columns, ax)
+
     def _vtu_data(self) -> dict:
         # the arrays result.vtu holds, computed by the native module
         if self._vtu is None:

@@ -114,3 +114,68 @@ def test_unknown_tables_name_the_ones_there(runs):
         r.contact_points("nowhere")
     with pytest.raises(KeyError, match=r'this run writes no energy.csv; expected one of \["line_top", "history_symmetry_y"'):
         r.table("energy")
+
+
+# (Results method, its argument, the table it charts, x column, series)
+# the series as report.html charts them: every measured column but the
+# increment, the counts only in history.csv (the energy: every J column)
+PLOTS = [
+    ("bending_compact_4L9", "plot_history", ("load",), "history_load", "lambda",
+     ["d_x", "d_y", "d_z", "f_x", "f_y", "f_z", "max_penetration", "f_n", "f_t"]),
+    ("bending_compact_4L9", "plot_history", (), "history", "lambda", ["iterations", "plastic_points", "negative_pivots"]),
+    ("bending_compact_4L9", "plot_line", ("top",), "line_top", "s", None),
+    ("rod_impact", "plot_energy", (), "energy", "time_s", None),
+    ("cantilever_modes", "plot_modes", (), "modes", "mode",
+     ["frequency_hz", "effective_mass_x", "effective_mass_y", "effective_mass_z"]),
+    ("column_buckling", "plot_modes", (), "buckling", "mode", None),
+]
+
+
+@pytest.mark.parametrize("name, method, args, stem, x, series", PLOTS, ids=[f"{p[0]}-{p[3]}" for p in PLOTS])
+def test_plots_draw_the_table(name, method, args, stem, x, series, cli_runs, runs):
+    pytest.importorskip("matplotlib")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    table = read_csv(cli_runs(name) / f"{stem}.csv")
+    if series is None:  # every column but x (and the increment)
+        series = [c for c in table.columns if c not in (x, "increment")]
+    ax = getattr(runs(name), method)(*args)
+    try:
+        assert ax.get_xlabel() == x
+        assert [l.get_label() for l in ax.get_lines()] == series
+        for line, c in zip(ax.get_lines(), series):
+            # the CSV's numbers, not rescaled (a unit change would show here)
+            assert list(line.get_xdata()) == list(table[x]), c
+            ours, theirs = line.get_ydata(), table[c].to_numpy()
+            assert all(a == b or (math.isnan(a) and math.isnan(b)) for a, b in zip(ours, theirs)) and len(ours) == len(theirs), c
+        # one column, into a given Axes
+        fig, given = plt.subplots()
+        assert getattr(runs(name), method)(*args, columns=[series[-1]], ax=given) is given
+        assert [l.get_label() for l in given.get_lines()] == [series[-1]]
+        with pytest.raises(KeyError, match="not charted"):
+            getattr(runs(name), method)(*args, columns=["increment"], ax=given)
+    finally:
+        plt.close("all")
+
+
+def test_plots_without_matplotlib_name_the_extra(runs, monkeypatch):
+    import sys
+
+    monkeypatch.setitem(sys.modules, "matplotlib", None)
+    with pytest.raises(ImportError) as e:
+        runs("bending_compact_4L9").plot_line("top")
+    assert str(e.value).startswith("Results.plot_table('line_top') needs matplotlib, which is not installed"), e.value
+    assert 'pip install "./python[plot]"' in str(e.value)
+
+
+def test_plots_of_tables_the_run_has_not(runs):
+    r = runs("bending_compact_4L9")
+    with pytest.raises(KeyError, match='analysis.type = "transient"'):
+        r.plot_energy()
+    with pytest.raises(KeyError, match='analysis.type = "modal" or "buckling"'):
+        r.plot_modes()
+    with pytest.raises(ValueError, match="no chart"):
+        r.plot_table("contact_load")

@@ -2,8 +2,11 @@
 
 from __future__ import annotations
 
+import html
 import json
 import os
+import tempfile
+from pathlib import Path
 from typing import Dict, Optional
 
 import numpy as np
@@ -42,6 +45,7 @@ class Results:
         self.out = out
         self._summary = None
         self._vtu = None
+        self._report = None
 
     @property
     def summary(self) -> dict:
@@ -244,6 +248,38 @@ class Results:
         """Writes the CLI's files (summary.json, result.vtu, CSV, PNG) into
         `dir` as ``cufem run --out dir`` does; returns their names."""
         return self._native.write(os.fspath(dir), force)
+
+    def report_html(self) -> Optional[str]:
+        """The text of the run's ``report.html`` (the self-contained page:
+        the model, the convergence log, the tables, the charts, the
+        warnings and the 3D view), as :meth:`write` writes it; None with
+        ``output.report = false``. Written once into a temporary folder
+        (with the run's other files) and kept."""
+        if self._report is None:
+            with tempfile.TemporaryDirectory(prefix="cufem-report-") as tmp:
+                page = Path(tmp) / "results" / "report.html"
+                self.write(page.parent)
+                self._report = page.read_text(encoding="utf-8") if page.exists() else ""
+        return self._report or None
+
+    def report_iframe(self, height: int = 720) -> str:
+        """``report.html`` inline: an ``<iframe>`` whose ``srcdoc`` is the
+        page (HTML-escaped), `height` pixels high, its scripts allowed and
+        sandboxed from the notebook; what Jupyter shows for a
+        :class:`Results` (``IPython.display.HTML(results.report_iframe(900))``
+        for another height). Without a report (``output.report = false``)
+        the summary line of :meth:`__repr__`."""
+        page = self.report_html()
+        if page is None:
+            return f"<pre>{html.escape(repr(self))} (no report: output.report = false)</pre>"
+        return (
+            f'<iframe srcdoc="{html.escape(page, quote=True)}" sandbox="allow-scripts" '
+            f'style="width: 100%; height: {int(height)}px; border: 1px solid #ccc"></iframe>'
+        )
+
+    def _repr_html_(self) -> str:
+        # Jupyter's rich display of a Results: the report inline
+        return self.report_iframe()
 
     def __repr__(self) -> str:
         s = self.summary

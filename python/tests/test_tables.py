@@ -1,9 +1,7 @@
 """Every table of a run as a pandas DataFrame, against the CSV file the CLI
 (`cufem run`) wrote for the same model: the same column names (with the
 units in them where the file has them), dtypes, row order and values to the
-last digit (`pandas.read_csv` parses Rust's shortest round-trip `{:e}`
-text back to the same f64: pandas 3's default parser does, an older one
-with `float_precision="round_trip"`, which pandas 3 deprecates)."""
+last digit (conftest.read_csv)."""
 
 import math
 
@@ -11,7 +9,7 @@ import pandas as pd
 import pytest
 
 import cufem
-from conftest import EXAMPLES, load_summary
+from conftest import EXAMPLES, assert_same_as_csv as assert_same, load_summary, read_csv
 
 # each kind of table: lines, histories of constraints (a free component is
 # an empty field), contacts and probes, history.csv, contact points
@@ -26,15 +24,6 @@ EXAMPLES_TABLED = [
 ]
 
 
-ROUND_TRIP = {} if int(pd.__version__.split(".")[0]) >= 3 else {"float_precision": "round_trip"}
-
-
-def read_csv(path):
-    return pd.read_csv(path, **ROUND_TRIP)
-
-
-def assert_same(ours, path):
-    pd.testing.assert_frame_equal(ours, read_csv(path), check_exact=True, check_dtype=True, obj=path.name)
 
 
 @pytest.fixture(scope="module")

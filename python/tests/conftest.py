@@ -48,6 +48,22 @@ def cli_runs(cli, tmp_path_factory):
     return get
 
 
+@pytest.fixture(scope="session")
+def memory_runs():
+    """`cufem.Results` of an example run in memory (no files written; run
+    once per session, threads=1)."""
+    import cufem
+
+    cache = {}
+
+    def get(name):
+        if name not in cache:
+            cache[name] = cufem.Model.from_file(EXAMPLES / f"{name}.toml").run(threads=1, quiet=True)
+        return cache[name]
+
+    return get
+
+
 def load_summary(folder) -> dict:
     with open(Path(folder) / "summary.json") as f:
         return json.load(f)

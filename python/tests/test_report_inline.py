@@ -35,21 +35,9 @@ def page_data(page):
     return json.loads(text)
 
 
-@pytest.fixture(scope="module")
-def runs():
-    cache = {}
-
-    def get(name):
-        if name not in cache:
-            cache[name] = cufem.Model.from_file(EXAMPLES / f"{name}.toml").run(threads=1, quiet=True)
-        return cache[name]
-
-    return get
-
-
 @pytest.mark.parametrize("name", EXAMPLES_SHOWN)
-def test_repr_html_is_the_report_page_in_an_iframe(name, runs, cli_runs, tmp_path):
-    results = runs(name)
+def test_repr_html_is_the_report_page_in_an_iframe(name, memory_runs, cli_runs, tmp_path):
+    results = memory_runs(name)
     frames = Iframes(results._repr_html_()).found
     assert len(frames) == 1
     frame = frames[0]
@@ -69,8 +57,8 @@ def test_repr_html_is_the_report_page_in_an_iframe(name, runs, cli_runs, tmp_pat
 
 
 @pytest.mark.parametrize("name", EXAMPLES_SHOWN)
-def test_the_plots_are_the_reports_charts(name, runs):
-    results = runs(name)
+def test_the_plots_are_the_reports_charts(name, memory_runs):
+    results = memory_runs(name)
     charts = page_data(results.report_html())["charts"]
     charted = [n for n in results.table_names() if not n.startswith("contact_")]
     # a chart for every table but the contact points (the report's order:

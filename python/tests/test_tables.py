@@ -5,11 +5,9 @@ last digit (conftest.read_csv)."""
 
 import math
 
-import pandas as pd
 import pytest
 
-import cufem
-from conftest import EXAMPLES, assert_same_as_csv as assert_same, load_summary, read_csv
+from conftest import assert_same_as_csv as assert_same, load_summary, read_csv
 
 # each kind of table: lines, histories of constraints (a free component is
 # an empty field), contacts and probes, history.csv, contact points
@@ -26,22 +24,10 @@ EXAMPLES_TABLED = [
 
 
 
-@pytest.fixture(scope="module")
-def runs():
-    cache = {}
-
-    def get(name):
-        if name not in cache:
-            cache[name] = cufem.Model.from_file(EXAMPLES / f"{name}.toml").run(threads=1, quiet=True)
-        return cache[name]
-
-    return get
-
-
 @pytest.mark.parametrize("name", EXAMPLES_TABLED)
-def test_every_table_equals_the_cli_csv(name, cli_runs, runs):
+def test_every_table_equals_the_cli_csv(name, cli_runs, memory_runs):
     cli_dir = cli_runs(name)
-    results = runs(name)
+    results = memory_runs(name)
     csvs = sorted(p.stem for p in cli_dir.glob("*.csv"))
     # the CLI's summary lists its files in the order it wrote them
     written = [f[: -len(".csv")] for f in load_summary(cli_dir)["files"] if f.endswith(".csv")]
@@ -52,9 +38,9 @@ def test_every_table_equals_the_cli_csv(name, cli_runs, runs):
 
 
 @pytest.mark.parametrize("name", EXAMPLES_TABLED)
-def test_named_accessors_equal_the_cli_csv(name, cli_runs, runs):
+def test_named_accessors_equal_the_cli_csv(name, cli_runs, memory_runs):
     cli_dir = cli_runs(name)
-    results = runs(name)
+    results = memory_runs(name)
     s = load_summary(cli_dir)
     files = set(s["files"])
     if "history.csv" in files:
@@ -81,9 +67,9 @@ def test_named_accessors_equal_the_cli_csv(name, cli_runs, runs):
 
 
 @pytest.mark.parametrize("name", EXAMPLES_TABLED)
-def test_probes_equal_the_summary(name, cli_runs, runs):
+def test_probes_equal_the_summary(name, cli_runs, memory_runs):
     s = load_summary(cli_runs(name))
-    p = runs(name).probes()
+    p = memory_runs(name).probes()
     assert list(p["probe"]) == [q["name"] for q in s["probes"]]
     for i, q in enumerate(s["probes"]):
         row = p.iloc[i]
@@ -92,13 +78,13 @@ def test_probes_equal_the_summary(name, cli_runs, runs):
         assert [row[f"s_{c}"] for c in ("xx", "yy", "zz", "xy", "xz", "yz")] == q["stress"]
         assert row["von_mises"] == q["von_mises"] and row["peeq"] == q["peeq"]
         # the dict of one probe: the same row
-        one = runs(name).probe(q["name"])
+        one = memory_runs(name).probe(q["name"])
         assert all(one[k] == row[k] or (math.isnan(one[k]) and math.isnan(row[k])) for k in one)
         assert sorted(one) == sorted(k for k in p.columns if k != "probe")
 
 
-def test_unknown_tables_name_the_ones_there(runs):
-    r = runs("bending_compact_4L9")
+def test_unknown_tables_name_the_ones_there(memory_runs):
+    r = memory_runs("bending_compact_4L9")
     with pytest.raises(KeyError, match=r"contact 'nowhere': .*'support_left', 'support_right', 'load'"):
         r.contact_points("nowhere")
     with pytest.raises(KeyError, match=r'this run writes no energy.csv; expected one of \["line_top", "history_symmetry_y"'):
@@ -121,7 +107,7 @@ PLOTS = [
 
 
 @pytest.mark.parametrize("name, method, args, stem, x, series", PLOTS, ids=[f"{p[0]}-{p[3]}" for p in PLOTS])
-def test_plots_draw_the_table(name, method, args, stem, x, series, cli_runs, runs):
+def test_plots_draw_the_table(name, method, args, stem, x, series, cli_runs, memory_runs):
     pytest.importorskip("matplotlib")
     import matplotlib
 
@@ -131,7 +117,7 @@ def test_plots_draw_the_table(name, method, args, stem, x, series, cli_runs, run
     table = read_csv(cli_runs(name) / f"{stem}.csv")
     if series is None:  # every column but x (and the increment)
         series = [c for c in table.columns if c not in (x, "increment")]
-    ax = getattr(runs(name), method)(*args)
+    ax = getattr(memory_runs(name), method)(*args)
     try:
         assert ax.get_xlabel() == x
         assert [l.get_label() for l in ax.get_lines()] == series
@@ -142,26 +128,26 @@ def test_plots_draw_the_table(name, method, args, stem, x, series, cli_runs, run
             assert all(a == b or (math.isnan(a) and math.isnan(b)) for a, b in zip(ours, theirs)) and len(ours) == len(theirs), c
         # one column, into a given Axes
         fig, given = plt.subplots()
-        assert getattr(runs(name), method)(*args, columns=[series[-1]], ax=given) is given
+        assert getattr(memory_runs(name), method)(*args, columns=[series[-1]], ax=given) is given
         assert [l.get_label() for l in given.get_lines()] == [series[-1]]
         with pytest.raises(KeyError, match="not charted"):
-            getattr(runs(name), method)(*args, columns=["increment"], ax=given)
+            getattr(memory_runs(name), method)(*args, columns=["increment"], ax=given)
     finally:
         plt.close("all")
 
 
-def test_plots_without_matplotlib_name_the_extra(runs, monkeypatch):
+def test_plots_without_matplotlib_name_the_extra(memory_runs, monkeypatch):
     import sys
 
     monkeypatch.setitem(sys.modules, "matplotlib", None)
     with pytest.raises(ImportError) as e:
-        runs("bending_compact_4L9").plot_line("top")
+        memory_runs("bending_compact_4L9").plot_line("top")
     assert str(e.value).startswith("Results.plot_table('line_top') needs matplotlib, which is not installed"), e.value
     assert 'pip install "./python[plot]"' in str(e.value)
 
 
-def test_plots_of_tables_the_run_has_not(runs):
-    r = runs("bending_compact_4L9")
+def test_plots_of_tables_the_run_has_not(memory_runs):
+    r = memory_runs("bending_compact_4L9")
     with pytest.raises(KeyError, match='analysis.type = "transient"'):
         r.plot_energy()
     with pytest.raises(KeyError, match='analysis.type = "modal" or "buckling"'):

@@ -81,8 +81,7 @@ class Results:
         """Per converged increment, as ``history_<name>.csv``; without a
         name, ``history.csv``: ``increment``, ``lambda``, ``iterations``,
         ``plastic_points`` and ``negative_pivots`` (NaN where not known).
-        For a
-        constraint set the prescribed displacement ``u_*`` and reaction
+        For a constraint set the prescribed displacement ``u_*`` and reaction
         ``r_*``; for an indenter or contact its displacement ``d_*``, force
         ``f_*``, ``max_penetration``, ``plastic_points``, ``f_n`` and ``f_t``;
         in a model cut by symmetry planes, also the full structure's

@@ -447,13 +447,13 @@ impl NativeResults {
 
     /// The columns of `line_<name>.csv`: `s, x, y, z` and every quantity
     /// (points outside every body left out).
-    fn line(&self, py: Python<'_>, name: &str) -> PyResult<Vec<(String, Vec<f64>)>> {
+    fn line(&self, py: Python<'_>, name: &str) -> PyResult<Vec<TypedColumn>> {
         let k = self.model.lines.iter().position(|l| l.name == name).ok_or_else(|| {
             let names: Vec<&str> = self.model.lines.iter().map(|p| p.name.as_str()).collect();
             PyKeyError::new_err(format!("line {name:?}: expected one of {names:?}"))
         })?;
         let (model, solution) = (self.model.clone(), self.solution.clone());
-        Ok(columns(&py.allow_threads(|| tables::sampled_line(&model, &solution.fields(&model), k))))
+        columns(py, &py.allow_threads(|| tables::sampled_line(&model, &solution.fields(&model), k)))
     }
 
     /// The columns of `history_<name>.csv` (a constraint set: prescribed
@@ -461,16 +461,16 @@ impl NativeResults {
     /// force, penetration, plastic points; cut by symmetry planes, the full
     /// structure's force too; `"probes"`: every probe's displacement), one
     /// row per converged increment; an absent value is NaN.
-    fn history(&self, name: &str) -> PyResult<Vec<(String, Vec<f64>)>> {
+    fn history(&self, py: Python<'_>, name: &str) -> PyResult<Vec<TypedColumn>> {
         let (m, solution) = (&self.model, &self.solution);
         if let Some(ci) = m.constraints.iter().position(|c| c.name == name) {
-            return Ok(columns(&tables::constraint_history(m, solution, ci)));
+            return columns(py, &tables::constraint_history(m, solution, ci));
         }
         if let Some(set) = solution.contact_sets.iter().find(|s| s.name == name) {
-            return Ok(columns(&tables::contact_history(m, solution, set)));
+            return columns(py, &tables::contact_history(m, solution, set));
         }
         if name == "probes" && !m.probes.is_empty() {
-            return Ok(columns(&tables::probe_history(m, solution)));
+            return columns(py, &tables::probe_history(m, solution));
         }
         let mut names: Vec<&str> = m.constraints.iter().map(|c| c.name.as_str()).collect();
         names.extend(solution.contact_sets.iter().map(|s| s.name.as_str()));
@@ -486,15 +486,54 @@ impl NativeResults {
     /// `frequency_hz`, `effective_mass_*`) or, with `buckling`, of
     /// `buckling.csv` (`mode`, `load_factor`, `critical_load_*`, cut by
     /// symmetry planes `full_critical_load_*`), one row per mode.
-    fn modes(&self, buckling: bool) -> PyResult<Vec<(String, Vec<f64>)>> {
+    fn modes(&self, py: Python<'_>, buckling: bool) -> PyResult<Vec<TypedColumn>> {
         let (m, solution) = (&self.model, &self.solution);
         let table = if buckling { tables::buckling(m, solution) } else { tables::modes(solution) };
         let (file, kind) = if buckling { ("buckling.csv", "buckling") } else { ("modes.csv", "modal") };
-        table.map(|t| columns(&t)).ok_or_else(|| {
+        let table = table.ok_or_else(|| {
             PyKeyError::new_err(format!(
                 "{file}: this run has no {kind} analysis (analysis.type = \"{kind}\" computes one)"
             ))
-        })
+        })?;
+        columns(py, &table)
+    }
+
+    /// The probe table (`analysis::tables::probes`, summary.json's
+    /// `probes`): one row per probe, its name (`probe`), its point `x, y, z`
+    /// and every quantity there.
+    fn probes(&self, py: Python<'_>) -> PyResult<Vec<TypedColumn>> {
+        let (model, solution) = (self.model.clone(), self.solution.clone());
+        columns(py, &py.allow_threads(|| tables::probes(&model, &solution.fields(&model))))
+    }
+
+    /// The stems of every CSV file a run writes (`line_top`, `history_clamp`,
+    /// `history`, `contact_load`, `energy`, `modes` …), in the order
+    /// `cufem run` writes them.
+    fn table_names(&self) -> Vec<String> {
+        let (m, solution) = (&self.model, &self.solution);
+        let mut names: Vec<String> = m.lines.iter().map(|l| format!("line_{}", l.name)).collect();
+        names.extend(tables::histories(m, solution).into_iter().map(|t| t.name));
+        names.extend(other_tables(m, solution).into_iter().map(|t| t.name));
+        names
+    }
+
+    /// The columns of `<stem>.csv`, any CSV file a run writes
+    /// ([`NativeResults::table_names`]), with their CSV headers (`kinetic_J`).
+    fn table(&self, py: Python<'_>, stem: &str) -> PyResult<Vec<TypedColumn>> {
+        let (m, solution) = (&self.model, &self.solution);
+        if let Some(k) = m.lines.iter().position(|l| stem.strip_prefix("line_") == Some(l.name.as_str())) {
+            let (model, solution) = (self.model.clone(), self.solution.clone());
+            return columns(py, &py.allow_threads(|| tables::sampled_line(&model, &solution.fields(&model), k)));
+        }
+        let mut all = tables::histories(m, solution);
+        all.extend(other_tables(m, solution));
+        match all.iter().find(|t| t.name == stem) {
+            Some(t) => columns(py, t),
+            None => Err(PyKeyError::new_err(format!(
+                "table {stem:?}: this run writes no {stem}.csv; expected one of {:?}",
+                self.table_names()
+            ))),
+        }
     }
 
     /// The 3D field of `result.vtu` as numpy arrays, computed here rather
@@ -538,9 +577,39 @@ impl NativeResults {
     }
 }
 
-/// A result table as `(name, values)` columns, an absent value as NaN.
-fn columns(table: &tables::Table) -> Vec<(String, Vec<f64>)> {
-    table.columns.iter().map(|c| (c.name.clone(), c.values.to_f64())).collect()
+/// A column for Python: its CSV header, its kind (`"real"`, `"count"`,
+/// `"optional_count"`, `"text"`) and its values (a float64 array with NaN
+/// where absent, an int64 array of counts, or a list of text).
+type TypedColumn = (String, &'static str, PyObject);
+
+/// A result table as typed columns named by their CSV headers
+/// ([`tables::Table::header`]: `kinetic_J` in `energy.csv`).
+fn columns(py: Python<'_>, table: &tables::Table) -> PyResult<Vec<TypedColumn>> {
+    use tables::Values;
+    let column = |c: &tables::Column| -> PyResult<TypedColumn> {
+        let (kind, values) = match &c.values {
+            Values::Count(v) => {
+                let v: Vec<i64> = v.iter().map(|&n| n as i64).collect();
+                ("count", v.into_pyarray(py).into_any().unbind())
+            }
+            Values::Text(v) => ("text", PyList::new(py, v)?.into_any().unbind()),
+            Values::OptionalCount(_) => ("optional_count", c.values.to_f64().into_pyarray(py).into_any().unbind()),
+            Values::Real(_) | Values::Optional(_) => ("real", c.values.to_f64().into_pyarray(py).into_any().unbind()),
+        };
+        Ok((table.header(c), kind, values))
+    };
+    table.columns.iter().map(column).collect()
+}
+
+/// The tables after the lines and histories, in the order `cufem run`
+/// writes them: each contact's points, the modes, the buckling modes, the
+/// energy balance.
+fn other_tables(m: &Model, solution: &Solution) -> Vec<tables::Table> {
+    let mut out: Vec<_> = solution.contact_sets.iter().map(|set| tables::contact_points(m, set)).collect();
+    out.extend(
+        [tables::modes(solution), tables::buckling(m, solution), tables::energy(solution)].into_iter().flatten(),
+    );
+    out
 }
 
 /// The native module.

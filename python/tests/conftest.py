@@ -48,6 +48,41 @@ def cli_runs(cli, tmp_path_factory):
     return get
 
 
+@pytest.fixture(scope="session")
+def memory_runs():
+    """`cufem.Results` of an example run in memory (no files written; run
+    once per session, threads=1)."""
+    import cufem
+
+    cache = {}
+
+    def get(name):
+        if name not in cache:
+            cache[name] = cufem.Model.from_file(EXAMPLES / f"{name}.toml").run(threads=1, quiet=True)
+        return cache[name]
+
+    return get
+
+
 def load_summary(folder) -> dict:
     with open(Path(folder) / "summary.json") as f:
         return json.load(f)
+
+
+def read_csv(path):
+    """A CSV file of a run as pandas reads it, each number the f64 its text
+    spells: Rust's shortest round-trip `{:e}` is parsed back exactly by
+    pandas 3's default parser, by an older one with `float_precision =
+    "round_trip"` (which pandas 3 deprecates)."""
+    import pandas as pd
+
+    exact = {} if int(pd.__version__.split(".")[0]) >= 3 else {"float_precision": "round_trip"}
+    return pd.read_csv(path, **exact)
+
+
+def assert_same_as_csv(frame, path):
+    """`frame` equals the CSV file at `path`: column names, dtypes, row
+    order and every value to the last digit."""
+    import pandas as pd
+
+    pd.testing.assert_frame_equal(frame, read_csv(path), check_exact=True, check_dtype=True, obj=Path(path).name)

@@ -1,0 +1,75 @@
+"""Matplotlib charts of a run's tables: the charts ``report.html`` draws
+(histories against the load factor, lines along their distance, the
+energy balance against time, the modes by number), one Axes each. Needs
+matplotlib (the ``plot`` extra); :class:`cufem.Results` calls these through
+its ``plot_*`` methods."""
+
+from __future__ import annotations
+
+from typing import Optional, Sequence, Tuple
+
+from ._extras import require
+
+# columns that count rather than measure: charted only in history.csv's chart
+COUNTS = ("iterations", "plastic_points", "negative_pivots")
+
+
+def chart_columns(stem: str, table) -> Tuple[str, list]:
+    """The x column and the series of the chart of table `stem`, as
+    ``report.html`` chooses them: ``energy`` against ``time_s``, ``modes``
+    and ``buckling`` against ``mode``, ``line_*`` against ``s``,
+    ``history*`` against ``lambda``; every other numeric column a series
+    but ``increment`` (and the counts, but in ``history``). ValueError for
+    a table without a chart (``contact_*``)."""
+    if stem == "energy":
+        x = "time_s"
+    elif stem in ("modes", "buckling"):
+        x = "mode"
+    elif stem.startswith("line_"):
+        x = "s"
+    elif stem.startswith("history"):
+        x = "lambda"
+    else:
+        raise ValueError(f"table {stem!r}: no chart (charted are history*, line_*, energy, modes, buckling)")
+    series = [
+        c
+        for c in table.columns
+        if c not in (x, "increment")
+        and table[c].dtype.kind in "iuf"
+        and (stem == "history" or c not in COUNTS)
+    ]
+    return x, series
+
+
+def _title(stem: str) -> str:
+    if stem == "energy":
+        return "energy balance"
+    if stem.startswith("line_"):
+        return f"line {stem[len('line_'):]}"
+    return stem
+
+
+def plot_table(stem: str, table, columns: Optional[Sequence[str]] = None, ax=None, what: str = "a plot"):
+    """Draws the chart of table `stem` (a DataFrame of it) into `ax` (a new
+    figure's Axes without one): the series of :func:`chart_columns`, or
+    only `columns`, against its x column, each a line labelled by its
+    column name (units in the name as in the CSV). Returns the Axes."""
+    require("matplotlib", what)
+    x, series = chart_columns(stem, table)
+    if columns is not None:
+        unknown = [c for c in columns if c not in series]
+        if unknown:
+            raise KeyError(f"{stem}: columns {unknown} are not charted; expected some of {series}")
+        series = list(columns)
+    if ax is None:
+        import matplotlib.pyplot as plt
+
+        _, ax = plt.subplots()
+    for c in series:
+        ax.plot(table[x].to_numpy(), table[c].to_numpy(), marker="o" if len(table) <= 60 else None, label=c)
+    ax.set_xlabel(x)
+    ax.set_title(_title(stem))
+    if series:
+        ax.legend()
+    ax.grid(True, alpha=0.3)
+    return ax

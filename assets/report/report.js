@@ -50,8 +50,49 @@ function cssColour(c) {
     data.warnings.forEach((w) => add(ul, "li", {}, w));
   }
 
-  // charts: one per table, drag to zoom, double-click to reset
+  // sections added after the run (cufem verify: the comparison with CalculiX)
   const palette = ["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"];
+  const cellText = (v) => (v === null ? "—" : typeof v === "number" ? String(Number(v.toPrecision(4))) : String(v));
+  (data.sections || []).forEach((sec) => {
+    const part = add(body, "section", { class: "added" });
+    add(part, "h2", {}, sec.title);
+    sec.tables.forEach((t) => {
+      add(part, "h3", {}, t.title);
+      const table = add(part, "table", { class: "rows" });
+      const head = add(table, "tr");
+      t.columns.forEach((c) => add(head, "th", {}, c));
+      t.rows.forEach((r) => {
+        const tr = add(table, "tr");
+        r.forEach((v) => add(tr, "td", {}, cellText(v)));
+      });
+    });
+    // each curve at its own abscissae (uPlot's mode 2), dashed as in the PNG
+    sec.plots.forEach((p) => {
+      const box = add(part, "div", { class: "chart", "data-name": p.name });
+      add(box, "h3", {}, p.title);
+      const opts = {
+        mode: 2,
+        width: Math.min(1060, document.body.clientWidth || 1000),
+        height: 300,
+        scales: { x: { time: false } },
+        axes: [{ label: p.x }, { label: p.y, size: 80 }],
+        series: [{}].concat(
+          p.series.map((c, i) => ({
+            label: c.label,
+            stroke: palette[i % palette.length],
+            width: 1.5,
+            dash: c.dashed ? [6, 4] : undefined,
+            paths: uPlot.paths.linear(),
+          }))
+        ),
+      };
+      const plot = new uPlot(opts, [null].concat(p.series.map((c) => [c.x, c.y])), box);
+      report.charts.push({ name: "verify/" + p.name, series: plot.series.length - 1, points: p.series.map((c) => c.x.length), plot: plot });
+    });
+    add(part, "details", {}).append(el("summary", {}, "the table as printed"), el("pre", {}, sec.text));
+  });
+
+  // charts: one per table, drag to zoom, double-click to reset
   if (data.charts.length) {
     add(body, "h2", {}, "Charts");
     add(body, "p", { class: "note" }, "Drag to zoom, double-click to reset; click a legend entry to hide its curve.");

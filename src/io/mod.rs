@@ -17,7 +17,7 @@
 //! | `contact_<name>.csv` | final gap, force and pressure of every contact point |
 //! | `line_<name>_<quantity>.png` | plots of the quantities listed in a line's `plot` |
 //! | `history_<indenter>.png` | force against displacement of each moving indenter |
-//! | `report.html` | the run's self-contained page: text, tables, warnings, charts, 3D view (`output.report`) |
+//! | `report.html` | the run's self-contained page: text, tables, warnings, charts, 3D view (`output.report`); `cufem verify` adds its comparison ([`add_section`]) |
 
 mod csv;
 mod energy;
@@ -31,6 +31,7 @@ mod section_plot;
 mod vtu;
 
 pub use csv::field as csv_field;
+pub use html::{Plot, Section, SectionTable, add_section};
 pub use json::{ForceSummary, Summary, summary};
 pub use png::{Series, line_plot};
 pub use run::{Finished, RunError, RunInto, Written, run_into, solved_into, write_into};

@@ -6,8 +6,9 @@
 # the features a history example lacks: a buckling run's mode shapes
 # (examples/column_buckling.toml) and the ply damage of the notched strip
 # (examples/notched_strip_coarse.toml pulled to a third of its stretch in 20
-# increments: damage begins, in 0.05 s). Installs chromium (apt) and the
-# node module (npm ci) only if missing. Leaves the screenshots in
+# increments: damage begins, in 0.05 s), and the verify page of examples/cantilever_timoshenko.toml at refine 1 (0.5
+# s): its CalculiX overlays and whole-field table. Installs chromium (apt) and the
+# node module (npm ci) and CalculiX (apt, calculix-ccx) only if missing. Leaves the screenshots in
 # target/browser/<run>.png.
 # Usage: bash tests/browser/run_browser_test.sh [EXAMPLE.toml]
 set -euo pipefail
@@ -33,4 +34,10 @@ sed 's/displacement = { x = 1.5e-4 }/displacement = { x = 5e-5 }/; s/^increments
   examples/notched_strip_coarse.toml > "$strip"
 grep -q 'x = 5e-5' "$strip" && grep -q '^increments = 20$' "$strip" || { echo "notched strip: edit failed"; exit 1; }
 run "$strip" strip
-node tests/browser/test.mjs target/browser target/browser/run target/browser/buckling target/browser/strip
+if ! command -v ccx > /dev/null; then
+  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq calculix-ccx > /dev/null
+fi
+rm -rf target/browser/verify
+target/release/cufem verify --quiet --threads 1 --refine 1 --out target/browser/verify \
+  examples/cantilever_timoshenko.toml >> target/browser/run.log
+node tests/browser/test.mjs target/browser target/browser/{run,buckling,strip,verify}

@@ -90,7 +90,24 @@ try {
       modes: window.cufemReport.modes,
     }));
 
-    const drawn = Object.fromEntries(r.charts.map((c) => [c.name, c]));
+    // a verify run's overlays: one chart per line_<name>_<q>.csv of its verify
+  // folder, cufem's and CalculiX's curves of the CSV's rows each
+  const verify = path.join(dir, "verify");
+  if (fs.existsSync(verify)) {
+    const overlays = fs.readdirSync(verify).filter((f) => /^line_.*\.csv$/.test(f));
+    check(overlays.length > 0, `verify wrote ${overlays.length} line overlays`);
+    for (const f of overlays) {
+      const rows = fs.readFileSync(path.join(verify, f), "utf8").trim().split("\n").length - 1;
+      const c = r.charts.find((c) => c.name === "verify/" + f.replace(/\.csv$/, ""));
+      check(c && c.series === 2 && c.points.join() === [rows, rows].join() && c.width > 0,
+        `overlay ${f}: ${c ? c.series : 0} series of ${c ? c.points : 0} points drawn, CSV 2 of ${rows}`);
+    }
+    const fields = JSON.parse(fs.readFileSync(path.join(verify, "table.json"), "utf8")).fields;
+    const rows = await page.evaluate(() => [...document.querySelectorAll("section.added table.rows")].map((t) => t.rows.length - 1));
+    check(rows[0] === fields.length && fields.length > 0, `whole-field table: ${rows[0]} rows, table.json ${fields.length}`);
+    r.charts = r.charts.filter((c) => !c.name.startsWith("verify/"));
+  }
+  const drawn = Object.fromEntries(r.charts.map((c) => [c.name, c]));
     check(Object.keys(drawn).sort().join() === Object.keys(expected).sort().join(),
       `charts ${Object.keys(drawn).sort()} are the CSVs ${Object.keys(expected).sort()}`);
     for (const [name, e] of Object.entries(expected)) {

@@ -2,8 +2,10 @@
 //! inline, nothing fetched), bounded in size, its text unable to close the
 //! script that holds it, its data those of the run (the charts the CSVs,
 //! the 3D view the mesh and displacement of `result.vtu`), and
-//! `output.report = false` writing none. What a browser draws from it is
-//! tests/browser (`bash tests/browser/run_browser_test.sh`).
+//! `output.report = false` writing none; a buckling run's mode shapes,
+//! the ply damage and `cufem verify`'s comparison with CalculiX in it (the
+//! verify test needs `ccx`, as crates/cufem-cli/tests/ccx.rs). What a
+//! browser draws from it is tests/browser (`bash tests/browser/run_browser_test.sh`).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -250,5 +252,75 @@ fn the_page_holds_the_ply_damage_of_each_element() {
             let (min, max) = page.iter().fold((f64::MAX, 0.0f64), |(a, b), &d| (a.min(d), b.max(d)));
             assert!(min == 0.0 && max > 0.3, "d_ft over [{min}, {max}]");
         }
+    }
+}
+
+/// `cufem verify` adds its comparison to the run's page: a chart per
+/// overlay the verify folder plots, each curve the numbers of its CSV
+/// (`line_<name>_<q>.csv`: s in m, both values in SI; the chart in mm and
+/// display units) — cufem's and CalculiX's — and the whole-field rows of
+/// table.json as a table. The Timoshenko cantilever against C3D20R at
+/// refine 1 (0.5 s).
+#[test]
+fn the_verify_page_overlays_calculix_and_tables_the_field_differences() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("report_html_verify");
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.join("out");
+    let model = root().join("examples/cantilever_timoshenko.toml");
+    let run = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["verify", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--refine", "1", "--quiet"])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let data = page_data(&out);
+    let sections = data["sections"].as_array().unwrap();
+    assert_eq!(sections.len(), 1);
+    let section = &sections[0];
+    assert!(section["title"].as_str().unwrap().starts_with("Verification against CalculiX"));
+    let plots = section["plots"].as_array().unwrap();
+    // u_z in mm, s_yy in MPa on the chart
+    let scale = |name: &str| if name.ends_with("u_z") { 1e3 } else { 1e-6 };
+    let mut overlays = 0;
+    for f in std::fs::read_dir(out.join("verify")).unwrap() {
+        let f = f.unwrap().file_name().to_string_lossy().into_owned();
+        let Some(name) = f.strip_prefix("line_").and_then(|n| n.strip_suffix(".csv")) else {
+            continue;
+        };
+        overlays += 1;
+        let name = format!("line_{name}");
+        let plot = plots.iter().find(|p| p["name"] == name.as_str()).unwrap_or_else(|| panic!("no chart {name}"));
+        let rows: Vec<Vec<f64>> = std::fs::read_to_string(out.join("verify").join(&f))
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+            .collect();
+        let series = plot["series"].as_array().unwrap();
+        assert_eq!(series.len(), 2, "{name}: cufem and CalculiX");
+        assert!(series[1]["label"].as_str().unwrap().starts_with("CalculiX"));
+        for (k, s) in series.iter().enumerate() {
+            let xs: Vec<f64> = s["x"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+            let ys: Vec<f64> = s["y"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+            assert_eq!(xs.len(), rows.len(), "{name} series {k}");
+            for ((x, y), row) in xs.iter().zip(&ys).zip(&rows) {
+                assert!((x - row[0] * 1e3).abs() <= 1e-9 * x.abs().max(1.0), "{name}: s {x} mm, CSV {} m", row[0]);
+                let want = row[k + 1] * scale(&name);
+                assert!((y - want).abs() <= 1e-9 * want.abs().max(1e-9), "{name} series {k}: {y}, CSV {want}");
+            }
+        }
+    }
+    assert_eq!(overlays, 2, "the cantilever's lines axis (u_z) and top (s_yy)");
+    let table: Value = serde_json::from_str(&std::fs::read_to_string(out.join("verify/table.json")).unwrap()).unwrap();
+    let fields = table["fields"].as_array().unwrap();
+    let shown =
+        section["tables"].as_array().unwrap().iter().find(|t| t["title"].as_str().unwrap().starts_with("whole field"));
+    let rows = shown.unwrap()["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), fields.len());
+    assert!(!fields.is_empty());
+    for (row, f) in rows.iter().zip(fields) {
+        assert_eq!(row[0], f["region"]);
+        assert_eq!(row[1], f["quantity"]);
+        assert_eq!(row[4], f["l2_percent"]);
+        assert_eq!(row[5], f["max_percent"]);
     }
 }

@@ -18,6 +18,7 @@
 //! decimated), [`MAX_FRAMES`] frames and about [`FRAME_BUDGET`] bytes of
 //! frame data; the page states what it shows of how much.
 
+mod section;
 mod surface;
 
 use std::fmt::Write as _;
@@ -31,6 +32,7 @@ use super::{FieldGrid, GridElement, IoError, Summary, file_error, report};
 use crate::analysis::tables::{Table, Values};
 use crate::analysis::{IncrementLog, Solution};
 use crate::setup::Model;
+pub use section::{Plot, Section, SectionTable, add_section};
 use surface::Surface;
 
 /// uPlot 1.6.32 (MIT): the charts.
@@ -332,6 +334,7 @@ pub(crate) fn write(
         "warnings": summary.warnings,
         "charts": charts(&all),
         "view": view.data(),
+        "sections": [],
     });
     // `<` escaped so that no text in the data can close the script element
     let data = data.to_string().replace('<', "\\u003c");

@@ -50,7 +50,8 @@ function cssColour(c) {
     data.warnings.forEach((w) => add(ul, "li", {}, w));
   }
 
-  // sections added after the run (cufem verify: the comparison with CalculiX)
+  // sections: an adaptive run's cycles; added after the run, cufem verify's
+  // comparison with CalculiX
   const palette = ["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"];
   const cellText = (v) => (v === null ? "—" : typeof v === "number" ? String(Number(v.toPrecision(4))) : String(v));
   (data.sections || []).forEach((sec) => {
@@ -87,7 +88,7 @@ function cssColour(c) {
         ),
       };
       const plot = new uPlot(opts, [null].concat(p.series.map((c) => [c.x, c.y])), box);
-      report.charts.push({ name: "verify/" + p.name, series: plot.series.length - 1, points: p.series.map((c) => c.x.length), plot: plot });
+      report.charts.push({ name: "section/" + p.name, series: plot.series.length - 1, points: p.series.map((c) => c.x.length), plot: plot });
     });
     add(part, "details", {}).append(el("summary", {}, "the table as printed"), el("pre", {}, sec.text));
   });

@@ -7,7 +7,8 @@
 # (examples/column_buckling.toml) and the ply damage of the notched strip
 # (examples/notched_strip_coarse.toml pulled to a third of its stretch in 20
 # increments: damage begins, in 0.05 s), and the verify page of examples/cantilever_timoshenko.toml at refine 1 (0.5
-# s): its CalculiX overlays and whole-field table. Installs chromium (apt) and the
+# s): its CalculiX overlays and whole-field table; the page of an adaptive
+# run (the same cantilever, --adapt 0.05: 2 cycles in 0.3 s). Installs chromium (apt) and the
 # node module (npm ci) and CalculiX (apt, calculix-ccx) only if missing. Leaves the screenshots in
 # target/browser/<run>.png.
 # Usage: bash tests/browser/run_browser_test.sh [EXAMPLE.toml]
@@ -37,7 +38,10 @@ run "$strip" strip
 if ! command -v ccx > /dev/null; then
   apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq calculix-ccx > /dev/null
 fi
+rm -rf target/browser/adapt
+target/release/cufem run --quiet --threads 1 --adapt 0.05 --max-dof 6000 --out target/browser/adapt \
+  examples/cantilever_timoshenko.toml >> target/browser/run.log
 rm -rf target/browser/verify
 target/release/cufem verify --quiet --threads 1 --refine 1 --out target/browser/verify \
   examples/cantilever_timoshenko.toml >> target/browser/run.log
-node tests/browser/test.mjs target/browser target/browser/{run,buckling,strip,verify}
+node tests/browser/test.mjs target/browser target/browser/{run,buckling,strip,adapt,verify}

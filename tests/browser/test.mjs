@@ -98,15 +98,26 @@ try {
     check(overlays.length > 0, `verify wrote ${overlays.length} line overlays`);
     for (const f of overlays) {
       const rows = fs.readFileSync(path.join(verify, f), "utf8").trim().split("\n").length - 1;
-      const c = r.charts.find((c) => c.name === "verify/" + f.replace(/\.csv$/, ""));
+      const c = r.charts.find((c) => c.name === "section/" + f.replace(/\.csv$/, ""));
       check(c && c.series === 2 && c.points.join() === [rows, rows].join() && c.width > 0,
         `overlay ${f}: ${c ? c.series : 0} series of ${c ? c.points : 0} points drawn, CSV 2 of ${rows}`);
     }
     const fields = JSON.parse(fs.readFileSync(path.join(verify, "table.json"), "utf8")).fields;
     const rows = await page.evaluate(() => [...document.querySelectorAll("section.added table.rows")].map((t) => t.rows.length - 1));
     check(rows[0] === fields.length && fields.length > 0, `whole-field table: ${rows[0]} rows, table.json ${fields.length}`);
-    r.charts = r.charts.filter((c) => !c.name.startsWith("verify/"));
+    
   }
+  // an adaptive run's cycles: the estimate against the DOF, a point per cycle
+  // of summary.json, and the cycles' table
+  const summary = JSON.parse(fs.readFileSync(path.join(dir, "summary.json"), "utf8"));
+  if (summary.adapt) {
+    const c = r.charts.find((c) => c.name === "section/adapt");
+    check(c && c.series === 1 && c.points[0] === summary.adapt.length && summary.adapt.length >= 2 && c.width > 0,
+      `adapt chart: ${c ? c.points : 0} points drawn, ${summary.adapt.length} cycles in summary.json`);
+    const rows = await page.evaluate(() => document.querySelector("section.added table.rows").rows.length - 1);
+    check(rows === summary.adapt.length, `cycles table: ${rows} rows`);
+  }
+  r.charts = r.charts.filter((c) => !c.name.startsWith("section/"));
   const drawn = Object.fromEntries(r.charts.map((c) => [c.name, c]));
     check(Object.keys(drawn).sort().join() === Object.keys(expected).sort().join(),
       `charts ${Object.keys(drawn).sort()} are the CSVs ${Object.keys(expected).sort()}`);

@@ -3,7 +3,7 @@
 //! script that holds it, its data those of the run (the charts the CSVs,
 //! the 3D view the mesh and displacement of `result.vtu`), and
 //! `output.report = false` writing none; a buckling run's mode shapes,
-//! the ply damage and `cufem verify`'s comparison with CalculiX in it (the
+//! the ply damage, an adaptive run's cycles and `cufem verify`'s comparison with CalculiX in it (the
 //! verify test needs `ccx`, as crates/cufem-cli/tests/ccx.rs). What a
 //! browser draws from it is tests/browser (`bash tests/browser/run_browser_test.sh`).
 
@@ -322,5 +322,65 @@ fn the_verify_page_overlays_calculix_and_tables_the_field_differences() {
         assert_eq!(row[1], f["quantity"]);
         assert_eq!(row[4], f["l2_percent"]);
         assert_eq!(row[5], f["max_percent"]);
+    }
+}
+
+/// An adaptive run's page shows every cycle: the cycles' table (DOF and
+/// estimate those of summary.json's `adapt`), the estimate against the
+/// DOF, and the probe's values cycle by cycle — cycle 0's those of a
+/// single run of the model's own mesh, the last cycle's those of the
+/// results written (summary.json). The Timoshenko cantilever with
+/// `--adapt 0.05`: 2 cycles (1,200 and 4,617 DOF).
+#[test]
+fn the_page_of_an_adaptive_run_shows_every_cycle() {
+    let text = std::fs::read_to_string(root().join("examples/cantilever_timoshenko.toml")).unwrap();
+    let single = run_text("report_html_adapt_single", &text);
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("report_html_adapt");
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.join("out");
+    let model = root().join("examples/cantilever_timoshenko.toml");
+    let run = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", model.to_str().unwrap(), "--adapt", "0.05", "--max-dof", "6000", "--quiet", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let summary = |dir: &Path| -> Value {
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+    };
+    let (s, s0) = (summary(&out), summary(&single));
+    let cycles = s["adapt"].as_array().unwrap();
+    assert_eq!(cycles.len(), 2, "{cycles:?}");
+    let data = page_data(&out);
+    let section = &data["sections"][0];
+    assert!(section["title"].as_str().unwrap().starts_with("Adaptive refinement"));
+    let table = |title: &str| -> Vec<Value> {
+        let t = section["tables"].as_array().unwrap().iter().find(|t| t["title"].as_str().unwrap().starts_with(title));
+        t.unwrap_or_else(|| panic!("no table {title}"))["rows"].as_array().unwrap().clone()
+    };
+    let rows = table("cycles");
+    assert_eq!(rows.len(), cycles.len());
+    for (row, c) in rows.iter().zip(cycles) {
+        assert_eq!(row[1], c["dof"]);
+        assert!((row[2].as_f64().unwrap() - 100.0 * c["estimate"].as_f64().unwrap()).abs() < 1e-12);
+    }
+    let plot = &section["plots"][0];
+    assert_eq!(plot["series"][0]["x"], serde_json::json!(cycles.iter().map(|c| c["dof"].as_f64()).collect::<Vec<_>>()));
+    let tip = table("probe tip");
+    let t =
+        section["tables"].as_array().unwrap().iter().find(|t| t["title"].as_str().unwrap().starts_with("probe tip"));
+    let columns = t.unwrap()["columns"].as_array().unwrap();
+    let col = |name: &str| columns.iter().position(|c| c == name).unwrap();
+    assert_eq!(tip.len(), cycles.len());
+    for (row, summary) in [(&tip[0], &s0), (&tip[tip.len() - 1], &s)] {
+        let probe = &summary["probes"][0];
+        for (got, want) in [(&row[col("u_z")], &probe["u"][2]), (&row[col("von_mises")], &probe["von_mises"])] {
+            let (got, want) = (got.as_f64().unwrap(), want.as_f64().unwrap());
+            assert!(
+                (got - want).abs() <= 1e-12 * want.abs(),
+                "cycle {}: {got} on the page, {want} in summary.json",
+                row[0]
+            );
+        }
     }
 }

@@ -334,7 +334,7 @@ pub(crate) fn write(
         "warnings": summary.warnings,
         "charts": charts(&all),
         "view": view.data(),
-        "sections": [],
+        "sections": solution.adapt.iter().map(|a| section::adapt(a).data()).collect::<Vec<_>>(),
     });
     // `<` escaped so that no text in the data can close the script element
     let data = data.to_string().replace('<', "\\u003c");

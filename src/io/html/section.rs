@@ -7,6 +7,8 @@ use std::path::Path;
 
 use serde_json::{Value, json};
 
+use crate::analysis::Adaptivity;
+use crate::analysis::tables::Column;
 use crate::io::png::Series;
 use crate::io::{IoError, file_error};
 
@@ -60,6 +62,90 @@ pub struct Section {
     pub plots: Vec<Plot>,
 }
 
+impl Section {
+    /// The section as the page's data holds it.
+    pub(crate) fn data(&self) -> Value {
+        let plots: Vec<Value> = self
+            .plots
+            .iter()
+            .map(|p| {
+                let series: Vec<Value> = p
+                    .series
+                    .iter()
+                    .map(|s| {
+                        let (x, y): (Vec<f64>, Vec<f64>) = s.points.iter().copied().unzip();
+                        json!({"label": s.name, "dashed": s.dashed, "x": x, "y": y})
+                    })
+                    .collect();
+                json!({"name": p.name, "title": p.title, "x": p.x, "y": p.y, "series": series})
+            })
+            .collect();
+        let tables: Vec<Value> =
+            self.tables.iter().map(|t| json!({"title": t.title, "columns": t.columns, "rows": t.rows})).collect();
+        json!({"title": self.title, "text": self.text, "tables": tables, "plots": plots})
+    }
+}
+
+/// The section of an adaptive run (`cufem run --adapt`): every cycle's
+/// DOF, estimate, time and refinement, its probes' values (a table per
+/// probe, a row per cycle), and the estimate against the DOF.
+pub(crate) fn adapt(a: &Adaptivity) -> Section {
+    let cycles = SectionTable {
+        title: "cycles".into(),
+        columns: ["cycle", "DOF", "estimate [%]", "time [s]", "refined"].map(String::from).to_vec(),
+        rows: a
+            .cycles
+            .iter()
+            .map(|c| vec![json!(c.cycle), json!(c.dof), json!(100.0 * c.estimate), json!(c.time_s), json!(c.refined)])
+            .collect(),
+    };
+    let mut tables = vec![cycles];
+    let first = a.cycles.first().map(|c| &c.probes);
+    for (p, name) in first.and_then(|t| t.text("probe")).unwrap_or_default().iter().enumerate() {
+        let columns: Vec<&Column> = first.map_or(Vec::new(), |t| t.columns.iter().skip(4).collect());
+        tables.push(SectionTable {
+            title: format!("probe {name}: its values cycle by cycle (SI units)"),
+            columns: ["cycle", "DOF"]
+                .into_iter()
+                .map(String::from)
+                .chain(columns.iter().map(|c| c.name.clone()))
+                .collect(),
+            rows: a
+                .cycles
+                .iter()
+                .map(|c| {
+                    let values = columns
+                        .iter()
+                        .map(|col| c.probes.column(&col.name).map_or(Value::Null, |v| json!(v.values.get(p))));
+                    [json!(c.cycle), json!(c.dof)].into_iter().chain(values).collect()
+                })
+                .collect(),
+        });
+    }
+    let estimate = Series {
+        name: "estimate [%]".into(),
+        points: a.cycles.iter().map(|c| (c.dof as f64, 100.0 * c.estimate)).collect(),
+        dashed: false,
+    };
+    Section {
+        title: format!("Adaptive refinement: {} cycles", a.cycles.len()),
+        text: format!(
+            "until the estimate is below {:.2} %, at most {} DOF; stopped: {}",
+            100.0 * a.tolerance,
+            a.max_dof,
+            a.stop
+        ),
+        tables,
+        plots: vec![Plot {
+            name: "adapt".into(),
+            title: "estimated error (energy norm) against DOF".into(),
+            x: "DOF".into(),
+            y: "estimate [%]".into(),
+            series: vec![estimate],
+        }],
+    }
+}
+
 /// The marker of the page's data.
 const DATA: &str = "id=\"cufem-data\">";
 
@@ -71,24 +157,7 @@ pub fn add_section(path: &Path, section: &Section) -> Result<(), IoError> {
     let start = html.find(DATA).ok_or_else(|| bad("not a cufem report.html: no data"))? + DATA.len();
     let end = start + html[start..].find("</script>").ok_or_else(|| bad("not a cufem report.html: data not closed"))?;
     let mut data: Value = serde_json::from_str(&html[start..end]).map_err(|e| bad(&e.to_string()))?;
-    let plots: Vec<Value> = section
-        .plots
-        .iter()
-        .map(|p| {
-            let series: Vec<Value> = p
-                .series
-                .iter()
-                .map(|s| {
-                    let (x, y): (Vec<f64>, Vec<f64>) = s.points.iter().copied().unzip();
-                    json!({"label": s.name, "dashed": s.dashed, "x": x, "y": y})
-                })
-                .collect();
-            json!({"name": p.name, "title": p.title, "x": p.x, "y": p.y, "series": series})
-        })
-        .collect();
-    let tables: Vec<Value> =
-        section.tables.iter().map(|t| json!({"title": t.title, "columns": t.columns, "rows": t.rows})).collect();
-    let entry = json!({"title": section.title, "text": section.text, "tables": tables, "plots": plots});
+    let entry = section.data();
     match data.get_mut("sections").and_then(Value::as_array_mut) {
         Some(list) => list.push(entry),
         None => data["sections"] = json!([entry]),

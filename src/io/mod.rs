@@ -33,7 +33,7 @@ mod vtu;
 pub use csv::field as csv_field;
 pub use html::{Plot, Section, SectionTable, add_section};
 pub use json::{ForceSummary, Summary, summary};
-pub use png::{Series, line_plot};
+pub use png::Series;
 pub use run::{Finished, RunError, RunInto, Written, run_into, solved_into, write_into};
 pub use section_plot::section_plot;
 pub(crate) use vtu::write_gauss_vtu;

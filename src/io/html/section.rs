@@ -13,7 +13,7 @@ use crate::io::png::Series;
 use crate::io::{IoError, file_error};
 
 /// A plot of curves sampled at their own abscissae (the PNG
-/// [`crate::io::line_plot`] draws, and the page's chart of it).
+/// `io::png::line_plot` draws, and the page's chart of it).
 #[derive(Debug, Clone)]
 pub struct Plot {
     /// Its name: the PNG's file name without `.png`.
@@ -32,7 +32,7 @@ impl Plot {
     /// Draws it as `<dir>/<name>.png`; returns the path.
     pub fn write_png(&self, dir: &Path) -> Result<std::path::PathBuf, IoError> {
         let p = dir.join(format!("{}.png", self.name));
-        crate::io::line_plot(&p, &self.title, &self.x, &self.y, &self.series)?;
+        crate::io::png::line_plot(&p, &self.title, &self.x, &self.y, &self.series)?;
         Ok(p)
     }
 }

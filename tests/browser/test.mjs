@@ -167,6 +167,11 @@ try {
       check(moved.changed > 0.01 * first.inked && label.includes("(1 of"), `frame 1 (${label}) changed ${moved.changed} pixels`);
       await page.evaluate((k) => window.cufemReport.setFrame(k), r.frames - 1);
     }
+    // the run's mode_<k>.vtu files and result.vtu's ply damage must be in the view
+    const modeFiles = fs.readdirSync(dir).filter((f) => /^mode_\d+\.vtu$/.test(f)).length;
+    check(r.modes === modeFiles, `${r.modes} mode shapes in the view, ${modeFiles} mode_<k>.vtu`);
+    const damaged = fs.readFileSync(path.join(dir, "result.vtu"), "utf8").includes('Name="d_ft"');
+    check(r.fields.includes("d_ft") === damaged, `d_ft ${damaged ? "" : "not "}in result.vtu and the field list`);
     if (r.modes > 0) {
       await page.evaluate(() => window.cufemReport.setMode(0));
       const mode1 = await snap();

@@ -50,8 +50,50 @@ function cssColour(c) {
     data.warnings.forEach((w) => add(ul, "li", {}, w));
   }
 
-  // charts: one per table, drag to zoom, double-click to reset
+  // sections: an adaptive run's cycles; added after the run, cufem verify's
+  // comparison with CalculiX
   const palette = ["#1f77b4", "#d62728", "#2ca02c", "#ff7f0e", "#9467bd", "#8c564b", "#e377c2", "#7f7f7f", "#bcbd22", "#17becf"];
+  const cellText = (v) => (v === null ? "—" : typeof v === "number" ? String(Number(v.toPrecision(4))) : String(v));
+  (data.sections || []).forEach((sec) => {
+    const part = add(body, "section", { class: "added" });
+    add(part, "h2", {}, sec.title);
+    sec.tables.forEach((t) => {
+      add(part, "h3", {}, t.title);
+      const table = add(part, "table", { class: "rows" });
+      const head = add(table, "tr");
+      t.columns.forEach((c) => add(head, "th", {}, c));
+      t.rows.forEach((r) => {
+        const tr = add(table, "tr");
+        r.forEach((v) => add(tr, "td", {}, cellText(v)));
+      });
+    });
+    // each curve at its own abscissae (uPlot's mode 2), dashed as in the PNG
+    sec.plots.forEach((p) => {
+      const box = add(part, "div", { class: "chart", "data-name": p.name });
+      add(box, "h3", {}, p.title);
+      const opts = {
+        mode: 2,
+        width: Math.min(1060, document.body.clientWidth || 1000),
+        height: 300,
+        scales: { x: { time: false } },
+        axes: [{ label: p.x }, { label: p.y, size: 80 }],
+        series: [{}].concat(
+          p.series.map((c, i) => ({
+            label: c.label,
+            stroke: palette[i % palette.length],
+            width: 1.5,
+            dash: c.dashed ? [6, 4] : undefined,
+            paths: uPlot.paths.linear(),
+          }))
+        ),
+      };
+      const plot = new uPlot(opts, [null].concat(p.series.map((c) => [c.x, c.y])), box);
+      report.charts.push({ name: "section/" + p.name, series: plot.series.length - 1, points: p.series.map((c) => c.x.length), plot: plot });
+    });
+    add(part, "details", {}).append(el("summary", {}, "the table as printed"), el("pre", {}, sec.text));
+  });
+
+  // charts: one per table, drag to zoom, double-click to reset
   if (data.charts.length) {
     add(body, "h2", {}, "Charts");
     add(body, "p", { class: "note" }, "Drag to zoom, double-click to reset; click a legend entry to hide its curve.");
@@ -101,6 +143,9 @@ function cssColour(c) {
     const select = add(fieldLabel, "select", { id: "field" });
     const scaleLabel = add(controls, "label", {}, "deformation scale ");
     const scaleInput = add(scaleLabel, "input", { id: "scale", type: "number", step: "any", min: "0" });
+    // a modal or buckling run: its mode shapes, chosen instead of the states
+    const modeLabel = v.modes.length ? add(controls, "label", {}, "shape ") : null;
+    const modeSelect = modeLabel ? add(modeLabel, "select", { id: "mode" }) : null;
     const frameLabel = add(controls, "label", {}, "frame ");
     const slider = add(frameLabel, "input", { id: "frame", type: "range", min: "0", max: String(v.frames.length - 1), step: "1" });
     const frameText = add(controls, "span", { id: "frame-label" });
@@ -112,27 +157,44 @@ function cssColour(c) {
 
     const n = v.vertices;
     const reference = decode(v.positions, Float32Array);
-    const frames = v.frames.map((f) => ({
+    const decodeFrame = (f) => ({
       label: f.label,
       u: decode(f.displacement, Float32Array),
       fields: Object.fromEntries(f.fields.map((g) => [g.name, g])),
-    }));
-    // the fields: the displacement's magnitude and components, then the grid's scalars
-    const names = ["|u|", "u_x", "u_y", "u_z"].concat(v.frames[0].fields.map((g) => g.name));
+    });
+    const states = v.frames.map(decodeFrame);
+    const modes = v.modes.map(decodeFrame);
+    // the fields no frame changes (cell data: body, element)
+    const cells = Object.fromEntries(v.cells.map((g) => [g.name, g]));
+    // a set's fields: the displacement's magnitude and components, then
+    // the grid's scalars (point data, then the ply damage), then the cells'
+    const fieldNames = (set) => {
+      const names = ["|u|", "u_x", "u_y", "u_z"];
+      set.forEach((f) => Object.keys(f.fields).forEach((k) => names.includes(k) || names.push(k)));
+      return names.concat(Object.keys(cells));
+    };
     const values = (frame, name) => {
       const out = new Float32Array(n);
       const c = ["u_x", "u_y", "u_z"].indexOf(name);
       if (name === "|u|") for (let i = 0; i < n; i++) out[i] = Math.hypot(frame.u[3 * i], frame.u[3 * i + 1], frame.u[3 * i + 2]);
       else if (c >= 0) for (let i = 0; i < n; i++) out[i] = frame.u[3 * i + c];
       else {
-        const g = frame.fields[name];
+        const g = frame.fields[name] || cells[name];
+        if (!g) return out.fill(NaN);
         const q = decode(g.data, Uint16Array);
         for (let i = 0; i < n; i++) out[i] = q[i] === 65535 ? NaN : g.min + (q[i] / 65534) * (g.max - g.min);
       }
       return out;
     };
-    names.forEach((name) => add(select, "option", { value: name }, name));
-    report.fields = names;
+    let frames = states;
+    let names = [];
+    const listFields = () => {
+      names = fieldNames(frames);
+      select.textContent = "";
+      names.forEach((name) => add(select, "option", { value: name }, name));
+      report.fields = names;
+    };
+    listFields();
 
     const geometry = new THREE.BufferGeometry();
     geometry.setIndex(new THREE.BufferAttribute(decode(v.triangles, Uint32Array), 1));
@@ -165,16 +227,25 @@ function cssColour(c) {
     const render = () => renderer.render(scene, camera);
     orbit.addEventListener("change", render);
 
-    // a scale that shows the largest displacement at 5 % of the body's size
-    let largest = 0;
-    frames.forEach((f) => {
-      for (let i = 0; i < n; i++) largest = Math.max(largest, Math.hypot(f.u[3 * i], f.u[3 * i + 1], f.u[3 * i + 2]));
-    });
-    let scale = largest > 0.05 * size || largest === 0 ? 1 : Number((0.05 * size / largest).toPrecision(2));
+    // a scale that shows a set's largest displacement at 5 % of the body's size
+    const autoScale = (set) => {
+      let largest = 0;
+      set.forEach((f) => {
+        for (let i = 0; i < n; i++) largest = Math.max(largest, Math.hypot(f.u[3 * i], f.u[3 * i + 1], f.u[3 * i + 2]));
+      });
+      return largest > 0.05 * size || largest === 0 ? 1 : Number((0.05 * size / largest).toPrecision(2));
+    };
+    const scales = [autoScale(states), autoScale(modes)];
+    let scale = scales[0];
     scaleInput.value = String(scale);
     let field = names[0];
     let frame = frames.length - 1;
+    let stateFrame = frame;
     slider.value = String(frame);
+    if (modeSelect) {
+      add(modeSelect, "option", { value: "-1" }, "the run's state");
+      modes.forEach((m, k) => add(modeSelect, "option", { value: String(k) }, m.label));
+    }
 
     function update() {
       const f = frames[frame];
@@ -206,11 +277,28 @@ function cssColour(c) {
       render();
     }
     select.addEventListener("change", () => ((field = select.value), update()));
-    slider.addEventListener("input", () => ((frame = Number(slider.value)), update()));
+    slider.addEventListener("input", () => ((frame = stateFrame = Number(slider.value)), update()));
     scaleInput.addEventListener("input", () => {
       const s = Number(scaleInput.value);
-      if (isFinite(s) && s >= 0) (scale = s), update();
+      if (isFinite(s) && s >= 0) (scale = scales[frames === modes ? 1 : 0] = s), update();
     });
+    // a mode shown: the modes are the frames, the slider waits for the states
+    const showMode = (k) => {
+      frames = k < 0 ? states : modes;
+      frame = k < 0 ? stateFrame : k;
+      scale = scales[k < 0 ? 0 : 1];
+      scaleInput.value = String(scale);
+      slider.disabled = k >= 0;
+      listFields();
+      if (!names.includes(field)) field = names[0];
+      select.value = field;
+      report.mode = k;
+      update();
+    };
+    if (modeSelect) modeSelect.addEventListener("change", () => showMode(Number(modeSelect.value)));
+    report.setMode = (k) => modeSelect && ((modeSelect.value = String(k)), modeSelect.dispatchEvent(new Event("change")));
+    report.modes = modes.length;
+    report.mode = -1;
     report.setField = (name) => ((select.value = name), select.dispatchEvent(new Event("change")));
     report.setFrame = (k) => ((slider.value = String(k)), slider.dispatchEvent(new Event("input")));
     report.frames = frames.length;

@@ -148,6 +148,7 @@ pub fn run(
             estimate,
             time_s: start.elapsed().as_secs_f64(),
             refined: std::mem::take(&mut refined),
+            probes: analysis::tables::probes(&model, &solution.fields(&model)),
         };
         report(&cycle, &model, &solution);
         run.cycles.push(cycle);

@@ -135,6 +135,8 @@ pub struct AdaptCycle {
     pub time_s: f64,
     /// What its mesh refined in the previous one (empty for cycle 0).
     pub refined: String,
+    /// Its probes' values ([`super::tables::probes`]: a row per probe).
+    pub probes: super::tables::Table,
 }
 
 /// How an adaptive run went: every cycle and why it stopped. The solution

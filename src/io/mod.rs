@@ -17,7 +17,7 @@
 //! | `contact_<name>.csv` | final gap, force and pressure of every contact point |
 //! | `line_<name>_<quantity>.png` | plots of the quantities listed in a line's `plot` |
 //! | `history_<indenter>.png` | force against displacement of each moving indenter |
-//! | `report.html` | the run's self-contained page: text, tables, warnings, charts, 3D view (`output.report`) |
+//! | `report.html` | the run's self-contained page: text, tables, warnings, charts, 3D view (`output.report`); `cufem verify` adds its comparison ([`add_section`]) |
 
 mod csv;
 mod energy;
@@ -31,8 +31,9 @@ mod section_plot;
 mod vtu;
 
 pub use csv::field as csv_field;
+pub use html::{Plot, Section, SectionTable, add_section};
 pub use json::{ForceSummary, Summary, summary};
-pub use png::{Series, line_plot};
+pub use png::Series;
 pub use run::{Finished, RunError, RunInto, Written, run_into, solved_into, write_into};
 pub use section_plot::section_plot;
 pub(crate) use vtu::write_gauss_vtu;
@@ -122,7 +123,7 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     }
     let modes: Vec<_> = [tables::modes(solution), tables::buckling(model, solution)].into_iter().flatten().collect();
     written.extend(csv::write_tables(&modes, dir)?);
-    written.extend(write_modes(model, solution, dir)?);
+    written.extend(write_modes(model, solution, dir, shown.as_mut())?);
     written.extend(energy::write_energy(model, solution, dir)?);
     // the end of every step: a VTU per step and a .pvd series when the
     // history has several steps; probes and resultants per step in the summary
@@ -175,23 +176,39 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
 
 /// `mode_<k>.vtu` for every buckling or vibration mode: the mode shape
 /// (largest component 1, dimensionless) as the `displacement` field of the
-/// mesh, strains those of the shape, stresses those of the static state.
-fn write_modes(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
-    let modes = match (&solution.buckling, &solution.modal) {
-        (Some(b), _) => &b.modes,
-        (None, Some(m)) => &m.modes,
+/// mesh, strains those of the shape, stresses those of the static state;
+/// the shapes the report's view takes go to `shown`, from the same grid.
+fn write_modes(
+    model: &Model,
+    solution: &Solution,
+    dir: &Path,
+    mut shown: Option<&mut html::View>,
+) -> Result<Vec<PathBuf>, IoError> {
+    let (modes, labels): (&[Vec<f64>], Vec<String>) = match (&solution.buckling, &solution.modal) {
+        (Some(b), _) => (&b.modes, b.factors.iter().map(|f| format!("critical load factor {f:.5e}")).collect()),
+        (None, Some(m)) => (&m.modes, m.frequencies.iter().map(|f| format!("{f:.5e} Hz")).collect()),
         (None, None) => return Ok(Vec::new()),
     };
-    if !model.output.vtu {
-        return Ok(Vec::new());
-    }
     let mut written = Vec::new();
+    if !model.output.vtu && shown.is_none() {
+        return Ok(written);
+    }
     let mut shape = solution.clone();
-    for (k, mode) in modes.iter().enumerate() {
+    for (k, (mode, label)) in modes.iter().zip(labels).enumerate() {
+        let path = model.output.vtu.then(|| dir.join(json::mode_vtu_name(k + 1)));
+        let view = shown.as_deref_mut().filter(|v| v.takes_mode());
+        if path.is_none() && view.is_none() {
+            continue;
+        }
         shape.u.clone_from(mode);
-        let path = dir.join(json::mode_vtu_name(k + 1));
-        write_vtu(&path, model, &shape)?;
-        written.push(path);
+        let grid = field_grid(model, &shape);
+        if let Some(v) = view {
+            v.add_mode(format!("mode {}: {label}", k + 1), &grid);
+        }
+        if let Some(path) = path {
+            vtu::write_grid_vtu(&path, model, &shape, grid)?;
+            written.push(path);
+        }
     }
     Ok(written)
 }
@@ -253,7 +270,7 @@ fn write_state(
     }
     let grid = field_grid(model, at);
     if let Some((v, label, _)) = view {
-        v.add_grid(label, at.lambda, &grid);
+        v.add_grid(label, model, at, &grid);
     }
     match vtu {
         Some(path) => vtu::write_grid_vtu(path, model, at, grid),

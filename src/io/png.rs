@@ -79,7 +79,13 @@ pub(super) fn printable(s: &str) -> String {
 }
 
 /// Draws `series` as lines with markers into a 1000×640 PNG.
-pub fn line_plot(path: &Path, title: &str, x_label: &str, y_label: &str, series: &[Series]) -> Result<(), IoError> {
+pub(crate) fn line_plot(
+    path: &Path,
+    title: &str,
+    x_label: &str,
+    y_label: &str,
+    series: &[Series],
+) -> Result<(), IoError> {
     register_font();
     let (title, x_label, y_label) = (printable(title), printable(x_label), printable(y_label));
     let (x0, x1) = axis_range(series.iter().flat_map(|s| s.points.iter().map(|p| p.0)));

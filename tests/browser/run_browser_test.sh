@@ -2,9 +2,15 @@
 # The browser test of report.html (issue 51): runs a shipped example with
 # the release binary, then opens its report.html from file:// in headless
 # Chromium (Debian's /usr/bin/chromium, driven by playwright-core pinned in
-# package-lock.json) and checks what it drew (test.mjs). Installs chromium
-# (apt) and the node module (npm ci) only if missing. Leaves the screenshot
-# in target/browser/report.png.
+# package-lock.json) and checks what it drew (test.mjs); then the pages of
+# the features a history example lacks: a buckling run's mode shapes
+# (examples/column_buckling.toml) and the ply damage of the notched strip
+# (examples/notched_strip_coarse.toml pulled to a third of its stretch in 20
+# increments: damage begins, in 0.05 s), and the verify page of examples/cantilever_timoshenko.toml at refine 1 (0.5
+# s): its CalculiX overlays and whole-field table; the page of an adaptive
+# run (the same cantilever, --adapt 0.05: 2 cycles in 0.3 s). Installs chromium (apt) and the
+# node module (npm ci) and CalculiX (apt, calculix-ccx) only if missing. Leaves the screenshots in
+# target/browser/<run>.png.
 # Usage: bash tests/browser/run_browser_test.sh [EXAMPLE.toml]
 set -euo pipefail
 cd "$(dirname "$0")/../.."
@@ -17,7 +23,25 @@ if [ ! -d tests/browser/node_modules/playwright-core ]; then
 fi
 cargo build --release --quiet --bin cufem
 mkdir -p target/browser
-out=target/browser/run
-rm -rf "$out"
-target/release/cufem run --quiet --threads 1 --out "$out" "$example" > target/browser/run.log
-node tests/browser/test.mjs "$out" target/browser/report.png
+run() { # run MODEL.toml FOLDER
+  rm -rf "target/browser/$2"
+  target/release/cufem run --quiet --threads 1 --out "target/browser/$2" "$1" >> target/browser/run.log
+}
+: > target/browser/run.log
+run "$example" run
+run examples/column_buckling.toml buckling
+strip=target/browser/strip.toml
+sed 's/displacement = { x = 1.5e-4 }/displacement = { x = 5e-5 }/; s/^increments = 150$/increments = 20/' \
+  examples/notched_strip_coarse.toml > "$strip"
+grep -q 'x = 5e-5' "$strip" && grep -q '^increments = 20$' "$strip" || { echo "notched strip: edit failed"; exit 1; }
+run "$strip" strip
+if ! command -v ccx > /dev/null; then
+  apt-get update -qq && DEBIAN_FRONTEND=noninteractive apt-get install -y -qq calculix-ccx > /dev/null
+fi
+rm -rf target/browser/adapt
+target/release/cufem run --quiet --threads 1 --adapt 0.05 --max-dof 6000 --out target/browser/adapt \
+  examples/cantilever_timoshenko.toml >> target/browser/run.log
+rm -rf target/browser/verify
+target/release/cufem verify --quiet --threads 1 --refine 1 --out target/browser/verify \
+  examples/cantilever_timoshenko.toml >> target/browser/run.log
+node tests/browser/test.mjs target/browser target/browser/{run,buckling,strip,adapt,verify}

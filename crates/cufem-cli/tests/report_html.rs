@@ -2,8 +2,10 @@
 //! inline, nothing fetched), bounded in size, its text unable to close the
 //! script that holds it, its data those of the run (the charts the CSVs,
 //! the 3D view the mesh and displacement of `result.vtu`), and
-//! `output.report = false` writing none. What a browser draws from it is
-//! tests/browser (`bash tests/browser/run_browser_test.sh`).
+//! `output.report = false` writing none; a buckling run's mode shapes,
+//! the ply damage, an adaptive run's cycles and `cufem verify`'s comparison with CalculiX in it (the
+//! verify test needs `ccx`, as crates/cufem-cli/tests/ccx.rs). What a
+//! browser draws from it is tests/browser (`bash tests/browser/run_browser_test.sh`).
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
@@ -11,17 +13,18 @@ use std::process::Command;
 use base64::Engine as _;
 use serde_json::Value;
 
-/// The Timoshenko cantilever (0.1 × 1 × 0.1 m) with `title` and `extra`
-/// appended, run into a fresh folder; returns the folder.
-fn run(name: &str, title: &str, extra: &str) -> PathBuf {
-    let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
-    let text = std::fs::read_to_string(root.join("examples/cantilever_timoshenko.toml")).unwrap();
-    let text = text.replace("title = \"Cantilever, tip shear (Timoshenko check)\"", &format!("title = {title:?}"));
+/// The repository's root.
+fn root() -> PathBuf {
+    Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).to_path_buf()
+}
+
+/// Runs the model `text` into a fresh folder `name`; returns the folder.
+fn run_text(name: &str, text: &str) -> PathBuf {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let model = dir.join("model.toml");
-    std::fs::write(&model, format!("{text}\n{extra}")).unwrap();
+    std::fs::write(&model, text).unwrap();
     let out = dir.join("out");
     let run = Command::new(env!("CARGO_BIN_EXE_cufem"))
         .args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"])
@@ -29,6 +32,58 @@ fn run(name: &str, title: &str, extra: &str) -> PathBuf {
         .unwrap();
     assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
     out
+}
+
+/// The page's data: the JSON of its `cufem-data` script.
+fn page_data(out: &Path) -> Value {
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    let start = html.find("id=\"cufem-data\">").unwrap() + "id=\"cufem-data\">".len();
+    let end = start + html[start..].find("</script>").unwrap();
+    serde_json::from_str(&html[start..end]).unwrap()
+}
+
+/// A binary array of a VTU file as f64: the one named `name`, or the
+/// points' coordinates for `None` (a UInt64 byte count, then the values
+/// little-endian: Float64 or Int32).
+fn vtu_array(file: &Path, name: Option<&str>) -> Vec<f64> {
+    let text = std::fs::read_to_string(file).unwrap();
+    let doc = roxmltree::Document::parse(&text).unwrap();
+    let a = match name {
+        Some(name) => doc.descendants().find(|n| n.attribute("Name") == Some(name)).unwrap(),
+        None => doc.descendants().find(|n| n.has_tag_name("Points")).unwrap().first_element_child().unwrap(),
+    };
+    let raw = base64::engine::general_purpose::STANDARD.decode(a.text().unwrap().trim()).unwrap();
+    match a.attribute("type") {
+        Some("Int32") => raw[8..].chunks_exact(4).map(|b| i32::from_le_bytes(b.try_into().unwrap()) as f64).collect(),
+        _ => raw[8..].chunks_exact(8).map(|b| f64::from_le_bytes(b.try_into().unwrap())).collect(),
+    }
+}
+
+/// A quantized field of the page (16-bit steps between its `min` and
+/// `max`, 65535 no value) as f64, NaN for no value.
+fn dequantize(field: &Value) -> Vec<f64> {
+    let (min, max) = (field["min"].as_f64().unwrap(), field["max"].as_f64().unwrap());
+    let raw = base64::engine::general_purpose::STANDARD.decode(field["data"].as_str().unwrap()).unwrap();
+    raw.chunks_exact(2)
+        .map(|b| match u16::from_le_bytes([b[0], b[1]]) {
+            u16::MAX => f64::NAN,
+            q => min + q as f64 / 65534.0 * (max - min),
+        })
+        .collect()
+}
+
+/// The index of the point of `points` (3 per point) nearest to `p`.
+fn nearest(points: &[f64], p: &[f64]) -> usize {
+    let d = |k: usize| (0..3).map(|i| (points[3 * k + i] - p[i]).powi(2)).sum::<f64>();
+    (0..points.len() / 3).min_by(|&a, &b| d(a).total_cmp(&d(b))).unwrap()
+}
+
+/// The Timoshenko cantilever (0.1 × 1 × 0.1 m) with `title` and `extra`
+/// appended, run into a fresh folder; returns the folder.
+fn run(name: &str, title: &str, extra: &str) -> PathBuf {
+    let text = std::fs::read_to_string(root().join("examples/cantilever_timoshenko.toml")).unwrap();
+    let text = text.replace("title = \"Cantilever, tip shear (Timoshenko check)\"", &format!("title = {title:?}"));
+    run_text(name, &format!("{text}\n{extra}"))
 }
 
 fn files(out: &Path) -> Vec<String> {
@@ -122,4 +177,210 @@ fn output_report_false_writes_no_page() {
     assert!(!out.join("report.html").exists());
     assert!(!files(&out).iter().any(|f| f == "report.html"));
     assert!(out.join("result.vtu").exists());
+}
+
+/// A buckling run's page carries every mode shape of its `mode_<k>.vtu`
+/// files (examples/column_buckling.toml: 4), labelled by its critical
+/// load factor as buckling.csv gives it, each vertex's displacement that
+/// of the VTU's point at the same place (to f32 precision of the largest
+/// component, 1: the shapes are normalised).
+#[test]
+fn the_page_holds_the_mode_shapes_of_a_buckling_run() {
+    let text = std::fs::read_to_string(root().join("examples/column_buckling.toml")).unwrap();
+    let out = run_text("report_html_buckling", &text);
+    let data = page_data(&out);
+    let view = &data["view"];
+    let modes = view["modes"].as_array().unwrap();
+    let csv = std::fs::read_to_string(out.join("buckling.csv")).unwrap();
+    let factors: Vec<&str> = csv.lines().skip(1).collect();
+    assert_eq!(modes.len(), 4, "{} mode shapes", modes.len());
+    assert_eq!(factors.len(), 4);
+    let positions = f32s(view["positions"].as_str().unwrap());
+    for (k, mode) in modes.iter().enumerate() {
+        let factor: f64 = factors[k].split(',').nth(1).unwrap().parse().unwrap();
+        let label = mode["label"].as_str().unwrap();
+        let shown: f64 = label.rsplit(' ').next().unwrap().parse().unwrap();
+        assert!(label.starts_with(&format!("mode {}:", k + 1)) && (shown - factor).abs() <= 1e-5 * factor, "{label}");
+        let file = out.join(format!("mode_{}.vtu", k + 1));
+        let (points, u) = (vtu_array(&file, None), vtu_array(&file, Some("displacement")));
+        let page = f32s(mode["displacement"].as_str().unwrap());
+        assert_eq!(page.len(), positions.len());
+        let mut largest = 0.0f64;
+        for (v, p) in positions.chunks(3).enumerate() {
+            let q = nearest(&points, p);
+            for i in 0..3 {
+                assert!((page[3 * v + i] - u[3 * q + i]).abs() <= 1e-6, "mode {} vertex {v}", k + 1);
+                largest = largest.max(page[3 * v + i].abs());
+            }
+        }
+        assert!((largest - 1.0).abs() < 1e-6, "mode {}: largest component {largest}", k + 1);
+    }
+}
+
+/// The ply damage is in the 3D view: on every surface vertex, `d_ft` …
+/// `d_mc` are the cell data of result.vtu's cell of the vertex's element
+/// (the page's `element` field), to the 16-bit steps of the page; the
+/// notched strip pulled to a third of its stretch has started to crack
+/// (`d_ft` from 0 to above 0.3: not uniform).
+#[test]
+fn the_page_holds_the_ply_damage_of_each_element() {
+    let text = std::fs::read_to_string(root().join("examples/notched_strip_coarse.toml")).unwrap();
+    let text = text.replace("displacement = { x = 1.5e-4 }", "displacement = { x = 5e-5 }");
+    let out = run_text("report_html_damage", &text.replace("\nincrements = 150\n", "\nincrements = 20\n"));
+    let data = page_data(&out);
+    let view = &data["view"];
+    let frame = view["frames"].as_array().unwrap().last().unwrap();
+    let field = |name: &str| {
+        let all = frame["fields"].as_array().unwrap().iter().chain(view["cells"].as_array().unwrap());
+        dequantize(all.clone().find(|f| f["name"] == name).unwrap_or_else(|| panic!("no field {name}")))
+    };
+    let element = field("element");
+    let file = out.join("result.vtu");
+    let cells = vtu_array(&file, Some("element"));
+    for name in ["d_ft", "d_fc", "d_mt", "d_mc"] {
+        let (page, vtu) = (field(name), vtu_array(&file, Some(name)));
+        let step = vtu.iter().cloned().fold(0.0, f64::max) / 65534.0;
+        for (v, d) in page.iter().enumerate() {
+            let cell = cells.iter().position(|&c| c == element[v].round()).unwrap();
+            assert!(
+                (d - vtu[cell]).abs() <= step,
+                "{name} at vertex {v}: {d} on the page, {} in result.vtu",
+                vtu[cell]
+            );
+        }
+        if name == "d_ft" {
+            let (min, max) = page.iter().fold((f64::MAX, 0.0f64), |(a, b), &d| (a.min(d), b.max(d)));
+            assert!(min == 0.0 && max > 0.3, "d_ft over [{min}, {max}]");
+        }
+    }
+}
+
+/// `cufem verify` adds its comparison to the run's page: a chart per
+/// overlay the verify folder plots, each curve the numbers of its CSV
+/// (`line_<name>_<q>.csv`: s in m, both values in SI; the chart in mm and
+/// display units) — cufem's and CalculiX's — and the whole-field rows of
+/// table.json as a table. The Timoshenko cantilever against C3D20R at
+/// refine 1 (0.5 s).
+#[test]
+fn the_verify_page_overlays_calculix_and_tables_the_field_differences() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("report_html_verify");
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.join("out");
+    let model = root().join("examples/cantilever_timoshenko.toml");
+    let run = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["verify", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--refine", "1", "--quiet"])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let data = page_data(&out);
+    let sections = data["sections"].as_array().unwrap();
+    assert_eq!(sections.len(), 1);
+    let section = &sections[0];
+    assert!(section["title"].as_str().unwrap().starts_with("Verification against CalculiX"));
+    let plots = section["plots"].as_array().unwrap();
+    // u_z in mm, s_yy in MPa on the chart
+    let scale = |name: &str| if name.ends_with("u_z") { 1e3 } else { 1e-6 };
+    let mut overlays = 0;
+    for f in std::fs::read_dir(out.join("verify")).unwrap() {
+        let f = f.unwrap().file_name().to_string_lossy().into_owned();
+        let Some(name) = f.strip_prefix("line_").and_then(|n| n.strip_suffix(".csv")) else {
+            continue;
+        };
+        overlays += 1;
+        let name = format!("line_{name}");
+        let plot = plots.iter().find(|p| p["name"] == name.as_str()).unwrap_or_else(|| panic!("no chart {name}"));
+        let rows: Vec<Vec<f64>> = std::fs::read_to_string(out.join("verify").join(&f))
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| l.split(',').map(|v| v.parse().unwrap()).collect())
+            .collect();
+        let series = plot["series"].as_array().unwrap();
+        assert_eq!(series.len(), 2, "{name}: cufem and CalculiX");
+        assert!(series[1]["label"].as_str().unwrap().starts_with("CalculiX"));
+        for (k, s) in series.iter().enumerate() {
+            let xs: Vec<f64> = s["x"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+            let ys: Vec<f64> = s["y"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+            assert_eq!(xs.len(), rows.len(), "{name} series {k}");
+            for ((x, y), row) in xs.iter().zip(&ys).zip(&rows) {
+                assert!((x - row[0] * 1e3).abs() <= 1e-9 * x.abs().max(1.0), "{name}: s {x} mm, CSV {} m", row[0]);
+                let want = row[k + 1] * scale(&name);
+                assert!((y - want).abs() <= 1e-9 * want.abs().max(1e-9), "{name} series {k}: {y}, CSV {want}");
+            }
+        }
+    }
+    assert_eq!(overlays, 2, "the cantilever's lines axis (u_z) and top (s_yy)");
+    let table: Value = serde_json::from_str(&std::fs::read_to_string(out.join("verify/table.json")).unwrap()).unwrap();
+    let fields = table["fields"].as_array().unwrap();
+    let shown =
+        section["tables"].as_array().unwrap().iter().find(|t| t["title"].as_str().unwrap().starts_with("whole field"));
+    let rows = shown.unwrap()["rows"].as_array().unwrap();
+    assert_eq!(rows.len(), fields.len());
+    assert!(!fields.is_empty());
+    for (row, f) in rows.iter().zip(fields) {
+        assert_eq!(row[0], f["region"]);
+        assert_eq!(row[1], f["quantity"]);
+        assert_eq!(row[4], f["l2_percent"]);
+        assert_eq!(row[5], f["max_percent"]);
+    }
+}
+
+/// An adaptive run's page shows every cycle: the cycles' table (DOF and
+/// estimate those of summary.json's `adapt`), the estimate against the
+/// DOF, and the probe's values cycle by cycle — cycle 0's those of a
+/// single run of the model's own mesh, the last cycle's those of the
+/// results written (summary.json). The Timoshenko cantilever with
+/// `--adapt 0.05`: 2 cycles (1,200 and 4,617 DOF).
+#[test]
+fn the_page_of_an_adaptive_run_shows_every_cycle() {
+    let text = std::fs::read_to_string(root().join("examples/cantilever_timoshenko.toml")).unwrap();
+    let single = run_text("report_html_adapt_single", &text);
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("report_html_adapt");
+    let _ = std::fs::remove_dir_all(&dir);
+    let out = dir.join("out");
+    let model = root().join("examples/cantilever_timoshenko.toml");
+    let run = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", model.to_str().unwrap(), "--adapt", "0.05", "--max-dof", "6000", "--quiet", "--out"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    let summary = |dir: &Path| -> Value {
+        serde_json::from_str(&std::fs::read_to_string(dir.join("summary.json")).unwrap()).unwrap()
+    };
+    let (s, s0) = (summary(&out), summary(&single));
+    let cycles = s["adapt"].as_array().unwrap();
+    assert_eq!(cycles.len(), 2, "{cycles:?}");
+    let data = page_data(&out);
+    let section = &data["sections"][0];
+    assert!(section["title"].as_str().unwrap().starts_with("Adaptive refinement"));
+    let table = |title: &str| -> Vec<Value> {
+        let t = section["tables"].as_array().unwrap().iter().find(|t| t["title"].as_str().unwrap().starts_with(title));
+        t.unwrap_or_else(|| panic!("no table {title}"))["rows"].as_array().unwrap().clone()
+    };
+    let rows = table("cycles");
+    assert_eq!(rows.len(), cycles.len());
+    for (row, c) in rows.iter().zip(cycles) {
+        assert_eq!(row[1], c["dof"]);
+        assert!((row[2].as_f64().unwrap() - 100.0 * c["estimate"].as_f64().unwrap()).abs() < 1e-12);
+    }
+    let plot = &section["plots"][0];
+    assert_eq!(plot["series"][0]["x"], serde_json::json!(cycles.iter().map(|c| c["dof"].as_f64()).collect::<Vec<_>>()));
+    let tip = table("probe tip");
+    let t =
+        section["tables"].as_array().unwrap().iter().find(|t| t["title"].as_str().unwrap().starts_with("probe tip"));
+    let columns = t.unwrap()["columns"].as_array().unwrap();
+    let col = |name: &str| columns.iter().position(|c| c == name).unwrap();
+    assert_eq!(tip.len(), cycles.len());
+    for (row, summary) in [(&tip[0], &s0), (&tip[tip.len() - 1], &s)] {
+        let probe = &summary["probes"][0];
+        for (got, want) in [(&row[col("u_z")], &probe["u"][2]), (&row[col("von_mises")], &probe["von_mises"])] {
+            let (got, want) = (got.as_f64().unwrap(), want.as_f64().unwrap());
+            assert!(
+                (got - want).abs() <= 1e-12 * want.abs(),
+                "cycle {}: {got} on the page, {want} in summary.json",
+                row[0]
+            );
+        }
+    }
 }

@@ -18,6 +18,7 @@
 //! decimated), [`MAX_FRAMES`] frames and about [`FRAME_BUDGET`] bytes of
 //! frame data; the page states what it shows of how much.
 
+mod section;
 mod surface;
 
 use std::fmt::Write as _;
@@ -27,10 +28,11 @@ use std::path::{Path, PathBuf};
 use base64::Engine as _;
 use serde_json::{Value, json};
 
-use super::{FieldGrid, IoError, Summary, file_error, report};
+use super::{FieldGrid, GridElement, IoError, Summary, file_error, report};
 use crate::analysis::tables::{Table, Values};
 use crate::analysis::{IncrementLog, Solution};
 use crate::setup::Model;
+pub use section::{Plot, Section, SectionTable, add_section};
 use surface::Surface;
 
 /// uPlot 1.6.32 (MIT): the charts.
@@ -61,6 +63,10 @@ const COUNTS: [&str; 3] = ["iterations", "plastic_points", "negative_pivots"];
 pub(crate) struct View {
     surface: Option<Surface>,
     frames: Vec<Value>,
+    /// The mode shapes of a modal or buckling run (displacement only).
+    modes: Vec<Value>,
+    /// The cell fields that no frame changes (`body`, `element`).
+    cells: Vec<Value>,
     bytes: usize,
     skipped: usize,
 }
@@ -89,29 +95,56 @@ impl View {
         self.skipped += usize::from(!last);
     }
 
-    /// Adds the state at `lambda` whose field grid is `grid` (one that
-    /// [`View::takes`]).
-    pub(crate) fn add_grid(&mut self, label: String, lambda: f64, grid: &FieldGrid) {
+    /// Adds the state `at` whose field grid is `grid` (one that
+    /// [`View::takes`]): its point fields and its ply damage, the cell data
+    /// `d_ft … d_mc` of its VTU on the points of each element.
+    pub(crate) fn add_grid(&mut self, label: String, model: &Model, at: &Solution, grid: &FieldGrid) {
         let surface = self.surface.get_or_insert_with(|| Surface::of(grid, surface::MAX_VERTICES));
+        if self.cells.is_empty() {
+            let of_element = |pick: fn(&GridElement) -> usize| per_point(grid, |_, e| pick(e) as f64);
+            for (name, values) in [("body", of_element(|e| e.body)), ("element", of_element(|e| e.element))] {
+                self.cells.push(scalar(surface, name, &values));
+            }
+        }
         let mut fields = Vec::new();
         let mut displacement = String::new();
         for a in &grid.point_data {
             if a.name == "displacement" {
                 displacement = encode_f32(&surface.gather(&a.values, 3));
             } else if a.components == 1 {
-                let (data, min, max) = quantize(&surface.gather(&a.values, 1));
-                fields.push(json!({"name": a.name, "min": min, "max": max, "data": data}));
+                fields.push(scalar(surface, &a.name, &a.values));
             }
         }
+        for (name, values) in damage_fields(model, at, grid) {
+            fields.push(scalar(surface, name, &values));
+        }
         self.bytes += displacement.len() + fields.iter().map(|f| f["data"].as_str().map_or(0, str::len)).sum::<usize>();
-        self.frames.push(json!({"label": label, "lambda": lambda, "displacement": displacement, "fields": fields}));
+        self.frames.push(json!({"label": label, "lambda": at.lambda, "displacement": displacement, "fields": fields}));
+    }
+
+    /// True if a mode shape would be added (fewer than [`MAX_FRAMES`]
+    /// shown and the frame budget not spent).
+    pub(crate) fn takes_mode(&self) -> bool {
+        let per_mode = self.modes.first().map_or(0, |m| m["displacement"].as_str().map_or(0, str::len));
+        self.modes.len() < MAX_FRAMES && self.bytes + 2 * per_mode <= FRAME_BUDGET
+    }
+
+    /// Adds a mode shape (its displacement, as `mode_<k>.vtu` holds it),
+    /// after the states (one that [`View::takes_mode`]).
+    pub(crate) fn add_mode(&mut self, label: String, grid: &FieldGrid) {
+        let surface = self.surface.get_or_insert_with(|| Surface::of(grid, surface::MAX_VERTICES));
+        if let Some(a) = grid.point_data.iter().find(|a| a.name == "displacement") {
+            let displacement = encode_f32(&surface.gather(&a.values, 3));
+            self.bytes += displacement.len();
+            self.modes.push(json!({"label": label, "displacement": displacement, "fields": []}));
+        }
     }
 
     /// The view as the page's data (`None` without frames).
     fn data(self) -> Option<Value> {
         let s = self.surface?;
         let note = format!(
-            "outer surface of {} vertices{}; {} frame{}{}; field colours in 16-bit steps of each frame's range",
+            "outer surface of {} vertices{}; {} frame{}{}{}; field colours in 16-bit steps of each frame's range",
             s.vertices(),
             if s.full_vertices > s.vertices() {
                 format!(
@@ -128,6 +161,10 @@ impl View {
                 format!(" ({} more left out to bound the page's size)", self.skipped)
             } else {
                 String::new()
+            },
+            match self.modes.len() {
+                0 => String::new(),
+                n => format!("; {n} mode shape{} (largest component 1)", if n == 1 { "" } else { "s" }),
             }
         );
         Some(json!({
@@ -137,8 +174,51 @@ impl View {
             "triangles": base64::engine::general_purpose::STANDARD.encode(s.triangles.iter().flat_map(|t| t.to_le_bytes()).collect::<Vec<u8>>()),
             "note": note,
             "frames": self.frames,
+            "modes": self.modes,
+            "cells": self.cells,
         }))
     }
+}
+
+/// A scalar field at the surface's vertices, quantized, as the page holds it.
+fn scalar(surface: &Surface, name: &str, values: &[f64]) -> Value {
+    let (data, min, max) = quantize(&surface.gather(values, 1));
+    json!({"name": name, "min": min, "max": max, "data": data})
+}
+
+/// A value per element of `grid` (from its index and itself) on each of
+/// its points.
+fn per_point(grid: &FieldGrid, value: impl Fn(usize, &GridElement) -> f64) -> Vec<f64> {
+    let n = grid.points.len() / 3;
+    let mut out = Vec::with_capacity(n);
+    for (k, e) in grid.elements.iter().enumerate() {
+        let end = grid.elements.get(k + 1).map_or(n, |next| next.first);
+        out.resize(end, value(k, e));
+    }
+    out
+}
+
+/// The ply damage of `at` on the points of `grid` (none without it): for
+/// each mode `d_ft d_fc d_mt d_mc`, its largest over the Gauss points of
+/// the point's element, the cell data of the state's VTU.
+fn damage_fields(model: &Model, at: &Solution, grid: &FieldGrid) -> Vec<(&'static str, Vec<f64>)> {
+    let Some(damage) = &at.damage else {
+        return Vec::new();
+    };
+    let largest: Vec<[f64; 4]> = grid
+        .elements
+        .iter()
+        .map(|e| {
+            let ngp = model.cells[e.body].gp_per_element();
+            let first = at.gp_offsets[e.body] + (e.element - model.mesh.bodies[e.body].element_offset) * ngp;
+            damage.largest_in(first..first + ngp)
+        })
+        .collect();
+    ["d_ft", "d_fc", "d_mt", "d_mc"]
+        .into_iter()
+        .enumerate()
+        .map(|(m, name)| (name, per_point(grid, |k, _| largest[k][m])))
+        .collect()
 }
 
 /// Little-endian `f32`s in base64.
@@ -254,6 +334,7 @@ pub(crate) fn write(
         "warnings": summary.warnings,
         "charts": charts(&all),
         "view": view.data(),
+        "sections": solution.adapt.iter().map(|a| section::adapt(a).data()).collect::<Vec<_>>(),
     });
     // `<` escaped so that no text in the data can close the script element
     let data = data.to_string().replace('<', "\\u003c");

@@ -26,7 +26,7 @@ use serde::Serialize;
 
 use crate::{CcxRun, deck::set_name};
 use cufem::analysis::Solution;
-use cufem::io::{IoError, Series, line_plot};
+use cufem::io::{IoError, Plot, Series};
 use cufem::setup::Model;
 
 /// One indenter's force history, both ways.
@@ -178,8 +178,7 @@ pub fn table(rows: &[ForceHistoryRow], t: &mut String) {
 /// a support, both curves) into `dir`.
 pub fn write(dir: &Path, curves: &[ForceCurve]) -> Result<Vec<PathBuf>, IoError> {
     let mut written = Vec::new();
-    for ForceCurve { name, moving, direction, points: curve } in curves {
-        let measure = |f: [f64; 3]| if *moving { (0..3).map(|k| f[k] * direction[k]).sum() } else { norm(f) };
+    for (ForceCurve { name, moving, points: curve, .. }, plot) in curves.iter().zip(plots(curves)) {
         let mut csv = String::from("lambda,d,f_x,f_y,f_z,ccx_f_x,ccx_f_y,ccx_f_z\n");
         for (l, d, a, b) in curve {
             let d = if *moving { *d } else { 0.0 };
@@ -188,23 +187,36 @@ pub fn write(dir: &Path, curves: &[ForceCurve]) -> Result<Vec<PathBuf>, IoError>
         let p = dir.join(format!("history_{name}.csv"));
         std::fs::write(&p, csv).map_err(|e| cufem::io::file_error(&p, e))?;
         written.push(p);
-        let scale = if *moving { 1e3 } else { 1.0 };
-        let series = |label: &str, pick: fn(&CurvePoint) -> [f64; 3], dashed| Series {
-            name: label.to_string(),
-            points: std::iter::once((0.0, 0.0)).chain(curve.iter().map(|c| (c.1 * scale, measure(pick(c))))).collect(),
-            dashed,
-        };
-        let p = dir.join(format!("history_{name}.png"));
-        line_plot(
-            &p,
-            &format!("{name}: force against {}", if *moving { "displacement" } else { "load factor" }),
-            if *moving { "displacement [mm]" } else { "load factor" },
-            "force [N]",
-            &[series("cufem", |c| c.2, false), series("CalculiX 3D", |c| c.3, true)],
-        )?;
-        written.push(p);
+        written.push(plot.write_png(dir)?);
     }
     Ok(written)
+}
+
+/// The plot of each curve (`history_<indenter>`): the force along the
+/// motion against the displacement (mm), or ‖f‖ against the load factor
+/// for a support, both ways, from 0.
+pub fn plots(curves: &[ForceCurve]) -> Vec<Plot> {
+    curves
+        .iter()
+        .map(|ForceCurve { name, moving, direction, points: curve }| {
+            let measure = |f: [f64; 3]| if *moving { (0..3).map(|k| f[k] * direction[k]).sum() } else { norm(f) };
+            let scale = if *moving { 1e3 } else { 1.0 };
+            let series = |label: &str, pick: fn(&CurvePoint) -> [f64; 3], dashed| Series {
+                name: label.to_string(),
+                points: std::iter::once((0.0, 0.0))
+                    .chain(curve.iter().map(|c| (c.1 * scale, measure(pick(c)))))
+                    .collect(),
+                dashed,
+            };
+            Plot {
+                name: format!("history_{name}"),
+                title: format!("{name}: force against {}", if *moving { "displacement" } else { "load factor" }),
+                x: if *moving { "displacement [mm]" } else { "load factor" }.into(),
+                y: "force [N]".into(),
+                series: vec![series("cufem", |c| c.2, false), series("CalculiX 3D", |c| c.3, true)],
+            }
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -26,7 +26,7 @@ use serde::Serialize;
 
 use crate::{CcxRun, deck::set_name};
 use cufem::analysis::Solution;
-use cufem::io::{IoError, Series, line_plot};
+use cufem::io::{IoError, Plot, Series};
 use cufem::setup::Model;
 
 /// One impactor, both ways.
@@ -219,7 +219,7 @@ pub fn csv(rows: &[ImpactRow], csv: &mut String) {
 /// contact force against time, both ways) into `dir`.
 pub fn write(dir: &Path, curves: &[ImpactCurve]) -> Result<Vec<PathBuf>, IoError> {
     let mut written = Vec::new();
-    for c in curves {
+    for (c, plot) in curves.iter().zip(plots(curves)) {
         let mut ours = String::from("t,a,ccx_a,force\n");
         for (t, a, b, f) in &c.points {
             let _ = writeln!(ours, "{t:e},{a:e},{b:e},{f:e}");
@@ -233,19 +233,35 @@ pub fn write(dir: &Path, curves: &[ImpactCurve]) -> Result<Vec<PathBuf>, IoError
             std::fs::write(&p, text).map_err(|e| cufem::io::file_error(&p, e))?;
             written.push(p);
         }
-        let series = [
-            Series { name: "cufem".into(), points: c.points.iter().map(|p| (p.0 * 1e3, p.3)).collect(), dashed: false },
-            Series {
-                name: "CalculiX 3D".into(),
-                points: c.ccx_force.iter().map(|p| (p.0 * 1e3, p.1)).collect(),
-                dashed: true,
-            },
-        ];
-        let p = dir.join(format!("impact_{}.png", c.name));
-        line_plot(&p, &format!("{}: contact force against time", c.name), "time [ms]", "force [N]", &series)?;
-        written.push(p);
+        written.push(plot.write_png(dir)?);
     }
     Ok(written)
+}
+
+/// The plot of each impactor (`impact_<name>`): the contact force against
+/// time (ms), cufem's at its increments and CalculiX's at its own.
+pub fn plots(curves: &[ImpactCurve]) -> Vec<Plot> {
+    curves
+        .iter()
+        .map(|c| Plot {
+            name: format!("impact_{}", c.name),
+            title: format!("{}: contact force against time", c.name),
+            x: "time [ms]".into(),
+            y: "force [N]".into(),
+            series: vec![
+                Series {
+                    name: "cufem".into(),
+                    points: c.points.iter().map(|p| (p.0 * 1e3, p.3)).collect(),
+                    dashed: false,
+                },
+                Series {
+                    name: "CalculiX 3D".into(),
+                    points: c.ccx_force.iter().map(|p| (p.0 * 1e3, p.1)).collect(),
+                    dashed: true,
+                },
+            ],
+        })
+        .collect()
 }
 
 #[cfg(test)]

@@ -26,8 +26,8 @@ use serde::Serialize;
 
 use crate::{CcxRun, HexMesh, deck::set_name};
 use cufem::analysis::Solution;
+use cufem::io::IoError;
 use cufem::io::csv_field as csv_text;
-use cufem::io::{IoError, Series, line_plot};
 use cufem::quantity::{Quantity, Sample};
 use cufem::setup::Model;
 
@@ -35,6 +35,7 @@ pub mod field;
 pub mod history;
 pub mod impact;
 pub mod modal;
+mod page;
 pub mod transient;
 
 pub use field::{FieldComparison, FieldRow, SingularZone, StoredError, compare_stored, compare_stored_on};
@@ -546,21 +547,8 @@ impl Comparison {
             file(&p, &whole.points_csv())?;
             written.push(p);
         }
-        for (line, q, points) in curves {
-            let ours: Vec<(f64, f64)> = points.iter().map(|(s, a, _)| (s * 1e3, a * q.display_scale())).collect();
-            let theirs: Vec<(f64, f64)> = points.iter().map(|(s, _, b)| (s * 1e3, b * q.display_scale())).collect();
-            let p = dir.join(format!("line_{line}_{}.png", q.name()));
-            line_plot(
-                &p,
-                &format!("{} along {line}: cufem and 3D", q.label().split(" [").next().unwrap_or_default()),
-                "distance along the line [mm]",
-                &q.label(),
-                &[
-                    Series { name: "cufem (CUF 1D)".into(), points: ours, dashed: false },
-                    Series { name: format!("CalculiX ({})", self.solid), points: theirs, dashed: true },
-                ],
-            )?;
-            written.push(p);
+        for ((line, q, points), plot) in curves.iter().zip(page::line_plots(&self.solid, curves)) {
+            written.push(plot.write_png(dir)?);
             // the numbers behind the plot, for any other comparison
             let p = dir.join(format!("line_{line}_{}.csv", q.name()));
             let mut csv = format!("s,cufem_{0},ccx_{0}\n", q.name());

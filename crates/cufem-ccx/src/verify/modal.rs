@@ -189,6 +189,23 @@ pub fn table(rows: &[ModeRow], t: &mut String) {
     );
 }
 
+/// The frequencies mode by mode (`modes`), cufem's and those of the
+/// CalculiX modes paired with them; `None` without modes.
+pub fn plot(rows: &[ModeRow]) -> Option<cufem::io::Plot> {
+    let series = |name: &str, f: fn(&ModeRow) -> Option<f64>, dashed| cufem::io::Series {
+        name: name.into(),
+        points: rows.iter().filter_map(|r| f(r).map(|hz| (r.mode as f64, hz))).collect(),
+        dashed,
+    };
+    (!rows.is_empty()).then(|| cufem::io::Plot {
+        name: "modes".into(),
+        title: "natural frequencies, mode by mode".into(),
+        x: "cufem mode".into(),
+        y: "frequency [Hz]".into(),
+        series: vec![series("cufem", |r| Some(r.cufem_hz), false), series("CalculiX 3D (paired)", |r| r.ccx_hz, true)],
+    })
+}
+
 /// The rows of `table.csv` (`kind,name,quantity,cufem,ccx,difference_percent`):
 /// per cufem mode its frequency, the CalculiX mode paired with it and the
 /// pair's MAC.

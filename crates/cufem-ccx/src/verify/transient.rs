@@ -27,7 +27,7 @@ use serde::Serialize;
 
 use crate::{CcxRun, HexMesh};
 use cufem::analysis::Solution;
-use cufem::io::{IoError, Series, line_plot};
+use cufem::io::{IoError, Plot, Series};
 use cufem::quantity::Quantity;
 use cufem::setup::Model;
 
@@ -190,7 +190,7 @@ pub fn csv(rows: &[ProbeHistoryRow], csv: &mut String) {
 /// time) into `dir`.
 pub fn write(dir: &Path, rows: &[ProbeHistoryRow], curves: &[ProbeCurve]) -> Result<Vec<PathBuf>, IoError> {
     let mut written = Vec::new();
-    for ProbeCurve { probe, points } in curves {
+    for (ProbeCurve { probe, points }, plot) in curves.iter().zip(plots(rows, curves)) {
         let mut csv = String::from("lambda,t,u_x,u_y,u_z,ccx_u_x,ccx_u_y,ccx_u_z\n");
         for (l, t, a, b) in points {
             let _ = writeln!(csv, "{l:e},{t:e},{:e},{:e},{:e},{:e},{:e},{:e}", a[0], a[1], a[2], b[0], b[1], b[2]);
@@ -198,7 +198,17 @@ pub fn write(dir: &Path, rows: &[ProbeHistoryRow], curves: &[ProbeCurve]) -> Res
         let p = dir.join(format!("probe_history_{probe}.csv"));
         std::fs::write(&p, csv).map_err(|e| cufem::io::file_error(&p, e))?;
         written.push(p);
-        // the components that move in 3D (all three if none does)
+        written.push(plot.write_png(dir)?);
+    }
+    Ok(written)
+}
+
+/// The plot of each probe's history (`probe_history_<probe>`): the
+/// components that move in 3D (all three if none does), both ways,
+/// against time (ms).
+pub fn plots(rows: &[ProbeHistoryRow], curves: &[ProbeCurve]) -> Vec<Plot> {
+    let mut out = Vec::new();
+    for ProbeCurve { probe, points } in curves {
         let moving: Vec<usize> = (0..3)
             .filter(|&k| {
                 rows.iter().any(|r| {
@@ -218,11 +228,15 @@ pub fn write(dir: &Path, rows: &[ProbeHistoryRow], curves: &[ProbeCurve]) -> Res
             series.push(Series { name: format!("cufem {name}"), points: curve(|p| p.2), dashed: false });
             series.push(Series { name: format!("CalculiX 3D {name}"), points: curve(|p| p.3), dashed: true });
         }
-        let p = dir.join(format!("probe_history_{probe}.png"));
-        line_plot(&p, &format!("{probe}: displacement against time"), "time [ms]", "displacement [mm]", &series)?;
-        written.push(p);
+        out.push(Plot {
+            name: format!("probe_history_{probe}"),
+            title: format!("{probe}: displacement against time"),
+            x: "time [ms]".into(),
+            y: "displacement [mm]".into(),
+            series,
+        });
     }
-    Ok(written)
+    out
 }
 
 #[cfg(test)]

@@ -132,6 +132,11 @@ pub fn run(a: Args) -> Result<u8, Failure> {
         let (comparison, curves, whole) = verify::compare(&model, done.solution, &mesh, &ccx_run, done.analysis_peak);
         comparison.write(&dir, &curves, &whole).map_err(|e| fail(FILES, e))?;
         add_to_summary(&done.staging.join("summary.json"), &comparison).map_err(|e| fail(FILES, e))?;
+        // the run's page (unless `output.report = false`) shows the comparison too
+        let page = done.staging.join("report.html");
+        if page.exists() {
+            cufem::io::add_section(&page, &comparison.section(&curves)).map_err(|e| fail(FILES, e))?;
+        }
         Ok(comparison.table())
     };
     let run = cufem::io::run_into(&model, folder, &options, &mut progress, compare).map_err(super::run_failure)?;

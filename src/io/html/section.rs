@@ -1,0 +1,169 @@
+//! Sections added to a written `report.html` after the run: `cufem
+//! verify`'s comparison with CalculiX (its table as printed, its rows as
+//! tables and its overlay plots as charts). The page's data gains a
+//! `sections` entry; the page draws it after the warnings.
+
+use std::path::Path;
+
+use serde_json::{Value, json};
+
+use crate::analysis::Adaptivity;
+use crate::analysis::tables::Column;
+use crate::io::png::Series;
+use crate::io::{IoError, file_error};
+
+/// A plot of curves sampled at their own abscissae (the PNG
+/// `io::png::line_plot` draws, and the page's chart of it).
+#[derive(Debug, Clone)]
+pub struct Plot {
+    /// Its name: the PNG's file name without `.png`.
+    pub name: String,
+    /// Title.
+    pub title: String,
+    /// Label of the x axis (with its display unit).
+    pub x: String,
+    /// Label of the y axis (with its display unit).
+    pub y: String,
+    /// The curves.
+    pub series: Vec<Series>,
+}
+
+impl Plot {
+    /// Draws it as `<dir>/<name>.png`; returns the path.
+    pub fn write_png(&self, dir: &Path) -> Result<std::path::PathBuf, IoError> {
+        let p = dir.join(format!("{}.png", self.name));
+        crate::io::png::line_plot(&p, &self.title, &self.x, &self.y, &self.series)?;
+        Ok(p)
+    }
+}
+
+/// A table of a section: named columns, rows of numbers (shown to 4
+/// significant digits) or text (`null`: no value).
+#[derive(Debug, Clone)]
+pub struct SectionTable {
+    /// Title.
+    pub title: String,
+    /// Column headers (with their units).
+    pub columns: Vec<String>,
+    /// Rows, one value per column.
+    pub rows: Vec<Vec<Value>>,
+}
+
+/// A section of the page.
+#[derive(Debug, Clone)]
+pub struct Section {
+    /// Its heading.
+    pub title: String,
+    /// Preformatted text (a table as the CLI prints it).
+    pub text: String,
+    /// Its tables.
+    pub tables: Vec<SectionTable>,
+    /// Its charts.
+    pub plots: Vec<Plot>,
+}
+
+impl Section {
+    /// The section as the page's data holds it.
+    pub(crate) fn data(&self) -> Value {
+        let plots: Vec<Value> = self
+            .plots
+            .iter()
+            .map(|p| {
+                let series: Vec<Value> = p
+                    .series
+                    .iter()
+                    .map(|s| {
+                        let (x, y): (Vec<f64>, Vec<f64>) = s.points.iter().copied().unzip();
+                        json!({"label": s.name, "dashed": s.dashed, "x": x, "y": y})
+                    })
+                    .collect();
+                json!({"name": p.name, "title": p.title, "x": p.x, "y": p.y, "series": series})
+            })
+            .collect();
+        let tables: Vec<Value> =
+            self.tables.iter().map(|t| json!({"title": t.title, "columns": t.columns, "rows": t.rows})).collect();
+        json!({"title": self.title, "text": self.text, "tables": tables, "plots": plots})
+    }
+}
+
+/// The section of an adaptive run (`cufem run --adapt`): every cycle's
+/// DOF, estimate, time and refinement, its probes' values (a table per
+/// probe, a row per cycle), and the estimate against the DOF.
+pub(crate) fn adapt(a: &Adaptivity) -> Section {
+    let cycles = SectionTable {
+        title: "cycles".into(),
+        columns: ["cycle", "DOF", "estimate [%]", "time [s]", "refined"].map(String::from).to_vec(),
+        rows: a
+            .cycles
+            .iter()
+            .map(|c| vec![json!(c.cycle), json!(c.dof), json!(100.0 * c.estimate), json!(c.time_s), json!(c.refined)])
+            .collect(),
+    };
+    let mut tables = vec![cycles];
+    let first = a.cycles.first().map(|c| &c.probes);
+    for (p, name) in first.and_then(|t| t.text("probe")).unwrap_or_default().iter().enumerate() {
+        let columns: Vec<&Column> = first.map_or(Vec::new(), |t| t.columns.iter().skip(4).collect());
+        tables.push(SectionTable {
+            title: format!("probe {name}: its values cycle by cycle (SI units)"),
+            columns: ["cycle", "DOF"]
+                .into_iter()
+                .map(String::from)
+                .chain(columns.iter().map(|c| c.name.clone()))
+                .collect(),
+            rows: a
+                .cycles
+                .iter()
+                .map(|c| {
+                    let values = columns
+                        .iter()
+                        .map(|col| c.probes.column(&col.name).map_or(Value::Null, |v| json!(v.values.get(p))));
+                    [json!(c.cycle), json!(c.dof)].into_iter().chain(values).collect()
+                })
+                .collect(),
+        });
+    }
+    let estimate = Series {
+        name: "estimate [%]".into(),
+        points: a.cycles.iter().map(|c| (c.dof as f64, 100.0 * c.estimate)).collect(),
+        dashed: false,
+    };
+    Section {
+        title: format!("Adaptive refinement: {} cycles", a.cycles.len()),
+        text: format!(
+            "until the estimate is below {:.2} %, at most {} DOF; stopped: {}",
+            100.0 * a.tolerance,
+            a.max_dof,
+            a.stop
+        ),
+        tables,
+        plots: vec![Plot {
+            name: "adapt".into(),
+            title: "estimated error (energy norm) against DOF".into(),
+            x: "DOF".into(),
+            y: "estimate [%]".into(),
+            series: vec![estimate],
+        }],
+    }
+}
+
+/// The marker of the page's data.
+const DATA: &str = "id=\"cufem-data\">";
+
+/// Adds `section` to the report.html at `path` (written by the run), in
+/// place: its data gains the section, the rest of the page is unchanged.
+pub fn add_section(path: &Path, section: &Section) -> Result<(), IoError> {
+    let bad = |what: &str| file_error(path, std::io::Error::new(std::io::ErrorKind::InvalidData, what.to_string()));
+    let html = std::fs::read_to_string(path).map_err(|e| file_error(path, e))?;
+    let start = html.find(DATA).ok_or_else(|| bad("not a cufem report.html: no data"))? + DATA.len();
+    let end = start + html[start..].find("</script>").ok_or_else(|| bad("not a cufem report.html: data not closed"))?;
+    let mut data: Value = serde_json::from_str(&html[start..end]).map_err(|e| bad(&e.to_string()))?;
+    let entry = section.data();
+    match data.get_mut("sections").and_then(Value::as_array_mut) {
+        Some(list) => list.push(entry),
+        None => data["sections"] = json!([entry]),
+    }
+    // `<` escaped so that no text in the data can close the script element
+    let text = data.to_string().replace('<', "\\u003c");
+    let page = format!("{}{text}{}", &html[..start], &html[end..]);
+    std::fs::write(path, page).map_err(|e| file_error(path, e))
+}

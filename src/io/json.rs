@@ -81,6 +81,12 @@ pub struct TimingSummary {
     pub krylov_iterations: usize,
     /// Solves where PCG did not converge and the tangent was factorized.
     pub fallbacks: usize,
+    /// Writing the run's files, `summary.json` aside (`io::write_results`;
+    /// 0 where no files are written).
+    pub output_s: f64,
+    /// Of `output_s`, what `report.html` alone costs: its 3D view's data
+    /// (the fields on the outer surface of each frame) and the page.
+    pub report_s: f64,
     /// Factorizations stored in single precision (`solver.factor_precision`).
     pub single_factorizations: usize,
     /// Single-precision factors that did not precondition their own tangent
@@ -446,6 +452,8 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
             fallbacks: t.solver.fallbacks,
             single_factorizations: t.solver.single_factorizations,
             precision_fallbacks: t.solver.precision_fallbacks,
+            output_s: 0.0,
+            report_s: 0.0,
         },
         memory: MemorySummary { estimated_bytes: solution.memory.total(), peak_bytes: crate::size::peak_memory() },
         warnings: model.warnings.iter().chain(&solution.warnings).map(|w| w.to_string()).collect(),

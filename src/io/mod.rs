@@ -86,6 +86,7 @@ pub fn file_error(path: &Path, source: std::io::Error) -> IoError {
 /// staging folder of an [`output::OutputDir`], which makes the set appear
 /// as a whole.
 pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<Vec<PathBuf>, IoError> {
+    let start = std::time::Instant::now();
     std::fs::create_dir_all(dir).map_err(|e| file_error(dir, e))?;
     let mut written = Vec::new();
     let view = solution.fields(model);
@@ -165,8 +166,11 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     if let Some(shown) = shown {
         let energy: Vec<_> = tables::energy(solution).into_iter().chain(modes).collect();
         let tables = html::Tables { histories: &histories, lines: &lines, others: &energy };
+        let (page, gathering) = (std::time::Instant::now(), shown.spent);
         written.push(html::write(model, solution, dir, &s, tables, shown)?);
+        s.timings.report_s = (gathering + page.elapsed()).as_secs_f64();
     }
+    s.timings.output_s = start.elapsed().as_secs_f64();
     s.files = written.iter().filter_map(|p| p.file_name().map(|n| n.to_string_lossy().into_owned())).collect();
     let path = dir.join("summary.json");
     json::write(&path, &s)?;

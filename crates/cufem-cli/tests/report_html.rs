@@ -170,13 +170,25 @@ fn the_page_is_self_contained_and_holds_the_run() {
     assert!((largest - vtu).abs() <= 1e-6 * vtu, "largest |u| {largest} on the page, {vtu} in result.vtu");
 }
 
-/// `output.report = false` writes no report.html and lists none.
+/// `output.report = false` writes no report.html and lists none. The
+/// report's own time (summary.json `timings.report_s`, what
+/// bench/report_overhead.py weighs against the run) is timed where a page is
+/// written, within the writing of the files, and zero where none is.
 #[test]
 fn output_report_false_writes_no_page() {
     let out = run("report_html_off", "off", "[output]\nreport = false\n");
     assert!(!out.join("report.html").exists());
     assert!(!files(&out).iter().any(|f| f == "report.html"));
     assert!(out.join("result.vtu").exists());
+    let timings = |out: &Path| -> (f64, f64) {
+        let s: Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+        (s["timings"]["report_s"].as_f64().unwrap(), s["timings"]["output_s"].as_f64().unwrap())
+    };
+    let (report, output) = timings(&out);
+    assert!(report == 0.0 && output > 0.0, "without a page: report_s {report}, output_s {output}");
+    let on = run("report_html_on", "on", "");
+    let (report, output) = timings(&on);
+    assert!(report > 0.0 && report < output, "with a page: report_s {report}, output_s {output}");
 }
 
 /// A buckling run's page carries every mode shape of its `mode_<k>.vtu`

@@ -69,6 +69,8 @@ pub(crate) struct View {
     cells: Vec<Value>,
     bytes: usize,
     skipped: usize,
+    /// The time spent gathering the view's data.
+    pub(crate) spent: std::time::Duration,
 }
 
 impl View {
@@ -99,6 +101,7 @@ impl View {
     /// [`View::takes`]): its point fields and its ply damage, the cell data
     /// `d_ft … d_mc` of its VTU on the points of each element.
     pub(crate) fn add_grid(&mut self, label: String, model: &Model, at: &Solution, grid: &FieldGrid) {
+        let start = std::time::Instant::now();
         let surface = self.surface.get_or_insert_with(|| Surface::of(grid, surface::MAX_VERTICES));
         if self.cells.is_empty() {
             let of_element = |pick: fn(&GridElement) -> usize| per_point(grid, |_, e| pick(e) as f64);
@@ -120,6 +123,7 @@ impl View {
         }
         self.bytes += displacement.len() + fields.iter().map(|f| f["data"].as_str().map_or(0, str::len)).sum::<usize>();
         self.frames.push(json!({"label": label, "lambda": at.lambda, "displacement": displacement, "fields": fields}));
+        self.spent += start.elapsed();
     }
 
     /// True if a mode shape would be added (fewer than [`MAX_FRAMES`]
@@ -132,12 +136,14 @@ impl View {
     /// Adds a mode shape (its displacement, as `mode_<k>.vtu` holds it),
     /// after the states (one that [`View::takes_mode`]).
     pub(crate) fn add_mode(&mut self, label: String, grid: &FieldGrid) {
+        let start = std::time::Instant::now();
         let surface = self.surface.get_or_insert_with(|| Surface::of(grid, surface::MAX_VERTICES));
         if let Some(a) = grid.point_data.iter().find(|a| a.name == "displacement") {
             let displacement = encode_f32(&surface.gather(&a.values, 3));
             self.bytes += displacement.len();
             self.modes.push(json!({"label": label, "displacement": displacement, "fields": []}));
         }
+        self.spent += start.elapsed();
     }
 
     /// The view as the page's data (`None` without frames).

@@ -12,6 +12,7 @@ _PACKAGES = {
     "meshio": ("meshio", "meshio"),
     "dask.distributed": ("dask[distributed]", "dask"),
     "matplotlib": ("matplotlib", "plot"),
+    "matplotlib.pyplot": ("matplotlib", "plot"),
 }
 
 

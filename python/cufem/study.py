@@ -165,3 +165,61 @@ def run(
             rows = list(pool.map(run_variant, *zip(*tasks)))
     columns = list(dict.fromkeys(k for v in variants for k in v)) + ["error"] + outputs
     return pd.DataFrame(rows, columns=columns)
+
+
+def report(df, path: Union[str, os.PathLike], title: str = "cufem parameter study") -> str:
+    """Writes the study's ``report.html`` to `path` and returns its path: one
+    self-contained page (nothing loaded at view time) with the table of the
+    variants (``df`` as :func:`run` returns it, failed variants with their
+    ``error``) and, for every numeric output, a vector chart (inline SVG) of
+    it against each varied parameter that takes two or more numeric values
+    (the other parameters' combinations as separate lines). Needs matplotlib
+    (the ``plot`` extra)."""
+    import html
+    import io
+
+    plt = require("matplotlib.pyplot", "cufem.study.report")
+    pd = require("pandas", "cufem.study.report")
+
+    def numeric(column) -> bool:
+        return pd.api.types.is_numeric_dtype(df[column]) and not pd.api.types.is_bool_dtype(df[column])
+
+    varied = list(df.columns[: list(df.columns).index("error")])
+    outputs = [c for c in df.columns[list(df.columns).index("error") + 1 :] if numeric(c)]
+    parameters = [p for p in varied if numeric(p) and df[p].nunique() >= 2]
+    charts = []
+    for out in outputs:
+        for p in parameters:
+            others = [q for q in varied if q != p]
+            fig, ax = plt.subplots(figsize=(6.0, 3.6))
+            groups = df.groupby(others, dropna=False, sort=False) if others else [((), df)]
+            for key, g in groups:
+                g = g.sort_values(p)
+                label = ", ".join(f"{q} = {v}" for q, v in zip(others, key if isinstance(key, tuple) else (key,)))
+                ax.plot(g[p], g[out], marker="o", label=label or None)
+            ax.set_xlabel(p)
+            ax.set_ylabel(out)
+            if others:
+                ax.legend(fontsize="small")
+            ax.grid(True, alpha=0.3)
+            svg = io.StringIO()
+            fig.savefig(svg, format="svg", bbox_inches="tight")
+            plt.close(fig)
+            body = svg.getvalue()
+            charts.append(f'<figure data-output="{html.escape(out)}" data-parameter="{html.escape(p)}">'
+                          f"{body[body.index('<svg'):]}</figure>")
+    page = (
+        "<!DOCTYPE html>\n<html><head><meta charset=\"utf-8\">"
+        f"<title>{html.escape(title)}</title>"
+        "<style>body{font-family:sans-serif;margin:2em}table{border-collapse:collapse}"
+        "td,th{border:1px solid #ccc;padding:2px 6px;text-align:right}figure{display:inline-block}</style>"
+        f"</head><body><h1>{html.escape(title)}</h1>"
+        f"<p>{len(df)} variants, {int(df['error'].notna().sum())} failed.</p>"
+        f"{df.to_html(index=False, na_rep='', escape=True)}"
+        + "".join(charts)
+        + "</body></html>\n"
+    )
+    path = os.fspath(path)
+    with open(path, "w", encoding="utf-8") as f:
+        f.write(page)
+    return path

@@ -96,3 +96,28 @@ def test_grid_and_bad_paths():
     df = study.run(small_model(), [{"indenters.9.displacement.2": -1e-3}, {"nothing.here": 1}], ["max_peeq"], max_workers=0)
     assert "past the end" in df["error"][0]
     assert "no key nothing" in df["error"][1]
+
+
+def test_the_study_report_tables_every_variant_and_charts_every_output(local, tmp_path):
+    pytest.importorskip("matplotlib")
+    path = study.report(local, tmp_path / "report.html", title="depth <and> modulus")
+    page = (tmp_path / "report.html").read_text()
+    assert path == str(tmp_path / "report.html")
+    # self-contained: nothing fetched at view time, no script at all
+    for link in ["src=\"http", "href=\"http", "<script", "<link", "@import"]:
+        assert link not in page
+    assert "<title>depth &lt;and&gt; modulus</title>" in page
+    # the table: a header and a row per variant, the failed one with its message
+    table = page[page.index("<table"):page.index("</table>")]
+    assert table.count("<tr") == len(local) + 1
+    from html import escape
+    assert escape(local.iloc[2]["error"], quote=False) in table
+    # a chart of every numeric output (status is text) against each varied
+    # parameter (both take several numeric values), the other parameter's
+    # values as separate lines
+    numeric = ["load_factor", "max_peeq", "probe.contact_centre.s_yy", "contact.load.f_z", "reaction.symmetry_y.f_y"]
+    parameters = ["indenters.2.displacement.2", "materials.0.young_modulus"]
+    figures = [(f.split('data-output="')[1].split('"')[0], f.split('data-parameter="')[1].split('"')[0])
+               for f in page.split("<figure")[1:]]
+    assert figures == [(o, p) for o in numeric for p in parameters]
+    assert page.count("<svg") == len(figures)

@@ -212,13 +212,7 @@ mod tests {
                 ],
             ),
         ];
-        for (order, expected) in vtk {
-            let [a, b, c] = order;
-            let ours: Vec<usize> = (0..=c)
-                .flat_map(|k| (0..=b).flat_map(move |j| (0..=a).map(move |i| vtk_index([i, j, k], order))))
-                .collect();
-            assert_eq!(ours, expected, "order {order:?}");
-        }
+        check_numbering(&vtk, vtk_index);
     }
 
     /// The numbering of a file older than version 2.1 as VTK 9.7.2 reads
@@ -247,10 +241,16 @@ mod tests {
                 ],
             ),
         ];
-        for (order, expected) in vtk8 {
+        check_numbering(&vtk8, vtk8_index);
+    }
+
+    /// `index` of every point (i fastest, then j, then k) against VTK's
+    /// numbering, per order triple.
+    fn check_numbering(expected: &[([usize; 3], &[usize])], index: fn([usize; 3], [usize; 3]) -> usize) {
+        for &(order, expected) in expected {
             let [a, b, c] = order;
             let ours: Vec<usize> = (0..=c)
-                .flat_map(|k| (0..=b).flat_map(move |j| (0..=a).map(move |i| vtk8_index([i, j, k], order))))
+                .flat_map(|k| (0..=b).flat_map(move |j| (0..=a).map(move |i| index([i, j, k], order))))
                 .collect();
             assert_eq!(ours, expected, "order {order:?}");
         }

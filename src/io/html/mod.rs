@@ -177,7 +177,7 @@ impl View {
             "bbox": s.bbox,
             "vertices": s.vertices(),
             "positions": encode_f32(&s.positions),
-            "triangles": base64::engine::general_purpose::STANDARD.encode(s.triangles.iter().flat_map(|t| t.to_le_bytes()).collect::<Vec<u8>>()),
+            "triangles": base64_le(s.triangles.iter().map(|t| t.to_le_bytes())),
             "note": note,
             "frames": self.frames,
             "modes": self.modes,
@@ -229,7 +229,13 @@ fn damage_fields(model: &Model, at: &Solution, grid: &FieldGrid) -> Vec<(&'stati
 
 /// Little-endian `f32`s in base64.
 fn encode_f32(values: &[f32]) -> String {
-    base64::engine::general_purpose::STANDARD.encode(values.iter().flat_map(|v| v.to_le_bytes()).collect::<Vec<u8>>())
+    base64_le(values.iter().map(|v| v.to_le_bytes()))
+}
+
+/// Numbers given as their little-endian bytes, in base64 (the page's
+/// typed arrays).
+fn base64_le<const N: usize>(numbers: impl Iterator<Item = [u8; N]>) -> String {
+    base64::engine::general_purpose::STANDARD.encode(numbers.flatten().collect::<Vec<u8>>())
 }
 
 /// Values as 16-bit steps between their finite minimum and maximum
@@ -238,15 +244,12 @@ fn quantize(values: &[f32]) -> (String, f64, f64) {
     let finite = || values.iter().filter(|v| v.is_finite()).map(|&v| v as f64);
     let (min, max) = (finite().fold(f64::INFINITY, f64::min), finite().fold(f64::NEG_INFINITY, f64::max));
     let span = if max > min { max - min } else { 1.0 };
-    let bytes: Vec<u8> = values
-        .iter()
-        .flat_map(|&v| {
-            let q = if v.is_finite() { ((v as f64 - min) / span * 65534.0).round() as u16 } else { u16::MAX };
-            q.to_le_bytes()
-        })
-        .collect();
+    let data = base64_le(values.iter().map(|&v| {
+        let q = if v.is_finite() { ((v as f64 - min) / span * 65534.0).round() as u16 } else { u16::MAX };
+        q.to_le_bytes()
+    }));
     let (min, max) = if min <= max { (min, max) } else { (0.0, 0.0) };
-    (base64::engine::general_purpose::STANDARD.encode(bytes), min, max)
+    (data, min, max)
 }
 
 /// A table as a chart: `x` against every other numeric column but the

@@ -5,6 +5,7 @@
 //! through limit points and snap-backs ([`arclength`]).
 
 pub mod arclength;
+pub(crate) mod bordered;
 pub mod eigen;
 pub mod krylov;
 pub mod linear;

@@ -66,6 +66,7 @@
 
 use std::time::{Duration, Instant};
 
+use super::bordered::{Border, BorderedWork, FactorBorder, pcg_bordered};
 use super::krylov::{self, GmresWork, Krylov, pcg};
 use super::linear::{Cholesky, LinearError, LowerCsc};
 use super::nonsymmetric::NonSymmetric;
@@ -187,6 +188,10 @@ pub(crate) struct ReusingSolver {
     /// Factorizations left to make in double before single precision is
     /// tried again (`2^breakdowns − 1` after a breakdown, at most 63).
     backoff: usize,
+    /// The border eliminated with the present factor (`solver::bordered`),
+    /// if it was made for a bordered solve.
+    border: Option<FactorBorder>,
+    bordered_work: BorderedWork,
 }
 
 impl ReusingSolver {
@@ -206,6 +211,8 @@ impl ReusingSolver {
             single: settings.enabled && settings.single_precision,
             breakdowns: 0,
             backoff: 0,
+            border: None,
+            bordered_work: BorderedWork::default(),
         }
     }
 
@@ -320,6 +327,87 @@ impl ReusingSolver {
         Ok(kind)
     }
 
+    /// Solves the bordered system `[K B; Bᵀ C] [x_u; x_a] = [b_u; b_a]`
+    /// (`solver::bordered`) for the symmetric `K` (lower-triangle `values`
+    /// on `pattern`) to `η = min(forcing, η_max)`, with the reuse policy of
+    /// [`Self::solve`]: PCG preconditioned by the bordered factorization of
+    /// an earlier tangent (with as many border columns), else the present
+    /// tangent factorized (in single precision if the policy says so) and
+    /// its border eliminated with it. `rhs_u`, `rhs_a` hold `b` on entry and
+    /// `x` on exit. [`LinearError::KrylovStalled`] if even the present
+    /// tangent's double-precision factor does not solve it (the system is
+    /// not positive definite): `rhs_u` and `rhs_a` then still hold `b`.
+    pub(crate) fn solve_bordered(
+        &mut self,
+        (pattern, values): (&LowerCsc, &[f64]),
+        border: &Border<'_>,
+        rhs_u: &mut [f64],
+        rhs_a: &mut [f64],
+        forcing: f64,
+    ) -> Result<SolveKind, LinearError> {
+        let eta = self.stop(forcing);
+        let fits = self.border.as_ref().is_some_and(|b| b.len() == border.cols.len());
+        let try_pcg =
+            self.settings.enabled && self.has_factor && fits && !self.worn && !self.skip && self.chol.is_llt();
+        self.skip = false;
+        let mut kind = SolveKind::Factorized;
+        let allowed = self.allowed_iterations(pattern);
+        if try_pcg {
+            let outcome = self.bordered((pattern, values), border, rhs_u, rhs_a, eta, allowed)?;
+            kind = self.reused(outcome, allowed / 2);
+            if let SolveKind::Reused(_) = kind {
+                return Ok(kind);
+            }
+        }
+        self.skip = matches!(kind, SolveKind::FellBack(_));
+        let mut single = self.settings.enabled && self.single;
+        loop {
+            self.factorize(values, single)?;
+            self.border = Some(FactorBorder::new(&mut self.chol, border)?);
+            // its own factor and border: one iteration in double precision,
+            // a few in single
+            match self.bordered((pattern, values), border, rhs_u, rhs_a, eta, allowed)? {
+                Krylov::Converged(k) => {
+                    self.worn = 2 * k > allowed;
+                    return Ok(kind);
+                }
+                Krylov::NotConverged(_) if self.chol.is_single() => {
+                    self.stats.precision_fallbacks += 1;
+                    self.single = false;
+                    single = false;
+                }
+                Krylov::NotConverged(k) => return Err(LinearError::KrylovStalled(k)),
+            }
+        }
+    }
+
+    /// One bordered PCG solve with the present factor, counted and timed.
+    fn bordered(
+        &mut self,
+        (pattern, values): (&LowerCsc, &[f64]),
+        border: &Border<'_>,
+        rhs_u: &mut [f64],
+        rhs_a: &mut [f64],
+        eta: f64,
+        max_iterations: usize,
+    ) -> Result<Krylov, LinearError> {
+        let factor = self.border.as_ref().ok_or(LinearError::Singular)?;
+        let t = Instant::now();
+        let outcome = pcg_bordered(
+            (pattern, values),
+            border,
+            (&mut self.chol, factor),
+            rhs_u,
+            rhs_a,
+            eta,
+            max_iterations,
+            &mut self.bordered_work,
+        )?;
+        self.stats.solve_time += t.elapsed();
+        self.stats.krylov_iterations += outcome.iterations();
+        Ok(outcome)
+    }
+
     /// The PCG stop `η = min(forcing, η_max)`, at least 1e-12 (module docs).
     fn stop(&self, forcing: f64) -> f64 {
         forcing.min(self.settings.tolerance).max(1e-12)
@@ -342,6 +430,7 @@ impl ReusingSolver {
         }
         let t = Instant::now();
         self.has_factor = false;
+        self.border = None;
         self.chol.factorize_with(values, try_single)?;
         if try_single {
             if self.chol.is_single() {

@@ -67,6 +67,19 @@ impl LinearSystem {
         Ok(())
     }
 
+    /// Solves the bordered system `[K B; Bᵀ C] [x; a] = [rhs; rhs_a]`
+    /// (`solver::bordered`; `K` symmetric: no unsymmetric rest) in place,
+    /// reusing factorizations as [`Self::solve`] does.
+    pub(crate) fn solve_bordered(
+        &mut self,
+        border: &crate::solver::bordered::Border<'_>,
+        rhs_a: &mut [f64],
+    ) -> Result<(), LinearError> {
+        let (pattern, values) = (&self.assembler.pattern, &self.tangent[..]);
+        self.solver.solve_bordered((pattern, values), border, &mut self.rhs, rhs_a, self.forcing)?;
+        Ok(())
+    }
+
     /// After [`Self::solve`] with `must_factor`: solves `K x = b` for a
     /// further right-hand side (`x` holds `b` on entry).
     pub(crate) fn solve_again(&mut self, x: &mut [f64]) -> Result<(), LinearError> {

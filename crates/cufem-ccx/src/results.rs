@@ -340,7 +340,12 @@ MODE NO.   X-COMPONENT     Y-COMPONENT     Z-COMPONENT     X-ROTATION      Y-ROT
         // a frequency step has no history; a static .frd has no modes and
         // one history entry per increment, at its step time
         assert!(r.history.is_empty());
-        let block = |t: &str, u: &str| format!("  100CL  101 {t}\n -4  DISP        4    1\n -1         1{u}\n -3\n");
+        // the header as ccx 2.20 writes a static increment's: the step time, then the node count
+        let block = |t: &str, u: &str| {
+            format!(
+                "  100CL  101 {t}           1                     0    1           1\n -4  DISP        4    1\n -1         1{u}\n -3\n"
+            )
+        };
         let s = read_frd(
             &(block("0.500000000", " 1.00000E-03 2.00000E-03 3.00000E-03")
                 + &block("1.000000000", " 2.00000E-03 4.00000E-03 6.00000E-03")),

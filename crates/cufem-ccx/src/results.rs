@@ -11,7 +11,8 @@
 //! its `100C` header line, whose value is the frequency (cycles/time). A
 //! dynamic step's blocks have the type 1 (a time step; columns 57–58 of the
 //! header, after the value and the node count) and the total time as their
-//! value: each one's displacements are kept ([`NodalResults::history`]).
+//! value, a static step's the step time (the load factor): each one's
+//! displacements are kept ([`NodalResults::history`]).
 
 use std::collections::HashMap;
 
@@ -31,9 +32,9 @@ pub struct NodalResults {
     /// Of a `*FREQUENCY` step: each mode's frequency (Hz, as its block
     /// header gives it) and displacement per node, in the file's order.
     pub modes: Vec<(f64, HashMap<usize, [f64; 3]>)>,
-    /// Of `*DYNAMIC` steps: every increment's total time (s) and
-    /// displacement per node, in the file's order (empty for a static or
-    /// frequency step, whose increments are not kept).
+    /// Every increment's displacement per node, in the file's order, with
+    /// its total time (s) in `*DYNAMIC` steps or its step time (the load
+    /// factor) in a static step; empty for a `*FREQUENCY` step.
     pub history: Vec<(f64, HashMap<usize, [f64; 3]>)>,
 }
 
@@ -99,13 +100,12 @@ pub fn read_frd(text: &str, path: &str) -> Result<NodalResults, CcxError> {
     let mut out = NodalResults::default();
     let mut current: Option<String> = None;
     let mut block_time = 0.0;
-    let (mut modal, mut dynamic) = (false, false);
+    let mut modal = false;
     for line in text.lines() {
         if line.starts_with("  100C") {
             // "  100CL  101 1.000000000 ..." : the step time in columns 13–25
             block_time = line.get(12..25).and_then(|t| t.trim().parse().ok()).unwrap_or(block_time);
             modal = line.contains("MODAL");
-            dynamic = line.get(56..58).is_some_and(|t| t.trim() == "1");
             continue;
         }
         if let Some(rest) = line.strip_prefix(" -4") {
@@ -113,7 +113,7 @@ pub fn read_frd(text: &str, path: &str) -> Result<NodalResults, CcxError> {
             if modal && name == "DISP" {
                 out.modes.push((block_time, HashMap::new()));
             }
-            if dynamic && name == "DISP" {
+            if !modal && name == "DISP" {
                 out.history.push((block_time, HashMap::new()));
             }
             match name.as_str() {
@@ -143,7 +143,7 @@ pub fn read_frd(text: &str, path: &str) -> Result<NodalResults, CcxError> {
                 if modal && let Some((_, mode)) = out.modes.last_mut() {
                     mode.insert(node, [v[0], v[1], v[2]]);
                 }
-                if dynamic && let Some((_, increment)) = out.history.last_mut() {
+                if !modal && let Some((_, increment)) = out.history.last_mut() {
                     increment.insert(node, [v[0], v[1], v[2]]);
                 }
             }
@@ -337,9 +337,26 @@ MODE NO.   X-COMPONENT     Y-COMPONENT     Z-COMPONENT     X-ROTATION      Y-ROT
         assert_eq!(r.modes[0].1[&5101], [3.19233e-1, -1.09886e-2, 5.49092e-7]);
         assert_eq!(r.modes[1].1[&5101], [-3.12701e-1, 6.06e-2, -1.3833e-4]);
         assert_eq!(r.modes[1].1[&1], [0.0; 3]);
-        // a static .frd has no modes and no history
+        // a frequency step has no history; a static .frd has no modes and
+        // one history entry per increment, at its step time
         assert!(r.history.is_empty());
-        assert!(read_frd("  100CL  101 1.000000000\n -4  DISP        4    1\n -1         1 1.00000E-03 2.00000E-03 3.00000E-03\n", "s.frd").unwrap().modes.is_empty());
+        // the header as ccx 2.20 writes a static increment's: the step time, then the node count
+        let block = |t: &str, u: &str| {
+            format!(
+                "  100CL  101 {t}           1                     0    1           1\n -4  DISP        4    1\n -1         1{u}\n -3\n"
+            )
+        };
+        let s = read_frd(
+            &(block("0.500000000", " 1.00000E-03 2.00000E-03 3.00000E-03")
+                + &block("1.000000000", " 2.00000E-03 4.00000E-03 6.00000E-03")),
+            "s.frd",
+        )
+        .unwrap();
+        assert!(s.modes.is_empty());
+        assert_eq!(s.history.len(), 2);
+        assert_eq!((s.history[0].0, s.history[0].1[&1]), (0.5, [1e-3, 2e-3, 3e-3]));
+        assert_eq!((s.history[1].0, s.history[1].1[&1]), (1.0, [2e-3, 4e-3, 6e-3]));
+        assert_eq!(s.u[&1], [2e-3, 4e-3, 6e-3]);
     }
 
     /// Two increments of a `*DYNAMIC` step as ccx 2.20 wrote them for the

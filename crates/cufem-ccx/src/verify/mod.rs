@@ -14,7 +14,9 @@
 //! each body, its plastic zone and its contact surfaces, singular places
 //! left out by a stated neighbourhood, and a VTU of the point-wise
 //! differences. Over the load path ([`history`]): each indenter's force at
-//! every CalculiX increment (up to and past a peak). A modal model
+//! every CalculiX increment (up to and past a peak), and with nonlinear
+//! geometry each probe's displacement at every cufem increment
+//! ([`transient`]). A modal model
 //! ([`modal`]) compares its natural frequencies mode by mode instead, since
 //! its static state is the unloaded one; a transient model ([`transient`])
 //! the displacement history at its probes, since its state changes in time.
@@ -131,8 +133,9 @@ pub struct Comparison {
     pub force_curves: Vec<ForceCurve>,
     /// Natural frequencies mode by mode (a modal model; it has no static rows).
     pub modes: Vec<ModeRow>,
-    /// Displacement histories at the probes (a transient model; it has no
-    /// static rows).
+    /// Displacement histories at the probes: in time (a transient model;
+    /// it has no static rows) or along the load factor (a static model
+    /// with nonlinear geometry, beside its static rows).
     pub probe_histories: Vec<ProbeHistoryRow>,
     /// Their curves (written by [`Self::write`]).
     #[serde(skip)]
@@ -303,7 +306,11 @@ pub fn compare(
     let resultants = resultant_rows(model, solution, run);
     let whole = field::compare_fields(model, &view, mesh, run);
     let (force_histories, force_curves) = history::compare_histories(model, solution, run);
+    // with nonlinear geometry, the probes along the load path too
+    let (probe_histories, probe_curves) = transient::compare_probe_histories(model, solution, mesh, run);
     let comparison = Comparison {
+        probe_histories,
+        probe_curves,
         probes,
         lines,
         resultants,

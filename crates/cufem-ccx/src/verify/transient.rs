@@ -1,6 +1,9 @@
 //! Displacement histories at the probes against CalculiX's `*DYNAMIC`
 //! steps ([`crate::dynamic`]): the time history of a transient model,
-//! not one state.
+//! not one state; and the load path of a static model with nonlinear
+//! geometry (its probes' displacements against the load factor λ, the
+//! step time of its single NLGEOM step), whose static comparisons at the
+//! end state stay.
 //!
 //! cufem's history is its converged increments (`Solution::history`: each
 //! probe's displacement at analysis time λ, at time `t(λ)` of
@@ -47,8 +50,12 @@ pub struct ProbeHistoryRow {
     /// `100 max_t |u_cufem − u_3D| / max_t |u_3D|`, `None` where the 3D
     /// component stays ≈ 0 (below 1e-3 of the probe's largest 3D value).
     pub max_difference_percent: Option<f64>,
-    /// Time (s) of the largest difference.
+    /// Time (s) of the largest difference, or its load factor on a load
+    /// path (`load_path`).
     pub at: f64,
+    /// `true` when compared along the load factor λ of a static step (the
+    /// load path of a model with nonlinear geometry), `false` in time.
+    pub load_path: bool,
 }
 
 /// A point of a probe's history: `(λ, t (s), cufem u (m), 3D u (m))`.
@@ -80,15 +87,21 @@ fn at_time(history: &[(f64, [f64; 3])], t: f64) -> Option<[f64; 3]> {
     Some(std::array::from_fn(|c| u0[c] + w * (u1[c] - u0[c])))
 }
 
-/// The probes' displacement histories (empty for a model that is not
-/// transient or a run without a `*DYNAMIC` history).
+/// The probes' displacement histories: in time for a transient model,
+/// along the load factor for a static one with nonlinear geometry (empty
+/// for any other model or a run without an increment history).
 pub fn compare_probe_histories(
     model: &Model,
     solution: &Solution,
     mesh: &HexMesh,
     run: &CcxRun,
 ) -> (Vec<ProbeHistoryRow>, Vec<ProbeCurve>) {
-    let Some(settings) = &model.transient else { return Default::default() };
+    let load_path = model.transient.is_none();
+    if load_path && (model.modal.is_some() || !model.kinematics.is_nonlinear()) {
+        return Default::default();
+    }
+    // CalculiX's time: the transient total time, or the static step time λ
+    let time = |lambda: f64| model.transient.as_ref().map_or(lambda, |t| t.time(lambda));
     let (mut rows, mut curves) = (Vec::new(), Vec::new());
     for (i, probe) in model.probes.iter().enumerate() {
         // CalculiX's history at the probe, from rest at t = 0
@@ -108,7 +121,7 @@ pub fn compare_probe_histories(
             .history
             .iter()
             .filter_map(|row| {
-                let t = settings.time(row.lambda);
+                let t = time(row.lambda);
                 Some((row.lambda, t, *row.probes.get(i)?, at_time(&theirs, t)?))
             })
             .collect();
@@ -131,6 +144,7 @@ pub fn compare_probe_histories(
                 ccx_peak: reference,
                 max_difference_percent: (scale > 0.0 && reference > 1e-3 * scale).then(|| 100.0 * max / reference),
                 at,
+                load_path,
             });
         }
         curves.push(ProbeCurve { probe: probe.name.clone(), points });
@@ -140,13 +154,13 @@ pub fn compare_probe_histories(
 
 /// The rows of the verification table.
 pub fn table(rows: &[ProbeHistoryRow], t: &mut String) {
-    if rows.is_empty() {
-        return;
-    }
+    let Some(first) = rows.first() else { return };
+    let (title, at, scale) =
+        if first.load_path { ("load path", "at λ", 1.0) } else { ("probe history", "at [ms]", 1e3) };
     let _ = writeln!(
         t,
         "\n{:<16} {:<10} {:>6} {:>16} {:>14} {:>10} {:>9}",
-        "probe history", "quantity", "points", "cufem peak [mm]", "3D peak [mm]", "max diff", "at [ms]"
+        title, "quantity", "points", "cufem peak [mm]", "3D peak [mm]", "max diff", at
     );
     for r in rows {
         let _ = writeln!(
@@ -158,14 +172,22 @@ pub fn table(rows: &[ProbeHistoryRow], t: &mut String) {
             r.cufem_peak * 1e3,
             r.ccx_peak * 1e3,
             r.max_difference_percent.map_or_else(|| "(≈ 0)".to_string(), |d| format!("{d:.2} %")),
-            r.at * 1e3
+            r.at * scale
         );
     }
-    let _ = writeln!(
-        t,
-        "(max diff: largest |u_cufem − u_3D| over cufem's increments, CalculiX interpolated linearly in time, \
-         % of the 3D peak of that component; the static comparisons are left out)"
-    );
+    let _ = if first.load_path {
+        writeln!(
+            t,
+            "(max diff: largest |u_cufem − u_3D| over cufem's increments, CalculiX interpolated linearly in the \
+             load factor, % of the 3D peak of that component)"
+        )
+    } else {
+        writeln!(
+            t,
+            "(max diff: largest |u_cufem − u_3D| over cufem's increments, CalculiX interpolated linearly in time, \
+             % of the 3D peak of that component; the static comparisons are left out)"
+        )
+    };
 }
 
 /// The rows of `table.csv` (`kind,name,quantity,cufem,ccx,difference_percent`):
@@ -205,8 +227,10 @@ pub fn write(dir: &Path, rows: &[ProbeHistoryRow], curves: &[ProbeCurve]) -> Res
 
 /// The plot of each probe's history (`probe_history_<probe>`): the
 /// components that move in 3D (all three if none does), both ways,
-/// against time (ms).
+/// against time (ms) or, on a load path, the load factor.
 pub fn plots(rows: &[ProbeHistoryRow], curves: &[ProbeCurve]) -> Vec<Plot> {
+    let load_path = rows.first().is_some_and(|r| r.load_path);
+    let (x, against, scale) = if load_path { ("load factor", "load factor", 1.0) } else { ("time [ms]", "time", 1e3) };
     let mut out = Vec::new();
     for ProbeCurve { probe, points } in curves {
         let moving: Vec<usize> = (0..3)
@@ -223,15 +247,15 @@ pub fn plots(rows: &[ProbeHistoryRow], curves: &[ProbeCurve]) -> Vec<Plot> {
         for k in moving {
             let name = Quantity::Displacement(k).name();
             let curve = |pick: fn(&HistoryPoint) -> [f64; 3]| {
-                std::iter::once((0.0, 0.0)).chain(points.iter().map(|p| (p.1 * 1e3, pick(p)[k] * 1e3))).collect()
+                std::iter::once((0.0, 0.0)).chain(points.iter().map(|p| (p.1 * scale, pick(p)[k] * 1e3))).collect()
             };
             series.push(Series { name: format!("cufem {name}"), points: curve(|p| p.2), dashed: false });
             series.push(Series { name: format!("CalculiX 3D {name}"), points: curve(|p| p.3), dashed: true });
         }
         out.push(Plot {
             name: format!("probe_history_{probe}"),
-            title: format!("{probe}: displacement against time"),
-            x: "time [ms]".into(),
+            title: format!("{probe}: displacement against {against}"),
+            x: x.into(),
             y: "displacement [mm]".into(),
             series,
         });

@@ -10,7 +10,7 @@
 //! | [`line()`] | `line_<name>.csv` | a sample along a `[[lines]]` entry (outside every body left out) |
 //! | [`constraint_history`] | `history_<constraint>.csv` | a converged increment |
 //! | [`contact_history`] | `history_<contact>.csv` | a converged increment with that contact |
-//! | [`lever_history`] | `history_<lever>.csv` | a converged increment |
+//! | `lever_history` | `history_<lever>.csv` | a converged increment |
 //! | [`probe_history`] | `history_probes.csv` | a converged increment |
 //! | `increment_history` | `history.csv` | a converged increment |
 //! | [`contact_points`] | `contact_<name>.csv` | a point of a contact, final state |
@@ -307,7 +307,7 @@ pub fn contact_history(model: &Model, solution: &Solution, set: &ContactSet) -> 
 /// `history_<name>` of lever `li`: per increment its prescribed
 /// displacement (`target`), its displacement `Σ a_d u_d` (`displacement`,
 /// equal to the target once converged) and its force `P` (`force`).
-pub fn lever_history(model: &Model, solution: &Solution, li: usize) -> Table {
+pub(crate) fn lever_history(model: &Model, solution: &Solution, li: usize) -> Table {
     let lever = &model.levers[li];
     let rows: Vec<_> = solution.history.iter().collect();
     let mut t = increments(&rows, format!("history_{}", lever.name));

@@ -162,7 +162,7 @@ pub struct Lever {
 
 impl Lever {
     /// Its displacement `Σ a_d u_d` at displacements `u` (per DOF).
-    pub fn displacement(&self, u: &[f64]) -> f64 {
+    pub(crate) fn displacement(&self, u: &[f64]) -> f64 {
         self.terms.iter().map(|&(d, a)| a * u[d]).sum()
     }
 }

@@ -38,7 +38,7 @@ pub(crate) use sizes::{describe_memory, memory_advice, model_sizes};
 pub use sizes::{plan, sizes};
 pub use solution::{HistoryRow, Solution, StepEnd, StepFields};
 pub use structure::{
-    ContactKind, ContactPoint, ContactResultant, ContactSet, Reaction, StateReport, Structure, Timings,
+    ContactKind, ContactPoint, ContactResultant, ContactSet, LeverResultant, Reaction, StateReport, Structure, Timings,
 };
 
 use std::time::Instant;
@@ -194,7 +194,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
     for (d, f) in structure.external_loads().iter().enumerate() {
         applied[d % 3] += f;
     }
-    let StateReport { lambda, reactions, contacts, plastic_points, .. } = structure.report();
+    let StateReport { lambda, reactions, contacts, plastic_points, levers, .. } = structure.report();
     let contact_sets = structure
         .contact_sets()
         .map(|(name, kind, points)| ContactSet { name: name.to_string(), kind, points: points.to_vec() })
@@ -206,6 +206,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
     let mut solution = Solution {
         reactions,
         contacts,
+        levers,
         contact_sets,
         applied,
         lambda,

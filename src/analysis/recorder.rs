@@ -64,7 +64,7 @@ impl<'a> Recorder<'a> {
 
 impl Observer<Structure<'_>> for Recorder<'_> {
     fn converged(&mut self, s: &Structure<'_>, inc: &Increment) {
-        let StateReport { reactions, contacts, plastic_points, negative_pivots, .. } = s.report();
+        let StateReport { reactions, contacts, plastic_points, levers, negative_pivots, .. } = s.report();
         let max_penetration = contacts.iter().map(|c| c.max_penetration).fold(0.0, f64::max);
         self.progress.increment(&IncrementLog {
             index: inc.index,
@@ -84,6 +84,7 @@ impl Observer<Structure<'_>> for Recorder<'_> {
             reactions,
             contacts,
             plastic_points,
+            levers,
             probes: probe_displacements(self.model, s.displacements()),
             negative_pivots,
         });

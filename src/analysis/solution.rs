@@ -7,7 +7,7 @@
 use std::time::Duration;
 
 use super::{Adaptivity, Timings, buckling, modal};
-use super::{AnalysisError, ContactPoint, ContactResultant, ContactSet, Frame, PathOutcome, Reaction};
+use super::{AnalysisError, ContactPoint, ContactResultant, ContactSet, Frame, LeverResultant, PathOutcome, Reaction};
 use crate::materials::PointState;
 use crate::setup::{Model, Warning};
 use crate::size::MemoryEstimate;
@@ -31,6 +31,8 @@ pub struct Solution {
     pub reactions: Vec<Reaction>,
     /// Per indenter then pair contact: force on the body and largest penetration.
     pub contacts: Vec<ContactResultant>,
+    /// Per lever: its displacement and force.
+    pub levers: Vec<LeverResultant>,
     /// Final state of every contact point.
     pub contact_sets: Vec<ContactSet>,
     /// Sum of applied nodal loads at the final load factor (N).
@@ -135,6 +137,8 @@ pub struct HistoryRow {
     pub contacts: Vec<ContactResultant>,
     /// Plastic Gauss points.
     pub plastic_points: usize,
+    /// Per lever: its displacement and force.
+    pub levers: Vec<LeverResultant>,
     /// Displacement at each probe, in the model's order.
     pub probes: Vec<[f64; 3]>,
     /// Negative pivots of the last factorized tangent
@@ -206,6 +210,13 @@ impl Solution {
             lambda,
             reactions: reactions.to_vec(),
             contacts: contacts.to_vec(),
+            // the levers of the increment that ended at λ (none recorded: none)
+            levers: self
+                .history
+                .iter()
+                .rev()
+                .find(|r| (r.lambda - lambda).abs() <= 1e-12 * lambda.abs().max(1.0))
+                .map_or_else(Vec::new, |r| r.levers.clone()),
             contact_sets: self.contact_sets.clone(),
             applied: self.applied,
             history: self.history.clone(),

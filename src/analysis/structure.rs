@@ -43,6 +43,7 @@ mod evaluation;
 mod force;
 mod inputs;
 mod kinematics;
+mod levers;
 #[cfg(test)]
 mod limit_tests;
 mod line;
@@ -65,6 +66,8 @@ use elements::Elements;
 use force::ForceControl;
 pub use inputs::{Loading, Settings};
 use kinematics::Kinematics;
+pub use levers::LeverResultant;
+use levers::Levers;
 use loads::Loads;
 use parts::{Parts, Report};
 use system::LinearSystem;
@@ -86,6 +89,8 @@ pub struct Structure<'m> {
     parts: Parts<'m>,
     /// Force-controlled indenters.
     force: ForceControl<'m>,
+    /// Rigid levers' forces.
+    levers: Levers<'m>,
     /// Tangent, right-hand side and solver.
     system: LinearSystem,
     /// Timings, memory and pivots.
@@ -104,6 +109,8 @@ pub struct StateReport {
     pub contacts: Vec<ContactResultant>,
     /// Plastic Gauss points in the last evaluation.
     pub plastic_points: usize,
+    /// Per lever, its displacement and force ([`LeverResultant`]).
+    pub levers: Vec<LeverResultant>,
     /// Negative pivots of the tangent ([`Structure::negative_pivots`]).
     pub negative_pivots: Option<usize>,
 }
@@ -172,6 +179,7 @@ impl<'m> Structure<'m> {
         Ok(Self {
             state: Kinematics::new(mesh.n_dofs()),
             force: ForceControl::new(loading, mesh, settings.transient, n_eq),
+            levers: Levers::new(loading.levers, loading.steps, &assembler.dofs.eq),
             system: LinearSystem::new(assembler, chol, reuse, friction, mesh.n_dofs()),
             report: Report { timings, memory, pivots: None },
             loading,
@@ -202,6 +210,7 @@ impl<'m> Structure<'m> {
             reactions: self.reactions(),
             contacts: self.contact_resultants(),
             plastic_points: self.plastic_points(),
+            levers: self.levers.resultants(&self.state.u),
             negative_pivots: self.negative_pivots(),
         }
     }
@@ -404,7 +413,7 @@ impl<'m> Structure<'m> {
     /// deepest in contact). Not with force-controlled indenters, whose
     /// rigid motion is a further unknown of the same correction.
     fn limit_correction(&mut self) {
-        if self.force.is_driven() || !self.parts.contacts.limits_steps() {
+        if self.force.is_driven() || self.levers.is_active() || !self.parts.contacts.limits_steps() {
             return;
         }
         // the correction by DOF, read from the equations (no copy)
@@ -480,7 +489,13 @@ impl NonlinearProblem for Structure<'_> {
             system.rest.as_mut(),
             &mut system.rhs,
         );
-        let da2 = self.force.solve(system, self.state.lambda)?;
+        let da2 = if self.levers.is_active() {
+            // setup/levers.rs refuses levers beside force-controlled indenters
+            self.levers.solve(system, &self.state.u, self.state.lambda)?;
+            0.0
+        } else {
+            self.force.solve(system, self.state.lambda)?
+        };
         self.record_solver();
         self.limit_correction();
         self.remember_correction(searchable);

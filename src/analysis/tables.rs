@@ -10,6 +10,7 @@
 //! | [`line()`] | `line_<name>.csv` | a sample along a `[[lines]]` entry (outside every body left out) |
 //! | [`constraint_history`] | `history_<constraint>.csv` | a converged increment |
 //! | [`contact_history`] | `history_<contact>.csv` | a converged increment with that contact |
+//! | `lever_history` | `history_<lever>.csv` | a converged increment |
 //! | [`probe_history`] | `history_probes.csv` | a converged increment |
 //! | `increment_history` | `history.csv` | a converged increment |
 //! | [`contact_points`] | `contact_<name>.csv` | a point of a contact, final state |
@@ -18,7 +19,7 @@
 //! | [`modes`] | `modes.csv` | a vibration mode: frequency, effective masses |
 //! | [`buckling`] | `buckling.csv` | a buckling mode: load factor, critical load |
 
-use super::{ContactSet, Solution};
+use super::{ContactSet, LeverResultant, Solution};
 use crate::post::{FieldView, LineSample, Quantity, Sample};
 use crate::setup::Model;
 use crate::setup::steps::{self, Item};
@@ -303,6 +304,25 @@ pub fn contact_history(model: &Model, solution: &Solution, set: &ContactSet) -> 
     t
 }
 
+/// `history_<name>` of lever `li`: per increment its prescribed
+/// displacement (`target`), its displacement `Σ a_d u_d` (`displacement`,
+/// equal to the target once converged) and its force `P` (`force`).
+pub(crate) fn lever_history(model: &Model, solution: &Solution, li: usize) -> Table {
+    let lever = &model.levers[li];
+    let rows: Vec<_> = solution.history.iter().collect();
+    let mut t = increments(&rows, format!("history_{}", lever.name));
+    let at = |r: &super::HistoryRow| -> Option<LeverResultant> { r.levers.get(li).cloned() };
+    let target = rows.iter().map(|r| steps::factor(&model.steps, Item::Lever(li), r.lambda) * lever.value).collect();
+    t.push("target", "m", Values::Real(target));
+    t.push(
+        "displacement",
+        "m",
+        Values::Real(rows.iter().map(|r| at(r).map_or(f64::NAN, |l| l.displacement)).collect()),
+    );
+    t.push("force", "N", Values::Real(rows.iter().map(|r| at(r).map_or(f64::NAN, |l| l.force)).collect()));
+    t
+}
+
 /// `history_probes`: the displacement of every probe at every increment
 /// (columns `<probe>.u_x`, `<probe>.u_y`, `<probe>.u_z`).
 pub fn probe_history(model: &Model, solution: &Solution) -> Table {
@@ -328,11 +348,12 @@ pub(crate) fn increment_history(solution: &Solution) -> Table {
 }
 
 /// Every history table of a solution, in the order of their files: each
-/// constraint set, each contact, the probes (if any), the increments (if
+/// constraint set, each contact, each lever, the probes (if any), the increments (if
 /// any).
 pub fn histories(model: &Model, solution: &Solution) -> Vec<Table> {
     let mut out: Vec<Table> = (0..model.constraints.len()).map(|ci| constraint_history(model, solution, ci)).collect();
     out.extend(solution.contact_sets.iter().map(|set| contact_history(model, solution, set)));
+    out.extend((0..model.levers.len()).map(|li| lever_history(model, solution, li)));
     if !model.probes.is_empty() {
         out.push(probe_history(model, solution));
     }

@@ -146,6 +146,27 @@ impl Profile {
     }
 }
 
+/// A rigid lever (`[[levers]]`, `setup/levers.rs`): a linear multi-point
+/// constraint `Σ a_d u_d = value · factor(λ)` over free DOFs `d`, held by
+/// the lever's force `P`, which pushes DOF `d` by `P a_d`.
+#[derive(Debug, Clone)]
+pub struct Lever {
+    /// Name (`history_<name>.csv`, a step's `factors` key).
+    pub name: String,
+    /// Its displacement `Σ a_d u_d` at factor 1 (m).
+    pub value: f64,
+    /// `(global DOF, a_d)` in increasing DOF order: a point's coefficient
+    /// over the number of its nodes.
+    pub terms: Vec<(usize, f64)>,
+}
+
+impl Lever {
+    /// Its displacement `Σ a_d u_d` at displacements `u` (per DOF).
+    pub(crate) fn displacement(&self, u: &[f64]) -> f64 {
+        self.terms.iter().map(|&(d, a)| a * u[d]).sum()
+    }
+}
+
 /// A load on a node set.
 #[derive(Debug, Clone)]
 pub struct Load {

@@ -110,6 +110,9 @@ pub(crate) struct ModelFile {
     /// Loads.
     #[serde(default)]
     pub loads: Vec<LoadFile>,
+    /// Rigid levers: linear multi-point constraints with a prescribed value.
+    #[serde(default)]
+    pub levers: Vec<LeverFile>,
     /// Rigid indenters.
     #[serde(default)]
     pub indenters: Vec<IndenterFile>,

@@ -15,7 +15,7 @@ use crate::solver::reuse::ReuseSettings;
 use crate::solver::stepping::{StepControl, StepSettings};
 
 /// Names are unique per table; constraints, indenters and contacts share
-/// one name space (they all write `history_<name>.csv`).
+/// one name space with levers (they all write `history_<name>.csv`).
 pub(crate) fn names(file: &ModelFile) -> Result<(), ModelError> {
     unique_names(keyed("materials", &file.materials, |m| &m.name))?;
     unique_names(keyed("bodies", &file.bodies, |m| &m.name))?;
@@ -26,7 +26,8 @@ pub(crate) fn names(file: &ModelFile) -> Result<(), ModelError> {
         keyed("constraints", &file.constraints, |m| &m.name)
             .chain(keyed("indenters", &file.indenters, |m| &m.name))
             .chain(keyed("contacts", &file.contacts, |m| &m.name))
-            .chain(keyed("symmetry", &file.symmetry, |m| &m.name)),
+            .chain(keyed("symmetry", &file.symmetry, |m| &m.name))
+            .chain(keyed("levers", &file.levers, |m| &m.name)),
     )?;
     if file.bodies.is_empty() {
         return Err(invalid("bodies", "[]", "at least one [[bodies]] table"));

@@ -29,6 +29,17 @@ pub struct ProbeSummary {
     pub failure_indices: Option<std::collections::BTreeMap<&'static str, f64>>,
 }
 
+/// A lever's state (`[[levers]]`).
+#[derive(Debug, Clone, Serialize)]
+pub struct LeverSummary {
+    /// Name.
+    pub name: String,
+    /// Its displacement `Σ a_d u_d` (m).
+    pub displacement: f64,
+    /// Its force on the body (N).
+    pub force: f64,
+}
+
 /// A resultant force of a constraint set or contact.
 #[derive(Debug, Clone, Serialize)]
 pub struct ForceSummary {
@@ -135,6 +146,9 @@ pub struct Summary {
     pub reactions: Vec<ForceSummary>,
     /// Resultants per indenter / contact pair (force on the body; on the slave body for pairs).
     pub contact: Vec<ForceSummary>,
+    /// Per lever, its displacement and force at the end (absent without levers).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub levers: Vec<LeverSummary>,
     /// Sum of applied loads (N).
     pub applied_load: [f64; 3],
     /// Phase timings.
@@ -438,6 +452,11 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         probes,
         reactions,
         contact,
+        levers: solution
+            .levers
+            .iter()
+            .map(|l| LeverSummary { name: l.name.clone(), displacement: l.displacement, force: l.force })
+            .collect(),
         applied_load: solution.applied,
         timings: TimingSummary {
             setup_s: t.setup.as_secs_f64(),

@@ -14,6 +14,7 @@ mod contacts;
 mod indenters;
 mod interfaces;
 mod laminate;
+mod levers;
 mod material;
 mod mirror;
 mod overlap;
@@ -30,7 +31,7 @@ mod zones;
 
 use std::path::Path;
 
-use crate::bc::{Constraint, Load};
+use crate::bc::{Constraint, Lever, Load};
 use crate::contact::{Indenter, PairContact};
 pub use crate::input::ModelError;
 use crate::input::schema::{self, *};
@@ -116,6 +117,8 @@ pub struct Model {
     pub constraint_handler: constraints::ConstraintHandler,
     /// Loads (nodal forces at load factor 1).
     pub loads: Vec<Load>,
+    /// Rigid levers (`[[levers]]`).
+    pub levers: Vec<Lever>,
     /// Rigid indenters.
     pub indenters: Vec<Indenter>,
     /// Deformable contacts.
@@ -370,6 +373,7 @@ fn restrained(
 fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelError> {
     crate::input::validate::names(&file)?;
     interfaces::check(&file)?;
+    levers::combinations(&file)?;
     let mut materials = material::materials(&file.materials)?;
     let planes = symmetry::planes(&file.symmetry)?;
     let mut warnings = Vec::new();
@@ -397,6 +401,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         ));
     }
     let constraint_handler = restrained(&mesh, handler, (&indenters, &contacts, &interfaces), kinematics, transient)?;
+    let levers = levers::levers(&file.levers, &mesh, &constraint_handler, &indenters)?;
     let probes = preprocess::probes(&file.probes, &mesh, &planes)?;
     let lines = preprocess::lines(&file.lines, &mesh, &planes, &mut warnings)?;
     let symmetry = symmetry::resolve(planes, &mesh, (&constraints, n_user), &indenters, &contacts);
@@ -431,6 +436,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         indenters: indenters.iter().map(|i| i.name.as_str()).collect(),
         constraints: constraints.iter().map(|c| c.name.as_str()).collect(),
         loads: loads.iter().map(|l| l.name.as_str()).collect(),
+        levers: levers.iter().map(|l| l.name.as_str()).collect(),
     };
     let mut steps = steps::steps(&file.steps, &item_names, &solver.steps)?;
     let parts = analysis::Parts {
@@ -462,6 +468,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         constraints,
         constraint_handler,
         loads,
+        levers,
         indenters,
         contacts,
         interfaces,

@@ -26,6 +26,8 @@ pub enum Item {
     Constraint(usize),
     /// `loads[i]`: its forces.
     Load(usize),
+    /// `levers[i]`: its prescribed displacement.
+    Lever(usize),
 }
 
 /// One step of the load history.
@@ -41,6 +43,8 @@ pub struct Step {
     pub constraints: Vec<f64>,
     /// Factor of each load at the end of the step.
     pub loads: Vec<f64>,
+    /// Factor of each lever at the end of the step.
+    pub levers: Vec<f64>,
 }
 
 impl Step {
@@ -57,8 +61,9 @@ impl Step {
             Item::Indenter(_) => &self.indenters,
             Item::Constraint(_) => &self.constraints,
             Item::Load(_) => &self.loads,
+            Item::Lever(_) => &self.levers,
         };
-        let (Item::Indenter(i) | Item::Constraint(i) | Item::Load(i)) = item;
+        let (Item::Indenter(i) | Item::Constraint(i) | Item::Load(i) | Item::Lever(i)) = item;
         list.get(i).copied().unwrap_or(1.0)
     }
 }
@@ -85,6 +90,8 @@ pub(crate) struct ItemNames<'a> {
     pub constraints: Vec<&'a str>,
     /// Load names.
     pub loads: Vec<&'a str>,
+    /// Lever names.
+    pub levers: Vec<&'a str>,
 }
 
 /// Validates `[[steps]]` against the model's item names; `base` holds the
@@ -98,6 +105,7 @@ pub(super) fn steps(file: &[StepFile], names: &ItemNames, base: &StepSettings) -
             indenters: ones(names.indenters.len()),
             constraints: ones(names.constraints.len()),
             loads: ones(names.loads.len()),
+            levers: ones(names.levers.len()),
         }]);
     }
     let mut out: Vec<Step> = Vec::new();
@@ -125,6 +133,7 @@ pub(super) fn steps(file: &[StepFile], names: &ItemNames, base: &StepSettings) -
             indenters: vec![default; names.indenters.len()],
             constraints: vec![default; names.constraints.len()],
             loads: vec![default; names.loads.len()],
+            levers: vec![default; names.levers.len()],
         };
         for (name, &v) in s.factors.as_ref().unwrap_or(&BTreeMap::new()) {
             let fk = format!("{key}.factors.{name}");
@@ -135,10 +144,22 @@ pub(super) fn steps(file: &[StepFile], names: &ItemNames, base: &StepSettings) -
                 &mut step.constraints[i]
             } else if let Some(i) = names.loads.iter().position(|n| n == name) {
                 &mut step.loads[i]
+            } else if let Some(i) = names.levers.iter().position(|n| n == name) {
+                &mut step.levers[i]
             } else {
-                let all: Vec<&str> =
-                    names.indenters.iter().chain(&names.constraints).chain(&names.loads).copied().collect();
-                return Err(invalid(fk, v, format!("the name of an indenter, constraint or load: one of {all:?}")));
+                let all: Vec<&str> = names
+                    .indenters
+                    .iter()
+                    .chain(&names.constraints)
+                    .chain(&names.loads)
+                    .chain(&names.levers)
+                    .copied()
+                    .collect();
+                return Err(invalid(
+                    fk,
+                    v,
+                    format!("the name of an indenter, constraint, load or lever: one of {all:?}"),
+                ));
             };
             *slot = v;
         }
@@ -199,7 +220,8 @@ mod tests {
 
     #[test]
     fn factors_ramp_hold_and_release_piecewise_linearly() {
-        let names = ItemNames { indenters: vec!["punch"], constraints: vec!["root"], loads: vec!["tip"] };
+        let names =
+            ItemNames { indenters: vec!["punch"], constraints: vec!["root"], loads: vec!["tip"], levers: vec![] };
         let base = StepSettings::default();
         let file = [
             step("load", "increments = 4"),
@@ -228,7 +250,7 @@ mod tests {
 
     #[test]
     fn bad_steps_name_the_key() {
-        let names = ItemNames { indenters: vec!["punch"], constraints: vec![], loads: vec![] };
+        let names = ItemNames { indenters: vec!["punch"], constraints: vec![], loads: vec![], levers: vec![] };
         let base = StepSettings::default();
         let cases = [
             (

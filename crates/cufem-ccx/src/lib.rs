@@ -171,6 +171,12 @@ pub fn check_supported(model: &Model) -> Result<(), CcxError> {
             what: "progressive ply damage (the deck's materials are elastic or von Mises)".into(),
         });
     }
+    if let Some(l) = model.levers.first() {
+        return Err(CcxError::Unsupported {
+            key: "levers[0]".into(),
+            what: format!("the lever \"{}\" (the deck has no *EQUATION for it)", l.name),
+        });
+    }
     if let Some(k) = model.indenters.iter().position(|i| i.force.is_some()) {
         return Err(CcxError::Unsupported {
             key: format!("indenters[{k}].force"),

@@ -62,6 +62,9 @@ impl Structure<'_> {
             }
             scale = scale.max(f.reference);
         }
+        // the levers' pushes, and how far their displacements are from their targets
+        let (lever_scale, lever_gap) = self.levers.evaluate(&self.state.u, imbalance, self.state.lambda);
+        scale = scale.max(lever_scale);
         let eq = &self.system.assembler.dofs.eq;
         let (mut res2, mut reac2) = (0.0, 0.0);
         for (d, &e) in eq.iter().enumerate() {
@@ -75,13 +78,13 @@ impl Structure<'_> {
                 self.system.rhs[e] = r;
             }
         }
-        // prescribed values reached (exactly, after the first correction)
+        // prescribed values and lever displacements reached (exactly, after the first correction)
         let (off, size) = self.elimination.offset(&self.state.u);
         let (driven_res2, driven_target2) =
             self.force.evaluate(&self.parts.contacts, eq, &self.elimination, self.state.lambda);
         res2 += driven_res2;
         let scale = scale.max(reac2.sqrt()).max(driven_target2.sqrt());
-        let settled = changes == 0 && off <= 1e-12 * size;
+        let settled = changes == 0 && off <= 1e-12 * size && lever_gap <= 1e-12;
         let r = if scale > 0.0 { res2.sqrt() / scale } else { 1.0 };
         self.system.forcing = if settled { r } else { r.min(UNSETTLED_FORCING) };
         Ok(Evaluation { residual_norm: res2.sqrt(), force_scale: scale, settled })

@@ -3,7 +3,7 @@
 //! ([`crate::setup::constraints::ConstraintHandler`]): what loads it and
 //! the settings its parts read, each a view of the model's own data.
 
-use crate::bc::{Constraint, Load};
+use crate::bc::{Constraint, Lever, Load};
 use crate::contact::{Indenter, PairContact};
 use crate::dynamics::TransientSettings;
 use crate::input::SolverSettings;
@@ -18,6 +18,8 @@ use crate::size::Sizes;
 pub struct Loading<'m> {
     /// Loads (nodal forces at load factor 1).
     pub loads: &'m [Load],
+    /// Rigid levers.
+    pub levers: &'m [Lever],
     /// Displacement constraints, in the order of the constraint handler's
     /// sources.
     pub constraints: &'m [Constraint],
@@ -34,6 +36,7 @@ impl<'m> Loading<'m> {
     pub fn of(model: &'m Model) -> Self {
         Self {
             loads: &model.loads,
+            levers: &model.levers,
             constraints: &model.constraints,
             indenters: &model.indenters,
             contacts: &model.contacts,

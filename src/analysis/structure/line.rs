@@ -3,9 +3,9 @@
 //! `Δu·R` of the energy along it, and moves along it.
 //!
 //! Only a correction that makes no jump of the prescribed values and moves
-//! no force-controlled indenter is searched along: a shortened prescribed
-//! jump would be a different load, and an indenter's displacement is a
-//! further unknown outside `u`. Nor in a model with friction: its tangent
+//! no force-controlled indenter nor lever force is searched along: a shortened prescribed
+//! jump would be a different load, and an indenter's displacement and a
+//! lever's force are further unknowns outside `u`. Nor in a model with friction: its tangent
 //! is no energy's Hessian, so `Δu·R` is no slope (measured: both frictional
 //! cantilevers failed their first increment with a search, stick and slip
 //! flipping with every trial step). Nor a correction from an evaluation
@@ -28,6 +28,7 @@ impl Structure<'_> {
         // would be another function's
         if !searchable
             || self.force.is_driven()
+            || self.levers.is_active()
             || self.parts.contacts.is_frictional()
             || self.parts.contacts.kept_points() > 0
         {

@@ -51,6 +51,7 @@ impl Incremental for Structure<'_> {
             self.parts.contacts.start_extrapolated();
         }
         self.force.extrapolate(ratio);
+        self.levers.extrapolate(ratio);
     }
 
     fn measure(&self) -> StepMeasure {
@@ -85,6 +86,7 @@ impl Incremental for Structure<'_> {
             part.commit(&at);
         }
         self.force.commit(self.state.lambda);
+        self.levers.commit();
     }
 
     fn restore(&mut self) {
@@ -93,6 +95,7 @@ impl Incremental for Structure<'_> {
             part.restore();
         }
         self.force.restore();
+        self.levers.restore();
         self.elimination.set_load_factor(self.loading.steps, self.state.lambda);
     }
 }

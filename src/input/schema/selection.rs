@@ -143,3 +143,37 @@ pub(crate) struct LoadFile {
     /// A variation of `traction` or `pressure` over the faces.
     pub profile: Option<LoadProfileFile>,
 }
+
+/// `[[levers]]`: a rigid lever, a linear multi-point constraint whose
+/// value is prescribed: `Σ_k coefficient_k · ū_k = value(λ)`, `ū_k` the
+/// mean displacement component `component_k` of the nodes of point `k`'s
+/// selection (`setup/levers.rs`). The lever's force `P` (its Lagrange
+/// multiplier, N) acts on each point as `P · coefficient_k` along its
+/// component, spread equally over its nodes.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct LeverFile {
+    /// Names the history output (`history_<name>.csv`) and a step's `factors` key.
+    pub name: String,
+    /// The lever's displacement `Σ_k coefficient_k · ū_k` at λ = 1 (m),
+    /// times the step factor.
+    pub value: f64,
+    /// The points it ties (at least one).
+    pub points: Vec<LeverPointFile>,
+}
+
+/// One point of a `[[levers]]` entry: a node selection, the component it
+/// moves along and its coefficient.
+#[derive(Debug, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct LeverPointFile {
+    /// Body name.
+    pub body: String,
+    /// The nodes (their mean displacement is the point's).
+    #[serde(rename = "where")]
+    pub selection: SelectionFile,
+    /// The displacement component the lever reads and pushes along.
+    pub component: Axis,
+    /// The point's coefficient in the lever's displacement (non-zero, finite).
+    pub coefficient: f64,
+}

@@ -78,7 +78,7 @@ impl<'m> Levers<'m> {
     }
 
     /// True if the model has levers.
-    pub fn is_active(&self) -> bool {
+    pub(crate) fn is_active(&self) -> bool {
         !self.held.is_empty()
     }
 

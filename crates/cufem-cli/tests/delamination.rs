@@ -170,26 +170,35 @@ fn dcb_curve_follows_corrected_beam_theory() {
 /// would cost minutes), past both peaks (4.40 and 3.98 mm), where the
 /// curves part most. Measured: +10 %: 8.27 % against the original, 2.87 %
 /// against its own; −10 %: 4.47 % and 2.40 % (7.37 % against the original
-/// when run on to 4.44 mm).
+/// when run on to 4.44 mm). CI runs +10 %; −10 % runs in the validation
+/// (`dcb_curve_moves_with_a_lower_toughness`).
 #[test]
 fn dcb_curve_moves_with_the_toughness() {
-    for (name, factor) in [("gic_up", 1.1), ("gic_down", 0.9)] {
-        let text = with_toughness(factor)
-            .replace("z = 0.005 }", "z = 0.0025 }")
-            .replace("z = -0.005 }", "z = -0.0025 }")
-            .replace("increments = 200", "increments = 100\nmax_increments = 120");
-        let (out, _) = run_cli(name, &text, false);
-        let points = curve(&out);
-        let original = cbt::curve_error(&points, &specimen(969.0), A0);
-        let own = cbt::curve_error(&points, &specimen(969.0 * factor), A0);
-        eprintln!(
-            "{name}: error against the original CBT {:.2} %, against its own {:.2} %",
-            100.0 * original,
-            100.0 * own
-        );
-        assert!(original > 0.03, "{name}: within 3 % of the original curve ({original})");
-        assert!(own < 0.03, "{name}: not within 3 % of its own curve ({own})");
-    }
+    dcb_moves("gic_up", 1.1);
+}
+
+/// `dcb_curve_moves_with_the_toughness` with G_Ic lowered by 10 % (the
+/// closer of the two to the original curve: 4.47 % against 3 %).
+#[test]
+#[ignore = "validate: slow — the DCB to 120 increments with G_Ic lowered by 10 % (about a minute)"]
+fn dcb_curve_moves_with_a_lower_toughness() {
+    dcb_moves("gic_down", 0.9);
+}
+
+/// The DCB with G_Ic times `factor`, 120 increments: outside the 3 % band
+/// of the original closed form, inside that of its own.
+fn dcb_moves(name: &str, factor: f64) {
+    let text = with_toughness(factor)
+        .replace("z = 0.005 }", "z = 0.0025 }")
+        .replace("z = -0.005 }", "z = -0.0025 }")
+        .replace("increments = 200", "increments = 100\nmax_increments = 120");
+    let (out, _) = run_cli(name, &text, false);
+    let points = curve(&out);
+    let original = cbt::curve_error(&points, &specimen(969.0), A0);
+    let own = cbt::curve_error(&points, &specimen(969.0 * factor), A0);
+    eprintln!("{name}: error against the original CBT {:.2} %, against its own {:.2} %", 100.0 * original, 100.0 * own);
+    assert!(original > 0.03, "{name}: within 3 % of the original curve ({original})");
+    assert!(own < 0.03, "{name}: not within 3 % of its own curve ({own})");
 }
 
 /// A damaged interface is never healed (design48 §3.6b): the DCB opened to
@@ -567,25 +576,37 @@ fn enf_curve_follows_corrected_beam_theory() {
 /// G_IIc changed by ±10 % moves the ENF branch out of the 3 % band around
 /// the original closed form, and keeps it within 3 % of the closed form of
 /// the changed toughness (design48 §3.4; the branch error as in
-/// `enf_curve_follows_corrected_beam_theory`).
+/// `enf_curve_follows_corrected_beam_theory`). CI runs −10 %; +10 % runs
+/// in the validation (`enf_curve_moves_with_a_higher_toughness`).
 #[test]
 fn enf_curve_moves_with_the_toughness() {
-    for (name, factor) in [("giic_up", 1.1), ("giic_down", 0.9)] {
-        let text = read_example("enf");
-        assert!(text.contains("giic = 1719.0"));
-        let text = text.replace("giic = 1719.0", &format!("giic = {}", 1719.0 * factor));
-        let (out, _) = run_cli(name, &text, true);
-        let points = enf_curve(&out);
-        let original = enf_branch_error(&points, &enf_specimen(1719.0));
-        let own = enf_branch_error(&points, &enf_specimen(1719.0 * factor));
-        eprintln!(
-            "{name}: branch error against the original CBT {:.2} %, against its own {:.2} %",
-            100.0 * original,
-            100.0 * own
-        );
-        assert!(original > 0.03, "{name}: within 3 % of the original branch ({original})");
-        assert!(own < 0.03, "{name}: not within 3 % of its own branch ({own})");
-    }
+    enf_moves("giic_down", 0.9);
+}
+
+/// `enf_curve_moves_with_the_toughness` with G_IIc raised by 10 %.
+#[test]
+#[ignore = "validate: slow — the ENF curve with G_IIc raised by 10 % (about 2 min)"]
+fn enf_curve_moves_with_a_higher_toughness() {
+    enf_moves("giic_up", 1.1);
+}
+
+/// The ENF with G_IIc times `factor`, the whole curve: its branch outside
+/// the 3 % band of the original closed form, inside that of its own.
+fn enf_moves(name: &str, factor: f64) {
+    let text = read_example("enf");
+    assert!(text.contains("giic = 1719.0"));
+    let text = text.replace("giic = 1719.0", &format!("giic = {}", 1719.0 * factor));
+    let (out, _) = run_cli(name, &text, true);
+    let points = enf_curve(&out);
+    let original = enf_branch_error(&points, &enf_specimen(1719.0));
+    let own = enf_branch_error(&points, &enf_specimen(1719.0 * factor));
+    eprintln!(
+        "{name}: branch error against the original CBT {:.2} %, against its own {:.2} %",
+        100.0 * original,
+        100.0 * own
+    );
+    assert!(original > 0.03, "{name}: within 3 % of the original branch ({original})");
+    assert!(own < 0.03, "{name}: not within 3 % of its own branch ({own})");
 }
 
 /// CalculiX's deck has no twin of a cohesive interface (its plies share

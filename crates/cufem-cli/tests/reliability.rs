@@ -509,17 +509,17 @@ fn listing(dir: &Path) -> Vec<(String, u64)> {
 #[test]
 fn a_killed_run_leaves_the_previous_or_the_new_complete_set() {
     let dir = scratch("kill");
-    // heavy outputs (two lines of 100,000 samples: ~80 MB of CSV) so that
+    // heavy outputs (two lines of 50,000 samples: ~40 MB of CSV) so that
     // writing takes most of the run
     let heavy = example("cantilever_timoshenko.toml")
-        .replace("points = 51", "points = 100000")
-        .replace("points = 101", "points = 100000");
+        .replace("points = 51", "points = 50000")
+        .replace("points = 101", "points = 50000");
     let a = write_model(&dir, "a.toml", &heavy);
     let b = write_model(
         &dir,
         "b.toml",
         &format!(
-            "{}\n[[lines]]\nname = \"bottom\"\nfrom = [0.05, 0.0, 0.0]\nto = [0.05, 1.0, 0.0]\npoints = 50000\n",
+            "{}\n[[lines]]\nname = \"bottom\"\nfrom = [0.05, 0.0, 0.0]\nto = [0.05, 1.0, 0.0]\npoints = 25000\n",
             heavy.replace("title = \"Cantilever, tip shear (Timoshenko check)\"", "title = \"B\"")
         ),
     );

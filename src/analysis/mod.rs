@@ -238,8 +238,10 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         damage: elements.damage.into_result(),
     };
     // the estimate compares the raw stresses with their patch recovery (not
-    // in layered bodies, whose stress jumps it would count as error); the
-    // fields show the L2 projection if the model asks for it
+    // in layered bodies: the recovery keeps to each ply, `post::spr`, but its
+    // effectivity on a layered static solution is not measured yet; the
+    // modes of a modal run are estimated, `post::mode_error`); the fields
+    // show the L2 projection if the model asks for it
     if !model.mesh.bodies.iter().any(|b| b.is_layered()) {
         let (mesh, cells, stresses, offsets) = (&model.mesh, &model.cells, &solution.stresses, &solution.gp_offsets);
         let recovered = crate::post::spr::recover(mesh, cells, stresses, offsets);

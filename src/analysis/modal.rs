@@ -64,6 +64,9 @@ pub struct Modal {
     pub residuals: Vec<f64>,
     /// Solves with the factor of `K_T` the eigensolver took.
     pub solves: usize,
+    /// The error estimate of each mode and of its frequency
+    /// (`post::mode_error`).
+    pub errors: Vec<crate::post::mode_error::ModeError>,
 }
 
 /// The `settings.modes` lowest natural frequencies of the structure about
@@ -100,9 +103,12 @@ pub(crate) fn solve(
     let mut modes = Vec::with_capacity(sol.vectors.len());
     let mut effective_masses = Vec::with_capacity(sol.vectors.len());
     let mut mphi = vec![0.0; n_eq];
-    for v in &sol.vectors {
+    let mut errors = Vec::with_capacity(sol.vectors.len());
+    for (v, w2) in sol.vectors.iter().zip(&sol.values) {
         pattern.mul_symmetric(&m, v, &mut mphi);
         let modal_mass: f64 = v.iter().zip(&mphi).map(|(a, b)| a * b).sum();
+        let per_dof = unscaled(structure, v, n_dofs);
+        errors.push(crate::post::mode_error::mode_error(&structure.discretisation(), &per_dof, *w2, modal_mass));
         effective_masses.push(std::array::from_fn(|k| {
             let l: f64 = v.iter().zip(&mr[k]).map(|(a, b)| a * b).sum();
             l * l / modal_mass
@@ -118,6 +124,7 @@ pub(crate) fn solve(
         full_structure: false,
         residuals: sol.residuals,
         solves: sol.solves,
+        errors,
     };
     if !model.symmetry.planes.is_empty() {
         let full = full_free_mass(model, settings.mass).map_err(AnalysisError::from)?;
@@ -190,14 +197,20 @@ pub(crate) fn full_free_mass(
     Ok(total.map(|t| copies * t))
 }
 
-/// Mode `v` (per equation) per DOF, scaled to a largest component of +1.
-pub(super) fn shape(structure: &Structure<'_>, v: &[f64], n_dofs: usize) -> Vec<f64> {
+/// Mode `v` (per equation) per DOF, as it is (constrained DOFs zero).
+fn unscaled(structure: &Structure<'_>, v: &[f64], n_dofs: usize) -> Vec<f64> {
     let mut mode = vec![0.0; n_dofs];
     for (d, m) in mode.iter_mut().enumerate() {
         if let Some(e) = structure.equation(d) {
             *m = v[e];
         }
     }
+    mode
+}
+
+/// Mode `v` (per equation) per DOF, scaled to a largest component of +1.
+pub(super) fn shape(structure: &Structure<'_>, v: &[f64], n_dofs: usize) -> Vec<f64> {
+    let mut mode = unscaled(structure, v, n_dofs);
     let (mut big, mut sign) = (0.0f64, 1.0);
     for m in &mode {
         if m.abs() > big {

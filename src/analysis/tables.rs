@@ -16,7 +16,7 @@
 //! | [`contact_points`] | `contact_<name>.csv` | a point of a contact, final state |
 //! | [`probes`] | summary.json's `probes`, the printed table, Python's `probe` | a probe, final state |
 //! | [`energy`] | `energy.csv`, summary.json's `energy` (its last row) | a converged time step of a transient run |
-//! | [`modes`] | `modes.csv` | a vibration mode: frequency, effective masses |
+//! | [`modes`] | `modes.csv` | a vibration mode: frequency, effective masses, estimated errors |
 //! | [`buckling`] | `buckling.csv` | a buckling mode: load factor, critical load |
 
 use super::{ContactSet, LeverResultant, Solution};
@@ -435,13 +435,18 @@ pub fn energy(solution: &Solution) -> Option<Table> {
 /// `modes`: one row per mode of a modal analysis (`mode`, numbered from
 /// 1): its natural frequency `frequency_hz` (Hz) and effective masses
 /// `effective_mass_x`, `_y`, `_z` (kg; of the full structure in a model cut
-/// by symmetry planes, `analysis::modal`); `None` without one.
+/// by symmetry planes, `analysis::modal`), the estimated relative error of
+/// the frequency `frequency_error` (`(f_h − f) / f`) and the mode's
+/// relative error in the energy norm `mode_error` (`post::mode_error`);
+/// `None` without one.
 pub fn modes(solution: &Solution) -> Option<Table> {
     let m = solution.modal.as_ref()?;
     let mut t = Table::new("modes");
     t.push("mode", "", Values::Count((1..=m.frequencies.len()).collect()));
     t.push("frequency_hz", "Hz", Values::Real(m.frequencies.clone()));
     t.push_xyz("effective_mass_", "kg", &m.effective_masses);
+    t.push("frequency_error", "", Values::Real(m.errors.iter().map(|e| e.frequency()).collect()));
+    t.push("mode_error", "", Values::Real(m.errors.iter().map(|e| e.estimate.relative()).collect()));
     Some(t)
 }
 

@@ -230,6 +230,12 @@ pub struct ModalSummary {
     /// are the symmetric ones, whose effective mass along a plane's normal
     /// is zero: `crate::analysis::modal`).
     pub effective_masses_of: &'static str,
+    /// The estimated relative error of each frequency, `(f_h − f) / f`
+    /// (the computed frequencies are upper bounds; `post::mode_error`).
+    pub frequency_errors: Vec<f64>,
+    /// The estimated relative error of each mode in the energy norm (the
+    /// static estimate's measure applied to the mode shape).
+    pub mode_errors: Vec<f64>,
     /// The VTU of each mode (`mode_<k>.vtu`), or empty without VTU output.
     pub modes: Vec<String>,
 }
@@ -535,6 +541,8 @@ fn modal_summary(model: &Model, solution: &Solution) -> Option<ModalSummary> {
         effective_masses: table.xyz("effective_mass_").unwrap_or_default(),
         free_mass: m.free_mass,
         effective_masses_of: if m.full_structure { "full_structure" } else { "model" },
+        frequency_errors: table.real("frequency_error").unwrap_or_default(),
+        mode_errors: table.real("mode_error").unwrap_or_default(),
     })
 }
 

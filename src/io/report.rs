@@ -349,13 +349,15 @@ fn modes(s: &mut String, model: &Model, solution: &Solution) {
     if let (Some(m), Some(t)) = (&solution.modal, tables::modes(solution)) {
         let share = |k: usize, v: f64| if m.free_mass[k] > 0.0 { 100.0 * v / m.free_mass[k] } else { 0.0 };
         let of = if m.full_structure { " of the full structure" } else { "" };
-        out!(s, "modal  mode  frequency [Hz]   effective mass [% of the free mass{of}]  x / y / z");
+        out!(s, "modal  mode  frequency [Hz]   est. error [%]   effective mass [% of the free mass{of}]  x / y / z");
         let (f, e) = (t.real("frequency_hz").unwrap_or_default(), t.xyz("effective_mass_").unwrap_or_default());
+        let error = t.real("frequency_error").unwrap_or_default();
         for (k, (f, e)) in f.iter().zip(&e).enumerate() {
             out!(
                 s,
-                "       {:>4}  {f:>14.6e}   {:>6.2} / {:>6.2} / {:>6.2}",
+                "       {:>4}  {f:>14.6e}   {:>14.3}   {:>6.2} / {:>6.2} / {:>6.2}",
                 k + 1,
+                100.0 * error.get(k).copied().unwrap_or(f64::NAN),
                 share(0, e[0]),
                 share(1, e[1]),
                 share(2, e[2])

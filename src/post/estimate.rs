@@ -31,7 +31,7 @@ use crate::values::CellValues;
 use crate::voigt::Voigt;
 
 /// The estimate of one solution.
-#[derive(Debug, Clone, Default)]
+#[derive(Debug, Clone, Default, PartialEq)]
 pub struct ErrorEstimate {
     /// `η_e` per element (global element index), √J.
     pub element: Vec<f64>,

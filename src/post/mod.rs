@@ -44,6 +44,7 @@
 
 pub mod estimate;
 pub mod failure;
+pub mod mode_error;
 pub mod recovery;
 pub mod spr;
 

@@ -40,7 +40,14 @@
 //! smooth there and brings both to 0.75–1.04. In the smooth interior the
 //! candidates fit equally well. Over the section the patch is the full ring
 //! (one-sided section patches would interpolate in the direction across a
-//! boundary and hide the error there).
+//! boundary and hide the error there) of the section elements of the
+//! element's own material: in a layered body (plies, material zones) the
+//! stress jumps between materials, and a patch across the interface would
+//! smooth the jump and count it as error; kept to one material, a ply's
+//! piecewise-constant stress under a uniform strain is reproduced exactly
+//! (`post::mode_error`'s laminate patch test). A ply one element thick is
+//! then a patch one element thick: through it the fit interpolates and sees
+//! no error in that direction.
 //!
 //! Every fit is evaluated only on the element the patch belongs to
 //! (element patches rather than the node patches of the paper: every
@@ -165,8 +172,9 @@ fn frame(points: impl Iterator<Item = [f64; 2]>) -> ([f64; 2], [f64; 2]) {
     (std::array::from_fn(|d| 0.5 * (lo[d] + hi[d])), half)
 }
 
-/// One patch per section element: the elements sharing a node with it.
-fn section_patches(section: &CrossSection, values: &SectionValues) -> Vec<Patch> {
+/// One patch per section element: the elements sharing a node with it and
+/// lying in its zone (`zone`: the material of each section element).
+fn section_patches(section: &CrossSection, values: &SectionValues, zone: &dyn Fn(usize) -> usize) -> Vec<Patch> {
     let mut holding: Vec<Vec<usize>> = vec![Vec::new(); section.n_nodes()];
     for e in 0..section.n_elements() {
         for &t in section.element(e) {
@@ -176,8 +184,12 @@ fn section_patches(section: &CrossSection, values: &SectionValues) -> Vec<Patch>
     let (p, ng) = (section.kind.order(), values.n_gp);
     (0..section.n_elements())
         .map(|e| {
-            let mut elements: Vec<usize> =
-                section.element(e).iter().flat_map(|&t| holding[t].iter().copied()).collect();
+            let mut elements: Vec<usize> = section
+                .element(e)
+                .iter()
+                .flat_map(|&t| holding[t].iter().copied())
+                .filter(|&f| zone(f) == zone(e))
+                .collect();
             elements.sort_unstable();
             elements.dedup();
             let points = |list: &[usize]| -> Vec<[f64; 2]> {
@@ -297,7 +309,8 @@ pub(crate) fn recover(mesh: &Mesh, cells: &[CellValues], stresses: &[Voigt], gp_
         }
         // then over the section
         let target = &mut out[gp_offsets[b]..gp_offsets[b] + raw.len()];
-        for (s, patch) in section_patches(&body.section, &cell.section).iter().enumerate() {
+        let zone = |es: usize| body.material_of(es);
+        for (s, patch) in section_patches(&body.section, &cell.section, &zone).iter().enumerate() {
             let m = patch.elements.len() * gs;
             for eb in 0..na {
                 for qa in 0..ga {

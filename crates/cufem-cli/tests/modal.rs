@@ -285,6 +285,11 @@ fn the_channel_example_bends_in_its_plane_of_symmetry_as_a_beam() {
             let e = modal["effective_masses"][k][i].as_f64().unwrap();
             assert!((csv[&format!("effective_mass_{axis}")][k] - e).abs() <= 1e-6 * e, "{axis}: {csv:?}");
         }
+        // each mode's estimated errors (src/post/mode_error.rs), the same in both
+        for (json, column) in [("frequency_errors", "frequency_error"), ("mode_errors", "mode_error")] {
+            let e = modal[json][k].as_f64().unwrap();
+            assert!(e > 0.0 && (csv[column][k] - e).abs() <= 1e-6 * e, "{json}: {e}, {csv:?}");
+        }
     }
     // the memory estimate, eigensolver included, against the measured peak:
     // the band of every example (crates/cufem-cli/tests/examples.rs); measured 1.19

@@ -160,6 +160,7 @@ impl<'s, 'm> PathObserver<PathStructure<'s, 'm>> for Watch<'_, '_> {
             dlambda: step.dlambda,
             newton: report(step),
             cutbacks: step.cutbacks,
+            measure: Default::default(),
         };
         self.recorder.converged(p.structure(), &inc);
         if step.dlambda * self.last_dlambda < 0.0 {

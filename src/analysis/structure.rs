@@ -166,6 +166,7 @@ impl<'m> Structure<'m> {
             Some(transient) => Some(transient::inertia(&loading, transient, &assembler, &elements)?),
             None => None,
         };
+        let massive = inertia.as_ref().map(|i| i.massive(&assembler.pattern));
         let parts = Parts {
             elements,
             loads: Loads::new(loading, mesh.n_dofs()),
@@ -174,6 +175,7 @@ impl<'m> Structure<'m> {
                 .in_time(settings.transient),
             inertia,
             impulse: transient::impulse(&loading, settings.transient, mesh.n_dofs()),
+            time_error: massive.map(crate::dynamics::TimeError::new),
         };
         let (reuse, friction) = (settings.solver.reuse, loading.has_friction());
         Ok(Self {

@@ -150,6 +150,34 @@ impl Inertia {
         self.settings.time(lambda)
     }
 
+    /// The committed velocity and acceleration and Newmark's β, for the
+    /// time step's error estimate (`dynamics::time_error`).
+    pub(crate) fn committed(&self) -> super::time_error::Committed<'_> {
+        super::time_error::Committed { v: &self.v_n, a: &self.a_n, beta: self.settings.beta }
+    }
+
+    /// Per equation: whether it carries mass (a positive diagonal of `M`;
+    /// the contact nodes whose mass `dynamics::redistribution` moved away
+    /// carry none, and their Newmark acceleration is no motion's).
+    pub(crate) fn massive(&self, pattern: &crate::solver::linear::LowerCsc) -> Vec<bool> {
+        (0..pattern.n)
+            .map(|c| {
+                let first = pattern.col_ptr[c];
+                first < pattern.col_ptr[c + 1] && pattern.row_idx[first] as usize == c && self.mass[first] > 0.0
+            })
+            .collect()
+    }
+
+    /// The length (s) of the step from the committed state to λ.
+    pub(crate) fn step_length(&self, lambda: f64) -> f64 {
+        self.time(lambda) - self.time(self.lambda_n)
+    }
+
+    /// The settings of the analysis.
+    pub(crate) fn settings(&self) -> &TransientSettings {
+        &self.settings
+    }
+
     /// `½ vᵀ M v` of per-DOF velocities `v` on the equations `eq`.
     fn kinetic_energy(&mut self, v: &[f64], eq: &[usize], pattern: &crate::solver::linear::LowerCsc) -> f64 {
         gather(v, eq, &mut self.x);

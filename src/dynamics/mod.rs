@@ -21,6 +21,7 @@ pub mod inertia;
 pub mod mass;
 pub mod redistribution;
 pub mod settings;
+pub(crate) mod time_error;
 
 pub use impulse::ContactForces;
 pub(crate) use impulse::ContactImpulse;
@@ -30,3 +31,4 @@ pub use mass::{MassError, MassKind};
 pub use redistribution::ContactMass;
 pub(crate) use redistribution::Redistribution;
 pub use settings::TransientSettings;
+pub(crate) use time_error::TimeError;

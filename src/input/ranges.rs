@@ -270,6 +270,9 @@ pub(crate) const CUTBACK_FACTOR: Range = Range::open(0.0, 1.0);
 pub(crate) const GROWTH_FACTOR: Range = Range::at_least(1.0);
 /// Target increment of the equivalent plastic strain per load increment.
 pub(crate) const PLASTIC_STRAIN_STEP: Range = Range::above_up_to(0.0, 0.1);
+/// Target of a time step's local error relative to the displacement scale
+/// (`dynamics::time_error`).
+pub(crate) const TIME_ERROR: Range = Range::above_up_to(0.0, 0.1);
 /// The load factor at which path following ends.
 pub(crate) const MAX_LOAD_FACTOR: Range = Range::above_up_to(0.0, 1000.0);
 /// A step's factor of the items' values.

@@ -342,7 +342,8 @@ pub(crate) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
 }
 
 /// `solver.step_control`: at least one target; a plastic strain in
-/// (0, 0.1], a fraction of the contact set in (0, 1].
+/// (0, 0.1], a fraction of the contact set in (0, 1], a time error in
+/// (0, 0.1] (a transient analysis only: `setup::transient`).
 fn step_control(c: Option<&StepControlFile>) -> Result<Option<StepControl>, ModelError> {
     let Some(c) = c else { return Ok(None) };
     let key = "solver.step_control";
@@ -364,10 +365,17 @@ fn step_control(c: Option<&StepControlFile>) -> Result<Option<StepControl>, Mode
         FRACTION,
         "the largest fraction of the active contact points that open or close in one increment, e.g. 0.2",
     )?;
-    if plastic_strain.is_none() && contact_set.is_none() {
-        return Err(invalid(key, "{}", "at least one of plastic_strain, contact_set"));
+    let time_error = check(
+        "time_error",
+        c.time_error,
+        ranges::TIME_ERROR,
+        "the largest local error of a time step relative to the largest displacement so far (analysis.type = \
+         \"transient\"), e.g. 1e-3",
+    )?;
+    if plastic_strain.is_none() && contact_set.is_none() && time_error.is_none() {
+        return Err(invalid(key, "{}", "at least one of plastic_strain, contact_set, time_error"));
     }
-    Ok(Some(StepControl { plastic_strain, contact_set }))
+    Ok(Some(StepControl { plastic_strain, contact_set, time_error }))
 }
 
 pub(crate) fn describe_selection(s: &SelectionFile) -> String {
@@ -492,14 +500,24 @@ mod tests {
                 "step_control = { contact_set = nan }",
                 "solver.step_control.contact_set = NaN: expected a number in (0, 1]",
             ),
-            ("step_control = {}", "solver.step_control = {}: expected at least one of plastic_strain, contact_set"),
+            (
+                "step_control = {}",
+                "solver.step_control = {}: expected at least one of plastic_strain, contact_set, time_error",
+            ),
+            (
+                "step_control = { time_error = 0.2 }",
+                "solver.step_control.time_error = 0.2: expected a number in (0, 0.1]",
+            ),
         ] {
             let e = err(solver_settings(&file(text), false));
             assert!(e.contains(says), "{text}: {e}");
         }
         // an unknown key is refused by the reader with the allowed ones
         let e = toml::from_str::<SolverFile>("step_control = { plastic = 1e-3 }").unwrap_err().to_string();
-        assert!(e.contains("unknown field `plastic`, expected `plastic_strain` or `contact_set`"), "{e}");
+        assert!(
+            e.contains("unknown field `plastic`, expected one of `plastic_strain`, `contact_set`, `time_error`"),
+            "{e}"
+        );
     }
 
     #[test]

@@ -48,6 +48,13 @@ pub(super) fn transient(
     warnings: &mut Vec<super::Warning>,
 ) -> Result<Option<TransientSettings>, ModelError> {
     let settings = settings(&file.analysis, &file.steps, parts, arc_length)?;
+    if settings.is_none() && file.solver.step_control.is_some_and(|c| c.time_error.is_some()) {
+        return Err(invalid(
+            "solver.step_control.time_error",
+            "given",
+            "only with analysis.type = \"transient\" (it bounds the error of a time step)",
+        ));
+    }
     if let Some(t) = &settings {
         time_steps(steps, file.solver.max_increments)?;
         contact_mass_warnings(&file.analysis, t, parts, warnings);

@@ -8,8 +8,9 @@
 //! fraction of the discrete contact set whose status changed. Each is
 //! divided by its target ([`StepControl`]); `q` is the largest ratio.
 //!
-//! * `q` > `REJECT` (plastic strain only): the increment is rejected,
-//!   rolled back and redone with `Δλ · max(SAFETY/q, 1/4)` — once per
+//! * `q` > `REJECT` (plastic strain or time error): the increment is rejected,
+//!   rolled back and redone with `Δλ · max(SAFETY/q, 1/4)` (the time
+//!   error: `(SAFETY/q)^(1/3)`) — once per
 //!   increment, and not below the smallest increment. The plastic strain
 //!   is a measure of the error of integrating the path in one increment;
 //!   a change of the contact set is not an error of a converged state
@@ -22,8 +23,17 @@
 //!
 //! Both measures grow about linearly with `Δλ` along a smooth path, so
 //! `SAFETY/q` is the increment that would have met the target with a margin.
-//! Stepping knows nothing of plasticity or contact: the measures are two
-//! numbers the problem reports (the default: nothing measured, `q` = 0,
+//!
+//! The third measure, `time_error`, is the local error estimate of a time
+//! step of a transient analysis (`dynamics::time_error`), relative to the
+//! displacement scale: it grows like `Δt³`, so its factor is
+//! `(SAFETY/q)^(1/3)` (Zienkiewicz & Xie 1991). It is an error of the
+//! converged step, so above `REJECT` times its target it rejects the step
+//! like the plastic strain does; the next step takes the smaller of the
+//! measures' factors, within the same bounds.
+//!
+//! Stepping knows nothing of plasticity, contact or dynamics: the measures
+//! are numbers the problem reports (the default: nothing measured, `q` = 0,
 //! the increment grows like an easy one).
 
 /// Targets of the step control. `None`: that measure is not controlled.
@@ -35,6 +45,9 @@ pub struct StepControl {
     /// Largest fraction of the contact points, of those active before or
     /// after the increment, that open or close in one increment.
     pub contact_set: Option<f64>,
+    /// Largest local error of a time step (`dynamics::time_error`) relative
+    /// to the displacement scale (transient analyses only).
+    pub time_error: Option<f64>,
 }
 
 /// What a converged increment changed (reported by the problem).
@@ -46,6 +59,9 @@ pub struct StepMeasure {
     /// before or after (the larger count); `None` when no point was active
     /// before the increment (a first touch is no rate: any `Δλ` gives 1).
     pub contact_set: Option<f64>,
+    /// The local error estimate of the time step relative to the
+    /// displacement scale (`dynamics::time_error`; 0: not measured).
+    pub time_error: f64,
 }
 
 /// A measure above `REJECT` times its target rejects the increment.
@@ -53,6 +69,13 @@ pub(crate) const REJECT: f64 = 2.0;
 
 /// The next increment aims at this fraction of the target.
 pub const SAFETY: f64 = 0.8;
+
+/// The order of the time error in `Δt`: the local error of a Newmark step
+/// is `O(Δt³)` (`dynamics::time_error`).
+pub(crate) const TIME_ERROR_ORDER: f64 = 3.0;
+
+/// The smallest factor of a rejected increment.
+const SHRINK_REJECTED: f64 = 0.25;
 
 /// The control's verdict on a converged increment.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -87,14 +110,21 @@ impl StepControl {
     /// rejected once.
     pub(crate) fn verdict(&self, m: &StepMeasure, dlambda: f64, growth: f64, min: f64, retried: bool) -> Verdict {
         let (q, plastic) = self.ratios(m);
-        if plastic > REJECT && !retried {
-            let factor = (SAFETY / plastic).max(0.25);
-            if dlambda * factor >= min {
-                return Verdict::Reject { factor, q: plastic };
+        let time = self.time_error.map_or(0.0, |t| m.time_error / t);
+        // the factor on Δλ that meets each measure's target with the margin
+        let linear = if q > 0.0 { SAFETY / q } else { f64::INFINITY };
+        let cubic = if time > 0.0 { (SAFETY / time).powf(1.0 / TIME_ERROR_ORDER) } else { f64::INFINITY };
+        if !retried {
+            let rejecting = [(plastic, SAFETY / plastic), (time, cubic)];
+            let worst = rejecting.iter().filter(|(r, _)| *r > REJECT).min_by(|a, b| a.1.total_cmp(&b.1));
+            if let Some(&(ratio, factor)) = worst {
+                let factor = factor.max(SHRINK_REJECTED);
+                if dlambda * factor >= min {
+                    return Verdict::Reject { factor, q: ratio };
+                }
             }
         }
-        let factor = if q > 0.0 { SAFETY / q } else { f64::INFINITY };
-        Verdict::Accept(factor.clamp(0.5, growth.max(0.5)))
+        Verdict::Accept(linear.min(cubic).clamp(0.5, growth.max(0.5)))
     }
 }
 
@@ -103,12 +133,12 @@ mod tests {
     use super::*;
 
     fn m(plastic_strain: f64, contact_set: Option<f64>) -> StepMeasure {
-        StepMeasure { plastic_strain, contact_set }
+        StepMeasure { plastic_strain, contact_set, time_error: 0.0 }
     }
 
     #[test]
     fn grows_below_the_target_and_shrinks_above_it() {
-        let c = StepControl { plastic_strain: Some(1e-3), contact_set: Some(0.2) };
+        let c = StepControl { plastic_strain: Some(1e-3), contact_set: Some(0.2), time_error: None };
         // nothing changed: the full growth
         assert_eq!(c.verdict(&m(0.0, None), 0.1, 1.5, 1e-5, false), Verdict::Accept(1.5));
         // a fifth of the target: 0.8 / 0.2 = 4, capped at the growth
@@ -124,7 +154,7 @@ mod tests {
 
     #[test]
     fn rejects_a_plastic_strain_far_above_its_target_once() {
-        let c = StepControl { plastic_strain: Some(1e-3), contact_set: Some(0.2) };
+        let c = StepControl { plastic_strain: Some(1e-3), contact_set: Some(0.2), time_error: None };
         let Verdict::Reject { factor, q } = c.verdict(&m(2.5e-3, None), 0.1, 1.5, 1e-5, false) else { panic!() };
         assert!((factor - 0.32).abs() < 1e-12 && (q - 2.5).abs() < 1e-12, "{factor} {q}");
         // at most by a quarter
@@ -137,11 +167,38 @@ mod tests {
         assert_eq!(c.verdict(&m(0.0, Some(1.0)), 0.1, 1.5, 1e-5, false), Verdict::Accept(0.5));
     }
 
+    fn t(time_error: f64) -> StepMeasure {
+        StepMeasure { time_error, ..m(0.0, None) }
+    }
+
+    /// The time error grows like Δt³ (`dynamics::time_error`): the factor
+    /// `(0.8/q)^(1/3)` brings a step at `q` times its target to 0.8 of
+    /// it, `q · factor³ = 0.8`, when accepted (q ≤ 2) or redone (q > 2).
+    #[test]
+    fn the_time_error_sets_the_step_by_its_cube_root() {
+        let c = StepControl { plastic_strain: None, contact_set: None, time_error: Some(1e-3) };
+        for q in [0.2, 0.5, 1.0, 1.6, 2.0] {
+            let Verdict::Accept(f) = c.verdict(&t(q * 1e-3), 0.1, 3.0, 1e-5, false) else { panic!("{q}") };
+            assert!((q * f.powi(3) - 0.8).abs() < 1e-12, "q = {q}: {f}");
+        }
+        let Verdict::Reject { factor, q } = c.verdict(&t(3.2e-3), 0.1, 3.0, 1e-5, false) else { panic!() };
+        assert!((q - 3.2).abs() < 1e-12 && (3.2 * factor.powi(3) - 0.8).abs() < 1e-12, "{factor}");
+        // redone once only (then accepted with the same factor), and the
+        // growth and shrink bounds still apply
+        assert_eq!(c.verdict(&t(3.2e-3), 0.1, 3.0, 1e-5, true), Verdict::Accept(0.25f64.cbrt()));
+        assert_eq!(c.verdict(&t(0.1), 0.1, 3.0, 1e-5, true), Verdict::Accept(0.5));
+        assert_eq!(c.verdict(&t(1e-6), 0.1, 1.5, 1e-5, false), Verdict::Accept(1.5));
+        // with the plastic strain: the smaller factor
+        let both = StepControl { plastic_strain: Some(1e-3), ..c };
+        let measure = StepMeasure { plastic_strain: 1e-3, ..t(0.1e-3) };
+        assert_eq!(both.verdict(&measure, 0.1, 3.0, 1e-5, false), Verdict::Accept(0.8));
+    }
+
     #[test]
     fn an_uncontrolled_measure_is_ignored() {
-        let c = StepControl { plastic_strain: None, contact_set: Some(0.2) };
+        let c = StepControl { plastic_strain: None, contact_set: Some(0.2), time_error: None };
         assert_eq!(c.verdict(&m(1.0, Some(0.04)), 0.1, 2.0, 1e-5, false), Verdict::Accept(2.0));
-        let c = StepControl { plastic_strain: Some(1e-3), contact_set: None };
+        let c = StepControl { plastic_strain: Some(1e-3), contact_set: None, time_error: None };
         assert_eq!(c.ratios(&m(5e-4, Some(1.0))), (0.5, 0.5));
     }
 }

@@ -14,7 +14,11 @@
 //! With a [`StepControl`] (`solver.step_control`) the size of the next
 //! increment follows instead what the last one changed, as the problem
 //! measures it ([`Incremental::measure`]; rules in `solver::step_control`),
-//! and an increment that changed far too much is redone smaller.
+//! and an increment that changed far too much is redone smaller. With its
+//! `time_error` (adaptive time steps) the increments also land on the
+//! problem's landing points ([`Incremental::landing`], a transient
+//! analysis's output times): an increment that would pass one is shortened
+//! to end on it, and the next takes up the size it was cut from.
 
 use super::Interrupt;
 use super::newton::{self, NewtonSettings, NonlinearProblem, Report};
@@ -51,6 +55,12 @@ pub trait Incremental: NonlinearProblem {
     /// changed, for the step control (the default: nothing measured).
     fn measure(&self) -> StepMeasure {
         StepMeasure::default()
+    }
+    /// The first λ after `lambda` that an adaptive increment must land on
+    /// (the default: none; the end of the span always is one). Read only
+    /// with a step control's `time_error`.
+    fn landing(&self, _lambda: f64) -> Option<f64> {
+        None
     }
 }
 
@@ -104,6 +114,9 @@ pub struct Increment {
     pub newton: Report,
     /// Failed attempts (cutbacks) before it converged.
     pub cutbacks: usize,
+    /// What it changed, as the step control measured it (nothing measured
+    /// without a step control).
+    pub measure: StepMeasure,
 }
 
 /// A failed attempt, for logs.
@@ -166,31 +179,17 @@ pub fn run_span<P: Incremental>(
     let mut cutbacks = 0;
     // the present increment was already rejected once by the step control
     let mut rejected = false;
+    let lands = steps.control.is_some_and(|c| c.time_error.is_some());
     while lambda < end - 1e-12 * end.abs().max(1.0) {
         if history.len() >= steps.max_increments {
-            return Err(Box::new(SteppingError {
-                reason: StopReason::TooManyIncrements,
-                increment: first_index + history.len(),
-                lambda,
-                dlambda,
-                last_converged: lambda,
-                newton: Report::default(),
-                seconds: None,
-            }));
+            return Err(stop_before(StopReason::TooManyIncrements, first_index + history.len(), lambda, dlambda));
         }
         if interrupt.is_requested() {
-            return Err(Box::new(SteppingError {
-                reason: StopReason::Interrupted,
-                increment: first_index + history.len(),
-                lambda,
-                dlambda,
-                last_converged: lambda,
-                newton: Report::default(),
-                seconds: None,
-            }));
+            return Err(stop_before(StopReason::Interrupted, first_index + history.len(), lambda, dlambda));
         }
         dlambda = dlambda.min(end - lambda);
-        let target = if dlambda >= end - lambda { end } else { lambda + dlambda };
+        let mut target = if dlambda >= end - lambda { end } else { lambda + dlambda };
+        let planned = if lands { land(problem, lambda, &mut dlambda, &mut target) } else { None };
         problem.set_load_factor(target);
         if let Some(last) = history.last() {
             // within a step the loads are linear in λ: start Newton on the
@@ -214,9 +213,11 @@ pub fn run_span<P: Incremental>(
         if report.converged() {
             let easy = report.iterations <= steps.easy_iterations;
             let mut next = None;
+            let mut measure = StepMeasure::default();
             if let Some(control) = &steps.control {
                 let growth = if easy { steps.growth_factor } else { 1.0 };
-                match control.verdict(&problem.measure(), dlambda, growth, steps.min, rejected) {
+                measure = problem.measure();
+                match control.verdict(&measure, dlambda, growth, steps.min, rejected) {
                     Verdict::Reject { factor, q } => {
                         problem.restore();
                         let index = first_index + history.len();
@@ -231,13 +232,17 @@ pub fn run_span<P: Incremental>(
             problem.cautious(false);
             problem.commit();
             lambda = target;
-            let inc = Increment { index: first_index + history.len(), lambda, dlambda, newton: report, cutbacks };
+            let inc =
+                Increment { index: first_index + history.len(), lambda, dlambda, newton: report, cutbacks, measure };
             observer.converged(problem, &inc);
             history.push(inc);
             cutbacks = 0;
             rejected = false;
             if let Some(factor) = next {
                 dlambda = (dlambda * factor).clamp(steps.min, steps.max);
+                if let Some(planned) = planned.filter(|_| factor >= 1.0) {
+                    dlambda = dlambda.max(planned);
+                }
             } else if easy {
                 dlambda = (dlambda * steps.growth_factor).min(steps.max);
             }
@@ -267,6 +272,33 @@ pub fn run_span<P: Incremental>(
         }
     }
     Ok(history)
+}
+
+/// The stop before an increment is attempted (the problem at its last
+/// converged state, λ).
+fn stop_before(reason: StopReason, increment: usize, lambda: f64, dlambda: f64) -> Box<SteppingError> {
+    Box::new(SteppingError {
+        reason,
+        increment,
+        lambda,
+        dlambda,
+        last_converged: lambda,
+        newton: Report::default(),
+        seconds: None,
+    })
+}
+
+/// An adaptive time step lands on the problem's next landing point: the
+/// increment from `lambda` to `target` is cut short to end on it, and the
+/// size it was cut from is returned (for the next increment).
+fn land<P: Incremental>(problem: &P, lambda: f64, dlambda: &mut f64, target: &mut f64) -> Option<f64> {
+    let stop = problem.landing(lambda)?;
+    if stop > lambda + 1e-9 * *dlambda && stop < *target - 1e-9 * *dlambda {
+        let planned = *dlambda;
+        (*dlambda, *target) = (stop - lambda, stop);
+        return Some(planned);
+    }
+    None
 }
 
 /// Newton on the present increment, solved again after each multiplier
@@ -452,7 +484,7 @@ mod tests {
             (self.u, self.p) = (self.u_committed, self.p_committed);
         }
         fn measure(&self) -> StepMeasure {
-            StepMeasure { plastic_strain: (self.p - self.p_committed).abs(), contact_set: None }
+            StepMeasure { plastic_strain: (self.p - self.p_committed).abs(), contact_set: None, time_error: 0.0 }
         }
     }
 
@@ -496,7 +528,7 @@ mod tests {
     /// accepted one within twice the target, the same exact end.
     #[test]
     fn the_step_control_grows_elastic_increments_and_bounds_plastic_ones() {
-        let control = StepControl { plastic_strain: Some(5.0), contact_set: None };
+        let control = StepControl { plastic_strain: Some(5.0), contact_set: None, time_error: None };
         let steps =
             StepSettings { initial: 0.1, max: 1.0, growth_factor: 2.0, control: Some(control), ..Default::default() };
         let (hist, log, _) = plastic_run(&steps);
@@ -516,7 +548,7 @@ mod tests {
     /// Δλ = 1 the first attempt changes p by 20 (4 × the target).
     #[test]
     fn a_rejected_increment_is_redone_once() {
-        let control = StepControl { plastic_strain: Some(5.0), contact_set: None };
+        let control = StepControl { plastic_strain: Some(5.0), contact_set: None, time_error: None };
         let steps = StepSettings { initial: 1.0, max: 1.0, control: Some(control), ..Default::default() };
         let (hist, log, _) = plastic_run(&steps);
         assert_eq!(hist[0].cutbacks, 1);

@@ -7,7 +7,7 @@ use super::elements::Elements;
 use super::loads::Loads;
 use crate::assembly::Contribution;
 use crate::contact::Contacts;
-use crate::dynamics::{ContactImpulse, Inertia};
+use crate::dynamics::{ContactImpulse, Inertia, TimeError};
 use crate::interfaces::Interfaces;
 use crate::size::MemoryEstimate;
 
@@ -30,6 +30,10 @@ pub(crate) struct Parts<'m> {
     /// contribution, it replaces the contacts' force and weights their
     /// stiffness.
     pub impulse: Option<ContactImpulse>,
+    /// The time steps' error estimate (a transient analysis): not a
+    /// contribution, it measures the converged step for the step control
+    /// (`solver.step_control.time_error`).
+    pub time_error: Option<TimeError>,
 }
 
 impl Parts<'_> {

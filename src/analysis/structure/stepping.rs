@@ -59,7 +59,12 @@ impl Incremental for Structure<'_> {
         StepMeasure {
             plastic_strain: self.parts.elements.largest_peeq_increment(),
             contact_set: (before > 0).then(|| changed as f64 / before.max(after) as f64),
+            time_error: transient::time_error(&self.parts, &self.state, &self.system, &self.elimination),
         }
+    }
+
+    fn landing(&self, lambda: f64) -> Option<f64> {
+        transient::next_output(&self.parts, lambda)
     }
 
     fn commit(&mut self) {
@@ -80,6 +85,7 @@ impl Incremental for Structure<'_> {
             self.elimination.eliminate(&self.state.u, |e| col_ptr[e], tangent, rest, rhs);
             self.report.pivots = if formed { system.inertia() } else { None };
         }
+        transient::commit_time_error(&mut self.parts, &self.state, &self.system, &self.elimination);
         self.state.commit();
         let at = self.state.at();
         for part in self.parts.each_mut() {

@@ -79,7 +79,7 @@ pub(super) fn account_energy(
     (system, elimination): (&LinearSystem, &Elimination),
     impactors: f64,
 ) {
-    let Parts { elements, loads, contacts, interfaces, inertia, impulse } = parts;
+    let Parts { elements, loads, contacts, interfaces, inertia, impulse, .. } = parts;
     let Some(inertia) = inertia.as_mut() else { return };
     let du: Vec<f64> = state.u.iter().zip(&state.u_committed).map(|(a, b)| a - b).collect();
     let eq = &system.assembler.dofs.eq;
@@ -109,4 +109,48 @@ pub(super) fn account_energy(
         eq,
         &system.assembler.pattern,
     );
+}
+
+/// The time step's error estimate relative to the displacement scale
+/// (`dynamics::time_error`; 0 in a static analysis).
+pub(super) fn time_error(
+    parts: &Parts<'_>,
+    state: &Kinematics,
+    system: &LinearSystem,
+    elimination: &Elimination,
+) -> f64 {
+    let (Some(inertia), Some(estimate)) = (&parts.inertia, &parts.time_error) else { return 0.0 };
+    let eq = &system.assembler.dofs.eq;
+    let free =
+        |d: usize| eq[d] != crate::assembly::NO_EQ && !elimination.is_prescribed(eq[d]) && estimate.massive[eq[d]];
+    estimate.measure((&state.u, &state.u_committed), &inertia.committed(), inertia.step_length(state.lambda), free)
+}
+
+/// The committed displacements into the time error's scale.
+pub(super) fn commit_time_error(
+    parts: &mut Parts<'_>,
+    state: &Kinematics,
+    system: &LinearSystem,
+    elimination: &Elimination,
+) {
+    let Some(estimate) = parts.time_error.as_mut() else { return };
+    let eq = &system.assembler.dofs.eq;
+    estimate.commit(&state.u, |d| eq[d] != crate::assembly::NO_EQ && !elimination.is_prescribed(eq[d]));
+}
+
+/// The first λ after `lambda` at an output time of the frames
+/// (`analysis.output_interval`) inside the present load step; `None`
+/// without frames, or when the step ends first.
+pub(super) fn next_output(parts: &Parts<'_>, lambda: f64) -> Option<f64> {
+    let settings = parts.inertia.as_ref()?.settings();
+    let interval = settings.output_interval?;
+    let n = settings.durations.len();
+    let k = (lambda.max(0.0).floor() as usize).min(n - 1);
+    let start = settings.time(k as f64);
+    let t = settings.time(lambda);
+    // the next multiple of the interval past t (a time reached to
+    // round-off counts as reached)
+    let next = ((t / interval) * (1.0 + 1e-9)).floor() + 1.0;
+    let at = k as f64 + (next * interval - start) / settings.durations[k];
+    (at < (k + 1) as f64).then_some(at)
 }

@@ -7,7 +7,7 @@ use serde::Deserialize;
 use super::Axis;
 use crate::input::ranges;
 
-/// `solver.step_control = { plastic_strain = 2e-3, contact_set = 0.2 }`:
+/// `solver.step_control = { plastic_strain = 2e-3, contact_set = 0.2, time_error = 1e-3 }`:
 /// the targets per increment of the adaptive load stepping (at least one).
 #[derive(Debug, Clone, Copy, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
@@ -18,6 +18,10 @@ pub(crate) struct StepControlFile {
     /// Largest fraction of the active contact points that open or close.
     #[schemars(transform = ranges::FRACTION.schema())]
     pub contact_set: Option<f64>,
+    /// Largest local error of a time step relative to the largest
+    /// displacement so far (`analysis.type = "transient"`: adaptive time steps).
+    #[schemars(transform = ranges::TIME_ERROR.schema())]
+    pub time_error: Option<f64>,
 }
 
 /// `solver.control`: what drives the increments.

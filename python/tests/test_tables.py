@@ -101,7 +101,7 @@ PLOTS = [
     ("bending_compact_4L9", "plot_line", ("top",), "line_top", "s", None),
     ("rod_impact", "plot_energy", (), "energy", "time_s", None),
     ("cantilever_modes", "plot_modes", (), "modes", "mode",
-     ["frequency_hz", "effective_mass_x", "effective_mass_y", "effective_mass_z"]),
+     ["frequency_hz", "effective_mass_x", "effective_mass_y", "effective_mass_z", "frequency_error", "mode_error"]),
     ("column_buckling", "plot_modes", (), "buckling", "mode", None),
 ]
 

@@ -96,7 +96,7 @@ pub(crate) fn stresses(d: &Discretisation<'_>, u: &[f64]) -> (Vec<Voigt>, Vec<us
                 for gs in 0..cell.section.n_gp {
                     cell.gradients(es, eb, gb, gs, &mut grads);
                     let eps = crate::values::strain(&grads, &local);
-                    out.push(std::array::from_fn(|i| (0..6).map(|j| c[i][j] * eps[j]).sum()));
+                    out.push(crate::voigt::mat_vec(c, &eps));
                 }
             }
         }

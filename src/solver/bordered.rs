@@ -27,7 +27,7 @@
 //! error of `K⁻¹ B` of relative size η becomes a much larger one of `S`;
 //! here every residual is that of `A` itself, formed in double precision.
 
-use super::krylov::Krylov;
+use super::krylov::{self, Krylov};
 use super::linear::{Cholesky, LinearError, LowerCsc};
 
 /// The border of a bordered system: the columns `B` (equation space) and
@@ -91,17 +91,20 @@ impl FactorBorder {
     }
 }
 
-/// Storage of [`pcg_bordered`] kept between solves.
+/// Storage of [`pcg_bordered`] kept between solves: the stacked vectors
+/// `[·_u; ·_a]` of conjugate gradients and the right-hand side.
 #[derive(Debug, Default)]
 pub(crate) struct BorderedWork {
     u: [Vec<f64>; 5],
+    rhs: Vec<f64>,
 }
 
 /// Conjugate gradients for the bordered system `A [x_u; x_a] = [b_u; b_a]`
 /// (module docs), preconditioned by `chol` and `factor`, from zero, to
-/// `‖b − A x‖ ≤ tol ‖b‖` within `max_iterations`. `rhs_u` and `rhs_a` hold
-/// `b` on entry and, on convergence, `x` (otherwise `b` unchanged). Stops
-/// early on a breakdown (`pᵀ A p ≤ 0`).
+/// `‖b − A x‖ ≤ tol ‖b‖` within `max_iterations`: [`krylov::pcg_with`] on
+/// the stacked vector `[x_u; x_a]`. `rhs_u` and `rhs_a` hold `b` on entry
+/// and, on convergence, `x` (otherwise `b` unchanged). Stops early on a
+/// breakdown (`pᵀ A p ≤ 0`).
 #[allow(clippy::too_many_arguments)]
 pub(crate) fn pcg_bordered(
     (pattern, values): (&LowerCsc, &[f64]),
@@ -113,67 +116,35 @@ pub(crate) fn pcg_bordered(
     max_iterations: usize,
     work: &mut BorderedWork,
 ) -> Result<Krylov, LinearError> {
-    let (n, m) = (rhs_u.len(), rhs_a.len());
-    for w in work.u.iter_mut() {
-        w.resize(n, 0.0);
-    }
-    let [x, r, z, p, q] = &mut work.u;
-    let (mut xa, mut ra, mut za, mut pa, mut qa) =
-        (vec![0.0; m], rhs_a.to_vec(), vec![0.0; m], vec![0.0; m], vec![0.0; m]);
-    let b_norm = (dot(rhs_u, rhs_u) + dot(rhs_a, rhs_a)).sqrt();
-    if b_norm == 0.0 {
-        return Ok(Krylov::Converged(0));
-    }
-    x.fill(0.0);
-    r.copy_from_slice(rhs_u);
-    z.copy_from_slice(r);
-    factor.apply(chol, z, &ra, &mut za)?;
-    p.copy_from_slice(z);
-    pa.copy_from_slice(&za);
-    let mut rz = dot(r, z) + dot(&ra, &za);
-    for k in 1..=max_iterations {
-        // q = A p
-        pattern.mul_symmetric(values, p, q);
+    let n = rhs_u.len();
+    let BorderedWork { u, rhs } = work;
+    rhs.clear();
+    rhs.extend_from_slice(rhs_u);
+    rhs.extend_from_slice(rhs_a);
+    // q = A p
+    let operator = |p: &[f64], q: &mut [f64]| {
+        let (p_u, p_a) = p.split_at(n);
+        let (q_u, q_a) = q.split_at_mut(n);
+        pattern.mul_symmetric(values, p_u, q_u);
         for (i, col) in border.cols.iter().enumerate() {
-            for (qv, c) in q.iter_mut().zip(col.iter()) {
-                *qv += c * pa[i];
+            for (qv, c) in q_u.iter_mut().zip(col.iter()) {
+                *qv += c * p_a[i];
             }
-            qa[i] = dot(col, p) + border.corner[i] * pa[i];
+            q_a[i] = dot(col, p_u) + border.corner[i] * p_a[i];
         }
-        let pq = dot(p, q) + dot(&pa, &qa);
-        if !(pq > 0.0) || !(rz > 0.0) {
-            return Ok(Krylov::NotConverged(k - 1));
-        }
-        let alpha = rz / pq;
-        for i in 0..n {
-            x[i] += alpha * p[i];
-            r[i] -= alpha * q[i];
-        }
-        for i in 0..m {
-            xa[i] += alpha * pa[i];
-            ra[i] -= alpha * qa[i];
-        }
-        if (dot(r, r) + dot(&ra, &ra)).sqrt() <= tol * b_norm {
-            rhs_u.copy_from_slice(x);
-            rhs_a.copy_from_slice(&xa);
-            return Ok(Krylov::Converged(k));
-        }
-        if k == max_iterations {
-            return Ok(Krylov::NotConverged(k));
-        }
-        z.copy_from_slice(r);
-        factor.apply(chol, z, &ra, &mut za)?;
-        let rz_new = dot(r, z) + dot(&ra, &za);
-        let beta = rz_new / rz;
-        rz = rz_new;
-        for i in 0..n {
-            p[i] = z[i] + beta * p[i];
-        }
-        for i in 0..m {
-            pa[i] = za[i] + beta * pa[i];
-        }
+    };
+    // z ← A₀⁻¹ z
+    let precond = |z: &mut [f64]| {
+        let (z_u, z_a) = z.split_at_mut(n);
+        let r_a = z_a.to_vec();
+        factor.apply(chol, z_u, &r_a, z_a)
+    };
+    let outcome = krylov::pcg_with(operator, precond, rhs, tol, max_iterations, u)?;
+    if let Krylov::Converged(_) = outcome {
+        rhs_u.copy_from_slice(&rhs[..n]);
+        rhs_a.copy_from_slice(&rhs[n..]);
     }
-    Ok(Krylov::NotConverged(max_iterations))
+    Ok(outcome)
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {

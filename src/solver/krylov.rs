@@ -62,6 +62,24 @@ pub(crate) fn pcg(
     max_iterations: usize,
     work: &mut [Vec<f64>; 5],
 ) -> Result<Krylov, LinearError> {
+    let operator = |p: &[f64], q: &mut [f64]| pattern.mul_symmetric(values, p, q);
+    pcg_with(operator, |z| precond.solve_in_place(z), rhs, tol, max_iterations, work)
+}
+
+/// Preconditioned conjugate gradients (Saad, Alg. 9.1) for the symmetric
+/// operator `q = A p` (`operator(p, q)`) with the preconditioner `z ← M⁻¹ z`
+/// (`precond(z)`), from `x₀ = 0`, to `‖b − A x‖ ≤ tol ‖b‖` within
+/// `max_iterations`. `rhs` holds `b` on entry; on convergence it holds `x`,
+/// otherwise `b` unchanged. Stops early on a breakdown (`pᵀ A p ≤ 0`). The
+/// loop of [`pcg`] and of the bordered systems (`solver::bordered`).
+pub(crate) fn pcg_with(
+    mut operator: impl FnMut(&[f64], &mut [f64]),
+    mut precond: impl FnMut(&mut [f64]) -> Result<(), LinearError>,
+    rhs: &mut [f64],
+    tol: f64,
+    max_iterations: usize,
+    work: &mut [Vec<f64>; 5],
+) -> Result<Krylov, LinearError> {
     let n = rhs.len();
     for w in work.iter_mut() {
         w.resize(n, 0.0);
@@ -74,11 +92,11 @@ pub(crate) fn pcg(
     x.fill(0.0);
     r.copy_from_slice(rhs);
     z.copy_from_slice(r);
-    precond.solve_in_place(z)?;
+    precond(z)?;
     p.copy_from_slice(z);
     let mut rz = dot(r, z);
     for k in 1..=max_iterations {
-        pattern.mul_symmetric(values, p, q);
+        operator(p, q);
         let pq = dot(p, q);
         if !(pq > 0.0) || !(rz > 0.0) {
             return Ok(Krylov::NotConverged(k - 1));
@@ -96,7 +114,7 @@ pub(crate) fn pcg(
             return Ok(Krylov::NotConverged(k));
         }
         z.copy_from_slice(r);
-        precond.solve_in_place(z)?;
+        precond(z)?;
         let rz_new = dot(r, z);
         let beta = rz_new / rz;
         rz = rz_new;

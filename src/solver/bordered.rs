@@ -151,6 +151,38 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
+/// Keller's block elimination of the bordered system `[K B; Bᵀ' C] [x; a]
+/// = [r; r_a]` once `K⁻¹` has been applied (module docs): `x` holds `x₁ =
+/// K⁻¹ r` on entry and `x₁ − X Δa` on return, `cols` are `X = K⁻¹ B`,
+/// `row(i, v)` is the border row `bᵢ' · v` (`bᵢ' = bᵢ` for a symmetric
+/// border), `corner` is `C`'s diagonal. Returns `Δa` solving the Schur
+/// complement `(C − B'ᵀ X) Δa = r_a − B'ᵀ x₁`.
+pub(crate) fn eliminate(
+    x: &mut [f64],
+    cols: &[Vec<f64>],
+    row: impl Fn(usize, &[f64]) -> f64,
+    corner: &[f64],
+    r_a: &[f64],
+) -> Result<Vec<f64>, LinearError> {
+    let m = cols.len();
+    let mut s = vec![vec![0.0; m]; m];
+    let mut rhs = vec![0.0; m];
+    for i in 0..m {
+        for j in 0..m {
+            s[i][j] = -row(i, &cols[j]);
+        }
+        s[i][i] += corner[i];
+        rhs[i] = r_a[i] - row(i, x);
+    }
+    let da = solve_dense(s, rhs).ok_or(LinearError::Singular)?;
+    for (col, d) in cols.iter().zip(&da) {
+        for (v, c) in x.iter_mut().zip(col) {
+            *v -= c * d;
+        }
+    }
+    Ok(da)
+}
+
 /// Gaussian elimination with partial pivoting of the small dense system
 /// `a x = b` (the `m × m` Schur complement); `None` if singular.
 pub(crate) fn solve_dense(mut a: Vec<Vec<f64>>, mut b: Vec<f64>) -> Option<Vec<f64>> {

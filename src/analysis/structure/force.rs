@@ -40,7 +40,7 @@ use crate::dynamics::TransientSettings;
 use crate::mesh::Mesh;
 use crate::setup::constraints::Elimination;
 use crate::setup::steps::{self, Item};
-use crate::solver::bordered::{Border, solve_dense};
+use crate::solver::bordered::{Border, eliminate};
 use crate::solver::linear::LinearError;
 
 /// One force-controlled indenter.
@@ -281,23 +281,12 @@ impl<'m> ForceControl<'m> {
             }
             x2.push(x);
         }
-        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
         // S = C − Bᵀ X₂ (C diagonal: each contact point belongs to one indenter)
-        let mut s = vec![vec![0.0; m]; m];
-        let mut rhs = vec![0.0; m];
-        for i in 0..m {
-            for j in 0..m {
-                s[i][j] = -dot(&self.driven[i].b_row, &x2[j]);
-            }
-            s[i][i] += self.driven[i].c;
-            rhs[i] = -self.driven[i].r - dot(&self.driven[i].b_row, &system.rhs);
-        }
-        let da = solve_dense(s, rhs).ok_or(LinearError::Singular)?;
-        for (j, x) in x2.iter().enumerate() {
-            for (r, v) in system.rhs.iter_mut().zip(x) {
-                *r -= v * da[j];
-            }
-        }
+        let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+        let row = |i: usize, v: &[f64]| dot(&self.driven[i].b_row, v);
+        let corner: Vec<f64> = self.driven.iter().map(|d| d.c).collect();
+        let r_a: Vec<f64> = self.driven.iter().map(|d| -d.r).collect();
+        let da = eliminate(&mut system.rhs, &x2, row, &corner, &r_a)?;
         self.advance(&da, lambda)
     }
 

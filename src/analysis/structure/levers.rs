@@ -115,32 +115,21 @@ impl<'m> Levers<'m> {
     pub fn solve(&mut self, system: &mut LinearSystem, u: &[f64], lambda: f64) -> Result<(), LinearError> {
         system.solve(true)?;
         let m = self.held.len();
-        let mut x2 = Vec::with_capacity(m);
+        // a lever's force P enters the residual as −P a: the border column
+        // is −a, its row −aᵀ Δu = g (the linearised gap to the lever's
+        // target), the corner zero
+        let mut cols = Vec::with_capacity(m);
         for held in &self.held {
             let mut x = vec![0.0; system.rhs.len()];
             for &(e, a) in &held.border {
-                x[e] += a;
+                x[e] -= a;
             }
             system.solve_again(&mut x)?;
-            x2.push(x);
+            cols.push(x);
         }
-        // Aᵀ (x₁ + X₂ ΔP) = −g: (Aᵀ X₂) ΔP = −g − Aᵀ x₁
-        let dot = |border: &[(usize, f64)], x: &[f64]| border.iter().map(|&(e, a)| a * x[e]).sum::<f64>();
-        let mut s = vec![vec![0.0; m]; m];
-        let mut rhs = vec![0.0; m];
-        for (i, held) in self.held.iter().enumerate() {
-            for (j, x) in x2.iter().enumerate() {
-                s[i][j] = dot(&held.border, x);
-            }
-            let g = self.levers[i].displacement(u) - self.target(i, lambda);
-            rhs[i] = -g - dot(&held.border, &system.rhs);
-        }
-        let dp = crate::solver::bordered::solve_dense(s, rhs).ok_or(LinearError::Singular)?;
-        for (x, d) in x2.iter().zip(&dp) {
-            for (r, v) in system.rhs.iter_mut().zip(x) {
-                *r += v * d;
-            }
-        }
+        let row = |i: usize, x: &[f64]| -self.held[i].border.iter().map(|&(e, a)| a * x[e]).sum::<f64>();
+        let gaps: Vec<f64> = (0..m).map(|i| self.levers[i].displacement(u) - self.target(i, lambda)).collect();
+        let dp = crate::solver::bordered::eliminate(&mut system.rhs, &cols, row, &vec![0.0; m], &gaps)?;
         for (held, d) in self.held.iter_mut().zip(&dp) {
             held.force += d;
         }

@@ -75,7 +75,7 @@ fn short_box(flange: usize, web: usize, axis: usize) -> String {
 /// wall mode's; the effectivity `estimated / true` of every mode matched to
 /// the reference by its MAC (> 0.9: modes 1–4; the reference's modes 5–7
 /// are mixtures of the x-bending and a wall mode 1 % apart) lies in
-/// 1.0–2.2: within [0.5, 2] for three, 2.15 for mode 2 (a known limit,
+/// 1.0–2.2: within [0.5, 2] for three, 2.17 for mode 2 (a known limit,
 /// docs/limitations.md).
 #[test]
 fn the_laminated_box_ranks_its_wall_modes_and_estimates_their_frequency_errors() {

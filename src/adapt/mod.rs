@@ -47,16 +47,6 @@ pub enum AdaptError {
     /// An analysis could not start or failed outright.
     #[error(transparent)]
     Analysis(#[from] AnalysisError),
-    /// A body has several materials: the error estimate (patch recovery
-    /// across them) does not exist for it.
-    #[error(
-        "bodies[{body}]: expected bodies of one material with --adapt / [adapt] (the error estimate's patch \
-         recovery would smooth the stress jumps between plies and zones, so it is not computed for layered bodies)"
-    )]
-    Layered {
-        /// The body's index.
-        body: usize,
-    },
     /// The model as given is already over the budget.
     #[error(
         "adapt.max_dof = {max_dof}: expected at least the model's own {dof} DOF (the first cycle solves the \
@@ -102,9 +92,6 @@ pub fn run(
     progress: &mut dyn Progress,
     report: &mut dyn FnMut(&AdaptCycle, &Model, &Solution),
 ) -> Result<(Model, Solution), AdaptError> {
-    if let Some(body) = model.mesh.bodies.iter().position(|b| b.is_layered()) {
-        return Err(AdaptError::Layered { body });
-    }
     if model.n_dofs() > settings.max_dof {
         return Err(AdaptError::Budget { max_dof: settings.max_dof, dof: model.n_dofs() });
     }

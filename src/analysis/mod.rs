@@ -237,12 +237,10 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         delamination,
         damage: elements.damage.into_result(),
     };
-    // the estimate compares the raw stresses with their patch recovery (not
-    // in layered bodies: the recovery keeps to each ply, `post::spr`, but its
-    // effectivity on a layered static solution is not measured yet; the
-    // modes of a modal run are estimated, `post::mode_error`); the fields
+    // the estimate compares the raw stresses with their patch recovery
+    // (kept to each ply and zone of a layered body, `post::spr`); the fields
     // show the L2 projection if the model asks for it
-    if !model.mesh.bodies.iter().any(|b| b.is_layered()) {
+    {
         let (mesh, cells, stresses, offsets) = (&model.mesh, &model.cells, &solution.stresses, &solution.gp_offsets);
         let recovered = crate::post::spr::recover(mesh, cells, stresses, offsets);
         let estimate = crate::post::estimate::estimate(mesh, cells, &model.materials, stresses, offsets, &recovered);

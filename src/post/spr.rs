@@ -44,10 +44,21 @@
 //! element's own material: in a layered body (plies, material zones) the
 //! stress jumps between materials, and a patch across the interface would
 //! smooth the jump and count it as error; kept to one material, a ply's
-//! piecewise-constant stress under a uniform strain is reproduced exactly
-//! (`post::mode_error`'s laminate patch test). A ply one element thick is
-//! then a patch one element thick: through it the fit interpolates and sees
-//! no error in that direction.
+//! piecewise-constant stress under a uniform in-plane strain is reproduced
+//! exactly (`post::mode_error`'s laminate patch test). A ply one element
+//! thick would then be a patch one element thick, through which the fit
+//! interpolates and sees no error — yet there the error of a laminate lies,
+//! in its transverse stresses. Equilibrium makes the traction of an
+//! interface continuous: across an interface of normal z the components
+//! σ_zz, σ_xz, σ_yz, across one of normal x σ_xx, σ_xy, σ_xz. Where an
+//! element is the only one of its zone through a direction (no element of
+//! its zone beside it along z, or x), those components are fitted over the
+//! patch with the elements across the interface added (beside it along that
+//! direction, and at its corners in their zones); the other components keep
+//! to the zone. On Pagano's cross-ply laminate with one L9 per ply this
+//! takes the effectivity from `0.003`–`0.26` to `1.12`–`1.14`
+//! (tests/layered_estimate.rs). An interface that is neither along x nor
+//! along z (a curved wall's plies) keeps the per-zone patch.
 //!
 //! Every fit is evaluated only on the element the patch belongs to
 //! (element patches rather than the node patches of the paper: every
@@ -172,39 +183,121 @@ fn frame(points: impl Iterator<Item = [f64; 2]>) -> ([f64; 2], [f64; 2]) {
     (std::array::from_fn(|d| 0.5 * (lo[d] + hi[d])), half)
 }
 
-/// One patch per section element: the elements sharing a node with it and
-/// lying in its zone (`zone`: the material of each section element).
-fn section_patches(section: &CrossSection, values: &SectionValues, zone: &dyn Fn(usize) -> usize) -> Vec<Patch> {
+/// The stress components a material interface of normal z (in the
+/// section plane) passes on continuously: the traction `σ·e_z` = (σ_zz,
+/// σ_xz, σ_yz) (Voigt indices, `crate::voigt`).
+const ACROSS_Z: [usize; 3] = [2, 4, 5];
+/// The same for an interface of normal x: `σ·e_x` = (σ_xx, σ_xy, σ_xz).
+const ACROSS_X: [usize; 3] = [0, 3, 4];
+
+/// The section patches of one element: their operators and, per stress
+/// component, the one that fits it.
+struct SectionPatches {
+    patches: Vec<Patch>,
+    of_component: [usize; 6],
+}
+
+/// The patches of every section element (module docs): the elements
+/// sharing a node with it and lying in its zone (`zone`: the material of
+/// each section element), and for the traction components of an interface
+/// of normal z or x between zones also the elements across it.
+fn section_patches(
+    section: &CrossSection,
+    values: &SectionValues,
+    zone: &dyn Fn(usize) -> usize,
+) -> Vec<SectionPatches> {
     let mut holding: Vec<Vec<usize>> = vec![Vec::new(); section.n_nodes()];
     for e in 0..section.n_elements() {
         for &t in section.element(e) {
             holding[t].push(e);
         }
     }
+    // each element's box [x_min, x_max, z_min, z_max]
+    let boxes: Vec<[f64; 4]> = (0..section.n_elements())
+        .map(|e| {
+            section.element(e).iter().fold(
+                [f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY],
+                |b, &t| {
+                    let [x, z] = section.nodes[t];
+                    [b[0].min(x), b[1].max(x), b[2].min(z), b[3].max(z)]
+                },
+            )
+        })
+        .collect();
+    let [x0, x1, z0, z1] = section.bounds();
+    let tol = 1e-9 * (x1 - x0).max(z1 - z0);
+    // whether b lies beside a along the coordinate (0: x, 2: z), sharing no interior
+    let apart = |a: &[f64; 4], b: &[f64; 4], d: usize| b[d] >= a[d + 1] - tol || b[d + 1] <= a[d] + tol;
     let (p, ng) = (section.kind.order(), values.n_gp);
+    let operator = |e: usize, mut elements: Vec<usize>| {
+        elements.sort_unstable();
+        elements.dedup();
+        let points = |list: &[usize]| -> Vec<[f64; 2]> {
+            list.iter().flat_map(|&f| values.position[f * ng..(f + 1) * ng].iter().copied()).collect()
+        };
+        let patch_points = points(&elements);
+        let (centre, half) = frame(patch_points.iter().copied());
+        let (mut a, mut v) = (Vec::new(), Vec::new());
+        for &q in &patch_points {
+            section_basis(p, q, centre, half, &mut a);
+        }
+        for q in points(&[e]) {
+            section_basis(p, q, centre, half, &mut v);
+        }
+        Patch { weights: fit_operator(&a, &v, (p + 1) * (p + 1)), residual: Vec::new(), elements }
+    };
     (0..section.n_elements())
         .map(|e| {
-            let mut elements: Vec<usize> = section
-                .element(e)
-                .iter()
-                .flat_map(|&t| holding[t].iter().copied())
-                .filter(|&f| zone(f) == zone(e))
-                .collect();
-            elements.sort_unstable();
-            elements.dedup();
-            let points = |list: &[usize]| -> Vec<[f64; 2]> {
-                list.iter().flat_map(|&f| values.position[f * ng..(f + 1) * ng].iter().copied()).collect()
+            let ring: Vec<usize> = section.element(e).iter().flat_map(|&t| holding[t].iter().copied()).collect();
+            let own: Vec<usize> = ring.iter().copied().filter(|&f| zone(f) == zone(e)).collect();
+            // elements of other zones across an interface of normal z (d = 2)
+            // or x (d = 0): those beside e along d and overlapping it
+            // along the other coordinate, and those at its corners in the
+            // zones of the former
+            let across = |d: usize| -> Vec<usize> {
+                let other = 2 - d;
+                let (ea, eb) = (&boxes[e], |f: usize| &boxes[f]);
+                // a zone two elements deep along d has its own patch there
+                if own.iter().any(|&f| f != e && apart(ea, eb(f), d) && !apart(ea, eb(f), other)) {
+                    return Vec::new();
+                }
+                let others: Vec<usize> = ring.iter().copied().filter(|&f| zone(f) != zone(e)).collect();
+                let faces: Vec<usize> =
+                    others.iter().copied().filter(|&f| apart(ea, eb(f), d) && !apart(ea, eb(f), other)).collect();
+                let zones: Vec<usize> = faces.iter().map(|&f| zone(f)).collect();
+                let corners = others
+                    .iter()
+                    .copied()
+                    .filter(|&f| apart(ea, eb(f), d) && apart(ea, eb(f), other) && zones.contains(&zone(f)));
+                faces.iter().copied().chain(corners).collect()
             };
-            let patch_points = points(&elements);
-            let (centre, half) = frame(patch_points.iter().copied());
-            let (mut a, mut v) = (Vec::new(), Vec::new());
-            for &q in &patch_points {
-                section_basis(p, q, centre, half, &mut a);
+            let (z, x) = (across(2), across(0));
+            let mut patches = vec![operator(e, own.clone())];
+            let mut of_component = [0; 6];
+            for (c, slot) in of_component.iter_mut().enumerate() {
+                let with_z = ACROSS_Z.contains(&c) && !z.is_empty();
+                let with_x = ACROSS_X.contains(&c) && !x.is_empty();
+                if !(with_z || with_x) {
+                    continue;
+                }
+                let mut elements = own.clone();
+                if with_z {
+                    elements.extend(&z);
+                }
+                if with_x {
+                    elements.extend(&x);
+                }
+                elements.sort_unstable();
+                elements.dedup();
+                *slot = match patches.iter().position(|q| q.elements == elements) {
+                    Some(k) => k,
+                    None => {
+                        patches.push(operator(e, elements));
+                        patches.len() - 1
+                    }
+                };
             }
-            for q in points(&[e]) {
-                section_basis(p, q, centre, half, &mut v);
-            }
-            Patch { weights: fit_operator(&a, &v, (p + 1) * (p + 1)), residual: Vec::new(), elements }
+            SectionPatches { patches, of_component }
         })
         .collect()
 }
@@ -310,18 +403,23 @@ pub(crate) fn recover(mesh: &Mesh, cells: &[CellValues], stresses: &[Voigt], gp_
         // then over the section
         let target = &mut out[gp_offsets[b]..gp_offsets[b] + raw.len()];
         let zone = |es: usize| body.material_of(es);
-        for (s, patch) in section_patches(&body.section, &cell.section, &zone).iter().enumerate() {
-            let m = patch.elements.len() * gs;
-            for eb in 0..na {
-                for qa in 0..ga {
-                    for qs in 0..gs {
-                        let row = &patch.weights[qs * m..(qs + 1) * m];
-                        let mut acc = [0.0; 6];
-                        for (k, &w) in row.iter().enumerate() {
-                            let f = along[index(patch.elements[k / gs], eb, k % gs, qa)];
-                            (0..6).for_each(|c| acc[c] += w * f[c]);
+        for (s, own) in section_patches(&body.section, &cell.section, &zone).iter().enumerate() {
+            for (k, patch) in own.patches.iter().enumerate() {
+                let components: Vec<usize> = (0..6).filter(|&c| own.of_component[c] == k).collect();
+                let m = patch.elements.len() * gs;
+                for eb in 0..na {
+                    for qa in 0..ga {
+                        for qs in 0..gs {
+                            let row = &patch.weights[qs * m..(qs + 1) * m];
+                            let at = &mut target[index(s, eb, qs, qa)];
+                            for &c in &components {
+                                at[c] = row
+                                    .iter()
+                                    .enumerate()
+                                    .map(|(j, &w)| w * along[index(patch.elements[j / gs], eb, j % gs, qa)][c])
+                                    .sum();
+                            }
                         }
-                        target[index(s, eb, qs, qa)] = acc;
                     }
                 }
             }

@@ -342,17 +342,6 @@ fn is_linear(
         && interfaces.is_empty()
 }
 
-/// The warning of a model with layered bodies: no error estimate of the
-/// static solution (the per-mode estimate of a modal run is made).
-fn layered(mesh: &Mesh) -> Option<Warning> {
-    mesh.bodies.iter().any(|b| b.is_layered()).then(|| Warning {
-        key: "bodies".into(),
-        message: "layered bodies: no error estimate of the static solution (its recovery ply by ply is not yet \
-                  measured against refined runs; a modal analysis estimates each mode)"
-            .into(),
-    })
-}
-
 /// The constraint handler with the contacts' and interfaces' couplings
 /// added, every body's restraint checked against it — not in a transient
 /// analysis, whose mass holds a free body (`M/(β Δt²)` in the tangent
@@ -432,7 +421,6 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
             ),
         ));
     }
-    warnings.extend(layered(&mesh));
     let item_names = steps::ItemNames {
         indenters: indenters.iter().map(|i| i.name.as_str()).collect(),
         constraints: constraints.iter().map(|c| c.name.as_str()).collect(),

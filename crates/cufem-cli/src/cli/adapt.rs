@@ -118,7 +118,7 @@ pub(super) fn run_into(
         AdaptError::Model(e) => fail(INPUT, anyhow!(e).context("refined model")),
         AdaptError::Analysis(e @ AnalysisError::TooLarge { .. }) => fail(TOO_LARGE, e),
         AdaptError::Analysis(e) => fail(INPUT, anyhow!(e).context("analysis failed")),
-        e @ (AdaptError::Budget { .. } | AdaptError::Layered { .. }) => fail(INPUT, e),
+        e @ AdaptError::Budget { .. } => fail(INPUT, e),
     })?;
     if let Some(a) = &solution.adapt {
         if a.end == AdaptEnd::Done {

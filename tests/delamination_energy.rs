@@ -20,7 +20,13 @@ use cufem::{Model, RunOptions, Silent};
 /// (0.1 m/s: the arms' first bending period, about 0.5 ms, is 60 times
 /// shorter, so the opening is slow), 120 time steps, the crack zone meshed
 /// with 24 B4 elements over 16 mm (0.22 mm node spacing); the example's
-/// viscosity kept (without it Newton cuts the time step back twice as often).
+/// viscosity kept (without it Newton cuts the time step back twice as often);
+/// the interface forces averaged as every force (`interface_forces =
+/// "newmark"`: the ledger's trapezoidal work is what is compared with the
+/// law here; with the end-of-step impulse, the default, the crack grew
+/// 6.33 mm against 4.99 mm, the ledger's delamination measured 0.1615 J
+/// against the law's 0.1626 J, and the viscous over-stress's work
+/// `viscous_j` grew to 0.025 J: a known limit in docs/limitations.md).
 fn transient_dcb() -> String {
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/dcb.toml")).unwrap();
     let edits = [
@@ -33,7 +39,7 @@ fn transient_dcb() -> String {
         ),
         (
             "[solver]\nincrements = 200",
-            "[analysis]\ntype = \"transient\"\nduration = 0.03\n\n[solver]\nincrements = 120",
+            "[analysis]\ntype = \"transient\"\nduration = 0.03\ninterface_forces = \"newmark\"\n\n[solver]\nincrements = 120",
         ),
     ];
     edits.iter().fold(text, |t, (from, to)| {

@@ -20,7 +20,13 @@ use cufem::{Model, RunOptions, Silent};
 /// (0.1 m/s: the arms' first bending period, about 0.5 ms, is 60 times
 /// shorter, so the opening is slow), 120 time steps, the crack zone meshed
 /// with 24 B4 elements over 16 mm (0.22 mm node spacing); the example's
-/// viscosity kept (without it Newton cuts the time step back twice as often).
+/// viscosity kept (without it Newton cuts the time step back twice as often);
+/// the interface forces averaged as every force (`interface_forces =
+/// "newmark"`: the ledger's trapezoidal work is what is compared with the
+/// law here; with the end-of-step impulse, the default, the crack grew
+/// 6.33 mm against 4.99 mm, the ledger's delamination measured 0.1615 J
+/// against the law's 0.1626 J, and the viscous over-stress's work
+/// `viscous_j` grew to 0.025 J: a known limit in docs/limitations.md).
 fn transient_dcb() -> String {
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/dcb.toml")).unwrap();
     let edits = [
@@ -33,7 +39,7 @@ fn transient_dcb() -> String {
         ),
         (
             "[solver]\nincrements = 200",
-            "[analysis]\ntype = \"transient\"\nduration = 0.03\n\n[solver]\nincrements = 120",
+            "[analysis]\ntype = \"transient\"\nduration = 0.03\ninterface_forces = \"newmark\"\n\n[solver]\nincrements = 120",
         ),
     ];
     edits.iter().fold(text, |t, (from, to)| {
@@ -139,10 +145,13 @@ duration = 1e-3
 increments = 40
 "#;
 
-/// The pulled stack in `steps` time steps: (the law's dissipation, the
+/// The pulled stack in `steps` time steps, its interface forces integrated
+/// by `forces` (`analysis.interface_forces`): (the law's dissipation, the
 /// ledger's, the largest |balance| over the run, the work of the supports).
-fn pulled_stack(steps: usize) -> (f64, f64, f64, f64) {
-    let text = PULLED_STACK.replace("increments = 40", &format!("increments = {steps}"));
+fn pulled_stack(steps: usize, forces: &str) -> (f64, f64, f64, f64) {
+    let text = PULLED_STACK
+        .replace("increments = 40", &format!("increments = {steps}"))
+        .replace("duration = 1e-3", &format!("duration = 1e-3\ninterface_forces = \"{forces}\""));
     let model = Model::parse(&text).unwrap();
     let solution = cufem::run(&model, &RunOptions::default(), &mut Silent).unwrap();
     assert!(solution.failure.is_none(), "{:?}", solution.failure);
@@ -160,22 +169,124 @@ fn pulled_stack(steps: usize) -> (f64, f64, f64, f64) {
     (delamination.dissipated_j, end.delamination, balance, end.supports)
 }
 
-/// The law's dissipation is G_Ic A to round-off; the ledger's path integral
-/// of the interface forces (Newmark's trapezoidal rule, as every work term)
+/// The law's dissipation is G_Ic A to round-off; with Newmark's average of
+/// the interface forces (`interface_forces = "newmark"`) the ledger's path
+/// integral of them (the trapezoidal rule, as every work term)
 /// overestimates it where a step jumps over the softening branch (the whole
 /// interface fails within one step here): the gap shrinks with the step.
 #[test]
 fn a_fully_opened_interface_dissipates_its_toughness_times_its_area() {
     let ga = 100.0 * 0.004 * 0.02;
-    let (law, coarse, balance, work) = pulled_stack(40);
+    let (law, coarse, balance, work) = pulled_stack(40, "newmark");
     assert!((law / ga - 1.0).abs() < 1e-6, "law's dissipation {law} J, G_Ic A = {ga} J");
     assert!(balance < 1e-6 * work, "the balance is off by {balance} J");
-    let (law_fine, fine, _, _) = pulled_stack(80);
+    let (law_fine, fine, _, _) = pulled_stack(80, "newmark");
     assert!((law_fine / ga - 1.0).abs() < 1e-6, "law's dissipation {law_fine} J, G_Ic A = {ga} J");
     let (gap_coarse, gap_fine) = (coarse / ga - 1.0, fine / ga - 1.0);
     println!("ledger − G_Ic A: {:.2} % (40 steps), {:.2} % (80 steps)", 100.0 * gap_coarse, 100.0 * gap_fine);
     assert!(gap_coarse.abs() < 0.05, "the ledger's delamination is {:.2} % off G_Ic A", 100.0 * gap_coarse);
     assert!(gap_fine.abs() < 0.7 * gap_coarse.abs(), "halving the step took the gap from {gap_coarse} to {gap_fine}");
+}
+
+/// With the interfaces' impulse at the end of the step (the default,
+/// `dynamics::impulse`) a point that passes its whole softening branch
+/// within one step does the work of its traction at the step's end, zero:
+/// the forces remove only the energy it held, and the plies keep as motion
+/// what the law books as dissipated. The pulled stack fails within one
+/// step at either step size (its plies' through-thickness period, about
+/// 4 µs, is shorter than either step), so the ledger's delamination stays
+/// at the same share of G_Ic A (measured 0.372 with 40 steps, 0.374 with
+/// 80): a known limit (docs/limitations.md), held from both sides.
+#[test]
+fn the_end_of_step_impulse_misses_the_toughness_of_a_point_that_fails_within_a_step() {
+    let ga = 100.0 * 0.004 * 0.02;
+    for steps in [40, 80] {
+        let (law, ledger, balance, work) = pulled_stack(steps, "implicit");
+        println!("{steps} steps, implicit: ledger's delamination {:.3} G_Ic A", ledger / ga);
+        assert!((law / ga - 1.0).abs() < 1e-6, "law's dissipation {law} J, G_Ic A = {ga} J");
+        assert!(balance < 1e-6 * work, "the balance is off by {balance} J");
+        assert!((0.3..0.45).contains(&(ledger / ga)), "the ledger's delamination is {} G_Ic A", ledger / ga);
+    }
+}
+
+/// The pulled stack lifted (40 steps of 25 µs: every point fails), brought
+/// back to the start in as long (the separated plies, ringing, strike each
+/// other again and again) and held there as long: (each converged step's
+/// energies, the law's dissipation, the Newton iterations of the hold).
+fn closed_stack(forces: &str) -> (Vec<cufem::dynamics::energy::EnergyRow>, f64, usize) {
+    let steps = "\n[[steps]]\nname = \"lift\"\nfactor = 1.0\n\n[[steps]]\nname = \"close\"\nfactor = 0.0\n\n\
+                 [[steps]]\nname = \"hold\"\nfactor = 0.0\n";
+    let text = format!("{PULLED_STACK}{steps}")
+        .replace("duration = 1e-3", &format!("duration = 1e-3\ninterface_forces = \"{forces}\""));
+    let model = Model::parse(&text).unwrap();
+    let solution = cufem::run(&model, &RunOptions::default(), &mut Silent).unwrap();
+    assert!(solution.failure.is_none(), "{:?}", solution.failure);
+    let law = solution.delamination.as_ref().unwrap().summary().dissipated_j;
+    let hold = solution.history.iter().filter(|h| h.lambda > 2.0).map(|h| h.iterations).sum();
+    (solution.energy.unwrap(), law, hold)
+}
+
+/// The energy the plies and the interface hold, `T + U + Σ A ψ`.
+fn mechanical(r: &cufem::dynamics::energy::EnergyRow) -> f64 {
+    r.kinetic + r.elastic + (r.interfaces - r.delamination)
+}
+
+/// Issue 48 (a): separated plies that close again. With Newmark's average
+/// of the interface forces the full compression penalty, engaging and
+/// letting go within a step (ω Δt ≈ 200), does more work on opening than
+/// on closing: in the hold, where the supports do no work, the plies'
+/// energy grows (measured 30-fold over its smallest value) and the
+/// ledger's delamination falls (by 1.8 % of G_Ic A at worst). With the
+/// impulse at the end of the step (`dynamics::impulse`: the law's energy
+/// at fixed damage is convex in δ) no step creates energy: the ledger's
+/// delamination never falls and the plies' energy never grows in the hold.
+/// The ledger then holds the law's G_Ic A and the motion the plies lost in
+/// their (inelastic, under the unresolved penalty) impacts, at most the
+/// supports' work: measured 1.083 G_Ic A.
+#[test]
+fn separated_plies_that_close_again_create_no_energy_with_the_end_of_step_impulse() {
+    let ga = 100.0 * 0.004 * 0.02;
+    // Newmark's average: energy created (the old behaviour)
+    let (rows, _, _) = closed_stack("newmark");
+    let fall = rows.windows(2).map(|w| w[1].delamination - w[0].delamination).fold(0.0, f64::min);
+    let hold: Vec<f64> = rows.iter().filter(|r| r.time > 2.0e-3 * (1.0 + 1e-9)).map(mechanical).collect();
+    let (low, high) = hold.iter().fold((f64::INFINITY, 0.0f64), |(l, h), &e| (l.min(e), h.max(e)));
+    println!(
+        "newmark: delamination falls by {:.4} G_Ic A at worst; in the hold the plies' energy grows {:.1}-fold",
+        -fall / ga,
+        high / low
+    );
+    assert!(fall < -0.01 * ga, "the delamination fell by {fall} J at worst");
+    assert!(high > 10.0 * low, "the plies' energy in the hold stays within {low} .. {high} J");
+    // the impulse at the end of the step: none
+    let (rows, law, iterations) = closed_stack("implicit");
+    let work = rows.last().unwrap().supports;
+    let steps = rows.iter().filter(|r| r.time > 2.0e-3 * (1.0 + 1e-9)).count();
+    for w in rows.windows(2) {
+        let step = w[1].delamination - w[0].delamination;
+        assert!(step >= -1e-12 * work, "the delamination fell by {step} J at t = {} s", w[1].time);
+        assert!(w[1].balance.abs() < 1e-6 * work, "balance {} J at t = {} s", w[1].balance, w[1].time);
+        if w[0].time > 2.0e-3 * (1.0 + 1e-9) {
+            let grown = mechanical(&w[1]) - mechanical(&w[0]);
+            assert!(grown <= 1e-12 * work, "the plies' energy grew by {grown} J at t = {} s in the hold", w[1].time);
+        }
+    }
+    let ledger = rows.last().unwrap().delamination;
+    println!(
+        "implicit: ledger's delamination {:.4} G_Ic A, law's {:.4}, supports' work {:.4}; {:.2} Newton iterations \
+         per step in the hold",
+        ledger / ga,
+        law / ga,
+        work / ga,
+        iterations as f64 / steps as f64
+    );
+    assert!((law / ga - 1.0).abs() < 1e-6, "law's dissipation {law} J");
+    assert!((1.0..1.15).contains(&(ledger / law)), "ledger {ledger} J against the law's {law} J");
+    // the tangent is the algorithmic force's (the interfaces' stiffness
+    // over γ): Newton converges in the hold in measured 2.73 iterations per
+    // step (points opening and closing between iterations); without the
+    // 1/γ it does not converge at all
+    assert!(iterations <= 3 * steps, "{iterations} Newton iterations over {steps} steps in the hold");
 }
 
 /// In a transient run the interfaces' viscosity is in seconds, as the ply
@@ -198,4 +309,20 @@ fn the_interfaces_viscosity_is_in_seconds_in_time() {
     let work = rows.last().unwrap().supports;
     let balance = rows.iter().map(|r| r.balance.abs()).fold(0.0, f64::max);
     assert!(balance < 1e-6 * work, "the balance is off by {balance} J of {work} J");
+}
+
+/// `analysis.interface_forces` is refused outside a transient analysis and
+/// for a word it does not know, by key (src/input/validate.rs style).
+#[test]
+fn interface_forces_is_refused_by_key() {
+    let transient = PULLED_STACK.replace("duration = 1e-3", "duration = 1e-3\ninterface_forces = \"newmark\"");
+    assert!(Model::parse(&transient).is_ok());
+    let fixed = transient.replace("type = \"transient\"\nduration = 1e-3\n", "");
+    let err = Model::parse(&fixed).unwrap_err().to_string();
+    println!("{err}");
+    assert!(err.contains("analysis.interface_forces") && err.contains("transient"), "{err}");
+    let wrong = PULLED_STACK.replace("duration = 1e-3", "duration = 1e-3\ninterface_forces = \"average\"");
+    let err = Model::parse(&wrong).unwrap_err().to_string();
+    println!("{err}");
+    assert!(err.contains("interface_forces") && err.contains("implicit") && err.contains("newmark"), "{err}");
 }

@@ -167,6 +167,8 @@ impl<'m> Structure<'m> {
             None => None,
         };
         let massive = inertia.as_ref().map(|i| i.massive(&assembler.pattern));
+        let impulse =
+            transient::impulse(&loading, !discretisation.interfaces.is_empty(), settings.transient, mesh.n_dofs());
         let parts = Parts {
             elements,
             loads: Loads::new(loading, mesh.n_dofs()),
@@ -174,7 +176,7 @@ impl<'m> Structure<'m> {
             interfaces: crate::interfaces::Interfaces::new(discretisation.interfaces, mesh.n_dofs())
                 .in_time(settings.transient),
             inertia,
-            impulse: transient::impulse(&loading, settings.transient, mesh.n_dofs()),
+            impulse,
             time_error: massive.map(crate::dynamics::TimeError::new),
         };
         let (reuse, friction) = (settings.solver.reuse, loading.has_friction());

@@ -108,6 +108,8 @@ pub enum Phase {
     Loads,
     /// Contact search and penalty terms.
     Contact,
+    /// Cohesive interfaces between plies (counted with the elements).
+    Interfaces,
 }
 
 /// A contribution's nodal forces of the last evaluation.

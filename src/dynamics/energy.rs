@@ -5,7 +5,11 @@
 //! internal work `W_int` (strain energy plus plastic dissipation), the
 //! damping dissipation `D` (`C v`), the work of the loads `W_ext`, of the
 //! contacts `W_c` and of the supports `W_s` (reactions on prescribed
-//! motion), and the work of the cohesive interfaces' tractions `W_i`. The
+//! motion), and the work of the cohesive interfaces' tractions `W_i`
+//! (the contacts' and interfaces' with the algorithmic force `f'` the
+//! residual takes under their end-of-step impulse, `dynamics::impulse`:
+//! with the trapezoidal rule their work per step is then `f(u_(n+1)) · Δu`,
+//! and an interface's work never falls short of the energy it holds). The
 //! kinetic energy is `T = ½ vᵀ M v`; the internal work splits into the
 //! elastic strain energy held, `½ ∫ σᵀ C⁻¹ σ dV` (with the damaged
 //! compliance at ply-damage points), the energy ply damage dissipated per

@@ -48,6 +48,41 @@
 //! `(γ − 1)/γ` per step with `γ > ½`): the part of the last closed step's
 //! impulse Newmark's average still owes. `analysis.contact_forces =
 //! "newmark"` averages the contact forces like every other force.
+//!
+//! **Cohesive interfaces** (`analysis.interface_forces = "implicit"`, the
+//! default of a transient analysis with interfaces) take the same impulse.
+//! At a fixed damage `d` a point's law has the potential (`crate::materials::cohesive`,
+//! `δ3` the opening, `δ_s` the slip)
+//!
+//! ```text
+//! ψ(δ, d) = ½ K ⟨−δ3⟩² + ½ (1 − d) K (⟨δ3⟩² + |δ_s|²),    t = ∂ψ/∂δ,
+//! ```
+//!
+//! convex in `δ` (a closing interface carries the full penalty at any
+//! damage) and non-increasing in `d`, which never decreases. The
+//! interface's work over a step with the impulse at its end is then
+//!
+//! ```text
+//! t(δ_(n+1), d_(n+1)) · Δδ ≥ ψ(δ_(n+1), d_(n+1)) − ψ(δ_n, d_(n+1))
+//!                          ≥ ψ(δ_(n+1), d_(n+1)) − ψ(δ_n, d_n)
+//! ```
+//!
+//! (convexity, then `d_(n+1) ≥ d_n`): **the interfaces cannot create
+//! energy**, and the energy ledger's `delamination` — their work less the
+//! energy they hold, `ψ` — never decreases (`dynamics::energy`, which
+//! takes their work with `f'`). With Newmark's average a separated
+//! interface that closes within a step engages its full compression
+//! penalty, far stiffer than the step resolves, and its trapezoidal work
+//! falls short of the energy it stores, then gives more back: separated
+//! plies that close again create energy (`"newmark"`, kept to show it,
+//! tests/delamination_energy.rs). The price is the Bregman distance
+//! `ψ(δ_n) − ψ(δ_(n+1)) − t_(n+1) · (δ_n − δ_(n+1))` per point and step,
+//! `½ K |Δδ|²` on a branch, counted as dissipation by the ledger: first
+//! order in the step for the interface's own vibration. The Duvaut–Lions
+//! viscosity keeps this: the traction is the secant of the viscous damage
+//! `d_v`, which never decreases either.
+
+use crate::assembly::Phase;
 
 /// How a transient analysis integrates its contact forces (module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -59,34 +94,47 @@ pub enum ContactForces {
     Newmark,
 }
 
-/// The contacts' algorithmic force `f'` of the present step and of the
-/// last converged one (module docs).
+/// How a transient analysis integrates the forces of its cohesive
+/// interfaces (`analysis.interface_forces`, module docs).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum InterfaceForces {
+    /// The interfaces' impulse at the end of the step (cannot create
+    /// energy).
+    #[default]
+    Implicit,
+    /// Newmark's average of the forces at both ends of the step.
+    Newmark,
+}
+
+/// The algorithmic force `f'` of one kind of non-smooth force (the
+/// contacts', or the interfaces') in the present step and in the last
+/// converged one (module docs).
 #[derive(Debug, Clone)]
-pub(crate) struct ContactImpulse {
+pub(crate) struct Impulse {
     gamma: f64,
     committed: Vec<f64>,
     force: Vec<f64>,
 }
 
-impl ContactImpulse {
-    /// No contact force yet, for Newmark's `γ`, `n` DOFs.
+impl Impulse {
+    /// No force yet, for Newmark's `γ`, `n` DOFs.
     pub fn new(gamma: f64, n: usize) -> Self {
         Self { gamma, committed: vec![0.0; n], force: vec![0.0; n] }
     }
 
-    /// The factor `1/γ` on the contacts' stiffness.
+    /// The factor `1/γ` on the stiffness of the forces.
     pub fn weight(&self) -> f64 {
         1.0 / self.gamma
     }
 
-    /// `f'` from the contacts' physical force `f_c` at the end of the step.
+    /// `f'` from the physical force `f` at the end of the step.
     pub fn update(&mut self, physical: &[f64]) {
         for ((f, &p), &c) in self.force.iter_mut().zip(physical).zip(&self.committed) {
             *f = algorithmic(self.gamma, p, c);
         }
     }
 
-    /// `f'` of the last [`ContactImpulse::update`].
+    /// `f'` of the last [`Impulse::update`].
     pub fn force(&self) -> &[f64] {
         &self.force
     }
@@ -94,6 +142,48 @@ impl ContactImpulse {
     /// The step converged: its `f'` is the committed one.
     pub fn commit(&mut self) {
         self.committed.clone_from(&self.force);
+    }
+}
+
+/// The end-of-step impulses of a transient analysis: of its contacts
+/// (`analysis.contact_forces = "implicit"`, with contacts) and of its
+/// cohesive interfaces (`analysis.interface_forces = "implicit"`, with
+/// interfaces); neither in a static one. Not a contribution: each replaces
+/// the force of the contributions of its [`Phase`] and weights their
+/// stiffness by `1/γ`.
+#[derive(Debug, Clone, Default)]
+pub(crate) struct Impulses {
+    /// The contacts' ([`Phase::Contact`]).
+    pub contacts: Option<Impulse>,
+    /// The interfaces' ([`Phase::Interfaces`]).
+    pub interfaces: Option<Impulse>,
+}
+
+impl Impulses {
+    /// The impulse that replaces the forces of the contributions of `phase`.
+    pub fn of(&self, phase: Phase) -> Option<&Impulse> {
+        match phase {
+            Phase::Contact => self.contacts.as_ref(),
+            Phase::Interfaces => self.interfaces.as_ref(),
+            Phase::Elements | Phase::Loads => None,
+        }
+    }
+
+    /// The factor on the stiffness of the contributions of `phase`: `1/γ`
+    /// under an impulse, else 1.
+    pub fn weight(&self, phase: Phase) -> f64 {
+        self.of(phase).map_or(1.0, Impulse::weight)
+    }
+
+    /// The force the residual and the energy balance take for a
+    /// contribution of `phase` whose physical force is `physical`.
+    pub fn force<'a>(&'a self, phase: Phase, physical: &'a [f64]) -> &'a [f64] {
+        self.of(phase).map_or(physical, Impulse::force)
+    }
+
+    /// The step converged: every `f'` is committed.
+    pub fn commit(&mut self) {
+        self.contacts.iter_mut().chain(self.interfaces.iter_mut()).for_each(Impulse::commit);
     }
 }
 

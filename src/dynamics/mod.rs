@@ -23,8 +23,8 @@ pub mod redistribution;
 pub mod settings;
 pub(crate) mod time_error;
 
-pub use impulse::ContactForces;
-pub(crate) use impulse::ContactImpulse;
+pub(crate) use impulse::Impulses;
+pub use impulse::{ContactForces, InterfaceForces};
 pub(crate) use inertia::Inertia;
 
 pub use mass::{MassError, MassKind};

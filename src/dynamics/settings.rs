@@ -1,6 +1,6 @@
 //! The settings of a transient analysis (validated by `setup::transient`).
 
-use super::{ContactForces, ContactMass, MassKind};
+use super::{ContactForces, ContactMass, InterfaceForces, MassKind};
 
 /// The settings of a transient analysis.
 #[derive(Debug, Clone, PartialEq)]
@@ -27,6 +27,9 @@ pub struct TransientSettings {
     /// `analysis.contact_mass`: the contact nodes' mass moved to their
     /// neighbours, or kept (`dynamics::redistribution`).
     pub contact_mass: ContactMass,
+    /// `analysis.interface_forces`: the cohesive interfaces' impulse at the
+    /// end of the step, or Newmark's average (`dynamics::impulse`).
+    pub interface_forces: InterfaceForces,
 }
 
 impl TransientSettings {

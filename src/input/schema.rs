@@ -182,6 +182,10 @@ pub(crate) struct AnalysisFile {
     /// nodes carry no mass) or `"kept"`.
     #[schemars(transform = defaults::schema(ContactMassFile::default()))]
     pub contact_mass: Option<ContactMassFile>,
+    /// Transient: `interface_forces = "implicit"` (default: the cohesive
+    /// interfaces' impulse at the end of the step) or `"newmark"`.
+    #[schemars(transform = defaults::schema(InterfaceForcesFile::default()))]
+    pub interface_forces: Option<InterfaceForcesFile>,
     /// A geometric imperfection from a buckling mode (nonlinear geometry).
     pub imperfection: Option<ImperfectionFile>,
 }

@@ -266,7 +266,7 @@ fn regularise(
 
 impl Contribution for Interfaces<'_> {
     fn phase(&self) -> Phase {
-        Phase::Elements
+        Phase::Interfaces
     }
 
     /// In the cautious retry of a failed increment each point takes its

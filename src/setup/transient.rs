@@ -31,6 +31,8 @@ fn transient_key(file: &AnalysisFile) -> Option<&'static str> {
         Some("analysis.contact_forces")
     } else if file.contact_mass.is_some() {
         Some("analysis.contact_mass")
+    } else if file.interface_forces.is_some() {
+        Some("analysis.interface_forces")
     } else {
         None
     }
@@ -172,6 +174,10 @@ fn settings(
         contact_mass: match file.contact_mass.unwrap_or_default() {
             crate::input::schema::ContactMassFile::Kept => crate::dynamics::ContactMass::Kept,
             crate::input::schema::ContactMassFile::Redistributed => crate::dynamics::ContactMass::Redistributed,
+        },
+        interface_forces: match file.interface_forces.unwrap_or_default() {
+            crate::input::schema::InterfaceForcesFile::Newmark => crate::dynamics::InterfaceForces::Newmark,
+            crate::input::schema::InterfaceForcesFile::Implicit => crate::dynamics::InterfaceForces::Implicit,
         },
     }))
 }

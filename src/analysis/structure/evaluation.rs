@@ -31,17 +31,26 @@ impl Structure<'_> {
             let at = self.state.at();
             let mut tangent = self.system.tangent();
             tangent.wanted = wanted;
-            let weight = self.parts.impulse.as_ref().map_or(1.0, |i| i.weight());
+            let impulse = &self.parts.impulse;
+            let weights = [Phase::Contact, Phase::Interfaces].map(|p| impulse.weight(p));
             for part in self.parts.each_mut() {
                 let t = Instant::now();
-                tangent.weight = if part.phase() == Phase::Contact { weight } else { 1.0 };
+                tangent.weight = match part.phase() {
+                    Phase::Contact => weights[0],
+                    Phase::Interfaces => weights[1],
+                    Phase::Elements | Phase::Loads => 1.0,
+                };
                 changes += part.evaluate(&at, &mut tangent);
                 elapsed[usize::from(part.phase() == Phase::Contact)] += t.elapsed();
             }
         }
         self.report.timings.add_evaluation(elapsed, &self.parts.elements.last);
-        if let Some(impulse) = self.parts.impulse.as_mut() {
-            impulse.update(self.parts.contacts.forces().values);
+        let parts = &mut self.parts;
+        if let Some(impulse) = parts.impulse.contacts.as_mut() {
+            impulse.update(parts.contacts.forces().values);
+        }
+        if let Some(impulse) = parts.impulse.interfaces.as_mut() {
+            impulse.update(parts.interfaces.forces().values);
         }
         // their forces summed into the residual, per DOF
         let imbalance = &mut self.system.imbalance;
@@ -49,9 +58,7 @@ impl Structure<'_> {
         let mut scale: f64 = 0.0;
         for part in self.parts.each() {
             let mut f = part.forces();
-            if let (Phase::Contact, Some(impulse)) = (part.phase(), &self.parts.impulse) {
-                f.values = impulse.force();
-            }
+            f.values = self.parts.impulse.force(part.phase(), f.values);
             let mut size2 = 0.0;
             for (r, &v) in imbalance.iter_mut().zip(f.values) {
                 *r += f.sign * v;

@@ -7,7 +7,7 @@ use super::elements::Elements;
 use super::loads::Loads;
 use crate::assembly::Contribution;
 use crate::contact::Contacts;
-use crate::dynamics::{ContactImpulse, Inertia, TimeError};
+use crate::dynamics::{Impulses, Inertia, TimeError};
 use crate::interfaces::Interfaces;
 use crate::size::MemoryEstimate;
 
@@ -25,11 +25,11 @@ pub(crate) struct Parts<'m> {
     pub interfaces: Interfaces<'m>,
     /// Inertia and damping (`analysis.type = "transient"`).
     pub inertia: Option<Inertia>,
-    /// The contacts' end-of-step impulse (a transient analysis with
-    /// contacts and `analysis.contact_forces = "implicit"`): not a
-    /// contribution, it replaces the contacts' force and weights their
-    /// stiffness.
-    pub impulse: Option<ContactImpulse>,
+    /// The end-of-step impulses of the contacts and the interfaces (a
+    /// transient analysis with them and `analysis.contact_forces`,
+    /// `analysis.interface_forces = "implicit"`): not a contribution, each
+    /// replaces its contributions' force and weights their stiffness.
+    pub impulse: Impulses,
     /// The time steps' error estimate (a transient analysis): not a
     /// contribution, it measures the converged step for the step control
     /// (`solver.step_control.time_error`).

@@ -70,9 +70,7 @@ impl Incremental for Structure<'_> {
     fn commit(&mut self) {
         let impactors = self.force.impactor_energy();
         transient::account_energy(&mut self.parts, &self.state, (&self.system, &self.elimination), impactors);
-        if let Some(impulse) = self.parts.impulse.as_mut() {
-            impulse.commit();
-        }
+        self.parts.impulse.commit();
         if self.inertia_every_increment() {
             // the tangent of the last evaluation is that of the converged
             // state: its inertia (on the free DOFs, as it is solved; the

@@ -56,21 +56,30 @@ pub(super) fn inertia(
     Ok(inertia)
 }
 
-/// The contacts' end-of-step impulse of a transient model with contacts
-/// (`analysis.contact_forces = "implicit"`, `dynamics::impulse`).
+/// The end-of-step impulses of a transient model (`dynamics::impulse`): of
+/// its contacts (`analysis.contact_forces = "implicit"`) and of its
+/// cohesive interfaces (`analysis.interface_forces = "implicit"`), where it
+/// has them; none in a static model.
 pub(super) fn impulse(
     loading: &Loading<'_>,
+    interfaces: bool,
     settings: Option<&crate::dynamics::TransientSettings>,
     n_dofs: usize,
-) -> Option<crate::dynamics::ContactImpulse> {
-    let settings = settings?;
-    (loading.has_contacts() && settings.contact_forces == crate::dynamics::ContactForces::Implicit)
-        .then(|| crate::dynamics::ContactImpulse::new(settings.gamma, n_dofs))
+) -> crate::dynamics::Impulses {
+    use crate::dynamics::impulse::Impulse;
+    let Some(settings) = settings else { return Default::default() };
+    crate::dynamics::Impulses {
+        contacts: (loading.has_contacts() && settings.contact_forces == crate::dynamics::ContactForces::Implicit)
+            .then(|| Impulse::new(settings.gamma, n_dofs)),
+        interfaces: (interfaces && settings.interface_forces == crate::dynamics::InterfaceForces::Implicit)
+            .then(|| Impulse::new(settings.gamma, n_dofs)),
+    }
 }
 
 /// The converged step's work terms into the energy balance of a
 /// transient analysis (none in a static one): the parts' forces (the
-/// contacts' algorithmic force where the impulse replaces theirs, and
+/// contacts' and interfaces' algorithmic force where an impulse replaces
+/// theirs, and
 /// `impactors`, the impactors' kinetic energy), and the reactions at
 /// constrained and prescribed DOFs.
 pub(super) fn account_energy(
@@ -89,7 +98,9 @@ pub(super) fn account_energy(
             if e == crate::assembly::NO_EQ || elimination.is_prescribed(e) { system.imbalance[d] } else { 0.0 }
         })
         .collect();
-    let contact = impulse.as_ref().map_or_else(|| contacts.forces().values, |i| i.force());
+    use crate::assembly::Phase;
+    let contact = impulse.force(Phase::Contact, contacts.forces().values);
+    let interface = impulse.force(Phase::Interfaces, interfaces.forces().values);
     let d = elements.discretisation;
     let held = crate::dynamics::energy::Held {
         elastic: crate::post::estimate::elastic_energy(
@@ -105,7 +116,7 @@ pub(super) fn account_energy(
     inertia.account(
         (state.lambda, held, impactors),
         &du,
-        [elements.forces().values, loads.forces().values, contact, &supports, interfaces.forces().values],
+        [elements.forces().values, loads.forces().values, contact, &supports, interface],
         eq,
         &system.assembler.pattern,
     );

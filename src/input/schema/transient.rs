@@ -18,6 +18,18 @@ pub(crate) enum ContactForcesFile {
     Newmark,
 }
 
+/// `analysis.interface_forces`.
+#[derive(Debug, Clone, Copy, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum InterfaceForcesFile {
+    /// The cohesive interfaces' impulse at the end of the step (the
+    /// default).
+    #[default]
+    Implicit,
+    /// Newmark's average of the forces at both ends.
+    Newmark,
+}
+
 /// `analysis.newmark`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]

@@ -118,6 +118,35 @@ pub fn intervals(mesh: &Mesh, plan: &MeshPlan, marked: &[usize]) -> Vec<BodyMark
     marks
 }
 
+/// A parametric section is also doubled when the fit over the section
+/// holds most of its marked elements' estimate (`Σ ‖σ* − σ_along‖² ≥ ½ Σ
+/// η²` over them, [`crate::post::ErrorEstimate::section`]): the error lies
+/// across the section wherever the marked elements are (a laminate's plies
+/// one element thick, the walls of a profile), which refining the axis
+/// alone leaves.
+pub fn across_sections(
+    mesh: &Mesh,
+    plan: &MeshPlan,
+    marked: &[usize],
+    (eta, section): (&[f64], &[f64]),
+    marks: &mut [BodyMarks],
+) {
+    if section.len() != eta.len() {
+        return;
+    }
+    let mut sums = vec![(0.0, 0.0); marks.len()];
+    for &e in marked {
+        let (b, _) = mesh.body_of_element(e);
+        sums[b].0 += section[e] * section[e];
+        sums[b].1 += eta[e] * eta[e];
+    }
+    for ((m, p), (s2, t2)) in marks.iter_mut().zip(&plan.bodies).zip(sums) {
+        if matches!(p.section, SectionPlan::Doubled { .. }) && t2 > 0.0 && s2 >= 0.5 * t2 {
+            m.section = true;
+        }
+    }
+}
+
 /// The plan refined at `marks`: marked axis and grid intervals halved, a
 /// marked parametric section doubled, a fixed section kept.
 pub fn refine(plan: &MeshPlan, marks: &[BodyMarks]) -> MeshPlan {

@@ -215,7 +215,9 @@ fn next_model(
         return Ok(Err("no error estimate to refine by".into()));
     };
     let marked = mark::dorfler(&estimate.element, settings.fraction);
-    let marks = mark::intervals(&model.mesh, &model.plan, &marked);
+    let mut marks = mark::intervals(&model.mesh, &model.plan, &marked);
+    let parts = (&estimate.element[..], &estimate.section[..]);
+    mark::across_sections(&model.mesh, &model.plan, &marked, parts, &mut marks);
     let plan: MeshPlan = mark::refine(&model.plan, &marks);
     if plan == model.plan {
         return Ok(Err("nothing left to refine (the marked elements' sections are kept as given)".into()));

@@ -242,8 +242,11 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
     // show the L2 projection if the model asks for it
     {
         let (mesh, cells, stresses, offsets) = (&model.mesh, &model.cells, &solution.stresses, &solution.gp_offsets);
-        let recovered = crate::post::spr::recover(mesh, cells, stresses, offsets);
-        let estimate = crate::post::estimate::estimate(mesh, cells, &model.materials, stresses, offsets, &recovered);
+        let (recovered, along) = crate::post::spr::recover_stages(mesh, cells, stresses, offsets);
+        let mut estimate =
+            crate::post::estimate::estimate(mesh, cells, &model.materials, stresses, offsets, &recovered);
+        let stages = (&recovered[..], &along[..]);
+        estimate.section = crate::post::estimate::section_parts(mesh, cells, &model.materials, offsets, stages);
         solution.error_estimate = Some(estimate);
     }
     if model.output.recovery == crate::input::Recovery::Projection {

@@ -39,6 +39,12 @@ pub struct ErrorEstimate {
     pub error: f64,
     /// `‖σ_h‖` in the energy norm, √J.
     pub energy: f64,
+    /// Per element, the part of the recovery the fit over the section
+    /// made (`‖σ* − σ_along‖_e`, [`super::spr::recover_stages`]), √J: where
+    /// it holds most of `η_e` the error lies across the section rather than
+    /// along the axis (the direction `--adapt` refines). Empty when not
+    /// computed (the modes' estimates).
+    pub section: Vec<f64>,
 }
 
 impl ErrorEstimate {
@@ -166,6 +172,23 @@ pub fn estimate(
     out
 }
 
+/// `‖σ* − σ_along‖_e` per element (global element index), √J: the
+/// section stage's part of the recovery ([`ErrorEstimate::section`]).
+pub(crate) fn section_parts(
+    mesh: &Mesh,
+    cells: &[CellValues],
+    materials: &[Material],
+    gp_offsets: &[usize],
+    (recovered, along): (&[Voigt], &[Voigt]),
+) -> Vec<f64> {
+    let mut out = vec![0.0; mesh.n_elements()];
+    each_point(mesh, cells, materials, gp_offsets, |e, g, w, m| {
+        let d: Voigt = std::array::from_fn(|k| recovered[g][k] - along[g][k]);
+        out[e] += w * energy(&d, m);
+    });
+    out.iter().map(|v| v.max(0.0).sqrt()).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -185,7 +208,7 @@ mod tests {
 
     #[test]
     fn relative_and_largest() {
-        let est = ErrorEstimate { element: vec![3.0, 4.0, 0.0], error: 5.0, energy: 12.0 };
+        let est = ErrorEstimate { element: vec![3.0, 4.0, 0.0], error: 5.0, energy: 12.0, section: Vec::new() };
         assert!((est.relative() - 5.0 / 13.0).abs() < 1e-15);
         assert!((est.relative_element(1) - 4.0 / 13.0).abs() < 1e-15);
         assert_eq!(est.largest(2), vec![(1, 16.0 / 25.0), (0, 9.0 / 25.0)]);

@@ -372,7 +372,20 @@ fn smoothest(
 /// of `stresses`: body `b` from `gp_offsets[b]`, element-major, axis point
 /// outer, section point inner).
 pub(crate) fn recover(mesh: &Mesh, cells: &[CellValues], stresses: &[Voigt], gp_offsets: &[usize]) -> Vec<Voigt> {
+    recover_stages(mesh, cells, stresses, gp_offsets).0
+}
+
+/// [`recover`]'s `σ*` and its first stage, the fit along the axis alone
+/// (the same layout): `σ* − σ_along` is what the fit over the section
+/// adds, the error the estimate finds across the section.
+pub(crate) fn recover_stages(
+    mesh: &Mesh,
+    cells: &[CellValues],
+    stresses: &[Voigt],
+    gp_offsets: &[usize],
+) -> (Vec<Voigt>, Vec<Voigt>) {
     let mut out = vec![[0.0; 6]; stresses.len()];
+    let mut first = vec![[0.0; 6]; stresses.len()];
     for (b, body) in mesh.bodies.iter().enumerate() {
         let cell = &cells[b];
         let (gs, ga) = (cell.section.n_gp, cell.axis.n_gp);
@@ -400,6 +413,7 @@ pub(crate) fn recover(mesh: &Mesh, cells: &[CellValues], stresses: &[Voigt], gp_
                 }
             }
         }
+        first[gp_offsets[b]..gp_offsets[b] + raw.len()].copy_from_slice(&along);
         // then over the section
         let target = &mut out[gp_offsets[b]..gp_offsets[b] + raw.len()];
         let zone = |es: usize| body.material_of(es);
@@ -425,7 +439,7 @@ pub(crate) fn recover(mesh: &Mesh, cells: &[CellValues], stresses: &[Voigt], gp_
             }
         }
     }
-    out
+    (out, first)
 }
 
 #[cfg(test)]

@@ -262,7 +262,11 @@ impl Model {
     pub fn parse_planned(text: &str, limits: Limits, base: &Path, plan: &MeshPlan) -> Result<Self, ModelError> {
         let mut file = crate::input::parse(text)?;
         refine::apply(&mut file, plan)?;
-        build(file, limits, base)
+        // the plan itself, not the refined file's: a doubled parametric
+        // section counts its doublings from the original file's counts
+        let mut model = build(file, limits, base)?;
+        model.plan = plan.clone();
+        Ok(model)
     }
 
     /// True if the problem is linear (no body yields, no contact, no

@@ -131,6 +131,14 @@ fn a_parametric_section_is_doubled_or_kept() {
     let refined = planned(&text, &plan);
     assert_eq!(refined.mesh.bodies[0].section.n_elements(), 36, "around = 4 + 4·8");
     assert_eq!(refined.mesh.bodies[0].axis.n_elements(), 23);
+    // the refined model keeps its plan: a second doubling counts from the
+    // file's counts again (around = 4 + 4·4·4), not from the first's
+    assert_eq!(refined.plan, plan);
+    let ns2 = refined.mesh.bodies[0].section.n_elements();
+    let all2: Vec<usize> = (0..ns2).collect();
+    let plan2 = mark::refine(&refined.plan, &mark::intervals(&refined.mesh, &refined.plan, &all2));
+    assert_eq!(plan2.bodies[0].section, SectionPlan::Doubled { shape: "tube", times: 2 });
+    assert_eq!(planned(&text, &plan2).mesh.bodies[0].section.n_elements(), 68, "around = 4 + 4·16");
     // marked: half the ring less one, over two slices
     let some: Vec<usize> = (0..ns / 2 - 1).map(|s| 5 * ns + s).chain([7 * ns]).collect();
     let plan = mark::refine(&model.plan, &mark::intervals(&model.mesh, &model.plan, &some));

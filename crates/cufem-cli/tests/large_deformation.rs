@@ -625,7 +625,9 @@ fn gauss_points_give_pk2_and_both_strains_beside_cauchy() {
 /// committed state: an attempt started on the secant of the last increment
 /// would be repeated to the last digit (every such retry of
 /// examples/tube_crush.toml did), so the structure declines it there —
-/// unless a frictional point's stick tangent makes the retry differ.
+/// unless a frictional point's stick tangent makes the retry differ. (An elastic
+/// model with nonlinear geometry and no contact starts at the committed
+/// state: `Structure::starts_committed`.)
 #[test]
 fn the_cautious_retry_is_declined_where_it_would_repeat_the_failed_attempt() {
     use cufem::solver::stepping::Incremental;
@@ -633,7 +635,7 @@ fn the_cautious_retry_is_declined_where_it_would_repeat_the_failed_attempt() {
         let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join("examples").join(name);
         Model::parse(&std::fs::read_to_string(path).unwrap()).unwrap()
     };
-    for (name, frictional) in [("elastica.toml", false), ("cantilevers_contact_friction.toml", true)] {
+    for (name, frictional) in [("cantilevers_contact.toml", false), ("cantilevers_contact_friction.toml", true)] {
         let model = example(name);
         let mut s = analysis::Structure::of_model(&model, None).unwrap();
         common::solve_path(&mut s, &[(0.02, true)]);

@@ -244,6 +244,7 @@ impl<'m> Structure<'m> {
     /// Mutable displacements (for finite-difference checks of the tangent;
     /// the next [`NonlinearProblem::evaluate`] sees the change).
     pub fn displacements_mut(&mut self) -> &mut [f64] {
+        self.state.linear_step = false;
         &mut self.state.u
     }
 
@@ -503,6 +504,7 @@ impl NonlinearProblem for Structure<'_> {
         self.record_solver();
         self.limit_correction();
         self.remember_correction(searchable);
+        self.state.before_correction();
         Ok(self.apply_correction(da2))
     }
 

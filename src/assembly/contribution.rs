@@ -31,6 +31,12 @@ pub struct At<'a> {
     /// Tangent branch at points on their yield surface or Coulomb cone
     /// (elastic/sticking in the cautious retry of a failed increment).
     pub predictor: Predictor,
+    /// The Newton iterate `u` was reached from by one linear step (the
+    /// last correction, or the secant start of the increment from the
+    /// committed state); `None` where `u` was set otherwise. The elements'
+    /// geometric stiffness then takes the stress linearized along that step
+    /// (`elements`, "The stress of the geometric stiffness").
+    pub u_before: Option<&'a [f64]>,
 }
 
 /// Where contributions add stiffness: the lower-triangle values of the

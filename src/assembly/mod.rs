@@ -102,6 +102,9 @@ pub(crate) struct Inputs<'a> {
     /// Total Lagrangian: a stress-free initial displacement (3 per node; a
     /// geometric imperfection), `None` for the perfect geometry.
     pub initial: Option<&'a [f64]>,
+    /// The iterate the displacements were reached from by one linear step
+    /// (`At::u_before`), `None` for the stress of the displacements alone.
+    pub before: Option<&'a [f64]>,
 }
 
 impl<'a> std::ops::Deref for Inputs<'a> {
@@ -277,8 +280,8 @@ impl Assembler {
             stats += colour
                 .par_iter()
                 .map_init(
-                    || (Vec::new(), Vec::new(), Vec::new()),
-                    |(nodes, ue, ie), &ge| {
+                    || (Vec::new(), Vec::new(), Vec::new(), Vec::new()),
+                    |(nodes, ue, ie, de), &ge| {
                         let r = self.scatter.elements[ge];
                         let body = &input.mesh.bodies[r.body];
                         let geom = &input.geometry[r.body];
@@ -288,6 +291,12 @@ impl Assembler {
                         if let Some(u0) = input.initial {
                             ie.clear();
                             ie.extend(nodes.iter().flat_map(|&n| (0..3).map(move |c| u0[3 * n + c])));
+                        }
+                        if let Some(before) = input.before {
+                            de.clear();
+                            de.extend(
+                                nodes.iter().flat_map(|&n| (0..3).map(move |c| input.u[3 * n + c] - before[3 * n + c])),
+                            );
                         }
                         let ngp = geom.gp_per_element();
                         let g0 = input.gp_offsets[r.body] + r.element * ngp;
@@ -300,6 +309,7 @@ impl Assembler {
                                 predictor: input.predictor,
                                 kinematics: input.kinematics,
                                 initial: input.initial.map(|_| &ie[..]),
+                                step: input.before.map(|_| &de[..]),
                                 damage: with_damage.then(|| DamagePoints {
                                     committed: &input.damage.committed[g0..g0 + ngp],
                                     band: &input.damage.band[g0..g0 + ngp],
@@ -495,7 +505,7 @@ mod tests {
             kinematics: Default::default(),
             damage: Default::default(),
         };
-        let inputs = Inputs { state, predictor: Default::default(), initial: None };
+        let inputs = Inputs { state, predictor: Default::default(), initial: None, before: None };
         assembler.cache_elastic(&inputs);
         Setup { mesh, geometry, gp_offsets, materials, u, committed, assembler, uncached }
     }
@@ -513,7 +523,7 @@ mod tests {
             kinematics: Default::default(),
             damage: Default::default(),
         };
-        let inputs = Inputs { state, predictor: Default::default(), initial: None };
+        let inputs = Inputs { state, predictor: Default::default(), initial: None, before: None };
         let mut force = vec![0.0; s.mesh.n_dofs()];
         let mut tangent = vec![0.0; a.pattern.nnz()];
         let (mut trial, mut stress) = (vec![PointState::default(); n_gp], vec![[0.0; 6]; n_gp]);

@@ -32,6 +32,7 @@ fn respond(
         predictor: Predictor::Loading,
         kinematics: Kinematics::TotalLagrangianLog,
         initial: None,
+        step: None,
         damage: None,
     };
     element_response(geom, 0, 1, &field(body, &bulge), mat, points, mode, ws);

@@ -38,6 +38,8 @@
 //! point and component pair instead and contracts them with the gradients
 //! by sum factorization over the axis points (`nucleus`), without `B`.
 //!
+//! **The stress of the geometric stiffness** after a linear step: [`linearized`].
+//!
 //! Shape functions, gradients and weights come from [`crate::values`], the
 //! same code that post-processing and face integrals use. The kernel writes
 //! into a reusable [`Workspace`] and never allocates; the assembly only
@@ -45,7 +47,9 @@
 
 mod bbar;
 mod fbar;
+mod linearized;
 mod nucleus;
+pub(crate) use nucleus::geometric_matrix;
 
 use crate::kinematics::{Kinematics, LogStrain, Tensor};
 use crate::materials::damage::DamageState;
@@ -171,6 +175,9 @@ pub struct PointData<'a> {
     /// `E(∇(u + u₀)) − E(∇u₀)` and `F = I + ∇(u + u₀)` — the strain energy of
     /// the shape `X + u₀` to first order in `u₀`.
     pub initial: Option<&'a [f64]>,
+    /// Total Lagrangian: the displacement change of the last linear step (3
+    /// per node; [`linearized`]), `None` for none.
+    pub step: Option<&'a [f64]>,
     /// The ply damage of the element's points (`None` unless its material
     /// damages).
     pub damage: Option<DamagePoints<'a>>,
@@ -255,26 +262,6 @@ pub(crate) fn element_response(
     ElementStats { plastic_points, tangent_computed, stress_pass, tangent_pass }
 }
 
-/// The geometric (initial-stress) stiffness alone of body element `e`,
-/// `K_σ = δ_kl ∫ ∇N_a · σ ∇N_b dV`, from its Gauss-point stresses `stress`
-/// (linear buckling, `crate::analysis::buckling`), into the upper triangle
-/// of `ws.tangent`: the total-Lagrangian nuclei (`nucleus`) at `F = I`
-/// with no material stiffness, `M^(cd) = w δ_cd σ`.
-pub(crate) fn geometric_matrix(
-    geom: &CellValues,
-    e: usize,
-    n_section_elements: usize,
-    stress: &[Voigt],
-    ws: &mut Workspace,
-) {
-    let el = Element::new(geom, e, n_section_elements);
-    ws.resize(el.nodes, el.n_points);
-    ws.pk2[..el.n_points].copy_from_slice(&stress[..el.n_points]);
-    ws.frames[..el.n_points].fill(crate::kinematics::IDENTITY);
-    ws.tangents[..el.n_points].fill([[0.0; 6]; 6]);
-    nucleus::large_tangent(geom, (el.es, el.eb, el.nodes), None, ws);
-}
-
 /// Where an element sits and how big it is.
 struct Element {
     /// Section and beam element.
@@ -326,17 +313,23 @@ fn stresses_and_forces(
     let large = points.kinematics.is_nonlinear();
     let (ns, nb, nodes) = (sg.n_fun, ag.n_fun, el.nodes);
     let (mut all_elastic, mut plastic_points) = (true, 0);
-    ws.contracted.resize(6 * ns, [0.0; 3]);
+    let step = points.step.filter(|_| large && !points.kinematics.is_logarithmic());
+    ws.contracted.resize(8 * ns, [0.0; 3]);
     for gb in 0..ag.n_gp {
         let at = ag.point(el.eb, gb);
         let (v, rest) = ws.contracted.split_at_mut(ns);
         let (vy, rest) = rest.split_at_mut(ns);
         let (h, rest) = rest.split_at_mut(ns);
         let (hy, rest) = rest.split_at_mut(ns);
-        let (v0, vy0) = rest.split_at_mut(ns);
+        let (v0, rest) = rest.split_at_mut(ns);
+        let (vy0, rest) = rest.split_at_mut(ns);
+        let (vd, vyd) = rest.split_at_mut(ns);
         contract_axis(&at, u, v, vy);
         if let Some(u0) = points.initial {
             contract_axis(&at, u0, v0, vy0);
+        }
+        if let Some(d) = step {
+            contract_axis(&at, d, vd, vyd);
         }
         h.fill([0.0; 3]);
         hy.fill([0.0; 3]);
@@ -389,7 +382,11 @@ fn stresses_and_forces(
             // the stress whose rows meet the reference gradients: σ, or P = F S
             let rows = if large {
                 let f = crate::kinematics::deformation_gradient(&grad);
-                (ws.frames[q], ws.pk2[q]) = (f, r.stress);
+                let geometric = match step {
+                    Some(_) => linearized::stress(&r.stress, &r.tangent, &point_gradient(&sp, vd, vyd)),
+                    None => r.stress,
+                };
+                (ws.frames[q], ws.pk2[q]) = (f, geometric);
                 // σ = F S Fᵀ / J̄ with B-bar (fbar), J̄ = J e^(θ̄ − θ)
                 let scale = if bbar { (-ws.dilatation[q]).exp() } else { 1.0 };
                 points.stress[q] = crate::kinematics::cauchy(&f, &r.stress).map(|s| s * scale);

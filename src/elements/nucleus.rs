@@ -56,6 +56,7 @@
 
 use super::{Workspace, fbar};
 use crate::values::{CellValues, PressureSpace};
+use crate::voigt::Voigt;
 
 /// The component pairs `(c, d)`, `c ≤ d`, in the order of the column
 /// blocks of the section sums and of the pair blocks.
@@ -90,6 +91,26 @@ pub(super) fn large_tangent(
     if let Some((n, a)) = projected {
         fbar::add_projected(n, nodes, &a, ws);
     }
+}
+
+/// The geometric (initial-stress) stiffness alone of body element `e`,
+/// `K_σ = δ_kl ∫ ∇N_a · σ ∇N_b dV`, from its Gauss-point stresses `stress`
+/// (linear buckling, `crate::analysis::buckling`), into the upper triangle
+/// of `ws.tangent`: the total-Lagrangian nuclei (above) at `F = I`
+/// with no material stiffness, `M^(cd) = w δ_cd σ`.
+pub(crate) fn geometric_matrix(
+    geom: &CellValues,
+    e: usize,
+    n_section_elements: usize,
+    stress: &[Voigt],
+    ws: &mut Workspace,
+) {
+    let el = super::Element::new(geom, e, n_section_elements);
+    ws.resize(el.nodes, el.n_points);
+    ws.pk2[..el.n_points].copy_from_slice(&stress[..el.n_points]);
+    ws.frames[..el.n_points].fill(crate::kinematics::IDENTITY);
+    ws.tangents[..el.n_points].fill([[0.0; 6]; 6]);
+    large_tangent(geom, (el.es, el.eb, el.nodes), None, ws);
 }
 
 /// The pair blocks `kall` of one element by sum factorization over its

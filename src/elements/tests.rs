@@ -64,6 +64,7 @@ pub(super) fn kernel(
         predictor: Predictor::Loading,
         kinematics,
         initial,
+        step: None,
         damage: None,
     };
     let stats = element_response(geom, 0, 1, u, mat, points, TangentMode::Always, &mut ws);

@@ -44,6 +44,7 @@ impl Structure<'_> {
 
     /// `u ← u + δu` with `δu` by equation.
     pub(crate) fn add_by_equation(&mut self, du: &[f64]) {
+        self.state.linear_step = false;
         for (d, &e) in self.system.assembler.dofs.eq.iter().enumerate() {
             if e != NO_EQ {
                 self.state.u[d] += du[e];

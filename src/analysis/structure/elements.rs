@@ -68,6 +68,7 @@ impl<'m> Elements<'m> {
             state: self.discretisation.fe_state(u, &self.committed, &self.gp_offsets, self.damage.input()),
             predictor: Default::default(),
             initial: self.initial.as_deref(),
+            before: None,
         }
     }
 }
@@ -101,6 +102,7 @@ impl Contribution for Elements<'_> {
             state: self.discretisation.fe_state(at.u, &self.committed, &self.gp_offsets, damage_in),
             predictor: at.predictor,
             initial: self.initial.as_deref(),
+            before: at.u_before,
         };
         self.last = tangent.assembler.assemble(
             &inputs,

@@ -26,6 +26,13 @@ pub(crate) struct Kinematics {
     pub(crate) on_secant: bool,
     /// The last correction, for a line search (`solver.line_search`).
     pub line: Option<Line>,
+    /// The iterate `u` was reached from by one linear step (the last
+    /// Newton correction, or the committed state for the secant start),
+    /// valid while `linear_step`: the elements' geometric stiffness takes
+    /// the stress linearized along that step (`At::u_before`).
+    pub(crate) u_before: Vec<f64>,
+    /// `u` was reached from `u_before` by one linear step.
+    pub(crate) linear_step: bool,
 }
 
 impl Kinematics {
@@ -40,12 +47,20 @@ impl Kinematics {
             predictor: Predictor::Loading,
             on_secant: false,
             line: None,
+            u_before: vec![0.0; n_dofs],
+            linear_step: false,
         }
     }
 
     /// The state the contributions are evaluated at.
     pub fn at(&self) -> At<'_> {
-        At { u: &self.u, u_committed: &self.u_committed, lambda: self.lambda, predictor: self.predictor }
+        At {
+            u: &self.u,
+            u_committed: &self.u_committed,
+            lambda: self.lambda,
+            predictor: self.predictor,
+            u_before: self.linear_step.then_some(&self.u_before[..]),
+        }
     }
 
     /// Starts the next solve at `u_committed + ratio · u_step`; true if that
@@ -55,7 +70,16 @@ impl Kinematics {
             *u = c + ratio * s;
         }
         self.on_secant = ratio > 0.0 && self.u_step.iter().any(|&s| s != 0.0);
+        self.u_before.copy_from_slice(&self.u_committed);
+        self.linear_step = true;
         self.on_secant
+    }
+
+    /// A Newton correction is about to move `u`: the present iterate is
+    /// the one the next is reached from.
+    pub(crate) fn before_correction(&mut self) {
+        self.u_before.copy_from_slice(&self.u);
+        self.linear_step = true;
     }
 
     /// The increment converged: its state becomes the committed one.
@@ -65,12 +89,14 @@ impl Kinematics {
         }
         self.u_committed.copy_from_slice(&self.u);
         self.lambda_committed = self.lambda;
+        self.linear_step = false;
     }
 
     /// Back to the committed state.
     pub fn restore(&mut self) {
         self.u.copy_from_slice(&self.u_committed);
         self.lambda = self.lambda_committed;
+        self.linear_step = false;
     }
 
     /// Squared norm of the change since the committed state.

@@ -1,0 +1,37 @@
+//! The stress of the geometric stiffness after a linear step (total
+//! Lagrangian, Green–Lagrange strain).
+//!
+//! The residual takes `S(E(u))`. The geometric term of the tangent takes, after a linear step `δ` of the displacements (a Newton correction,
+//! or the secant start of an increment), the stress *linearized* along it,
+//! `S̃ = S(E(u − δ)) + C : B(u − δ) δ = S(E(u)) − C : ½ sym(∇δᵀ ∇δ)` (exact for
+//! an elastic point, the Green–Lagrange strain being quadratic in `∇u`; `C`
+//! the point's tangent otherwise). This is Newton's method on the mixed
+//! problem whose stresses at the Gauss points are unknowns of their own,
+//! condensed point by point: the *mixed integration point* strategy of
+//! Magisano, Leonetti & Garcea (*Comput. Methods Appl. Mech. Engrg.* 313
+//! (2017) 986–1005). A linear step that rotates a thin wall stretches it by
+//! `∝ θ²`, a membrane stress far larger than the wall's bending and torsion
+//! stresses: taken into the geometric stiffness it spoils the next
+//! correction, and Newton on the displacements alone oscillates under large
+//! rotations whatever the increment (bench/channel_twist.toml: the same 6–7
+//! corrections per increment with 80 increments as with 20). `S̃` leaves
+//! that spurious stress out. The residual, hence the converged state, is
+//! unchanged, and `S̃ → S` as the corrections vanish: the convergence stays
+//! quadratic. Not with the logarithmic strain (not quadratic in `∇u`), nor
+//! where no step is given ([`super::PointData::step`]: the tangent of a state, e.g.
+//! for the buckling and modal analyses and the finite-difference tests).
+//! The structure gives the step (`analysis::structure::kinematics`:
+//! the iterate before the last correction, while `u` was reached by one).
+
+use crate::kinematics::Tensor;
+use crate::voigt::{Matrix6, Voigt};
+
+/// The stress `S − C : ½ sym(∇δᵀ ∇δ)` linearized along the last step `δ`
+/// (gradient `gd`) for the geometric stiffness: `½ ∇δᵀ∇δ` is the
+/// part of the Green–Lagrange strain of the step that its linearization
+/// leaves out (engineering shear, `crate::voigt`'s order).
+pub(super) fn stress(stress: &Voigt, tangent: &Matrix6, gd: &Tensor) -> Voigt {
+    let m = |i: usize, j: usize| (0..3).map(|k| gd[k][i] * gd[k][j]).sum::<f64>();
+    let quadratic = [0.5 * m(0, 0), 0.5 * m(1, 1), 0.5 * m(2, 2), m(0, 1), m(0, 2), m(1, 2)];
+    std::array::from_fn(|i| stress[i] - (0..6).map(|j| tangent[i][j] * quadratic[j]).sum::<f64>())
+}

@@ -124,7 +124,7 @@ pub fn intervals(mesh: &Mesh, plan: &MeshPlan, marked: &[usize]) -> Vec<BodyMark
 /// across the section wherever the marked elements are (a laminate's plies
 /// one element thick, the walls of a profile), which refining the axis
 /// alone leaves.
-pub fn across_sections(
+pub(crate) fn across_sections(
     mesh: &Mesh,
     plan: &MeshPlan,
     marked: &[usize],

@@ -40,7 +40,7 @@ pub struct ErrorEstimate {
     /// `‖σ_h‖` in the energy norm, √J.
     pub energy: f64,
     /// Per element, the part of the recovery the fit over the section
-    /// made (`‖σ* − σ_along‖_e`, [`super::spr::recover_stages`]), √J: where
+    /// made (`‖σ* − σ_along‖_e`, `post::spr::recover_stages`), √J: where
     /// it holds most of `η_e` the error lies across the section rather than
     /// along the axis (the direction `--adapt` refines). Empty when not
     /// computed (the modes' estimates).

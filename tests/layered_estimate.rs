@@ -31,20 +31,7 @@ use pagano::{Pagano, Ply};
 
 /// Pagano's material with E2 = 1 GPa (the example's plies).
 fn ply(thickness: f64, angle_deg: f64) -> Ply {
-    let e2 = 1e9;
-    Ply {
-        thickness,
-        e1: 25.0 * e2,
-        e2,
-        e3: e2,
-        g12: 0.5 * e2,
-        g13: 0.5 * e2,
-        g23: 0.2 * e2,
-        nu12: 0.25,
-        nu13: 0.25,
-        nu23: 0.25,
-        angle_deg,
-    }
+    Ply::pagano(thickness, angle_deg, 1e9)
 }
 
 /// `σᵀ C⁻¹ σ` (Voigt order xx, yy, zz, xy, xz, yz; `src/voigt.rs`) of a

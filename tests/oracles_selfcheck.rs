@@ -15,27 +15,9 @@ use std::f64::consts::PI;
 
 use pagano::{Pagano, Ply};
 
-/// Pagano's (1969) material, in units of E_T: E_L/E_T = 25, G_LT/E_T = 0.5,
-/// G_TT/E_T = 0.2, ν_LT = ν_TT = 0.25, E_3 = E_T.
-fn pagano_ply(thickness: f64, angle_deg: f64, e2: f64) -> Ply {
-    Ply {
-        thickness,
-        e1: 25.0 * e2,
-        e2,
-        e3: e2,
-        g12: 0.5 * e2,
-        g13: 0.5 * e2,
-        g23: 0.2 * e2,
-        nu12: 0.25,
-        nu13: 0.25,
-        nu23: 0.25,
-        angle_deg,
-    }
-}
-
 /// [0/90/0], equal plies, thickness h.
 fn three_ply(h: f64, e2: f64) -> Vec<Ply> {
-    vec![pagano_ply(h / 3.0, 0.0, e2), pagano_ply(h / 3.0, 90.0, e2), pagano_ply(h / 3.0, 0.0, e2)]
+    vec![Ply::pagano(h / 3.0, 0.0, e2), Ply::pagano(h / 3.0, 90.0, e2), Ply::pagano(h / 3.0, 0.0, e2)]
 }
 
 /// Normalized results of Pagano (1969):
@@ -104,8 +86,8 @@ fn pagano_field_equations() {
     let h = 0.02;
     let layups: Vec<Vec<Ply>> = vec![
         three_ply(h, e2),
-        vec![pagano_ply(0.5 * h, 0.0, e2), pagano_ply(0.5 * h, 90.0, e2)],
-        vec![pagano_ply(0.1 * h, 90.0, e2), pagano_ply(0.3 * h, 0.0, e2), pagano_ply(0.6 * h, 90.0, e2)],
+        vec![Ply::pagano(0.5 * h, 0.0, e2), Ply::pagano(0.5 * h, 90.0, e2)],
+        vec![Ply::pagano(0.1 * h, 90.0, e2), Ply::pagano(0.3 * h, 0.0, e2), Ply::pagano(0.6 * h, 90.0, e2)],
     ];
     for plies in &layups {
         for s in [2.0, 4.0, 10.0, 100.0] {

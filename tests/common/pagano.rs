@@ -85,6 +85,24 @@ pub struct Ply {
 }
 
 impl Ply {
+    /// A ply of Pagano's (1969) material, in units of `e2`: E_L/E_T = 25,
+    /// E_3 = E_T, G_LT = G_LN = 0.5 E_T, G_TN = 0.2 E_T, every ν = 0.25.
+    pub fn pagano(thickness: f64, angle_deg: f64, e2: f64) -> Self {
+        Ply {
+            thickness,
+            e1: 25.0 * e2,
+            e2,
+            e3: e2,
+            g12: 0.5 * e2,
+            g13: 0.5 * e2,
+            g23: 0.2 * e2,
+            nu12: 0.25,
+            nu13: 0.25,
+            nu23: 0.25,
+            angle_deg,
+        }
+    }
+
     /// An isotropic layer (E, ν) written as a ply.
     pub fn isotropic(thickness: f64, e: f64, nu: f64) -> Self {
         let g = e / (2.0 * (1.0 + nu));

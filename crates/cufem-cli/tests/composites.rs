@@ -41,20 +41,7 @@ fn run_cli(name: &str, text: Option<&str>) -> (PathBuf, Value) {
 /// Pagano's material (E1/E2 = 25, G12 = G13 = 0.5 E2, G23 = 0.2 E2, ν = 0.25,
 /// E2 = 1 GPa), one ply of `t` at `angle` (0: fibre along the span y).
 fn pagano_ply(t: f64, angle: f64) -> pagano::Ply {
-    let e2 = 1e9;
-    pagano::Ply {
-        thickness: t,
-        e1: 25.0 * e2,
-        e2,
-        e3: e2,
-        g12: 0.5 * e2,
-        g13: 0.5 * e2,
-        g23: 0.2 * e2,
-        nu12: 0.25,
-        nu13: 0.25,
-        nu23: 0.25,
-        angle_deg: angle,
-    }
+    pagano::Ply::pagano(t, angle, 1e9)
 }
 
 /// The largest difference between a through-thickness line of cufem's

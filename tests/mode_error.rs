@@ -128,7 +128,7 @@ fn the_laminated_box_ranks_its_wall_modes_and_estimates_their_frequency_errors()
     common::known_limit("mode_error.box.effectivity_max", band.1, "", 2.0, 2.3, what);
 }
 
-/// A steel cantilever 20 × 10 mm, 0.3 m long, `section` × `section` L9 and `axis` B3.
+/// A steel cantilever 20 × 10 mm, 0.3 m long, `section` × `section` L9 and `axis` B4.
 fn cantilever(section: usize, axis: usize) -> String {
     format!(
         r#"

@@ -425,14 +425,13 @@ pub(crate) fn recover_stages(
                     for qa in 0..ga {
                         for qs in 0..gs {
                             let row = &patch.weights[qs * m..(qs + 1) * m];
-                            let at = &mut target[index(s, eb, qs, qa)];
-                            for &c in &components {
-                                at[c] = row
-                                    .iter()
-                                    .enumerate()
-                                    .map(|(j, &w)| w * along[index(patch.elements[j / gs], eb, j % gs, qa)][c])
-                                    .sum();
+                            let mut acc = [0.0; 6];
+                            for (j, &w) in row.iter().enumerate() {
+                                let f = along[index(patch.elements[j / gs], eb, j % gs, qa)];
+                                (0..6).for_each(|c| acc[c] += w * f[c]);
                             }
+                            let at = &mut target[index(s, eb, qs, qa)];
+                            components.iter().for_each(|&c| at[c] = acc[c]);
                         }
                     }
                 }

@@ -93,16 +93,24 @@ pub(crate) fn deformation_gradient(h: &Tensor) -> Tensor {
 /// shear `2 E_ij`).
 #[inline]
 pub fn green_lagrange(h: &Tensor) -> Voigt {
+    let q = quadratic_strain(h);
+    [
+        h[0][0] + q[0],
+        h[1][1] + q[1],
+        h[2][2] + q[2],
+        h[0][1] + h[1][0] + q[3],
+        h[0][2] + h[2][0] + q[4],
+        h[1][2] + h[2][1] + q[5],
+    ]
+}
+
+/// The quadratic part `½ Hᵀ H` of the Green–Lagrange strain in Voigt form
+/// (engineering shear `(HᵀH)_ij`).
+#[inline]
+pub(crate) fn quadratic_strain(h: &Tensor) -> Voigt {
     // (HᵀH)_ij = Σ_k H_ki H_kj
     let hh = |i: usize, j: usize| h[0][i] * h[0][j] + h[1][i] * h[1][j] + h[2][i] * h[2][j];
-    [
-        h[0][0] + 0.5 * hh(0, 0),
-        h[1][1] + 0.5 * hh(1, 1),
-        h[2][2] + 0.5 * hh(2, 2),
-        h[0][1] + h[1][0] + hh(0, 1),
-        h[0][2] + h[2][0] + hh(0, 2),
-        h[1][2] + h[2][1] + hh(1, 2),
-    ]
+    [0.5 * hh(0, 0), 0.5 * hh(1, 1), 0.5 * hh(2, 2), hh(0, 1), hh(0, 2), hh(1, 2)]
 }
 
 /// The first Piola–Kirchhoff stress `P = F S` (not symmetric).

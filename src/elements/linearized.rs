@@ -31,7 +31,6 @@ use crate::voigt::{Matrix6, Voigt};
 /// part of the Green–Lagrange strain of the step that its linearization
 /// leaves out (engineering shear, `crate::voigt`'s order).
 pub(super) fn stress(stress: &Voigt, tangent: &Matrix6, gd: &Tensor) -> Voigt {
-    let m = |i: usize, j: usize| (0..3).map(|k| gd[k][i] * gd[k][j]).sum::<f64>();
-    let quadratic = [0.5 * m(0, 0), 0.5 * m(1, 1), 0.5 * m(2, 2), m(0, 1), m(0, 2), m(1, 2)];
-    std::array::from_fn(|i| stress[i] - (0..6).map(|j| tangent[i][j] * quadratic[j]).sum::<f64>())
+    let c_q = crate::voigt::mat_vec(tangent, &crate::kinematics::quadratic_strain(gd));
+    std::array::from_fn(|i| stress[i] - c_q[i])
 }

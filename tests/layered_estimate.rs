@@ -75,6 +75,11 @@ fn model(through: usize, along: usize) -> String {
 fn effectivity(through: usize, along: usize) -> (f64, f64) {
     let model = Model::parse(&model(through, along)).unwrap();
     let solution = cufem::analysis::run(&model, &Default::default(), &mut Silent).unwrap();
+    errors(&model, &solution)
+}
+
+/// `(η, ‖e‖)` of `solution` on `model` (a mesh of the example).
+fn errors(model: &Model, solution: &cufem::analysis::Solution) -> (f64, f64) {
     let (h, span) = (0.01, 0.04);
     let exact = Pagano::new(&[ply(h / 3.0, 0.0), ply(h / 3.0, 90.0), ply(h / 3.0, 0.0)], span, 1e5);
     let body = &model.mesh.bodies[0];
@@ -101,7 +106,7 @@ fn effectivity(through: usize, along: usize) -> (f64, f64) {
             }
         }
     }
-    let estimate = solution.error_estimate.expect("a layered body's static solution is estimated");
+    let estimate = solution.error_estimate.as_ref().expect("a layered body's static solution is estimated");
     // Galerkin orthogonality, ‖e‖² = ‖σ‖² − ‖σ_h‖² (a conforming model of
     // linear elasticity), checks the integration above and the compliance
     // written here against the solver's own energy (`estimate.energy`)
@@ -139,28 +144,58 @@ fn the_layered_estimate_is_effective_against_pagano() {
 }
 
 /// `--adapt` from one L9 per ply and 2 B4 (the estimate `9.9 %`): the error
-/// lies through the plies, where the fit over the section holds nearly all
-/// of the marked elements' estimate, so each cycle doubles the plies'
-/// elements (and splits the marked axis intervals): the estimate falls
-/// below 1 % in two cycles (measured `2.65 %`, then `0.68 %` at 4 L9 per
-/// ply × 6 B4). Refining the axis alone (the marking without direction)
-/// left it at `9.6 %` after four cycles; a refined model that forgot its
-/// doublings doubled the file's counts again and stayed at `2.65 %`.
+/// lies through the plies — the fit over the section holds nearly all of
+/// it, the fit along the axis little — so the cycles double the plies'
+/// elements and leave the axis (`adapt::mark::along_axis`), and only the
+/// plies holding most of the section error (`adapt::mark::local`): the
+/// middle 90° ply, then the outer ones, then the outer ones again with one
+/// axis split (estimates `5.08`, `3.51`, `0.70 %`; 2,457 DOF at 4-2-4 L9 ×
+/// 4 B4). The marking without direction — every ply doubled, every marked
+/// element's axis interval split — reached `0.68 %` at 4 L9 per ply × 6 B4,
+/// 4,275 DOF; the true error (Pagano) of the adapted mesh is within a tenth
+/// of that uniform mesh's (measured `+5.6 %`), at 43 % fewer DOF.
+/// Known limit (docs/limitations.md): the first cycle's doubling of the
+/// middle ply leaves the true error as it was (the estimate halves): on
+/// the one-L9 mesh the recovered tractions put the section error in the
+/// middle ply while the error that counts sits in the outer ones.
 #[test]
 fn adapt_refines_a_laminate_through_its_plies() {
     let text = model(1, 2);
     let start = Model::parse(&text).unwrap();
     let source = Source { text: &text, base: std::path::Path::new("."), limits: cufem::setup::Limits::none() };
     let settings = AdaptSettings { tolerance: 0.01, max_cycles: 4, ..Default::default() };
-    let mut estimates = Vec::new();
-    let (last, solution) =
-        cufem::adapt::run(start, source, &settings, &Default::default(), &mut Silent, &mut |_, _, s| {
-            estimates.push(s.error_estimate.as_ref().unwrap().relative())
-        })
-        .unwrap();
-    common::figure("layered_estimate.adapt.cycles", (estimates.len() - 1) as f64, "", "2: the plies doubled twice");
-    assert_eq!(estimates.len(), 3, "{estimates:?}");
-    assert!(estimates[1] < 0.3 * estimates[0] && estimates[2] < 0.01, "{estimates:?}");
-    assert_eq!(last.mesh.bodies[0].section.n_elements(), 12, "four L9 through each of the three plies");
-    assert!(solution.error_estimate.unwrap().relative() < 0.01);
+    let mut cycles = Vec::new();
+    cufem::adapt::run(start, source, &settings, &Default::default(), &mut Silent, &mut |_, m, s| {
+        let section = &m.mesh.bodies[0].section;
+        let ply = |k: usize| section.regions.iter().find(|r| r.name == format!("ply{k}")).unwrap().elements.len();
+        let relative = s.error_estimate.as_ref().unwrap().relative();
+        cycles.push((
+            m.n_dofs(),
+            relative,
+            errors(m, s).1,
+            [ply(1), ply(2), ply(3)],
+            m.mesh.bodies[0].axis.n_elements(),
+        ))
+    })
+    .unwrap();
+    common::figure("layered_estimate.adapt.cycles", (cycles.len() - 1) as f64, "", "3: middle ply, outer plies twice");
+    let plies: Vec<_> = cycles.iter().map(|c| (c.3, c.4)).collect();
+    assert_eq!(plies, [([1, 1, 1], 2), ([1, 2, 1], 2), ([2, 2, 2], 2), ([4, 2, 4], 4)], "{cycles:?}");
+    let (dof, estimate, error, ..) = cycles[3];
+    assert!(estimate < 0.01, "{cycles:?}");
+    // the known limit, from both sides: the first cycle leaves the true error
+    let first = cycles[1].2 / cycles[0].2;
+    assert!((0.99..=1.01).contains(&first), "the first cycle's true error ratio {first}");
+    assert!(cycles[2].2 < 0.5 * cycles[1].2 && error < 0.5 * cycles[2].2, "{cycles:?}");
+    // against uniform refinement to the same estimate: 4 L9 per ply × 6 B4
+    let uniform = Model::parse(&model(4, 6)).unwrap();
+    let solved = cufem::analysis::run(&uniform, &Default::default(), &mut Silent).unwrap();
+    let (_, uniform_error) = errors(&uniform, &solved);
+    common::figure("layered_estimate.adapt.dof_over_uniform", dof as f64 / uniform.n_dofs() as f64, "", "below 1");
+    common::figure("layered_estimate.adapt.error_over_uniform", error / uniform_error, "", "at most 1.1");
+    assert!(
+        dof < uniform.n_dofs() && error <= 1.1 * uniform_error,
+        "{dof} {} {error:e} {uniform_error:e}",
+        uniform.n_dofs()
+    );
 }

@@ -95,7 +95,7 @@ pub fn run(
     if model.n_dofs() > settings.max_dof {
         return Err(AdaptError::Budget { max_dof: settings.max_dof, dof: model.n_dofs() });
     }
-    let mut run = Cycles { settings, cycles: Vec::new(), last: None };
+    let mut run = Cycles { settings, text: source.text, cycles: Vec::new(), last: None };
     let (mut model, mut refined, mut start) = (model, String::new(), Instant::now());
     loop {
         let k = run.cycles.len();
@@ -155,7 +155,7 @@ pub fn run(
                 run.last = Some((std::mem::replace(&mut model, next), solution));
             }
             Err((stop, end)) => {
-                solution.adapt = Some(run.adaptivity(stop, end));
+                solution.adapt = Some(run.adaptivity(stop, end, &model.plan));
                 return Ok((model, solution));
             }
         }
@@ -166,14 +166,18 @@ pub fn run(
 /// and solution (once a refinement follows it).
 struct Cycles<'a> {
     settings: &'a AdaptSettings,
+    text: &'a str,
     cycles: Vec<AdaptCycle>,
     last: Option<(Model, Solution)>,
 }
 
 impl Cycles<'_> {
-    fn adaptivity(&mut self, stop: String, end: AdaptEnd) -> Adaptivity {
+    /// The run's record, the results being on `plan`'s mesh.
+    fn adaptivity(&mut self, stop: String, end: AdaptEnd, plan: &MeshPlan) -> Adaptivity {
         let (tolerance, max_dof) = (self.settings.tolerance, self.settings.max_dof);
-        Adaptivity { cycles: std::mem::take(&mut self.cycles), stop, tolerance, max_dof, end }
+        // the plan was made from this text and its models were built from it
+        let model_file = crate::setup::planned_text(self.text, plan).unwrap_or_else(|e| format!("# {e}\n"));
+        Adaptivity { cycles: std::mem::take(&mut self.cycles), stop, tolerance, max_dof, end, model_file }
     }
 
     /// The end of the run after a later cycle could not finish: the last
@@ -181,7 +185,8 @@ impl Cycles<'_> {
     fn end(mut self, why: String, end: AdaptEnd) -> (Model, Solution) {
         let (model, mut solution) = self.last.take().expect("a cycle finished before a refinement");
         let k = self.cycles.len() - 1;
-        solution.adapt = Some(self.adaptivity(format!("{why}; the results are cycle {k}'s, the last finished"), end));
+        let stop = format!("{why}; the results are cycle {k}'s, the last finished");
+        solution.adapt = Some(self.adaptivity(stop, end, &model.plan));
         (model, solution)
     }
 }
@@ -218,6 +223,9 @@ fn next_model(
     let mut marks = mark::intervals(&model.mesh, &model.plan, &marked);
     let parts = (&estimate.element[..], &estimate.section[..]);
     mark::across_sections(&model.mesh, &model.plan, &marked, parts, &mut marks);
+    mark::along_axis(&model.mesh, &model.plan, &marked, parts, &mut marks);
+    let weights = if estimate.section.len() == estimate.element.len() { &estimate.section } else { &estimate.element };
+    mark::local(&model.mesh, &model.plan, weights, &mut marks);
     let plan: MeshPlan = mark::refine(&model.plan, &marks);
     if plan == model.plan {
         return Ok(Err("nothing left to refine (the marked elements' sections are kept as given)".into()));

@@ -155,6 +155,10 @@ pub struct Adaptivity {
     /// [`Adaptivity::cycles`] (the last finished one) unless `Done` came
     /// with a cycle whose own analysis stopped early (cycle 0).
     pub end: AdaptEnd,
+    /// The model file of the mesh the results are on: the run's model file
+    /// with that mesh's divisions written in (`setup::plan_file`);
+    /// written beside the results as `adapted.toml`, to keep, verify or ship.
+    pub model_file: String,
 }
 
 /// How an adaptive run ended.

@@ -126,6 +126,12 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     written.extend(csv::write_tables(&modes, dir)?);
     written.extend(write_modes(model, solution, dir, shown.as_mut())?);
     written.extend(energy::write_energy(model, solution, dir)?);
+    if let Some(a) = &solution.adapt {
+        // the adapted mesh as a model file (`cufem run adapted.toml` solves it again)
+        let path = dir.join("adapted.toml");
+        std::fs::write(&path, &a.model_file).map_err(|e| file_error(&path, e))?;
+        written.push(path);
+    }
     // the end of every step: a VTU per step and a .pvd series when the
     // history has several steps; probes and resultants per step in the summary
     let mut steps = Vec::new();

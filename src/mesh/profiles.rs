@@ -158,6 +158,25 @@ fn grid(
     blocks
 }
 
+/// The count key of the model file that sets how many elements a wall of
+/// region `region` has along its length (`along_flange`, `along_web`,
+/// `along_lip`; a ply's region `<wall>_ply<k>` is its wall's), for local
+/// refinement by `crate::adapt`; `None` for a name no straight-walled
+/// profile gives. A junction of two walls belongs to a flange (leg_x) and
+/// has only `through` elements: doubling that flange's count leaves it.
+pub(crate) fn along_key(region: &str) -> Option<&'static str> {
+    let wall = match region.rfind("_ply") {
+        Some(i) if region[i + 4..].bytes().all(|b| b.is_ascii_digit()) && i + 4 < region.len() => &region[..i],
+        _ => region,
+    };
+    match wall {
+        "bottom_flange" | "top_flange" | "leg_x" => Some("along_flange"),
+        "web" | "webs" | "leg_z" => Some("along_web"),
+        "lips" => Some("along_lip"),
+        _ => None,
+    }
+}
+
 /// The blocks of a straight-walled profile with its bottom-left bounding-box
 /// corner at `origin`.
 pub fn straight(family: Family, origin: [f64; 2], d: &Walls, n: &Counts) -> Result<Vec<Block>, MeshError> {

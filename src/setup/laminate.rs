@@ -16,6 +16,11 @@ pub(super) fn region_name(k: usize) -> String {
     format!("ply{}", k + 1)
 }
 
+/// The ply (0-based) whose region is `name` ([`region_name`]'s inverse).
+pub(super) fn ply_of_region(name: &str) -> Option<usize> {
+    name.strip_prefix("ply")?.parse::<usize>().ok()?.checked_sub(1)
+}
+
 /// The plies of `s` (key `sk`), checked: at least one, positive thickness,
 /// 1..=MAX_COUNT elements, a finite angle.
 fn plies<'a>(sk: &str, s: &'a LaminateFile) -> Result<&'a [PlyFile], ModelError> {

@@ -19,6 +19,7 @@ mod material;
 mod mirror;
 mod overlap;
 mod path;
+mod plan_file;
 mod preprocess;
 mod refine;
 mod restraint;
@@ -43,6 +44,8 @@ use crate::quantity::Quantity;
 use crate::values::{CellValues, Location};
 pub use analysis::{BucklingSettings, Imperfection, ModalSettings};
 
+pub(crate) use plan_file::count_keys;
+pub(crate) use plan_file::planned_text;
 pub use refine::{AdaptSettings, BodyPlan, MAX_BUDGET, MeshPlan, SectionPlan};
 
 /// Limits applied while reading a model.
@@ -260,8 +263,8 @@ impl Model {
     /// Parses and validates model-file text with its divisions replaced by
     /// `plan` (a refinement of the plan of the same text, e.g. by `crate::adapt`).
     pub fn parse_planned(text: &str, limits: Limits, base: &Path, plan: &MeshPlan) -> Result<Self, ModelError> {
-        let mut file = crate::input::parse(text)?;
-        refine::apply(&mut file, plan)?;
+        let text = plan_file::planned_text(text, plan)?;
+        let file = crate::input::parse(&text)?;
         // the plan itself, not the refined file's: a doubled parametric
         // section counts its doublings from the original file's counts
         let mut model = build(file, limits, base)?;

@@ -22,6 +22,8 @@
 //!
 //! The axis is always refined interval by interval.
 
+use std::collections::BTreeMap;
+
 use crate::input::schema::*;
 use crate::input::validate::division;
 use crate::input::{ModelError, defaults, invalid, ranges};
@@ -125,13 +127,18 @@ pub enum SectionPlan {
         /// Boundaries along z.
         z: Vec<f64>,
     },
-    /// A parametric section: its in-plane element counts doubled `times`
-    /// times relative to the model file.
+    /// A parametric section: its in-plane element counts doubled relative
+    /// to the model file, all of them `times` times and each count named in
+    /// `parts` that many times more (local refinement: a profile's
+    /// `along_flange`, `along_web`, `along_lip`; a laminate's ply `k` as
+    /// `plies[k]`, [`crate::setup`]'s `plan_file`).
     Doubled {
         /// The section's `shape`.
         shape: &'static str,
-        /// How often the counts were doubled.
+        /// How often every count was doubled.
         times: u32,
+        /// How often each named count was doubled on top of `times`.
+        parts: BTreeMap<String, u32>,
     },
     /// A section that is kept as given (`quads`, `gmsh`).
     Fixed {
@@ -164,81 +171,9 @@ pub(super) fn plan(file: &ModelFile) -> Result<MeshPlan, ModelError> {
             },
             SectionFile::Quads(_) => SectionPlan::Fixed { shape: "quads" },
             SectionFile::Gmsh(_) => SectionPlan::Fixed { shape: "gmsh" },
-            s => SectionPlan::Doubled { shape: s.shape(), times: 0 },
+            s => SectionPlan::Doubled { shape: s.shape(), times: 0, parts: BTreeMap::new() },
         };
         bodies.push(BodyPlan { axis, section });
     }
     Ok(MeshPlan { bodies })
-}
-
-fn lines_division(lines: &[f64]) -> DivisionFile {
-    DivisionFile { lines: Some(lines.to_vec()), ..DivisionFile::default() }
-}
-
-/// Replaces the divisions of `file` by those of `plan` (a plan of another
-/// file, with other bodies, is refused).
-pub(super) fn apply(file: &mut ModelFile, plan: &MeshPlan) -> Result<(), ModelError> {
-    if plan.bodies.len() != file.bodies.len() {
-        return Err(invalid(
-            "bodies",
-            format!("{} bodies", file.bodies.len()),
-            format!("the {} bodies of the refined model's plan", plan.bodies.len()),
-        ));
-    }
-    for (b, p) in file.bodies.iter_mut().zip(&plan.bodies) {
-        let a = &mut b.axis;
-        (a.from, a.to, a.elements, a.ratio, a.segments) = (None, None, None, None, None);
-        a.lines = Some(p.axis.clone());
-        match (&mut b.section, &p.section) {
-            (SectionFile::Rectangle(r), SectionPlan::Grid { x, z }) => {
-                r.x = Some(lines_division(x));
-                r.z = Some(lines_division(z));
-            }
-            (s, SectionPlan::Doubled { times, .. }) => double(s, 1usize.checked_shl(*times).unwrap_or(usize::MAX)),
-            (_, SectionPlan::Fixed { .. }) => {}
-            (s, _) => {
-                return Err(invalid("bodies.section", s.shape(), "the section shape of the refined model's plan"));
-            }
-        }
-    }
-    Ok(())
-}
-
-/// Multiplies the in-plane element counts of a parametric section by `f`
-/// (defaults made explicit; validation then checks the results).
-fn double(s: &mut SectionFile, f: usize) {
-    let times = |v: Option<usize>, default: usize| Some(v.unwrap_or(default).saturating_mul(f));
-    match s {
-        SectionFile::Tube(t) => {
-            // `around = 4 + 4k`: k elements per side
-            t.around = t.around.map(|n| 4 + n.saturating_sub(4).saturating_mul(f));
-            t.along_x = t.along_x.map(|n| n.saturating_mul(f));
-            t.along_z = t.along_z.map(|n| n.saturating_mul(f));
-        }
-        SectionFile::IBeam(p) | SectionFile::Channel(p) | SectionFile::ZSection(p) | SectionFile::Angle(p) => {
-            p.along_flange = times(p.along_flange, defaults::ALONG_FLANGE);
-            p.along_web = times(p.along_web, defaults::ALONG_WEB);
-        }
-        SectionFile::Hat(h) => {
-            h.along_flange = times(h.along_flange, defaults::ALONG_FLANGE);
-            h.along_web = times(h.along_web, defaults::ALONG_WEB);
-            h.along_lip = times(h.along_lip, defaults::ALONG_LIP);
-        }
-        SectionFile::Box(b) => {
-            b.along_flange = times(b.along_flange, defaults::ALONG_FLANGE);
-            b.along_web = times(b.along_web, defaults::ALONG_WEB);
-        }
-        SectionFile::CircularTube(c) => c.around = times(c.around, defaults::AROUND),
-        SectionFile::Circle(c) => {
-            let around = c.around.unwrap_or(defaults::AROUND);
-            c.through = times(c.through, (around / 8).max(1));
-            c.around = times(Some(around), around);
-        }
-        SectionFile::Laminate(l) => {
-            for p in l.plies.iter_mut().flatten() {
-                p.elements = times(p.elements, defaults::THROUGH);
-            }
-        }
-        SectionFile::Rectangle(_) | SectionFile::Quads(_) | SectionFile::Gmsh(_) => {}
-    }
 }

@@ -1,0 +1,182 @@
+//! The model file of a mesh plan: the user's model-file text with each
+//! body's divisions replaced by those of a [`MeshPlan`], everything else —
+//! comments, order, every other key — kept as written.
+//!
+//! An adaptive run builds each refined model from this text
+//! ([`super::Model::parse_planned`]) and writes the last one beside its
+//! results (`adapted.toml`), so the model a user keeps, verifies or ships
+//! is exactly the one that was solved.
+//!
+//! What is replaced, per body:
+//!
+//! * the axis: `lines` (the plan's element boundaries) instead of
+//!   `from`/`to`/`elements`/`ratio`/`segments`;
+//! * a `rectangle` section: `x` and `z` as `{ lines = […] }`;
+//! * a parametric section: its in-plane counts multiplied by `2^n`, `n` the
+//!   doublings of the whole section plus those of the count itself
+//!   ([`SectionPlan::Doubled`]): a `tube`'s `around = 4 + 4k` (k per side),
+//!   `along_x`, `along_z` (those written); a profile's `along_flange`,
+//!   `along_web`, a hat's `along_lip`; a `circular_tube`'s `around`; a
+//!   `circle`'s `around` and `through`; a `laminate`'s `elements` of each
+//!   ply. Defaults are written out when multiplied. A wall's `through` is kept.
+
+use std::collections::BTreeMap;
+
+use toml_edit::{Array, DocumentMut, InlineTable, Item, TableLike, Value};
+
+use super::refine::{MeshPlan, SectionPlan};
+use crate::input::{ModelError, defaults, invalid};
+use crate::mesh::CrossSection;
+
+/// `text` with the divisions of `plan` (module docs). `text` must be the
+/// model file the plan was made from (a file with other bodies is refused).
+pub(crate) fn planned_text(text: &str, plan: &MeshPlan) -> Result<String, ModelError> {
+    let mut doc: DocumentMut = text.parse().map_err(|e: toml_edit::TomlError| {
+        invalid("(model file)", e.message().trim(), "a TOML model file (the one the mesh plan was made from)")
+    })?;
+    let mut bodies = bodies_mut(doc.as_item_mut());
+    if bodies.len() != plan.bodies.len() {
+        return Err(invalid(
+            "bodies",
+            format!("{} bodies", bodies.len()),
+            format!("the {} bodies of the refined model's plan", plan.bodies.len()),
+        ));
+    }
+    for (i, (body, p)) in bodies.iter_mut().zip(&plan.bodies).enumerate() {
+        let axis = table(&mut **body, "axis", i)?;
+        for k in ["from", "to", "elements", "ratio", "segments", "lines"] {
+            axis.remove(k);
+        }
+        axis.insert("lines", Item::Value(numbers(&p.axis)));
+        let section = table(&mut **body, "section", i)?;
+        match &p.section {
+            SectionPlan::Grid { x, z } => {
+                for (key, lines) in [("x", x), ("z", z)] {
+                    let mut t = InlineTable::new();
+                    t.insert("lines", numbers(lines));
+                    section.insert(key, Item::Value(Value::InlineTable(t)));
+                }
+            }
+            SectionPlan::Doubled { shape, times, parts } => double(section, shape, *times, parts),
+            SectionPlan::Fixed { .. } => {}
+        }
+    }
+    Ok(doc.to_string())
+}
+
+/// Each body's table, `[[bodies]]` or `bodies = [{…}, …]`.
+fn bodies_mut(root: &mut Item) -> Vec<&mut dyn TableLike> {
+    match root.get_mut("bodies") {
+        Some(Item::ArrayOfTables(a)) => a.iter_mut().map(|t| t as &mut dyn TableLike).collect(),
+        Some(Item::Value(Value::Array(a))) => {
+            a.iter_mut().filter_map(Value::as_inline_table_mut).map(|t| t as &mut dyn TableLike).collect()
+        }
+        _ => Vec::new(),
+    }
+}
+
+/// Sub-table `key` of body `i` (a table or an inline table).
+fn table<'a>(body: &'a mut dyn TableLike, key: &str, i: usize) -> Result<&'a mut dyn TableLike, ModelError> {
+    body.get_mut(key)
+        .and_then(Item::as_table_like_mut)
+        .ok_or_else(|| invalid(format!("bodies[{i}].{key}"), "(not a table)", format!("a `{key}` table")))
+}
+
+fn numbers(v: &[f64]) -> Value {
+    Value::Array(v.iter().copied().collect::<Array>())
+}
+
+/// The count `key` of `t` (its default when absent).
+fn count(t: &dyn TableLike, key: &str, default: usize) -> usize {
+    t.get(key).and_then(Item::as_integer).map_or(default, |n| usize::try_from(n).unwrap_or(0))
+}
+
+fn set(t: &mut dyn TableLike, key: &str, n: usize) {
+    t.insert(key, Item::Value(Value::from(i64::try_from(n).unwrap_or(i64::MAX))));
+}
+
+/// The factor `2^(times + parts[key])`.
+fn factor(times: u32, parts: &BTreeMap<String, u32>, key: &str) -> usize {
+    1usize.checked_shl(times + parts.get(key).copied().unwrap_or(0)).unwrap_or(usize::MAX)
+}
+
+/// The counts of a parametric section multiplied (module docs).
+fn double(s: &mut dyn TableLike, shape: &str, times: u32, parts: &BTreeMap<String, u32>) {
+    let f = |key: &str| factor(times, parts, key);
+    let times_of = |s: &mut dyn TableLike, key: &str, default: usize| {
+        let n = count(s, key, default).saturating_mul(f(key));
+        set(s, key, n);
+    };
+    match shape {
+        "tube" => {
+            // `around = 4 + 4k`: k elements per side
+            if s.contains_key("around") {
+                let n = count(s, "around", 4);
+                set(s, "around", 4 + n.saturating_sub(4).saturating_mul(f("around")));
+            }
+            for key in ["along_x", "along_z"] {
+                if s.contains_key(key) {
+                    times_of(s, key, 1);
+                }
+            }
+        }
+        "i_beam" | "channel" | "z_section" | "angle" | "hat" | "box" => {
+            times_of(s, "along_flange", defaults::ALONG_FLANGE);
+            times_of(s, "along_web", defaults::ALONG_WEB);
+            if shape == "hat" {
+                times_of(s, "along_lip", defaults::ALONG_LIP);
+            }
+        }
+        "circular_tube" => times_of(s, "around", defaults::AROUND),
+        "circle" => {
+            let around = count(s, "around", defaults::AROUND);
+            let through = count(s, "through", (around / 8).max(1));
+            set(s, "through", through.saturating_mul(f("through")));
+            set(s, "around", around.saturating_mul(f("around")));
+        }
+        "laminate" => {
+            let plies: Vec<&mut dyn TableLike> = match s.get_mut("plies") {
+                Some(Item::ArrayOfTables(a)) => a.iter_mut().map(|t| t as &mut dyn TableLike).collect(),
+                Some(Item::Value(Value::Array(a))) => {
+                    a.iter_mut().filter_map(Value::as_inline_table_mut).map(|t| t as &mut dyn TableLike).collect()
+                }
+                _ => Vec::new(),
+            };
+            for (k, p) in plies.into_iter().enumerate() {
+                let n = count(p, "elements", defaults::THROUGH).saturating_mul(f(&ply_key(k)));
+                set(p, "elements", n);
+            }
+        }
+        _ => {}
+    }
+}
+
+/// The named count of each element of a section of `shape`
+/// ([`SectionPlan::Doubled`]'s `parts`): a profile's wall count
+/// ([`crate::mesh::profiles::along_key`]), a laminate's ply `plies[k]`;
+/// `None` where the shape has no such count (tubes, circles) or the
+/// element is in no region.
+pub(crate) fn count_keys(shape: &str, section: &CrossSection) -> Vec<Option<String>> {
+    let mut keys = vec![None; section.n_elements()];
+    for r in &section.regions {
+        let key = match shape {
+            "laminate" => super::laminate::ply_of_region(&r.name).map(ply_key),
+            "i_beam" | "channel" | "z_section" | "angle" | "hat" | "box" => {
+                crate::mesh::profiles::along_key(&r.name).map(String::from)
+            }
+            _ => None,
+        };
+        for &e in &r.elements {
+            if let Some(k) = keys.get_mut(e).filter(|k| k.is_none()) {
+                *k = key.clone();
+            }
+        }
+    }
+    keys
+}
+
+/// The plan's key of a laminate's ply `k` (0-based) in
+/// [`SectionPlan::Doubled`]'s `parts`: `plies[k]`.
+pub(crate) fn ply_key(k: usize) -> String {
+    format!("plies[{k}]")
+}

@@ -715,15 +715,20 @@ fn a_correction_after_a_residual_only_evaluation_uses_the_present_tangent() {
 }
 
 /// bench/channel_twist.toml made coarser (one L9 along each flange, two
-/// along the web, 6 B4 along the axis: 2,223 DOF): the channel cantilever
-/// that an eccentric dead tip load twists past 90°.
+/// along the web, 6 uniform B4 along the axis: 2,223 DOF): the channel
+/// cantilever that an eccentric dead tip load twists past 90°.
 fn coarse_channel() -> String {
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../../bench/channel_twist.toml")).unwrap();
-    let coarse = text.replace("along_flange = 2, along_web = 4", "along_flange = 1, along_web = 2").replace(
-        "axis = { element = \"B4\", from = 0.0, to = 1.0, elements = 12 }",
-        "axis = { element = \"B4\", from = 0.0, to = 1.0, elements = 6 }",
-    );
-    assert_ne!(coarse, text);
+    let coarse = text
+        .replace("element = \"L16\", origin", "element = \"L9\", origin")
+        .replace("along_flange = 2, along_web = 4", "along_flange = 1, along_web = 2")
+        .replace(
+            "axis = { element = \"B4\", from = 0.0, to = 1.0, elements = 12, ratio = 10.0 }",
+            "axis = { element = \"B4\", from = 0.0, to = 1.0, elements = 6 }",
+        );
+    for (kept, what) in [("\"L9\", origin", "L9"), ("along_flange = 1,", "section"), ("elements = 6 }", "axis")] {
+        assert!(coarse.contains(kept), "bench/channel_twist.toml: the coarse channel's {what} was not set");
+    }
     coarse
 }
 

@@ -27,7 +27,7 @@ use cufem::{Model, RunOptions, Silent};
 /// 6.33 mm against 4.99 mm, the ledger's delamination measured 0.1615 J
 /// against the law's 0.1626 J, and the viscous over-stress's work
 /// `viscous_j` grew to 0.025 J: a known limit in docs/limitations.md).
-fn transient_dcb() -> String {
+fn transient_dcb(forces: &str) -> String {
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/dcb.toml")).unwrap();
     let edits = [
         ("orthotropic = {", "density = 1600.0\northotropic = {"),
@@ -39,19 +39,22 @@ fn transient_dcb() -> String {
         ),
         (
             "[solver]\nincrements = 200",
-            "[analysis]\ntype = \"transient\"\nduration = 0.03\ninterface_forces = \"newmark\"\n\n[solver]\nincrements = 120",
+            "[analysis]\ntype = \"transient\"\nduration = 0.03\ninterface_forces = \"FORCES\"\n\n[solver]\nincrements = 120",
         ),
     ];
-    edits.iter().fold(text, |t, (from, to)| {
-        assert!(t.contains(from), "examples/dcb.toml no longer holds {from:?}");
-        t.replacen(from, to, 1)
-    })
+    edits
+        .iter()
+        .fold(text, |t, (from, to)| {
+            assert!(t.contains(from), "examples/dcb.toml no longer holds {from:?}");
+            t.replacen(from, to, 1)
+        })
+        .replace("FORCES", forces)
 }
 
 #[test]
 #[ignore = "validate: slow — a transient DCB opened past its peak (about 2 min)"]
 fn the_ledger_counts_the_energy_delamination_dissipates() {
-    let model = Model::parse(&transient_dcb()).unwrap();
+    let model = Model::parse(&transient_dcb("newmark")).unwrap();
     let solution = cufem::run(&model, &RunOptions::default(), &mut Silent).unwrap();
     assert!(solution.failure.is_none(), "{:?}", solution.failure);
     let rows = solution.energy.as_ref().expect("a transient run keeps its energy balance");
@@ -97,6 +100,38 @@ fn the_ledger_counts_the_energy_delamination_dissipates() {
         let step = w[1].delamination - w[0].delamination;
         assert!(step > -1e-3 * work, "the dissipation fell by {step} J at t = {} s", w[1].time);
     }
+}
+
+/// The transient DCB above with the discrete-gradient traction
+/// (`interface_forces = "discrete_gradient"`): the ledger's delamination is
+/// the law's dissipation plus the viscosity's (`dissipated_j + viscous_j`)
+/// to round-off, but the crack grows less than with `"newmark"` and than
+/// corrected beam theory's quasi-static 4.19 mm: measured 3.12 mm (newmark
+/// 4.99, the end-of-step traction 6.33), the viscosity's share
+/// `viscous_j` 0.0208 J against the law's 0.0851 J — with viscosity the
+/// discrete gradient carries the step's mean damage, which lags the law's.
+/// A known shortfall (docs/limitations.md), held from both sides.
+#[test]
+#[ignore = "validate: slow — a transient DCB opened past its peak"]
+fn the_discrete_gradient_dcb_grows_a_shorter_crack() {
+    let model = Model::parse(&transient_dcb("discrete_gradient")).unwrap();
+    let solution = cufem::run(&model, &RunOptions::default(), &mut Silent).unwrap();
+    assert!(solution.failure.is_none(), "{:?}", solution.failure);
+    let end = *solution.energy.as_ref().unwrap().last().unwrap();
+    let delamination = solution.delamination.as_ref().unwrap().summary();
+    let grown = (delamination.area_m2 - 0.0254 * 0.0328) / 0.0254;
+    let law = delamination.dissipated_j + delamination.viscous_j;
+    println!(
+        "discrete gradient: crack grew {:.2} mm; ledger's delamination {:.4} J, law's {:.4} J + viscous {:.4} J; \
+         kinetic {:.2e} J",
+        grown * 1e3,
+        end.delamination,
+        delamination.dissipated_j,
+        delamination.viscous_j,
+        end.kinetic
+    );
+    assert!((end.delamination / law - 1.0).abs() < 1e-6, "ledger {} J, law and viscosity {law} J", end.delamination);
+    assert!((0.0029..0.0034).contains(&grown), "the crack grew {grown} m");
 }
 
 /// Two plies (E = 1 GPa, ν = 0: no slide at the interface) of 1 mm over
@@ -325,4 +360,64 @@ fn interface_forces_is_refused_by_key() {
     let err = Model::parse(&wrong).unwrap_err().to_string();
     println!("{err}");
     assert!(err.contains("interface_forces") && err.contains("implicit") && err.contains("newmark"), "{err}");
+}
+
+/// With the discrete-gradient traction (`interface_forces =
+/// "discrete_gradient"`, `dynamics::impulse`) a point's work over a step is
+/// the change of the energy it holds plus the law's dissipation over the
+/// step, so the ledger's delamination is the law's own sum, G_Ic A, at
+/// either step size, where the end-of-step traction left 0.37 G_Ic A (the
+/// test above): the pulled stack still fails within one step.
+#[test]
+fn the_discrete_gradient_books_the_toughness_of_a_point_that_fails_within_a_step() {
+    let ga = 100.0 * 0.004 * 0.02;
+    for steps in [40, 80] {
+        let (law, ledger, balance, work) = pulled_stack(steps, "discrete_gradient");
+        println!("{steps} steps, discrete gradient: ledger's delamination {:.9} G_Ic A", ledger / ga);
+        assert!((law / ga - 1.0).abs() < 1e-6, "law's dissipation {law} J, G_Ic A = {ga} J");
+        assert!(balance < 1e-6 * work, "the balance is off by {balance} J");
+        assert!((ledger / law - 1.0).abs() < 1e-6, "the ledger's delamination is {} of the law's", ledger / law);
+    }
+}
+
+/// The pulled stack closed and held (as above) under the discrete
+/// gradient: the ledger's delamination is the law's dissipation after
+/// every step (the work of the interface's forces is its stored energy's
+/// change plus the law's dissipation, exactly), so it never falls; once
+/// the supports stop, the closed interface is an elastic penalty whose
+/// discrete gradient conserves energy (the midpoint traction of a
+/// quadratic ψ): the plies' energy stays constant to Newton's tolerance
+/// (the balance's, 1e-6 of the supports' work) — neither grows nor decays,
+/// where the end-of-step impulse dissipates `½ K |Δδ|²` per point and step.
+#[test]
+fn separated_plies_that_close_again_create_no_energy_with_the_discrete_gradient() {
+    let (rows, law, iterations) = closed_stack("discrete_gradient");
+    let work = rows.last().unwrap().supports;
+    let steps = rows.iter().filter(|r| r.time > 2.0e-3 * (1.0 + 1e-9)).count();
+    for w in rows.windows(2) {
+        let step = w[1].delamination - w[0].delamination;
+        assert!(step >= -1e-12 * work, "the delamination fell by {step} J at t = {} s", w[1].time);
+        assert!(w[1].balance.abs() < 1e-6 * work, "balance {} J at t = {} s", w[1].balance, w[1].time);
+        if w[0].time > 2.0e-3 * (1.0 + 1e-9) {
+            let grown = mechanical(&w[1]) - mechanical(&w[0]);
+            assert!(grown <= 1e-6 * work, "the plies' energy grew by {grown} J at t = {} s in the hold", w[1].time);
+        }
+    }
+    let hold: Vec<f64> = rows.iter().filter(|r| r.time > 2.0e-3 * (1.0 + 1e-9)).map(mechanical).collect();
+    let (low, high) = hold.iter().fold((f64::INFINITY, 0.0f64), |(l, h), &e| (l.min(e), h.max(e)));
+    println!("discrete gradient: the plies' energy in the hold {low:.6e} .. {high:.6e} J");
+    let ledger = rows.last().unwrap().delamination;
+    println!(
+        "discrete gradient: ledger's delamination {:.9} of the law's; supports' work {:.4e} J; {:.2} Newton \
+         iterations per step in the hold",
+        ledger / law,
+        work,
+        iterations as f64 / steps as f64
+    );
+    assert!((ledger / law - 1.0).abs() < 1e-6, "ledger {ledger} J against the law's {law} J");
+    // the plies keep ringing in the hold (nothing dissipates it), opening
+    // and closing the interface between iterations: measured 6.92 Newton
+    // iterations per step (the end-of-step impulse, whose plies come to
+    // rest, 2.73)
+    assert!(iterations <= 8 * steps, "{iterations} Newton iterations over {steps} steps in the hold");
 }

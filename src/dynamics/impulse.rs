@@ -81,6 +81,30 @@
 //! order in the step for the interface's own vibration. The Duvaut–Lions
 //! viscosity keeps this: the traction is the secant of the viscous damage
 //! `d_v`, which never decreases either.
+//!
+//! **Discrete gradient** (`analysis.interface_forces =
+//! "discrete_gradient"`; Gonzalez, *J. Nonlinear Sci.* 6, 1996; Armero &
+//! Romero, CMAME 190, 2001, for dissipative laws). The end-of-step
+//! traction books as dissipated, of a point that passes its whole
+//! softening branch within a step, only the energy the point held. The
+//! discrete gradient
+//!
+//! ```text
+//! t* = t_(n+1) + (ψ_(n+1) − ψ_n + ΔD − t_(n+1)·Δδ) / |Δδ|² Δδ      (t* = t_(n+1) where |Δδ| < 1e-9 N/K)
+//! ```
+//!
+//! with `ΔD` the law's own dissipation over the step (`CohesiveState::
+//! dissipated`) does work `t*·Δδ = Δψ + ΔD` exactly, so the ledger's
+//! `delamination` is the law's dissipation after every step; the same
+//! impulse recursion carries it (`f*` in place of `f(u_(n+1))`). With a
+//! viscosity `ΔD` is the carried damage's, `½ (ψ(δ, d_v,n) − ψ(δ, d_v,n+1))`
+//! summed over both ends of the step (the law's would leave a residual at
+//! `Δδ = 0` while `d_v` relaxes, and `t*` unbounded); its excess over the
+//! law's is the summary's `viscous_j`. The tangent is the symmetric part of
+//! `∂t*/∂δ` by central differences (`interfaces::Interfaces`). A closed or
+//! elastic interface then conserves its energy (the midpoint traction of a
+//! quadratic `ψ`), so the unresolved ringing of its stiff penalty is not
+//! damped: on an impact it needs Newmark's `γ > ½` (docs/limitations.md).
 
 use crate::assembly::Phase;
 
@@ -104,6 +128,18 @@ pub enum InterfaceForces {
     Implicit,
     /// Newmark's average of the forces at both ends of the step.
     Newmark,
+    /// The impulse of each point's discrete-gradient traction
+    /// (`interfaces::Interfaces`): its work over a step is the change of
+    /// the energy it holds plus the law's dissipation, exactly.
+    DiscreteGradient,
+}
+
+impl InterfaceForces {
+    /// True if the interfaces' force is replaced by an impulse
+    /// ([`Impulse`]): the end-of-step traction's or the discrete gradient's.
+    pub(crate) fn impulse(self) -> bool {
+        matches!(self, Self::Implicit | Self::DiscreteGradient)
+    }
 }
 
 /// The algorithmic force `f'` of one kind of non-smooth force (the

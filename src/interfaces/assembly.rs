@@ -43,6 +43,12 @@ pub struct Interfaces<'m> {
     over: [Vec<Vec<[f64; 6]>>; 2],
     /// Each point's work of the viscous over-stress so far (J/m²).
     viscous_work: Vec<Vec<f64>>,
+    /// Each point's separation at the last converged increment, `δ_n`.
+    separation: Vec<Vec<[f64; 3]>>,
+    /// Each point's dissipation over the present step under the discrete
+    /// gradient (`analysis.interface_forces = "discrete_gradient"`),
+    /// `t*·Δδ − Δψ` (J/m², trial).
+    booked: Vec<Vec<f64>>,
 }
 
 /// What an interface has become: its delaminated area and the energy it
@@ -133,7 +139,8 @@ impl<'m> Interfaces<'m> {
         let growing = committed.iter().map(|c| vec![false; c.len()]).collect();
         let viscous: Vec<Vec<f64>> = committed.iter().map(|c| c.iter().map(|s| s.damage).collect()).collect();
         let over: Vec<Vec<[f64; 6]>> = committed.iter().map(|c| vec![[0.0; 6]; c.len()]).collect();
-        let viscous_work = committed.iter().map(|c| vec![0.0; c.len()]).collect();
+        let viscous_work: Vec<Vec<f64>> = committed.iter().map(|c| vec![0.0; c.len()]).collect();
+        let separation = committed.iter().map(|c| vec![[0.0; 3]; c.len()]).collect();
         Self {
             interfaces,
             trial: committed.clone(),
@@ -144,7 +151,9 @@ impl<'m> Interfaces<'m> {
             lambda: 0.0,
             clock: None,
             over: [over.clone(), over],
+            booked: viscous_work.clone(),
             viscous_work,
+            separation,
         }
     }
 
@@ -264,6 +273,92 @@ fn regularise(
     }
 }
 
+/// The law's response at separation `delta` from the committed state
+/// `old`, regularised over the step `dt` where the law has a viscosity
+/// (`dv_n` the committed viscous damage), with the damage that carries the
+/// traction.
+fn respond(
+    law: &Cohesive,
+    delta: [f64; 3],
+    old: &CohesiveState,
+    dv_n: f64,
+    dt: f64,
+) -> (crate::materials::cohesive::CohesiveResponse, f64) {
+    let mut r = law.update(delta, old);
+    let mut dv = r.state.damage;
+    if law.viscosity > 0.0 {
+        regularise(law, &mut r, delta, (dv_n, &mut dv), law.viscosity, dt);
+    }
+    (r, dv)
+}
+
+/// The energy a point holds at separation `delta` under the carried damage
+/// `d`, `ψ = ½ K ⟨−δ3⟩² + ½ (1 − d) K (⟨δ3⟩² + |δ_s|²)` (J/m²).
+fn held(law: &Cohesive, d: f64, delta: [f64; 3]) -> f64 {
+    let k = secant(law, &CohesiveState { damage: d, dissipated: 0.0 }, delta);
+    0.5 * (0..3).map(|i| k[i][i] * delta[i] * delta[i]).sum::<f64>()
+}
+
+/// The discrete-gradient traction of a point over the step from
+/// `(δ_n, d_v,n)` (`start`) to `delta` (module docs of
+/// `crate::dynamics::impulse`): `t* = t + (Δψ + ΔD − t·Δδ)/|Δδ|² Δδ`, with
+/// `t` the end-of-step traction and `ΔD` the law's dissipation over the
+/// step (without viscosity) or the carried damage's, `½ K |δ̂|² Δd_v`
+/// averaged over both ends (with it). Returns `t*` and the dissipation its
+/// work books, `t*·Δδ − Δψ` (`ΔD`, or the end-of-step traction's where the
+/// step is too short to carry a correction).
+fn discrete_gradient(
+    law: &Cohesive,
+    delta: [f64; 3],
+    old: &CohesiveState,
+    start: ([f64; 3], f64),
+    dt: f64,
+) -> ([f64; 3], f64) {
+    let (delta_n, dv_n) = start;
+    let (r, dv) = respond(law, delta, old, dv_n, dt);
+    let stored = held(law, dv, delta) - held(law, dv_n, delta_n);
+    let dissipated = if law.viscosity > 0.0 {
+        0.5 * (held(law, dv_n, delta_n) - held(law, dv, delta_n) + held(law, dv_n, delta) - held(law, dv, delta))
+    } else {
+        r.state.dissipated - old.dissipated
+    };
+    let step: [f64; 3] = std::array::from_fn(|k| delta[k] - delta_n[k]);
+    let length2: f64 = step.iter().map(|s| s * s).sum();
+    let work: f64 = (0..3).map(|k| r.traction[k] * step[k]).sum();
+    let tiny = 1e-9 * law.normal_strength / law.penalty;
+    if length2 <= tiny * tiny {
+        return (r.traction, work - stored);
+    }
+    let c = (stored + dissipated - work) / length2;
+    (std::array::from_fn(|k| r.traction[k] + c * step[k]), dissipated)
+}
+
+/// The symmetric part of `∂t*/∂δ` of [`discrete_gradient`] by central
+/// differences (three components, six evaluations of the law).
+fn discrete_tangent(
+    law: &Cohesive,
+    delta: [f64; 3],
+    old: &CohesiveState,
+    start: ([f64; 3], f64),
+    dt: f64,
+) -> [[f64; 3]; 3] {
+    let size = delta.iter().chain(&start.0).fold(law.normal_strength / law.penalty, |m, x| m.max(x.abs()));
+    let h = 1e-6 * size;
+    let mut d = [[0.0; 3]; 3];
+    for j in 0..3 {
+        let at = |s: f64| {
+            let mut x = delta;
+            x[j] += s;
+            discrete_gradient(law, x, old, start, dt).0
+        };
+        let (plus, minus) = (at(h), at(-h));
+        for i in 0..3 {
+            d[i][j] = (plus[i] - minus[i]) / (2.0 * h);
+        }
+    }
+    std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (d[i][j] + d[j][i])))
+}
+
 impl Contribution for Interfaces<'_> {
     fn phase(&self) -> Phase {
         Phase::Interfaces
@@ -283,35 +378,42 @@ impl Contribution for Interfaces<'_> {
             Some(clock) => (clock.time(at.lambda) - clock.time(self.lambda)).abs(),
             None => (at.lambda - self.lambda).abs(),
         };
-        let [viscous_n, viscous] = &mut self.viscous;
-        let states = self.committed.iter().zip(&mut self.trial).zip(&mut self.growing);
-        let viscous = viscous_n.iter().zip(viscous.iter_mut()).zip(self.over[1].iter_mut());
-        for ((interface, ((committed, trial), growing)), ((dv_n, dv), over)) in
-            self.interfaces.iter().zip(states).zip(viscous)
-        {
-            let points = interface.points.iter().zip(committed).zip(trial.iter_mut()).zip(growing);
-            let viscous = dv_n.iter().zip(dv.iter_mut()).zip(over.iter_mut());
-            for ((((p, old), new), grows), ((dv_n, dv), over)) in points.zip(viscous) {
+        let gradient =
+            self.clock.is_some_and(|c| c.interface_forces == crate::dynamics::InterfaceForces::DiscreteGradient);
+        for (i, interface) in self.interfaces.iter().enumerate() {
+            let law = &interface.law;
+            for (j, p) in interface.points.iter().enumerate() {
                 let delta: [f64; 3] = std::array::from_fn(|k| at.u[3 * p.upper + k] - at.u[3 * p.lower + k]);
-                let mut r = interface.law.update(delta, old);
-                *dv = r.state.damage;
-                let eta = interface.law.viscosity;
-                if eta > 0.0 {
-                    let plain = r.traction;
-                    regularise(&interface.law, &mut r, delta, (*dv_n, dv), eta, dt);
-                    *over = std::array::from_fn(|k| if k < 3 { r.traction[k] - plain[k] } else { delta[k - 3] });
+                let old = &self.committed[i][j];
+                let dv_n = self.viscous[0][i][j];
+                let (r, dv) = respond(law, delta, old, dv_n, dt);
+                self.viscous[1][i][j] = dv;
+                if law.viscosity > 0.0 {
+                    let plain = law.update(delta, old).traction;
+                    self.over[1][i][j] =
+                        std::array::from_fn(|k| if k < 3 { r.traction[k] - plain[k] } else { delta[k - 3] });
                 }
+                let start = (self.separation[i][j], dv_n);
+                let traction = if gradient {
+                    let (t, booked) = discrete_gradient(law, delta, old, start, dt);
+                    self.booked[i][j] = booked;
+                    t
+                } else {
+                    r.traction
+                };
                 let now = r.state.damage > old.damage;
-                changes += usize::from(now != *grows);
-                *grows = now;
-                *new = r.state;
+                changes += usize::from(now != self.growing[i][j]);
+                self.growing[i][j] = now;
+                self.trial[i][j] = r.state;
                 for k in 0..3 {
-                    self.forces[3 * p.upper + k] += p.area * r.traction[k];
-                    self.forces[3 * p.lower + k] -= p.area * r.traction[k];
+                    self.forces[3 * p.upper + k] += p.area * traction[k];
+                    self.forces[3 * p.lower + k] -= p.area * traction[k];
                 }
                 if tangent.wanted {
                     let d = if at.predictor == Predictor::Elastic {
-                        secant(&interface.law, &r.state, delta)
+                        secant(law, &r.state, delta)
+                    } else if gradient {
+                        discrete_tangent(law, delta, old, start, dt)
                     } else {
                         r.tangent
                     };
@@ -333,20 +435,26 @@ impl Contribution for Interfaces<'_> {
     /// decreases (a debug assertion: a damaged point is never healed), and
     /// the over-stress's work of the increment is added (trapezoidal in δ).
     fn commit(&mut self, at: &At<'_>) {
-        for (c, t) in self.committed.iter_mut().zip(&self.trial) {
-            debug_assert!(c.iter().zip(t).all(|(c, t)| t.damage >= c.damage), "interface damage decreased");
-            c.copy_from_slice(t);
-        }
-        let [committed, trial] = &mut self.viscous;
-        for (c, t) in committed.iter_mut().zip(trial.iter()) {
-            debug_assert!(c.iter().zip(t).all(|(c, t)| t >= c), "viscous interface damage decreased");
-            c.copy_from_slice(t);
-        }
+        let gradient =
+            self.clock.is_some_and(|c| c.interface_forces == crate::dynamics::InterfaceForces::DiscreteGradient);
         let [before, after] = &mut self.over;
-        for ((work, b), a) in self.viscous_work.iter_mut().zip(before.iter_mut()).zip(after.iter()) {
-            for ((w, b), a) in work.iter_mut().zip(b.iter_mut()).zip(a) {
-                *w += (0..3).map(|k| 0.5 * (b[k] + a[k]) * (a[k + 3] - b[k + 3])).sum::<f64>();
-                *b = *a;
+        for (i, interface) in self.interfaces.iter().enumerate() {
+            for (j, p) in interface.points.iter().enumerate() {
+                let (c, t) = (&self.committed[i][j], &self.trial[i][j]);
+                debug_assert!(t.damage >= c.damage, "interface damage decreased");
+                debug_assert!(self.viscous[1][i][j] >= self.viscous[0][i][j], "viscous interface damage decreased");
+                let w = &mut self.viscous_work[i][j];
+                if gradient {
+                    // the discrete gradient's dissipation beyond the law's
+                    *w += self.booked[i][j] - (t.dissipated - c.dissipated);
+                } else {
+                    let (b, a) = (&before[i][j], &after[i][j]);
+                    *w += (0..3).map(|k| 0.5 * (b[k] + a[k]) * (a[k + 3] - b[k + 3])).sum::<f64>();
+                }
+                before[i][j] = after[i][j];
+                self.committed[i][j] = *t;
+                self.viscous[0][i][j] = self.viscous[1][i][j];
+                self.separation[i][j] = std::array::from_fn(|k| at.u[3 * p.upper + k] - at.u[3 * p.lower + k]);
             }
         }
         self.lambda = at.lambda;

@@ -178,6 +178,9 @@ fn settings(
         interface_forces: match file.interface_forces.unwrap_or_default() {
             crate::input::schema::InterfaceForcesFile::Newmark => crate::dynamics::InterfaceForces::Newmark,
             crate::input::schema::InterfaceForcesFile::Implicit => crate::dynamics::InterfaceForces::Implicit,
+            crate::input::schema::InterfaceForcesFile::DiscreteGradient => {
+                crate::dynamics::InterfaceForces::DiscreteGradient
+            }
         },
     }))
 }

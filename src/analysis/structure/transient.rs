@@ -71,8 +71,7 @@ pub(super) fn impulse(
     crate::dynamics::Impulses {
         contacts: (loading.has_contacts() && settings.contact_forces == crate::dynamics::ContactForces::Implicit)
             .then(|| Impulse::new(settings.gamma, n_dofs)),
-        interfaces: (interfaces && settings.interface_forces == crate::dynamics::InterfaceForces::Implicit)
-            .then(|| Impulse::new(settings.gamma, n_dofs)),
+        interfaces: (interfaces && settings.interface_forces.impulse()).then(|| Impulse::new(settings.gamma, n_dofs)),
     }
 }
 

@@ -28,6 +28,8 @@ pub(crate) enum InterfaceForcesFile {
     Implicit,
     /// Newmark's average of the forces at both ends.
     Newmark,
+    /// The impulse of each point's discrete-gradient traction.
+    DiscreteGradient,
 }
 
 /// `analysis.newmark`.

@@ -4,14 +4,18 @@
 //! the bulk of the estimate are marked ([`dorfler`]) and every interval
 //! through a marked element is split ([`intervals`], [`refine`]).
 //!
-//! Every direction of a marked element is split because the estimate has
-//! no direction: `η_e` says how much error an element holds, not whether
-//! it is along x, z or the axis. Choosing intervals by error per added DOF
-//! instead (the cheap section intervals first, an axis interval only when
-//! its error paid for a whole section of nodes) was tried and failed: on
-//! the Timoshenko cantilever (1 × 1 L9, 2 B4; its error is along the axis)
-//! it split x and z intervals for eight cycles, 189 to 5,733 DOF, while the
-//! estimate stayed at 1.8 %.
+//! In a `rectangle` grid every direction of a marked element is split:
+//! `η_e` says how much error an element holds, not whether it is along x, z
+//! or the axis. Choosing intervals by error per added DOF instead (the
+//! cheap section intervals first, an axis interval only when its error
+//! paid for a whole section of nodes) was tried and failed: on the
+//! Timoshenko cantilever (1 × 1 L9, 2 B4; its error is along the axis) it
+//! split x and z intervals for eight cycles, 189 to 5,733 DOF, while the
+//! estimate stayed at 1.8 %. A parametric section (profile, laminate) is
+//! refined by the two stages of the patch recovery instead: the fit over
+//! the section says how much of an element's error lies across it
+//! (`across_sections`, `local`: which walls or plies), the rest lies
+//! along the axis (`along_axis`).
 
 use std::collections::BTreeSet;
 
@@ -73,7 +77,7 @@ pub struct BodyMarks {
     /// in `parts`.
     pub section: bool,
     /// The named counts of a parametric section to double instead of the
-    /// whole section (local refinement, [`local`]); empty: all of them.
+    /// whole section (local refinement, `local`); empty: all of them.
     pub parts: BTreeSet<String>,
 }
 

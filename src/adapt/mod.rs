@@ -20,9 +20,12 @@
 //! sections are tensor grids swept along the axis, so splitting intervals
 //! keeps the mesh conforming — no hanging nodes, no constraints — at the
 //! price of refining a whole row where one element asked for it. Sections
-//! that are not grids are refined as a whole (every in-plane count doubled)
-//! when the marked elements are spread over them, else only along the
-//! axis; `quads` and `gmsh` sections are kept ([`crate::setup::SectionPlan`]).
+//! that are not grids are refined when the marked elements are spread over
+//! them or their error lies across them: the counts of the walls or plies
+//! holding the section error doubled (a tube, a circle: every count), and
+//! their axis intervals split only where the error lies along the axis
+//! (`mark::local`, `mark::along_axis`); `quads` and `gmsh` sections are
+//! kept ([`crate::setup::SectionPlan`]).
 //! The refined model is rebuilt from its own model-file text with the new
 //! divisions (`Model::parse_planned`), so every constraint, load, contact,
 //! probe and line is resolved on the new mesh by its geometric selection

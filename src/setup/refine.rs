@@ -6,17 +6,18 @@
 //! sections how often their element counts were doubled. A model is
 //! rebuilt on a changed plan from its own model file
 //! ([`super::Model::parse_planned`]): the plan replaces the divisions of
-//! the file (as `lines`) before validation, so constraints, loads,
+//! the file's text (as `lines`, `super::plan_file`) before validation, so constraints, loads,
 //! indenters, probes and lines — geometric selections — are resolved anew
 //! on the refined mesh and keep their names.
 //!
 //! What a plan can refine per section shape:
 //!
 //! * `rectangle`: each x and z interval separately ([`SectionPlan::Grid`]);
-//! * `tube`, the parametric profiles, `circular_tube`, `circle`: the whole
-//!   section, every in-plane element count doubled (`around`, `along_*`;
-//!   for `circle` also `through`, which sets the O-grid's core); the
-//!   through-thickness count of a wall stays ([`SectionPlan::Doubled`]);
+//! * `tube`, the parametric profiles, `circular_tube`, `circle`, `laminate`:
+//!   in-plane element counts doubled (`around`, `along_*`; for `circle` also
+//!   `through`, which sets the O-grid's core; a laminate's plies' `elements`),
+//!   all of them or — a profile's walls, a laminate's plies — each on its
+//!   own; the through-thickness count of a wall stays ([`SectionPlan::Doubled`]);
 //! * `quads`, `gmsh`: nothing — the section is kept as given
 //!   ([`SectionPlan::Fixed`]).
 //!

@@ -66,7 +66,13 @@ pub(crate) fn planned_text(text: &str, plan: &MeshPlan) -> Result<String, ModelE
 
 /// Each body's table, `[[bodies]]` or `bodies = [{…}, …]`.
 fn bodies_mut(root: &mut Item) -> Vec<&mut dyn TableLike> {
-    match root.get_mut("bodies") {
+    tables_mut(root.get_mut("bodies"))
+}
+
+/// The tables of an array of tables (`[[key]]`) or of inline tables
+/// (`key = [{…}, …]`); none for anything else.
+fn tables_mut(item: Option<&mut Item>) -> Vec<&mut dyn TableLike> {
+    match item {
         Some(Item::ArrayOfTables(a)) => a.iter_mut().map(|t| t as &mut dyn TableLike).collect(),
         Some(Item::Value(Value::Array(a))) => {
             a.iter_mut().filter_map(Value::as_inline_table_mut).map(|t| t as &mut dyn TableLike).collect()
@@ -91,8 +97,13 @@ fn count(t: &dyn TableLike, key: &str, default: usize) -> usize {
     t.get(key).and_then(Item::as_integer).map_or(default, |n| usize::try_from(n).unwrap_or(0))
 }
 
+/// Sets count `key` to `n`, keeping the old value's spacing and trailing comment.
 fn set(t: &mut dyn TableLike, key: &str, n: usize) {
-    t.insert(key, Item::Value(Value::from(i64::try_from(n).unwrap_or(i64::MAX))));
+    let mut v = Value::from(i64::try_from(n).unwrap_or(i64::MAX));
+    if let Some(old) = t.get(key).and_then(Item::as_value) {
+        *v.decor_mut() = old.decor().clone();
+    }
+    t.insert(key, Item::Value(v));
 }
 
 /// The factor `2^(times + parts[key])`.
@@ -135,14 +146,7 @@ fn double(s: &mut dyn TableLike, shape: &str, times: u32, parts: &BTreeMap<Strin
             set(s, "around", around.saturating_mul(f("around")));
         }
         "laminate" => {
-            let plies: Vec<&mut dyn TableLike> = match s.get_mut("plies") {
-                Some(Item::ArrayOfTables(a)) => a.iter_mut().map(|t| t as &mut dyn TableLike).collect(),
-                Some(Item::Value(Value::Array(a))) => {
-                    a.iter_mut().filter_map(Value::as_inline_table_mut).map(|t| t as &mut dyn TableLike).collect()
-                }
-                _ => Vec::new(),
-            };
-            for (k, p) in plies.into_iter().enumerate() {
+            for (k, p) in tables_mut(s.get_mut("plies")).into_iter().enumerate() {
                 let n = count(p, "elements", defaults::THROUGH).saturating_mul(f(&ply_key(k)));
                 set(p, "elements", n);
             }
@@ -179,4 +183,54 @@ pub(crate) fn count_keys(shape: &str, section: &CrossSection) -> Vec<Option<Stri
 /// [`SectionPlan::Doubled`]'s `parts`: `plies[k]`.
 pub(crate) fn ply_key(k: usize) -> String {
     format!("plies[{k}]")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::setup::refine::BodyPlan;
+
+    /// Tables written as `[bodies.axis]`, `[bodies.section]` and
+    /// `[[bodies.section.plies]]` (not inline) are edited as the inline
+    /// ones: the axis becomes `lines`, each ply's `elements` is multiplied
+    /// by `2^(times + parts)` (a default written out), comments stay.
+    #[test]
+    fn tables_written_out_are_edited_in_place() {
+        let text = r#"# a laminate
+[[bodies]]
+name = "plate"
+[bodies.axis]
+element = "B4"
+from = 0.0
+to = 1.0
+elements = 2
+[bodies.section]
+shape = "laminate"
+[[bodies.section.plies]]
+thickness = 0.001
+elements = 3 # bottom
+[[bodies.section.plies]]
+thickness = 0.001
+"#;
+        let parts = [(ply_key(1), 2)].into_iter().collect();
+        let plan = MeshPlan {
+            bodies: vec![BodyPlan {
+                axis: vec![0.0, 0.25, 0.5, 1.0],
+                section: SectionPlan::Doubled { shape: "laminate", times: 1, parts },
+            }],
+        };
+        let out = planned_text(text, &plan).unwrap();
+        let t: toml::Table = out.parse().unwrap();
+        let body = &t["bodies"].as_array().unwrap()[0];
+        let axis = body["axis"].as_table().unwrap();
+        assert_eq!(axis["lines"].as_array().unwrap().len(), 4);
+        assert!(!axis.contains_key("from") && !axis.contains_key("elements"), "{out}");
+        let plies = body["section"]["plies"].as_array().unwrap();
+        // ply 0: 3 · 2¹; ply 1: the default 1 · 2^(1 + 2)
+        assert_eq!((plies[0]["elements"].as_integer(), plies[1]["elements"].as_integer()), (Some(6), Some(8)));
+        assert!(out.starts_with("# a laminate") && out.contains("# bottom"), "{out}");
+        // a plan of another file (two bodies) is refused by key
+        let two = MeshPlan { bodies: vec![plan.bodies[0].clone(), plan.bodies[0].clone()] };
+        assert!(planned_text(text, &two).unwrap_err().to_string().contains("bodies"));
+    }
 }

@@ -49,6 +49,7 @@ mod bbar;
 mod fbar;
 mod linearized;
 mod nucleus;
+mod product;
 pub(crate) use nucleus::geometric_matrix;
 
 use crate::kinematics::{Kinematics, LogStrain, Tensor};
@@ -231,6 +232,10 @@ pub(crate) fn element_response(
         "B-bar at finite strain needs the logarithmic strain and no initial displacement"
     );
     assert!(
+        geom.shear.is_none() || !kinematics.is_nonlinear(),
+        "the assumed in-section shear is a small-strain formulation"
+    );
+    assert!(
         !(kinematics.is_nonlinear() && mode == TangentMode::UnlessElastic),
         "nonlinear geometry has no elastic tangent to correct"
     );
@@ -254,8 +259,8 @@ pub(crate) fn element_response(
         // material, geometric (and B-bar's) terms as 3×3 nuclei (nucleus)
         nucleus::large_tangent(geom, (el.es, el.eb, el.nodes), geom.volumetric.as_ref(), ws);
     } else if tangent_computed {
-        let contributing = gather_operators(geom, &el, material, mode == TangentMode::UnlessElastic, ws);
-        tangent_product(&el, contributing, ws);
+        let contributing = product::gather_operators(geom, &el, material, mode == TangentMode::UnlessElastic, ws);
+        product::tangent_product(&el, contributing, ws);
     }
     let stress_pass = stressed - start;
     let tangent_pass = if tangent_computed { stressed.elapsed() } else { std::time::Duration::ZERO };
@@ -340,20 +345,13 @@ fn stresses_and_forces(
             let g0 = points.initial.map(|_| point_gradient(&sp, v0, vy0));
             let (grad, mut eps, log) = point_strain(points.kinematics, point_gradient(&sp, v, vy), g0);
             if bbar {
-                // ε̄ = ε + (θ̄ − θ)/3 · 1: in small strain θ̄ − θ = Σ_a (b̄_a − g_a)·u_a,
-                // at finite strain the projected ln J less ln J (fbar)
-                let shift = if large {
-                    ws.dilatation[q]
-                } else {
-                    let d = &ws.bbar[q * nodes..(q + 1) * nodes];
-                    d.iter()
-                        .enumerate()
-                        .map(|(a, da)| da[0] * u[3 * a] + da[1] * u[3 * a + 1] + da[2] * u[3 * a + 2])
-                        .sum()
-                };
+                let shift = dilatation_shift((&ws.bbar, &ws.dilatation), q, nodes, u, large);
                 for e in eps.iter_mut().take(3) {
                     *e += shift / 3.0;
                 }
+            }
+            if let Some(sh) = &geom.shear {
+                sh.add_strain(el.es, gs, v, &mut eps);
             }
             let mut r = match (&material.damage, points.damage.as_mut()) {
                 (Some(law), Some(dp)) => {
@@ -396,6 +394,9 @@ fn stresses_and_forces(
                 crate::voigt::stress_tensor(&r.stress)
             };
             add_point_force(&sp, w, &rows, h, hy);
+            if let Some(sh) = &geom.shear {
+                sh.add_force(el.es, gs, w, &points.stress[q], h);
+            }
             if bbar {
                 // f_a += w d_a p, p = tr σ / 3 (tr T / 3 at finite strain)
                 let tr = ws.pressure[q];
@@ -418,6 +419,17 @@ fn stresses_and_forces(
         }
     }
     (all_elastic, plastic_points)
+}
+
+/// B-bar's `θ̄ − θ` at point `q` (`ε̄ = ε + (θ̄ − θ)/3 · 1`): in small strain
+/// `Σ_a (b̄_a − g_a)·u_a`, at finite strain the projected ln J less ln J
+/// (`fbar`, computed beforehand).
+fn dilatation_shift((bbar, dilatation): (&[[f64; 3]], &[f64]), q: usize, nodes: usize, u: &[f64], large: bool) -> f64 {
+    if large {
+        return dilatation[q];
+    }
+    let d = &bbar[q * nodes..(q + 1) * nodes];
+    d.iter().enumerate().map(|(a, da)| da[0] * u[3 * a] + da[1] * u[3 * a + 1] + da[2] * u[3 * a + 2]).sum()
 }
 
 /// The strain the material sees at a Gauss point, from the displacement
@@ -494,96 +506,8 @@ fn add_point_force(sp: &crate::values::SectionAt<'_>, w: f64, s: &Tensor, h: &mu
     }
 }
 
-/// Second pass (small strain): for every contributing Gauss point `j`
-/// (all, or with `correction` only those whose tangent is not the elastic
-/// one, with `C − C^el` — the nucleus is linear in `C`), the operator `B̄_j`
-/// (its six rows as columns of `ws.bt`, one row per element DOF) and
-/// `w C B̄_j` likewise in `ws.cbt`. Returns the number of points gathered.
-fn gather_operators(
-    geom: &CellValues,
-    el: &Element,
-    material: &Material,
-    correction: bool,
-    ws: &mut Workspace,
-) -> usize {
-    let (sg, ag) = (&geom.section, &geom.axis);
-    let (nodes, ndof, stride) = (el.nodes, 3 * el.nodes, 6 * el.n_points);
-    let bbar = geom.volumetric.is_some();
-    let elastic = material.elastic_stiffness();
-    ws.bt.resize(ndof * stride, 0.0);
-    ws.cbt.resize(ndof * stride, 0.0);
-    let mut contributing = 0;
-    for gb in 0..ag.n_gp {
-        for gs in 0..sg.n_gp {
-            let q = gb * sg.n_gp + gs;
-            if correction {
-                let t = &mut ws.tangents[q];
-                if t == elastic {
-                    continue;
-                }
-                for (row, er) in t.iter_mut().zip(elastic) {
-                    for (v, e) in row.iter_mut().zip(er) {
-                        *v -= e;
-                    }
-                }
-            }
-            let w = geom.gradients(el.es, el.eb, gb, gs, &mut ws.grads[..nodes]);
-            let c = &ws.tangents[q];
-            let dbar = if bbar { Some(&ws.bbar[q * nodes..(q + 1) * nodes]) } else { None };
-            let col0 = 6 * contributing;
-            for (b, &g) in ws.grads[..nodes].iter().enumerate() {
-                // column k of B̄_b: the strain of a unit displacement u_k of
-                // node b (crate::voigt's order and shear convention) plus the
-                // B-bar term m d_b[k] / 3 on the normal rows
-                let d = dbar.map_or([0.0; 3], |d| d[b]);
-                for k in 0..3 {
-                    let mut col = [d[k] / 3.0, d[k] / 3.0, d[k] / 3.0, 0.0, 0.0, 0.0];
-                    let mut unit = [0.0; 3];
-                    unit[k] = 1.0;
-                    crate::voigt::add_nodal_strain(&mut col, g, unit);
-                    let p = (3 * b + k) * stride + col0;
-                    ws.bt[p..p + 6].copy_from_slice(&col);
-                }
-            }
-            // w C B̄_j for all element DOFs at once: (DOF × 6) · (w C)ᵀ, a
-            // small GEMM (the column-by-column 6 × 6 products ran scalar)
-            let lhs = faer::MatRef::from_row_major_slice_with_stride(&ws.bt[col0..], ndof, 6, stride);
-            let flat: [f64; 36] = std::array::from_fn(|i| c[i / 6][i % 6]);
-            let cmat = faer::MatRef::from_row_major_slice(&flat, 6, 6);
-            // (faer 0.24's `from_row_major_slice_with_stride_mut` lays the
-            // data out column-major: the transposed column-major view instead)
-            let dst = faer::MatMut::from_column_major_slice_with_stride_mut(&mut ws.cbt[col0..], 6, ndof, stride)
-                .transpose_mut();
-            faer::linalg::matmul::matmul(dst, faer::Accum::Replace, lhs, cmat.transpose(), w, faer::Par::Seq);
-            contributing += 1;
-        }
-    }
-    contributing
-}
-
-/// `K = Σ_j B̄_jᵀ (w C B̄_j) = bt · cbtᵀ` over the `contributing` points, one
-/// dense product (faer GEMM, upper triangle only, sequential: the element
-/// loop is the parallel one) into `ws.tangent`.
-fn tangent_product(el: &Element, contributing: usize, ws: &mut Workspace) {
-    use faer::linalg::matmul::triangular::{BlockStructure, matmul};
-    let (ndof, stride) = (3 * el.nodes, 6 * el.n_points);
-    let k = 6 * contributing;
-    let lhs = faer::MatRef::from_row_major_slice_with_stride(&ws.bt[..], ndof, k, stride);
-    let rhs = faer::MatRef::from_row_major_slice_with_stride(&ws.cbt[..], ndof, k, stride);
-    let dst = faer::MatMut::from_row_major_slice_mut(&mut ws.tangent[..ndof * ndof], ndof, ndof);
-    matmul(
-        dst,
-        BlockStructure::TriangularUpper,
-        faer::Accum::Replace,
-        lhs,
-        BlockStructure::Rectangular,
-        rhs.transpose(),
-        BlockStructure::Rectangular,
-        1.0,
-        faer::Par::Seq,
-    );
-}
-
+#[cfg(test)]
+mod assumed_tests;
 #[cfg(test)]
 mod fbar_tests;
 #[cfg(test)]

@@ -163,12 +163,13 @@ impl FieldView<'_> {
                 s.stress[k] = sigma[k].clamp(lo[k], hi[k]);
             }
             s.peeq = peeq.clamp(lo[6], hi[6]);
-        } else if geom.volumetric.is_some() || self.kinematics.is_nonlinear() {
+        } else if geom.modified_strain() || self.kinematics.is_nonlinear() {
             // B-bar: the stress depends on the projected dilatation, not on
             // `div u` at the point (with ν → 0.5 the latter times λ is noise);
             // the Gauss-point stresses are the kernel's, and the interpolation
             // through them is exact on affine elements (the projected
-            // dilatation is linear, the deviatoric strain of degree ≤ p)
+            // dilatation is linear, the deviatoric strain of degree ≤ p;
+            // likewise the assumed shear's strain is not `ε(u)` at the point)
             // (total Lagrangian: the Cauchy stress is not `C E`, and the
             // kernel's Gauss-point values are the ones to interpolate)
             s.stress = sigma;

@@ -46,7 +46,8 @@
 //! estimates the error of the material part only (the stress stiffness is
 //! a first-derivative form, of lower order than the material energy for
 //! the short-wave error). Contact penalties, cohesive interfaces and the
-//! B-bar projection of the volumetric strain are not in `σ_h` either; at
+//! B-bar projection of the volumetric strain are not in `σ_h` either (the
+//! assumed in-section shear is: `σ_h = C ε̄`, the kernel's strain); at
 //! yielded points the elastic stiffness stands in for the tangent (the
 //! static estimate's convention).
 //!
@@ -95,7 +96,20 @@ pub(crate) fn stresses(d: &Discretisation<'_>, u: &[f64]) -> (Vec<Voigt>, Vec<us
             for gb in 0..cell.axis.n_gp {
                 for gs in 0..cell.section.n_gp {
                     cell.gradients(es, eb, gb, gs, &mut grads);
-                    let eps = crate::values::strain(&grads, &local);
+                    let mut eps = crate::values::strain(&grads, &local);
+                    if let Some(sh) = &cell.shear {
+                        // the kernel's strain: v_τ = Σ_i N_i u_(i,τ), then the assumed shear's change
+                        let ns = cell.section.n_fun;
+                        let mut v = vec![[0.0; 3]; ns];
+                        for (i, n) in cell.axis.point(eb, gb).n.iter().enumerate() {
+                            for (t, vt) in v.iter_mut().enumerate() {
+                                for k in 0..3 {
+                                    vt[k] += n * local[3 * (i * ns + t) + k];
+                                }
+                            }
+                        }
+                        sh.add_strain(es, gs, &v, &mut eps);
+                    }
                     out.push(crate::voigt::mat_vec(c, &eps));
                 }
             }

@@ -48,9 +48,28 @@ pub(super) fn mesh(
             // choice stays the user's (docs/cross-check.md, docs/limitations.md)
             let bbar = match file[i].formulation {
                 None => b.materials().iter().any(|&m| materials[m].anisotropic.is_none() && materials[m].poisson >= 0.45),
-                Some(Formulation::Standard) => false,
+                Some(Formulation::Standard | Formulation::AssumedShear) => false,
                 Some(Formulation::Bbar) => true,
             };
+            if file[i].formulation == Some(Formulation::AssumedShear) {
+                // the tying interpolation (crate::values::AssumedShear) needs p ≥ 2 to pass
+                // the patch test, and is written for the small-strain kernel
+                if b.section.kind.order() < 2 {
+                    return Err(invalid(
+                        format!("bodies[{i}].formulation"),
+                        "\"assumed_shear\" with L4 section elements",
+                        "\"assumed_shear\" with L9 or L16 section elements, or \"standard\"/\"bbar\"",
+                    ));
+                }
+                if analysis.geometry == Some(Geometry::Nonlinear) {
+                    return Err(invalid(
+                        format!("bodies[{i}].formulation"),
+                        "\"assumed_shear\" with analysis.geometry = \"nonlinear\"",
+                        "\"standard\" or \"bbar\" (the assumed shear is a small-strain formulation)",
+                    ));
+                }
+                return Ok(cell.with_assumed_shear(b));
+            }
             if bbar && analysis.geometry == Some(Geometry::Nonlinear) {
                 // at finite strain B-bar projects the logarithmic dilatation
                 // ln J (crate::elements's fbar), which only the logarithmic

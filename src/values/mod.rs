@@ -18,8 +18,11 @@ use crate::quadrature::{GaussRule, SquareRule};
 use crate::shape::{Lagrange1d, Lagrange2d};
 use crate::voigt::{self, Voigt};
 
+mod assumed;
 mod facet;
 mod point;
+
+pub use assumed::AssumedShear;
 
 pub use facet::{FaceSide, FacetValues};
 pub use point::{Location, PointValues, locate, locate_in_model};
@@ -302,6 +305,8 @@ pub struct CellValues {
     pub axis: AxisValues,
     /// The space the volumetric strain is projected on (B-bar), if any.
     pub volumetric: Option<PressureSpace>,
+    /// The assumed in-section shear strain (`formulation = "assumed_shear"`), if any.
+    pub shear: Option<AssumedShear>,
 }
 
 /// An element-wise discontinuous polynomial space for the volumetric strain
@@ -347,6 +352,7 @@ impl CellValues {
             section: SectionValues::new(&body.section, &body.name)?,
             axis: AxisValues::new(&body.axis),
             volumetric: None,
+            shear: None,
         })
     }
 
@@ -355,6 +361,21 @@ impl CellValues {
         self.volumetric =
             Some(PressureSpace::new(&self.section, &self.axis, body.section.kind.order(), body.axis.kind.order()));
         self
+    }
+
+    /// The same values with the assumed in-section shear strain
+    /// ([`AssumedShear`]; no change for L4 sections, which the model
+    /// reader refuses).
+    pub(crate) fn with_assumed_shear(mut self, body: &Body) -> Self {
+        self.shear = AssumedShear::new(&body.section, &self.section.natural);
+        self
+    }
+
+    /// True if the kernel's strain is not the symmetric gradient of the
+    /// displacement at a Gauss point (B-bar, the assumed shear): then the
+    /// Gauss-point stresses, not `C ε(u)` at a point, are the element's.
+    pub(crate) fn modified_strain(&self) -> bool {
+        self.volumetric.is_some() || self.shear.is_some()
     }
 
     /// Gauss points per 3D element (`section × axis`); point `g = g_axis · n_section + g_section`.

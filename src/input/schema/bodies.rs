@@ -20,7 +20,7 @@ pub(crate) struct BodyFile {
     pub section: SectionFile,
     /// The beam-axis mesh along y.
     pub axis: AxisFile,
-    /// `"standard"` or `"bbar"` (default from the material's ν).
+    /// `"standard"`, `"bbar"` or `"assumed_shear"` (default from the material's ν).
     pub formulation: Option<Formulation>,
     /// `[[bodies.zones]]`: materials and material axes of section regions.
     pub zones: Option<Vec<ZoneFile>>,

@@ -200,6 +200,10 @@ pub(crate) enum Formulation {
     Standard,
     /// Volumetric strain projected per element (the default for ν ≥ 0.45).
     Bbar,
+    /// The in-section covariant shear strain interpolated from the reduced
+    /// Gauss points (crate::values::AssumedShear; small strain, L9/L16).
+    #[serde(rename = "assumed_shear")]
+    AssumedShear,
 }
 
 /// An indenter's `method`.

@@ -51,11 +51,16 @@ fn compare(coarse: &(Model, Solution), fine: &(Model, Solution)) -> Vec<(Option<
 
 /// The laminated torsion box of the benchmark (`bench/box_laminated_modes.toml`,
 /// [±45]s T300/5208 walls 1 mm, 100 × 50 mm) shortened to 0.4 m, with
-/// `flange` × `web` L9 along its walls and `axis` B4.
+/// `flange` × `web` L9 along its walls and `axis` B4, with the paper's
+/// element (the benchmark's assumed shear removed: the estimates below are
+/// those of the walls' locking modes, the case they were measured on).
 fn short_box(flange: usize, web: usize, axis: usize) -> String {
     let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/bench/box_laminated_modes.toml")).unwrap();
+    let assumed = "formulation = \"assumed_shear\"\n";
     assert!(text.contains("along_flange = 3, along_web = 2") && text.contains("to = 1.0, elements = 8 }"));
-    text.replace("along_flange = 3, along_web = 2", &format!("along_flange = {flange}, along_web = {web}"))
+    assert!(text.contains(assumed));
+    text.replace(assumed, "")
+        .replace("along_flange = 3, along_web = 2", &format!("along_flange = {flange}, along_web = {web}"))
         .replace("to = 1.0, elements = 8 }", &format!("to = 0.4, elements = {axis} }}"))
 }
 

@@ -167,7 +167,11 @@ fn small_settings_are_words_from_a_list() {
         refused(&text, line_of(&text, word), &[expected]);
     }
     let text = edit(&base, "material = \"aluminium\"\n", "material = \"aluminium\"\nformulation = \"mixed\"\n");
-    refused(&text, line_of(&text, "mixed"), &["unknown variant `mixed`, expected `standard` or `bbar`"]);
+    refused(
+        &text,
+        line_of(&text, "mixed"),
+        &["unknown variant `mixed`, expected one of `standard`, `bbar`, `assumed_shear`"],
+    );
     let text =
         format!("{base}\n[[references]]\nprobe = \"tip\"\nquantity = \"sigma_yy\"\nvalue = 1.0\nsource = \"x\"\n");
     refused(&text, line_of(&text, "sigma_yy"), &["invalid value: string \"sigma_yy\", expected one of u_x, u_y"]);

@@ -461,7 +461,7 @@ fn point_strain(kinematics: Kinematics, mut grad: Tensor, g0: Option<Tensor>) ->
 }
 
 /// `v_τ = Σ_i N_i u_(i,τ)` and `v'_τ = Σ_i N_i,y u_(i,τ)` at one axis point.
-fn contract_axis(at: &crate::values::AxisAt<'_>, u: &[f64], v: &mut [[f64; 3]], vy: &mut [[f64; 3]]) {
+pub(crate) fn contract_axis(at: &crate::values::AxisAt<'_>, u: &[f64], v: &mut [[f64; 3]], vy: &mut [[f64; 3]]) {
     let ns = v.len();
     v.fill([0.0; 3]);
     vy.fill([0.0; 3]);

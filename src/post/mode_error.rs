@@ -83,9 +83,13 @@ pub(crate) fn stresses(d: &Discretisation<'_>, u: &[f64]) -> (Vec<Voigt>, Vec<us
     let mut out = Vec::new();
     let mut offsets = Vec::with_capacity(d.mesh.bodies.len());
     let (mut nodes, mut grads, mut local) = (Vec::new(), Vec::new(), Vec::new());
+    // the assumed shear's axis-contracted displacements v_τ, v'_τ (the kernel's)
+    let (mut v, mut vy) = (Vec::new(), Vec::new());
     for (b, body) in d.mesh.bodies.iter().enumerate() {
         offsets.push(out.len());
         let cell = &d.cells[b];
+        v.resize(cell.section.n_fun, [0.0; 3]);
+        vy.resize(cell.section.n_fun, [0.0; 3]);
         for e in 0..body.n_elements() {
             let (es, eb) = body.split_element(e);
             let c = d.materials[body.material_of(es)].elastic_stiffness();
@@ -94,20 +98,14 @@ pub(crate) fn stresses(d: &Discretisation<'_>, u: &[f64]) -> (Vec<Voigt>, Vec<us
             local.extend(nodes.iter().flat_map(|&n| [u[3 * n], u[3 * n + 1], u[3 * n + 2]]));
             grads.resize(nodes.len(), [0.0; 3]);
             for gb in 0..cell.axis.n_gp {
+                if cell.shear.is_some() {
+                    crate::elements::contract_axis(&cell.axis.point(eb, gb), &local, &mut v, &mut vy);
+                }
                 for gs in 0..cell.section.n_gp {
                     cell.gradients(es, eb, gb, gs, &mut grads);
                     let mut eps = crate::values::strain(&grads, &local);
                     if let Some(sh) = &cell.shear {
-                        // the kernel's strain: v_τ = Σ_i N_i u_(i,τ), then the assumed shear's change
-                        let ns = cell.section.n_fun;
-                        let mut v = vec![[0.0; 3]; ns];
-                        for (i, n) in cell.axis.point(eb, gb).n.iter().enumerate() {
-                            for (t, vt) in v.iter_mut().enumerate() {
-                                for k in 0..3 {
-                                    vt[k] += n * local[3 * (i * ns + t) + k];
-                                }
-                            }
-                        }
+                        // the kernel's strain: the assumed shear's change
                         sh.add_strain(es, gs, &v, &mut eps);
                     }
                     out.push(crate::voigt::mat_vec(c, &eps));

@@ -181,6 +181,7 @@ fn a_transient_model_without_an_exact_twin_is_refused_by_key() {
 /// "newmark"`, `contact_mass = "kept"`, tried by hand) the plate leaves
 /// with 20 times its energy: motion 350 %, impulse +173 %.
 #[test]
+#[ignore = "validate: slow — an impact against CalculiX *DYNAMIC (about 40 s; CI keeps the step-loaded bar's history)"]
 fn verify_cross_checks_an_impact_with_calculix() {
     if common::ccx_missing() {
         return;

@@ -175,6 +175,7 @@ fn section_distortion(model: &Model, mode: &[f64], y: f64) -> f64 {
 /// --refine 1`; at refine 2, 500,571 DOF, the 3D frequencies move by at
 /// most 0.1 %).
 #[test]
+#[ignore = "validate: slow — the channel's modes against CalculiX's 73,599-DOF *FREQUENCY (about 35 s; CI keeps the frequency cross-check)"]
 fn the_channels_first_local_mode_agrees_with_calculix() {
     if common::ccx_missing() {
         return;

@@ -170,9 +170,10 @@ fn dcb_curve_follows_corrected_beam_theory() {
 /// would cost minutes), past both peaks (4.40 and 3.98 mm), where the
 /// curves part most. Measured: +10 %: 8.27 % against the original, 2.87 %
 /// against its own; −10 %: 4.47 % and 2.40 % (7.37 % against the original
-/// when run on to 4.44 mm). CI runs +10 %; −10 % runs in the validation
-/// (`dcb_curve_moves_with_a_lower_toughness`).
+/// when run on to 4.44 mm). Both run in the validation (+10 % here, −10 %
+/// in `dcb_curve_moves_with_a_lower_toughness`); CI keeps the original curve.
 #[test]
+#[ignore = "validate: slow — the DCB with G_Ic raised by 10 % (about 20 s; CI keeps the original curve)"]
 fn dcb_curve_moves_with_the_toughness() {
     dcb_moves("gic_up", 1.1);
 }
@@ -576,9 +577,11 @@ fn enf_curve_follows_corrected_beam_theory() {
 /// G_IIc changed by ±10 % moves the ENF branch out of the 3 % band around
 /// the original closed form, and keeps it within 3 % of the closed form of
 /// the changed toughness (design48 §3.4; the branch error as in
-/// `enf_curve_follows_corrected_beam_theory`). CI runs −10 %; +10 % runs
-/// in the validation (`enf_curve_moves_with_a_higher_toughness`).
+/// `enf_curve_follows_corrected_beam_theory`). Both run in the validation
+/// (−10 % here, +10 % in `enf_curve_moves_with_a_higher_toughness`); CI
+/// keeps the original curve.
 #[test]
+#[ignore = "validate: slow — the ENF with G_IIc lowered by 10 % (about 40 s; CI keeps the original curve)"]
 fn enf_curve_moves_with_the_toughness() {
     enf_moves("giic_down", 0.9);
 }

@@ -16,6 +16,7 @@
 
 pub mod buckling;
 mod checks;
+pub mod concentrated;
 mod conditioning;
 pub mod modal;
 pub mod path;

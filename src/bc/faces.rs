@@ -57,7 +57,7 @@ pub fn boundary_faces(body: &Body) -> Vec<Face> {
 }
 
 /// Global nodes of a face (all of them, in no particular order).
-fn face_nodes(body: &Body, face: &Face) -> Vec<usize> {
+pub(crate) fn face_nodes(body: &Body, face: &Face) -> Vec<usize> {
     let el = body.section.element(face.section_element);
     let first = body.axis.first_node(face.beam_element);
     let p = body.axis.kind.order();

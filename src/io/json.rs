@@ -161,6 +161,11 @@ pub struct Summary {
     pub steps: Vec<StepSummary>,
     /// The estimated discretization error (`post::estimate`), if computed.
     pub error_estimate: Option<EstimateSummary>,
+    /// The loads, supports and contacts that act on points or lines
+    /// (`analysis::concentrated`): the stresses of the elements around them do
+    /// not converge under refinement. Absent when there are none.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub concentrated: Vec<crate::analysis::concentrated::Concentrated>,
     /// The failure indices' largest values and the first-ply-failure load
     /// factor (`post::failure`), where a material has strengths.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -484,6 +489,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         warnings: model.warnings.iter().chain(&solution.warnings).map(|w| w.to_string()).collect(),
         steps: Vec::new(),
         error_estimate: estimate_summary(model, solution),
+        concentrated: crate::analysis::concentrated::find(model, solution),
         ply_failure: crate::post::failure::summary(&solution.fields(model), solution.lambda),
         adapt: solution.adapt.as_ref().map(|a| {
             a.cycles

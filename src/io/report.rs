@@ -258,6 +258,19 @@ pub fn results(model: &Model, solution: &Solution) -> String {
             largest.join(", ")
         );
     }
+    for c in &summary.concentrated {
+        let share = c.error_share.map_or(String::new(), |v| format!("; {:.0} % of the estimated error", 100.0 * v));
+        out!(
+            s,
+            "{} {:?} ({}) acts on a point or a line ({} nodes): the stresses of its {} elements are a concentrated \
+             force's and do not converge under refinement{share}",
+            c.kind,
+            c.name,
+            c.key,
+            c.nodes,
+            c.elements
+        );
+    }
     ply_failure(&mut s, &summary);
     if let Some(p) = &summary.path {
         let points: Vec<String> = p.limit_points.iter().map(|(i, l)| format!("increment {i} (λ = {l:.5})")).collect();

@@ -29,6 +29,9 @@ pub struct Frame {
     pub increment: usize,
     /// Displacements, states and stresses then.
     pub fields: StepFields,
+    /// The cohesive interfaces then (`None` without interfaces): the
+    /// frame's `d_interface`.
+    pub delamination: Option<crate::interfaces::Delamination>,
 }
 
 impl<'a> Recorder<'a> {
@@ -58,7 +61,12 @@ impl<'a> Recorder<'a> {
         while self.next_frame <= t * (1.0 + 1e-9) {
             self.next_frame += interval;
         }
-        self.frames.push(Frame { time: t, increment: inc.index, fields: s.fields() });
+        self.frames.push(Frame {
+            time: t,
+            increment: inc.index,
+            fields: s.fields(),
+            delamination: s.interfaces().delamination(),
+        });
     }
 }
 

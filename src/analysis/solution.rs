@@ -85,8 +85,9 @@ pub struct Solution {
     pub frames: Vec<Frame>,
     /// How the path following went (`solver.control = "arc_length"`).
     pub path: Option<PathOutcome>,
-    /// The cohesive interfaces at the end (`None` without interfaces and
-    /// for the states of [`Solution::at_step`]).
+    /// The cohesive interfaces at the end, or at the frame of
+    /// [`Solution::at_frame`] (`None` without interfaces and for the states
+    /// of [`Solution::at_step`]).
     pub delamination: Option<crate::interfaces::Delamination>,
     /// The ply damage at the end (`None` without a damaging material and
     /// for the states of [`Solution::at_step`]).
@@ -188,7 +189,9 @@ impl Solution {
     pub fn at_frame(&self, model: &Model, k: usize) -> Result<Solution, AnalysisError> {
         let frame = &self.frames[k];
         let row = &self.history[frame.increment - 1];
-        self.with_fields(model, &frame.fields, row.lambda, (&row.reactions, &row.contacts))
+        let mut s = self.with_fields(model, &frame.fields, row.lambda, (&row.reactions, &row.contacts))?;
+        s.delamination = frame.delamination.clone();
+        Ok(s)
     }
 
     /// This solution with the fields, λ and resultants of another moment

@@ -37,10 +37,56 @@ const WINDOW: f64 = 1.0e-4;
 const REFINED_AXIS: (f64, f64) = (519.605, 0.500357);
 const REFINED_STEP: (f64, f64) = (517.582, 0.507341);
 
+/// The time between the frames the test asks for (s): ten steps.
+const FRAMES: f64 = 2.5e-5;
+
+/// The example as shipped, with frames every `FRAMES` (output only: the
+/// solution is the example's).
 fn run_example() -> (PathBuf, Value) {
     let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/laminate_drop_weight.toml"));
     let text = std::fs::read_to_string(path).unwrap();
-    common::run_text("drop_weight_laminate", "example", &text)
+    let framed = text.replacen(
+        "interface_forces = \"implicit\"\n",
+        &format!("interface_forces = \"implicit\"\noutput_interval = {FRAMES:e}\n"),
+        1,
+    );
+    assert_ne!(framed, text, "the example's [analysis] changed: ask for its frames another way");
+    common::run_text("drop_weight_laminate", "example", &framed)
+}
+
+/// One frame's failure picture: where (y, z in m) a Hashin index of the
+/// plies is at least 1, and per point of the interfaces (y, z, d).
+struct Onset {
+    time: f64,
+    ply: Vec<(f64, f64)>,
+    interface: Vec<(f64, f64, f64)>,
+}
+
+/// The frames of a run until `until` (s), from `frames.pvd`.
+fn onsets(out: &Path, until: f64) -> Vec<Onset> {
+    let pvd = std::fs::read_to_string(out.join("frames.pvd")).unwrap();
+    let mut frames = Vec::new();
+    for line in pvd.lines().filter(|l| l.contains("<DataSet")) {
+        let attr =
+            |name: &str| line.split(&format!("{name}=\"")).nth(1).unwrap().split('"').next().unwrap().to_string();
+        let time: f64 = attr("timestep").parse().unwrap();
+        if time > until {
+            break;
+        }
+        let file = out.join(attr("file"));
+        let points = common::vtu_array(&file, None);
+        let fibre = common::vtu_array(&file, Some("fi_hashin_fibre"));
+        let matrix = common::vtu_array(&file, Some("fi_hashin_matrix"));
+        let damage = common::vtu_array(&file, Some("d_interface"));
+        let at = |i: usize| (points[3 * i + 1], points[3 * i + 2]);
+        let ply = (0..fibre.len()).filter(|&i| fibre[i].max(matrix[i]) >= 1.0).map(at).collect();
+        // the interface planes z = 0.5, 1, 1.5 mm (d_interface is 0 elsewhere)
+        let on_interface = |z: f64| (1..4).any(|k| (z - 5e-4 * k as f64).abs() < 1e-9);
+        let interface =
+            (0..damage.len()).filter(|&i| on_interface(at(i).1)).map(|i| (at(i).0, at(i).1, damage[i])).collect();
+        frames.push(Onset { time, ply, interface });
+    }
+    frames
 }
 
 /// The contact force averaged over `WINDOW`: the striker's impulse over the
@@ -151,4 +197,98 @@ fn a_drop_weight_delaminates_a_laminate_and_the_ledger_closes() {
         0.03,
         "the step halved, bench/drop/results.txt",
     );
+    where_failure_starts(&out, &avg, (t_peak, peak));
+}
+
+/// Where and when failure starts, from the frames (every `FRAMES`), against
+/// the delamination and the load drop. The interfaces' law damages a point
+/// only once its quadratic onset criterion `(⟨t3⟩/N)² + (t_s/S)² ≥ 1` is
+/// met (`materials::cohesive`), so `d_interface > 0` is where that index
+/// reached 1. Measured (docs/composites.md, "Where failure starts"):
+/// * at the line supports (y = 0, 50 mm) both indices pass 1 in the first
+///   frame — the stress wave meeting the supports' lines, a singular
+///   support, two points of each lower interface, which stay there;
+/// * away from the supports the interfaces' onset spreads over the span from
+///   0.25 ms, on all three interfaces; the mid-plane reaches d = 1 over most
+///   of the span between the frames at 0.500 and 0.525 ms, the averaged
+///   force peaks at 0.500 ms and falls after: delamination and the load
+///   drop appear together, where the interface's index passed 1;
+/// * the plies' Hashin matrix index first passes 1 (away from the
+///   supports) at 0.375 ms under the striker, at the lower 0/90 ply face
+///   (z = 0.5 mm: the 90° ply's transverse tension) — not on the mid-plane
+///   that delaminates. A finding, asserted from both sides
+///   (docs/limitations.md): the ply indices say where the plies crack,
+///   not which interface separates.
+fn where_failure_starts(out: &Path, avg: &[(f64, f64)], (t_peak, peak): (f64, f64)) {
+    const SPAN: f64 = 0.05;
+    const MID_PLANE: f64 = 1e-3;
+    let frames = onsets(out, 1.0e-3);
+    let interior = |y: f64| y > 0.05 * SPAN && y < 0.95 * SPAN;
+    // the first frame: the supports only
+    let first = &frames[0];
+    let inside = |ps: &[(f64, f64)]| ps.iter().filter(|p| interior(p.0)).count();
+    assert!(
+        inside(&first.ply) == 0 && !first.ply.is_empty(),
+        "first frame: ply index ≥ 1 at {} points",
+        first.ply.len()
+    );
+    let started: Vec<(f64, f64)> = first.interface.iter().filter(|p| p.2 > 0.0).map(|p| (p.0, p.1)).collect();
+    assert!(inside(&started) == 0 && !started.is_empty(), "first frame: onset at {} points", started.len());
+    // delamination: the first frame with d = 1, on the mid-plane only
+    let k_delam = frames.iter().position(|f| f.interface.iter().any(|p| p.2 >= 1.0)).expect("no frame with d = 1");
+    let t_delam = frames[k_delam].time;
+    let separated: Vec<&(f64, f64, f64)> = frames[k_delam].interface.iter().filter(|p| p.2 >= 1.0).collect();
+    assert!(separated.iter().all(|p| (p.1 - MID_PLANE).abs() < 1e-9), "separated off the mid-plane");
+    common::figure("drop_weight_laminate.delamination_time", t_delam, "s", "first frame with d = 1 (every 25 µs)");
+    // its onset came first, where it separates: every separated point had
+    // d > 0 in an earlier frame, and the mid-plane's onset spread over
+    // most of its span (interior) before
+    let had_onset = |k: usize, y: f64, z: f64| {
+        frames[k].interface.iter().any(|p| (p.0 - y).abs() < 1e-9 && (p.1 - z).abs() < 1e-9 && p.2 > 0.0)
+    };
+    assert!(k_delam >= 2 && separated.iter().all(|p| had_onset(k_delam - 1, p.0, p.1)), "onset before d = 1");
+    let k_onset = frames
+        .iter()
+        .position(|f| {
+            let mid: Vec<_> = f.interface.iter().filter(|p| (p.1 - MID_PLANE).abs() < 1e-9 && interior(p.0)).collect();
+            2 * mid.iter().filter(|p| p.2 > 0.0).count() > mid.len()
+        })
+        .unwrap();
+    common::figure("drop_weight_laminate.onset_time", frames[k_onset].time, "s", "mid-plane onset over half its span");
+    assert!(k_onset < k_delam, "onset at {} s, d = 1 at {t_delam} s", frames[k_onset].time);
+    // the load drop with it: the averaged force peaks no later than the
+    // first frame with d = 1 and falls below 90 % of its peak after the
+    // last frame without it, within two frames of the separation
+    let t_drop = avg.iter().find(|&&(t, f)| t > t_peak && f < 0.9 * peak).unwrap().0;
+    common::figure("drop_weight_laminate.drop_time", t_drop, "s", "averaged force below 90 % of its peak");
+    assert!(
+        t_peak <= t_delam && t_drop > frames[k_delam - 1].time,
+        "peak {t_peak} s, drop {t_drop} s, d = 1 {t_delam} s"
+    );
+    assert!(t_drop <= t_delam + 2.0 * FRAMES, "drop {t_drop} s long after d = 1 at {t_delam} s");
+    // the plies: their first index ≥ 1 away from the supports, before the
+    // separation, within the delaminated span, but not on the mid-plane
+    let k_ply = frames.iter().position(|f| f.ply.iter().any(|p| interior(p.0))).expect("no ply index ≥ 1");
+    let ply: Vec<(f64, f64)> = frames[k_ply].ply.iter().copied().filter(|p| interior(p.0)).collect();
+    common::known_limit(
+        "drop_weight_laminate.ply_onset_time",
+        frames[k_ply].time,
+        "s",
+        3.5e-4,
+        4.0e-4,
+        "the plies' first Hashin index ≥ 1 (frames every 25 µs)",
+    );
+    assert!(frames[k_ply].time < t_delam);
+    let (low, high) = separated.iter().fold((SPAN, 0.0_f64), |(l, h), p| (l.min(p.0), h.max(p.0)));
+    assert!(ply.iter().all(|&(y, _)| (low..=high).contains(&y)), "ply onset outside the separated {low}..{high} m");
+    let depth = ply.iter().fold(f64::NAN, |_, p| p.1);
+    common::known_limit(
+        "drop_weight_laminate.ply_onset_z",
+        depth,
+        "m",
+        4.9e-4,
+        5.1e-4,
+        "the plies' first index ≥ 1, z",
+    );
+    assert!(ply.iter().all(|p| (p.1 - depth).abs() < 1e-9), "ply onset at several depths");
 }

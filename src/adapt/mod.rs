@@ -3,9 +3,12 @@
 //! Each cycle solves a mesh from the start of the load history (no
 //! transfer of Gauss-point histories between meshes: simple, and exact for
 //! a path-dependent material), takes the Zienkiewicz–Zhu estimate of its
-//! solution ([`crate::post::estimate`]), and stops when
+//! solution ([`crate::post::estimate`]) — of a modal analysis, the
+//! estimates of the modes it follows and of their frequencies
+//! ([`measure`]) —, and stops when
 //!
-//! * the relative estimate is below the tolerance,
+//! * the relative estimate (modal: the largest estimated relative
+//!   frequency error) is below the tolerance,
 //! * the next mesh would have more DOF than the budget `max_dof`,
 //! * `max_cycles` refinements have been solved,
 //! * nothing is left to refine, or
@@ -14,7 +17,8 @@
 //!   (for the first cycle, its last converged state, as for a single run).
 //!
 //! Otherwise the elements holding the share `fraction` (Dörfler's θ) of
-//! `Σ η_e²` are marked ([`mark::dorfler`]) and every division interval
+//! `Σ η_e²` (modal: of the unconverged modes' shares summed, [`measure`])
+//! are marked ([`mark::dorfler`]) and every division interval
 //! through a marked element — x, z and axis — is halved for its whole row,
 //! column or axis slice ([`mark::intervals`], [`mark::refine`]): the
 //! sections are tensor grids swept along the axis, so splitting intervals
@@ -33,6 +37,7 @@
 //! the cycles in [`Solution::adapt`].
 
 pub mod mark;
+pub(crate) mod measure;
 
 use std::path::Path;
 use std::time::Instant;
@@ -131,11 +136,13 @@ pub fn run(
                 _ => s,
             },
         };
-        let estimate = solution.error_estimate.as_ref().map_or(0.0, |e| e.relative());
+        let measure = measure::Measure::of(&solution, settings);
         let cycle = AdaptCycle {
             cycle: k,
             dof: model.n_dofs(),
-            estimate,
+            estimate: measure.estimate,
+            frequencies: measure.frequencies.clone(),
+            frequency_errors: measure.frequency_errors.clone(),
             time_s: start.elapsed().as_secs_f64(),
             refined: std::mem::take(&mut refined),
             probes: analysis::tables::probes(&model, &solution.fields(&model)),
@@ -143,9 +150,9 @@ pub fn run(
         report(&cycle, &model, &solution);
         run.cycles.push(cycle);
         start = Instant::now();
-        let next = match stop_before_refining(&solution, estimate, settings, k) {
+        let next = match stop_before_refining(&solution, &measure, settings, k) {
             Some(reason) => Err((reason, AdaptEnd::Done)),
-            None => match next_model(&model, &solution, source, settings) {
+            None => match next_model(&model, &measure, source, settings) {
                 Ok(next) => next.map_err(|reason| (reason, AdaptEnd::Done)),
                 Err(e) => {
                     Err((format!("the refined model of cycle {} could not be built: {e}", k + 1), AdaptEnd::Stopped))
@@ -195,15 +202,16 @@ impl Cycles<'_> {
 }
 
 /// Why no refinement follows this cycle's solution, if it is done.
-fn stop_before_refining(solution: &Solution, estimate: f64, settings: &AdaptSettings, cycle: usize) -> Option<String> {
+fn stop_before_refining(
+    solution: &Solution,
+    measure: &measure::Measure,
+    settings: &AdaptSettings,
+    cycle: usize,
+) -> Option<String> {
     if let Some(f) = &solution.failure {
         Some(format!("the analysis of cycle {cycle} stopped early: {f}"))
-    } else if estimate < settings.tolerance {
-        Some(format!(
-            "the estimate {:.2} % is below the tolerance {:.2} %",
-            100.0 * estimate,
-            100.0 * settings.tolerance
-        ))
+    } else if measure.estimate < settings.tolerance {
+        Some(measure.below(settings.tolerance))
     } else if cycle >= settings.max_cycles {
         Some(format!("max_cycles = {} refinements done", settings.max_cycles))
     } else {
@@ -211,23 +219,23 @@ fn stop_before_refining(solution: &Solution, estimate: f64, settings: &AdaptSett
     }
 }
 
-/// The refined model after `solution`, or why there is none (nothing to
-/// refine, over the DOF budget or the memory limit).
+/// The refined model after a solution measured by `measure`, or why there
+/// is none (nothing to refine, over the DOF budget or the memory limit).
 fn next_model(
     model: &Model,
-    solution: &Solution,
+    measure: &measure::Measure,
     source: Source<'_>,
     settings: &AdaptSettings,
 ) -> Result<Result<Model, String>, AdaptError> {
-    let Some(estimate) = &solution.error_estimate else {
+    if measure.element.is_empty() {
         return Ok(Err("no error estimate to refine by".into()));
-    };
-    let marked = mark::dorfler(&estimate.element, settings.fraction);
+    }
+    let marked = mark::dorfler(&measure.element, settings.fraction);
     let mut marks = mark::intervals(&model.mesh, &model.plan, &marked);
-    let parts = (&estimate.element[..], &estimate.section[..]);
+    let parts = (&measure.element[..], &measure.section[..]);
     mark::across_sections(&model.mesh, &model.plan, &marked, parts, &mut marks);
     mark::along_axis(&model.mesh, &model.plan, &marked, parts, &mut marks);
-    let weights = if estimate.section.len() == estimate.element.len() { &estimate.section } else { &estimate.element };
+    let weights = if measure.section.len() == measure.element.len() { &measure.section } else { &measure.element };
     mark::local(&model.mesh, &model.plan, weights, &mut marks);
     let plan: MeshPlan = mark::refine(&model.plan, &marks);
     if plan == model.plan {

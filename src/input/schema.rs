@@ -205,9 +205,13 @@ pub(crate) struct ImperfectionFile {
 #[derive(Debug, Default, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct AdaptFile {
-    /// Stop below this relative error estimate in the energy norm.
+    /// Stop below this relative error estimate in the energy norm (modal:
+    /// the largest estimated relative frequency error of the modes followed).
     #[schemars(transform = ranges::ADAPT_TOLERANCE.with_default(defaults::ADAPT_TOLERANCE))]
     pub tolerance: Option<f64>,
+    /// Modal: the lowest this many modes are followed (default: all of `analysis.modes`).
+    #[schemars(transform = ranges::MODES.schema())]
+    pub modes: Option<usize>,
     /// No mesh with more DOF is solved.
     #[schemars(transform = ranges::ADAPT_MAX_DOF.with_default(defaults::ADAPT_MAX_DOF))]
     pub max_dof: Option<usize>,

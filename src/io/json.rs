@@ -283,8 +283,15 @@ pub struct CycleSummary {
     pub cycle: usize,
     /// Degrees of freedom.
     pub dof: usize,
-    /// Relative error estimate (energy norm, 0–1).
+    /// Relative error estimate (energy norm, 0–1; modal: the largest
+    /// estimated relative frequency error of the modes followed).
     pub estimate: f64,
+    /// Modal: the frequencies of the modes followed (Hz); absent otherwise.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub frequencies: Vec<f64>,
+    /// Modal: their estimated relative errors (0–1); absent otherwise.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub frequency_errors: Vec<f64>,
     /// Wall time of the cycle: building its model and solving it (s).
     pub time_s: f64,
     /// What its mesh refined in the previous cycle's.
@@ -498,6 +505,8 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
                     cycle: c.cycle,
                     dof: c.dof,
                     estimate: c.estimate,
+                    frequencies: c.frequencies.clone(),
+                    frequency_errors: c.frequency_errors.clone(),
                     time_s: c.time_s,
                     refined: c.refined.clone(),
                 })

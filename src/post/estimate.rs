@@ -43,7 +43,7 @@ pub struct ErrorEstimate {
     /// made (`‖σ* − σ_along‖_e`, `post::spr::recover_stages`), √J: where
     /// it holds most of `η_e` the error lies across the section rather than
     /// along the axis (the direction `--adapt` refines). Empty when not
-    /// computed (the modes' estimates).
+    /// computed.
     pub section: Vec<f64>,
 }
 
@@ -144,7 +144,7 @@ pub(crate) fn elastic_energy(
 
 /// Estimates the error of the stresses `stresses` (Gauss points, first of
 /// each body at `gp_offsets`) against their recovery `recovered` (the same
-/// layout, `super::spr::recover`).
+/// layout, `super::spr::recover_stages`).
 pub fn estimate(
     mesh: &Mesh,
     cells: &[CellValues],

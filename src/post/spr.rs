@@ -370,12 +370,7 @@ fn smoothest(
 
 /// The recovered stress `σ*` at every Gauss point of every body (the layout
 /// of `stresses`: body `b` from `gp_offsets[b]`, element-major, axis point
-/// outer, section point inner).
-pub(crate) fn recover(mesh: &Mesh, cells: &[CellValues], stresses: &[Voigt], gp_offsets: &[usize]) -> Vec<Voigt> {
-    recover_stages(mesh, cells, stresses, gp_offsets).0
-}
-
-/// [`recover`]'s `σ*` and its first stage, the fit along the axis alone
+/// outer, section point inner) and its first stage, the fit along the axis alone
 /// (the same layout): `σ* − σ_along` is what the fit over the section
 /// adds, the error the estimate finds across the section.
 pub(crate) fn recover_stages(

@@ -306,10 +306,8 @@ impl Kind {
 /// The combinations of `analysis.type` with other tables that are not
 /// supported, refused by key: path following with a buckling analysis (its
 /// eigenvalues are those of the linear state at load factor 1, a path ends
-/// at another λ: a 500 N load was reported with a 625 N reaction), and
-/// adaptive refinement of anything but a static analysis (the error
-/// estimate is that of the static state, not of the modes or the history).
-pub(super) fn combinations(kind: Kind, arc_length: bool, adapt: bool) -> Result<(), ModelError> {
+/// at another λ: a 500 N load was reported with a 625 N reaction).
+pub(super) fn combinations(kind: Kind, arc_length: bool) -> Result<(), ModelError> {
     if arc_length && kind == Kind::Buckling {
         return Err(invalid(
             "solver.control",
@@ -319,15 +317,37 @@ pub(super) fn combinations(kind: Kind, arc_length: bool, adapt: bool) -> Result<
              (for the path past the critical load, use analysis.type = \"static\" with analysis.imperfection)",
         ));
     }
-    if adapt && kind != Kind::Static {
+    Ok(())
+}
+
+/// Adaptive refinement is driven by the static estimate or, in a modal
+/// analysis, by the modes' estimates (`crate::adapt`); a buckling or
+/// transient analysis has no estimate of its critical loads or time
+/// history, so `[adapt]` is refused there. `adapt.modes` (modal only) is at
+/// most the `modes` computed.
+pub(super) fn adapt_combinations(
+    kind: Kind,
+    adapt: Option<&super::AdaptSettings>,
+    modes: Option<usize>,
+) -> Result<(), ModelError> {
+    let Some(adapt) = adapt else { return Ok(()) };
+    if !matches!(kind, Kind::Static | Kind::Modal) {
         return Err(invalid(
             "adapt",
             format!("given with analysis.type = \"{}\"", kind.word()),
-            "an [adapt] table only with analysis.type = \"static\": the error estimate is that of the static \
-             stresses, not of the modes, critical loads or time history",
+            "an [adapt] table only with analysis.type = \"static\" (the estimate of the stresses) or \"modal\" \
+             (the estimates of the frequencies): there is no estimate of the critical loads or the time history",
         ));
     }
-    Ok(())
+    match (adapt.modes, modes) {
+        (Some(m), None) => Err(invalid("adapt.modes", m, "only with analysis.type = \"modal\"")),
+        (Some(m), Some(n)) if m == 0 || m > n => Err(invalid(
+            "adapt.modes",
+            m,
+            format!("an integer in 1..={n} (the lowest modes followed, at most analysis.modes = {n})"),
+        )),
+        _ => Ok(()),
+    }
 }
 
 /// The warnings of an eigenvalue analysis asking for `modes` (`None`:

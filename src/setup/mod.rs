@@ -451,7 +451,8 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         symmetry::check_velocities(&t.initial_velocities, &symmetry.planes, &mesh)?;
     }
     let kind = analysis::Kind::of(buckling.is_some(), modal.is_some(), transient.is_some());
-    analysis::combinations(kind, solver.path.is_some(), adapt.is_some())?;
+    analysis::combinations(kind, solver.path.is_some())?;
+    analysis::adapt_combinations(kind, adapt.as_ref(), modal.as_ref().map(|m| m.modes))?;
     analysis::damage_combinations(kind, kinematics, &materials, solver.path.is_some())?;
     let modes = buckling.map(|b| b.modes).or(modal.map(|m| m.modes));
     warnings.extend(analysis::eigen_warnings(modes, &mesh, &constraint_handler, !symmetry.planes.is_empty()));

@@ -52,6 +52,10 @@ pub struct AdaptSettings {
     pub max_cycles: usize,
     /// Dörfler's θ: the marked elements hold at least this share of `Σ η_e²`.
     pub fraction: f64,
+    /// `analysis.type = "modal"`: the lowest this many modes are followed
+    /// (`None`: every mode computed); the tolerance is then on the largest
+    /// estimated relative frequency error among them (`crate::adapt`).
+    pub modes: Option<usize>,
 }
 
 impl Default for AdaptSettings {
@@ -61,6 +65,7 @@ impl Default for AdaptSettings {
             max_dof: DEFAULT_MAX_DOF,
             max_cycles: DEFAULT_MAX_CYCLES,
             fraction: DEFAULT_FRACTION,
+            modes: None,
         }
     }
 }
@@ -74,7 +79,8 @@ pub(super) fn adapt_settings(file: Option<&AdaptFile>) -> Result<Option<AdaptSet
         return Err(invalid(
             "adapt.tolerance",
             tolerance,
-            "a relative error in the energy norm between 0 and 1 (e.g. 0.05)",
+            "a relative error between 0 and 1 (e.g. 0.05): in the energy norm, or of the frequencies of a modal \
+             analysis",
         ));
     }
     let max_dof = a.max_dof.unwrap_or(d.max_dof);
@@ -97,7 +103,8 @@ pub(super) fn adapt_settings(file: Option<&AdaptFile>) -> Result<Option<AdaptSet
             "a share of the squared estimate greater than 0 and at most 1 (Dörfler's θ, e.g. 0.5)",
         ));
     }
-    Ok(Some(AdaptSettings { tolerance, max_dof, max_cycles, fraction }))
+    // `modes` against `analysis.modes`: `super::analysis::adapt_combinations`
+    Ok(Some(AdaptSettings { tolerance, max_dof, max_cycles, fraction, modes: a.modes }))
 }
 
 /// What adaptive refinement may change in a model's meshes (module docs).

@@ -378,7 +378,8 @@ fn block_adaptive_against_3d() {
         })
         .collect();
     let peak = reference.iter().map(|r| r[1].abs()).fold(0.0, f64::max);
-    let settings = cufem::setup::AdaptSettings { tolerance: 0.01, max_dof: 60_000, max_cycles: 20, fraction: 0.5 };
+    let settings =
+        cufem::setup::AdaptSettings { tolerance: 0.01, max_dof: 60_000, max_cycles: 20, fraction: 0.5, modes: None };
     let rows = measure("block_indentation.toml", settings, &|m, s| {
         let view = s.fields(m);
         let line = m.lines.iter().find(|l| l.name == "top").unwrap();
@@ -412,7 +413,8 @@ fn block_adaptive_against_3d() {
 #[test]
 #[ignore = "validate: slow — four adaptive cycles of the tube up to 43,000 DOF (about 4 min)"]
 fn tube_adaptive_roller_force() {
-    let settings = cufem::setup::AdaptSettings { tolerance: 0.01, max_dof: 140_000, max_cycles: 3, fraction: 0.5 };
+    let settings =
+        cufem::setup::AdaptSettings { tolerance: 0.01, max_dof: 140_000, max_cycles: 3, fraction: 0.5, modes: None };
     let rows = measure("bending_tube_28L9.toml", settings, &|_, s| vec![-s.contact("load").unwrap().force[2]]);
     for (k, (dof, estimate, _, v)) in rows.iter().enumerate() {
         let d = 100.0 * (v[0] / 1698.2 - 1.0);

@@ -100,6 +100,25 @@ pub(crate) fn adapt(a: &Adaptivity) -> Section {
             .collect(),
     };
     let mut tables = vec![cycles];
+    // a modal run's: each followed mode's frequency and estimated error per cycle
+    let followed = a.cycles.first().map_or(0, |c| c.frequency_errors.len());
+    if followed > 0 {
+        let columns = (1..=followed).flat_map(|k| [format!("f{k} [Hz]"), format!("f{k} est. error [%]")]);
+        tables.push(SectionTable {
+            title: "modes followed: frequency and its estimated error, cycle by cycle".into(),
+            columns: ["cycle", "DOF"].into_iter().map(String::from).chain(columns).collect(),
+            rows: a
+                .cycles
+                .iter()
+                .map(|c| {
+                    let modes = (0..followed).flat_map(|k| {
+                        [json!(c.frequencies.get(k)), json!(c.frequency_errors.get(k).map(|e| 100.0 * e))]
+                    });
+                    [json!(c.cycle), json!(c.dof)].into_iter().chain(modes).collect()
+                })
+                .collect(),
+        });
+    }
     let first = a.cycles.first().map(|c| &c.probes);
     for (p, name) in first.and_then(|t| t.text("probe")).unwrap_or_default().iter().enumerate() {
         let columns: Vec<&Column> = first.map_or(Vec::new(), |t| t.columns.iter().skip(4).collect());

@@ -17,7 +17,8 @@ use super::{Failure, INPUT, INTERRUPTED, NOT_CONVERGED, Reporter, TOO_LARGE, fai
 #[derive(clap::Args)]
 pub(super) struct AdaptArgs {
     /// Refine where the error estimate is largest and solve again until the relative estimate (energy
-    /// norm) is below TOL, e.g. 0.05 (overrides the model's `adapt.tolerance`).
+    /// norm; of a modal analysis, the largest estimated relative frequency error of the modes followed)
+    /// is below TOL, e.g. 0.05 (overrides the model's `adapt.tolerance`).
     #[arg(long, value_name = "TOL", allow_negative_numbers = true, value_parser = parse_tolerance)]
     adapt: Option<f64>,
     /// DOF budget of an adaptive run: no mesh with more DOF is solved (overrides `adapt.max_dof`;
@@ -33,7 +34,9 @@ pub(super) struct AdaptArgs {
 fn parse_tolerance(s: &str) -> Result<f64, String> {
     match s.trim().parse::<f64>() {
         Ok(v) if v > 0.0 && v < 1.0 => Ok(v),
-        _ => Err("expected a relative error in the energy norm between 0 and 1 (e.g. 0.05)".into()),
+        _ => Err("expected a relative error between 0 and 1 (e.g. 0.05): in the energy norm, or of the frequencies \
+                  of a modal analysis"
+            .into()),
     }
 }
 
@@ -65,13 +68,13 @@ impl AdaptArgs {
         };
         if let Some(t) = self.adapt {
             // (an [adapt] table with another analysis is refused with the model)
-            if model.analysis_type() != "static" {
+            if !matches!(model.analysis_type(), "static" | "modal") {
                 return Err(fail(
                     INPUT,
                     anyhow!(
-                        "--adapt {t} with analysis.type = \"{}\": expected a static analysis (the error estimate \
-                         --adapt refines by is that of the static stresses, not of the modes, critical loads or time \
-                         history of a {} analysis)",
+                        "--adapt {t} with analysis.type = \"{}\": expected a static analysis (refined by the \
+                         estimate of its stresses) or a modal one (by the estimates of its frequencies); there is \
+                         no estimate of the critical loads or time history of a {} analysis",
                         model.analysis_type(),
                         model.analysis_type()
                     ),
@@ -147,8 +150,9 @@ pub(super) fn exit_code(solution: &Solution) -> Option<u8> {
 /// The report line of one cycle.
 pub(super) fn cycle_line(c: &cufem::analysis::AdaptCycle) -> String {
     let refined = if c.refined.is_empty() { String::new() } else { format!("  (refined {})", c.refined) };
+    let what = if c.frequency_errors.is_empty() { "estimate" } else { "largest frequency error estimate" };
     format!(
-        "cycle {}: {} DOF, estimate {:.2} %, {:.1} s{refined}",
+        "cycle {}: {} DOF, {what} {:.2} %, {:.1} s{refined}",
         c.cycle,
         cufem::io::report::thousands(c.dof),
         100.0 * c.estimate,

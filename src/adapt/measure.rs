@@ -1,0 +1,133 @@
+//! What an adaptive cycle is measured and refined by: the static
+//! estimate, or in a modal analysis the estimates of the modes it follows.
+//!
+//! * **Static** (and any solution without modes): the Zienkiewicz–Zhu
+//!   estimate of the stresses ([`crate::post::estimate`]): the relative
+//!   error in the energy norm, and each element's `η_e` and section part.
+//! * **Modal**: the modes followed are the lowest `adapt.modes` (all those
+//!   computed by default); the cycle's estimate is the largest estimated
+//!   relative frequency error `(f_h − f) / f` among them
+//!   ([`crate::post::mode_error::ModeError::frequency`]), so the tolerance
+//!   is a frequency error. The indicators refined by are those of the
+//!   followed modes still above the tolerance, each normalised by its own
+//!   total and summed: `η_e² = Σ_i η_{e,i}² / Σ_e' η_{e',i}²` (and the
+//!   section parts alike) — every unconverged mode counts equally,
+//!   whatever its frequency or the scale of its shape, so a cycle refines
+//!   where each of them holds its error (the walls of a local mode, the
+//!   axis of a bending mode) rather than where only the worst one does.
+//!   The bulk of that sum is marked as the static estimate's is
+//!   ([`super::mark`]).
+//!
+//! Buckling and transient analyses have no estimate of their critical
+//! loads or time history; the model refuses `[adapt]` with them.
+
+use crate::analysis::Solution;
+use crate::setup::AdaptSettings;
+
+/// One cycle's measure.
+#[derive(Debug, Clone, Default, PartialEq)]
+pub(crate) struct Measure {
+    /// The relative estimate compared with the tolerance.
+    pub(crate) estimate: f64,
+    /// The indicators to mark by: per element `η_e` (√ of the squared
+    /// share), and the section stage's part of it (empty if not computed).
+    pub(crate) element: Vec<f64>,
+    /// The section stage's part of `element` (`ErrorEstimate::section`).
+    pub(crate) section: Vec<f64>,
+    /// Modal: the followed modes' frequencies (Hz) and estimated relative
+    /// frequency errors; empty otherwise.
+    pub(crate) frequencies: Vec<f64>,
+    /// See `frequencies`.
+    pub(crate) frequency_errors: Vec<f64>,
+}
+
+impl Measure {
+    /// The measure of `solution` under `settings` (module docs).
+    pub(crate) fn of(solution: &Solution, settings: &AdaptSettings) -> Self {
+        match &solution.modal {
+            Some(modal) => {
+                let n = settings.modes.unwrap_or(modal.errors.len()).min(modal.errors.len());
+                let errors = &modal.errors[..n];
+                let frequency_errors: Vec<f64> = errors.iter().map(|e| e.frequency()).collect();
+                let estimate = frequency_errors.iter().copied().fold(0.0, f64::max);
+                let above = errors.iter().filter(|e| e.frequency() >= settings.tolerance).map(|e| &e.estimate);
+                let (element, section) = combined(above);
+                let frequencies = modal.frequencies[..n].to_vec();
+                Self { estimate, element, section, frequencies, frequency_errors }
+            }
+            None => match &solution.error_estimate {
+                Some(e) => Self {
+                    estimate: e.relative(),
+                    element: e.element.clone(),
+                    section: e.section.clone(),
+                    ..Default::default()
+                },
+                None => Self::default(),
+            },
+        }
+    }
+
+    /// The words of the stop at the tolerance.
+    pub(crate) fn below(&self, tolerance: f64) -> String {
+        if self.frequency_errors.is_empty() {
+            format!("the estimate {:.2} % is below the tolerance {:.2} %", 100.0 * self.estimate, 100.0 * tolerance)
+        } else {
+            format!(
+                "the largest estimated frequency error of the {} modes followed, {:.2} %, is below the tolerance {:.2} %",
+                self.frequency_errors.len(),
+                100.0 * self.estimate,
+                100.0 * tolerance
+            )
+        }
+    }
+}
+
+/// `Σ_i η_{e,i}² / Σ_e η_{e,i}²` over the estimates (and their section
+/// parts alike), as `√` per element; the section parts are dropped unless
+/// every estimate has them.
+fn combined<'a>(estimates: impl Iterator<Item = &'a crate::post::estimate::ErrorEstimate>) -> (Vec<f64>, Vec<f64>) {
+    let (mut element, mut section) = (Vec::<f64>::new(), Vec::<f64>::new());
+    let mut with_sections = true;
+    for est in estimates {
+        let total = est.error * est.error;
+        if !(total > 0.0) {
+            continue;
+        }
+        element.resize(est.element.len(), 0.0);
+        for (w, eta) in element.iter_mut().zip(&est.element) {
+            *w += eta * eta / total;
+        }
+        with_sections &= est.section.len() == est.element.len();
+        section.resize(est.element.len(), 0.0);
+        for (w, s) in section.iter_mut().zip(&est.section) {
+            *w += s * s / total;
+        }
+    }
+    if !with_sections {
+        section.clear();
+    }
+    (element.iter().map(|w| w.sqrt()).collect(), section.iter().map(|w| w.sqrt()).collect())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::post::estimate::ErrorEstimate;
+
+    /// Two modes whose errors sit in different elements and differ 100-fold
+    /// in scale weigh equally: each contributes its own shares.
+    #[test]
+    fn each_mode_counts_by_its_own_shares() {
+        let a = ErrorEstimate { element: vec![3.0, 4.0, 0.0], error: 5.0, energy: 1.0, section: vec![3.0, 0.0, 0.0] };
+        let b = ErrorEstimate { element: vec![0.0, 0.0, 500.0], error: 500.0, energy: 1.0, section: vec![0.0; 3] };
+        let (element, section) = combined([&a, &b].into_iter());
+        let expect = [0.36f64.sqrt(), 0.64f64.sqrt(), 1.0];
+        for (e, x) in element.iter().zip(expect) {
+            assert!((e - x).abs() < 1e-15, "{element:?}");
+        }
+        assert!((section[0] - 0.6).abs() < 1e-15 && section[1] == 0.0 && section[2] == 0.0, "{section:?}");
+        // without section parts in one of them, none are given
+        let c = ErrorEstimate { section: Vec::new(), ..b };
+        assert!(combined([&a, &c].into_iter()).1.is_empty());
+    }
+}

@@ -1,0 +1,238 @@
+//! `--adapt` on a modal analysis (`cufem::adapt`, `adapt::measure`): the
+//! cycles are measured by the largest estimated relative frequency error of
+//! the modes followed and refined where those modes hold their estimates;
+//! and the effectivity of the modes' estimates with the assumed in-section
+//! shear (`formulation = "assumed_shear"`), against refined runs of the
+//! same model.
+
+use cufem::adapt::Source;
+use cufem::analysis::{Silent, Solution};
+use cufem::setup::{AdaptSettings, Model};
+use cufem::values::{PointValues, locate_in_model};
+
+mod common;
+
+/// A thin steel box 100 × 50 mm, walls 1 mm (one L9 through), 0.4 m long,
+/// clamped at y = 0, eight modes, the assumed in-section shear: the lowest
+/// mode bends it in z, the next ones are the walls' own (local) modes.
+fn steel_box(flange: usize, web: usize, axis: usize) -> String {
+    format!(
+        r#"
+        [analysis]
+        type = "modal"
+        modes = 8
+        [[materials]]
+        name = "steel"
+        young_modulus = 200e9
+        poisson_ratio = 0.3
+        density = 7800.0
+        [[bodies]]
+        name = "box"
+        material = "steel"
+        formulation = "assumed_shear"
+        section = {{ shape = "box", element = "L9", width = 0.1, height = 0.05, web_thickness = 0.001, flange_thickness = 0.001, along_flange = {flange}, along_web = {web} }}
+        axis = {{ element = "B4", from = 0.0, to = 0.4, elements = {axis} }}
+        [[constraints]]
+        name = "root"
+        body = "box"
+        where = {{ y = 0.0 }}
+        fix = ["x", "y", "z"]
+    "#
+    )
+}
+
+fn solve(model: &Model) -> Solution {
+    cufem::analysis::run(model, &Default::default(), &mut Silent).unwrap()
+}
+
+/// Per mode of `coarse`: the mode of `fine` it matches (the largest MAC on
+/// the coarse mesh's nodes, if above 0.9) and the true relative frequency
+/// error `f_coarse / f_fine − 1`.
+fn truth(coarse: (&Model, &Solution), fine: (&Model, &Solution)) -> Vec<(Option<usize>, f64)> {
+    let (cm, fm) = (coarse.1.modal.as_ref().unwrap(), fine.1.modal.as_ref().unwrap());
+    let points: Vec<PointValues> = (0..coarse.0.mesh.n_nodes())
+        .map(|n| {
+            let loc = locate_in_model(&fine.0.mesh, Some(0), coarse.0.mesh.coords(n));
+            PointValues::new(&fine.0.mesh.bodies[0], &loc[0])
+        })
+        .collect();
+    let sampled: Vec<Vec<f64>> =
+        fm.modes.iter().map(|m| points.iter().flat_map(|p| p.displacement(m)).collect()).collect();
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    cm.modes
+        .iter()
+        .enumerate()
+        .map(|(i, a)| {
+            let macs = sampled.iter().map(|b| dot(a, b).powi(2) / (dot(a, a) * dot(b, b)));
+            let (j, best) = macs.enumerate().fold((0, 0.0), |b, (j, v)| if v > b.1 { (j, v) } else { b });
+            ((best > 0.9).then_some(j), cm.frequencies[i] / fm.frequencies[j] - 1.0)
+        })
+        .collect()
+}
+
+/// The estimates of the assumed shear's modes against the true errors of
+/// the thin box (3 × 2 L9 along the walls, 4 B4; 3,276 DOF) measured
+/// against the same box with 24 × 16 L9 and 8 B4 (37,800 DOF; its lowest
+/// frequency went 303.3 → 302.6 → 301.7 → 301.5 Hz over 3 × 2 × 4,
+/// 6 × 4 × 4, 12 × 8 × 8 and 24 × 16 × 8, so it is within about 0.1 % of
+/// the limit against the coarse box's 0.6 %).
+///
+/// Measured: every mode matches the reference (MAC > 0.9) and the estimate
+/// exceeds the true error many times (effectivity 10.5–27: the modes'
+/// estimates 10–27 % against true errors of 0.5–1.3 %), where the paper's
+/// element on the same mesh is estimated at 1.1× its (locking) error. A
+/// known limit (docs/limitations.md): with the assumed shear the estimate
+/// is an upper bound far above the error, so a frequency tolerance stops
+/// adaptivity late, not early.
+#[test]
+fn the_assumed_shears_mode_estimates_are_pessimistic_upper_bounds() {
+    let coarse = Model::parse(&steel_box(3, 2, 4)).unwrap();
+    let fine = Model::parse(&steel_box(24, 16, 8)).unwrap();
+    let (cs, fs) = (solve(&coarse), solve(&fine));
+    let rows = truth((&coarse, &cs), (&fine, &fs));
+    let estimates: Vec<f64> = cs.modal.as_ref().unwrap().errors.iter().map(|e| e.frequency()).collect();
+    let mut band = (f64::INFINITY, 0.0f64);
+    for (i, ((matched, t), est)) in rows.iter().zip(&estimates).enumerate() {
+        assert!(matched.is_some(), "mode {} does not match the reference", i + 1);
+        assert!(*t > 0.0, "mode {}: the coarse frequency is an upper bound ({t})", i + 1);
+        let id = format!("modal_adapt.assumed_shear.mode{}", i + 1);
+        common::figure(&format!("{id}.estimate"), 100.0 * est, "%", "reported: estimated (f_h − f) / f");
+        common::figure(&format!("{id}.true"), 100.0 * t, "%", "reported: against 24 × 16 L9 × 8 B4");
+        band = (band.0.min(est / t), band.1.max(est / t));
+    }
+    let what = "effectivity of the assumed shear's mode estimates on the thin box";
+    common::known_limit("modal_adapt.assumed_shear.effectivity_min", band.0, "", 8.0, 13.0, what);
+    common::known_limit("modal_adapt.assumed_shear.effectivity_max", band.1, "", 22.0, 32.0, what);
+}
+
+/// The thin box with webs three times thicker (3 mm): its flanges carry
+/// the local modes.
+fn stiff_webs(flange: usize, web: usize, axis: usize) -> String {
+    let text = steel_box(flange, web, axis);
+    assert!(text.contains("web_thickness = 0.001"));
+    text.replace("web_thickness = 0.001", "web_thickness = 0.003")
+}
+
+/// `--adapt` on the modes of the thin box with stiff webs (3 × 2 L9 along
+/// its walls, 4 B4): one cycle, following the lowest five modes (bending,
+/// and the flanges' own modes above it, whose estimates hold most of theirs
+/// in the flanges; with webs as thin as the flanges the webs are doubled
+/// too). Checked: the cycle's estimate is the largest of the five modes'
+/// estimated frequency errors; the refinement doubles the flanges' count
+/// only (`along_flange` 3 → 6; the webs and the axis as they were, not the
+/// whole section); every one of the five modes' true errors against the
+/// 24 × 16 × 8 reference falls; and the refined mesh has fewer DOF than
+/// the section doubled as a whole.
+#[test]
+fn adapt_on_modes_refines_the_flanges_that_carry_the_local_modes() {
+    let text = stiff_webs(3, 2, 4) + "[adapt]\nmodes = 5\n";
+    let start = Model::parse(&text).unwrap();
+    let settings = start.adapt.unwrap();
+    assert_eq!(settings.modes, Some(5));
+    let settings = AdaptSettings { tolerance: 0.001, max_cycles: 1, ..settings };
+    let source = Source { text: &text, base: std::path::Path::new("."), limits: cufem::setup::Limits::none() };
+    let mut cycles: Vec<(Model, Solution, f64, Vec<f64>)> = Vec::new();
+    let (_, last) = cufem::adapt::run(start, source, &settings, &Default::default(), &mut Silent, &mut |c, m, s| {
+        cycles.push((m.clone(), s.clone(), c.estimate, c.frequency_errors.clone()))
+    })
+    .unwrap();
+    assert_eq!(cycles.len(), 2);
+    let adapt = last.adapt.as_ref().unwrap();
+    assert!(adapt.stop.contains("max_cycles = 1"), "{}", adapt.stop);
+    assert_eq!(adapt.cycles[1].refined, "box: along_flange doubled, axis 4 → 4");
+    // the model file written: the flanges' count doubled, the rest as given
+    assert!(adapt.model_file.contains("along_flange = 6, along_web = 2"), "{}", adapt.model_file);
+    for (model, solution, estimate, errors) in &cycles {
+        let modal = solution.modal.as_ref().unwrap();
+        assert_eq!(errors.len(), 5);
+        let largest = modal.errors[..5].iter().map(|e| e.frequency()).fold(0.0, f64::max);
+        assert_eq!(*estimate, largest);
+        assert!(model.n_dofs() > 0);
+    }
+    let fine = Model::parse(&stiff_webs(24, 16, 8)).unwrap();
+    let fs = solve(&fine);
+    let before = truth((&cycles[0].0, &cycles[0].1), (&fine, &fs));
+    let after = truth((&cycles[1].0, &cycles[1].1), (&fine, &fs));
+    for i in 0..5 {
+        let (b, a) = (before[i].1, after[i].1);
+        common::figure(&format!("modal_adapt.steel_box.mode{}.true_before", i + 1), 100.0 * b, "%", "reported");
+        common::figure(&format!("modal_adapt.steel_box.mode{}.true_after", i + 1), 100.0 * a, "%", "below before");
+        assert!(before[i].0.is_some() && after[i].0.is_some(), "mode {} matched", i + 1);
+        assert!(a < b, "mode {}: the true error {b} → {a}", i + 1);
+    }
+    let doubled = Model::parse(&stiff_webs(6, 4, 4)).unwrap();
+    common::figure("modal_adapt.steel_box.dof", cycles[1].0.n_dofs() as f64, "", "below the whole section doubled");
+    assert!(cycles[1].0.n_dofs() < doubled.n_dofs(), "{} {}", cycles[1].0.n_dofs(), doubled.n_dofs());
+}
+
+/// The laminated torsion box of the benchmark (`bench/box_laminated_modes.toml`,
+/// its assumed-shear base mesh, 35,100 DOF) adapted on its eight modes to
+/// the frequency tolerance 2 %, against the CalculiX frequencies of
+/// docs/validation.md (`verify.box_modes.mode.<k>.ccx_hz`, C3D20R two
+/// through each ply; `bench/validate --steps verify-newer --models
+/// box_modes`), and against uniform section doubling (every wall count
+/// doubled once: 6 × 4 L9, and twice: 12 × 8 L9; the axis as given).
+///
+/// Measured: the adaptive run doubles the flanges' count three times
+/// (3 → 24 L9 along each flange, the webs and the axis kept; estimates
+/// 12.2 → 5.6 → 2.8 → 1.6 %) and ends with every frequency within 2 % of
+/// CalculiX (the largest, mode 6, `1.98 %`) at 91,800 DOF. Uniform doubling
+/// once (48,600 DOF) leaves mode 6 at `2.15 %`; twice (75,600 DOF) brings
+/// every mode within `1.86 %`. The issue's check — within 2 % at fewer DOF
+/// than uniform doubling — is not met: a known limit (docs/limitations.md),
+/// asserted from both sides as the ratio of the adapted mesh's DOF to the
+/// doubled-twice mesh's. The estimates put every wall mode's error in the
+/// flanges, while mode 6's remaining difference also falls with the webs
+/// (12 × 2 → 12 × 4 L9: `2.11 → 1.98 %`).
+#[test]
+#[ignore = "validate: slow — the laminated box adapted on its modes and doubled twice (about 5 min)"]
+fn the_laminated_box_adapted_on_its_modes_against_calculix_and_uniform_doubling() {
+    // docs/validation.md, verify.box_modes.mode.<k>.ccx_hz
+    let ccx = [48.68194, 82.09348, 254.1779, 273.785, 331.0014, 380.2711, 395.7732, 408.1163];
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/bench/box_laminated_modes.toml")).unwrap();
+    assert!(text.contains("along_flange = 3, along_web = 2") && text.contains("formulation = \"assumed_shear\""));
+    let worst = |s: &Solution| {
+        let f = &s.modal.as_ref().unwrap().frequencies;
+        f.iter().zip(ccx).map(|(a, b)| (a / b - 1.0).abs()).fold(0.0, f64::max)
+    };
+    let start = Model::parse(&text).unwrap();
+    let settings = AdaptSettings { tolerance: 0.02, max_dof: 120_000, max_cycles: 5, ..Default::default() };
+    let source = Source { text: &text, base: std::path::Path::new("."), limits: cufem::setup::Limits::none() };
+    let mut cycles = Vec::new();
+    let (model, solution) =
+        cufem::adapt::run(start, source, &settings, &Default::default(), &mut Silent, &mut |c, _, s| {
+            cycles.push((c.dof, c.estimate, worst(s), c.refined.clone()))
+        })
+        .unwrap();
+    for (k, (dof, estimate, diff, refined)) in cycles.iter().enumerate() {
+        eprintln!(
+            "cycle {k}: {dof} DOF, estimate {:.2} %, largest |f − f_ccx| {:.2} % ({refined})",
+            100.0 * estimate,
+            100.0 * diff
+        );
+        common::figure(&format!("modal_adapt.box.cycle{k}.dof"), *dof as f64, "", "reported");
+        common::figure(&format!("modal_adapt.box.cycle{k}.estimate"), 100.0 * estimate, "%", "reported");
+        common::figure(&format!("modal_adapt.box.cycle{k}.ccx_max"), 100.0 * diff, "%", "reported");
+    }
+    let adapted = worst(&solution);
+    common::figure("modal_adapt.box.adapted.ccx_max", 100.0 * adapted, "%", "within 2 % of CalculiX");
+    assert!(adapted <= 0.02, "the adapted box: {adapted}");
+    assert!(solution.adapt.as_ref().unwrap().stop.contains("below the tolerance"));
+    let mut uniform = Vec::new();
+    for (flange, web) in [(6, 4), (12, 8)] {
+        let m = Model::parse(
+            &text.replace("along_flange = 3, along_web = 2", &format!("along_flange = {flange}, along_web = {web}")),
+        )
+        .unwrap();
+        let s = solve(&m);
+        let id = format!("modal_adapt.box.uniform_{flange}x{web}");
+        common::figure(&format!("{id}.dof"), m.n_dofs() as f64, "", "reported");
+        common::figure(&format!("{id}.ccx_max"), 100.0 * worst(&s), "%", "reported");
+        uniform.push((m.n_dofs(), worst(&s)));
+    }
+    // doubled once: not within 2 %; doubled twice: within
+    assert!(uniform[0].1 > 0.02 && uniform[1].1 <= 0.02, "{uniform:?}");
+    let ratio = model.n_dofs() as f64 / uniform[1].0 as f64;
+    let what = "DOF of the box adapted on its modes over the DOF of uniform section doubling twice";
+    common::known_limit("modal_adapt.box.dof_over_uniform", ratio, "", 1.1, 1.3, what);
+}

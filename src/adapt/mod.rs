@@ -5,7 +5,7 @@
 //! a path-dependent material), takes the Zienkiewicz–Zhu estimate of its
 //! solution ([`crate::post::estimate`]) — of a modal analysis, the
 //! estimates of the modes it follows and of their frequencies
-//! ([`measure`]) —, and stops when
+//! (`measure`) —, and stops when
 //!
 //! * the relative estimate (modal: the largest estimated relative
 //!   frequency error) is below the tolerance,
@@ -17,7 +17,7 @@
 //!   (for the first cycle, its last converged state, as for a single run).
 //!
 //! Otherwise the elements holding the share `fraction` (Dörfler's θ) of
-//! `Σ η_e²` (modal: of the unconverged modes' shares summed, [`measure`])
+//! `Σ η_e²` (modal: of the unconverged modes' shares summed, `measure`)
 //! are marked ([`mark::dorfler`]) and every division interval
 //! through a marked element — x, z and axis — is halved for its whole row,
 //! column or axis slice ([`mark::intervals`], [`mark::refine`]): the

@@ -10,7 +10,7 @@
 //! and a support on a line are such forces, and so is any contact whose
 //! touching nodes form a line.
 //!
-//! [`find`] names each: the loads (`force_per_node`), supports (constraints
+//! `find` names each: the loads (`force_per_node`), supports (constraints
 //! with a reaction) and contacts (indenters and pairs, their nodes touching
 //! at the end) whose nodes hold no whole boundary face of their body (the
 //! test that surface loads use, `bc::faces`), the elements that touch those

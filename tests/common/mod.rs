@@ -236,7 +236,11 @@ fn test_name() -> String {
 /// docs/validation.md (README.md and docs/ tag their figures with `id`).
 /// `check` says what the test asserts about it and against which reference.
 pub fn figure(id: &str, value: f64, unit: &str, check: &str) {
-    eprintln!("FIGURE\t{}\t{id}\t{value:.9e}\t{unit}\t{check}", test_name());
+    // one write of the whole line: `eprintln!` writes its pieces one by one
+    // to the unbuffered stderr, and the harness's `test … ok` lines of other
+    // threads landed between them (a row lost its `FIGURE` prefix)
+    let line = format!("FIGURE\t{}\t{id}\t{value:.9e}\t{unit}\t{check}\n", test_name());
+    std::io::Write::write_all(&mut std::io::stderr().lock(), line.as_bytes()).unwrap();
 }
 
 /// A known limit, asserted from both sides: the measured `value` must stay

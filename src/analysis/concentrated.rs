@@ -54,7 +54,7 @@ const NEGLIGIBLE: f64 = 1e-6;
 /// Every load, support and contact of the final state that acts on a point
 /// or a line of nodes (module docs).
 pub(crate) fn find(model: &Model, solution: &Solution) -> Vec<Concentrated> {
-    let norm = |f: &[f64; 3]| (f[0] * f[0] + f[1] * f[1] + f[2] * f[2]).sqrt();
+    let norm = |f: &[f64; 3]| super::tables::norm(*f);
     let scale = model
         .loads
         .iter()
@@ -77,7 +77,7 @@ pub(crate) fn find(model: &Model, solution: &Solution) -> Vec<Concentrated> {
     }
     for (k, c) in model.constraints.iter().enumerate() {
         let carries = solution.reaction(&c.name).is_some_and(|r| norm(&r.force) > NEGLIGIBLE * scale);
-        if carries && scale > 0.0 {
+        if carries {
             add(&c.name, "support", format!("constraints[{k}]"), c.nodes.clone());
         }
     }

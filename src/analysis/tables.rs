@@ -484,6 +484,6 @@ fn si_unit(q: Quantity) -> &'static str {
     }
 }
 
-fn norm(v: [f64; 3]) -> f64 {
+pub(super) fn norm(v: [f64; 3]) -> f64 {
     (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
 }

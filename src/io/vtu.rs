@@ -203,7 +203,9 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
                     if let Some(map) = &interface_damage {
                         d_interface.push(map.get(&node).copied().unwrap_or(0.0));
                     }
-                    concentrated.push(if marked.contains(&(body.element_offset + e)) { 1.0 } else { 0.0 });
+                    if !marked.is_empty() {
+                        concentrated.push(if marked.contains(&(body.element_offset + e)) { 1.0 } else { 0.0 });
+                    }
                     error.push(
                         solution
                             .error_estimate

@@ -115,16 +115,27 @@ fn stiff_webs(flange: usize, web: usize, axis: usize) -> String {
 
 /// `--adapt` on the modes of the thin box with stiff webs (3 × 2 L9 along
 /// its walls, 4 B4): one cycle, following the lowest five modes (bending,
-/// and the flanges' own modes above it, whose estimates hold most of theirs
-/// in the flanges; with webs as thin as the flanges the webs are doubled
-/// too). Checked: the cycle's estimate is the largest of the five modes'
-/// estimated frequency errors; the refinement doubles the flanges' count
-/// only (`along_flange` 3 → 6; the webs and the axis as they were, not the
-/// whole section); every one of the five modes' true errors against the
-/// 24 × 16 × 8 reference falls; and the refined mesh has fewer DOF than
-/// the section doubled as a whole.
+/// and the flanges' own modes above it). Their estimates hold most of
+/// theirs in the wall elements next to the junctions (the walls'
+/// transverse-shear boundary layer, `python3 bench/junction_layer_study.py`),
+/// so the cycle grades the walls towards the junctions — one more element
+/// of the junction's smallest side, 1 mm, at each wall end — instead of
+/// doubling a count. Checked: the cycle's estimate is the largest of the
+/// five modes' estimated frequency errors; the refinement and the model
+/// file written; every one of the five modes' true errors against a
+/// graded reference falls; the graded mesh has fewer DOF than the section
+/// doubled as a whole; and the estimates, 7–18× the true errors on the
+/// uniform walls, come within 1.7–2.8× of them on the graded ones (the
+/// issue's 0.5–2 is not met for modes 2–5: a known limit, asserted from
+/// both sides, docs/limitations.md).
+///
+/// The reference: 24 × 16 L9 with 0.25 mm elements at the junctions,
+/// 8 B4 (41,400 DOF). Its modes 3–5 lie 0.06 % above the same box with
+/// 48 × 32 L9 and 0.1 mm (77,400 DOF), against the graded cycle's
+/// 1.2–1.3 %; the ungraded 24 × 16 L9 lies 0.4 % above it
+/// (`cufem run` of the three, out/jl in the session that measured them).
 #[test]
-fn adapt_on_modes_refines_the_flanges_that_carry_the_local_modes() {
+fn adapt_on_modes_grades_the_walls_towards_their_junctions() {
     let text = stiff_webs(3, 2, 4) + "[adapt]\nmodes = 5\n";
     let start = Model::parse(&text).unwrap();
     let settings = start.adapt.unwrap();
@@ -139,9 +150,10 @@ fn adapt_on_modes_refines_the_flanges_that_carry_the_local_modes() {
     assert_eq!(cycles.len(), 2);
     let adapt = last.adapt.as_ref().unwrap();
     assert!(adapt.stop.contains("max_cycles = 1"), "{}", adapt.stop);
-    assert_eq!(adapt.cycles[1].refined, "box: along_flange doubled, axis 4 → 4");
-    // the model file written: the flanges' count doubled, the rest as given
-    assert!(adapt.model_file.contains("along_flange = 6, along_web = 2"), "{}", adapt.model_file);
+    assert_eq!(adapt.cycles[1].refined, "box: walls graded to a 0.001 m element at each junction, axis 4 → 4");
+    // the model file written: the counts as given, the junction element set
+    assert!(adapt.model_file.contains("along_flange = 3, along_web = 2"), "{}", adapt.model_file);
+    assert!(adapt.model_file.contains("junction_element = 0.001"), "{}", adapt.model_file);
     for (model, solution, estimate, errors) in &cycles {
         let modal = solution.modal.as_ref().unwrap();
         assert_eq!(errors.len(), 5);
@@ -149,17 +161,27 @@ fn adapt_on_modes_refines_the_flanges_that_carry_the_local_modes() {
         assert_eq!(*estimate, largest);
         assert!(model.n_dofs() > 0);
     }
-    let fine = Model::parse(&stiff_webs(24, 16, 8)).unwrap();
+    let fine = Model::parse(
+        &stiff_webs(24, 16, 8).replace("along_web = 16 }", "along_web = 16, junction_element = 0.00025 }"),
+    )
+    .unwrap();
+    assert_eq!(fine.n_dofs(), 41_400);
     let fs = solve(&fine);
     let before = truth((&cycles[0].0, &cycles[0].1), (&fine, &fs));
     let after = truth((&cycles[1].0, &cycles[1].1), (&fine, &fs));
+    let mut effectivity = (f64::INFINITY, 0.0f64);
     for i in 0..5 {
         let (b, a) = (before[i].1, after[i].1);
         common::figure(&format!("modal_adapt.steel_box.mode{}.true_before", i + 1), 100.0 * b, "%", "reported");
         common::figure(&format!("modal_adapt.steel_box.mode{}.true_after", i + 1), 100.0 * a, "%", "below before");
         assert!(before[i].0.is_some() && after[i].0.is_some(), "mode {} matched", i + 1);
         assert!(a < b, "mode {}: the true error {b} → {a}", i + 1);
+        let eff = cycles[1].3[i] / a;
+        effectivity = (effectivity.0.min(eff), effectivity.1.max(eff));
     }
+    let what = "estimated over true frequency error of the five modes on the graded walls";
+    common::known_limit("modal_adapt.steel_box.graded_effectivity_min", effectivity.0, "", 1.4, 2.0, what);
+    common::known_limit("modal_adapt.steel_box.graded_effectivity_max", effectivity.1, "", 2.4, 3.2, what);
     let doubled = Model::parse(&stiff_webs(6, 4, 4)).unwrap();
     common::figure("modal_adapt.steel_box.dof", cycles[1].0.n_dofs() as f64, "", "below the whole section doubled");
     assert!(cycles[1].0.n_dofs() < doubled.n_dofs(), "{} {}", cycles[1].0.n_dofs(), doubled.n_dofs());
@@ -173,17 +195,22 @@ fn adapt_on_modes_refines_the_flanges_that_carry_the_local_modes() {
 /// box_modes`), and against uniform section doubling (every wall count
 /// doubled once: 6 × 4 L9, and twice: 12 × 8 L9; the axis as given).
 ///
-/// Measured: the adaptive run doubles the flanges' count three times
-/// (3 → 24 L9 along each flange, the webs and the axis kept; estimates
-/// 12.2 → 5.6 → 2.8 → 1.6 %) and ends with every frequency within 2 % of
-/// CalculiX (the largest, mode 6, `1.98 %`) at 91,800 DOF. Uniform doubling
-/// once (48,600 DOF) leaves mode 6 at `2.15 %`; twice (75,600 DOF) brings
-/// every mode within `1.86 %`. The check — within 2 % at fewer DOF
-/// than uniform doubling — is not met: a known limit (docs/limitations.md),
+/// Measured: the first cycle grades the walls towards their junctions (a
+/// 0.25 mm element, a ply's thickness, at each wall end; 45,900 DOF,
+/// every frequency within 2.05 % of CalculiX), the second doubles the
+/// flanges (54,000 DOF, within 1.57 % — already fewer DOF than uniform
+/// doubling twice at better accuracy — but estimated at 6.1 %, 94 % of
+/// mode 3's estimate in the walls' interior elements, not at the
+/// junctions), then every count is doubled twice more until the estimate
+/// falls below 2 % at 118,800 DOF (within 1.47 %). Uniform doubling once
+/// (48,600 DOF) leaves mode 6 at `2.15 %`; twice (75,600 DOF) brings every
+/// mode within `1.86 %`. The check — the adaptive run stopping
+/// within 2 % at fewer DOF than uniform doubling — is not met: the
+/// estimates of the laminated walls stay 4× their difference from
+/// CalculiX, so the run stops late (a known limit, docs/limitations.md,
 /// asserted from both sides as the ratio of the adapted mesh's DOF to the
-/// doubled-twice mesh's. The estimates put every wall mode's error in the
-/// flanges, while mode 6's remaining difference also falls with the webs
-/// (12 × 2 → 12 × 4 L9: `2.11 → 1.98 %`).
+/// doubled-twice mesh's; without the junction grading it stopped at
+/// 91,800 DOF, within 1.98 %, ratio 1.21).
 #[test]
 #[ignore = "validate: slow — the laminated box adapted on its modes and doubled twice (about 5 min)"]
 fn the_laminated_box_adapted_on_its_modes_against_calculix_and_uniform_doubling() {
@@ -234,5 +261,5 @@ fn the_laminated_box_adapted_on_its_modes_against_calculix_and_uniform_doubling(
     assert!(uniform[0].1 > 0.02 && uniform[1].1 <= 0.02, "{uniform:?}");
     let ratio = model.n_dofs() as f64 / uniform[1].0 as f64;
     let what = "DOF of the box adapted on its modes over the DOF of uniform section doubling twice";
-    common::known_limit("modal_adapt.box.dof_over_uniform", ratio, "", 1.1, 1.3, what);
+    common::known_limit("modal_adapt.box.dof_over_uniform", ratio, "", 1.45, 1.7, what);
 }

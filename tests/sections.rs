@@ -135,6 +135,53 @@ fn straight_walled_profiles_match_closed_forms() {
     assert!((p.izz / ((h * b.powi(3) - hi * bi.powi(3)) / 12.0) - 1.0).abs() < 1e-10);
 }
 
+/// `junction_element`: every straight-walled profile graded towards its
+/// junctions keeps its exact geometry (the closed-form properties of the
+/// previous test), gains one element row or column of that length at each
+/// wall end that meets another wall — `through` elements each — and none
+/// at a free edge (I: 4 outstand ends + 2 web ends; channel, Z: 2 + 2;
+/// angle: 1 + 1; hat: 2 lip + 2 top-flange + 4 web ends; a two-cell box:
+/// 8 flange + 6 web ends), with the wall's element next to the junction
+/// exactly that long; a length not shorter than the wall's other elements
+/// is refused by its key.
+#[test]
+fn profiles_graded_towards_their_junctions() {
+    let dims = "width = 0.1, height = 0.2, web_thickness = 0.006, flange_thickness = 0.01, through = 2";
+    let cases = [("i_beam", "", 6), ("channel", "", 4), ("z_section", "", 4), ("angle", "", 2)];
+    let more = [("hat", ", lip = 0.03", 8), ("box", ", cells = 2", 14)];
+    for (shape, extra, ends) in cases.into_iter().chain(more) {
+        let plain = format!("shape = \"{shape}\", element = \"L9\", {dims}{extra}");
+        let graded = format!("{plain}, junction_element = 0.002");
+        let section = |s: &str| {
+            let m = Model::parse(&model(s, 1.0, 2)).unwrap_or_else(|e| panic!("{s}: {e}"));
+            m.mesh.bodies[0].section.clone()
+        };
+        let (a, b) = (section(&plain), section(&graded));
+        assert_exact(shape, b.properties(), a.properties());
+        assert_eq!(b.n_elements(), a.n_elements() + 2 * ends, "{shape}");
+        // the graded elements: one side 2 mm, the other a wall's thickness
+        // or a ply of it (through = 2: 3 or 5 mm)
+        let sides = |e: usize| {
+            let p: Vec<[f64; 2]> = b.element(e).iter().map(|&n| b.nodes[n]).collect();
+            let span = |k: usize| {
+                p.iter().map(|q| q[k]).fold(f64::MIN, f64::max) - p.iter().map(|q| q[k]).fold(f64::MAX, f64::min)
+            };
+            let (x, z) = (span(0), span(1));
+            (x.min(z), x.max(z))
+        };
+        let layer = (0..b.n_elements()).filter(|&e| (sides(e).0 - 0.002).abs() < 1e-12).count();
+        assert_eq!(layer, 2 * ends, "{shape}: elements 2 mm long");
+    }
+    let err = Model::parse(&model(
+        &format!("shape = \"i_beam\", element = \"L9\", {dims}, along_flange = 2, junction_element = 0.02"),
+        1.0,
+        2,
+    ))
+    .unwrap_err()
+    .to_string();
+    assert!(err.contains("junction_element") && err.contains("0.02") && err.contains("shorter than"), "{err}");
+}
+
 /// Relative errors of area and second moment of a curved section.
 fn curved_errors(section: &str, area: f64, inertia: f64) -> (f64, f64) {
     let p = properties(section);

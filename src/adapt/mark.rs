@@ -79,6 +79,9 @@ pub struct BodyMarks {
     /// The named counts of a parametric section to double instead of the
     /// whole section (local refinement, `local`); empty: all of them.
     pub parts: BTreeSet<String>,
+    /// A profile's walls graded towards their junctions instead (`local`):
+    /// the length of the element added next to each junction (m).
+    pub junction: Option<f64>,
 }
 
 impl BodyMarks {
@@ -87,7 +90,14 @@ impl BodyMarks {
             SectionPlan::Grid { x, z } => (x.len() - 1, z.len() - 1),
             _ => (0, 0),
         };
-        Self { axis: vec![false; axis], x: vec![false; nx], z: vec![false; nz], section: false, parts: BTreeSet::new() }
+        Self {
+            axis: vec![false; axis],
+            x: vec![false; nx],
+            z: vec![false; nz],
+            section: false,
+            parts: BTreeSet::new(),
+            junction: None,
+        }
     }
 }
 
@@ -219,7 +229,7 @@ pub(crate) const LOCAL_SHARE: f64 = 0.5;
 /// is spread. A section whose elements have no named count (a tube,
 /// a circle), or where such elements are among those chosen, is doubled
 /// as a whole.
-pub(crate) fn local(mesh: &Mesh, plan: &MeshPlan, weights: &[f64], marks: &mut [BodyMarks]) {
+pub(crate) fn local(mesh: &Mesh, plan: &MeshPlan, weights: &[f64], grade: bool, marks: &mut [BodyMarks]) {
     for (b, (m, p)) in marks.iter_mut().zip(&plan.bodies).enumerate() {
         let SectionPlan::Doubled { shape, .. } = &p.section else { continue };
         if !m.section {
@@ -249,7 +259,50 @@ pub(crate) fn local(mesh: &Mesh, plan: &MeshPlan, weights: &[f64], marks: &mut [
         let chosen: Option<BTreeSet<String>> =
             sums.iter().filter(|(_, w)| *w >= LOCAL_SHARE * most).map(|(k, _)| k.map(String::from)).collect();
         m.parts = chosen.unwrap_or_default();
+        m.junction = junctions(mesh, b, weights, total).filter(|_| grade);
     }
+}
+
+/// In a modal run ([`local`]'s `grade`), a profile's walls are graded
+/// towards their junctions ([`crate::mesh::profiles::next_to_junctions`])
+/// instead of doubling a count when the elements next to the junctions
+/// hold at least this share of the body's squared section error. Not in
+/// static runs: there the estimate of a profile's walls is held by their
+/// singular re-entrant corners, and grading first raised it on the next
+/// cycle or reached no lower estimate within the DOF budget (measured on
+/// crates/cufem-cli/tests/adapt.rs's I-beam and channel under a pressure:
+/// `47.4` → `27.8` → `23.4 %` at `8,208` DOF, then over `25,000`; without
+/// it `22.6 %` at `23,049` DOF).
+pub(crate) const JUNCTION_SHARE: f64 = 0.5;
+
+/// The length of the element next to each junction of body `b`'s profile
+/// — the smallest side of a junction's elements — when its elements next
+/// to the junctions hold at least [`JUNCTION_SHARE`] of `total` (`Σ
+/// weights²` over the body) and are longer than twice that (a wall not yet
+/// graded): a thin wall's transverse-shear boundary layer at a junction, a
+/// wall thickness wide, that an element many thicknesses long leaves
+/// unresolved and whose error halves only with each doubling of the
+/// wall's count (`python3 bench/junction_layer_study.py`). Once graded the
+/// walls are not graded further: halving the graded element on the thin
+/// box with 3 mm webs (tests/modal_adapt.rs) left the wall modes'
+/// estimates as they were (`3.31` → `3.33 %`).
+fn junctions(mesh: &Mesh, b: usize, weights: &[f64], total: f64) -> Option<f64> {
+    let (next, sizes) = crate::mesh::profiles::next_to_junctions(&mesh.bodies[b].section);
+    let mut near = 0.0;
+    for (e, w) in weights.iter().enumerate().take(mesh.n_elements()) {
+        let (eb, local) = mesh.body_of_element(e);
+        if eb == b && next[mesh.bodies[b].split_element(local).0] {
+            near += w * w;
+        }
+    }
+    let (side, layer) = sizes.filter(|_| near >= JUNCTION_SHARE * total)?;
+    if layer <= 2.0 * side {
+        return None;
+    }
+    let a = side;
+    // four significant digits: the length is written to the model file
+    let scale = 10f64.powi(a.log10().floor() as i32 - 3);
+    Some((a / scale).round() * scale)
 }
 
 /// The plan refined at `marks`: marked axis and grid intervals halved, a
@@ -267,8 +320,10 @@ pub fn refine(plan: &MeshPlan, marks: &[BodyMarks]) -> MeshPlan {
                     *x = split(x, &m.x);
                     *z = split(z, &m.z);
                 }
-                SectionPlan::Doubled { times, parts, .. } if m.section => {
-                    if m.parts.is_empty() {
+                SectionPlan::Doubled { times, parts, junction, .. } if m.section => {
+                    if let Some(a) = m.junction {
+                        *junction = Some(a);
+                    } else if m.parts.is_empty() {
                         *times += 1;
                     } else {
                         for k in &m.parts {
@@ -295,9 +350,14 @@ pub(crate) fn describe(mesh: &Mesh, before: &MeshPlan, after: &MeshPlan) -> Stri
             what.push(format!("x {} → {}", x.len() - 1, x2.len() - 1));
             what.push(format!("z {} → {}", z.len() - 1, z2.len() - 1));
         }
-        if let (SectionPlan::Doubled { times, parts, .. }, SectionPlan::Doubled { times: t2, parts: p2, .. }) =
-            (&p.section, &q.section)
+        if let (
+            SectionPlan::Doubled { times, parts, junction, .. },
+            SectionPlan::Doubled { times: t2, parts: p2, junction: j2, .. },
+        ) = (&p.section, &q.section)
         {
+            if let Some(a) = j2.filter(|_| j2 != junction) {
+                what.push(format!("walls graded to a {a} m element at each junction"));
+            }
             if t2 > times {
                 what.push("section counts doubled".into());
             }

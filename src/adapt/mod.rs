@@ -236,7 +236,11 @@ fn next_model(
     mark::across_sections(&model.mesh, &model.plan, &marked, parts, &mut marks);
     mark::along_axis(&model.mesh, &model.plan, &marked, parts, &mut marks);
     let weights = if measure.section.len() == measure.element.len() { &measure.section } else { &measure.element };
-    mark::local(&model.mesh, &model.plan, weights, &mut marks);
+    // modes only: on static profiles the estimate is held by the walls'
+    // singular re-entrant corners, and grading towards them reached no
+    // lower estimate within the DOF budget (`mark::JUNCTION_SHARE`)
+    let grade = !measure.frequencies.is_empty();
+    mark::local(&model.mesh, &model.plan, weights, grade, &mut marks);
     let plan: MeshPlan = mark::refine(&model.plan, &marks);
     if plan == model.plan {
         return Ok(Err("nothing left to refine (the marked elements' sections are kept as given)".into()));

@@ -50,6 +50,11 @@ pub(crate) struct Counts {
     /// a homogeneous wall. Ply `k`'s elements form the region
     /// `<wall>_ply<k+1>` with the wall's normal.
     pub plies: Vec<(f64, usize)>,
+    /// Length (m) of one more element at each end of a wall that meets
+    /// another wall, next to the junction, where a thin wall's
+    /// transverse-shear boundary layer sits; `None`: the wall's elements
+    /// are equal.
+    pub junction: Option<f64>,
 }
 
 /// The families of straight-walled profiles.
@@ -115,18 +120,63 @@ fn split(part: Part, plies: &[(f64, usize)]) -> Vec<(f64, usize)> {
     }
 }
 
+/// Whether a length part of a grid meets a wall at its lower and upper
+/// ends: the neighbouring part is a thickness and some filled cell of this
+/// part has a filled neighbour across that end. `filled(a, b)` says whether
+/// the cell at part `a` (this direction) and `b` (the other) is filled.
+fn junction_ends(parts: &[Part], i: usize, others: usize, filled: impl Fn(usize, usize) -> bool) -> [bool; 2] {
+    let meets = |k: Option<usize>| {
+        k.filter(|&k| k < parts.len() && parts[k].2).is_some_and(|k| (0..others).any(|b| filled(i, b) && filled(k, b)))
+    };
+    if parts[i].2 { [false, false] } else { [meets(i.checked_sub(1)), meets(Some(i + 1))] }
+}
+
+/// Element boundaries of a part of `len` from `start`: `n` equal elements,
+/// with one more of `layer` at each end in `ends` (a junction). `None` if
+/// the layer would not be shorter than the part's other elements.
+fn stations(start: f64, len: f64, n: usize, ends: [bool; 2], layer: Option<f64>) -> Option<Vec<f64>> {
+    let (a, ends) = match layer {
+        Some(a) => (a, ends),
+        None => (0.0, [false, false]),
+    };
+    let layers = ends.iter().filter(|&&e| e).count();
+    let h = (len - layers as f64 * a) / n as f64;
+    if layers > 0 && a >= h {
+        return None;
+    }
+    let first = if ends[0] { start + a } else { start };
+    let mut s = if ends[0] { vec![start] } else { Vec::new() };
+    s.extend((0..=n).map(|k| first + k as f64 * h));
+    if ends[1] {
+        s.push(start + len);
+    }
+    Some(s)
+}
+
+/// The point at `u` in [0, 1] of the piecewise-linear map through the
+/// element boundaries `b` (element `k` spans `u` in `[k, k + 1] / (b.len() − 1)`).
+fn piecewise(b: &[f64], u: f64) -> f64 {
+    let n = b.len() - 1;
+    let t = u * n as f64;
+    let k = (t.floor() as usize).min(n - 1);
+    b[k] + (t - k as f64) * (b[k + 1] - b[k])
+}
+
 /// Blocks of a grid whose columns are `xs` from `x0`, rows `zs` from `z0`;
 /// `cells` lists the filled `(column, row, region)`. With `plies`, each
 /// wall thickness is split into its plies: a cell on a thickness row
 /// (flanges, and the junctions, which belong to them) is layered along z,
-/// a cell on a thickness column only (webs) along x.
+/// a cell on a thickness column only (webs) along x. With `junction`, a
+/// wall's length gets one more element of that length at each end that
+/// meets another wall.
 fn grid(
     origin: [f64; 2],
     xs: &[Part],
     zs: &[Part],
     cells: &[(usize, usize, &str)],
-    plies: &[(f64, usize)],
-) -> Vec<Block> {
+    n: &Counts,
+) -> Result<Vec<Block>, MeshError> {
+    let plies = &n.plies[..];
     let lines = |start: f64, parts: &[Part]| {
         let mut l = vec![start];
         for (len, _, _) in parts {
@@ -135,15 +185,39 @@ fn grid(
         l
     };
     let (xl, zl) = (lines(origin[0], xs), lines(origin[1], zs));
+    let filled = |i: usize, j: usize| cells.iter().any(|&(a, b, _)| a == i && b == j);
     let mut blocks = Vec::new();
     for &(i, j, region) in cells {
         let (cols, rows) = (split(xs[i], plies), split(zs[j], plies));
         let along_z = zs[j].2;
+        let ends_x = junction_ends(xs, i, zs.len(), filled);
+        let ends_z = junction_ends(zs, j, xs.len(), |b, a| filled(a, b));
         let mut z0 = zl[j];
         for (b, &(hz, nz)) in rows.iter().enumerate() {
             let mut x0 = xl[i];
             for (a, &(hx, nx)) in cols.iter().enumerate() {
-                let mut block = Block::rectangle([x0, x0 + hx], [z0, z0 + hz], nx, nz, region);
+                let too_long = |len: f64, count: usize| {
+                    MeshError::invalid(
+                        "section.junction_element",
+                        n.junction.unwrap_or_default().to_string(),
+                        format!(
+                            "a length shorter than the other elements of each wall it grades (the {region}: {count} elements over {len} m)"
+                        ),
+                    )
+                };
+                let bx = stations(x0, hx, nx, ends_x, n.junction).ok_or_else(|| too_long(hx, nx))?;
+                let bz = stations(z0, hz, nz, ends_z, n.junction).ok_or_else(|| too_long(hz, nz))?;
+                let mut block = if bx.len() == nx + 1 && bz.len() == nz + 1 {
+                    Block::rectangle([x0, x0 + hx], [z0, z0 + hz], nx, nz, region)
+                } else {
+                    let counts = [bx.len() - 1, bz.len() - 1];
+                    Block {
+                        counts,
+                        map: Box::new(move |u, v| [piecewise(&bx, u), piecewise(&bz, v)]),
+                        region: region.to_string(),
+                        normal: None,
+                    }
+                };
                 if !plies.is_empty() && (along_z || xs[i].2) {
                     let (k, normal) = if along_z { (b, [0.0, 1.0]) } else { (a, [1.0, 0.0]) };
                     block.region = format!("{region}_ply{}", k + 1);
@@ -155,7 +229,7 @@ fn grid(
             z0 += hz;
         }
     }
-    blocks
+    Ok(blocks)
 }
 
 /// The count key of the model file that sets how many elements a wall of
@@ -212,28 +286,28 @@ pub fn straight(family: Family, origin: [f64; 2], d: &Walls, n: &Counts) -> Resu
             let xs = [(out, n.flange, false), (tw, t, true), (out, n.flange, false)];
             let zs = [(tf, t, true), (h, n.web, false), (tf, t, true)];
             let cells = [(0, 0, bf), (1, 0, bf), (2, 0, bf), (1, 1, bw), (0, 2, bt), (1, 2, bt), (2, 2, bt)];
-            grid(origin, &xs, &zs, &cells, &n.plies)
+            grid(origin, &xs, &zs, &cells, n)?
         }
         Family::Channel => {
             let out = flange_clear(1.0, 0.0)?;
             let h = web_clear(2.0)?;
             let xs = [(tw, t, true), (out, n.flange, false)];
             let zs = [(tf, t, true), (h, n.web, false), (tf, t, true)];
-            grid(origin, &xs, &zs, &[(0, 0, bf), (1, 0, bf), (0, 1, bw), (0, 2, bt), (1, 2, bt)], &n.plies)
+            grid(origin, &xs, &zs, &[(0, 0, bf), (1, 0, bf), (0, 1, bw), (0, 2, bt), (1, 2, bt)], n)?
         }
         Family::Z => {
             let out = flange_clear(1.0, 0.0)?;
             let h = web_clear(2.0)?;
             let xs = [(out, n.flange, false), (tw, t, true), (out, n.flange, false)];
             let zs = [(tf, t, true), (h, n.web, false), (tf, t, true)];
-            grid(origin, &xs, &zs, &[(1, 0, bf), (2, 0, bf), (1, 1, bw), (0, 2, bt), (1, 2, bt)], &n.plies)
+            grid(origin, &xs, &zs, &[(1, 0, bf), (2, 0, bf), (1, 1, bw), (0, 2, bt), (1, 2, bt)], n)?
         }
         Family::Angle => {
             let out = flange_clear(1.0, 0.0)?;
             let h = web_clear(1.0)?;
             let xs = [(tw, t, true), (out, n.flange, false)];
             let zs = [(tf, t, true), (h, n.web, false)];
-            grid(origin, &xs, &zs, &[(0, 0, "leg_x"), (1, 0, "leg_x"), (0, 1, "leg_z")], &n.plies)
+            grid(origin, &xs, &zs, &[(0, 0, "leg_x"), (1, 0, "leg_x"), (0, 1, "leg_z")], n)?
         }
         Family::Hat => {
             let lip = positive("section.lip", d.lip, "a positive lip width in m")?;
@@ -252,7 +326,7 @@ pub fn straight(family: Family, origin: [f64; 2], d: &Walls, n: &Counts) -> Resu
                 (2, 2, bt),
                 (3, 2, bt),
             ];
-            grid(origin, &xs, &zs, &cells, &n.plies)
+            grid(origin, &xs, &zs, &cells, n)?
         }
         Family::Box => {
             let cells = d.cells;
@@ -277,7 +351,7 @@ pub fn straight(family: Family, origin: [f64; 2], d: &Walls, n: &Counts) -> Resu
                     filled.push((i, 1, "webs"));
                 }
             }
-            grid(origin, &xs, &zs, &filled, &n.plies)
+            grid(origin, &xs, &zs, &filled, n)?
         }
     })
 }
@@ -360,4 +434,59 @@ pub fn circle(center: [f64; 2], radius: f64, around: usize, through: usize) -> R
         });
     }
     Ok(blocks)
+}
+
+/// The elements of a straight-walled profile's section next to a junction
+/// of two walls (sharing a node with it, not in it), the smallest side of
+/// a junction's elements and the shortest length along its wall of an
+/// element next to a junction (m; `None` without junctions). A junction's
+/// elements lie in a flange's or lip's region ([`along_key`] other than
+/// `along_web`) over the x-interval of a web element: the cell where a
+/// web's column crosses a flange's row. For a section of another shape
+/// (no such regions) none.
+pub(crate) fn next_to_junctions(section: &super::CrossSection) -> (Vec<bool>, Option<(f64, f64)>) {
+    let n = section.n_elements();
+    let mut key = vec![None; n];
+    for r in &section.regions {
+        for &e in &r.elements {
+            if let Some(k) = key.get_mut(e).filter(|k| k.is_none()) {
+                *k = along_key(&r.name);
+            }
+        }
+    }
+    let bbox: Vec<[f64; 4]> = (0..n)
+        .map(|e| {
+            section.element(e).iter().fold([f64::MAX, f64::MIN, f64::MAX, f64::MIN], |b, &p| {
+                let [x, z] = section.nodes[p];
+                [b[0].min(x), b[1].max(x), b[2].min(z), b[3].max(z)]
+            })
+        })
+        .collect();
+    let [x0, x1, z0, z1] = section.bounds();
+    let tol = 1e-9 * (x1 - x0).max(z1 - z0);
+    let webs: Vec<[f64; 2]> =
+        (0..n).filter(|&e| key[e] == Some("along_web")).map(|e| [bbox[e][0], bbox[e][1]]).collect();
+    let junction: Vec<bool> = (0..n)
+        .map(|e| {
+            key[e].is_some_and(|k| k != "along_web")
+                && webs.iter().any(|w| (w[0] - bbox[e][0]).abs() <= tol && (w[1] - bbox[e][1]).abs() <= tol)
+        })
+        .collect();
+    let mut touches = vec![false; section.n_nodes()];
+    for e in (0..n).filter(|&e| junction[e]) {
+        for &p in section.element(e) {
+            touches[p] = true;
+        }
+    }
+    let side = (0..n)
+        .filter(|&e| junction[e])
+        .map(|e| (bbox[e][1] - bbox[e][0]).min(bbox[e][3] - bbox[e][2]))
+        .reduce(f64::min);
+    let next: Vec<bool> = (0..n).map(|e| !junction[e] && section.element(e).iter().any(|&p| touches[p])).collect();
+    // an element's length along its wall: x along a flange or lip, z along a web
+    let layer = (0..n)
+        .filter(|&e| next[e] && key[e].is_some())
+        .map(|e| if key[e] == Some("along_web") { bbox[e][3] - bbox[e][2] } else { bbox[e][1] - bbox[e][0] })
+        .reduce(f64::min);
+    (next, side.zip(layer))
 }

@@ -18,7 +18,8 @@
 //!   `along_x`, `along_z` (those written); a profile's `along_flange`,
 //!   `along_web`, a hat's `along_lip`; a `circular_tube`'s `around`; a
 //!   `circle`'s `around` and `through`; a `laminate`'s `elements` of each
-//!   ply. Defaults are written out when multiplied. A wall's `through` is kept.
+//!   ply. Defaults are written out when multiplied. A wall's `through` is kept;
+//!   a profile's `junction_element` is set when the plan grades its walls.
 
 use std::collections::BTreeMap;
 
@@ -57,7 +58,12 @@ pub(crate) fn planned_text(text: &str, plan: &MeshPlan) -> Result<String, ModelE
                     section.insert(key, Item::Value(Value::InlineTable(t)));
                 }
             }
-            SectionPlan::Doubled { shape, times, parts } => double(section, shape, *times, parts),
+            SectionPlan::Doubled { shape, times, parts, junction } => {
+                double(section, shape, *times, parts);
+                if let Some(a) = junction {
+                    section.insert("junction_element", Item::Value(Value::from(*a)));
+                }
+            }
             SectionPlan::Fixed { .. } => {}
         }
     }
@@ -216,7 +222,7 @@ thickness = 0.001
         let plan = MeshPlan {
             bodies: vec![BodyPlan {
                 axis: vec![0.0, 0.25, 0.5, 1.0],
-                section: SectionPlan::Doubled { shape: "laminate", times: 1, parts },
+                section: SectionPlan::Doubled { shape: "laminate", times: 1, parts, junction: None },
             }],
         };
         let out = planned_text(text, &plan).unwrap();

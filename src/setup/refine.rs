@@ -147,6 +147,10 @@ pub enum SectionPlan {
         times: u32,
         /// How often each named count was doubled on top of `times`.
         parts: BTreeMap<String, u32>,
+        /// A profile's `junction_element` (m): one more element of this
+        /// length at each end of a wall that meets another; `None` as the
+        /// file gives it (none for other shapes).
+        junction: Option<f64>,
     },
     /// A section that is kept as given (`quads`, `gmsh`).
     Fixed {
@@ -179,7 +183,7 @@ pub(super) fn plan(file: &ModelFile) -> Result<MeshPlan, ModelError> {
             },
             SectionFile::Quads(_) => SectionPlan::Fixed { shape: "quads" },
             SectionFile::Gmsh(_) => SectionPlan::Fixed { shape: "gmsh" },
-            s => SectionPlan::Doubled { shape: s.shape(), times: 0, parts: BTreeMap::new() },
+            s => SectionPlan::Doubled { shape: s.shape(), times: 0, parts: BTreeMap::new(), junction: None },
         };
         bodies.push(BodyPlan { axis, section });
     }

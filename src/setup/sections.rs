@@ -209,6 +209,7 @@ impl Sections<'_> {
             along_flange: Some(along_x),
             along_web: Some(along_z),
             through: s.through,
+            junction_element: None,
             plies: s.plies.clone(),
         };
         self.straight(sk, kind, Family::Box, &profile, None, None).map_err(|e| match e {
@@ -340,6 +341,12 @@ fn walls(
         lip: n("along_lip", lip.and_then(|l| l.1), defaults::ALONG_LIP)?,
         through: n("through", through, defaults::THROUGH)?,
         plies,
+        junction: match s.junction_element {
+            Some(a) => {
+                Some(length(format!("{sk}.junction_element"), Some(a), "the length of the element next to a junction")?)
+            }
+            None => None,
+        },
     };
     let origin = point(format!("{sk}.origin"), s.origin.map(Into::into))?;
     Ok((walls, counts, origin))

@@ -125,12 +125,15 @@ fn a_parametric_section_is_doubled_or_kept() {
     assert_eq!(ns, 20);
     assert_eq!(
         model.plan.bodies[0].section,
-        SectionPlan::Doubled { shape: "tube", times: 0, parts: Default::default() }
+        SectionPlan::Doubled { shape: "tube", times: 0, parts: Default::default(), junction: None }
     );
     // marked: every section element of beam element 0
     let all: Vec<usize> = (0..ns).collect();
     let plan = mark::refine(&model.plan, &mark::intervals(&model.mesh, &model.plan, &all));
-    assert_eq!(plan.bodies[0].section, SectionPlan::Doubled { shape: "tube", times: 1, parts: Default::default() });
+    assert_eq!(
+        plan.bodies[0].section,
+        SectionPlan::Doubled { shape: "tube", times: 1, parts: Default::default(), junction: None }
+    );
     let refined = planned(&text, &plan);
     assert_eq!(refined.mesh.bodies[0].section.n_elements(), 36, "around = 4 + 4·8");
     assert_eq!(refined.mesh.bodies[0].axis.n_elements(), 23);
@@ -140,12 +143,18 @@ fn a_parametric_section_is_doubled_or_kept() {
     let ns2 = refined.mesh.bodies[0].section.n_elements();
     let all2: Vec<usize> = (0..ns2).collect();
     let plan2 = mark::refine(&refined.plan, &mark::intervals(&refined.mesh, &refined.plan, &all2));
-    assert_eq!(plan2.bodies[0].section, SectionPlan::Doubled { shape: "tube", times: 2, parts: Default::default() });
+    assert_eq!(
+        plan2.bodies[0].section,
+        SectionPlan::Doubled { shape: "tube", times: 2, parts: Default::default(), junction: None }
+    );
     assert_eq!(planned(&text, &plan2).mesh.bodies[0].section.n_elements(), 68, "around = 4 + 4·16");
     // marked: half the ring less one, over two slices
     let some: Vec<usize> = (0..ns / 2 - 1).map(|s| 5 * ns + s).chain([7 * ns]).collect();
     let plan = mark::refine(&model.plan, &mark::intervals(&model.mesh, &model.plan, &some));
-    assert_eq!(plan.bodies[0].section, SectionPlan::Doubled { shape: "tube", times: 0, parts: Default::default() });
+    assert_eq!(
+        plan.bodies[0].section,
+        SectionPlan::Doubled { shape: "tube", times: 0, parts: Default::default(), junction: None }
+    );
     let n_section_nodes = body.section.n_nodes();
     assert_eq!(planned(&text, &plan).n_dofs(), 3 * n_section_nodes * (3 * 24 + 1));
 }

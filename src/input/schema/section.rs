@@ -225,6 +225,10 @@ pub(crate) struct ProfileFile {
     /// Elements through the wall.
     #[schemars(transform = ranges::COUNT.with_default(defaults::THROUGH))]
     pub through: Option<usize>,
+    /// Length of one more element at each end of a wall that meets another
+    /// wall, next to the junction (m); none: a wall's elements are equal.
+    #[schemars(transform = ranges::LENGTH.schema())]
+    pub junction_element: Option<f64>,
     /// Plies through every wall (thickness, material, angle, elements),
     /// from the wall's lower x (webs) or lower z (flanges).
     pub plies: Option<Vec<PlyFile>>,
@@ -267,6 +271,10 @@ pub(crate) struct HatFile {
     /// Elements through the wall.
     #[schemars(transform = ranges::COUNT.with_default(defaults::THROUGH))]
     pub through: Option<usize>,
+    /// Length of one more element at each end of a wall that meets another
+    /// wall, next to the junction (m); none: a wall's elements are equal.
+    #[schemars(transform = ranges::LENGTH.schema())]
+    pub junction_element: Option<f64>,
     /// Plies through every wall.
     pub plies: Option<Vec<PlyFile>>,
 }
@@ -305,6 +313,10 @@ pub(crate) struct BoxFile {
     /// Elements through the wall.
     #[schemars(transform = ranges::COUNT.with_default(defaults::THROUGH))]
     pub through: Option<usize>,
+    /// Length of one more element at each end of a wall that meets another
+    /// wall, next to the junction (m); none: a wall's elements are equal.
+    #[schemars(transform = ranges::LENGTH.schema())]
+    pub junction_element: Option<f64>,
     /// Plies through every wall (thickness, material, angle, elements),
     /// from the wall's lower x (webs) or lower z (flanges).
     pub plies: Option<Vec<PlyFile>>,
@@ -323,6 +335,7 @@ macro_rules! shared_profile {
             along_flange: $s.along_flange,
             along_web: $s.along_web,
             through: $s.through,
+            junction_element: $s.junction_element,
             plies: $s.plies.clone(),
         }
     };

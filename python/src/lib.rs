@@ -603,11 +603,14 @@ fn columns(py: Python<'_>, table: &tables::Table) -> PyResult<Vec<TypedColumn>> 
 
 /// The tables after the lines and histories, in the order `cufem run`
 /// writes them: each contact's points, the modes, the buckling modes, the
-/// energy balance.
+/// estimated error of each kept state, the energy balance.
 fn other_tables(m: &Model, solution: &Solution) -> Vec<tables::Table> {
     let mut out: Vec<_> = solution.contact_sets.iter().map(|set| tables::contact_points(m, set)).collect();
+    let error_history = tables::error_history(m, solution);
     out.extend(
-        [tables::modes(solution), tables::buckling(m, solution), tables::energy(solution)].into_iter().flatten(),
+        [tables::modes(solution), tables::buckling(m, solution), error_history, tables::energy(solution)]
+            .into_iter()
+            .flatten(),
     );
     out
 }

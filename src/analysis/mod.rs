@@ -26,6 +26,7 @@ mod results;
 mod sizes;
 pub(crate) mod solution;
 mod stages;
+pub mod state_errors;
 pub mod structure;
 pub mod tables;
 mod warnings;
@@ -228,6 +229,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         warnings: Vec::new(),
         recovered: None,
         error_estimate: None,
+        error_history: Default::default(),
         steps: step_ends,
         adapt: None,
         buckling: buckled.or(imperfect.map(|(_, b)| b)),
@@ -241,15 +243,16 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
     // the estimate compares the raw stresses with their patch recovery
     // (kept to each ply and zone of a layered body, `post::spr`); the fields
     // show the L2 projection if the model asks for it
-    {
-        let (mesh, cells, stresses, offsets) = (&model.mesh, &model.cells, &solution.stresses, &solution.gp_offsets);
-        let (recovered, along) = crate::post::spr::recover_stages(mesh, cells, stresses, offsets);
-        let mut estimate =
-            crate::post::estimate::estimate(mesh, cells, &model.materials, stresses, offsets, &recovered);
-        let stages = (&recovered[..], &along[..]);
-        estimate.section = crate::post::estimate::section_parts(mesh, cells, &model.materials, offsets, stages);
-        solution.error_estimate = Some(estimate);
-    }
+    let (mesh, cells, offsets) = (&model.mesh, &model.cells, &solution.gp_offsets);
+    solution.error_estimate =
+        Some(crate::post::estimate::of_state(mesh, cells, &model.materials, &solution.stresses, offsets));
+    // and every step end and frame the run kept, by the same estimate
+    solution.error_history = state_errors::estimate(
+        model,
+        offsets,
+        (&solution.steps, &solution.frames, &solution.history),
+        (solution.error_estimate.as_ref(), solution.increments.len()),
+    );
     if model.output.recovery == crate::input::Recovery::Projection {
         solution.recovered = Some(crate::post::recovery::project(
             &model.mesh,

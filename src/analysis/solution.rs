@@ -63,9 +63,13 @@ pub struct Solution {
     /// Recovered (projected) nodal stress and peeq, when the model asks for them.
     pub recovered: Option<crate::post::Recovered>,
     /// The estimated discretization error of the final state
-    /// ([`crate::post::estimate`]); `None` for the states of
-    /// [`Solution::at_step`].
+    /// ([`crate::post::estimate`]); for the states of [`Solution::at_step`]
+    /// and [`Solution::at_frame`], that state's own.
     pub error_estimate: Option<crate::post::ErrorEstimate>,
+    /// The estimate of every step end and frame the run kept
+    /// ([`super::state_errors`]); empty for the states of
+    /// [`Solution::at_step`] and [`Solution::at_frame`].
+    pub error_history: super::state_errors::ErrorHistory,
     /// The end of every completed step of the load history, in order.
     pub steps: Vec<StepEnd>,
     /// The cycles of an adaptive run that ended with this solution
@@ -181,7 +185,9 @@ impl Solution {
     pub fn at_step(&self, model: &Model, k: usize) -> Result<Option<Solution>, AnalysisError> {
         let Some(end) = self.steps.get(k) else { return Ok(None) };
         let Some(fields) = &end.fields else { return Ok(None) };
-        self.with_fields(model, fields, end.lambda, (&end.reactions, &end.contacts)).map(Some)
+        let mut s = self.with_fields(model, fields, end.lambda, (&end.reactions, &end.contacts))?;
+        s.error_estimate = self.error_history.of(super::state_errors::State::Step(k)).cloned();
+        Ok(Some(s))
     }
 
     /// The solution as it was at frame `k` of a transient run (its fields,
@@ -191,6 +197,7 @@ impl Solution {
         let row = &self.history[frame.increment - 1];
         let mut s = self.with_fields(model, &frame.fields, row.lambda, (&row.reactions, &row.contacts))?;
         s.delamination = frame.delamination.clone();
+        s.error_estimate = self.error_history.of(super::state_errors::State::Frame(k)).cloned();
         Ok(s)
     }
 
@@ -235,6 +242,7 @@ impl Solution {
             warnings: self.warnings.clone(),
             recovered: None,
             error_estimate: None,
+            error_history: Default::default(),
             steps: Vec::new(),
             adapt: None,
             buckling: None,

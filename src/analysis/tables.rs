@@ -18,6 +18,7 @@
 //! | [`energy`] | `energy.csv`, summary.json's `energy` (its last row) | a converged time step of a transient run |
 //! | [`modes`] | `modes.csv` | a vibration mode: frequency, effective masses, estimated errors |
 //! | [`buckling`] | `buckling.csv` | a buckling mode: load factor, critical load |
+//! | [`error_history`] | `error_history.csv`, summary.json's `error_history` | a kept step end or frame: its estimated error |
 
 use super::{ContactSet, LeverResultant, Solution};
 use crate::post::{FieldView, LineSample, Quantity, Sample};
@@ -447,6 +448,46 @@ pub fn modes(solution: &Solution) -> Option<Table> {
     t.push_xyz("effective_mass_", "kg", &m.effective_masses);
     t.push("frequency_error", "", Values::Real(m.errors.iter().map(|e| e.frequency()).collect()));
     t.push("mode_error", "", Values::Real(m.errors.iter().map(|e| e.estimate.relative()).collect()));
+    Some(t)
+}
+
+/// `error_history`: one row per state the run kept and estimated
+/// (`analysis::state_errors`: each step end with its fields, each frame of
+/// a transient run, in the order of λ): `state` (`step` or `frame`),
+/// `name` (the step's name, or `frame_<k>` numbered from 1 as its VTU),
+/// its `increment`, `lambda`, a transient run's `time` (s), the estimated
+/// relative error in the energy norm `estimate` (0–1), the estimated error
+/// `error` and the stresses' own energy norm `energy` (√J); `None` without
+/// a row.
+pub fn error_history(model: &Model, solution: &Solution) -> Option<Table> {
+    use super::state_errors::State;
+    let rows = &solution.error_history.rows;
+    if rows.is_empty() {
+        return None;
+    }
+    let (state, name, increment): (Vec<_>, Vec<_>, Vec<_>) = rows
+        .iter()
+        .map(|r| match r.state {
+            State::Step(k) => ("step".to_string(), solution.steps[k].name.clone(), solution.steps[k].increment),
+            State::Frame(k) => ("frame".to_string(), format!("frame_{:04}", k + 1), solution.frames[k].increment),
+        })
+        .fold((Vec::new(), Vec::new(), Vec::new()), |(mut a, mut b, mut c), (x, y, z)| {
+            a.push(x);
+            b.push(y);
+            c.push(z);
+            (a, b, c)
+        });
+    let mut t = Table::new("error_history");
+    t.push("state", "", Values::Text(state));
+    t.push("name", "", Values::Text(name));
+    t.push("increment", "", Values::Count(increment));
+    t.push("lambda", "", Values::Real(rows.iter().map(|r| r.lambda).collect()));
+    if let Some(tr) = &model.transient {
+        t.push("time", "s", Values::Real(rows.iter().map(|r| tr.time(r.lambda)).collect()));
+    }
+    t.push("estimate", "", Values::Real(rows.iter().map(|r| r.estimate.relative()).collect()));
+    t.push("error", "J^0.5", Values::Real(rows.iter().map(|r| r.estimate.error).collect()));
+    t.push("energy", "J^0.5", Values::Real(rows.iter().map(|r| r.estimate.energy).collect()));
     Some(t)
 }
 

@@ -98,6 +98,9 @@ pub struct TimingSummary {
     /// Of `output_s`, what `report.html` alone costs: its 3D view's data
     /// (the fields on the outer surface of each frame) and the page.
     pub report_s: f64,
+    /// Estimating the error of every kept step end and frame
+    /// (`error_history`; part of the analysis's wall time).
+    pub(crate) error_history_s: f64,
     /// Factorizations stored in single precision (`solver.factor_precision`).
     pub single_factorizations: usize,
     /// Single-precision factors that did not precondition their own tangent
@@ -161,6 +164,10 @@ pub struct Summary {
     pub steps: Vec<StepSummary>,
     /// The estimated discretization error (`post::estimate`), if computed.
     pub error_estimate: Option<EstimateSummary>,
+    /// The estimated error of every step end and frame the run kept
+    /// (`analysis::state_errors`), in the order of λ; absent without one.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub error_history: Vec<super::error_history::StateErrorSummary>,
     /// The loads, supports and contacts that act on points or lines
     /// (`analysis::concentrated`): the stresses of the elements around them do
     /// not converge under refinement. Absent when there are none.
@@ -487,6 +494,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
             reused_factorizations: t.solver.reused,
             krylov_iterations: t.solver.krylov_iterations,
             fallbacks: t.solver.fallbacks,
+            error_history_s: solution.error_history.elapsed.as_secs_f64(),
             single_factorizations: t.solver.single_factorizations,
             precision_fallbacks: t.solver.precision_fallbacks,
             output_s: 0.0,
@@ -496,6 +504,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         warnings: model.warnings.iter().chain(&solution.warnings).map(|w| w.to_string()).collect(),
         steps: Vec::new(),
         error_estimate: estimate_summary(model, solution),
+        error_history: super::error_history::rows(model, solution),
         concentrated: crate::analysis::concentrated::find(model, solution),
         ply_failure: crate::post::failure::summary(&solution.fields(model), solution.lambda),
         adapt: solution.adapt.as_ref().map(|a| {

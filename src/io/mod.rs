@@ -14,6 +14,7 @@
 //! | `mode_<k>.vtu` | buckling and modal: the shape of mode k as the displacement field |
 //! | `modes.csv` | modal: per mode, the natural frequency, the effective masses and the estimated errors |
 //! | `buckling.csv` | buckling: per mode, the critical load factor and load |
+//! | `error_history.csv` | per step end and frame kept: the estimated discretization error of that state |
 //! | `contact_<name>.csv` | final gap, force and pressure of every contact point |
 //! | `line_<name>_<quantity>.png` | plots of the quantities listed in a line's `plot` |
 //! | `history_<indenter>.png` | force against displacement of each moving indenter |
@@ -21,6 +22,7 @@
 
 mod csv;
 mod energy;
+mod error_history;
 mod html;
 mod json;
 pub mod output;
@@ -122,7 +124,11 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     if model.output.plots {
         written.extend(png::history_plots(model, &histories, dir)?);
     }
-    let modes: Vec<_> = [tables::modes(solution), tables::buckling(model, solution)].into_iter().flatten().collect();
+    let modes: Vec<_> =
+        [tables::modes(solution), tables::buckling(model, solution), tables::error_history(model, solution)]
+            .into_iter()
+            .flatten()
+            .collect();
     written.extend(csv::write_tables(&modes, dir)?);
     written.extend(write_modes(model, solution, dir, shown.as_mut())?);
     written.extend(energy::write_energy(model, solution, dir)?);

@@ -258,6 +258,7 @@ pub fn results(model: &Model, solution: &Solution) -> String {
             largest.join(", ")
         );
     }
+    error_history(&mut s, &summary);
     for c in &summary.concentrated {
         let share = c.error_share.map_or(String::new(), |v| format!("; {:.0} % of the estimated error", 100.0 * v));
         out!(
@@ -279,6 +280,38 @@ pub fn results(model: &Model, solution: &Solution) -> String {
     }
     modes(&mut s, model, solution);
     s
+}
+
+/// The estimated error of every kept step end and frame (summary.json's
+/// `error_history`), when the run kept more than its final state.
+fn error_history(s: &mut String, summary: &super::Summary) {
+    let rows = &summary.error_history;
+    if rows.len() < 2 {
+        return;
+    }
+    let transient = rows.iter().any(|r| r.time_s.is_some());
+    let at = if transient { "time [s]" } else { "λ" };
+    out!(
+        s,
+        "error  state  {:<16} {:>10} {:>12}  {:>14}  {:>12}",
+        "name",
+        "increment",
+        at,
+        "est. error [%]",
+        "energy [√J]"
+    );
+    for r in rows {
+        out!(
+            s,
+            "       {:<5}  {:<16} {:>10} {:>12.5e}  {:>14.3}  {:>12.4e}",
+            r.state,
+            r.name,
+            r.increment,
+            r.time_s.unwrap_or(r.load_factor),
+            100.0 * r.relative_energy_norm,
+            r.energy
+        );
+    }
 }
 
 /// The model's reference values beside cufem's at their probes.

@@ -172,9 +172,27 @@ pub fn estimate(
     out
 }
 
+/// The estimate of one state: the stresses `stresses` (Gauss points, first
+/// of each body at `gp_offsets`) against their patch recovery
+/// (`super::spr::recover_stages`), with the section stage's part of each
+/// element ([`ErrorEstimate::section`]). What every run, step end, frame
+/// and mode shape is estimated with.
+pub(crate) fn of_state(
+    mesh: &Mesh,
+    cells: &[CellValues],
+    materials: &[Material],
+    stresses: &[Voigt],
+    gp_offsets: &[usize],
+) -> ErrorEstimate {
+    let (recovered, along) = super::spr::recover_stages(mesh, cells, stresses, gp_offsets);
+    let mut out = estimate(mesh, cells, materials, stresses, gp_offsets, &recovered);
+    out.section = section_parts(mesh, cells, materials, gp_offsets, (&recovered, &along));
+    out
+}
+
 /// `‖σ* − σ_along‖_e` per element (global element index), √J: the
 /// section stage's part of the recovery ([`ErrorEstimate::section`]).
-pub(crate) fn section_parts(
+fn section_parts(
     mesh: &Mesh,
     cells: &[CellValues],
     materials: &[Material],

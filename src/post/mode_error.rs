@@ -55,7 +55,7 @@
 //! elements of one material ([`super::spr`]), so the stress jumps between
 //! plies and material zones are not counted as error.
 
-use super::estimate::{ErrorEstimate, estimate};
+use super::estimate::{ErrorEstimate, of_state};
 use crate::setup::Discretisation;
 use crate::voigt::Voigt;
 
@@ -120,12 +120,9 @@ pub(crate) fn stresses(d: &Discretisation<'_>, u: &[f64]) -> (Vec<Voigt>, Vec<us
 /// scaling), `mass` its `φ_hᵀ M φ_h` in the same scaling.
 pub(crate) fn mode_error(d: &Discretisation<'_>, shape: &[f64], eigenvalue: f64, mass: f64) -> ModeError {
     let (sigma, offsets) = stresses(d, shape);
-    let (recovered, along) = super::spr::recover_stages(d.mesh, d.cells, &sigma, &offsets);
-    let mut estimate = estimate(d.mesh, d.cells, d.materials, &sigma, &offsets, &recovered);
-    // the section stage's part: where `--adapt` on modes refines (across the
-    // section or along the axis), as for the static estimate
-    let stages = (&recovered[..], &along[..]);
-    estimate.section = super::estimate::section_parts(d.mesh, d.cells, d.materials, &offsets, stages);
+    // with the section stage's part: where `--adapt` on modes refines
+    // (across the section or along the axis), as for the static estimate
+    let estimate = of_state(d.mesh, d.cells, d.materials, &sigma, &offsets);
     let stiffness = eigenvalue * mass;
     let eigenvalue = if stiffness > 0.0 { estimate.error * estimate.error / stiffness } else { 0.0 };
     ModeError { estimate, eigenvalue }

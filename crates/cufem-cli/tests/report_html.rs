@@ -136,11 +136,14 @@ fn the_page_is_self_contained_and_holds_the_run() {
     let data: Value = serde_json::from_str(&html[start..end]).unwrap();
     assert_eq!(data["title"], title);
 
-    // a chart per history and line CSV, with its rows as points
+    // a chart per history, line and error-history CSV, with its rows as points
     let mut csvs: Vec<String> = std::fs::read_dir(&out)
         .unwrap()
         .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
-        .filter(|f| (f.starts_with("history") || f.starts_with("line_")) && f.ends_with(".csv"))
+        .filter(|f| {
+            (f.starts_with("history") || f.starts_with("line_") || f.starts_with("error_history"))
+                && f.ends_with(".csv")
+        })
         .collect();
     csvs.sort();
     let charts = data["charts"].as_array().unwrap();

@@ -282,6 +282,7 @@ fn charts(tables: &[&Table]) -> Vec<Value> {
             match n {
                 "energy" => chart(t, "time", "energy balance"),
                 "modes" | "buckling" => chart(t, "mode", n),
+                "error_history" => chart(t, if t.column("time").is_some() { "time" } else { "lambda" }, n),
                 _ if n.starts_with("line_") => chart(t, "s", &format!("line {}", &n[5..])),
                 _ if n.starts_with("history") => chart(t, "lambda", n),
                 _ => None,

@@ -1,0 +1,217 @@
+//! The effectivity of the estimate of every kept state
+//! (`analysis::state_errors`) on shipped examples: each step end or frame of
+//! the example's own mesh, and of its mesh refined once (every section and
+//! axis division doubled), against the true error measured against the
+//! mesh refined twice (every division four times finer) at the same state,
+//! as `tests/estimator.rs` measures it: `‖e‖² = Σ_gp w (σ_ref − σ_h)ᵀ C⁻¹
+//! (σ_ref − σ_h)` with `σ_ref` the finest run's stress at each Gauss point
+//! of the coarser one. Issue 49 asks for an effectivity `η / ‖e‖` in
+//! 0.5–2 at every step; where a state lies outside, the measured value is
+//! held from both sides and listed in docs/limitations.md.
+
+use cufem::analysis::state_errors::State;
+use cufem::analysis::{Silent, Solution};
+use cufem::setup::Model;
+use cufem::values::locate_in_model;
+
+mod common;
+
+fn example(name: &str) -> String {
+    std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name)).unwrap()
+}
+
+fn solve(text: &str) -> (Model, Solution) {
+    let model = Model::parse(text).unwrap();
+    let solution = cufem::analysis::run(&model, &Default::default(), &mut Silent).unwrap();
+    assert!(solution.failure.is_none(), "{:?}", solution.failure);
+    (model, solution)
+}
+
+/// `σᵀ C⁻¹ σ` (isotropic, engineering shear).
+fn complementary(s: &[f64; 6], e: f64, nu: f64) -> f64 {
+    let normal = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] - 2.0 * nu * (s[0] * s[1] + s[1] * s[2] + s[2] * s[0]);
+    (normal + 2.0 * (1.0 + nu) * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])) / e
+}
+
+/// Every kept state of a run in the order of its `error_history`: the
+/// state's fields (the run itself for a step end that kept none: the final
+/// state) and its estimate.
+fn states(model: &Model, s: &Solution) -> Vec<(String, Solution)> {
+    s.error_history
+        .rows
+        .iter()
+        .map(|r| match r.state {
+            State::Step(k) => {
+                let at = s.at_step(model, k).unwrap().unwrap_or_else(|| s.clone());
+                (s.steps[k].name.clone(), at)
+            }
+            State::Frame(k) => (format!("frame_{:04}", k + 1), s.at_frame(model, k).unwrap()),
+        })
+        .collect()
+}
+
+/// The true error of `coarse` per element in the energy norm squared
+/// against `fine` (its stress at each Gauss point of `coarse`; one
+/// isotropic body), J.
+fn true_error(cm: &Model, cs: &Solution, fm: &Model, fs: &Solution) -> Vec<f64> {
+    let view = fs.fields(fm);
+    let body = &cm.mesh.bodies[0];
+    assert_eq!(cm.mesh.bodies.len(), 1);
+    let (cell, mat) = (&cm.cells[0], &cm.materials[body.material]);
+    assert!(mat.anisotropic.is_none());
+    let ngp = cell.gp_per_element();
+    let mut out = vec![0.0; body.n_elements()];
+    for (e, o) in out.iter_mut().enumerate() {
+        let (es, eb) = body.split_element(e);
+        for gb in 0..cell.axis.n_gp {
+            for gs in 0..cell.section.n_gp {
+                let [x, z] = cell.section.position[es * cell.section.n_gp + gs];
+                let y = cell.axis.position[eb * cell.axis.n_gp + gb];
+                let w = cell.section.weight[es * cell.section.n_gp + gs] * cell.axis.weight[eb * cell.axis.n_gp + gb];
+                let at = locate_in_model(&fm.mesh, Some(0), [x, y, z]);
+                let reference = view.sample_at(&at).expect("inside the fine mesh").stress;
+                let raw = cs.stresses[e * ngp + gb * cell.section.n_gp + gs];
+                *o += w * complementary(&std::array::from_fn(|k| reference[k] - raw[k]), mat.young, mat.poisson);
+            }
+        }
+    }
+    out
+}
+
+/// One row per kept state: its name, the estimate `η` (√J), the true error
+/// `‖e‖` (√J) and the estimated and true relative errors, of `coarse`
+/// against `fine` (the same states, in the same order); `keep` picks the
+/// (section, beam) elements summed.
+type Row = (String, f64, f64, f64, f64);
+
+fn effectivities(
+    coarse: &(Model, Solution),
+    fine: &(Model, Solution),
+    keep: &dyn Fn(&Model, usize, usize) -> bool,
+) -> Vec<Row> {
+    let (c, f) = (states(&coarse.0, &coarse.1), states(&fine.0, &fine.1));
+    assert_eq!(c.len(), f.len(), "the same states");
+    let body = &coarse.0.mesh.bodies[0];
+    c.iter()
+        .zip(&f)
+        .map(|((name, cs), (_, fs))| {
+            assert!((cs.lambda - fs.lambda).abs() < 1e-9 * cs.lambda.abs().max(1.0));
+            let truth = true_error(&coarse.0, cs, &fine.0, fs);
+            let est = cs.error_estimate.as_ref().unwrap();
+            let (mut eta, mut error) = (0.0, 0.0);
+            for (e, t) in truth.iter().enumerate() {
+                let (es, eb) = body.split_element(e);
+                if keep(&coarse.0, es, eb) {
+                    eta += est.element[e].powi(2);
+                    error += t;
+                }
+            }
+            let energy = est.energy.powi(2);
+            let rel = |x: f64| (x / (x + energy)).sqrt();
+            (name.clone(), eta.sqrt(), error.sqrt(), rel(eta), rel(error))
+        })
+        .collect()
+}
+
+/// Prints each row as FIGURE lines `<id>.<mesh>.<state>.{estimate,true,effectivity}`
+/// and returns the effectivities.
+fn report(id: &str, mesh: &str, rows: &[Row], check: &str) -> Vec<f64> {
+    rows.iter()
+        .map(|(name, eta, error, rel_eta, rel_error)| {
+            let at = format!("{id}.{mesh}.{name}");
+            common::figure(&format!("{at}.estimate"), 100.0 * rel_eta, "%", "reported");
+            common::figure(&format!("{at}.true"), 100.0 * rel_error, "%", "reported: against the mesh refined twice");
+            common::figure(&format!("{at}.effectivity"), eta / error, "", check);
+            eta / error
+        })
+        .collect()
+}
+
+/// `text` with every division count `elements = n` of the listed keys
+/// (`x = {…}`, `z = {…}`, `axis = {…}`) times `k`.
+fn refined(text: &str, k: usize, counts: &[(&str, usize)]) -> String {
+    let mut out = text.to_string();
+    for &(pattern, n) in counts {
+        let from = format!("{pattern}elements = {n} }}");
+        assert!(out.contains(&from), "{from}");
+        out = out.replace(&from, &format!("{pattern}elements = {} }}", n * k));
+    }
+    out
+}
+
+/// The elastica (`elastica.toml`: nonlinear geometry, four steps rolling
+/// the tip up to 0.81 m, elastic), 1 L9 × 20 B4 and 2 × 2 × 40, against
+/// 4 × 4 × 80: the effectivity at every step end — in the band on the
+/// refined mesh, below it on the example's one L9 across the section.
+#[test]
+#[ignore = "validate: slow — the elastica's four steps on three meshes, the finest 58,563 DOF (about 2 min)"]
+fn the_elastica_steps_are_estimated() {
+    let text = example("elastica.toml");
+    let counts = [("to = 0.01, ", 1), ("to = 1.0, ", 20)];
+    let runs: Vec<_> = [1, 2, 4].iter().map(|&k| solve(&refined(&text, k, &counts))).collect();
+    // 2 × 2 L9 × 40 B4: in the band at every step (measured 0.77–0.84)
+    let rows = effectivities(&runs[1], &runs[2], &|_, _, _| true);
+    for eff in report("step_error.elastica", "2x2L9_40B4", &rows, "in [0.5, 2] (issue 49)") {
+        assert!((0.5..=2.0).contains(&eff), "2 × 2 L9: effectivity {eff}");
+    }
+    // the example's one L9 across the section: a patch over the section is
+    // the one element, so the recovery has nothing to fit across it and the
+    // section's error goes unseen (measured 0.12, 0.20, 0.34, 0.45), a
+    // known limit
+    let rows = effectivities(&runs[0], &runs[2], &|_, _, _| true);
+    let eff = report("step_error.elastica", "1L9_20B4", &rows, "reported; the range below");
+    let (lo, hi) = eff.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &e| (a.min(e), b.max(e)));
+    let what = "the elastica's one L9 across the section: the section's error goes unseen";
+    common::known_limit("step_error.elastica.1L9_20B4.effectivity_min", lo, "", 0.1, 0.5, what);
+    common::known_limit("step_error.elastica.1L9_20B4.effectivity_max", hi, "", 0.1, 0.5, what);
+}
+
+/// The compact bar's quarter (`bending_compact_4L9_quarter.toml`: one
+/// step, the roller pushed 0.75 mm, plastic under the roller), 1 × 2 L9 ×
+/// 5 B4 and 2 × 4 × 10, against 4 × 8 × 20: the effectivity of its one
+/// step end, over the whole quarter and without the beam elements touching
+/// a roller line (where the true error has no limit, `tests/estimator.rs`).
+#[test]
+#[ignore = "validate: slow — the compact bar's quarter on three meshes, the finest 27,999 DOF, plastic (about 2 min)"]
+fn the_compact_bar_step_is_estimated() {
+    let text = example("bending_compact_4L9_quarter.toml");
+    let counts = [("to = 0.01, ", 2), ("to = 0.25, ", 10)];
+    let runs: Vec<_> = [1, 2, 4].iter().map(|&k| solve(&refined(&text, k, &counts))).collect();
+    let away = |m: &Model, _: usize, eb: usize| {
+        let (a, b) = m.mesh.bodies[0].axis.element_span(eb);
+        ![0.025, 0.125].iter().any(|&y| y > a - 1e-9 && y < b + 1e-9)
+    };
+    // plastic under the roller: the estimate overestimates (measured 3.65 and
+    // 2.74 over the whole quarter, 2.99 and 3.76 without the roller lines), a
+    // known limit
+    let what = "the compact bar's plastic end state: the elastic-compliance estimate overestimates";
+    for (m, mesh) in [(0, "1x2L9_5B4"), (1, "2x4L9_10B4")] {
+        let whole = effectivities(&runs[m], &runs[2], &|_, _, _| true);
+        let whole = report("step_error.bar", &format!("{mesh}.whole"), &whole, "reported (the whole quarter)");
+        let rows = effectivities(&runs[m], &runs[2], &away);
+        let away = report("step_error.bar", mesh, &rows, "reported, without the roller lines");
+        for (id, eff) in [("whole", whole[0]), ("away", away[0])] {
+            common::known_limit(&format!("step_error.bar.{mesh}.{id}_effectivity"), eff, "", 2.5, 4.2, what);
+        }
+    }
+}
+
+/// The rod against the wall (`rod_impact.toml`, transient, frames every
+/// 50 µs), 1 L4 × 100 B2 and 2 × 2 × 200, against 4 × 4 × 400, the same
+/// time step: the effectivity at every frame.
+#[test]
+#[ignore = "validate: slow — the rod's 600 time steps on three meshes, the finest 30,075 DOF (about 2 min)"]
+fn the_rod_frames_are_estimated() {
+    let text = example("rod_impact.toml");
+    let counts = [("to = 0.01, ", 1), ("to = 1.0, ", 100)];
+    let runs: Vec<_> = [1, 2, 4].iter().map(|&k| solve(&refined(&text, k, &counts))).collect();
+    for (m, mesh) in [(0, "1L4_100B2"), (1, "2x2L4_200B2")] {
+        let rows = effectivities(&runs[m], &runs[2], &|_, _, _| true);
+        let eff = report("step_error.rod", mesh, &rows, "reported; the range below");
+        let (lo, hi) = eff.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &e| (a.min(e), b.max(e)));
+        // the wave's phase error: a known limit (measured 0.084–0.22 and 0.090–0.25)
+        let what = "the rod's frames: the estimate does not see the wave's phase error";
+        common::known_limit(&format!("step_error.rod.{mesh}.effectivity_min"), lo, "", 0.07, 0.5, what);
+        common::known_limit(&format!("step_error.rod.{mesh}.effectivity_max"), hi, "", 0.07, 0.5, what);
+    }
+}

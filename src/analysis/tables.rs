@@ -420,11 +420,13 @@ pub fn energy(solution: &Solution) -> Option<Table> {
         [("interfaces", "J", |r| r.interfaces), ("delamination", "J", |r| r.delamination)];
     let cohesive = if solution.delamination.is_some() { &cohesive[..] } else { &[] };
     // the energy ply damage dissipated per mode, only in a model that damages
-    let damage: [EnergyColumn; 4] = [
+    // and what the end-of-step stress of damaged points dissipated (`dynamics::ply_forces`)
+    let damage: [EnergyColumn; 5] = [
         ("damage_fibre_tension", "J", |r| r.damage[0]),
         ("damage_fibre_compression", "J", |r| r.damage[1]),
         ("damage_matrix_tension", "J", |r| r.damage[2]),
         ("damage_matrix_compression", "J", |r| r.damage[3]),
+        ("damage_scheme", "J", |r| r.damage_scheme),
     ];
     let damage = if solution.damage.is_some() { &damage[..] } else { &[] };
     for &(name, unit, f) in columns.iter().chain(cohesive).chain(damage) {

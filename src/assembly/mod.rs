@@ -91,6 +91,10 @@ pub struct DamageInput<'a> {
     /// The change of the load factor since the committed states (the step
     /// of the damage's viscosity).
     pub step: f64,
+    /// Newmark's γ where damaged ply points take the end-of-step stress
+    /// (`analysis.ply_damage_forces = "implicit"`, `dynamics::ply_forces`);
+    /// `None`: the physical stress everywhere.
+    pub impulse: Option<f64>,
 }
 
 /// Read-only inputs of an assembly pass: the state it starts from, and how.
@@ -314,6 +318,7 @@ impl Assembler {
                                     committed: &input.damage.committed[g0..g0 + ngp],
                                     band: &input.damage.band[g0..g0 + ngp],
                                     step: input.damage.step,
+                                    impulse: input.damage.impulse,
                                     trial: damage.range(g0, ngp),
                                 }),
                             }

@@ -82,7 +82,7 @@ impl BodyDamage {
 
     /// The committed states and bands as the assembly reads them.
     pub(crate) fn input(&self) -> crate::assembly::DamageInput<'_> {
-        crate::assembly::DamageInput { committed: &self.committed, band: &self.band, step: 0.0 }
+        crate::assembly::DamageInput { committed: &self.committed, band: &self.band, step: 0.0, impulse: None }
     }
 
     /// The increment converged at load factor `lambda`: the trial states
@@ -102,6 +102,12 @@ impl BodyDamage {
     /// the last evaluation), `Σ_q w_q g_I` (J; zero without damage).
     pub fn dissipated(&self) -> [f64; 4] {
         dissipated(&self.trial, &self.volume)
+    }
+
+    /// The energy the end-of-step stress dissipated in the trial states,
+    /// `Σ_q w_q B_q` (J; `crate::dynamics::ply_forces`, zero without it).
+    pub fn scheme(&self) -> f64 {
+        self.trial.iter().zip(&self.volume).map(|(s, w)| w * s.scheme).sum()
     }
 
     /// What a run keeps of it: `None` when no material damages.

@@ -16,7 +16,9 @@
 //! Hashin mode (`Σ_q w_q g_I`, the damage law's own sums,
 //! [`crate::materials::damage`]), and the rest, the plastic dissipation (in
 //! a body that only damages, the trapezoidal rule's error against the law's
-//! sums); the interfaces' work into the energy they hold,
+//! sums); under `analysis.ply_damage_forces = "implicit"` the Bregman
+//! losses of the damaged points' end-of-step stress are their own term,
+//! `damage_scheme` (`dynamics::ply_forces`), before that rest; the interfaces' work into the energy they hold,
 //! `Σ A ½ t·δ`, and the rest, dissipated by delamination. Their balance
 //!
 //! ```text
@@ -40,12 +42,17 @@ pub struct EnergyRow {
     pub internal: f64,
     /// The elastic strain energy `½ ∫ σᵀ C⁻¹ σ dV` held now.
     pub elastic: f64,
-    /// `W_int` less the elastic strain energy and the energy ply damage
-    /// dissipated: plastic dissipation.
+    /// `W_int` less the elastic strain energy, the energy ply damage
+    /// dissipated and the end-of-step stress's dissipation: plastic
+    /// dissipation.
     pub plastic: f64,
     /// The energy ply damage dissipated per mode (fibre tension and
     /// compression, matrix tension and compression; zero without damage).
     pub damage: [f64; 4],
+    /// The energy the end-of-step stress of damaged ply points dissipated
+    /// beyond the damage law's (`analysis.ply_damage_forces = "implicit"`,
+    /// `dynamics::ply_forces`; zero otherwise).
+    pub damage_scheme: f64,
     /// `D`.
     pub damping: f64,
     /// `W_ext`.
@@ -104,6 +111,8 @@ pub(crate) struct Held {
     pub interfaces: f64,
     /// `Σ_q w_q g_I` per damage mode.
     pub damage: [f64; 4],
+    /// What the end-of-step stress of damaged ply points dissipated.
+    pub damage_scheme: f64,
 }
 
 impl EnergyLedger {
@@ -131,7 +140,8 @@ impl EnergyLedger {
         }
         row.elastic = held.elastic;
         row.damage = held.damage;
-        row.plastic = row.internal - held.elastic - held.damage.iter().sum::<f64>();
+        row.damage_scheme = held.damage_scheme;
+        row.plastic = row.internal - held.elastic - held.damage.iter().sum::<f64>() - held.damage_scheme;
         row.delamination = row.interfaces - held.interfaces;
         let t0 = self.rows.first().map_or(kinetic, |r| r.kinetic);
         row.balance = row.external + row.contact + row.supports

@@ -19,6 +19,7 @@ pub mod energy;
 pub mod impulse;
 pub mod inertia;
 pub mod mass;
+pub mod ply_forces;
 pub mod redistribution;
 pub mod settings;
 pub(crate) mod time_error;
@@ -28,6 +29,7 @@ pub use impulse::{ContactForces, InterfaceForces};
 pub(crate) use inertia::Inertia;
 
 pub use mass::{MassError, MassKind};
+pub use ply_forces::PlyDamageForces;
 pub use redistribution::ContactMass;
 pub(crate) use redistribution::Redistribution;
 pub use settings::TransientSettings;

@@ -1,6 +1,6 @@
 //! The settings of a transient analysis (validated by `setup::transient`).
 
-use super::{ContactForces, ContactMass, InterfaceForces, MassKind};
+use super::{ContactForces, ContactMass, InterfaceForces, MassKind, PlyDamageForces};
 
 /// The settings of a transient analysis.
 #[derive(Debug, Clone, PartialEq)]
@@ -30,6 +30,9 @@ pub struct TransientSettings {
     /// `analysis.interface_forces`: the cohesive interfaces' impulse at the
     /// end of the step, or Newmark's average (`dynamics::impulse`).
     pub interface_forces: InterfaceForces,
+    /// `analysis.ply_damage_forces`: the end-of-step stress at damaged ply
+    /// points, or Newmark's average (`dynamics::ply_forces`).
+    pub ply_damage_forces: PlyDamageForces,
 }
 
 impl TransientSettings {

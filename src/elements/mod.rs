@@ -194,6 +194,9 @@ pub struct DamagePoints<'a> {
     pub band: &'a [[f64; 2]],
     /// The change of the load factor since the committed states.
     pub step: f64,
+    /// Newmark's γ where damaged points take the end-of-step stress
+    /// (`crate::dynamics::ply_forces`), else `None`.
+    pub impulse: Option<f64>,
     /// Trial states (written).
     pub trial: &'a mut [DamageState],
 }
@@ -353,13 +356,10 @@ fn stresses_and_forces(
             if let Some(sh) = &geom.shear {
                 sh.add_strain(el.es, gs, v, &mut eps);
             }
-            let mut r = match (&material.damage, points.damage.as_mut()) {
-                (Some(law), Some(dp)) => {
-                    let (r, state) = material.update_damaged(law, &eps, (dp.band[q], dp.step), &dp.committed[q]);
-                    dp.trial[q] = state;
-                    r
-                }
-                _ => material.update_for_element(&eps, &points.committed[q], points.predictor),
+            // the physical stress where the force takes another (a damaged ply point's end-of-step stress)
+            let (mut r, physical) = match (&material.damage, points.damage.as_mut()) {
+                (Some(law), Some(dp)) => damaged_point(material, law, &eps, dp, q),
+                _ => (material.update_for_element(&eps, &points.committed[q], points.predictor), None),
             };
             // the mean stress conjugate to the dilatation (T's, before any pull-back)
             ws.pressure[q] = (r.stress[0] + r.stress[1] + r.stress[2]) / 3.0;
@@ -397,6 +397,9 @@ fn stresses_and_forces(
             if let Some(sh) = &geom.shear {
                 sh.add_force(el.es, gs, w, &points.stress[q], h);
             }
+            if let Some(s) = physical {
+                points.stress[q] = s;
+            }
             if bbar {
                 // f_a += w d_a p, p = tr σ / 3 (tr T / 3 at finite strain)
                 let tr = ws.pressure[q];
@@ -419,6 +422,23 @@ fn stresses_and_forces(
         }
     }
     (all_elastic, plastic_points)
+}
+
+/// The update of ply point `q` of `dp` at the strain `eps`: the response
+/// whose stress the force takes (the end-of-step stress where
+/// `dp.impulse` asks for it, `crate::materials::damage_impulse`) and then
+/// the physical stress apart.
+fn damaged_point(
+    material: &Material,
+    law: &crate::materials::damage::PlyDamage,
+    eps: &Voigt,
+    dp: &mut DamagePoints<'_>,
+    q: usize,
+) -> (crate::materials::Response, Option<Voigt>) {
+    let (mut r, state) = material.update_damaged(law, eps, (dp.band[q], dp.step, dp.impulse), &dp.committed[q]);
+    let physical = dp.impulse.map(|_| std::mem::replace(&mut r.stress, state.force_stress));
+    dp.trial[q] = state;
+    (r, physical)
 }
 
 /// B-bar's `θ̄ − θ` at point `q` (`ε̄ = ε + (θ̄ − θ)/3 · 1`): in small strain

@@ -186,6 +186,11 @@ pub(crate) struct AnalysisFile {
     /// interfaces' impulse at the end of the step) or `"newmark"`.
     #[schemars(transform = defaults::schema(InterfaceForcesFile::default()))]
     pub interface_forces: Option<InterfaceForcesFile>,
+    /// Transient: `ply_damage_forces = "newmark"` (default: Newmark's
+    /// average of the stresses) or `"implicit"` (the end-of-step stress at
+    /// damaged ply points, `dynamics::ply_forces`).
+    #[schemars(transform = defaults::schema(PlyDamageForcesFile::default()))]
+    pub ply_damage_forces: Option<PlyDamageForcesFile>,
     /// A geometric imperfection from a buckling mode (nonlinear geometry).
     pub imperfection: Option<ImperfectionFile>,
 }

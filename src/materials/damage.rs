@@ -143,6 +143,22 @@ pub struct DamageState {
     /// strain, which the next increment's updates take (module docs);
     /// `None` before a point's first update.
     pub tension: Option<[bool; 2]>,
+    /// The strain of this state (material axes), from which the next
+    /// step's end-of-step stress measures its work
+    /// (`super::damage_impulse`).
+    pub strain: Voigt,
+    /// Hashin's onset measure `φ = 1/R` of this strain's effective stress,
+    /// the larger of the fibre and matrix modes' (1 at onset).
+    pub index: f64,
+    /// The stress the internal force takes (global axes): the physical one,
+    /// or under `analysis.ply_damage_forces = "implicit"` the algorithmic
+    /// stress of the end-of-step impulse (`crate::dynamics::ply_forces`).
+    pub(crate) force_stress: Voigt,
+    /// The point takes the end-of-step stress from the next step on.
+    pub implicit: bool,
+    /// The energy per unit volume the end-of-step stress dissipated beyond
+    /// the law's (J/m³; `crate::dynamics::ply_forces`).
+    pub scheme: f64,
 }
 
 /// The answer of [`PlyDamage::update`].
@@ -231,7 +247,12 @@ impl PlyDamage {
         let [fibre_ratio, matrix_ratio] = self.strengths.hashin_ratios(&effective, tension);
         let fibre = if tension[0] { FT } else { FC };
         let matrix = if tension[1] { MT } else { MC };
-        let mut state = DamageState { tension: Some(own), ..*old };
+        let mut state = DamageState {
+            tension: Some(own),
+            strain: *strain,
+            index: (1.0 / fibre_ratio).max(1.0 / matrix_ratio),
+            ..*old
+        };
         for (mode, ratio, length) in [(fibre, fibre_ratio, band[0]), (matrix, matrix_ratio, band[1])] {
             self.soften(mode, 1.0 / ratio, length, strain, &effective, &mut state);
         }
@@ -336,6 +357,16 @@ impl PlyDamage {
             out[3 + k] -= others * self.elastic.shear[k] * strain[3 + k];
         }
         out
+    }
+
+    /// The elastic strain energy density `½ σ·ε` (J/m³) held at the strain
+    /// `strain` (material axes) with the damage the stiffness takes `d`
+    /// (the stress's branches solved as in [`PlyDamage::update`]).
+    pub(crate) fn stored(&self, d: &[f64; 4], strain: &Voigt) -> f64 {
+        let ds = 1.0 - d.iter().map(|x| 1.0 - x).product::<f64>();
+        let effective = mat_vec(&self.stiffness, strain);
+        let (_, _, stress) = self.closed_or_open(d, ds, strain, &effective);
+        0.5 * stress.iter().zip(strain).map(|(s, e)| s * e).sum::<f64>()
     }
 
     /// Onset and damage of one active mode at the onset measure `phi`.

@@ -20,6 +20,7 @@
 pub mod anisotropic;
 pub mod cohesive;
 pub mod damage;
+pub(crate) mod damage_impulse;
 pub mod failure;
 mod hardening;
 pub mod kinematic;
@@ -194,14 +195,22 @@ impl Material {
         &self,
         law: &damage::PlyDamage,
         strain: &Voigt,
-        (band, step): ([f64; 2], f64),
+        (band, step, impulse): ([f64; 2], f64, Option<f64>),
         old: &damage::DamageState,
     ) -> (Response, damage::DamageState) {
         let t = self.frame.strain_rotation();
         let local = voigt::mat_vec(&t, strain);
-        let r = law.update_over(&local, band, step, old);
+        let mut r = law.update_over(&local, band, step, old);
         let stress: Voigt = std::array::from_fn(|i| (0..6).map(|k| t[k][i] * r.stress[k]).sum());
-        let intact = r.state.damage.iter().all(|&d| d == 0.0);
+        // the end-of-step stress of a damaged point in a transient run
+        // (`damage_impulse`): its force stress, and 1/γ on its tangent
+        let factor = impulse.map_or(1.0, |gamma| {
+            let viscous = r.state.viscous;
+            damage_impulse::end_of_step(gamma, old, &mut r.state, (&stress, &r.stress), || {
+                law.stored(&viscous, &old.strain)
+            })
+        });
+        let intact = r.state.damage.iter().all(|&d| d == 0.0) && factor == 1.0;
         // the consistent tangent is unsymmetric: its symmetric part, as
         // with kinematic hardening (`update_for_element`)
         let mut symmetric = r.tangent;
@@ -212,6 +221,7 @@ impl Material {
                 symmetric[j][i] = m;
             }
         }
+        damage_impulse::scale(&mut symmetric, factor);
         let tangent = if intact { self.elastic } else { self.frame.stiffness_to_global(&symmetric) };
         let response =
             Response { stress, tangent, state: PointState::default(), plastic: false, elastic_tangent: intact };

@@ -33,6 +33,8 @@ fn transient_key(file: &AnalysisFile) -> Option<&'static str> {
         Some("analysis.contact_mass")
     } else if file.interface_forces.is_some() {
         Some("analysis.interface_forces")
+    } else if file.ply_damage_forces.is_some() {
+        Some("analysis.ply_damage_forces")
     } else {
         None
     }
@@ -182,7 +184,16 @@ fn settings(
                 crate::dynamics::InterfaceForces::DiscreteGradient
             }
         },
+        ply_damage_forces: ply_damage_forces(file.ply_damage_forces.unwrap_or_default()),
     }))
+}
+
+/// `analysis.ply_damage_forces` as the dynamics take it.
+fn ply_damage_forces(file: crate::input::schema::PlyDamageForcesFile) -> crate::dynamics::PlyDamageForces {
+    match file {
+        crate::input::schema::PlyDamageForcesFile::Newmark => crate::dynamics::PlyDamageForces::Newmark,
+        crate::input::schema::PlyDamageForcesFile::Implicit => crate::dynamics::PlyDamageForces::Implicit,
+    }
 }
 
 /// Increments a transient step may take beyond its time steps when none is

@@ -341,6 +341,7 @@ mod tests {
             contact_forces: Default::default(),
             contact_mass: Default::default(),
             interface_forces: Default::default(),
+            ply_damage_forces: Default::default(),
         };
         assert_eq!(step_ends(&t), vec![0.0, 1e-9, 1e-9 + 8e-4]);
         let deck = "*STEP, INC=100\n*DYNAMIC, DIRECT, ALPHA=0.\n1e-9, 1e-9\n*END STEP\n*STEP\n*DYNAMIC, DIRECT, ALPHA=0.\n4e-6, 8e-4\n";

@@ -130,3 +130,91 @@ fn the_damage_viscosity_of_a_transient_run_is_in_seconds() {
     println!("D_FT/(G_FT A): η = 0: {:.4}, η = 1e-7 s: {:.4}", d0 / CRACK_ENERGY, d1 / CRACK_ENERGY);
     assert!((0.02..0.06).contains(&excess), "the viscosity's excess {excess:.4}");
 }
+
+/// The coarse notched strip held at its edge x = 0 and thrown along +x at
+/// `speed` (m/s, ρ = 1580 kg/m³): the edge stops it as a rigid wall stops
+/// a striker, a tension wave runs the 4.8 mm strip back and forth (one
+/// round trip in 0.92 µs) and the notch section cracks, partly at 170 m/s
+/// (the kinetic energy, 0.555 J, is below `G_FT A` = 0.640 J): its damaged
+/// points open and shut with every wave. 20 µs in `steps` time steps, no
+/// viscosity, the ply damage's forces `forces`.
+fn thrown(speed: f64, steps: usize, forces: &str) -> String {
+    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/notched_strip_coarse.toml"));
+    let text = std::fs::read_to_string(path).unwrap();
+    let edits = [
+        ("name = \"im7_8552\"", "name = \"im7_8552\"\ndensity = 1580.0".to_string()),
+        ("viscosity = 1e-3", "viscosity = 0.0".to_string()),
+        ("increments = 150", format!("increments = {steps}")),
+        ("max_increment = 0.01\n", String::new()),
+        (
+            "[[constraints]]\nname = \"pull\"\nbody = \"strip\"\nwhere = { x = 0.0048 }\ndisplacement = { x = 1.5e-4 }\n",
+            String::new(),
+        ),
+    ];
+    let text = edits.iter().fold(text, |t, (from, to)| {
+        assert!(t.contains(from), "examples/notched_strip_coarse.toml no longer holds {from:?}");
+        t.replacen(from, to, 1)
+    });
+    format!(
+        "{text}\n[analysis]\ntype = \"transient\"\nduration = 2e-5\nply_damage_forces = \"{forces}\"\n\
+         initial_velocities = [{{ body = \"strip\", velocity = [{speed}, 0.0, 0.0] }}]\n"
+    )
+}
+
+/// The energies of a thrown strip's run: the impact energy `T₀`, the sum
+/// of every step's rise of the mechanical energy `T + E_el` (energy
+/// created: a step may only lose it, to damage and the scheme), and the
+/// last row's columns `name` (J).
+fn thrown_energies(out: &Path) -> (f64, f64, impl Fn(&str) -> f64) {
+    let c = common::csv_columns(&out.join("energy.csv"));
+    let column =
+        |name: &str| c.get(&format!("{name}_J")).unwrap_or_else(|| panic!("energy.csv has no {name}_J")).clone();
+    let (kinetic, elastic) = (column("kinetic"), column("elastic"));
+    let mechanical: Vec<f64> = kinetic.iter().zip(&elastic).map(|(t, e)| t + e).collect();
+    let created: f64 = mechanical.windows(2).map(|p| (p[1] - p[0]).max(0.0)).sum();
+    let scheme = column("damage_scheme");
+    assert!(scheme.windows(2).all(|p| p[1] >= p[0]) && scheme[0] == 0.0, "the scheme's dissipation decreased");
+    let balance = column("balance");
+    assert!(balance.iter().all(|b| b.abs() < 1e-5 * kinetic[0]), "the ledger's balance is not closed");
+    (kinetic[0], created, move |name: &str| *c[&format!("{name}_J")].last().unwrap())
+}
+
+/// `analysis.ply_damage_forces = "implicit"` (`dynamics::ply_forces`): on
+/// the thrown strip no step creates energy (the sum of the steps' rises of
+/// `T + E_el`, measured 4.7e-9 of the impact energy, against 3.6e-3 with
+/// `"newmark"`: the mutation back to Newmark's average fails here), and
+/// the ledger's columns account for the impact energy: kinetic, elastic,
+/// the law's damage per mode and the scheme's `damage_scheme` (measured
+/// `0.200` of `T₀` at 1000 steps), the rest `plastic` at `−0.0342` of `T₀`
+/// (the law books more than the forces dissipate where a point passes its
+/// softening within a step: first order in Δt, `−0.0098` at 4000 steps;
+/// docs/limitations.md). Both asserted from both sides. Measured with
+/// `cargo test --release -p cufem-cli --test ply_damage_transient -- thrown --nocapture`.
+#[test]
+fn a_thrown_strip_cracks_without_creating_energy_under_the_end_of_step_stress() {
+    let (out, _) = run_cli("thrown_implicit", &thrown(170.0, 1000, "implicit"));
+    let (t0, created, last) = thrown_energies(&out);
+    let (_, created_newmark, _) = {
+        let (out, _) = run_cli("thrown_newmark", &thrown(170.0, 1000, "newmark"));
+        let (a, b, _) = thrown_energies(&out);
+        (a, b, ())
+    };
+    let damage: f64 = MODES.iter().map(|m| last(&format!("damage_{m}"))).sum();
+    let (scheme, rest) = (last("damage_scheme"), last("plastic"));
+    let closed = last("kinetic") + last("elastic") + damage + scheme - t0;
+    println!(
+        "T0 {t0:.4} J: created {:.2e} (newmark {:.2e}) of T0; damage {:.4}, scheme {:.4}, plastic {:+.4}, closed {:+.2e} of T0",
+        created / t0,
+        created_newmark / t0,
+        damage / t0,
+        scheme / t0,
+        rest / t0,
+        closed / t0
+    );
+    assert!(created < 1e-6 * t0, "energy created {created} J of {t0} J");
+    assert!(created_newmark > 1e-3 * t0, "newmark created {created_newmark} J of {t0} J");
+    // the ledger's rest is the columns' closure (nothing else in the strip)
+    assert!((closed + rest).abs() < 1e-5 * t0, "closure {closed} J, plastic {rest} J");
+    assert!((0.19..0.21).contains(&(scheme / t0)), "scheme {scheme} J of {t0} J");
+    assert!((-0.037..-0.031).contains(&(rest / t0)), "plastic {rest} J of {t0} J");
+}

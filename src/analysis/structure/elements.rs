@@ -97,7 +97,10 @@ impl Contribution for Elements<'_> {
             Some(clock) => (clock.time(at.lambda) - clock.time(*lambda)).abs(),
             None => (at.lambda - *lambda).abs(),
         };
-        let damage_in = crate::assembly::DamageInput { committed, band, step };
+        // the end-of-step stress of damaged points (`dynamics::ply_forces`)
+        let impulse =
+            self.clock.filter(|c| c.ply_damage_forces == crate::dynamics::PlyDamageForces::Implicit).map(|c| c.gamma);
+        let damage_in = crate::assembly::DamageInput { committed, band, step, impulse };
         let inputs = Inputs {
             state: self.discretisation.fe_state(at.u, &self.committed, &self.gp_offsets, damage_in),
             predictor: at.predictor,

@@ -111,6 +111,7 @@ pub(super) fn account_energy(
         ),
         interfaces: interfaces.stored_energy(&state.u),
         damage: elements.damage.dissipated(),
+        damage_scheme: elements.damage.scheme(),
     };
     inertia.account(
         (state.lambda, held, impactors),

@@ -32,6 +32,17 @@ pub(crate) enum InterfaceForcesFile {
     DiscreteGradient,
 }
 
+/// `analysis.ply_damage_forces`.
+#[derive(Debug, Clone, Copy, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum PlyDamageForcesFile {
+    /// Newmark's average of the stresses at both ends (the default).
+    #[default]
+    Newmark,
+    /// The end-of-step stress at damaged and near-onset ply points.
+    Implicit,
+}
+
 /// `analysis.newmark`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]

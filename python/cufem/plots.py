@@ -18,7 +18,8 @@ def chart_columns(stem: str, table) -> Tuple[str, list]:
     """The x column and the series of the chart of table `stem`, as
     ``report.html`` chooses them: ``energy`` against ``time_s``, ``modes``
     and ``buckling`` against ``mode``, ``line_*`` against ``s``,
-    ``history*`` against ``lambda``; every other numeric column a series
+    ``history*`` against ``lambda``, ``error_history`` against ``time``
+    in a transient run and ``lambda`` otherwise; every other numeric column a series
     but ``increment`` (and the counts, but in ``history``). ValueError for
     a table without a chart (``contact_*``)."""
     if stem == "energy":
@@ -29,8 +30,12 @@ def chart_columns(stem: str, table) -> Tuple[str, list]:
         x = "s"
     elif stem.startswith("history"):
         x = "lambda"
+    elif stem == "error_history":
+        x = "time" if "time" in table.columns else "lambda"
     else:
-        raise ValueError(f"table {stem!r}: no chart (charted are history*, line_*, energy, modes, buckling)")
+        raise ValueError(
+            f"table {stem!r}: no chart (charted are history*, line_*, energy, modes, buckling, error_history)"
+        )
     series = [
         c
         for c in table.columns

@@ -15,7 +15,7 @@
 //! laminate grows past the impact's (docs/limitations.md).
 //!
 //! **The scheme.** A point that has damaged, or whose Hashin onset measure
-//! `φ` reached [`NEAR_ONSET`] (1, the onset) at a converged step, takes
+//! `φ` reached `materials::damage_impulse::NEAR_ONSET` (1, the onset) at a converged step, takes
 //! from the next step on the algorithmic stress
 //!
 //! ```text

@@ -62,6 +62,8 @@ pub(crate) fn planned_text(text: &str, plan: &MeshPlan) -> Result<String, ModelE
                 double(section, shape, *times, parts);
                 if let Some(a) = junction {
                     section.insert("junction_element", Item::Value(Value::from(*a)));
+                    // the key added last: spacing as toml_edit writes it
+                    section.fmt();
                 }
             }
             SectionPlan::Fixed { .. } => {}

@@ -8,9 +8,11 @@
 
 use cufem::analysis::{Silent, Solution};
 use cufem::setup::Model;
-use cufem::values::locate_in_model;
 
 mod common;
+#[path = "common/truth.rs"]
+mod truth;
+use truth::true_error;
 
 /// The check of every effectivity index asserted here.
 const BAND: &str = "in [0.7, 1.5] (issue 23)";
@@ -70,40 +72,6 @@ fn block(k: usize, m: usize) -> String {
         .replace("[0.0, 0.0, -1.0e-3]", "[0.0, 0.0, -0.05e-3]")
         .replace("increments = 20", "increments = 1")
         .replace("recovery = \"projection\"", "recovery = \"element\"")
-}
-
-/// `σᵀ C⁻¹ σ` (isotropic, engineering shear).
-fn complementary(s: &[f64; 6], e: f64, nu: f64) -> f64 {
-    let normal = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] - 2.0 * nu * (s[0] * s[1] + s[1] * s[2] + s[2] * s[0]);
-    (normal + 2.0 * (1.0 + nu) * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])) / e
-}
-
-/// The true error of `coarse` per element in the energy norm squared,
-/// `∫ (σ_ref − σ_h)ᵀ C⁻¹ (σ_ref − σ_h)` with `σ_ref` the stress of `fine`
-/// at each Gauss point of `coarse` (J), body 0.
-fn true_error(coarse: &(Model, Solution), fine: &(Model, Solution)) -> Vec<f64> {
-    let (cm, cs) = coarse;
-    let (fm, fs) = fine;
-    let view = fs.fields(fm);
-    let body = &cm.mesh.bodies[0];
-    let (cell, mat) = (&cm.cells[0], &cm.materials[body.material]);
-    let ngp = cell.gp_per_element();
-    let mut out = vec![0.0; body.n_elements()];
-    for (e, o) in out.iter_mut().enumerate() {
-        let (es, eb) = body.split_element(e);
-        for gb in 0..cell.axis.n_gp {
-            for gs in 0..cell.section.n_gp {
-                let [x, z] = cell.section.position[es * cell.section.n_gp + gs];
-                let y = cell.axis.position[eb * cell.axis.n_gp + gb];
-                let w = cell.section.weight[es * cell.section.n_gp + gs] * cell.axis.weight[eb * cell.axis.n_gp + gb];
-                let at = locate_in_model(&fm.mesh, Some(0), [x, y, z]);
-                let reference = view.sample_at(&at).expect("inside the fine mesh").stress;
-                let raw = cs.stresses[e * ngp + gb * cell.section.n_gp + gs];
-                *o += w * complementary(&std::array::from_fn(|k| reference[k] - raw[k]), mat.young, mat.poisson);
-            }
-        }
-    }
-    out
 }
 
 /// `(η, ‖e‖)` over the elements `keep` accepts (section element, beam element).
@@ -212,7 +180,7 @@ fn the_compact_bar_estimate_is_effective_away_from_the_rollers() {
     for (n, m) in [(2, 10), (4, 20)] {
         let coarse = solve(&bar(n, m));
         assert_eq!(coarse.1.plastic_points, 0);
-        let truth = true_error(&coarse, &fine);
+        let truth = true_error((&coarse.0, &coarse.1), (&fine.0, &fine.1));
         let touches_roller = |eb: usize| {
             let (a, b) = coarse.0.mesh.bodies[0].axis.element_span(eb);
             [0.025, 0.125, 0.225].iter().any(|&y| y > a - 1e-9 && y < b + 1e-9)
@@ -240,7 +208,7 @@ fn the_block_estimate_is_effective_away_from_the_punch_edges() {
     let fine = solve(&block(2, 3));
     let coarse = solve(&block(1, 1));
     assert_eq!((coarse.1.plastic_points, fine.1.plastic_points), (0, 0));
-    let truth = true_error(&coarse, &fine);
+    let truth = true_error((&coarse.0, &coarse.1), (&fine.0, &fine.1));
     let at_edge = |es: usize| touches_punch_edge(&coarse.0, es);
     let (eta, error) = over(&coarse, &truth, &|es, _| !at_edge(es));
     let (eta_all, error_all) = over(&coarse, &truth, &|_, _| true);

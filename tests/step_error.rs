@@ -12,9 +12,11 @@
 use cufem::analysis::state_errors::State;
 use cufem::analysis::{Silent, Solution};
 use cufem::setup::Model;
-use cufem::values::locate_in_model;
 
 mod common;
+#[path = "common/truth.rs"]
+mod truth;
+use truth::true_error;
 
 fn example(name: &str) -> String {
     std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name)).unwrap()
@@ -25,12 +27,6 @@ fn solve(text: &str) -> (Model, Solution) {
     let solution = cufem::analysis::run(&model, &Default::default(), &mut Silent).unwrap();
     assert!(solution.failure.is_none(), "{:?}", solution.failure);
     (model, solution)
-}
-
-/// `σᵀ C⁻¹ σ` (isotropic, engineering shear).
-fn complementary(s: &[f64; 6], e: f64, nu: f64) -> f64 {
-    let normal = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] - 2.0 * nu * (s[0] * s[1] + s[1] * s[2] + s[2] * s[0]);
-    (normal + 2.0 * (1.0 + nu) * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])) / e
 }
 
 /// Every kept state of a run in the order of its `error_history`: the
@@ -48,34 +44,6 @@ fn states(model: &Model, s: &Solution) -> Vec<(String, Solution)> {
             State::Frame(k) => (format!("frame_{:04}", k + 1), s.at_frame(model, k).unwrap()),
         })
         .collect()
-}
-
-/// The true error of `coarse` per element in the energy norm squared
-/// against `fine` (its stress at each Gauss point of `coarse`; one
-/// isotropic body), J.
-fn true_error(cm: &Model, cs: &Solution, fm: &Model, fs: &Solution) -> Vec<f64> {
-    let view = fs.fields(fm);
-    let body = &cm.mesh.bodies[0];
-    assert_eq!(cm.mesh.bodies.len(), 1);
-    let (cell, mat) = (&cm.cells[0], &cm.materials[body.material]);
-    assert!(mat.anisotropic.is_none());
-    let ngp = cell.gp_per_element();
-    let mut out = vec![0.0; body.n_elements()];
-    for (e, o) in out.iter_mut().enumerate() {
-        let (es, eb) = body.split_element(e);
-        for gb in 0..cell.axis.n_gp {
-            for gs in 0..cell.section.n_gp {
-                let [x, z] = cell.section.position[es * cell.section.n_gp + gs];
-                let y = cell.axis.position[eb * cell.axis.n_gp + gb];
-                let w = cell.section.weight[es * cell.section.n_gp + gs] * cell.axis.weight[eb * cell.axis.n_gp + gb];
-                let at = locate_in_model(&fm.mesh, Some(0), [x, y, z]);
-                let reference = view.sample_at(&at).expect("inside the fine mesh").stress;
-                let raw = cs.stresses[e * ngp + gb * cell.section.n_gp + gs];
-                *o += w * complementary(&std::array::from_fn(|k| reference[k] - raw[k]), mat.young, mat.poisson);
-            }
-        }
-    }
-    out
 }
 
 /// One row per kept state: its name, the estimate `η` (√J), the true error
@@ -96,7 +64,7 @@ fn effectivities(
         .zip(&f)
         .map(|((name, cs), (_, fs))| {
             assert!((cs.lambda - fs.lambda).abs() < 1e-9 * cs.lambda.abs().max(1.0));
-            let truth = true_error(&coarse.0, cs, &fine.0, fs);
+            let truth = true_error((&coarse.0, cs), (&fine.0, fs));
             let est = cs.error_estimate.as_ref().unwrap();
             let (mut eta, mut error) = (0.0, 0.0);
             for (e, t) in truth.iter().enumerate() {

@@ -211,12 +211,28 @@ pub(crate) fn read_at_most(path: &std::path::Path, cap: u64) -> std::io::Result<
     Ok((bytes.len() as u64 <= cap).then_some(bytes))
 }
 
-/// Peak resident memory of this process so far (bytes), from `getrusage`.
+/// Peak resident memory of this process so far (bytes): on Linux the
+/// address space's high-water mark (`VmHWM` of /proc/self/status), elsewhere
+/// `getrusage`. Linux's `ru_maxrss` is carried across fork and exec, so a
+/// `cufem` started by a large process (a Python session, a test harness)
+/// reported the launcher's peak as its own; `VmHWM` starts afresh at exec.
 pub fn peak_memory() -> Option<u64> {
+    if let Some(bytes) = high_water_mark() {
+        return Some(bytes);
+    }
     // SAFETY: getrusage writes into the zero-initialised struct we own.
     let mut usage: libc::rusage = unsafe { std::mem::zeroed() };
     let r = unsafe { libc::getrusage(libc::RUSAGE_SELF, &mut usage) };
     (r == 0).then(|| usage.ru_maxrss as u64 * MAXRSS_UNIT)
+}
+
+/// `VmHWM` of /proc/self/status in bytes (Linux; `None` where there is none).
+fn high_water_mark() -> Option<u64> {
+    let status = std::fs::read_to_string("/proc/self/status").ok()?;
+    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
+    let mut words = line.split_whitespace().skip(1);
+    let value: u64 = words.next()?.parse().ok()?;
+    (words.next() == Some("kB")).then_some(value * 1024)
 }
 
 /// Bytes per unit of `ru_maxrss`: kilobytes on Linux and the BSDs, bytes on

@@ -9,7 +9,7 @@ fn cufem() -> Command {
 }
 
 fn out_dir(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("cli_{name}"));
     let _ = std::fs::remove_dir_all(&d);
     d
 }
@@ -554,4 +554,30 @@ fn a_closed_output_pipe_ends_cufem_quietly() {
     let stderr = String::from_utf8_lossy(&out.stderr);
     assert!(!stderr.contains("panicked"), "{stderr}");
     assert_eq!(out.status.signal(), Some(libc::SIGPIPE), "{:?} {stderr}", out.status);
+}
+
+#[test]
+fn the_peak_memory_is_the_runs_own_not_its_launchers() {
+    // Linux's ru_maxrss survives fork and exec: a cufem started by a process
+    // holding 1 GiB (a Python session, this test harness) reported that GiB
+    // as its own peak. The compact bar's run needs about 40 MiB
+    // (summary.json memory.estimated_bytes: 21 MB); its launcher here holds
+    // 1 GiB, touched page by page so that it is resident.
+    let mut held = vec![0u8; 1 << 30];
+    for page in held.chunks_mut(4096) {
+        page[0] = 1;
+    }
+    let out = out_dir("peak_memory");
+    let run = cufem()
+        .args(["run", example("bending_compact_4L9.toml").to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"])
+        .output()
+        .unwrap();
+    assert!(run.status.success(), "{}", String::from_utf8_lossy(&run.stderr));
+    std::hint::black_box(&held);
+    let summary: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let peak = summary["memory"]["peak_bytes"].as_f64().unwrap();
+    let estimated = summary["memory"]["estimated_bytes"].as_f64().unwrap();
+    // the examples' band of estimate / peak (crates/cufem-cli/tests/examples.rs)
+    assert!((0.9..1.3).contains(&(estimated / peak)), "peak {peak:e} B, estimate {estimated:e} B");
 }

@@ -61,7 +61,7 @@ fn run_example(name: &str) -> Value {
 /// Runs a model given as text (a variant of an example); its summary and
 /// output folder.
 fn run_text(name: &str, text: &str) -> (Value, std::path::PathBuf) {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("examples_{name}"));
     std::fs::create_dir_all(&dir).unwrap();
     let model = dir.join(format!("{name}.toml"));
     std::fs::write(&model, text).unwrap();

@@ -20,7 +20,7 @@ fn root() -> PathBuf {
 
 /// Runs the model `text` into a fresh folder `name`; returns the folder.
 fn run_text(name: &str, text: &str) -> PathBuf {
-    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("report_html_{name}"));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     let model = dir.join("model.toml");

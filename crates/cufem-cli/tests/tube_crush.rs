@@ -33,7 +33,7 @@ const EXAMPLE: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/tube_
 const STORED: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/../../tests/data/tube_crush_ccx_force.csv");
 
 fn out_dir(name: &str) -> PathBuf {
-    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(name);
+    let d = Path::new(env!("CARGO_TARGET_TMPDIR")).join(format!("tube_crush_{name}"));
     let _ = std::fs::remove_dir_all(&d);
     d
 }

@@ -91,10 +91,11 @@ pub struct DamageInput<'a> {
     /// The change of the load factor since the committed states (the step
     /// of the damage's viscosity).
     pub step: f64,
-    /// Newmark's γ where damaged ply points take the end-of-step stress
+    /// How a transient run integrates the ply points' forces: Newmark's γ
+    /// and whether damaged points take the end-of-step stress
     /// (`analysis.ply_damage_forces = "implicit"`, `dynamics::ply_forces`);
-    /// `None`: the physical stress everywhere.
-    pub impulse: Option<f64>,
+    /// `None` in a static run.
+    pub(crate) impulse: Option<crate::materials::damage_impulse::PointForces>,
 }
 
 /// Read-only inputs of an assembly pass: the state it starts from, and how.

@@ -98,10 +98,18 @@ impl BodyDamage {
         self.committed.copy_from_slice(&self.trial);
     }
 
-    /// The energy each mode has dissipated in the trial states (those of
-    /// the last evaluation), `Σ_q w_q g_I` (J; zero without damage).
-    pub fn dissipated(&self) -> [f64; 4] {
-        dissipated(&self.trial, &self.volume)
+    /// The energy each mode has released at fixed strain in the trial
+    /// states, `Σ_q w_q (Σ_n W(ε_n; d_n) − W(ε_n; d_(n+1)))` (J;
+    /// `DamageState::released`): what the energy ledger of a transient run
+    /// books per mode.
+    pub fn released(&self) -> [f64; 4] {
+        let mut out = [0.0; 4];
+        for (s, &w) in self.trial.iter().zip(&self.volume) {
+            for (o, g) in out.iter_mut().zip(&s.released) {
+                *o += w * g;
+            }
+        }
+        out
     }
 
     /// The energy the end-of-step stress dissipated in the trial states,

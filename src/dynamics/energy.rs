@@ -12,13 +12,15 @@
 //! and an interface's work never falls short of the energy it holds). The
 //! kinetic energy is `T = ½ vᵀ M v`; the internal work splits into the
 //! elastic strain energy held, `½ ∫ σᵀ C⁻¹ σ dV` (with the damaged
-//! compliance at ply-damage points), the energy ply damage dissipated per
-//! Hashin mode (`Σ_q w_q g_I`, the damage law's own sums,
-//! [`crate::materials::damage`]), and the rest, the plastic dissipation (in
-//! a body that only damages, the trapezoidal rule's error against the law's
-//! sums); under `analysis.ply_damage_forces = "implicit"` the Bregman
-//! losses of the damaged points' end-of-step stress are their own term,
-//! `damage_scheme` (`dynamics::ply_forces`), before that rest; the interfaces' work into the energy they hold,
+//! compliance at ply-damage points), the energy ply damage released per
+//! Hashin mode at fixed strain (`Σ_q w_q Σ_n W(ε_n; d_n) − W(ε_n; d_(n+1))`,
+//! `crate::materials::damage::DamageState::released`), what the damaging
+//! points' forces did beyond their stored energy and that release,
+//! `damage_scheme` (the Bregman losses of the end-of-step stress, the
+//! trapezoidal excess under Newmark's average; `dynamics::ply_forces`), and
+//! the rest, the plastic dissipation (in a body that only damages, the
+//! trapezoidal work of cracks that open or shut without growing against
+//! their stored energy); the interfaces' work into the energy they hold,
 //! `Σ A ½ t·δ`, and the rest, dissipated by delamination. Their balance
 //!
 //! ```text
@@ -46,12 +48,13 @@ pub struct EnergyRow {
     /// dissipated and the end-of-step stress's dissipation: plastic
     /// dissipation.
     pub plastic: f64,
-    /// The energy ply damage dissipated per mode (fibre tension and
-    /// compression, matrix tension and compression; zero without damage).
+    /// The energy ply damage released per mode at fixed strain (fibre
+    /// tension and compression, matrix tension and compression; zero
+    /// without damage).
     pub damage: [f64; 4],
-    /// The energy the end-of-step stress of damaged ply points dissipated
-    /// beyond the damage law's (`analysis.ply_damage_forces = "implicit"`,
-    /// `dynamics::ply_forces`; zero otherwise).
+    /// What the forces of damaging ply points did beyond the change of
+    /// their stored energy and the release (`dynamics::ply_forces`; zero
+    /// without damage).
     pub damage_scheme: f64,
     /// `D`.
     pub damping: f64,
@@ -109,9 +112,9 @@ pub(crate) struct Held {
     pub elastic: f64,
     /// `Σ A ½ t·δ`.
     pub interfaces: f64,
-    /// `Σ_q w_q g_I` per damage mode.
+    /// The release at fixed strain per damage mode.
     pub damage: [f64; 4],
-    /// What the end-of-step stress of damaged ply points dissipated.
+    /// What the damaging ply points' forces did beyond it.
     pub damage_scheme: f64,
 }
 

@@ -40,10 +40,15 @@
 //! cannot create energy**. It dissipates `B` per step, `½ Δε·C Δε` on a
 //! branch (first order in Δt, as backward Euler); the point keeps the sum
 //! (`DamageState::scheme`, J/m³) and the energy ledger books it as its own
-//! column, `damage_scheme` (`dynamics::energy`), beside the law's damage
-//! dissipation; what the ledger's `plastic` then holds in a body without
-//! plasticity is `W(ε_n; d_n) − W(ε_n; d_(n+1))` less the law's own sum for
-//! the step (its quadrature). Points far from onset keep Newmark's average
+//! column, `damage_scheme` (`dynamics::energy`), beside the damage's release
+//! at fixed strain `W(ε_n; d_n) − W(ε_n; d_(n+1))`, per mode
+//! (`DamageState::released`): the point's work is the change of its stored
+//! energy plus both, exactly, and the ledger's `plastic` in a body without
+//! plasticity is zero to round-off (crates/cufem-cli/tests/ply_damage_transient.rs).
+//! At a point's first damaging step, still under Newmark's average, the
+//! trapezoidal work's excess over the change at fixed `d_(n+1)` is booked
+//! in `damage_scheme` the same way (`materials::damage_impulse::end_of_step`;
+//! under `"newmark"` at every damaging point). Points far from onset keep Newmark's average
 //! (linear elastic, where the trapezoidal work is exact and the scheme adds
 //! nothing). The set of points is fixed within a step (taken from the
 //! committed states), so the residual does not switch between Newton

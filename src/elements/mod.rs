@@ -194,9 +194,10 @@ pub struct DamagePoints<'a> {
     pub band: &'a [[f64; 2]],
     /// The change of the load factor since the committed states.
     pub step: f64,
-    /// Newmark's γ where damaged points take the end-of-step stress
-    /// (`crate::dynamics::ply_forces`), else `None`.
-    pub impulse: Option<f64>,
+    /// How a transient run integrates the points' forces (Newmark's γ and
+    /// whether damaged points take the end-of-step stress,
+    /// `crate::dynamics::ply_forces`); `None` in a static run.
+    pub(crate) impulse: Option<crate::materials::damage_impulse::PointForces>,
     /// Trial states (written).
     pub trial: &'a mut [DamageState],
 }

@@ -126,6 +126,12 @@ pub struct DamageState {
     pub last: [f64; 4],
     /// Energy dissipated per unit volume by each mode (J/m³).
     pub dissipated: [f64; 4],
+    /// Energy released per unit volume by each mode at the strain of the
+    /// committed state (J/m³): the sum over updates of
+    /// `W(ε_n; d_n) − W(ε_n; d_(n+1))`, the modes' growths taken one after
+    /// the other in [`MODES`] order (`PlyDamage::release_at`). The energy
+    /// ledger of a transient run books it (`crate::dynamics::ply_forces`).
+    pub(crate) released: [f64; 4],
     /// The regularised damage `d_v` of each mode, the one the stiffness
     /// takes (Duvaut–Lions; equal to `damage` without viscosity).
     pub viscous: [f64; 4],
@@ -284,6 +290,7 @@ impl PlyDamage {
                 state.dissipated[mode] += rate * grown;
             }
         }
+        self.release_at(old, &mut state);
         let tangent = if self.consistent {
             self.consistent_tangent(strain, &effective, band, ([fibre, matrix], normal), (old, share), &state, &tangent)
         } else {
@@ -359,14 +366,43 @@ impl PlyDamage {
         out
     }
 
+    /// Adds to `state.released` what each mode's growth from `old` releases
+    /// at the committed strain `old.strain` (J/m³): `W(ε_n; d) − W(ε_n; d')`
+    /// with `d` the damage before and `d'` after the mode's growth, the
+    /// modes taken in [`MODES`] order, so that the sum over the modes is
+    /// `W(ε_n; d_n) − W(ε_n; d_(n+1))` exactly. Each is ≥ 0: at fixed strain
+    /// the stored energy falls as a compliance grows (the conjugate of a
+    /// complementary energy that rises).
+    fn release_at(&self, old: &DamageState, state: &mut DamageState) {
+        if (0..4).all(|i| state.viscous[i] <= old.viscous[i]) {
+            return;
+        }
+        let mut d = old.viscous;
+        let mut before = self.stored(&d, &old.strain);
+        for mode in 0..4 {
+            if state.viscous[mode] > old.viscous[mode] {
+                d[mode] = state.viscous[mode];
+                let after = self.stored(&d, &old.strain);
+                state.released[mode] += before - after;
+                before = after;
+            }
+        }
+    }
+
+    /// The stress (material axes) at the strain `strain` with the damage
+    /// the stiffness takes `d` (the branches solved as in
+    /// [`PlyDamage::update`]).
+    pub(crate) fn stress(&self, d: &[f64; 4], strain: &Voigt) -> Voigt {
+        let ds = 1.0 - d.iter().map(|x| 1.0 - x).product::<f64>();
+        let effective = mat_vec(&self.stiffness, strain);
+        self.closed_or_open(d, ds, strain, &effective).2
+    }
+
     /// The elastic strain energy density `½ σ·ε` (J/m³) held at the strain
     /// `strain` (material axes) with the damage the stiffness takes `d`
     /// (the stress's branches solved as in [`PlyDamage::update`]).
     pub(crate) fn stored(&self, d: &[f64; 4], strain: &Voigt) -> f64 {
-        let ds = 1.0 - d.iter().map(|x| 1.0 - x).product::<f64>();
-        let effective = mat_vec(&self.stiffness, strain);
-        let (_, _, stress) = self.closed_or_open(d, ds, strain, &effective);
-        0.5 * stress.iter().zip(strain).map(|(s, e)| s * e).sum::<f64>()
+        0.5 * self.stress(d, strain).iter().zip(strain).map(|(s, e)| s * e).sum::<f64>()
     }
 
     /// Onset and damage of one active mode at the onset measure `phi`.

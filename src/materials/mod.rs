@@ -195,7 +195,7 @@ impl Material {
         &self,
         law: &damage::PlyDamage,
         strain: &Voigt,
-        (band, step, impulse): ([f64; 2], f64, Option<f64>),
+        (band, step, impulse): ([f64; 2], f64, Option<damage_impulse::PointForces>),
         old: &damage::DamageState,
     ) -> (Response, damage::DamageState) {
         let t = self.frame.strain_rotation();
@@ -204,12 +204,8 @@ impl Material {
         let stress: Voigt = std::array::from_fn(|i| (0..6).map(|k| t[k][i] * r.stress[k]).sum());
         // the end-of-step stress of a damaged point in a transient run
         // (`damage_impulse`): its force stress, and 1/γ on its tangent
-        let factor = impulse.map_or(1.0, |gamma| {
-            let viscous = r.state.viscous;
-            damage_impulse::end_of_step(gamma, old, &mut r.state, (&stress, &r.stress), || {
-                law.stored(&viscous, &old.strain)
-            })
-        });
+        let factor = impulse
+            .map_or(1.0, |forces| damage_impulse::end_of_step(forces, law, old, &mut r.state, (&stress, &r.stress)));
         let intact = r.state.damage.iter().all(|&d| d == 0.0) && factor == 1.0;
         // the consistent tangent is unsymmetric: its symmetric part, as
         // with kinematic hardening (`update_for_element`)

@@ -56,13 +56,16 @@ fn dissipated(summary: &Value) -> [f64; 4] {
     MODES.map(|m| summary["damage"]["dissipated_j"][m].as_f64().unwrap())
 }
 
-/// The strip pulled in time without viscosity (150 steps): at every step
-/// `W_s − (T − T₀) − E_el − Σ D_I` (the balance written with the ledger's
-/// damage columns, not with its plastic remainder) within 1 % of the work
-/// of the pull (measured 3e-4), no step lowering it by more than 1e-3 of
-/// that work; the ledger's last damage columns are the damage law's
-/// per-mode sums of summary.json; and they are the crack band's
-/// `G_FT` × area (measured D_FT/(G_FT A) = 0.998).
+/// The strip pulled in time without viscosity (150 steps, Newmark's
+/// average): at every step `W_s − (T − T₀) − E_el − Σ D_I − D_s` (the
+/// balance written with the ledger's damage columns, the release at fixed
+/// strain per mode, and the trapezoidal excess `D_s`, `damage_scheme`;
+/// not with its plastic remainder) within 1 % of the work of the pull, no
+/// step lowering it by more than 1e-3 of that work; the ledger's last
+/// damage columns at most 3 % of the total below the damage law's per-mode
+/// sums of summary.json and never above (the release at the step's start
+/// strain lags the law's trapezoidal sums: measured FT 0.9785 against
+/// 0.9982 `G_FT A`); and they are the crack band's `G_FT` × area within 5 %.
 #[test]
 fn the_ledger_of_a_strip_cracked_in_time_counts_the_damage_per_mode() {
     let (out, summary) = run_cli("inviscid", &pulled_in_time(150, "0.0"));
@@ -78,22 +81,33 @@ fn the_ledger_of_a_strip_cracked_in_time_counts_the_damage_per_mode() {
     let total: f64 = ledger.iter().sum();
     // the explicit balance: what the pull did less what the strip holds
     // and what the damage dissipated
+    let scheme = column("damage_scheme");
     let closed: Vec<f64> = (0..n)
-        .map(|k| work[k] - (kinetic[k] - kinetic[0]) - elastic[k] - (0..4).map(|i| damage[i][k]).sum::<f64>())
+        .map(|k| {
+            work[k] - (kinetic[k] - kinetic[0]) - elastic[k] - (0..4).map(|i| damage[i][k]).sum::<f64>() - scheme[k]
+        })
         .collect();
     let worst = closed.iter().fold(0.0f64, |a, b| a.max(b.abs()));
     println!(
         "work {w:.5} J, damage {ledger:?} J (summary {law:?}), elastic {:.5} J, kinetic {:.2e} J, \
-         largest |balance| {:.2e} of the work, plastic remainder {:.2e} J, D_FT/(G_FT A) = {:.4}",
+         scheme {:.2e} J, largest |balance| {:.2e} of the work, plastic remainder {:.2e} J, D_FT/(G_FT A) = {:.4}",
         elastic[n - 1],
+        scheme[n - 1],
         kinetic[n - 1],
         worst / w,
         plastic[n - 1],
         ledger[0] / CRACK_ENERGY
     );
-    // the ledger's columns are the damage law's sums
+    // the ledger's columns are the damage law's sums to first order in Δt
+    // (the release at fixed strain lags the law's trapezoidal sums)
     for i in 0..4 {
-        assert!((ledger[i] - law[i]).abs() <= 1e-12 * total, "{}: ledger {} J, law {} J", MODES[i], ledger[i], law[i]);
+        assert!(
+            ledger[i] <= law[i] + 1e-12 * total && ledger[i] >= law[i] - 0.03 * total,
+            "{}: ledger {} J, law {} J",
+            MODES[i],
+            ledger[i],
+            law[i]
+        );
     }
     // the balance closes within 1 % of the work at every step (issue 48)
     for k in 0..n {
@@ -172,8 +186,6 @@ fn thrown_energies(out: &Path) -> (f64, f64, impl Fn(&str) -> f64) {
     let (kinetic, elastic) = (column("kinetic"), column("elastic"));
     let mechanical: Vec<f64> = kinetic.iter().zip(&elastic).map(|(t, e)| t + e).collect();
     let created: f64 = mechanical.windows(2).map(|p| (p[1] - p[0]).max(0.0)).sum();
-    let scheme = column("damage_scheme");
-    assert!(scheme.windows(2).all(|p| p[1] >= p[0]) && scheme[0] == 0.0, "the scheme's dissipation decreased");
     let balance = column("balance");
     assert!(balance.iter().all(|b| b.abs() < 1e-5 * kinetic[0]), "the ledger's balance is not closed");
     (kinetic[0], created, move |name: &str| *c[&format!("{name}_J")].last().unwrap())
@@ -183,38 +195,66 @@ fn thrown_energies(out: &Path) -> (f64, f64, impl Fn(&str) -> f64) {
 /// the thrown strip no step creates energy (the sum of the steps' rises of
 /// `T + E_el`, measured 4.7e-9 of the impact energy, against 3.6e-3 with
 /// `"newmark"`: the mutation back to Newmark's average fails here), and
-/// the ledger's columns account for the impact energy: kinetic, elastic,
-/// the law's damage per mode and the scheme's `damage_scheme` (measured
-/// `0.200` of `T₀` at 1000 steps), the rest `plastic` at `−0.0342` of `T₀`
-/// (the law books more than the forces dissipate where a point passes its
-/// softening within a step: first order in Δt, `−0.0098` at 4000 steps;
-/// docs/limitations.md). Both asserted from both sides. Measured with
+/// the ledger closes within 1 % of the impact energy (issue 48) with each
+/// column from its own formula: kinetic, elastic, the release at fixed
+/// strain per mode (`W(ε_n; d_n) − W(ε_n; d_(n+1))`) and the scheme's
+/// Bregman losses `damage_scheme` (measured `0.2016` of `T₀` at 1000 steps,
+/// asserted from both sides); the rest `plastic` measured `2e-15` of `T₀`
+/// (the trapezoidal rule's inertia work is exactly `ΔT`, and the columns
+/// sum each point's work exactly). Booking the law's own sums
+/// (`Σ Ȳ Δd`, summary.json) instead left `−0.0342` of `T₀`. The release
+/// stays within 10 % below the law's sums per mode (first order in Δt;
+/// measured FT 0.4233 against 0.4407 `G_FT A`, FC 0.928 of the law's; FT
+/// 1.078, 1.115, 1.133, 1.142 against 1.151 at 250 m/s and 200 … 1600
+/// steps, bench/drop/damage_results.txt). Under `"newmark"` every
+/// damaging point's trapezoidal excess is `damage_scheme` (measured `0.0416`
+/// of `T₀`) and the rest is the energy its closing cracks create
+/// (measured `5.7e-4` of `T₀`), within 1 % as well. Measured with
 /// `cargo test --release -p cufem-cli --test ply_damage_transient -- thrown --nocapture`.
 #[test]
 fn a_thrown_strip_cracks_without_creating_energy_under_the_end_of_step_stress() {
-    let (out, _) = run_cli("thrown_implicit", &thrown(170.0, 1000, "implicit"));
+    let (out, summary) = run_cli("thrown_implicit", &thrown(170.0, 1000, "implicit"));
     let (t0, created, last) = thrown_energies(&out);
-    let (_, created_newmark, _) = {
+    let scheme_column = common::csv_columns(&out.join("energy.csv"))["damage_scheme_J"].clone();
+    assert!(scheme_column.windows(2).all(|p| p[1] >= p[0]), "the scheme's dissipation decreased");
+    let (created_newmark, newmark_scheme, newmark_rest) = {
         let (out, _) = run_cli("thrown_newmark", &thrown(170.0, 1000, "newmark"));
-        let (a, b, _) = thrown_energies(&out);
-        (a, b, ())
+        let (_, created, last) = thrown_energies(&out);
+        (created, last("damage_scheme"), last("plastic"))
     };
-    let damage: f64 = MODES.iter().map(|m| last(&format!("damage_{m}"))).sum();
+    let per_mode = MODES.map(|m| last(&format!("damage_{m}")));
+    let damage: f64 = per_mode.iter().sum();
+    let law = dissipated(&summary);
     let (scheme, rest) = (last("damage_scheme"), last("plastic"));
     let closed = last("kinetic") + last("elastic") + damage + scheme - t0;
     println!(
-        "T0 {t0:.4} J: created {:.2e} (newmark {:.2e}) of T0; damage {:.4}, scheme {:.4}, plastic {:+.4}, closed {:+.2e} of T0",
+        "T0 {t0:.4} J: created {:.2e} (newmark {:.2e}) of T0; damage {:.4}, scheme {:.4}, plastic {:+.2e}, \
+         closed {:+.2e} of T0; D_FT {:.4} (law {:.4}) G_FT A; newmark: scheme {:.4}, plastic {:+.2e} of T0",
         created / t0,
         created_newmark / t0,
         damage / t0,
         scheme / t0,
         rest / t0,
-        closed / t0
+        closed / t0,
+        per_mode[0] / CRACK_ENERGY,
+        law[0] / CRACK_ENERGY,
+        newmark_scheme / t0,
+        newmark_rest / t0
     );
     assert!(created < 1e-6 * t0, "energy created {created} J of {t0} J");
     assert!(created_newmark > 1e-3 * t0, "newmark created {created_newmark} J of {t0} J");
     // the ledger's rest is the columns' closure (nothing else in the strip)
     assert!((closed + rest).abs() < 1e-5 * t0, "closure {closed} J, plastic {rest} J");
     assert!((0.19..0.21).contains(&(scheme / t0)), "scheme {scheme} J of {t0} J");
-    assert!((-0.037..-0.031).contains(&(rest / t0)), "plastic {rest} J of {t0} J");
+    // the ledger closes within 1 % of the impact energy (issue 48)
+    assert!(rest.abs() < 0.01 * t0, "plastic {rest} J of {t0} J");
+    assert!(newmark_rest.abs() < 0.01 * t0, "newmark: plastic {newmark_rest} J of {t0} J");
+    assert!((0.03..0.05).contains(&(newmark_scheme / t0)), "newmark: scheme {newmark_scheme} J of {t0} J");
+    // the release at fixed strain is the law's dissipation to first order
+    // in Δt, below it (the strain at the start of a loading step)
+    for i in 0..4 {
+        let ratio = if law[i] > 0.0 { per_mode[i] / law[i] } else { 1.0 };
+        println!("{}: release {:.4e} J, law {:.4e} J, ratio {ratio:.4}", MODES[i], per_mode[i], law[i]);
+        assert!((0.9..=1.0).contains(&ratio), "{}: release {} J against the law's {} J", MODES[i], per_mode[i], law[i]);
+    }
 }

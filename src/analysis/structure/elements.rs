@@ -98,8 +98,10 @@ impl Contribution for Elements<'_> {
             None => (at.lambda - *lambda).abs(),
         };
         // the end-of-step stress of damaged points (`dynamics::ply_forces`)
-        let impulse =
-            self.clock.filter(|c| c.ply_damage_forces == crate::dynamics::PlyDamageForces::Implicit).map(|c| c.gamma);
+        let impulse = self.clock.map(|c| crate::materials::damage_impulse::PointForces {
+            gamma: c.gamma,
+            end_of_step: c.ply_damage_forces == crate::dynamics::PlyDamageForces::Implicit,
+        });
         let damage_in = crate::assembly::DamageInput { committed, band, step, impulse };
         let inputs = Inputs {
             state: self.discretisation.fe_state(at.u, &self.committed, &self.gp_offsets, damage_in),

@@ -110,7 +110,7 @@ pub(super) fn account_energy(
             &elements.gp_offsets,
         ),
         interfaces: interfaces.stored_energy(&state.u),
-        damage: elements.damage.dissipated(),
+        damage: elements.damage.released(),
         damage_scheme: elements.damage.scheme(),
     };
     inertia.account(

@@ -60,19 +60,6 @@
 //! (tests/layered_estimate.rs). An interface that is neither along x nor
 //! along z (a curved wall's plies) keeps the per-zone patch.
 //!
-//! Over the section each point of the fit is weighed by its element's area
-//! (a weighted least-squares fit, `Σ_k A_k (a_k · c − f_k)²`: the fit of the
-//! stress over the patch's area rather than over its points; elements of
-//! equal area keep the plain fit). Unweighted, a wall element many times
-//! longer than its neighbour (a profile's wall beside a junction element of
-//! a wall's thickness, `junction_element`, or beside the `through ×
-//! through` corner) bent its fit to the few points of the small element,
-//! which sample the junction's boundary layer, and counted the misfit as its
-//! own error: on the laminated box of `bench/box_laminated_modes.toml` those
-//! wall elements held 88–91 % of the modes' estimates and the effectivity
-//! of the frequency estimates was 2.5–7.3; weighted, 0.7–1.5 (`python3
-//! bench/laminated_estimate_study.py`, tests/mode_error.rs).
-//!
 //! Every fit is evaluated only on the element the patch belongs to
 //! (element patches rather than the node patches of the paper: every
 //! element, also at a boundary, has a patch around it, and no boundary node
@@ -161,18 +148,6 @@ fn fit_operator(a: &[f64], v: &[f64], n: usize) -> Vec<f64> {
     r
 }
 
-/// `V (W½ A)⁺ W½`: the fit minimising `Σ_k w_k (a_k · c − f_k)²` (`w` per
-/// patch point), evaluated at the element's own points.
-fn weighted_fit_operator(a: &[f64], v: &[f64], n: usize, w: &[f64]) -> Vec<f64> {
-    let m = a.len() / n;
-    let scaled: Vec<f64> = (0..m).flat_map(|r| a[r * n..(r + 1) * n].iter().map(move |x| x * w[r].sqrt())).collect();
-    let mut r = fit_operator(&scaled, v, n);
-    for row in r.chunks_mut(m) {
-        row.iter_mut().zip(w).for_each(|(x, wk)| *x *= wk.sqrt());
-    }
-    r
-}
-
 /// `I − A A⁺` (`m × m`, row-major): the residual of the fit.
 fn residual_operator(a: &[f64], n: usize) -> Vec<f64> {
     let m = a.len() / n;
@@ -254,7 +229,6 @@ fn section_patches(
     // whether b lies beside a along the coordinate (0: x, 2: z), sharing no interior
     let apart = |a: &[f64; 4], b: &[f64; 4], d: usize| b[d] >= a[d + 1] - tol || b[d + 1] <= a[d] + tol;
     let (p, ng) = (section.kind.order(), values.n_gp);
-    let area = |e: usize| values.weight[e * ng..(e + 1) * ng].iter().sum::<f64>();
     let operator = |e: usize, mut elements: Vec<usize>| {
         elements.sort_unstable();
         elements.dedup();
@@ -270,12 +244,7 @@ fn section_patches(
         for q in points(&[e]) {
             section_basis(p, q, centre, half, &mut v);
         }
-        // each point weighted by its element's area (relative to the
-        // element's own): equal elements keep the plain fit
-        let own = area(e);
-        let w: Vec<f64> = elements.iter().flat_map(|&f| std::iter::repeat_n(area(f) / own, ng)).collect();
-        let n = (p + 1) * (p + 1);
-        Patch { weights: weighted_fit_operator(&a, &v, n, &w), residual: Vec::new(), elements }
+        Patch { weights: fit_operator(&a, &v, (p + 1) * (p + 1)), residual: Vec::new(), elements }
     };
     (0..section.n_elements())
         .map(|e| {

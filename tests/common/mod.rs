@@ -63,8 +63,8 @@ pub fn solve_path(s: &mut Structure, path: &[(f64, bool)]) {
 }
 
 /// The values of a VTK XML file's `DataArray` named `name` (binary,
-/// `header_type="UInt64"`, the format cufem writes), or of the `Points`
-/// array with `name = None`.
+/// `header_type="UInt64"`, the format cufem writes; `Float64`, or `Int64`
+/// as numbers), or of the `Points` array with `name = None`.
 pub fn vtu_array(path: &std::path::Path, name: Option<&str>) -> Vec<f64> {
     use base64::Engine as _;
     let text = std::fs::read_to_string(path).unwrap();
@@ -83,6 +83,8 @@ pub fn vtu_array(path: &std::path::Path, name: Option<&str>) -> Vec<f64> {
     let n = u64::from_le_bytes(raw[..8].try_into().unwrap()) as usize;
     match a.attribute("type").unwrap() {
         "Float64" => raw[8..8 + n].chunks_exact(8).map(|b| f64::from_le_bytes(b.try_into().unwrap())).collect(),
+        // connectivity and offsets, as numbers (exact below 2^53)
+        "Int64" => raw[8..8 + n].chunks_exact(8).map(|b| i64::from_le_bytes(b.try_into().unwrap()) as f64).collect(),
         t => panic!("type {t}"),
     }
 }

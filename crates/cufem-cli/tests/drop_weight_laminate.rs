@@ -293,3 +293,157 @@ fn where_failure_starts(out: &Path, avg: &[(f64, f64)], (t_peak, peak): (f64, f6
     );
     assert!(ply.iter().all(|p| (p.1 - depth).abs() < 1e-9), "ply onset at several depths");
 }
+
+/// The study's refined runs of examples/laminate_drop_weight_damage.toml
+/// (`python3 bench/drop/damage_study.py roll_a120_n2400 roll_a60_n4800`,
+/// bench/drop/damage_results.csv): the averaged peak force (N) and the
+/// energy dissipated (J) with the axis refined again (120 B2, same step)
+/// and with the step halved (60 B2, 4,800 steps).
+const DAMAGE_REFINED_AXIS: (f64, f64) = (529.169, 0.450523);
+const DAMAGE_REFINED_STEP: (f64, f64) = (525.465, 0.458537);
+
+/// A cell of a VTU file: its centre (y, z in m) and the largest Hashin
+/// matrix index of its points.
+type Cell = (f64, f64, f64);
+
+/// The cells of a VTU file.
+fn cell_indices(file: &Path) -> Vec<Cell> {
+    let points = common::vtu_array(file, None);
+    let connectivity = common::vtu_array(file, Some("connectivity"));
+    let offsets = common::vtu_array(file, Some("offsets"));
+    let matrix = common::vtu_array(file, Some("fi_hashin_matrix"));
+    let mut start = 0;
+    let mut cells = Vec::new();
+    for &end in &offsets {
+        let ids: Vec<usize> = connectivity[start..end as usize].iter().map(|&i| i as usize).collect();
+        start = end as usize;
+        let mean = |c: usize| ids.iter().map(|&i| points[3 * i + c]).sum::<f64>() / ids.len() as f64;
+        cells.push((mean(1), mean(2), ids.iter().map(|&i| matrix[i]).fold(0.0, f64::max)));
+    }
+    cells
+}
+
+/// The frames of a run (time, cells of `cell_indices`).
+fn cell_frames(out: &Path) -> Vec<(f64, Vec<Cell>)> {
+    let pvd = std::fs::read_to_string(out.join("frames.pvd")).unwrap();
+    let mut frames = Vec::new();
+    for line in pvd.lines().filter(|l| l.contains("<DataSet")) {
+        let attr =
+            |name: &str| line.split(&format!("{name}=\"")).nth(1).unwrap().split('"').next().unwrap().to_string();
+        frames.push((attr("timestep").parse().unwrap(), cell_indices(&out.join(attr("file")))));
+    }
+    frames
+}
+
+/// The damaging example as shipped, with frames every `FRAMES`.
+fn run_damage_example() -> (PathBuf, Value) {
+    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/laminate_drop_weight_damage.toml"));
+    let text = std::fs::read_to_string(path).unwrap();
+    let framed = text.replacen(
+        "ply_damage_forces = \"implicit\"\n",
+        &format!("ply_damage_forces = \"implicit\"\noutput_interval = {FRAMES:e}\n"),
+        1,
+    );
+    assert_ne!(framed, text, "the example's [analysis] changed: ask for its frames another way");
+    common::run_text("drop_weight_laminate", "damage", &framed)
+}
+
+/// examples/laminate_drop_weight_damage.toml: the same drop weight with
+/// ply damage. The ledger closes within 1 % of the impact energy at every
+/// step; no step creates energy (the mechanical energy never grows) and no
+/// damage is undone (the ledger's delamination, every mode's damage and
+/// the scheme's column never fall); the plies crack in the matrix and
+/// their fibres stay whole (the beam is not punched through); it
+/// delaminates and the averaged force drops; the onset against laminated
+/// beam theory (501.6 N, as the elastic plies'); the averaged peak force
+/// converged against the study's refined runs (the energy dissipated is
+/// not: a known limit); and the matrix damage starts where the Hashin
+/// matrix index reached 1.
+#[test]
+#[ignore = "validate: slow — examples/laminate_drop_weight_damage.toml, 2,400 time steps (about 1 min)"]
+fn a_drop_weight_cracks_and_delaminates_a_damaging_laminate_and_the_ledger_closes() {
+    let (out, summary) = run_damage_example();
+    let c = common::csv_columns(&out.join("energy.csv"));
+    let col = |name: &str| c.get(name).unwrap_or_else(|| panic!("energy.csv has no {name}"));
+    let (time, kinetic, elastic, striker) = (col("time_s"), col("kinetic_J"), col("elastic_J"), col("impactors_J"));
+    let (interfaces, delamination, balance) = (col("interfaces_J"), col("delamination_J"), col("balance_J"));
+    assert!((striker[0] / IMPACT_ENERGY - 1.0).abs() < 1e-12, "impact energy {} J", striker[0]);
+    let n = time.len();
+    let worst = balance.iter().fold(0.0_f64, |m, b| m.max(b.abs()));
+    common::figure("drop_weight_damage.balance", worst / IMPACT_ENERGY, "", "≤ 0.01 of the impact energy");
+    assert!(worst <= 0.01 * IMPACT_ENERGY, "balance {worst} J");
+    let mechanical: Vec<f64> =
+        (0..n).map(|k| kinetic[k] + elastic[k] + striker[k] + interfaces[k] - delamination[k]).collect();
+    let booked = ["delamination_J", "damage_fibre_tension_J", "damage_fibre_compression_J"]
+        .into_iter()
+        .chain(["damage_matrix_tension_J", "damage_matrix_compression_J", "damage_scheme_J"])
+        .map(col)
+        .collect::<Vec<_>>();
+    for k in 1..n {
+        let grown = mechanical[k] - mechanical[k - 1];
+        assert!(grown <= 1e-9 * IMPACT_ENERGY, "the mechanical energy grew by {grown} J at t = {} s", time[k]);
+        for b in &booked {
+            assert!(b[k] - b[k - 1] >= -1e-12 * IMPACT_ENERGY, "a dissipation fell at t = {} s", time[k]);
+        }
+    }
+    // the damage: matrix cracks, the fibres (nearly) whole: not punched
+    // through. A few points at a multiaxial onset have their strength
+    // lowered at the point (`materials::damage`, the rollers' and the
+    // striker's contact), a known limit (docs/limitations.md)
+    let damage = &summary["damage"];
+    let reduced = damage["strength_reduced_points"].as_u64().unwrap() as f64;
+    common::known_limit("drop_weight_damage.reduced_points", reduced, "", 1.0, 30.0, "points with a lowered strength");
+    let dissipated_by = |mode: &str| damage["dissipated_j"][mode].as_f64().unwrap();
+    common::figure("drop_weight_damage.matrix_tension", dissipated_by("matrix_tension"), "J", "> 0: matrix cracks");
+    assert!(dissipated_by("matrix_tension") > 1e-2 * IMPACT_ENERGY);
+    let fibres = dissipated_by("fibre_tension") + dissipated_by("fibre_compression");
+    common::figure("drop_weight_damage.fibres", fibres / IMPACT_ENERGY, "", "< 1e-3 of the impact energy");
+    assert!(fibres < 1e-3 * IMPACT_ENERGY, "the fibres broke: {fibres} J");
+    let area = summary["delamination"]["area_m2"].as_f64().unwrap();
+    common::figure("drop_weight_damage.delaminated_area", area, "m²", "> half the beam's plan");
+    assert!(area > 0.5 * 0.05 * 0.01, "delaminated area {area} m²");
+    // the load drop and the onset, as the elastic plies' example
+    let h = common::csv_columns(&out.join("history_striker.csv"));
+    let avg = averaged_force(time, &h["f_n"]);
+    let (ip, &(t_peak, peak)) = avg.iter().enumerate().max_by(|a, b| a.1.1.total_cmp(&b.1.1)).unwrap();
+    let lowest_after = avg[ip..].iter().take_while(|(t, _)| *t < t_peak + 0.5e-3).fold(f64::MAX, |m, a| m.min(a.1));
+    common::figure("drop_weight_damage.drop", lowest_after / peak, "", "< 0.5: the load drop");
+    assert!(lowest_after < 0.5 * peak, "peak {peak} N at {t_peak} s, then {lowest_after} N");
+    common::within("drop_weight_damage.onset", peak, 501.6, 0.10, "laminated beam theory's onset 2 b S D/Q");
+    let dissipated = IMPACT_ENERGY - mechanical[n - 1];
+    common::figure("drop_weight_damage.dissipated", dissipated, "J", "");
+    // converged in the averaged peak force; the energy dissipated is not:
+    // 10 % and 8 % above the refined runs, a known limit
+    // (docs/limitations.md)
+    for (what, refined) in [("axis", DAMAGE_REFINED_AXIS), ("step", DAMAGE_REFINED_STEP)] {
+        let source = format!("the {what} refined, bench/drop/damage_results.csv");
+        common::within(&format!("drop_weight_damage.peak_{what}"), peak, refined.0, 0.03, &source);
+        common::known_limit(
+            &format!("drop_weight_damage.dissipated_{what}"),
+            dissipated / refined.1,
+            "",
+            1.05,
+            1.15,
+            &format!("the energy dissipated over {source}'s"),
+        );
+    }
+    // where the matrix cracks: every cell away from the supports with
+    // d_mt > 0 at the end (result.vtu; the frames hold no damage) had its
+    // Hashin matrix index at 1 or more in some frame (every 10 steps)
+    // before: the law's onset is that index at 1 where no band lowers it
+    const SPAN: f64 = 0.05;
+    let interior = |y: f64| y > 0.15 * SPAN && y < 0.85 * SPAN;
+    let frames = cell_frames(&out);
+    let d_mt = common::vtu_array(&out.join("result.vtu"), Some("d_mt"));
+    let cracked: Vec<usize> = (0..d_mt.len()).filter(|&i| d_mt[i] > 0.0 && interior(frames[0].1[i].0)).collect();
+    assert!(!cracked.is_empty(), "no matrix crack between the rollers");
+    for &i in &cracked {
+        let (y, z, _) = frames[0].1[i];
+        let first = frames.iter().find(|f| f.1[i].2 >= 1.0).map(|f| f.0);
+        println!("d_mt {} at y {y} z {z}: matrix index first >= 1 at {first:?} s", d_mt[i]);
+        assert!(first.is_some(), "d_mt > 0 at y {y} z {z} where the matrix index never reached 1");
+    }
+    let k = frames.iter().position(|f| f.1.iter().any(|c| interior(c.0) && c.2 >= 1.0)).unwrap();
+    common::figure("drop_weight_damage.matrix_onset_time", frames[k].0, "s", "first frame with a matrix index >= 1");
+    println!("averaged peak {peak} N at {t_peak} s; dissipated {dissipated} J");
+}

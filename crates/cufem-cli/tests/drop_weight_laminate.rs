@@ -360,7 +360,7 @@ fn run_damage_example() -> (PathBuf, Value) {
 /// not: a known limit); and the matrix damage starts where the Hashin
 /// matrix index reached 1.
 #[test]
-#[ignore = "validate: slow — examples/laminate_drop_weight_damage.toml, 2,400 time steps (about 1 min)"]
+#[ignore = "validate: slow — examples/laminate_drop_weight_damage.toml, 2,400 time steps (about 1.5 min)"]
 fn a_drop_weight_cracks_and_delaminates_a_damaging_laminate_and_the_ledger_closes() {
     let (out, summary) = run_damage_example();
     let c = common::csv_columns(&out.join("energy.csv"));

@@ -113,7 +113,7 @@ CASES["p15_m12"] = dict(steps=600, duration=1.5e-3, toughness=dict(ft=100e3, fc=
 TOUGH = dict(ft=100e3, fc=100e3, mt=10e3, mc=40e3)
 # the example's toughnesses: the least round values whose longest band 2 E G/X² exceeds this mesh's bands
 SHIP = dict(ft=100e3, fc=100e3, mt=1.2e3, mc=40e3)
-for a, s in ((30, 2400), (60, 2400), (60, 4800), (120, 2400), (30, 4800)):
+for a, s in ((30, 2400), (60, 2400), (60, 4800), (120, 2400), (30, 4800), (120, 4800), (60, 9600)):
     CASES[f"ship_a{a}_n{s}"] = dict(axis=a, steps=s, toughness=SHIP)
     # on fixed rollers (r = 5 mm) 40 mm apart instead of the line supports
     CASES[f"roll_a{a}_n{s}"] = dict(axis=a, steps=s, toughness=SHIP, supports="rollers", span=(0.005, 0.045))

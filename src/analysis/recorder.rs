@@ -32,6 +32,9 @@ pub struct Frame {
     /// The cohesive interfaces then (`None` without interfaces): the
     /// frame's `d_interface`.
     pub delamination: Option<crate::interfaces::Delamination>,
+    /// The ply damage then, each mode's per Gauss point (`None` without
+    /// `[materials.damage]`): the frame's `d_ft d_fc d_mt d_mc`.
+    pub damage: Option<Vec<[f64; 4]>>,
 }
 
 impl<'a> Recorder<'a> {
@@ -66,6 +69,7 @@ impl<'a> Recorder<'a> {
             increment: inc.index,
             fields: s.fields(),
             delamination: s.interfaces().delamination(),
+            damage: s.elements().damage.shown(),
         });
     }
 }

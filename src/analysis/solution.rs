@@ -197,6 +197,10 @@ impl Solution {
         let row = &self.history[frame.increment - 1];
         let mut s = self.with_fields(model, &frame.fields, row.lambda, (&row.reactions, &row.contacts))?;
         s.delamination = frame.delamination.clone();
+        s.damage = match (&frame.damage, &self.damage) {
+            (Some(shown), Some(end)) => Some(crate::damage::Damage::of_frame(shown, &end.volume)),
+            _ => None,
+        };
         s.error_estimate = self.error_history.of(super::state_errors::State::Frame(k)).cloned();
         Ok(s)
     }

@@ -118,6 +118,14 @@ impl BodyDamage {
         self.trial.iter().zip(&self.volume).map(|(s, w)| w * s.scheme).sum()
     }
 
+    /// The committed damage the stiffness takes (`viscous`) of each mode
+    /// at every point, `None` when no material damages: what a frame of a
+    /// transient run keeps for its fields `d_ft d_fc d_mt d_mc`
+    /// ([`Damage::of_frame`]), 32 bytes a point instead of a whole state.
+    pub(crate) fn shown(&self) -> Option<Vec<[f64; 4]>> {
+        (!self.committed.is_empty()).then(|| self.committed.iter().map(|s| s.viscous).collect())
+    }
+
     /// What a run keeps of it: `None` when no material damages.
     pub(crate) fn into_result(self) -> Option<Damage> {
         (!self.committed.is_empty()).then_some(Damage { states: self.committed, volume: self.volume })
@@ -197,6 +205,16 @@ pub struct DamageSummary {
 }
 
 impl Damage {
+    /// The damage of a frame ([`BodyDamage::shown`]) with the run's volume
+    /// weights: each point's damage of each mode, for the frame's fields
+    /// `d_ft d_fc d_mt d_mc` ([`Damage::largest_in`]). It holds no history
+    /// (dissipation, onset, branches): its [`Damage::summary`] is not the
+    /// frame's, only its fields are.
+    pub(crate) fn of_frame(shown: &[[f64; 4]], volume: &[f64]) -> Damage {
+        let states = shown.iter().map(|&d| DamageState { damage: d, viscous: d, ..Default::default() }).collect();
+        Damage { states, volume: volume.to_vec() }
+    }
+
     /// Its `summary.json` entry.
     pub fn summary(&self) -> DamageSummary {
         let dissipated = dissipated(&self.states, &self.volume);

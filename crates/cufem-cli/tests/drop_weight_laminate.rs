@@ -428,7 +428,7 @@ fn a_drop_weight_cracks_and_delaminates_a_damaging_laminate_and_the_ledger_close
         );
     }
     // where the matrix cracks: every cell away from the supports with
-    // d_mt > 0 at the end (result.vtu; the frames hold no damage) had its
+    // d_mt > 0 at the end (result.vtu) had its
     // Hashin matrix index at 1 or more in some frame (every 10 steps)
     // before: the law's onset is that index at 1 where no band lowers it
     const SPAN: f64 = 0.05;

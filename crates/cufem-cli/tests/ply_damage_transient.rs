@@ -128,6 +128,33 @@ fn the_ledger_of_a_strip_cracked_in_time_counts_the_damage_per_mode() {
     assert!(ledger[1..].iter().all(|&d| d < 0.01 * total), "{ledger:?}");
 }
 
+/// The frames of a damaging transient run carry the ply damage
+/// (`d_ft d_fc d_mt d_mc`, each mode's largest over an element's Gauss
+/// points, as `result.vtu`): the strip pulled in time without viscosity,
+/// a frame every 20 µs of its 0.1 ms pull. The crack grows, so each cell's
+/// fibre-tension damage never falls from one frame to the next and is
+/// lower in an early frame than at the end somewhere; the last frame, at
+/// the end of the pull, is `result.vtu`'s field. Frames that carried the
+/// end's damage, or none, fail here.
+#[test]
+fn the_frames_of_a_damaging_run_carry_its_damage_as_it_grows() {
+    let text = pulled_in_time(150, "0.0").replace("duration = 1e-4\n", "duration = 1e-4\noutput_interval = 2e-5\n");
+    assert!(text.contains("output_interval = 2e-5"));
+    let (out, _) = run_cli("frames", &text);
+    let frames: Vec<Vec<f64>> =
+        (1..=5).map(|k| common::vtu_array(&out.join(format!("frame_{k:04}.vtu")), Some("d_ft"))).collect();
+    assert!(!out.join("frame_0006.vtu").exists(), "five frames over 0.1 ms");
+    let end = common::vtu_array(&out.join("result.vtu"), Some("d_ft"));
+    for (k, pair) in frames.windows(2).enumerate() {
+        assert!(pair[0].iter().zip(&pair[1]).all(|(a, b)| b >= a), "a cell's damage fell after frame {}", k + 1);
+    }
+    assert_eq!(frames[4], end, "the last frame is the end of the pull");
+    assert!(end.iter().any(|&d| d > 0.5), "the strip cracks");
+    let grew = frames[0].iter().zip(&end).filter(|(a, b)| *b > *a).count();
+    println!("cells whose damage grew after the first frame: {grew} of {}", end.len());
+    assert!(grew > 0, "the first frame shows the end's damage");
+}
+
 /// The damage viscosity of a transient run is in seconds: η = 1e-7 s over a
 /// 0.1 ms pull relaxes as the static example's η = 1e-3 (load factor) over
 /// its unit load step, and adds the same kind of excess over `G_FT A`

@@ -109,6 +109,39 @@ fn averaged_force(time: &[f64], force: &[f64]) -> Vec<(f64, f64)> {
     out
 }
 
+/// The energy ledger of a drop-weight run in `out` (`energy.csv`), checked
+/// as every such run must hold it: the striker starts with the impact
+/// energy; the balance stays within 1 % of it at every step (figure
+/// `<id>.balance`); no step creates energy (nothing does work on the beam
+/// and striker but the fixed supports, so their mechanical energy —
+/// kinetic, elastic, the striker's, what the interfaces hold — never
+/// grows); and no dissipation column of `booked` ever falls (damage is
+/// never undone). Returns the columns and the mechanical energy per step.
+fn checked_ledger(out: &Path, id: &str, booked: &[&str]) -> (std::collections::HashMap<String, Vec<f64>>, Vec<f64>) {
+    let c = common::csv_columns(&out.join("energy.csv"));
+    let col = |name: &str| c.get(name).unwrap_or_else(|| panic!("energy.csv has no {name}"));
+    let (time, kinetic, elastic, striker) = (col("time_s"), col("kinetic_J"), col("elastic_J"), col("impactors_J"));
+    let (interfaces, delamination, balance) = (col("interfaces_J"), col("delamination_J"), col("balance_J"));
+    assert!((striker[0] / IMPACT_ENERGY - 1.0).abs() < 1e-12, "impact energy {} J", striker[0]);
+    let n = time.len();
+    let worst = balance.iter().fold(0.0_f64, |m, b| m.max(b.abs()));
+    let check = "≤ 0.01 of the impact energy at every step";
+    common::figure(&format!("{id}.balance"), worst / IMPACT_ENERGY, "", check);
+    assert!(worst <= 0.01 * IMPACT_ENERGY, "balance {worst} J");
+    let mechanical: Vec<f64> =
+        (0..n).map(|k| kinetic[k] + elastic[k] + striker[k] + interfaces[k] - delamination[k]).collect();
+    let booked: Vec<&Vec<f64>> = booked.iter().map(|b| col(b)).collect();
+    for k in 1..n {
+        let grown = mechanical[k] - mechanical[k - 1];
+        assert!(grown <= 1e-9 * IMPACT_ENERGY, "the mechanical energy grew by {grown} J at t = {} s", time[k]);
+        for b in &booked {
+            let fell = b[k] - b[k - 1];
+            assert!(fell >= -1e-12 * IMPACT_ENERGY, "a dissipation fell by {fell} J at t = {} s", time[k]);
+        }
+    }
+    (c, mechanical)
+}
+
 /// The ledger closes within 1 % of the impact energy at every step
 /// (measured below 1e-6 of it: the trapezoidal rule with the interfaces'
 /// and the contact's end-of-step impulse), no step creates energy (nothing
@@ -121,28 +154,8 @@ fn averaged_force(time: &[f64], force: &[f64]) -> Vec<(f64, f64)> {
 #[ignore = "validate: slow — examples/laminate_drop_weight.toml, 2,400 time steps (about 1.5 min)"]
 fn a_drop_weight_delaminates_a_laminate_and_the_ledger_closes() {
     let (out, summary) = run_example();
-    let c = common::csv_columns(&out.join("energy.csv"));
-    let col = |name: &str| c.get(name).unwrap_or_else(|| panic!("energy.csv has no {name}"));
-    let (time, kinetic, elastic, striker) = (col("time_s"), col("kinetic_J"), col("elastic_J"), col("impactors_J"));
-    let (interfaces, delamination, balance) = (col("interfaces_J"), col("delamination_J"), col("balance_J"));
-    assert!((striker[0] / IMPACT_ENERGY - 1.0).abs() < 1e-12, "impact energy {} J", striker[0]);
-    let n = time.len();
-    let worst = balance.iter().fold(0.0_f64, |m, b| m.max(b.abs()));
-    common::figure(
-        "drop_weight_laminate.balance",
-        worst / IMPACT_ENERGY,
-        "",
-        "≤ 0.01 of the impact energy at every step",
-    );
-    assert!(worst <= 0.01 * IMPACT_ENERGY, "balance {worst} J");
-    let mechanical: Vec<f64> =
-        (0..n).map(|k| kinetic[k] + elastic[k] + striker[k] + interfaces[k] - delamination[k]).collect();
-    for k in 1..n {
-        let grown = mechanical[k] - mechanical[k - 1];
-        assert!(grown <= 1e-9 * IMPACT_ENERGY, "the mechanical energy grew by {grown} J at t = {} s", time[k]);
-        let fell = delamination[k] - delamination[k - 1];
-        assert!(fell >= -1e-12 * IMPACT_ENERGY, "the delamination fell by {fell} J at t = {} s", time[k]);
-    }
+    let (c, mechanical) = checked_ledger(&out, "drop_weight_laminate", &["delamination_J"]);
+    let (time, n) = (&c["time_s"], mechanical.len());
     // delaminated: the mid-plane interface (interface2) over most of the span
     let area = summary["delamination"]["area_m2"].as_f64().unwrap();
     common::figure("drop_weight_laminate.delaminated_area", area, "m²", "> 0");
@@ -363,29 +376,16 @@ fn run_damage_example() -> (PathBuf, Value) {
 #[ignore = "validate: slow — examples/laminate_drop_weight_damage.toml, 2,400 time steps (about 1.5 min)"]
 fn a_drop_weight_cracks_and_delaminates_a_damaging_laminate_and_the_ledger_closes() {
     let (out, summary) = run_damage_example();
-    let c = common::csv_columns(&out.join("energy.csv"));
-    let col = |name: &str| c.get(name).unwrap_or_else(|| panic!("energy.csv has no {name}"));
-    let (time, kinetic, elastic, striker) = (col("time_s"), col("kinetic_J"), col("elastic_J"), col("impactors_J"));
-    let (interfaces, delamination, balance) = (col("interfaces_J"), col("delamination_J"), col("balance_J"));
-    assert!((striker[0] / IMPACT_ENERGY - 1.0).abs() < 1e-12, "impact energy {} J", striker[0]);
-    let n = time.len();
-    let worst = balance.iter().fold(0.0_f64, |m, b| m.max(b.abs()));
-    common::figure("drop_weight_damage.balance", worst / IMPACT_ENERGY, "", "≤ 0.01 of the impact energy");
-    assert!(worst <= 0.01 * IMPACT_ENERGY, "balance {worst} J");
-    let mechanical: Vec<f64> =
-        (0..n).map(|k| kinetic[k] + elastic[k] + striker[k] + interfaces[k] - delamination[k]).collect();
-    let booked = ["delamination_J", "damage_fibre_tension_J", "damage_fibre_compression_J"]
-        .into_iter()
-        .chain(["damage_matrix_tension_J", "damage_matrix_compression_J", "damage_scheme_J"])
-        .map(col)
-        .collect::<Vec<_>>();
-    for k in 1..n {
-        let grown = mechanical[k] - mechanical[k - 1];
-        assert!(grown <= 1e-9 * IMPACT_ENERGY, "the mechanical energy grew by {grown} J at t = {} s", time[k]);
-        for b in &booked {
-            assert!(b[k] - b[k - 1] >= -1e-12 * IMPACT_ENERGY, "a dissipation fell at t = {} s", time[k]);
-        }
-    }
+    let booked = [
+        "delamination_J",
+        "damage_fibre_tension_J",
+        "damage_fibre_compression_J",
+        "damage_matrix_tension_J",
+        "damage_matrix_compression_J",
+        "damage_scheme_J",
+    ];
+    let (c, mechanical) = checked_ledger(&out, "drop_weight_damage", &booked);
+    let (time, n) = (&c["time_s"], mechanical.len());
     // the damage: matrix cracks, the fibres (nearly) whole: not punched
     // through. A few points at a multiaxial onset have their strength
     // lowered at the point (`materials::damage`, the rollers' and the

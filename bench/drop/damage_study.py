@@ -59,23 +59,7 @@ section = {{ shape = "laminate", element = "{element}", x = {{ from = 0.0, to = 
 {plies} ], interfaces = "cohesive", interface_material = "epoxy_interface" }}
 axis = {{ element = "B2", segments = [{{ from = 0.0, to = 0.05, elements = {axis} }}] }}
 
-{supports_text}[[indenters]]
-name = "striker"
-body = "beam"
-shape = "cylinder"
-surface = {{ z = 0.002, y = [0.015, 0.035] }}
-axis = "x"
-center = [0.005, 0.025, 0.00801]
-radius = 0.006
-mass = {mass:g}
-velocity = [0.0, 0.0, {-speed:g}]
-
-[[steps]]
-name = "impact"
-factor = 1.0
-duration = {duration:g}
-increments = {steps}
-'''
+{supports_text}{study.striker(mass, speed, duration, steps)}'''
 
 
 def support_text(supports, span):

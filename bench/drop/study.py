@@ -62,7 +62,14 @@ body = "beam"
 where = {{ y = 0.05, z = 0.0 }}
 fix = ["z"]
 
-[[indenters]]
+{striker(mass, speed, DURATION, steps)}'''
+
+
+def striker(mass, speed, duration, steps):
+    """The striker (a rigid cylinder of r = 6 mm at mid-span) and the one
+    load step of `steps` time steps over `duration`: the tables every drop
+    model of bench/drop ends with (study.py, damage_study.py)."""
+    return f'''[[indenters]]
 name = "striker"
 body = "beam"
 shape = "cylinder"
@@ -76,7 +83,7 @@ velocity = [0.0, 0.0, {-speed:g}]
 [[steps]]
 name = "impact"
 factor = 1.0
-duration = {DURATION:g}
+duration = {duration:g}
 increments = {steps}
 '''
 

@@ -15,6 +15,7 @@
 use faer::dyn_stack::{MemBuffer, MemStack, StackReq};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::sparse::linalg::SupernodalThreshold;
 use faer::sparse::linalg::cholesky::{
     CholeskySymbolicParams, LdltRef, LltRef, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
     factorize_symbolic_cholesky,
@@ -161,6 +162,23 @@ enum Kind {
     Ldlt,
 }
 
+/// When the factor is stored and computed by supernodes (dense column
+/// blocks, BLAS-3) rather than column by column: faer picks supernodal
+/// when the factorization's flops per entry of `L` exceed this factor
+/// times 40 (faer's `CHOLESKY_SUPERNODAL_RATIO_FACTOR`), so here above 10
+/// instead of faer's 40. A CUF stiffness couples every node's 3 DOF with
+/// whole sections: its factor is denser per column than the meshes faer
+/// tuned its default on, and the supernodal factorization won on every
+/// example whose ratio lies between 10 and 40 (one thread, median of 3,
+/// ms per factorization simplicial → supernodal: the laminate drop
+/// weights' 2,928 DOF at ratio 39.6, 9.2 → 4.0; bending_compact_4L9_quarter
+/// 39.7, 2.81 → 0.33; column_buckling 39.5, 4.02 → 0.87;
+/// notched_strip_medium 25.3, 1.14 → 0.52; notched_strip_coarse 18.7,
+/// 0.20 → 0.10; rod_impact 16.5, 0.78 → 0.43; arch_snap_through 16.4,
+/// 1.29 → 0.56; measured when this was set, the commit's message). Below
+/// 10 (a chain, a very sparse lattice) the factor stays simplicial.
+const SUPERNODAL: SupernodalThreshold = SupernodalThreshold(0.25);
+
 /// A reusable sparse Cholesky factorization for a fixed pattern.
 pub struct Cholesky {
     symbolic: SymbolicCholesky<usize>,
@@ -197,7 +215,7 @@ impl Cholesky {
             sym,
             Side::Upper,
             SymmetricOrdering::Identity,
-            CholeskySymbolicParams::default(),
+            CholeskySymbolicParams { supernodal_flop_ratio_threshold: SUPERNODAL, ..Default::default() },
         )
         .map_err(|e| LinearError::Symbolic(format!("{e:?}")))?;
         // faer's parallel supernodal factorization lost to the sequential one on

@@ -221,8 +221,10 @@ fn wall_force(out: &std::path::Path) -> Vec<(f64, f64)> {
 /// cannot create energy) below 1 % of `T₀` (measured 1.2e-4). For
 /// contrast the plain penalty — Newmark's average of the contact forces
 /// with the contact nodes' mass kept — creates energy: the rod leaves with
-/// 8.41 times its energy, asserted from both sides (8.0 to 8.85: the
-/// chatter's gain depends on every bounce), and the run warns
+/// 5.16 times its energy, asserted from both sides (3 to 12: the
+/// chatter's gain depends on every bounce, so on round-off — the same
+/// model gave 8.41 with faer's simplicial factor of the stiffness and 5.16
+/// with its supernodal one, `solver::linear::SUPERNODAL`), and the run warns
 /// (summary.json).
 #[test]
 fn a_rod_rebounds_from_a_rigid_wall_after_two_transit_times() {
@@ -254,7 +256,7 @@ fn a_rod_rebounds_from_a_rigid_wall_after_two_transit_times() {
     let plain = run_cli("rod_impact_plain", &rod_impact("contact_forces = \"newmark\"\ncontact_mass = \"kept\""));
     let (energy, _) = energy_ratio(&plain);
     let what = "energy after the impact with Newmark's average of the contact forces, the nodes' mass kept";
-    common::known_limit("dynamics.newmark_average.energy_ratio", energy, "", 8.0, 8.85, what);
+    common::known_limit("dynamics.newmark_average.energy_ratio", energy, "", 3.0, 12.0, what);
     let summary = std::fs::read_to_string(plain.join("summary.json")).unwrap();
     assert!(summary.contains("net work"), "no warning in {summary}");
     // the ParaView time series: a frame every 50 µs of the 600 µs, each

@@ -340,3 +340,20 @@ where = {{ y = 1.0 }}
 "#
     )
 }
+
+/// The block's top line (examples/block_indentation*.toml, `top`: 201
+/// stations x ∈ [0, 0.5] m at y = 0.05, z = 0.3 m): the largest relative
+/// u_z difference `|u_z / u_z_3d − 1|` over the stations with x in `[a, b]`
+/// and their mirror images about the punch centre x = 0.25 m (the 3D top
+/// line, tests/data/block_calculix_top_u_z.csv, is negative at every
+/// station, so the ratio is defined everywhere).
+pub fn block_u_z_error(x: &[f64], u_z: &[f64], u_z_3d: &[f64], a: f64, b: f64) -> f64 {
+    assert!(x.len() == u_z.len() && x.len() == u_z_3d.len());
+    (0..x.len())
+        .filter(|&i| {
+            let x = x[i].min(0.5 - x[i]);
+            (a - 1e-9..=b + 1e-9).contains(&x)
+        })
+        .map(|i| (u_z[i] / u_z_3d[i] - 1.0).abs())
+        .fold(0.0, f64::max)
+}

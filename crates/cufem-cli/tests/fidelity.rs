@@ -268,13 +268,7 @@ impl TopLine {
     /// The largest relative u_z difference over the stations in `[a, b]` (and
     /// their mirror images about the punch centre x = 0.25 m).
     fn u_z_error(&self, a: f64, b: f64) -> f64 {
-        (0..self.x.len())
-            .filter(|&i| {
-                let x = self.x[i].min(0.5 - self.x[i]);
-                (a - 1e-9..=b + 1e-9).contains(&x)
-            })
-            .map(|i| (self.u_z[i] / self.u_z_3d[i] - 1.0).abs())
-            .fold(0.0, f64::max)
+        common::block_u_z_error(&self.x, &self.u_z, &self.u_z_3d, a, b)
     }
 
     /// Whether u_z sinks monotonically from the far field to x = 0.19 m and

@@ -20,18 +20,31 @@
 //! factor entry 8 (in both precisions: a single-precision factor shares
 //! those bytes with the rounded matrix, see `solver::linear`); a Gauss point two states (200 bytes each with three back-stresses) and a stress of 48;
 //! a DOF 64 (eight vectors); in a model with friction, the GMRES basis
-//! (`solver::krylov::GmresWork::vectors` of 8 bytes per equation); in a buckling or modal analysis
+//! (`solver::krylov::GmresWork::vectors` of 8 bytes per equation); where
+//! factors are reused, the conjugate gradients' vectors (5, and 9 more
+//! with rigid impactors: `analysis::sizes`); in a buckling or modal analysis
 //! the Lanczos basis (`solver::eigen::vectors`) and two value arrays of the pattern (K and B);
 //! in a transient analysis the mass (and damping) values on the pattern,
-//! its frames (at most one per time step) and every step's record (the
-//! history row, Newton's report and the energy row: `analysis::sizes`);
-//! the program itself about 8 MiB. Setup transients (node graph, METIS arrays, the
+//! the vectors of `dynamics` (8 of the inertia, 5 of the energy ledger's
+//! last forces and one more with interfaces, 2 per impulse) and its frames
+//! (at most one per time step); every increment's record (the history
+//! row, Newton's report twice — the stepping's and the run's — and the
+//! energy row: `analysis::sizes`), in vectors whose capacity doubles
+//! (`grown`) and blocks of the allocator's size (`chunk`); with ply
+//! damage two `DamageState`s, the crack bands and the volume per Gauss
+//! point (`damage::BodyDamage`) and 32 bytes per point per snapshot; per
+//! cohesive-interface point its states (`interfaces::Interfaces`) and 24
+//! bytes per snapshot; the program itself about 11 MiB. Setup transients (node graph, METIS arrays, the
 //! transposed pattern) and output transients (VTU arrays) are freed before
 //! the factor is allocated, so the larger of them is added, not both.
 
 /// Memory of the program itself (code, libraries, thread stacks, buffers),
-/// measured as the peak of the smallest examples.
-const BASELINE: u64 = 8 << 20;
+/// measured as the peak of the smallest run: a one-element model (one L4
+/// section element, one B2 axis element, 24 DOF, elastic, one increment)
+/// peaks at 10.9 MiB (`cufem run`, one and two threads), its estimated
+/// parts 16 KB; the resident code alone (the binary's text, the report's
+/// inlined libraries, libc and libm) is 10.1 MiB of the drop weights' peak.
+const BASELINE: u64 = 11 << 20;
 
 /// Counts that set the memory of an analysis.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -60,6 +73,9 @@ pub struct Sizes {
     pub(crate) vtu_points: u64,
     /// Vectors of the equations' size held by GMRES (a model with friction; 0 otherwise).
     pub(crate) krylov_vectors: u64,
+    /// Vectors of the equations' size held by the conjugate gradients that
+    /// reuse a factor (`solver.reuse_factorization`; 0 without).
+    pub(crate) pcg_vectors: u64,
     /// Vectors of the equations' size held by the eigensolver (buckling or
     /// modal analysis; 0 otherwise).
     pub(crate) eigen_vectors: u64,
@@ -73,9 +89,22 @@ pub struct Sizes {
     /// a transient analysis (without cutbacks), the planned increments of
     /// a static one.
     pub history_rows: u64,
-    /// Bytes of one increment's record (history row, Newton's report,
+    /// One increment's record the run keeps (history row, Newton's report,
     /// energy row).
-    pub(crate) history_row_bytes: u64,
+    pub(crate) history_row: RowBytes,
+    /// The increments of the longest load step: the stepping keeps its own
+    /// record of them (`solver::stepping::run_span`) until the step ends.
+    pub(crate) step_rows: u64,
+    /// One increment of the stepping's own record.
+    pub(crate) step_row: RowBytes,
+    /// Gauss points with a ply-damage history (all of them once a material
+    /// damages, `damage::BodyDamage`; 0 otherwise).
+    pub(crate) damage_points: u64,
+    /// Points of the cohesive interfaces (`interfaces::Interfaces`).
+    pub(crate) interface_points: u64,
+    /// Vectors of the DOFs' size a transient analysis holds beyond the
+    /// static ones (`dynamics::Inertia`, the energy ledger, the impulses).
+    pub(crate) transient_vectors: u64,
     /// True once `factor_nnz` comes from the symbolic factorization.
     pub exact: bool,
 }
@@ -107,6 +136,63 @@ const GAUSS_POINT_BYTES: u64 =
 const SNAPSHOT_POINT_BYTES: u64 =
     (std::mem::size_of::<crate::materials::PointState>() + std::mem::size_of::<crate::voigt::Voigt>()) as u64;
 
+/// Bytes per Gauss point of the ply-damage history (`damage::BodyDamage`):
+/// committed and trial states, the two crack-band lengths and the volume.
+const DAMAGE_POINT_BYTES: u64 = (2 * std::mem::size_of::<crate::materials::damage::DamageState>()
+    + std::mem::size_of::<[f64; 2]>()
+    + std::mem::size_of::<f64>()) as u64;
+
+/// Bytes per Gauss point of a snapshot's ply damage: each mode's damage
+/// (`damage::BodyDamage::shown`).
+const SNAPSHOT_DAMAGE_BYTES: u64 = std::mem::size_of::<[f64; 4]>() as u64;
+
+/// Bytes per cohesive-interface point (`interfaces::Interfaces`): the
+/// committed and trial states, whether it grows, the committed and trial
+/// viscous damage and over-stress with separation, the viscous work, the
+/// last separation and the booked dissipation.
+const INTERFACE_POINT_BYTES: u64 = (2 * std::mem::size_of::<crate::materials::cohesive::CohesiveState>()
+    + std::mem::size_of::<bool>()
+    + 2 * std::mem::size_of::<f64>()
+    + 2 * std::mem::size_of::<[f64; 6]>()
+    + std::mem::size_of::<f64>()
+    + std::mem::size_of::<[f64; 3]>()
+    + std::mem::size_of::<f64>()) as u64;
+
+/// Bytes per cohesive-interface point of a snapshot: its nodes and damage
+/// (`interfaces::PointDamage`).
+const SNAPSHOT_INTERFACE_BYTES: u64 = std::mem::size_of::<(usize, usize, f64)>() as u64;
+
+/// Bytes of a record kept for every converged increment.
+#[derive(Debug, Clone, Copy, Default, PartialEq)]
+pub(crate) struct RowBytes {
+    /// In vectors grown one record at a time (their capacity doubles:
+    /// [`grown`]).
+    pub(crate) vec: u64,
+    /// In the record's own blocks (names, resultants, Newton's residuals),
+    /// each as the allocator takes it ([`chunk`]).
+    pub(crate) heap: u64,
+}
+
+impl RowBytes {
+    /// Bytes of `rows` records.
+    fn of(&self, rows: u64) -> u64 {
+        grown(rows).saturating_mul(self.vec).saturating_add(rows.saturating_mul(self.heap))
+    }
+}
+
+/// Capacity of a `Vec` after `n` pushes from empty: Rust's `RawVec` starts
+/// at 4 (elements up to 1 KiB) and doubles.
+pub(crate) fn grown(n: u64) -> u64 {
+    if n == 0 { 0 } else { n.checked_next_power_of_two().unwrap_or(n).max(4) }
+}
+
+/// Bytes glibc's malloc takes for a block of `n` bytes (64-bit): `n` and
+/// an 8-byte header rounded up to 16, at least 32; none for an empty
+/// vector, which allocates nothing.
+pub(crate) fn chunk(n: u64) -> u64 {
+    if n == 0 { 0 } else { n.saturating_add(8 + 15).max(32) & !15 }
+}
+
 impl Sizes {
     /// The memory these counts take (see the module docs for the constants).
     pub fn memory(&self) -> MemoryEstimate {
@@ -121,18 +207,25 @@ impl Sizes {
             // committed and trial states, and the stress
             ("Gauss-point states and stresses", s.gauss_points.saturating_mul(GAUSS_POINT_BYTES)),
             ("vectors", s.dofs.saturating_mul(64)),
+            ("transient vectors", s.dofs.saturating_mul(8).saturating_mul(s.transient_vectors)),
+            ("ply-damage states", s.damage_points.saturating_mul(DAMAGE_POINT_BYTES)),
+            ("cohesive-interface states", s.interface_points.saturating_mul(INTERFACE_POINT_BYTES)),
             ("GMRES basis (friction)", s.equations.saturating_mul(8).saturating_mul(s.krylov_vectors)),
+            ("conjugate gradients (factor reuse)", s.equations.saturating_mul(8).saturating_mul(s.pcg_vectors)),
             ("mass and damping matrices", s.pattern_nnz.saturating_mul(8).saturating_mul(s.dynamic_matrices)),
-            // each: the displacements, and a committed state and a stress
-            // per Gauss point
+            // each: the displacements, a committed state and a stress per
+            // Gauss point, the ply damage of the damaging points and the
+            // interfaces' damage
             (
                 "step ends and frames",
                 s.dofs
                     .saturating_mul(8)
                     .saturating_add(s.gauss_points.saturating_mul(SNAPSHOT_POINT_BYTES))
+                    .saturating_add(s.damage_points.saturating_mul(SNAPSHOT_DAMAGE_BYTES))
+                    .saturating_add(s.interface_points.saturating_mul(SNAPSHOT_INTERFACE_BYTES))
                     .saturating_mul(s.snapshots),
             ),
-            ("history of the increments", s.history_rows.saturating_mul(s.history_row_bytes)),
+            ("history of the increments", s.history_row.of(s.history_rows).saturating_add(s.step_row.of(s.step_rows))),
             // the Lanczos basis, and the two matrices K and B (or M) copied
             // out of the tangent's pattern
             (
@@ -298,6 +391,18 @@ mod tests {
         } else {
             assert_eq!(available, None);
         }
+    }
+
+    #[test]
+    fn records_count_as_vectors_grow_and_malloc_allocates() {
+        // glibc malloc.c `request2size`: (n + SIZE_SZ + 15) & ~15, at least
+        // MINSIZE = 32 on 64-bit; a 12-byte name, a 136-byte contact
+        // resultant
+        assert_eq!([chunk(0), chunk(12), chunk(24), chunk(25), chunk(136)], [0, 32, 32, 48, 144]);
+        // RawVec: 4 first, then doubling (2,400 time steps in 4,096 slots)
+        assert_eq!([grown(0), grown(1), grown(5), grown(2400)], [0, 4, 8, 4096]);
+        let row = RowBytes { vec: 100, heap: 10 };
+        assert_eq!(row.of(2400), 4096 * 100 + 2400 * 10);
     }
 
     #[test]

@@ -114,6 +114,10 @@ pub struct StepEnd {
     /// Displacements, Gauss-point states and stresses (kept when the model
     /// has more than one step, for per-step output).
     pub fields: Option<StepFields>,
+    /// The ply damage then, each mode's per Gauss point (kept with the
+    /// fields; `None` without `[materials.damage]`): the step end's
+    /// `d_ft d_fc d_mt d_mc`.
+    pub damage: Option<Vec<[f64; 4]>>,
 }
 
 /// The fields of a [`StepEnd`].
@@ -186,6 +190,7 @@ impl Solution {
         let Some(end) = self.steps.get(k) else { return Ok(None) };
         let Some(fields) = &end.fields else { return Ok(None) };
         let mut s = self.with_fields(model, fields, end.lambda, (&end.reactions, &end.contacts))?;
+        s.damage = self.damage_then(end.damage.as_deref());
         s.error_estimate = self.error_history.of(super::state_errors::State::Step(k)).cloned();
         Ok(Some(s))
     }
@@ -197,12 +202,19 @@ impl Solution {
         let row = &self.history[frame.increment - 1];
         let mut s = self.with_fields(model, &frame.fields, row.lambda, (&row.reactions, &row.contacts))?;
         s.delamination = frame.delamination.clone();
-        s.damage = match (&frame.damage, &self.damage) {
-            (Some(shown), Some(end)) => Some(crate::damage::Damage::of_frame(shown, &end.volume)),
-            _ => None,
-        };
+        s.damage = self.damage_then(frame.damage.as_deref());
         s.error_estimate = self.error_history.of(super::state_errors::State::Frame(k)).cloned();
         Ok(s)
+    }
+
+    /// The ply damage of a step end or frame that kept `shown`
+    /// ([`crate::damage::BodyDamage::shown`]), with the run's volume
+    /// weights: its fields only (`None` if it kept none).
+    fn damage_then(&self, shown: Option<&[[f64; 4]]>) -> Option<crate::damage::Damage> {
+        match (shown, &self.damage) {
+            (Some(shown), Some(end)) => Some(crate::damage::Damage::of_frame(shown, &end.volume)),
+            _ => None,
+        }
     }
 
     /// This solution with the fields, λ and resultants of another moment

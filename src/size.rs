@@ -18,7 +18,8 @@
 //! tangent); an
 //! element-matrix entry 4 (scatter index); a
 //! factor entry 8 (in both precisions: a single-precision factor shares
-//! those bytes with the rounded matrix, see `solver::linear`); a Gauss point two states (200 bytes each with three back-stresses) and a stress of 48;
+//! those bytes with the rounded matrix, see `solver::linear`), and the
+//! factor's symbolic structure as `Cholesky::symbolic_bytes` counts it; a Gauss point two states (200 bytes each with three back-stresses) and a stress of 48;
 //! a DOF 64 (eight vectors); in a model with friction, the GMRES basis
 //! (`solver::krylov::GmresWork::vectors` of 8 bytes per equation); where
 //! factors are reused, the conjugate gradients' vectors (5, and 9 more
@@ -69,6 +70,8 @@ pub struct Sizes {
     pub factor_nnz: u64,
     /// Scratch of the numeric factorization (bytes).
     pub(crate) factor_scratch: u64,
+    /// The factor's symbolic structure (bytes; 0 until the symbolic analysis).
+    pub(crate) factor_symbolic: u64,
     /// Sample points of the VTU output.
     pub(crate) vtu_points: u64,
     /// Vectors of the equations' size held by GMRES (a model with friction; 0 otherwise).
@@ -203,7 +206,10 @@ impl Sizes {
             // index, and the assembled elastic tangent an assembly starts from
             ("tangent pattern and values", s.pattern_nnz.saturating_mul(28)),
             ("scatter maps", s.element_entries.saturating_mul(4)),
-            ("Cholesky factor", s.factor_nnz.saturating_mul(8).saturating_add(s.factor_scratch)),
+            (
+                "Cholesky factor",
+                s.factor_nnz.saturating_mul(8).saturating_add(s.factor_scratch).saturating_add(s.factor_symbolic),
+            ),
             // committed and trial states, and the stress
             ("Gauss-point states and stresses", s.gauss_points.saturating_mul(GAUSS_POINT_BYTES)),
             ("vectors", s.dofs.saturating_mul(64)),

@@ -44,6 +44,7 @@ pub(crate) fn completed(mut s: Sizes, numbering: &Numbering, solver: &Cholesky) 
     s.pattern_nnz = numbering.pattern.nnz() as u64;
     s.factor_nnz = solver.factor_nnz() as u64;
     s.factor_scratch = solver.scratch_bytes() as u64;
+    s.factor_symbolic = solver.symbolic_bytes() as u64;
     s.exact = true;
     s
 }

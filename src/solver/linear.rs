@@ -321,6 +321,21 @@ impl Cholesky {
         self.symbolic.len_val()
     }
 
+    /// Bytes of the symbolic structure kept with the factor: a simplicial
+    /// factor's row index per stored value and column pointers, or a
+    /// supernodal factor's row indices per supernode and its pointers (8
+    /// bytes each, `usize` indices).
+    pub(crate) fn symbolic_bytes(&self) -> usize {
+        let words = match self.symbolic.raw() {
+            SymbolicCholeskyRaw::Supernodal(sn) => {
+                let ptr = sn.col_ptr_for_row_idx();
+                ptr[sn.n_supernodes()] + 2 * ptr.len() + sn.col_ptr_for_val().len() + sn.supernode_begin().len()
+            }
+            SymbolicCholeskyRaw::Simplicial(sp) => sp.col_ptr()[sp.ncols()] + sp.col_ptr().len(),
+        };
+        8 * words
+    }
+
     /// Bytes of scratch memory the numeric factorization needs.
     pub(crate) fn scratch_bytes(&self) -> usize {
         self.req.unaligned_bytes_required()

@@ -135,7 +135,8 @@ fn drive(
         if stopped.is_none() {
             let StateReport { lambda, reactions, contacts, .. } = structure.report();
             let (name, increment) = (model.steps[0].name.clone(), recorder.increments.len());
-            step_ends.push(StepEnd { name, lambda, increment, reactions, contacts, fields: None, damage: None });
+            let (fields, damage, delamination) = (None, None, None);
+            step_ends.push(StepEnd { name, lambda, increment, reactions, contacts, fields, damage, delamination });
         }
         (path, failure) = (Some(outcome), stopped);
     }
@@ -146,8 +147,8 @@ fn drive(
         match stepping::run_span(structure, span, first, &step.settings, newton, recorder, &options.interrupt) {
             Ok(_) => {
                 let StateReport { reactions, contacts, .. } = structure.report();
-                // the fields (and the ply damage) of every step end of a
-                // history of several steps, for its per-step output
+                // the fields (and the ply and interface damage) of every
+                // step end of a history of several steps, for its per-step output
                 let kept = model.steps.len() > 1;
                 step_ends.push(StepEnd {
                     name: step.name.clone(),
@@ -157,6 +158,7 @@ fn drive(
                     contacts,
                     fields: kept.then(|| structure.fields()),
                     damage: kept.then(|| structure.elements().damage.shown()).flatten(),
+                    delamination: kept.then(|| structure.interfaces().delamination()).flatten(),
                 })
             }
             Err(mut e) => {

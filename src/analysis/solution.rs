@@ -118,6 +118,9 @@ pub struct StepEnd {
     /// fields; `None` without `[materials.damage]`): the step end's
     /// `d_ft d_fc d_mt d_mc`.
     pub damage: Option<Vec<[f64; 4]>>,
+    /// The cohesive interfaces then (kept with the fields; `None` without
+    /// cohesive interfaces): the step end's `d_interface` and delaminated area.
+    pub delamination: Option<crate::interfaces::Delamination>,
 }
 
 /// The fields of a [`StepEnd`].
@@ -191,6 +194,7 @@ impl Solution {
         let Some(fields) = &end.fields else { return Ok(None) };
         let mut s = self.with_fields(model, fields, end.lambda, (&end.reactions, &end.contacts))?;
         s.damage = self.damage_then(end.damage.as_deref());
+        s.delamination = end.delamination.clone();
         s.error_estimate = self.error_history.of(super::state_errors::State::Step(k)).cloned();
         Ok(Some(s))
     }

@@ -253,6 +253,37 @@ fn dcb_reloads_on_the_reduced_stiffness() {
     assert!(origin.0.abs() < 1e-12 && origin.1.abs() < 1e-6 * pm, "unloaded to {origin:?}");
 }
 
+/// The step ends of a run of several steps carry the interface damage then:
+/// the DCB opened to 4.5 mm (past its peak: the crack has started to run),
+/// then to 6 mm, in two `[[steps]]` of 0.05 mm increments. Each step's
+/// `result_<k>_<name>.vtu` holds `d_interface`; no node's damage falls from
+/// the first step end to the second and it grows at some (a step end
+/// showing the damage of the run's end, or the precrack's alone, fails), and
+/// the second is the run's end (`result.vtu`).
+#[test]
+fn dcb_step_ends_carry_the_interface_damage_as_it_grows() {
+    let text = example().replace("[solver]\nincrements = 200", "");
+    assert!(!text.contains("[solver]"));
+    let text = format!(
+        "{text}[[steps]]\nname = \"onset\"\nfactor = 0.45\nincrements = 90\n\n\
+         [[steps]]\nname = \"load\"\nfactor = 0.6\nincrements = 30\n"
+    );
+    let (out, _) = run_cli("step_ends", &text, true);
+    let [first, second, end] = ["result_1_onset.vtu", "result_2_load.vtu", "result.vtu"]
+        .map(|f| common::vtu_array(&out.join(f), Some("d_interface")));
+    assert!(first.iter().zip(&second).all(|(a, b)| b >= a), "a node's d_interface fell over the second step");
+    let grew = first.iter().zip(&second).filter(|(a, b)| *b > *a).count();
+    let cracked = |d: &[f64]| d.iter().filter(|&&v| v >= 1.0).count();
+    eprintln!(
+        "step ends: nodes at d = 1: {} then {}; {grew} nodes' damage grew over the second step",
+        cracked(&first),
+        cracked(&second)
+    );
+    assert!(grew > 0, "the first step end shows the damage of a later moment");
+    assert!(cracked(&second) > cracked(&first), "the crack did not run over the second step");
+    assert_eq!(second, end, "the second step end is the run's end");
+}
+
 /// The MMB example's specimen at G_II/G = `ratio` with toughnesses
 /// `(gic, giic)`: the lever is the one of the original toughness (the
 /// lever of the example), B = 25.4 mm, h = 1.56 mm, L = 51 mm.

@@ -240,7 +240,7 @@ impl<'m> Interfaces<'m> {
 /// the next (measured on examples/dcb.toml) converges on its secant.
 fn secant(law: &Cohesive, state: &CohesiveState, delta: [f64; 3]) -> [[f64; 3]; 3] {
     let soft = (1.0 - state.damage) * law.penalty;
-    let closing = if delta[2] < 0.0 { law.penalty } else { soft };
+    let closing = if law.is_closed(delta[2]) { law.penalty } else { soft };
     [[soft, 0.0, 0.0], [0.0, soft, 0.0], [0.0, 0.0, closing]]
 }
 

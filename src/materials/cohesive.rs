@@ -188,6 +188,21 @@ impl Cohesive {
         0.5 * self.penalty * e.onset * e.onset * e.last * d / (e.last - d * (e.last - e.onset))
     }
 
+    /// True if the opening `δ3` closes the faces (the full penalty carries
+    /// it): below `−10⁻⁹ N/K`, a billionth of the normal onset separation,
+    /// not merely below zero. A face pair brought back to zero opening (a
+    /// specimen unloaded) sits at `δ3 ≈ ±10⁻¹⁷⁰` m, round-off of zero; its
+    /// sign would pick the stiffness point by point, the next correction
+    /// would glue some of a delamination's faces and free others, and a
+    /// reopening would unzip the faces about one node row per correction.
+    /// A closure of physical size, `δ3 = −p/K` under a pressure `p` above
+    /// `10⁻⁹ N`, is closed; the traction's jump at the threshold,
+    /// `(K − (1 − d) K) 10⁻⁹ N/K ≤ 10⁻⁹ N`, is far below any residual
+    /// tolerance.
+    pub(crate) fn is_closed(&self, opening: f64) -> bool {
+        opening < -1e-9 * self.normal_strength / self.penalty
+    }
+
     /// Traction, tangent and trial state at the separation `δ` from the
     /// committed state `old`.
     pub fn update(&self, separation: [f64; 3], old: &CohesiveState) -> CohesiveResponse {
@@ -204,7 +219,7 @@ impl Cohesive {
         let growing = reached >= old.damage && reached > 0.0 && reached < 1.0;
         let damage = reached.max(old.damage);
         let soft = (1.0 - damage) * k;
-        let closing = if d3 < 0.0 { k } else { soft };
+        let closing = if self.is_closed(d3) { k } else { soft };
         let traction = [soft * d1, soft * d2, closing * d3];
         let mut tangent = [[0.0; 3]; 3];
         tangent[0][0] = soft;

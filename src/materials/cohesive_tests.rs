@@ -102,6 +102,23 @@ fn damage_never_heals_and_closed_faces_do_not_interpenetrate() {
     assert_eq!(shut.state, broken);
 }
 
+/// A fully separated pair at zero opening up to round-off (a specimen
+/// unloaded: `δ3 ≈ ±10⁻¹⁷⁰` m) has one stiffness whatever the sign of the
+/// round-off, the open one, so that a reopening frees the faces at once;
+/// a closure of physical size, a penetration of `10⁻¹²` m (a pressure of
+/// 1 kPa on this penalty), carries the full penalty.
+#[test]
+fn round_off_of_zero_opening_does_not_close_the_faces() {
+    let law = peek();
+    let broken = CohesiveState { damage: 1.0, dissipated: 969.0 };
+    for tiny in [-4e-173, 0.0, 3e-171, -1e-19] {
+        let r = law.update([0.0, 0.0, tiny], &broken);
+        assert_eq!((r.traction[2], r.tangent[2][2]), (0.0, 0.0), "δ3 = {tiny:e}");
+    }
+    let shut = law.update([0.0, 0.0, -1e-12], &broken);
+    assert_eq!((shut.traction[2], shut.tangent[2][2]), (-1e15 * 1e-12, 1e15));
+}
+
 #[test]
 fn the_tangent_is_the_derivative_of_the_traction() {
     let law = peek();

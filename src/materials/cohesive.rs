@@ -23,9 +23,10 @@
 //!   in closure `δ_m^f = 2 G_IIc/S`;
 //! * damage `d = δ_m^f (δ_m − δ_m⁰)/(δ_m (δ_m^f − δ_m⁰))`, never below the
 //!   committed one (irreversible), at most 1;
-//! * traction `t_i = (1 − d) K δ_i`, except a closing normal separation,
-//!   which carries the full penalty `t3 = K δ3` at any damage: the faces of
-//!   a delamination do not pass through each other.
+//! * traction `t_i = (1 − d) K δ_i`, except a closing normal separation
+//!   (`δ3 < −10⁻⁹ N/K`, `Cohesive::is_closed`: round-off of a zero opening
+//!   stays open), which carries the full penalty `t3 = K δ3` at any damage:
+//!   the faces of a delamination do not pass through each other.
 //!
 //! The tangent is `(1 − d) K I − K (∂d/∂δ_m) δ̂ δ̂ᵀ/δ_m` while the damage
 //! grows (`δ̂ = (δ1, δ2, ⟨δ3⟩)`), the secant otherwise, with the mixity held
@@ -196,9 +197,10 @@ impl Cohesive {
     /// would glue some of a delamination's faces and free others, and a
     /// reopening would unzip the faces about one node row per correction.
     /// A closure of physical size, `δ3 = −p/K` under a pressure `p` above
-    /// `10⁻⁹ N`, is closed; the traction's jump at the threshold,
-    /// `(K − (1 − d) K) 10⁻⁹ N/K ≤ 10⁻⁹ N`, is far below any residual
-    /// tolerance.
+    /// `10⁻⁹ N` (`N` the normal strength: 0.08 Pa for AS4/PEEK), is closed;
+    /// the traction's jump at the threshold, `d K · 10⁻⁹ N/K ≤ 10⁻⁹ N`, is far
+    /// below any residual tolerance. Tested in `cohesive_tests.rs`
+    /// (`round_off_of_zero_opening_does_not_close_the_faces`).
     pub(crate) fn is_closed(&self, opening: f64) -> bool {
         opening < -1e-9 * self.normal_strength / self.penalty
     }

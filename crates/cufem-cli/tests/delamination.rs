@@ -254,9 +254,12 @@ fn dcb_reloads_on_the_reduced_stiffness() {
     // At zero opening the precrack's faces sit at round-off of zero: the
     // first reopening increment frees them at once (with the sign of the
     // round-off choosing each face's stiffness: 18 corrections, about one
-    // node row each, as a beam lifting off a rigid foundation). Known limit
-    // (docs/limitations.md): the increment closing to zero opening converges
-    // only as its forces vanish with it.
+    // node row each, as a beam lifting off a rigid foundation). Closing to
+    // zero opening, every load and reaction goes to zero with the residual:
+    // measured against its own vanishing forces that increment took 17
+    // corrections (each shrinking the displacements a billion times); the
+    // force scale's floor from the run's history (`ZERO_FLUX`,
+    // src/analysis/structure/evaluation.rs) ends it in one or two.
     let iterations = &common::csv_columns(&out.join("history.csv"))["iterations"];
     assert_eq!(iterations.len(), lambda.len());
     let (closing, reopening) = (iterations[turn + 10], iterations[turn + 11]);
@@ -264,7 +267,8 @@ fn dcb_reloads_on_the_reduced_stiffness() {
         "reload: corrections of the increment closing to zero opening {closing}, of the first reopening one {reopening}"
     );
     assert!(reopening <= 2.0, "the first reopening increment took {reopening} corrections");
-    common::known_limit("dcb.closing_corrections", closing, "", 10.0, 24.0, "the increment closing to zero opening");
+    common::figure("dcb.closing_corrections", closing, "", "at most 2: the increment closing to zero opening");
+    assert!(closing <= 2.0, "the increment closing to zero opening took {closing} corrections");
 }
 
 /// The step ends of a run of several steps carry the interface damage then:

@@ -33,6 +33,43 @@ use crate::solver::newton::Evaluation;
 /// factorizations.
 pub(crate) const LARGE_ROTATION_FORCING: f64 = 1e-3;
 
+/// The share of the run's largest force scale below which a state counts
+/// as unloaded ("zero flux"): its residual is then measured against that
+/// share of the largest force, not against its own vanishing forces.
+/// Abaqus's `ε_ℓ = 10⁻⁵` of its time-averaged flux (Abaqus Analysis User's
+/// Guide, "Convergence criteria for nonlinear problems", zero flux).
+pub(crate) const ZERO_FLUX: f64 = 1e-5;
+
+/// The force scale Newton's relative residual divides by, floored by the
+/// history of the run: `max(F, ZERO_FLUX · F_max)` with `F_max` the largest
+/// force scale of a converged increment so far. Where every load, reaction
+/// and contact force goes to zero (a specimen unloaded to zero opening),
+/// `F` vanishes with the residual, and without the floor Newton meets its
+/// relative tolerance only once the displacements reach round-off (the
+/// double cantilever beam closed to zero opening: 17 corrections, each
+/// shrinking the displacements about a billion times; with it one or two,
+/// `crates/cufem-cli/tests/delamination.rs`).
+#[derive(Debug, Clone, Copy, Default)]
+pub(super) struct ForceScale {
+    /// The force scale of the last evaluation (N), before the floor.
+    last: f64,
+    /// The largest one of a converged increment (N).
+    largest: f64,
+}
+
+impl ForceScale {
+    /// Records the force scale `scale` of an evaluation and returns it floored.
+    fn floored(&mut self, scale: f64) -> f64 {
+        self.last = scale;
+        scale.max(ZERO_FLUX * self.largest)
+    }
+
+    /// The last evaluation's state converged: its force scale joins the history.
+    pub(super) fn commit(&mut self) {
+        self.largest = self.largest.max(self.last);
+    }
+}
+
 impl Structure<'_> {
     /// Evaluates every part at the present state: the residual, and the
     /// tangent if `wanted` (else the elements leave theirs out).
@@ -105,7 +142,7 @@ impl Structure<'_> {
         let (driven_res2, driven_target2) =
             self.force.evaluate(&self.parts.contacts, eq, &self.elimination, self.state.lambda);
         res2 += driven_res2;
-        let scale = scale.max(reac2.sqrt()).max(driven_target2.sqrt());
+        let scale = self.force_scale.floored(scale.max(reac2.sqrt()).max(driven_target2.sqrt()));
         let settled = changes == 0 && off <= 1e-12 * size && lever_gap <= 1e-12;
         let r = if scale > 0.0 { res2.sqrt() / scale } else { 1.0 };
         self.system.forcing = if settled { r } else { r.min(UNSETTLED_FORCING) };

@@ -25,7 +25,7 @@ G = dict(ft=12.5e3, fc=12.5e3, mt=1.0e3, mc=1.0e3)
 
 
 def model(axis=60, per_ply=1, wide=1, steps=2400, duration=6e-3, mass=0.1, speed=4.0, viscosity=1e-6,
-          toughness=G, strengths=T300, element="L4", forces="implicit", supports="lines", span=(0.0, 0.05), solver=""):
+          toughness=G, strengths=T300, element="L4", forces="implicit", supports="lines", span=(0.0, 0.05), solver="", newmark=""):
     plies = ",\n".join('  { thickness = 0.0005, material = "cfrp", angle = %g, elements = %d }' % (a, per_ply)
                        for a in (0, 90, 90, 0))
     supports_text = support_text(supports, span)
@@ -37,6 +37,7 @@ def model(axis=60, per_ply=1, wide=1, steps=2400, duration=6e-3, mass=0.1, speed
 type = "transient"
 interface_forces = "implicit"
 ply_damage_forces = "{forces}"
+{newmark}
 
 [solver]
 max_increments = 200000
@@ -106,6 +107,12 @@ CASES["p15_visc1e-5"] = dict(steps=600, duration=1.5e-3, viscosity=1e-5)
 CASES["p15_n1200"] = dict(steps=1200, duration=1.5e-3)
 CASES["p15_ls"] = dict(steps=600, duration=1.5e-3, solver="line_search = true")
 CASES["p15_ls_rollers"] = dict(steps=600, duration=1.5e-3, solver="line_search = true", supports="rollers", span=(0.005, 0.045))
+
+# Newmark's numerical damping (gamma > 1/2, beta = (gamma + 1/2)^2/4) against the step-to-step chatter of
+# closed cracks and touching delaminated faces
+G52 = 'newmark = { beta = 0.2601, gamma = 0.52 }'
+CASES["p15_g52"] = dict(steps=600, duration=1.5e-3, newmark=G52)
+CASES["p15_g52_rollers"] = dict(steps=600, duration=1.5e-3, newmark=G52, supports="rollers", span=(0.005, 0.045))
 
 HEAD = study.HEAD + ",FT_J,FC_J,MT_J,MC_J,reduced,scheme_J,rest_J"
 

@@ -421,3 +421,30 @@ fn separated_plies_that_close_again_create_no_energy_with_the_discrete_gradient(
     // rest, 2.73)
     assert!(iterations <= 8 * steps, "{iterations} Newton iterations over {steps} steps in the hold");
 }
+
+/// The history records the delaminated area of every converged time step
+/// (`HistoryRow::delaminated_m2`, `history.csv` `delaminated_area`) and a
+/// transient run plots it against time (`delamination.png`): on the pulled
+/// stack it starts at zero, never falls, and ends at the whole interface,
+/// `0.004 × 0.02` m², the summary's area (every point fails, above).
+#[test]
+fn the_history_holds_the_delaminated_area_and_its_plot_is_written() {
+    let model = Model::parse(PULLED_STACK).unwrap();
+    let solution = cufem::run(&model, &RunOptions::default(), &mut Silent).unwrap();
+    assert!(solution.failure.is_none(), "{:?}", solution.failure);
+    let area: Vec<f64> = solution.history.iter().map(|r| r.delaminated_m2.expect("an interface's area")).collect();
+    assert_eq!(area[0], 0.0, "the first step's area");
+    assert!(area.windows(2).all(|w| w[1] >= w[0]), "the area fell: {area:?}");
+    let whole = 0.004 * 0.02;
+    let end = solution.delamination.as_ref().unwrap().summary().area_m2;
+    assert!((area[area.len() - 1] / whole - 1.0).abs() < 1e-9, "last area {} m²", area[area.len() - 1]);
+    assert_eq!(area[area.len() - 1], end, "the summary's area");
+    assert!(solution.history.iter().all(|r| r.damaged_volume_m3.is_none()), "no ply damages here");
+    let dir = std::env::temp_dir().join(format!("cufem_delamination_plot_{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let written = cufem::write_results(&model, &solution, &dir).unwrap();
+    assert!(written.iter().any(|f| f.ends_with("delamination.png")), "files {written:?}");
+    let header = std::fs::read_to_string(dir.join("history.csv")).unwrap();
+    assert!(header.lines().next().unwrap().split(',').any(|c| c == "delaminated_area"), "history.csv's header");
+    std::fs::remove_dir_all(&dir).unwrap();
+}

@@ -99,6 +99,8 @@ impl Observer<Structure<'_>> for Recorder<'_> {
             levers,
             probes: probe_displacements(self.model, s.displacements()),
             negative_pivots,
+            delaminated_m2: s.interfaces().delaminated_area(),
+            damaged_volume_m3: s.elements().damage.damaged_volume(),
         });
         self.increments.push(inc.clone());
         self.frame(s, inc);

@@ -156,6 +156,13 @@ pub struct HistoryRow {
     /// Negative pivots of the last factorized tangent
     /// (`Structure::negative_pivots`).
     pub negative_pivots: Option<usize>,
+    /// The delaminated area of every cohesive interface together (m²; the
+    /// points with d = 1), `None` in a model without interfaces.
+    pub delaminated_m2: Option<f64>,
+    /// The volume of the ply points where each mode's damage passed ½
+    /// (m³, in [`crate::materials::damage::MODES`] order), `None` in a model
+    /// whose materials do not damage.
+    pub damaged_volume_m3: Option<[f64; 4]>,
 }
 
 impl HistoryRow {

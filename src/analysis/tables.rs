@@ -345,6 +345,16 @@ pub(crate) fn increment_history(solution: &Solution) -> Table {
     let mut t = increments(&rows, "history".into());
     t.push("plastic_points", "", Values::Count(rows.iter().map(|r| r.plastic_points).collect()));
     t.push("negative_pivots", "", Values::OptionalCount(rows.iter().map(|r| r.negative_pivots).collect()));
+    // the extent of delamination and ply damage, in a model that has them
+    if rows.iter().any(|r| r.delaminated_m2.is_some()) {
+        t.push("delaminated_area", "m²", Values::Optional(rows.iter().map(|r| r.delaminated_m2).collect()));
+    }
+    if rows.iter().any(|r| r.damaged_volume_m3.is_some()) {
+        for (k, mode) in crate::materials::damage::MODES.iter().enumerate() {
+            let v = rows.iter().map(|r| r.damaged_volume_m3.map(|v| v[k])).collect();
+            t.push(format!("damaged_volume_{mode}"), "m³", Values::Optional(v));
+        }
+    }
     t
 }
 

@@ -126,6 +126,24 @@ impl BodyDamage {
         (!self.committed.is_empty()).then(|| self.committed.iter().map(|s| s.viscous).collect())
     }
 
+    /// The volume of the committed points where each mode's damage (the one
+    /// the stiffness takes) passed ½ (m³), `None` when no material damages:
+    /// the history's `damaged_volume_*`, as `summary.json`'s
+    /// `damaged_volume_m3` at the end ([`Damage::summary`]).
+    pub(crate) fn damaged_volume(&self) -> Option<[f64; 4]> {
+        (!self.committed.is_empty()).then(|| {
+            let mut out = [0.0; 4];
+            for (s, &w) in self.committed.iter().zip(&self.volume) {
+                for (o, &d) in out.iter_mut().zip(&s.viscous) {
+                    if d > 0.5 {
+                        *o += w;
+                    }
+                }
+            }
+            out
+        })
+    }
+
     /// What a run keeps of it: `None` when no material damages.
     pub(crate) fn into_result(self) -> Option<Damage> {
         (!self.committed.is_empty()).then_some(Damage { states: self.committed, volume: self.volume })

@@ -8,7 +8,8 @@
 //! | `line_<name>.csv` | fields sampled along each `[[lines]]` entry |
 //! | `history_<name>.csv` | per increment: reaction of a constraint set, or force of a contact |
 //! | `history_probes.csv` | per increment: the displacement of every probe |
-//! | `history.csv` | per increment: load factor, iterations, plastic points, negative pivots of the tangent |
+//! | `history.csv` | per increment: load factor, iterations, plastic points, negative pivots of the tangent; with cohesive interfaces the delaminated area, with ply damage the volume past half damage per mode |
+//! | `delamination.png` | transient with cohesive interfaces: the delaminated area against time |
 //! | `frame_<k>.vtu`, `frames.pvd` | transient with `analysis.output_interval`: the fields at every output time, and their ParaView time series |
 //! | `energy.csv`, `energy.png` | transient: per converged time step, the kinetic energy, the work of the internal, damping, applied, contact and support forces, and their balance |
 //! | `mode_<k>.vtu` | buckling and modal: the shape of mode k as the displacement field |
@@ -21,6 +22,7 @@
 //! | `report.html` | the run's self-contained page: text, tables, warnings, charts, 3D view (`output.report`); `cufem verify` adds its comparison ([`add_section`]) |
 
 mod csv;
+mod delamination;
 mod energy;
 mod error_history;
 mod html;
@@ -132,6 +134,7 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
     written.extend(csv::write_tables(&modes, dir)?);
     written.extend(write_modes(model, solution, dir, shown.as_mut())?);
     written.extend(energy::write_energy(model, solution, dir)?);
+    written.extend(delamination::write_delamination_plot(model, solution, dir)?);
     if let Some(a) = &solution.adapt {
         // the adapted mesh as a model file (`cufem run adapted.toml` solves it again)
         let path = dir.join("adapted.toml");

@@ -285,3 +285,31 @@ fn a_thrown_strip_cracks_without_creating_energy_under_the_end_of_step_stress() 
         assert!((0.9..=1.0).contains(&ratio), "{}: release {} J against the law's {} J", MODES[i], per_mode[i], law[i]);
     }
 }
+
+/// `history.csv` records, per converged time step, the volume of the ply
+/// points past half damage in each mode (`damaged_volume_<mode>`, m³): on
+/// the strip pulled in time it starts at zero, never falls (the damage the
+/// stiffness takes never heals), grows in fibre tension (the crack), and
+/// its last row is `summary.json`'s `damage.damaged_volume_m3`. A model
+/// without interfaces has no `delaminated_area` column and no
+/// `delamination.png`.
+#[test]
+fn the_history_holds_the_damaged_volume_of_each_mode() {
+    let (out, summary) = run_cli("history_volume", &pulled_in_time(150, "0.0"));
+    let c = common::csv_columns(&out.join("history.csv"));
+    assert!(!c.contains_key("delaminated_area"), "no interface here");
+    assert!(!out.join("delamination.png").exists(), "no interface here");
+    for mode in MODES {
+        let v = &c[&format!("damaged_volume_{mode}")];
+        assert_eq!(v[0], 0.0, "{mode}: the first step's volume");
+        assert!(v.windows(2).all(|w| w[1] >= w[0]), "{mode}: the volume fell");
+        let end = summary["damage"]["damaged_volume_m3"][mode].as_f64().unwrap();
+        assert!(
+            (v[v.len() - 1] - end).abs() <= 1e-12 * end.abs(),
+            "{mode}: last row {} m³, summary {end} m³",
+            v[v.len() - 1]
+        );
+    }
+    let ft = &c["damaged_volume_fibre_tension"];
+    assert!(ft[ft.len() - 1] > 0.0, "the crack's volume");
+}

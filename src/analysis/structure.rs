@@ -95,8 +95,6 @@ pub struct Structure<'m> {
     system: LinearSystem,
     /// Timings, memory and pivots.
     report: Report,
-    /// The force scale's history (the floor of the relative residual).
-    force_scale: evaluation::ForceScale,
 }
 
 /// The structure's state as the results record it, at the present
@@ -188,7 +186,6 @@ impl<'m> Structure<'m> {
             levers: Levers::new(loading.levers, loading.steps, &assembler.dofs.eq),
             system: LinearSystem::new(assembler, chol, reuse, friction, mesh.n_dofs()),
             report: Report { timings, memory, pivots: None },
-            force_scale: Default::default(),
             loading,
             settings,
             constraints,

@@ -142,7 +142,7 @@ impl Structure<'_> {
         let (driven_res2, driven_target2) =
             self.force.evaluate(&self.parts.contacts, eq, &self.elimination, self.state.lambda);
         res2 += driven_res2;
-        let scale = self.force_scale.floored(scale.max(reac2.sqrt()).max(driven_target2.sqrt()));
+        let scale = self.system.force_scale.floored(scale.max(reac2.sqrt()).max(driven_target2.sqrt()));
         let settled = changes == 0 && off <= 1e-12 * size && lever_gap <= 1e-12;
         let r = if scale > 0.0 { res2.sqrt() / scale } else { 1.0 };
         self.system.forcing = if settled { r } else { r.min(UNSETTLED_FORCING) };

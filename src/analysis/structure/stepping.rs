@@ -94,7 +94,7 @@ impl Incremental for Structure<'_> {
         }
         self.force.commit(self.state.lambda);
         self.levers.commit();
-        self.force_scale.commit();
+        self.system.force_scale.commit();
     }
 
     fn restore(&mut self) {

@@ -31,6 +31,9 @@ pub(crate) struct LinearSystem {
     /// (`structure/evaluation.rs`): `tangent` is not that of the present
     /// state.
     pub(crate) tangent_stale: bool,
+    /// The residual's force scale and its history (the floor of the
+    /// relative residual, `structure/evaluation.rs`).
+    pub(super) force_scale: super::evaluation::ForceScale,
 }
 
 impl LinearSystem {
@@ -45,6 +48,7 @@ impl LinearSystem {
             solver: ReusingSolver::new(chol, reuse),
             forcing: 1.0,
             tangent_stale: false,
+            force_scale: Default::default(),
         }
     }
 

@@ -240,11 +240,16 @@ pub fn sampled_line(model: &Model, view: &FieldView<'_>, k: usize) -> Table {
     t
 }
 
-/// `increment, lambda, iterations` of the rows kept.
-fn increments(rows: &[&super::HistoryRow], name: String) -> Table {
+/// `increment, lambda, iterations` of the rows kept, and in a transient
+/// run of `model` the time of each (`time`, s, after `lambda`: what the
+/// report's charts of a transient run are drawn against).
+fn increments(model: &Model, rows: &[&super::HistoryRow], name: String) -> Table {
     let mut t = Table::new(name);
     t.push("increment", "", Values::Count(rows.iter().map(|r| r.increment).collect()));
     t.push("lambda", "", Values::Real(rows.iter().map(|r| r.lambda).collect()));
+    if let Some(clock) = &model.transient {
+        t.push("time", "s", Values::Real(rows.iter().map(|r| clock.time(r.lambda)).collect()));
+    }
     t.push("iterations", "", Values::Count(rows.iter().map(|r| r.iterations).collect()));
     t
 }
@@ -256,7 +261,7 @@ fn increments(rows: &[&super::HistoryRow], name: String) -> Table {
 pub fn constraint_history(model: &Model, solution: &Solution, ci: usize) -> Table {
     let c = &model.constraints[ci];
     let rows: Vec<_> = solution.history.iter().collect();
-    let mut t = increments(&rows, format!("history_{}", c.name));
+    let mut t = increments(model, &rows, format!("history_{}", c.name));
     for (k, axis) in ["x", "y", "z"].iter().enumerate() {
         let u = rows
             .iter()
@@ -287,7 +292,7 @@ pub fn contact_history(model: &Model, solution: &Solution, set: &ContactSet) -> 
     let is_indenter = model.indenters.iter().any(|i| &i.name == name);
     let (rows, contacts): (Vec<_>, Vec<_>) =
         solution.history.iter().filter_map(|r| r.contact(name).map(|c| (r, c))).unzip();
-    let mut t = increments(&rows, format!("history_{name}"));
+    let mut t = increments(model, &rows, format!("history_{name}"));
     for (k, axis) in ["x", "y", "z"].iter().enumerate() {
         let d = contacts.iter().map(|c| is_indenter.then_some(c.displacement[k])).collect();
         t.push(format!("d_{axis}"), "m", Values::Optional(d));
@@ -311,7 +316,7 @@ pub fn contact_history(model: &Model, solution: &Solution, set: &ContactSet) -> 
 pub(crate) fn lever_history(model: &Model, solution: &Solution, li: usize) -> Table {
     let lever = &model.levers[li];
     let rows: Vec<_> = solution.history.iter().collect();
-    let mut t = increments(&rows, format!("history_{}", lever.name));
+    let mut t = increments(model, &rows, format!("history_{}", lever.name));
     let at = |r: &super::HistoryRow| -> Option<LeverResultant> { r.levers.get(li).cloned() };
     let target = rows.iter().map(|r| steps::factor(&model.steps, Item::Lever(li), r.lambda) * lever.value).collect();
     t.push("target", "m", Values::Real(target));
@@ -328,7 +333,7 @@ pub(crate) fn lever_history(model: &Model, solution: &Solution, li: usize) -> Ta
 /// (columns `<probe>.u_x`, `<probe>.u_y`, `<probe>.u_z`).
 pub fn probe_history(model: &Model, solution: &Solution) -> Table {
     let rows: Vec<_> = solution.history.iter().collect();
-    let mut t = increments(&rows, "history_probes".into());
+    let mut t = increments(model, &rows, "history_probes".into());
     for (p, probe) in model.probes.iter().enumerate() {
         let u: Vec<[f64; 3]> = rows.iter().map(|r| r.probes[p]).collect();
         t.push_xyz(&format!("{}.u_", probe.name), "m", &u);
@@ -340,9 +345,9 @@ pub fn probe_history(model: &Model, solution: &Solution) -> Table {
 /// plastic Gauss points and the negative pivots of the last factorized
 /// tangent (absent when not known), which count the tangent's negative
 /// eigenvalues: a change marks a limit or bifurcation point.
-pub(crate) fn increment_history(solution: &Solution) -> Table {
+pub(crate) fn increment_history(model: &Model, solution: &Solution) -> Table {
     let rows: Vec<_> = solution.history.iter().collect();
-    let mut t = increments(&rows, "history".into());
+    let mut t = increments(model, &rows, "history".into());
     t.push("plastic_points", "", Values::Count(rows.iter().map(|r| r.plastic_points).collect()));
     t.push("negative_pivots", "", Values::OptionalCount(rows.iter().map(|r| r.negative_pivots).collect()));
     // the extent of delamination and ply damage, in a model that has them
@@ -369,7 +374,7 @@ pub fn histories(model: &Model, solution: &Solution) -> Vec<Table> {
         out.push(probe_history(model, solution));
     }
     if !solution.history.is_empty() {
-        out.push(increment_history(solution));
+        out.push(increment_history(model, solution));
     }
     out
 }

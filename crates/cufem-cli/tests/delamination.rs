@@ -260,7 +260,9 @@ fn dcb_reloads_on_the_reduced_stiffness() {
     // corrections (each shrinking the displacements a billion times); the
     // force scale's floor from the run's history (`ZERO_FLUX`,
     // src/analysis/structure/evaluation.rs) ends it in one or two.
-    let iterations = &common::csv_columns(&out.join("history.csv"))["iterations"];
+    let history = common::csv_columns(&out.join("history.csv"));
+    assert!(!history.contains_key("time"), "a static run's history has no time");
+    let iterations = &history["iterations"];
     assert_eq!(iterations.len(), lambda.len());
     let (closing, reopening) = (iterations[turn + 10], iterations[turn + 11]);
     eprintln!(

@@ -292,7 +292,8 @@ fn a_thrown_strip_cracks_without_creating_energy_under_the_end_of_step_stress() 
 /// stiffness takes never heals), grows in fibre tension (the crack), and
 /// its last row is `summary.json`'s `damage.damaged_volume_m3`. A model
 /// without interfaces has no `delaminated_area` column and no
-/// `delamination.png`.
+/// `delamination.png`. Its histories have the time of each step (`time`,
+/// after `lambda`).
 #[test]
 fn the_history_holds_the_damaged_volume_of_each_mode() {
     let (out, summary) = run_cli("history_volume", &pulled_in_time(150, "0.0"));
@@ -312,4 +313,18 @@ fn the_history_holds_the_damaged_volume_of_each_mode() {
     }
     let ft = &c["damaged_volume_fibre_tension"];
     assert!(ft[ft.len() - 1] > 0.0, "the crack's volume");
+    // a transient run's histories carry the time of each step: λ times the
+    // one step's duration, 1e-4 s
+    for (t, l) in c["time"].iter().zip(&c["lambda"]) {
+        assert!((t - 1e-4 * l).abs() <= 1e-12 * 1e-4, "time {t} s at λ = {l}");
+    }
+    // and report.html charts them against it, λ left out
+    let html = std::fs::read_to_string(out.join("report.html")).unwrap();
+    let start = html.find("id=\"cufem-data\">").unwrap() + "id=\"cufem-data\">".len();
+    let end = start + html[start..].find("</script>").unwrap();
+    let data: Value = serde_json::from_str(&html[start..end]).unwrap();
+    let charts = data["charts"].as_array().unwrap();
+    let history = charts.iter().find(|c| c["name"] == "history").expect("the history chart");
+    assert!(history["x"].as_str().unwrap().starts_with("time"), "history charted against {}", history["x"]);
+    assert!(!history["series"].as_array().unwrap().iter().any(|s| s.as_str().unwrap().starts_with("lambda")));
 }

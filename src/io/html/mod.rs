@@ -253,8 +253,8 @@ fn quantize(values: &[f32]) -> (String, f64, f64) {
 }
 
 /// A table as a chart: `x` against every other numeric column but the
-/// increment (and the counts, but in `history`); `None` without rows or
-/// without the column `x`.
+/// increment, λ when drawn against time (and the counts, but in `history`);
+/// `None` without rows or without the column `x`.
 fn chart(table: &Table, x: &str, title: &str) -> Option<Value> {
     let xc = table.column(x).filter(|_| table.rows() > 0)?;
     let mut series = Vec::new();
@@ -262,6 +262,7 @@ fn chart(table: &Table, x: &str, title: &str) -> Option<Value> {
     for c in &table.columns {
         let skip = c.name == x
             || c.name == "increment"
+            || (x == "time" && c.name == "lambda")
             || matches!(c.values, Values::Text(_))
             || (table.name != "history" && COUNTS.contains(&c.name.as_str()));
         if !skip {
@@ -284,7 +285,10 @@ fn charts(tables: &[&Table]) -> Vec<Value> {
                 "modes" | "buckling" => chart(t, "mode", n),
                 "error_history" => chart(t, if t.column("time").is_some() { "time" } else { "lambda" }, n),
                 _ if n.starts_with("line_") => chart(t, "s", &format!("line {}", &n[5..])),
-                _ if n.starts_with("history") => chart(t, "lambda", n),
+                // a transient run's histories against time (s), a static one's against λ
+                _ if n.starts_with("history") => {
+                    chart(t, if t.column("time").is_some() { "time" } else { "lambda" }, n)
+                }
                 _ => None,
             }
         })

@@ -18,19 +18,17 @@ def chart_columns(stem: str, table) -> Tuple[str, list]:
     """The x column and the series of the chart of table `stem`, as
     ``report.html`` chooses them: ``energy`` against ``time_s``, ``modes``
     and ``buckling`` against ``mode``, ``line_*`` against ``s``,
-    ``history*`` against ``lambda``, ``error_history`` against ``time``
-    in a transient run and ``lambda`` otherwise; every other numeric column a series
-    but ``increment`` (and the counts, but in ``history``). ValueError for
-    a table without a chart (``contact_*``)."""
+    ``history*`` and ``error_history`` against ``time`` in a transient run
+    and ``lambda`` otherwise; every other numeric column a series but
+    ``increment``, ``lambda`` when against ``time`` (and the counts, but in
+    ``history``). ValueError for a table without a chart (``contact_*``)."""
     if stem == "energy":
         x = "time_s"
     elif stem in ("modes", "buckling"):
         x = "mode"
     elif stem.startswith("line_"):
         x = "s"
-    elif stem.startswith("history"):
-        x = "lambda"
-    elif stem == "error_history":
+    elif stem.startswith("history") or stem == "error_history":
         x = "time" if "time" in table.columns else "lambda"
     else:
         raise ValueError(
@@ -40,6 +38,7 @@ def chart_columns(stem: str, table) -> Tuple[str, list]:
         c
         for c in table.columns
         if c not in (x, "increment")
+        and not (x == "time" and c == "lambda")
         and table[c].dtype.kind in "iuf"
         and (stem == "history" or c not in COUNTS)
     ]

@@ -160,7 +160,7 @@ class Results:
     def plot_table(self, stem: str, columns=None, ax=None):
         """The chart ``report.html`` draws of table `stem` (one of
         :meth:`table_names` but ``contact_*``) with matplotlib: histories
-        against ``lambda``, lines against ``s``, the energy against
+        against ``lambda`` (``time`` in a transient run), lines against ``s``, the energy against
         ``time_s``, modes against ``mode``; every measured column a line
         labelled by its CSV name, or only `columns`. Drawn into `ax`, or a
         new figure's; returns the Axes. Needs matplotlib (the ``plot``
@@ -171,7 +171,8 @@ class Results:
 
     def plot_history(self, name: Optional[str] = None, columns=None, ax=None):
         """:meth:`plot_table` of ``history_<name>`` (reactions, contact
-        forces, probe displacements against ``lambda``) or, without a name,
+        forces, probe displacements against ``lambda``, or ``time`` in a
+        transient run) or, without a name,
         of ``history`` (iterations, plastic points, negative pivots)."""
         return self.plot_table("history" if name is None else f"history_{name}", columns, ax)
 

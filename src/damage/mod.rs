@@ -131,17 +131,7 @@ impl BodyDamage {
     /// the history's `damaged_volume_*`, as `summary.json`'s
     /// `damaged_volume_m3` at the end ([`Damage::summary`]).
     pub(crate) fn damaged_volume(&self) -> Option<[f64; 4]> {
-        (!self.committed.is_empty()).then(|| {
-            let mut out = [0.0; 4];
-            for (s, &w) in self.committed.iter().zip(&self.volume) {
-                for (o, &d) in out.iter_mut().zip(&s.viscous) {
-                    if d > 0.5 {
-                        *o += w;
-                    }
-                }
-            }
-            out
-        })
+        (!self.committed.is_empty()).then(|| volume_above(&self.committed, &self.volume, 0.5))
     }
 
     /// What a run keeps of it: `None` when no material damages.
@@ -157,6 +147,20 @@ fn dissipated(states: &[DamageState], volume: &[f64]) -> [f64; 4] {
     for (s, &w) in states.iter().zip(volume) {
         for (o, g) in out.iter_mut().zip(&s.dissipated) {
             *o += w * g;
+        }
+    }
+    out
+}
+
+/// `Σ_q w_q` per mode over the states `states` (volume weights `volume`,
+/// m³) whose damage the stiffness takes exceeds `level`.
+fn volume_above(states: &[DamageState], volume: &[f64], level: f64) -> [f64; 4] {
+    let mut out = [0.0; 4];
+    for (s, &w) in states.iter().zip(volume) {
+        for (o, &d) in out.iter_mut().zip(&s.viscous) {
+            if d > level {
+                *o += w;
+            }
         }
     }
     out
@@ -236,17 +240,13 @@ impl Damage {
     /// Its `summary.json` entry.
     pub fn summary(&self) -> DamageSummary {
         let dissipated = dissipated(&self.states, &self.volume);
-        let (mut initiated, mut damaged, mut largest) = ([0.0; 4], [0.0; 4], [0.0f64; 4]);
+        let initiated = volume_above(&self.states, &self.volume, 0.0);
+        let damaged = volume_above(&self.states, &self.volume, 0.5);
+        let mut largest = [0.0f64; 4];
         let mut reduced = 0;
-        for (s, &w) in self.states.iter().zip(&self.volume) {
-            for i in 0..4 {
-                if s.viscous[i] > 0.0 {
-                    initiated[i] += w;
-                }
-                if s.viscous[i] > 0.5 {
-                    damaged[i] += w;
-                }
-                largest[i] = largest[i].max(s.viscous[i]);
+        for s in &self.states {
+            for (l, &d) in largest.iter_mut().zip(&s.viscous) {
+                *l = l.max(d);
             }
             reduced += usize::from(s.reduced.iter().any(|&r| r));
         }

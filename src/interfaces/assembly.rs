@@ -207,14 +207,7 @@ impl<'m> Interfaces<'m> {
     /// The committed delaminated area of every interface together (m²; the
     /// points with d = 1), `None` without interfaces.
     pub fn delaminated_area(&self) -> Option<f64> {
-        self.is_active().then(|| {
-            let per = self.interfaces.iter().zip(&self.committed);
-            // `fold` from +0: an empty `sum` of f64 is −0
-            let cracked = |(i, states): (&Interface, &Vec<CohesiveState>)| {
-                i.points.iter().zip(states).filter(|(_, s)| s.damage >= 1.0).fold(0.0, |a, (p, _)| a + p.area)
-            };
-            per.map(cracked).fold(0.0, |a, b| a + b)
-        })
+        self.delamination().map(|d| d.summary().area_m2)
     }
 
     /// Each interface's delaminated area and dissipated energy (committed).

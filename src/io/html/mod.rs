@@ -283,10 +283,9 @@ fn charts(tables: &[&Table]) -> Vec<Value> {
             match n {
                 "energy" => chart(t, "time", "energy balance"),
                 "modes" | "buckling" => chart(t, "mode", n),
-                "error_history" => chart(t, if t.column("time").is_some() { "time" } else { "lambda" }, n),
                 _ if n.starts_with("line_") => chart(t, "s", &format!("line {}", &n[5..])),
                 // a transient run's histories against time (s), a static one's against λ
-                _ if n.starts_with("history") => {
+                _ if n.starts_with("history") || n == "error_history" => {
                     chart(t, if t.column("time").is_some() { "time" } else { "lambda" }, n)
                 }
                 _ => None,

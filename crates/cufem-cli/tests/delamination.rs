@@ -202,9 +202,30 @@ fn dcb_moves(name: &str, factor: f64) {
     assert!(own < 0.03, "{name}: not within 3 % of its own curve ({own})");
 }
 
+/// The DCB opened to 4.5 mm (past its peak: the crack has started to run),
+/// then to 6 mm, in two `[[steps]]` of 0.05 mm increments, closed to 0 in
+/// 10 and opened again to 5.5 mm in 10: one run for
+/// `dcb_reloads_on_the_reduced_stiffness` and
+/// `dcb_step_ends_carry_the_interface_damage_as_it_grows` (whichever test
+/// comes first runs it, the other waits); its output folder.
+fn loaded_unloaded_reloaded() -> &'static Path {
+    static RUN: std::sync::OnceLock<PathBuf> = std::sync::OnceLock::new();
+    RUN.get_or_init(|| {
+        let text = example().replace("[solver]\nincrements = 200", "");
+        assert!(!text.contains("[solver]"));
+        let text = format!(
+            "{text}[[steps]]\nname = \"onset\"\nfactor = 0.45\nincrements = 90\n\n\
+             [[steps]]\nname = \"load\"\nfactor = 0.6\nincrements = 30\n\n\
+             [[steps]]\nname = \"unload\"\nfactor = 0.0\nincrements = 10\n\n\
+             [[steps]]\nname = \"reload\"\nfactor = 0.55\nincrements = 10\n"
+        );
+        run_cli("reload", &text, true).0
+    })
+}
+
 /// A damaged interface is never healed (design48 §3.6b): the DCB opened to
 /// 6 mm (CBT's crack 39.8 mm, from 32.8), closed to 0 and opened again to
-/// 5.5 mm in three `[[steps]]`. Unloading is linear to the origin and
+/// 5.5 mm ([`loaded_unloaded_reloaded`]). Unloading is linear to the origin and
 /// reloading retraces it: every point of both has the secant δ/P of the
 /// turn-around within 0.5 %, and that secant is CBT's compliance at the
 /// crack CBT reaches at 6 mm within 2 % (measured: see the output), far
@@ -213,17 +234,11 @@ fn dcb_moves(name: &str, factor: f64) {
 /// precrack's compliance.
 #[test]
 fn dcb_reloads_on_the_reduced_stiffness() {
-    let text = example().replace("[solver]\nincrements = 200", "");
-    assert!(!text.contains("[solver]"));
-    let text = format!(
-        "{text}[solver]\nincrements = 10\n\n[[steps]]\nname = \"load\"\nfactor = 0.6\nincrements = 120\n\n\
-         [[steps]]\nname = \"unload\"\nfactor = 0.0\nincrements = 10\n\n\
-         [[steps]]\nname = \"reload\"\nfactor = 0.55\nincrements = 10\n"
-    );
-    let (out, _) = run_cli("reload", &text, true);
-    let points = curve(&out);
+    let out = loaded_unloaded_reloaded();
+    let points = curve(out);
     let lambda = &common::csv_columns(&out.join("history_probes.csv"))["lambda"];
-    let turn = lambda.iter().rposition(|&l| l <= 1.0 + 1e-9).unwrap();
+    // the turn-around: the end of the second step (λ = 2)
+    let turn = lambda.iter().rposition(|&l| l <= 2.0 + 1e-9).unwrap();
     let (dm, pm) = points[turn];
     let secant = dm / pm;
     let dcb = specimen(969.0);
@@ -273,23 +288,17 @@ fn dcb_reloads_on_the_reduced_stiffness() {
     assert!(closing <= 2.0, "the increment closing to zero opening took {closing} corrections");
 }
 
-/// The step ends of a run of several steps carry the interface damage then:
-/// the DCB opened to 4.5 mm (past its peak: the crack has started to run),
-/// then to 6 mm, in two `[[steps]]` of 0.05 mm increments. Each step's
-/// `result_<k>_<name>.vtu` holds `d_interface`; no node's damage falls from
-/// the first step end to the second and it grows at some (a step end
-/// showing the damage of the run's end, or the precrack's alone, fails), and
-/// the second is the run's end (`result.vtu`).
+/// The step ends of a run of several steps carry the interface damage then
+/// ([`loaded_unloaded_reloaded`]): each step's `result_<k>_<name>.vtu`
+/// holds `d_interface`; no node's damage falls from the first step end to
+/// the second and it grows at some (a step end showing the damage of the
+/// run's end, or the precrack's alone, fails); unloading and reloading
+/// below the turn-around leave it as it was, and the last step end is the
+/// run's end (`result.vtu`).
 #[test]
 fn dcb_step_ends_carry_the_interface_damage_as_it_grows() {
-    let text = example().replace("[solver]\nincrements = 200", "");
-    assert!(!text.contains("[solver]"));
-    let text = format!(
-        "{text}[[steps]]\nname = \"onset\"\nfactor = 0.45\nincrements = 90\n\n\
-         [[steps]]\nname = \"load\"\nfactor = 0.6\nincrements = 30\n"
-    );
-    let (out, _) = run_cli("step_ends", &text, true);
-    let [first, second, end] = ["result_1_onset.vtu", "result_2_load.vtu", "result.vtu"]
+    let out = loaded_unloaded_reloaded();
+    let [first, second, fourth, end] = ["result_1_onset.vtu", "result_2_load.vtu", "result_4_reload.vtu", "result.vtu"]
         .map(|f| common::vtu_array(&out.join(f), Some("d_interface")));
     assert!(first.iter().zip(&second).all(|(a, b)| b >= a), "a node's d_interface fell over the second step");
     let grew = first.iter().zip(&second).filter(|(a, b)| *b > *a).count();
@@ -301,7 +310,9 @@ fn dcb_step_ends_carry_the_interface_damage_as_it_grows() {
     );
     assert!(grew > 0, "the first step end shows the damage of a later moment");
     assert!(cracked(&second) > cracked(&first), "the crack did not run over the second step");
-    assert_eq!(second, end, "the second step end is the run's end");
+    // unloaded and reloaded below the turn-around: the damage stays
+    assert_eq!(second, fourth, "the damage moved while unloading and reloading");
+    assert_eq!(fourth, end, "the last step end is the run's end");
 }
 
 /// The MMB example's specimen at G_II/G = `ratio` with toughnesses

@@ -82,6 +82,7 @@ pub mod io;
 pub(crate) mod kinematics;
 pub mod materials;
 pub mod mesh;
+pub(crate) mod newmark;
 pub mod numbers;
 pub mod post;
 pub mod quadrature;

@@ -29,7 +29,7 @@
 //!
 //! is zero to Newton's tolerance for the trapezoidal rule (`β = ¼, γ = ½`:
 //! the inertia forces' trapezoidal work is exactly `ΔT`), and for `γ > ½`
-//! the energy the scheme dissipates (Hughes, *The Finite Element Method*,
+//! or Bossak's `α < 0` the energy the scheme dissipates (Hughes, *The Finite Element Method*,
 //! §9.3): what a run prints as the balance is an error budget, not a
 //! physical term.
 

@@ -42,6 +42,14 @@
 //! rigid surface's gap is not linear; its curvature adds a term of the
 //! order of the penetration over the radius.)
 //!
+//! **Bossak.** With Bossak's α the residual weighs the accelerations as
+//! `M ((1 − α) a_(n+1) + α a_n)`, so the force that enters the velocity
+//! update is `g` with `f'_(n+1) = (1 − α) g_(n+1) + α g_n` ([`Recursion`]):
+//! `g_(n+1) = (f_c(u_(n+1)) − (1 − γ) g_n) / γ` keeps the step's impulse
+//! `Δt f_c(u_(n+1))`, and `∂f'/∂u = (1 − α) K_c / γ`; with α = 0, `g = f'`.
+//! The energy statements below are the trapezoidal rule's; under Bossak's
+//! method the balance carries the scheme's own dissipation as well.
+//!
 //! `f'` is the force the residual and the energy balance use; the contact
 //! points keep the physical `f_c` for output. `f'` stays where a contact
 //! opened, alternating in sign with the trapezoidal rule (decaying by
@@ -107,6 +115,7 @@
 //! damped: on an impact it needs Newmark's `γ > ½` (docs/limitations.md).
 
 use crate::assembly::Phase;
+pub(crate) use crate::newmark::Recursion;
 
 /// How a transient analysis integrates its contact forces (module docs).
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
@@ -143,30 +152,31 @@ impl InterfaceForces {
 }
 
 /// The algorithmic force `f'` of one kind of non-smooth force (the
-/// contacts', or the interfaces') in the present step and in the last
-/// converged one (module docs).
+/// contacts', or the interfaces') in the present step, and the velocity
+/// update's `g` in it and in the last converged one (module docs).
 #[derive(Debug, Clone)]
 pub(crate) struct Impulse {
-    gamma: f64,
+    recursion: Recursion,
     committed: Vec<f64>,
+    trial: Vec<f64>,
     force: Vec<f64>,
 }
 
 impl Impulse {
-    /// No force yet, for Newmark's `γ`, `n` DOFs.
-    pub fn new(gamma: f64, n: usize) -> Self {
-        Self { gamma, committed: vec![0.0; n], force: vec![0.0; n] }
+    /// No force yet, with the weights `recursion`, `n` DOFs.
+    pub fn new(recursion: Recursion, n: usize) -> Self {
+        Self { recursion, committed: vec![0.0; n], trial: vec![0.0; n], force: vec![0.0; n] }
     }
 
-    /// The factor `1/γ` on the stiffness of the forces.
+    /// The factor `(1 − α)/γ` on the stiffness of the forces.
     pub fn weight(&self) -> f64 {
-        1.0 / self.gamma
+        self.recursion.weight()
     }
 
     /// `f'` from the physical force `f` at the end of the step.
     pub fn update(&mut self, physical: &[f64]) {
-        for ((f, &p), &c) in self.force.iter_mut().zip(physical).zip(&self.committed) {
-            *f = algorithmic(self.gamma, p, c);
+        for (((f, g), &p), &c) in self.force.iter_mut().zip(&mut self.trial).zip(physical).zip(&self.committed) {
+            (*g, *f) = self.recursion.step(p, c);
         }
     }
 
@@ -175,9 +185,9 @@ impl Impulse {
         &self.force
     }
 
-    /// The step converged: its `f'` is the committed one.
+    /// The step converged: its `g` is the committed one.
     pub fn commit(&mut self) {
-        self.committed.clone_from(&self.force);
+        self.committed.clone_from(&self.trial);
     }
 }
 
@@ -205,8 +215,8 @@ impl Impulses {
         }
     }
 
-    /// The factor on the stiffness of the contributions of `phase`: `1/γ`
-    /// under an impulse, else 1.
+    /// The factor on the stiffness of the contributions of `phase`:
+    /// `(1 − α)/γ` under an impulse, else 1.
     pub fn weight(&self, phase: Phase) -> f64 {
         self.of(phase).map_or(1.0, Impulse::weight)
     }
@@ -221,12 +231,6 @@ impl Impulses {
     pub fn commit(&mut self) {
         self.contacts.iter_mut().chain(self.interfaces.iter_mut()).for_each(Impulse::commit);
     }
-}
-
-/// `f' = (f − (1 − γ) f'_n) / γ` of one component (a rigid impactor's push,
-/// `analysis::structure::force`).
-pub(crate) fn algorithmic(gamma: f64, physical: f64, committed: f64) -> f64 {
-    (physical - (1.0 - gamma) * committed) / gamma
 }
 
 #[cfg(test)]
@@ -248,7 +252,8 @@ mod tests {
             // monotone residual m a(u) + f'(u)
             let force = |x: f64| k * x.max(0.0);
             let acc = |x: f64| 4.0 / (dt * dt) * (x - u - dt * v) - a;
-            let fa = |x: f64| if implicit { algorithmic(gamma, force(x), f_n) } else { force(x) };
+            let step = Recursion { gamma, alpha: 0.0 };
+            let fa = |x: f64| if implicit { step.step(force(x), f_n).1 } else { force(x) };
             let (mut lo, mut hi) = (u - 10.0 * dt, u + 10.0 * dt);
             for _ in 0..200 {
                 let mid = 0.5 * (lo + hi);

@@ -23,7 +23,9 @@
 //! ```
 //!
 //! in its internal force (`σ'_n = σ_n` where the point took the average
-//! before). In small strain the internal force is linear in the stress, so
+//! before; with Bossak's α the recursion of `crate::newmark::Recursion`,
+//! `g` starting from `σ_n` there, exact for α = 0 only, and the tangent
+//! `(1 − α) C_(n+1) / γ`). In small strain the internal force is linear in the stress, so
 //! this is the impulse recursion of `dynamics::impulse` point by point:
 //! with the trapezoidal rule the step charges the point
 //! `σ_(n+1) · Δε`. At fixed damage `W(·; d)` is convex with a continuous

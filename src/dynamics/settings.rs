@@ -12,6 +12,9 @@ pub struct TransientSettings {
     pub beta: f64,
     /// Newmark's γ.
     pub gamma: f64,
+    /// Bossak's α: the inertia force `M ((1 − α) a + α a_n)`
+    /// (`dynamics::inertia`); 0 for Newmark's method.
+    pub alpha: f64,
     /// Rayleigh damping `C = α_M M + β_K K₀`: `(α_M, β_K)`.
     pub damping: (f64, f64),
     /// The mass matrix.
@@ -36,6 +39,11 @@ pub struct TransientSettings {
 }
 
 impl TransientSettings {
+    /// The weights of the end-of-step impulses (`dynamics::impulse`).
+    pub(crate) fn recursion(&self) -> crate::newmark::Recursion {
+        crate::newmark::Recursion { gamma: self.gamma, alpha: self.alpha }
+    }
+
     /// The time (s) at analysis time λ: the durations of the steps before
     /// and the elapsed fraction of the present one.
     pub fn time(&self, lambda: f64) -> f64 {

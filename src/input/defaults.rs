@@ -77,17 +77,22 @@ pub(crate) const NEWMARK_BETA: f64 = 0.25;
 /// Newmark's γ.
 pub(crate) const NEWMARK_GAMMA: f64 = 0.5;
 
-/// `newmark = { beta, gamma }` when left out.
+/// Bossak's α: Newmark's method.
+pub(crate) const BOSSAK_ALPHA: f64 = 0.0;
+
+/// `newmark = { beta, gamma, alpha }` when left out.
 #[derive(Serialize)]
 pub struct Newmark {
     /// β.
     pub beta: f64,
     /// γ.
     pub gamma: f64,
+    /// Bossak's α.
+    pub alpha: f64,
 }
 
 /// The default Newmark parameters, as the model file writes them.
-pub(crate) const NEWMARK: Newmark = Newmark { beta: NEWMARK_BETA, gamma: NEWMARK_GAMMA };
+pub(crate) const NEWMARK: Newmark = Newmark { beta: NEWMARK_BETA, gamma: NEWMARK_GAMMA, alpha: BOSSAK_ALPHA };
 
 // Load history, lines, contacts.
 

@@ -281,6 +281,9 @@ pub(crate) const STEP_FACTOR: Range = Range::closed(-1e3, 1e3);
 pub(crate) const DURATION: Range = Range::above_up_to(0.0, MAX_DURATION);
 /// Newmark's γ (γ ≥ ½ for stability).
 pub(crate) const NEWMARK_GAMMA: Range = Range::closed(0.5, 1.0);
+/// Bossak's α (Wood, Bossak & Zienkiewicz 1980): 0 is Newmark's method,
+/// −⅓ the most dissipative of the usual range.
+pub(crate) const BOSSAK_ALPHA: Range = Range::closed(-1.0 / 3.0, 0.0);
 /// Rayleigh's α_M (1/s).
 pub(crate) const DAMPING_MASS: Range = Range::closed(0.0, 1e9);
 /// Rayleigh's β_K (s).

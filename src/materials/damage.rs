@@ -160,6 +160,10 @@ pub struct DamageState {
     /// or under `analysis.ply_damage_forces = "implicit"` the algorithmic
     /// stress of the end-of-step impulse (`crate::dynamics::ply_forces`).
     pub(crate) force_stress: Voigt,
+    /// The stress the velocity update weighs, `g` of the impulse recursion
+    /// (`crate::newmark::Recursion`; `force_stress` itself
+    /// without Bossak's α).
+    pub(crate) velocity_stress: Voigt,
     /// The point takes the end-of-step stress from the next step on.
     pub implicit: bool,
     /// The energy per unit volume the end-of-step stress dissipated beyond

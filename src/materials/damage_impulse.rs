@@ -17,20 +17,21 @@ pub(crate) const NEAR_ONSET: f64 = 1.0;
 /// How a transient run integrates a damaging ply point's internal force.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub(crate) struct PointForces {
-    /// Newmark's γ.
-    pub(crate) gamma: f64,
+    /// Newmark's γ and Bossak's α.
+    pub(crate) recursion: crate::newmark::Recursion,
     /// Damaged and near-onset points take the end-of-step stress
     /// (`analysis.ply_damage_forces = "implicit"`); else every point
     /// Newmark's average.
     pub(crate) end_of_step: bool,
 }
 
-/// One point's end-of-step stress over a step with Newmark's `gamma`: from
+/// One point's end-of-step stress over a step with the weights of
+/// `forces.recursion` (Newmark's γ, Bossak's α): from
 /// the committed state `old` and the trial `state` (whose `strain` is the
 /// new strain in material axes) of the law `law`, the physical stress
 /// `stress` (global) and `local` (material axes). Writes `force_stress`,
 /// `implicit` and `scheme` of `state`; returns the factor on the point's
-/// tangent (`1/γ` under the scheme, else 1).
+/// tangent (`(1 − α)/γ` under the scheme, else 1).
 ///
 /// `scheme` gains what the forces' work at the point exceeds the change of
 /// its stored energy at the new damage, `w − (W(ε_(n+1); d_(n+1)) −
@@ -49,7 +50,6 @@ pub(crate) fn end_of_step(
     state: &mut DamageState,
     (stress, local): (&Voigt, &Voigt),
 ) -> f64 {
-    let gamma = forces.gamma;
     state.implicit =
         forces.end_of_step && (old.implicit || state.index >= NEAR_ONSET || state.viscous.iter().any(|&d| d > 0.0));
     let delta: Voigt = std::array::from_fn(|k| state.strain[k] - old.strain[k]);
@@ -58,6 +58,7 @@ pub(crate) fn end_of_step(
     let stored_change = || state.stored - law.stored(&state.viscous, &old.strain);
     if !old.implicit {
         state.force_stress = *stress;
+        state.velocity_stress = *stress;
         state.scheme = old.scheme;
         if (0..4).any(|i| state.viscous[i] > old.viscous[i]) {
             let before = law.stress(&old.viscous, &old.strain);
@@ -66,11 +67,13 @@ pub(crate) fn end_of_step(
         }
         return 1.0;
     }
-    state.force_stress = std::array::from_fn(|k| (stress[k] - (1.0 - gamma) * old.force_stress[k]) / gamma);
+    for k in 0..6 {
+        (state.velocity_stress[k], state.force_stress[k]) = forces.recursion.step(stress[k], old.velocity_stress[k]);
+    }
     // B = σ_(n+1)·Δε − (W(ε_(n+1); d_(n+1)) − W(ε_n; d_(n+1))) ≥ 0 (module
     // docs); round-off can leave it a hair below zero
     state.scheme = old.scheme + (dot(local) - stored_change()).max(0.0);
-    1.0 / gamma
+    forces.recursion.weight()
 }
 
 /// `c / γ` in place (the tangent of the end-of-step stress).
@@ -84,7 +87,8 @@ mod tests {
     use crate::materials::anisotropic::Orthotropic;
     use crate::materials::failure::Strengths;
 
-    const IMPLICIT: PointForces = PointForces { gamma: 0.5, end_of_step: true };
+    const IMPLICIT: PointForces =
+        PointForces { recursion: crate::newmark::Recursion { gamma: 0.5, alpha: 0.0 }, end_of_step: true };
 
     fn law() -> PlyDamage {
         let elastic =
@@ -135,7 +139,8 @@ mod tests {
     /// both ends is the end-of-step stress, whatever the point held before.
     #[test]
     fn the_algorithmic_stress_makes_the_mean_the_end_of_step_stress() {
-        let old = DamageState { implicit: true, force_stress: [3.0, -1.0, 0.0, 0.5, 0.0, 0.0], ..Default::default() };
+        let held = [3.0, -1.0, 0.0, 0.5, 0.0, 0.0];
+        let old = DamageState { implicit: true, force_stress: held, velocity_stress: held, ..Default::default() };
         let mut state = DamageState { index: 0.1, ..Default::default() };
         let stress = [1.0, 2.0, 0.0, 0.0, -1.0, 0.0];
         let factor = end_of_step(IMPLICIT, &law(), &old, &mut state, (&stress, &stress));

@@ -14,6 +14,20 @@ pub(crate) use crate::input::ranges::MAX_SPEED;
 /// range (a larger β only lengthens the periods).
 pub(crate) const MAX_BETA: f64 = 1.0;
 
+/// `analysis.newmark`: `(β, γ, α)`. Bossak's α (default 0) sets the
+/// defaults of the others, `γ = ½ − α` and `β = ¼ (1 − α)²`: second order
+/// and unconditionally stable, damping the highest frequencies for α < 0
+/// (Wood, Bossak & Zienkiewicz, IJNME 15, 1980); with α = 0 the
+/// trapezoidal rule.
+fn newmark(file: &AnalysisFile) -> Result<(f64, f64, f64), ModelError> {
+    let n = file.newmark.as_ref();
+    let alpha = n.and_then(|n| n.alpha).unwrap_or(crate::input::defaults::BOSSAK_ALPHA);
+    ranges::BOSSAK_ALPHA.check("analysis.newmark.alpha", alpha, "Bossak's α, from -1/3 to 0 (0: Newmark's method)")?;
+    let gamma = n.and_then(|n| n.gamma).unwrap_or(0.5 - alpha);
+    let beta = n.and_then(|n| n.beta).unwrap_or(0.25 * (1.0 - alpha).powi(2));
+    Ok((beta, gamma, alpha))
+}
+
 /// The keys that only a transient analysis takes, for the refusal of a
 /// static one.
 fn transient_key(file: &AnalysisFile) -> Option<&'static str> {
@@ -102,10 +116,7 @@ fn settings(
             .map(|(i, s)| duration(&format!("steps[{i}].duration"), s.duration.or(base)))
             .collect::<Result<Vec<f64>, ModelError>>()?
     };
-    let (beta, gamma) = file
-        .newmark
-        .as_ref()
-        .map_or((crate::input::defaults::NEWMARK_BETA, crate::input::defaults::NEWMARK_GAMMA), |n| (n.beta, n.gamma));
+    let (beta, gamma, alpha) = newmark(file)?;
     // unconditional stability of the implicit Newmark family on linear
     // problems: γ ≥ ½ and β ≥ ¼ (γ + ½)² (Hughes, *The Finite Element
     // Method*, §9.1.2); γ > ½ damps the highest modes
@@ -165,6 +176,7 @@ fn settings(
         durations,
         beta,
         gamma,
+        alpha,
         damping,
         mass: mass_kind(file),
         initial_velocities,

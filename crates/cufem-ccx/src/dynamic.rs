@@ -94,10 +94,15 @@ pub fn check(model: &Model, t: &TransientSettings) -> Result<(), CcxError> {
             "elastic materials in a transient model with indenters or contacts",
         );
     }
-    if t.beta != 0.25 || t.gamma != 0.5 {
+    if t.beta != 0.25 || t.gamma != 0.5 || t.alpha != 0.0 {
         return refuse(
             "analysis.newmark",
-            format!("beta = {}, gamma = {}", cufem::numbers::number(t.beta), cufem::numbers::number(t.gamma)),
+            format!(
+                "beta = {}, gamma = {}, alpha = {}",
+                cufem::numbers::number(t.beta),
+                cufem::numbers::number(t.gamma),
+                cufem::numbers::number(t.alpha)
+            ),
             "CalculiX's *DYNAMIC integrates by the HHT-α method, which is Newmark's method only as the \
              trapezoidal rule (α = 0)",
             "the default beta = 0.25, gamma = 0.5 (leave analysis.newmark out)",
@@ -334,6 +339,7 @@ mod tests {
             durations: vec![1e-9, 8e-4],
             beta: 0.25,
             gamma: 0.5,
+            alpha: 0.0,
             damping: (0.0, 0.0),
             mass: cufem::dynamics::MassKind::Consistent,
             initial_velocities: Vec::new(),

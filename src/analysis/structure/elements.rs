@@ -99,7 +99,7 @@ impl Contribution for Elements<'_> {
         };
         // the end-of-step stress of damaged points (`dynamics::ply_forces`)
         let impulse = self.clock.map(|c| crate::materials::damage_impulse::PointForces {
-            gamma: c.gamma,
+            recursion: c.recursion(),
             end_of_step: c.ply_damage_forces == crate::dynamics::PlyDamageForces::Implicit,
         });
         let damage_in = crate::assembly::DamageInput { committed, band, step, impulse };

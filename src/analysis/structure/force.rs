@@ -64,10 +64,11 @@ struct Driven {
     c: f64,
     /// Residual `r` of the last evaluation (N).
     r: f64,
-    /// Its push on the body as the residual takes it, trial and committed:
-    /// the algorithmic `f'` of a transient analysis's end-of-step contact
-    /// impulse (`dynamics::impulse`), else the push itself (N).
-    pushed: (f64, f64),
+    /// Its push on the body as the residual takes it — the algorithmic `f'`
+    /// of a transient analysis's end-of-step contact impulse
+    /// (`dynamics::impulse`), else the push itself — and the velocity
+    /// update's `g`, trial and committed (N).
+    pushed: (f64, f64, f64),
     /// A rigid impactor's inertia (transient analysis), `None` under force
     /// control.
     inertia: Option<Inertia>,
@@ -132,7 +133,7 @@ impl<'m> ForceControl<'m> {
                     b_row: vec![0.0; n_eq],
                     c: 0.0,
                     r: 0.0,
-                    pushed: (0.0, 0.0),
+                    pushed: (0.0, 0.0, 0.0),
                 })
             })
             .collect();
@@ -168,10 +169,12 @@ impl<'m> ForceControl<'m> {
         let loading = self.loading;
         let (points, blocks) = (contacts.points(), contacts.blocks());
         let (mut res2, mut target2) = (0.0, 0.0);
-        // the contacts' end-of-step impulse: f' and its derivatives 1/γ
-        let gamma =
-            self.transient.filter(|t| t.contact_forces == crate::dynamics::ContactForces::Implicit).map(|t| t.gamma);
-        let weight = gamma.map_or(1.0, |g| 1.0 / g);
+        // the contacts' end-of-step impulse: f' and its derivatives (1 − α)/γ
+        let recursion = self
+            .transient
+            .filter(|t| t.contact_forces == crate::dynamics::ContactForces::Implicit)
+            .map(crate::dynamics::TransientSettings::recursion);
+        let weight = recursion.map_or(1.0, crate::newmark::Recursion::weight);
         for drv in &mut self.driven {
             let k = drv.indenter;
             let ind = &loading.indenters[k];
@@ -216,22 +219,25 @@ impl<'m> ForceControl<'m> {
                     }
                 }
             }
-            drv.pushed.0 = gamma.map_or(pushed, |g| crate::dynamics::impulse::algorithmic(g, pushed, drv.pushed.1));
+            (drv.pushed.1, drv.pushed.0) = recursion.map_or((pushed, pushed), |r| r.step(pushed, drv.pushed.2));
             drv.r = drv.pushed.0 - target;
             let mut scale = target.abs();
             if let (Some(inertia), Some(tr)) = (drv.inertia.as_mut(), self.transient) {
-                // m ä + (its push on the body) = its force: Newmark in a
+                // m ä + (its push on the body) = its force: Newmark in a,
+                // the inertia force Bossak's m ((1 − α) ä + α ä_n)
                 let dt = tr.time(lambda) - tr.time(inertia.lambda_n);
+                let mut acc = inertia.acc_n;
                 if dt > 0.0 {
                     let c0 = 1.0 / (tr.beta * dt * dt);
                     inertia.acc = c0 * (drv.a - drv.a_committed - dt * inertia.v_n)
                         - (1.0 / (2.0 * tr.beta) - 1.0) * inertia.acc_n;
                     inertia.v = inertia.v_n + dt * ((1.0 - tr.gamma) * inertia.acc_n + tr.gamma * inertia.acc);
-                    drv.c += inertia.mass * c0;
+                    drv.c += (1.0 - tr.alpha) * inertia.mass * c0;
+                    acc = (1.0 - tr.alpha) * inertia.acc + tr.alpha * inertia.acc_n;
                     // the force that would stop it within the step
                     scale = scale.max(inertia.mass * inertia.v_n.abs() / dt);
                 }
-                drv.r += inertia.mass * inertia.acc;
+                drv.r += inertia.mass * acc;
             }
             res2 += drv.r * drv.r;
             target2 += scale * scale;
@@ -338,7 +344,7 @@ impl<'m> ForceControl<'m> {
         for d in &mut self.driven {
             d.a_step = d.a - d.a_committed;
             d.a_committed = d.a;
-            d.pushed.1 = d.pushed.0;
+            d.pushed.2 = d.pushed.1;
             if let Some(i) = d.inertia.as_mut() {
                 (i.v_n, i.acc_n, i.lambda_n) = (i.v, i.acc, lambda);
             }

@@ -70,8 +70,9 @@ pub(super) fn impulse(
     let Some(settings) = settings else { return Default::default() };
     crate::dynamics::Impulses {
         contacts: (loading.has_contacts() && settings.contact_forces == crate::dynamics::ContactForces::Implicit)
-            .then(|| Impulse::new(settings.gamma, n_dofs)),
-        interfaces: (interfaces && settings.interface_forces.impulse()).then(|| Impulse::new(settings.gamma, n_dofs)),
+            .then(|| Impulse::new(settings.recursion(), n_dofs)),
+        interfaces: (interfaces && settings.interface_forces.impulse())
+            .then(|| Impulse::new(settings.recursion(), n_dofs)),
     }
 }
 

@@ -47,11 +47,14 @@ pub(crate) enum PlyDamageForcesFile {
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]
 pub(crate) struct NewmarkFile {
-    /// β.
-    pub beta: f64,
-    /// γ.
+    /// β (default `¼ (1 − α)²`).
+    pub beta: Option<f64>,
+    /// γ (default `½ − α`).
     #[schemars(transform = ranges::NEWMARK_GAMMA.schema())]
-    pub gamma: f64,
+    pub gamma: Option<f64>,
+    /// Bossak's α (default 0: Newmark's method).
+    #[schemars(transform = ranges::BOSSAK_ALPHA.schema())]
+    pub alpha: Option<f64>,
 }
 
 /// `analysis.damping`: `C = mass · M + stiffness · K₀`.

@@ -44,7 +44,7 @@
 //!
 //! **Bossak.** With Bossak's α the residual weighs the accelerations as
 //! `M ((1 − α) a_(n+1) + α a_n)`, so the force that enters the velocity
-//! update is `g` with `f'_(n+1) = (1 − α) g_(n+1) + α g_n` ([`Recursion`]):
+//! update is `g` with `f'_(n+1) = (1 − α) g_(n+1) + α g_n` (`crate::newmark::Recursion`):
 //! `g_(n+1) = (f_c(u_(n+1)) − (1 − γ) g_n) / γ` keeps the step's impulse
 //! `Δt f_c(u_(n+1))`, and `∂f'/∂u = (1 − α) K_c / γ`; with α = 0, `g = f'`.
 //! The energy statements below are the trapezoidal rule's; under Bossak's

@@ -63,7 +63,9 @@ const LONG_FILES: &[(&str, &str)] = &[];
 
 /// The workspace's packages from the lowest layer up: each may depend only
 /// on the ones before it.
-const CRATE_LAYERS: &[&str] = &["cufem", "cufem-ccx", "cufem-cli"];
+/// The Python package sits on the core alone, a member beside the CLI (last:
+/// nothing depends on it).
+const CRATE_LAYERS: &[&str] = &["cufem", "cufem-ccx", "cufem-cli", "cufem-python"];
 
 /// The repository root: the workspace's and the core package's directory.
 fn root() -> &'static Path {

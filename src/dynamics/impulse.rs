@@ -237,6 +237,32 @@ impl Impulses {
 mod tests {
     use super::*;
 
+    /// What Bossak's integrator sees: the residual takes `f'`, so the
+    /// acceleration share is `g_(n+1) = (f'_(n+1) − α g_n) / (1 − α)` and
+    /// the velocity update's impulse `Δt ((1 − γ) g_n + γ g_(n+1))`. Over a
+    /// force that switches on, varies and off, [`Impulse`] must make each
+    /// step's impulse `Δt f(u_(n+1))` exactly, for Newmark's method and for
+    /// Bossak's α = −0.1 (γ = 0.6); g recovered from the emitted `f'`
+    /// alone, independently of what the impulse keeps (committing `f'`
+    /// instead of `g` fails it for α ≠ 0).
+    #[test]
+    fn the_emitted_force_carries_the_end_of_step_impulse() {
+        for (gamma, alpha) in [(0.5, 0.0), (0.6, -0.1)] {
+            let mut impulse = Impulse::new(Recursion { gamma, alpha }, 1);
+            let forces = [0.0, 3.0, 5.0, -1.0, 4.0, 0.0, 0.0, 2.0, 0.0, 0.0];
+            let mut g_n = 0.0;
+            for &f in &forces {
+                impulse.update(&[f + 7.0]); // a Newton iterate first
+                impulse.update(&[f]);
+                let g = (impulse.force()[0] - alpha * g_n) / (1.0 - alpha);
+                let share = (1.0 - gamma) * g_n + gamma * g;
+                assert!((share - f).abs() < 1e-12, "γ {gamma}, α {alpha}: impulse {share} for {f}");
+                impulse.commit();
+                g_n = g;
+            }
+        }
+    }
+
     /// One mass on a penalty spring that it strikes, closes and leaves —
     /// the trapezoidal rule with the end-of-step impulse never gains
     /// energy, and gives back all but the spring's Bregman losses; with

@@ -43,42 +43,56 @@ fn pull(out: &Path) -> Vec<(f64, f64)> {
 /// constants).
 const CRACK_ENERGY: f64 = 133.3e3 * 4.8e-3 * 1.0e-3;
 
-/// The three meshes (h = 0.4, 0.2, 0.1 mm across the crack path, L4 × B2):
-/// the energy each dissipates in fibre tension against `G_FT` × the
-/// ligament, the other modes, and the balance `∫ P du = D + E_el` with
+/// One mesh of the notched strip: the energy it dissipates in fibre
+/// tension over `G_FT` × the ligament (returned), the other modes under
+/// `1 %` of the total, and the balance `∫ P du = D + E_el` within `1 %`, with
 /// `E_el = ½ P u` at the end (the damaged body is secant-linear through the
-/// origin: Clapeyron). Measured (`cufem run examples/notched_strip_*.toml`):
-/// D_FT/(G_FT A) = 1.059, 1.069, 1.069, the balance within 0.02 %.
+/// origin: Clapeyron; measured within 0.02 %).
+fn strip_energy_ratio(mesh: &str) -> f64 {
+    let name = format!("notched_strip_{mesh}");
+    let (out, summary) = run_cli(&name, &example(&name));
+    let d = dissipated(&summary);
+    let total: f64 = d.iter().sum();
+    let ratio = d[0] / CRACK_ENERGY;
+    println!("{mesh}: D = {d:?} J, D_FT/(G A) = {ratio:.4}");
+    // only fibre tension cracks the ligament: the others under 1 % of D
+    assert!(d[1..].iter().all(|&x| x < 0.01 * total), "{mesh}: {d:?}");
+    // the energy balance: the work of the pull is what the damage
+    // dissipated plus what the strip stores at the end
+    let curve = pull(&out);
+    let work: f64 = curve.windows(2).map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0)).sum();
+    let (u, p) = *curve.last().unwrap();
+    let stored = 0.5 * p * u;
+    let balance = (work - total - stored) / work;
+    println!("{mesh}: work {work:.5} J, stored {stored:.5} J, balance {balance:.2e}");
+    assert!(balance.abs() < 0.01, "{mesh}: work {work} J, dissipated {total} J, stored {stored} J");
+    // G_FT × area plus the viscosity's work: a known excess of 6–7 % at
+    // viscosity = 1e-3 (measured 1.059, 1.069, 1.069 on the three meshes;
+    // 1.019 at 3e-4), asserted from both sides (docs/limitations.md "Ply damage")
+    assert!((1.04..1.09).contains(&ratio), "{mesh}: D_FT/(G_FT A) = {ratio}");
+    ratio
+}
+
+/// The coarse strip (h = 0.4 mm across the crack path) in CI: the crack
+/// band's energy, the other modes and the balance of `strip_energy_ratio`
+/// (a lost band scaling or a dropped damage mode moves the energy far
+/// outside its band). The three meshes together are the slow
+/// `the_notched_strip_dissipates_the_fracture_energy_of_its_ligament`.
 #[test]
+fn the_coarse_notched_strip_dissipates_the_fracture_energy_of_its_ligament() {
+    strip_energy_ratio("coarse");
+}
+
+/// The three meshes (h = 0.4, 0.2, 0.1 mm across the crack path, L4 × B2),
+/// each as `strip_energy_ratio`, and the crack band's promise: the meshes'
+/// fibre-tension energies within 5 % of each other (measured 1 %:
+/// D_FT/(G_FT A) = 1.059, 1.069, 1.069, `cufem run examples/notched_strip_*.toml`).
+#[test]
+#[ignore = "validate: slow — the three notched strips, about a minute (CI: the coarse strip)"]
 fn the_notched_strip_dissipates_the_fracture_energy_of_its_ligament() {
-    let mut fibre = Vec::new();
-    for mesh in ["coarse", "medium", "fine"] {
-        let name = format!("notched_strip_{mesh}");
-        let (out, summary) = run_cli(&name, &example(&name));
-        let d = dissipated(&summary);
-        let total: f64 = d.iter().sum();
-        let ratio = d[0] / CRACK_ENERGY;
-        println!("{mesh}: D = {d:?} J, D_FT/(G A) = {ratio:.4}");
-        // only fibre tension cracks the ligament: the others under 1 % of D
-        assert!(d[1..].iter().all(|&x| x < 0.01 * total), "{mesh}: {d:?}");
-        // the energy balance: the work of the pull is what the damage
-        // dissipated plus what the strip stores at the end
-        let curve = pull(&out);
-        let work: f64 = curve.windows(2).map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0)).sum();
-        let (u, p) = *curve.last().unwrap();
-        let stored = 0.5 * p * u;
-        let balance = (work - total - stored) / work;
-        println!("{mesh}: work {work:.5} J, stored {stored:.5} J, balance {balance:.2e}");
-        assert!(balance.abs() < 0.01, "{mesh}: work {work} J, dissipated {total} J, stored {stored} J");
-        fibre.push(ratio);
-    }
-    // the crack band: the meshes within 5 % of each other (measured 1 %)
+    let fibre: Vec<f64> = ["coarse", "medium", "fine"].iter().map(|m| strip_energy_ratio(m)).collect();
     let (lo, hi) = fibre.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &r| (a.min(r), b.max(r)));
     assert!(hi / lo - 1.0 < 0.05, "D_FT/(G_FT A) = {fibre:?}");
-    // ... and G_FT × area plus the viscosity's work: a known excess of
-    // 6–7 % at viscosity = 1e-3 (measured 1.059, 1.069, 1.069; 1.019 at
-    // 3e-4), asserted from both sides (docs/limitations.md "Ply damage")
-    assert!(fibre.iter().all(|&r| (1.04..1.09).contains(&r)), "D_FT/(G_FT A) = {fibre:?}");
 }
 
 /// A damaged strip unloaded to zero and reloaded (three `[[steps]]` on the

@@ -220,14 +220,18 @@ impl Contribution for Inertia {
                 self.v[d] = self.v_n[d] + dt * ((1.0 - gamma) * self.a_n[d] + gamma * a);
             }
             let c1 = gamma / (beta * dt);
-            // Bossak's inertia force M ((1 − α) a + α a_n)
+            // Bossak's inertia force M ((1 − α) a + α a_n); a residual-only
+            // evaluation leaves the tangent out, as the elements do (a pass
+            // over every entry of the pattern)
             let m0 = (1.0 - self.settings.alpha) * c0;
-            for (k, t) in tangent.values.iter_mut().enumerate() {
-                *t += m0 * self.mass[k];
-            }
-            if let Some(c) = &self.damping {
-                for (t, ck) in tangent.values.iter_mut().zip(c) {
-                    *t += c1 * ck;
+            if tangent.wanted {
+                for (t, m) in tangent.values.iter_mut().zip(&self.mass) {
+                    *t += m0 * m;
+                }
+                if let Some(c) = &self.damping {
+                    for (t, ck) in tangent.values.iter_mut().zip(c) {
+                        *t += c1 * ck;
+                    }
                 }
             }
         } else {

@@ -142,6 +142,38 @@ fn interface_tangent_matches_central_differences() {
     assert!(worst < 1e-6, "tangent differs from central differences by {worst:e}");
 }
 
+/// The step control's damage measure (`solver.step_control.damage`) of
+/// the interfaces: from the intact committed state, every point opened in
+/// mode I by δ3 = 5e-6 m has the bilinear law's damage
+/// `d = δf (δ − δ0) / (δ (δf − δ0))` = `0.9697` (δ0 = 2e-7, δf = 2e-5 m),
+/// and that is the largest increment the structure reports; one point more
+/// open, at 1e-5 m (`d = 0.9899`), sets it.
+#[test]
+fn the_damage_measure_is_the_interfaces_largest_damage_increment() {
+    use cufem::solver::stepping::Incremental;
+    let model = Model::parse(&laminate(
+        "L9",
+        "B3",
+        "[[constraints]]\nname = \"end\"\nbody = \"stack\"\nwhere = { y = 0.0 }\nfix = [\"x\", \"y\", \"z\"]\n",
+    ))
+    .unwrap();
+    let (d0, df) = (2e-7, 2e-5);
+    let law = |delta: f64| df * (delta - d0) / (delta * (df - d0));
+    let interface = &model.interfaces[0];
+    for widest in [5e-6, 1e-5] {
+        let mut s = Structure::of_model(&model, None).unwrap();
+        for (k, p) in interface.points.iter().enumerate() {
+            let delta = if k == 7 { widest } else { 5e-6 };
+            s.displacements_mut()[3 * p.upper + 2] = 0.5 * delta;
+            s.displacements_mut()[3 * p.lower + 2] = -0.5 * delta;
+        }
+        s.evaluate().unwrap();
+        let measured = s.measure().damage;
+        eprintln!("widest opening {widest:e} m: largest damage increment {measured:.6}, law {:.6}", law(widest));
+        assert!((measured - law(widest)).abs() < 1e-9, "{measured} against {}", law(widest));
+    }
+}
+
 /// A face selection at the interface's z finds no face, as in the
 /// shared-node laminate: the twin edges are inner surfaces, not two faces
 /// of the boundary. A node selection there takes both twins.

@@ -343,7 +343,8 @@ pub(crate) fn solver_settings(s: &SolverFile, linear: bool) -> Result<SolverSett
 
 /// `solver.step_control`: at least one target; a plastic strain in
 /// (0, 0.1], a fraction of the contact set in (0, 1], a time error in
-/// (0, 0.1] (a transient analysis only: `setup::transient`).
+/// (0, 0.1] (a transient analysis only: `setup::transient`), a damage
+/// increment in (0, 1] (a model that damages only: `setup`).
 fn step_control(c: Option<&StepControlFile>) -> Result<Option<StepControl>, ModelError> {
     let Some(c) = c else { return Ok(None) };
     let key = "solver.step_control";
@@ -372,10 +373,17 @@ fn step_control(c: Option<&StepControlFile>) -> Result<Option<StepControl>, Mode
         "the largest local error of a time step relative to the largest displacement so far (analysis.type = \
          \"transient\"), e.g. 1e-3",
     )?;
-    if plastic_strain.is_none() && contact_set.is_none() && time_error.is_none() {
-        return Err(invalid(key, "{}", "at least one of plastic_strain, contact_set, time_error"));
+    let damage = check(
+        "damage",
+        c.damage,
+        FRACTION,
+        "the largest increment of a damage variable (a ply damage mode's, a cohesive interface's) at any point per \
+         increment, e.g. 0.1",
+    )?;
+    if plastic_strain.is_none() && contact_set.is_none() && time_error.is_none() && damage.is_none() {
+        return Err(invalid(key, "{}", "at least one of plastic_strain, contact_set, time_error, damage"));
     }
-    Ok(Some(StepControl { plastic_strain, contact_set, time_error }))
+    Ok(Some(StepControl { plastic_strain, contact_set, time_error, damage }))
 }
 
 pub(crate) fn describe_selection(s: &SelectionFile) -> String {
@@ -502,12 +510,14 @@ mod tests {
             ),
             (
                 "step_control = {}",
-                "solver.step_control = {}: expected at least one of plastic_strain, contact_set, time_error",
+                "solver.step_control = {}: expected at least one of plastic_strain, contact_set, time_error, damage",
             ),
             (
                 "step_control = { time_error = 0.2 }",
                 "solver.step_control.time_error = 0.2: expected a number in (0, 0.1]",
             ),
+            ("step_control = { damage = 0.0 }", "solver.step_control.damage = 0: expected a number in (0, 1]"),
+            ("step_control = { damage = 1.5 }", "solver.step_control.damage = 1.5: expected a number in (0, 1]"),
         ] {
             let e = err(solver_settings(&file(text), false));
             assert!(e.contains(says), "{text}: {e}");

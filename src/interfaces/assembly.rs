@@ -164,6 +164,14 @@ impl<'m> Interfaces<'m> {
         self
     }
 
+    /// The largest increment of the carried damage `d_v` at any point
+    /// since the committed state (the law's damage without viscosity; 0
+    /// without interfaces): the step control's `damage` measure.
+    pub fn largest_damage_increment(&self) -> f64 {
+        let [committed, trial] = &self.viscous;
+        committed.iter().zip(trial).flat_map(|(c, t)| c.iter().zip(t).map(|(a, b)| b - a)).fold(0.0, f64::max)
+    }
+
     /// True if the model has cohesive interfaces.
     pub fn is_active(&self) -> bool {
         !self.interfaces.is_empty()

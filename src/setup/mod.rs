@@ -367,6 +367,27 @@ fn restrained(
     Ok(handler)
 }
 
+/// `solver.step_control.damage` only in a model that damages (a material
+/// with ply damage, or cohesive interfaces): elsewhere it would control
+/// nothing.
+fn damage_step_control(
+    file: &ModelFile,
+    materials: &[Material],
+    interfaces: &[crate::interfaces::Interface],
+) -> Result<(), ModelError> {
+    if file.solver.step_control.is_some_and(|c| c.damage.is_some())
+        && interfaces.is_empty()
+        && !materials.iter().any(|m| m.damage.is_some())
+    {
+        return Err(invalid(
+            "solver.step_control.damage",
+            "given",
+            "only in a model that damages: a material with [materials.damage] or cohesive interfaces",
+        ));
+    }
+    Ok(())
+}
+
 fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelError> {
     crate::input::validate::names(&file)?;
     interfaces::check(&file)?;
@@ -404,6 +425,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let symmetry = symmetry::resolve(planes, &mesh, (&constraints, n_user), &indenters, &contacts);
     let references = crate::input::validate::references(&file.references, &file.probes)?;
     let linear = is_linear(&mesh, &materials, &indenters, &contacts, &interfaces) && !kinematics.is_nonlinear();
+    damage_step_control(&file, &materials, &interfaces)?;
     let mut solver = crate::input::validate::solver_settings(&file.solver, linear)?;
     let loading = path::Loading {
         steps: &file.steps,

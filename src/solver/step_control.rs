@@ -4,15 +4,17 @@
 //!
 //! After each converged increment (before it is committed) the problem
 //! measures what changed (`Incremental::measure` of `solver::stepping`): the
-//! largest increment of the equivalent plastic strain at any point, and the
-//! fraction of the discrete contact set whose status changed. Each is
-//! divided by its target ([`StepControl`]); `q` is the largest ratio.
+//! largest increment of the equivalent plastic strain at any point, the
+//! largest increment of a damage variable at any point (ply damage modes,
+//! cohesive interfaces), and the fraction of the discrete contact set whose
+//! status changed. Each is divided by its target ([`StepControl`]); `q` is
+//! the largest ratio.
 //!
-//! * `q` > `REJECT` (plastic strain or time error): the increment is rejected,
+//! * `q` > `REJECT` (plastic strain, damage or time error): the increment is rejected,
 //!   rolled back and redone with `Δλ · max(SAFETY/q, 1/4)` (the time
 //!   error: `(SAFETY/q)^(1/3)`) — once per
 //!   increment, and not below the smallest increment. The plastic strain
-//!   is a measure of the error of integrating the path in one increment;
+//!   and the damage are measures of the error of integrating the path in one increment;
 //!   a change of the contact set is not an error of a converged state
 //!   (frictionless contact is path-independent), so it only steers the
 //!   next size.
@@ -48,6 +50,10 @@ pub struct StepControl {
     /// Largest local error of a time step (`dynamics::time_error`) relative
     /// to the displacement scale (transient analyses only).
     pub time_error: Option<f64>,
+    /// Largest increment of a damage variable at any point per increment:
+    /// a ply damage mode's or a cohesive interface's, the damage the
+    /// stiffness takes (the viscous one under Duvaut–Lions).
+    pub damage: Option<f64>,
 }
 
 /// What a converged increment changed (reported by the problem).
@@ -62,6 +68,9 @@ pub struct StepMeasure {
     /// The local error estimate of the time step relative to the
     /// displacement scale (`dynamics::time_error`; 0: not measured).
     pub time_error: f64,
+    /// Largest increment of a damage variable at any point (ply damage
+    /// modes and cohesive interfaces; 0: none damages).
+    pub damage: f64,
 }
 
 /// A measure above `REJECT` times its target rejects the increment.
@@ -93,15 +102,17 @@ pub(crate) enum Verdict {
 }
 
 impl StepControl {
-    /// The largest ratio of a measure to its target, and that of the
-    /// plastic strain alone (the one that may reject).
+    /// The largest ratio of a measure to its target, and the largest of
+    /// the plastic strain's and the damage's (the ones that may reject).
     pub fn ratios(&self, m: &StepMeasure) -> (f64, f64) {
         let plastic = self.plastic_strain.map_or(0.0, |t| m.plastic_strain / t);
+        let damage = self.damage.map_or(0.0, |t| m.damage / t);
         let contact = match (self.contact_set, m.contact_set) {
             (Some(t), Some(c)) => c / t,
             _ => 0.0,
         };
-        (plastic.max(contact), plastic)
+        let path = plastic.max(damage);
+        (path.max(contact), path)
     }
 
     /// The verdict on an increment of `dlambda` with measure `m`: `growth`
@@ -109,13 +120,13 @@ impl StepControl {
     /// smallest increment, `retried` true if this increment was already
     /// rejected once.
     pub(crate) fn verdict(&self, m: &StepMeasure, dlambda: f64, growth: f64, min: f64, retried: bool) -> Verdict {
-        let (q, plastic) = self.ratios(m);
+        let (q, path) = self.ratios(m);
         let time = self.time_error.map_or(0.0, |t| m.time_error / t);
         // the factor on Δλ that meets each measure's target with the margin
         let linear = if q > 0.0 { SAFETY / q } else { f64::INFINITY };
         let cubic = if time > 0.0 { (SAFETY / time).powf(1.0 / TIME_ERROR_ORDER) } else { f64::INFINITY };
         if !retried {
-            let rejecting = [(plastic, SAFETY / plastic), (time, cubic)];
+            let rejecting = [(path, SAFETY / path), (time, cubic)];
             let worst = rejecting.iter().filter(|(r, _)| *r > REJECT).min_by(|a, b| a.1.total_cmp(&b.1));
             if let Some(&(ratio, factor)) = worst {
                 let factor = factor.max(SHRINK_REJECTED);
@@ -133,12 +144,12 @@ mod tests {
     use super::*;
 
     fn m(plastic_strain: f64, contact_set: Option<f64>) -> StepMeasure {
-        StepMeasure { plastic_strain, contact_set, time_error: 0.0 }
+        StepMeasure { plastic_strain, contact_set, time_error: 0.0, damage: 0.0 }
     }
 
     #[test]
     fn grows_below_the_target_and_shrinks_above_it() {
-        let c = StepControl { plastic_strain: Some(1e-3), contact_set: Some(0.2), time_error: None };
+        let c = StepControl { plastic_strain: Some(1e-3), contact_set: Some(0.2), time_error: None, damage: None };
         // nothing changed: the full growth
         assert_eq!(c.verdict(&m(0.0, None), 0.1, 1.5, 1e-5, false), Verdict::Accept(1.5));
         // a fifth of the target: 0.8 / 0.2 = 4, capped at the growth
@@ -154,7 +165,7 @@ mod tests {
 
     #[test]
     fn rejects_a_plastic_strain_far_above_its_target_once() {
-        let c = StepControl { plastic_strain: Some(1e-3), contact_set: Some(0.2), time_error: None };
+        let c = StepControl { plastic_strain: Some(1e-3), contact_set: Some(0.2), time_error: None, damage: None };
         let Verdict::Reject { factor, q } = c.verdict(&m(2.5e-3, None), 0.1, 1.5, 1e-5, false) else { panic!() };
         assert!((factor - 0.32).abs() < 1e-12 && (q - 2.5).abs() < 1e-12, "{factor} {q}");
         // at most by a quarter
@@ -176,7 +187,7 @@ mod tests {
     /// it, `q · factor³ = 0.8`, when accepted (q ≤ 2) or redone (q > 2).
     #[test]
     fn the_time_error_sets_the_step_by_its_cube_root() {
-        let c = StepControl { plastic_strain: None, contact_set: None, time_error: Some(1e-3) };
+        let c = StepControl { plastic_strain: None, contact_set: None, time_error: Some(1e-3), damage: None };
         for q in [0.2, 0.5, 1.0, 1.6, 2.0] {
             let Verdict::Accept(f) = c.verdict(&t(q * 1e-3), 0.1, 3.0, 1e-5, false) else { panic!("{q}") };
             assert!((q * f.powi(3) - 0.8).abs() < 1e-12, "q = {q}: {f}");
@@ -194,11 +205,33 @@ mod tests {
         assert_eq!(both.verdict(&measure, 0.1, 3.0, 1e-5, false), Verdict::Accept(0.8));
     }
 
+    /// The damage increment steers the next step like the plastic strain
+    /// (linear in Δλ) and, far above its target, rejects the increment.
+    #[test]
+    fn the_damage_increment_shrinks_and_rejects_like_the_plastic_strain() {
+        let c = StepControl { damage: Some(0.1), ..Default::default() };
+        let d = |damage: f64| StepMeasure { damage, ..m(0.0, None) };
+        // half its target: 0.8 / 0.5 = 1.6, capped at the growth
+        assert_eq!(c.verdict(&d(0.05), 0.1, 1.5, 1e-5, false), Verdict::Accept(1.5));
+        // 1.6 × its target: 0.5, accepted
+        let Verdict::Accept(f) = c.verdict(&d(0.16), 0.1, 1.5, 1e-5, false) else { panic!() };
+        assert!((f - 0.5).abs() < 1e-12, "{f}");
+        // 3 × its target: redone at 0.8 / 3
+        let Verdict::Reject { factor, q } = c.verdict(&d(0.3), 0.1, 1.5, 1e-5, false) else { panic!() };
+        assert!((factor - 0.8 / 3.0).abs() < 1e-12 && (q - 3.0).abs() < 1e-12, "{factor} {q}");
+        // with the plastic strain: the worse of the two
+        let both = StepControl { plastic_strain: Some(1e-3), ..c };
+        let measure = StepMeasure { plastic_strain: 0.5e-3, ..d(0.2) };
+        assert_eq!(both.verdict(&measure, 0.1, 1.5, 1e-5, false), Verdict::Accept(0.5));
+        // uncontrolled, the damage changes nothing
+        assert_eq!(StepControl::default().verdict(&d(0.9), 0.1, 1.5, 1e-5, false), Verdict::Accept(1.5));
+    }
+
     #[test]
     fn an_uncontrolled_measure_is_ignored() {
-        let c = StepControl { plastic_strain: None, contact_set: Some(0.2), time_error: None };
+        let c = StepControl { plastic_strain: None, contact_set: Some(0.2), time_error: None, damage: None };
         assert_eq!(c.verdict(&m(1.0, Some(0.04)), 0.1, 2.0, 1e-5, false), Verdict::Accept(2.0));
-        let c = StepControl { plastic_strain: Some(1e-3), contact_set: None, time_error: None };
+        let c = StepControl { plastic_strain: Some(1e-3), contact_set: None, time_error: None, damage: None };
         assert_eq!(c.ratios(&m(5e-4, Some(1.0))), (0.5, 0.5));
     }
 }

@@ -484,7 +484,7 @@ mod tests {
             (self.u, self.p) = (self.u_committed, self.p_committed);
         }
         fn measure(&self) -> StepMeasure {
-            StepMeasure { plastic_strain: (self.p - self.p_committed).abs(), contact_set: None, time_error: 0.0 }
+            StepMeasure { plastic_strain: (self.p - self.p_committed).abs(), ..Default::default() }
         }
     }
 
@@ -528,7 +528,7 @@ mod tests {
     /// accepted one within twice the target, the same exact end.
     #[test]
     fn the_step_control_grows_elastic_increments_and_bounds_plastic_ones() {
-        let control = StepControl { plastic_strain: Some(5.0), contact_set: None, time_error: None };
+        let control = StepControl { plastic_strain: Some(5.0), ..Default::default() };
         let steps =
             StepSettings { initial: 0.1, max: 1.0, growth_factor: 2.0, control: Some(control), ..Default::default() };
         let (hist, log, _) = plastic_run(&steps);
@@ -548,7 +548,7 @@ mod tests {
     /// Δλ = 1 the first attempt changes p by 20 (4 × the target).
     #[test]
     fn a_rejected_increment_is_redone_once() {
-        let control = StepControl { plastic_strain: Some(5.0), contact_set: None, time_error: None };
+        let control = StepControl { plastic_strain: Some(5.0), ..Default::default() };
         let steps = StepSettings { initial: 1.0, max: 1.0, control: Some(control), ..Default::default() };
         let (hist, log, _) = plastic_run(&steps);
         assert_eq!(hist[0].cutbacks, 1);

@@ -80,6 +80,18 @@ impl Elements<'_> {
     pub(crate) fn largest_peeq_increment(&self) -> f64 {
         self.trial.iter().zip(&self.committed).map(|(t, c)| t.peeq - c.peeq).fold(0.0, f64::max)
     }
+
+    /// The largest increment of a ply damage mode at any point since the
+    /// committed state (of the damage the stiffness takes; 0 without ply
+    /// damage).
+    pub(crate) fn largest_damage_increment(&self) -> f64 {
+        let d = &self.damage;
+        d.trial
+            .iter()
+            .zip(&d.committed)
+            .flat_map(|(t, c)| (0..4).map(|k| t.viscous[k] - c.viscous[k]))
+            .fold(0.0, f64::max)
+    }
 }
 
 impl Contribution for Elements<'_> {

@@ -63,6 +63,11 @@ impl Incremental for Structure<'_> {
             plastic_strain: self.parts.elements.largest_peeq_increment(),
             contact_set: (before > 0).then(|| changed as f64 / before.max(after) as f64),
             time_error: transient::time_error(&self.parts, &self.state, &self.system, &self.elimination),
+            damage: self
+                .parts
+                .elements
+                .largest_damage_increment()
+                .max(self.parts.interfaces.largest_damage_increment()),
         }
     }
 

@@ -22,6 +22,10 @@ pub(crate) struct StepControlFile {
     /// displacement so far (`analysis.type = "transient"`: adaptive time steps).
     #[schemars(transform = ranges::TIME_ERROR.schema())]
     pub time_error: Option<f64>,
+    /// Largest increment of a damage variable (a ply damage mode's, a
+    /// cohesive interface's) at any point per increment.
+    #[schemars(transform = ranges::FRACTION.schema())]
+    pub damage: Option<f64>,
 }
 
 /// `solver.control`: what drives the increments.

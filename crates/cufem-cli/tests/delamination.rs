@@ -23,6 +23,15 @@ fn read_example(name: &str) -> String {
     std::fs::read_to_string(path).unwrap()
 }
 
+/// The example `name`'s text without its `propagation` step (the last
+/// before `[solver]`): its elastic step alone, to onset.
+fn before_propagation(name: &str) -> String {
+    let text = read_example(name);
+    let cut = text.find("[[steps]]\nname = \"propagation\"").unwrap();
+    let end = text[cut..].find("[solver]").unwrap();
+    format!("{}{}", &text[..cut], &text[cut + end..])
+}
+
 /// The DCB example's text.
 fn example() -> String {
     read_example("dcb")
@@ -413,10 +422,7 @@ fn mmb_branch_error(points: &[(f64, f64)], reference: &cbt::Mmb) -> f64 {
 /// moves the pin's share by far more.
 #[test]
 fn mmb_lever_before_onset_matches_statics_and_corrected_beam_theory() {
-    let text = read_example("mmb");
-    let cut = text.find("[[steps]]\nname = \"propagation\"").unwrap();
-    let end = text[cut..].find("[solver]").unwrap();
-    let text = format!("{}{}", &text[..cut], &text[cut + end..]);
+    let text = before_propagation("mmb");
     let (out, _) = run_cli("mmb_elastic", &text, true);
     let mmb = mmb_specimen(0.8, 969.0, 1719.0);
     let (c, l) = (mmb.lever, mmb.half_span);
@@ -579,10 +585,7 @@ fn enf_branch_error(points: &[(f64, f64)], reference: &cbt::Enf) -> f64 {
 /// δ3 ≥ −0.1 µm).
 #[test]
 fn enf_before_onset_matches_corrected_beam_theory() {
-    let text = read_example("enf");
-    let cut = text.find("[[steps]]\nname = \"propagation\"").unwrap();
-    let end = text[cut..].find("[solver]").unwrap();
-    let text = format!("{}{}", &text[..cut], &text[cut + end..]);
+    let text = before_propagation("enf");
     let (out, summary) = run_cli("enf_elastic", &text, true);
     let points = enf_curve(&out);
     assert_eq!(points.len(), 10);

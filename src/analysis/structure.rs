@@ -508,6 +508,15 @@ impl NonlinearProblem for Structure<'_> {
         Ok(self.apply_correction(da2))
     }
 
+    fn finish_within(&mut self, eta: f64) -> bool {
+        self.system.finish_next(eta);
+        true
+    }
+
+    fn finished(&self) -> bool {
+        self.system.finished()
+    }
+
     fn slopes(&self) -> Option<(f64, f64)> {
         self.line_slopes()
     }

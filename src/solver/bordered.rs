@@ -101,7 +101,7 @@ pub(crate) struct BorderedWork {
 
 /// Conjugate gradients for the bordered system `A [x_u; x_a] = [b_u; b_a]`
 /// (module docs), preconditioned by `chol` and `factor`, from zero, to
-/// `‖b − A x‖ ≤ tol ‖b‖` within `max_iterations`: [`krylov::pcg_with`] on
+/// `‖b − A x‖ ≤ tol ‖b‖` within `max_iterations` ([`krylov::Stop`]): [`krylov::pcg_with`] on
 /// the stacked vector `[x_u; x_a]`. `rhs_u` and `rhs_a` hold `b` on entry
 /// and, on convergence, `x` (otherwise `b` unchanged). Stops early on a
 /// breakdown (`pᵀ A p ≤ 0`).
@@ -112,7 +112,7 @@ pub(crate) fn pcg_bordered(
     (chol, factor): (&mut Cholesky, &FactorBorder),
     rhs_u: &mut [f64],
     rhs_a: &mut [f64],
-    tol: f64,
+    stop: krylov::Stop,
     max_iterations: usize,
     work: &mut BorderedWork,
 ) -> Result<Krylov, LinearError> {
@@ -139,7 +139,7 @@ pub(crate) fn pcg_bordered(
         let r_a = z_a.to_vec();
         factor.apply(chol, z_u, &r_a, z_a)
     };
-    let outcome = krylov::pcg_with(operator, precond, rhs, tol, max_iterations, u)?;
+    let outcome = krylov::pcg_with(operator, precond, rhs, stop, max_iterations, u)?;
     if let Krylov::Converged(_) = outcome {
         rhs_u.copy_from_slice(&rhs[..n]);
         rhs_a.copy_from_slice(&rhs[n..]);

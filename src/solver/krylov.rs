@@ -48,9 +48,31 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(u, v)| u * v).sum::<f64>()
 }
 
+/// Where conjugate gradients stop: at `‖b − A x‖ ≤ tol ‖b‖`, or, once
+/// there, on towards `finish ≤ tol` while they have made fewer than
+/// `finish_within` iterations in all (a Newton correction predicted to be
+/// the last, `solver::newton`: the few iterations more spare a
+/// correction). Reaching `tol` is what convergence means.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub(crate) struct Stop {
+    /// The relative residual the solve must reach.
+    pub tol: f64,
+    /// The relative residual it goes on towards, if within its iterations.
+    pub finish: f64,
+    /// Most iterations in all while going on towards `finish`.
+    pub finish_within: usize,
+}
+
+impl Stop {
+    /// Stop at `tol`.
+    pub(crate) fn at(tol: f64) -> Self {
+        Self { tol, finish: tol, finish_within: 0 }
+    }
+}
+
 /// Preconditioned conjugate gradients for the symmetric matrix (`pattern`,
 /// lower-triangle `values`) with the factor in `precond`, from `x₀ = 0`, to
-/// `‖b − A x‖ ≤ tol ‖b‖` within `max_iterations`. `rhs` holds `b` on entry;
+/// `‖b − A x‖ ≤ tol ‖b‖` within `max_iterations` ([`Stop`]). `rhs` holds `b` on entry;
 /// on convergence it holds `x`, otherwise `b` unchanged. Stops early on a
 /// breakdown (`pᵀ A p ≤ 0`).
 pub(crate) fn pcg(
@@ -58,25 +80,25 @@ pub(crate) fn pcg(
     values: &[f64],
     precond: &mut Cholesky,
     rhs: &mut [f64],
-    tol: f64,
+    stop: Stop,
     max_iterations: usize,
     work: &mut [Vec<f64>; 5],
 ) -> Result<Krylov, LinearError> {
     let operator = |p: &[f64], q: &mut [f64]| pattern.mul_symmetric(values, p, q);
-    pcg_with(operator, |z| precond.solve_in_place(z), rhs, tol, max_iterations, work)
+    pcg_with(operator, |z| precond.solve_in_place(z), rhs, stop, max_iterations, work)
 }
 
 /// Preconditioned conjugate gradients (Saad, Alg. 9.1) for the symmetric
 /// operator `q = A p` (`operator(p, q)`) with the preconditioner `z ← M⁻¹ z`
 /// (`precond(z)`), from `x₀ = 0`, to `‖b − A x‖ ≤ tol ‖b‖` within
-/// `max_iterations`. `rhs` holds `b` on entry; on convergence it holds `x`,
+/// `max_iterations` ([`Stop`]: on towards its `finish` once there). `rhs` holds `b` on entry; on convergence it holds `x`,
 /// otherwise `b` unchanged. Stops early on a breakdown (`pᵀ A p ≤ 0`). The
 /// loop of [`pcg`] and of the bordered systems (`solver::bordered`).
 pub(crate) fn pcg_with(
     mut operator: impl FnMut(&[f64], &mut [f64]),
     mut precond: impl FnMut(&mut [f64]) -> Result<(), LinearError>,
     rhs: &mut [f64],
-    tol: f64,
+    stop: Stop,
     max_iterations: usize,
     work: &mut [Vec<f64>; 5],
 ) -> Result<Krylov, LinearError> {
@@ -95,10 +117,15 @@ pub(crate) fn pcg_with(
     precond(z)?;
     p.copy_from_slice(z);
     let mut rz = dot(r, z);
+    let mut reached = false;
     for k in 1..=max_iterations {
         operator(p, q);
         let pq = dot(p, q);
         if !(pq > 0.0) || !(rz > 0.0) {
+            if reached {
+                rhs.copy_from_slice(x);
+                return Ok(Krylov::Converged(k - 1));
+            }
             return Ok(Krylov::NotConverged(k - 1));
         }
         let alpha = rz / pq;
@@ -106,7 +133,11 @@ pub(crate) fn pcg_with(
             x[i] += alpha * p[i];
             r[i] -= alpha * q[i];
         }
-        if dot(r, r).sqrt() <= tol * b_norm {
+        // once at `tol`, on towards `finish` (the error in the energy norm
+        // falls at every iteration, the residual need not)
+        let res = dot(r, r).sqrt();
+        reached |= res <= stop.tol * b_norm;
+        if reached && (res <= stop.finish * b_norm || k >= stop.finish_within || k == max_iterations) {
             rhs.copy_from_slice(x);
             return Ok(Krylov::Converged(k));
         }
@@ -345,6 +376,38 @@ pub(crate) mod tests {
             s.push_entry(i + 1, i, -sigma);
         }
         s
+    }
+
+    /// PCG without a preconditioner on a tridiagonal SPD matrix: to `1e-2`
+    /// it stops at the first iteration below it; asked to go on towards
+    /// `1e-10` it goes on and reaches it (an independent product checks the
+    /// residual), and within a budget of two more iterations it stops after
+    /// exactly those, still converged. A stop that ignores `finish`, or
+    /// that gives up the `tol` already reached, fails.
+    #[test]
+    fn pcg_goes_on_towards_its_finish_only_within_its_budget() {
+        let n = 200;
+        let d: Vec<f64> = (0..n).map(|i| 2.1 + (i % 7) as f64).collect();
+        let (pattern, values) = tridiagonal(&d);
+        let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.7).cos()).collect();
+        let bn = b.iter().map(|v| v * v).sum::<f64>().sqrt();
+        let none = NonSymmetric::default();
+        let run = |stop: Stop| {
+            let mut x = b.clone();
+            let mut work: [Vec<f64>; 5] = Default::default();
+            let op = |p: &[f64], q: &mut [f64]| pattern.mul_symmetric(&values, p, q);
+            let out = pcg_with(op, |_| Ok(()), &mut x, stop, 500, &mut work).unwrap();
+            (out, residual(&pattern, &values, &none, &x, &b) / bn)
+        };
+        let (plain, r_plain) = run(Stop::at(1e-2));
+        let Krylov::Converged(k) = plain else { panic!("{plain:?}") };
+        assert!(r_plain <= 1e-2 && k >= 3, "{k} {r_plain:e}");
+        let (far, r_far) = run(Stop { tol: 1e-2, finish: 1e-10, finish_within: 500 });
+        assert!(matches!(far, Krylov::Converged(m) if m > k + 2), "{far:?}");
+        assert!(r_far <= 1e-10, "{r_far:e}");
+        let (short, r_short) = run(Stop { tol: 1e-2, finish: 1e-10, finish_within: k + 2 });
+        assert_eq!(short, Krylov::Converged(k + 2));
+        assert!(r_short <= 1e-2 && r_short > 1e-10, "{r_short:e}");
     }
 
     /// The symmetric part's own factor preconditions `A + S` with `S` of

@@ -37,6 +37,13 @@
 //! refactors at once instead of trying. An `LDLᵀ` factor
 //! (indefinite tangent) is never reused.
 //!
+//! A correction that Newton predicts to be the last of its increment
+//! (`solver::newton`, the finishing correction) asks, through
+//! [`ReusingSolver::finish_next`], for a residual below `η`: PCG then goes
+//! on past `η` towards it, but only within half the allowance, the
+//! iterations after which a solve marks its factor worn — so the policy
+//! counts, worn factors and fallbacks are those of a solve to `η`.
+//!
 //! **Mixed precision.** With [`ReuseSettings::single_precision`] (model key
 //! `solver.factor_precision = "single"`, the default) a factorization rounds
 //! the tangent to `f32` and factorizes that: half the bytes of the factor and
@@ -67,9 +74,8 @@
 use std::time::{Duration, Instant};
 
 use super::bordered::{Border, BorderedWork, FactorBorder, pcg_bordered};
-use super::krylov::{self, GmresWork, Krylov, pcg};
+use super::krylov::{GmresWork, Krylov, Stop, pcg};
 use super::linear::{Cholesky, LinearError, LowerCsc};
-use super::nonsymmetric::NonSymmetric;
 
 /// How many times faster (in flops per second) the dense kernels of a
 /// supernodal factorization run than the memory-bound triangular solves and
@@ -192,6 +198,12 @@ pub(crate) struct ReusingSolver {
     /// if it was made for a bordered solve.
     border: Option<FactorBorder>,
     bordered_work: BorderedWork,
+    /// The relative residual the next solve goes on towards once at its
+    /// forcing term ([`Self::finish_next`]).
+    finish: Option<f64>,
+    /// The last solve reached the residual it was asked to go on towards
+    /// (or was solved by a direct factor).
+    finished: bool,
 }
 
 impl ReusingSolver {
@@ -213,6 +225,40 @@ impl ReusingSolver {
             backoff: 0,
             border: None,
             bordered_work: BorderedWork::default(),
+            finish: None,
+            finished: false,
+        }
+    }
+
+    /// True if the last solve reached the relative residual of
+    /// [`Self::finish_next`] (a direct solve always does).
+    pub(crate) fn finished(&self) -> bool {
+        self.finished
+    }
+
+    /// Whether a PCG solve that stopped with `outcome` reached its stop's
+    /// `finish`: before its `finish_within` (conservatively: one that
+    /// reached it at the last allowed iteration counts as not).
+    fn reached_finish(stop: Stop, outcome: Krylov) -> bool {
+        matches!(outcome, Krylov::Converged(k) if stop.finish >= stop.tol || k < stop.finish_within)
+    }
+
+    /// Asks the next solve to go on from its forcing term `η` towards the
+    /// relative residual `eta` (a Newton correction predicted to be the
+    /// last, `solver::newton`), as far as PCG gets within the iterations
+    /// that leave its factor unworn (half the allowance): the reuse policy
+    /// reads the same counts as without the request. A solve by a direct
+    /// factor is exact anyway; GMRES (friction) does not go on.
+    pub(crate) fn finish_next(&mut self, eta: f64) {
+        self.finish = Some(eta);
+    }
+
+    /// The stop of a PCG solve to `eta` with `allowed` iterations, going on
+    /// towards `finish` within half of them.
+    fn pcg_stop(eta: f64, finish: Option<f64>, allowed: usize) -> Stop {
+        match finish {
+            Some(f) if f < eta => Stop { tol: eta, finish: f.max(1e-14), finish_within: allowed / 2 },
+            _ => Stop::at(eta),
         }
     }
 
@@ -279,14 +325,16 @@ impl ReusingSolver {
         let try_pcg =
             self.settings.enabled && self.has_factor && !self.worn && !self.skip && !must_factor && self.chol.is_llt();
         self.skip = false;
+        let finish = self.finish.take();
         let mut kind = SolveKind::Factorized;
         if try_pcg {
             let allowed = self.allowed_iterations(pattern);
             let t = Instant::now();
-            let eta = self.stop(forcing);
-            let outcome = pcg(pattern, values, &mut self.chol, rhs, eta, allowed, &mut self.work)?;
+            let stop = Self::pcg_stop(self.stop(forcing), finish, allowed);
+            let outcome = pcg(pattern, values, &mut self.chol, rhs, stop, allowed, &mut self.work)?;
             self.stats.solve_time += t.elapsed();
             self.stats.krylov_iterations += outcome.iterations();
+            self.finished = Self::reached_finish(stop, outcome);
             kind = self.reused(outcome, allowed / 2);
             if let SolveKind::Reused(_) = kind {
                 return Ok(kind);
@@ -303,9 +351,10 @@ impl ReusingSolver {
             // preconditioner: PCG refines its solution to η in f64
             let allowed = self.allowed_iterations(pattern);
             let t = Instant::now();
-            let eta = self.stop(forcing);
-            let outcome = pcg(pattern, values, &mut self.chol, rhs, eta, allowed, &mut self.work)?;
+            let stop = Self::pcg_stop(self.stop(forcing), finish, allowed);
+            let outcome = pcg(pattern, values, &mut self.chol, rhs, stop, allowed, &mut self.work)?;
             self.stats.solve_time += t.elapsed();
+            self.finished = Self::reached_finish(stop, outcome);
             match outcome {
                 Krylov::Converged(k) => {
                     self.stats.krylov_iterations += k;
@@ -324,6 +373,7 @@ impl ReusingSolver {
         let t = Instant::now();
         self.chol.solve_in_place(rhs)?;
         self.stats.solve_time += t.elapsed();
+        self.finished = true;
         Ok(kind)
     }
 
@@ -345,15 +395,16 @@ impl ReusingSolver {
         rhs_a: &mut [f64],
         forcing: f64,
     ) -> Result<SolveKind, LinearError> {
-        let eta = self.stop(forcing);
         let fits = self.border.as_ref().is_some_and(|b| b.len() == border.cols.len());
         let try_pcg =
             self.settings.enabled && self.has_factor && fits && !self.worn && !self.skip && self.chol.is_llt();
         self.skip = false;
         let mut kind = SolveKind::Factorized;
         let allowed = self.allowed_iterations(pattern);
+        let stop = Self::pcg_stop(self.stop(forcing), self.finish.take(), allowed);
         if try_pcg {
-            let outcome = self.bordered((pattern, values), border, rhs_u, rhs_a, eta, allowed)?;
+            let outcome = self.bordered((pattern, values), border, rhs_u, rhs_a, stop, allowed)?;
+            self.finished = Self::reached_finish(stop, outcome);
             kind = self.reused(outcome, allowed / 2);
             if let SolveKind::Reused(_) = kind {
                 return Ok(kind);
@@ -366,7 +417,9 @@ impl ReusingSolver {
             self.border = Some(FactorBorder::new(&mut self.chol, border)?);
             // its own factor and border: one iteration in double precision,
             // a few in single
-            match self.bordered((pattern, values), border, rhs_u, rhs_a, eta, allowed)? {
+            let outcome = self.bordered((pattern, values), border, rhs_u, rhs_a, stop, allowed)?;
+            self.finished = Self::reached_finish(stop, outcome);
+            match outcome {
                 Krylov::Converged(k) => {
                     self.worn = 2 * k > allowed;
                     return Ok(kind);
@@ -388,7 +441,7 @@ impl ReusingSolver {
         border: &Border<'_>,
         rhs_u: &mut [f64],
         rhs_a: &mut [f64],
-        eta: f64,
+        stop: Stop,
         max_iterations: usize,
     ) -> Result<Krylov, LinearError> {
         let factor = self.border.as_ref().ok_or(LinearError::Singular)?;
@@ -399,7 +452,7 @@ impl ReusingSolver {
             (&mut self.chol, factor),
             rhs_u,
             rhs_a,
-            eta,
+            stop,
             max_iterations,
             &mut self.bordered_work,
         )?;
@@ -449,81 +502,6 @@ impl ReusingSolver {
         Ok(())
     }
 
-    /// Solves `(A + S) x = b` for the symmetric `A` (lower-triangle
-    /// `values` on `pattern`) plus the unsymmetric entries `skew` (a model
-    /// with friction, `solver::krylov`): GMRES preconditioned by the factor
-    /// of a symmetric part, with the reuse policy of [`Self::solve`]. A
-    /// solve with the last factor may take the iterations its fresh factor
-    /// needed plus the cost of a factorization; if it does not converge, the
-    /// present `A` is factorized and GMRES runs with it (at most
-    /// [`GMRES_MAX_FRESH`] iterations; a single-precision factor that fails
-    /// is replaced by a double one). Without skew entries this is
-    /// [`Self::solve`]. With `must_factor` the factor is of the present `A`
-    /// in double precision, for [`Self::solve_again_unsymmetric`].
-    pub(crate) fn solve_unsymmetric(
-        &mut self,
-        pattern: &LowerCsc,
-        values: &[f64],
-        skew: &NonSymmetric,
-        rhs: &mut [f64],
-        forcing: f64,
-        must_factor: bool,
-    ) -> Result<SolveKind, LinearError> {
-        if skew.is_empty() {
-            return self.solve(pattern, values, rhs, forcing, must_factor);
-        }
-        let try_reuse = self.settings.enabled && self.has_factor && !self.worn && !self.skip && !must_factor;
-        self.skip = false;
-        // the bordering (`must_factor`) combines this solution with further
-        // ones of the same matrix: all of them as exact as the direct solves
-        // of the symmetric path
-        let eta = if must_factor { EXACT } else { self.stop(forcing).min(UNSYMMETRIC_FORCING) };
-        let mut kind = SolveKind::Factorized;
-        if try_reuse {
-            let allowed = self.allowed_iterations(pattern);
-            let budget = allowed + self.fresh_iterations;
-            let outcome = self.gmres(pattern, values, skew, rhs, eta, budget)?;
-            kind = self.reused(outcome, self.fresh_iterations + allowed / 2);
-            if let SolveKind::Reused(_) = kind {
-                return Ok(kind);
-            }
-        }
-        self.skip = matches!(kind, SolveKind::FellBack(_));
-        self.factorize(values, self.single && !must_factor)?;
-        loop {
-            match self.gmres(pattern, values, skew, rhs, eta, GMRES_MAX_FRESH)? {
-                Krylov::Converged(k) => {
-                    self.fresh_iterations = k;
-                    return Ok(kind);
-                }
-                Krylov::NotConverged(_) if self.chol.is_single() => {
-                    self.stats.precision_fallbacks += 1;
-                    self.single = false;
-                    self.factorize(values, false)?;
-                }
-                Krylov::NotConverged(k) => return Err(LinearError::KrylovStalled(k)),
-            }
-        }
-    }
-
-    /// After [`Self::solve_unsymmetric`] with `must_factor`: solves a further
-    /// right-hand side of the same system to [`EXACT`] (relative).
-    pub(crate) fn solve_again_unsymmetric(
-        &mut self,
-        pattern: &LowerCsc,
-        values: &[f64],
-        skew: &NonSymmetric,
-        rhs: &mut [f64],
-    ) -> Result<(), LinearError> {
-        if skew.is_empty() {
-            return self.solve_again(rhs);
-        }
-        match self.gmres(pattern, values, skew, rhs, EXACT, GMRES_MAX_FRESH)? {
-            Krylov::Converged(_) => Ok(()),
-            Krylov::NotConverged(k) => Err(LinearError::KrylovStalled(k)),
-        }
-    }
-
     /// Counts a Krylov solve with an earlier factor: `Reused` — the solve
     /// is done, the factor marked worn if it took more than `worn_after`
     /// iterations — or `FellBack`: the caller factorizes.
@@ -539,33 +517,6 @@ impl ReusingSolver {
                 SolveKind::FellBack(k)
             }
         }
-    }
-
-    /// One GMRES solve with the present factor, counted and timed.
-    fn gmres(
-        &mut self,
-        pattern: &LowerCsc,
-        values: &[f64],
-        skew: &NonSymmetric,
-        rhs: &mut [f64],
-        eta: f64,
-        max_iterations: usize,
-    ) -> Result<Krylov, LinearError> {
-        let t = Instant::now();
-        let outcome = krylov::gmres(
-            pattern,
-            values,
-            skew,
-            &mut self.chol,
-            rhs,
-            eta,
-            max_iterations,
-            GMRES_RESTART,
-            &mut self.gmres,
-        )?;
-        self.stats.solve_time += t.elapsed();
-        self.stats.krylov_iterations += outcome.iterations();
-        Ok(outcome)
     }
 
     /// Solves with the factor of the last [`Self::solve`] that factorized
@@ -588,6 +539,9 @@ impl ReusingSolver {
         })
     }
 }
+
+#[path = "reuse_unsymmetric.rs"]
+mod unsymmetric;
 
 #[cfg(test)]
 #[path = "reuse_tests.rs"]

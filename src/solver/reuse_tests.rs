@@ -2,6 +2,7 @@
 //! length limit).
 
 use super::*;
+use crate::solver::nonsymmetric::NonSymmetric;
 
 use super::super::krylov::tests::{residual as residual_unsymmetric, tridiagonal};
 
@@ -254,4 +255,42 @@ fn breakdowns_in_single_precision_back_off_exponentially() {
         solver.factorize(&good, solver.single).unwrap();
     }
     assert!(solver.chol.is_single() && solver.breakdowns == 0, "single precision never came back");
+}
+
+/// A finishing request (`finish_next`) on the local change above: PCG with
+/// the old factor goes on from `η = 1e-2` to `1e-11` within half its
+/// allowance (the changed rows make the preconditioned operator of low
+/// rank), reports the request met, and counts no factorization more; the
+/// next solve, not asked, stops at its own `η` again.
+#[test]
+fn a_finishing_request_goes_on_within_the_unworn_iterations() {
+    let n = 200;
+    let (pattern, v0) = tridiagonal(&vec![2.5; n]);
+    let settings = ReuseSettings { min_iterations: 10, single_precision: false, ..Default::default() };
+    let mut solver = ReusingSolver::new(Cholesky::analyze(&pattern).unwrap(), settings);
+    let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.1).sin() + 1.0).collect();
+    let bn = b.iter().map(|v| v * v).sum::<f64>().sqrt();
+    let mut x = b.clone();
+    solver.solve(&pattern, &v0, &mut x, 1e-8, false).unwrap();
+    let mut d1 = vec![2.5; n];
+    for d in &mut d1[100..103] {
+        *d = 2.1;
+    }
+    let (_, v1) = tridiagonal(&d1);
+    let plain = |solver: &mut ReusingSolver| {
+        let mut x = b.clone();
+        let kind = solver.solve(&pattern, &v1, &mut x, 1e-2, false).unwrap();
+        (kind, residual(&pattern, &v1, &x, &b) / bn)
+    };
+    let (kind, r) = plain(&mut solver);
+    assert!(matches!(kind, SolveKind::Reused(_)) && r <= 1e-2 && r > 1e-11, "{kind:?} {r:e}");
+    solver.finish_next(1e-11);
+    let mut x = b.clone();
+    let kind = solver.solve(&pattern, &v1, &mut x, 1e-2, false).unwrap();
+    let SolveKind::Reused(k) = kind else { panic!("{kind:?}") };
+    assert!(k <= 5 && solver.finished(), "{k}");
+    assert!(residual(&pattern, &v1, &x, &b) <= 1e-11 * bn);
+    let (again, r_again) = plain(&mut solver);
+    assert!(matches!(again, SolveKind::Reused(_)) && r_again > 1e-11, "{again:?} {r_again:e}");
+    assert_eq!(solver.stats().factorizations, 1);
 }

@@ -61,6 +61,18 @@ impl LinearSystem {
         Tangent { assembler: &self.assembler, values, rest, weight: 1.0, wanted: true }
     }
 
+    /// Asks the next solve to go on towards the relative residual `eta`
+    /// once at its forcing term (`solver::reuse`, a Newton correction
+    /// predicted to be the last).
+    pub(crate) fn finish_next(&mut self, eta: f64) {
+        self.solver.finish_next(eta);
+    }
+
+    /// True if the last solve reached the residual [`Self::finish_next`] asked for.
+    pub(crate) fn finished(&self) -> bool {
+        self.solver.finished()
+    }
+
     /// Solves `K x = rhs` in place (`must_factor`: with the present tangent's
     /// own factor, for further right-hand sides).
     pub fn solve(&mut self, must_factor: bool) -> Result<(), LinearError> {

@@ -38,7 +38,7 @@
 //! `[1.7e-2 1.2e-6 1.9e-13]`). When the residual the nonlinearity leaves is
 //! predicted within half the tolerance — `r_k³ / r_(k−1)²` while the
 //! residual contracts, or zero for the first correction of an increment
-//! when the load stepping says ([`FirstCorrection`]) the last increment was about
+//! when the load stepping says (`FirstCorrection`) the last increment was about
 //! linear — Newton asks the problem to solve this correction to
 //! `η = ½ max(min(tol_R / r_k, tol_x / c), 10⁻³ tol_R / r_k)`, with `c` the
 //! predicted size of this correction against the increment (1 for the
@@ -47,7 +47,7 @@
 //! Krylov iterations instead of a correction and its evaluations. The
 //! evaluation after a first correction is expected to be the last (above)
 //! when the problem reports the request met ([`NonlinearProblem::finished`])
-//! and the last increment converged in one ([`FirstCorrection::Last`]): a
+//! and the last increment converged in one (`FirstCorrection::Last`): a
 //! laminate whose steps take two corrections from the contact of its
 //! delaminated faces would otherwise evaluate its residual alone, find the
 //! step unconverged and evaluate again (examples/laminate_drop_weight_damage.toml

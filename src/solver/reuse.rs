@@ -39,7 +39,7 @@
 //!
 //! A correction that Newton predicts to be the last of its increment
 //! (`solver::newton`, the finishing correction) asks, through
-//! [`ReusingSolver::finish_next`], for a residual below `η`: PCG then goes
+//! `ReusingSolver::finish_next`, for a residual below `η`: PCG then goes
 //! on past `η` towards it, but only within half the allowance, the
 //! iterations after which a solve marks its factor worn — so the policy
 //! counts, worn factors and fallbacks are those of a solve to `η`.

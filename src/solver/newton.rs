@@ -249,7 +249,8 @@ pub(crate) fn solve_from<P: NonlinearProblem>(
     let mut report = Report::default();
     let mut last_correction: Option<f64> = None;
     let mut last_settled = false;
-    // the forcing term the last correction was solved to on a finishing request
+    // the forcing term the first correction was solved to on a trusted
+    // finishing request (module docs: read only after that correction)
     let mut finished: Option<f64> = None;
     loop {
         let expected = last_settled && expect_convergence(&report.residuals, last_correction, finished, settings);
@@ -311,8 +312,8 @@ pub(crate) fn solve_from<P: NonlinearProblem>(
                 let rel = if c.norm == 0.0 { 0.0 } else { c.norm / c.increment_norm.max(f64::MIN_POSITIVE) };
                 report.corrections.push(rel);
                 last_correction = Some(rel);
-                // after a first correction, only if the last increment took one
-                let trusted = report.iterations > 0 || first == FirstCorrection::Last;
+                // trusted only if the last increment took one correction
+                let trusted = report.iterations == 0 && first == FirstCorrection::Last;
                 finished = asked.filter(|_| trusted && problem.finished());
             }
             Err(e) => return fail(report, Failure::Problem, Some(e.to_string())),
@@ -345,7 +346,8 @@ fn converged(r: f64, before: Option<f64>, c: Option<f64>, settings: &NewtonSetti
 /// lower that, as the quadratic term alone underestimates where plasticity
 /// switches (examples/tube_crush.toml: 11 evaluations more when it did) —;
 /// after the first correction, `η r_0` if it was solved to the forcing
-/// term `finished` of a trusted finishing request.
+/// term `finished` of a trusted finishing request (`None` after later
+/// corrections).
 fn expect_convergence(
     residuals: &[f64],
     last_correction: Option<f64>,

@@ -89,7 +89,7 @@ impl Elements<'_> {
         d.trial
             .iter()
             .zip(&d.committed)
-            .flat_map(|(t, c)| (0..4).map(|k| t.viscous[k] - c.viscous[k]))
+            .flat_map(|(t, c)| t.viscous.iter().zip(&c.viscous).map(|(a, b)| a - b))
             .fold(0.0, f64::max)
     }
 }

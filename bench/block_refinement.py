@@ -7,7 +7,7 @@ meshes of the list, default all; the finest take 2-3 min each)."""
 import csv, json, os, subprocess, sys
 
 root = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-meshes = [(6, 6, 1), (9, 9, 2), (12, 12, 2), (12, 12, 3), (12, 12, 4)]  # x elements per segment, z, B4
+meshes = [(6, 6, 1), (9, 9, 2), (12, 12, 2), (12, 12, 3), (12, 12, 4), (18, 18, 3)]  # x elements per segment, z, B4
 rows = int(sys.argv[1]) if len(sys.argv) > 1 else len(meshes)
 base = open(os.path.join(root, "examples/block_indentation.toml")).read()
 ref = [[float(v) for v in l.split(",")] for l in open(os.path.join(root, "tests/data/block_calculix_top.csv"))

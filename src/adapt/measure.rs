@@ -34,6 +34,9 @@ pub(crate) struct Measure {
     pub(crate) element: Vec<f64>,
     /// The section stage's part of `element` (`ErrorEstimate::section`).
     pub(crate) section: Vec<f64>,
+    /// The parts of `element` varying along x, z and the axis
+    /// (`ErrorEstimate::direction`; empty if not computed).
+    pub(crate) direction: Vec<[f64; 3]>,
     /// Modal: the followed modes' frequencies (Hz) and estimated relative
     /// frequency errors; empty otherwise.
     pub(crate) frequencies: Vec<f64>,
@@ -51,15 +54,16 @@ impl Measure {
                 let frequency_errors: Vec<f64> = errors.iter().map(|e| e.frequency()).collect();
                 let estimate = frequency_errors.iter().copied().fold(0.0, f64::max);
                 let above = errors.iter().filter(|e| e.frequency() >= settings.tolerance).map(|e| &e.estimate);
-                let (element, section) = combined(above);
+                let Combined { element, section, direction } = combined(above);
                 let frequencies = modal.frequencies[..n].to_vec();
-                Self { estimate, element, section, frequencies, frequency_errors }
+                Self { estimate, element, section, direction, frequencies, frequency_errors }
             }
             None => match &solution.error_estimate {
                 Some(e) => Self {
                     estimate: e.relative(),
                     element: e.element.clone(),
                     section: e.section.clone(),
+                    direction: e.direction.clone(),
                     ..Default::default()
                 },
                 None => Self::default(),
@@ -82,31 +86,51 @@ impl Measure {
     }
 }
 
-/// `Σ_i η_{e,i}² / Σ_e η_{e,i}²` over the estimates (and their section
-/// parts alike), as `√` per element; the section parts are dropped unless
-/// every estimate has them.
-fn combined<'a>(estimates: impl Iterator<Item = &'a crate::post::estimate::ErrorEstimate>) -> (Vec<f64>, Vec<f64>) {
-    let (mut element, mut section) = (Vec::<f64>::new(), Vec::<f64>::new());
-    let mut with_sections = true;
+/// The followed modes' indicators, each normalised by its own total
+/// ([`combined`]).
+#[derive(Debug, Default)]
+struct Combined {
+    element: Vec<f64>,
+    section: Vec<f64>,
+    direction: Vec<[f64; 3]>,
+}
+
+/// `Σ_i η_{e,i}² / Σ_e η_{e,i}²` over the estimates (and their section and
+/// direction parts alike), as `√` per element; the section (direction)
+/// parts are dropped unless every estimate has them.
+fn combined<'a>(estimates: impl Iterator<Item = &'a crate::post::estimate::ErrorEstimate>) -> Combined {
+    let mut out = Combined::default();
+    let (mut with_sections, mut with_directions) = (true, true);
     for est in estimates {
         let total = est.error * est.error;
         if !(total > 0.0) {
             continue;
         }
-        element.resize(est.element.len(), 0.0);
-        for (w, eta) in element.iter_mut().zip(&est.element) {
+        let n = est.element.len();
+        out.element.resize(n, 0.0);
+        for (w, eta) in out.element.iter_mut().zip(&est.element) {
             *w += eta * eta / total;
         }
-        with_sections &= est.section.len() == est.element.len();
-        section.resize(est.element.len(), 0.0);
-        for (w, s) in section.iter_mut().zip(&est.section) {
+        with_sections &= est.section.len() == n;
+        out.section.resize(n, 0.0);
+        for (w, s) in out.section.iter_mut().zip(&est.section) {
             *w += s * s / total;
+        }
+        with_directions &= est.direction.len() == n;
+        out.direction.resize(n, [0.0; 3]);
+        for (w, s) in out.direction.iter_mut().zip(&est.direction) {
+            (0..3).for_each(|d| w[d] += s[d] * s[d] / total);
         }
     }
     if !with_sections {
-        section.clear();
+        out.section.clear();
     }
-    (element.iter().map(|w| w.sqrt()).collect(), section.iter().map(|w| w.sqrt()).collect())
+    if !with_directions {
+        out.direction.clear();
+    }
+    out.element.iter_mut().chain(out.section.iter_mut()).for_each(|w| *w = w.sqrt());
+    out.direction.iter_mut().flatten().for_each(|w| *w = w.sqrt());
+    out
 }
 
 #[cfg(test)]
@@ -118,16 +142,34 @@ mod tests {
     /// in scale weigh equally: each contributes its own shares.
     #[test]
     fn each_mode_counts_by_its_own_shares() {
-        let a = ErrorEstimate { element: vec![3.0, 4.0, 0.0], error: 5.0, energy: 1.0, section: vec![3.0, 0.0, 0.0] };
-        let b = ErrorEstimate { element: vec![0.0, 0.0, 500.0], error: 500.0, energy: 1.0, section: vec![0.0; 3] };
-        let (element, section) = combined([&a, &b].into_iter());
+        let a = ErrorEstimate {
+            element: vec![3.0, 4.0, 0.0],
+            error: 5.0,
+            energy: 1.0,
+            section: vec![3.0, 0.0, 0.0],
+            direction: vec![[0.0, 4.0, 0.0]; 3],
+        };
+        let b = ErrorEstimate {
+            element: vec![0.0, 0.0, 500.0],
+            error: 500.0,
+            energy: 1.0,
+            section: vec![0.0; 3],
+            direction: vec![[0.0, 0.0, 300.0]; 3],
+        };
+        let Combined { element, section, direction } = combined([&a, &b].into_iter());
         let expect = [0.36f64.sqrt(), 0.64f64.sqrt(), 1.0];
         for (e, x) in element.iter().zip(expect) {
             assert!((e - x).abs() < 1e-15, "{element:?}");
         }
         assert!((section[0] - 0.6).abs() < 1e-15 && section[1] == 0.0 && section[2] == 0.0, "{section:?}");
-        // without section parts in one of them, none are given
-        let c = ErrorEstimate { section: Vec::new(), ..b };
-        assert!(combined([&a, &c].into_iter()).1.is_empty());
+        // 4²/5² and 300²/500² in their own directions
+        assert!(direction[0][0] == 0.0 && (direction[0][1] - 0.8).abs() < 1e-15, "{direction:?}");
+        assert!((direction[0][2] - 0.6).abs() < 1e-15, "{direction:?}");
+        // without section (direction) parts in one of them, none are given
+        let c = ErrorEstimate { section: Vec::new(), ..b.clone() };
+        assert!(combined([&a, &c].into_iter()).section.is_empty());
+        let d = ErrorEstimate { direction: Vec::new(), ..b };
+        let without = combined([&a, &d].into_iter());
+        assert!(without.direction.is_empty() && without.section.len() == 3);
     }
 }

@@ -221,6 +221,12 @@ fn stop_before_refining(
 
 /// The refined model after a solution measured by `measure`, or why there
 /// is none (nothing to refine, over the DOF budget or the memory limit).
+/// When the refinement of every marked element would exceed the budget (or
+/// the memory allowed), the largest of them that fit are refined — the
+/// longest run of the marked elements, largest first, whose refined mesh
+/// stays within it — so a run spends its budget where the estimate is
+/// largest instead of stopping one refinement short of it; the run stops
+/// when not even the largest element's refinement fits.
 fn next_model(
     model: &Model,
     measure: &measure::Measure,
@@ -231,10 +237,51 @@ fn next_model(
         return Ok(Err("no error estimate to refine by".into()));
     }
     let marked = mark::dorfler(&measure.element, settings.fraction);
-    let mut marks = mark::intervals(&model.mesh, &model.plan, &marked);
+    let nothing = || Ok(Err("nothing left to refine (the marked elements' sections are kept as given)".into()));
+    // the longest prefix of `marked` whose refinement fits: all of it
+    // first, then a bisection between the longest known to fit (`low`)
+    // and the shortest known to be too large (`high`)
+    let (mut low, mut high, mut n) = (0, marked.len() + 1, marked.len());
+    let (mut best, mut over) = (None, None);
+    while n > low && n < high {
+        match refined(model, measure, source, settings, &marked[..n])? {
+            Refined::Same if n == marked.len() => return nothing(),
+            Refined::Same => low = n,
+            Refined::Fits(next) => (low, best) = (n, Some(*next)),
+            Refined::Over(why) => (high, over) = (n, Some(why)),
+        }
+        n = (low + high) / 2;
+    }
+    match (best, over) {
+        (Some(next), _) => Ok(Ok(next)),
+        (None, Some(why)) => Ok(Err(why)),
+        (None, None) => nothing(),
+    }
+}
+
+/// A refinement of the elements `marked`.
+enum Refined {
+    /// The refined model, within the budget.
+    Fits(Box<Model>),
+    /// The plan did not change.
+    Same,
+    /// Over the budget or the memory allowed: why.
+    Over(String),
+}
+
+/// The model refined at the elements `marked` (largest first).
+fn refined(
+    model: &Model,
+    measure: &measure::Measure,
+    source: Source<'_>,
+    settings: &AdaptSettings,
+    marked: &[usize],
+) -> Result<Refined, AdaptError> {
+    let mut marks = mark::intervals(&model.mesh, &model.plan, marked);
     let parts = (&measure.element[..], &measure.section[..]);
-    mark::across_sections(&model.mesh, &model.plan, &marked, parts, &mut marks);
-    mark::along_axis(&model.mesh, &model.plan, &marked, parts, &mut marks);
+    mark::across_sections(&model.mesh, &model.plan, marked, parts, &mut marks);
+    mark::along_axis(&model.mesh, &model.plan, marked, parts, &mut marks);
+    mark::by_direction(&model.mesh, &model.plan, marked, &measure.direction, &mut marks);
     let weights = if measure.section.len() == measure.element.len() { &measure.section } else { &measure.element };
     // modes only: on static profiles the estimate is held by the walls'
     // singular re-entrant corners, and grading towards them reached no
@@ -243,21 +290,21 @@ fn next_model(
     mark::local(&model.mesh, &model.plan, weights, grade, &mut marks);
     let plan: MeshPlan = mark::refine(&model.plan, &marks);
     if plan == model.plan {
-        return Ok(Err("nothing left to refine (the marked elements' sections are kept as given)".into()));
+        return Ok(Refined::Same);
     }
     let next = match Model::parse_planned(source.text, source.limits, source.base, &plan) {
         Ok(m) => m,
         Err(ModelError::TooLarge { dofs, .. }) => {
-            return Ok(Err(format!("the next mesh ({dofs} DOF) would not fit in the memory allowed")));
+            return Ok(Refined::Over(format!("the next mesh ({dofs} DOF) would not fit in the memory allowed")));
         }
         Err(e) => return Err(e.into()),
     };
     if next.n_dofs() > settings.max_dof {
-        return Ok(Err(format!(
+        return Ok(Refined::Over(format!(
             "the next mesh ({} DOF) would exceed the budget max_dof = {}",
             next.n_dofs(),
             settings.max_dof
         )));
     }
-    Ok(Ok(next))
+    Ok(Refined::Fits(Box::new(next)))
 }

@@ -45,6 +45,12 @@ pub struct ErrorEstimate {
     /// along the axis (the direction `--adapt` refines). Empty when not
     /// computed.
     pub section: Vec<f64>,
+    /// Per element, the parts of `σ* − σ_h` that vary along x, z and the
+    /// axis (`directions`), √J each: where one holds most of the variation,
+    /// the element's error is that of too long an element in that
+    /// direction (`--adapt` splits a grid's intervals by it). Empty when
+    /// not computed.
+    pub direction: Vec<[f64; 3]>,
 }
 
 impl ErrorEstimate {
@@ -187,6 +193,92 @@ pub(crate) fn of_state(
     let (recovered, along) = super::spr::recover_stages(mesh, cells, stresses, gp_offsets);
     let mut out = estimate(mesh, cells, materials, stresses, gp_offsets, &recovered);
     out.section = section_parts(mesh, cells, materials, gp_offsets, (&recovered, &along));
+    out.direction = directions(mesh, cells, materials, (stresses, &recovered), gp_offsets);
+    out
+}
+
+/// Per element, `‖e − ē_d‖_e` for each direction `d` (x, z, the axis), √J:
+/// `e = σ* − σ_h` at the element's Gauss points and `ē_d` its weighted mean
+/// over the points that differ only in `d` (the tensor rule's lines along
+/// `d`). The leading stress error of an element of degree `p` along a
+/// direction is `∝ h_d^p P_p(ξ_d)` (`super::spr`, module docs): it varies
+/// along that direction only, so each part measures what halving the
+/// element in its direction removes; a part the element's own recovery
+/// cannot see (a constant offset of `e`) is in none of them. The section's
+/// natural directions are mapped to x or z by the larger of their physical
+/// components (a grid's rectangles: exactly). A section element whose rule
+/// is not a square tensor rule has no section parts.
+fn directions(
+    mesh: &Mesh,
+    cells: &[CellValues],
+    materials: &[Material],
+    (stresses, recovered): (&[Voigt], &[Voigt]),
+    gp_offsets: &[usize],
+) -> Vec<[f64; 3]> {
+    let mut out = vec![[0.0; 3]; mesh.n_elements()];
+    let (mut d, mut w) = (Vec::new(), Vec::new());
+    for (b, body) in mesh.bodies.iter().enumerate() {
+        let cell = &cells[b];
+        let (gs, ga) = (cell.section.n_gp, cell.axis.n_gp);
+        let n = (gs as f64).sqrt().round() as usize;
+        let square = n * n == gs && n > 1;
+        for e in 0..body.n_elements() {
+            let (es, eb) = body.split_element(e);
+            let m = &materials[body.material_of(es)];
+            let first = gp_offsets[b] + e * gs * ga;
+            d.clear();
+            w.clear();
+            for qa in 0..ga {
+                for qs in 0..gs {
+                    let g = first + qa * gs + qs;
+                    d.push(std::array::from_fn::<f64, 6, _>(|k| recovered[g][k] - stresses[g][k]));
+                    w.push(cell.section.weight[es * gs + qs] * cell.axis.weight[eb * ga + qa]);
+                }
+            }
+            // index of a point from (ξ index, ζ index, axis index)
+            let at = |i: usize, j: usize, qa: usize| qa * gs + j * n + i;
+            let part = |lines: &mut dyn Iterator<Item = Vec<usize>>| {
+                let mut sum = 0.0;
+                for line in lines {
+                    let total: f64 = line.iter().map(|&p| w[p]).sum();
+                    if !(total > 0.0) {
+                        continue;
+                    }
+                    let mean: Voigt =
+                        std::array::from_fn(|k| line.iter().map(|&p| w[p] * d[p][k]).sum::<f64>() / total);
+                    for &p in &line {
+                        let v: Voigt = std::array::from_fn(|k| d[p][k] - mean[k]);
+                        sum += w[p] * energy(&v, m);
+                    }
+                }
+                sum.max(0.0).sqrt()
+            };
+            let axis = part(&mut (0..gs).map(|qs| (0..ga).map(|qa| qa * gs + qs).collect()));
+            let (xi, zeta) = if square {
+                let xi = part(
+                    &mut (0..ga)
+                        .flat_map(|qa| (0..n).map(move |j| (qa, j)))
+                        .map(|(qa, j)| (0..n).map(|i| at(i, j, qa)).collect()),
+                );
+                let zeta = part(
+                    &mut (0..ga)
+                        .flat_map(|qa| (0..n).map(move |i| (qa, i)))
+                        .map(|(qa, i)| (0..n).map(|j| at(i, j, qa)).collect()),
+                );
+                (xi, zeta)
+            } else {
+                (0.0, 0.0)
+            };
+            // does ξ run along x or along z?
+            let pos = &cell.section.position;
+            let step = |k: usize| {
+                let (a, c) = (pos[es * gs], pos[es * gs + k]);
+                [(c[0] - a[0]).abs(), (c[1] - a[1]).abs()]
+            };
+            let xi_along_x = !square || step(1)[0] >= step(1)[1];
+            out[body.element_offset + e] = if xi_along_x { [xi, zeta, axis] } else { [zeta, xi, axis] };
+        }
+    }
     out
 }
 
@@ -226,9 +318,54 @@ mod tests {
 
     #[test]
     fn relative_and_largest() {
-        let est = ErrorEstimate { element: vec![3.0, 4.0, 0.0], error: 5.0, energy: 12.0, section: Vec::new() };
+        let est = ErrorEstimate { element: vec![3.0, 4.0, 0.0], error: 5.0, energy: 12.0, ..Default::default() };
         assert!((est.relative() - 5.0 / 13.0).abs() < 1e-15);
         assert!((est.relative_element(1) - 4.0 / 13.0).abs() < 1e-15);
         assert_eq!(est.largest(2), vec![(1, 16.0 / 25.0), (0, 9.0 / 25.0)]);
+    }
+
+    /// Each direction part holds only what varies along its own direction:
+    /// on the Timoshenko cantilever's grid (2 × 2 L9, B4), a field of x alone
+    /// at the Gauss points is all in the x part, of z alone in the z part,
+    /// of y alone in the axis part, and a constant offset in none.
+    #[test]
+    fn each_direction_part_holds_the_variation_along_it() {
+        use crate::setup::{Limits, Model};
+        let path = concat!(env!("CARGO_MANIFEST_DIR"), "/examples/cantilever_timoshenko.toml");
+        let model = Model::parse_with(&std::fs::read_to_string(path).unwrap(), Limits::none()).unwrap();
+        let (body, cell) = (&model.mesh.bodies[0], &model.cells[0]);
+        let (gs, ga) = (cell.section.n_gp, cell.axis.n_gp);
+        let n = body.n_elements() * gs * ga;
+        let raw = vec![[0.0; 6]; n];
+        // a field f(x, z, y) at every Gauss point, in σ_xx
+        let field = |f: &dyn Fn(f64, f64, f64) -> f64| {
+            let mut out = vec![[0.0; 6]; n];
+            for e in 0..body.n_elements() {
+                let (es, eb) = body.split_element(e);
+                for qa in 0..ga {
+                    for qs in 0..gs {
+                        let [x, z] = cell.section.position[es * gs + qs];
+                        out[e * gs * ga + qa * gs + qs][0] = f(x, z, cell.axis.position[eb * ga + qa]);
+                    }
+                }
+            }
+            out
+        };
+        let parts = |f: &dyn Fn(f64, f64, f64) -> f64| {
+            directions(&model.mesh, &model.cells, &model.materials, (&raw, &field(f)), &[0])
+        };
+        for (d, f) in [
+            (0, &(|x: f64, _: f64, _: f64| 1e8 * (x / 0.05 - 1.0).powi(2)) as &dyn Fn(f64, f64, f64) -> f64),
+            (1, &|_, z: f64, _| 1e8 * (z / 0.05 - 1.0).powi(2)),
+            (2, &|_, _, y: f64| 1e8 * y * y),
+        ] {
+            for (e, p) in parts(f).iter().enumerate() {
+                assert!(p[d] > 0.0, "direction {d}, element {e}: {p:?}");
+                (0..3)
+                    .filter(|&o| o != d)
+                    .for_each(|o| assert!(p[o] < 1e-12 * p[d], "direction {d}, element {e}: {p:?}"));
+            }
+        }
+        assert!(parts(&|_, _, _| 1e8).iter().flatten().all(|p| p.abs() < 1e-9), "a constant offset varies nowhere");
     }
 }

@@ -184,7 +184,9 @@ fn the_adapt_table_is_typed_and_checked() {
 /// `cufem run --adapt` through the CLI: cycles until the DOF budget stops
 /// it, the estimate falling from cycle to cycle, every mesh within the
 /// budget, the cycles in summary.json and the last cycle's results written
-/// (its DOF, its probe).
+/// (its DOF, its probe). The budget binds before `max_cycles = 5` does: the
+/// cantilever's error lies along z and the axis, so its x interval is
+/// never split (`mark::by_direction`) and five cycles reach 3,366 DOF.
 #[test]
 fn cli_run_adapt_refines_until_the_budget() {
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("adapt_cli");
@@ -192,7 +194,7 @@ fn cli_run_adapt_refines_until_the_budget() {
     std::fs::create_dir_all(&dir).unwrap();
     let model = dir.join("cantilever.toml");
     std::fs::write(&model, cantilever(1, 1, 2)).unwrap();
-    let budget = 6000;
+    let budget = 2500;
     let out = Command::new(env!("CARGO_BIN_EXE_cufem"))
         .args(["run", model.to_str().unwrap(), "--adapt", "0.001", "--max-dof", &budget.to_string(), "--out"])
         .arg(dir.join("out"))
@@ -378,8 +380,9 @@ fn measure(
 /// tests/data/block_calculix_top.csv) and the 3D punch force (1.4102 MN),
 /// with a budget of 60,000 DOF (docs/verification.md, "Adaptive
 /// refinement"). What the docs claim: the punch force within 0.6 % of 3D
-/// from cycle 1 on, and σ_zz under the punch within 6 % of the 3D peak at
-/// the last cycle, from 14.8 % on the paper's mesh.
+/// at cycles 1 and 2 (the last cycle's is a known limit, below), and σ_zz
+/// under the punch within 6 % of the 3D peak at the last cycle, from 14.8 %
+/// on the paper's mesh.
 ///
 /// The surface u_z, issue 49's "within 5 % of 3D at every station", per
 /// station as crates/cufem-cli/tests/fidelity.rs measures the graded
@@ -394,16 +397,23 @@ fn measure(
 /// monotonically towards the punch, and under the punch (u_z set by it).
 /// The three stations within 10 mm of each punch edge, x ∈ (0.19, 0.2),
 /// where 3D u_z falls from −0.18 to −0.99 mm (the near-step at the punch
-/// corner), are not within 5 %: x = 0.1975 m is 48.5 % off at the last
-/// cycle, whose element there is 4.2 mm long. The estimate names those
-/// elements (the largest η are the top elements beside both punch edges),
-/// but the next refinement (every marked element's x, z and axis
-/// intervals) has 234,825 DOF, over the budget, and any split of the
-/// 4 axis intervals alone would exceed it; halving only the two edge
-/// intervals in x (the mesh of the last cycle so refined, solved here)
-/// brings x = 0.1975 m to 7.6 % (53,235 DOF) and 1.6 % (56,511 DOF, every
-/// station then within 2.4 %). A known limit of the marking, asserted from
-/// both sides (docs/limitations.md). Finally the model file the run writes
+/// corner): the estimate names those elements (the largest η are the top
+/// elements beside both punch edges), their error varying along x
+/// (`mark::by_direction`), so cycle 3 halves their x intervals (x 28 → 30,
+/// z 10 → 12, the axis kept) and x = 0.1975 m comes to 5.25 % (48.5 % when
+/// every direction of a marked element was split: the next mesh then had
+/// 234,825 DOF and the run stopped at cycle 2). Not within 5 %: 3D u_z
+/// steepens within its own last 2.5 mm before the edge (−0.193 mm at
+/// 0.195 m, −0.214 at 0.1975 m, −0.99 at 0.2 m), where the adapted mesh's
+/// top is smooth (−0.202 mm); with a budget of 80,000 DOF the station is
+/// 6.7 % off. Both models depend on their mesh beside a singular edge; a
+/// known limit asserted from both sides (docs/limitations.md), as is the
+/// last cycle's punch force, −0.91 % from 3D: the force falls as the
+/// elements beside the punch edges shrink (the uniform graded meshes of
+/// bench/block_refinement.py: +0.32 % at 36 × 12 L9 × 3 B4, −0.37 % at
+/// 54 × 18 × 3 B4; CalculiX's own elastic force moved +0.23 % from refine 1
+/// to 2, docs/cross-check.md), so the 0.6 % held by the earlier cycles
+/// is asserted up to cycle 2. Finally the model file the run writes
 /// (adapted.toml) is re-run: the same DOF, punch force and u_z.
 ///
 /// Mutations tried: Young's modulus 10 % high in examples/block_indentation.toml
@@ -413,7 +423,7 @@ fn measure(
 /// in u_z (the 17 mm edge elements stay); the user's file written as the
 /// adapted one (the plan not applied) fails the re-run's DOF.
 #[test]
-#[ignore = "validate: slow — three adaptive cycles of the block up to 50,000 DOF and three re-runs (about 3 min)"]
+#[ignore = "validate: slow — four adaptive cycles of the block up to 60,000 DOF and a re-run (about 3 min)"]
 fn block_adaptive_against_3d() {
     let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
     let reference: Vec<[f64; 3]> = std::fs::read_to_string(root.join("tests/data/block_calculix_top.csv"))
@@ -465,7 +475,12 @@ fn block_adaptive_against_3d() {
         common::figure(&format!("adapt_block.cycle{k}.dof"), *dof as f64, "", "reported");
         common::figure(&format!("adapt_block.cycle{k}.estimate"), 100.0 * estimate, "%", "reported");
         common::figure(&format!("adapt_block.cycle{k}.s_zz"), v[0], "%", "last cycle ≤ 6 % of the 3D peak");
-        common::figure(&format!("adapt_block.cycle{k}.force"), v[1], "%", "from cycle 1: |force − 3D| ≤ 0.6 %");
+        common::figure(
+            &format!("adapt_block.cycle{k}.force"),
+            v[1],
+            "%",
+            "cycles 1 to the last but one: |force − 3D| ≤ 0.6 %",
+        );
         for (zone, e) in zones(&v[2..]) {
             let check = match zone {
                 "all" => "last cycle ≤ 5 % at every station x ∈ [0, 0.19] m, its mirror and under the punch",
@@ -474,16 +489,17 @@ fn block_adaptive_against_3d() {
             };
             common::figure(&format!("adapt_block.cycle{k}.u_z_{zone}"), e, "%", check);
         }
-        if k >= 1 {
+        if (1..rows.len() - 1).contains(&k) {
             assert!(v[1].abs() <= 0.6, "cycle {k}: punch force {:+.2} % from 3D", v[1]);
         }
     }
     let last = rows.last().unwrap();
-    assert!(rows.len() >= 3 && last.3[0] <= 6.0, "{} cycles; σ_zz at the last {:.2} %", rows.len(), last.3[0]);
+    common::known_limit("adapt_block.force", last.3[1], "%", -0.95, -0.87, "punch force, the last cycle, against 3D");
+    assert!(rows.len() >= 4 && last.3[0] <= 6.0, "{} cycles; σ_zz at the last {:.2} %", rows.len(), last.3[0]);
     let (u_z, [.., (_, all), (_, beside)]) = (&last.3[2..], zones(&last.3[2..]));
     assert!(all <= 5.0, "u_z {all:.2} % from 3D at a station of x ∈ [0, 0.19] m or under the punch");
     assert!(sinks_towards_the_punch(x, u_z), "the top does not sink monotonically towards the punch");
-    common::known_limit("adapt_block.u_z_beside", beside, "%", 47.0, 50.0, "u_z at x = 0.1975 m, the last cycle");
+    common::known_limit("adapt_block.u_z_beside", beside, "%", 5.1, 5.4, "u_z at x = 0.1975 m, the last cycle");
 
     // the written model file reproduces the last cycle when re-run
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("adapt_block_3d");
@@ -503,28 +519,6 @@ fn block_adaptive_against_3d() {
     common::figure("adapt_block.rerun.force", force, "", "≤ 1e-6 of the 3D force: adapted.toml re-run");
     common::figure("adapt_block.rerun.u_z", u_z_rerun, "", "≤ 1e-6 of the largest |u_z|: adapted.toml re-run");
     assert!(force <= 1e-6 && u_z_rerun <= 1e-6, "adapted.toml re-run: force {force:e}, u_z {u_z_rerun:e}");
-
-    // the last cycle's mesh with only its x intervals beside the punch edges
-    // halved, once and twice: the station at x = 0.1975 m follows 3D
-    let mut plan = again.plan.clone();
-    for halved in 1..=2 {
-        let SectionPlan::Grid { x: lines, .. } = &mut plan.bodies[0].section else { panic!("the block is a grid") };
-        let at_edge: Vec<bool> =
-            lines.windows(2).map(|w| (w[1] - 0.2).abs() < 1e-9 || (w[0] - 0.3).abs() < 1e-9).collect();
-        assert_eq!(at_edge.iter().filter(|e| **e).count(), 2);
-        *lines = mark::split(lines, &at_edge);
-        let model = Model::parse_planned(&model_file, Limits::machine(), &dir, &plan).unwrap();
-        let v = solve(&model);
-        let [.., (_, all), (_, beside)] = zones(&v[2..]);
-        let id = format!("adapt_block.edge_halved{halved}");
-        common::figure(&format!("{id}.dof"), model.n_dofs() as f64, "", "reported");
-        common::figure(&format!("{id}.u_z_beside"), beside, "%", "twice halved: ≤ 5 %");
-        common::figure(&format!("{id}.u_z_all"), all, "%", "≤ 5 %");
-        assert!(model.n_dofs() <= 60_000 && all <= 5.0, "{id}: {} DOF, u_z {all:.2} %", model.n_dofs());
-        if halved == 2 {
-            assert!(beside <= 5.0, "{id}: u_z at x = 0.1975 m {beside:.2} % from 3D");
-        }
-    }
 }
 
 /// Whether u_z sinks monotonically from the far field to x = 0.19 m and

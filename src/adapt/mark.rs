@@ -5,7 +5,7 @@
 //! through a marked element is split ([`intervals`], [`refine`]).
 //!
 //! In a `rectangle` grid a marked element is split along the directions in
-//! which its error varies ([`by_direction`]: the parts of `σ* − σ_h` along
+//! which its error varies (`by_direction`: the parts of `σ* − σ_h` along
 //! x, z and the axis, `crate::post::ErrorEstimate::direction`): `η_e` alone
 //! says how much error an element holds, not whether it is along x, z or
 //! the axis, and splitting every direction of the top elements beside the
@@ -120,7 +120,7 @@ fn place(mesh: &Mesh, plan: &MeshPlan, e: usize) -> (usize, usize, usize, Option
 
 /// Every interval holding one of the `marked` elements, in every
 /// direction: isotropic refinement of the marked elements (a grid's then
-/// narrowed to its error's directions by [`by_direction`]). A parametric
+/// narrowed to its error's directions by `by_direction`). A parametric
 /// section (not a grid) is doubled when marked elements lie in at least
 /// `SECTION_SPREAD` of its section elements, else only its axis
 /// intervals are split.
@@ -146,7 +146,7 @@ pub fn intervals(mesh: &Mesh, plan: &MeshPlan, marked: &[usize]) -> Vec<BodyMark
 
 /// A grid's marked element is split in a direction only when its error's
 /// variation along that direction (`ErrorEstimate::direction`) is at least
-/// this share of its largest direction's, squared ([`by_direction`]).
+/// this share of its largest direction's, squared (`by_direction`).
 pub(crate) const DIRECTION_SHARE: f64 = 0.25;
 
 /// The intervals of `rectangle` grids to split, by the direction of each
@@ -246,7 +246,7 @@ pub(crate) const AXIS_SHARE: f64 = 0.25;
 /// tubes, laminates), which are refined as a whole or count by count:
 /// `quads` and `gmsh` sections, which cannot be refined, keep every marked
 /// interval, and so do `rectangle` grids here, whose intervals
-/// [`by_direction`] chooses by the direction of each element's error — on
+/// `by_direction` chooses by the direction of each element's error — on
 /// the graded block under its punch, dropping the axis split of every
 /// element whose error lies across the section (by this rule) left σ_zz at
 /// the surface `5.2 %` of the 3D peak off after one cycle, against `3.5 %`

@@ -169,9 +169,10 @@ pub(crate) fn by_direction(
     if direction.len() != mesh.n_elements() {
         return;
     }
-    let grid = |b: usize| matches!(plan.bodies[b].section, SectionPlan::Grid { .. });
-    for (_, m) in marks.iter_mut().enumerate().filter(|(b, _)| grid(*b)) {
-        m.x.iter_mut().chain(m.z.iter_mut()).chain(m.axis.iter_mut()).for_each(|v| *v = false);
+    for (m, p) in marks.iter_mut().zip(&plan.bodies) {
+        if matches!(p.section, SectionPlan::Grid { .. }) {
+            m.x.iter_mut().chain(m.z.iter_mut()).chain(m.axis.iter_mut()).for_each(|v| *v = false);
+        }
     }
     for &e in marked {
         let (b, _, k, Some((i, j))) = place(mesh, plan, e) else { continue };

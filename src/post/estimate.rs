@@ -235,37 +235,30 @@ fn directions(
                     w.push(cell.section.weight[es * gs + qs] * cell.axis.weight[eb * ga + qa]);
                 }
             }
-            // index of a point from (ξ index, ζ index, axis index)
-            let at = |i: usize, j: usize, qa: usize| qa * gs + j * n + i;
-            let part = |lines: &mut dyn Iterator<Item = Vec<usize>>| {
+            // every line along a direction is the points `start + k · stride`,
+            // `k < len` (point `qa · gs + j · n + i`: ξ index i, ζ index j)
+            let part = |starts: &mut dyn Iterator<Item = usize>, stride: usize, len: usize| {
                 let mut sum = 0.0;
-                for line in lines {
-                    let total: f64 = line.iter().map(|&p| w[p]).sum();
+                for start in starts {
+                    let line = (0..len).map(|k| start + k * stride);
+                    let total: f64 = line.clone().map(|p| w[p]).sum();
                     if !(total > 0.0) {
                         continue;
                     }
                     let mean: Voigt =
-                        std::array::from_fn(|k| line.iter().map(|&p| w[p] * d[p][k]).sum::<f64>() / total);
-                    for &p in &line {
-                        let v: Voigt = std::array::from_fn(|k| d[p][k] - mean[k]);
+                        std::array::from_fn(|c| line.clone().map(|p| w[p] * d[p][c]).sum::<f64>() / total);
+                    for p in line {
+                        let v: Voigt = std::array::from_fn(|c| d[p][c] - mean[c]);
                         sum += w[p] * energy(&v, m);
                     }
                 }
                 sum.max(0.0).sqrt()
             };
-            let axis = part(&mut (0..gs).map(|qs| (0..ga).map(|qa| qa * gs + qs).collect()));
+            let axis = part(&mut (0..gs), gs, ga);
             let (xi, zeta) = if square {
-                let xi = part(
-                    &mut (0..ga)
-                        .flat_map(|qa| (0..n).map(move |j| (qa, j)))
-                        .map(|(qa, j)| (0..n).map(|i| at(i, j, qa)).collect()),
-                );
-                let zeta = part(
-                    &mut (0..ga)
-                        .flat_map(|qa| (0..n).map(move |i| (qa, i)))
-                        .map(|(qa, i)| (0..n).map(|j| at(i, j, qa)).collect()),
-                );
-                (xi, zeta)
+                let rows = |qa: usize| (0..n).map(move |j| qa * gs + j * n);
+                let columns = |qa: usize| (0..n).map(move |i| qa * gs + i);
+                (part(&mut (0..ga).flat_map(rows), 1, n), part(&mut (0..ga).flat_map(columns), n, n))
             } else {
                 (0.0, 0.0)
             };

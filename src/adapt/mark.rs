@@ -92,7 +92,7 @@ pub struct BodyMarks {
 impl BodyMarks {
     fn empty(axis: usize, plan: &SectionPlan) -> Self {
         let (nx, nz) = match plan {
-            SectionPlan::Grid { x, z } => (x.len() - 1, z.len() - 1),
+            SectionPlan::Grid { x, z, .. } => (x.len() - 1, z.len() - 1),
             _ => (0, 0),
         };
         Self {
@@ -111,11 +111,20 @@ impl BodyMarks {
 fn place(mesh: &Mesh, plan: &MeshPlan, e: usize) -> (usize, usize, usize, Option<(usize, usize)>) {
     let (b, local) = mesh.body_of_element(e);
     let (s, k) = mesh.bodies[b].split_element(local);
-    let grid = match &plan.bodies[b].section {
-        SectionPlan::Grid { x, .. } => Some((s % (x.len() - 1), s / (x.len() - 1))),
-        _ => None,
-    };
-    (b, s, k, grid)
+    (b, s, k, grid_cell(&plan.bodies[b].section, s))
+}
+
+/// The x and z intervals of section element `s` of a grid (`None` for
+/// other sections; [`SectionPlan::Grid`]).
+fn grid_cell(section: &SectionPlan, s: usize) -> Option<(usize, usize)> {
+    let SectionPlan::Grid { x, z, hole } = section else { return None };
+    let nx = x.len() - 1;
+    match hole {
+        None => Some((s % nx, s / nx)),
+        Some(h) => {
+            crate::mesh::grid_cells(nx, z.len() - 1, Some(crate::mesh::hole_intervals(x, z, *h))).get(s).copied()
+        }
+    }
 }
 
 /// Every interval holding one of the `marked` elements, in every
@@ -382,7 +391,7 @@ pub fn refine(plan: &MeshPlan, marks: &[BodyMarks]) -> MeshPlan {
             let mut p = p.clone();
             p.axis = split(&p.axis, &m.axis);
             match &mut p.section {
-                SectionPlan::Grid { x, z } => {
+                SectionPlan::Grid { x, z, .. } => {
                     *x = split(x, &m.x);
                     *z = split(z, &m.z);
                 }
@@ -412,7 +421,7 @@ pub(crate) fn describe(mesh: &Mesh, before: &MeshPlan, after: &MeshPlan) -> Stri
     let mut parts = Vec::new();
     for ((b, p), q) in mesh.bodies.iter().zip(&before.bodies).zip(&after.bodies) {
         let mut what = Vec::new();
-        if let (SectionPlan::Grid { x, z }, SectionPlan::Grid { x: x2, z: z2 }) = (&p.section, &q.section) {
+        if let (SectionPlan::Grid { x, z, .. }, SectionPlan::Grid { x: x2, z: z2, .. }) = (&p.section, &q.section) {
             what.push(format!("x {} → {}", x.len() - 1, x2.len() - 1));
             what.push(format!("z {} → {}", z.len() - 1, z2.len() - 1));
         }
@@ -504,5 +513,48 @@ mod tests {
         let all = marks.clone();
         by_direction(mesh, plan, &[hot], &[], &mut marks);
         assert_eq!(marks, all);
+    }
+
+    /// A `rectangle` with a `hole`: each section element is placed in the
+    /// cell that holds it (its centre inside the cell's x and z intervals),
+    /// and a top-wall element whose error varies through the wall splits
+    /// only the top wall's z interval, the hole kept: the refined model has
+    /// one more row of cells across the top and the same hole.
+    #[test]
+    fn a_hollow_rectangle_s_wall_is_refined_alone() {
+        let text = "[[materials]]\nname = \"al\"\nyoung_modulus = 70e9\npoisson_ratio = 0.3\n[[bodies]]\n\
+            name = \"tube\"\nmaterial = \"al\"\nsection = { shape = \"rectangle\", element = \"L9\", \
+            x = { lines = [0.0, 0.002, 0.01, 0.02, 0.028, 0.03] }, z = { lines = [0.0, 0.002, 0.02, 0.038, 0.04] }, \
+            hole = { x = [0.002, 0.028], z = [0.002, 0.038] } }\n\
+            axis = { element = \"B4\", from = 0.0, to = 0.3, elements = 2 }\n\
+            [[constraints]]\nname = \"root\"\nbody = \"tube\"\nwhere = { y = 0.0 }\nfix = [\"x\", \"y\", \"z\"]\n";
+        let placed = |model: &Model| {
+            let (section, plan) = (&model.mesh.bodies[0].section, &model.plan.bodies[0].section);
+            let SectionPlan::Grid { x, z, .. } = plan else { panic!("a grid") };
+            for s in 0..section.n_elements() {
+                let nodes = section.element(s);
+                let c = nodes.iter().fold([0.0; 2], |a, &n| [a[0] + section.nodes[n][0], a[1] + section.nodes[n][1]]);
+                let c = c.map(|v| v / nodes.len() as f64);
+                let (i, j) = grid_cell(plan, s).unwrap();
+                assert!(x[i] < c[0] && c[0] < x[i + 1] && z[j] < c[1] && c[1] < z[j + 1], "element {s} at {c:?}");
+            }
+            section.n_elements()
+        };
+        let model = Model::parse_with(text, Limits::none()).unwrap();
+        // 5 × 4 cells less the hole's 3 × 2
+        assert_eq!(placed(&model), 14);
+        let (mesh, plan) = (&model.mesh, &model.plan);
+        // the top wall's middle element (x interval 2, z interval 3) of beam element 1
+        let hot = mesh.bodies[0].section.n_elements()
+            + (0..14).find(|&s| grid_cell(&plan.bodies[0].section, s) == Some((2, 3))).unwrap();
+        let mut direction = vec![[0.0; 3]; mesh.n_elements()];
+        direction[hot] = [0.1, 1.0, 0.1];
+        let mut marks = intervals(mesh, plan, &[hot]);
+        by_direction(mesh, plan, &[hot], &direction, &mut marks);
+        let refined = refine(plan, &marks);
+        let SectionPlan::Grid { x, z, hole } = &refined.bodies[0].section else { panic!("a grid") };
+        assert_eq!((x.len(), z.len(), *hole), (6, 6, Some([[0.002, 0.028], [0.002, 0.038]])));
+        let next = Model::parse_planned(text, Limits::none(), std::path::Path::new("."), &refined).unwrap();
+        assert_eq!(placed(&next), 19, "one more row of five cells across the top");
     }
 }

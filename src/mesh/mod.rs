@@ -23,6 +23,7 @@ pub mod twins;
 pub(crate) use division::{Division, Segment};
 pub use properties::SectionProperties;
 pub use section::{CrossSection, Region};
+pub(crate) use section::{grid_cells, hole_intervals};
 pub use twins::EdgeTwin;
 
 use crate::shape::BeamElementKind;

@@ -130,44 +130,40 @@ impl CrossSection {
         along_z: usize,
         through: usize,
     ) -> Result<Self, MeshError> {
-        let lines = |start: f64, length: f64, along: usize| {
-            let mut l = Vec::new();
-            for k in 0..=through {
-                l.push(start + thickness * k as f64 / through as f64);
-            }
-            let inner = length - 2.0 * thickness;
-            for k in 1..=along {
-                l.push(start + thickness + inner * k as f64 / along as f64);
-            }
-            for k in 1..=through {
-                l.push(start + length - thickness + thickness * k as f64 / through as f64);
-            }
-            l
-        };
-        let xl = lines(x0, width, along_x);
-        let zl = lines(z0, height, along_z);
+        let xl = tube_lines(x0, width, thickness, along_x, through);
+        let zl = tube_lines(z0, height, thickness, along_z, through);
         let (nx, nz) = (xl.len() - 1, zl.len() - 1);
-        let in_wall = |i: usize, j: usize| i < through || i >= nx - through || j < through || j >= nz - through;
+        Self::hollow_rectangle(kind, &xl, &zl, [[through, nx - through], [through, nz - through]])
+    }
+
+    /// A grid of element boundaries `x_lines` × `z_lines` whose cells with
+    /// x interval in `hole[0][0]..hole[0][1]` and z interval in
+    /// `hole[1][0]..hole[1][1]` are left out (an empty range leaves none
+    /// out). Elements are numbered z interval by z interval, x fastest,
+    /// skipping the hole's cells (as [`grid_cells`] lists them); a `tube`
+    /// is this grid with its inside as the hole.
+    pub(crate) fn hollow_rectangle(
+        kind: SectionElementKind,
+        x_lines: &[f64],
+        z_lines: &[f64],
+        hole: [[usize; 2]; 2],
+    ) -> Result<Self, MeshError> {
+        let nx = x_lines.len() - 1;
         // corner ids for used grid points only
-        let mut id = vec![usize::MAX; (nx + 1) * (nz + 1)];
+        let mut id = vec![usize::MAX; (nx + 1) * z_lines.len()];
         let mut corners = Vec::new();
         let mut quads = Vec::new();
-        for j in 0..nz {
-            for i in 0..nx {
-                if !in_wall(i, j) {
-                    continue;
+        for (i, j) in grid_cells(nx, z_lines.len() - 1, Some(hole)) {
+            let grid = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
+            let q = grid.map(|(a, b)| {
+                let g = b * (nx + 1) + a;
+                if id[g] == usize::MAX {
+                    id[g] = corners.len();
+                    corners.push([x_lines[a], z_lines[b]]);
                 }
-                let grid = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
-                let q = grid.map(|(a, b)| {
-                    let g = b * (nx + 1) + a;
-                    if id[g] == usize::MAX {
-                        id[g] = corners.len();
-                        corners.push([xl[a], zl[b]]);
-                    }
-                    id[g]
-                });
-                quads.push(q);
-            }
+                id[g]
+            });
+            quads.push(q);
         }
         Self::from_quads(kind, &corners, &quads, "section")
     }
@@ -420,6 +416,46 @@ fn bilinear(c: [[f64; 2]; 4], xi: f64, eta: f64) -> [f64; 2] {
         x[1] += wk * c[k][1];
     }
     x
+}
+
+/// The element boundaries of a `tube`'s walls across one direction: from
+/// `start`, `through` elements through the first wall, `along` over the
+/// `length − 2 thickness` between the walls, `through` through the second.
+fn tube_lines(start: f64, length: f64, thickness: f64, along: usize, through: usize) -> Vec<f64> {
+    let mut l = Vec::new();
+    for k in 0..=through {
+        l.push(start + thickness * k as f64 / through as f64);
+    }
+    let inner = length - 2.0 * thickness;
+    for k in 1..=along {
+        l.push(start + thickness + inner * k as f64 / along as f64);
+    }
+    for k in 1..=through {
+        l.push(start + length - thickness + thickness * k as f64 / through as f64);
+    }
+    l
+}
+
+/// The interval ranges `[[i0, i1], [j0, j1]]` of a hole `[[x0, x1], [z0,
+/// z1]]` (m) whose edges lie on the boundaries `x_lines` and `z_lines` (to
+/// 1e-9 of the grid's size; an edge off them gives an empty range).
+pub(crate) fn hole_intervals(x_lines: &[f64], z_lines: &[f64], hole: [[f64; 2]; 2]) -> [[usize; 2]; 2] {
+    let size = (x_lines[x_lines.len() - 1] - x_lines[0]).max(z_lines[z_lines.len() - 1] - z_lines[0]);
+    let at = |lines: &[f64], v: f64| lines.iter().position(|&l| (l - v).abs() <= 1e-9 * size);
+    let range = |lines: &[f64], [a, b]: [f64; 2]| match (at(lines, a), at(lines, b)) {
+        (Some(i), Some(j)) => [i, j],
+        _ => [0, 0],
+    };
+    [range(x_lines, hole[0]), range(z_lines, hole[1])]
+}
+
+/// The cells `(i, j)` of a grid of `nx` × `nz` intervals in element order
+/// (z interval by z interval, x fastest), those with `i` in
+/// `hole[0][0]..hole[0][1]` and `j` in `hole[1][0]..hole[1][1]` left out
+/// ([`CrossSection::hollow_rectangle`]).
+pub(crate) fn grid_cells(nx: usize, nz: usize, hole: Option<[[usize; 2]; 2]>) -> Vec<(usize, usize)> {
+    let inside = |i: usize, j: usize| hole.is_some_and(|[a, b]| (a[0]..a[1]).contains(&i) && (b[0]..b[1]).contains(&j));
+    (0..nz).flat_map(|j| (0..nx).map(move |i| (i, j))).filter(|&(i, j)| !inside(i, j)).collect()
 }
 
 #[cfg(test)]

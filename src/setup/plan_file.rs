@@ -11,7 +11,8 @@
 //!
 //! * the axis: `lines` (the plan's element boundaries) instead of
 //!   `from`/`to`/`elements`/`ratio`/`segments`;
-//! * a `rectangle` section: `x` and `z` as `{ lines = […] }`;
+//! * a `rectangle` section: `x` and `z` as `{ lines = […] }` (its `hole`
+//!   as written);
 //! * a parametric section: its in-plane counts multiplied by `2^n`, `n` the
 //!   doublings of the whole section plus those of the count itself
 //!   ([`SectionPlan::Doubled`]): a `tube`'s `around = 4 + 4k` (k per side),
@@ -51,7 +52,7 @@ pub(crate) fn planned_text(text: &str, plan: &MeshPlan) -> Result<String, ModelE
         axis.insert("lines", Item::Value(numbers(&p.axis)));
         let section = table(&mut **body, "section", i)?;
         match &p.section {
-            SectionPlan::Grid { x, z } => {
+            SectionPlan::Grid { x, z, .. } => {
                 for (key, lines) in [("x", x), ("z", z)] {
                     let mut t = InlineTable::new();
                     t.insert("lines", numbers(lines));

@@ -126,14 +126,17 @@ pub struct BodyPlan {
 /// How a body's section may be refined.
 #[derive(Debug, Clone, PartialEq)]
 pub enum SectionPlan {
-    /// A rectangle: element boundaries along x and z (m). Section element
-    /// `j · (x.len() − 1) + i` spans x interval `i` and z interval `j`
-    /// ([`crate::mesh::CrossSection::rectangle`]).
+    /// A rectangle: element boundaries along x and z (m), its cells inside
+    /// `hole` left out. Section element `s` spans the x and z intervals of
+    /// the `s`-th cell `mesh::grid_cells` lists (`j · (x.len() − 1) + i`
+    /// without a hole; `CrossSection::hollow_rectangle`).
     Grid {
         /// Boundaries along x.
         x: Vec<f64>,
         /// Boundaries along z.
         z: Vec<f64>,
+        /// The x and z ranges left out (m), `[[x0, x1], [z0, z1]]`.
+        hole: Option<[[f64; 2]; 2]>,
     },
     /// A parametric section: its in-plane element counts doubled relative
     /// to the model file, all of them `times` times and each count named in
@@ -176,9 +179,11 @@ pub(super) fn plan(file: &ModelFile) -> Result<MeshPlan, ModelError> {
         let sk = format!("bodies[{i}].section");
         let section = match &b.section {
             SectionFile::Rectangle(r) => match (&r.x, &r.z) {
-                (Some(x), Some(z)) => {
-                    SectionPlan::Grid { x: division(&format!("{sk}.x"), x)?, z: division(&format!("{sk}.z"), z)? }
-                }
+                (Some(x), Some(z)) => SectionPlan::Grid {
+                    x: division(&format!("{sk}.x"), x)?,
+                    z: division(&format!("{sk}.z"), z)?,
+                    hole: r.hole.map(|h| [h.x, h.z]),
+                },
                 _ => return Err(invalid(sk, "(no x or z division)", "a rectangle with both `x` and `z`")),
             },
             SectionFile::Quads(_) => SectionPlan::Fixed { shape: "quads" },

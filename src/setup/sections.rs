@@ -101,8 +101,13 @@ impl Sections<'_> {
         let zl = division(&format!("{sk}.z"), z)?;
         let (nx, nz, p) = ((xl.len() - 1) as u64, (zl.len() - 1) as u64, kind.order() as u64);
         let pairs = crate::size::coupled_1d(nx, p).saturating_mul(crate::size::coupled_1d(nz, p));
+        // the full grid's counts: a hole only lowers them
         self.add(kind, nx * nz, (p * nx + 1) * (p * nz + 1), pairs)?;
-        CrossSection::rectangle(kind, &xl, &zl).map_err(|e| rekey(e, sk))
+        match &s.hole {
+            None => CrossSection::rectangle(kind, &xl, &zl),
+            Some(h) => CrossSection::hollow_rectangle(kind, &xl, &zl, hole_cells(sk, h, &xl, &zl)?),
+        }
+        .map_err(|e| rekey(e, sk))
     }
 
     /// `shape = "tube"`: a thin-walled rectangular tube.
@@ -436,4 +441,28 @@ fn rekey(e: MeshError, prefix: &str) -> ModelError {
             ModelError::Invalid { key, value, allowed }
         }
     }
+}
+
+/// The interval ranges `[[i0, i1], [j0, j1]]` of a rectangle's `hole` on
+/// the grid `xl` × `zl`: each edge on an element boundary (to 1e-9 of the
+/// section's size), strictly inside the grid so that the walls around it
+/// are at least one element thick.
+pub(crate) fn hole_cells(sk: &str, hole: &HoleFile, xl: &[f64], zl: &[f64]) -> Result<[[usize; 2]; 2], ModelError> {
+    let size = (xl[xl.len() - 1] - xl[0]).max(zl[zl.len() - 1] - zl[0]);
+    let range = |axis: &str, lines: &[f64], [a, b]: [f64; 2]| {
+        let at = |v: f64| lines.iter().position(|&l| (l - v).abs() <= 1e-9 * size);
+        match (at(a), at(b)) {
+            (Some(i), Some(j)) if 0 < i && i < j && j < lines.len() - 1 => Ok([i, j]),
+            _ => Err(invalid(
+                format!("{sk}.hole.{axis}"),
+                format!("[{a}, {b}]"),
+                format!(
+                    "two element boundaries of {axis} inside the section, the first the smaller (the walls around \
+                     the hole at least one element thick): boundaries {:?}",
+                    &lines[1..lines.len() - 1]
+                ),
+            )),
+        }
+    };
+    Ok([range("x", xl, hole.x)?, range("z", zl, hole.z)?])
 }

@@ -70,7 +70,7 @@ fn the_plan_of_a_file_rebuilds_its_mesh() {
     let (a, b) = (&model.mesh.bodies[0], &again.mesh.bodies[0]);
     assert_eq!(a.section.nodes, b.section.nodes);
     assert_eq!(a.axis.nodes, b.axis.nodes);
-    let SectionPlan::Grid { x, z } = &model.plan.bodies[0].section else { panic!("the block is a grid") };
+    let SectionPlan::Grid { x, z, .. } = &model.plan.bodies[0].section else { panic!("the block is a grid") };
     assert_eq!((x.len() - 1, z.len() - 1, model.plan.bodies[0].axis.len() - 1), (18, 6, 1));
 }
 

@@ -104,6 +104,20 @@ pub(crate) struct RectangleFile {
     pub x: Option<DivisionFile>,
     /// The division along z (m).
     pub z: Option<DivisionFile>,
+    /// A rectangular hole `{ x = [x0, x1], z = [z0, z1] }` (m): the grid's
+    /// cells inside it are left out (a hollow rectangle, e.g. a tube graded
+    /// wall by wall). Its edges lie on element boundaries, inside the grid.
+    pub hole: Option<HoleFile>,
+}
+
+/// `hole` of a `rectangle` section: the x and z ranges left out (m).
+#[derive(Debug, Clone, Copy, Deserialize, schemars::JsonSchema)]
+#[serde(deny_unknown_fields)]
+pub(crate) struct HoleFile {
+    /// `[x0, x1]`, x0 < x1.
+    pub x: [f64; 2],
+    /// `[z0, z1]`, z0 < z1.
+    pub z: [f64; 2],
 }
 
 /// `shape = "laminate"`: plies stacked along z from `z0`, bottom first,

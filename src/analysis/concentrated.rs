@@ -12,8 +12,9 @@
 //!
 //! `find` names each: the loads (`force_per_node`), supports (constraints
 //! with a reaction) and contacts (indenters and pairs, their nodes touching
-//! at the end) whose nodes hold no whole boundary face of their body (the
-//! test that surface loads use, `bc::faces`), the elements that touch those
+//! at the end) whose nodes cover no surface of an element of their body —
+//! a boundary face, as surface loads take them (`bc::faces`), or a surface
+//! through it (a plane cut through the body) —, the elements that touch those
 //! nodes, and the share of the estimated error (`post::estimate`, `Σ η_e²`)
 //! those elements hold. `summary.json` lists them (`concentrated`), the VTU
 //! marks their elements (`concentrated`, 1 there) and the report says that
@@ -95,8 +96,9 @@ pub(crate) fn find(model: &Model, solution: &Solution) -> Vec<Concentrated> {
     found
 }
 
-/// The item if `nodes` (global) hold no whole boundary face of any body
-/// they lie in, with the elements around them and their share of the error.
+/// The item if `nodes` (global) cover no surface of an element of any
+/// body they lie in (`holds_a_face`), with the elements around them and
+/// their share of the error.
 fn concentrated(
     model: &Model,
     solution: &Solution,
@@ -125,14 +127,34 @@ fn concentrated(
     })
 }
 
-/// Whether some boundary face of a body has all its nodes in `set`.
+/// Whether the nodes in `set` cover a surface of some element of a body:
+/// a face on its boundary or a surface through it — the element's section
+/// nodes at one of its axis nodes, or one row or column of its section
+/// nodes at all of its axis nodes. A support over an interior plane (a
+/// symmetry plane cut through a whole model, a mid-span support over a
+/// whole cross-section) acts on a surface, as one over a boundary face does.
 fn holds_a_face(mesh: &Mesh, set: &HashSet<usize>) -> bool {
+    let mut nodes = Vec::new();
     mesh.bodies.iter().any(|body| {
         let range = body.node_offset..body.node_offset + body.n_nodes();
-        set.iter().any(|n| range.contains(n))
-            && crate::bc::boundary_faces(body)
-                .iter()
-                .any(|f| crate::bc::face_nodes(body, f).iter().all(|n| set.contains(n)))
+        if !set.iter().any(|n| range.contains(n)) {
+            return false;
+        }
+        let m = body.section.kind.order() + 1;
+        (0..body.n_elements()).any(|e| {
+            body.element_nodes(e, &mut nodes);
+            if !nodes.iter().any(|n| set.contains(n)) {
+                return false;
+            }
+            let (es, eb) = body.split_element(e);
+            let section = body.section.element(es);
+            let beam = body.axis.first_node(eb)..=body.axis.first_node(eb) + body.axis.kind.order();
+            let across = beam.clone().any(|i| section.iter().all(|&t| set.contains(&body.node(i, t))));
+            let line = |local: &dyn Fn(usize) -> usize| {
+                beam.clone().all(|i| (0..m).all(|k| set.contains(&body.node(i, section[local(k)]))))
+            };
+            across || (0..m).any(|r| line(&|c| r * m + c) || line(&|c| c * m + r))
+        })
     })
 }
 

@@ -6,7 +6,7 @@ mod faces;
 pub mod symmetry;
 
 pub use faces::{Face, FaceIntegral, FaceSide, boundary_faces, integrate_face};
-pub(crate) use faces::{face_nodes, integrate_face_with, selected_faces};
+pub(crate) use faces::{integrate_face_with, selected_faces};
 
 use std::sync::Arc;
 

@@ -154,3 +154,38 @@ fn rollers_are_named_and_faces_are_not() {
         assert!(s.get("concentrated").is_none(), "{name}: {}", s["concentrated"]);
     }
 }
+
+/// A support over a whole cross-section inside the span (a mid-span
+/// support of the Timoshenko cantilever at y = 0.4 m holding u_z) acts on a
+/// surface, like a symmetry plane cut through a model: it is not listed.
+/// The same support on one line of nodes across the section (z = 0.05 m at
+/// y = 0.4 m) is, with its elements. Before interior surfaces counted, the
+/// whole-section support was listed as a line (its nodes hold no boundary
+/// face), and so were the drop weight's symmetry planes.
+#[test]
+fn a_support_over_an_interior_plane_is_not_a_line() {
+    let dir = Path::new(env!("CARGO_MANIFEST_DIR")).join("../../examples");
+    let text = std::fs::read_to_string(dir.join("cantilever_timoshenko.toml")).unwrap();
+    let support = |at: &str| {
+        let extra =
+            format!("[[constraints]]\nname = \"mid\"\nbody = \"beam\"\nwhere = {at}\nfix = [\"z\"]\n\n[[loads]]");
+        let t = text.replacen("[[loads]]", &extra, 1);
+        assert_ne!(t, text);
+        t
+    };
+    let listed = |name: &str, at: &str| {
+        let (_, s) = common::run_text("concentrated", name, &support(at));
+        let keys: Vec<String> = s
+            .get("concentrated")
+            .and_then(|c| c.as_array())
+            .map(|c| c.iter().map(|c| c["key"].as_str().unwrap().to_string()).collect())
+            .unwrap_or_default();
+        let reaction = s["reactions"].as_array().unwrap().iter().find(|r| r["name"] == "mid").unwrap()["force"][2]
+            .as_f64()
+            .unwrap();
+        assert!(reaction.abs() > 100.0, "{name}: the support carries load ({reaction} N)");
+        keys
+    };
+    assert!(listed("plane", "{ y = 0.4 }").is_empty(), "a whole cross-section is a surface");
+    assert_eq!(listed("line", "{ y = 0.4, z = 0.05 }"), ["constraints[1]"], "one line of nodes is a line");
+}

@@ -118,13 +118,8 @@ fn place(mesh: &Mesh, plan: &MeshPlan, e: usize) -> (usize, usize, usize, Option
 /// other sections; [`SectionPlan::Grid`]).
 fn grid_cell(section: &SectionPlan, s: usize) -> Option<(usize, usize)> {
     let SectionPlan::Grid { x, z, hole } = section else { return None };
-    let nx = x.len() - 1;
-    match hole {
-        None => Some((s % nx, s / nx)),
-        Some(h) => {
-            crate::mesh::grid_cells(nx, z.len() - 1, Some(crate::mesh::hole_intervals(x, z, *h))).get(s).copied()
-        }
-    }
+    let hole = hole.map(|h| crate::mesh::hole_intervals(x, z, h));
+    crate::mesh::grid_cell(x.len() - 1, z.len() - 1, hole, s)
 }
 
 /// Every interval holding one of the `marked` elements, in every

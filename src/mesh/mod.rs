@@ -14,6 +14,7 @@ pub mod blocks;
 mod clip;
 mod division;
 pub mod gmsh;
+mod grid;
 mod overlaps;
 pub(crate) mod profiles;
 mod properties;
@@ -21,9 +22,9 @@ mod section;
 pub mod twins;
 
 pub(crate) use division::{Division, Segment};
+pub(crate) use grid::{boundary_at, grid_cell, grid_size, hole_intervals};
 pub use properties::SectionProperties;
 pub use section::{CrossSection, Region};
-pub(crate) use section::{grid_cells, hole_intervals};
 pub use twins::EdgeTwin;
 
 use crate::shape::BeamElementKind;

@@ -140,7 +140,7 @@ impl CrossSection {
     /// x interval in `hole[0][0]..hole[0][1]` and z interval in
     /// `hole[1][0]..hole[1][1]` are left out (an empty range leaves none
     /// out). Elements are numbered z interval by z interval, x fastest,
-    /// skipping the hole's cells (as [`grid_cells`] lists them); a `tube`
+    /// skipping the hole's cells (as `grid::grid_cell` numbers them); a `tube`
     /// is this grid with its inside as the hole.
     pub(crate) fn hollow_rectangle(
         kind: SectionElementKind,
@@ -153,7 +153,7 @@ impl CrossSection {
         let mut id = vec![usize::MAX; (nx + 1) * z_lines.len()];
         let mut corners = Vec::new();
         let mut quads = Vec::new();
-        for (i, j) in grid_cells(nx, z_lines.len() - 1, Some(hole)) {
+        for (i, j) in super::grid::grid_cells(nx, z_lines.len() - 1, Some(hole)) {
             let grid = [(i, j), (i + 1, j), (i + 1, j + 1), (i, j + 1)];
             let q = grid.map(|(a, b)| {
                 let g = b * (nx + 1) + a;
@@ -434,28 +434,6 @@ fn tube_lines(start: f64, length: f64, thickness: f64, along: usize, through: us
         l.push(start + length - thickness + thickness * k as f64 / through as f64);
     }
     l
-}
-
-/// The interval ranges `[[i0, i1], [j0, j1]]` of a hole `[[x0, x1], [z0,
-/// z1]]` (m) whose edges lie on the boundaries `x_lines` and `z_lines` (to
-/// 1e-9 of the grid's size; an edge off them gives an empty range).
-pub(crate) fn hole_intervals(x_lines: &[f64], z_lines: &[f64], hole: [[f64; 2]; 2]) -> [[usize; 2]; 2] {
-    let size = (x_lines[x_lines.len() - 1] - x_lines[0]).max(z_lines[z_lines.len() - 1] - z_lines[0]);
-    let at = |lines: &[f64], v: f64| lines.iter().position(|&l| (l - v).abs() <= 1e-9 * size);
-    let range = |lines: &[f64], [a, b]: [f64; 2]| match (at(lines, a), at(lines, b)) {
-        (Some(i), Some(j)) => [i, j],
-        _ => [0, 0],
-    };
-    [range(x_lines, hole[0]), range(z_lines, hole[1])]
-}
-
-/// The cells `(i, j)` of a grid of `nx` × `nz` intervals in element order
-/// (z interval by z interval, x fastest), those with `i` in
-/// `hole[0][0]..hole[0][1]` and `j` in `hole[1][0]..hole[1][1]` left out
-/// ([`CrossSection::hollow_rectangle`]).
-pub(crate) fn grid_cells(nx: usize, nz: usize, hole: Option<[[usize; 2]; 2]>) -> Vec<(usize, usize)> {
-    let inside = |i: usize, j: usize| hole.is_some_and(|[a, b]| (a[0]..a[1]).contains(&i) && (b[0]..b[1]).contains(&j));
-    (0..nz).flat_map(|j| (0..nx).map(move |i| (i, j))).filter(|&(i, j)| !inside(i, j)).collect()
 }
 
 #[cfg(test)]

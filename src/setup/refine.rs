@@ -128,7 +128,7 @@ pub struct BodyPlan {
 pub enum SectionPlan {
     /// A rectangle: element boundaries along x and z (m), its cells inside
     /// `hole` left out. Section element `s` spans the x and z intervals of
-    /// the `s`-th cell `mesh::grid_cells` lists (`j · (x.len() − 1) + i`
+    /// the `s`-th cell in `mesh::grid_cell`'s order (`j · (x.len() − 1) + i`
     /// without a hole; `CrossSection::hollow_rectangle`).
     Grid {
         /// Boundaries along x.

@@ -444,13 +444,13 @@ fn rekey(e: MeshError, prefix: &str) -> ModelError {
 }
 
 /// The interval ranges `[[i0, i1], [j0, j1]]` of a rectangle's `hole` on
-/// the grid `xl` × `zl`: each edge on an element boundary (to 1e-9 of the
-/// section's size), strictly inside the grid so that the walls around it
-/// are at least one element thick.
-pub(crate) fn hole_cells(sk: &str, hole: &HoleFile, xl: &[f64], zl: &[f64]) -> Result<[[usize; 2]; 2], ModelError> {
-    let size = (xl[xl.len() - 1] - xl[0]).max(zl[zl.len() - 1] - zl[0]);
+/// the grid `xl` × `zl`: each edge on an element boundary
+/// (`mesh::boundary_at`), strictly inside the grid so that the walls around
+/// it are at least one element thick.
+fn hole_cells(sk: &str, hole: &HoleFile, xl: &[f64], zl: &[f64]) -> Result<[[usize; 2]; 2], ModelError> {
+    let size = crate::mesh::grid_size(xl, zl);
     let range = |axis: &str, lines: &[f64], [a, b]: [f64; 2]| {
-        let at = |v: f64| lines.iter().position(|&l| (l - v).abs() <= 1e-9 * size);
+        let at = |v: f64| crate::mesh::boundary_at(lines, v, size);
         match (at(a), at(b)) {
             (Some(i), Some(j)) if 0 < i && i < j && j < lines.len() - 1 => Ok([i, j]),
             _ => Err(invalid(

@@ -86,6 +86,12 @@ const MC: usize = 3;
 pub struct PlyDamage {
     elastic: Orthotropic,
     stiffness: Matrix6,
+    /// `elastic.compliance()`, which every damaged stiffness starts from.
+    compliance: Matrix6,
+    /// The damaged stiffness at zero damage, as [`PlyDamage::damaged_stiffness`]
+    /// computes it (bitwise: the stress of an intact point is the one a
+    /// damaged stiffness of zero damage gives, not `stiffness`'s).
+    intact: Matrix6,
     strengths: Strengths,
     toughness: [f64; 4],
     max_damage: f64,
@@ -200,7 +206,20 @@ impl PlyDamage {
             return Err(DamageError::MaxDamage(max_damage));
         }
         let stiffness = elastic.stiffness().ok_or(DamageError::Elastic)?;
-        Ok(Self { elastic, stiffness, strengths, toughness, max_damage, consistent: true, viscosity: 0.0 })
+        let compliance = elastic.compliance();
+        let mut law = Self {
+            elastic,
+            stiffness,
+            compliance,
+            intact: [[0.0; 6]; 6],
+            strengths,
+            toughness,
+            max_damage,
+            consistent: true,
+            viscosity: 0.0,
+        };
+        law.intact = law.damaged_stiffness([0.0; 3], 0.0);
+        Ok(law)
     }
 
     /// The same law returning the secant stiffness `C_d` as its tangent
@@ -249,6 +268,22 @@ impl PlyDamage {
     /// stiffness takes relaxes towards the law's, implicitly,
     /// `d_v = (η d_v,n + Δ d)/(η + Δ)` (Duvaut–Lions; Lapczyk & Hurtado).
     pub(crate) fn update_over(&self, strain: &Voigt, band: [f64; 2], step: f64, old: &DamageState) -> DamageResponse {
+        let mut state = *old;
+        let (stress, tangent) = self.update_into(strain, band, step, old, &mut state);
+        DamageResponse { stress, tangent, state }
+    }
+
+    /// As [`PlyDamage::update_over`], the trial state written into `state`
+    /// (the caller's slot: a point's state is not copied on its way there)
+    /// and the stress and tangent returned.
+    pub(crate) fn update_into(
+        &self,
+        strain: &Voigt,
+        band: [f64; 2],
+        step: f64,
+        old: &DamageState,
+        state: &mut DamageState,
+    ) -> (Voigt, Matrix6) {
         let effective = mat_vec(&self.stiffness, strain);
         // the branches of the committed state (module docs), this strain's
         // at a point's first update; this strain's for the next increment
@@ -257,14 +292,12 @@ impl PlyDamage {
         let [fibre_ratio, matrix_ratio] = self.strengths.hashin_ratios(&effective, tension);
         let fibre = if tension[0] { FT } else { FC };
         let matrix = if tension[1] { MT } else { MC };
-        let mut state = DamageState {
-            tension: Some(own),
-            strain: *strain,
-            index: (1.0 / fibre_ratio).max(1.0 / matrix_ratio),
-            ..*old
-        };
+        *state = *old;
+        state.tension = Some(own);
+        state.strain = *strain;
+        state.index = (1.0 / fibre_ratio).max(1.0 / matrix_ratio);
         for (mode, ratio, length) in [(fibre, fibre_ratio, band[0]), (matrix, matrix_ratio, band[1])] {
-            self.soften(mode, 1.0 / ratio, length, strain, &effective, &mut state);
+            self.soften(mode, 1.0 / ratio, length, strain, &effective, state);
         }
         let share = self.share(step);
         for i in 0..4 {
@@ -288,19 +321,19 @@ impl PlyDamage {
             if grown > 0.0 {
                 let others =
                     |s: &DamageState| (0..4).filter(|&j| j != mode).map(|j| 1.0 - s.viscous[j]).product::<f64>();
-                let coupling = 0.5 * (others(old) + others(&state));
+                let coupling = 0.5 * (others(old) + others(state));
                 let rate = 0.5 * (old.release[mode] + state.release[mode])
                     + 0.5 * (old.release[4] + state.release[4]) * coupling;
                 state.dissipated[mode] += rate * grown;
             }
         }
-        self.release_at(old, &mut state);
+        self.release_at(old, state);
         let tangent = if self.consistent {
-            self.consistent_tangent(strain, &effective, band, ([fibre, matrix], normal), (old, share), &state, &tangent)
+            self.consistent_tangent(strain, &effective, band, ([fibre, matrix], normal), (old, share), state, &tangent)
         } else {
             tangent
         };
-        DamageResponse { stress, tangent, state }
+        (stress, tangent)
     }
 
     /// The consistent tangent `C_T = C_d + Σ_I (∂σ/∂d_I) ⊗ (∂d_I/∂ε)` over
@@ -453,6 +486,12 @@ impl PlyDamage {
     /// stress at zero either is right; eight tries at most).
     fn closed_or_open(&self, d: &[f64; 4], ds: f64, strain: &Voigt, effective: &Voigt) -> ([usize; 3], Matrix6, Voigt) {
         let modes = |s: [bool; 3]| [if s[0] { FT } else { FC }, if s[1] { MT } else { MC }, if s[2] { MT } else { MC }];
+        if ds == 0.0 && d.iter().all(|&x| x == 0.0) {
+            // intact: every choice of modes is the same stiffness, so the
+            // loop below would end on the signs of this stress
+            let stress = mat_vec(&self.intact, strain);
+            return (modes([stress[0] >= 0.0, stress[1] >= 0.0, stress[2] >= 0.0]), self.intact, stress);
+        }
         let mut signs = [effective[0] >= 0.0, effective[1] >= 0.0, effective[2] >= 0.0];
         let mut tries = 0;
         loop {
@@ -474,7 +513,7 @@ impl PlyDamage {
     /// Cholesky refuses pivots below 1e-12 of the largest diagonal entry,
     /// which a compliance divided by `1 − d` near `max_damage` reaches.
     fn damaged_stiffness(&self, normal: [f64; 3], ds: f64) -> Matrix6 {
-        let full = self.elastic.compliance();
+        let full = &self.compliance;
         let mut a = [[0.0; 3]; 3];
         for (i, row) in a.iter_mut().enumerate() {
             row.copy_from_slice(&full[i][..3]);

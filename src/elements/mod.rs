@@ -436,7 +436,8 @@ fn damaged_point(
     dp: &mut DamagePoints<'_>,
     q: usize,
 ) -> (crate::materials::Response, Option<Voigt>) {
-    let mut r = material.update_damaged(law, eps, (dp.band[q], dp.step, dp.impulse), (&dp.committed[q], &mut dp.trial[q]));
+    let mut r =
+        material.update_damaged(law, eps, (dp.band[q], dp.step, dp.impulse), (&dp.committed[q], &mut dp.trial[q]));
     let physical = dp.impulse.map(|_| std::mem::replace(&mut r.stress, dp.trial[q].force_stress));
     (r, physical)
 }

@@ -204,8 +204,8 @@ impl Material {
         let stress: Voigt = std::array::from_fn(|i| (0..6).map(|k| t[k][i] * local_stress[k]).sum());
         // the end-of-step stress of a damaged point in a transient run
         // (`damage_impulse`): its force stress, and 1/γ on its tangent
-        let factor =
-            impulse.map_or(1.0, |forces| damage_impulse::end_of_step(forces, law, old, state, (&stress, &local_stress)));
+        let factor = impulse
+            .map_or(1.0, |forces| damage_impulse::end_of_step(forces, law, old, state, (&stress, &local_stress)));
         let intact = state.damage.iter().all(|&d| d == 0.0) && factor == 1.0;
         if intact {
             return Response {

@@ -1,16 +1,15 @@
 #!/usr/bin/env python3
-"""Issue 48: where the drop weight with ply damage spends its time at its
-converged time step.
+"""Issue 48: where the drop weight with ply damage spends its time.
 
-Runs examples/laminate_drop_weight_damage.toml with its steps doubled
-(`increments = 4800`, Δt = 1.25 µs: the step at which its absorbed energy
-and averaged peak converge, docs/limitations.md) with the release binary
-(CUFEM_BIN to override), on THREADS threads (default 1, the machine's
-measure), and prints the wall time, the Newton corrections and cutbacks,
-the phases of summary.json `timings` (assembly, factorization, solves, with
-their counts and the time of one), and the mean corrections per time step in
-windows of 0.5 ms (history.csv `iterations`): the issue asks for the run at
-this step in under a minute.
+Runs examples/laminate_drop_weight_damage.toml as shipped (its graded time
+step, 1.25 µs while the laminate damages and 5 µs after, is the converged
+one: docs/composites.md) with the release binary (CUFEM_BIN to override),
+on THREADS threads (default 1, the machine's measure), and prints the wall
+time, the Newton corrections and cutbacks, the phases of summary.json
+`timings` (assembly, factorization, solves, with their counts and the time
+of one), and the time steps and mean corrections per step in windows of
+0.5 ms (history.csv `iterations`): the issue asks for the run in under a
+minute.
 
     python3 bench/drop/converged_cost.py [THREADS]   # from the repository root
 """
@@ -23,8 +22,6 @@ BIN = os.environ.get("CUFEM_BIN", os.path.join(ROOT, "target", "release", "cufem
 def main():
     threads = sys.argv[1] if len(sys.argv) > 1 else "1"
     text = open(os.path.join(ROOT, "examples", "laminate_drop_weight_damage.toml")).read()
-    assert text.count("\nincrements = 2400\n") == 1
-    text = text.replace("\nincrements = 2400\n", "\nincrements = 4800\n")
     with tempfile.TemporaryDirectory() as folder:
         model = os.path.join(folder, "model.toml")
         open(model, "w").write(text)
@@ -35,7 +32,7 @@ def main():
         with open(os.path.join(out, "history.csv")) as f:
             rows = [(float(r["time"]), int(r["iterations"])) for r in csv.DictReader(f)]
     t = s["timings"]
-    print(f"examples/laminate_drop_weight_damage.toml at 1.25 µs, {threads} thread(s): {s['equations']} equations")
+    print(f"examples/laminate_drop_weight_damage.toml, {threads} thread(s): {s['equations']} equations")
     print(f"wall {s['wall_time_s']:.1f} s, {s['increments']} increments, {s['newton_iterations']} corrections, "
           f"{s['cutbacks']} cutbacks")
     print(f"assembly      {t['assembly_s']:7.1f} s  {t['evaluations']:6d} evaluations    "

@@ -25,7 +25,8 @@ G = dict(ft=12.5e3, fc=12.5e3, mt=1.0e3, mc=1.0e3)
 
 
 def model(axis=60, per_ply=1, wide=1, steps=2400, duration=6e-3, mass=0.1, speed=4.0, viscosity=1e-6,
-          toughness=G, strengths=T300, element="L4", forces="implicit", supports="lines", span=(0.0, 0.05), solver="", newmark=""):
+          toughness=G, strengths=T300, element="L4", forces="implicit", supports="lines", span=(0.0, 0.05), solver="", newmark="",
+          graded=None):
     plies = ",\n".join('  { thickness = 0.0005, material = "cfrp", angle = %g, elements = %d }' % (a, per_ply)
                        for a in (0, 90, 90, 0))
     supports_text = support_text(supports, span)
@@ -60,7 +61,29 @@ section = {{ shape = "laminate", element = "{element}", x = {{ from = 0.0, to = 
 {plies} ], interfaces = "cohesive", interface_material = "epoxy_interface" }}
 axis = {{ element = "B2", segments = [{{ from = 0.0, to = 0.05, elements = {axis} }}] }}
 
-{supports_text}{study.striker(mass, speed, duration, steps)}'''
+{supports_text}{graded_steps(study.striker(mass, speed, duration, steps), duration, graded)}'''
+
+
+def graded_steps(text, duration, graded):
+    """The striker's one step split in two where `graded = (t1, n1, n2)`:
+    `n1` time steps over the first `t1` s (while the plies and the
+    interfaces damage), `n2` over the rest."""
+    if graded is None:
+        return text
+    t1, n1, n2 = graded
+    head = text[:text.index("[[steps]]")]
+    return head + f'''[[steps]]
+name = "impact"
+factor = 1.0
+duration = {t1:g}
+increments = {n1}
+
+[[steps]]
+name = "rebound"
+factor = 1.0
+duration = {duration - t1:g}
+increments = {n2}
+'''
 
 
 def support_text(supports, span):
@@ -102,6 +125,14 @@ for a, s in ((30, 2400), (60, 2400), (60, 4800), (120, 2400), (30, 4800), (120, 
     CASES[f"ship_a{a}_n{s}"] = dict(axis=a, steps=s, toughness=SHIP)
     # on fixed rollers (r = 5 mm) 40 mm apart instead of the line supports
     CASES[f"roll_a{a}_n{s}"] = dict(axis=a, steps=s, toughness=SHIP, supports="rollers", span=(0.005, 0.045))
+# the example's graded step: 1.25 us over the first 2 ms (the damage grows until about 1.9 ms), then
+# 5 us; halved (0.625 / 2.5 us) and with the axis refined (120 B2)
+for a, (n1, n2) in ((60, (1600, 800)), (60, (3200, 1600)), (120, (1600, 800))):
+    CASES[f"roll_a{a}_g{n1}_{n2}"] = dict(axis=a, toughness=SHIP, supports="rollers", span=(0.005, 0.045),
+                                          graded=(2e-3, n1, n2))
+# a step control by the damage instead of the graded steps: from 1.25 us, steps up to 5 us
+CASES["roll_a60_sc10"] = dict(steps=4800, toughness=SHIP, supports="rollers", span=(0.005, 0.045),
+                              solver="max_increment = 8.333333333333333e-4\nstep_control = { damage = 0.1 }")
 CASES["full_tough_a60_n2400"] = dict(steps=2400, toughness=TOUGH)
 CASES["p15_visc1e-5"] = dict(steps=600, duration=1.5e-3, viscosity=1e-5)
 CASES["p15_n1200"] = dict(steps=1200, duration=1.5e-3)
@@ -135,7 +166,9 @@ def run(name, timeout=3000):
         return "%s,,,,,failed" % name
     study.DURATION = p.get("duration", 6e-3)
     m = study.measure(out, wall)
-    m["dt_us"] = p.get("duration", 6e-3) / p["steps"] * 1e6
+    # the first (finest) step of a graded run
+    g = p.get("graded")
+    m["dt_us"] = g[0] / g[1] * 1e6 if g else p.get("duration", 6e-3) / p["steps"] * 1e6
     s = json.load(open(os.path.join(out, "summary.json")))
     dmg = s["damage"]
     for k, key in zip(("FT_J", "FC_J", "MT_J", "MC_J"), dmg["modes"]):

@@ -130,6 +130,16 @@ for a, s in ((30, 2400), (60, 2400), (60, 4800), (120, 2400), (30, 4800), (120, 
 for a, (n1, n2) in ((60, (1600, 800)), (60, (3200, 1600)), (120, (1600, 800))):
     CASES[f"roll_a{a}_g{n1}_{n2}"] = dict(axis=a, toughness=SHIP, supports="rollers", span=(0.005, 0.045),
                                           graded=(2e-3, n1, n2))
+# the graded example with other linear solves (each a setting of [solver]): a new double factor at
+# every correction, double factors with the reuse, Newton's tolerances at 1e-8 with and without the
+# reuse, and the halved steps without the reuse
+for tag, solver in (("noreuse", "reuse_factorization = false"), ("double", 'factor_precision = "double"'),
+                    ("tol8", "residual_tolerance = 1e-8\ndisplacement_tolerance = 1e-8"),
+                    ("tol8_noreuse", "residual_tolerance = 1e-8\ndisplacement_tolerance = 1e-8\nreuse_factorization = false")):
+    CASES[f"roll_a60_g1600_800_{tag}"] = dict(axis=60, toughness=SHIP, supports="rollers", span=(0.005, 0.045),
+                                              graded=(2e-3, 1600, 800), solver=solver)
+CASES["roll_a60_g3200_1600_noreuse"] = dict(axis=60, toughness=SHIP, supports="rollers", span=(0.005, 0.045),
+                                            graded=(2e-3, 3200, 1600), solver="reuse_factorization = false")
 # a step control by the damage instead of the graded steps: from 1.25 us, steps up to 5 us
 CASES["roll_a60_sc10"] = dict(steps=4800, toughness=SHIP, supports="rollers", span=(0.005, 0.045),
                               solver="max_increment = 8.333333333333333e-4\nstep_control = { damage = 0.1 }")

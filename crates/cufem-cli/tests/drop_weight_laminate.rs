@@ -449,3 +449,47 @@ fn a_drop_weight_cracks_and_delaminates_a_damaging_laminate_and_the_ledger_close
     common::figure("drop_weight_damage.matrix_onset_time", frames[k].0, "s", "first frame with a matrix index >= 1");
     println!("averaged peak {peak} N at {t_peak} s; dissipated {dissipated} J");
 }
+
+/// The energy dissipated by examples/laminate_drop_weight_damage.toml as
+/// shipped, the default linear solves (`python3 bench/drop/damage_study.py
+/// roll_a60_g1600_800`, bench/drop/damage_results.csv).
+const DAMAGE_DEFAULT_DISSIPATED: f64 = 0.448792;
+
+/// The damaging drop weight's answer is not unique across linear solves
+/// (docs/limitations.md): with a new double factor at every correction
+/// (`solver.reuse_factorization = false`) the averaged peak is the same but
+/// the mid-plane's crack arrests further out — measured 471 mm² against
+/// 350 and 1.226 times the energy dissipated (0.5503 J;
+/// `damage_study.py roll_a60_g1600_800_noreuse`). A known limit, asserted
+/// from both sides: a change that makes the run independent of its solves
+/// shows up here.
+#[test]
+#[ignore = "validate: slow — examples/laminate_drop_weight_damage.toml without the factor reuse, 2,400 time steps (under a minute)"]
+fn the_damaging_drop_weights_crack_arrest_follows_the_linear_solves() {
+    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/laminate_drop_weight_damage.toml"));
+    let text = std::fs::read_to_string(path).unwrap();
+    let changed =
+        text.replacen("max_increments = 200000\n", "max_increments = 200000\nreuse_factorization = false\n", 1);
+    assert_ne!(changed, text, "the example's [solver] changed: set reuse_factorization another way");
+    let (out, summary) = common::run_text("drop_weight_laminate", "damage_noreuse", &changed);
+    let (_, mechanical) = checked_ledger(&out, "drop_weight_damage_noreuse", &[]);
+    let dissipated = IMPACT_ENERGY - mechanical[mechanical.len() - 1];
+    let area = summary["delamination"]["area_m2"].as_f64().unwrap();
+    println!("without the reuse: dissipated {dissipated} J, delaminated {area} m²");
+    common::known_limit(
+        "drop_weight_damage.noreuse_dissipated_ratio",
+        dissipated / DAMAGE_DEFAULT_DISSIPATED,
+        "",
+        1.15,
+        1.30,
+        "the energy dissipated without the factor reuse over the default's",
+    );
+    common::known_limit(
+        "drop_weight_damage.noreuse_area",
+        area * 1e6,
+        "mm²",
+        440.0,
+        500.0,
+        "delaminated (350 mm² by default)",
+    );
+}

@@ -140,6 +140,10 @@ for tag, solver in (("noreuse", "reuse_factorization = false"), ("double", 'fact
                                               graded=(2e-3, 1600, 800), solver=solver)
 CASES["roll_a120_g1600_800_noreuse"] = dict(axis=120, toughness=SHIP, supports="rollers", span=(0.005, 0.045),
                                             graded=(2e-3, 1600, 800), solver="reuse_factorization = false")
+for tag, solver in (("", ""), ("_noreuse", "reuse_factorization = false")):
+    # two L4 per ply through the thickness: does the spread across the solves narrow?
+    CASES[f"roll_a60_p2_g1600_800{tag}"] = dict(axis=60, per_ply=2, toughness=SHIP, supports="rollers",
+                                                 span=(0.005, 0.045), graded=(2e-3, 1600, 800), solver=solver)
 CASES["roll_a60_g3200_1600_noreuse"] = dict(axis=60, toughness=SHIP, supports="rollers", span=(0.005, 0.045),
                                             graded=(2e-3, 3200, 1600), solver="reuse_factorization = false")
 # a step control by the damage instead of the graded steps: from 1.25 us, steps up to 5 us

@@ -268,7 +268,7 @@ impl PlyDamage {
     /// stiffness takes relaxes towards the law's, implicitly,
     /// `d_v = (η d_v,n + Δ d)/(η + Δ)` (Duvaut–Lions; Lapczyk & Hurtado).
     pub(crate) fn update_over(&self, strain: &Voigt, band: [f64; 2], step: f64, old: &DamageState) -> DamageResponse {
-        let mut state = *old;
+        let mut state = DamageState::default();
         let (stress, tangent) = self.update_into(strain, band, step, old, &mut state);
         DamageResponse { stress, tangent, state }
     }
@@ -486,8 +486,8 @@ impl PlyDamage {
     /// stress at zero either is right; eight tries at most).
     fn closed_or_open(&self, d: &[f64; 4], ds: f64, strain: &Voigt, effective: &Voigt) -> ([usize; 3], Matrix6, Voigt) {
         let modes = |s: [bool; 3]| [if s[0] { FT } else { FC }, if s[1] { MT } else { MC }, if s[2] { MT } else { MC }];
-        if ds == 0.0 && d.iter().all(|&x| x == 0.0) {
-            // intact: every choice of modes is the same stiffness, so the
+        if d.iter().all(|&x| x == 0.0) {
+            // intact (d_s = 0 too): every choice of modes is the same stiffness, so the
             // loop below would end on the signs of this stress
             let stress = mat_vec(&self.intact, strain);
             return (modes([stress[0] >= 0.0, stress[1] >= 0.0, stress[2] >= 0.0]), self.intact, stress);

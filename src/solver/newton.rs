@@ -52,8 +52,8 @@
 //! delaminated faces would otherwise evaluate its residual alone, find the
 //! step unconverged and evaluate again (examples/laminate_drop_weight_damage.toml
 //! at a uniform 2.5 µs step with that rule after every two-correction
-//! increment: 12,190 evaluations instead of 11,876, the same corrections). An increment that turns out
-//! nonlinear after all goes on as before.
+//! increment: 12,190 evaluations instead of 11,876, the same corrections).
+//! An increment that turns out nonlinear after all goes on as before.
 //!
 //! With [`NewtonSettings::line_search`], a correction after which the
 //! residual grew *and* the energy still falls along it at its start but

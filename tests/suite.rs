@@ -40,6 +40,8 @@ mod infsup;
 mod interfaces;
 #[path = "layered_estimate.rs"]
 mod layered_estimate;
+#[path = "linear_elements.rs"]
+mod linear_elements;
 #[path = "linear_verification.rs"]
 mod linear_verification;
 #[path = "load_history.rs"]

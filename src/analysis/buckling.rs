@@ -108,6 +108,7 @@ pub(crate) fn solve(structure: &mut Structure<'_>, modes: usize) -> Result<Buckl
 fn unit_strain(structure: &Structure<'_>) -> f64 {
     let d = structure.discretisation();
     let elements = structure.elements();
+    let stresses = structure.stresses();
     let compliances: Vec<Option<crate::voigt::Matrix6>> =
         d.materials.iter().map(|m| crate::materials::anisotropic::invert(m.elastic_stiffness())).collect();
     let mut largest = 0.0f64;
@@ -115,7 +116,7 @@ fn unit_strain(structure: &Structure<'_>) -> f64 {
         let ngp = d.cells[b].gp_per_element();
         for e in 0..body.n_elements() {
             let Some(c) = &compliances[body.material_of(body.split_element(e).0)] else { continue };
-            for sigma in &elements.stress[elements.gp_offsets[b] + e * ngp..][..ngp] {
+            for sigma in &stresses[elements.gp_offsets[b] + e * ngp..][..ngp] {
                 let norm = sigma.iter().map(|x| x * x).sum::<f64>().sqrt();
                 if norm > 0.0 {
                     let energy: f64 = (0..6).map(|i| (0..6).map(|j| sigma[i] * c[i][j] * sigma[j]).sum::<f64>()).sum();

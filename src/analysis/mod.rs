@@ -210,7 +210,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
     let Setup { equations, factor_nnz, memory } = setup;
     let energy = structure.energies();
     let delamination = structure.interfaces().delamination();
-    let (u, elements, timings) = structure.into_parts();
+    let (u, elements, stresses, timings) = structure.into_parts();
     let mut solution = Solution {
         reactions,
         contacts,
@@ -224,7 +224,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         timings,
         u,
         states: elements.committed,
-        stresses: elements.stress,
+        stresses,
         gp_offsets: elements.gp_offsets,
         history: recorder.history,
         increments: recorder.increments,

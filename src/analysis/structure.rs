@@ -151,6 +151,7 @@ impl<'m> Structure<'m> {
         // total-Lagrangian one depends on u and S everywhere
         if !nonlinear {
             assembler.cache_elastic(&elements.inputs(&vec![0.0; mesh.n_dofs()]));
+            elements.use_product_if_linear(&assembler);
         }
         let element_cache = t_cache.elapsed();
         let timings = Timings {
@@ -223,7 +224,12 @@ impl<'m> Structure<'m> {
     /// and stresses.
     pub fn fields(&self) -> StepFields {
         let e = &self.parts.elements;
-        StepFields { u: self.state.u.clone(), states: e.committed.clone(), stresses: e.stress.clone() }
+        StepFields { u: self.state.u.clone(), states: e.committed.clone(), stresses: self.stresses() }
+    }
+
+    /// The Gauss-point stresses of the last evaluation (all bodies).
+    pub(crate) fn stresses(&self) -> Vec<crate::voigt::Voigt> {
+        self.parts.elements.stresses(&self.system.assembler)
     }
 
     /// What loads the structure.
@@ -371,7 +377,7 @@ impl<'m> Structure<'m> {
         let a = &self.system.assembler;
         let mut kg = vec![0.0; a.pattern.nnz()];
         let u = self.displacements();
-        a.assemble_geometric(&self.parts.elements.inputs(u), &self.parts.elements.stress, &mut kg);
+        a.assemble_geometric(&self.parts.elements.inputs(u), &self.stresses(), &mut kg);
         kg
     }
 
@@ -408,9 +414,11 @@ impl<'m> Structure<'m> {
         self.parts.inertia.as_ref().map(|i| i.energies().to_vec())
     }
 
-    /// The parts the solution keeps: displacements, elements and timings.
-    pub(crate) fn into_parts(self) -> (Vec<f64>, Elements<'m>, Timings) {
-        (self.state.u, self.parts.elements, self.report.timings)
+    /// The parts the solution keeps: displacements, elements, the
+    /// stresses of the last evaluation and timings.
+    pub(crate) fn into_parts(self) -> (Vec<f64>, Elements<'m>, Vec<crate::voigt::Voigt>, Timings) {
+        let stresses = self.stresses();
+        (self.state.u, self.parts.elements, stresses, self.report.timings)
     }
 
     /// Scales the correction in `rhs` by the contacts' step limit

@@ -19,10 +19,12 @@
 //!   entries.
 
 mod contribution;
+mod linear;
 mod numbering;
 mod scatter;
 
 pub use contribution::{At, Contribution, Forces, Phase, Tangent};
+pub(crate) use linear::ElasticProduct;
 pub(crate) use numbering::node_adjacency;
 pub use numbering::{DofMap, NO_EQ, Numbering};
 pub use scatter::ScatterMaps;

@@ -2,8 +2,20 @@
 //! element tangents of every body (`assembly::Assembler`, the kernel of
 //! `elements`, the material point of `materials`), and the Gauss-point
 //! history, committed only after an increment converges.
+//!
+//! **Linear elements.** In small strain with materials that neither yield
+//! nor damage, the internal force is the product of the elastic stiffness
+//! with the displacements (`assembly::ElasticProduct`), the tangent that
+//! stiffness, and the Gauss loop runs only when the stresses are read
+//! ([`Elements::stresses`]: output frames, step ends, the end of the run),
+//! from the displacements of the last evaluation. The strain energy of a
+//! transient run's ledger is then `½ uᵀ f` ([`Elements::elastic_energy`]).
 
-use crate::assembly::{AssemblyStats, At, Contribution, Forces, Inputs, Outputs, Phase, Tangent};
+use std::sync::{Mutex, PoisonError};
+
+use crate::assembly::{
+    Assembler, AssemblyStats, At, Contribution, ElasticProduct, Forces, Inputs, Outputs, Phase, Tangent,
+};
 use crate::materials::PointState;
 use crate::setup::Discretisation;
 use crate::voigt::Voigt;
@@ -18,8 +30,8 @@ pub(crate) struct Elements<'m> {
     /// Committed Gauss-point states.
     pub committed: Vec<PointState>,
     trial: Vec<PointState>,
-    /// Gauss-point stresses of the last evaluation.
-    pub stress: Vec<Voigt>,
+    /// Gauss-point stresses of the last evaluation ([`Self::stresses`]).
+    stress: Mutex<Stresses>,
     /// Internal forces of the last evaluation (per DOF).
     f_int: Vec<f64>,
     /// The last evaluation's element loop: its plastic Gauss points and
@@ -34,6 +46,19 @@ pub(crate) struct Elements<'m> {
     /// viscosity's step is the time step in seconds there, the change of
     /// the load factor in a static run.
     pub clock: Option<&'m crate::dynamics::TransientSettings>,
+    /// The internal force as a product with the elastic stiffness, where
+    /// the elements are linear (module docs; `None` otherwise).
+    product: Option<ElasticProduct>,
+}
+
+/// The Gauss-point stresses of the last evaluation, formed when read after
+/// a linear one.
+#[derive(Debug, Default)]
+struct Stresses {
+    values: Vec<Voigt>,
+    /// The displacements of a linear evaluation whose stresses are not
+    /// formed yet.
+    pending: Option<Vec<f64>>,
 }
 
 impl<'m> Elements<'m> {
@@ -52,13 +77,68 @@ impl<'m> Elements<'m> {
             gp_offsets,
             committed: vec![PointState::default(); n_gp],
             trial: vec![PointState::default(); n_gp],
-            stress: vec![[0.0; 6]; n_gp],
+            stress: Mutex::new(Stresses { values: vec![[0.0; 6]; n_gp], pending: None }),
             f_int: vec![0.0; d.mesh.n_dofs()],
             last: AssemblyStats::default(),
             initial: None,
             damage,
             clock: None,
+            product: None,
         }
+    }
+
+    /// Evaluates the internal force as a product with the elastic
+    /// stiffness cached in `assembler` from now on, if the elements are
+    /// linear: small strain, no material that yields or damages, no initial
+    /// displacement (else nothing changes).
+    pub(crate) fn use_product_if_linear(&mut self, assembler: &Assembler) {
+        let d = &self.discretisation;
+        let linear = !d.kinematics.is_nonlinear()
+            && self.initial.is_none()
+            && d.materials.iter().all(|m| m.hardening.is_none() && m.damage.is_none());
+        if linear {
+            let zeros = vec![0.0; d.mesh.n_dofs()];
+            self.product = Some(ElasticProduct::new(assembler, &self.inputs(&zeros)));
+        }
+    }
+
+    /// The Gauss-point stresses of the last evaluation (formed now by the
+    /// element loop of `assembler` if that evaluation was linear).
+    pub(crate) fn stresses(&self, assembler: &Assembler) -> Vec<Voigt> {
+        let mut s = self.stress.lock().unwrap_or_else(PoisonError::into_inner);
+        if let Some(u) = s.pending.take() {
+            let n_gp = self.committed.len();
+            assembler.assemble(
+                &self.inputs(&u),
+                Outputs {
+                    force: &mut vec![0.0; u.len()],
+                    tangent: None,
+                    trial: &mut vec![PointState::default(); n_gp],
+                    stress: &mut s.values,
+                    damage: &mut [],
+                },
+            );
+        }
+        s.values.clone()
+    }
+
+    /// The strain energy of the last evaluation (J): `½ uᵀ f_int` at its
+    /// displacements `u` for linear elements, else the sum over the Gauss
+    /// points (`post::estimate::elastic_energy`, with the damaged points'
+    /// stored energy).
+    pub(crate) fn elastic_energy(&self, u: &[f64], assembler: &Assembler) -> f64 {
+        if self.product.is_some() && self.initial.is_none() {
+            return 0.5 * u.iter().zip(&self.f_int).map(|(a, b)| a * b).sum::<f64>();
+        }
+        let d = self.discretisation;
+        let stress = self.stresses(assembler);
+        crate::post::estimate::elastic_energy(
+            d.mesh,
+            d.cells,
+            d.materials,
+            (&stress, &self.damage.trial),
+            &self.gp_offsets,
+        )
     }
 
     /// The assembly inputs at displacements `u` from the committed states
@@ -102,8 +182,22 @@ impl Contribution for Elements<'_> {
     /// Overwrites the whole tangent (the assembler starts from the elastic
     /// tangent and corrects the non-elastic elements): the elements are
     /// evaluated first. When the tangent is not wanted, the kernel's second
-    /// pass (the element tangents and their scatter) is skipped.
+    /// pass (the element tangents and their scatter) is skipped. Linear
+    /// elements take the product instead of the kernel (module docs).
     fn evaluate(&mut self, at: &At<'_>, tangent: &mut Tangent<'_>) -> usize {
+        let stress = self.stress.get_mut().unwrap_or_else(PoisonError::into_inner);
+        if let Some(product) = self.product.as_mut().filter(|_| self.initial.is_none()) {
+            product.force(tangent.assembler, at.u, &mut self.f_int);
+            if tangent.wanted {
+                tangent.assembler.elastic_tangent_into(tangent.values);
+            }
+            let pending = stress.pending.get_or_insert_with(Vec::new);
+            pending.clear();
+            pending.extend_from_slice(at.u);
+            self.last = AssemblyStats::default();
+            return 0;
+        }
+        stress.pending = None;
         let crate::damage::BodyDamage { committed, band, trial: damage_trial, lambda, .. } = &mut self.damage;
         let step = match self.clock {
             Some(clock) => (clock.time(at.lambda) - clock.time(*lambda)).abs(),
@@ -127,7 +221,7 @@ impl Contribution for Elements<'_> {
                 force: &mut self.f_int,
                 tangent: if tangent.wanted { Some(&mut *tangent.values) } else { None },
                 trial: &mut self.trial,
-                stress: &mut self.stress,
+                stress: &mut stress.values,
                 damage: damage_trial,
             },
         );

@@ -101,15 +101,8 @@ pub(super) fn account_energy(
     use crate::assembly::Phase;
     let contact = impulse.force(Phase::Contact, contacts.forces().values);
     let interface = impulse.force(Phase::Interfaces, interfaces.forces().values);
-    let d = elements.discretisation;
     let held = crate::dynamics::energy::Held {
-        elastic: crate::post::estimate::elastic_energy(
-            d.mesh,
-            d.cells,
-            d.materials,
-            (&elements.stress, &elements.damage.trial),
-            &elements.gp_offsets,
-        ),
+        elastic: elements.elastic_energy(&state.u, &system.assembler),
         interfaces: interfaces.stored_energy(&state.u),
         damage: elements.damage.released(),
         damage_scheme: elements.damage.scheme(),

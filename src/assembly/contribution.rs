@@ -156,4 +156,13 @@ pub trait Contribution {
 
     /// Back to the committed history (a failed increment).
     fn restore(&mut self);
+
+    /// True if the stiffness it would add at `at` is, to round-off, the
+    /// one it added at its last evaluation that formed a tangent: where
+    /// every part says so, the structure keeps the tangent it formed then
+    /// instead of forming it again (`analysis::structure::evaluation`, a
+    /// constant tangent). False unless the part knows.
+    fn tangent_unchanged(&self, _at: &At<'_>) -> bool {
+        false
+    }
 }

@@ -61,6 +61,11 @@ pub(crate) struct Inertia {
     reference: f64,
     /// `‖M v_n‖` of the committed state, once computed.
     momentum: Option<f64>,
+    /// `‖M v‖` of the converged step's velocity, from its kinetic energy
+    /// ([`Self::account`]): the next step's `‖M v_n‖` once it is committed.
+    momentum_of_step: Option<f64>,
+    /// The step `Δt` of the last evaluation that added the stiffness.
+    tangent_step: Option<f64>,
     damping_force: Vec<f64>,
     /// Scratch per equation.
     x: Vec<f64>,
@@ -94,6 +99,8 @@ impl Inertia {
             force: vec![0.0; n],
             reference: 0.0,
             momentum: None,
+            momentum_of_step: None,
+            tangent_step: None,
             damping_force: vec![0.0; n],
             x: vec![0.0; n_eq],
             y: vec![0.0; n_eq],
@@ -141,6 +148,7 @@ impl Inertia {
         let v = std::mem::take(&mut self.v);
         let kinetic = self.kinetic_energy(&v, eq, pattern);
         self.v = v;
+        self.momentum_of_step = Some(self.y.iter().map(|v| v * v).sum::<f64>().sqrt());
         let [internal, external, contact, supports, interfaces] = forces;
         let step = StepForces { internal, damping: &self.damping_force, external, contact, supports, interfaces };
         let time = self.time(lambda);
@@ -225,6 +233,7 @@ impl Contribution for Inertia {
             // over every entry of the pattern)
             let m0 = (1.0 - self.settings.alpha) * c0;
             if tangent.wanted {
+                self.tangent_step = Some(dt);
                 for (t, m) in tangent.values.iter_mut().zip(&self.mass) {
                     *t += m0 * m;
                 }
@@ -293,8 +302,18 @@ impl Contribution for Inertia {
         self.v_n.clone_from(&self.v);
         self.a_n.clone_from(&self.a);
         self.lambda_n = at.lambda;
-        self.momentum = None;
+        // the converged step's ‖M v‖ if its energy was accounted (the same
+        // product the next evaluation would form again)
+        self.momentum = self.momentum_of_step.take();
     }
 
     fn restore(&mut self) {}
+
+    /// `(1 − α) M / (β Δt²) + γ C / (β Δt)` depends on the step alone: the
+    /// same as formed last if the step is (within `1e-12` of it, the
+    /// round-off of a step length computed from load factors).
+    fn tangent_unchanged(&self, at: &At<'_>) -> bool {
+        let dt = self.time(at.lambda) - self.time(self.lambda_n);
+        self.tangent_step.is_some_and(|s| dt > 0.0 && (dt - s).abs() <= 1e-12 * s)
+    }
 }

@@ -481,4 +481,9 @@ impl Contribution for Interfaces<'_> {
         }
         self.growing.iter_mut().for_each(|g| g.fill(false));
     }
+
+    /// Without interfaces it adds nothing.
+    fn tangent_unchanged(&self, _at: &At<'_>) -> bool {
+        self.interfaces.is_empty()
+    }
 }

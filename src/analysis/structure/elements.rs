@@ -238,4 +238,9 @@ impl Contribution for Elements<'_> {
     }
 
     fn restore(&mut self) {}
+
+    /// Linear elements' tangent is the elastic stiffness, always.
+    fn tangent_unchanged(&self, _at: &At<'_>) -> bool {
+        self.product.is_some() && self.initial.is_none()
+    }
 }

@@ -47,4 +47,9 @@ impl Contribution for Loads<'_> {
     fn commit(&mut self, _at: &At<'_>) {}
 
     fn restore(&mut self) {}
+
+    /// Dead loads add no stiffness.
+    fn tangent_unchanged(&self, _at: &At<'_>) -> bool {
+        true
+    }
 }

@@ -31,6 +31,9 @@ pub(crate) struct LinearSystem {
     /// (`structure/evaluation.rs`): `tangent` is not that of the present
     /// state.
     pub(crate) tangent_stale: bool,
+    /// A tangent was formed (by an evaluation that wanted it): `tangent`
+    /// holds the parts' stiffness of that evaluation.
+    pub(crate) tangent_formed: bool,
     /// The residual's force scale and its history (the floor of the
     /// relative residual, `structure/evaluation.rs`).
     pub(super) force_scale: super::evaluation::ForceScale,
@@ -48,6 +51,7 @@ impl LinearSystem {
             solver: ReusingSolver::new(chol, reuse),
             forcing: 1.0,
             tangent_stale: false,
+            tangent_formed: false,
             force_scale: Default::default(),
         }
     }

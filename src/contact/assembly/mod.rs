@@ -335,4 +335,9 @@ impl Contribution for Contacts<'_> {
     fn restore(&mut self) {
         self.points.copy_from_slice(&self.committed);
     }
+
+    /// Without indenters and pair contacts it adds nothing.
+    fn tangent_unchanged(&self, _at: &At<'_>) -> bool {
+        self.indenters.is_empty() && self.pairs.is_empty()
+    }
 }

@@ -52,6 +52,12 @@ impl Elimination {
         Self { now: vec![0.0; prescribed.len()], prescribed, is_prescribed, entries }
     }
 
+    /// True if no DOF has a non-zero prescribed value (the elimination
+    /// leaves the tangent as it is).
+    pub(crate) fn is_empty(&self) -> bool {
+        self.prescribed.is_empty()
+    }
+
     /// True if equation `e` is prescribed.
     pub(crate) fn is_prescribed(&self, e: usize) -> bool {
         self.is_prescribed[e]

@@ -16,6 +16,8 @@ mod architecture;
 mod assumed_shear;
 #[path = "augmented.rs"]
 mod augmented;
+#[path = "buckling_error.rs"]
+mod buckling_error;
 #[path = "cattaneo_mindlin.rs"]
 mod cattaneo_mindlin;
 #[path = "contact.rs"]

@@ -44,6 +44,10 @@ pub struct Buckling {
     pub modes: Vec<Vec<f64>>,
     /// Relative Ritz residual of each pair.
     pub residuals: Vec<f64>,
+    /// The error estimate of each pair (`post::mode_error`): of the mode
+    /// shape, and the relative error of its factor `(μ_h − μ) / μ_h` it
+    /// implies ([`ModeError::eigenvalue`](crate::post::mode_error::ModeError::eigenvalue)).
+    pub errors: Vec<crate::post::mode_error::ModeError>,
     /// Solves with the factor of `K₀` the eigensolver took.
     pub solves: usize,
     /// Factors the eigenproblem found whose critical states strain the
@@ -89,6 +93,7 @@ pub(crate) fn solve(structure: &mut Structure<'_>, modes: usize) -> Result<Buckl
     let n_dofs = structure.displacements().len();
     let mut out = Buckling { unit_strain, ..Default::default() };
     out.solves = sol.solves;
+    let mut k0v = vec![0.0; structure.pattern().n];
     for ((mu, v), r) in sol.values.iter().zip(&sol.vectors).zip(&sol.residuals) {
         if mu * unit_strain > CRITICAL_STRAIN {
             out.beyond.push(*mu);
@@ -96,6 +101,11 @@ pub(crate) fn solve(structure: &mut Structure<'_>, modes: usize) -> Result<Buckl
             out.factors.push(*mu);
             out.modes.push(super::modal::shape(structure, v, n_dofs));
             out.residuals.push(*r);
+            // the shape's stiffness φᵀ K₀ φ, the estimate's denominator
+            structure.pattern().mul_symmetric(&k0, v, &mut k0v);
+            let stiffness: f64 = v.iter().zip(&k0v).map(|(a, b)| a * b).sum();
+            let per_dof = super::modal::unscaled(structure, v, n_dofs);
+            out.errors.push(crate::post::mode_error::mode_error(&structure.discretisation(), &per_dof, stiffness));
         }
     }
     Ok(out)

@@ -108,7 +108,7 @@ pub(crate) fn solve(
         pattern.mul_symmetric(&m, v, &mut mphi);
         let modal_mass: f64 = v.iter().zip(&mphi).map(|(a, b)| a * b).sum();
         let per_dof = unscaled(structure, v, n_dofs);
-        errors.push(crate::post::mode_error::mode_error(&structure.discretisation(), &per_dof, *w2, modal_mass));
+        errors.push(crate::post::mode_error::mode_error(&structure.discretisation(), &per_dof, w2 * modal_mass));
         effective_masses.push(std::array::from_fn(|k| {
             let l: f64 = v.iter().zip(&mr[k]).map(|(a, b)| a * b).sum();
             l * l / modal_mass
@@ -198,7 +198,7 @@ pub(crate) fn full_free_mass(
 }
 
 /// Mode `v` (per equation) per DOF, as it is (constrained DOFs zero).
-fn unscaled(structure: &Structure<'_>, v: &[f64], n_dofs: usize) -> Vec<f64> {
+pub(super) fn unscaled(structure: &Structure<'_>, v: &[f64], n_dofs: usize) -> Vec<f64> {
     let mut mode = vec![0.0; n_dofs];
     for (d, m) in mode.iter_mut().enumerate() {
         if let Some(e) = structure.equation(d) {

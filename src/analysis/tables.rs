@@ -530,6 +530,8 @@ pub fn buckling(model: &Model, solution: &Solution) -> Option<Table> {
         let full = crate::bc::symmetry::full_structure(solution.applied, &model.symmetry.planes, &every);
         t.push_xyz("full_critical_load_", "N", &loads(full));
     }
+    t.push("factor_error", "", Values::Real(b.errors.iter().map(|e| e.eigenvalue).collect()));
+    t.push("mode_error", "", Values::Real(b.errors.iter().map(|e| e.estimate.relative()).collect()));
     Some(t)
 }
 

@@ -14,7 +14,7 @@
 //! | `energy.csv`, `energy.png` | transient: per converged time step, the kinetic energy, the work of the internal, damping, applied, contact and support forces, and their balance |
 //! | `mode_<k>.vtu` | buckling and modal: the shape of mode k as the displacement field |
 //! | `modes.csv` | modal: per mode, the natural frequency, the effective masses and the estimated errors |
-//! | `buckling.csv` | buckling: per mode, the critical load factor and load |
+//! | `buckling.csv` | buckling: per mode, the critical load factor and load and the estimated errors |
 //! | `error_history.csv` | per step end and frame kept: the estimated discretization error of that state |
 //! | `contact_<name>.csv` | final gap, force and pressure of every contact point |
 //! | `line_<name>_<quantity>.png` | plots of the quantities listed in a line's `plot` |
@@ -220,10 +220,13 @@ fn write_modes(
             continue;
         }
         shape.u.clone_from(mode);
-        // a vibration mode's own error estimate (`post::mode_error`) as its `error` field
-        if let Some(m) = solution.modal.as_ref().filter(|_| solution.buckling.is_none()) {
-            shape.error_estimate = m.errors.get(k).map(|e| e.estimate.clone());
-        }
+        // a mode's own error estimate (`post::mode_error`) as its `error` field
+        let errors = match (&solution.buckling, &solution.modal) {
+            (Some(b), _) => &b.errors,
+            (None, Some(m)) => &m.errors,
+            (None, None) => unreachable!("returned above without modes"),
+        };
+        shape.error_estimate = errors.get(k).map(|e| e.estimate.clone());
         let grid = field_grid(model, &shape);
         if let Some(v) = view {
             v.add_mode(format!("mode {}: {label}", k + 1), &grid);

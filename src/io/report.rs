@@ -416,9 +416,11 @@ fn modes(s: &mut String, model: &Model, solution: &Solution) {
             Some(full) => (full, "critical load of the full structure [N]"),
             None => (t.xyz("critical_load_").unwrap_or_default(), "critical load [N]"),
         };
-        out!(s, "buckling  mode  load factor   {of}");
+        out!(s, "buckling  mode  load factor   est. error [%]   {of}");
+        let error = t.real("factor_error").unwrap_or_default();
         for (k, (f, p)) in t.real("load_factor").unwrap_or_default().iter().zip(&loads).enumerate() {
-            out!(s, "          {:>4}  {f:>11.5e}   [{:.5e}, {:.5e}, {:.5e}]", k + 1, p[0], p[1], p[2]);
+            let e = 100.0 * error.get(k).copied().unwrap_or(f64::NAN);
+            out!(s, "          {:>4}  {f:>11.5e}   {e:>14.3}   [{:.5e}, {:.5e}, {:.5e}]", k + 1, p[0], p[1], p[2]);
         }
     }
 }

@@ -1,6 +1,7 @@
-//! Error estimates of each eigenpair (`analysis.type = "modal"`): the
-//! recovered-stress estimate ([`super::estimate`], [`super::spr`]) of each
-//! mode shape, and the error of its eigenvalue that it implies.
+//! Error estimates of each eigenpair (`analysis.type = "modal"` and
+//! `"buckling"`): the recovered-stress estimate ([`super::estimate`],
+//! [`super::spr`]) of each mode shape, and the error of its eigenvalue that
+//! it implies.
 //!
 //! **The estimate of a mode.** A mode `φ_h` (per DOF) has the stresses
 //! `σ_h = C ε(φ_h)` at the Gauss points (`C` each point's elastic
@@ -37,6 +38,17 @@
 //! energy is 1 % off in `λ` and ½ % in `f`. `r` is not `η²` of the static
 //! estimate's relative norm `η = ‖e‖ / √(‖e‖² + ‖σ_h‖²)`; both agree to
 //! leading order, `r` is the one that follows from the identity.
+//!
+//! **Buckling.** The same identity holds for `K₀ φ = μ G φ` (`G = −K_σ`,
+//! the stress stiffness of the loads at factor 1, `analysis::buckling`)
+//! with `φᵀ G φ = φ_hᵀ G φ_h = 1`, positive for a positive `μ`:
+//! `μ_h − μ = ‖e‖_K₀² − μ ‖e‖_G²`, the `G` term a first-derivative form of
+//! higher order again, so `(μ_h − μ) / μ_h ≈ ‖e‖_E² / φ_hᵀ K₀ φ_h` — the
+//! same `r` with the shape's stiffness for `λ_h φ_hᵀ M φ_h`, the computed
+//! critical factors being upper bounds of those of the discrete prebuckling
+//! stress. The error of that stress itself (`σ₀` of the static solution
+//! `K_σ` is formed from) is not in `r`: exact for a column under an end
+//! load, it is not where the prebuckling stress varies steeply.
 //!
 //! **What it covers.** `C ε` is the elastic material stiffness: of an
 //! unloaded model `λ_h φ_hᵀ M φ_h = φ_hᵀ K φ_h = ‖σ_h‖²`. About a loaded
@@ -116,14 +128,14 @@ pub(crate) fn stresses(d: &Discretisation<'_>, u: &[f64]) -> (Vec<Voigt>, Vec<us
     (out, offsets)
 }
 
-/// The estimate of the eigenpair `(λ_h, φ_h)`: `shape` per DOF (any
-/// scaling), `mass` its `φ_hᵀ M φ_h` in the same scaling.
-pub(crate) fn mode_error(d: &Discretisation<'_>, shape: &[f64], eigenvalue: f64, mass: f64) -> ModeError {
+/// The estimate of an eigenpair: `shape` per DOF (any scaling),
+/// `stiffness` its `φ_hᵀ K φ_h` in the same scaling (`λ_h φ_hᵀ M φ_h` of a
+/// vibration mode, `μ_h φ_hᵀ G φ_h` of a buckling mode).
+pub(crate) fn mode_error(d: &Discretisation<'_>, shape: &[f64], stiffness: f64) -> ModeError {
     let (sigma, offsets) = stresses(d, shape);
     // with the section stage's part: where `--adapt` on modes refines
     // (across the section or along the axis), as for the static estimate
     let estimate = of_state(d.mesh, d.cells, d.materials, &sigma, &offsets);
-    let stiffness = eigenvalue * mass;
     let eigenvalue = if stiffness > 0.0 { estimate.error * estimate.error / stiffness } else { 0.0 };
     ModeError { estimate, eigenvalue }
 }
@@ -204,7 +216,7 @@ mod tests {
         assert!(hi > 5.0 * lo && lo > 0.0, "the stress jumps between the plies: {lo} {hi}");
         let szz = sigma.iter().fold(0.0f64, |m, s| m.max(s[2].abs()));
         assert!(szz < 1e-9 * hi, "no traction between the plies: {szz}");
-        let out = mode_error(&d, &u, 1.0, 1.0);
+        let out = mode_error(&d, &u, 1.0);
         assert!(out.estimate.relative() < 1e-8, "{}", out.estimate.relative());
     }
 }

@@ -1,0 +1,153 @@
+//! Error estimates of each buckling mode (`post::mode_error`, issue 49):
+//! the recovered-stress estimate of each mode shape and the error of the
+//! critical load factor it implies, `(μ_h − μ) / μ_h ≈ ‖e‖² / φᵀ K₀ φ`,
+//! against the true error of each factor measured against a refined run of
+//! the same model (the modes in the same order: their factors are apart).
+
+use cufem::analysis::{Silent, Solution};
+use cufem::setup::Model;
+use cufem::values::{PointValues, locate_in_model};
+
+mod common;
+
+fn solve(text: &str) -> (Model, Solution) {
+    let model = Model::parse(text).unwrap();
+    let solution = cufem::analysis::run(&model, &Default::default(), &mut Silent).unwrap();
+    assert!(solution.failure.is_none(), "{:?}", solution.failure);
+    (model, solution)
+}
+
+/// A steel channel column (`100 × 50 mm`, walls `2 mm`, `0.5 m`), clamped at
+/// its foot and pressed at its head: its first modes are the flanges'
+/// local buckling, a few half-waves along the column, which a coarse
+/// section and axis resolve poorly. `flange` × `web` L9 along its walls,
+/// `axis` B4.
+fn channel(flange: usize, web: usize, axis: usize) -> String {
+    format!(
+        r#"
+[analysis]
+type = "buckling"
+modes = 4
+
+[[materials]]
+name = "steel"
+young_modulus = 200e9
+poisson_ratio = 0.3
+
+[[bodies]]
+name = "column"
+material = "steel"
+section = {{ shape = "channel", element = "L9", origin = [0.0, -0.05], width = 0.05, height = 0.1, web_thickness = 0.002, flange_thickness = 0.002, along_flange = {flange}, along_web = {web}, through = 1 }}
+axis = {{ element = "B4", from = 0.0, to = 0.5, elements = {axis} }}
+
+[[constraints]]
+name = "foot"
+body = "column"
+where = {{ y = 0.0 }}
+fix = ["x", "y", "z"]
+
+[[loads]]
+name = "head"
+body = "column"
+where = {{ y = 0.5 }}
+total_force = [0.0, -1.0, 0.0]
+"#
+    )
+}
+
+/// Per mode of `coarse`: the mode of `fine` it matches (the largest
+/// modal assurance criterion, both sampled at the coarse mesh's nodes, if
+/// above 0.9), the estimated relative error of its factor and the true one,
+/// `(μ_h − μ) / μ_h` with `μ` the matched factor of `fine`.
+fn compare(coarse: &(Model, Solution), fine: &(Model, Solution)) -> Vec<(Option<usize>, f64, f64)> {
+    let ((cm, cs), (fm, fs)) = (coarse, fine);
+    let (c, f) = (cs.buckling.as_ref().unwrap(), fs.buckling.as_ref().unwrap());
+    let points: Vec<PointValues> = (0..cm.mesh.n_nodes())
+        .map(|n| PointValues::new(&fm.mesh.bodies[0], &locate_in_model(&fm.mesh, Some(0), cm.mesh.coords(n))[0]))
+        .collect();
+    let sampled: Vec<Vec<f64>> =
+        f.modes.iter().map(|m| points.iter().flat_map(|p| p.displacement(m)).collect()).collect();
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(x, y)| x * y).sum::<f64>();
+    c.modes
+        .iter()
+        .zip(&c.factors)
+        .zip(&c.errors)
+        .map(|((a, mu_h), e)| {
+            let macs = sampled.iter().map(|b| dot(a, b).powi(2) / (dot(a, a) * dot(b, b)));
+            let (j, best) = macs.enumerate().fold((0, 0.0), |b, (j, v)| if v > b.1 { (j, v) } else { b });
+            ((best > 0.9).then_some(j), e.eigenvalue, 1.0 - f.factors[j] / mu_h)
+        })
+        .collect()
+}
+
+/// examples/column_buckling.toml (a clamped–free steel column, `20 × 20 mm`,
+/// `1 m`) with `n` beam elements of kind `axis` and `sec` × `sec` L9.
+fn column(axis: &str, n: usize, sec: usize) -> String {
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/column_buckling.toml")).unwrap();
+    let (old_axis, old_sec) = (
+        "axis = { element = \"B4\", from = 0.0, to = 1.0, elements = 10 }",
+        "elements = 1 }, z = { from = -0.01, to = 0.01, elements = 1 }",
+    );
+    assert!(text.contains(old_axis) && text.contains(old_sec));
+    text.replace(old_axis, &format!("axis = {{ element = \"{axis}\", from = 0.0, to = 1.0, elements = {n} }}"))
+        .replace(old_sec, &format!("elements = {sec} }}, z = {{ from = -0.01, to = 0.01, elements = {sec} }}"))
+}
+
+/// The column's factors and their estimates on coarse axes against 20 B4 ×
+/// 2 × 2 L9, mode by mode in order (each comes as a pair of equal factors,
+/// the two bending planes of the square section, so a MAC would pair them
+/// arbitrarily). Issue 49 asks for an effectivity (estimated over true
+/// error) in 0.5–2; measured `0.55`–`0.83` over the first two pairs on B3 × 2,
+/// B3 × 4 and B4 × 2. A column of B2, which locks in shear (the first factor
+/// 16 times the reference on 8 B2), is estimated above 70 % (true 94 %).
+#[test]
+fn a_columns_buckling_estimates_follow_the_true_factor_errors() {
+    let (_, fine) = solve(&column("B4", 20, 2));
+    let reference = &fine.buckling.as_ref().unwrap().factors;
+    // the reference against Euler, π² E I / (4 L²) = 6,580 N (I = b⁴/12):
+    // within 0.2 % (the true errors below are 2 % and more)
+    let euler = std::f64::consts::PI.powi(2) * 200e9 * 0.02f64.powi(4) / 12.0 / 4.0;
+    assert!((reference[0] / euler - 1.0).abs() < 2e-3, "{} against {euler}", reference[0]);
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+    for (kind, n) in [("B3", 2), ("B3", 4), ("B4", 2)] {
+        let (_, coarse) = solve(&column(kind, n, 1));
+        let b = coarse.buckling.as_ref().unwrap();
+        assert_eq!(b.factors.len(), 4);
+        for (k, (mu_h, e)) in b.factors.iter().zip(&b.errors).enumerate() {
+            let truth = 1.0 - reference[k] / mu_h;
+            let effectivity = e.eigenvalue / truth;
+            assert!(truth > 0.02, "{kind} × {n}, mode {}: a coarse mesh (true {truth})", k + 1);
+            assert!((0.5..=2.0).contains(&effectivity), "{kind} × {n}, mode {}: effectivity {effectivity}", k + 1);
+            (lo, hi) = (lo.min(effectivity), hi.max(effectivity));
+        }
+    }
+    let check = "estimated over true factor error, every mode of B3 × 2, B3 × 4 and B4 × 2: within 0.5–2";
+    common::figure("buckling_error.column.effectivity_min", lo, "", check);
+    common::figure("buckling_error.column.effectivity_max", hi, "", check);
+    let (_, locked) = solve(&column("B2", 8, 1));
+    let b = locked.buckling.as_ref().unwrap();
+    assert!(b.factors[0] > 10.0 * reference[0], "B2 locks: {}", b.factors[0]);
+    assert!(b.errors[0].eigenvalue > 0.7, "and is estimated so: {}", b.errors[0].eigenvalue);
+}
+
+/// The channel column's local modes on `2 × 4` L9 and 8 B4 against `4 × 8`
+/// L9 and 16 B4 (modes matched by their MAC): the estimates rank the
+/// modes as unconverged but overstate their errors several times, as the
+/// vibration modes' do on thin walls (docs/limitations.md: the walls'
+/// boundary layer at a junction, unresolved by an element many thicknesses
+/// long, is charged to the whole element). Measured: effectivity `13.7`,
+/// `3.8`, `11.6`, `10.0` for true errors of `1.3`, `4.7`, `1.0`, `1.2 %`;
+/// asserted from both sides (a known limit).
+#[test]
+fn a_channel_columns_buckling_estimates_overstate_its_local_modes_errors() {
+    let fine = solve(&channel(4, 8, 16));
+    let coarse = solve(&channel(2, 4, 8));
+    let rows = compare(&coarse, &fine);
+    assert_eq!(rows.len(), 4);
+    let (lo, hi) = rows.iter().fold((f64::INFINITY, 0.0f64), |(lo, hi), &(j, est, truth)| {
+        assert!(j.is_some() && truth > 0.005, "a matched, unconverged mode ({truth})");
+        (lo.min(est / truth), hi.max(est / truth))
+    });
+    common::known_limit("buckling_error.channel.effectivity_min", lo, "", 3.0, 4.6, "the least overstated mode");
+    common::known_limit("buckling_error.channel.effectivity_max", hi, "", 11.5, 16.0, "the most overstated mode");
+}

@@ -105,6 +105,12 @@ impl<'m> Elements<'m> {
     /// The Gauss-point stresses of the last evaluation (formed now by the
     /// element loop of `assembler` if that evaluation was linear).
     pub(crate) fn stresses(&self, assembler: &Assembler) -> Vec<Voigt> {
+        self.with_stresses(assembler, <[Voigt]>::to_vec)
+    }
+
+    /// `read` of the Gauss-point stresses of the last evaluation, without
+    /// a copy ([`Self::stresses`]).
+    fn with_stresses<R>(&self, assembler: &Assembler, read: impl FnOnce(&[Voigt]) -> R) -> R {
         let mut s = self.stress.lock().unwrap_or_else(PoisonError::into_inner);
         if let Some(u) = s.pending.take() {
             let n_gp = self.committed.len();
@@ -119,7 +125,7 @@ impl<'m> Elements<'m> {
                 },
             );
         }
-        s.values.clone()
+        read(&s.values)
     }
 
     /// The strain energy of the last evaluation (J): `½ uᵀ f_int` at its
@@ -131,14 +137,15 @@ impl<'m> Elements<'m> {
             return 0.5 * u.iter().zip(&self.f_int).map(|(a, b)| a * b).sum::<f64>();
         }
         let d = self.discretisation;
-        let stress = self.stresses(assembler);
-        crate::post::estimate::elastic_energy(
-            d.mesh,
-            d.cells,
-            d.materials,
-            (&stress, &self.damage.trial),
-            &self.gp_offsets,
-        )
+        self.with_stresses(assembler, |stress| {
+            crate::post::estimate::elastic_energy(
+                d.mesh,
+                d.cells,
+                d.materials,
+                (stress, &self.damage.trial),
+                &self.gp_offsets,
+            )
+        })
     }
 
     /// The assembly inputs at displacements `u` from the committed states

@@ -4,17 +4,14 @@
 //! against the true error of each factor measured against a refined run of
 //! the same model (the modes in the same order: their factors are apart).
 
-use cufem::analysis::{Silent, Solution};
+use cufem::analysis::Solution;
 use cufem::setup::Model;
 use cufem::values::{PointValues, locate_in_model};
 
 mod common;
 
 fn solve(text: &str) -> (Model, Solution) {
-    let model = Model::parse(text).unwrap();
-    let solution = cufem::analysis::run(&model, &Default::default(), &mut Silent).unwrap();
-    assert!(solution.failure.is_none(), "{:?}", solution.failure);
-    (model, solution)
+    (Model::parse(text).unwrap(), common::run(text))
 }
 
 /// A steel channel column (`100 × 50 mm`, walls `2 mm`, `0.5 m`), clamped at

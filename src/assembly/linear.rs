@@ -24,7 +24,8 @@ use crate::materials::PointState;
 pub(crate) struct ElasticProduct {
     /// The DOF of each equation.
     dof_of_eq: Vec<usize>,
-    /// The fixed DOFs that couple to a free one, each with a row of `rows`.
+    /// The fixed DOFs that couple to a free one, each with a row of
+    /// `cols`/`values`.
     fixed: Vec<usize>,
     /// Start of each fixed DOF's row in `cols`/`values` (`fixed.len() + 1`).
     row_ptr: Vec<usize>,

@@ -245,9 +245,13 @@ impl Contribution for Inertia {
             }
         } else {
             // at the committed time (the state before the first increment,
-            // or evaluated again after convergence): its own a and v
+            // or evaluated again after convergence): its own a and v, and
+            // no stiffness (a tangent formed now has no mass to keep)
             self.a.clone_from(&self.a_n);
             self.v.clone_from(&self.v_n);
+            if tangent.wanted {
+                self.tangent_step = None;
+            }
         }
         let eq = &tangent.assembler.dofs.eq;
         let pattern = &tangent.assembler.pattern;

@@ -40,6 +40,8 @@ mod hostile_inputs;
 mod infsup;
 #[path = "interfaces.rs"]
 mod interfaces;
+#[path = "kept_tangent.rs"]
+mod kept_tangent;
 #[path = "layered_estimate.rs"]
 mod layered_estimate;
 #[path = "linear_elements.rs"]

@@ -464,9 +464,28 @@ impl<'m> Structure<'m> {
 impl NonlinearProblem for Structure<'_> {
     type Error = LinearError;
 
+    /// With the tangent of the present state, formed again at once where
+    /// one kept on the last evaluation's word turns out changed
+    /// (`structure/evaluation.rs`): the modal, buckling and path solvers
+    /// and the finite-difference checks read it straight after.
     fn evaluate(&mut self) -> Result<Evaluation, LinearError> {
+        let ev = self.evaluate_for_correction()?;
+        if self.system.elastic_onset {
+            self.system.elastic_onset = false;
+            self.system.tangent_stale = true;
+            self.form_tangent()?;
+        }
+        Ok(ev)
+    }
+
+    /// As [`Self::evaluate`], but keeping the elastic stiffness for the
+    /// next correction where only the elements left it at this state
+    /// (`structure/evaluation.rs`).
+    fn evaluate_for_correction(&mut self) -> Result<Evaluation, LinearError> {
         self.system.tangent_stale = false;
-        self.evaluate_parts(true)
+        let ev = self.evaluate_parts(true)?;
+        self.form_tangent()?;
+        Ok(ev)
     }
 
     /// Without the element tangents (the kernel's second pass and its

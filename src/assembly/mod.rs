@@ -358,6 +358,7 @@ impl Assembler {
                                 stress_pass: stats.stress_pass,
                                 element_tangents: stats.tangent_pass,
                                 tangents_formed: usize::from(stats.tangent_computed),
+                                inelastic_elements: usize::from(!stats.all_elastic),
                             }
                         })
                     },
@@ -420,6 +421,10 @@ pub(crate) struct AssemblyStats {
     pub element_tangents: std::time::Duration,
     /// Number of element tangents (or tangent corrections) formed.
     pub tangents_formed: usize,
+    /// Elements with a Gauss point off the elastic tangent (a plastic or
+    /// damaged one), counted with or without their tangents: none, and the
+    /// elements' tangent is the cached elastic stiffness.
+    pub inelastic_elements: usize,
 }
 
 impl std::ops::Add for AssemblyStats {
@@ -431,6 +436,7 @@ impl std::ops::Add for AssemblyStats {
             stress_pass: self.stress_pass + b.stress_pass,
             element_tangents: self.element_tangents + b.element_tangents,
             tangents_formed: self.tangents_formed + b.tangents_formed,
+            inelastic_elements: self.inelastic_elements + b.inelastic_elements,
         }
     }
 }

@@ -151,6 +151,9 @@ pub(crate) struct ElementStats {
     pub plastic_points: usize,
     /// True if `Workspace::tangent` was computed.
     pub tangent_computed: bool,
+    /// True if every Gauss point's tangent is the elastic one (the
+    /// element's tangent is then its elastic matrix), whatever `mode`.
+    pub all_elastic: bool,
     /// Time in the first pass (B-bar's projection, strain, material
     /// update, internal force).
     pub stress_pass: std::time::Duration,
@@ -268,7 +271,7 @@ pub(crate) fn element_response(
     }
     let stress_pass = stressed - start;
     let tangent_pass = if tangent_computed { stressed.elapsed() } else { std::time::Duration::ZERO };
-    ElementStats { plastic_points, tangent_computed, stress_pass, tangent_pass }
+    ElementStats { plastic_points, tangent_computed, all_elastic, stress_pass, tangent_pass }
 }
 
 /// Where an element sits and how big it is.

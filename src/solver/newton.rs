@@ -101,6 +101,13 @@ pub trait NonlinearProblem {
     fn evaluate_residual(&mut self) -> Result<Evaluation, Self::Error> {
         self.evaluate()
     }
+    /// Evaluates residual and tangent at an iterate [`solve`] corrects
+    /// from; the tangent may be an approximation the problem trusts for
+    /// one correction (the elastic stiffness kept where a few points begin
+    /// to yield: `analysis::structure`). The default: [`Self::evaluate`].
+    fn evaluate_for_correction(&mut self) -> Result<Evaluation, Self::Error> {
+        self.evaluate()
+    }
     /// Solves with the current tangent and applies `x ← x + Δx`.
     fn correct(&mut self) -> Result<Correction, Self::Error>;
     /// Asks the next [`Self::correct`] to solve its linear system to the
@@ -254,7 +261,7 @@ pub(crate) fn solve_from<P: NonlinearProblem>(
     let mut finished: Option<f64> = None;
     loop {
         let expected = last_settled && expect_convergence(&report.residuals, last_correction, finished, settings);
-        let evaluated = if expected { problem.evaluate_residual() } else { problem.evaluate() };
+        let evaluated = if expected { problem.evaluate_residual() } else { problem.evaluate_for_correction() };
         let mut ev = match evaluated {
             Ok(ev) => ev,
             Err(e) => return fail(report, Failure::Problem, Some(e.to_string())),

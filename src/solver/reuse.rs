@@ -262,6 +262,13 @@ impl ReusingSolver {
         }
     }
 
+    /// Makes the next solve factorize its matrix instead of trying PCG with
+    /// the present factor (as a worn factor does): the caller knows the
+    /// matrix will stay as it is for the solves after it.
+    pub(crate) fn refactor_next(&mut self) {
+        self.worn = true;
+    }
+
     /// Number of stored values of the factor `L`.
     pub fn factor_nnz(&self) -> usize {
         self.chol.factor_nnz()

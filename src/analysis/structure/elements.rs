@@ -10,6 +10,16 @@
 //! ([`Elements::stresses`]: output frames, step ends, the end of the run),
 //! from the displacements of the last evaluation. The strain energy of a
 //! transient run's ledger is then `½ uᵀ f` ([`Elements::elastic_energy`]).
+//!
+//! **Elastic elements of a nonlinear material.** In small strain a Gauss
+//! point on its elastic tangent (a plastic point unloading or inside its
+//! yield surface, an intact ply) has the stiffness of the cached elastic
+//! tangent, whatever its history. Where every point was so at the
+//! evaluation that formed the tangent and again at the last one, the
+//! elements report their tangent unchanged
+//! ([`Contribution::tangent_unchanged`]) and the structure keeps the one
+//! formed (`analysis::structure::evaluation`): the free vibration of a
+//! dented tube after its impact costs force evaluations and solves only.
 
 use std::sync::{Mutex, PoisonError};
 
@@ -49,6 +59,10 @@ pub(crate) struct Elements<'m> {
     /// The internal force as a product with the elastic stiffness, where
     /// the elements are linear (module docs; `None` otherwise).
     product: Option<ElasticProduct>,
+    /// The last evaluation that formed a tangent found every Gauss point on
+    /// the elastic tangent in small strain: the elements' part of that
+    /// tangent is the cached elastic stiffness (module docs).
+    formed_elastic: bool,
 }
 
 /// The Gauss-point stresses of the last evaluation, formed when read after
@@ -84,6 +98,7 @@ impl<'m> Elements<'m> {
             damage,
             clock: None,
             product: None,
+            formed_elastic: false,
         }
     }
 
@@ -232,6 +247,9 @@ impl Contribution for Elements<'_> {
                 damage: damage_trial,
             },
         );
+        if tangent.wanted {
+            self.formed_elastic = !self.discretisation.kinematics.is_nonlinear() && self.last.inelastic_elements == 0;
+        }
         0
     }
 
@@ -246,8 +264,11 @@ impl Contribution for Elements<'_> {
 
     fn restore(&mut self) {}
 
-    /// Linear elements' tangent is the elastic stiffness, always.
+    /// Linear elements' tangent is the elastic stiffness, always; other
+    /// elements' in small strain while every Gauss point stays on its elastic
+    /// tangent, at the last evaluation as at the one that formed the tangent
+    /// (a plastic body unloading, a ply short of damage: module docs).
     fn tangent_unchanged(&self, _at: &At<'_>) -> bool {
-        self.product.is_some() && self.initial.is_none()
+        (self.product.is_some() && self.initial.is_none()) || (self.formed_elastic && self.last.inelastic_elements == 0)
     }
 }

@@ -145,6 +145,14 @@ impl<'m> ForceControl<'m> {
         !self.driven.is_empty()
     }
 
+    /// True if some indenter is under force control proper (not an
+    /// impactor): its stand-in contact couples it while it touches nothing.
+    /// An impactor couples only through its active contact points, which
+    /// the contacts' part reports.
+    pub(crate) fn is_force_controlled(&self) -> bool {
+        self.driven.iter().any(|d| d.inertia.is_none())
+    }
+
     /// Rigid displacement of every indenter at load factor `lambda`: the
     /// prescribed motion times its factor, or the solved one.
     pub fn offsets(&self, lambda: f64) -> impl Iterator<Item = [f64; 3]> + '_ {

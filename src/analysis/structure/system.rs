@@ -34,6 +34,13 @@ pub(crate) struct LinearSystem {
     /// A tangent was formed (by an evaluation that wanted it): `tangent`
     /// holds the parts' stiffness of that evaluation.
     pub(crate) tangent_formed: bool,
+    /// The last evaluation kept the tangent while the elements left their
+    /// elastic stiffness (`structure/evaluation.rs`): `tangent` is theirs
+    /// at the state before.
+    pub(crate) elastic_onset: bool,
+    /// The solver's factor is of `tangent` as it stands: factorized since
+    /// the tangent was last formed.
+    factor_of_tangent: bool,
     /// The residual's force scale and its history (the floor of the
     /// relative residual, `structure/evaluation.rs`).
     pub(super) force_scale: super::evaluation::ForceScale,
@@ -52,6 +59,8 @@ impl LinearSystem {
             forcing: 1.0,
             tangent_stale: false,
             tangent_formed: false,
+            elastic_onset: false,
+            factor_of_tangent: false,
             force_scale: Default::default(),
         }
     }
@@ -63,6 +72,28 @@ impl LinearSystem {
         }
         let (values, rest) = (&mut self.tangent, self.rest.as_mut());
         Tangent { assembler: &self.assembler, values, rest, weight: 1.0, wanted: true }
+    }
+
+    /// An evaluation formed the tangent anew: the factor is of another.
+    pub(crate) fn tangent_changed(&mut self) {
+        self.factor_of_tangent = false;
+    }
+
+    /// An evaluation kept the tangent formed before
+    /// (`structure/evaluation.rs`, a constant tangent): if the factor is of
+    /// an older one, the next solve factorizes this one, which the solves
+    /// after it will reuse as their exact factor.
+    pub(crate) fn keep_tangent(&mut self) {
+        if !self.factor_of_tangent {
+            self.solver.refactor_next();
+        }
+    }
+
+    /// Records whether the solver factorized since `before` factorizations.
+    fn note_factorizations(&mut self, before: usize) {
+        if self.solver.stats().factorizations > before {
+            self.factor_of_tangent = true;
+        }
     }
 
     /// Asks the next solve to go on towards the relative residual `eta`
@@ -83,8 +114,11 @@ impl LinearSystem {
         let empty = NonSymmetric::default();
         let rest = self.rest.as_ref().unwrap_or(&empty);
         let pattern = &self.assembler.pattern;
-        self.solver.solve_unsymmetric(pattern, &self.tangent, rest, &mut self.rhs, self.forcing, must_factor)?;
-        Ok(())
+        let before = self.solver.stats().factorizations;
+        let solved =
+            self.solver.solve_unsymmetric(pattern, &self.tangent, rest, &mut self.rhs, self.forcing, must_factor);
+        self.note_factorizations(before);
+        solved.map(|_| ())
     }
 
     /// Solves the bordered system `[K B; Bᵀ C] [x; a] = [rhs; rhs_a]`
@@ -96,8 +130,10 @@ impl LinearSystem {
         rhs_a: &mut [f64],
     ) -> Result<(), LinearError> {
         let (pattern, values) = (&self.assembler.pattern, &self.tangent[..]);
-        self.solver.solve_bordered((pattern, values), border, &mut self.rhs, rhs_a, self.forcing)?;
-        Ok(())
+        let before = self.solver.stats().factorizations;
+        let solved = self.solver.solve_bordered((pattern, values), border, &mut self.rhs, rhs_a, self.forcing);
+        self.note_factorizations(before);
+        solved.map(|_| ())
     }
 
     /// After [`Self::solve`] with `must_factor`: solves `K x = b` for a
@@ -116,7 +152,9 @@ impl LinearSystem {
     /// Factorizes the present (symmetric part of the) tangent and returns
     /// its negative pivots; `None` if the factorization failed.
     pub fn inertia(&mut self) -> Option<usize> {
+        self.factor_of_tangent = false;
         self.solver.factorize_now(&self.tangent).ok()?;
+        self.factor_of_tangent = true;
         self.solver.negative_pivots()
     }
 
@@ -128,6 +166,8 @@ impl LinearSystem {
         b: &[f64],
         settings: &crate::solver::eigen::EigenSettings,
     ) -> Result<crate::solver::eigen::EigenSolution, crate::solver::eigen::EigenError> {
+        // the eigensolver factorizes `k`, not the tangent
+        self.factor_of_tangent = false;
         self.solver.eigen(&self.assembler.pattern, k, b, settings)
     }
 

@@ -109,6 +109,9 @@ pub struct Contacts<'m> {
     on_secant: bool,
     /// Points that kept their contact so at the last evaluation.
     kept: usize,
+    /// No point was active at the last evaluation that formed a tangent:
+    /// the contacts added no stiffness to it.
+    formed_open: bool,
     /// Surface contacts between deformable bodies are evaluated in the
     /// current configuration (`crate::contact::current`: nonlinear
     /// geometry); otherwise their projections are fixed within an increment.
@@ -166,6 +169,7 @@ impl<'m> Contacts<'m> {
             first_evaluation: false,
             on_secant: false,
             kept: 0,
+            formed_open: false,
             current,
             roundoff_gap: ROUNDOFF_GAP * mesh.bodies.iter().map(|b| b.size()).fold(0.0, f64::max),
             nodal_normals: if current {
@@ -318,6 +322,9 @@ impl Contribution for Contacts<'_> {
         changes = changes.saturating_sub(grazing.count());
         self.first_evaluation = false;
         self.on_secant = false;
+        if tangent.wanted {
+            self.formed_open = self.points.iter().all(|p| !p.active);
+        }
         changes
     }
 
@@ -336,8 +343,11 @@ impl Contribution for Contacts<'_> {
         self.points.copy_from_slice(&self.committed);
     }
 
-    /// Without indenters and pair contacts it adds nothing.
+    /// Without indenters and pair contacts it adds nothing, and nothing
+    /// either while no point touches: none at the last evaluation, nor at
+    /// the one that formed the tangent (an inactive point adds no block).
     fn tangent_unchanged(&self, _at: &At<'_>) -> bool {
-        self.indenters.is_empty() && self.pairs.is_empty()
+        (self.indenters.is_empty() && self.pairs.is_empty())
+            || (self.formed_open && self.points.iter().all(|p| !p.active))
     }
 }

@@ -18,10 +18,16 @@
 //!   The bulk of that sum is marked as the static estimate's is
 //!   ([`super::mark`]).
 //!
-//! Buckling and transient analyses have no estimate of their critical
-//! loads or time history; the model refuses `[adapt]` with them.
+//! * **Buckling**: as modal, with the estimated relative errors of the
+//!   critical load factors `(μ_h − μ) / μ_h`
+//!   ([`crate::post::mode_error::ModeError::eigenvalue`]) in place of the
+//!   frequencies': the tolerance is an error of the critical load.
+//!
+//! A transient analysis has no estimate of its time history; the model
+//! refuses `[adapt]` with it.
 
 use crate::analysis::Solution;
+use crate::post::mode_error::ModeError;
 use crate::setup::AdaptSettings;
 
 /// One cycle's measure.
@@ -42,23 +48,30 @@ pub(crate) struct Measure {
     pub(crate) frequencies: Vec<f64>,
     /// See `frequencies`.
     pub(crate) frequency_errors: Vec<f64>,
+    /// Buckling: the followed modes' critical load factors and their
+    /// estimated relative errors; empty otherwise.
+    pub(crate) factors: Vec<f64>,
+    /// See `factors`.
+    pub(crate) factor_errors: Vec<f64>,
 }
 
 impl Measure {
     /// The measure of `solution` under `settings` (module docs).
     pub(crate) fn of(solution: &Solution, settings: &AdaptSettings) -> Self {
-        match &solution.modal {
-            Some(modal) => {
-                let n = settings.modes.unwrap_or(modal.errors.len()).min(modal.errors.len());
-                let errors = &modal.errors[..n];
-                let frequency_errors: Vec<f64> = errors.iter().map(|e| e.frequency()).collect();
-                let estimate = frequency_errors.iter().copied().fold(0.0, f64::max);
-                let above = errors.iter().filter(|e| e.frequency() >= settings.tolerance).map(|e| &e.estimate);
-                let Combined { element, section, direction } = combined(above);
-                let frequencies = modal.frequencies[..n].to_vec();
-                Self { estimate, element, section, direction, frequencies, frequency_errors }
+        match (&solution.modal, &solution.buckling) {
+            (Some(modal), _) => {
+                let (mut m, errors) = Self::of_modes(&modal.errors, |e| e.frequency(), settings);
+                m.frequencies = modal.frequencies[..errors.len()].to_vec();
+                m.frequency_errors = errors;
+                m
             }
-            None => match &solution.error_estimate {
+            (None, Some(buckling)) => {
+                let (mut m, errors) = Self::of_modes(&buckling.errors, |e| e.eigenvalue, settings);
+                m.factors = buckling.factors[..errors.len()].to_vec();
+                m.factor_errors = errors;
+                m
+            }
+            (None, None) => match &solution.error_estimate {
                 Some(e) => Self {
                     estimate: e.relative(),
                     element: e.element.clone(),
@@ -71,14 +84,35 @@ impl Measure {
         }
     }
 
+    /// The measure of the lowest `settings.modes` of an eigen-analysis's
+    /// mode `errors` (all by default) by their eigenvalue's estimated
+    /// relative `error` (module docs), with those errors.
+    fn of_modes(errors: &[ModeError], error: impl Fn(&ModeError) -> f64, settings: &AdaptSettings) -> (Self, Vec<f64>) {
+        let n = settings.modes.unwrap_or(errors.len()).min(errors.len());
+        let values: Vec<f64> = errors[..n].iter().map(&error).collect();
+        let estimate = values.iter().copied().fold(0.0, f64::max);
+        let above = errors[..n].iter().filter(|e| error(e) >= settings.tolerance).map(|e| &e.estimate);
+        let Combined { element, section, direction } = combined(above);
+        (Self { estimate, element, section, direction, ..Default::default() }, values)
+    }
+
+    /// True if the cycle follows modes (a modal or buckling analysis).
+    pub(crate) fn follows_modes(&self) -> bool {
+        !self.frequency_errors.is_empty() || !self.factor_errors.is_empty()
+    }
+
     /// The words of the stop at the tolerance.
     pub(crate) fn below(&self, tolerance: f64) -> String {
-        if self.frequency_errors.is_empty() {
+        let (what, n) = if !self.factor_errors.is_empty() {
+            ("critical load factor", self.factor_errors.len())
+        } else {
+            ("frequency", self.frequency_errors.len())
+        };
+        if !self.follows_modes() {
             format!("the estimate {:.2} % is below the tolerance {:.2} %", 100.0 * self.estimate, 100.0 * tolerance)
         } else {
             format!(
-                "the largest estimated frequency error of the {} modes followed, {:.2} %, is below the tolerance {:.2} %",
-                self.frequency_errors.len(),
+                "the largest estimated {what} error of the {n} modes followed, {:.2} %, is below the tolerance {:.2} %",
                 100.0 * self.estimate,
                 100.0 * tolerance
             )

@@ -143,6 +143,8 @@ pub fn run(
             estimate: measure.estimate,
             frequencies: measure.frequencies.clone(),
             frequency_errors: measure.frequency_errors.clone(),
+            factors: measure.factors.clone(),
+            factor_errors: measure.factor_errors.clone(),
             time_s: start.elapsed().as_secs_f64(),
             refined: std::mem::take(&mut refined),
             probes: analysis::tables::probes(&model, &solution.fields(&model)),
@@ -286,7 +288,7 @@ fn refined(
     // modes only: on static profiles the estimate is held by the walls'
     // singular re-entrant corners, and grading towards them reached no
     // lower estimate within the DOF budget (`mark::JUNCTION_SHARE`)
-    let grade = !measure.frequencies.is_empty();
+    let grade = measure.follows_modes();
     mark::local(&model.mesh, &model.plan, weights, grade, &mut marks);
     let plan: MeshPlan = mark::refine(&model.plan, &marks);
     if plan == model.plan {

@@ -130,13 +130,20 @@ pub struct AdaptCycle {
     /// Degrees of freedom of its mesh.
     pub dof: usize,
     /// Relative error estimate of its solution: in the energy norm, or of a
-    /// modal analysis the largest estimated relative frequency error of
-    /// the modes followed (`crate::adapt::measure`).
+    /// modal (buckling) analysis the largest estimated relative frequency
+    /// (critical load factor) error of the modes followed
+    /// (`crate::adapt::measure`).
     pub estimate: f64,
     /// Modal: the frequencies of the modes followed (Hz); empty otherwise.
     pub frequencies: Vec<f64>,
     /// Modal: their estimated relative errors `(f_h − f) / f`; empty otherwise.
     pub frequency_errors: Vec<f64>,
+    /// Buckling: the critical load factors of the modes followed; empty
+    /// otherwise.
+    pub factors: Vec<f64>,
+    /// Buckling: their estimated relative errors `(μ_h − μ) / μ_h`; empty
+    /// otherwise.
+    pub factor_errors: Vec<f64>,
     /// Wall time of the cycle: building the refined model and solving it (s).
     pub time_s: f64,
     /// What its mesh refined in the previous one (empty for cycle 0).

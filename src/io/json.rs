@@ -254,8 +254,9 @@ pub struct CycleSummary {
     pub cycle: usize,
     /// Degrees of freedom.
     pub dof: usize,
-    /// Relative error estimate (energy norm, 0–1; modal: the largest
-    /// estimated relative frequency error of the modes followed).
+    /// Relative error estimate (energy norm, 0–1; modal, buckling: the
+    /// largest estimated relative frequency or critical load factor error
+    /// of the modes followed).
     pub estimate: f64,
     /// Modal: the frequencies of the modes followed (Hz); absent otherwise.
     #[serde(skip_serializing_if = "Vec::is_empty")]
@@ -263,6 +264,13 @@ pub struct CycleSummary {
     /// Modal: their estimated relative errors (0–1); absent otherwise.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub frequency_errors: Vec<f64>,
+    /// Buckling: the critical load factors of the modes followed; absent
+    /// otherwise.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub factors: Vec<f64>,
+    /// Buckling: their estimated relative errors (0–1); absent otherwise.
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub factor_errors: Vec<f64>,
     /// Wall time of the cycle: building its model and solving it (s).
     pub time_s: f64,
     /// What its mesh refined in the previous cycle's.
@@ -480,6 +488,8 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
                     estimate: c.estimate,
                     frequencies: c.frequencies.clone(),
                     frequency_errors: c.frequency_errors.clone(),
+                    factors: c.factors.clone(),
+                    factor_errors: c.factor_errors.clone(),
                     time_s: c.time_s,
                     refined: c.refined.clone(),
                 })

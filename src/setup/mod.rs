@@ -474,9 +474,9 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     }
     let kind = analysis::Kind::of(buckling.is_some(), modal.is_some(), transient.is_some());
     analysis::combinations(kind, solver.path.is_some())?;
-    analysis::adapt_combinations(kind, adapt.as_ref(), modal.as_ref().map(|m| m.modes))?;
-    analysis::damage_combinations(kind, kinematics, &materials, solver.path.is_some())?;
     let modes = buckling.map(|b| b.modes).or(modal.map(|m| m.modes));
+    analysis::adapt_combinations(kind, adapt.as_ref(), modes)?;
+    analysis::damage_combinations(kind, kinematics, &materials, solver.path.is_some())?;
     warnings.extend(analysis::eigen_warnings(modes, &mesh, &constraint_handler, !symmetry.planes.is_empty()));
     Ok(Model {
         title: file.title.unwrap_or_else(|| defaults::TITLE.into()),

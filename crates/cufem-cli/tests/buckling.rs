@@ -351,3 +351,51 @@ fn inertia_of_the_last_factorization_is_free_and_lags() {
     }
     assert!(lags > 0, "the last factorization's count never lagged: it is the converged tangent's");
 }
+
+/// `cufem run --adapt` on the shipped column (`adapt::measure`: buckling
+/// cycles measured by the largest estimated critical load factor error of
+/// the modes followed; the library's test is tests/buckling_error.rs): each
+/// cycle's factors and their estimates in summary.json (`adapt[k].factors`,
+/// `factor_errors`, the estimate their largest), the report's table of the
+/// modes followed, and the adapted model file, which solves to the last
+/// cycle's factors.
+#[test]
+fn adapt_on_buckling_writes_each_cycles_factors_and_estimates() {
+    let dir = std::env::temp_dir().join(format!("cufem_column_adapt_{}", std::process::id()));
+    let out = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", COLUMN, "--adapt", "0.001", "--quiet", "--out"])
+        .arg(dir.join("out"))
+        .output()
+        .unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let read = |p: &Path| -> serde_json::Value { serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap() };
+    let s = read(&dir.join("out/summary.json"));
+    let cycles = s["adapt"].as_array().unwrap();
+    assert!(cycles.len() >= 2, "{cycles:?}");
+    let floats =
+        |v: &serde_json::Value| -> Vec<f64> { v.as_array().unwrap().iter().map(|x| x.as_f64().unwrap()).collect() };
+    for c in cycles {
+        let (factors, errors) = (floats(&c["factors"]), floats(&c["factor_errors"]));
+        assert_eq!((factors.len(), errors.len()), (4, 4), "every mode followed: {c}");
+        assert_eq!(c["estimate"].as_f64().unwrap(), errors.iter().copied().fold(0.0, f64::max));
+        assert!(c.get("frequencies").is_none());
+    }
+    let (first, last) = (&cycles[0], cycles.last().unwrap());
+    assert!(first["estimate"].as_f64().unwrap() > 0.001 && last["estimate"].as_f64().unwrap() < 0.001, "{cycles:?}");
+    assert_eq!(floats(&last["factors"]), floats(&s["buckling"]["factors"]), "the results are the last cycle's");
+    assert!(s["adapt_stop"].as_str().unwrap().contains("critical load factor error"), "{}", s["adapt_stop"]);
+    let html = std::fs::read_to_string(dir.join("out/report.html")).unwrap();
+    assert!(html.contains("critical load factor and its estimated error"));
+    let again = Command::new(env!("CARGO_BIN_EXE_cufem"))
+        .args(["run", dir.join("out/adapted.toml").to_str().unwrap(), "--quiet", "--out"])
+        .arg(dir.join("again"))
+        .output()
+        .unwrap();
+    assert!(again.status.success(), "{}", String::from_utf8_lossy(&again.stderr));
+    let a = read(&dir.join("again/summary.json"));
+    assert_eq!(a["dof"], s["dof"]);
+    for (x, y) in floats(&a["buckling"]["factors"]).iter().zip(floats(&s["buckling"]["factors"])) {
+        assert!((x / y - 1.0).abs() < 1e-9, "{x} against {y}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}

@@ -100,20 +100,31 @@ pub(crate) fn adapt(a: &Adaptivity) -> Section {
             .collect(),
     };
     let mut tables = vec![cycles];
-    // a modal run's: each followed mode's frequency and estimated error per cycle
-    let followed = a.cycles.first().map_or(0, |c| c.frequency_errors.len());
+    // a modal (buckling) run's: each followed mode's frequency (critical
+    // load factor) and estimated error per cycle
+    let buckling = a.cycles.first().is_some_and(|c| !c.factor_errors.is_empty());
+    let values = |c: &crate::analysis::AdaptCycle| {
+        if buckling {
+            (c.factors.clone(), c.factor_errors.clone())
+        } else {
+            (c.frequencies.clone(), c.frequency_errors.clone())
+        }
+    };
+    let followed = a.cycles.first().map_or(0, |c| values(c).1.len());
     if followed > 0 {
-        let columns = (1..=followed).flat_map(|k| [format!("f{k} [Hz]"), format!("f{k} est. error [%]")]);
+        let (symbol, unit, what) =
+            if buckling { ("μ", "", "critical load factor") } else { ("f", " [Hz]", "frequency") };
+        let columns =
+            (1..=followed).flat_map(|k| [format!("{symbol}{k}{unit}"), format!("{symbol}{k} est. error [%]")]);
         tables.push(SectionTable {
-            title: "modes followed: frequency and its estimated error, cycle by cycle".into(),
+            title: format!("modes followed: {what} and its estimated error, cycle by cycle"),
             columns: ["cycle", "DOF"].into_iter().map(String::from).chain(columns).collect(),
             rows: a
                 .cycles
                 .iter()
                 .map(|c| {
-                    let modes = (0..followed).flat_map(|k| {
-                        [json!(c.frequencies.get(k)), json!(c.frequency_errors.get(k).map(|e| 100.0 * e))]
-                    });
+                    let (v, e) = values(c);
+                    let modes = (0..followed).flat_map(|k| [json!(v.get(k)), json!(e.get(k).map(|e| 100.0 * e))]);
                     [json!(c.cycle), json!(c.dof)].into_iter().chain(modes).collect()
                 })
                 .collect(),

@@ -68,13 +68,14 @@ impl AdaptArgs {
         };
         if let Some(t) = self.adapt {
             // (an [adapt] table with another analysis is refused with the model)
-            if !matches!(model.analysis_type(), "static" | "modal") {
+            if !matches!(model.analysis_type(), "static" | "modal" | "buckling") {
                 return Err(fail(
                     INPUT,
                     anyhow!(
                         "--adapt {t} with analysis.type = \"{}\": expected a static analysis (refined by the \
-                         estimate of its stresses) or a modal one (by the estimates of its frequencies); there is \
-                         no estimate of the critical loads or time history of a {} analysis",
+                         estimate of its stresses), a modal one (by the estimates of its frequencies) or a buckling \
+                         one (of its critical load factors); there is no estimate of the time history of a {} \
+                         analysis",
                         model.analysis_type(),
                         model.analysis_type()
                     ),
@@ -150,7 +151,11 @@ pub(super) fn exit_code(solution: &Solution) -> Option<u8> {
 /// The report line of one cycle.
 pub(super) fn cycle_line(c: &cufem::analysis::AdaptCycle) -> String {
     let refined = if c.refined.is_empty() { String::new() } else { format!("  (refined {})", c.refined) };
-    let what = if c.frequency_errors.is_empty() { "estimate" } else { "largest frequency error estimate" };
+    let what = match (c.frequency_errors.is_empty(), c.factor_errors.is_empty()) {
+        (false, _) => "largest frequency error estimate",
+        (true, false) => "largest critical load factor error estimate",
+        (true, true) => "estimate",
+    };
     format!(
         "cycle {}: {} DOF, {what} {:.2} %, {:.1} s{refined}",
         c.cycle,

@@ -23,8 +23,11 @@
 //!   ([`crate::post::mode_error::ModeError::eigenvalue`]) in place of the
 //!   frequencies': the tolerance is an error of the critical load.
 //!
-//! A transient analysis has no estimate of its time history; the model
-//! refuses `[adapt]` with it.
+//! * **Transient**: the static estimate of its worst kept time — of the
+//!   frames (`analysis.output_interval`) and the end, the state whose
+//!   estimated error `η` is largest (`analysis::state_errors`), measured
+//!   relative to its own energy and refined by its indicators. Without
+//!   frames only the end is seen.
 
 use crate::analysis::Solution;
 use crate::post::mode_error::ModeError;
@@ -71,7 +74,7 @@ impl Measure {
                 m.factor_errors = errors;
                 m
             }
-            (None, None) => match &solution.error_estimate {
+            (None, None) => match Self::worst_kept(solution).or(solution.error_estimate.as_ref()) {
                 Some(e) => Self {
                     estimate: e.relative(),
                     element: e.element.clone(),
@@ -82,6 +85,18 @@ impl Measure {
                 None => Self::default(),
             },
         }
+    }
+
+    /// A transient run's worst kept time: of its frames and its end, the
+    /// state whose estimated error `η` is largest (the largest relative
+    /// error belongs to a state of little energy, before the load arrives);
+    /// `None` for a run without frames.
+    fn worst_kept(solution: &Solution) -> Option<&crate::post::ErrorEstimate> {
+        if solution.frames.is_empty() {
+            return None;
+        }
+        let kept = solution.error_history.rows.iter().map(|r| &r.estimate).chain(solution.error_estimate.as_ref());
+        kept.max_by(|a, b| a.error.total_cmp(&b.error))
     }
 
     /// The measure of the lowest `settings.modes` of an eigen-analysis's

@@ -320,26 +320,12 @@ pub(super) fn combinations(kind: Kind, arc_length: bool) -> Result<(), ModelErro
     Ok(())
 }
 
-/// Adaptive refinement is driven by the static estimate or, in a modal or
-/// buckling analysis, by the modes' estimates (`crate::adapt`); a
-/// transient analysis has no estimate of its time history, so `[adapt]` is
-/// refused there. `adapt.modes` (modal and buckling only) is at most the
-/// `modes` computed.
-pub(super) fn adapt_combinations(
-    kind: Kind,
-    adapt: Option<&super::AdaptSettings>,
-    modes: Option<usize>,
-) -> Result<(), ModelError> {
+/// Adaptive refinement is driven by the static estimate (of a transient
+/// analysis: its worst kept time) or, in a modal or buckling analysis, by
+/// the modes' estimates (`crate::adapt`). `adapt.modes` (modal and buckling
+/// only) is at most the `modes` computed.
+pub(super) fn adapt_combinations(adapt: Option<&super::AdaptSettings>, modes: Option<usize>) -> Result<(), ModelError> {
     let Some(adapt) = adapt else { return Ok(()) };
-    if !matches!(kind, Kind::Static | Kind::Modal | Kind::Buckling) {
-        return Err(invalid(
-            "adapt",
-            format!("given with analysis.type = \"{}\"", kind.word()),
-            "an [adapt] table only with analysis.type = \"static\" (the estimate of the stresses), \"modal\" \
-             (the estimates of the frequencies) or \"buckling\" (of the critical load factors): there is no \
-             estimate of the time history",
-        ));
-    }
     match (adapt.modes, modes) {
         (Some(m), None) => Err(invalid("adapt.modes", m, "only with analysis.type = \"modal\" or \"buckling\"")),
         (Some(m), Some(n)) if m == 0 || m > n => Err(invalid(

@@ -285,12 +285,6 @@ impl Model {
         Quantity::all_for(self.materials.iter().any(|m| m.strengths.is_some()))
     }
 
-    /// `analysis.type` as the file writes it: `"static"`, `"buckling"`,
-    /// `"modal"` or `"transient"`.
-    pub fn analysis_type(&self) -> &'static str {
-        analysis::Kind::of(self.buckling.is_some(), self.modal.is_some(), self.transient.is_some()).word()
-    }
-
     /// The meshes, Gauss-point values, materials, kinematics and
     /// interfaces.
     pub(crate) fn discretisation(&self) -> Discretisation<'_> {
@@ -475,7 +469,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let kind = analysis::Kind::of(buckling.is_some(), modal.is_some(), transient.is_some());
     analysis::combinations(kind, solver.path.is_some())?;
     let modes = buckling.map(|b| b.modes).or(modal.map(|m| m.modes));
-    analysis::adapt_combinations(kind, adapt.as_ref(), modes)?;
+    analysis::adapt_combinations(adapt.as_ref(), modes)?;
     analysis::damage_combinations(kind, kinematics, &materials, solver.path.is_some())?;
     warnings.extend(analysis::eigen_warnings(modes, &mesh, &constraint_handler, !symmetry.planes.is_empty()));
     Ok(Model {

@@ -350,11 +350,9 @@ fn unsupported_analysis_combinations_are_refused_by_key() {
     let arc =
         "[analysis]\ntype = \"buckling\"\n[solver]\ncontrol = \"arc_length\"\narc_length = 1e-4\nmax_load_factor = 1.2";
     holds(&refused(&column(500.0, arc)), &["solver.control = \"arc_length\"", "analysis.type = \"buckling\""]);
-    // [adapt] with a transient analysis (no estimate of the history; a
-    // modal or buckling one is adapted by its modes)
-    let e = refused(&flying_rod("[0.0, 1.0, 0.0]", "[adapt]\ntolerance = 0.1"));
-    holds(&e, &["adapt = given with analysis.type", "\"transient\"", "\"static\"", "\"modal\"", "\"buckling\""]);
     // adapt.modes: modal and buckling only, at most the modes computed
+    let e = refused(&flying_rod("[0.0, 1.0, 0.0]", "[adapt]\nmodes = 1"));
+    holds(&e, &["adapt.modes = 1", "only with analysis.type = \"modal\" or \"buckling\""]);
     let e = refused(&column(500.0, "[adapt]\nmodes = 2"));
     holds(&e, &["adapt.modes = 2", "only with analysis.type = \"modal\" or \"buckling\""]);
     let e = refused(&column(500.0, "[analysis]\ntype = \"buckling\"\nmodes = 2\n[adapt]\nmodes = 3"));
@@ -472,16 +470,6 @@ fn command_line_values_are_checked_before_running() {
     let e = String::from_utf8_lossy(&r.stderr);
     assert_eq!(r.status.code(), Some(1), "{e}");
     holds(&e, &["--max-memory", "-5G", "positive size such as 8G"]);
-    // --adapt on a transient model (a modal or buckling one is adapted by its modes)
-    let transient = dir.join("transient.toml");
-    std::fs::write(&transient, flying_rod("[0.0, 1.0, 0.0]", "")).unwrap();
-    let r = common::cufem()
-        .args(["run", transient.to_str().unwrap(), "--adapt", "0.05", "--out", out.to_str().unwrap(), "--quiet"])
-        .output()
-        .unwrap();
-    let e = String::from_utf8_lossy(&r.stderr);
-    assert_eq!(r.status.code(), Some(1), "{e}");
-    holds(&e, &["--adapt 0.05", "analysis.type = \"transient\"", "static", "modal", "buckling", "time history"]);
 }
 
 #[test]

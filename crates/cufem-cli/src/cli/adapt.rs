@@ -68,19 +68,6 @@ impl AdaptArgs {
         };
         if let Some(t) = self.adapt {
             // (an [adapt] table with another analysis is refused with the model)
-            if !matches!(model.analysis_type(), "static" | "modal" | "buckling") {
-                return Err(fail(
-                    INPUT,
-                    anyhow!(
-                        "--adapt {t} with analysis.type = \"{}\": expected a static analysis (refined by the \
-                         estimate of its stresses), a modal one (by the estimates of its frequencies) or a buckling \
-                         one (of its critical load factors); there is no estimate of the time history of a {} \
-                         analysis",
-                        model.analysis_type(),
-                        model.analysis_type()
-                    ),
-                ));
-            }
             settings.tolerance = t;
         }
         if let Some(n) = self.max_dof {

@@ -181,7 +181,9 @@ fn adapt_on_buckling_brings_the_columns_critical_load_within_its_tolerance() {
         &mut |c, _, s| {
             let b = s.buckling.as_ref().unwrap();
             // the cycle's measure: the largest estimate of the two modes followed
-            assert_eq!(c.factors, b.factors[..2]);
+            let followed = c.modes.as_ref().unwrap();
+            assert_eq!(followed.quantity, cufem::analysis::ModeQuantity::LoadFactor);
+            assert_eq!(followed.values, b.factors[..2]);
             assert_eq!(c.estimate, b.errors[..2].iter().map(|e| e.eigenvalue).fold(0.0, f64::max));
             estimates.push(c.estimate)
         },

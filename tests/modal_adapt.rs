@@ -144,7 +144,7 @@ fn adapt_on_modes_grades_the_walls_towards_their_junctions() {
     let source = Source { text: &text, base: std::path::Path::new("."), limits: cufem::setup::Limits::none() };
     let mut cycles: Vec<(Model, Solution, f64, Vec<f64>)> = Vec::new();
     let (_, last) = cufem::adapt::run(start, source, &settings, &Default::default(), &mut Silent, &mut |c, m, s| {
-        cycles.push((m.clone(), s.clone(), c.estimate, c.frequency_errors.clone()))
+        cycles.push((m.clone(), s.clone(), c.estimate, c.modes.as_ref().map(|m| m.errors.clone()).unwrap_or_default()))
     })
     .unwrap();
     assert_eq!(cycles.len(), 2);

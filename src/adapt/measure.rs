@@ -29,7 +29,7 @@
 //!   relative to its own energy and refined by its indicators. Without
 //!   frames only the end is seen.
 
-use crate::analysis::Solution;
+use crate::analysis::{FollowedModes, ModeQuantity, Solution};
 use crate::post::mode_error::ModeError;
 use crate::setup::AdaptSettings;
 
@@ -46,16 +46,9 @@ pub(crate) struct Measure {
     /// The parts of `element` varying along x, z and the axis
     /// (`ErrorEstimate::direction`; empty if not computed).
     pub(crate) direction: Vec<[f64; 3]>,
-    /// Modal: the followed modes' frequencies (Hz) and estimated relative
-    /// frequency errors; empty otherwise.
-    pub(crate) frequencies: Vec<f64>,
-    /// See `frequencies`.
-    pub(crate) frequency_errors: Vec<f64>,
-    /// Buckling: the followed modes' critical load factors and their
-    /// estimated relative errors; empty otherwise.
-    pub(crate) factors: Vec<f64>,
-    /// See `factors`.
-    pub(crate) factor_errors: Vec<f64>,
+    /// Modal and buckling: the followed modes and their estimated
+    /// errors; `None` otherwise.
+    pub(crate) modes: Option<FollowedModes>,
 }
 
 impl Measure {
@@ -63,17 +56,15 @@ impl Measure {
     pub(crate) fn of(solution: &Solution, settings: &AdaptSettings) -> Self {
         match (&solution.modal, &solution.buckling) {
             (Some(modal), _) => {
-                let (mut m, errors) = Self::of_modes(&modal.errors, |e| e.frequency(), settings);
-                m.frequencies = modal.frequencies[..errors.len()].to_vec();
-                m.frequency_errors = errors;
-                m
+                Self::of_modes(&modal.errors, &modal.frequencies, ModeQuantity::Frequency, |e| e.frequency(), settings)
             }
-            (None, Some(buckling)) => {
-                let (mut m, errors) = Self::of_modes(&buckling.errors, |e| e.eigenvalue, settings);
-                m.factors = buckling.factors[..errors.len()].to_vec();
-                m.factor_errors = errors;
-                m
-            }
+            (None, Some(buckling)) => Self::of_modes(
+                &buckling.errors,
+                &buckling.factors,
+                ModeQuantity::LoadFactor,
+                |e| e.eigenvalue,
+                settings,
+            ),
             (None, None) => match Self::worst_kept(solution).or(solution.error_estimate.as_ref()) {
                 Some(e) => Self {
                     estimate: e.relative(),
@@ -100,37 +91,43 @@ impl Measure {
     }
 
     /// The measure of the lowest `settings.modes` of an eigen-analysis's
-    /// mode `errors` (all by default) by their eigenvalue's estimated
-    /// relative `error` (module docs), with those errors.
-    fn of_modes(errors: &[ModeError], error: impl Fn(&ModeError) -> f64, settings: &AdaptSettings) -> (Self, Vec<f64>) {
+    /// modes (all by default; `values` their frequencies or load factors,
+    /// `errors` their estimates) by their eigenvalue's estimated relative
+    /// `error` (module docs).
+    fn of_modes(
+        errors: &[ModeError],
+        values: &[f64],
+        quantity: ModeQuantity,
+        error: impl Fn(&ModeError) -> f64,
+        settings: &AdaptSettings,
+    ) -> Self {
         let n = settings.modes.unwrap_or(errors.len()).min(errors.len());
-        let values: Vec<f64> = errors[..n].iter().map(&error).collect();
-        let estimate = values.iter().copied().fold(0.0, f64::max);
+        let relative: Vec<f64> = errors[..n].iter().map(&error).collect();
+        let estimate = relative.iter().copied().fold(0.0, f64::max);
         let above = errors[..n].iter().filter(|e| error(e) >= settings.tolerance).map(|e| &e.estimate);
         let Combined { element, section, direction } = combined(above);
-        (Self { estimate, element, section, direction, ..Default::default() }, values)
+        let modes = FollowedModes { quantity, values: values[..n].to_vec(), errors: relative };
+        Self { estimate, element, section, direction, modes: Some(modes) }
     }
 
     /// True if the cycle follows modes (a modal or buckling analysis).
     pub(crate) fn follows_modes(&self) -> bool {
-        !self.frequency_errors.is_empty() || !self.factor_errors.is_empty()
+        self.modes.is_some()
     }
 
     /// The words of the stop at the tolerance.
     pub(crate) fn below(&self, tolerance: f64) -> String {
-        let (what, n) = if !self.factor_errors.is_empty() {
-            ("critical load factor", self.factor_errors.len())
-        } else {
-            ("frequency", self.frequency_errors.len())
-        };
-        if !self.follows_modes() {
-            format!("the estimate {:.2} % is below the tolerance {:.2} %", 100.0 * self.estimate, 100.0 * tolerance)
-        } else {
-            format!(
-                "the largest estimated {what} error of the {n} modes followed, {:.2} %, is below the tolerance {:.2} %",
+        match &self.modes {
+            None => {
+                format!("the estimate {:.2} % is below the tolerance {:.2} %", 100.0 * self.estimate, 100.0 * tolerance)
+            }
+            Some(m) => format!(
+                "the largest estimated {} error of the {} modes followed, {:.2} %, is below the tolerance {:.2} %",
+                m.quantity.name(),
+                m.errors.len(),
                 100.0 * self.estimate,
                 100.0 * tolerance
-            )
+            ),
         }
     }
 }

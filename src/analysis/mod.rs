@@ -35,7 +35,7 @@ pub use path::{PathEnd, PathOutcome};
 pub use progress::{IncrementLog, Progress, Setup, Silent};
 pub use recorder::Frame;
 use recorder::Recorder;
-pub use results::{AdaptCycle, AdaptEnd, Adaptivity};
+pub use results::{AdaptCycle, AdaptEnd, Adaptivity, FollowedModes, ModeQuantity};
 pub(crate) use sizes::{describe_memory, memory_advice, model_sizes};
 pub use sizes::{plan, sizes};
 pub use solution::{HistoryRow, Solution, StepEnd, StepFields};

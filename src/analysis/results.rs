@@ -134,22 +134,47 @@ pub struct AdaptCycle {
     /// (critical load factor) error of the modes followed
     /// (`crate::adapt::measure`).
     pub estimate: f64,
-    /// Modal: the frequencies of the modes followed (Hz); empty otherwise.
-    pub frequencies: Vec<f64>,
-    /// Modal: their estimated relative errors `(f_h − f) / f`; empty otherwise.
-    pub frequency_errors: Vec<f64>,
-    /// Buckling: the critical load factors of the modes followed; empty
-    /// otherwise.
-    pub factors: Vec<f64>,
-    /// Buckling: their estimated relative errors `(μ_h − μ) / μ_h`; empty
-    /// otherwise.
-    pub factor_errors: Vec<f64>,
+    /// Modal and buckling: the modes followed, with their estimated
+    /// errors; `None` otherwise.
+    pub modes: Option<FollowedModes>,
     /// Wall time of the cycle: building the refined model and solving it (s).
     pub time_s: f64,
     /// What its mesh refined in the previous one (empty for cycle 0).
     pub refined: String,
     /// Its probes' values ([`super::tables::probes`]: a row per probe).
     pub probes: super::tables::Table,
+}
+
+/// What the modes an adaptive cycle follows are measured by.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum ModeQuantity {
+    /// A modal analysis's natural frequencies (Hz).
+    Frequency,
+    /// A buckling analysis's critical load factors.
+    LoadFactor,
+}
+
+impl ModeQuantity {
+    /// Its name in messages and tables.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Frequency => "frequency",
+            Self::LoadFactor => "critical load factor",
+        }
+    }
+}
+
+/// The modes an adaptive cycle of a modal or buckling analysis follows
+/// (`crate::adapt::measure`), lowest first.
+#[derive(Debug, Clone, PartialEq)]
+pub struct FollowedModes {
+    /// Frequencies or critical load factors.
+    pub quantity: ModeQuantity,
+    /// Their values (Hz, or load factors).
+    pub values: Vec<f64>,
+    /// Their estimated relative errors: `(f_h − f) / f` of a frequency,
+    /// `(μ_h − μ) / μ_h` of a load factor.
+    pub errors: Vec<f64>,
 }
 
 /// How an adaptive run went: every cycle and why it stopped. The solution

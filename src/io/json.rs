@@ -5,7 +5,7 @@ use std::path::Path;
 use serde::Serialize;
 
 use super::{IoError, file_error};
-use crate::analysis::{Solution, tables};
+use crate::analysis::{ModeQuantity, Solution, tables};
 use crate::post::Quantity;
 use crate::setup::Model;
 
@@ -482,16 +482,25 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         adapt: solution.adapt.as_ref().map(|a| {
             a.cycles
                 .iter()
-                .map(|c| CycleSummary {
-                    cycle: c.cycle,
-                    dof: c.dof,
-                    estimate: c.estimate,
-                    frequencies: c.frequencies.clone(),
-                    frequency_errors: c.frequency_errors.clone(),
-                    factors: c.factors.clone(),
-                    factor_errors: c.factor_errors.clone(),
-                    time_s: c.time_s,
-                    refined: c.refined.clone(),
+                .map(|c| {
+                    // summary.json keeps a key pair per quantity
+                    let of = |q: ModeQuantity| {
+                        let m = c.modes.as_ref().filter(|m| m.quantity == q);
+                        m.map_or((Vec::new(), Vec::new()), |m| (m.values.clone(), m.errors.clone()))
+                    };
+                    let (frequencies, frequency_errors) = of(ModeQuantity::Frequency);
+                    let (factors, factor_errors) = of(ModeQuantity::LoadFactor);
+                    CycleSummary {
+                        cycle: c.cycle,
+                        dof: c.dof,
+                        estimate: c.estimate,
+                        frequencies,
+                        frequency_errors,
+                        factors,
+                        factor_errors,
+                        time_s: c.time_s,
+                        refined: c.refined.clone(),
+                    }
                 })
                 .collect()
         }),

@@ -7,6 +7,8 @@ use std::path::Path;
 
 use serde_json::{Value, json};
 
+use crate::analysis::ModeQuantity;
+
 use crate::analysis::Adaptivity;
 use crate::analysis::tables::Column;
 use crate::io::png::Series;
@@ -102,18 +104,17 @@ pub(crate) fn adapt(a: &Adaptivity) -> Section {
     let mut tables = vec![cycles];
     // a modal (buckling) run's: each followed mode's frequency (critical
     // load factor) and estimated error per cycle
-    let buckling = a.cycles.first().is_some_and(|c| !c.factor_errors.is_empty());
+    let quantity = a.cycles.first().and_then(|c| c.modes.as_ref()).map(|m| m.quantity);
     let values = |c: &crate::analysis::AdaptCycle| {
-        if buckling {
-            (c.factors.clone(), c.factor_errors.clone())
-        } else {
-            (c.frequencies.clone(), c.frequency_errors.clone())
-        }
+        c.modes.as_ref().map_or((Vec::new(), Vec::new()), |m| (m.values.clone(), m.errors.clone()))
     };
     let followed = a.cycles.first().map_or(0, |c| values(c).1.len());
-    if followed > 0 {
-        let (symbol, unit, what) =
-            if buckling { ("μ", "", "critical load factor") } else { ("f", " [Hz]", "frequency") };
+    if let Some(quantity) = quantity.filter(|_| followed > 0) {
+        let what = quantity.name();
+        let (symbol, unit) = match quantity {
+            ModeQuantity::LoadFactor => ("μ", ""),
+            ModeQuantity::Frequency => ("f", " [Hz]"),
+        };
         let columns =
             (1..=followed).flat_map(|k| [format!("{symbol}{k}{unit}"), format!("{symbol}{k} est. error [%]")]);
         tables.push(SectionTable {

@@ -138,10 +138,9 @@ pub(super) fn exit_code(solution: &Solution) -> Option<u8> {
 /// The report line of one cycle.
 pub(super) fn cycle_line(c: &cufem::analysis::AdaptCycle) -> String {
     let refined = if c.refined.is_empty() { String::new() } else { format!("  (refined {})", c.refined) };
-    let what = match (c.frequency_errors.is_empty(), c.factor_errors.is_empty()) {
-        (false, _) => "largest frequency error estimate",
-        (true, false) => "largest critical load factor error estimate",
-        (true, true) => "estimate",
+    let what = match &c.modes {
+        Some(m) => format!("largest {} error estimate", m.quantity.name()),
+        None => "estimate".to_string(),
     };
     format!(
         "cycle {}: {} DOF, {what} {:.2} %, {:.1} s{refined}",

@@ -109,6 +109,9 @@ pub struct Material {
     /// written in the material axes ([`Material::frame`]).
     pub damage: Option<damage::PlyDamage>,
     elastic: Matrix6,
+    /// `elastic`'s inverse, `None` if it has none (formed with it: the
+    /// error estimate reads it at every Gauss point of every state).
+    compliance: Option<Matrix6>,
 }
 
 impl Material {
@@ -116,6 +119,7 @@ impl Material {
     /// validated (E > 0, −1 < ν < 0.5, positive yield stress).
     pub fn new(name: impl Into<String>, young: f64, poisson: f64, hardening: Option<Hardening>) -> Self {
         let name = name.into();
+        let elastic = voigt::isotropic_stiffness(young, poisson);
         Self {
             given: name.clone(),
             name,
@@ -128,7 +132,8 @@ impl Material {
             frame: Frame::default(),
             anisotropic: None,
             damage: None,
-            elastic: voigt::isotropic_stiffness(young, poisson),
+            compliance: anisotropic::invert(&elastic),
+            elastic,
         }
     }
 
@@ -141,7 +146,7 @@ impl Material {
             .unwrap_or(stiffness[0][0]);
         let mut m = Self::new(name, young, 0.0, None);
         m.anisotropic = Some(stiffness);
-        m.elastic = stiffness;
+        m.set_elastic(stiffness);
         m
     }
 
@@ -154,9 +159,15 @@ impl Material {
         m.name = format!("{}{suffix}", self.name);
         m.frame = frame;
         if let Some(c) = &self.anisotropic {
-            m.elastic = frame.stiffness_to_global(c);
+            m.set_elastic(frame.stiffness_to_global(c));
         }
         m
+    }
+
+    /// The elastic stiffness in the global axes, and its inverse with it.
+    fn set_elastic(&mut self, c: Matrix6) {
+        self.elastic = c;
+        self.compliance = anisotropic::invert(&c);
     }
 
     /// The same material with strengths for the failure indices.
@@ -168,7 +179,7 @@ impl Material {
     /// `σᵀ C⁻¹ σ` with this material's elastic compliance (twice the
     /// complementary energy density).
     pub fn complementary(&self, stress: &Voigt) -> f64 {
-        let s = anisotropic::invert(&self.elastic).expect("validated: positive definite");
+        let s = self.compliance.as_ref().expect("validated: positive definite");
         (0..6).map(|i| (0..6).map(|j| stress[i] * s[i][j] * stress[j]).sum::<f64>()).sum()
     }
 

@@ -34,14 +34,9 @@
 //! ("ghosts") appear among the results. The coefficients of both passes
 //! are kept in `H_m`, which is then symmetric to rounding; its symmetric
 //! part is diagonalized by faer's dense self-adjoint eigensolver.
-//! Each basis vector keeps its product `K qᵢ`, so the projections update
-//! `K w` along with `w` (`K w ← K w − c K qᵢ`) and a step costs one solve
-//! and one product with `B`, not two more with `K` (the `B` inner product
-//! of ARPACK's shift-invert mode keeps `B v` the same way: Lehoucq,
-//! Sorensen & Yang, *ARPACK Users' Guide*, SIAM 1998, §4.5).
 //!
 //! **Restarts.** The basis holds at most `m` vectors (`EigenSettings::subspace`,
-//! a few dozen, so that memory stays at `2 (m + 1 + count) + 2` vectors of length
+//! a few dozen, so that memory stays at `m + count + 3` vectors of length
 //! `n` for 10⁵–10⁶ unknowns). When it is full and the wanted Ritz pairs have
 //! not converged, it is *thick-restarted* (Wu & Simon, *SIAM J. Matrix Anal.
 //! Appl.* 22 (2000) 602–616; equivalently Stewart's Krylov–Schur): the best
@@ -169,10 +164,10 @@ pub(crate) fn auto_subspace(count: usize) -> usize {
 }
 
 /// Vectors of the equations' size an eigensolution of `count` pairs holds
-/// at most: the basis (`m + 1`) and the locked pairs, each with its product
-/// with `K`, and two of scratch (for the memory estimate).
+/// at most: the basis (`m + 1`), the locked pairs and two of scratch (for
+/// the memory estimate).
 pub fn vectors(count: usize) -> usize {
-    2 * (auto_subspace(count) + 1 + count) + 2
+    auto_subspace(count) + 1 + count + 2
 }
 
 /// Solves `K φ = μ B φ` for the eigenvalues of smallest `|μ|`; `k` and `b`
@@ -222,9 +217,7 @@ pub(crate) fn solve_factored(
         let first = runs == 0;
         let want = if first { settings.count } else { 1 };
         let vectors: Vec<Vec<f64>> = locked.iter().map(|r| r.vector.clone()).collect();
-        let products: Vec<Vec<f64>> = locked.iter().map(|r| r.product.clone()).collect();
-        let kept = Locked { vectors: &vectors, products: &products };
-        let found = lanczos(&mut op, kept, want, settings, 0x9E37_79B9 + runs as u64, &mut restarts)?;
+        let found = lanczos(&mut op, &vectors, want, settings, 0x9E37_79B9 + runs as u64, &mut restarts)?;
         runs += 1;
         // a check's pairs that rank above the last wanted one by more than
         // the tolerance are missed eigenvalues (ties are not: either is right)
@@ -268,18 +261,8 @@ pub(crate) fn solve_factored(
 struct Ritz {
     theta: f64,
     vector: Vec<f64>,
-    /// `K x`.
-    product: Vec<f64>,
     /// `‖A x − θ x‖_K`.
     residual: f64,
-}
-
-/// The locked vectors a run keeps `K`-orthogonal to, with their products
-/// with `K`.
-#[derive(Clone, Copy)]
-struct Locked<'a> {
-    vectors: &'a [Vec<f64>],
-    products: &'a [Vec<f64>],
 }
 
 /// Which Ritz values are wanted, and in which order.
@@ -339,18 +322,17 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// One Gram–Schmidt pass: with `kw = K w`, removes from `w` its `K`
-/// components along `locked` and `basis` (`kq` their products with `K`),
-/// and from `kw` their products, adding the components along `basis` to
+/// components along `locked` and `basis`, adding those along `basis` to
 /// `coef`.
-fn project_out(locked: Locked, basis: &[Vec<f64>], kq: &[Vec<f64>], w: &mut [f64], kw: &mut [f64], coef: &mut [f64]) {
-    let along = locked.vectors.iter().zip(locked.products).map(|v| (None, v));
-    for (i, (v, kv)) in along.chain(basis.iter().zip(kq).enumerate().map(|(i, v)| (Some(i), v))) {
+fn project_out(locked: &[Vec<f64>], basis: &[Vec<f64>], w: &mut [f64], kw: &[f64], coef: &mut [f64]) {
+    for v in locked {
         let c = dot(v, kw);
-        if let Some(i) = i {
-            coef[i] += c;
-        }
         w.iter_mut().zip(v).for_each(|(x, y)| *x -= c * y);
-        kw.iter_mut().zip(kv).for_each(|(x, y)| *x -= c * y);
+    }
+    for (i, v) in basis.iter().enumerate() {
+        let c = dot(v, kw);
+        coef[i] += c;
+        w.iter_mut().zip(v).for_each(|(x, y)| *x -= c * y);
     }
 }
 
@@ -365,12 +347,10 @@ fn random(seed: u64, out: &mut [f64]) {
     }
 }
 
-/// The Lanczos basis: `q` (`m + 1` vectors), their products `kq = K q`
-/// and the projected matrix `h` (`(m + 1) × m`, column-major), of which the
-/// first `len` vectors hold.
+/// The Lanczos basis: `q` (`m + 1` vectors) and the projected matrix
+/// `h` (`(m + 1) × m`, column-major), of which the first `len` vectors hold.
 struct Basis {
     q: Vec<Vec<f64>>,
-    kq: Vec<Vec<f64>>,
     h: Vec<f64>,
     m: usize,
 }
@@ -390,20 +370,19 @@ struct Scratch {
 
 /// Makes `w` a unit vector `K`-orthogonal to `locked` and `basis` (two
 /// passes); false if nothing is left of it (it lay in their span).
-fn orthonormalize(op: &Operator, locked: Locked, basis: &[Vec<f64>], kq: &[Vec<f64>], s: &mut Scratch) -> bool {
+fn orthonormalize(op: &Operator, locked: &[Vec<f64>], basis: &[Vec<f64>], s: &mut Scratch) -> bool {
     op.k_mul(&s.w, &mut s.kw);
     let before = dot(&s.w, &s.kw).max(0.0).sqrt();
     for _ in 0..2 {
-        project_out(locked, basis, kq, &mut s.w, &mut s.kw, &mut s.coef);
+        op.k_mul(&s.w, &mut s.kw);
+        project_out(locked, basis, &mut s.w, &s.kw, &mut s.coef);
     }
-    // formed again: what is left may be a small difference of large parts
     op.k_mul(&s.w, &mut s.kw);
     let after = dot(&s.w, &s.kw).max(0.0).sqrt();
     if !(after > 1e-8 * before) {
         return false;
     }
     s.w.iter_mut().for_each(|x| *x /= after);
-    s.kw.iter_mut().for_each(|x| *x /= after);
     true
 }
 
@@ -413,7 +392,7 @@ fn orthonormalize(op: &Operator, locked: Locked, basis: &[Vec<f64>], kq: &[Vec<f
 /// are exact).
 fn expand(
     op: &mut Operator,
-    locked: Locked,
+    locked: &[Vec<f64>],
     basis: &mut Basis,
     from: usize,
     seed: u64,
@@ -423,10 +402,11 @@ fn expand(
         op.apply(&basis.q[j], &mut s.kw, &mut s.w)?;
         let before = dot(&s.w, &s.kw).max(0.0).sqrt();
         s.coef[..=j].fill(0.0);
-        // K w = B q, then updated with w by each pass
-        for _ in 0..2 {
-            project_out(locked, &basis.q[..=j], &basis.kq[..=j], &mut s.w, &mut s.kw, &mut s.coef);
-        }
+        // first pass with K w = B q, second with K w recomputed
+        project_out(locked, &basis.q[..=j], &mut s.w, &s.kw, &mut s.coef);
+        op.k_mul(&s.w, &mut s.kw);
+        project_out(locked, &basis.q[..=j], &mut s.w, &s.kw, &mut s.coef);
+        op.k_mul(&s.w, &mut s.kw);
         let beta = dot(&s.w, &s.kw).max(0.0).sqrt();
         for i in 0..=j {
             *basis.h(i, j) = s.coef[i];
@@ -434,17 +414,15 @@ fn expand(
         if beta > 1e-12 * before {
             *basis.h(j + 1, j) = beta;
             s.w.iter_mut().for_each(|x| *x /= beta);
-            s.kw.iter_mut().for_each(|x| *x /= beta);
         } else {
             // an invariant subspace: continue from a new direction (β = 0)
             *basis.h(j + 1, j) = 0.0;
             random(seed.wrapping_add(j as u64 + 1), &mut s.w);
-            if !orthonormalize(op, locked, &basis.q[..=j], &basis.kq[..=j], s) {
+            if !orthonormalize(op, locked, &basis.q[..=j], s) {
                 return Ok(j + 1);
             }
         }
         basis.q[j + 1].copy_from_slice(&s.w);
-        basis.kq[j + 1].copy_from_slice(&s.kw);
     }
     Ok(basis.m)
 }
@@ -486,7 +464,7 @@ fn combine(q: &mut [Vec<f64>], s: usize, y: &Mat<f64>, cols: &[usize]) {
 /// space holds fewer eligible ones).
 fn lanczos(
     op: &mut Operator,
-    locked: Locked,
+    locked: &[Vec<f64>],
     want: usize,
     settings: &EigenSettings,
     seed: u64,
@@ -494,18 +472,17 @@ fn lanczos(
 ) -> Result<Vec<Ritz>, EigenError> {
     let n = op.n();
     let auto = auto_subspace(settings.count);
-    let m = (if settings.subspace == 0 { auto } else { settings.subspace }).min(n.saturating_sub(locked.vectors.len()));
+    let m = (if settings.subspace == 0 { auto } else { settings.subspace }).min(n.saturating_sub(locked.len()));
     if m == 0 {
         return Ok(Vec::new());
     }
-    let mut basis = Basis { q: vec![vec![0.0; n]; m + 1], kq: vec![vec![0.0; n]; m + 1], h: vec![0.0; (m + 1) * m], m };
+    let mut basis = Basis { q: vec![vec![0.0; n]; m + 1], h: vec![0.0; (m + 1) * m], m };
     let mut s = Scratch { w: vec![0.0; n], kw: vec![0.0; n], coef: vec![0.0; m + 1] };
     random(seed, &mut s.w);
-    if !orthonormalize(op, locked, &[], &[], &mut s) {
+    if !orthonormalize(op, locked, &[], &mut s) {
         return Ok(Vec::new());
     }
     basis.q[0].copy_from_slice(&s.w);
-    basis.kq[0].copy_from_slice(&s.kw);
     let rank = Rank { positive_only: settings.positive_only };
     let mut from = 0;
     for cycle in 0..=settings.max_restarts {
@@ -521,16 +498,10 @@ fn lanczos(
         if (converged == needed && enough) || size < m {
             let picked = &order[..needed];
             combine(&mut basis.q, size, &y, picked);
-            combine(&mut basis.kq, size, &y, picked);
             return Ok(picked
                 .iter()
-                .zip(basis.q.iter_mut().zip(basis.kq.iter_mut()))
-                .map(|(&i, (q, kq))| Ritz {
-                    theta: theta[i],
-                    vector: std::mem::take(q),
-                    product: std::mem::take(kq),
-                    residual: residual[i],
-                })
+                .zip(basis.q.iter_mut())
+                .map(|(&i, q)| Ritz { theta: theta[i], vector: std::mem::take(q), residual: residual[i] })
                 .collect());
         }
         if cycle == settings.max_restarts {
@@ -541,9 +512,7 @@ fn lanczos(
         let k = (needed + (m - needed) / 2).min(order.len()).min(m - 1);
         let kept = &order[..k];
         combine(&mut basis.q, size, &y, kept);
-        combine(&mut basis.kq, size, &y, kept);
         basis.q.swap(k, m);
-        basis.kq.swap(k, m);
         basis.h.fill(0.0);
         for (c, &i) in kept.iter().enumerate() {
             *basis.h(c, c) = theta[i];

@@ -386,6 +386,8 @@ fn adapt_on_buckling_writes_each_cycles_factors_and_estimates() {
     assert!(s["adapt_stop"].as_str().unwrap().contains("critical load factor error"), "{}", s["adapt_stop"]);
     let html = std::fs::read_to_string(dir.join("out/report.html")).unwrap();
     assert!(html.contains("critical load factor and its estimated error"));
+    // a value and an estimate column per mode followed, the fourth the last
+    assert!(html.contains("μ4 est. error [%]") && !html.contains("μ5"), "the report's table of the four modes");
     let again = Command::new(env!("CARGO_BIN_EXE_cufem"))
         .args(["run", dir.join("out/adapted.toml").to_str().unwrap(), "--quiet", "--out"])
         .arg(dir.join("again"))

@@ -7,10 +7,8 @@ use std::path::Path;
 
 use serde_json::{Value, json};
 
-use crate::analysis::ModeQuantity;
-
-use crate::analysis::Adaptivity;
 use crate::analysis::tables::Column;
+use crate::analysis::{Adaptivity, ModeQuantity};
 use crate::io::png::Series;
 use crate::io::{IoError, file_error};
 
@@ -104,14 +102,10 @@ pub(crate) fn adapt(a: &Adaptivity) -> Section {
     let mut tables = vec![cycles];
     // a modal (buckling) run's: each followed mode's frequency (critical
     // load factor) and estimated error per cycle
-    let quantity = a.cycles.first().and_then(|c| c.modes.as_ref()).map(|m| m.quantity);
-    let values = |c: &crate::analysis::AdaptCycle| {
-        c.modes.as_ref().map_or((Vec::new(), Vec::new()), |m| (m.values.clone(), m.errors.clone()))
-    };
-    let followed = a.cycles.first().map_or(0, |c| values(c).1.len());
-    if let Some(quantity) = quantity.filter(|_| followed > 0) {
-        let what = quantity.name();
-        let (symbol, unit) = match quantity {
+    let first = a.cycles.first().and_then(|c| c.modes.as_ref()).filter(|m| !m.errors.is_empty());
+    if let Some(first) = first {
+        let (followed, what) = (first.errors.len(), first.quantity.name());
+        let (symbol, unit) = match first.quantity {
             ModeQuantity::LoadFactor => ("μ", ""),
             ModeQuantity::Frequency => ("f", " [Hz]"),
         };
@@ -124,8 +118,11 @@ pub(crate) fn adapt(a: &Adaptivity) -> Section {
                 .cycles
                 .iter()
                 .map(|c| {
-                    let (v, e) = values(c);
-                    let modes = (0..followed).flat_map(|k| [json!(v.get(k)), json!(e.get(k).map(|e| 100.0 * e))]);
+                    let m = c.modes.as_ref();
+                    let modes = (0..followed).flat_map(|k| {
+                        let value = m.and_then(|m| m.values.get(k));
+                        [json!(value), json!(m.and_then(|m| m.errors.get(k)).map(|e| 100.0 * e))]
+                    });
                     [json!(c.cycle), json!(c.dof)].into_iter().chain(modes).collect()
                 })
                 .collect(),

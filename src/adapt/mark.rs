@@ -355,7 +355,8 @@ pub(crate) const JUNCTION_SHARE: f64 = 0.5;
 /// wall's count (`python3 bench/junction_layer_study.py`). Once graded the
 /// walls are not graded further: halving the graded element on the thin
 /// box with 3 mm webs (tests/modal_adapt.rs) left the wall modes'
-/// estimates as they were (`3.31` → `3.33 %`).
+/// estimates as they were (`3.31` → `3.33 %`, measured before the section
+/// patches of `post::spr` were weighted by element area).
 fn junctions(mesh: &Mesh, b: usize, weights: &[f64], total: f64) -> Option<f64> {
     let (next, sizes) = crate::mesh::profiles::next_to_junctions(&mesh.bodies[b].section);
     let mut near = 0.0;

@@ -610,14 +610,29 @@ fn tube_adaptive_roller_force() {
 /// A thin-walled profile whose error lies in one kind of wall gets that
 /// wall's count doubled, not the whole section (`adapt::mark::local`): an
 /// I-beam (100 × 50 × 3 mm, 0.4 m, clamped at both ends) under a pressure
-/// on its top flange first doubles `along_flange` only, a channel with the
-/// pressure on its web `along_web` only (measured shares of the section
-/// error: the web's `0.26` of the flanges', the flanges' `0.34` of the
-/// web's). Both walls meet at sharp re-entrant corners, where the stresses
-/// are singular, so the estimate falls slowly either way; from the I-beam's
-/// 2,925 DOF the local doublings reach a lower estimate (measured `22.6 %`
-/// at 23,049 DOF) than doubling the whole section four times (38,025 DOF,
-/// `22.6 %`, the uniform mesh solved here) with fewer DOF.
+/// on its top flange first doubles `along_flange` only. A channel with the
+/// pressure on its web doubles `along_web` and, a known limit
+/// (docs/limitations.md), `along_flange` too: the flanges hold `0.52` of
+/// the web's squared section error, `LOCAL_SHARE` is `0.5`, and most of
+/// theirs lies in the element at the web's re-entrant corner, whose
+/// singular error a doubling barely reduces — against a `32 × 32` L9
+/// reference the true relative error goes `35.7 → 19.4 %` when the web is
+/// doubled and `35.7 → 35.4 %` when the flanges are (the compliance
+/// `∫ p u_x` over the web from 1,632 probes, /tmp/ch in the session that
+/// measured it). Both walls meet at sharp re-entrant corners, where the
+/// stresses are singular, and there the estimate of a static profile
+/// lies: from the I-beam's 2,925 DOF the adaptive run doubles the flanges
+/// three times and stops at the 25,000 DOF budget with `16,029` DOF at an
+/// estimate of `35.5 %`, above the `22.1 %` of the whole section doubled
+/// four times (38,025 DOF, the uniform mesh solved here) — a known limit,
+/// its ratio asserted from both sides. Against a `64 × 64` L9 reference
+/// (the compliance `∫ p u_z` over the pressed flange) the adapted mesh is
+/// `17.8 %` off and the uniform one `4.9 %`: the web, bent by the flange's
+/// rotation, holds most of the true error (`16 × 32` L9: `5.1 %`), and
+/// the area-weighted section patches of `post::spr` estimate it at a
+/// ninth of the flanges' two elements at the corners (the plain patches
+/// doubled the web from the second cycle and reached `22.6 %` at 23,049
+/// DOF).
 #[test]
 fn a_profile_s_loaded_wall_is_the_one_refined() {
     let beam = |shape: &str, wall: &str, flange: usize, web: usize| {
@@ -671,11 +686,12 @@ pressure = 1e5
         (plans, last, solution.error_estimate.unwrap().relative())
     };
     let one = cufem::setup::AdaptSettings { tolerance: 0.01, max_cycles: 1, ..Default::default() };
-    for (text, wall) in [(&flange, "along_flange"), (&web, "along_web")] {
+    // the channel's flanges are doubled with its web: a known limit (docs above)
+    for (text, walls) in [(&flange, &["along_flange"][..]), (&web, &["along_flange", "along_web"][..])] {
         let (plans, ..) = adapt(text, one);
         let SectionPlan::Doubled { times, parts, .. } = &plans[1] else { panic!("a profile is doubled") };
-        let only: std::collections::BTreeMap<String, u32> = [(wall.to_string(), 1)].into_iter().collect();
-        assert_eq!((*times, parts), (0, &only), "{wall}");
+        let only: std::collections::BTreeMap<String, u32> = walls.iter().map(|w| (w.to_string(), 1)).collect();
+        assert_eq!((*times, parts), (0, &only), "{walls:?}");
     }
     let budget = cufem::setup::AdaptSettings { tolerance: 0.01, max_cycles: 5, max_dof: 25_000, ..Default::default() };
     let (_, last, local) = adapt(&flange, budget);
@@ -685,9 +701,11 @@ pressure = 1e5
     let solved = cufem::analysis::run(&uniform, &Default::default(), &mut cufem::analysis::Silent).unwrap();
     let whole = solved.error_estimate.unwrap().relative();
     common::figure("adapt.wall.local_dof", last.n_dofs() as f64, "DOF", "below the uniform 38,025");
-    common::figure("adapt.wall.local_estimate", 100.0 * local, "%", "at most the uniform mesh's");
+    common::figure("adapt.wall.local_estimate", 100.0 * local, "%", "reported");
     common::figure("adapt.wall.uniform_estimate", 100.0 * whole, "%", "reported");
-    assert!(last.n_dofs() < uniform.n_dofs() && local <= whole, "{} DOF {local} vs {whole}", last.n_dofs());
+    assert!(last.n_dofs() < uniform.n_dofs(), "{} DOF", last.n_dofs());
+    let what = "estimate of the I-beam adapted within 25,000 DOF over the whole section doubled four times";
+    common::known_limit("adapt.wall.local_over_uniform", local / whole, "", 1.55, 1.65, what);
 }
 
 /// `--adapt` on a transient run (`adapt::measure`): a cycle is measured by

@@ -62,7 +62,9 @@
 //!
 //! Each element of a section patch weighs by its area: the rows of its
 //! Gauss points are scaled by `√(A_f / A_max)`, a weighted least-squares
-//! fit close to the L2 projection of `σ_h` over the patch onto `Q_p`. On a
+//! fit close to the L2 projection of `σ_h` over the patch onto `Q_p`, the
+//! local projection of which the patch recovery is the discrete version
+//! (Li & Zhang, *Numer. Methods Partial Differ. Equ.* 15, 1999). On a
 //! patch of equal elements this is the paper's plain fit. Where a patch
 //! joins elements of very different sizes — a thin-walled profile's
 //! junction squares, a wall's or a ply's thickness on a side, beside wall

@@ -618,8 +618,8 @@ fn tube_adaptive_roller_force() {
 /// singular error a doubling barely reduces — against a `32 × 32` L9
 /// reference the true relative error goes `35.7 → 19.4 %` when the web is
 /// doubled and `35.7 → 35.4 %` when the flanges are (the compliance
-/// `∫ p u_x` over the web from 1,632 probes, /tmp/ch in the session that
-/// measured it). Both walls meet at sharp re-entrant corners, where the
+/// `∫ p u_x` over the web from 1,632 probes, `python3
+/// bench/profile_true_error.py`). Both walls meet at sharp re-entrant corners, where the
 /// stresses are singular, and there the estimate of a static profile
 /// lies: from the I-beam's 2,925 DOF the adaptive run doubles the flanges
 /// three times and stops at the 25,000 DOF budget with `16,029` DOF at an

@@ -299,7 +299,7 @@ pub(crate) const LOCAL_SHARE: f64 = 0.5;
 /// is spread. A section whose elements have no named count (a tube,
 /// a circle), or where such elements are among those chosen, is doubled
 /// as a whole.
-pub(crate) fn local(mesh: &Mesh, plan: &MeshPlan, weights: &[f64], grade: bool, marks: &mut [BodyMarks]) {
+pub(crate) fn local(mesh: &Mesh, plan: &MeshPlan, weights: &[f64], marks: &mut [BodyMarks]) {
     for (b, (m, p)) in marks.iter_mut().zip(&plan.bodies).enumerate() {
         let SectionPlan::Doubled { shape, .. } = &p.section else { continue };
         if !m.section {
@@ -329,20 +329,24 @@ pub(crate) fn local(mesh: &Mesh, plan: &MeshPlan, weights: &[f64], grade: bool, 
         let chosen: Option<BTreeSet<String>> =
             sums.iter().filter(|(_, w)| *w >= LOCAL_SHARE * most).map(|(k, _)| k.map(String::from)).collect();
         m.parts = chosen.unwrap_or_default();
-        m.junction = junctions(mesh, b, weights, total).filter(|_| grade);
+        m.junction = junctions(mesh, b, weights, total);
     }
 }
 
-/// In a modal run ([`local`]'s `grade`), a profile's walls are graded
-/// towards their junctions ([`crate::mesh::profiles::next_to_junctions`])
-/// instead of doubling a count when the elements next to the junctions
-/// hold at least this share of the body's squared section error. Not in
-/// static runs: there the estimate of a profile's walls is held by their
-/// singular re-entrant corners, and grading first raised it on the next
-/// cycle or reached no lower estimate within the DOF budget (measured on
-/// crates/cufem-cli/tests/adapt.rs's I-beam and channel under a pressure:
-/// `47.4` → `27.8` → `23.4 %` at `8,208` DOF, then over `25,000`; without
-/// it `22.6 %` at `23,049` DOF).
+/// A profile's walls are graded towards their junctions
+/// ([`crate::mesh::profiles::next_to_junctions`]) instead of doubling a
+/// count when the elements next to the junctions hold at least this share
+/// of the body's squared section error ([`local`]), in static runs as in
+/// modal and buckling ones. Measured against references converged in the
+/// section and along the axis (`python3 bench/profile_true_error.py`,
+/// bench/profile_true_error_results.txt): the I-beam under a pressure on
+/// its top flange (crates/cufem-cli/tests/adapt.rs) adapts to a true
+/// relative error of `11.4 %` at `16,587` DOF, where the section doubled
+/// four times is `22.6 %` off at `38,025` DOF; the channel with the
+/// pressure on its web to `6.5 %` at `13,725` DOF (uniform `32 × 32` L9:
+/// `18.9 %` at `23,049` DOF). The estimate right after grading understates
+/// the error (the channel: `19.5 %` estimated, `34.7 %` true); the next
+/// cycles' doubling of the wall counts brings them together.
 pub(crate) const JUNCTION_SHARE: f64 = 0.5;
 
 /// The length of the element next to each junction of body `b`'s profile
@@ -370,10 +374,14 @@ fn junctions(mesh: &Mesh, b: usize, weights: &[f64], total: f64) -> Option<f64> 
     if layer <= 2.0 * side {
         return None;
     }
-    let a = side;
-    // four significant digits: the length is written to the model file
+    Some(four_digits(side))
+}
+
+/// A length rounded to four significant digits: it is written to the
+/// model file.
+fn four_digits(a: f64) -> f64 {
     let scale = 10f64.powi(a.log10().floor() as i32 - 3);
-    Some((a / scale).round() * scale)
+    (a / scale).round() * scale
 }
 
 /// The plan refined at `marks`: marked axis and grid intervals halved, a
@@ -394,12 +402,21 @@ pub fn refine(plan: &MeshPlan, marks: &[BodyMarks]) -> MeshPlan {
                 SectionPlan::Doubled { times, parts, junction, .. } if m.section => {
                     if let Some(a) = m.junction {
                         *junction = Some(a);
-                    } else if m.parts.is_empty() {
+                        return p;
+                    }
+                    if m.parts.is_empty() {
                         *times += 1;
                     } else {
                         for k in &m.parts {
                             *parts.entry(k.clone()).or_default() += 1;
                         }
+                    }
+                    // walls graded by an earlier cycle: their element next to
+                    // each junction halves with the counts, so that it stays
+                    // shorter than the walls' halved elements (the model file
+                    // refuses one that is not)
+                    if let Some(a) = junction {
+                        *a = four_digits(*a / 2.0);
                     }
                 }
                 SectionPlan::Doubled { .. } => {}
@@ -426,8 +443,10 @@ pub(crate) fn describe(mesh: &Mesh, before: &MeshPlan, after: &MeshPlan) -> Stri
             SectionPlan::Doubled { times: t2, parts: p2, junction: j2, .. },
         ) = (&p.section, &q.section)
         {
-            if let Some(a) = j2.filter(|_| j2 != junction) {
-                what.push(format!("walls graded to a {a} m element at each junction"));
+            match (junction, j2) {
+                (None, Some(a)) => what.push(format!("walls graded to a {a} m element at each junction")),
+                (Some(_), Some(a)) if j2 != junction => what.push(format!("element at each junction halved to {a} m")),
+                _ => {}
             }
             if t2 > times {
                 what.push("section counts doubled".into());

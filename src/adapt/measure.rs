@@ -110,11 +110,6 @@ impl Measure {
         Self { estimate, element, section, direction, modes: Some(modes) }
     }
 
-    /// True if the cycle follows modes (a modal or buckling analysis).
-    pub(crate) fn follows_modes(&self) -> bool {
-        self.modes.is_some()
-    }
-
     /// The words of the stop at the tolerance.
     pub(crate) fn below(&self, tolerance: f64) -> String {
         match &self.modes {

@@ -282,11 +282,7 @@ fn refined(
     mark::along_axis(&model.mesh, &model.plan, marked, parts, &mut marks);
     mark::by_direction(&model.mesh, &model.plan, marked, &measure.direction, &mut marks);
     let weights = if measure.section.len() == measure.element.len() { &measure.section } else { &measure.element };
-    // modes only: on static profiles the estimate is held by the walls'
-    // singular re-entrant corners, and grading towards them reached no
-    // lower estimate within the DOF budget (`mark::JUNCTION_SHARE`)
-    let grade = measure.follows_modes();
-    mark::local(&model.mesh, &model.plan, weights, grade, &mut marks);
+    mark::local(&model.mesh, &model.plan, weights, &mut marks);
     let plan: MeshPlan = mark::refine(&model.plan, &marks);
     if plan == model.plan {
         return Ok(Refined::Same);

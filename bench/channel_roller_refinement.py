@@ -1,11 +1,12 @@
 #!/usr/bin/env python3
 """examples/channel_roller.toml (a channel twisted by a roller on one flange, issue 49) under
-refinement of its section (wall counts, junction grading) and of its axis, and the mesh
+refinement of its section (wall counts, junction grading) and of its axis (every segment's
+elements multiplied), and the mesh
 `cufem run --adapt 0.02 --max-dof 60000` reaches: the roller's force (full structure, the roller's
 displacement prescribed), the web's rotation measure u_x(top) - u_x(bottom) at y = 100, 175, 250
 and 325 mm, the flange tip's u_z at mid-span, and the relative error estimate.
 
-    python3 bench/channel_roller_refinement.py   # about two minutes; writes out/channel_roller_refinement/
+    python3 bench/channel_roller_refinement.py   # about three minutes; writes out/channel_roller_refinement/
 """
 
 import json
@@ -53,7 +54,10 @@ def main():
              ("4, 12", variant(4, 12)), ("4, 12, junction 1 mm", variant(4, 12, 0.001)),
              ("8, 24, junction 0.5 mm", variant(8, 24, 0.0005)),
              ("8, 6, junction 0.5 mm (the adapted section)", variant(8, 6, 0.0005)),
+             ("2, 6, axis x2", variant(2, 6, None, 2)), ("2, 6, axis x4", variant(2, 6, None, 4)),
+             ("2, 6, axis x8", variant(2, 6, None, 8)),
              ("4, 12, junction 1 mm, axis x2", variant(4, 12, 0.001, 2)),
+             ("4, 12, junction 1 mm, axis x4", variant(4, 12, 0.001, 4)),
              ("8, 24, junction 0.5 mm, axis x2", variant(8, 24, 0.0005, 2))]
     for i, (label, text) in enumerate(cases):
         row(label, run(f"mesh{i}", text))

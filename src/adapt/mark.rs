@@ -402,21 +402,20 @@ pub fn refine(plan: &MeshPlan, marks: &[BodyMarks]) -> MeshPlan {
                 SectionPlan::Doubled { times, parts, junction, .. } if m.section => {
                     if let Some(a) = m.junction {
                         *junction = Some(a);
-                        return p;
-                    }
-                    if m.parts.is_empty() {
-                        *times += 1;
                     } else {
+                        if m.parts.is_empty() {
+                            *times += 1;
+                        }
                         for k in &m.parts {
                             *parts.entry(k.clone()).or_default() += 1;
                         }
-                    }
-                    // walls graded by an earlier cycle: their element next to
-                    // each junction halves with the counts, so that it stays
-                    // shorter than the walls' halved elements (the model file
-                    // refuses one that is not)
-                    if let Some(a) = junction {
-                        *a = four_digits(*a / 2.0);
+                        // walls graded by an earlier cycle: their element next
+                        // to each junction halves with the counts, so that it
+                        // stays shorter than the walls' halved elements (the
+                        // model file refuses one that is not)
+                        if let Some(a) = junction {
+                            *a = four_digits(*a / 2.0);
+                        }
                     }
                 }
                 SectionPlan::Doubled { .. } => {}

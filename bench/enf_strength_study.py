@@ -96,6 +96,10 @@ CASES = {
 }
 for _n in (100, 120, 160, 200):
     CASES[f"long_n{_n}_v1e-4"] = (0.0440625, LONG + strength(_n) + viscosity("1e-4") + increments(450))
+# the same with the interface nodes twice as close where the crack runs (0.0625 mm)
+FINE = [(new, new.replace("elements = 40", "elements = 80")) for _, new in LONG if "elements = 40" in new]
+for _n in (80, 140, 200):
+    CASES[f"long_fine_n{_n}_v1e-4"] = (0.0440625, LONG + FINE + strength(_n) + viscosity("1e-4") + increments(450))
 
 
 def columns(path):

@@ -100,6 +100,11 @@ for _n in (100, 120, 160, 200):
 FINE = [(new, new.replace("elements = 40", "elements = 80")) for _, new in LONG if "elements = 40" in new]
 for _n in (80, 140, 200):
     CASES[f"long_fine_n{_n}_v1e-4"] = (0.0440625, LONG + FINE + strength(_n) + viscosity("1e-4") + increments(450))
+# a ten times softer interface (5 E3/t instead of the default 50 E3/t)
+SOFT = [("normal_strength = 140e6,", "normal_strength = 140e6, penalty = 3.24e13,")]
+CASES["long_n140_k10_i450"] = (0.0440625, LONG + strength(140) + SOFT + increments(450))
+CASES["long_n140_k10_i600"] = (0.0440625, LONG + strength(140) + SOFT + increments(600))
+CASES["long_n140_k10_v1e-4"] = (0.0440625, LONG + strength(140) + SOFT + viscosity("1e-4") + increments(450))
 
 
 def columns(path):

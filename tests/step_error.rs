@@ -138,9 +138,13 @@ fn the_elastica_steps_are_estimated() {
 /// step, the roller pushed 0.75 mm, plastic under the roller), 1 × 2 L9 ×
 /// 5 B4 and 2 × 4 × 10, against 4 × 8 × 20: the effectivity of its one
 /// step end, over the whole quarter and without the beam elements touching
-/// a roller line (where the true error has no limit, `tests/estimator.rs`).
+/// a roller line (where the true error has no limit, `tests/estimator.rs`):
+/// within issue 49's `0.5`–`2` on both meshes (measured 1.23 and 0.89 on
+/// the shipped mesh, 1.32 and 1.40 on the refined one). Mutation: the
+/// yielded body's stresses recovered instead of its strains
+/// (`post::yielded::replace_recovery` returning at once) gives 3.65, 2.99,
+/// 2.74 and 3.76 and fails.
 #[test]
-#[ignore = "validate: slow — the compact bar's quarter on three meshes, the finest 27,999 DOF, plastic (about 2 min)"]
 fn the_compact_bar_step_is_estimated() {
     let text = example("bending_compact_4L9_quarter.toml");
     let counts = [("to = 0.01, ", 2), ("to = 0.25, ", 10)];
@@ -149,17 +153,17 @@ fn the_compact_bar_step_is_estimated() {
         let (a, b) = m.mesh.bodies[0].axis.element_span(eb);
         ![0.025, 0.125].iter().any(|&y| y > a - 1e-9 && y < b + 1e-9)
     };
-    // plastic under the roller: the estimate overestimates (measured 3.65 and
-    // 2.74 over the whole quarter, 2.99 and 3.76 without the roller lines), a
-    // known limit
-    let what = "the compact bar's plastic end state: the elastic-compliance estimate overestimates";
+    // plastic under the roller: the yielded body's strains are recovered
+    // (`post::yielded`); recovering its stresses instead, the estimate was
+    // 3.65 and 2.74 times the true error over the whole quarter, 2.99 and
+    // 3.76 without the roller lines
     for (m, mesh) in [(0, "1x2L9_5B4"), (1, "2x4L9_10B4")] {
         let whole = effectivities(&runs[m], &runs[2], &|_, _, _| true);
         let whole = report("step_error.bar", &format!("{mesh}.whole"), &whole, "reported (the whole quarter)");
         let rows = effectivities(&runs[m], &runs[2], &away);
         let away = report("step_error.bar", mesh, &rows, "reported, without the roller lines");
         for (id, eff) in [("whole", whole[0]), ("away", away[0])] {
-            common::known_limit(&format!("step_error.bar.{mesh}.{id}_effectivity"), eff, "", 2.5, 4.2, what);
+            assert!((0.5..=2.0).contains(&eff), "{mesh} {id}: effectivity {eff}");
         }
     }
 }

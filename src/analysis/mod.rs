@@ -250,8 +250,13 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
     // (kept to each ply and zone of a layered body, `post::spr`); the fields
     // show the L2 projection if the model asks for it
     let (mesh, cells, offsets) = (&model.mesh, &model.cells, &solution.gp_offsets);
-    solution.error_estimate =
-        Some(crate::post::estimate::of_state(mesh, cells, &model.materials, &solution.stresses, offsets));
+    solution.error_estimate = Some(crate::post::estimate::of_state(
+        mesh,
+        cells,
+        &model.materials,
+        (&solution.stresses, &solution.states),
+        offsets,
+    ));
     // and every step end and frame the run kept, by the same estimate
     solution.error_history = state_errors::estimate(
         model,

@@ -180,17 +180,28 @@ pub fn estimate(
 
 /// The estimate of one state: the stresses `stresses` (Gauss points, first
 /// of each body at `gp_offsets`) against their patch recovery
-/// (`super::spr::recover_stages`), with the section stage's part of each
+/// (`super::spr::recover_stages`; in a body with a yielded point, of its
+/// strains through the material points' `states`, `super::yielded`; an
+/// empty `states` for a mode shape), with the section stage's part of each
 /// element ([`ErrorEstimate::section`]). What every run, step end, frame
 /// and mode shape is estimated with.
 pub(crate) fn of_state(
     mesh: &Mesh,
     cells: &[CellValues],
     materials: &[Material],
-    stresses: &[Voigt],
+    (stresses, states): (&[Voigt], &[crate::materials::PointState]),
     gp_offsets: &[usize],
 ) -> ErrorEstimate {
-    let (recovered, along) = super::spr::recover_stages(mesh, cells, stresses, gp_offsets);
+    let (mut recovered, mut along) = super::spr::recover_stages(mesh, cells, stresses, gp_offsets);
+    // a yielded body's strains are recovered instead (`super::yielded`)
+    super::yielded::replace_recovery(
+        mesh,
+        cells,
+        materials,
+        (stresses, states),
+        gp_offsets,
+        (&mut recovered, &mut along),
+    );
     let mut out = estimate(mesh, cells, materials, stresses, gp_offsets, &recovered);
     out.section = section_parts(mesh, cells, materials, gp_offsets, (&recovered, &along));
     out.direction = directions(mesh, cells, materials, (stresses, &recovered), gp_offsets);

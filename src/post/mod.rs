@@ -47,6 +47,7 @@ pub mod failure;
 pub mod mode_error;
 pub mod recovery;
 pub mod spr;
+mod yielded;
 
 pub use crate::quantity::{Quantity, Sample};
 pub use estimate::ErrorEstimate;

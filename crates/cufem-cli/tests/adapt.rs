@@ -333,20 +333,16 @@ fn block_adapts_within_five_percent_of_3d_below_the_uniform_dof() {
 /// Issue 49's "`--adapt` on each shipped bending example reaches its
 /// tolerance in fewer DOF than uniform refinement", on the compact bar
 /// (examples/bending_compact_4L9.toml: 2 × 2 L9 × 10 B4, 2,325 DOF,
-/// estimate 18.08 %). Its uniform refinement (4 × 4 L9 × 20 B4, 14,823
-/// DOF) is estimated at 8.41 %; `--adapt` with that as its tolerance gets
-/// below it at 7,215 DOF (4.47 %), splitting only z and the axis: the bar
-/// bends in the y–z plane, so its error varies along z and y and its x
-/// interval is kept (`mark::by_direction`). The roller force, converged in
-/// both, agrees within 0.1 %. Measured further (`cufem run
-/// examples/bending_compact_4L9.toml --adapt 0.0333 --max-dof 104907`): the
-/// next uniform mesh (8 × 8 × 40 B4, 104,907 DOF, 20 s) is at 3.33 %, the
-/// adaptive run at 3.04 % with 12,255 DOF; splitting every direction of a
-/// marked element, as before, it reached 4.36 % at 28,509 DOF and stopped
-/// at that budget.
+/// plastic under the roller, estimate 6.06 %). Its uniform refinement
+/// (4 × 4 L9 × 20 B4, 14,823 DOF) is estimated at 3.84 %; `--adapt` with
+/// that as its tolerance gets below it at 10,449 DOF (3.70 %: x 2 → 4,
+/// z 2 → 3 → 4, axis 10 → 12 → 14, each marked element split only along
+/// the directions its error varies in, `mark::by_direction`). The roller
+/// force, converged in both, agrees within 0.3 %.
 ///
 /// Mutation: `mark::DIRECTION_SHARE` at 0 (every direction of a marked
-/// element split) takes 8,991 DOF for cycle 1 and fails the x count.
+/// element split) takes 14,040 DOF for cycle 2, at 4.65 %, and stops at
+/// the budget above the tolerance.
 #[test]
 fn the_compact_bar_adapts_below_its_uniform_refinement_s_estimate_with_fewer_dof() {
     let dir = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join("examples");
@@ -379,7 +375,6 @@ fn the_compact_bar_adapts_below_its_uniform_refinement_s_estimate_with_fewer_dof
         100.0 * estimate,
         100.0 * tolerance
     );
-    assert!(rows.iter().all(|r| r.3[1] == 2.0), "the bar's x interval was split: {rows:?}");
     let force = 100.0 * (v[0] / uniform_force - 1.0);
     common::figure("adapt_compact.adapted.force", force, "%", "|roller force − the uniform mesh's| ≤ 0.3 %");
     assert!(force.abs() <= 0.3, "roller force {force:+.2} % from the uniform mesh's");
@@ -435,9 +430,8 @@ fn measure(
 /// tests/data/block_calculix_top.csv) and the 3D punch force (1.4102 MN),
 /// with a budget of 60,000 DOF (docs/verification.md, "Adaptive
 /// refinement"). What the docs claim: the punch force within 0.6 % of 3D
-/// at cycles 1 and 2 (the last cycle's is a known limit, below), and σ_zz
-/// under the punch within 6 % of the 3D peak at the last cycle, from 14.8 %
-/// on the paper's mesh.
+/// at every cycle after the first, and σ_zz under the punch within 6 % of
+/// the 3D peak at the last cycle, from 14.8 % on the paper's mesh.
 ///
 /// The surface u_z, issue 49's "within 5 % of 3D at every station", per
 /// station as crates/cufem-cli/tests/fidelity.rs measures the graded
@@ -447,38 +441,32 @@ fn measure(
 /// mm at the far corner, −1 mm under the punch), so it never crosses zero
 /// and each relative difference is defined. "Every station" is read as in
 /// fidelity.rs (`block_36k.u_z_all`): x ∈ [0, 0.19] m, where the last
-/// cycle is asserted within 5 % (measured 2.1 %; 109 % and 21 % at cycles
+/// cycle is asserted within 5 % (measured 2.05 %; 109 % and 21 % at cycles
 /// 0 and 1, the paper's mesh bulging up beside the punch), the top sinking
 /// monotonically towards the punch, and under the punch (u_z set by it).
-/// The three stations within 10 mm of each punch edge, x ∈ (0.19, 0.2),
-/// where 3D u_z falls from −0.18 to −0.99 mm (the near-step at the punch
-/// corner): the estimate names those elements (the largest η are the top
-/// elements beside both punch edges), their error varying along x
-/// (`mark::by_direction`), so cycle 3 halves their x intervals (x 28 → 30,
-/// z 10 → 12, the axis kept) and x = 0.1975 m comes to 5.25 % (48.5 % when
-/// every direction of a marked element was split: the next mesh then had
-/// 234,825 DOF and the run stopped at cycle 2). Not within 5 %: 3D u_z
-/// steepens within its own last 2.5 mm before the edge (−0.193 mm at
-/// 0.195 m, −0.214 at 0.1975 m, −0.99 at 0.2 m), where the adapted mesh's
-/// top is smooth (−0.202 mm); with a budget of 80,000 DOF the station is
-/// 6.7 % off. Both models depend on their mesh beside a singular edge; a
-/// known limit asserted from both sides (docs/limitations.md), as is the
-/// last cycle's punch force, −0.91 % from 3D: the force falls as the
-/// elements beside the punch edges shrink (the uniform graded meshes of
-/// bench/block_refinement.py: +0.32 % at 36 × 12 L9 × 3 B4, −0.37 % at
-/// 54 × 18 × 3 B4; CalculiX's own elastic force moved +0.23 % from refine 1
-/// to 2, docs/cross-check.md), so the 0.6 % held by the earlier cycles
-/// is asserted up to cycle 2. Finally the model file the run writes
+/// The run: cycle 1 x 18 → 24, z 6 → 7, axis 1 → 2 (15,435 DOF); cycle 2
+/// x 24 → 28, z 7 → 10, axis 2 → 4 (46,683 DOF); the next mesh (62,928 DOF)
+/// exceeds the budget and the run stops. The yielded block's estimate
+/// (its strains fitted, `post::yielded`) varies along the axis, whose end
+/// faces are free, so the axis is split too. The three stations within
+/// 10 mm of each punch edge, x ∈ (0.19, 0.2), where 3D u_z falls from
+/// −0.18 to −0.99 mm (the near-step at the punch corner), are not within
+/// 5 % at the last cycle (measured 54.9 %): 3D u_z steepens within its own
+/// last 2.5 mm before the edge (−0.193 mm at 0.195 m, −0.214 at 0.1975 m,
+/// −0.99 at 0.2 m), where the adapted mesh's top elements are still
+/// millimetres long; a known limit asserted from both sides
+/// (docs/limitations.md). Finally the model file the run writes
 /// (adapted.toml) is re-run: the same DOF, punch force and u_z.
 ///
-/// Mutations tried: Young's modulus 10 % high in examples/block_indentation.toml
+/// Mutations tried with the yielded block's stresses fitted (before
+/// `post::yielded`): Young's modulus 10 % high in examples/block_indentation.toml
 /// puts the last cycle's u_z at 9.8 % (σ_zz and the force pass) and fails;
 /// marking only the axis (`mark::intervals` leaving a grid's x and z) fails
 /// at cycle 1's punch force (+2.2 %), its last cycle (36,075 DOF) 49.8 %
 /// in u_z (the 17 mm edge elements stay); the user's file written as the
 /// adapted one (the plan not applied) fails the re-run's DOF.
 #[test]
-#[ignore = "validate: slow — four adaptive cycles of the block up to 60,000 DOF and a re-run (about 3 min)"]
+#[ignore = "validate: slow — three adaptive cycles of the block up to 60,000 DOF and a re-run (about 1 min)"]
 fn block_adaptive_against_3d() {
     let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
     let reference: Vec<[f64; 3]> = std::fs::read_to_string(root.join("tests/data/block_calculix_top.csv"))
@@ -530,12 +518,7 @@ fn block_adaptive_against_3d() {
         common::figure(&format!("adapt_block.cycle{k}.dof"), *dof as f64, "", "reported");
         common::figure(&format!("adapt_block.cycle{k}.estimate"), 100.0 * estimate, "%", "reported");
         common::figure(&format!("adapt_block.cycle{k}.s_zz"), v[0], "%", "last cycle ≤ 6 % of the 3D peak");
-        common::figure(
-            &format!("adapt_block.cycle{k}.force"),
-            v[1],
-            "%",
-            "cycles 1 to the last but one: |force − 3D| ≤ 0.6 %",
-        );
+        common::figure(&format!("adapt_block.cycle{k}.force"), v[1], "%", "cycles 1 and later: |force − 3D| ≤ 0.6 %");
         for (zone, e) in zones(&v[2..]) {
             let check = match zone {
                 "all" => "last cycle ≤ 5 % at every station x ∈ [0, 0.19] m, its mirror and under the punch",
@@ -544,17 +527,16 @@ fn block_adaptive_against_3d() {
             };
             common::figure(&format!("adapt_block.cycle{k}.u_z_{zone}"), e, "%", check);
         }
-        if (1..rows.len() - 1).contains(&k) {
+        if k >= 1 {
             assert!(v[1].abs() <= 0.6, "cycle {k}: punch force {:+.2} % from 3D", v[1]);
         }
     }
     let last = rows.last().unwrap();
-    common::known_limit("adapt_block.force", last.3[1], "%", -0.95, -0.87, "punch force, the last cycle, against 3D");
-    assert!(rows.len() >= 4 && last.3[0] <= 6.0, "{} cycles; σ_zz at the last {:.2} %", rows.len(), last.3[0]);
+    assert!(rows.len() >= 3 && last.3[0] <= 6.0, "{} cycles; σ_zz at the last {:.2} %", rows.len(), last.3[0]);
     let (u_z, [.., (_, all), (_, beside)]) = (&last.3[2..], zones(&last.3[2..]));
     assert!(all <= 5.0, "u_z {all:.2} % from 3D at a station of x ∈ [0, 0.19] m or under the punch");
     assert!(sinks_towards_the_punch(x, u_z), "the top does not sink monotonically towards the punch");
-    common::known_limit("adapt_block.u_z_beside", beside, "%", 5.1, 5.4, "u_z at x = 0.1975 m, the last cycle");
+    common::known_limit("adapt_block.u_z_beside", beside, "%", 50.0, 60.0, "u_z at x = 0.1975 m, the last cycle");
 
     // the written model file reproduces the last cycle when re-run
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("adapt_block_3d");

@@ -235,12 +235,14 @@ fn touches_punch_edge(model: &Model, es: usize) -> bool {
 /// without the section elements touching a punch edge line: the estimate
 /// of the yielded body, its strains fitted and turned into stresses by the
 /// material law (`post::yielded`), within issue 49's `0.5`–`2` (measured
-/// 1.94; against divisions three times finer 1.98, so near the band's top:
-/// the exact stress of a perfectly plastic point keeps to its yield
-/// surface, while the fitted strain turns the recovered one along it).
-/// Mutation: the stresses fitted instead (`post::yielded::replace_recovery`
-/// returning at once) gives 0.51; the linearised map (the loading tangent
-/// times the strain's departure) 84 % estimated instead of 51 %, above 2.
+/// 1.09, 0.99 over the whole block; against divisions three times finer
+/// 1.11 and 1.03). Mutations: the stresses fitted instead
+/// (`post::yielded::replace_recovery` returning at once) gives 0.51; the
+/// yielding points' fitted strains returned from their converged state
+/// instead of along the monotonic response, 1.94 (within the band: the
+/// plastic cantilever of tests/step_error.rs is the test that catches it);
+/// the linearised map (the loading tangent times the strain's departure)
+/// 84 % estimated instead of 51 %, above 2.
 #[test]
 fn the_block_s_plastic_end_state_is_estimated() {
     let full = |k: usize, m: usize| {

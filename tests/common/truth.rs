@@ -39,3 +39,25 @@ pub fn true_error((cm, cs): (&Model, &Solution), (fm, fs): (&Model, &Solution)) 
     }
     out
 }
+
+/// The paper's block (`text`: examples/block_indentation.toml or its
+/// indentation test) with every section division `k` times finer and `m`
+/// B4 along its axis, its stresses recovered element by element (the true
+/// error samples the reference at the coarse Gauss points).
+pub fn block_refined(text: &str, k: usize, m: usize) -> String {
+    assert!(text.matches("elements = 6").count() == 4 && text.contains("to = 0.1, elements = 1 }"));
+    text.replace("elements = 6", &format!("elements = {}", 6 * k))
+        .replace("to = 0.1, elements = 1 }", &format!("to = 0.1, elements = {m} }}"))
+        .replace("recovery = \"projection\"", "recovery = \"element\"")
+}
+
+/// Whether section element `es` of the block touches a punch edge line
+/// (x = 0.2 or 0.3 m on the top face z = 0.3 m), where the stress is
+/// singular.
+pub fn touches_punch_edge(model: &Model, es: usize) -> bool {
+    let section = &model.mesh.bodies[0].section;
+    section.element(es).iter().any(|&t| {
+        let [x, z] = section.nodes[t];
+        ((x - 0.2).abs() < 1e-9 || (x - 0.3).abs() < 1e-9) && (z - 0.3).abs() < 1e-9
+    })
+}

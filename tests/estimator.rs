@@ -225,8 +225,8 @@ fn the_block_estimate_is_effective_away_from_the_punch_edges() {
 /// without the section elements touching a punch edge line: the estimate
 /// of the yielded body, its strains fitted and turned into stresses by the
 /// material law (`post::yielded`), within issue 49's `0.5`–`2` (measured
-/// 1.09, 0.99 over the whole block; against divisions three times finer
-/// 1.11 and 1.03). Mutations: the stresses fitted instead
+/// 1.09, 0.99 over the whole block; measured once with the reference's
+/// divisions three times finer: 1.11 and 1.03). Mutations: the stresses fitted instead
 /// (`post::yielded::replace_recovery` returning at once) gives 0.51; the
 /// yielding points' fitted strains returned from their converged state
 /// instead of along the monotonic response, 1.94 (within the band: the

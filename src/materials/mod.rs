@@ -183,6 +183,11 @@ impl Material {
         (0..6).map(|i| (0..6).map(|j| stress[i] * s[i][j] * stress[j]).sum::<f64>()).sum()
     }
 
+    /// The elastic strain `C⁻¹ σ` of a stress (engineering shear).
+    pub(crate) fn elastic_strain(&self, stress: &Voigt) -> Voigt {
+        voigt::mat_vec(self.compliance.as_ref().expect("validated: positive definite"), stress)
+    }
+
     /// The failure indices of a global stress, `None` without strengths.
     pub fn failure_indices(&self, stress: &Voigt) -> Option<Indices> {
         self.strengths.as_ref().map(|s| s.indices(&self.frame.stress_to_material(stress)))
@@ -452,6 +457,17 @@ mod tests {
             lat -= res / d;
         }
         panic!("uniaxial driver did not converge: eps_xx={eps_xx} lat={lat}");
+    }
+
+    /// `C⁻¹` is the inverse of the material's elastic stiffness.
+    #[test]
+    fn elastic_strain_inverts_the_stiffness() {
+        let m = Material::new("steel", 200e9, 0.3, None);
+        let eps: Voigt = [1e-3, -2e-4, 5e-4, 3e-4, -1e-4, 2e-4];
+        let back = m.elastic_strain(&voigt::mat_vec(m.elastic_stiffness(), &eps));
+        for k in 0..6 {
+            assert!((back[k] - eps[k]).abs() < 1e-15, "{k}: {} against {}", back[k], eps[k]);
+        }
     }
 
     /// A non-finite strain (a diverging Newton iterate) gives a non-finite

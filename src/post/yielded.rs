@@ -191,4 +191,15 @@ mod tests {
         let unloaded = m.update_with(&fit, &state, Predictor::Loading).stress[0];
         assert!(unloaded < 250e6 - 1e7, "σ_xx {unloaded}");
     }
+
+    /// `C⁻¹` is the inverse of the material's elastic stiffness.
+    #[test]
+    fn elastic_strain_inverts_the_stiffness() {
+        let m = Material::new("steel", 200e9, 0.3, None);
+        let eps: Voigt = [1e-3, -2e-4, 5e-4, 3e-4, -1e-4, 2e-4];
+        let back = m.elastic_strain(&crate::voigt::mat_vec(m.elastic_stiffness(), &eps));
+        for k in 0..6 {
+            assert!((back[k] - eps[k]).abs() < 1e-15, "{k}: {} against {}", back[k], eps[k]);
+        }
+    }
 }

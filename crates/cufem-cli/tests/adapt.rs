@@ -573,33 +573,38 @@ fn sinks_towards_the_punch(x: &[f64], u_z: &[f64]) -> bool {
 }
 
 /// The thin-walled tube under `--adapt`: the loading roller's force per
-/// cycle against 3D (CalculiX C3D20R, refine 1 of the paper's mesh:
-/// 1,698.2 N), four cycles, each splitting the axis under the roller
-/// (22 → 24 → 26 → 32 B4 there; 33,768 → 48,888 DOF). Issue 49 asks the
-/// adapted force within 2 % of 3D: from cycle 2 on (measured +0.42 and
-/// −0.75 %, from −3.45 % on the paper's mesh). The force does not settle:
-/// under axis refinement alone the tube's roller force is not converged
-/// (docs/verification.md, "Adaptive refinement"), so the last cycle's
-/// value is also held from both sides (docs/limitations.md).
+/// cycle against the converged 3D roller force (CalculiX C3D20R of the
+/// quarter with 1 mm B4 at the roller, 4 × 418.6434 N = 1,674.6 N:
+/// tests/data/references.toml, tube_quarter_1mm, converged along the axis
+/// and through the wall in crates/cufem-cli/tests/roller_twins.rs), four
+/// cycles, each splitting the axis under the roller (22 → 24 → 26 → 32 B4
+/// there; 33,768 → 48,888 DOF). Issue 49 asks the adapted force within 2 %
+/// of 3D: from cycle 1 on (measured −0.60, +1.84 and +0.65 %, from −2.08 %
+/// on the paper's mesh). The force does not settle: with one L9 through
+/// the wall, refining the axis alone does not converge the roller force
+/// (docs/verification.md, "Adaptive refinement"), so the last cycle's value
+/// is also held from both sides (docs/limitations.md).
 #[test]
 #[ignore = "validate: slow — four adaptive cycles of the tube up to 49,000 DOF (about 2 min)"]
 fn tube_adaptive_roller_force() {
     let settings =
         cufem::setup::AdaptSettings { tolerance: 0.01, max_dof: 140_000, max_cycles: 3, fraction: 0.5, modes: None };
     let (rows, _) = measure("bending_tube_28L9.toml", settings, &|_, s| vec![-s.contact("load").unwrap().force[2]]);
+    // the converged 3D roller force (tests/data/references.toml, tube_quarter_1mm)
+    let reference = 4.0 * 418.6434;
     for (k, (dof, estimate, _, v)) in rows.iter().enumerate() {
-        let d = 100.0 * (v[0] / 1698.2 - 1.0);
+        let d = 100.0 * (v[0] / reference - 1.0);
         common::figure(&format!("adapt_tube.cycle{k}.dof"), *dof as f64, "", "reported");
         common::figure(&format!("adapt_tube.cycle{k}.estimate"), 100.0 * estimate, "%", "reported");
-        common::figure(&format!("adapt_tube.cycle{k}.force"), d, "%", "from cycle 2: |force − 3D| ≤ 2 % (issue 49)");
-        if k >= 2 {
+        common::figure(&format!("adapt_tube.cycle{k}.force"), d, "%", "from cycle 1: |force − 3D| ≤ 2 % (issue 49)");
+        if k >= 1 {
             assert!(d.abs() <= 2.0, "cycle {k}: roller force {d:+.2} % from 3D");
         }
     }
     assert_eq!(rows.len(), 4, "cycles 0–3");
-    let last = 100.0 * (rows[3].3[0] / 1698.2 - 1.0);
+    let last = 100.0 * (rows[3].3[0] / reference - 1.0);
     let what = "the adapted tube's last roller force: the axis not converged";
-    common::known_limit("adapt_tube.last_force", last, "%", -0.80, -0.70, what);
+    common::known_limit("adapt_tube.last_force", last, "%", 0.60, 0.70, what);
 }
 
 /// A thin-walled profile under a pressure on one wall (100 × 50 × 3 mm,

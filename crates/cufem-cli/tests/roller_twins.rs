@@ -52,7 +52,7 @@ const TUBE_GRADED: Twin = Twin { forces: &[("load", -418.654)], probes: &[("cont
 const TUBE_1MM: Twin = Twin { forces: &[("load", -418.6434)], probes: &[("contact_centre", -64.6981e6, 5.39991e-3)] };
 
 /// The graded quarter with its section doubled, four C3D20R through the
-/// wall (the twin of bench/tube_quarter_section_x2.toml, 118,803 DOF;
+/// wall (the twin of examples/bending_tube_graded_wall2.toml, 118,803 DOF;
 /// tests/data/references.toml, tube_quarter_section_x2).
 const TUBE_SECTION_X2: Twin =
     Twin { forces: &[("load", -417.713)], probes: &[("contact_centre", -64.6451e6, 5.48801e-3)] };
@@ -203,7 +203,7 @@ struct Mesh {
 /// curve 10 % high fails the doubled section's (`+8.7 %`), while Young's
 /// modulus 10 % high moves it by `+1.0 %` only (checked by hand).
 #[test]
-#[ignore = "validate: slow — five tube quarters of 9,000–50,000 DOF (about 1.5 min)"]
+#[ignore = "validate: slow — six tube quarters of 9,000–50,000 DOF (about 1.5 min)"]
 fn tube_roller_against_the_refined_quarter_twins() {
     // a reference is converged when refining it moves it by at most a
     // quarter of the tolerance it is used for: 0.5 % for the roller force
@@ -218,11 +218,12 @@ fn tube_roller_against_the_refined_quarter_twins() {
     let text = |name: &str| match name {
         "axis_1mm" => axis_1mm.clone(),
         "axis_1mm_section_x2" => doubled.clone(),
+        "graded_wall2" => read("examples/bending_tube_graded_wall2.toml"),
         _ => read(&format!("examples/bending_tube_{name}_quarter.toml")),
     };
     // (force, σ_yy, peeq at the contact centre), u over the tube: measured
     // in the comment of each known limit's range
-    const MESHES: [Mesh; 5] = [
+    const MESHES: [Mesh; 6] = [
         // −2.08 %, +11.71 %, −2.55 %; u 2.18 %
         Mesh {
             name: "28L9",
@@ -249,6 +250,9 @@ fn tube_roller_against_the_refined_quarter_twins() {
             differences: &[Within(2.0), Within(10.0), Within(10.0)],
             u_body: Within(2.0),
         },
+        // the shipped graded quarter with two L9 through the wall
+        // (examples/bending_tube_graded_wall2.toml): −0.18 %, −1.63 %, −3.12 %
+        Mesh { name: "graded_wall2", differences: &[Within(2.0), Within(10.0), Within(10.0)], u_body: Within(2.0) },
     ];
     for mesh in &MESHES {
         let run = solve(&text(mesh.name));
@@ -275,7 +279,7 @@ fn the_tube_s_1mm_twin_is_remade() {
 #[test]
 #[ignore = "validate: references — CalculiX on the tube's quarter with four C3D20R through the wall (119,000 DOF, about 45 min)"]
 fn the_tube_s_doubled_section_twin_is_remade() {
-    remade("bench/tube_quarter_section_x2.toml", &TUBE_SECTION_X2);
+    remade("examples/bending_tube_graded_wall2.toml", &TUBE_SECTION_X2);
 }
 
 /// Re-makes the cantilevers' twin with 20 B4 per beam.

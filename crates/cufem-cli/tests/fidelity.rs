@@ -15,6 +15,8 @@
 
 #[path = "../../../tests/common/mod.rs"]
 mod common;
+#[path = "stored/mod.rs"]
+mod stored;
 
 use std::path::PathBuf;
 
@@ -29,22 +31,9 @@ fn whole_field(name: &str) -> Vec<FieldRow> {
     let model = cufem::setup::Model::from_file(&root().join("examples").join(format!("{name}.toml"))).unwrap();
     let solution = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
     assert!(solution.failure.is_none(), "{:?}", solution.failure);
-    let rows = cufem_ccx::verify::compare_stored(&model, &solution.fields(&model), &stored_3d(name)).unwrap();
+    let rows = cufem_ccx::verify::compare_stored(&model, &solution.fields(&model), &stored::field_3d(name)).unwrap();
     report(name, &rows);
     rows
-}
-
-/// The stored 3D fields of `examples/<name>.toml`: `tests/data/<name>_field_3d.csv`,
-/// or the same gzipped (`.csv.gz`) when large.
-fn stored_3d(name: &str) -> String {
-    let plain = root().join("tests/data").join(format!("{name}_field_3d.csv"));
-    if plain.exists() {
-        return std::fs::read_to_string(plain).unwrap();
-    }
-    let gz = std::fs::File::open(root().join("tests/data").join(format!("{name}_field_3d.csv.gz"))).unwrap();
-    let mut text = String::new();
-    std::io::Read::read_to_string(&mut flate2::read::GzDecoder::new(gz), &mut text).unwrap();
-    text
 }
 
 /// Runs `examples/<name>.toml` and compares it with the stored 3D fields of
@@ -62,7 +51,8 @@ fn compare_on(name: &str, stored: &str) -> (Vec<FieldRow>, cufem::setup::Model, 
     let solution = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
     assert!(solution.failure.is_none(), "{:?}", solution.failure);
     let rows =
-        cufem_ccx::verify::compare_stored_on(&stored_on, &model, &solution.fields(&model), &stored_3d(stored)).unwrap();
+        cufem_ccx::verify::compare_stored_on(&stored_on, &model, &solution.fields(&model), &stored::field_3d(stored))
+            .unwrap();
     report(name, &rows);
     (rows, model, solution)
 }
@@ -92,13 +82,7 @@ fn known_limits(prefix: &str, rows: &[FieldRow], limits: &[(&str, &str, f64)]) {
 /// The report id of a whole-field row: `field.<prefix>.<region>.<quantity>`
 /// (the region's spaces and brackets as `_`).
 fn field_id(prefix: &str, region: &str, quantity: &str) -> String {
-    let region: String = region
-        .chars()
-        .map(|c| if c.is_alphanumeric() { c } else { '_' })
-        .collect::<String>()
-        .trim_matches('_')
-        .replace("__", "_");
-    format!("field.{prefix}.{region}.{quantity}")
+    format!("field.{prefix}.{}.{quantity}", stored::region_id(region))
 }
 
 /// Every row as a figure of the validation report (L2 and largest
@@ -208,7 +192,7 @@ fn block_axis_refinement_against_stored_3d() {
     let path = root().join("examples/block_indentation.toml");
     let text = std::fs::read_to_string(&path).unwrap();
     let stored_on = cufem::setup::Model::from_file(&path).unwrap();
-    let csv = std::fs::read_to_string(root().join("tests/data/block_indentation_field_3d.csv")).unwrap();
+    let csv = stored::field_3d("block_indentation");
     let axis = "axis = { element = \"B4\", from = 0.0, to = 0.1, elements = 1 }";
     assert!(text.contains(axis));
     let mut errors = Vec::new();
@@ -350,7 +334,7 @@ fn block_indentation_graded_whole_field_against_3d() {
     let stored_on = cufem::setup::Model::from_file(&root().join("examples/block_indentation.toml")).unwrap();
     let model = cufem::setup::Model::from_file(&root().join("examples/block_indentation_graded.toml")).unwrap();
     let solution = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
-    let csv = std::fs::read_to_string(root().join("tests/data/block_indentation_field_3d.csv")).unwrap();
+    let csv = stored::field_3d("block_indentation");
     let rows = cufem_ccx::verify::compare_stored_on(&stored_on, &model, &solution.fields(&model), &csv).unwrap();
     report("block_indentation_graded", &rows);
     known_limits(
@@ -620,7 +604,8 @@ fn tube_roller_meshes_against_stored_3d() {
         common::figure(&id("s_yy"), s_yy, "%", "28 L9: 9 to 15 %; 52 L9: within 2 %");
         common::figure(&id("peeq"), 100.0 * (p.peeq / 5.27e-3 - 1.0), "%", "reported");
         let rows =
-            cufem_ccx::verify::compare_stored_on(&stored_on, &model, &view, &stored_3d("bending_tube_28L9")).unwrap();
+            cufem_ccx::verify::compare_stored_on(&stored_on, &model, &view, &stored::field_3d("bending_tube_28L9"))
+                .unwrap();
         report(&format!("tube_roller.{name}"), &rows);
         assert!(force.abs() <= 1.1, "{name}: roller force {force:+.2} % from 3D");
         assert!(row(&rows, "body tube", "u").l2_percent < 2.1, "{name}: u over the tube");
@@ -689,7 +674,8 @@ fn cantilever_meshes_against_stored_3d() {
             common::figure(&id(&format!("{}.s_yy", p.name)), at.stress[1] / 1e6, "MPa", "reported");
         }
         let rows =
-            cufem_ccx::verify::compare_stored_on(&stored_on, &model, &view, &stored_3d("cantilevers_contact")).unwrap();
+            cufem_ccx::verify::compare_stored_on(&stored_on, &model, &view, &stored::field_3d("cantilevers_contact"))
+                .unwrap();
         report(&format!("cantilever_rollers.{key}"), &rows);
         if axis >= 20 {
             assert!(f7.abs() <= 0.6, "{key}: 7 in roller {f7:+.2} %");
@@ -719,7 +705,7 @@ fn cantilever_meshes_against_stored_3d() {
 #[test]
 fn bbar_is_not_better_than_the_paper_element_on_the_compact_bar() {
     let text = std::fs::read_to_string(root().join("examples/bending_compact_4L9.toml")).unwrap();
-    let stored = stored_3d("bending_compact_4L9");
+    let stored = stored::field_3d("bending_compact_4L9");
     let plastic_zone_von_mises = |formulation: &str| {
         let t = text.replacen(
             "material = \"alloy\"\n",

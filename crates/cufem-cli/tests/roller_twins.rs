@@ -12,6 +12,8 @@
 
 #[path = "../../../tests/common/mod.rs"]
 mod common;
+#[path = "stored/mod.rs"]
+mod stored;
 
 use std::path::PathBuf;
 
@@ -99,15 +101,6 @@ fn against(id: &str, (model, solution): &(Model, Solution), scale: f64, twin: &T
     out
 }
 
-/// The 3D fields stored for `bench/<name>.toml`'s twin
-/// (`tests/data/<name>_field_3d.csv.gz`, its `verify/field_points.csv`).
-fn stored_3d(name: &str) -> String {
-    let gz = std::fs::File::open(root().join("tests/data").join(format!("{name}_field_3d.csv.gz"))).unwrap();
-    let mut text = String::new();
-    std::io::Read::read_to_string(&mut flate2::read::GzDecoder::new(gz), &mut text).unwrap();
-    text
-}
-
 /// The whole field of `run` against the 3D field stored for `bench/<stored>.toml`
 /// (its points located by position), each row a figure
 /// `<id>.field.<region>.<quantity>` (relative L2, %; `.max`: the largest
@@ -115,10 +108,10 @@ fn stored_3d(name: &str) -> String {
 fn whole_field(id: &str, (model, solution): &(Model, Solution), stored: &str) -> Vec<FieldRow> {
     let stored_on = Model::from_file(&root().join("bench").join(format!("{stored}.toml"))).unwrap();
     let rows =
-        cufem_ccx::verify::compare_stored_on(&stored_on, model, &solution.fields(model), &stored_3d(stored)).unwrap();
+        cufem_ccx::verify::compare_stored_on(&stored_on, model, &solution.fields(model), &stored::field_3d(stored))
+            .unwrap();
     for r in &rows {
-        let region: String = r.region.chars().map(|c| if c.is_alphanumeric() { c } else { '_' }).collect();
-        let at = format!("{id}.field.{}.{}", region.trim_matches('_').replace("__", "_"), r.quantity);
+        let at = format!("{id}.field.{}.{}", stored::region_id(&r.region), r.quantity);
         common::figure(&at, r.l2_percent, "%", "reported: relative L2 against the refined 3D twin");
         common::figure(
             &format!("{at}.max"),
@@ -302,7 +295,8 @@ fn remade(file: &str, twin: &Twin) {
     if common::ccx_missing() {
         return;
     }
-    let dir = common::scratch_dir("roller_twins", file.trim_start_matches("bench/").trim_end_matches(".toml"));
+    let stem = std::path::Path::new(file).file_stem().unwrap().to_str().unwrap();
+    let dir = common::scratch_dir("roller_twins", stem);
     let out = common::verify(&dir, "twin", &read(file), 1);
     let table: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("verify/table.json")).unwrap()).unwrap();

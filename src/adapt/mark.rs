@@ -108,7 +108,7 @@ impl BodyMarks {
 
 /// Where an element lies: its body, section element and axis interval,
 /// and in a grid section its x and z intervals.
-fn place(mesh: &Mesh, plan: &MeshPlan, e: usize) -> (usize, usize, usize, Option<(usize, usize)>) {
+pub(super) fn place(mesh: &Mesh, plan: &MeshPlan, e: usize) -> (usize, usize, usize, Option<(usize, usize)>) {
     let (b, local) = mesh.body_of_element(e);
     let (s, k) = mesh.bodies[b].split_element(local);
     (b, s, k, grid_cell(&plan.bodies[b].section, s))
@@ -197,15 +197,13 @@ pub(crate) fn by_direction(
 /// [`crate::post::ErrorEstimate::section`]): the error lies across the
 /// section wherever the marked elements are (a laminate's plies one element
 /// thick, the walls of a profile), which refining the axis alone leaves.
-/// A section without named counts (`tube`, `circular_tube`, `circle`) is
-/// doubled only as a whole, along the whole axis, so it keeps the spread
-/// rule of [`intervals`]: on the paper's uniform tube under its roller the
-/// section fit holds over half of the marked elements' estimate, and
-/// doubling the whole ring for it (`33,768` → `68,328` DOF) left the
-/// roller force `2.4 %` from 3D and the next cycle over the `140,000`-DOF
-/// budget, where splitting the axis under the roller reaches `0.6 %` in
-/// three cycles of about `3,000` DOF each
-/// (crates/cufem-cli/tests/adapt.rs `tube_adaptive_roller_force`).
+/// A section without named counts (`circular_tube`, `circle`) is doubled
+/// only as a whole, along the whole axis, so it keeps the spread rule of
+/// [`intervals`]; a plain `tube` is refined by [`super::tube::tube_sections`] instead:
+/// on the paper's uniform tube under its roller the section fit holds over
+/// half of the marked elements' estimate, and doubling the whole ring for
+/// it on the paper's axis (`33,768` → `68,328` DOF) left the roller force
+/// further from 3D and the next cycle over the `140,000`-DOF budget.
 pub(crate) fn across_sections(
     mesh: &Mesh,
     plan: &MeshPlan,

@@ -26,9 +26,12 @@
 //! price of refining a whole row where one element asked for it. Sections
 //! that are not grids are refined when the marked elements are spread over
 //! them or their error lies across them: the counts of the walls or plies
-//! holding the section error doubled (a tube, a circle: every count), and
+//! holding the section error doubled (a circle: every count), and
 //! their axis intervals split only where the error lies along the axis
-//! (`mark::local`, `mark::along_axis`); `quads` and `gmsh` sections are
+//! (`mark::local`, `mark::along_axis`); a tube whose marked elements'
+//! error lies across the section is refined along the long sides of its
+//! largest marked element — the axis, the elements along the walls,
+//! through them (`tube::tube_sections`); `quads` and `gmsh` sections are
 //! kept ([`crate::setup::SectionPlan`]).
 //! The refined model is rebuilt from its own model-file text with the new
 //! divisions (`Model::parse_planned`), so every constraint, load, contact,
@@ -38,6 +41,7 @@
 
 pub mod mark;
 pub(crate) mod measure;
+pub(crate) mod tube;
 
 use std::path::Path;
 use std::time::Instant;
@@ -283,6 +287,7 @@ fn refined(
     mark::by_direction(&model.mesh, &model.plan, marked, &measure.direction, &mut marks);
     let weights = if measure.section.len() == measure.element.len() { &measure.section } else { &measure.element };
     mark::local(&model.mesh, &model.plan, weights, &mut marks);
+    tube::tube_sections(&model.mesh, &model.plan, marked, parts, &mut marks);
     let plan: MeshPlan = mark::refine(&model.plan, &marks);
     if plan == model.plan {
         return Ok(Refined::Same);

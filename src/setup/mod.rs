@@ -44,8 +44,8 @@ use crate::quantity::Quantity;
 use crate::values::{CellValues, Location};
 pub use analysis::{BucklingSettings, Imperfection, ModalSettings};
 
-pub(crate) use plan_file::count_keys;
 pub(crate) use plan_file::planned_text;
+pub(crate) use plan_file::{TUBE_ALONG, TUBE_THROUGH, count_keys};
 pub use refine::{AdaptSettings, BodyPlan, MAX_BUDGET, MeshPlan, SectionPlan};
 
 /// Limits applied while reading a model.

@@ -16,10 +16,12 @@
 //! * a parametric section: its in-plane counts multiplied by `2^n`, `n` the
 //!   doublings of the whole section plus those of the count itself
 //!   ([`SectionPlan::Doubled`]): a `tube`'s `around = 4 + 4k` (k per side),
-//!   `along_x`, `along_z` (those written); a profile's `along_flange`,
+//!   `along_x`, `along_z` (those written; the part `along`) and its
+//!   `through` (the part `through` only; a tube given by `around` is then
+//!   written with `along_x` and `along_z`); a profile's `along_flange`,
 //!   `along_web`, a hat's `along_lip`; a `circular_tube`'s `around`; a
 //!   `circle`'s `around` and `through`; a `laminate`'s `elements` of each
-//!   ply. Defaults are written out when multiplied. A wall's `through` is kept;
+//!   ply. Defaults are written out when multiplied. A profile wall's `through` is kept;
 //!   a profile's `junction_element` is set when the plan grades its walls.
 
 use std::collections::BTreeMap;
@@ -129,15 +131,31 @@ fn double(s: &mut dyn TableLike, shape: &str, times: u32, parts: &BTreeMap<Strin
     };
     match shape {
         "tube" => {
-            // `around = 4 + 4k`: k elements per side
+            // `times` and the part `along` double the elements along the
+            // walls, the part `through` those through them
+            // (`crate::adapt::mark::through_walls`)
+            let along = f(TUBE_ALONG);
+            let through = factor(0, parts, TUBE_THROUGH);
             if s.contains_key("around") {
-                let n = count(s, "around", 4);
-                set(s, "around", 4 + n.saturating_sub(4).saturating_mul(f("around")));
-            }
-            for key in ["along_x", "along_z"] {
-                if s.contains_key(key) {
-                    times_of(s, key, 1);
+                // `around = 4 + 4k`: k elements per side, one through the wall
+                let k = count(s, "around", 4).saturating_sub(4) / 4;
+                if through > 1 {
+                    // `around` allows one element through the wall only
+                    s.remove("around");
+                    set(s, "along_x", k.saturating_mul(along));
+                    set(s, "along_z", k.saturating_mul(along));
+                } else {
+                    set(s, "around", 4 + 4 * k.saturating_mul(along));
                 }
+            } else {
+                for key in ["along_x", "along_z"] {
+                    let n = count(s, key, 1).saturating_mul(along);
+                    set(s, key, n);
+                }
+            }
+            if through > 1 {
+                let n = count(s, "through", defaults::THROUGH).saturating_mul(through);
+                set(s, "through", n);
             }
         }
         "i_beam" | "channel" | "z_section" | "angle" | "hat" | "box" => {
@@ -163,6 +181,14 @@ fn double(s: &mut dyn TableLike, shape: &str, times: u32, parts: &BTreeMap<Strin
         _ => {}
     }
 }
+
+/// The named count of a `tube`'s elements through its wall in
+/// [`SectionPlan::Doubled`]'s `parts` (`crate::adapt::mark::through_walls`).
+pub(crate) const TUBE_THROUGH: &str = "through";
+/// The named count of a `tube`'s elements along its walls (`around`, or
+/// `along_x` and `along_z`) in [`SectionPlan::Doubled`]'s `parts`: doubled
+/// beside `through` where the whole section was to be doubled.
+pub(crate) const TUBE_ALONG: &str = "along";
 
 /// The named count of each element of a section of `shape`
 /// ([`SectionPlan::Doubled`]'s `parts`): a profile's wall count
@@ -241,5 +267,49 @@ thickness = 0.001
         // a plan of another file (two bodies) is refused by key
         let two = MeshPlan { bodies: vec![plan.bodies[0].clone(), plan.bodies[0].clone()] };
         assert!(planned_text(text, &two).unwrap_err().to_string().contains("bodies"));
+    }
+
+    /// A tube's counts: `times` and `along` double the elements along the
+    /// walls, `through` those through them; a tube given by `around` (one
+    /// element through the wall) is written with `along_x`/`along_z` once
+    /// its `through` doubles, and the written file builds the tube asked for.
+    #[test]
+    fn a_tube_s_wall_count_is_doubled_apart_from_its_walls_lengths() {
+        let text = |section: &str| {
+            format!(
+                "[[materials]]\nname = \"al\"\nyoung_modulus = 70e9\npoisson_ratio = 0.3\n[[bodies]]\nname = \"t\"\n\
+                 material = \"al\"\nsection = {{ shape = \"tube\", element = \"L9\", width = 0.03, height = 0.03, \
+                 thickness = 0.0015, {section} }}\naxis = {{ element = \"B4\", from = 0.0, to = 0.1, elements = 2 }}\n\
+                 [[constraints]]\nname = \"root\"\nbody = \"t\"\nwhere = {{ y = 0.0 }}\nfix = [\"x\", \"y\", \"z\"]\n"
+            )
+        };
+        let planned = |section: &str, times: u32, parts: &[(&str, u32)]| {
+            let parts = parts.iter().map(|(k, n)| (k.to_string(), *n)).collect();
+            let plan = MeshPlan {
+                bodies: vec![BodyPlan {
+                    axis: vec![0.0, 0.05, 0.1],
+                    section: SectionPlan::Doubled { shape: "tube", times, parts, junction: None },
+                }],
+            };
+            let out = planned_text(&text(section), &plan).unwrap();
+            let t: toml::Table = out.parse().unwrap();
+            let s = t["bodies"].as_array().unwrap()[0]["section"].as_table().unwrap().clone();
+            let n = |k: &str| s.get(k).and_then(toml::Value::as_integer);
+            let model = crate::setup::Model::parse_with(&out, crate::setup::Limits::none()).unwrap();
+            ((n("around"), n("along_x"), n("along_z"), n("through")), model.mesh.bodies[0].section.n_elements())
+        };
+        // 28 around: 6 per side; corners 1 × 1
+        assert_eq!(planned("around = 28", 1, &[]), ((Some(52), None, None, None), 52));
+        assert_eq!(planned("around = 28", 0, &[(TUBE_ALONG, 1)]), ((Some(52), None, None, None), 52));
+        // two through the wall: 4 corners of 2 × 2 and 4 walls of 6 × 2
+        assert_eq!(planned("around = 28", 0, &[(TUBE_THROUGH, 1)]), ((None, Some(6), Some(6), Some(2)), 64));
+        assert_eq!(
+            planned("around = 28", 0, &[(TUBE_THROUGH, 1), (TUBE_ALONG, 1)]),
+            ((None, Some(12), Some(12), Some(2)), 112)
+        );
+        assert_eq!(
+            planned("through = 2, along_x = 3, along_z = 5", 1, &[(TUBE_THROUGH, 1)]),
+            ((None, Some(6), Some(10), Some(4)), 4 * 16 + 2 * 4 * 6 + 2 * 4 * 10)
+        );
     }
 }

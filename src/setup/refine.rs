@@ -16,8 +16,9 @@
 //! * `tube`, the parametric profiles, `circular_tube`, `circle`, `laminate`:
 //!   in-plane element counts doubled (`around`, `along_*`; for `circle` also
 //!   `through`, which sets the O-grid's core; a laminate's plies' `elements`),
-//!   all of them or — a profile's walls, a laminate's plies — each on its
-//!   own; the through-thickness count of a wall stays ([`SectionPlan::Doubled`]);
+//!   all of them or — a profile's walls, a laminate's plies, a tube's
+//!   counts along and through its walls — each on its own; the
+//!   through-thickness count of a profile's wall stays ([`SectionPlan::Doubled`]);
 //! * `quads`, `gmsh`: nothing — the section is kept as given
 //!   ([`SectionPlan::Fixed`]).
 //!
@@ -142,7 +143,8 @@ pub enum SectionPlan {
     /// to the model file, all of them `times` times and each count named in
     /// `parts` that many times more (local refinement: a profile's
     /// `along_flange`, `along_web`, `along_lip`; a laminate's ply `k` as
-    /// `plies[k]`, [`crate::setup`]'s `plan_file`).
+    /// `plies[k]`; a tube's `along` and `through`, [`crate::setup`]'s
+    /// `plan_file`).
     Doubled {
         /// The section's `shape`.
         shape: &'static str,

@@ -572,39 +572,57 @@ fn sinks_towards_the_punch(x: &[f64], u_z: &[f64]) -> bool {
     [left, right].iter().all(|side| side.windows(2).all(|w| w[1] <= w[0]))
 }
 
-/// The thin-walled tube under `--adapt`: the loading roller's force per
-/// cycle against the converged 3D roller force (CalculiX C3D20R of the
-/// quarter with 1 mm B4 at the roller, 4 × 418.6434 N = 1,674.6 N:
-/// tests/data/references.toml, tube_quarter_1mm, converged along the axis
-/// and through the wall in crates/cufem-cli/tests/roller_twins.rs), four
-/// cycles, each splitting the axis under the roller (22 → 24 → 26 → 32 B4
-/// there; 33,768 → 48,888 DOF). Issue 49 asks the adapted force within 2 %
-/// of 3D: from cycle 1 on (measured −0.60, +1.84 and +0.65 %, from −2.08 %
-/// on the paper's mesh). The force does not settle: with one L9 through
-/// the wall, refining the axis alone does not converge the roller force
-/// (docs/verification.md, "Adaptive refinement"), so the last cycle's value
-/// is also held from both sides (docs/limitations.md).
+/// The thin-walled tube under `--adapt`, from the paper's uniform mesh
+/// (its quarter, examples/bending_tube_28L9_quarter.toml: the same mesh
+/// and answer at a quarter of the unknowns): the loading roller's force
+/// and σ_yy and peeq at the contact centre per cycle against the 3D quarter
+/// converged along the axis and through the wall (CalculiX C3D20R with
+/// 1 mm B4 at the roller, 418.6434 N, −64.6981 MPa, 5.39991e-3:
+/// tests/data/references.toml, tube_quarter_1mm; its convergence in
+/// crates/cufem-cli/tests/roller_twins.rs). The marked elements lie under
+/// the roller with their error across the section; each is refined along
+/// its long sides (`src/adapt/tube.rs` `tube_sections`): the axis under
+/// the roller twice (`11.1` mm B4 against `4.5` mm L9 along the walls),
+/// then, the axis at `2.8` mm, the corner block's every side — two L9
+/// through the wall, twice as many along it, the axis split again.
+/// Issue 49 asks the adapted force within 2 % of 3D (from cycle 1 on:
+/// measured −0.60, +1.84 and −0.70 %, from −2.08 % on the paper's mesh)
+/// and the roller line's probes within 10 % (the last cycle: σ_yy −2.2 %,
+/// peeq −6.6 %; σ_yy +11.7, +20.0 and +9.9 % on the paper's mesh and with
+/// the axis alone split).
 #[test]
-#[ignore = "validate: slow — four adaptive cycles of the tube up to 49,000 DOF (about 2 min)"]
+#[ignore = "validate: slow — four adaptive cycles of the tube's quarter up to 42,000 DOF (about 1 min)"]
 fn tube_adaptive_roller_force() {
     let settings =
-        cufem::setup::AdaptSettings { tolerance: 0.01, max_dof: 140_000, max_cycles: 3, fraction: 0.5, modes: None };
-    let (rows, _) = measure("bending_tube_28L9.toml", settings, &|_, s| vec![-s.contact("load").unwrap().force[2]]);
-    // the converged 3D roller force (tests/data/references.toml, tube_quarter_1mm)
-    let reference = 4.0 * 418.6434;
+        cufem::setup::AdaptSettings { tolerance: 0.01, max_dof: 60_000, max_cycles: 3, fraction: 0.5, modes: None };
+    let (rows, _) = measure("bending_tube_28L9_quarter.toml", settings, &|m, s| {
+        let probe = m.probes.iter().find(|p| p.name == "contact_centre").unwrap();
+        let sample = s.fields(m).sample_probe(probe).unwrap();
+        vec![-s.contact("load").unwrap().force[2], sample.stress[1], sample.peeq]
+    });
+    // the converged 3D quarter (tests/data/references.toml, tube_quarter_1mm)
+    let reference = [418.6434, -64.6981e6, 5.39991e-3];
+    let names = ["force", "s_yy", "peeq"];
+    assert_eq!(rows.len(), 4, "cycles 0–3");
     for (k, (dof, estimate, _, v)) in rows.iter().enumerate() {
-        let d = 100.0 * (v[0] / reference - 1.0);
         common::figure(&format!("adapt_tube.cycle{k}.dof"), *dof as f64, "", "reported");
         common::figure(&format!("adapt_tube.cycle{k}.estimate"), 100.0 * estimate, "%", "reported");
-        common::figure(&format!("adapt_tube.cycle{k}.force"), d, "%", "from cycle 1: |force − 3D| ≤ 2 % (issue 49)");
-        if k >= 1 {
-            assert!(d.abs() <= 2.0, "cycle {k}: roller force {d:+.2} % from 3D");
+        for (i, name) in names.iter().enumerate() {
+            let d = 100.0 * (v[i] / reference[i] - 1.0);
+            let what = match (i, k) {
+                (0, 1..) => "from cycle 1: |force − 3D| ≤ 2 % (issue 49)",
+                (1.., 3) => "the last cycle: |probe − 3D| ≤ 10 % (issue 49)",
+                _ => "reported",
+            };
+            common::figure(&format!("adapt_tube.cycle{k}.{name}"), d, "%", what);
+            if i == 0 && k >= 1 {
+                assert!(d.abs() <= 2.0, "cycle {k}: roller force {d:+.2} % from 3D");
+            }
+            if i >= 1 && k == 3 {
+                assert!(d.abs() <= 10.0, "cycle {k}: {name} {d:+.2} % from 3D");
+            }
         }
     }
-    assert_eq!(rows.len(), 4, "cycles 0–3");
-    let last = 100.0 * (rows[3].3[0] / reference - 1.0);
-    let what = "the adapted tube's last roller force: the axis not converged";
-    common::known_limit("adapt_tube.last_force", last, "%", 0.60, 0.70, what);
 }
 
 /// A thin-walled profile under a pressure on one wall (100 × 50 × 3 mm,

@@ -212,11 +212,24 @@ fn tube_roller_against_the_refined_quarter_twins() {
         "axis_1mm" => axis_1mm.clone(),
         "axis_1mm_section_x2" => doubled.clone(),
         "graded_wall2" => read("examples/bending_tube_graded_wall2.toml"),
+        "graded_wall2_support" => {
+            // the axis at the support halved, as `--adapt` splits it
+            // (crates/cufem-cli/tests/adapt.rs `tube_adaptive_roller_force`)
+            let text = read("examples/bending_tube_graded_wall2.toml");
+            let at_support =
+                "    { from = 0.0, to = 0.025, elements = 2 },\n    { from = 0.025, to = 0.115, elements = 6 },";
+            assert!(text.contains(at_support));
+            text.replace(
+                at_support,
+                "    { from = 0.0, to = 0.0125, elements = 1 },\n    { from = 0.0125, to = 0.025, elements = 2 },\n    \
+                 { from = 0.025, to = 0.04, elements = 2 },\n    { from = 0.04, to = 0.115, elements = 5 },",
+            )
+        }
         _ => read(&format!("examples/bending_tube_{name}_quarter.toml")),
     };
     // (force, σ_yy, peeq at the contact centre), u over the tube: measured
     // in the comment of each known limit's range
-    const MESHES: [Mesh; 6] = [
+    const MESHES: [Mesh; 7] = [
         // −2.08 %, +11.71 %, −2.55 %; u 2.18 %
         Mesh {
             name: "28L9",
@@ -246,6 +259,16 @@ fn tube_roller_against_the_refined_quarter_twins() {
         // the shipped graded quarter with two L9 through the wall
         // (examples/bending_tube_graded_wall2.toml): −0.18 %, −1.63 %, −3.12 %
         Mesh { name: "graded_wall2", differences: &[Within(2.0), Within(10.0), Within(10.0)], u_body: Within(2.0) },
+        // the same with the axis at the support halved (7.5 and 6.25 mm B4
+        // where the 3D twins keep 12.5 and 10 mm hexahedra): the support's
+        // line contact moves u by over a percent, so u over the tube is
+        // measured against a reference not converged there (docs/limitations.md):
+        // −0.68 %, −1.90 %, −4.93 %; u 2.12 %
+        Mesh {
+            name: "graded_wall2_support",
+            differences: &[Within(2.0), Within(10.0), Within(10.0)],
+            u_body: Known(2.05, 2.19),
+        },
     ];
     for mesh in &MESHES {
         let run = solve(&text(mesh.name));

@@ -591,15 +591,16 @@ fn sinks_towards_the_punch(x: &[f64], u_z: &[f64]) -> bool {
 /// peeq −6.6 %; σ_yy +11.7, +20.0 and +9.9 % on the paper's mesh and with
 /// the axis alone split).
 #[test]
-#[ignore = "validate: slow — four adaptive cycles of the tube's quarter up to 42,000 DOF (about 1 min)"]
+#[ignore = "validate: slow — four adaptive cycles of the tube's quarter up to 42,000 DOF and a re-run (about 90 s)"]
 fn tube_adaptive_roller_force() {
     let settings =
         cufem::setup::AdaptSettings { tolerance: 0.01, max_dof: 60_000, max_cycles: 3, fraction: 0.5, modes: None };
-    let (rows, _) = measure("bending_tube_28L9_quarter.toml", settings, &|m, s| {
+    let sample = |m: &Model, s: &cufem::analysis::Solution| {
         let probe = m.probes.iter().find(|p| p.name == "contact_centre").unwrap();
         let sample = s.fields(m).sample_probe(probe).unwrap();
         vec![-s.contact("load").unwrap().force[2], sample.stress[1], sample.peeq]
-    });
+    };
+    let (rows, model_file) = measure("bending_tube_28L9_quarter.toml", settings, &sample);
     // the converged 3D quarter (tests/data/references.toml, tube_quarter_1mm)
     let reference = [418.6434, -64.6981e6, 5.39991e-3];
     let names = ["force", "s_yy", "peeq"];
@@ -623,6 +624,22 @@ fn tube_adaptive_roller_force() {
             }
         }
     }
+
+    // the written model file (`around = 28` rewritten as two L9 through the
+    // wall, 12 along each wall) is the last cycle's mesh and answer
+    assert!(model_file.contains("through = 2") && !model_file.contains("around ="), "{model_file}");
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("adapt_tube");
+    std::fs::create_dir_all(&dir).unwrap();
+    std::fs::write(dir.join("adapted.toml"), &model_file).unwrap();
+    let again = Model::from_file(&dir.join("adapted.toml")).unwrap();
+    let last = rows.last().unwrap();
+    assert_eq!(again.n_dofs(), last.0, "the adapted model file is the last cycle's mesh");
+    let solution = cufem::analysis::run(&again, &Default::default(), &mut cufem::analysis::Silent).unwrap();
+    assert!(solution.failure.is_none(), "{:?}", solution.failure);
+    let rerun = sample(&again, &solution);
+    let moved = (0..3).map(|i| (rerun[i] / last.3[i] - 1.0).abs()).fold(0.0, f64::max);
+    common::figure("adapt_tube.rerun", moved, "", "≤ 1e-6 relative in force, σ_yy and peeq: adapted.toml re-run");
+    assert!(moved <= 1e-6, "adapted.toml re-run: {rerun:?} against {:?}", last.3);
 }
 
 /// A thin-walled profile under a pressure on one wall (100 × 50 × 3 mm,

@@ -6,6 +6,9 @@
 
 #[path = "../../../tests/common/mod.rs"]
 mod common;
+#[path = "stored/mod.rs"]
+#[allow(dead_code)] // region_id: the report ids of roller_twins.rs and fidelity.rs
+mod stored;
 
 use std::path::Path;
 use std::process::Command;
@@ -600,7 +603,23 @@ fn tube_adaptive_roller_force() {
         let sample = s.fields(m).sample_probe(probe).unwrap();
         vec![-s.contact("load").unwrap().force[2], sample.stress[1], sample.peeq]
     };
+    // the last cycle's u over the tube against the 3D twin refined at the
+    // support as the adapted axis is (tests/data/references.toml,
+    // tube_quarter_1mm_support): u follows the support's mesh on both sides
+    // (crates/cufem-cli/tests/roller_twins.rs, `graded_wall2_support`)
+    let field = std::cell::Cell::new(0.0);
+    let sample = |m: &Model, s: &cufem::analysis::Solution| {
+        let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+        let twin = Model::from_file(&root.join("bench/tube_quarter_axis_1mm_support.toml")).unwrap();
+        let stored = stored::field_3d("tube_quarter_axis_1mm_support");
+        let rows = cufem_ccx::verify::compare_stored_on(&twin, m, &s.fields(m), &stored).unwrap();
+        field.set(rows.iter().find(|r| r.region == "body tube" && r.quantity == "u").unwrap().l2_percent);
+        sample(m, s)
+    };
     let (rows, model_file) = measure("bending_tube_28L9_quarter.toml", settings, &sample);
+    let u = field.get();
+    common::figure("adapt_tube.cycle3.u_over_tube", u, "%", "the last cycle: u over the tube ≤ 2 % of 3D (issue 49)");
+    assert!(u <= 2.0, "the last cycle's u over the tube: {u:.2} % of 3D");
     // the converged 3D quarter (tests/data/references.toml, tube_quarter_1mm)
     let reference = [418.6434, -64.6981e6, 5.39991e-3];
     let names = ["force", "s_yy", "peeq"];

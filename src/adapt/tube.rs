@@ -20,15 +20,16 @@ use crate::setup::{MeshPlan, SectionPlan};
 /// (`ErrorEstimate::direction`) put most of the marked elements' error
 /// through the wall, yet against the 3D quarter converged along the axis
 /// and through the wall (tests/data/references.toml, `tube_quarter_1mm`)
-/// the lever is the one of the longest side. On the paper's axis
+/// what pays is refining the element's longest sides. On the paper's axis
 /// (`11` mm B4 at the roller, `4.5` mm L9 along the walls) doubling the
 /// section first spoils the whole field (u over the tube `2.18 %` →
 /// `3.54 %` with two L9 through the wall, `4.52 %` with twice the elements
 /// along it) where splitting the axis keeps it (`2.30 %`); on the axis
 /// graded to `2` mm, twice the elements along the walls (`17,649` DOF
 /// quarter) take u to `1.21 %` and σ_yy at the contact centre from
-/// `+16.2 %` to `+1.1 %`, two through the wall only to `2.25 %` and
-/// `+10.7 %` at `22,770` DOF. Each marked element's axis interval is split
+/// `+16.2 %` to `+1.1 %` (crates/cufem-cli/tests/roller_twins.rs,
+/// `graded_around52`), two through the wall only (measured by hand) to
+/// `2.25 %` and `+10.7 %` at `22,770` DOF. Each marked element's axis interval is split
 /// when the axis is one of its long sides.
 pub(crate) fn tube_sections(
     mesh: &Mesh,
@@ -44,7 +45,7 @@ pub(crate) fn tube_sections(
     for (b, (m, p)) in marks.iter_mut().zip(&plan.bodies).enumerate() {
         let body = &mesh.bodies[b];
         let SectionPlan::Doubled { shape: "tube", .. } = &p.section else { continue };
-        // a ring doubled as a whole by the spread rule ([`intervals`]) stays so
+        // a ring doubled as a whole by the spread rule (`mark::intervals`) stays so
         if !body.section.regions.is_empty() || m.section {
             continue;
         }

@@ -56,9 +56,10 @@ pub(crate) fn tube_sections(
         if !(t2 > 0.0 && s2 >= 0.5 * t2) {
             continue;
         }
+        let t = wall_thickness(&body.section);
         let sides_of = |e: usize| {
             let (_, s, k, _) = place(mesh, plan, e);
-            let sides = sides(&body.section, s, p.axis[k + 1] - p.axis[k]);
+            let sides = sides(&body.section, t, s, p.axis[k + 1] - p.axis[k]);
             let longest = sides.iter().copied().fold(0.0, f64::max);
             (k, sides.map(|side| side >= LONGEST_SHARE * longest))
         };
@@ -82,25 +83,32 @@ pub(crate) fn tube_sections(
 /// share of its longest ([`tube_sections`]).
 pub(crate) const LONGEST_SHARE: f64 = 0.5;
 
-/// The sides of section element `s` of a plain tube swept over an axis
-/// interval `axis` long: `[axis, along the wall, through the wall]` (m).
-/// Its bounding box's sides, the shorter through the wall unless the
-/// element is a corner block's (its centre within the wall thickness `t`
-/// of two sides of the outer box: both sides through a wall); `t` from the
-/// section's area `A = 2t(w + h) − 4t²`, each straight-sided element's area
-/// its box's.
-fn sides(section: &crate::mesh::CrossSection, s: usize, axis: f64) -> [f64; 3] {
-    let bbox = |e: usize| {
-        section.element(e).iter().fold([f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY], |b, &k| {
-            let [x, z] = section.nodes[k];
-            [b[0].min(x), b[1].max(x), b[2].min(z), b[3].max(z)]
-        })
-    };
-    let area: f64 = (0..section.n_elements()).map(bbox).map(|b| (b[1] - b[0]) * (b[3] - b[2])).sum();
+/// The bounding box `[xmin, xmax, zmin, zmax]` of section element `e`.
+fn bbox(section: &crate::mesh::CrossSection, e: usize) -> [f64; 4] {
+    section.element(e).iter().fold([f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY], |b, &k| {
+        let [x, z] = section.nodes[k];
+        [b[0].min(x), b[1].max(x), b[2].min(z), b[3].max(z)]
+    })
+}
+
+/// The wall thickness `t` of a plain tube's section from its area
+/// `A = 2t(w + h) − 4t²` (each straight-sided element's area its bounding
+/// box's; `w × h` the outer box).
+fn wall_thickness(section: &crate::mesh::CrossSection) -> f64 {
+    let area: f64 = (0..section.n_elements()).map(|e| bbox(section, e)).map(|b| (b[1] - b[0]) * (b[3] - b[2])).sum();
     let [x0, x1, z0, z1] = section.bounds();
     let (w, h) = (x1 - x0, z1 - z0);
-    let t = (2.0 * (w + h) - (4.0 * (w + h).powi(2) - 16.0 * area).max(0.0).sqrt()) / 8.0;
-    let b = bbox(s);
+    (2.0 * (w + h) - (4.0 * (w + h).powi(2) - 16.0 * area).max(0.0).sqrt()) / 8.0
+}
+
+/// The sides of section element `s` of a plain tube of wall thickness `t`
+/// swept over an axis interval `axis` long: `[axis, along the wall,
+/// through the wall]` (m). Its bounding box's sides, the shorter through
+/// the wall unless the element is a corner block's (its centre within `t`
+/// of two sides of the outer box: both sides through a wall).
+fn sides(section: &crate::mesh::CrossSection, t: f64, s: usize, axis: f64) -> [f64; 3] {
+    let [x0, x1, z0, z1] = section.bounds();
+    let b = bbox(section, s);
     let (dx, dz) = (b[1] - b[0], b[3] - b[2]);
     let (cx, cz) = (0.5 * (b[0] + b[1]), 0.5 * (b[2] + b[3]));
     let corner = (cx < x0 + t || cx > x1 - t) && (cz < z0 + t || cz > z1 - t);

@@ -608,10 +608,10 @@ fn tube_adaptive_roller_force() {
     // tube_quarter_1mm_support): u follows the support's mesh on both sides
     // (crates/cufem-cli/tests/roller_twins.rs, `graded_wall2_support`)
     let field = std::cell::Cell::new(0.0);
+    let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+    let twin = Model::from_file(&root.join("bench/tube_quarter_axis_1mm_support.toml")).unwrap();
+    let stored = stored::field_3d("tube_quarter_axis_1mm_support");
     let sample = |m: &Model, s: &cufem::analysis::Solution| {
-        let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
-        let twin = Model::from_file(&root.join("bench/tube_quarter_axis_1mm_support.toml")).unwrap();
-        let stored = stored::field_3d("tube_quarter_axis_1mm_support");
         let rows = cufem_ccx::verify::compare_stored_on(&twin, m, &s.fields(m), &stored).unwrap();
         field.set(rows.iter().find(|r| r.region == "body tube" && r.quantity == "u").unwrap().l2_percent);
         sample(m, s)

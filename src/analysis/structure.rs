@@ -505,7 +505,7 @@ impl NonlinearProblem for Structure<'_> {
     fn correct(&mut self) -> Result<Correction, LinearError> {
         self.form_tangent()?;
         // a line search only along a correction without a prescribed jump
-        let searchable = self.settings.solver.newton.line_search && {
+        let searchable = (self.settings.solver.newton.line_search || self.searches()) && {
             let (off, size) = self.elimination.offset(&self.state.u);
             off <= 1e-12 * size
         };
@@ -542,6 +542,26 @@ impl NonlinearProblem for Structure<'_> {
 
     fn finished(&self) -> bool {
         self.system.finished()
+    }
+
+    /// The retry of a failed increment (the cautious linearization,
+    /// `Incremental::cautious`) of a frictionless contact model searches along
+    /// its corrections even with `solver.line_search` off. A contact set
+    /// cycling at a first touch is what fails such increments: on a fine
+    /// axis mesh under a roller (node lines a third of a millimetre apart),
+    /// each correction sends the lines it releases deep into the roller and
+    /// the residual stays at 1 until an iterate lifts the supports and the
+    /// tangent is singular; shortened where the energy rises along it, the
+    /// retry converges at the same Δλ (bench/tube_quarter_axis_1mm.toml
+    /// started at 1/15: one cutback instead of five,
+    /// crates/cufem-cli/tests/retry.rs). Not in every attempt: the shipped
+    /// examples converge without it, and with it their contact ones took up
+    /// to 15 more Newton iterations, the large-rotation ones several times
+    /// as many (docs/limitations.md).
+    fn searches(&self) -> bool {
+        self.state.predictor == crate::materials::Predictor::Elastic
+            && self.parts.contacts.has_points()
+            && !self.parts.contacts.is_frictional()
     }
 
     fn slopes(&self) -> Option<(f64, f64)> {

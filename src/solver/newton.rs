@@ -55,7 +55,8 @@
 //! increment: 12,190 evaluations instead of 11,876, the same corrections).
 //! An increment that turns out nonlinear after all goes on as before.
 //!
-//! With [`NewtonSettings::line_search`], a correction after which the
+//! With [`NewtonSettings::line_search`] (or when the problem asks for it,
+//! [`NonlinearProblem::searches`]), a correction after which the
 //! residual grew *and* the energy still falls along it at its start but
 //! rises at its end (`s(η) = Δx·R(x_k + η Δx)`, `s(0) < 0 < s(1)`: the full
 //! step overshot the minimum along its direction) is shortened: `η` by
@@ -136,6 +137,12 @@ pub trait NonlinearProblem {
     /// `Some`). The default: nothing moved.
     fn step_to(&mut self, _eta: f64) -> Option<Correction> {
         None
+    }
+    /// True if the problem asks for the line search whatever
+    /// [`NewtonSettings::line_search`] says (a retry of a failed increment
+    /// whose contact set cycled: `analysis::structure`). The default: false.
+    fn searches(&self) -> bool {
+        false
     }
 }
 
@@ -267,7 +274,7 @@ pub(crate) fn solve_from<P: NonlinearProblem>(
             Err(e) => return fail(report, Failure::Problem, Some(e.to_string())),
         };
         let mut r = relative(&ev);
-        if settings.line_search
+        if (settings.line_search || problem.searches())
             && let Some(&before) = report.residuals.last()
             && r > before
         {

@@ -340,6 +340,36 @@ fn the_line_search_shortens_an_overshooting_correction() {
     assert!(rep.residuals.iter().skip(1).all(|&r| r < rep.residuals[0]), "{:?}", rep.residuals);
 }
 
+/// [`Atan`] asking for the search itself (`NonlinearProblem::searches`: a
+/// retry of a failed contact increment, `analysis::structure`).
+struct Asking(Atan);
+
+impl NonlinearProblem for Asking {
+    type Error = std::io::Error;
+    fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
+        self.0.evaluate()
+    }
+    fn correct(&mut self) -> Result<Correction, Self::Error> {
+        self.0.correct()
+    }
+    fn slopes(&self) -> Option<(f64, f64)> {
+        self.0.slopes()
+    }
+    fn step_to(&mut self, eta: f64) -> Option<Correction> {
+        self.0.step_to(eta)
+    }
+    fn searches(&self) -> bool {
+        true
+    }
+}
+
+#[test]
+fn a_problem_that_asks_for_the_line_search_gets_it_with_the_setting_off() {
+    let mut p = Asking(Atan { x: 2.0, start: 2.0, dx: 0.0, x0: 2.0 });
+    let rep = solve(&mut p, &NewtonSettings::default(), &Interrupt::new());
+    assert!(rep.converged() && p.0.x.abs() < 1e-6 && rep.line_searches >= 1, "{rep:?} at x = {}", p.0.x);
+}
+
 /// From x₀ = 1 Newton on atan converges, its residual falling at every
 /// correction (0.79, 0.52, 0.12, …): the line search leaves every
 /// iterate as it is, to the last bit.

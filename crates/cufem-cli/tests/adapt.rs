@@ -589,9 +589,9 @@ fn sinks_towards_the_punch(x: &[f64], u_z: &[f64]) -> bool {
 /// then, the axis at `2.8` mm, the corner block's every side — two L9
 /// through the wall, twice as many along it, the axis split again.
 /// Issue 49 asks the adapted force within 2 % of 3D (from cycle 1 on:
-/// measured −0.60, +1.84 and −0.70 %, from −2.08 % on the paper's mesh)
-/// and the roller line's probes within 10 % (the last cycle: σ_yy −2.2 %,
-/// peeq −6.6 %; σ_yy +11.7, +20.0 and +9.9 % on the paper's mesh and with
+/// measured −0.60, +1.84 and −0.69 %, from −2.08 % on the paper's mesh)
+/// and the roller line's probes within 10 % (the last cycle: σ_yy −2.3 %,
+/// peeq −6.7 %; σ_yy +11.7, +20.0 and +9.9 % on the paper's mesh and with
 /// the axis alone split).
 #[test]
 #[ignore = "validate: slow — four adaptive cycles of the tube's quarter up to 42,000 DOF and a re-run (about 90 s)"]

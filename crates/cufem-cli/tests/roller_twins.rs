@@ -201,7 +201,7 @@ fn tube_field(name: &str) -> &'static str {
 /// alike). Against the
 /// 1 mm twin (roller force, σ_yy and peeq at the contact centre, u over
 /// the tube): the section doubled on the 1 mm axis meets every criterion of
-/// issues 49 and 23 (measured `−0.01 %`, `−2.1 %`, `−5.4 %`, u `1.23 %`);
+/// issues 49 and 23 (measured `−0.02 %`, `−2.1 %`, `−5.4 %`, u `1.21 %`);
 /// with one L9 through the wall the shipped meshes keep their roller force
 /// within `2 %` but for the paper's uniform 28 L9 (`−2.08 %`), and σ_yy at
 /// the contact centre is `12`–`16 %` above 3D on the 28 L9 rings, peeq
@@ -265,13 +265,13 @@ fn tube_roller_against_the_refined_quarter_twins() {
             differences: &[Within(2.0), Known(15.68, 16.67), Within(10.0)],
             u_body: Known(2.58, 2.74),
         },
-        // +1.19 %, +13.55 %, −11.80 %; u 3.82 %
+        // +1.20 %, +13.49 %, −11.82 %; u 3.82 %
         Mesh {
             name: "axis_1mm",
             differences: &[Within(2.0), Known(13.14, 13.96), Known(-12.16, -11.44)],
             u_body: Known(3.70, 3.93),
         },
-        // −0.01 %, −2.09 %, −5.42 %; u 1.23 %
+        // −0.02 %, −2.07 %, −5.38 %; u 1.21 %
         Mesh {
             name: "axis_1mm_section_x2",
             differences: &[Within(2.0), Within(10.0), Within(10.0)],

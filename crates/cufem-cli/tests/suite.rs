@@ -56,6 +56,8 @@ mod ply_damage_transient;
 mod reliability;
 #[path = "report_html.rs"]
 mod report_html;
+#[path = "retry.rs"]
+mod retry;
 #[path = "roller_twins.rs"]
 mod roller_twins;
 #[path = "schema_docs.rs"]

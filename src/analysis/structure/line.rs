@@ -1,6 +1,7 @@
 //! The structure's side of Newton's line search (`solver::newton`,
-//! `solver.line_search`): the last correction kept by DOF, the slopes
-//! `Δu·R` of the energy along it, and moves along it.
+//! `solver.line_search`, and the retry of a failed increment of a
+//! frictionless contact model: `Structure::searches`): the last correction
+//! kept by DOF, the slopes `Δu·R` of the energy along it, and moves along it.
 //!
 //! Only a correction that makes no jump of the prescribed values and moves
 //! no force-controlled indenter nor lever force is searched along: a shortened prescribed

@@ -205,6 +205,11 @@ impl<'m> Contacts<'m> {
         &self.ranges
     }
 
+    /// True if the model has contact points (indenters or contacts).
+    pub(crate) fn has_points(&self) -> bool {
+        !self.points.is_empty()
+    }
+
     /// True if some indenter or contact has friction.
     pub(crate) fn is_frictional(&self) -> bool {
         self.frictional

@@ -559,9 +559,17 @@ impl NonlinearProblem for Structure<'_> {
     /// to 15 more Newton iterations, the large-rotation ones several times
     /// as many (docs/limitations.md).
     fn searches(&self) -> bool {
-        self.state.predictor == crate::materials::Predictor::Elastic
-            && self.parts.contacts.has_points()
+        self.state.predictor == crate::materials::Predictor::Elastic && self.retry_searches()
+    }
+
+    /// A model with contact points and no friction, no force-controlled
+    /// indenter or impactor nor lever (whose corrections are not searched,
+    /// `structure/line.rs`).
+    fn retry_searches(&self) -> bool {
+        self.parts.contacts.has_points()
             && !self.parts.contacts.is_frictional()
+            && !self.force.is_driven()
+            && !self.levers.is_active()
     }
 
     fn slopes(&self) -> Option<(f64, f64)> {

@@ -55,6 +55,15 @@
 //! increment: 12,190 evaluations instead of 11,876, the same corrections).
 //! An increment that turns out nonlinear after all goes on as before.
 //!
+//! **An attempt that chatters.** When the problem says that a retry would
+//! search along its corrections ([`NonlinearProblem::retry_searches`]: a
+//! frictionless contact model, `analysis::structure`), an attempt that has
+//! not settled at any evaluation and whose residual has not fallen below
+//! half its start after `CHATTER` (6) corrections fails at once (stagnated)
+//! instead of running on to `max_iterations`: the contact set of a first
+//! touch that cycles keeps the residual at 1 for twenty corrections and
+//! more, and the searched retry converges (crates/cufem-cli/tests/retry.rs).
+//!
 //! With [`NewtonSettings::line_search`] (or when the problem asks for it,
 //! [`NonlinearProblem::searches`]), a correction after which the
 //! residual grew *and* the energy still falls along it at its start but
@@ -144,7 +153,19 @@ pub trait NonlinearProblem {
     fn searches(&self) -> bool {
         false
     }
+    /// True if a retry of this attempt, after it fails, would search
+    /// ([`Self::searches`]): an attempt that has not settled nor halved its
+    /// residual in `CHATTER` corrections is then given up (module docs).
+    /// The default: false.
+    fn retry_searches(&self) -> bool {
+        false
+    }
 }
+
+/// Corrections after which an attempt whose residual has not halved and
+/// whose problem never settled fails, when its retry would search
+/// ([`NonlinearProblem::retry_searches`]).
+const CHATTER: usize = 6;
 
 /// Most evaluations of one line search.
 pub(crate) const LINE_SEARCH_STEPS: usize = 4;
@@ -266,6 +287,7 @@ pub(crate) fn solve_from<P: NonlinearProblem>(
     // the forcing term the first correction was solved to on a trusted
     // finishing request (module docs: read only after that correction)
     let mut finished: Option<f64> = None;
+    let mut unsettled = 0;
     loop {
         let expected = last_settled && expect_convergence(&report.residuals, last_correction, finished, settings);
         let evaluated = if expected { problem.evaluate_residual() } else { problem.evaluate_for_correction() };
@@ -310,6 +332,19 @@ pub(crate) fn solve_from<P: NonlinearProblem>(
         }
         if report.iterations >= settings.max_iterations {
             return fail(report, Failure::MaxIterations, None);
+        }
+        if !ev.settled {
+            unsettled += 1;
+        }
+        // an attempt whose problem never settled and whose residual never
+        // halved is handed to a retry that searches (module docs)
+        if n > CHATTER
+            && unsettled == n
+            && !(settings.line_search || problem.searches())
+            && problem.retry_searches()
+            && report.residuals[1..].iter().all(|&v| v >= 0.5 * report.residuals[0])
+        {
+            return fail(report, Failure::Stagnated, None);
         }
         let best =
             report.residuals.iter().enumerate().fold(0, |b, (k, &v)| if v < report.residuals[b] { k } else { b });

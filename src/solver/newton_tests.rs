@@ -297,6 +297,34 @@ fn gives_up_when_the_residual_stops_reaching_new_lows() {
     assert_eq!((rep.failure, rep.iterations), (Some(Failure::MaxIterations), 20));
 }
 
+/// A residual at 1 whose problem never settles (a contact set that
+/// cycles), and whose retry would search or not.
+struct Chattering {
+    retry_searches: bool,
+}
+
+impl NonlinearProblem for Chattering {
+    type Error = std::io::Error;
+    fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
+        Ok(Evaluation { residual_norm: 1.0, force_scale: 1.0, settled: false })
+    }
+    fn correct(&mut self) -> Result<Correction, Self::Error> {
+        Ok(Correction { norm: 1.0, increment_norm: 1.0 })
+    }
+    fn retry_searches(&self) -> bool {
+        self.retry_searches
+    }
+}
+
+#[test]
+fn an_attempt_that_chatters_is_handed_to_a_searching_retry_after_six_corrections() {
+    let settings = NewtonSettings { max_iterations: 20, ..Default::default() };
+    let rep = solve(&mut Chattering { retry_searches: true }, &settings, &Interrupt::new());
+    assert_eq!((rep.failure, rep.iterations), (Some(Failure::Stagnated), CHATTER), "{rep:?}");
+    let rep = solve(&mut Chattering { retry_searches: false }, &settings, &Interrupt::new());
+    assert_eq!((rep.failure, rep.iterations), (Some(Failure::MaxIterations), 20));
+}
+
 /// A softening spring `atan(x) = 0` from x₀ = 2: Newton's first step
 /// lands at −3.5, where the residual is larger, and every further one
 /// overshoots more (plain Newton on atan diverges from |x₀| > 1.39).

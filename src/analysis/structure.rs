@@ -555,21 +555,18 @@ impl NonlinearProblem for Structure<'_> {
     /// retry converges at the same Δλ (bench/tube_quarter_axis_1mm.toml
     /// started at 1/15: one cutback instead of five,
     /// crates/cufem-cli/tests/retry.rs). Not in every attempt: the shipped
-    /// examples converge without it, and with it their contact ones took up
-    /// to 15 more Newton iterations, the large-rotation ones several times
-    /// as many (docs/limitations.md).
+    /// examples converge without it, and with it some take more Newton
+    /// iterations, the large-rotation ones several times as many
+    /// (docs/limitations.md).
     fn searches(&self) -> bool {
         self.state.predictor == crate::materials::Predictor::Elastic && self.retry_searches()
     }
 
-    /// A model with contact points and no friction, no force-controlled
-    /// indenter or impactor nor lever (whose corrections are not searched,
-    /// `structure/line.rs`).
+    /// A contact model whose corrections can be searched along
+    /// (`structure/line.rs`: no friction, force-controlled indenter,
+    /// impactor or lever).
     fn retry_searches(&self) -> bool {
-        self.parts.contacts.has_points()
-            && !self.parts.contacts.is_frictional()
-            && !self.force.is_driven()
-            && !self.levers.is_active()
+        self.parts.contacts.has_points() && self.searchable_model()
     }
 
     fn slopes(&self) -> Option<(f64, f64)> {

@@ -287,7 +287,7 @@ pub(crate) fn solve_from<P: NonlinearProblem>(
     // the forcing term the first correction was solved to on a trusted
     // finishing request (module docs: read only after that correction)
     let mut finished: Option<f64> = None;
-    let mut unsettled = 0;
+    let mut settled_once = false;
     loop {
         let expected = last_settled && expect_convergence(&report.residuals, last_correction, finished, settings);
         let evaluated = if expected { problem.evaluate_residual() } else { problem.evaluate_for_correction() };
@@ -333,13 +333,11 @@ pub(crate) fn solve_from<P: NonlinearProblem>(
         if report.iterations >= settings.max_iterations {
             return fail(report, Failure::MaxIterations, None);
         }
-        if !ev.settled {
-            unsettled += 1;
-        }
+        settled_once |= ev.settled;
         // an attempt whose problem never settled and whose residual never
         // halved is handed to a retry that searches (module docs)
         if n > CHATTER
-            && unsettled == n
+            && !settled_once
             && !(settings.line_search || problem.searches())
             && problem.retry_searches()
             && report.residuals[1..].iter().all(|&v| v >= 0.5 * report.residuals[0])

@@ -27,12 +27,7 @@ impl Structure<'_> {
         // nor from an evaluation whose residual holds kept contact tensions
         // (`contact::assembly::rigid`): the slope at its end, without them,
         // would be another function's
-        if !searchable
-            || self.force.is_driven()
-            || self.levers.is_active()
-            || self.parts.contacts.is_frictional()
-            || self.parts.contacts.kept_points() > 0
-        {
+        if !searchable || !self.searchable_model() || self.parts.contacts.kept_points() > 0 {
             self.state.line = None;
             return;
         }
@@ -43,6 +38,13 @@ impl Structure<'_> {
             .collect();
         let start = dot(&du, &self.system.imbalance);
         self.state.line = Some(Line { du, start, eta: 1.0 });
+    }
+
+    /// True if the model's corrections can be searched along at all: no
+    /// force-controlled indenter or impactor, no lever, no friction (module
+    /// docs).
+    pub(super) fn searchable_model(&self) -> bool {
+        !self.force.is_driven() && !self.levers.is_active() && !self.parts.contacts.is_frictional()
     }
 
     /// `(Δu·R(u_k), Δu·R(u))` at the last evaluation.

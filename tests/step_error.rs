@@ -16,7 +16,7 @@ use cufem::setup::Model;
 mod common;
 #[path = "common/truth.rs"]
 mod truth;
-use truth::{block_refined, touches_punch_edge, true_error};
+use truth::{block_refined, error_against, gauss_points, stresses_at, touches_punch_edge, true_error};
 
 fn example(name: &str) -> String {
     std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name)).unwrap()
@@ -55,30 +55,44 @@ type Row = (String, f64, f64, f64, f64);
 fn effectivities(
     coarse: &(Model, Solution),
     fine: &(Model, Solution),
-    keep: &dyn Fn(&Model, usize, usize) -> bool,
+    keep: &dyn Fn(&Model, usize, usize, usize) -> bool,
 ) -> Vec<Row> {
     let (c, f) = (states(&coarse.0, &coarse.1), states(&fine.0, &fine.1));
     assert_eq!(c.len(), f.len(), "the same states");
-    let body = &coarse.0.mesh.bodies[0];
     c.iter()
         .zip(&f)
         .map(|((name, cs), (_, fs))| {
             assert!((cs.lambda - fs.lambda).abs() < 1e-9 * cs.lambda.abs().max(1.0));
-            let truth = true_error((&coarse.0, cs), (&fine.0, fs));
-            let est = cs.error_estimate.as_ref().unwrap();
-            let (mut eta, mut error) = (0.0, 0.0);
-            for (e, t) in truth.iter().enumerate() {
-                let (es, eb) = body.split_element(e);
-                if keep(&coarse.0, es, eb) {
-                    eta += est.element[e].powi(2);
-                    error += t;
-                }
-            }
-            let energy = est.energy.powi(2);
-            let rel = |x: f64| (x / (x + energy)).sqrt();
-            (name.clone(), eta.sqrt(), error.sqrt(), rel(eta), rel(error))
+            row(name, (&coarse.0, cs), &true_error((&coarse.0, cs), (&fine.0, fs)), keep)
         })
         .collect()
+}
+
+/// The [`Row`] of one state `s` of `model` whose true error per element
+/// (global index) is `truth` (J), summed over the elements `keep` picks
+/// (by body, section element and beam element).
+fn row(
+    name: &str,
+    (model, s): (&Model, &Solution),
+    truth: &[f64],
+    keep: &dyn Fn(&Model, usize, usize, usize) -> bool,
+) -> Row {
+    let est = s.error_estimate.as_ref().unwrap();
+    let (mut eta, mut error, mut e) = (0.0, 0.0, 0);
+    for (b, body) in model.mesh.bodies.iter().enumerate() {
+        for local in 0..body.n_elements() {
+            let (es, eb) = body.split_element(local);
+            if keep(model, b, es, eb) {
+                eta += est.element[e].powi(2);
+                error += truth[e];
+            }
+            e += 1;
+        }
+    }
+    assert_eq!(e, truth.len());
+    let energy = est.energy.powi(2);
+    let rel = |x: f64| (x / (x + energy)).sqrt();
+    (name.to_string(), eta.sqrt(), error.sqrt(), rel(eta), rel(error))
 }
 
 /// Prints each row as FIGURE lines `<id>.<mesh>.<state>.{estimate,true,effectivity}`
@@ -118,7 +132,7 @@ fn the_elastica_steps_are_estimated() {
     let counts = [("to = 0.01, ", 1), ("to = 1.0, ", 20)];
     let runs: Vec<_> = [1, 2, 4].iter().map(|&k| solve(&refined(&text, k, &counts))).collect();
     // 2 × 2 L9 × 40 B4: in the band at every step (measured 0.77–0.84)
-    let rows = effectivities(&runs[1], &runs[2], &|_, _, _| true);
+    let rows = effectivities(&runs[1], &runs[2], &|_, _, _, _| true);
     for eff in report("step_error.elastica", "2x2L9_40B4", &rows, "in [0.5, 2] (issue 49)") {
         assert!((0.5..=2.0).contains(&eff), "2 × 2 L9: effectivity {eff}");
     }
@@ -126,7 +140,7 @@ fn the_elastica_steps_are_estimated() {
     // the one element, so the recovery has nothing to fit across it and the
     // section's error goes unseen (measured 0.12, 0.20, 0.34, 0.45), a
     // known limit
-    let rows = effectivities(&runs[0], &runs[2], &|_, _, _| true);
+    let rows = effectivities(&runs[0], &runs[2], &|_, _, _, _| true);
     let eff = report("step_error.elastica", "1L9_20B4", &rows, "reported; the range below");
     let (lo, hi) = eff.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &e| (a.min(e), b.max(e)));
     let what = "the elastica's one L9 across the section: the section's error goes unseen";
@@ -149,7 +163,7 @@ fn the_compact_bar_step_is_estimated() {
     let text = example("bending_compact_4L9_quarter.toml");
     let counts = [("to = 0.01, ", 2), ("to = 0.25, ", 10)];
     let runs: Vec<_> = [1, 2, 4].iter().map(|&k| solve(&refined(&text, k, &counts))).collect();
-    let away = |m: &Model, _: usize, eb: usize| {
+    let away = |m: &Model, _: usize, _: usize, eb: usize| {
         let (a, b) = m.mesh.bodies[0].axis.element_span(eb);
         ![0.025, 0.125].iter().any(|&y| y > a - 1e-9 && y < b + 1e-9)
     };
@@ -158,7 +172,7 @@ fn the_compact_bar_step_is_estimated() {
     // 3.65 and 2.74 times the true error over the whole quarter, 2.99 and
     // 3.76 without the roller lines
     for (m, mesh) in [(0, "1x2L9_5B4"), (1, "2x4L9_10B4")] {
-        let whole = effectivities(&runs[m], &runs[2], &|_, _, _| true);
+        let whole = effectivities(&runs[m], &runs[2], &|_, _, _, _| true);
         let whole = report("step_error.bar", &format!("{mesh}.whole"), &whole, "reported (the whole quarter)");
         let rows = effectivities(&runs[m], &runs[2], &away);
         let away = report("step_error.bar", mesh, &rows, "reported, without the roller lines");
@@ -178,7 +192,7 @@ fn the_rod_frames_are_estimated() {
     let counts = [("to = 0.01, ", 1), ("to = 1.0, ", 100)];
     let runs: Vec<_> = [1, 2, 4].iter().map(|&k| solve(&refined(&text, k, &counts))).collect();
     for (m, mesh) in [(0, "1L4_100B2"), (1, "2x2L4_200B2")] {
-        let rows = effectivities(&runs[m], &runs[2], &|_, _, _| true);
+        let rows = effectivities(&runs[m], &runs[2], &|_, _, _, _| true);
         let eff = report("step_error.rod", mesh, &rows, "reported; the range below");
         let (lo, hi) = eff.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &e| (a.min(e), b.max(e)));
         // the wave's phase error: a known limit (measured 0.084–0.22 and 0.090–0.25)
@@ -209,9 +223,9 @@ fn the_plastic_cantilever_step_is_estimated() {
     let text = example("epp_cantilever.toml");
     let counts = [("to = 0.02, ", 1), ("to = 0.02, ", 2), ("to = 0.3, ", 8), ("to = 0.8, ", 4)];
     let runs: Vec<_> = [1, 2, 4].iter().map(|&k| solve(&refined(&text, k, &counts))).collect();
-    let away = |m: &Model, _: usize, eb: usize| m.mesh.bodies[0].axis.element_span(eb).0 >= 0.0375 - 1e-9;
+    let away = |m: &Model, _: usize, _: usize, eb: usize| m.mesh.bodies[0].axis.element_span(eb).0 >= 0.0375 - 1e-9;
     for (m, mesh) in [(0, "1x2L9_12B4"), (1, "2x4L9_24B4")] {
-        let rows = effectivities(&runs[m], &runs[2], &|_, _, _| true);
+        let rows = effectivities(&runs[m], &runs[2], &|_, _, _, _| true);
         let whole = report("step_error.epp", &format!("{mesh}.whole"), &rows, "in [0.5, 2] (issue 49)")[0];
         let rows = effectivities(&runs[m], &runs[2], &away);
         let away = report("step_error.epp", mesh, &rows, "in [0.5, 2] (issue 49), without the root's first 37.5 mm")[0];
@@ -234,7 +248,7 @@ fn the_postbuckled_column_step_is_estimated() {
     let counts = [("to = 0.01, ", 1), ("to = 0.0125, ", 1), ("to = 1.0, ", 20)];
     let runs: Vec<_> = [1, 2, 4].iter().map(|&k| solve(&refined(&text, k, &counts))).collect();
     for (m, mesh) in [(0, "1L9_20B4"), (1, "2x2L9_40B4")] {
-        let rows = effectivities(&runs[m], &runs[2], &|_, _, _| true);
+        let rows = effectivities(&runs[m], &runs[2], &|_, _, _, _| true);
         let eff = report("step_error.column", mesh, &rows, "in [0.5, 2] (issue 49)")[0];
         assert!((0.5..=2.0).contains(&eff), "{mesh}: effectivity {eff}");
     }
@@ -257,14 +271,130 @@ fn the_postbuckled_column_step_is_estimated() {
 fn the_block_s_indentation_test_steps_are_estimated() {
     let mesh = |k: usize, m: usize| block_refined(&example("block_indentation_unload.toml"), k, m);
     let (coarse, fine) = (solve(&mesh(1, 1)), solve(&mesh(2, 3)));
-    let away = |m: &Model, es: usize, _: usize| !touches_punch_edge(m, es);
+    let away = |m: &Model, _: usize, es: usize, _: usize| !touches_punch_edge(m, es);
     let check = "in [0.5, 2] (issue 49)";
     let rows = effectivities(&coarse, &fine, &away);
     let away = report("step_error.block_unload", "18x6L9_1B4", &rows, &format!("{check}, without the punch edges"));
-    let rows = effectivities(&coarse, &fine, &|_, _, _| true);
+    let rows = effectivities(&coarse, &fine, &|_, _, _, _| true);
     let whole = report("step_error.block_unload", "18x6L9_1B4.whole", &rows, check);
     assert_eq!(away.len(), 2, "the load and unload step ends");
     for (k, eff) in away.iter().chain(&whole).enumerate() {
         assert!((0.5..=2.0).contains(eff), "state {k}: effectivity {eff}");
     }
+}
+
+/// The tube's quarter (`bending_tube_20L9_quarter.toml`: the §4.2 tube,
+/// 10 L9 × 11 B4, elastoplastic, one step of 15 increments pressing the
+/// roller 0.75 mm) with every division `k` times finer: `through = k`
+/// elements through the wall and `4 k` along each side (`around = 20` is
+/// `through = 1`, `along_x = along_z = 4`), every axis segment's count
+/// times `k`.
+fn tube_refined(text: &str, k: usize) -> String {
+    let section = format!("through = {k}, along_x = {}, along_z = {} }}", 4 * k, 4 * k);
+    assert!(text.contains("thickness = 0.0015, around = 20 }"));
+    let counts = [("to = 0.025, ", 2), ("to = 0.125, ", 9), ("to = 0.225, ", 9), ("to = 0.25, ", 2)];
+    refined(&text.replace("around = 20 }", &section), k, &counts)
+}
+
+const TUBE: &str = "bending_tube_20L9_quarter.toml";
+
+/// The stress of the tube's quarter refined twice (`tube_refined(…, 4)`:
+/// 160 L9 × 44 B4, 290,871 DOF) at each Gauss point of the shipped quarter,
+/// after its one step: too long a run for CI (about half an hour), stored
+/// by `the_tube_s_twice_refined_stresses_are_remade`.
+const TUBE_STORED: &str = "tests/data/bending_tube_20L9_quarter_refined_twice.csv";
+
+fn stored_path(name: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join(name)
+}
+
+/// The stored reference stress at each Gauss point of `model` (file `name`,
+/// written by [`store`]), its points checked against the model's.
+fn stored(name: &str, model: &Model) -> Vec<[f64; 6]> {
+    let points = gauss_points(model);
+    let text = std::fs::read_to_string(stored_path(name)).unwrap();
+    let rows: Vec<Vec<f64>> = text
+        .lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with("element"))
+        .map(|l| l.split(',').map(|v| v.trim().parse().unwrap()).collect())
+        .collect();
+    assert_eq!(rows.len(), points.len(), "{name}: a stored stress at each Gauss point of the shipped mesh");
+    rows.iter()
+        .zip(&points)
+        .map(|(r, p)| {
+            assert_eq!(r[0] as usize, p.element);
+            assert!((0..3).all(|i| (r[1 + i] - p.position[i]).abs() < 1e-9), "{name}: not the shipped mesh's points");
+            std::array::from_fn(|i| r[4 + i])
+        })
+        .collect()
+}
+
+/// Writes the stress `fine` (of `fine_what`, `dof` DOF, the half `x ≥ x0`
+/// with `mirror = Some(x0)`) at each Gauss point of `model` to `name`,
+/// remade by the test `remade_by`.
+fn store(name: &str, model: &Model, fine: &(Model, Solution), mirror: Option<f64>, fine_what: &str, remade_by: &str) {
+    let points = gauss_points(model);
+    let stresses = stresses_at((&fine.0, &fine.1), &points, mirror);
+    let mut out = format!(
+        "# The stress (Pa, Voigt order xx yy zz xy xz yz) of {fine_what} ({} DOF) at the end of its\n\
+         # analysis, at each Gauss point of the shipped mesh (global element, x, y, z in m).\n\
+         # Remade by cargo test --release --test suite -- --ignored --exact step_error::{remade_by}\n\
+         element,x,y,z,s_xx,s_yy,s_zz,s_xy,s_xz,s_yz\n",
+        fine.0.n_dofs()
+    );
+    for (p, s) in points.iter().zip(&stresses) {
+        let v: Vec<String> = p.position.iter().chain(s).map(|x| format!("{x:.9e}")).collect();
+        out += &format!("{},{}\n", p.element, v.join(","));
+    }
+    std::fs::write(stored_path(name), out).unwrap();
+}
+
+/// The shipped tube quarter's step end against the stress of its mesh
+/// refined twice (stored: [`TUBE_STORED`]), over the whole quarter and
+/// without the beam elements touching a roller line (the support at
+/// y = 25 mm and the load at the symmetry plane y = 125 mm: node lines
+/// pressed by rigid cylinders, where the true error has no limit, as on
+/// the compact bar): within issue 49's `0.5`–`2` (measured 0.98 whole and
+/// 1.24 away, the estimate 29.8 % against a true 30.5 % over the quarter).
+/// Mutation: the yielding points' fitted strains returned from their
+/// converged state (`post::yielded`, no monotonic base) gives 1.69 and 2.22
+/// and fails; the yielded body's stresses recovered instead of its strains
+/// (`post::yielded::replace_recovery` returning at once: 0.81, 1.10) stay
+/// in the band, the tube's plastic zone being a few wall elements under the
+/// roller.
+#[test]
+fn the_tube_step_is_estimated() {
+    let coarse = solve(&example(TUBE));
+    let truth = error_against((&coarse.0, &coarse.1), &stored(TUBE_STORED, &coarse.0));
+    let away = |m: &Model, _: usize, _: usize, eb: usize| {
+        let (a, b) = m.mesh.bodies[0].axis.element_span(eb);
+        ![0.025, 0.125].iter().any(|&y| y > a - 1e-9 && y < b + 1e-9)
+    };
+    let whole = row("load", (&coarse.0, &coarse.1), &truth, &|_, _, _, _| true);
+    let check = "in [0.5, 2] (issue 49)";
+    let whole = report("step_error.tube", "10L9_11B4.whole", &[whole], check)[0];
+    let away = row("load", (&coarse.0, &coarse.1), &truth, &away);
+    let away = report("step_error.tube", "10L9_11B4", &[away], &format!("{check}, without the roller lines"))[0];
+    for (id, eff) in [("whole", whole), ("away", away)] {
+        assert!((0.5..=2.0).contains(&eff), "{id}: effectivity {eff}");
+    }
+}
+
+/// Re-makes [`TUBE_STORED`]: the tube's quarter refined twice, its stress
+/// sampled at each Gauss point of the shipped quarter (element by element,
+/// the example's `recovery`).
+#[test]
+#[ignore = "validate: references — the tube's quarter refined twice (290,871 DOF, about 30 min)"]
+fn the_tube_s_twice_refined_stresses_are_remade() {
+    let text = example(TUBE);
+    let fine = solve(&tube_refined(&text, 4));
+    let what = format!("examples/{TUBE} refined twice (tests/step_error.rs `tube_refined(…, 4)`)");
+    store(
+        TUBE_STORED,
+        &Model::parse(&text).unwrap(),
+        &fine,
+        None,
+        &what,
+        "the_tube_s_twice_refined_stresses_are_remade",
+    );
 }

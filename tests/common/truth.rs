@@ -12,32 +12,84 @@ pub fn complementary(s: &[f64; 6], e: f64, nu: f64) -> f64 {
     (normal + 2.0 * (1.0 + nu) * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])) / e
 }
 
-/// The true error of `coarse` per element in the energy norm squared,
-/// `∫ (σ_ref − σ_h)ᵀ C⁻¹ (σ_ref − σ_h)` with `σ_ref` the stress of `fine`
-/// at each Gauss point of `coarse` (J); one isotropic body.
-pub fn true_error((cm, cs): (&Model, &Solution), (fm, fs): (&Model, &Solution)) -> Vec<f64> {
-    assert_eq!(cm.mesh.bodies.len(), 1);
-    let view = fs.fields(fm);
-    let body = &cm.mesh.bodies[0];
-    let (cell, mat) = (&cm.cells[0], &cm.materials[body.material]);
-    assert!(mat.anisotropic.is_none());
-    let ngp = cell.gp_per_element();
-    let mut out = vec![0.0; body.n_elements()];
-    for (e, o) in out.iter_mut().enumerate() {
-        let (es, eb) = body.split_element(e);
-        for gb in 0..cell.axis.n_gp {
-            for gs in 0..cell.section.n_gp {
-                let [x, z] = cell.section.position[es * cell.section.n_gp + gs];
-                let y = cell.axis.position[eb * cell.axis.n_gp + gb];
-                let w = cell.section.weight[es * cell.section.n_gp + gs] * cell.axis.weight[eb * cell.axis.n_gp + gb];
-                let at = locate_in_model(&fm.mesh, Some(0), [x, y, z]);
-                let reference = view.sample_at(&at).expect("inside the fine mesh").stress;
-                let raw = cs.stresses[e * ngp + gb * cell.section.n_gp + gs];
-                *o += w * complementary(&std::array::from_fn(|k| reference[k] - raw[k]), mat.young, mat.poisson);
+/// A Gauss point of a model: its body, global element (the estimate's
+/// `element` index), position `[x, y, z]` and weight.
+pub struct GaussPoint {
+    pub body: usize,
+    pub element: usize,
+    pub position: [f64; 3],
+    pub weight: f64,
+}
+
+/// Every Gauss point of `model`, in the order of `Solution::stresses`
+/// (body by body, element-major, axis point by axis point).
+pub fn gauss_points(model: &Model) -> Vec<GaussPoint> {
+    let mut out = Vec::new();
+    let mut offset = 0;
+    for (b, body) in model.mesh.bodies.iter().enumerate() {
+        let cell = &model.cells[b];
+        let (ns, nb) = (cell.section.n_gp, cell.axis.n_gp);
+        for e in 0..body.n_elements() {
+            let (es, eb) = body.split_element(e);
+            for gb in 0..nb {
+                for gs in 0..ns {
+                    let [x, z] = cell.section.position[es * ns + gs];
+                    let y = cell.axis.position[eb * nb + gb];
+                    let weight = cell.section.weight[es * ns + gs] * cell.axis.weight[eb * nb + gb];
+                    out.push(GaussPoint { body: b, element: offset + e, position: [x, y, z], weight });
+                }
             }
         }
+        offset += body.n_elements();
     }
     out
+}
+
+/// The stress of `fine` at each of `points` (in the same body of `fine`).
+/// With `mirror = Some(x0)`, `fine` is the half `x ≥ x0` of a model
+/// symmetric about the plane `x = x0`: a point below it takes the stress
+/// at its mirror image, with σ_xy and σ_xz (Voigt 3 and 4) turned over.
+pub fn stresses_at((fm, fs): (&Model, &Solution), points: &[GaussPoint], mirror: Option<f64>) -> Vec<[f64; 6]> {
+    let view = fs.fields(fm);
+    points
+        .iter()
+        .map(|p| {
+            let [x, y, z] = p.position;
+            let flip = mirror.is_some_and(|x0| x < x0);
+            let at = if flip { [2.0 * mirror.unwrap() - x, y, z] } else { p.position };
+            let mut s =
+                view.sample_at(&locate_in_model(&fm.mesh, Some(p.body), at)).expect("inside the fine mesh").stress;
+            if flip {
+                s[3] = -s[3];
+                s[4] = -s[4];
+            }
+            s
+        })
+        .collect()
+}
+
+/// The error of `coarse` per element (global index) in the energy norm
+/// squared, `∫ (σ_ref − σ_h)ᵀ C⁻¹ (σ_ref − σ_h)` with `reference` the
+/// stress at each of its Gauss points ([`gauss_points`]' order) (J);
+/// isotropic bodies.
+pub fn error_against((cm, cs): (&Model, &Solution), reference: &[[f64; 6]]) -> Vec<f64> {
+    let points = gauss_points(cm);
+    assert_eq!(points.len(), reference.len(), "a reference stress at every Gauss point");
+    let mut out = vec![0.0; cm.mesh.bodies.iter().map(|b| b.n_elements()).sum()];
+    for (k, (p, r)) in points.iter().zip(reference).enumerate() {
+        let mat = &cm.materials[cm.mesh.bodies[p.body].material];
+        assert!(mat.anisotropic.is_none());
+        let raw = cs.stresses[k];
+        out[p.element] += p.weight * complementary(&std::array::from_fn(|i| r[i] - raw[i]), mat.young, mat.poisson);
+    }
+    out
+}
+
+/// The true error of `coarse` per element in the energy norm squared,
+/// [`error_against`] the stress of `fine` (the same bodies) at each Gauss
+/// point of `coarse` (J); isotropic bodies.
+pub fn true_error(coarse: (&Model, &Solution), fine: (&Model, &Solution)) -> Vec<f64> {
+    error_against(coarse, &stresses_at(fine, &gauss_points(coarse.0), None))
 }
 
 /// The paper's block (`text`: examples/block_indentation.toml or its

@@ -300,7 +300,7 @@ const TUBE: &str = "bending_tube_20L9_quarter.toml";
 
 /// The stress of the tube's quarter refined twice (`tube_refined(…, 4)`:
 /// 160 L9 × 44 B4, 290,871 DOF) at each Gauss point of the shipped quarter,
-/// after its one step: too long a run for CI (about half an hour), stored
+/// after its one step: too long a run for CI (about 20 minutes), stored
 /// by `the_tube_s_twice_refined_stresses_are_remade`.
 const TUBE_STORED: &str = "tests/data/bending_tube_20L9_quarter_refined_twice.csv";
 
@@ -349,6 +349,27 @@ fn store(name: &str, model: &Model, fine: &(Model, Solution), mirror: Option<f64
     std::fs::write(stored_path(name), out).unwrap();
 }
 
+/// The one step end of `coarse` whose true error per element is `truth`,
+/// over the whole model and over the elements `away` picks (away from its
+/// roller lines): reported as `<id>.<mesh>.whole.load.*` and
+/// `<id>.<mesh>.load.*`, both effectivities asserted in issue 49's band.
+fn in_band(
+    id: &str,
+    mesh: &str,
+    coarse: &(Model, Solution),
+    truth: &[f64],
+    away: &dyn Fn(&Model, usize, usize, usize) -> bool,
+) {
+    let check = "in [0.5, 2] (issue 49)";
+    let whole = row("load", (&coarse.0, &coarse.1), truth, &|_, _, _, _| true);
+    let whole = report(id, &format!("{mesh}.whole"), &[whole], check)[0];
+    let away = row("load", (&coarse.0, &coarse.1), truth, away);
+    let away = report(id, mesh, &[away], &format!("{check}, without the roller lines"))[0];
+    for (part, eff) in [("whole", whole), ("away", away)] {
+        assert!((0.5..=2.0).contains(&eff), "{id} {part}: effectivity {eff}");
+    }
+}
+
 /// The shipped tube quarter's step end against the stress of its mesh
 /// refined twice (stored: [`TUBE_STORED`]), over the whole quarter and
 /// without the beam elements touching a roller line (the support at
@@ -370,21 +391,14 @@ fn the_tube_step_is_estimated() {
         let (a, b) = m.mesh.bodies[0].axis.element_span(eb);
         ![0.025, 0.125].iter().any(|&y| y > a - 1e-9 && y < b + 1e-9)
     };
-    let whole = row("load", (&coarse.0, &coarse.1), &truth, &|_, _, _, _| true);
-    let check = "in [0.5, 2] (issue 49)";
-    let whole = report("step_error.tube", "10L9_11B4.whole", &[whole], check)[0];
-    let away = row("load", (&coarse.0, &coarse.1), &truth, &away);
-    let away = report("step_error.tube", "10L9_11B4", &[away], &format!("{check}, without the roller lines"))[0];
-    for (id, eff) in [("whole", whole), ("away", away)] {
-        assert!((0.5..=2.0).contains(&eff), "{id}: effectivity {eff}");
-    }
+    in_band("step_error.tube", "10L9_11B4", &coarse, &truth, &away);
 }
 
 /// Re-makes [`TUBE_STORED`]: the tube's quarter refined twice, its stress
 /// sampled at each Gauss point of the shipped quarter (element by element,
 /// the example's `recovery`).
 #[test]
-#[ignore = "validate: references — the tube's quarter refined twice (290,871 DOF, about 30 min)"]
+#[ignore = "validate: references — the tube's quarter refined twice (290,871 DOF, about 20 min)"]
 fn the_tube_s_twice_refined_stresses_are_remade() {
     let text = example(TUBE);
     let fine = solve(&tube_refined(&text, 4));
@@ -397,4 +411,80 @@ fn the_tube_s_twice_refined_stresses_are_remade() {
         &what,
         "the_tube_s_twice_refined_stresses_are_remade",
     );
+}
+
+/// The two cantilevers in contact (`cantilevers_contact.toml`: 4 × 4 L9 ×
+/// 10 B4 per beam, perfectly plastic, node-to-node contact between them,
+/// two rollers pressed 2.5 mm, 20 increments) with every division `k`
+/// times finer, cut by their plane of mirror symmetry x = 12.7 mm (the
+/// beams, the rollers and the contact are their own mirror images across
+/// it; `bench/cantilevers_half_20B4.toml` is that half with the axis
+/// doubled): the half `x ≥ 12.7` mm.
+fn cantilevers_refined_half(text: &str, k: usize) -> String {
+    let counts = [("to = 0.0254, ", 4), ("to = 0.0508, ", 4), ("to = 0.254, ", 10), ("to = 0.3302, ", 10)];
+    let plane = "\n[[symmetry]]\nname = \"symmetry_x\"\nplane = { x = 0.0127 }\nkeep = \"above\"\n";
+    refined(text, k, &counts) + plane
+}
+
+const CANTILEVERS: &str = "cantilevers_contact.toml";
+
+/// The stress of the cantilevers' half refined twice
+/// (`cantilevers_refined_half(…, 4)`: 16 × 16 L9 × 40 B4 per whole beam,
+/// 407,286 DOF) at each Gauss point of the shipped model, after its step
+/// (mirrored below x = 12.7 mm): stored by
+/// `the_cantilevers_twice_refined_stresses_are_remade`.
+const CANTILEVERS_STORED: &str = "tests/data/cantilevers_contact_refined_twice.csv";
+
+/// The shipped cantilevers' step end against the stress of their mesh
+/// refined twice (stored: [`CANTILEVERS_STORED`]), over both beams and
+/// without the upper beam's elements touching a roller line (y = 177.8 and
+/// 228.6 mm: node lines pressed by rigid cylinders): within issue 49's
+/// `0.5`–`2` (measured 0.71 both ways, the estimate 20.5 % against a true
+/// 28.2 % over both beams). Mutation: the yielding points' fitted strains
+/// returned from their converged state (`post::yielded`, no monotonic
+/// base) gives 1.94 and 2.16 and fails; the yielded bodies' stresses
+/// recovered instead of their strains (0.79, 0.81) stay in the band.
+#[test]
+fn the_cantilevers_step_is_estimated() {
+    let coarse = solve(&example(CANTILEVERS));
+    let truth = error_against((&coarse.0, &coarse.1), &stored(CANTILEVERS_STORED, &coarse.0));
+    let away = |m: &Model, b: usize, _: usize, eb: usize| {
+        let (a, c) = m.mesh.bodies[b].axis.element_span(eb);
+        b != 0 || ![0.1778, 0.2286].iter().any(|&y| y > a - 1e-9 && y < c + 1e-9)
+    };
+    in_band("step_error.cantilevers", "4x4L9_10B4", &coarse, &truth, &away);
+}
+
+/// Re-makes [`CANTILEVERS_STORED`]: the cantilevers' half refined twice,
+/// its stress sampled at each Gauss point of the shipped model (at the
+/// mirror image of those below x = 12.7 mm).
+#[test]
+#[ignore = "validate: references — the cantilevers' half refined twice (407,286 DOF, about 30 min)"]
+fn the_cantilevers_twice_refined_stresses_are_remade() {
+    let text = example(CANTILEVERS);
+    let fine = solve(&cantilevers_refined_half(&text, 4));
+    let what = format!(
+        "examples/{CANTILEVERS} refined twice, its half x ≥ 12.7 mm (tests/step_error.rs `cantilevers_refined_half(…, 4)`), mirrored below x = 12.7 mm"
+    );
+    let remade_by = "the_cantilevers_twice_refined_stresses_are_remade";
+    store(CANTILEVERS_STORED, &Model::parse(&text).unwrap(), &fine, Some(0.0127), &what, remade_by);
+}
+
+/// The mirrored half of the stored reference checked where it is exact:
+/// the cantilevers' half at the shipped divisions (`k = 1`), sampled at
+/// the Gauss points of the whole shipped model (those below x = 12.7 mm at
+/// their mirror images, σ_xy and σ_xz turned over), is the whole model's
+/// own stress there: its "true error" is nil (measured `1e-17` of the
+/// energy). Mutation: σ_xy and σ_xz not turned over gives `3.5e-2` and
+/// fails.
+#[test]
+fn the_mirrored_half_reproduces_the_whole_cantilevers() {
+    let text = example(CANTILEVERS);
+    let (whole, half) = (solve(&text), solve(&cantilevers_refined_half(&text, 1)));
+    let points = gauss_points(&whole.0);
+    let error: f64 =
+        error_against((&whole.0, &whole.1), &stresses_at((&half.0, &half.1), &points, Some(0.0127))).iter().sum();
+    let energy = whole.1.error_estimate.as_ref().unwrap().energy.powi(2);
+    eprintln!("mirrored half against the whole: {:.3e} of the energy", error / energy);
+    assert!(error < 1e-8 * energy, "{} of the energy", error / energy);
 }

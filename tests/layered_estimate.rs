@@ -75,12 +75,25 @@ fn model(through: usize, along: usize) -> String {
 fn effectivity(through: usize, along: usize) -> (f64, f64) {
     let model = Model::parse(&model(through, along)).unwrap();
     let solution = cufem::analysis::run(&model, &Default::default(), &mut Silent).unwrap();
-    errors(&model, &solution)
+    errors(&model, &solution, 0.04)
 }
 
-/// `(η, ‖e‖)` of `solution` on `model` (a mesh of the example).
-fn errors(model: &Model, solution: &cufem::analysis::Solution) -> (f64, f64) {
-    let (h, span) = (0.01, 0.04);
+/// `(η, ‖e‖)` of `solution` on `model` (a mesh of the example), with
+/// Galerkin orthogonality, `‖e‖² = ‖σ‖² − ‖σ_h‖²` (a conforming model of
+/// linear elasticity), checking the integration of [`parts`] and the
+/// compliance written here against the solver's own energy
+/// (`estimate.energy`) within 2 %.
+fn errors(model: &Model, solution: &cufem::analysis::Solution, span: f64) -> (f64, f64) {
+    let (eta, error, orthogonal) = parts(model, solution, span);
+    assert!((orthogonal / error - 1.0).abs() < 0.02, "‖e‖ {error:e} against √(E − E_h) {orthogonal:e}");
+    (eta, error)
+}
+
+/// `(η, ‖e‖, √(‖σ‖² − ‖σ_h‖²))` of `solution` on `model` (a mesh of
+/// examples/pagano_s4.toml or pagano_s50.toml: `span` 0.04 or 0.5 m), the
+/// true error integrated at the model's Gauss points with Pagano's stress.
+fn parts(model: &Model, solution: &cufem::analysis::Solution, span: f64) -> (f64, f64, f64) {
+    let h = 0.01;
     let exact = Pagano::new(&[ply(h / 3.0, 0.0), ply(h / 3.0, 90.0), ply(h / 3.0, 0.0)], span, 1e5);
     let body = &model.mesh.bodies[0];
     let cell = &model.cells[0];
@@ -107,16 +120,7 @@ fn errors(model: &Model, solution: &cufem::analysis::Solution) -> (f64, f64) {
         }
     }
     let estimate = solution.error_estimate.as_ref().expect("a layered body's static solution is estimated");
-    // Galerkin orthogonality, ‖e‖² = ‖σ‖² − ‖σ_h‖² (a conforming model of
-    // linear elasticity), checks the integration above and the compliance
-    // written here against the solver's own energy (`estimate.energy`)
-    let orthogonal = (exact2 - estimate.energy.powi(2)).sqrt();
-    assert!(
-        (orthogonal / error2.sqrt() - 1.0).abs() < 0.02,
-        "‖e‖ {:e} against √(E − E_h) {orthogonal:e}",
-        error2.sqrt()
-    );
-    (estimate.error, error2.sqrt())
+    (estimate.error, error2.sqrt(), (exact2 - estimate.energy.powi(2)).sqrt())
 }
 
 /// One L9 through each ply (the usual laminate mesh) with 2 and 8 B4, and
@@ -172,7 +176,7 @@ fn adapt_refines_a_laminate_through_its_plies() {
         cycles.push((
             m.n_dofs(),
             relative,
-            errors(m, s).1,
+            errors(m, s, 0.04).1,
             [ply(1), ply(2), ply(3)],
             m.mesh.bodies[0].axis.n_elements(),
         ))
@@ -190,7 +194,7 @@ fn adapt_refines_a_laminate_through_its_plies() {
     // against uniform refinement to the same estimate: 4 L9 per ply × 6 B4
     let uniform = Model::parse(&model(4, 6)).unwrap();
     let solved = cufem::analysis::run(&uniform, &Default::default(), &mut Silent).unwrap();
-    let (_, uniform_error) = errors(&uniform, &solved);
+    let (_, uniform_error) = errors(&uniform, &solved, 0.04);
     common::figure("layered_estimate.adapt.dof_over_uniform", dof as f64 / uniform.n_dofs() as f64, "", "below 1");
     common::figure("layered_estimate.adapt.error_over_uniform", error / uniform_error, "", "at most 1.1");
     assert!(
@@ -198,4 +202,36 @@ fn adapt_refines_a_laminate_through_its_plies() {
         "{dof} {} {error:e} {uniform_error:e}",
         uniform.n_dofs()
     );
+}
+
+/// The shipped meshes (examples/pagano_s4.toml and pagano_s50.toml: 4 L16
+/// per ply × 8 B4) against Pagano's exact stress: the effectivity within
+/// issue 49's `0.5`–`2` (measured 1.50 at S = 4 and 1.00 at S = 50, true
+/// relative errors `0.03 %` and `0.13 %`). Galerkin orthogonality checks the
+/// integration at S = 4 (within 2 %, as on the coarser meshes above); at
+/// S = 50, where ‖σ_h‖² equals ‖σ‖² to 1.7 parts in a million, the
+/// difference of the two energies is 3 % above ‖e‖ (the oracle's and the
+/// quadrature's last digits, amplified `6·10⁵` times by the cancellation)
+/// and is not asserted. Mutation: the section patches across the plies
+/// (`post::spr`, every element of one zone: the jumps of σ_yy counted as
+/// error) gives 490 at S = 4 and fails.
+#[test]
+fn the_shipped_pagano_meshes_are_estimated() {
+    for (file, span) in [("pagano_s4", 0.04), ("pagano_s50", 0.5)] {
+        let path = format!("{}/examples/{file}.toml", env!("CARGO_MANIFEST_DIR"));
+        let model = Model::parse(&std::fs::read_to_string(path).unwrap()).unwrap();
+        let solution = cufem::analysis::run(&model, &Default::default(), &mut Silent).unwrap();
+        let (eta, error) = if file == "pagano_s4" {
+            errors(&model, &solution, span)
+        } else {
+            let (eta, error, _) = parts(&model, &solution, span);
+            (eta, error)
+        };
+        let energy = solution.error_estimate.as_ref().unwrap().energy;
+        let id = format!("layered_estimate.{file}.shipped");
+        let relative = error / (error * error + energy * energy).sqrt();
+        common::figure(&format!("{id}.true"), 100.0 * relative, "%", "reported: against Pagano's exact stress");
+        common::figure(&format!("{id}.effectivity"), eta / error, "", "in [0.5, 2] (issue 49)");
+        assert!((0.5..=2.0).contains(&(eta / error)), "{file}: η = {eta:e}, ‖e‖ = {error:e}");
+    }
 }

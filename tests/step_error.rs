@@ -283,17 +283,18 @@ fn the_block_s_indentation_test_steps_are_estimated() {
     }
 }
 
-/// The tube's quarter (`bending_tube_20L9_quarter.toml`: the §4.2 tube,
-/// 10 L9 × 11 B4, elastoplastic, one step of 15 increments pressing the
-/// roller 0.75 mm) with every division `k` times finer: `through = k`
-/// elements through the wall and `4 k` along each side (`around = 20` is
-/// `through = 1`, `along_x = along_z = 4`), every axis segment's count
-/// times `k`.
-fn tube_refined(text: &str, k: usize) -> String {
-    let section = format!("through = {k}, along_x = {}, along_z = {} }}", 4 * k, 4 * k);
-    assert!(text.contains("thickness = 0.0015, around = 20 }"));
+/// A tube's quarter (`bending_tube_20L9_quarter.toml` or the paper's
+/// `bending_tube_28L9_quarter.toml`: the §4.2 tube, `around = 4 + 4 side`
+/// L9 × 11 B4, elastoplastic, one step of 15 increments pressing the roller
+/// 0.75 mm) with every division `k` times finer: `through = k` elements
+/// through the wall and `side k` along each side (`around` is `through =
+/// 1`, `along_x = along_z = side`), every axis segment's count times `k`.
+fn tube_refined(text: &str, side: usize, k: usize) -> String {
+    let around = format!("around = {} }}", 4 + 4 * side);
+    let section = format!("through = {k}, along_x = {}, along_z = {} }}", side * k, side * k);
+    assert!(text.contains(&format!("thickness = 0.0015, {around}")));
     let counts = [("to = 0.025, ", 2), ("to = 0.125, ", 9), ("to = 0.225, ", 9), ("to = 0.25, ", 2)];
-    refined(&text.replace("around = 20 }", &section), k, &counts)
+    refined(&text.replace(&around, &section), k, &counts)
 }
 
 /// A shipped example whose mesh refined twice (every division four times
@@ -450,9 +451,9 @@ fn compact16_refined(text: &str, k: usize) -> String {
 const TUBE: Reference = Reference {
     example: "bending_tube_20L9_quarter.toml",
     file: "bending_tube_20L9_quarter_refined_twice.csv",
-    refined: |text| tube_refined(text, 4),
+    refined: |text| tube_refined(text, 4, 4),
     mirror: None,
-    what: "refined twice (tests/step_error.rs `tube_refined(…, 4)`)",
+    what: "refined twice (tests/step_error.rs `tube_refined(…, 4, 4)`)",
     remade_by: "the_tube_s_twice_refined_stresses_are_remade",
 };
 
@@ -537,4 +538,33 @@ fn the_compact_bar_s_16l9_step_is_estimated() {
 #[ignore = "validate: references — the compact bar's 16 L9 quarter refined twice (102,663 DOF, about 30 s)"]
 fn the_compact_bar_s_twice_refined_stresses_are_remade() {
     COMPACT16.remake();
+}
+
+const TUBE28: Reference = Reference {
+    example: "bending_tube_28L9_quarter.toml",
+    file: "bending_tube_28L9_quarter_refined_twice.csv",
+    refined: |text| tube_refined(text, 6, 4),
+    mirror: None,
+    what: "refined twice (tests/step_error.rs `tube_refined(…, 6, 4)`)",
+    remade_by: "the_paper_s_tube_s_twice_refined_stresses_are_remade",
+};
+
+/// The paper's tube (its shipped quarter on 28 L9) against the stress of
+/// its quarter refined twice (224 L9 × 44 B4, 405,783 DOF, about 35 min:
+/// stored), over the whole quarter and without the beam elements touching a
+/// roller line, as the 20 L9 tube: within issue 49's `0.5`–`2` (measured
+/// 0.95 and 1.16, the estimate 27.8 % against a true 29.0 % over the
+/// quarter). Mutation: the yielding points' fits returned from their
+/// converged state (`post::yielded`, no monotonic base) gives 1.65 and
+/// 1.95, inside the band: not caught here (the 20 L9 tube's test catches
+/// it, 2.22).
+#[test]
+fn the_paper_s_tube_step_is_estimated() {
+    TUBE28.estimated("step_error.tube28", "14L9_11B4", (0, &[0.025, 0.125]));
+}
+
+#[test]
+#[ignore = "validate: references — the paper's tube quarter refined twice (405,783 DOF, about 35 min)"]
+fn the_paper_s_tube_s_twice_refined_stresses_are_remade() {
+    TUBE28.remake();
 }

@@ -20,6 +20,11 @@
 
 #[path = "common/pagano.rs"]
 mod pagano;
+// only its Gauss points: the rest of the module (isotropic truths) is unused here
+#[path = "common/truth.rs"]
+#[allow(dead_code)]
+mod truth;
+use truth::gauss_points;
 
 mod common;
 
@@ -95,29 +100,17 @@ fn errors(model: &Model, solution: &cufem::analysis::Solution, span: f64) -> (f6
 fn parts(model: &Model, solution: &cufem::analysis::Solution, span: f64) -> (f64, f64, f64) {
     let h = 0.01;
     let exact = Pagano::new(&[ply(h / 3.0, 0.0), ply(h / 3.0, 90.0), ply(h / 3.0, 0.0)], span, 1e5);
-    let body = &model.mesh.bodies[0];
-    let cell = &model.cells[0];
-    let ngp = cell.gp_per_element();
-    let (sn, an) = (cell.section.n_gp, cell.axis.n_gp);
     // ‖e‖² and ‖σ‖² of the exact solution at the same points
     let (mut error2, mut exact2) = (0.0, 0.0);
-    for e in 0..body.n_elements() {
-        let (es, eb) = body.split_element(e);
-        for gb in 0..an {
-            for gs in 0..sn {
-                let [x, z] = cell.section.position[es * sn + gs];
-                let y = cell.axis.position[eb * an + gb];
-                let w = cell.section.weight[es * sn + gs] * cell.axis.weight[eb * an + gb];
-                assert!(x.abs() <= 0.0025 && z.abs() < h / 2.0);
-                let k = exact.ply_at(z);
-                let [syy, szz, tyz] = exact.stress_in_ply(k, y, z);
-                let sxx = exact.sigma_xx_in_ply(k, y, z);
-                let raw = solution.stresses[e * ngp + gb * sn + gs];
-                let d = [sxx - raw[0], syy - raw[1], szz - raw[2], -raw[3], -raw[4], tyz - raw[5]];
-                error2 += w * complementary(&d, if k == 1 { 90.0 } else { 0.0 });
-                exact2 += w * complementary(&[sxx, syy, szz, 0.0, 0.0, tyz], if k == 1 { 90.0 } else { 0.0 });
-            }
-        }
+    for (p, raw) in gauss_points(model).iter().zip(&solution.stresses) {
+        let ([x, y, z], w) = (p.position, p.weight);
+        assert!(x.abs() <= 0.0025 && z.abs() < h / 2.0);
+        let k = exact.ply_at(z);
+        let [syy, szz, tyz] = exact.stress_in_ply(k, y, z);
+        let sxx = exact.sigma_xx_in_ply(k, y, z);
+        let d = [sxx - raw[0], syy - raw[1], szz - raw[2], -raw[3], -raw[4], tyz - raw[5]];
+        error2 += w * complementary(&d, if k == 1 { 90.0 } else { 0.0 });
+        exact2 += w * complementary(&[sxx, syy, szz, 0.0, 0.0, tyz], if k == 1 { 90.0 } else { 0.0 });
     }
     let estimate = solution.error_estimate.as_ref().expect("a layered body's static solution is estimated");
     (estimate.error, error2.sqrt(), (exact2 - estimate.energy.powi(2)).sqrt())

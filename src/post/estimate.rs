@@ -192,7 +192,7 @@ pub(crate) fn of_state(
     (stresses, states): (&[Voigt], &[crate::materials::PointState]),
     gp_offsets: &[usize],
 ) -> ErrorEstimate {
-    let (mut recovered, mut along) = super::spr::recover_stages(mesh, cells, stresses, gp_offsets);
+    let (mut recovered, mut along) = super::spr::recover_stages(mesh, cells, (stresses, 1.0), gp_offsets);
     // a yielded body's strains are recovered instead (`super::yielded`)
     super::yielded::replace_recovery(
         mesh,

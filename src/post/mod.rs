@@ -45,6 +45,7 @@
 pub mod estimate;
 pub mod failure;
 pub mod mode_error;
+mod patch_map;
 pub mod recovery;
 pub mod spr;
 mod yielded;

@@ -16,7 +16,9 @@ use cufem::setup::Model;
 mod common;
 #[path = "common/truth.rs"]
 mod truth;
-use truth::{block_refined, error_against, gauss_points, stresses_at, touches_punch_edge, true_error};
+use truth::{
+    Plane, block_refined, error_against, gauss_points, image, stresses_at, touches_any, touches_punch_edge, true_error,
+};
 
 fn example(name: &str) -> String {
     std::fs::read_to_string(std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name)).unwrap()
@@ -52,11 +54,10 @@ fn states(model: &Model, s: &Solution) -> Vec<(String, Solution)> {
 /// (section, beam) elements summed.
 type Row = (String, f64, f64, f64, f64);
 
-fn effectivities(
-    coarse: &(Model, Solution),
-    fine: &(Model, Solution),
-    keep: &dyn Fn(&Model, usize, usize, usize) -> bool,
-) -> Vec<Row> {
+/// Picks elements by body, section element and beam element.
+type Pick<'a> = &'a dyn Fn(&Model, usize, usize, usize) -> bool;
+
+fn effectivities(coarse: &(Model, Solution), fine: &(Model, Solution), keep: Pick<'_>) -> Vec<Row> {
     let (c, f) = (states(&coarse.0, &coarse.1), states(&fine.0, &fine.1));
     assert_eq!(c.len(), f.len(), "the same states");
     c.iter()
@@ -71,12 +72,7 @@ fn effectivities(
 /// The [`Row`] of one state `s` of `model` whose true error per element
 /// (global index) is `truth` (J), summed over the elements `keep` picks
 /// (by body, section element and beam element).
-fn row(
-    name: &str,
-    (model, s): (&Model, &Solution),
-    truth: &[f64],
-    keep: &dyn Fn(&Model, usize, usize, usize) -> bool,
-) -> Row {
+fn row(name: &str, (model, s): (&Model, &Solution), truth: &[f64], keep: Pick<'_>) -> Row {
     let est = s.error_estimate.as_ref().unwrap();
     let (mut eta, mut error, mut e) = (0.0, 0.0, 0);
     for (b, body) in model.mesh.bodies.iter().enumerate() {
@@ -154,10 +150,12 @@ fn the_elastica_steps_are_estimated() {
 /// step end, over the whole quarter and without the beam elements touching
 /// a roller line (where the true error has no limit, `tests/estimator.rs`):
 /// within issue 49's `0.5`–`2` on both meshes (measured 1.10 and 0.89 on
-/// the shipped mesh, 1.02 and 1.35 on the refined one). Mutation: the
-/// yielded body's stresses recovered instead of its strains
-/// (`post::yielded::replace_recovery` returning at once) gives 3.65, 2.99,
-/// 2.74 and 3.76 and fails.
+/// the shipped mesh, 1.02 and 1.35 on the refined one); and the whole
+/// shipped bar (`bending_compact_4L9.toml`, 2 × 2 L9 × 10 B4) against the
+/// finest quarter mirrored, without its three roller lines (1.13 and
+/// 0.90). Mutation: the yielded body's stresses recovered instead of its
+/// strains (`post::yielded::replace_recovery` returning at once) gives
+/// 3.65, 2.99, 2.74 and 3.76 and fails.
 #[test]
 fn the_compact_bar_step_is_estimated() {
     let text = example("bending_compact_4L9_quarter.toml");
@@ -180,6 +178,13 @@ fn the_compact_bar_step_is_estimated() {
             assert!((0.5..=2.0).contains(&eff), "{mesh} {id}: effectivity {eff}");
         }
     }
+    // the whole bar (`bending_compact_4L9.toml`, 2 × 2 L9 × 10 B4, the
+    // quarter's mirror images) against the quarter refined twice, mirrored
+    // across both planes (`stresses_at`): measured 1.13 whole, 0.90 away
+    let whole = solve(&example("bending_compact_4L9.toml"));
+    let reference = stresses_at((&runs[2].0, &runs[2].1), &gauss_points(&whole.0), &COMPACT_QUARTER);
+    let truth = error_against((&whole.0, &whole.1), &reference);
+    in_band(("step_error.bar_whole", "2x2L9_10B4"), &whole, &truth, (&off_lines(0, WHOLE_ROLLERS), "the roller lines"));
 }
 
 /// The rod against the wall (`rod_impact.toml`, transient, frames every
@@ -306,11 +311,11 @@ struct Reference {
     example: &'static str,
     /// The stored stresses.
     file: &'static str,
-    /// The example's text refined twice: the whole model, or with
-    /// `mirror = Some(x0)` its half `x ≥ x0` (sampled at the mirror images
-    /// below, [`stresses_at`]).
+    /// The example's text refined twice: the whole model, or its part on
+    /// the kept side of the planes `mirror` (sampled at the mirror images
+    /// beyond them, [`stresses_at`]).
     refined: fn(&str) -> String,
-    mirror: Option<f64>,
+    mirror: &'static [Plane],
     /// How `refined` makes the model, for the file's header.
     what: &'static str,
     /// The test that re-makes the file.
@@ -322,26 +327,32 @@ impl Reference {
         std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(self.file)
     }
 
+    /// The stored rows: global element, Gauss point `[x, y, z]` and stress.
+    fn rows(&self) -> Vec<(usize, [f64; 3], [f64; 6])> {
+        let text = std::fs::read_to_string(self.path()).unwrap();
+        text.lines()
+            .filter(|l| !l.starts_with('#') && !l.starts_with("element"))
+            .map(|l| {
+                let r: Vec<f64> = l.split(',').map(|v| v.trim().parse().unwrap()).collect();
+                (r[0] as usize, std::array::from_fn(|i| r[1 + i]), std::array::from_fn(|i| r[4 + i]))
+            })
+            .collect()
+    }
+
     /// The stored reference stress at each Gauss point of `model`, its
     /// points checked against the model's.
     fn stresses(&self, model: &Model) -> Vec<[f64; 6]> {
-        let (points, name) = (gauss_points(model), self.file);
-        let text = std::fs::read_to_string(self.path()).unwrap();
-        let rows: Vec<Vec<f64>> = text
-            .lines()
-            .filter(|l| !l.starts_with('#') && !l.starts_with("element"))
-            .map(|l| l.split(',').map(|v| v.trim().parse().unwrap()).collect())
-            .collect();
+        let (points, rows, name) = (gauss_points(model), self.rows(), self.file);
         assert_eq!(rows.len(), points.len(), "{name}: a stored stress at each Gauss point of the shipped mesh");
         rows.iter()
             .zip(&points)
-            .map(|(r, p)| {
-                assert_eq!(r[0] as usize, p.element);
+            .map(|(&(element, position, stress), p)| {
+                assert_eq!(element, p.element);
                 assert!(
-                    (0..3).all(|i| (r[1 + i] - p.position[i]).abs() < 1e-9),
+                    (0..3).all(|i| (position[i] - p.position[i]).abs() < 1e-9),
                     "{name}: not the shipped mesh's points"
                 );
-                std::array::from_fn(|i| r[4 + i])
+                stress
             })
             .collect()
     }
@@ -350,9 +361,19 @@ impl Reference {
     /// whole model and without `body`'s elements touching the roller lines
     /// `y ∈ rollers` ([`in_band`], reported as `<id>.<mesh>.…`).
     fn estimated(&self, id: &str, mesh: &str, (body, rollers): (usize, &'static [f64])) {
-        let coarse = solve(&example(self.example));
-        let truth = error_against((&coarse.0, &coarse.1), &self.stresses(&coarse.0));
-        in_band(id, mesh, &coarse, &truth, &off_lines(body, rollers));
+        self.estimated_whole(self.example, &[], (id, mesh), (&off_lines(body, rollers), "the roller lines"));
+    }
+
+    /// The model `example` (of which this reference's example is the part
+    /// on the kept side of `planes`, none: the example itself) against the
+    /// stored stress at the images of its Gauss points ([`mirrored`]), over
+    /// the whole model and over the elements `away` picks ([`in_band`]).
+    fn estimated_whole(&self, example: &str, planes: &[Plane], (id, mesh): (&str, &str), away: (Pick<'_>, &str)) {
+        let coarse = solve(&self::example(example));
+        let reference =
+            if planes.is_empty() { self.stresses(&coarse.0) } else { mirrored(self.rows(), &coarse.0, planes) };
+        let truth = error_against((&coarse.0, &coarse.1), &reference);
+        in_band((id, mesh), &coarse, &truth, away);
     }
 
     /// Runs the refined model and writes the file.
@@ -379,6 +400,28 @@ impl Reference {
     }
 }
 
+/// The stress at each Gauss point of `whole` from `rows` (global element,
+/// Gauss point, stress) given at the Gauss points of its part on the kept
+/// side of `planes` (`whole`'s mesh that part's mirror images): each point
+/// takes the stress of the row at its [`image`], which must be there, its
+/// shears turned over.
+fn mirrored(mut rows: Vec<(usize, [f64; 3], [f64; 6])>, whole: &Model, planes: &[Plane]) -> Vec<[f64; 6]> {
+    rows.sort_by(|a, b| a.1[0].total_cmp(&b.1[0]));
+    gauss_points(whole)
+        .iter()
+        .map(|p| {
+            let (at, sign) = image(p.position, planes);
+            let from = rows.partition_point(|r| r.1[0] < at[0] - 1e-9);
+            let r = rows[from..]
+                .iter()
+                .take_while(|r| r.1[0] < at[0] + 1e-9)
+                .find(|r| (0..3).all(|i| (r.1[i] - at[i]).abs() < 1e-9))
+                .unwrap_or_else(|| panic!("no point of the part at {at:?}, the image of {:?}", p.position));
+            std::array::from_fn(|i| sign[i] * r.2[i])
+        })
+        .collect()
+}
+
 /// Picks the elements of every body but `body`, and those of `body` whose
 /// axis span does not touch any of the lines `y ∈ ys` (roller lines).
 fn off_lines(body: usize, ys: &'static [f64]) -> impl Fn(&Model, usize, usize, usize) -> bool {
@@ -389,21 +432,16 @@ fn off_lines(body: usize, ys: &'static [f64]) -> impl Fn(&Model, usize, usize, u
 }
 
 /// The one step end of `coarse` whose true error per element is `truth`,
-/// over the whole model and over the elements `away` picks (away from its
-/// roller lines): reported as `<id>.<mesh>.whole.load.*` and
-/// `<id>.<mesh>.load.*`, both effectivities asserted in issue 49's band.
-fn in_band(
-    id: &str,
-    mesh: &str,
-    coarse: &(Model, Solution),
-    truth: &[f64],
-    away: &dyn Fn(&Model, usize, usize, usize) -> bool,
-) {
+/// over the whole model and over the elements `away` picks (away from the
+/// lines `lines` names, its roller lines by default): reported as
+/// `<id>.<mesh>.whole.load.*` and `<id>.<mesh>.load.*`, both effectivities
+/// asserted in issue 49's band.
+fn in_band((id, mesh): (&str, &str), coarse: &(Model, Solution), truth: &[f64], (away, lines): (Pick<'_>, &str)) {
     let check = "in [0.5, 2] (issue 49)";
     let whole = row("load", (&coarse.0, &coarse.1), truth, &|_, _, _, _| true);
     let whole = report(id, &format!("{mesh}.whole"), &[whole], check)[0];
     let away = row("load", (&coarse.0, &coarse.1), truth, away);
-    let away = report(id, mesh, &[away], &format!("{check}, without the roller lines"))[0];
+    let away = report(id, mesh, &[away], &format!("{check}, without {lines}"))[0];
     for (part, eff) in [("whole", whole), ("away", away)] {
         assert!((0.5..=2.0).contains(&eff), "{id} {part}: effectivity {eff}");
     }
@@ -435,14 +473,14 @@ fn the_mirrored_half_reproduces_the_whole_cantilevers() {
     let (whole, half) = (solve(&text), solve(&cantilevers_refined_half(&text, 1)));
     let points = gauss_points(&whole.0);
     let error: f64 =
-        error_against((&whole.0, &whole.1), &stresses_at((&half.0, &half.1), &points, Some(0.0127))).iter().sum();
+        error_against((&whole.0, &whole.1), &stresses_at((&half.0, &half.1), &points, CANTILEVERS.mirror)).iter().sum();
     let energy = whole.1.error_estimate.as_ref().unwrap().energy.powi(2);
     eprintln!("mirrored half against the whole: {:.3e} of the energy", error / energy);
     assert!(error < 1e-8 * energy, "{} of the energy", error / energy);
 }
 
 /// The paper's compact bar on its 16 L9 (`bending_compact_16L9_quarter.toml`:
-/// the quarter, 2 × 4 L9 × 10 B4, elastoplastic, the roller pressed
+/// the quarter, 2 × 4 L9 × 5 B4, elastoplastic, the roller pressed
 /// 0.75 mm in 15 increments) with every division `k` times finer.
 fn compact16_refined(text: &str, k: usize) -> String {
     refined(text, k, &[("to = 0.01, ", 4), ("to = 0.25, ", 10)])
@@ -452,7 +490,7 @@ const TUBE: Reference = Reference {
     example: "bending_tube_20L9_quarter.toml",
     file: "bending_tube_20L9_quarter_refined_twice.csv",
     refined: |text| tube_refined(text, 4, 4),
-    mirror: None,
+    mirror: &[],
     what: "refined twice (tests/step_error.rs `tube_refined(…, 4, 4)`)",
     remade_by: "the_tube_s_twice_refined_stresses_are_remade",
 };
@@ -485,7 +523,7 @@ const CANTILEVERS: Reference = Reference {
     example: "cantilevers_contact.toml",
     file: "cantilevers_contact_refined_twice.csv",
     refined: |text| cantilevers_refined_half(text, 4),
-    mirror: Some(0.0127),
+    mirror: &[Plane { axis: 0, at: 0.0127, above: true }],
     what: "refined twice, its half x ≥ 12.7 mm (tests/step_error.rs `cantilevers_refined_half(…, 4)`), mirrored below x = 12.7 mm",
     remade_by: "the_cantilevers_twice_refined_stresses_are_remade",
 };
@@ -515,13 +553,13 @@ const COMPACT16: Reference = Reference {
     example: "bending_compact_16L9_quarter.toml",
     file: "bending_compact_16L9_quarter_refined_twice.csv",
     refined: |text| compact16_refined(text, 4),
-    mirror: None,
+    mirror: &[],
     what: "refined twice (tests/step_error.rs `compact16_refined(…, 4)`)",
     remade_by: "the_compact_bar_s_twice_refined_stresses_are_remade",
 };
 
 /// The shipped compact bar's 16 L9 quarter's step end against the stress
-/// of its mesh refined twice (8 × 16 L9 × 40 B4, 102,663 DOF: stored), over
+/// of its mesh refined twice (8 × 16 L9 × 20 B4, 102,663 DOF: stored), over
 /// the whole quarter and without the beam elements touching a roller line:
 /// within issue 49's `0.5`–`2` (measured 1.01 and 0.86, the estimate 3.63 %
 /// against a true 3.60 % over the quarter). Mutation: the yielded body's
@@ -531,7 +569,7 @@ const COMPACT16: Reference = Reference {
 /// state (1.30, 0.87) stay in the band.
 #[test]
 fn the_compact_bar_s_16l9_step_is_estimated() {
-    COMPACT16.estimated("step_error.compact16", "2x4L9_10B4", (0, &[0.025, 0.125]));
+    COMPACT16.estimated("step_error.compact16", "2x4L9_5B4", (0, &[0.025, 0.125]));
 }
 
 #[test]
@@ -544,7 +582,7 @@ const TUBE28: Reference = Reference {
     example: "bending_tube_28L9_quarter.toml",
     file: "bending_tube_28L9_quarter_refined_twice.csv",
     refined: |text| tube_refined(text, 6, 4),
-    mirror: None,
+    mirror: &[],
     what: "refined twice (tests/step_error.rs `tube_refined(…, 6, 4)`)",
     remade_by: "the_paper_s_tube_s_twice_refined_stresses_are_remade",
 };
@@ -567,4 +605,199 @@ fn the_paper_s_tube_step_is_estimated() {
 #[ignore = "validate: references — the paper's tube quarter refined twice (405,783 DOF, about 35 min)"]
 fn the_paper_s_tube_s_twice_refined_stresses_are_remade() {
     TUBE28.remake();
+}
+
+/// The planes of the quarter models of the §4.2 bars (x = 5 mm, kept
+/// above; y = 125 mm, kept below) and tubes (x = 15 mm; y = 125 mm).
+const COMPACT_QUARTER: [Plane; 2] =
+    [Plane { axis: 0, at: 0.005, above: true }, Plane { axis: 1, at: 0.125, above: false }];
+const TUBE_QUARTER: [Plane; 2] =
+    [Plane { axis: 0, at: 0.015, above: true }, Plane { axis: 1, at: 0.125, above: false }];
+
+/// The roller lines of the whole §4.2 bars and tubes: the supports at
+/// y = 25 and 225 mm, the load at 125 mm.
+const WHOLE_ROLLERS: &[f64] = &[0.025, 0.125, 0.225];
+
+/// The whole shipped models against their quarters' stored references
+/// checked where it is exact: the 16 L9 bar's shipped quarter, its stress
+/// at its own Gauss points mirrored across both planes, is the whole
+/// shipped bar's own stress there (its "true error" measured `1.5e-18` of
+/// the energy; the quarter holds the whole to `1e-6` in tests/symmetry.rs).
+/// Mutation: the shears not turned over (`image` keeping the signs) gives
+/// `1.8e-2` and fails.
+#[test]
+fn the_mirrored_quarter_reproduces_the_whole_bar() {
+    let (quarter, whole) = (solve(&example(COMPACT16.example)), solve(&example("bending_compact_16L9.toml")));
+    let rows =
+        gauss_points(&quarter.0).iter().zip(&quarter.1.stresses).map(|(p, s)| (p.element, p.position, *s)).collect();
+    let error: f64 = error_against((&whole.0, &whole.1), &mirrored(rows, &whole.0, &COMPACT_QUARTER)).iter().sum();
+    let energy = whole.1.error_estimate.as_ref().unwrap().energy.powi(2);
+    eprintln!("mirrored quarter against the whole: {:.3e} of the energy", error / energy);
+    assert!(error < 1e-8 * energy, "{} of the energy", error / energy);
+}
+
+/// The whole shipped 20 L9 tube (`bending_tube_20L9.toml`, 20 L9 × 22 B4,
+/// the quarter's mirror images) against the 20 L9 quarter's stored
+/// reference mirrored across both planes, over the whole tube and without
+/// the beam elements touching its three roller lines: within issue 49's
+/// `0.5`–`2` (measured 0.98 whole and 1.23 away, as the quarter: the true
+/// error is four times the quarter's, the estimate differs only by the
+/// patches that now straddle the planes).
+#[test]
+fn the_whole_tube_step_is_estimated() {
+    TUBE.estimated_whole(
+        "bending_tube_20L9.toml",
+        &TUBE_QUARTER,
+        ("step_error.tube_whole", "20L9_22B4"),
+        (&off_lines(0, WHOLE_ROLLERS), "the roller lines"),
+    );
+}
+
+/// The whole paper's tube (`bending_tube_28L9.toml`, 28 L9 × 22 B4) against
+/// the 28 L9 quarter's stored reference mirrored, as the 20 L9 tube:
+/// within `0.5`–`2` (measured 0.96 and 1.16).
+#[test]
+fn the_whole_paper_s_tube_step_is_estimated() {
+    TUBE28.estimated_whole(
+        "bending_tube_28L9.toml",
+        &TUBE_QUARTER,
+        ("step_error.tube28_whole", "28L9_22B4"),
+        (&off_lines(0, WHOLE_ROLLERS), "the roller lines"),
+    );
+}
+
+/// The whole paper's bar (`bending_compact_16L9.toml`, 4 × 4 L9 × 10 B4)
+/// against its quarter's stored reference mirrored: within `0.5`–`2`
+/// (measured 1.02 and 0.86).
+#[test]
+fn the_whole_compact_bar_s_16l9_step_is_estimated() {
+    COMPACT16.estimated_whole(
+        "bending_compact_16L9.toml",
+        &COMPACT_QUARTER,
+        ("step_error.compact16_whole", "4x4L9_10B4"),
+        (&off_lines(0, WHOLE_ROLLERS), "the roller lines"),
+    );
+}
+
+/// The Timoshenko cantilever (`cantilever_timoshenko.toml`: elastic, a tip
+/// shear of 1 kN spread over the tip face, clamped root), 2 × 2 L9 × 5 B4
+/// and 4 × 4 × 10, against 8 × 8 × 20: the effectivity of its one step,
+/// over the whole beam and without the beam elements at the clamped root
+/// and the loaded tip (where the 3D stress is singular: the clamp holds
+/// the Poisson contraction, the load sits on the face's nodes): within
+/// issue 49's `0.5`–`2` on both meshes.
+#[test]
+fn the_timoshenko_cantilever_step_is_estimated() {
+    let text = example("cantilever_timoshenko.toml");
+    let counts = [("to = 0.1, ", 2), ("to = 1.0, ", 5)];
+    let runs: Vec<_> = [1, 2, 4].iter().map(|&k| solve(&refined(&text, k, &counts))).collect();
+    for (m, mesh) in [(0, "2x2L9_5B4"), (1, "4x4L9_10B4")] {
+        let truth = true_error((&runs[m].0, &runs[m].1), (&runs[2].0, &runs[2].1));
+        in_band(
+            ("step_error.timoshenko", mesh),
+            &runs[m],
+            &truth,
+            (&off_lines(0, &[0.0, 1.0]), "the root and the tip"),
+        );
+    }
+}
+
+/// The plane-strain punch (`punch_plane_strain.toml`: 40 × 16 L9 × 1 B2,
+/// u_y = 0 on both end faces, perfectly plastic, pressed 8 mm to full
+/// plastic flow) with every section division `k` times finer; its one B2
+/// along y is kept (every node held in y, the field is the same in every
+/// section: a finer axis gives the same solution), each graded segment
+/// keeping its ratio of last to first element.
+fn punch_refined(text: &str, k: usize) -> String {
+    let counts = [
+        ("to = 0.45, ", 12, ", ratio"),
+        ("to = 0.55, ", 16, " }"),
+        ("to = 1.0, ", 12, ", ratio"),
+        ("to = 0.5, ", 16, ", ratio"),
+    ];
+    counts.iter().fold(text.to_string(), |out, &(pattern, n, end)| {
+        let from = format!("{pattern}elements = {n}{end}");
+        assert!(out.contains(&from), "{from}");
+        out.replace(&from, &format!("{pattern}elements = {}{end}", n * k))
+    })
+}
+
+const PUNCH: Reference = Reference {
+    example: "punch_plane_strain.toml",
+    file: "punch_plane_strain_refined_twice.csv",
+    refined: |text| punch_refined(text, 4),
+    mirror: &[],
+    what: "its section refined twice (tests/step_error.rs `punch_refined(…, 4)`)",
+    remade_by: "the_punch_s_twice_refined_stresses_are_remade",
+};
+
+/// The shipped plane-strain punch at full plastic flow against the
+/// stress of its section refined twice (160 × 64 L9, 248,454 DOF: stored),
+/// over the whole block and without the section elements at the punch's
+/// edges (x = 0.45 and 0.55 m on the top face, where the stress is
+/// singular): within issue 49's `0.5`–`2` (measured 1.44 whole and 1.45
+/// without the edges, the estimate 7.9 % against a true 5.5 %).
+#[test]
+fn the_punch_step_is_estimated() {
+    let edges = |m: &Model, _: usize, es: usize, _: usize| !touches_any(m, es, &[[0.45, 0.5], [0.55, 0.5]]);
+    PUNCH.estimated_whole(PUNCH.example, &[], ("step_error.punch", "40x16L9_1B2"), (&edges, "the punch edges"));
+}
+
+#[test]
+#[ignore = "validate: references — the plane-strain punch's section refined twice (248,454 DOF, about 3 min)"]
+fn the_punch_s_twice_refined_stresses_are_remade() {
+    PUNCH.remake();
+}
+
+/// Lamé's stress at `(x, z)` of a tube `a ≤ r ≤ c` with pressures `pa`
+/// inside and `pc` outside (plane stress, Voigt xx yy zz xy xz yz; the
+/// tube's axis along y): `σ_rr = A − B/r²`, `σ_θθ = A + B/r²`.
+fn lame([x, z]: [f64; 2], (a, c): (f64, f64), (pa, pc): (f64, f64)) -> [f64; 6] {
+    let (a2, c2) = (a * a, c * c);
+    let (big_a, big_b) = ((pa * a2 - pc * c2) / (c2 - a2), (pa - pc) * a2 * c2 / (c2 - a2));
+    let r2 = x * x + z * z;
+    let (rr, tt) = (big_a - big_b / r2, big_a + big_b / r2);
+    let (cos2, sin2, sc) = (x * x / r2, z * z / r2, x * z / r2);
+    [rr * cos2 + tt * sin2, 0.0, rr * sin2 + tt * cos2, 0.0, (rr - tt) * sc, 0.0]
+}
+
+/// The shrink fit (`shrink_fit.toml`: a shaft 20–30.02 mm pressed into a
+/// hub 30–45 mm, elastic, 16 × 2 L9 × 4 B4 each, node-to-node contact)
+/// and its section refined (32 × 4 L9) against Lamé's exact stress with
+/// free ends (plane stress, exact in 3D: `σ_rr + σ_θθ` is uniform in each
+/// tube, so is `ε_yy`), the pressure `p = 25.65 MPa` of the example's
+/// header: the estimate over both tubes within issue 49's `0.5`–`2`
+/// (measured 1.05 on both; 0.97 on 48 × 6 L9). The error is the section's:
+/// quadratic arcs around a circle. Mutation: the section patches fitted in
+/// x, z and the global frame (`post::spr::own_map` returning `None`) gives
+/// 7.6 and 3.9 and fails: a quadratic in x, z over three elements of a
+/// ring misses the stress's turn with the wall by more than the element's
+/// own error.
+#[test]
+fn the_shrink_fit_step_is_estimated() {
+    let (a, b, c, delta): (f64, f64, f64, f64) = (0.02, 0.03, 0.045, 2e-5);
+    let (young, nu): (f64, f64) = (200e9, 0.3);
+    let bd = b + delta;
+    let hub = b * ((c * c + b * b) / (c * c - b * b) + nu);
+    let shaft = bd * ((bd * bd + a * a) / (bd * bd - a * a) - nu);
+    let p = delta * young / (hub + shaft);
+    assert!((p / 25.65e6 - 1.0).abs() < 1e-3, "the header's pressure: {p}");
+    for k in [1, 2] {
+        let ring = format!("around = {}, through = {}", 16 * k, 2 * k);
+        let (model, s) = solve(&example("shrink_fit.toml").replace("around = 16, through = 2", &ring));
+        let exact: Vec<_> = gauss_points(&model)
+            .iter()
+            .map(|g| {
+                let at = [g.position[0], g.position[2]];
+                if g.body == 0 { lame(at, (b, c), (p, 0.0)) } else { lame(at, (a, bd), (0.0, p)) }
+            })
+            .collect();
+        let truth = error_against((&model, &s), &exact);
+        let (_, eta, error, rel_eta, rel_error) = row("load", (&model, &s), &truth, &|_, _, _, _| true);
+        let at = format!("step_error.shrink_fit.{}x{}L9_4B4.load", 16 * k, 2 * k);
+        common::figure(&format!("{at}.estimate"), 100.0 * rel_eta, "%", "reported");
+        common::figure(&format!("{at}.true"), 100.0 * rel_error, "%", "reported: against Lamé's stress");
+        common::figure(&format!("{at}.effectivity"), eta / error, "", "in [0.5, 2] (issue 49)");
+        assert!((0.5..=2.0).contains(&(eta / error)), "{at}: effectivity {}", eta / error);
+    }
 }

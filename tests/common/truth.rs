@@ -45,25 +45,48 @@ pub fn gauss_points(model: &Model) -> Vec<GaussPoint> {
     out
 }
 
+/// A plane of mirror symmetry `x_axis = at` of a model of which a fine
+/// run holds only the part on one side (`above`: `x_axis ≥ at`).
+#[derive(Clone, Copy)]
+pub struct Plane {
+    pub axis: usize,
+    pub at: f64,
+    pub above: bool,
+}
+
+/// The image of `position` in the part kept by every plane of `planes`
+/// (reflected across each plane it lies beyond) and the sign of each
+/// stress component (Voigt xx yy zz xy xz yz) there: a reflection across
+/// `x_a = at` turns over the two shears with one index `a`.
+pub fn image(position: [f64; 3], planes: &[Plane]) -> ([f64; 3], [f64; 6]) {
+    let (mut at, mut sign) = (position, [1.0; 6]);
+    for p in planes {
+        if (at[p.axis] < p.at) == p.above {
+            at[p.axis] = 2.0 * p.at - at[p.axis];
+            // the shears with index `axis`: xy (3), xz (4), yz (5)
+            for (k, pair) in [(3, [0, 1]), (4, [0, 2]), (5, [1, 2])] {
+                if pair.contains(&p.axis) {
+                    sign[k] = -sign[k];
+                }
+            }
+        }
+    }
+    (at, sign)
+}
+
 /// The stress of `fine` at each of `points` (in the same body of `fine`).
-/// With `mirror = Some(x0)`, `fine` is the half `x ≥ x0` of a model
-/// symmetric about the plane `x = x0`: a point below it takes the stress
-/// at its mirror image, with σ_xy and σ_xz (Voigt 3 and 4) turned over.
-pub fn stresses_at((fm, fs): (&Model, &Solution), points: &[GaussPoint], mirror: Option<f64>) -> Vec<[f64; 6]> {
+/// With `planes`, `fine` is the part of a symmetric model on the kept side
+/// of each plane: a point beyond takes the stress at its [`image`], its
+/// shears turned over.
+pub fn stresses_at((fm, fs): (&Model, &Solution), points: &[GaussPoint], planes: &[Plane]) -> Vec<[f64; 6]> {
     let view = fs.fields(fm);
     points
         .iter()
         .map(|p| {
-            let [x, y, z] = p.position;
-            let flip = mirror.is_some_and(|x0| x < x0);
-            let at = if flip { [2.0 * mirror.unwrap() - x, y, z] } else { p.position };
-            let mut s =
-                view.sample_at(&locate_in_model(&fm.mesh, Some(p.body), at)).expect("inside the fine mesh").stress;
-            if flip {
-                s[3] = -s[3];
-                s[4] = -s[4];
-            }
-            s
+            let (at, sign) = image(p.position, planes);
+            let located = locate_in_model(&fm.mesh, Some(p.body), at);
+            let s = view.sample_at(&located).unwrap_or_else(|| panic!("{at:?} not inside the fine mesh")).stress;
+            std::array::from_fn(|i| sign[i] * s[i])
         })
         .collect()
 }
@@ -89,7 +112,7 @@ pub fn error_against((cm, cs): (&Model, &Solution), reference: &[[f64; 6]]) -> V
 /// [`error_against`] the stress of `fine` (the same bodies) at each Gauss
 /// point of `coarse` (J); isotropic bodies.
 pub fn true_error(coarse: (&Model, &Solution), fine: (&Model, &Solution)) -> Vec<f64> {
-    error_against(coarse, &stresses_at(fine, &gauss_points(coarse.0), None))
+    error_against(coarse, &stresses_at(fine, &gauss_points(coarse.0), &[]))
 }
 
 /// The paper's block (`text`: examples/block_indentation.toml or its
@@ -107,9 +130,15 @@ pub fn block_refined(text: &str, k: usize, m: usize) -> String {
 /// (x = 0.2 or 0.3 m on the top face z = 0.3 m), where the stress is
 /// singular.
 pub fn touches_punch_edge(model: &Model, es: usize) -> bool {
+    touches_any(model, es, &[[0.2, 0.3], [0.3, 0.3]])
+}
+
+/// Whether section element `es` of the first body has a node at one of
+/// the section points `points` (`[x, z]`).
+pub fn touches_any(model: &Model, es: usize, points: &[[f64; 2]]) -> bool {
     let section = &model.mesh.bodies[0].section;
     section.element(es).iter().any(|&t| {
         let [x, z] = section.nodes[t];
-        ((x - 0.2).abs() < 1e-9 || (x - 0.3).abs() < 1e-9) && (z - 0.3).abs() < 1e-9
+        points.iter().any(|p| (x - p[0]).abs() < 1e-9 && (z - p[1]).abs() < 1e-9)
     })
 }

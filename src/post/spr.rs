@@ -86,7 +86,7 @@
 //! A section patch is fitted in its element's natural coordinates, the
 //! element's isoparametric map continued over the patch, each point's
 //! stress turned into the frame that turns with the map
-//! ([`super::patch_map`]): on a curved wall (a circular tube) the stress
+//! (`post::patch_map`): on a curved wall (a circular tube) the stress
 //! turns with the wall, which a polynomial in x and z over three elements
 //! misses (the shrink fit's estimate fell from `7.6` to `1.05` times its
 //! true error against Lamé, tests/step_error.rs). On a grid of

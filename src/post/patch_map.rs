@@ -17,7 +17,7 @@
 
 use crate::mesh::CrossSection;
 use crate::shape::Lagrange2d;
-use crate::values::section_point;
+use crate::values::{natural_of, section_point};
 use crate::voigt::Voigt;
 
 /// A section patch's points in the coordinates its fit is made in.
@@ -54,8 +54,8 @@ pub(super) fn coordinates(
 }
 
 /// The natural coordinates `(ξ, η)` of each of `points` under section
-/// element `e`'s isoparametric map, continued beyond the element (Newton,
-/// from the element's centre), and the turn `[cos δ, sin δ]` of the map's
+/// element `e`'s isoparametric map, continued beyond the element
+/// ([`crate::values::natural_of`]), and the turn `[cos δ, sin δ]` of the map's
 /// `ξ` direction there from its direction at the centre; `None` where the
 /// continued map does not reach a point (a fold, no convergence).
 pub(super) fn own_map<'a>(
@@ -74,25 +74,9 @@ pub(super) fn own_map<'a>(
     let t0 = unit(centre.tangents[0]);
     points
         .map(|&target| {
-            let (mut xi, mut eta) = (0.0, 0.0);
-            for _ in 0..50 {
-                let sp = section_point(section, basis, e, xi, eta, &mut f, &mut dxi, &mut deta);
-                if !(sp.det > 0.0) {
-                    return None;
-                }
-                let r = [target[0] - sp.position[0], target[1] - sp.position[1]];
-                let [[xi_x, xi_z], [eta_x, eta_z]] = sp.inverse;
-                let (dx, de) = (xi_x * r[0] + xi_z * r[1], eta_x * r[0] + eta_z * r[1]);
-                xi += dx;
-                eta += de;
-                // quadratic convergence: ξ, η exact to round-off after this step
-                if dx.abs() + de.abs() < 1e-10 {
-                    let sp = section_point(section, basis, e, xi, eta, &mut f, &mut dxi, &mut deta);
-                    let t = unit(sp.tangents[0]);
-                    return Some(([xi, eta], [t0[0] * t[0] + t0[1] * t[1], t0[0] * t[1] - t0[1] * t[0]]));
-                }
-            }
-            None
+            let [xi, eta] = natural_of(section, basis, e, target, (&mut f, &mut dxi, &mut deta))?;
+            let t = unit(section_point(section, basis, e, xi, eta, &mut f, &mut dxi, &mut deta).tangents[0]);
+            Some(([xi, eta], [t0[0] * t[0] + t0[1] * t[1], t0[0] * t[1] - t0[1] * t[0]]))
         })
         .collect()
 }

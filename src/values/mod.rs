@@ -87,6 +87,38 @@ pub fn section_point(
     SectionPoint { position: [x, z], det, inverse, tangents: [[x_xi, z_xi], [x_eta, z_eta]] }
 }
 
+/// The natural coordinates `(ξ, η)` of the physical point `target` under
+/// section element `e`'s isoparametric map, continued beyond the element:
+/// Newton from the centre, stopped at a step below `1e-10` (quadratic
+/// convergence: exact to round-off after it; a tighter bound is missed by
+/// the round-off of a small element's map far from the origin). `None`
+/// where Newton meets a fold of the map (`det J ≤ 0`) or does not
+/// converge. `f`, `dxi`, `deta`: [`section_point`]'s buffers.
+pub(crate) fn natural_of(
+    section: &CrossSection,
+    basis: &Lagrange2d,
+    e: usize,
+    target: [f64; 2],
+    (f, dxi, deta): (&mut [f64], &mut [f64], &mut [f64]),
+) -> Option<[f64; 2]> {
+    let (mut xi, mut eta) = (0.0, 0.0);
+    for _ in 0..50 {
+        let sp = section_point(section, basis, e, xi, eta, f, dxi, deta);
+        if !(sp.det > 0.0) {
+            return None;
+        }
+        let r = [target[0] - sp.position[0], target[1] - sp.position[1]];
+        let [[xi_x, xi_z], [eta_x, eta_z]] = sp.inverse;
+        let (dx, de) = (xi_x * r[0] + xi_z * r[1], eta_x * r[0] + eta_z * r[1]);
+        xi += dx;
+        eta += de;
+        if dx.abs() + de.abs() < 1e-10 {
+            return Some([xi, eta]);
+        }
+    }
+    None
+}
+
 /// Section functions at a set of points of every section element:
 /// `F_τ`, `∂F_τ/∂x`, `∂F_τ/∂z`, the area weight `w |J|` and the position.
 #[derive(Debug, Clone)]

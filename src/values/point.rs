@@ -2,7 +2,7 @@
 //! isoparametric map) and the shape values and gradients there, for probes,
 //! lines and the VTU.
 
-use super::{AxisValues, SectionValues, degenerate, gradients, section_point, shape_values};
+use super::{AxisValues, SectionValues, degenerate, gradients, natural_of, shape_values};
 use crate::mesh::{Body, Mesh};
 use crate::shape::Lagrange2d;
 use crate::voigt::{self, Voigt};
@@ -124,27 +124,9 @@ pub fn locate(b: usize, body: &Body, point: [f64; 3]) -> Vec<Location> {
         if (0..2).any(|d| target[d] < lo[d] - margin || target[d] > hi[d] + margin) {
             continue;
         }
-        // Newton on the isoparametric map
-        let (mut xi, mut eta) = (0.0, 0.0);
-        let mut ok = false;
-        for _ in 0..30 {
-            let sp = section_point(section, &basis, es, xi, eta, &mut f, &mut dxi, &mut deta);
-            let r = [target[0] - sp.position[0], target[1] - sp.position[1]];
-            let [[xi_x, xi_z], [eta_x, eta_z]] = sp.inverse;
-            let (dx, de) = (xi_x * r[0] + xi_z * r[1], eta_x * r[0] + eta_z * r[1]);
-            xi += dx;
-            eta += de;
-            // quadratic convergence: a step this small leaves ξ, η exact to
-            // round-off (a tighter bound is missed by the round-off of a
-            // small element's map far from the origin, and an interior
-            // point was not found)
-            if dx.abs() + de.abs() < 1e-10 {
-                ok = true;
-                break;
-            }
-        }
+        let natural = natural_of(section, &basis, es, target, (&mut f, &mut dxi, &mut deta));
         let slack = 1e-7;
-        if ok && xi.abs() <= 1.0 + slack && eta.abs() <= 1.0 + slack {
+        if let Some([xi, eta]) = natural.filter(|n| n[0].abs() <= 1.0 + slack && n[1].abs() <= 1.0 + slack) {
             for &(eb, zeta) in &beams {
                 found.push(Location {
                     body: b,

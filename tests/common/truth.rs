@@ -1,22 +1,18 @@
 //! The true error of an estimate, for the estimator's tests
 //! (tests/estimator.rs, tests/step_error.rs): a coarse run against a fine
-//! reference of the same isotropic body, in the energy norm.
+//! reference of the same bodies, in the energy norm (each Gauss point with
+//! its own material's compliance: zones and plies included).
 
 use cufem::analysis::Solution;
 use cufem::setup::Model;
 use cufem::values::locate_in_model;
 
-/// `σᵀ C⁻¹ σ` (isotropic, engineering shear).
-pub fn complementary(s: &[f64; 6], e: f64, nu: f64) -> f64 {
-    let normal = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] - 2.0 * nu * (s[0] * s[1] + s[1] * s[2] + s[2] * s[0]);
-    (normal + 2.0 * (1.0 + nu) * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])) / e
-}
-
 /// A Gauss point of a model: its body, global element (the estimate's
-/// `element` index), position `[x, y, z]` and weight.
+/// `element` index), section element, position `[x, y, z]` and weight.
 pub struct GaussPoint {
     pub body: usize,
     pub element: usize,
+    pub section_element: usize,
     pub position: [f64; 3],
     pub weight: f64,
 }
@@ -36,7 +32,13 @@ pub fn gauss_points(model: &Model) -> Vec<GaussPoint> {
                     let [x, z] = cell.section.position[es * ns + gs];
                     let y = cell.axis.position[eb * nb + gb];
                     let weight = cell.section.weight[es * ns + gs] * cell.axis.weight[eb * nb + gb];
-                    out.push(GaussPoint { body: b, element: offset + e, position: [x, y, z], weight });
+                    out.push(GaussPoint {
+                        body: b,
+                        element: offset + e,
+                        section_element: es,
+                        position: [x, y, z],
+                        weight,
+                    });
                 }
             }
         }
@@ -94,23 +96,22 @@ pub fn stresses_at((fm, fs): (&Model, &Solution), points: &[GaussPoint], planes:
 /// The error of `coarse` per element (global index) in the energy norm
 /// squared, `∫ (σ_ref − σ_h)ᵀ C⁻¹ (σ_ref − σ_h)` with `reference` the
 /// stress at each of its Gauss points ([`gauss_points`]' order) (J);
-/// isotropic bodies.
+/// each point's material (its section element's).
 pub fn error_against((cm, cs): (&Model, &Solution), reference: &[[f64; 6]]) -> Vec<f64> {
     let points = gauss_points(cm);
     assert_eq!(points.len(), reference.len(), "a reference stress at every Gauss point");
     let mut out = vec![0.0; cm.mesh.bodies.iter().map(|b| b.n_elements()).sum()];
     for (k, (p, r)) in points.iter().zip(reference).enumerate() {
-        let mat = &cm.materials[cm.mesh.bodies[p.body].material];
-        assert!(mat.anisotropic.is_none());
+        let mat = &cm.materials[cm.mesh.bodies[p.body].material_of(p.section_element)];
         let raw = cs.stresses[k];
-        out[p.element] += p.weight * complementary(&std::array::from_fn(|i| r[i] - raw[i]), mat.young, mat.poisson);
+        out[p.element] += p.weight * mat.complementary(&std::array::from_fn(|i| r[i] - raw[i]));
     }
     out
 }
 
 /// The true error of `coarse` per element in the energy norm squared,
 /// [`error_against`] the stress of `fine` (the same bodies) at each Gauss
-/// point of `coarse` (J); isotropic bodies.
+/// point of `coarse` (J).
 pub fn true_error(coarse: (&Model, &Solution), fine: (&Model, &Solution)) -> Vec<f64> {
     error_against(coarse, &stresses_at(fine, &gauss_points(coarse.0), &[]))
 }

@@ -144,6 +144,71 @@ fn the_elastica_steps_are_estimated() {
     common::known_limit("step_error.elastica.1L9_20B4.effectivity_max", hi, "", 0.1, 0.5, what);
 }
 
+/// `text` with each quadrilateral of its first body's `quads` section split
+/// into `k × k` by the quadrilateral's bilinear map (straight-edged
+/// elements: the section's polygon unchanged).
+fn quads_refined(text: &str, k: usize) -> String {
+    let mut doc: toml::Table = text.parse().unwrap();
+    let section = doc["bodies"].as_array_mut().unwrap()[0].get_mut("section").unwrap().as_table_mut().unwrap();
+    let pair = |v: &toml::Value| -> [f64; 2] {
+        let a = v.as_array().unwrap();
+        std::array::from_fn(|i| a[i].as_float().unwrap_or_else(|| a[i].as_integer().unwrap() as f64))
+    };
+    let points: Vec<[f64; 2]> = section["points"].as_array().unwrap().iter().map(pair).collect();
+    let quads: Vec<[usize; 4]> = section["quads"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|q| std::array::from_fn(|i| q.as_array().unwrap()[i].as_integer().unwrap() as usize))
+        .collect();
+    let (mut new_points, mut index) = (Vec::<[f64; 2]>::new(), std::collections::HashMap::new());
+    let mut new_quads = Vec::new();
+    for q in &quads {
+        let c = q.map(|i| points[i]);
+        let mut at = |s: f64, t: f64| {
+            let w = [(1.0 - s) * (1.0 - t), s * (1.0 - t), s * t, (1.0 - s) * t];
+            let p: [f64; 2] = std::array::from_fn(|d| (0..4).map(|n| w[n] * c[n][d]).sum());
+            let key = p.map(|x| (x * 1e12).round() as i64);
+            *index.entry(key).or_insert_with(|| {
+                new_points.push(p);
+                new_points.len() - 1
+            })
+        };
+        let grid: Vec<Vec<usize>> =
+            (0..=k).map(|i| (0..=k).map(|j| at(i as f64 / k as f64, j as f64 / k as f64)).collect()).collect();
+        for i in 0..k {
+            for j in 0..k {
+                new_quads.push([grid[i][j], grid[i + 1][j], grid[i + 1][j + 1], grid[i][j + 1]]);
+            }
+        }
+    }
+    let value = |rows: Vec<Vec<toml::Value>>| toml::Value::Array(rows.into_iter().map(toml::Value::Array).collect());
+    section.insert("points".into(), value(new_points.iter().map(|p| p.map(toml::Value::Float).to_vec()).collect()));
+    section.insert(
+        "quads".into(),
+        value(new_quads.iter().map(|q| q.map(|i| toml::Value::Integer(i as i64)).to_vec()).collect()),
+    );
+    toml::to_string(&doc).unwrap()
+}
+
+/// The shallow arch snapping through (`arch_snap_through.toml`: nonlinear
+/// geometry, arc length through both limit points to λ = 1 past the snap,
+/// elastic, plane strain), its 40 L9 quadrilaterals along the span and one
+/// through the thickness, and each split into 2 × 2, against each split
+/// into 4 × 4 (17,334 DOF; the one B2 along y kept: the fields are
+/// constant along it), at the run's end, λ = 1 on the inverted arch.
+#[test]
+fn the_arch_s_snapped_state_is_estimated() {
+    let text = example("arch_snap_through.toml");
+    let runs: Vec<_> = [1, 2, 4].iter().map(|&k| solve(&quads_refined(&text, k))).collect();
+    for (m, mesh) in [(0, "40L9"), (1, "160L9")] {
+        let rows = effectivities(&runs[m], &runs[2], &|_, _, _, _| true);
+        for eff in report("step_error.arch", mesh, &rows, "in [0.5, 2] (issue 49)") {
+            assert!((0.5..=2.0).contains(&eff), "{mesh}: effectivity {eff}");
+        }
+    }
+}
+
 /// The compact bar's quarter (`bending_compact_4L9_quarter.toml`: one
 /// step, the roller pushed 0.75 mm, plastic under the roller), 1 × 2 L9 ×
 /// 5 B4 and 2 × 4 × 10, against 4 × 8 × 20: the effectivity of its one

@@ -196,3 +196,108 @@ fn the_cantilever_bending_modes_estimates_are_effective() {
         }
     }
 }
+
+/// examples/cantilever_modes.toml (a thin-walled aluminium channel,
+/// `4`, `8`, `1` L9 along each flange, along the web and through each wall,
+/// `20` B4) with every division `k` times finer.
+fn cantilever_modes(k: usize) -> String {
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/cantilever_modes.toml")).unwrap();
+    let (section, axis) = (
+        "along_flange = 4, along_web = 8, through = 1 }",
+        "axis = { element = \"B4\", from = 0.0, to = 1.0, elements = 20 }",
+    );
+    assert!(text.contains(section) && text.contains(axis));
+    text.replace(section, &format!("along_flange = {}, along_web = {}, through = {k} }}", 4 * k, 8 * k))
+        .replace(axis, &format!("axis = {{ element = \"B4\", from = 0.0, to = 1.0, elements = {} }}", 20 * k))
+}
+
+/// The stored modes of examples/cantilever_modes.toml refined twice, re-made
+/// by `the_shipped_channel_s_twice_refined_modes_are_remade`.
+const CHANNEL_MODES: &str = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/cantilever_modes_refined_twice.csv");
+
+/// Per shipped mode: the refined run's mode it matches, their MAC and its
+/// frequency (Hz).
+fn stored_channel_modes() -> Vec<(usize, f64, f64)> {
+    let text = std::fs::read_to_string(CHANNEL_MODES).unwrap();
+    text.lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with("mode"))
+        .map(|l| {
+            let r: Vec<f64> = l.split(',').map(|v| v.trim().parse().unwrap()).collect();
+            (r[1] as usize, r[2], r[3])
+        })
+        .collect()
+}
+
+/// The shipped channel's eight modes against its mesh refined twice (every
+/// wall division and the axis four times finer, `943,515` DOF, stored:
+/// the refined mode matched by its MAC on the shipped nodes, all above
+/// `0.9999`). The estimates rank the modes as their true errors do (the
+/// three least converged, modes 6–8, the walls' own modes, are the three
+/// largest estimates), but on these walls, one L9 through `2` mm and
+/// elements `6` thicknesses long, they overstate the true errors of the
+/// flexural–torsional and wall modes: effectivity `0.66`–`6.1`, modes 2 and
+/// 3 alone within issue 49's `0.5`–`2` — the walls' transverse-shear layer
+/// at their junctions, which the estimate charges to the whole element
+/// (docs/limitations.md; `junction_element` lowers it). Asserted from both
+/// sides as a known limit. The reference's own error: along the axis the
+/// frequencies converge at first order (the clamp; with the walls' divisions
+/// doubled, 40 → 80 → 160 B4 change mode 1 by `4.2e-4`, `1.9e-4`), across
+/// the section modes 6–8 at about `h^1.3` (`2.47` from 1 → 2 → 4 times finer
+/// at 40 B4): by Richardson in each, the reference lies up to a fifth of the
+/// shipped mesh's true error above the limit, which would lower the highest
+/// effectivity to about `5` and the lowest (mode 2) to about `0.55`.
+#[test]
+fn the_shipped_channel_s_mode_estimates_against_its_twice_refined_modes() {
+    let coarse = solve(&cantilever_modes(1));
+    let m = coarse.1.modal.as_ref().unwrap();
+    let stored = stored_channel_modes();
+    assert_eq!(stored.len(), m.frequencies.len());
+    let (estimated, truth): (Vec<f64>, Vec<f64>) =
+        m.errors.iter().zip(&m.frequencies).zip(&stored).map(|((e, f), s)| (e.frequency(), f / s.2 - 1.0)).unzip();
+    let mut in_band = Vec::new();
+    let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
+    for (i, ((est, t), s)) in estimated.iter().zip(&truth).zip(&stored).enumerate() {
+        assert!(s.1 > 0.9999, "mode {}: MAC {} with the refined mode {}", i + 1, s.1, s.0);
+        assert!(*t > 5e-4, "mode {}: true error {t}", i + 1);
+        let eff = est / t;
+        eprintln!("cantilever_modes mode {}: true {t:.3e}, estimated {est:.3e}, effectivity {eff:.2}", i + 1);
+        common::figure(&format!("mode_error.channel.mode{}.effectivity", i + 1), eff, "", "reported");
+        if (0.5..=2.0).contains(&eff) {
+            in_band.push(i + 1);
+        }
+        (lo, hi) = (lo.min(eff), hi.max(eff));
+    }
+    assert_eq!(in_band, [2, 3], "the modes whose effectivity is within 0.5–2");
+    common::known_limit("mode_error.channel.effectivity_min", lo, "", 0.55, 0.8, "the channel's lowest effectivity");
+    common::known_limit("mode_error.channel.effectivity_max", hi, "", 5.5, 6.8, "the channel's highest effectivity");
+    let top = |v: &[f64]| {
+        let mut o: Vec<usize> = (0..v.len()).collect();
+        o.sort_by(|&a, &b| v[b].total_cmp(&v[a]));
+        let mut s = o[..3].to_vec();
+        s.sort_unstable();
+        s
+    };
+    assert_eq!(top(&estimated), top(&truth), "the three least converged modes");
+}
+
+/// Re-makes the stored modes of `the_shipped_channel_s_mode_estimates_against_its_twice_refined_modes`.
+#[test]
+#[ignore = "validate: references — examples/cantilever_modes.toml refined twice (943,515 DOF, about 4 min, 15 GiB)"]
+fn the_shipped_channel_s_twice_refined_modes_are_remade() {
+    let (coarse, fine) = (solve(&cantilever_modes(1)), solve(&cantilever_modes(4)));
+    let frequencies = &fine.1.modal.as_ref().unwrap().frequencies;
+    let mut out = format!(
+        "# examples/cantilever_modes.toml with every division four times finer ({} DOF): for each\n\
+         # shipped mode, the refined mode of largest MAC (sampled at the shipped nodes), the MAC and\n\
+         # the refined mode's frequency (Hz).\n\
+         # Remade by cargo test --release --test suite -- --ignored --exact \
+         mode_error::the_shipped_channel_s_twice_refined_modes_are_remade\n\
+         mode,refined_mode,mac,refined_frequency_hz\n",
+        fine.0.n_dofs()
+    );
+    for (i, row) in mac(&coarse, &fine).iter().enumerate() {
+        let (j, best) = row.iter().enumerate().fold((0, 0.0), |b, (j, &v)| if v > b.1 { (j, v) } else { b });
+        out += &format!("{},{},{best:.6},{:.9e}\n", i + 1, j + 1, frequencies[j]);
+    }
+    std::fs::write(CHANNEL_MODES, out).unwrap();
+}

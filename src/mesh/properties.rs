@@ -116,6 +116,40 @@ impl CrossSection {
         pts
     }
 
+    /// Whether each node is a re-entrant corner of the section: a corner of
+    /// every element holding it, on the boundary, where the interior angles
+    /// of those elements (between the chords to their neighbouring corners)
+    /// sum to more than `5π/4` — the boundary turns into the body by more
+    /// than `45°`, as at the inner corner where two walls of a profile meet
+    /// or at a rectangular hole's corner (a circular hole's vertices turn by
+    /// `2π/n`). Every other node is not.
+    pub(crate) fn reentrant_corners(&self) -> Vec<bool> {
+        let p = self.kind.order();
+        let m = p + 1;
+        // the corners' local nodes, counter-clockwise
+        let corners = [0, p, m * m - 1, p * m];
+        let n = self.n_nodes();
+        let (mut angle, mut held, mut as_corner) = (vec![0.0; n], vec![0usize; n], vec![0usize; n]);
+        for e in 0..self.n_elements() {
+            let nodes = self.element(e);
+            nodes.iter().for_each(|&t| held[t] += 1);
+            for k in 0..4 {
+                let v = nodes[corners[k]];
+                let at = self.nodes[v];
+                let [a, b] = [corners[(k + 1) % 4], corners[(k + 3) % 4]]
+                    .map(|c| [self.nodes[nodes[c]][0] - at[0], self.nodes[nodes[c]][1] - at[1]]);
+                angle[v] += (a[0] * b[1] - a[1] * b[0]).atan2(a[0] * b[0] + a[1] * b[1]).abs();
+                as_corner[v] += 1;
+            }
+        }
+        let pi = std::f64::consts::PI;
+        (0..n)
+            .map(|t| {
+                held[t] > 0 && as_corner[t] == held[t] && angle[t] > 1.25 * pi + 1e-6 && angle[t] < 2.0 * pi - 1e-6
+            })
+            .collect()
+    }
+
     /// Integrates the section's properties with a `(p + 3)²` Gauss rule per
     /// element (exact for straight-edged elements; a polygon-free
     /// integration of the isoparametric geometry for curved ones).
@@ -182,6 +216,30 @@ mod tests {
         // only the first element (angles 0 to 45°)
         assert!(s.covers(&[0], [0.95 * a.cos(), 0.95 * a.sin()], 1e-9));
         assert!(!s.covers(&[0], [0.0, 0.95], 1e-9));
+    }
+
+    #[test]
+    fn the_inner_corner_of_an_l_and_no_other_node_is_re_entrant() {
+        // an L of three unit squares: its inner corner (1, 1)
+        let corners = [[0.0, 0.0], [1.0, 0.0], [2.0, 0.0], [0.0, 1.0], [1.0, 1.0], [2.0, 1.0], [0.0, 2.0], [1.0, 2.0]];
+        let quads = [[0, 1, 4, 3], [1, 2, 5, 4], [3, 4, 7, 6]];
+        for kind in [SectionElementKind::L4, SectionElementKind::L9] {
+            let s = CrossSection::from_quads(kind, &corners, &quads, "quads").unwrap();
+            let flagged: Vec<[f64; 2]> =
+                s.reentrant_corners().iter().enumerate().filter(|(_, r)| **r).map(|(t, _)| s.nodes[t]).collect();
+            assert_eq!(flagged, [[1.0, 1.0]], "{kind:?}");
+        }
+        // a grid's interior and boundary vertices, a hollow square's hole
+        // corners (re-entrant) and a circular tube's hole (turning by 22.5°)
+        let grid = CrossSection::rectangle(SectionElementKind::L9, &[0.0, 1.0, 2.0], &[0.0, 1.0, 2.0]).unwrap();
+        assert!(grid.reentrant_corners().iter().all(|r| !r));
+        let lines = [0.0, 1.0, 2.0, 3.0];
+        let hollow = CrossSection::hollow_rectangle(SectionElementKind::L9, &lines, &lines, [[1, 2], [1, 2]]).unwrap();
+        assert_eq!(hollow.reentrant_corners().iter().filter(|r| **r).count(), 4);
+        use crate::mesh::{blocks, profiles};
+        let ring = profiles::circular_tube([0.0, 0.0], 1.0, 0.1, 16, 1).unwrap();
+        let tube = blocks::from_blocks(SectionElementKind::L9, &ring).unwrap();
+        assert!(tube.reentrant_corners().iter().all(|r| !r));
     }
 
     #[test]

@@ -83,6 +83,19 @@
 //! re-entrant corners (docs/limitations.md, the I-beam of
 //! crates/cufem-cli/tests/adapt.rs).
 //!
+//! A section patch does not reach round a re-entrant corner
+//! (`CrossSection::reentrant_corners`: the inner corner where two walls of
+//! a profile meet, a hole's corner): an element touching the element only
+//! at such a corner is left out. There a wall element's ring held the other
+//! wall's element, of the same area and with its stresses turned by `90°`
+//! (a flange's bending stress is the web's stress across its thickness);
+//! fitted together, the polynomial bent over the whole wall element, and the
+//! estimate charged every wall element at a junction with an error its
+//! elements do not have. On the shipped channel's vibration modes
+//! (examples/cantilever_modes.toml against every division four times
+//! finer) that took the effectivity from `0.66`–`6.1` to `0.63`–`1.81`
+//! (tests/mode_error.rs).
+//!
 //! A section patch is fitted in its element's natural coordinates, the
 //! element's isoparametric map continued over the patch, each point's
 //! stress turned into the frame that turns with the map
@@ -236,6 +249,22 @@ struct SectionPatches {
     of_component: [usize; 6],
 }
 
+/// The elements sharing a node with section element `e` (`holding`: the
+/// elements at each node), without those that touch it only at a
+/// re-entrant corner (module docs).
+fn ring(section: &CrossSection, holding: &[Vec<usize>], reentrant: &[bool], e: usize) -> Vec<usize> {
+    let nodes = section.element(e);
+    let shared = |f: usize| nodes.iter().copied().filter(move |t| section.element(f).contains(t));
+    nodes
+        .iter()
+        .flat_map(|&t| holding[t].iter().copied())
+        .filter(|&f| {
+            let mut common = shared(f);
+            !matches!((common.next(), common.next()), (Some(t), None) if reentrant[t])
+        })
+        .collect()
+}
+
 /// The patches of every section element (module docs): the elements
 /// sharing a node with it and lying in its zone (`zone`: the material of
 /// each section element), and for the traction components of an interface
@@ -263,6 +292,7 @@ fn section_patches(
             )
         })
         .collect();
+    let reentrant = section.reentrant_corners();
     let [x0, x1, z0, z1] = section.bounds();
     let tol = 1e-9 * (x1 - x0).max(z1 - z0);
     // whether b lies beside a along the coordinate (0: x, 2: z), sharing no interior
@@ -304,7 +334,7 @@ fn section_patches(
     };
     (0..section.n_elements())
         .map(|e| {
-            let ring: Vec<usize> = section.element(e).iter().flat_map(|&t| holding[t].iter().copied()).collect();
+            let ring = ring(section, &holding, &reentrant, e);
             let own: Vec<usize> = ring.iter().copied().filter(|&f| zone(f) == zone(e)).collect();
             // elements of other zones across an interface of normal z (d = 2)
             // or x (d = 0): those beside e along d and overlapping it

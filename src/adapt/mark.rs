@@ -339,11 +339,11 @@ pub(crate) fn local(mesh: &Mesh, plan: &MeshPlan, weights: &[f64], marks: &mut [
 /// section and along the axis (`python3 bench/profile_true_error.py`,
 /// bench/profile_true_error_results.txt): the I-beam under a pressure on
 /// its top flange (crates/cufem-cli/tests/adapt.rs) adapts to a true
-/// relative error of `11.4 %` at `16,587` DOF, where the section doubled
+/// relative error of `12.0 %` at `19,323` DOF, where the section doubled
 /// four times is `22.6 %` off at `38,025` DOF; the channel with the
 /// pressure on its web to `6.5 %` at `13,725` DOF (uniform `32 × 32` L9:
 /// `18.9 %` at `23,049` DOF). The estimate right after grading understates
-/// the error (the channel: `19.5 %` estimated, `34.7 %` true); the next
+/// the error (the channel: `18.7 %` estimated, `36.8 %` true); the next
 /// cycles' doubling of the wall counts brings them together.
 pub(crate) const JUNCTION_SHARE: f64 = 0.5;
 

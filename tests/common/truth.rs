@@ -7,6 +7,14 @@ use cufem::analysis::Solution;
 use cufem::setup::Model;
 use cufem::values::locate_in_model;
 
+/// `σᵀ C⁻¹ σ` of an isotropic material (engineering shear), written here
+/// apart from the library's compliance so that the true error of an
+/// isotropic body does not share a fault of it.
+pub fn complementary(s: &[f64; 6], e: f64, nu: f64) -> f64 {
+    let normal = s[0] * s[0] + s[1] * s[1] + s[2] * s[2] - 2.0 * nu * (s[0] * s[1] + s[1] * s[2] + s[2] * s[0]);
+    (normal + 2.0 * (1.0 + nu) * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5])) / e
+}
+
 /// A Gauss point of a model: its body, global element (the estimate's
 /// `element` index), section element, position `[x, y, z]` and weight.
 pub struct GaussPoint {
@@ -96,7 +104,8 @@ pub fn stresses_at((fm, fs): (&Model, &Solution), points: &[GaussPoint], planes:
 /// The error of `coarse` per element (global index) in the energy norm
 /// squared, `∫ (σ_ref − σ_h)ᵀ C⁻¹ (σ_ref − σ_h)` with `reference` the
 /// stress at each of its Gauss points ([`gauss_points`]' order) (J);
-/// each point's material (its section element's).
+/// each point's material (its section element's): isotropic ones by
+/// [`complementary`], orthotropic plies by the library's compliance.
 pub fn error_against((cm, cs): (&Model, &Solution), reference: &[[f64; 6]]) -> Vec<f64> {
     let points = gauss_points(cm);
     assert_eq!(points.len(), reference.len(), "a reference stress at every Gauss point");
@@ -104,7 +113,12 @@ pub fn error_against((cm, cs): (&Model, &Solution), reference: &[[f64; 6]]) -> V
     for (k, (p, r)) in points.iter().zip(reference).enumerate() {
         let mat = &cm.materials[cm.mesh.bodies[p.body].material_of(p.section_element)];
         let raw = cs.stresses[k];
-        out[p.element] += p.weight * mat.complementary(&std::array::from_fn(|i| r[i] - raw[i]));
+        let d: [f64; 6] = std::array::from_fn(|i| r[i] - raw[i]);
+        // an orthotropic ply's compliance is the library's (its constants
+        // inverted and turned to the ply's angle: tests of src/materials)
+        let w =
+            if mat.anisotropic.is_none() { complementary(&d, mat.young, mat.poisson) } else { mat.complementary(&d) };
+        out[p.element] += p.weight * w;
     }
     out
 }

@@ -321,6 +321,77 @@ fn block_indentation_graded_against_3d() {
     assert!(line.s_zz_under <= 0.10 && line.peeq_under <= 0.10, "{} {}", line.s_zz_under, line.peeq_under);
 }
 
+/// The top line's u_z within 10 mm of the punch edge, x ∈ (0.19, 0.2) m,
+/// where the surface falls from −0.18 to −1 mm: is the whole block's 3D
+/// reference (tests/data/block_calculix_top_u_z.csv, 8.5 mm hexahedra at the
+/// edge) converged there, and does a CUF mesh graded to the edge meet issue
+/// 49's `5 %` there? Against the block's quarter graded towards the edge in
+/// 3D (bench/block_edge_quarter.toml's twin, 1 mm C3D20R at the edge, 6
+/// along the half depth; and 3 along it, tests/data/block_edge_quarter_calculix_top_u_z.csv),
+/// at every station x ∈ [0, 0.1975] m:
+/// - the two quarters within `2.5 %` of each other (measured 1.52 %, at
+///   0.1975 m) and the whole block's reference within `2.5 %` of the finer
+///   (measured 2.18 %, at 0.1975 m): half the issue's bound, so the
+///   reference can judge it;
+/// - the CUF quarter of bench/block_edge_quarter.toml (13,671 DOF) within
+///   issue 49's `5 %` of the finer 3D quarter (measured 1.95 %, at 0.19 m;
+///   1.68 % on x ∈ (0.19, 0.1975] m): the mesh graded to the edge meets it at every
+///   station, where `--adapt`'s halvings from the paper's mesh leave the
+///   element beside the edge 4.2 mm long at its 60,000 DOF budget
+///   (crates/cufem-cli/tests/adapt.rs `block_adaptive_against_3d`, a known
+///   limit).
+///
+/// Mutation: Young's modulus 10 % high in the bench file puts the CUF
+/// quarter 9.2 % off and fails.
+#[test]
+fn block_edge_stations_against_a_graded_3d_quarter() {
+    let quarter = common::csv_columns(&root().join("tests/data/block_edge_quarter_calculix_top_u_z.csv"));
+    let whole = common::csv_columns(&root().join("tests/data/block_calculix_top_u_z.csv"));
+    let (x, fine, coarse) = (&quarter["x"], &quarter["u_z"], &quarter["u_z_3_along"]);
+    let stations: Vec<usize> = (0..x.len()).filter(|&i| x[i] <= 0.1975 + 1e-9).collect();
+    assert_eq!(stations.len(), 80, "the stations 2.5 mm apart on x ∈ [0, 0.1975] m");
+    assert!(stations.iter().all(|&i| (whole["x"][i] - x[i]).abs() < 1e-12), "the same stations");
+    assert!(stations.iter().all(|&i| fine[i] < 0.0), "3D u_z crosses zero: a relative difference is not defined");
+    let worst = |u: &dyn Fn(usize) -> f64| stations.iter().map(|&i| (u(i) / fine[i] - 1.0).abs()).fold(0.0, f64::max);
+    let (along, reference) = (worst(&|i| coarse[i]), worst(&|i| whole["u_z"][i]));
+    let path = root().join("bench/block_edge_quarter.toml");
+    let model = cufem::setup::Model::from_file(&path).unwrap();
+    assert_eq!(model.n_dofs(), 13_671);
+    let solution = cufem::analysis::run(&model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
+    assert!(solution.failure.is_none(), "{:?}", solution.failure);
+    let view = solution.fields(&model);
+    let line = model.lines.iter().find(|l| l.name == "top").unwrap();
+    let samples = cufem::post::sample_line(&view, line);
+    assert_eq!(samples.len(), x.len());
+    let u_z: Vec<f64> = samples.iter().map(|p| p.sample.as_ref().unwrap().u[2]).collect();
+    let (cuf, beside) = (
+        worst(&|i| u_z[i]),
+        stations.iter().filter(|&&i| x[i] > 0.19 + 1e-9).map(|&i| (u_z[i] / fine[i] - 1.0).abs()).fold(0.0, f64::max),
+    );
+    let quarter_3d = "the 3D quarter graded to the edge (tests/data/block_edge_quarter_calculix_top_u_z.csv)";
+    common::figure(
+        "block_edge.3d_along",
+        100.0 * along,
+        "%",
+        "≤ 2.5 % at every station x ∈ [0, 0.1975] m: 3 against 6 hexahedra along the half depth",
+    );
+    common::figure(
+        "block_edge.whole_reference",
+        100.0 * reference,
+        "%",
+        &format!("≤ 2.5 % at every station x ∈ [0, 0.1975] m: the whole block's 3D reference against {quarter_3d}"),
+    );
+    common::figure(
+        "block_edge.cufem",
+        100.0 * cuf,
+        "%",
+        &format!("≤ 5 % at every station x ∈ [0, 0.1975] m: bench/block_edge_quarter.toml against {quarter_3d}"),
+    );
+    common::figure("block_edge.cufem_beside", 100.0 * beside, "%", "reported: the stations x ∈ (0.19, 0.1975] m");
+    assert!(along <= 0.025 && reference <= 0.025, "3D references {along} {reference} apart");
+    assert!(cuf <= 0.05, "the graded quarter's u_z {cuf} from 3D");
+}
+
 /// The graded block against the stored 3D fields of the paper's mesh
 /// (`compare_stored_on`, points located by position). Known limits,
 /// asserted from both sides: u 4.76 % over the block and 3.63 % on the

@@ -324,3 +324,40 @@ fn an_indenter_starting_inside_the_body_is_rejected() {
         "{err}"
     );
 }
+
+/// examples/cantilevers_contact.toml with 80 B4 per beam along the axis
+/// and 2 × 2 L9 per section (36,150 DOF), its rollers pressed 20 µm (a
+/// twelfth of one of the example's increments: elastic, and less than the
+/// 44 µm gap to the node rows beside each roller's line). The stacked
+/// beams start bonded at zero gap and Newton peels their interface open a
+/// row or two of nodes a correction (`solver::newton`, the releasing
+/// iterations): more corrections than `max_iterations` (25). Before those
+/// were exempt the run failed: every cutback peels the same rows (the
+/// increment is elastic, a cutback scales the solution, not the set). The
+/// beams then touch only where the upper beam's free end (y = 254 mm)
+/// rests on the lower one, within its last element (3.2 mm): beam
+/// theory's picture (the lower cantilever,
+/// loaded there, turns its free part down towards y = 76.2 mm while the
+/// upper one rises towards its clamp). A release that left points bonded
+/// would leave a longer set, one that dropped a pressing point none.
+#[test]
+fn stacked_beams_peel_open_past_the_iteration_limit() {
+    let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/cantilevers_contact.toml"))
+        .unwrap()
+        .replace("elements = 4 }", "elements = 2 }")
+        .replace("elements = 10 }", "elements = 80 }")
+        .replace("displacement = [0.0, 0.0, -2.5e-3]", "displacement = [0.0, 0.0, -2e-5]")
+        .replace("increments = 20", "increments = 1");
+    let model = Model::parse(&text).unwrap();
+    assert_eq!(model.n_dofs(), 36_150);
+    let s = analysis::run(&model, &Default::default(), &mut Silent).unwrap();
+    assert!(s.failure.is_none(), "{:?}", s.failure);
+    let corrections: Vec<usize> = s.increments.iter().map(|i| i.newton.iterations).collect();
+    eprintln!("corrections per increment {corrections:?}, cutbacks {}", s.cutbacks.len());
+    assert!(corrections[0] > 25, "{corrections:?}");
+    let beams = s.contact_sets.iter().find(|c| c.name == "beams").unwrap();
+    let touching: Vec<f64> = beams.points.iter().filter(|p| p.active).map(|p| model.mesh.coords(p.node)[1]).collect();
+    eprintln!("interface points touching at y = {touching:?}");
+    assert!(touching.iter().filter(|&&y| (y - 0.254).abs() < 1e-9).count() == 5, "the tip's row: {touching:?}");
+    assert!(touching.iter().all(|&y| y > 0.254 - 0.254 / 80.0), "{touching:?}");
+}

@@ -165,4 +165,13 @@ pub trait Contribution {
     fn tangent_unchanged(&self, _at: &At<'_>) -> bool {
         false
     }
+
+    /// True if every status change of its last evaluation was a release
+    /// (contact points opening; none closing, none switching between stick
+    /// and slip): a run of such evaluations ends, as each releases a point
+    /// of a finite set and none takes one back (`solver::newton`, the
+    /// releasing iterations). False unless the part knows.
+    fn releasing(&self) -> bool {
+        false
+    }
 }

@@ -16,7 +16,7 @@ impl NonlinearProblem for Cubic {
     fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
         self.r = self.x.powi(3) - 8.0;
         self.k = 3.0 * self.x * self.x;
-        Ok(Evaluation { residual_norm: self.r.abs(), force_scale: 8.0, settled: true })
+        Ok(Evaluation { residual_norm: self.r.abs(), force_scale: 8.0, settled: true, releasing: false })
     }
     fn correct(&mut self) -> Result<Correction, Self::Error> {
         let dx = -self.r / self.k;
@@ -46,7 +46,7 @@ struct Halving {
 impl NonlinearProblem for Halving {
     type Error = std::io::Error;
     fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
-        Ok(Evaluation { residual_norm: 1e3 * (self.x - 2.0).abs(), force_scale: 1.0, settled: true })
+        Ok(Evaluation { residual_norm: 1e3 * (self.x - 2.0).abs(), force_scale: 1.0, settled: true, releasing: false })
     }
     fn correct(&mut self) -> Result<Correction, Self::Error> {
         let dx = -0.5 * (self.x - 2.0);
@@ -98,7 +98,7 @@ impl NonlinearProblem for Lazy {
     fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
         self.tangent = Some(if self.cubic { 3.0 * self.x * self.x } else { 2e3 });
         let scale = if self.cubic { 8.0 } else { 1.0 };
-        Ok(Evaluation { residual_norm: self.residual().abs(), force_scale: scale, settled: true })
+        Ok(Evaluation { residual_norm: self.residual().abs(), force_scale: scale, settled: true, releasing: false })
     }
     fn evaluate_residual(&mut self) -> Result<Evaluation, Self::Error> {
         let ev = self.evaluate()?;
@@ -185,7 +185,7 @@ impl NonlinearProblem for Inexact {
     fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
         let (r, scale) = (self.residual(), if self.cubic { 8.0 } else { 1.0 });
         self.eta = (r.abs() / scale).min(0.1);
-        Ok(Evaluation { residual_norm: r.abs(), force_scale: scale, settled: true })
+        Ok(Evaluation { residual_norm: r.abs(), force_scale: scale, settled: true, releasing: false })
     }
     fn evaluate_residual(&mut self) -> Result<Evaluation, Self::Error> {
         self.residual_only += 1;
@@ -279,7 +279,12 @@ struct Bouncing {
 impl NonlinearProblem for Bouncing {
     type Error = std::io::Error;
     fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
-        Ok(Evaluation { residual_norm: [1.0, 2.0, 1.5, 1.0][self.k % 4], force_scale: 1.0, settled: true })
+        Ok(Evaluation {
+            residual_norm: [1.0, 2.0, 1.5, 1.0][self.k % 4],
+            force_scale: 1.0,
+            settled: true,
+            releasing: false,
+        })
     }
     fn correct(&mut self) -> Result<Correction, Self::Error> {
         self.k += 1;
@@ -306,7 +311,7 @@ struct Chattering {
 impl NonlinearProblem for Chattering {
     type Error = std::io::Error;
     fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
-        Ok(Evaluation { residual_norm: 1.0, force_scale: 1.0, settled: false })
+        Ok(Evaluation { residual_norm: 1.0, force_scale: 1.0, settled: false, releasing: false })
     }
     fn correct(&mut self) -> Result<Correction, Self::Error> {
         Ok(Correction { norm: 1.0, increment_norm: 1.0 })
@@ -325,6 +330,49 @@ fn an_attempt_that_chatters_is_handed_to_a_searching_retry_after_six_corrections
     assert_eq!((rep.failure, rep.iterations), (Some(Failure::MaxIterations), 20));
 }
 
+/// A contact interface peeled open from a bonded start: each evaluation
+/// until `open` reports points released (`releasing`, the residual at 0.3),
+/// then the set is settled and the residual gone; with `closes_too` every
+/// other evaluation also takes a point back (not releasing).
+struct Peeling {
+    evaluations: usize,
+    open: usize,
+    closes_too: bool,
+}
+
+impl NonlinearProblem for Peeling {
+    type Error = std::io::Error;
+    fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
+        self.evaluations += 1;
+        let peeling = self.evaluations <= self.open;
+        let releasing = peeling && !(self.closes_too && self.evaluations.is_multiple_of(2));
+        let residual_norm = if peeling { 0.3 } else { 0.0 };
+        Ok(Evaluation { residual_norm, force_scale: 1.0, settled: !peeling, releasing })
+    }
+    fn correct(&mut self) -> Result<Correction, Self::Error> {
+        Ok(Correction { norm: 1.0, increment_norm: 1.0 })
+    }
+    fn retry_searches(&self) -> bool {
+        true
+    }
+}
+
+#[test]
+fn corrections_that_only_release_points_do_not_count_against_the_limit() {
+    let settings = NewtonSettings { max_iterations: 25, ..Default::default() };
+    // forty releasing evaluations, then one settled: forty corrections, more
+    // than max_iterations, and no chatter verdict after six
+    let rep = solve(&mut Peeling { evaluations: 0, open: 40, closes_too: false }, &settings, &Interrupt::new());
+    assert_eq!((rep.failure, rep.iterations), (None, 40), "{rep:?}");
+    // every other one also closing a point: those count, and the attempt
+    // is given up as chattering after the sixth of them
+    let rep = solve(&mut Peeling { evaluations: 0, open: 60, closes_too: true }, &settings, &Interrupt::new());
+    assert_eq!((rep.failure, rep.iterations), (Some(Failure::Stagnated), 2 * CHATTER), "{rep:?}");
+    // releasing without end: stopped at RELEASE_ALLOWANCE times the limit
+    let rep = solve(&mut Peeling { evaluations: 0, open: usize::MAX, closes_too: false }, &settings, &Interrupt::new());
+    assert_eq!((rep.failure, rep.iterations), (Some(Failure::MaxIterations), RELEASE_ALLOWANCE * 25), "{rep:?}");
+}
+
 /// A softening spring `atan(x) = 0` from x₀ = 2: Newton's first step
 /// lands at −3.5, where the residual is larger, and every further one
 /// overshoots more (plain Newton on atan diverges from |x₀| > 1.39).
@@ -338,7 +386,7 @@ struct Atan {
 impl NonlinearProblem for Atan {
     type Error = std::io::Error;
     fn evaluate(&mut self) -> Result<Evaluation, Self::Error> {
-        Ok(Evaluation { residual_norm: self.x.atan().abs(), force_scale: 1.0, settled: true })
+        Ok(Evaluation { residual_norm: self.x.atan().abs(), force_scale: 1.0, settled: true, releasing: false })
     }
     fn correct(&mut self) -> Result<Correction, Self::Error> {
         (self.start, self.dx) = (self.x, -self.x.atan() * (1.0 + self.x * self.x));

@@ -35,7 +35,12 @@ impl NonlinearProblem for Spring {
         let (f, k) = (self.law)(self.u);
         self.r = f - self.load * self.lambda;
         self.k = k;
-        Ok(Evaluation { residual_norm: self.r.abs(), force_scale: self.load * self.lambda.max(1e-3), settled: true })
+        Ok(Evaluation {
+            residual_norm: self.r.abs(),
+            force_scale: self.load * self.lambda.max(1e-3),
+            settled: true,
+            releasing: false,
+        })
     }
     fn correct(&mut self) -> Result<Correction, Self::Error> {
         Ok(scalar_correction(&mut self.u, self.u_committed, self.r, self.k))
@@ -201,7 +206,12 @@ impl NonlinearProblem for Hardening {
             (self.p_committed, 1.0)
         };
         self.r = self.u - self.p - 3.0 * self.lambda;
-        Ok(Evaluation { residual_norm: self.r.abs(), force_scale: 3.0 * self.lambda.max(1e-3), settled: true })
+        Ok(Evaluation {
+            residual_norm: self.r.abs(),
+            force_scale: 3.0 * self.lambda.max(1e-3),
+            settled: true,
+            releasing: false,
+        })
     }
     fn correct(&mut self) -> Result<Correction, Self::Error> {
         Ok(scalar_correction(&mut self.u, self.u_committed, self.r, self.k))

@@ -110,6 +110,7 @@ impl Structure<'_> {
         let kept = wanted && self.tangent_is_constant();
         // every contribution into the tangent, in order
         let mut changes = 0;
+        let mut releasing = true;
         let mut elapsed = [Duration::ZERO; 2];
         {
             let at = self.state.at();
@@ -124,7 +125,9 @@ impl Structure<'_> {
                     Phase::Interfaces => weights[1],
                     Phase::Elements | Phase::Loads => 1.0,
                 };
-                changes += part.evaluate(&at, &mut tangent);
+                let changed = part.evaluate(&at, &mut tangent);
+                releasing &= changed == 0 || part.releasing();
+                changes += changed;
                 elapsed[usize::from(part.phase() == Phase::Contact)] += t.elapsed();
             }
         }
@@ -188,7 +191,8 @@ impl Structure<'_> {
         if self.parts.elements.discretisation.kinematics.is_nonlinear() {
             self.system.forcing = self.system.forcing.min(LARGE_ROTATION_FORCING);
         }
-        Ok(Evaluation { residual_norm: res2.sqrt(), force_scale: scale, settled })
+        let releasing = releasing && changes > 0;
+        Ok(Evaluation { residual_norm: res2.sqrt(), force_scale: scale, settled, releasing })
     }
 
     /// After an evaluation that kept the tangent on the last one's word

@@ -1,5 +1,6 @@
-//! The contacts' step limit (`contact::assembly::limit`) on the contacts
-//! of a model: points set open or in contact by hand, corrections made up.
+//! The contacts' step limit (`contact::assembly::limit`) and their
+//! releasing evaluations (`Contacts::only_released`) on the contacts of a
+//! model: points set open or in contact by hand, corrections made up.
 //! Here and not beside the limit because the contact module must not
 //! import the model reader (tests/architecture.rs).
 
@@ -144,4 +145,36 @@ fn with_nothing_in_contact_open_points_stop_at_the_surface_and_round_off_does_no
     du[3 * punch[2] + 2] = 1e-3;
     let alpha = c.step_limit(|d| du[d]);
     assert!((alpha / 2e-6 - 1.0).abs() < 1e-9, "{alpha}");
+}
+
+/// Which status changes make an evaluation releasing (`solver::newton`,
+/// the releasing iterations): opens alone; not a close, not a point that
+/// stays in contact and switches between stick and slip, not a flip at a
+/// gap of round-off.
+#[test]
+fn only_points_opening_make_an_evaluation_releasing() {
+    let model = Model::parse(MODEL).unwrap();
+    // punch points 0–3, pair points 4–7; all in contact before
+    let mut gaps = vec![-1e-6; 8];
+    let before = vec![true; 8];
+    gaps[5] = 2e-6;
+    let c = contacts_with(&model, &gaps);
+    assert!(c.only_released(&before, &[]));
+    // nothing changed: not releasing
+    assert!(!c.only_released(&c.points().iter().map(|p| p.active).collect::<Vec<_>>(), &[]));
+    // point 2 closes while 5 opens
+    let mut was = before.clone();
+    was[2] = false;
+    assert!(!c.only_released(&was, &[]));
+    // a point opening at a gap of round-off alone is no release
+    gaps[5] = 1e-20;
+    assert!(!contacts_with(&model, &gaps).only_released(&before, &[]));
+    // with friction: point 1 stays in contact and starts sliding
+    gaps[5] = 2e-6;
+    let mut c = contacts_with(&model, &gaps);
+    c.points_mut()[1].sliding = true;
+    assert!(!c.only_released(&before, &[false; 8]));
+    assert!(c.only_released(&before, &[false, true, false, false, false, false, false, false]));
+    // the opening point 5 was sliding: its switch does not count
+    assert!(c.only_released(&before, &[false, true, false, false, false, true, false, false]));
 }

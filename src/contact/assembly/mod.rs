@@ -109,6 +109,9 @@ pub struct Contacts<'m> {
     on_secant: bool,
     /// Points that kept their contact so at the last evaluation.
     kept: usize,
+    /// Every status change of the last evaluation was a release
+    /// (`Contribution::releasing`).
+    released_only: bool,
     /// No point was active at the last evaluation that formed a tangent:
     /// the contacts added no stiffness to it.
     formed_open: bool,
@@ -169,6 +172,7 @@ impl<'m> Contacts<'m> {
             first_evaluation: false,
             on_secant: false,
             kept: 0,
+            released_only: false,
             formed_open: false,
             current,
             roundoff_gap: ROUNDOFF_GAP * mesh.bodies.iter().map(|b| b.size()).fold(0.0, f64::max),
@@ -325,6 +329,7 @@ impl Contribution for Contacts<'_> {
         let roundoff = self.roundoff_gap;
         let grazing = was_active.iter().zip(&self.points).filter(|(w, p)| **w != p.active && p.gap.abs() <= roundoff);
         changes = changes.saturating_sub(grazing.count());
+        self.released_only = self.only_released(&was_active, &was_sliding);
         self.first_evaluation = false;
         self.on_secant = false;
         if tangent.wanted {
@@ -354,5 +359,31 @@ impl Contribution for Contacts<'_> {
     fn tangent_unchanged(&self, _at: &At<'_>) -> bool {
         (self.indenters.is_empty() && self.pairs.is_empty())
             || (self.formed_open && self.points.iter().all(|p| !p.active))
+    }
+
+    fn releasing(&self) -> bool {
+        self.released_only
+    }
+}
+
+impl Contacts<'_> {
+    /// True if the last evaluation opened a point (beyond a gap of
+    /// round-off) and neither closed one nor switched a point that stayed
+    /// in contact between stick and slip (`was_sliding` empty without
+    /// friction): what two stacked beams do while Newton peels their
+    /// interface open from the bonded start of zero gaps, a row or two of
+    /// nodes a correction (`solver::newton`, the releasing iterations).
+    pub(crate) fn only_released(&self, was_active: &[bool], was_sliding: &[bool]) -> bool {
+        let roundoff = self.roundoff_gap;
+        let (mut opened, mut other) = (false, false);
+        for (k, (p, &w)) in self.points.iter().zip(was_active).enumerate() {
+            let switched = w && p.active && was_sliding.get(k).is_some_and(|&s| s != p.sliding);
+            if w != p.active && p.gap.abs() <= roundoff {
+                continue;
+            }
+            opened |= w && !p.active;
+            other |= (!w && p.active) || switched;
+        }
+        opened && !other
     }
 }

@@ -189,7 +189,7 @@ fn the_half_section_gives_the_whole_sections_curve() {
 /// rollers' curvature term by 3e-4.
 #[test]
 fn the_crush_tangent_matches_finite_differences_mid_increment() {
-    use cufem::solver::newton::{self, NonlinearProblem};
+    use cufem::solver::newton::NonlinearProblem;
     use cufem::solver::stepping::{self, Increment, Incremental, Observer};
     struct Quiet;
     impl<P> Observer<P> for Quiet {
@@ -206,10 +206,15 @@ fn the_crush_tangent_matches_finite_differences_mid_increment() {
     let dlambda = 1.0 / 36.0;
     s.set_load_factor(0.1 + dlambda);
     s.extrapolate(dlambda / last);
-    let two = newton::NewtonSettings { max_iterations: 2, ..*newton_settings };
-    let report = newton::solve(&mut s, &two, &Default::default());
-    assert_eq!((report.iterations, report.failure), (2, Some(newton::Failure::MaxIterations)), "{report:?}");
-    s.evaluate().unwrap();
+    // two corrections as Newton makes them (its own loop would go on past
+    // two where the second evaluation only opens contact points: those
+    // corrections do not count against max_iterations)
+    for _ in 0..2 {
+        s.evaluate_for_correction().unwrap();
+        s.correct().unwrap();
+    }
+    let ev = s.evaluate().unwrap();
+    assert!(ev.residual_norm > newton_settings.residual_tolerance * ev.force_scale, "not converged yet: {ev:?}");
     let n_eq = s.n_equations();
     let dofs: Vec<(usize, usize)> =
         (0..s.displacements().len()).filter_map(|d| s.equation(d).map(|e| (d, e))).collect();

@@ -30,7 +30,6 @@ use super::Contacts;
 use super::pairs::split;
 use crate::assembly::{At, Tangent};
 use crate::contact;
-use crate::materials::Predictor;
 
 impl Contacts<'_> {
     /// A node against a rigid indenter with `method = "surface"`: the exact
@@ -92,7 +91,7 @@ impl Contacts<'_> {
             let v: [f64; 3] = std::array::from_fn(|i| {
                 committed.force[i] - cn * committed.normal[i] - eps_t * (y[i] - committed.position[i])
             });
-            let stick_tangent = self.first_evaluation || at.predictor == Predictor::Elastic;
+            let stick_tangent = self.first_evaluation;
             let r = contact::turning_friction(v, committed.slip, &n, &dn, p, c.penalty, fr, stick_tangent);
             let point = &mut self.points[k];
             point.sliding = r.sliding;

@@ -18,7 +18,6 @@
 use super::{ContactPoint, Contacts};
 use crate::assembly::{At, Tangent};
 use crate::contact::{self, PairContact, current, surface};
-use crate::materials::Predictor;
 
 /// Projections and weighted gaps of one surface contact.
 #[derive(Debug, Clone, Default)]
@@ -199,7 +198,7 @@ impl Contacts<'_> {
             }
         }
         let mut r = contact::friction_response(d_t, t_n.map(|v| v / eps_t), &n, normal_force, eps, fr);
-        let predicted = r.sliding && (self.first_evaluation || at.predictor == Predictor::Elastic);
+        let predicted = r.sliding && self.first_evaluation;
         if predicted {
             // as node-to-node friction (structure/contacts.rs): the stick
             // tangent predicts the first iteration of an increment

@@ -10,8 +10,9 @@
 //! held from both sides and listed in docs/limitations.md.
 
 use cufem::analysis::state_errors::State;
-use cufem::analysis::{Silent, Solution};
+use cufem::analysis::{IncrementLog, Progress, Silent, Solution};
 use cufem::setup::Model;
+use cufem::solver::stepping::Cutback;
 
 mod common;
 #[path = "common/truth.rs"]
@@ -25,10 +26,30 @@ fn example(name: &str) -> String {
 }
 
 fn solve(text: &str) -> (Model, Solution) {
+    solve_with(text, &mut Silent)
+}
+
+fn solve_with(text: &str, progress: &mut dyn Progress) -> (Model, Solution) {
     let model = Model::parse(text).unwrap();
-    let solution = cufem::analysis::run(&model, &Default::default(), &mut Silent).unwrap();
+    let solution = cufem::analysis::run(&model, &Default::default(), progress).unwrap();
     assert!(solution.failure.is_none(), "{:?}", solution.failure);
     (model, solution)
+}
+
+/// A line on stderr per converged increment and per cutback: the
+/// references' remakes run for up to hours (`--nocapture` shows them).
+struct Log(std::time::Instant);
+
+impl Progress for Log {
+    fn increment(&mut self, log: &IncrementLog) {
+        let s = self.0.elapsed().as_secs();
+        eprintln!("[{s} s] increment {} λ = {:.4}: {} corrections", log.index, log.lambda, log.iterations);
+    }
+    fn cutback(&mut self, c: &Cutback) {
+        let s = self.0.elapsed().as_secs();
+        let (n, why) = (c.newton.iterations, &c.newton.failure);
+        eprintln!("[{s} s] cutback at increment {} (Δλ = {:.2e}): {n} corrections, {why:?}", c.index, c.dlambda);
+    }
 }
 
 /// Every kept state of a run in the order of its `error_history`: the
@@ -444,7 +465,8 @@ impl Reference {
     /// Runs the refined model and writes the file.
     fn remake(&self) {
         let text = example(self.example);
-        let (model, fine) = (Model::parse(&text).unwrap(), solve(&(self.refined)(&text)));
+        let log = &mut Log(std::time::Instant::now());
+        let (model, fine) = (Model::parse(&text).unwrap(), solve_with(&(self.refined)(&text), log));
         let points = gauss_points(&model);
         let stresses = stresses_at((&fine.0, &fine.1), &points, self.mirror);
         let mut out = format!(
@@ -613,6 +635,36 @@ fn the_cantilevers_step_is_estimated() {
 #[ignore = "validate: references — the cantilevers' half refined twice (407,286 DOF, about 30 min)"]
 fn the_cantilevers_twice_refined_stresses_are_remade() {
     CANTILEVERS.remake();
+}
+
+/// The frictional twin (`cantilevers_contact_friction.toml`: the same
+/// model with Coulomb friction μ = 0.3 between the beams), its reference
+/// made the same way (the friction is its own mirror image across
+/// x = 12.7 mm as well).
+const CANTILEVERS_FRICTION: Reference = Reference {
+    example: "cantilevers_contact_friction.toml",
+    file: "cantilevers_contact_friction_refined_twice.csv",
+    remade_by: "the_frictional_cantilevers_twice_refined_stresses_are_remade",
+    ..CANTILEVERS
+};
+
+/// The shipped frictional cantilevers' step end against the stress of
+/// their model refined twice (the half, 407,286 DOF, about 30 min:
+/// stored), as [`the_cantilevers_step_is_estimated`]: within issue 49's
+/// `0.5`–`2` (measured 0.70 whole and 0.72 without the roller lines, the
+/// estimate 20.7 % against a true 29.0 % over both beams). That reference
+/// could be made only once a sliding point's stick tangent was kept to the
+/// first evaluation of a retry (tests/friction.rs
+/// `a_fine_frictional_peel_converges_in_its_retry`).
+#[test]
+fn the_frictional_cantilevers_step_is_estimated() {
+    CANTILEVERS_FRICTION.estimated("step_error.cantilevers_friction", "4x4L9_10B4", (0, &[0.1778, 0.2286]));
+}
+
+#[test]
+#[ignore = "validate: references — the frictional cantilevers' half refined twice (407,286 DOF, hours)"]
+fn the_frictional_cantilevers_twice_refined_stresses_are_remade() {
+    CANTILEVERS_FRICTION.remake();
 }
 
 const COMPACT16: Reference = Reference {

@@ -667,6 +667,54 @@ fn the_frictional_cantilevers_twice_refined_stresses_are_remade() {
     CANTILEVERS_FRICTION.remake();
 }
 
+/// The frictional cantilevers on non-matching meshes
+/// (`cantilevers_contact_nonmatching_friction.toml`: the upper beam 4 × 4
+/// L9, the lower 5 × 3 L9, each × 10 B4, surface-to-surface contact with
+/// μ = 0.3) with every division `k` times finer, cut by their plane of
+/// mirror symmetry x = 12.7 mm as [`cantilevers_refined_half`] (an element
+/// boundary once `k` is even).
+fn nonmatching_refined_half(text: &str, k: usize) -> String {
+    let mut out = text.to_string();
+    for (pattern, n) in [
+        ("x = { from = 0.0, to = 0.0254, ", 4),
+        ("z = { from = 0.0254, to = 0.0508, ", 4),
+        ("x = { from = 0.0, to = 0.0254, ", 5),
+        ("z = { from = 0.0, to = 0.0254, ", 3),
+        ("from = 0.0, to = 0.254, ", 10),
+        ("from = 0.0762, to = 0.3302, ", 10),
+    ] {
+        let from = format!("{pattern}elements = {n} }}");
+        assert!(out.contains(&from), "{from}");
+        out = out.replace(&from, &format!("{pattern}elements = {} }}", n * k));
+    }
+    out + "\n[[symmetry]]\nname = \"symmetry_x\"\nplane = { x = 0.0127 }\nkeep = \"above\"\n"
+}
+
+const NONMATCHING_FRICTION: Reference = Reference {
+    example: "cantilevers_contact_nonmatching_friction.toml",
+    file: "cantilevers_contact_nonmatching_friction_refined_twice.csv",
+    refined: |text| nonmatching_refined_half(text, 4),
+    mirror: &[Plane { axis: 0, at: 0.0127, above: true }],
+    what: "refined twice, its half x ≥ 12.7 mm (tests/step_error.rs `nonmatching_refined_half(…, 4)`), mirrored below x = 12.7 mm",
+    remade_by: "the_nonmatching_frictional_cantilevers_twice_refined_stresses_are_remade",
+};
+
+/// The shipped non-matching frictional cantilevers' step end against the
+/// stress of their model refined twice (the half, 394,218 DOF, 41 min:
+/// stored), over both beams and without the upper beam's elements touching
+/// a roller line: within issue 49's `0.5`–`2` (measured 0.69 whole and
+/// 0.71 away, the estimate 20.2 % against a true 28.5 % over both beams).
+#[test]
+fn the_nonmatching_frictional_cantilevers_step_is_estimated() {
+    NONMATCHING_FRICTION.estimated("step_error.nonmatching_friction", "4x4L9_5x3L9_10B4", (0, &[0.1778, 0.2286]));
+}
+
+#[test]
+#[ignore = "validate: references — the non-matching frictional cantilevers' half refined twice (394,218 DOF)"]
+fn the_nonmatching_frictional_cantilevers_twice_refined_stresses_are_remade() {
+    NONMATCHING_FRICTION.remake();
+}
+
 const COMPACT16: Reference = Reference {
     example: "bending_compact_16L9_quarter.toml",
     file: "bending_compact_16L9_quarter_refined_twice.csv",

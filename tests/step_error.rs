@@ -712,6 +712,140 @@ fn the_nonmatching_frictional_cantilevers_twice_refined_stresses_are_remade() {
     NONMATCHING_FRICTION.remake();
 }
 
+/// The frictionless non-matching cantilevers
+/// (`cantilevers_contact_nonmatching.toml`: the frictional twin's model
+/// without friction), their reference made the same way.
+const NONMATCHING: Reference = Reference {
+    example: "cantilevers_contact_nonmatching.toml",
+    file: "cantilevers_contact_nonmatching_refined_twice.csv",
+    remade_by: "the_nonmatching_cantilevers_twice_refined_stresses_are_remade",
+    ..NONMATCHING_FRICTION
+};
+
+/// The shipped non-matching cantilevers' step end against the stress of
+/// their model refined twice (the half, 394,218 DOF: stored), as
+/// [`the_nonmatching_frictional_cantilevers_step_is_estimated`]: within
+/// issue 49's `0.5`–`2` (measured 0.72 whole and 0.72 away, the estimate
+/// 20.0 % against a true 27.5 % over both beams; the reference took 47 min
+/// and 6.7 GB, 40 of them in its first increment: three failed attempts
+/// peeling the stacked beams open, docs/limitations.md).
+#[test]
+fn the_nonmatching_cantilevers_step_is_estimated() {
+    NONMATCHING.estimated("step_error.nonmatching", "4x4L9_5x3L9_10B4", (0, &[0.1778, 0.2286]));
+}
+
+#[test]
+#[ignore = "validate: references — the non-matching cantilevers' half refined twice (394,218 DOF)"]
+fn the_nonmatching_cantilevers_twice_refined_stresses_are_remade() {
+    NONMATCHING.remake();
+}
+
+/// The channel pressed on one flange (`channel_roller.toml`: its half
+/// y ≤ 0.325 m, 2 L9 along each flange, 6 along the web, 1 through each
+/// wall, 2 + 20 B4 graded towards the loading roller, elastic, a rigid
+/// roller pressed 1 mm off the shear centre) with every division `k` times
+/// finer, each graded axis segment keeping its ratio.
+fn channel_refined(text: &str, k: usize) -> String {
+    let mut out = text.to_string();
+    let section = "along_flange = 2, along_web = 6, through = 1 }";
+    assert!(out.contains(section), "{section}");
+    out = out.replace(section, &format!("along_flange = {}, along_web = {}, through = {k} }}", 2 * k, 6 * k));
+    let counts = [("from = 0.0, to = 0.025, ", 2), ("from = 0.625, to = 0.65, ", 2)];
+    out = refined(&out, k, &counts);
+    for from in ["to = 0.325, elements = 20, ratio", "to = 0.625, elements = 20, ratio"] {
+        assert!(out.contains(from), "{from}");
+        out = out.replace(from, &from.replace("elements = 20", &format!("elements = {}", 20 * k)));
+    }
+    out
+}
+
+const CHANNEL: Reference = Reference {
+    example: "channel_roller.toml",
+    file: "channel_roller_refined_twice.csv",
+    refined: |text| channel_refined(text, 4),
+    mirror: &[],
+    what: "refined twice (tests/step_error.rs `channel_refined(…, 4)`)",
+    remade_by: "the_channel_s_twice_refined_stresses_are_remade",
+};
+
+/// The channel pressed on one flange against the stress of its mesh
+/// refined twice (8 L9 along each flange, 24 along the web, 4 through each
+/// wall × 88 B4, 694,035 DOF: stored), over the half and without the beam
+/// elements touching a roller line (the support at y = 25 mm, the loading
+/// roller at 325 mm): within issue 49's `0.5`–`2` (measured 1.53 whole and
+/// 1.33 away, the estimate 15.9 % against a true 10.5 % over the half; the
+/// reference took 8 min and 9.3 GB, its one increment converging in its
+/// retry). Mutation: the section patches unweighted by element area
+/// (`post::spr`) gives 1.93 and 1.81, inside the band: not caught here.
+#[test]
+fn the_channel_step_is_estimated() {
+    CHANNEL.estimated("step_error.channel", "12L9_22B4", (0, &[0.025, 0.325]));
+}
+
+#[test]
+#[ignore = "validate: references — the channel refined twice (694,035 DOF)"]
+fn the_channel_s_twice_refined_stresses_are_remade() {
+    CHANNEL.remake();
+}
+
+/// The I-beam under its roller (`ibeam_roller.toml`: 2 L9 along each
+/// flange outstand, 6 along the web, 1 through each wall, 1 + 10 + 10 + 1
+/// B4 graded towards the loading roller, elastoplastic, three rigid
+/// rollers, 20 increments) with every division `k` times finer, each graded
+/// axis segment keeping its ratio, cut by its two planes of mirror symmetry
+/// ([`IBEAM_QUARTER`]: the web's mid-plane x = 0, an element boundary once
+/// `k` is even, and mid-span y = 0.325 m): the quarter x ≥ 0, y ≤ 0.325 m.
+fn ibeam_refined_quarter(text: &str, k: usize) -> String {
+    let mut out = text.to_string();
+    let section = "along_flange = 2, along_web = 6, through = 1 }";
+    assert!(out.contains(section), "{section}");
+    out = out.replace(section, &format!("along_flange = {}, along_web = {}, through = {k} }}", 2 * k, 6 * k));
+    out = refined(&out, k, &[("from = 0.0, to = 0.025, ", 1), ("from = 0.625, to = 0.65, ", 1)]);
+    for from in ["to = 0.325, elements = 10, ratio", "to = 0.625, elements = 10, ratio"] {
+        assert!(out.contains(from), "{from}");
+        out = out.replace(from, &from.replace("elements = 10", &format!("elements = {}", 10 * k)));
+    }
+    out + "\n[[symmetry]]\nname = \"mid_web\"\nplane = { x = 0.0 }\nkeep = \"above\"\n\n\
+           [[symmetry]]\nname = \"mid_span\"\nplane = { y = 0.325 }\nkeep = \"below\"\n"
+}
+
+/// The I-beam's planes of mirror symmetry: the web's mid-plane x = 0 and
+/// mid-span y = 0.325 m (the loading roller's line).
+const IBEAM_QUARTER: [Plane; 2] = [Plane { axis: 0, at: 0.0, above: true }, Plane { axis: 1, at: 0.325, above: false }];
+
+const IBEAM: Reference = Reference {
+    example: "ibeam_roller.toml",
+    file: "ibeam_roller_refined_twice.csv",
+    refined: |text| ibeam_refined_quarter(text, 4),
+    mirror: &IBEAM_QUARTER,
+    what: "refined twice, its quarter x ≥ 0, y ≤ 0.325 m (tests/step_error.rs `ibeam_refined_quarter(…, 4)`), mirrored",
+    remade_by: "the_ibeam_s_twice_refined_stresses_are_remade",
+};
+
+/// The I-beam under its roller against the stress of its mesh refined
+/// twice (its quarter, 244,587 DOF: stored), over the whole beam and
+/// without the beam elements touching a roller line (y = 25, 325 and
+/// 625 mm): within issue 49's `0.5`–`2` (measured 1.03 whole and 1.12
+/// away, the estimate 14.2 % against a true 13.8 % over the beam; the
+/// reference took 6 min and 2.3 GB). The whole model already holds u_x = 0
+/// on the web's mid-plane and u_y = 0 at mid-span (its constraints
+/// `symmetry_x`, `symmetry_y`) and its rollers are their own mirror images,
+/// so the quarter is the whole model's own half of a half. Mutations: the
+/// yielded body's stresses recovered instead of its strains
+/// (`post::yielded::replace_recovery` returning at once) gives 0.88 and
+/// 1.11, and the section patches unweighted by area 1.13 and 1.36, inside
+/// the band: not caught here.
+#[test]
+fn the_ibeam_step_is_estimated() {
+    IBEAM.estimated("step_error.ibeam", "16L9_22B4", (0, &[0.025, 0.325, 0.625]));
+}
+
+#[test]
+#[ignore = "validate: references — the I-beam's quarter refined twice (244,587 DOF)"]
+fn the_ibeam_s_twice_refined_stresses_are_remade() {
+    IBEAM.remake();
+}
+
 const COMPACT16: Reference = Reference {
     example: "bending_compact_16L9_quarter.toml",
     file: "bending_compact_16L9_quarter_refined_twice.csv",

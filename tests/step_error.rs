@@ -740,23 +740,29 @@ fn the_nonmatching_cantilevers_twice_refined_stresses_are_remade() {
     NONMATCHING.remake();
 }
 
-/// The channel pressed on one flange (`channel_roller.toml`: its half
-/// y ≤ 0.325 m, 2 L9 along each flange, 6 along the web, 1 through each
-/// wall, 2 + 20 B4 graded towards the loading roller, elastic, a rigid
-/// roller pressed 1 mm off the shear centre) with every division `k` times
-/// finer, each graded axis segment keeping its ratio.
-fn channel_refined(text: &str, k: usize) -> String {
-    let mut out = text.to_string();
+/// A profile under rollers (`channel_roller.toml`, `ibeam_roller.toml`: 2
+/// L9 along each flange (outstand), 6 along the web, 1 through each wall;
+/// along the axis `ends` B4 over each 25 mm beyond a support and `graded`
+/// over each half span, graded towards the loading roller) with every
+/// division `k` times finer, each graded segment keeping its ratio.
+fn profile_refined(text: &str, k: usize, (ends, graded): (usize, usize)) -> String {
     let section = "along_flange = 2, along_web = 6, through = 1 }";
-    assert!(out.contains(section), "{section}");
-    out = out.replace(section, &format!("along_flange = {}, along_web = {}, through = {k} }}", 2 * k, 6 * k));
-    let counts = [("from = 0.0, to = 0.025, ", 2), ("from = 0.625, to = 0.65, ", 2)];
-    out = refined(&out, k, &counts);
-    for from in ["to = 0.325, elements = 20, ratio", "to = 0.625, elements = 20, ratio"] {
-        assert!(out.contains(from), "{from}");
-        out = out.replace(from, &from.replace("elements = 20", &format!("elements = {}", 20 * k)));
+    assert!(text.contains(section), "{section}");
+    let text = text.replace(section, &format!("along_flange = {}, along_web = {}, through = {k} }}", 2 * k, 6 * k));
+    let mut out = refined(&text, k, &[("from = 0.0, to = 0.025, ", ends), ("from = 0.625, to = 0.65, ", ends)]);
+    for to in ["0.325", "0.625"] {
+        let from = format!("to = {to}, elements = {graded}, ratio");
+        assert!(out.contains(&from), "{from}");
+        out = out.replace(&from, &format!("to = {to}, elements = {}, ratio", graded * k));
     }
     out
+}
+
+/// The channel pressed on one flange (`channel_roller.toml`: its half
+/// y ≤ 0.325 m, 2 + 20 B4, elastic, a rigid roller pressed 1 mm off the
+/// shear centre) with every division `k` times finer.
+fn channel_refined(text: &str, k: usize) -> String {
+    profile_refined(text, k, (2, 20))
 }
 
 const CHANNEL: Reference = Reference {
@@ -788,24 +794,14 @@ fn the_channel_s_twice_refined_stresses_are_remade() {
     CHANNEL.remake();
 }
 
-/// The I-beam under its roller (`ibeam_roller.toml`: 2 L9 along each
-/// flange outstand, 6 along the web, 1 through each wall, 1 + 10 + 10 + 1
-/// B4 graded towards the loading roller, elastoplastic, three rigid
-/// rollers, 20 increments) with every division `k` times finer, each graded
-/// axis segment keeping its ratio, cut by its two planes of mirror symmetry
+/// The I-beam under its roller (`ibeam_roller.toml`: 1 + 10 + 10 + 1 B4,
+/// elastoplastic, three rigid rollers, 20 increments) with every division
+/// `k` times finer ([`profile_refined`]), cut by its two planes of mirror symmetry
 /// ([`IBEAM_QUARTER`]: the web's mid-plane x = 0, an element boundary once
 /// `k` is even, and mid-span y = 0.325 m): the quarter x ≥ 0, y ≤ 0.325 m.
 fn ibeam_refined_quarter(text: &str, k: usize) -> String {
-    let mut out = text.to_string();
-    let section = "along_flange = 2, along_web = 6, through = 1 }";
-    assert!(out.contains(section), "{section}");
-    out = out.replace(section, &format!("along_flange = {}, along_web = {}, through = {k} }}", 2 * k, 6 * k));
-    out = refined(&out, k, &[("from = 0.0, to = 0.025, ", 1), ("from = 0.625, to = 0.65, ", 1)]);
-    for from in ["to = 0.325, elements = 10, ratio", "to = 0.625, elements = 10, ratio"] {
-        assert!(out.contains(from), "{from}");
-        out = out.replace(from, &from.replace("elements = 10", &format!("elements = {}", 10 * k)));
-    }
-    out + "\n[[symmetry]]\nname = \"mid_web\"\nplane = { x = 0.0 }\nkeep = \"above\"\n\n\
+    profile_refined(text, k, (1, 10))
+        + "\n[[symmetry]]\nname = \"mid_web\"\nplane = { x = 0.0 }\nkeep = \"above\"\n\n\
            [[symmetry]]\nname = \"mid_span\"\nplane = { y = 0.325 }\nkeep = \"below\"\n"
 }
 

@@ -550,6 +550,12 @@ fn an_impactor_in_free_flight_travels_v_t_however_far() {
 /// the weight rebounds.
 #[test]
 fn a_drop_weight_hands_its_energy_to_the_tube() {
+    drop_weight("tube_drop_weight_twin", &drop_weight_twin());
+}
+
+/// The smaller twin of `examples/tube_drop_weight.toml`
+/// ([`a_drop_weight_hands_its_energy_to_the_tube`]): 8 L9 around, 10 B4.
+fn drop_weight_twin() -> String {
     let mut twin = drop_weight_example().replace("around = 20", "around = 8");
     for (from, to) in [
         ("to = 0.025, elements = 2", "to = 0.025, elements = 1"),
@@ -560,7 +566,75 @@ fn a_drop_weight_hands_its_energy_to_the_tube() {
         assert!(twin.contains(from), "{from}");
         twin = twin.replace(from, to);
     }
-    drop_weight("tube_drop_weight_twin", &twin);
+    twin
+}
+
+/// The tangent of a time step while a drop weight dents a tube: the twin
+/// of [`a_drop_weight_hands_its_energy_to_the_tube`] after 40 steps of
+/// 20 µs (the weight pressing the top wall, about 700 Gauss points
+/// yielding under it), in the middle of the 41st, every column of the top
+/// wall's nodes within 15 mm of the contact centre against central
+/// differences of the residual: within 1e-6 of the largest entry
+/// (measured 1.4e-9). The inertia, the elastoplastic consistent tangent,
+/// the contact impulse and the impactor's bordered unknown together,
+/// where the other transient checks hold one at a time on elastic models.
+/// The step is h = 1e-11 m: the contact-centre node sits 6e-11 m inside
+/// the weight there (the dented wall just touching it), and h = 1e-10 m
+/// crosses its contact switch (a difference of 0.19 in that one column,
+/// every other column within 1e-6). The plastic term of the consistent
+/// tangent 10 % low (`b` in `Material::elastoplastic_tangent`) puts the
+/// difference at 3.4e-4 (tried by hand). So the drop weight's Newton,
+/// falling linearly over its first corrections while the weight presses
+/// (residuals `[7e-2 4e-3 3e-4 6e-6 1e-9]` on the example), has the exact
+/// tangent: its rate is set by the yielded set moving — on the example,
+/// hundreds of points leave or enter the yield surface between the first
+/// evaluations of a step (docs/limitations.md).
+#[test]
+fn the_tangent_of_a_yielding_drop_weight_step_matches_finite_differences() {
+    use cufem::solver::newton::{self, NewtonSettings, NonlinearProblem};
+    use cufem::solver::stepping::Incremental;
+    let model = cufem::setup::Model::parse(&drop_weight_twin()).unwrap();
+    let mut s = cufem::analysis::Structure::of_model(&model, None).unwrap();
+    // 40 steps of 1/300 of the load step, each halved where Newton fails
+    // (the first touch: the CLI's stepping cuts back there too)
+    let (end, full): (f64, f64) = (40.0 / 300.0, 1.0 / 300.0);
+    let (mut lambda, mut step): (f64, f64) = (0.0, full);
+    while lambda < end - 1e-12 {
+        let next = (lambda + step).min(end);
+        s.set_load_factor(next);
+        if newton::solve(&mut s, &NewtonSettings::default(), &Default::default()).converged() {
+            s.commit();
+            lambda = next;
+            step = (2.0 * step).min(full);
+        } else {
+            s.restore();
+            step *= 0.5;
+            assert!(step > 1e-4 * full, "no convergence past λ = {lambda}");
+        }
+    }
+    s.set_load_factor(40.5 / 300.0);
+    let report = newton::solve(&mut s, &NewtonSettings::default(), &Default::default());
+    assert!(report.converged(), "{report:?}");
+    s.evaluate().unwrap();
+    assert!(s.plastic_points() > 0, "the wall does not yield");
+    assert!(
+        s.contact_points().iter().any(|p| p.active && model.mesh.coords(p.node)[2] > 0.028),
+        "the weight does not touch the tube"
+    );
+    let k = s.tangent_values().to_vec();
+    let scale = k.iter().fold(0.0f64, |a, b| a.max(b.abs()));
+    let columns: Vec<(usize, usize)> = (0..model.mesh.n_nodes())
+        .filter(|&n| {
+            let [_, y, z] = model.mesh.coords(n);
+            z > 0.028 && (y - 0.125).abs() <= 0.015
+        })
+        .flat_map(|n| 3 * n..3 * n + 3)
+        .filter_map(|d| s.equation(d).map(|e| (d, e)))
+        .collect();
+    assert!(columns.len() >= 30, "{} columns", columns.len());
+    let (worst, _) = common::tangent_vs_differences(&mut s, &columns, 1e-11, scale);
+    println!("{} columns, {} plastic points: largest relative difference {worst:e}", columns.len(), s.plastic_points());
+    assert!(worst < 1e-6, "{worst:e}");
 }
 
 /// The checks of [`a_drop_weight_hands_its_energy_to_the_tube`] on
@@ -659,7 +733,7 @@ fn transient_tangent(text: &str) {
         .map(|d| (d, eq[d]))
         .collect();
     assert!(!columns.is_empty());
-    let (worst, _) = common::tangent_vs_differences(&mut s, &columns, 1e-10, scale);
+    let (worst, _) = common::tangent_vs_differences(&mut s, &columns, 1e-11, scale);
     println!("{} columns, largest relative difference {worst:e}", columns.len());
     assert!(worst < 1e-6, "{worst:e}");
 }
@@ -705,7 +779,7 @@ fn contact_impulse_tangent(text: &str) {
     let columns: Vec<(usize, usize)> =
         (n_nodes - 4..n_nodes).map(|n| 3 * n + 1).filter_map(|d| s.equation(d).map(|e| (d, e))).collect();
     assert_eq!(columns.len(), 4);
-    let (worst, _) = common::tangent_vs_differences(&mut s, &columns, 1e-10, scale);
+    let (worst, _) = common::tangent_vs_differences(&mut s, &columns, 1e-11, scale);
     println!("largest relative difference {worst:e}");
     assert!(worst < 1e-6, "{worst:e}");
 }

@@ -476,51 +476,12 @@ fn measure(
 #[test]
 #[ignore = "validate: slow — four adaptive cycles of the block up to 60,000 DOF and a re-run (about 2 min)"]
 fn block_adaptive_against_3d() {
-    let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
-    let reference: Vec<[f64; 3]> = std::fs::read_to_string(root.join("tests/data/block_calculix_top.csv"))
-        .unwrap()
-        .lines()
-        .filter(|l| !l.starts_with('#') && !l.starts_with('x'))
-        .map(|l| {
-            let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
-            [v[0], v[1], v[2]]
-        })
-        .collect();
-    let top_3d = common::csv_columns(&root.join("tests/data/block_calculix_top_u_z.csv"));
-    let (x, u_z_3d) = (&top_3d["x"], &top_3d["u_z"]);
-    assert!(x.len() == reference.len() && x.iter().zip(&reference).all(|(a, r)| (a - r[0]).abs() < 1e-12));
-    assert!(u_z_3d.iter().all(|u| *u < 0.0), "3D u_z crosses zero: a relative difference is not defined");
-    let peak = reference.iter().map(|r| r[1].abs()).fold(0.0, f64::max);
     let settings =
         cufem::setup::AdaptSettings { tolerance: 0.01, max_dof: 60_000, max_cycles: 20, fraction: 0.5, modes: None };
-    // σ_zz under the punch (% of the 3D peak), the punch force (% from 3D),
-    // then u_z at each station of the top line
-    let sample = |m: &Model, s: &cufem::analysis::Solution| {
-        let view = s.fields(m);
-        let line = m.lines.iter().find(|l| l.name == "top").unwrap();
-        let samples = cufem::post::sample_line(&view, line);
-        let szz = reference
-            .iter()
-            .zip(&samples)
-            .filter(|(r, _)| (0.21 - 1e-9..=0.29 + 1e-9).contains(&r[0]))
-            .map(|(r, p)| (p.sample.as_ref().unwrap().stress[2] - r[1]).abs() / peak)
-            .fold(0.0, f64::max);
-        let force = s.contact("punch").unwrap().force[2];
-        let u_z = samples.iter().map(|p| p.sample.as_ref().unwrap().u[2]);
-        [100.0 * szz, 100.0 * (force / -1.4102e6 - 1.0)].into_iter().chain(u_z).collect::<Vec<f64>>()
-    };
-    // u_z in % per zone: (x ∈ [0, 0.03], [0.03, 0.15], 0.175, [0, 0.19]
-    // with the punch, (0.19, 0.2)), each with its mirror
-    let zones = |u_z: &[f64]| {
-        let e = |a: f64, b: f64| 100.0 * common::block_u_z_error(x, u_z, u_z_3d, a, b);
-        [
-            ("corner", e(0.0, 0.03)),
-            ("near", e(0.03, 0.15)),
-            ("edge", e(0.175, 0.175)),
-            ("all", e(0.0, 0.19).max(e(0.2, 0.25))),
-            ("beside", e(0.1925, 0.1975)),
-        ]
-    };
+    let top = BlockTop::read();
+    let (x, u_z_3d) = (&top.x, &top.u_z);
+    let sample = |m: &Model, s: &cufem::analysis::Solution| top.sample(m, s);
+    let zones = |u_z: &[f64]| top.zones(u_z);
     let (rows, model_file) = measure("block_indentation.toml", settings, &sample);
     for (k, (dof, estimate, _, v)) in rows.iter().enumerate() {
         common::figure(&format!("adapt_block.cycle{k}.dof"), *dof as f64, "", "reported");
@@ -564,6 +525,122 @@ fn block_adaptive_against_3d() {
     common::figure("adapt_block.rerun.force", force, "", "≤ 1e-6 of the 3D force: adapted.toml re-run");
     common::figure("adapt_block.rerun.u_z", u_z_rerun, "", "≤ 1e-6 of the largest |u_z|: adapted.toml re-run");
     assert!(force <= 1e-6 && u_z_rerun <= 1e-6, "adapted.toml re-run: force {force:e}, u_z {u_z_rerun:e}");
+}
+
+/// The 3D top line of the block (CalculiX C3D20R refine 2): σ_zz rows
+/// (tests/data/block_calculix_top.csv) and u_z per station
+/// (tests/data/block_calculix_top_u_z.csv), for the adaptive block tests.
+struct BlockTop {
+    /// `[x, σ_zz, peeq]` per station.
+    reference: Vec<[f64; 3]>,
+    x: Vec<f64>,
+    u_z: Vec<f64>,
+    /// The largest |σ_zz| of 3D along the line.
+    peak: f64,
+}
+
+impl BlockTop {
+    fn read() -> Self {
+        let root = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."));
+        let reference: Vec<[f64; 3]> = std::fs::read_to_string(root.join("tests/data/block_calculix_top.csv"))
+            .unwrap()
+            .lines()
+            .filter(|l| !l.starts_with('#') && !l.starts_with('x'))
+            .map(|l| {
+                let v: Vec<f64> = l.split(',').map(|x| x.parse().unwrap()).collect();
+                [v[0], v[1], v[2]]
+            })
+            .collect();
+        let mut top_3d = common::csv_columns(&root.join("tests/data/block_calculix_top_u_z.csv"));
+        let (x, u_z) = (top_3d.remove("x").unwrap(), top_3d.remove("u_z").unwrap());
+        assert!(x.len() == reference.len() && x.iter().zip(&reference).all(|(a, r)| (a - r[0]).abs() < 1e-12));
+        assert!(u_z.iter().all(|u| *u < 0.0), "3D u_z crosses zero: a relative difference is not defined");
+        let peak = reference.iter().map(|r| r[1].abs()).fold(0.0, f64::max);
+        Self { reference, x, u_z, peak }
+    }
+
+    /// σ_zz under the punch (x ∈ [0.21, 0.29] m, the largest difference in
+    /// % of the 3D peak), the punch force (% from 3D's 1.4102 MN), then u_z
+    /// at each station of the top line.
+    fn sample(&self, m: &Model, s: &cufem::analysis::Solution) -> Vec<f64> {
+        let view = s.fields(m);
+        let line = m.lines.iter().find(|l| l.name == "top").unwrap();
+        let samples = cufem::post::sample_line(&view, line);
+        let szz = self
+            .reference
+            .iter()
+            .zip(&samples)
+            .filter(|(r, _)| (0.21 - 1e-9..=0.29 + 1e-9).contains(&r[0]))
+            .map(|(r, p)| (p.sample.as_ref().unwrap().stress[2] - r[1]).abs() / self.peak)
+            .fold(0.0, f64::max);
+        let force = s.contact("punch").unwrap().force[2];
+        let u_z = samples.iter().map(|p| p.sample.as_ref().unwrap().u[2]);
+        [100.0 * szz, 100.0 * (force / -1.4102e6 - 1.0)].into_iter().chain(u_z).collect()
+    }
+
+    /// u_z in % per zone (x ∈ [0, 0.03], [0.03, 0.15], 0.175, [0, 0.19]
+    /// with the punch, (0.19, 0.2)), each with its mirror.
+    fn zones(&self, u_z: &[f64]) -> [(&'static str, f64); 5] {
+        let e = |a: f64, b: f64| 100.0 * common::block_u_z_error(&self.x, u_z, &self.u_z, a, b);
+        [
+            ("corner", e(0.0, 0.03)),
+            ("near", e(0.03, 0.15)),
+            ("edge", e(0.175, 0.175)),
+            ("all", e(0.0, 0.19).max(e(0.2, 0.25))),
+            ("beside", e(0.1925, 0.1975)),
+        ]
+    }
+}
+
+/// `block_adaptive_against_3d` with a budget of 300,000 DOF instead of
+/// 60,000: the full third cycle (x 28 → 36, z 9 → 13, axis 4 → 8; 147,825
+/// DOF) leaves the stations beside the punch edges at 6.3 %, and a fourth
+/// (x 36 → 45, z 13 → 17, axis 8 → 10; 296,205 DOF, the next mesh over the
+/// budget), its elements beside each edge about 1 mm wide, brings every
+/// station of the top line within issue 49's 5 % of 3D, those 2.5 mm from
+/// the edges included (measured 4.73 %, the others 1.98 %; 7 to 9 min and
+/// 5.0 GB on one thread: `cufem run examples/block_indentation.toml
+/// --adapt 0.01 --max-dof 300000 --threads 1`). The punch force is checked
+/// against the 3D quarter graded to the punch edge (1 mm C3D20R there,
+/// four times its −3.4873e5 N: tests/data/references.toml,
+/// block_edge_quarter; its twin with 3 hexahedra along the half depth
+/// gives −3.4878e5 N), within 0.6 % (measured +0.04 %): the 3D model of
+/// the shipped mesh (−1.4102 MN, refine 2, the reference of the u_z
+/// stations and of `block_adaptive_against_3d`'s force) is 1.1 % stiffer
+/// than that converged one at the punch, and the adapted force falls
+/// towards the converged one cycle after cycle (+1.27, +0.86, +0.35,
+/// +0.04 % from cycle 1 to 4; −1.05 % from the shipped-mesh 3D at cycle
+/// 4). The written model file's re-run is checked at the smaller budget
+/// (`block_adaptive_against_3d`).
+#[test]
+#[ignore = "validate: slow — five adaptive cycles of the block up to 300,000 DOF (about 9 min, 5 GB)"]
+fn block_adaptive_reaches_every_station() {
+    let settings =
+        cufem::setup::AdaptSettings { tolerance: 0.01, max_dof: 300_000, max_cycles: 20, fraction: 0.5, modes: None };
+    let top = BlockTop::read();
+    let (rows, _) = measure("block_indentation.toml", settings, &|m, s| top.sample(m, s));
+    let (dof, estimate, _, last) = rows.last().unwrap();
+    let zones = top.zones(&last[2..]);
+    common::figure("adapt_block_300k.dof", *dof as f64, "", "reported: the last cycle within 300,000 DOF");
+    common::figure("adapt_block_300k.estimate", 100.0 * estimate, "%", "reported");
+    // the punch force against the graded 3D quarter's, four times
+    // −3.4873e5 N (tests/data/references.toml, block_edge_quarter)
+    let force = 100.0 * ((1.0 + last[1] / 100.0) * -1.4102e6 / (4.0 * -3.4873e5) - 1.0);
+    common::figure("adapt_block_300k.force_shipped_3d", last[1], "%", "reported: against the shipped mesh's 3D");
+    common::figure("adapt_block_300k.force", force, "%", "|punch force − graded 3D quarter × 4| ≤ 0.6 %");
+    for (zone, e) in zones {
+        let check = match zone {
+            "all" => "≤ 5 % at every station x ∈ [0, 0.19] m, its mirror and under the punch",
+            "beside" => "≤ 5 % at the stations x ∈ (0.19, 0.2) m and their mirrors",
+            _ => "reported",
+        };
+        common::figure(&format!("adapt_block_300k.u_z_{zone}"), e, "%", check);
+    }
+    let [.., (_, all), (_, beside)] = zones;
+    assert!(rows.len() >= 5, "{} cycles", rows.len());
+    assert!(force.abs() <= 0.6, "punch force {force:+.2} % from the graded 3D quarter");
+    assert!(all <= 5.0 && beside <= 5.0, "u_z {all:.2} % (x ≤ 0.19 m), {beside:.2} % beside the edges");
+    assert!(sinks_towards_the_punch(&top.x, &last[2..]), "the top does not sink monotonically towards the punch");
 }
 
 /// Whether u_z sinks monotonically from the far field to x = 0.19 m and

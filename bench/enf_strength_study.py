@@ -61,7 +61,7 @@ def cbt_load(a0, d):
     return branch_point(0.5 * (lo + hi))[1]
 
 
-# the shipped precrack (a0 = 39.3125 mm) and a longer one (44.0625 mm, A0 = 0.886 L)
+# the precrack of examples/enf.toml at 77a6605 (a0 = 39.3125 mm) and a longer one (44.0625 mm, A0 = 0.886 L)
 LONG = [
     ("crack = { from = 0.0, to = 0.0393 }", "crack = { from = 0.0, to = 0.0440625 }"),
     ("{ from = 0.0, to = 0.03825, elements = 10 }", "{ from = 0.0, to = 0.043, elements = 11 }"),

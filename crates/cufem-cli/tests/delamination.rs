@@ -424,8 +424,8 @@ fn mmb_branch_error(points: &[(f64, f64)], reference: &cbt::Mmb) -> f64 {
 /// (c/L) u_end − ((c + L)/L) u_saddle of the mid-width probes (within
 /// `1 %`: the lever reads the mean over the width's four nodes; measured
 /// `0.5 %`); and the compliance δ/P at the first increment is CBT's
-/// (Reeder & Crews) within `1 %` (measured `+0.23 %`; the ENF's `+0.54 %`
-/// the beams' shear). Swapping the lever's two coefficients or dropping one
+/// (Reeder & Crews) within `1 %` (measured `+0.23 %`; the ENF's `+0.69 %`:
+/// its beams' and interface's shear). Swapping the lever's two coefficients or dropping one
 /// moves the pin's share by far more.
 #[test]
 fn mmb_lever_before_onset_matches_statics_and_corrected_beam_theory() {

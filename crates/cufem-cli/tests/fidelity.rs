@@ -342,13 +342,13 @@ fn block_indentation_graded_against_3d() {
 ///   limit).
 ///
 /// The punch forces: the CUF quarter's within 0.6 % of the graded 3D
-/// quarter's (measured +0.04 %), and the whole block's 3D model of the
-/// shipped mesh (refine 2, the reference of the u_z stations) 1.1 % above
-/// four times that quarter's, asserted from both sides in [1.0, 1.2] %:
-/// its edge elements are coarse, and the mesh's force checks against it
-/// (`block_adaptive_against_3d`'s 0.6 %) carry that difference; the two
-/// graded 3D quarters (6 and 3 hexahedra along the half depth) agree within
-/// 0.02 %.
+/// quarter's (measured +0.04 %); reported, from the stored references
+/// alone, the whole block's 3D model of the shipped mesh (refine 2, the
+/// reference of the u_z stations) 1.1 % above four times that quarter's
+/// (its edge elements are coarse, and the force checks against it, as
+/// `block_adaptive_against_3d`'s 0.6 %, carry that difference) and the
+/// two graded 3D quarters (6 and 3 hexahedra along the half depth) 0.01 %
+/// apart.
 ///
 /// Mutation: Young's modulus 10 % high in the bench file puts the CUF
 /// quarter 9.2 % off and fails.
@@ -405,17 +405,21 @@ fn block_edge_stations_against_a_graded_3d_quarter() {
     let (graded, graded_along, shipped) = (-3.4873e5, -3.4878e5, -1.4102e6);
     let stiffer = shipped / (4.0 * graded) - 1.0;
     let force = solution.contact("punch").unwrap().force[2] / graded - 1.0;
-    common::known_limit(
+    // two stored references against each other: reported, not a check
+    common::figure(
         "block_edge.whole_reference_force",
         100.0 * stiffer,
         "%",
-        1.0,
-        1.2,
-        "the shipped mesh's 3D punch force against four times the 3D quarter graded to the edge",
+        "reported: the shipped mesh's 3D punch force against four times the 3D quarter graded to the edge",
+    );
+    common::figure(
+        "block_edge.3d_along_force",
+        100.0 * (graded_along / graded - 1.0),
+        "%",
+        "reported: the graded 3D quarter with 3 against 6 hexahedra along the half depth",
     );
     common::figure("block_edge.cufem_force", 100.0 * force, "%", "≤ 0.6 %: the CUF quarter's punch force against 3D's");
     assert!(force.abs() <= 0.006, "the graded quarter's punch force {force} from 3D");
-    assert!((graded_along / graded - 1.0f64).abs() < 1e-3, "the graded 3D quarters' forces apart");
 }
 
 /// The graded block against the stored 3D fields of the paper's mesh

@@ -131,8 +131,10 @@ fn a_columns_buckling_estimates_follow_the_true_factor_errors() {
 /// its mesh refined twice (40 B4 × 4 × 4 L9, 29,403 DOF), mode by mode in
 /// order (pairs of equal factors, as above). Its true factor errors are
 /// the section's (`0.27`–`0.31 %`: one L9 across a solid section, the
-/// axis converged), which a patch of one section element still sees in
-/// part: measured effectivity `0.57`–`0.61`, in issue 49's `0.5`–`2`.
+/// axis converged), which a patch of one section element sees in part,
+/// through its faces' shear tractions held at zero (`post::spr`):
+/// measured effectivity `0.65`–`0.68` (`0.57`–`0.61` with the element
+/// interpolated), in issue 49's `0.5`–`2`.
 /// (The reference's own error: its first factor moved `12.8` N from 1 to 2
 /// and `5.2` N from 2 to 4 L9 across, so by Richardson it lies about `3.5` N,
 /// `0.05 %`, above the limit, a sixth of the shipped mesh's error.)

@@ -256,6 +256,7 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         &model.materials,
         (&solution.stresses, &solution.states),
         offsets,
+        model.kinematics.is_nonlinear().then_some(&solution.u[..]),
     ));
     // and every step end and frame the run kept, by the same estimate
     solution.error_history = state_errors::estimate(

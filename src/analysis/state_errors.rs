@@ -65,8 +65,15 @@ pub(super) fn estimate(
     (last, increments): (Option<&ErrorEstimate>, usize),
 ) -> ErrorHistory {
     let start = Instant::now();
-    let of = |stresses: &[crate::voigt::Voigt], states: &[crate::materials::PointState]| {
-        crate::post::estimate::of_state(&model.mesh, &model.cells, &model.materials, (stresses, states), gp_offsets)
+    let of = |stresses: &[crate::voigt::Voigt], states: &[crate::materials::PointState], u: &[f64]| {
+        crate::post::estimate::of_state(
+            &model.mesh,
+            &model.cells,
+            &model.materials,
+            (stresses, states),
+            gp_offsets,
+            model.kinematics.is_nonlinear().then_some(u),
+        )
     };
     let mut rows: Vec<StateError> = frames
         .iter()
@@ -74,12 +81,12 @@ pub(super) fn estimate(
         .map(|(k, f)| StateError {
             state: State::Frame(k),
             lambda: history[f.increment - 1].lambda,
-            estimate: of(&f.fields.stresses, &f.fields.states),
+            estimate: of(&f.fields.stresses, &f.fields.states, &f.fields.u),
         })
         .collect();
     for (k, end) in steps.iter().enumerate() {
         let estimate = match (&end.fields, last) {
-            (Some(fields), _) => of(&fields.stresses, &fields.states),
+            (Some(fields), _) => of(&fields.stresses, &fields.states, &fields.u),
             // the state that ended the run: its estimate is the final one
             (None, Some(last)) if end.increment == increments => last.clone(),
             (None, _) => continue,

@@ -183,16 +183,33 @@ pub fn estimate(
 /// (`super::spr::recover_stages`; in a body with a yielded point, of its
 /// strains through the material points' `states`, `super::yielded`; an
 /// empty `states` for a mode shape), with the section stage's part of each
-/// element ([`ErrorEstimate::section`]). What every run, step end, frame
-/// and mode shape is estimated with.
+/// element ([`ErrorEstimate::section`]). `turned`: the displacements of a
+/// state of nonlinear geometry, whose stresses are Cauchy stresses in axes
+/// the body has turned away from: they are recovered as second
+/// Piola–Kirchhoff stresses, in the body's own axes, where a free face's
+/// shear tractions vanish (`super::spr::recover_stages`), and turned back.
+/// What every run, step end, frame and mode shape is estimated with.
 pub(crate) fn of_state(
     mesh: &Mesh,
     cells: &[CellValues],
     materials: &[Material],
     (stresses, states): (&[Voigt], &[crate::materials::PointState]),
     gp_offsets: &[usize],
+    turned: Option<&[f64]>,
 ) -> ErrorEstimate {
-    let (mut recovered, mut along) = super::spr::recover_stages(mesh, cells, (stresses, 1.0), gp_offsets);
+    let (mut recovered, mut along) = match turned {
+        None => super::spr::recover_stages(mesh, cells, (stresses, 1.0), gp_offsets, true),
+        Some(u) => {
+            let f = deformation_gradients(mesh, cells, u, gp_offsets, stresses.len());
+            let material: Vec<Voigt> =
+                stresses.iter().zip(&f).map(|(s, f)| crate::kinematics::second_piola(f, s)).collect();
+            let (star, along) = super::spr::recover_stages(mesh, cells, (&material, 1.0), gp_offsets, true);
+            let spatial = |s: Vec<Voigt>| -> Vec<Voigt> {
+                s.iter().zip(&f).map(|(s, f)| crate::kinematics::cauchy(f, s)).collect()
+            };
+            (spatial(star), spatial(along))
+        }
+    };
     // a yielded body's strains are recovered instead (`super::yielded`)
     super::yielded::replace_recovery(
         mesh,
@@ -205,6 +222,41 @@ pub(crate) fn of_state(
     let mut out = estimate(mesh, cells, materials, stresses, gp_offsets, &recovered);
     out.section = section_parts(mesh, cells, materials, gp_offsets, (&recovered, &along));
     out.direction = directions(mesh, cells, materials, (stresses, &recovered), gp_offsets);
+    out
+}
+
+/// The deformation gradient `F = I + ∂u/∂X` at every Gauss point (the
+/// layout of the stresses, `n` of them) of the displacements `u`.
+fn deformation_gradients(
+    mesh: &Mesh,
+    cells: &[CellValues],
+    u: &[f64],
+    gp_offsets: &[usize],
+    n: usize,
+) -> Vec<crate::kinematics::Tensor> {
+    let mut out = vec![crate::kinematics::deformation_gradient(&[[0.0; 3]; 3]); n];
+    let (mut nodes, mut grads) = (Vec::new(), Vec::new());
+    for (b, body) in mesh.bodies.iter().enumerate() {
+        let cell = &cells[b];
+        let (gs, ga) = (cell.section.n_gp, cell.axis.n_gp);
+        for e in 0..body.n_elements() {
+            let (es, eb) = body.split_element(e);
+            body.element_nodes(e, &mut nodes);
+            grads.resize(nodes.len(), [0.0; 3]);
+            for qa in 0..ga {
+                for qs in 0..gs {
+                    cell.gradients(es, eb, qa, qs, &mut grads);
+                    let mut h = [[0.0; 3]; 3];
+                    for (g, &node) in grads.iter().zip(&nodes) {
+                        for (k, row) in h.iter_mut().enumerate() {
+                            (0..3).for_each(|d| row[d] += u[3 * node + k] * g[d]);
+                        }
+                    }
+                    out[gp_offsets[b] + e * gs * ga + qa * gs + qs] = crate::kinematics::deformation_gradient(&h);
+                }
+            }
+        }
+    }
     out
 }
 

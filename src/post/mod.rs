@@ -44,6 +44,8 @@
 
 pub mod estimate;
 pub mod failure;
+mod free_faces;
+mod least_squares;
 pub mod mode_error;
 mod patch_map;
 pub mod recovery;

@@ -135,7 +135,7 @@ pub(crate) fn mode_error(d: &Discretisation<'_>, shape: &[f64], stiffness: f64) 
     let (sigma, offsets) = stresses(d, shape);
     // with the section stage's part: where `--adapt` on modes refines
     // (across the section or along the axis), as for the static estimate
-    let estimate = of_state(d.mesh, d.cells, d.materials, (&sigma, &[]), &offsets);
+    let estimate = of_state(d.mesh, d.cells, d.materials, (&sigma, &[]), &offsets, None);
     let eigenvalue = if stiffness > 0.0 { estimate.error * estimate.error / stiffness } else { 0.0 };
     ModeError { estimate, eigenvalue }
 }

@@ -136,7 +136,7 @@ pub(crate) fn replace_recovery(
             strains[g] = std::array::from_fn(|k| elastic[k] + states[g].plastic_strain[k]);
         }
     }
-    let (strain_star, strain_along) = super::spr::recover_stages(mesh, cells, (&strains, 2.0), gp_offsets);
+    let (strain_star, strain_along) = super::spr::recover_stages(mesh, cells, (&strains, 2.0), gp_offsets, false);
     for &(b, (first, end)) in &bodies {
         let m = &materials[mesh.bodies[b].material];
         for g in first..end {

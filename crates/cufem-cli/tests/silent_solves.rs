@@ -328,10 +328,11 @@ total_force = [0.0, 0.0, -100.0]
 // ------------------------------------------------------------- adaptivity
 
 /// The Timoshenko cantilever of examples/cantilever_timoshenko.toml on a
-/// 1 × 1 L9 section and 2 B4: `--adapt 0.001` refines it to 189, 450, 1,053
-/// and 1,296 DOF (z and the axis; its x interval is never split,
-/// `mark::by_direction`), whose analyses need 11.7, 13.1, 16.6 and 18.2 MiB
-/// (the console's `memory estimate`).
+/// 1 × 1 L9 section and 2 B4: `--adapt 0.001` refines it to 189, 450, 1,053,
+/// 2,160 and 3,705 DOF (z and the axis, then x once the section's shear
+/// is seen across it: `post::spr`, `mark::by_direction`), whose analyses
+/// need 11.7, 13.1, 16.6, 24.9 and 37.6 MiB (the console's `memory
+/// estimate`).
 fn coarse_cantilever() -> String {
     let text = example("cantilever_timoshenko.toml");
     let text = edit(
@@ -342,22 +343,21 @@ fn coarse_cantilever() -> String {
     edit(&text, "to = 1.0, elements = 5 }", "to = 1.0, elements = 2 }")
 }
 
-/// `--max-memory 20M`: cycle 4's mesh (1,881 DOF: the largest marked
-/// elements whose refinement the model's own size check lets through) needs
-/// 21.8 MiB. The run used to exit 4 and write nothing of the finished
-/// cycles; now it stops there as the DOF budget does (exit 0) and writes
-/// cycle 3 as a complete result set, saying why and which cycle.
+/// `--max-memory 30M`: cycle 4's mesh (3,705 DOF) needs 37.6 MiB. The run
+/// used to exit 4 and write nothing of the finished cycles; now it stops
+/// there as the DOF budget does (exit 0) and writes cycle 3 as a complete
+/// result set, saying why and which cycle.
 #[test]
 fn an_adaptive_run_at_the_memory_limit_keeps_its_last_cycle() {
     let r =
-        run("adapt_memory", &coarse_cantilever(), &["--adapt", "0.001", "--max-dof", "100000", "--max-memory", "20M"]);
+        run("adapt_memory", &coarse_cantilever(), &["--adapt", "0.001", "--max-dof", "100000", "--max-memory", "30M"]);
     assert_eq!(r.code, Some(0), "{}", r.stderr);
     let s = r.summary();
     assert_eq!((s["status"].as_str(), s["adapt_end"].as_str()), (Some("converged"), Some("done")));
-    assert_eq!((s["adapt_cycle"].as_u64(), s["dof"].as_u64()), (Some(3), Some(1296)));
+    assert_eq!((s["adapt_cycle"].as_u64(), s["dof"].as_u64()), (Some(3), Some(2160)));
     assert_eq!(s["adapt"].as_array().unwrap().len(), 4);
     let stop = s["adapt_stop"].as_str().unwrap();
-    assert!(stop.contains("cycle 4 (1881 DOF)") && stop.contains("memory") && stop.contains("cycle 3's"), "{stop}");
+    assert!(stop.contains("cycle 4 (3705 DOF)") && stop.contains("memory") && stop.contains("cycle 3's"), "{stop}");
     assert!(r.out.join("result.vtu").exists());
 }
 

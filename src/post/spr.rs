@@ -118,7 +118,7 @@
 //! of the section: a one-element section, a wall one element thick) the
 //! fit interpolates its Gauss points in that direction and sees no error
 //! there; so the shear tractions of such an element's faces are held at
-//! zero in its section fit ([`super::free_faces`]: on the elastica's one
+//! zero in its section fit (`post::free_faces`: on the elastica's one
 //! L9, tests/step_error.rs, the effectivity goes from `0.12`–`0.45` to
 //! `0.73`–`0.81`), for stresses in the body's own axes only: not a strain
 //! (`post::yielded`), and nonlinear geometry's Cauchy stresses are turned

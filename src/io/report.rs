@@ -369,10 +369,11 @@ fn resultants(s: &mut String, model: &Model, summary: &super::Summary) {
     }
 }
 
-/// Each failure criterion's largest index and first-failure load factor.
+/// Each failure criterion's largest index and first-failure load factor,
+/// the interlaminar one's at the bonded ply interfaces last.
 fn ply_failure(s: &mut String, summary: &super::Summary) {
     let Some(f) = &summary.ply_failure else { return };
-    for c in &f.criteria {
+    for c in f.criteria.iter().chain(&f.interlaminar) {
         let w = &c.first_failure_at;
         out!(
             s,

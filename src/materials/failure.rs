@@ -21,6 +21,12 @@
 //!   compression `((Y_c/(2S23))² − 1)(σ22+σ33)/Y_c + (σ22+σ33)²/(4S23²) +
 //!   (τ23² − σ22σ33)/S23² + (τ12² + τ13²)/S12²`. The fibre and the matrix
 //!   index are reported apart.
+//! * **Interlaminar** (the quadratic delamination-onset criterion of
+//!   Brewer & Lagace, *J. Compos. Mater.* 22, 1988, eq. 10, with the ply's
+//!   own transverse strengths): on a ply interface of normal 3,
+//!   `(⟨σ33⟩/Z_t)² + (τ13/S13)² + (τ23/S23)²`, the traction the interface
+//!   carries against the strengths of the ply on either side
+//!   ([`crate::post::failure`] evaluates it at ply interfaces only).
 
 /// The names of the criteria as fields, in the order of
 /// [`Indices::ratios`] (`crate::quantity::Quantity::Failure`, the summary's
@@ -156,6 +162,16 @@ impl Strengths {
     pub(crate) fn hashin_ratios(&self, material_stress: &[f64; 6], tension: [bool; 2]) -> [f64; 2] {
         let (fibre, matrix) = self.hashin_in(material_stress, tension);
         [fibre.ratio(), matrix.ratio()]
+    }
+
+    /// The interlaminar index and its strength ratio of a stress in the
+    /// material axes at a ply interface of normal 3 (module docs).
+    pub(crate) fn interlaminar(&self, material_stress: &[f64; 6]) -> (f64, f64) {
+        let s = material_stress;
+        let a =
+            (s[2].max(0.0) / self.tension[2]).powi(2) + (s[4] / self.shear[1]).powi(2) + (s[5] / self.shear[2]).powi(2);
+        let mode = Mode { a, b: 0.0 };
+        (mode.value(), mode.ratio())
     }
 
     /// The indices of a stress given in the material axes (tensor shears).

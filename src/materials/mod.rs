@@ -193,6 +193,12 @@ impl Material {
         self.strengths.as_ref().map(|s| s.indices(&self.frame.stress_to_material(stress)))
     }
 
+    /// The interlaminar index and strength ratio of a global stress at a ply
+    /// interface of normal z = material axis 3 ([`failure`]), `None` without strengths.
+    pub(crate) fn interlaminar_index(&self, stress: &Voigt) -> Option<(f64, f64)> {
+        self.strengths.as_ref().map(|s| s.interlaminar(&self.frame.stress_to_material(stress)))
+    }
+
     /// The same material with progressive ply damage (validated: an
     /// orthotropic material with strengths, no plasticity).
     pub(crate) fn with_damage(mut self, damage: Option<damage::PlyDamage>) -> Self {

@@ -1,6 +1,9 @@
 //! The failure indices of a solution at its Gauss points: for every
 //! criterion of [`crate::materials::failure`] its largest index and where,
-//! and the first-ply-failure load factor.
+//! and the first-ply-failure load factor; and the interlaminar criterion's
+//! at the bonded ply interfaces (edges of constant z between section
+//! elements of two materials), where the traction `(σ_zz, σ_xz, σ_yz)` is
+//! the interface's, from the ply on each side with its own strengths.
 //!
 //! The stresses are those of the fields people look at (`post::FieldView`,
 //! as in the VTU): at every node of every element's Lagrange grid, faces
@@ -53,6 +56,10 @@ pub struct FailureSummary {
     pub criteria: Vec<Criterion>,
     /// The smallest first-failure load factor of the criteria.
     pub(crate) first_ply_failure_load_factor: f64,
+    /// The interlaminar criterion (`fi_interlaminar`) over the bonded ply
+    /// interfaces; `None` in a model without one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub interlaminar: Option<Criterion>,
 }
 
 /// A value and where it is.
@@ -63,19 +70,79 @@ pub fn as_array(i: &crate::materials::Indices) -> [f64; 4] {
     [i.max_stress, i.tsai_wu, i.hashin_fibre, i.hashin_matrix]
 }
 
+/// The name of the interlaminar criterion (`summary.json`
+/// `ply_failure.interlaminar`; `crate::materials::failure`).
+pub(crate) const INTERLAMINAR: &str = "fi_interlaminar";
+
+/// A criterion's extremes so far: (largest index, where), (smallest
+/// ratio, where).
+type Extremes = Option<(Extreme, Extreme)>;
+
+/// `slot` with the index `value` and strength ratio `ratio` of the point
+/// `place` taken in.
+fn take(slot: &mut Extremes, (value, ratio): (f64, f64), place: &dyn Fn() -> Place) {
+    let Some(((index, at), (smallest, first))) = slot else {
+        *slot = Some(((value, place()), (ratio, place())));
+        return;
+    };
+    if value > *index {
+        (*index, *at) = (value, place());
+    }
+    if ratio < *smallest {
+        (*smallest, *first) = (ratio, place());
+    }
+}
+
+/// Per section element of `body`, the natural lines `(coordinate,
+/// value)` (`0`: ξ, `1`: η) of its edges that are bonded ply interfaces:
+/// of constant z and shared with an element of another material (a
+/// cohesive interface's twin nodes are not shared: its own onset index is
+/// `d_interface`'s).
+fn interface_lines(body: &crate::mesh::Body) -> Vec<Vec<(usize, f64)>> {
+    let section = &body.section;
+    let basis = crate::shape::Lagrange2d::new(section.kind.order());
+    let mut holding = vec![Vec::new(); section.n_nodes()];
+    for f in 0..section.n_elements() {
+        section.element(f).iter().for_each(|&t| holding[t].push(f));
+    }
+    let [_, _, z0, z1] = section.bounds();
+    let tol = 1e-9 * (z1 - z0).abs().max(f64::MIN_POSITIVE);
+    (0..section.n_elements())
+        .map(|es| {
+            (0..4)
+                .filter_map(|k| {
+                    let local = section.edge_local_nodes(k);
+                    let nodes: Vec<usize> = local.iter().map(|&l| section.element(es)[l]).collect();
+                    let flat = nodes.iter().all(|&t| (section.nodes[t][1] - section.nodes[nodes[0]][1]).abs() <= tol);
+                    let bonded = holding[nodes[0]].iter().any(|&f| {
+                        f != es
+                            && body.material_of(f) != body.material_of(es)
+                            && nodes.iter().all(|t| holding[*t].contains(&f))
+                    });
+                    let (a, b) = (basis.node(local[0]), basis.node(local[local.len() - 1]));
+                    let d = usize::from(a[0] != b[0]);
+                    (flat && bonded).then_some((d, a[d]))
+                })
+                .collect()
+        })
+        .collect()
+}
+
 /// The failure summary of the fields `view` at load factor `lambda`,
 /// `None` if no material has strengths.
 pub fn summary(view: &FieldView<'_>, lambda: f64) -> Option<FailureSummary> {
     if view.materials.iter().all(|m| m.strengths.is_none()) {
         return None;
     }
-    // per criterion: (largest index, where), (smallest ratio, where)
-    let mut best: Vec<Option<(Extreme, Extreme)>> = vec![None; 4];
+    let mut best: Vec<Extremes> = vec![None; 4];
+    let mut interlaminar: Extremes = None;
     for (b, body) in view.mesh.bodies.iter().enumerate() {
         let (ps, pb) = (body.section.kind.order(), body.axis.kind.order());
         let grid = |p: usize| (0..=p).map(move |k| -1.0 + 2.0 * k as f64 / p as f64);
+        let lines = interface_lines(body);
         for e in 0..body.n_elements() {
-            let material = &view.materials[body.material_of(body.split_element(e).0)];
+            let es = body.split_element(e).0;
+            let material = &view.materials[body.material_of(es)];
             if material.strengths.is_none() {
                 continue;
             }
@@ -83,7 +150,8 @@ pub fn summary(view: &FieldView<'_>, lambda: f64) -> Option<FailureSummary> {
                 for eta in grid(ps) {
                     for xi in grid(ps) {
                         let loc = Location { body: b, element: e, natural: [xi, eta, zeta] };
-                        let Some(ix) = material.failure_indices(&view.sample(&loc).stress) else { continue };
+                        let stress = view.sample(&loc).stress;
+                        let Some(ix) = material.failure_indices(&stress) else { continue };
                         let place = || Place {
                             point: PointValues::new(body, &loc).position(body),
                             body: body.name.clone(),
@@ -91,36 +159,29 @@ pub fn summary(view: &FieldView<'_>, lambda: f64) -> Option<FailureSummary> {
                         };
                         let values = as_array(&ix);
                         for (k, slot) in best.iter_mut().enumerate() {
-                            let Some(((index, at), (ratio, first))) = slot else {
-                                *slot = Some(((values[k], place()), (ix.ratios[k], place())));
-                                continue;
-                            };
-                            if values[k] > *index {
-                                (*index, *at) = (values[k], place());
-                            }
-                            if ix.ratios[k] < *ratio {
-                                (*ratio, *first) = (ix.ratios[k], place());
-                            }
+                            take(slot, (values[k], ix.ratios[k]), &place);
+                        }
+                        if lines[es].iter().any(|&(d, v)| [xi, eta][d] == v) {
+                            let index = material.interlaminar_index(&stress).expect("a material with strengths");
+                            take(&mut interlaminar, index, &place);
                         }
                     }
                 }
             }
         }
     }
-    let criteria: Vec<Criterion> = best
-        .into_iter()
-        .zip(CRITERIA)
-        .filter_map(|(slot, criterion)| {
-            let ((largest_index, largest_at), (ratio, first_failure_at)) = slot?;
-            Some(Criterion {
-                criterion,
-                largest_index,
-                largest_at,
-                first_failure_load_factor: lambda * ratio,
-                first_failure_at,
-            })
+    let criterion = |(slot, criterion): (Extremes, &'static str)| {
+        let ((largest_index, largest_at), (ratio, first_failure_at)) = slot?;
+        Some(Criterion {
+            criterion,
+            largest_index,
+            largest_at,
+            first_failure_load_factor: lambda * ratio,
+            first_failure_at,
         })
-        .collect();
+    };
+    let criteria: Vec<Criterion> = best.into_iter().zip(CRITERIA).filter_map(criterion).collect();
+    let interlaminar = criterion((interlaminar, INTERLAMINAR));
     let first = criteria.iter().map(|c| c.first_failure_load_factor).fold(f64::INFINITY, f64::min);
-    (!criteria.is_empty()).then_some(FailureSummary { criteria, first_ply_failure_load_factor: first })
+    (!criteria.is_empty()).then_some(FailureSummary { criteria, first_ply_failure_load_factor: first, interlaminar })
 }

@@ -94,6 +94,73 @@ fn pagano_cylindrical_bending_thin() {
     pagano_case("pagano_s50", 50.0);
 }
 
+/// The interlaminar criterion (`post::failure`, Brewer & Lagace's
+/// quadratic delamination onset) on Pagano's [0/90/0] at S = 4
+/// (examples/pagano_s4.toml with strengths): the pressure leaves the
+/// interfaces in compression or unloaded, so its largest index is
+/// `(τ_yz / S)²` at a support, on a 0/90 interface, with `τ_yz = τ13` and
+/// S13 from the 0° ply's side, `τ_yz = τ23` and S23 from the 90° ply's —
+/// each side with its own strengths (the 0° plies' S13 = 1 MPa, S23 =
+/// 3 MPa; the 90° ply's S13 = 2 MPa, S23 = 2.5 MPa: the 0° side governs).
+/// Against Pagano's exact τ_yz at the supports' interfaces: the index within
+/// 2 % and at an interface, the first-failure load factor `1/√index`
+/// within 1 %. The same laminate with every ply at 0° has no bonded
+/// interface between materials and no interlaminar entry. Measured
+/// `+0.07 %`. Mutations: S13 and S23 swapped in the criterion gives the
+/// 90° side's `(τ/2 MPa)²`, `−75 %`; the criterion at every grid point,
+/// not only the interfaces', `+18.6 %` off an interface (the outer plies'
+/// shear against S13).
+#[test]
+fn the_interlaminar_index_follows_pagano_at_the_interfaces() {
+    let (h, span, q0) = (0.01, 0.04, 1e5);
+    let t = h / 3.0;
+    let exact = pagano::Pagano::new(&[pagano_ply(t, 0.0), pagano_ply(t, 90.0), pagano_ply(t, 0.0)], span, q0);
+    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/pagano_s4.toml"));
+    let text = std::fs::read_to_string(path).unwrap();
+    let elastic = "orthotropic = { e1 = 25e9, e2 = 1e9, e3 = 1e9, g12 = 0.5e9, g13 = 0.5e9, g23 = 0.2e9, nu12 = 0.25, nu13 = 0.25, nu23 = 0.25 }";
+    let middle = "material = \"ply\", angle = 90.0,";
+    assert!(text.contains(elastic) && text.contains(middle));
+    let strong = "xt = 1e9, xc = 1e9, yt = 1e8, yc = 1e8";
+    let with = text.replace(
+        elastic,
+        &format!(
+            "{elastic}\nstrengths = {{ {strong}, s12 = 1e6, s23 = 3e6 }}\n\n[[materials]]\nname = \"core\"\n{elastic}\nstrengths = {{ {strong}, s12 = 2e6, s13 = 2e6, s23 = 2.5e6 }}"
+        ),
+    );
+    let (_, summary) =
+        run_cli("interlaminar_pagano", Some(&with.replace(middle, "material = \"core\", angle = 90.0,")));
+    let entry = &summary["ply_failure"]["interlaminar"];
+    let index = entry["largest_index"].as_f64().unwrap();
+    let at: Vec<f64> = entry["largest_at"]["point"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    // the exact: τ_yz at y = 0 on each interface, against the 0° side's S13
+    let z_i = [-h / 6.0, h / 6.0];
+    let (z_max, tau) =
+        z_i.iter().map(|&z| (z, exact.stress(0.0, z)[2].abs())).fold((0.0, 0.0), |a, b| if b.1 > a.1 { b } else { a });
+    let expected = (tau / 1e6).powi(2);
+    eprintln!(
+        "interlaminar: largest index {index:.5e} at [{:.4e}, {:.4e}, {:.4e}] m, Pagano's {expected:.5e} at z = {z_max:.4e} m: {:+.2} %",
+        at[0],
+        at[1],
+        at[2],
+        100.0 * (index / expected - 1.0)
+    );
+    let d = 100.0 * (index / expected - 1.0);
+    common::figure(
+        "composites.interlaminar_pagano",
+        d,
+        "%",
+        "within 2 % of Pagano's (τ_yz/S13)² at the supports' 0/90 interface",
+    );
+    assert!(d.abs() < 2.0, "index {index:e} against {expected:e}");
+    assert!(z_i.iter().any(|z| (at[2] - z).abs() < 1e-9), "at z = {} m, not on an interface", at[2]);
+    assert!(at[1].min(span - at[1]) < 1e-9, "at y = {} m, not at a support", at[1]);
+    let factor = entry["first_failure_load_factor"].as_f64().unwrap();
+    assert!((factor * expected.sqrt() - 1.0).abs() < 0.01, "first failure at λ = {factor}");
+    // one material throughout: no bonded interface between materials
+    let (_, single) = run_cli("interlaminar_single", Some(&with.replace(middle, "material = \"ply\", angle = 0.0,")));
+    assert!(single["ply_failure"]["criteria"].is_array() && single["ply_failure"].get("interlaminar").is_none());
+}
+
 /// T300/5208 carbon/epoxy (Tsai & Hahn, Introduction to Composite
 /// Materials, 1980, Table 7.1): E1 = 181, E2 = 10.3, G12 = 7.17 GPa,
 /// ν12 = 0.28; Xt = Xc = 1500, Yt = 40, Yc = 246, S12 = 68 MPa. Not in the

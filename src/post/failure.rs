@@ -95,10 +95,13 @@ fn take(slot: &mut Extremes, (value, ratio): (f64, f64), place: &dyn Fn() -> Pla
 
 /// Per section element of `body`, the natural lines `(coordinate,
 /// value)` (`0`: ξ, `1`: η) of its edges that are bonded ply interfaces:
-/// of constant z and shared with an element of another material (a
-/// cohesive interface's twin nodes are not shared: its own onset index is
-/// `d_interface`'s).
-fn interface_lines(body: &crate::mesh::Body) -> Vec<Vec<(usize, f64)>> {
+/// of constant z and shared with an element of another material, both
+/// materials' axis 3 along z (plies of a laminate, not a profile's web
+/// against its flange; a cohesive interface's twin nodes are not shared:
+/// its own onset index is `d_interface`'s).
+fn interface_lines(body: &crate::mesh::Body, materials: &[crate::materials::Material]) -> Vec<Vec<(usize, f64)>> {
+    let normal_z =
+        |m: usize| (materials[m].frame.stress_to_material(&[0.0, 0.0, 1.0, 0.0, 0.0, 0.0])[2] - 1.0).abs() < 1e-9;
     let section = &body.section;
     let basis = crate::shape::Lagrange2d::new(section.kind.order());
     let mut holding = vec![Vec::new(); section.n_nodes()];
@@ -117,6 +120,8 @@ fn interface_lines(body: &crate::mesh::Body) -> Vec<Vec<(usize, f64)>> {
                     let bonded = holding[nodes[0]].iter().any(|&f| {
                         f != es
                             && body.material_of(f) != body.material_of(es)
+                            && normal_z(body.material_of(f))
+                            && normal_z(body.material_of(es))
                             && nodes.iter().all(|t| holding[*t].contains(&f))
                     });
                     let (a, b) = (basis.node(local[0]), basis.node(local[local.len() - 1]));
@@ -139,7 +144,7 @@ pub fn summary(view: &FieldView<'_>, lambda: f64) -> Option<FailureSummary> {
     for (b, body) in view.mesh.bodies.iter().enumerate() {
         let (ps, pb) = (body.section.kind.order(), body.axis.kind.order());
         let grid = |p: usize| (0..=p).map(move |k| -1.0 + 2.0 * k as f64 / p as f64);
-        let lines = interface_lines(body);
+        let lines = interface_lines(body, view.materials);
         for e in 0..body.n_elements() {
             let es = body.split_element(e).0;
             let material = &view.materials[body.material_of(es)];

@@ -15,8 +15,13 @@
 //! conditions). A free face, a frictionless contact's, a pressure's and a
 //! symmetry plane carry no shear traction; a face that does (friction, a
 //! tangential load, a face held fixed) is charged with it as error
-//! (docs/limitations.md). An L4 has no bilinear polynomial that vanishes on
-//! two opposite faces but zero: it keeps the plain fit.
+//! (docs/limitations.md). Not held: a face on a cohesive interface (twin
+//! nodes, shared with no element, carrying the interface's traction), and
+//! an element whose face line runs on through an element of its ring that
+//! is not alone there (a wall beside a profile's junction, where that line
+//! is interior: [`super::spr`]'s `section_patches`). An L4 has no bilinear
+//! polynomial that vanishes on two opposite faces but zero: it keeps the
+//! plain fit.
 
 use crate::mesh::CrossSection;
 
@@ -70,7 +75,8 @@ pub(super) fn fit(
 /// The points (`p + 1` along each) of section element `e`'s two faces
 /// along `d` (0: x, 2: z) when both are straight section boundaries (no
 /// other element holds a face's nodes: the element is the only one of
-/// the section through `d`), else none. `holding`: the elements at each
+/// the section through `d`) and neither is a cohesive interface's (an
+/// element with a twin edge), else none. `holding`: the elements at each
 /// node; `boxes`: each element's `[x_min, x_max, z_min, z_max]`.
 pub(super) fn through(
     section: &CrossSection,
@@ -80,6 +86,11 @@ pub(super) fn through(
     tol: f64,
 ) -> Vec<[f64; 2]> {
     let (p, b, other) = (section.kind.order(), &boxes[e], 2 - d);
+    // a cohesive interface's face has twin nodes, shared with no element,
+    // yet carries the interface's traction
+    if section.twins.iter().any(|t| t.lower.0 == e || t.upper.0 == e) {
+        return Vec::new();
+    }
     let mut out = Vec::new();
     for at in [b[d], b[d + 1]] {
         let on: Vec<usize> =

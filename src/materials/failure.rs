@@ -199,6 +199,26 @@ mod tests {
         Strengths { tension: [1500e6, 40e6, 40e6], compression: [1500e6, 246e6, 246e6], shear: [68e6; 3] }
     }
 
+    /// The interlaminar criterion (Brewer & Lagace 1988, eq. 10) reads
+    /// the traction on a face of normal 3 against Z_t, S13 and S23, each
+    /// at its own index: a tension of Z_t is `1`, a compression of any size
+    /// `0` (the Macaulay bracket), τ13 = S13 and τ23 = S23 each `1`, and
+    /// the in-plane stresses (σ11, σ22, τ12) nothing; the two shears add
+    /// quadratically.
+    #[test]
+    fn the_interlaminar_index_reads_the_normal_traction() {
+        let st =
+            Strengths { tension: [1500e6, 40e6, 30e6], compression: [1500e6, 246e6, 200e6], shear: [68e6, 50e6, 80e6] };
+        let at = |s: [f64; 6]| st.interlaminar(&s);
+        assert!((at([0.0, 0.0, 30e6, 0.0, 0.0, 0.0]).0 - 1.0).abs() < 1e-12);
+        assert_eq!(at([0.0, 0.0, -1e9, 0.0, 0.0, 0.0]), (0.0, f64::INFINITY));
+        assert!((at([0.0, 0.0, 0.0, 0.0, 50e6, 0.0]).0 - 1.0).abs() < 1e-12);
+        assert!((at([0.0, 0.0, 0.0, 0.0, 0.0, 80e6]).0 - 1.0).abs() < 1e-12);
+        assert_eq!(at([1e9, 1e9, 0.0, 1e9, 0.0, 0.0]).0, 0.0);
+        let (index, ratio) = at([0.0, 0.0, 0.0, 0.0, 25e6, 40e6]);
+        assert!((index - 0.5).abs() < 1e-12 && (ratio - 2f64.sqrt()).abs() < 1e-12, "{index} {ratio}");
+    }
+
     #[test]
     fn uniaxial_strengths_are_index_one() {
         // a uniaxial stress equal to a strength is on every criterion's

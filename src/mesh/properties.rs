@@ -116,6 +116,22 @@ impl CrossSection {
         pts
     }
 
+    /// The elements holding each node (by node index).
+    pub(crate) fn elements_at_nodes(&self) -> Vec<Vec<usize>> {
+        let mut holding = vec![Vec::new(); self.n_nodes()];
+        for e in 0..self.n_elements() {
+            self.element(e).iter().for_each(|&t| holding[t].push(e));
+        }
+        holding
+    }
+
+    /// The element other than `e` that holds every one of `nodes` (the
+    /// element across the edge of `e` they lie on), `None` on the
+    /// section's boundary; `holding` from [`Self::elements_at_nodes`].
+    pub(crate) fn across(&self, holding: &[Vec<usize>], e: usize, nodes: &[usize]) -> Option<usize> {
+        holding[nodes[0]].iter().copied().find(|&f| f != e && nodes.iter().all(|t| holding[*t].contains(&f)))
+    }
+
     /// Whether each node is a re-entrant corner of the section: a corner of
     /// every element holding it, on the boundary, where the interior angles
     /// of those elements (between the chords to their neighbouring corners)

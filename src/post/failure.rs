@@ -104,10 +104,7 @@ fn interface_lines(body: &crate::mesh::Body, materials: &[crate::materials::Mate
         |m: usize| (materials[m].frame.stress_to_material(&[0.0, 0.0, 1.0, 0.0, 0.0, 0.0])[2] - 1.0).abs() < 1e-9;
     let section = &body.section;
     let basis = crate::shape::Lagrange2d::new(section.kind.order());
-    let mut holding = vec![Vec::new(); section.n_nodes()];
-    for f in 0..section.n_elements() {
-        section.element(f).iter().for_each(|&t| holding[t].push(f));
-    }
+    let holding = section.elements_at_nodes();
     let [_, _, z0, z1] = section.bounds();
     let tol = 1e-9 * (z1 - z0).abs().max(f64::MIN_POSITIVE);
     (0..section.n_elements())
@@ -117,12 +114,9 @@ fn interface_lines(body: &crate::mesh::Body, materials: &[crate::materials::Mate
                     let local = section.edge_local_nodes(k);
                     let nodes: Vec<usize> = local.iter().map(|&l| section.element(es)[l]).collect();
                     let flat = nodes.iter().all(|&t| (section.nodes[t][1] - section.nodes[nodes[0]][1]).abs() <= tol);
-                    let bonded = holding[nodes[0]].iter().any(|&f| {
-                        f != es
-                            && body.material_of(f) != body.material_of(es)
-                            && normal_z(body.material_of(f))
-                            && normal_z(body.material_of(es))
-                            && nodes.iter().all(|t| holding[*t].contains(&f))
+                    let bonded = section.across(&holding, es, &nodes).is_some_and(|f| {
+                        let (mf, me) = (body.material_of(f), body.material_of(es));
+                        mf != me && normal_z(mf) && normal_z(me)
                     });
                     let (a, b) = (basis.node(local[0]), basis.node(local[local.len() - 1]));
                     let d = usize::from(a[0] != b[0]);

@@ -95,7 +95,7 @@ pub(super) fn through(
     for at in [b[d], b[d + 1]] {
         let on: Vec<usize> =
             section.element(e).iter().copied().filter(|&t| (section.nodes[t][d / 2] - at).abs() <= tol).collect();
-        if on.len() != p + 1 || holding[on[0]].iter().any(|&f| f != e && on.iter().all(|t| holding[*t].contains(&f))) {
+        if on.len() != p + 1 || section.across(holding, e, &on).is_some() {
             return Vec::new();
         }
         for k in 0..=p {

@@ -289,12 +289,7 @@ fn section_patches(
     zone: &dyn Fn(usize) -> usize,
     free_faces: bool,
 ) -> Vec<SectionPatches> {
-    let mut holding: Vec<Vec<usize>> = vec![Vec::new(); section.n_nodes()];
-    for e in 0..section.n_elements() {
-        for &t in section.element(e) {
-            holding[t].push(e);
-        }
-    }
+    let holding = section.elements_at_nodes();
     // each element's box [x_min, x_max, z_min, z_max]
     let boxes: Vec<[f64; 4]> = (0..section.n_elements())
         .map(|e| {

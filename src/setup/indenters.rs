@@ -41,8 +41,10 @@ pub(super) fn indenters(
         if let Some(imp) = &ind.impactor {
             lightest_impactor(&key, imp.mass, &mesh.bodies[b], materials)?;
         }
-        symmetry::check_indenter(&key, &ind, planes, mesh)?;
         symmetry::check_indenter_shape(&key, &ind, planes, mesh)?;
+        // the force is the full structure's: the part kept carries its share
+        let shared = symmetry::check_indenter(&key, &ind, planes, mesh)?;
+        ind.force = ind.force.map(|f| f.map(|v| v / f64::from(1u32 << shared)));
         // how far the indenter's own motion brings it towards each node
         let reach = |c: &contact::ContactNode| (0..3).map(|k| ind.displacement[k] * c.normal[k]).sum::<f64>() - c.gap0;
         if !transient && ind.force.is_none() && ind.nodes.iter().all(|c| reach(c) < 0.0) {

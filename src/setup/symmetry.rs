@@ -249,34 +249,71 @@ fn nodal_load(key: &str, load: &Load, l: &LoadFile, planes: &[Plane], mesh: &Mes
     }
 }
 
-/// A force-controlled indenter or an impactor across a plane is refused
-/// (its force or mass would have to be split between the mirror images).
-pub(super) fn check_indenter(key: &str, indenter: &Indenter, planes: &[Plane], mesh: &Mesh) -> Result<(), ModelError> {
-    let what = if indenter.impactor.is_some() {
-        "mass"
-    } else if indenter.force.is_some() {
-        "force"
-    } else {
-        return Ok(());
-    };
-    match planes.iter().find(|p| indenter.nodes.iter().any(|n| p.holds(mesh.coords(n.node)))) {
-        None => Ok(()),
-        Some(p) => Err(invalid(
+/// An impactor touching a plane is refused (its mass would have to be split
+/// between the mirror images, and its motion is its own). A force-controlled
+/// indenter touching a plane must cross it as its own mirror image
+/// ([`check_indenter_shape`], which runs first): the tool and its images are
+/// one tool, pushed by the full structure's force, of which the part kept
+/// carries `1/2` per plane crossed. Returns that number of planes (0 for a
+/// displacement-controlled indenter, or one touching none).
+pub(super) fn check_indenter(key: &str, indenter: &Indenter, planes: &[Plane], mesh: &Mesh) -> Result<u32, ModelError> {
+    if indenter.impactor.is_none() && indenter.force.is_none() {
+        return Ok(0);
+    }
+    let touches = |p: &Plane| indenter.nodes.iter().any(|n| p.holds(mesh.coords(n.node)));
+    let mut shared = 0;
+    for p in planes.iter().filter(|p| touches(p)) {
+        let (what, allowed) = if indenter.impactor.is_some() {
+            (
+                "mass",
+                "an impactor clear of the plane, or a displacement- or force-controlled indenter there (a mass would have to be split between the mirror images; model the full structure for impact)",
+            )
+        } else if crossing(indenter, p).0 {
+            shared += 1;
+            continue;
+        } else {
+            (
+                "force",
+                "a force-controlled indenter that crosses the plane as its own mirror image (the part kept then carries half its force per plane), or one clear of the plane",
+            )
+        };
+        return Err(invalid(
             format!("{key}.{what}"),
             format!("an indenter touching symmetry plane {:?} ({})", p.name, p.describe()),
-            "a displacement-controlled indenter there (a force or a mass would have to be split between the mirror \
-             images; model the full structure for force control and impact)",
-        )),
+            allowed,
+        ));
+    }
+    Ok(shared)
+}
+
+/// Whether `indenter` crosses the plane `p` (a sphere or a cylinder lying
+/// along the plane closer to it than its radius, a punch or a cylinder
+/// across it whose extent along the normal spans it or is unbounded),
+/// whether it is then its own mirror image (centred on the plane), and the
+/// key that places it along the normal.
+fn crossing(indenter: &Indenter, p: &Plane) -> (bool, bool, String) {
+    let (a, c) = (p.axis, ["x", "y", "z"][p.axis]);
+    let on = |v: f64| (v - p.at).abs() <= p.tolerance;
+    let extent = |r: Option<[f64; 2]>, k: &str| match r {
+        None => (true, true, k.to_string()),
+        Some([lo, hi]) => (lo < p.at - p.tolerance && hi > p.at + p.tolerance, on(0.5 * (lo + hi)), k.to_string()),
+    };
+    let round = |center: [f64; 3], radius: f64| ((center[a] - p.at).abs() < radius, on(center[a]), "center".into());
+    match &indenter.surface {
+        RigidSurface::Flat { axis, .. } if *axis == a => (false, true, String::new()),
+        RigidSurface::Flat { bounds, .. } => extent(bounds[a], c),
+        RigidSurface::Cylinder { axis, length, .. } if *axis == a => extent(*length, "length"),
+        RigidSurface::Cylinder { center, radius, .. } | RigidSurface::Sphere { center, radius } => {
+            round(*center, *radius)
+        }
     }
 }
 
-/// An indenter that crosses a plane (a sphere or a cylinder lying along
-/// the plane closer to it than its radius, a punch or a cylinder across it
-/// whose extent along the normal spans it or is unbounded) is one tool with
-/// its mirror image: its shape must be its own mirror image (centred on the
-/// plane) and its motion have no component along the plane's normal. A
-/// tool clear of the plane has a separate mirror image, moving mirrored.
-/// No indenter's surface may lie in a plane.
+/// An indenter that crosses a plane ([`crossing`]) is one tool with its
+/// mirror image: its shape must be its own mirror image (centred on the
+/// plane) and its motion (displacement or force) have no component along
+/// the plane's normal. A tool clear of the plane has a separate mirror
+/// image, moving mirrored. No indenter's surface may lie in a plane.
 pub(super) fn check_indenter_shape(
     key: &str,
     indenter: &Indenter,
@@ -286,21 +323,7 @@ pub(super) fn check_indenter_shape(
     faces_off_planes(&format!("{key}.surface"), &mesh.bodies[indenter.body], &indenter.faces, planes)?;
     for p in planes {
         let (a, c) = (p.axis, ["x", "y", "z"][p.axis]);
-        let on = |v: f64| (v - p.at).abs() <= p.tolerance;
-        // (crosses the plane, is its own mirror image, the key that places it along the normal)
-        let extent = |r: Option<[f64; 2]>, k: &str| match r {
-            None => (true, true, k.to_string()),
-            Some([lo, hi]) => (lo < p.at - p.tolerance && hi > p.at + p.tolerance, on(0.5 * (lo + hi)), k.to_string()),
-        };
-        let round = |center: [f64; 3], radius: f64| ((center[a] - p.at).abs() < radius, on(center[a]), "center".into());
-        let (crosses, mirrored, k) = match &indenter.surface {
-            RigidSurface::Flat { axis, .. } if *axis == a => (false, true, String::new()),
-            RigidSurface::Flat { bounds, .. } => extent(bounds[a], c),
-            RigidSurface::Cylinder { axis, length, .. } if *axis == a => extent(*length, "length"),
-            RigidSurface::Cylinder { center, radius, .. } | RigidSurface::Sphere { center, radius } => {
-                round(*center, *radius)
-            }
-        };
+        let (crosses, mirrored, k) = crossing(indenter, p);
         if !crosses {
             continue;
         }
@@ -317,12 +340,16 @@ pub(super) fn check_indenter_shape(
                 ),
             ));
         }
-        if indenter.displacement[a] != 0.0 {
+        let (what, motion, unit) = match indenter.force {
+            Some(f) => ("force", f, "N"),
+            None => ("displacement", indenter.displacement, "m"),
+        };
+        if motion[a] != 0.0 {
             return Err(invalid(
-                format!("{key}.displacement"),
-                format!("{:?} m for an indenter crossing {plane}", indenter.displacement),
+                format!("{key}.{what}"),
+                format!("{motion:?} {unit} for an indenter crossing {plane}"),
                 format!(
-                    "displacement[{a}] = 0 (no {c} component): the indenter and its mirror image are one tool, which \
+                    "{what}[{a}] = 0 (no {c} component): the indenter and its mirror image are one tool, which \
                      cannot move both ways along {c}; model the full structure"
                 ),
             ));

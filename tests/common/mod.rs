@@ -357,3 +357,25 @@ pub fn block_u_z_error(x: &[f64], u_z: &[f64], u_z_3d: &[f64], a: f64, b: f64) -
         .map(|i| (u_z[i] / u_z_3d[i] - 1.0).abs())
         .fold(0.0, f64::max)
 }
+
+/// The quarter of examples/bending_tube_springback.toml (`text`): its two
+/// constraints on the planes x = 15 mm and y = 125 mm (the whole tube's
+/// planes of mirror symmetry) turned into `[[symmetry]]` planes, which cut
+/// the tube to x ≥ 15 mm, y ≤ 125 mm; the force-controlled roller crosses
+/// both and the quarter carries a quarter of its force.
+pub fn springback_quarter(text: &str) -> String {
+    let plane = |axis: &str, at: &str, keep: &str| {
+        let constraint = format!(
+            "[[constraints]]\nname = \"symmetry_{axis}\"\nbody = \"tube\"\nwhere = {{ {axis} = {at} }}\nfix = [\"{axis}\"]\n"
+        );
+        let symmetry =
+            format!("[[symmetry]]\nname = \"symmetry_{axis}\"\nplane = {{ {axis} = {at} }}\nkeep = \"{keep}\"\n");
+        (constraint, symmetry)
+    };
+    let mut out = text.to_string();
+    for (constraint, symmetry) in [plane("y", "0.125", "below"), plane("x", "0.015", "above")] {
+        assert_eq!(out.matches(&constraint).count(), 1, "{constraint}");
+        out = out.replace(&constraint, &symmetry);
+    }
+    out
+}

@@ -53,10 +53,15 @@ fn difference(a: &Sample, b: &Sample, scale: [f64; 4]) -> f64 {
 /// (both with `extra` probes); returns the worst field difference and the
 /// worst force difference (full structure against full model).
 fn twin(full: &str, quarter: &str, extra: &[[f64; 3]]) -> (f64, f64) {
-    let full_model = Model::parse(&extra_probes(&example(full), extra)).unwrap();
+    twin_of((full, &example(full)), (quarter, &example(quarter)), extra)
+}
+
+/// [`twin`] of the models given as (name, text).
+fn twin_of((full, full_text): (&str, &str), (quarter, quarter_text): (&str, &str), extra: &[[f64; 3]]) -> (f64, f64) {
+    let full_model = Model::parse(&extra_probes(full_text, extra)).unwrap();
     let full_solution = cufem::analysis::run(&full_model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
     assert!(full_solution.failure.is_none());
-    let quarter_model = Model::parse(&extra_probes(&example(quarter), extra)).unwrap();
+    let quarter_model = Model::parse(&extra_probes(quarter_text, extra)).unwrap();
     assert_eq!(quarter_model.symmetry.copies(), 4);
     let quarter_solution =
         cufem::analysis::run(&quarter_model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
@@ -86,7 +91,7 @@ fn twin(full: &str, quarter: &str, extra: &[[f64; 3]]) -> (f64, f64) {
     }
 
     // the twin through the CLI: its summary's full-structure forces
-    let (out, summary) = common::run_text("symmetry", quarter, &extra_probes(&example(quarter), extra));
+    let (out, summary) = common::run_text("symmetry", quarter, &extra_probes(quarter_text, extra));
     // the probes' displacement history (analysis::recorder's probe_displacements, its
     // own path to the mirror image): the last row is the full model's u
     let history = common::csv_columns(&out.join("history_probes.csv"));
@@ -162,6 +167,39 @@ fn tube_quarter_equals_the_full_model() {
     );
 }
 
+/// A force-controlled roller across both planes: the springback tube
+/// (`bending_tube_springback.toml`, the roller pushed with 1.6 kN, then
+/// unloaded to 2 % of it) and its quarter (`common::springback_quarter`),
+/// whose roller carries a quarter of the force. Every field of the unloaded
+/// state as [`twin`] holds it, and the roller's displacement after every
+/// increment of both steps (history_load.csv, the springback is the
+/// difference of the two step ends) within `1e-9` of its largest; the
+/// quarter's own roller force a quarter of the file's. Mutation: the force
+/// not shared (the quarter pushed with the whole 1.6 kN) moves the roller
+/// to about four times the displacement and fails.
+#[test]
+fn a_force_controlled_roller_across_both_planes_carries_the_full_force() {
+    let full = example("bending_tube_springback");
+    let quarter = common::springback_quarter(&full);
+    twin_of(
+        ("bending_tube_springback", &full),
+        ("bending_tube_springback_quarter", &quarter),
+        &[[0.0293, 0.06, 0.015]],
+    );
+    let (a, _) = common::run_text("symmetry", "springback_full", &full);
+    let (b, _) = common::run_text("symmetry", "springback_quarter", &quarter);
+    let (a, b) = (common::csv_columns(&a.join("history_load.csv")), common::csv_columns(&b.join("history_load.csv")));
+    let peak = a["d_z"].iter().fold(0.0f64, |m, v| m.max(v.abs()));
+    assert!(peak > 1e-4, "the roller moves: {peak:e} m");
+    assert_eq!(a["d_z"].len(), b["d_z"].len(), "the same increments");
+    for (k, (x, y)) in a["d_z"].iter().zip(&b["d_z"]).enumerate() {
+        assert!((x - y).abs() < 1e-9 * peak, "increment {k}: d_z {y:e} against the full model's {x:e}");
+        // converged to the prescribed force: the quarter's is a quarter of it
+        let (f, own) = (a["f_z"][k], b["f_z"][k]);
+        assert!((4.0 * own - f).abs() < 1e-6 * f.abs(), "increment {k}: f_z {own} × 4 against {f}");
+    }
+}
+
 /// The error of a quarter model with `from` replaced by `to`.
 fn error_of(from: &str, to: &str) -> String {
     let text = example("bending_compact_16L9_quarter");
@@ -204,6 +242,24 @@ fn forces_that_a_plane_would_split_are_refused() {
     // 5 mm × 25 mm kept of the 10 mm × 25 mm face: 12.5 N of the full 25 N
     let r = model.loads[0].resultant();
     assert!((r[2] + 12.5).abs() < 1e-9, "{r:?}");
+}
+
+/// What a plane cannot share: an impactor's mass, and a force-controlled
+/// indenter's force along a plane's normal (the tool and its mirror image
+/// are one and cannot move both ways).
+#[test]
+fn impactors_and_forces_across_a_plane_are_refused_by_key() {
+    let quarter = common::springback_quarter(&example("bending_tube_springback"));
+    let pushed = "force = [0.0, 0.0, -1600.0]";
+    assert!(quarter.contains(pushed));
+    let e = Model::parse(&quarter.replace(pushed, "force = [0.0, 1.0, -1600.0]")).unwrap_err().to_string();
+    assert!(e.contains("indenters[2].force") && e.contains("force[1] = 0") && e.contains("symmetry_y"), "{e}");
+    let thrown = quarter
+        .replace("[solver]", "[analysis]\ntype = \"transient\"\nduration = 1e-4\n\n[solver]")
+        .replace(pushed, "mass = 1.0\nvelocity = [0.0, 0.0, -1.0]")
+        .replace("\n[materials.plasticity]", "\ndensity = 2700.0\n[materials.plasticity]");
+    let e = Model::parse(&thrown).unwrap_err().to_string();
+    assert!(e.contains("indenters[2].mass") && e.contains("symmetry plane"), "{e}");
 }
 
 #[test]

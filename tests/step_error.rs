@@ -416,14 +416,7 @@ impl Reference {
 
     /// The stored rows: global element, Gauss point `[x, y, z]` and stress.
     fn rows(&self) -> Vec<(usize, [f64; 3], [f64; 6])> {
-        let text = std::fs::read_to_string(self.path()).unwrap();
-        text.lines()
-            .filter(|l| !l.starts_with('#') && !l.starts_with("element"))
-            .map(|l| {
-                let r: Vec<f64> = l.split(',').map(|v| v.trim().parse().unwrap()).collect();
-                (r[0] as usize, std::array::from_fn(|i| r[1 + i]), std::array::from_fn(|i| r[4 + i]))
-            })
-            .collect()
+        stored_rows(&self.path())
     }
 
     /// The stored reference stress at each Gauss point of `model`, its
@@ -470,22 +463,46 @@ impl Reference {
         let (model, fine) = (Model::parse(&text).unwrap(), solve_with(&(self.refined)(&text), log));
         let points = gauss_points(&model);
         let stresses = stresses_at((&fine.0, &fine.1), &points, self.mirror);
-        let mut out = format!(
+        let header = format!(
             "# The stress (Pa, Voigt order xx yy zz xy xz yz) of examples/{} {} ({} DOF) at the end of\n\
              # its analysis, at each Gauss point of the shipped mesh (global element, x, y, z in m).\n\
-             # Remade by cargo test --release --test suite -- --ignored --exact step_error::{}\n\
-             element,x,y,z,s_xx,s_yy,s_zz,s_xy,s_xz,s_yz\n",
+             # Remade by cargo test --release --test suite -- --ignored --exact step_error::{}\n",
             self.example,
             self.what,
             fine.0.n_dofs(),
             self.remade_by
         );
-        for (p, s) in points.iter().zip(&stresses) {
-            let v: Vec<String> = p.position.iter().chain(s).map(|x| format!("{x:.9e}")).collect();
-            out += &format!("{},{}\n", p.element, v.join(","));
-        }
-        std::fs::write(self.path(), out).unwrap();
+        store_rows(&self.path(), header, &points, &stresses);
     }
+}
+
+/// A stored reference file of tests/data.
+fn data(file: &str) -> std::path::PathBuf {
+    std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/data").join(file)
+}
+
+/// The rows of a stored reference: global element, Gauss point `[x, y, z]`
+/// and stress.
+fn stored_rows(path: &std::path::Path) -> Vec<(usize, [f64; 3], [f64; 6])> {
+    let text = std::fs::read_to_string(path).unwrap();
+    text.lines()
+        .filter(|l| !l.starts_with('#') && !l.starts_with("element"))
+        .map(|l| {
+            let r: Vec<f64> = l.split(',').map(|v| v.trim().parse().unwrap()).collect();
+            (r[0] as usize, std::array::from_fn(|i| r[1 + i]), std::array::from_fn(|i| r[4 + i]))
+        })
+        .collect()
+}
+
+/// Writes a stored reference: `header` (comment lines), then a row per
+/// Gauss point of `points` with its stress.
+fn store_rows(path: &std::path::Path, header: String, points: &[truth::GaussPoint], stresses: &[[f64; 6]]) {
+    let mut out = header + "element,x,y,z,s_xx,s_yy,s_zz,s_xy,s_xz,s_yz\n";
+    for (p, s) in points.iter().zip(stresses) {
+        let v: Vec<String> = p.position.iter().chain(s).map(|x| format!("{x:.9e}")).collect();
+        out += &format!("{},{}\n", p.element, v.join(","));
+    }
+    std::fs::write(path, out).unwrap();
 }
 
 /// The stress at each Gauss point of `whole` from `rows` (global element,
@@ -524,14 +541,26 @@ fn off_lines(body: usize, ys: &'static [f64]) -> impl Fn(&Model, usize, usize, u
 /// lines `lines` names, its roller lines by default): reported as
 /// `<id>.<mesh>.whole.load.*` and `<id>.<mesh>.load.*`, both effectivities
 /// asserted in issue 49's band.
-fn in_band((id, mesh): (&str, &str), coarse: &(Model, Solution), truth: &[f64], (away, lines): (Pick<'_>, &str)) {
+fn in_band((id, mesh): (&str, &str), coarse: &(Model, Solution), truth: &[f64], away: (Pick<'_>, &str)) {
+    in_band_at("load", (id, mesh), (&coarse.0, &coarse.1), truth, away);
+}
+
+/// [`in_band`] of the state `state` (`s`, of `model`), reported as
+/// `<id>.<mesh>.whole.<state>.*` and `<id>.<mesh>.<state>.*`.
+fn in_band_at(
+    state: &str,
+    (id, mesh): (&str, &str),
+    (model, s): (&Model, &Solution),
+    truth: &[f64],
+    (away, lines): (Pick<'_>, &str),
+) {
     let check = "in [0.5, 2] (issue 49)";
-    let whole = row("load", (&coarse.0, &coarse.1), truth, &|_, _, _, _| true);
+    let whole = row(state, (model, s), truth, &|_, _, _, _| true);
     let whole = report(id, &format!("{mesh}.whole"), &[whole], check)[0];
-    let away = row("load", (&coarse.0, &coarse.1), truth, away);
+    let away = row(state, (model, s), truth, away);
     let away = report(id, mesh, &[away], &format!("{check}, without {lines}"))[0];
     for (part, eff) in [("whole", whole), ("away", away)] {
-        assert!((0.5..=2.0).contains(&eff), "{id} {part}: effectivity {eff}");
+        assert!((0.5..=2.0).contains(&eff), "{id} {state} {part}: effectivity {eff}");
     }
 }
 
@@ -543,7 +572,13 @@ fn in_band((id, mesh): (&str, &str), coarse: &(Model, Solution), truth: &[f64], 
 /// it; `bench/cantilevers_half_20B4.toml` is that half with the axis
 /// doubled): the half `x ≥ 12.7` mm.
 fn cantilevers_refined_half(text: &str, k: usize) -> String {
-    let counts = [("to = 0.0254, ", 4), ("to = 0.0508, ", 4), ("to = 0.254, ", 10), ("to = 0.3302, ", 10)];
+    cantilevers_refined_half_of(text, k, 10)
+}
+
+/// [`cantilevers_refined_half`] of the cantilevers with `axis` B4 per beam
+/// (`cantilevers_contact_fine.toml`: 20).
+fn cantilevers_refined_half_of(text: &str, k: usize, axis: usize) -> String {
+    let counts = [("to = 0.0254, ", 4), ("to = 0.0508, ", 4), ("to = 0.254, ", axis), ("to = 0.3302, ", axis)];
     refined(text, k, &counts) + CANTILEVERS_PLANE
 }
 
@@ -638,6 +673,24 @@ fn the_cantilevers_step_is_estimated() {
 #[ignore = "validate: references — the cantilevers' half refined twice (407,286 DOF, about 30 min)"]
 fn the_cantilevers_twice_refined_stresses_are_remade() {
     CANTILEVERS.remake();
+}
+
+/// The cantilevers on the shipped fine axis (`cantilevers_contact_fine.toml`:
+/// 20 B4 per beam), their reference made the same way (16 × 16 L9 × 80 B4
+/// per beam; the half, 811,206 DOF, 13 GiB estimated).
+const CANTILEVERS_FINE: Reference = Reference {
+    example: "cantilevers_contact_fine.toml",
+    file: "cantilevers_contact_fine_refined_twice.csv",
+    refined: |text| cantilevers_refined_half_of(text, 4, 20),
+    what: "refined twice, its half x ≥ 12.7 mm (tests/step_error.rs `cantilevers_refined_half_of(…, 4, 20)`), mirrored below x = 12.7 mm",
+    remade_by: "the_fine_cantilevers_twice_refined_stresses_are_remade",
+    ..CANTILEVERS
+};
+
+#[test]
+#[ignore = "validate: references — the fine cantilevers' half refined twice (811,206 DOF, about an hour)"]
+fn the_fine_cantilevers_twice_refined_stresses_are_remade() {
+    CANTILEVERS_FINE.remake();
 }
 
 /// The frictional twin (`cantilevers_contact_friction.toml`: the same
@@ -1124,6 +1177,68 @@ fn the_whole_paper_s_tube_step_is_estimated() {
         ("step_error.tube28_whole", "28L9_22B4"),
         (&off_lines(0, WHOLE_ROLLERS), "the roller lines"),
     );
+}
+
+/// The springback tube's stored references: the step ends of its quarter
+/// (`common::springback_quarter`) with every division four times finer
+/// (`tube_refined(…, 4, 4)`, 160 L9 × 44 B4, 290,871 DOF), at the Gauss
+/// points of the quarter at the shipped divisions.
+const SPRINGBACK: [(&str, &str); 2] = [
+    ("load", "bending_tube_springback_load_refined_twice.csv"),
+    ("unload", "bending_tube_springback_unload_refined_twice.csv"),
+];
+
+/// The springback tube (`bending_tube_springback.toml`: the whole 20 L9
+/// tube, 20 L9 × 22 B4, its roller pushed with 1.6 kN, then unloaded to 2 %
+/// of it) at both step ends against its quarter's stored references
+/// mirrored across both planes, over the whole tube and without the beam
+/// elements touching its three roller lines: within issue 49's `0.5`–`2`
+/// at both (measured loaded 0.97 whole and 1.10 away, unloaded 0.90 and
+/// 1.24; the unloaded tube's residual stresses estimated at 23.0 % of their
+/// energy away from the rollers against a true 18.7 %). Mutation: the
+/// points that yielded and unloaded recovered from their converged state
+/// instead of keeping their stress fit (`post::yielded`) gives 1.73 and
+/// 2.39 unloaded and fails.
+#[test]
+fn the_springback_steps_are_estimated() {
+    let coarse = solve(&example("bending_tube_springback.toml"));
+    let kept = states(&coarse.0, &coarse.1);
+    assert_eq!(kept.len(), SPRINGBACK.len());
+    for ((name, state), (step, file)) in kept.iter().zip(SPRINGBACK) {
+        assert_eq!(name, step);
+        let reference = mirrored(stored_rows(&data(file)), &coarse.0, &TUBE_QUARTER);
+        let truth = error_against((&coarse.0, state), &reference);
+        in_band_at(
+            name,
+            ("step_error.springback", "20L9_22B4"),
+            (&coarse.0, state),
+            &truth,
+            (&off_lines(0, WHOLE_ROLLERS), "the roller lines"),
+        );
+    }
+}
+
+#[test]
+#[ignore = "validate: references — the springback tube's quarter refined twice, loaded and unloaded (290,871 DOF, about 40 min)"]
+fn the_springback_s_twice_refined_stresses_are_remade() {
+    let text = common::springback_quarter(&example("bending_tube_springback.toml"));
+    let log = &mut Log(std::time::Instant::now());
+    let (model, fine) = (Model::parse(&text).unwrap(), solve_with(&tube_refined(&text, 4, 4), log));
+    let points = gauss_points(&model);
+    let kept = states(&fine.0, &fine.1);
+    assert_eq!(kept.len(), SPRINGBACK.len());
+    for ((name, state), (step, file)) in kept.iter().zip(SPRINGBACK) {
+        assert_eq!(name, step);
+        let header = format!(
+            "# The stress (Pa, Voigt order xx yy zz xy xz yz) of the quarter of examples/bending_tube_springback.toml\n\
+             # (tests/common `springback_quarter`) refined twice (tests/step_error.rs `tube_refined(…, 4, 4)`,\n\
+             # {} DOF) at the end of its step {step:?}, at each Gauss point of that quarter at the shipped\n\
+             # divisions (global element, x, y, z in m). Remade by cargo test --release --test suite --\n\
+             # --ignored --exact step_error::the_springback_s_twice_refined_stresses_are_remade\n",
+            fine.0.n_dofs()
+        );
+        store_rows(&data(file), header, &points, &stresses_at((&fine.0, state), &points, &[]));
+    }
 }
 
 /// The whole paper's bar (`bending_compact_16L9.toml`, 4 × 4 L9 × 10 B4)

@@ -252,34 +252,47 @@ fn nodal_load(key: &str, load: &Load, l: &LoadFile, planes: &[Plane], mesh: &Mes
 /// An impactor touching a plane is refused (its mass would have to be split
 /// between the mirror images, and its motion is its own). A force-controlled
 /// indenter touching a plane must cross it as its own mirror image
-/// ([`check_indenter_shape`], which runs first): the tool and its images are
-/// one tool, pushed by the full structure's force, of which the part kept
-/// carries `1/2` per plane crossed. Returns that number of planes (0 for a
-/// displacement-controlled indenter, or one touching none).
+/// ([`check_indenter_shape`], which runs first), and one crossing it must
+/// reach it: the tool and its images are one tool, pushed by the full
+/// structure's force, of which the part kept carries `1/2` per plane
+/// crossed. Returns that number of planes (0 for a displacement-controlled
+/// indenter, or one clear of every plane).
 pub(super) fn check_indenter(key: &str, indenter: &Indenter, planes: &[Plane], mesh: &Mesh) -> Result<u32, ModelError> {
     if indenter.impactor.is_none() && indenter.force.is_none() {
         return Ok(0);
     }
-    let touches = |p: &Plane| indenter.nodes.iter().any(|n| p.holds(mesh.coords(n.node)));
     let mut shared = 0;
-    for p in planes.iter().filter(|p| touches(p)) {
-        let (what, allowed) = if indenter.impactor.is_some() {
-            (
+    for p in planes {
+        let touches = indenter.nodes.iter().any(|n| p.holds(mesh.coords(n.node)));
+        let crosses = crossing(indenter, p).0;
+        let (what, found, allowed) = match (indenter.impactor.is_some(), touches, crosses) {
+            (true, false, _) | (false, false, false) => continue,
+            (false, true, true) => {
+                shared += 1;
+                continue;
+            }
+            (true, true, _) => (
                 "mass",
-                "an impactor clear of the plane, or a displacement- or force-controlled indenter there (a mass would have to be split between the mirror images; model the full structure for impact)",
-            )
-        } else if crossing(indenter, p).0 {
-            shared += 1;
-            continue;
-        } else {
-            (
+                "an impactor touching",
+                "an impactor clear of the plane, or a displacement- or force-controlled indenter there (a mass \
+                 would have to be split between the mirror images; model the full structure for impact)",
+            ),
+            (false, true, false) => (
                 "force",
-                "a force-controlled indenter that crosses the plane as its own mirror image (the part kept then carries half its force per plane), or one clear of the plane",
-            )
+                "a force-controlled indenter touching",
+                "a force-controlled indenter that crosses the plane as its own mirror image (the part kept then \
+                 carries half its force per plane), or one clear of the plane",
+            ),
+            (false, false, true) => (
+                "surface",
+                "a force-controlled indenter crossing",
+                "a surface that reaches the plane (the tool shares its force with its mirror image through the \
+                 nodes on the plane), or a displacement-controlled indenter",
+            ),
         };
         return Err(invalid(
             format!("{key}.{what}"),
-            format!("an indenter touching symmetry plane {:?} ({})", p.name, p.describe()),
+            format!("{found} symmetry plane {:?} ({})", p.name, p.describe()),
             allowed,
         ));
     }

@@ -254,6 +254,11 @@ fn impactors_and_forces_across_a_plane_are_refused_by_key() {
     assert!(quarter.contains(pushed));
     let e = Model::parse(&quarter.replace(pushed, "force = [0.0, 1.0, -1600.0]")).unwrap_err().to_string();
     assert!(e.contains("indenters[2].force") && e.contains("force[1] = 0") && e.contains("symmetry_y"), "{e}");
+    // a roller crossing y = 0.125 whose surface stops short of it: no node shares its force
+    let short =
+        quarter.replace("surface = { z = 0.03, y = [0.075, 0.175] }", "surface = { z = 0.03, y = [0.075, 0.12] }");
+    let e = Model::parse(&short).unwrap_err().to_string();
+    assert!(e.contains("indenters[2].surface") && e.contains("reaches the plane"), "{e}");
     let thrown = quarter
         .replace("[solver]", "[analysis]\ntype = \"transient\"\nduration = 1e-4\n\n[solver]")
         .replace(pushed, "mass = 1.0\nvelocity = [0.0, 0.0, -1.0]")

@@ -7,6 +7,8 @@ use std::path::Path;
 use cufem::analysis::{self, Silent, Solution};
 use cufem::setup::Model;
 
+mod common;
+
 fn example(name: &str) -> String {
     std::fs::read_to_string(Path::new(env!("CARGO_MANIFEST_DIR")).join("examples").join(name)).unwrap()
 }
@@ -240,4 +242,26 @@ fn force_above_the_limit_load_stops_with_a_collapse_message() {
     let reached = -sol.contact("punch").unwrap().force[2];
     eprintln!("largest force reached {reached:.4e} N");
     assert!((1.3e6..1.45e6).contains(&reached), "{reached:e}");
+}
+
+/// A diverging correction of an unloading step is not a collapse: the
+/// springback tube's quarter (tests/common `springback_quarter`, its roller
+/// loaded to 1.6 kN by force, then unloaded) cuts back the unload's first
+/// increment, whose first correction would move the roller by centimetres;
+/// the cutback says the correction diverged, not that the tube collapses
+/// before a force it has already carried, and the run converges.
+#[test]
+fn an_unloading_cutback_is_not_called_a_collapse() {
+    struct Cutbacks(Vec<String>);
+    impl analysis::Progress for Cutbacks {
+        fn cutback(&mut self, c: &cufem::solver::stepping::Cutback) {
+            self.0.push(c.newton.message.clone().unwrap_or_default());
+        }
+    }
+    let model = Model::parse(&common::springback_quarter(&example("bending_tube_springback.toml"))).unwrap();
+    let mut seen = Cutbacks(Vec::new());
+    let sol = analysis::run(&model, &Default::default(), &mut seen).unwrap();
+    assert!(sol.failure.is_none(), "{:?}", sol.failure);
+    assert!(seen.0.iter().all(|m| !m.contains("collapses")), "{:?}", seen.0);
+    assert!(seen.0.iter().any(|m| m.contains("the correction diverged (not a collapse)")), "{:?}", seen.0);
 }

@@ -57,6 +57,8 @@ struct Driven {
     a_committed: f64,
     /// Its change over the last converged increment.
     a_step: f64,
+    /// The largest force (N, magnitude) a converged increment carried.
+    held: f64,
     /// Border column `B = ∂R/∂a` (equation space) and corner `C` of the last evaluation.
     b: Vec<f64>,
     /// Border row `∂r/∂u` (equals `B` without friction).
@@ -128,6 +130,7 @@ impl<'m> ForceControl<'m> {
                     inertia,
                     a: 0.0,
                     a_committed: 0.0,
+                    held: 0.0,
                     a_step: 0.0,
                     b: vec![0.0; n_eq],
                     b_row: vec![0.0; n_eq],
@@ -317,14 +320,29 @@ impl<'m> ForceControl<'m> {
 
     /// A target force beyond the limit load: under perfect plasticity the
     /// solution runs away (small strains allow any displacement), so a
-    /// motion beyond a tenth of the body is a collapse, not an answer. Not
-    /// for an impactor: its travel is its flight, which its inertia bounds.
+    /// motion beyond a tenth of the body is a collapse, not an answer —
+    /// unless the model already carried that force (an unloading step whose
+    /// first correction diverged: a cutback, not a collapse). Not for an
+    /// impactor: its travel is its flight, which its inertia bounds.
     fn check_collapse(&self, lambda: f64) -> Result<(), LinearError> {
         for d in self.driven.iter().filter(|d| d.inertia.is_none()) {
             let ind = &self.loading.indenters[d.indenter];
             let body = &self.mesh.bodies[ind.body];
             if !(d.a.abs() <= 0.1 * body.size()) {
                 let target = steps::factor(self.loading.steps, Item::Indenter(d.indenter), lambda) * d.magnitude;
+                if target.abs() <= d.held * (1.0 + 1e-9) {
+                    return Err(LinearError::Rejected(format!(
+                        "a correction moved force-controlled indenter {:?} {:.3e} m, more than a tenth of the size \
+                         of body {:?} ({:.3e} m), towards {:.4e} N, no more than the {:.4e} N a converged increment \
+                         carried: the correction diverged (not a collapse)",
+                        ind.name,
+                        d.a.abs(),
+                        body.name,
+                        body.size(),
+                        target,
+                        d.held
+                    )));
+                }
                 return Err(LinearError::Rejected(format!(
                     "force-controlled indenter {:?} would have to move {:.3e} m, more than a tenth of the size of \
                      body {:?} ({:.3e} m), to carry {:.4e} N: the body collapses before this force (the last \
@@ -350,6 +368,8 @@ impl<'m> ForceControl<'m> {
     /// The increment converged (at λ = `lambda`).
     pub fn commit(&mut self, lambda: f64) {
         for d in &mut self.driven {
+            let force = steps::factor(self.loading.steps, Item::Indenter(d.indenter), lambda) * d.magnitude;
+            d.held = d.held.max(force.abs());
             d.a_step = d.a - d.a_committed;
             d.a_committed = d.a;
             d.pushed.2 = d.pushed.1;

@@ -572,13 +572,7 @@ fn in_band_at(
 /// it; `bench/cantilevers_half_20B4.toml` is that half with the axis
 /// doubled): the half `x ≥ 12.7` mm.
 fn cantilevers_refined_half(text: &str, k: usize) -> String {
-    cantilevers_refined_half_of(text, k, 10)
-}
-
-/// [`cantilevers_refined_half`] of the cantilevers with `axis` B4 per beam
-/// (`cantilevers_contact_fine.toml`: 20).
-fn cantilevers_refined_half_of(text: &str, k: usize, axis: usize) -> String {
-    let counts = [("to = 0.0254, ", 4), ("to = 0.0508, ", 4), ("to = 0.254, ", axis), ("to = 0.3302, ", axis)];
+    let counts = [("to = 0.0254, ", 4), ("to = 0.0508, ", 4), ("to = 0.254, ", 10), ("to = 0.3302, ", 10)];
     refined(text, k, &counts) + CANTILEVERS_PLANE
 }
 
@@ -673,24 +667,6 @@ fn the_cantilevers_step_is_estimated() {
 #[ignore = "validate: references — the cantilevers' half refined twice (407,286 DOF, about 30 min)"]
 fn the_cantilevers_twice_refined_stresses_are_remade() {
     CANTILEVERS.remake();
-}
-
-/// The cantilevers on the shipped fine axis (`cantilevers_contact_fine.toml`:
-/// 20 B4 per beam), their reference made the same way (16 × 16 L9 × 80 B4
-/// per beam; the half, 811,206 DOF, 13 GiB estimated).
-const CANTILEVERS_FINE: Reference = Reference {
-    example: "cantilevers_contact_fine.toml",
-    file: "cantilevers_contact_fine_refined_twice.csv",
-    refined: |text| cantilevers_refined_half_of(text, 4, 20),
-    what: "refined twice, its half x ≥ 12.7 mm (tests/step_error.rs `cantilevers_refined_half_of(…, 4, 20)`), mirrored below x = 12.7 mm",
-    remade_by: "the_fine_cantilevers_twice_refined_stresses_are_remade",
-    ..CANTILEVERS
-};
-
-#[test]
-#[ignore = "validate: references — the fine cantilevers' half refined twice (811,206 DOF, about an hour)"]
-fn the_fine_cantilevers_twice_refined_stresses_are_remade() {
-    CANTILEVERS_FINE.remake();
 }
 
 /// The frictional twin (`cantilevers_contact_friction.toml`: the same

@@ -82,6 +82,19 @@ pub fn factor(steps: &[Step], item: Item, lambda: f64) -> f64 {
     before + (lambda - k as f64) * (steps[k].target(item) - before)
 }
 
+/// True if step `k` (from 0) takes some load back: an item's factor falls
+/// in magnitude over it (false for the first step).
+pub(crate) fn unloads(steps: &[Step], k: usize) -> bool {
+    let (Some(before), Some(now)) = (k.checked_sub(1).and_then(|j| steps.get(j)), steps.get(k)) else {
+        return false;
+    };
+    let falls = |a: &[f64], b: &[f64]| a.iter().zip(b).any(|(x, y)| y.abs() < x.abs());
+    falls(&before.indenters, &now.indenters)
+        || falls(&before.constraints, &now.constraints)
+        || falls(&before.loads, &now.loads)
+        || falls(&before.levers, &now.levers)
+}
+
 /// Names of the items a step may scale, in model order.
 pub(crate) struct ItemNames<'a> {
     /// Indenter names.

@@ -46,6 +46,12 @@ pub trait Incremental: NonlinearProblem {
     fn cautious(&mut self, _on: bool) -> bool {
         false
     }
+    /// True if the load step that starts at `lambda` takes some load back:
+    /// its first increment starts with the cautious linearization (the
+    /// default: never).
+    fn unloads(&self, _lambda: f64) -> bool {
+        false
+    }
     /// Moves the start of the next solve from the committed state along the
     /// last converged increment, scaled by `ratio` = Δλ_next / Δλ_last (a
     /// linear extrapolation of the path; the default: start at the
@@ -203,6 +209,11 @@ pub fn run_span<P: Incremental>(
             Some(2) => FirstCorrection::Finishing,
             _ => FirstCorrection::Plain,
         };
+        if history.is_empty() && cutbacks == 0 && problem.unloads(lambda) {
+            // the loading branch at points on their yield surface would take
+            // the first correction of an unloading step far past its answer
+            problem.cautious(true);
+        }
         let report = solve_increment(problem, newton_settings, first, interrupt);
         if report.failure == Some(newton::Failure::Interrupted) {
             problem.restore();

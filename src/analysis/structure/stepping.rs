@@ -41,6 +41,13 @@ impl Incremental for Structure<'_> {
         changed
     }
 
+    fn unloads(&self, lambda: f64) -> bool {
+        // a transient step's first time step follows from its motion
+        self.parts.inertia.is_none()
+            && lambda >= 0.5
+            && crate::setup::steps::unloads(self.loading.steps, lambda.round() as usize)
+    }
+
     fn extrapolate(&mut self, ratio: f64) {
         if self.starts_committed() {
             return;

@@ -77,6 +77,9 @@ fn each_step_end_is_estimated_from_its_own_state() {
     let t = tables::error_history(&model, &full).unwrap();
     assert_eq!(t.text("name").unwrap(), ["load_1", "load_2", "load_5", "load_10"]);
     assert_eq!(t.real("estimate").unwrap(), rows.iter().map(|r| r.estimate.relative()).collect::<Vec<_>>());
+    // a static history's table has no note about waves
+    let printed = cufem::io::report::results(&model, &full);
+    assert!(printed.contains("est. error [%]") && !printed.contains("wave"), "{printed}");
 }
 
 /// A history of one step keeps no step fields: its one row is the final
@@ -125,4 +128,8 @@ fn each_frame_is_estimated_from_its_own_state() {
         let end = full.error_estimate.as_ref().unwrap();
         assert!((row.error - end.error).abs() > 1e-3 * end.error, "frame {k} has the final state's estimate");
     }
+    // the run's table of the frames says what their estimates leave out
+    // (the rod's are 0.08–0.22 of its true error: step_error.rs)
+    let printed = cufem::io::report::results(&model, &full);
+    assert!(printed.contains("est. error [%]") && printed.contains("a travelling wave's phase"), "{printed}");
 }

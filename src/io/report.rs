@@ -312,6 +312,14 @@ fn error_history(s: &mut String, summary: &super::Summary) {
             r.energy
         );
     }
+    if transient {
+        out!(
+            s,
+            "       each time's estimate is the error of its own stresses: it does not see an error that waves \
+             carried from earlier times (a travelling wave's phase), which can be several times larger \
+             (docs/limitations.md)"
+        );
+    }
 }
 
 /// The model's reference values beside cufem's at their probes.

@@ -210,9 +210,7 @@ pub fn run_span<P: Incremental>(
             _ => FirstCorrection::Plain,
         };
         if history.is_empty() && cutbacks == 0 && problem.unloads(lambda) {
-            // the loading branch at points on their yield surface would take
-            // the first correction of an unloading step far past its answer
-            problem.cautious(true);
+            problem.cautious(true); // not the loading branch at points on their yield surface
         }
         let report = solve_increment(problem, newton_settings, first, interrupt);
         if report.failure == Some(newton::Failure::Interrupted) {

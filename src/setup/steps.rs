@@ -82,17 +82,47 @@ pub fn factor(steps: &[Step], item: Item, lambda: f64) -> f64 {
     before + (lambda - k as f64) * (steps[k].target(item) - before)
 }
 
-/// True if step `k` (from 0) takes some load back: an item's factor falls
-/// in magnitude over it (false for the first step).
+/// The factors of `item` at the start and the end of step `k` (from 0).
+fn ramp(steps: &[Step], k: usize, item: Item) -> (f64, f64) {
+    let before = k.checked_sub(1).and_then(|j| steps.get(j)).map_or(0.0, |s| s.target(item));
+    (before, steps.get(k).map_or(before, |s| s.target(item)))
+}
+
+/// True if the item's factor first moves towards zero over step `k`: the
+/// step takes that load back (`1 → 0.5`, `−1 → −0.5`, a reversal `1 → −1`).
+pub(crate) fn takes_back(steps: &[Step], k: usize, item: Item) -> bool {
+    let (x, y) = ramp(steps, k, item);
+    x != 0.0 && (y - x) * x < 0.0
+}
+
+/// Every item of step `k`, for [`unloads`] and [`loads_more`].
+fn items(steps: &[Step], k: usize) -> impl Iterator<Item = Item> + '_ {
+    let step = steps.get(k);
+    let n = |list: fn(&Step) -> &Vec<f64>| step.map_or(0, |s| list(s).len());
+    (0..n(|s| &s.indenters))
+        .map(Item::Indenter)
+        .chain((0..n(|s| &s.constraints)).map(Item::Constraint))
+        .chain((0..n(|s| &s.loads)).map(Item::Load))
+        .chain((0..n(|s| &s.levers)).map(Item::Lever))
+}
+
+/// True if step `k` (from 0) takes some load back ([`takes_back`]).
 pub(crate) fn unloads(steps: &[Step], k: usize) -> bool {
-    let (Some(before), Some(now)) = (k.checked_sub(1).and_then(|j| steps.get(j)), steps.get(k)) else {
-        return false;
-    };
-    let falls = |a: &[f64], b: &[f64]| a.iter().zip(b).any(|(x, y)| y.abs() < x.abs());
-    falls(&before.indenters, &now.indenters)
-        || falls(&before.constraints, &now.constraints)
-        || falls(&before.loads, &now.loads)
-        || falls(&before.levers, &now.levers)
+    items(steps, k).any(|item| takes_back(steps, k, item))
+}
+
+/// True if step `k` moves some item's factor away from zero (more load),
+/// other than `except`.
+pub(crate) fn loads_more(steps: &[Step], k: usize, except: Item) -> bool {
+    items(steps, k).filter(|&item| item != except).any(|item| {
+        let (x, y) = ramp(steps, k, item);
+        (x == 0.0 && y != 0.0) || (y - x) * x > 0.0
+    })
+}
+
+/// The step (from 0) that analysis time `lambda` lies in.
+pub(crate) fn step_at(steps: &[Step], lambda: f64) -> usize {
+    (lambda.ceil().max(1.0) as usize).min(steps.len().max(1)) - 1
 }
 
 /// Names of the items a step may scale, in model order.
@@ -259,6 +289,31 @@ mod tests {
         assert_eq!(factor(&one, Item::Load(0), 1.5), 1.5);
         assert_eq!(factor(&one, Item::Load(0), -0.25), -0.25);
         assert_eq!(factor(&s, punch, 3.5), -0.5);
+    }
+
+    /// Which steps take load back, and which add some: a hold, a ramp
+    /// towards zero of either sign, a reversal through zero, a step that
+    /// starts from zero, and a step that takes one item back while it
+    /// pushes another further.
+    #[test]
+    fn unloading_steps_are_told_from_loading_ones() {
+        let names = ItemNames { indenters: vec!["punch"], constraints: vec![], loads: vec!["tip"], levers: vec![] };
+        let base = StepSettings::default();
+        let file = [
+            step("pull", "factor = -1.0"),
+            step("ease", "factor = -0.5"),
+            step("hold", "factor = -0.5"),
+            step("reverse", "factor = 1.0"),
+            step("swap", "factors = { punch = 0.0, tip = 2.0 }"),
+            step("restart", "factors = { punch = 1.0, tip = 2.0 }"),
+        ];
+        let s = steps(&file, &names, &base).unwrap();
+        let (punch, tip) = (Item::Indenter(0), Item::Load(0));
+        assert_eq!((0..6).map(|k| unloads(&s, k)).collect::<Vec<_>>(), [false, true, false, true, true, false]);
+        assert!(takes_back(&s, 4, punch) && !takes_back(&s, 4, tip));
+        assert!(loads_more(&s, 4, punch) && !loads_more(&s, 1, punch) && !loads_more(&s, 2, punch));
+        assert!(loads_more(&s, 5, tip), "0 → 1 adds load");
+        assert_eq!([0.5, 1.0, 1.5, 6.0, 7.0].map(|l| step_at(&s, l)), [0, 0, 1, 5, 5]);
     }
 
     #[test]

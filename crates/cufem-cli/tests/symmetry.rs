@@ -259,6 +259,12 @@ fn impactors_and_forces_across_a_plane_are_refused_by_key() {
         quarter.replace("surface = { z = 0.03, y = [0.075, 0.175] }", "surface = { z = 0.03, y = [0.075, 0.12] }");
     let e = Model::parse(&short).unwrap_err().to_string();
     assert!(e.contains("indenters[2].surface") && e.contains("reaches the plane"), "{e}");
+    // a flat punch that ends on the plane x = 0.015 touches it without crossing it
+    let cylinder = "shape = \"cylinder\"\nsurface = { z = 0.03, y = [0.075, 0.175] }\naxis = \"x\"\ncenter = [0.015, 0.125, 0.04]\nradius = 0.01\n";
+    let punch = "shape = \"flat\"\nsurface = { z = 0.03 }\nnormal = \"-z\"\nposition = 0.03\nx = [0.015, 0.03]\ny = [0.1, 0.15]\n";
+    assert!(quarter.contains(cylinder));
+    let e = Model::parse(&quarter.replace(cylinder, punch)).unwrap_err().to_string();
+    assert!(e.contains("indenters[2].force") && e.contains("touching symmetry plane \"symmetry_x\""), "{e}");
     let thrown = quarter
         .replace("[solver]", "[analysis]\ntype = \"transient\"\nduration = 1e-4\n\n[solver]")
         .replace(pushed, "mass = 1.0\nvelocity = [0.0, 0.0, -1.0]")

@@ -321,8 +321,9 @@ impl<'m> ForceControl<'m> {
     /// A target force beyond the limit load: under perfect plasticity the
     /// solution runs away (small strains allow any displacement), so a
     /// motion beyond a tenth of the body is a collapse, not an answer —
-    /// unless the model already carried that force (an unloading step whose
-    /// first correction diverged: a cutback, not a collapse). Not for an
+    /// unless the step takes this force back, adds no other load, and the
+    /// model already carried it (a correction that diverged: a cutback, not
+    /// a collapse). Not for an
     /// impactor: its travel is its flight, which its inertia bounds.
     fn check_collapse(&self, lambda: f64) -> Result<(), LinearError> {
         for d in self.driven.iter().filter(|d| d.inertia.is_none()) {
@@ -330,7 +331,11 @@ impl<'m> ForceControl<'m> {
             let body = &self.mesh.bodies[ind.body];
             if !(d.a.abs() <= 0.1 * body.size()) {
                 let target = steps::factor(self.loading.steps, Item::Indenter(d.indenter), lambda) * d.magnitude;
-                if target.abs() <= d.held * (1.0 + 1e-9) {
+                let item = Item::Indenter(d.indenter);
+                let k = steps::step_at(self.loading.steps, lambda);
+                let back =
+                    steps::takes_back(self.loading.steps, k, item) && !steps::loads_more(self.loading.steps, k, item);
+                if back && target.abs() <= d.held * (1.0 + 1e-9) {
                     return Err(LinearError::Rejected(format!(
                         "a correction moved force-controlled indenter {:?} {:.3e} m, more than a tenth of the size \
                          of body {:?} ({:.3e} m), towards {:.4e} N, no more than the {:.4e} N a converged increment \

@@ -42,8 +42,11 @@ impl Incremental for Structure<'_> {
     }
 
     fn unloads(&self, lambda: f64) -> bool {
-        // a transient step's first time step follows from its motion
+        // only points on their yield surface need the elastic branch (the
+        // cautious retry also searches along a frictionless contact's
+        // corrections); a transient step's first time step follows from its motion
         self.parts.inertia.is_none()
+            && self.parts.elements.discretisation.materials.iter().any(|m| m.is_plastic())
             && lambda >= 0.5
             && crate::setup::steps::unloads(self.loading.steps, lambda.round() as usize)
     }

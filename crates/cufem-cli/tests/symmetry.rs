@@ -198,6 +198,13 @@ fn a_force_controlled_roller_across_both_planes_carries_the_full_force() {
         let (f, own) = (a["f_z"][k], b["f_z"][k]);
         assert!((4.0 * own - f).abs() < 1e-6 * f.abs(), "increment {k}: f_z {own} × 4 against {f}");
     }
+    // `cufem check` says which force the quarter's roller carries
+    let dir = common::scratch_dir("symmetry", "springback_check");
+    std::fs::write(dir.join("quarter.toml"), &quarter).unwrap();
+    let out = common::cufem().args(["check", dir.join("quarter.toml").to_str().unwrap()]).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    let share = "force [0.0, 0.0, -400.0] N (its share of the full structure's [0.0, 0.0, -1600.0] N)";
+    assert!(text.contains(share), "{text}");
 }
 
 /// The error of a quarter model with `from` replaced by `to`.

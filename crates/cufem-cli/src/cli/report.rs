@@ -61,11 +61,18 @@ pub fn print_check(model: &Model) {
     }
     for i in &model.indenters {
         let area: f64 = i.nodes.iter().map(|n| n.area).sum();
+        let motion = match (&i.impactor, i.force) {
+            (Some(imp), _) => format!("impactor of {} kg at {:?} m/s", imp.mass, imp.velocity),
+            (None, Some(f)) => match model.symmetry.full(&i.name, f).filter(|full| *full != f) {
+                Some(full) => format!("force {f:?} N (its share of the full structure's {full:?} N)"),
+                None => format!("force {f:?} N"),
+            },
+            (None, None) => format!("displacement {:?} m", i.displacement),
+        };
         println!(
-            "indenter {}: {}, displacement {:?} m, {} candidate nodes (surface {:.4e} m²)",
+            "indenter {}: {}, {motion}, {} candidate nodes (surface {:.4e} m²)",
             i.name,
             i.surface,
-            i.displacement,
             i.nodes.len(),
             area
         );

@@ -166,6 +166,11 @@ fn check_prints_the_model_size() {
     assert!(out.status.success());
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("1,200 DOF") && text.contains("20 elements") && text.contains("400 nodes"), "{text}");
+    // each indenter with its motion: prescribed, or an impactor's mass and velocity
+    let out = cufem().args(["check", example("tube_drop_weight.toml").to_str().unwrap()]).output().unwrap();
+    let text = String::from_utf8(out.stdout).unwrap();
+    assert!(text.contains("indenter support_left: ") && text.contains("displacement [0.0, 0.0, 0.0] m"), "{text}");
+    assert!(text.contains("impactor of 2 kg at [0.0, 0.0, -1.0] m/s"), "{text}");
 }
 
 /// Bad input: exit code 1 and a message naming the key, the value and what is allowed.

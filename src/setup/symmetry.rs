@@ -262,8 +262,8 @@ pub(super) fn check_indenter(key: &str, indenter: &Indenter, planes: &[Plane], m
         return Ok(0);
     }
     let mut shared = 0;
-    for p in planes {
-        let touches = indenter.nodes.iter().any(|n| p.holds(mesh.coords(n.node)));
+    let touching = across(planes, mesh, indenter.nodes.iter().map(|n| n.node));
+    for (p, &touches) in planes.iter().zip(&touching) {
         let crosses = crossing(indenter, p).0;
         let (what, found, allowed) = match (indenter.impactor.is_some(), touches, crosses) {
             (true, false, _) | (false, false, false) => continue,

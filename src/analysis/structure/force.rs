@@ -330,8 +330,8 @@ impl<'m> ForceControl<'m> {
             let ind = &self.loading.indenters[d.indenter];
             let body = &self.mesh.bodies[ind.body];
             if !(d.a.abs() <= 0.1 * body.size()) {
-                let target = steps::factor(self.loading.steps, Item::Indenter(d.indenter), lambda) * d.magnitude;
                 let item = Item::Indenter(d.indenter);
+                let target = steps::factor(self.loading.steps, item, lambda) * d.magnitude;
                 let k = steps::step_at(self.loading.steps, lambda);
                 let back =
                     steps::takes_back(self.loading.steps, k, item) && !steps::loads_more(self.loading.steps, k, item);

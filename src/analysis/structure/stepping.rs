@@ -47,7 +47,6 @@ impl Incremental for Structure<'_> {
         // corrections); a transient step's first time step follows from its motion
         self.parts.inertia.is_none()
             && self.parts.elements.discretisation.materials.iter().any(|m| m.is_plastic())
-            && lambda >= 0.5
             && crate::setup::steps::unloads(self.loading.steps, lambda.round() as usize)
     }
 

@@ -95,32 +95,42 @@ fn take(slot: &mut Extremes, (value, ratio): (f64, f64), place: &dyn Fn() -> Pla
 
 /// Per section element of `body`, the natural lines `(coordinate,
 /// value)` (`0`: ξ, `1`: η) of its edges that are bonded ply interfaces:
-/// of constant z and shared with an element of another material, both
-/// materials' axis 3 along z (plies of a laminate, not a profile's web
-/// against its flange; a cohesive interface's twin nodes are not shared:
-/// its own onset index is `d_interface`'s).
+/// straight, shared with an element of another material, both materials'
+/// axis 3 along the edge's normal (plies of a laminate stacked along z, a
+/// web's plies stacked along x, any stack of a gmsh section; not a
+/// profile's web against its flange; a cohesive interface's twin nodes are
+/// not shared: its own onset index is `d_interface`'s).
 fn interface_lines(body: &crate::mesh::Body, materials: &[crate::materials::Material]) -> Vec<Vec<(usize, f64)>> {
-    let normal_z =
-        |m: usize| (materials[m].frame.stress_to_material(&[0.0, 0.0, 1.0, 0.0, 0.0, 0.0])[2] - 1.0).abs() < 1e-9;
+    // axis 3 of material `m` along the unit (x, z) vector `n`: the stress
+    // n ⊗ n is all σ33 in its axes
+    let along = |m: usize, n: [f64; 2]| {
+        let nn = [n[0] * n[0], 0.0, n[1] * n[1], 0.0, n[0] * n[1], 0.0];
+        (materials[m].frame.stress_to_material(&nn)[2] - 1.0).abs() < 1e-9
+    };
     let section = &body.section;
     let basis = crate::shape::Lagrange2d::new(section.kind.order());
     let holding = section.elements_at_nodes();
-    let [_, _, z0, z1] = section.bounds();
-    let tol = 1e-9 * (z1 - z0).abs().max(f64::MIN_POSITIVE);
     (0..section.n_elements())
         .map(|es| {
             (0..4)
                 .filter_map(|k| {
                     let local = section.edge_local_nodes(k);
                     let nodes: Vec<usize> = local.iter().map(|&l| section.element(es)[l]).collect();
-                    let flat = nodes.iter().all(|&t| (section.nodes[t][1] - section.nodes[nodes[0]][1]).abs() <= tol);
+                    let (p, q) = (section.nodes[nodes[0]], section.nodes[nodes[nodes.len() - 1]]);
+                    let (dx, dz) = (q[0] - p[0], q[1] - p[1]);
+                    let length = dx.hypot(dz);
+                    let straight = nodes.iter().all(|&t| {
+                        let r = section.nodes[t];
+                        ((r[0] - p[0]) * dz - (r[1] - p[1]) * dx).abs() <= 1e-9 * length * length
+                    });
+                    let normal = [-dz / length, dx / length];
                     let bonded = section.across(&holding, es, &nodes).is_some_and(|f| {
                         let (mf, me) = (body.material_of(f), body.material_of(es));
-                        mf != me && normal_z(mf) && normal_z(me)
+                        mf != me && along(mf, normal) && along(me, normal)
                     });
                     let (a, b) = (basis.node(local[0]), basis.node(local[local.len() - 1]));
                     let d = usize::from(a[0] != b[0]);
-                    (flat && bonded).then_some((d, a[d]))
+                    (straight && bonded).then_some((d, a[d]))
                 })
                 .collect()
         })

@@ -161,6 +161,171 @@ fn the_interlaminar_index_follows_pagano_at_the_interfaces() {
     assert!(single["ply_failure"]["criteria"].is_array() && single["ply_failure"].get("interlaminar").is_none());
 }
 
+/// A gmsh 2.2 file of L16 quadrilaterals (gmsh type 36) over the
+/// rectangle `x0..x1` × `z0..z1` (gmsh's x, y: the section's x, z): `cuts`
+/// are the x of the boundaries between physical groups `ply1`, `ply2`, …,
+/// `per` elements across each group, one element along z.
+fn stacked_along_x(cuts: &[f64], per: usize, z: [f64; 2]) -> String {
+    let n_el = per * (cuts.len() - 1);
+    let (ni, nj) = (3 * n_el + 1, 4);
+    let xs: Vec<f64> = (0..ni)
+        .map(|i| {
+            let (e, k) = ((i / 3).min(n_el - 1), i - 3 * (i / 3).min(n_el - 1));
+            let (g, m) = (e / per, e % per);
+            let w = (cuts[g + 1] - cuts[g]) / per as f64;
+            cuts[g] + w * (m as f64 + k as f64 / 3.0)
+        })
+        .collect();
+    let id = |i: usize, j: usize| j * ni + i + 1;
+    let mut text = String::from("$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$PhysicalNames\n");
+    text += &format!("{}\n", cuts.len() - 1);
+    for g in 1..cuts.len() {
+        text += &format!("2 {g} \"ply{g}\"\n");
+    }
+    text += &format!("$EndPhysicalNames\n$Nodes\n{}\n", ni * nj);
+    for j in 0..nj {
+        for (i, x) in xs.iter().enumerate() {
+            text += &format!("{} {x:e} {:e} 0\n", id(i, j), z[0] + (z[1] - z[0]) * j as f64 / 3.0);
+        }
+    }
+    // gmsh's quad16: corners, edge nodes edge by edge, the inner four
+    let order = [
+        (0, 0),
+        (3, 0),
+        (3, 3),
+        (0, 3),
+        (1, 0),
+        (2, 0),
+        (3, 1),
+        (3, 2),
+        (2, 3),
+        (1, 3),
+        (0, 2),
+        (0, 1),
+        (1, 1),
+        (2, 1),
+        (2, 2),
+        (1, 2),
+    ];
+    text += &format!("$EndNodes\n$Elements\n{n_el}\n");
+    for e in 0..n_el {
+        let nodes: Vec<String> = order.iter().map(|&(a, b)| id(3 * e + a, b).to_string()).collect();
+        text += &format!("{} 36 2 {g} {g} {}\n", e + 1, nodes.join(" "), g = e / per + 1);
+    }
+    text + "$EndElements\n"
+}
+
+/// The interlaminar index reads any stack, not only plies stacked along z:
+/// Pagano's `[0/90/0]` of the test above turned 90° about the beam axis
+/// (section x' = z, z' = −x: plies stacked along x, axis 3 along x, as in a
+/// web of `box_beam_laminated`; the same L16 lattice from a gmsh file, the
+/// load on the face x' = h/2) is the same elastic problem, so its largest
+/// index and first-failure factor are the laminate's to round-off, at the
+/// turned place. With the plies' axis 3 left along z (zones without the
+/// normal) the interfaces of constant x bond no plies: no index.
+#[test]
+fn the_interlaminar_index_reads_plies_stacked_along_x() {
+    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/pagano_s4.toml"));
+    let text = std::fs::read_to_string(path).unwrap();
+    let elastic = "orthotropic = { e1 = 25e9, e2 = 1e9, e3 = 1e9, g12 = 0.5e9, g13 = 0.5e9, g23 = 0.2e9, nu12 = 0.25, nu13 = 0.25, nu23 = 0.25 }";
+    let strong = "xt = 1e9, xc = 1e9, yt = 1e8, yc = 1e8";
+    let materials = format!(
+        "[[materials]]\nname = \"ply\"\n{elastic}\nstrengths = {{ {strong}, s12 = 1e6, s23 = 3e6 }}\n\n[[materials]]\nname = \"core\"\n{elastic}\nstrengths = {{ {strong}, s12 = 2e6, s13 = 2e6, s23 = 2.5e6 }}\n"
+    );
+    let middle = "material = \"ply\", angle = 90.0,";
+    let (start, end) = (text.find("[[materials]]").unwrap(), text.find("[[bodies]]").unwrap());
+    let laminate = format!("{}{materials}\n{}", &text[..start], &text[end..])
+        .replace(middle, "material = \"core\", angle = 90.0,");
+    let (_, flat) = run_cli("interlaminar_along_z", Some(&laminate));
+    let h = 0.01;
+    let zones = |normal: &str| {
+        [("ply1", "ply", 0.0), ("ply2", "core", 90.0), ("ply3", "ply", 0.0)]
+            .iter()
+            .map(|(r, m, a)| {
+                format!("[[bodies.zones]]\nregion = \"{r}\"\nmaterial = \"{m}\"\nangle = {a:.1}\n{normal}\n")
+            })
+            .collect::<String>()
+    };
+    let turned = |normal: &str| {
+        format!(
+            r#"title = "Pagano [0/90/0], S = 4, stacked along x"
+{materials}
+[[bodies]]
+name = "laminate"
+material = "ply"
+section = {{ shape = "gmsh", file = "along_x.msh" }}
+axis = {{ element = "B4", from = 0.0, to = 0.04, elements = 8 }}
+{}
+[[constraints]]
+name = "plane_strain"
+body = "laminate"
+where = {{}}
+fix = ["z"]
+
+[[constraints]]
+name = "left_support"
+body = "laminate"
+where = {{ y = 0.0 }}
+fix = ["x"]
+
+[[constraints]]
+name = "right_support"
+body = "laminate"
+where = {{ y = 0.04 }}
+fix = ["x"]
+
+[[constraints]]
+name = "mid_span"
+body = "laminate"
+where = {{ y = 0.02 }}
+fix = ["y"]
+
+[[loads]]
+name = "sine_pressure"
+body = "laminate"
+where = {{ x = 0.005 }}
+pressure = 1e5
+profile = {{ shape = "sine", along = "y", from = 0.0, to = 0.04 }}
+"#,
+            zones(normal)
+        )
+    };
+    let dir = common::scratch_dir("composites", "interlaminar_along_x");
+    let cuts = [-h / 2.0, -h / 6.0, h / 6.0, h / 2.0];
+    std::fs::write(dir.join("along_x.msh"), stacked_along_x(&cuts, 4, [-0.0025, 0.0025])).unwrap();
+    let run = |name: &str, normal: &str| {
+        let model = dir.join(format!("{name}.toml"));
+        std::fs::write(&model, turned(normal)).unwrap();
+        let out = dir.join(name);
+        let r = common::cufem()
+            .args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"])
+            .output()
+            .unwrap();
+        assert!(r.status.success(), "{name}: {}", String::from_utf8_lossy(&r.stderr));
+        serde_json::from_str::<Value>(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
+    };
+    let along_x = run("along_x", "normal = [1.0, 0.0, 0.0]");
+    let (a, b) = (&flat["ply_failure"]["interlaminar"], &along_x["ply_failure"]["interlaminar"]);
+    let value = |e: &Value, k: &str| e[k].as_f64().unwrap_or_else(|| panic!("{k} in {e}"));
+    for k in ["largest_index", "first_failure_load_factor"] {
+        let (za, xb) = (value(a, k), value(b, k));
+        eprintln!("{k}: stacked along z {za:.8e}, along x {xb:.8e}");
+        assert!((xb / za - 1.0).abs() < 1e-6, "{k}: {xb:e} against {za:e}");
+    }
+    let point = |e: &Value| -> Vec<f64> {
+        e["largest_at"]["point"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect()
+    };
+    let (pa, pb) = (point(a), point(b));
+    assert!(
+        (pb[0] - pa[2]).abs() < 1e-9 && [-h / 6.0, h / 6.0].iter().any(|x| (pb[0] - x).abs() < 1e-9),
+        "{pb:?} against {pa:?}"
+    );
+    assert!(pb[1].min(0.04 - pb[1]) < 1e-9, "at y = {}, not at a support", pb[1]);
+    // axis 3 along z, across the stack: the constant-x edges bond no plies
+    let across = run("across", "");
+    assert!(across["ply_failure"]["criteria"].is_array() && across["ply_failure"].get("interlaminar").is_none());
+}
+
 /// T300/5208 carbon/epoxy (Tsai & Hahn, Introduction to Composite
 /// Materials, 1980, Table 7.1): E1 = 181, E2 = 10.3, G12 = 7.17 GPa,
 /// ν12 = 0.28; Xt = Xc = 1500, Yt = 40, Yc = 246, S12 = 68 MPa. Not in the

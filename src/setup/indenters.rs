@@ -42,9 +42,13 @@ pub(super) fn indenters(
             lightest_impactor(&key, imp.mass, &mesh.bodies[b], materials)?;
         }
         symmetry::check_indenter_shape(&key, &ind, planes, mesh)?;
-        // the force is the full structure's: the part kept carries its share
+        // the force (an impactor's mass) is the full structure's: the part kept carries its share
         let shared = symmetry::check_indenter(&key, &ind, planes, mesh)?;
-        ind.force = ind.force.map(|f| f.map(|v| v / f64::from(1u32 << shared)));
+        let share = 1.0 / f64::from(1u32 << shared);
+        ind.force = ind.force.map(|f| f.map(|v| v * share));
+        if let Some(imp) = &mut ind.impactor {
+            imp.mass *= share;
+        }
         // how far the indenter's own motion brings it towards each node
         let reach = |c: &contact::ContactNode| (0..3).map(|k| ind.displacement[k] * c.normal[k]).sum::<f64>() - c.gap0;
         if !transient && ind.force.is_none() && ind.nodes.iter().all(|c| reach(c) < 0.0) {

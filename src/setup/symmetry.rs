@@ -249,50 +249,51 @@ fn nodal_load(key: &str, load: &Load, l: &LoadFile, planes: &[Plane], mesh: &Mes
     }
 }
 
-/// An impactor touching a plane is refused (its mass would have to be split
-/// between the mirror images, and its motion is its own). A force-controlled
-/// indenter touching a plane must cross it as its own mirror image
-/// ([`check_indenter_shape`], which runs first), and one crossing it must
-/// reach it: the tool and its images are one tool, pushed by the full
-/// structure's force, of which the part kept carries `1/2` per plane
+/// A force-controlled indenter or an impactor touching a plane must cross
+/// it as its own mirror image ([`check_indenter_shape`], which runs first),
+/// and one crossing it must reach it: the tool and its images are one tool,
+/// pushed by the full structure's force (an impactor: of the full
+/// structure's mass), of which the part kept carries `1/2` per plane
 /// crossed. Returns that number of planes (0 for a displacement-controlled
 /// indenter, or one clear of every plane).
 pub(super) fn check_indenter(key: &str, indenter: &Indenter, planes: &[Plane], mesh: &Mesh) -> Result<u32, ModelError> {
     if indenter.impactor.is_none() && indenter.force.is_none() {
         return Ok(0);
     }
+    let (driven, by) = match indenter.impactor {
+        Some(_) => ("an impactor", "mass"),
+        None => ("a force-controlled indenter", "force"),
+    };
     let mut shared = 0;
     let touching = across(planes, mesh, indenter.nodes.iter().map(|n| n.node));
     for (p, &touches) in planes.iter().zip(&touching) {
         let crosses = crossing(indenter, p).0;
-        let (what, found, allowed) = match (indenter.impactor.is_some(), touches, crosses) {
-            (true, false, _) | (false, false, false) => continue,
-            (false, true, true) => {
+        let (what, found, allowed) = match (touches, crosses) {
+            (false, false) => continue,
+            (true, true) => {
                 shared += 1;
                 continue;
             }
-            (true, true, _) => (
-                "mass",
-                "an impactor touching",
-                "an impactor clear of the plane, or a displacement- or force-controlled indenter there (a mass \
-                 would have to be split between the mirror images; model the full structure for impact)",
+            (true, false) => (
+                by,
+                "touching",
+                format!(
+                    "{driven} that crosses the plane as its own mirror image (the part kept then carries half its \
+                     {by} per plane), or one clear of the plane"
+                ),
             ),
-            (false, true, false) => (
-                "force",
-                "a force-controlled indenter touching",
-                "a force-controlled indenter that crosses the plane as its own mirror image (the part kept then \
-                 carries half its force per plane), or one clear of the plane",
-            ),
-            (false, false, true) => (
+            (false, true) => (
                 "surface",
-                "a force-controlled indenter crossing",
-                "a surface that reaches the plane (the tool shares its force with its mirror image through the \
-                 nodes on the plane), or a displacement-controlled indenter",
+                "crossing",
+                format!(
+                    "a surface that reaches the plane (the tool shares its {by} with its mirror image through the \
+                     nodes on the plane), or a displacement-controlled indenter"
+                ),
             ),
         };
         return Err(invalid(
             format!("{key}.{what}"),
-            format!("{found} symmetry plane {:?} ({})", p.name, p.describe()),
+            format!("{driven} {found} symmetry plane {:?} ({})", p.name, p.describe()),
             allowed,
         ));
     }
@@ -353,9 +354,10 @@ pub(super) fn check_indenter_shape(
                 ),
             ));
         }
-        let (what, motion, unit) = match indenter.force {
-            Some(f) => ("force", f, "N"),
-            None => ("displacement", indenter.displacement, "m"),
+        let (what, motion, unit) = match (&indenter.impactor, indenter.force) {
+            (Some(imp), _) => ("velocity", imp.velocity, "m/s"),
+            (None, Some(f)) => ("force", f, "N"),
+            (None, None) => ("displacement", indenter.displacement, "m"),
         };
         if motion[a] != 0.0 {
             return Err(invalid(

@@ -364,6 +364,15 @@ pub fn block_u_z_error(x: &[f64], u_z: &[f64], u_z_3d: &[f64], a: f64, b: f64) -
 /// the tube to x ≥ 15 mm, y ≤ 125 mm; the force-controlled roller crosses
 /// both and the quarter carries a quarter of its force.
 pub fn springback_quarter(text: &str) -> String {
+    tube_quarter(text)
+}
+
+/// The quarter of a whole §4.2 tube (`text`, its axis 0–250 mm, its section
+/// 0–30 mm) held on its planes of mirror symmetry by two constraints named
+/// `symmetry_x`, `symmetry_y`: they become `[[symmetry]]` planes, which cut
+/// it to x ≥ 15 mm, y ≤ 125 mm (the drop weight's twins,
+/// crates/cufem-cli/tests/symmetry.rs; [`springback_quarter`]).
+pub fn tube_quarter(text: &str) -> String {
     let plane = |axis: &str, at: &str, keep: &str| {
         let constraint = format!(
             "[[constraints]]\nname = \"symmetry_{axis}\"\nbody = \"tube\"\nwhere = {{ {axis} = {at} }}\nfix = [\"{axis}\"]\n"
@@ -378,4 +387,21 @@ pub fn springback_quarter(text: &str) -> String {
         out = out.replace(&constraint, &symmetry);
     }
     out
+}
+
+/// The smaller twin of `examples/tube_drop_weight.toml` (`text`): 8 L9
+/// around instead of 20 and 10 B4 along the axis instead of 22 (4,464 DOF
+/// against 24,120); crates/cufem-cli/tests/dynamics.rs and symmetry.rs.
+pub fn coarse_drop_weight(text: &str) -> String {
+    let mut twin = text.replace("around = 20", "around = 8");
+    for (from, to) in [
+        ("to = 0.025, elements = 2", "to = 0.025, elements = 1"),
+        ("to = 0.125, elements = 9", "to = 0.125, elements = 4"),
+        ("to = 0.225, elements = 9", "to = 0.225, elements = 4"),
+        ("to = 0.25, elements = 2", "to = 0.25, elements = 1"),
+    ] {
+        assert!(twin.contains(from), "{from}");
+        twin = twin.replace(from, to);
+    }
+    twin
 }

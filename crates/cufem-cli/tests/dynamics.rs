@@ -556,17 +556,7 @@ fn a_drop_weight_hands_its_energy_to_the_tube() {
 /// The smaller twin of `examples/tube_drop_weight.toml`
 /// ([`a_drop_weight_hands_its_energy_to_the_tube`]): 8 L9 around, 10 B4.
 fn drop_weight_twin() -> String {
-    let mut twin = drop_weight_example().replace("around = 20", "around = 8");
-    for (from, to) in [
-        ("to = 0.025, elements = 2", "to = 0.025, elements = 1"),
-        ("to = 0.125, elements = 9", "to = 0.125, elements = 4"),
-        ("to = 0.225, elements = 9", "to = 0.225, elements = 4"),
-        ("to = 0.25, elements = 2", "to = 0.25, elements = 1"),
-    ] {
-        assert!(twin.contains(from), "{from}");
-        twin = twin.replace(from, to);
-    }
-    twin
+    common::coarse_drop_weight(&drop_weight_example())
 }
 
 /// The tangent of a time step while a drop weight dents a tube: the twin

@@ -61,14 +61,7 @@ pub fn print_check(model: &Model) {
     }
     for i in &model.indenters {
         let area: f64 = i.nodes.iter().map(|n| n.area).sum();
-        let motion = match (&i.impactor, i.force) {
-            (Some(imp), _) => format!("impactor of {} kg at {:?} m/s", imp.mass, imp.velocity),
-            (None, Some(f)) => match model.symmetry.full(&i.name, f).filter(|full| *full != f) {
-                Some(full) => format!("force {f:?} N (its share of the full structure's {full:?} N)"),
-                None => format!("force {f:?} N"),
-            },
-            (None, None) => format!("displacement {:?} m", i.displacement),
-        };
+        let motion = indenter_motion(model, i);
         println!(
             "indenter {}: {}, {motion}, {} candidate nodes (surface {:.4e} m²)",
             i.name,
@@ -114,6 +107,32 @@ pub fn print_check(model: &Model) {
     );
     if let Some(line) = cufem::io::report::time_steps(model) {
         println!("{line}");
+    }
+}
+
+/// How an indenter moves, for `cufem check`: its displacement, its force or
+/// its mass and velocity, with the full structure's force or mass beside
+/// the part's share across symmetry planes.
+fn indenter_motion(model: &Model, i: &cufem::contact::Indenter) -> String {
+    match (&i.impactor, i.force) {
+        (Some(imp), _) => {
+            // the part's share of the mass is the velocity's scale to the full structure's
+            let speed = |v: [f64; 3]| v.iter().map(|c| c * c).sum::<f64>().sqrt();
+            match model.symmetry.full(&i.name, imp.velocity).map(|full| speed(full) / speed(imp.velocity)) {
+                Some(copies) if copies > 1.0 => format!(
+                    "impactor of {} kg (its share of the full structure's {} kg) at {:?} m/s",
+                    imp.mass,
+                    imp.mass * copies,
+                    imp.velocity
+                ),
+                _ => format!("impactor of {} kg at {:?} m/s", imp.mass, imp.velocity),
+            }
+        }
+        (None, Some(f)) => match model.symmetry.full(&i.name, f).filter(|full| *full != f) {
+            Some(full) => format!("force {f:?} N (its share of the full structure's {full:?} N)"),
+            None => format!("force {f:?} N"),
+        },
+        (None, None) => format!("displacement {:?} m", i.displacement),
     }
 }
 

@@ -1,9 +1,10 @@
 //! The failure indices of a solution at its Gauss points: for every
 //! criterion of [`crate::materials::failure`] its largest index and where,
 //! and the first-ply-failure load factor; and the interlaminar criterion's
-//! at the bonded ply interfaces (edges of constant z between section
-//! elements of two materials), where the traction `(σ_zz, σ_xz, σ_yz)` is
-//! the interface's, from the ply on each side with its own strengths.
+//! at the bonded ply interfaces (straight edges between section elements of
+//! two materials whose axis 3 both lie along the edge's normal), where the
+//! traction `(σ33, τ13, τ23)` in the material axes is the interface's, from
+//! the ply on each side with its own strengths.
 //!
 //! The stresses are those of the fields people look at (`post::FieldView`,
 //! as in the VTU): at every node of every element's Lagrange grid, faces

@@ -38,16 +38,15 @@ pub(super) fn indenters(
         }
         let mut ind = indenter(&key, d, b, &mesh.bodies[b], materials)?;
         ind.impactor = impactor(&key, d, transient)?;
-        if let Some(imp) = &ind.impactor {
-            lightest_impactor(&key, imp.mass, &mesh.bodies[b], materials)?;
-        }
         symmetry::check_indenter_shape(&key, &ind, planes, mesh)?;
-        // the force (an impactor's mass) is the full structure's: the part kept carries its share
+        // the force and an impactor's mass are the full structure's: the part kept carries its share
         let shared = symmetry::check_indenter(&key, &ind, planes, mesh)?;
         let share = 1.0 / f64::from(1u32 << shared);
         ind.force = ind.force.map(|f| f.map(|v| v * share));
         if let Some(imp) = &mut ind.impactor {
             imp.mass *= share;
+            // the share against the body kept, as the whole mass against the whole body
+            lightest_impactor(&key, (imp.mass, share), &mesh.bodies[b], materials)?;
         }
         // how far the indenter's own motion brings it towards each node
         let reach = |c: &contact::ContactNode| (0..3).map(|k| ind.displacement[k] * c.normal[k]).sum::<f64>() - c.gap0;
@@ -198,8 +197,16 @@ pub(crate) const MIN_IMPACTOR_FRACTION: f64 = 1e-9;
 
 /// An impactor's mass against the mass of the body it strikes (its
 /// section's area × its length × the lightest of its densities; not
-/// checked without densities, which a transient analysis then refuses).
-fn lightest_impactor(key: &str, mass: f64, body: &Body, materials: &[Material]) -> Result<(), ModelError> {
+/// checked without densities, which a transient analysis then refuses):
+/// `(mass, share)` the mass the part kept carries and its share of the
+/// file's `mass` across symmetry planes (1 without), weighed against the
+/// body kept, which is what the round-off sees.
+fn lightest_impactor(
+    key: &str,
+    (mass, share): (f64, f64),
+    body: &Body,
+    materials: &[Material],
+) -> Result<(), ModelError> {
     let Some(rho) =
         body.materials().iter().map(|&m| materials[m].density).try_fold(f64::INFINITY, |a, d| d.map(|d| a.min(d)))
     else {
@@ -209,12 +216,19 @@ fn lightest_impactor(key: &str, mass: f64, body: &Body, materials: &[Material]) 
     let body_mass = rho * body.section.properties().area * length;
     let lightest = MIN_IMPACTOR_FRACTION * body_mass;
     if mass < lightest {
+        let kept = if share < 1.0 {
+            format!(" (the part kept carries {:.2e} kg of it against the body's {body_mass:.2e} kg kept)", mass)
+        } else {
+            String::new()
+        };
         return Err(invalid(
             format!("{key}.mass"),
-            bounds::number(mass),
+            format!("{}{kept}", bounds::number(mass / share)),
             format!(
-                "at least {lightest:.2e} kg, a billionth of the {body_mass:.2e} kg of body {:?} it strikes (a lighter \
-                 impactor's inertia is lost in the round-off of the body's forces)",
+                "at least {:.2e} kg, a billionth of the {:.2e} kg of body {:?} it strikes (a lighter impactor's \
+                 inertia is lost in the round-off of the body's forces)",
+                lightest / share,
+                body_mass / share,
                 body.name
             ),
         ));

@@ -359,7 +359,8 @@ pub(super) fn check_indenter_shape(
             (None, Some(f)) => ("force", f, "N"),
             (None, None) => ("displacement", indenter.displacement, "m"),
         };
-        if motion[a] != 0.0 {
+        // a round-off component is none (as `check_velocities` allows)
+        if motion[a].abs() > 1e-12 * motion.iter().map(|v| v * v).sum::<f64>().sqrt() {
             return Err(invalid(
                 format!("{key}.{what}"),
                 format!("{motion:?} {unit} for an indenter crossing {plane}"),

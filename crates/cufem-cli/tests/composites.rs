@@ -164,8 +164,9 @@ fn the_interlaminar_index_follows_pagano_at_the_interfaces() {
 /// A gmsh 2.2 file of L16 quadrilaterals (gmsh type 36) over the
 /// rectangle `x0..x1` × `z0..z1` (gmsh's x, y: the section's x, z): `cuts`
 /// are the x of the boundaries between physical groups `ply1`, `ply2`, …,
-/// `per` elements across each group, one element along z.
-fn stacked_along_x(cuts: &[f64], per: usize, z: [f64; 2]) -> String {
+/// `per` elements across each group, one element along z; the whole turned
+/// by `turn` radians about the beam axis (x towards z).
+fn stacked_along_x(cuts: &[f64], per: usize, z: [f64; 2], turn: f64) -> String {
     let n_el = per * (cuts.len() - 1);
     let (ni, nj) = (3 * n_el + 1, 4);
     let xs: Vec<f64> = (0..ni)
@@ -185,7 +186,9 @@ fn stacked_along_x(cuts: &[f64], per: usize, z: [f64; 2]) -> String {
     text += &format!("$EndPhysicalNames\n$Nodes\n{}\n", ni * nj);
     for j in 0..nj {
         for (i, x) in xs.iter().enumerate() {
-            text += &format!("{} {x:e} {:e} 0\n", id(i, j), z[0] + (z[1] - z[0]) * j as f64 / 3.0);
+            let zj = z[0] + (z[1] - z[0]) * j as f64 / 3.0;
+            let (c, s) = (turn.cos(), turn.sin());
+            text += &format!("{} {:e} {:e} 0\n", id(i, j), x * c - zj * s, x * s + zj * c);
         }
     }
     // gmsh's quad16: corners, edge nodes edge by edge, the inner four
@@ -246,6 +249,9 @@ fn the_interlaminar_index_reads_plies_stacked_along_x() {
             })
             .collect::<String>()
     };
+    let cuts = [-h / 2.0, -h / 6.0, h / 6.0, h / 2.0];
+    let mesh = common::scratch_dir("composites", "interlaminar_x_mesh").join("along_x.msh");
+    std::fs::write(&mesh, stacked_along_x(&cuts, 4, [-0.0025, 0.0025], 0.0)).unwrap();
     let turned = |normal: &str| {
         format!(
             r#"title = "Pagano [0/90/0], S = 4, stacked along x"
@@ -253,7 +259,7 @@ fn the_interlaminar_index_reads_plies_stacked_along_x() {
 [[bodies]]
 name = "laminate"
 material = "ply"
-section = {{ shape = "gmsh", file = "along_x.msh" }}
+section = {{ shape = "gmsh", file = "{}" }}
 axis = {{ element = "B4", from = 0.0, to = 0.04, elements = 8 }}
 {}
 [[constraints]]
@@ -287,24 +293,12 @@ where = {{ x = 0.005 }}
 pressure = 1e5
 profile = {{ shape = "sine", along = "y", from = 0.0, to = 0.04 }}
 "#,
+            mesh.display(),
             zones(normal)
         )
     };
-    let dir = common::scratch_dir("composites", "interlaminar_along_x");
-    let cuts = [-h / 2.0, -h / 6.0, h / 6.0, h / 2.0];
-    std::fs::write(dir.join("along_x.msh"), stacked_along_x(&cuts, 4, [-0.0025, 0.0025])).unwrap();
-    let run = |name: &str, normal: &str| {
-        let model = dir.join(format!("{name}.toml"));
-        std::fs::write(&model, turned(normal)).unwrap();
-        let out = dir.join(name);
-        let r = common::cufem()
-            .args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"])
-            .output()
-            .unwrap();
-        assert!(r.status.success(), "{name}: {}", String::from_utf8_lossy(&r.stderr));
-        serde_json::from_str::<Value>(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap()
-    };
-    let along_x = run("along_x", "normal = [1.0, 0.0, 0.0]");
+    let run = |name: &str, normal: &str| run_cli(name, Some(&turned(normal))).1;
+    let along_x = run("interlaminar_x", "normal = [1.0, 0.0, 0.0]");
     let (a, b) = (&flat["ply_failure"]["interlaminar"], &along_x["ply_failure"]["interlaminar"]);
     let value = |e: &Value, k: &str| e[k].as_f64().unwrap_or_else(|| panic!("{k} in {e}"));
     for k in ["largest_index", "first_failure_load_factor"] {
@@ -322,8 +316,94 @@ profile = {{ shape = "sine", along = "y", from = 0.0, to = 0.04 }}
     );
     assert!(pb[1].min(0.04 - pb[1]) < 1e-9, "at y = {}, not at a support", pb[1]);
     // axis 3 along z, across the stack: the constant-x edges bond no plies
-    let across = run("across", "");
+    let across = run("interlaminar_x_across", "");
     assert!(across["ply_failure"]["criteria"].is_array() && across["ply_failure"].get("interlaminar").is_none());
+}
+
+/// A stack at any inclination: Pagano's `[0/90/0]` plies (the strengths of
+/// the test above) as a cantilever, clamped at y = 0 and sheared at its tip
+/// along the stack's normal, stacked along x and the same stack turned 30°
+/// about the beam axis (gmsh sections, zones with the turned normal): the
+/// same problem turned, so the same largest interlaminar index and
+/// first-failure factor to `1e-6`, the index found on the turned
+/// interfaces. Plies whose axis 3 is not the interface's normal bond
+/// nothing there: with the middle ply's axis 3 along z (its neighbours' along
+/// x) the index has no interface.
+#[test]
+fn the_interlaminar_index_reads_an_inclined_stack() {
+    let elastic = "orthotropic = { e1 = 25e9, e2 = 1e9, e3 = 1e9, g12 = 0.5e9, g13 = 0.5e9, g23 = 0.2e9, nu12 = 0.25, nu13 = 0.25, nu23 = 0.25 }";
+    let strong = "xt = 1e9, xc = 1e9, yt = 1e8, yc = 1e8";
+    let h = 0.01;
+    let dir = common::scratch_dir("composites", "interlaminar_inclined_meshes");
+    let run = |name: &str, turn: f64, middle_normal: Option<[f64; 3]>| {
+        let (c, s) = (turn.cos(), turn.sin());
+        let normal = [c, 0.0, s];
+        let zones: String = [
+            ("ply1", "ply", 0.0, normal),
+            ("ply2", "core", 90.0, middle_normal.unwrap_or(normal)),
+            ("ply3", "ply", 0.0, normal),
+        ]
+        .iter()
+        .map(|(r, m, a, n)| {
+            format!(
+                "[[bodies.zones]]\nregion = \"{r}\"\nmaterial = \"{m}\"\nangle = {a:.1}\nnormal = [{:e}, {:e}, {:e}]\n",
+                n[0], n[1], n[2]
+            )
+        })
+        .collect();
+        let cuts = [-h / 2.0, -h / 6.0, h / 6.0, h / 2.0];
+        let mesh = dir.join(format!("{name}.msh"));
+        std::fs::write(&mesh, stacked_along_x(&cuts, 4, [-0.0025, 0.0025], turn)).unwrap();
+        let text = format!(
+            r#"title = "Pagano's plies as a cantilever, stacked at {turn} rad"
+[[materials]]
+name = "ply"
+{elastic}
+strengths = {{ {strong}, s12 = 1e6, s23 = 3e6 }}
+
+[[materials]]
+name = "core"
+{elastic}
+strengths = {{ {strong}, s12 = 2e6, s13 = 2e6, s23 = 2.5e6 }}
+
+[[bodies]]
+name = "laminate"
+material = "ply"
+section = {{ shape = "gmsh", file = "{}" }}
+axis = {{ element = "B4", from = 0.0, to = 0.04, elements = 8 }}
+{zones}
+[[constraints]]
+name = "clamp"
+body = "laminate"
+where = {{ y = 0.0 }}
+fix = ["x", "y", "z"]
+
+[[loads]]
+name = "tip_shear"
+body = "laminate"
+where = {{ y = 0.04 }}
+traction = [{:e}, 0.0, {:e}]
+"#,
+            mesh.display(),
+            2e5 * c,
+            2e5 * s
+        );
+        run_cli(name, Some(&text)).1["ply_failure"]["interlaminar"].clone()
+    };
+    let turn = 30f64.to_radians();
+    let (a, b) = (run("inclined_x", 0.0, None), run("inclined_turned", turn, None));
+    for k in ["largest_index", "first_failure_load_factor"] {
+        let (x, t) = (a[k].as_f64().unwrap(), b[k].as_f64().unwrap());
+        eprintln!("{k}: stacked along x {x:.8e}, turned 30° {t:.8e}");
+        assert!(x > 0.0 && (t / x - 1.0).abs() < 1e-6, "{k}: {t:e} against {x:e}");
+    }
+    // on an interface: its distance from the section's centre along the turned normal is h/6
+    let p: Vec<f64> = b["largest_at"]["point"].as_array().unwrap().iter().map(|v| v.as_f64().unwrap()).collect();
+    let along = p[0] * turn.cos() + p[2] * turn.sin();
+    assert!((along.abs() - h / 6.0).abs() < 1e-9, "at {p:?}: {along} m along the normal");
+    // the middle ply's axis 3 across its interfaces: nothing bonded
+    let mixed = run("inclined_mixed", 0.0, Some([0.0, 0.0, 1.0]));
+    assert!(mixed.is_null(), "{mixed}");
 }
 
 /// T300/5208 carbon/epoxy (Tsai & Hahn, Introduction to Composite

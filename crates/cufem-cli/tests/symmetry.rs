@@ -361,6 +361,11 @@ fn impactors_and_forces_across_a_plane_are_refused_by_key() {
         .unwrap_err()
         .to_string();
     assert!(e.contains("indenters[2].velocity") && e.contains("velocity[1] = 0") && e.contains("symmetry_y"), "{e}");
+    // the quarter's share of a 4e-11 kg weight against the quarter tube's 2.9e-2 kg: below a billionth
+    // (the whole weight against the whole tube's 0.115 kg is too); 2e-10 kg is above it either way
+    let e = Model::parse(&thrown.replace("mass = 1.0", "mass = 4e-11")).unwrap_err().to_string();
+    assert!(e.contains("indenters[2].mass") && e.contains("the part kept carries 1.00e-11 kg"), "{e}");
+    assert!(Model::parse(&thrown.replace("mass = 1.0", "mass = 2e-10")).is_ok());
     let e = Model::parse(&thrown.replace(cylinder, punch)).unwrap_err().to_string();
     assert!(e.contains("indenters[2].mass") && e.contains("an impactor touching symmetry plane \"symmetry_x\""), "{e}");
 }

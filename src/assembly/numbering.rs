@@ -161,6 +161,7 @@ pub(crate) mod tests {
             element_materials: Vec::new(),
             node_offset: 0,
             element_offset: 0,
+            whole_size: None,
         };
         let corners = [[0.0, 0.01], [0.011, 0.011], [0.02, 0.01], [0.0, 0.02], [0.01, 0.021], [0.02, 0.02]];
         let b = Body {
@@ -172,6 +173,7 @@ pub(crate) mod tests {
             element_materials: Vec::new(),
             node_offset: 0,
             element_offset: 0,
+            whole_size: None,
         };
         Mesh::new(vec![a, b])
     }

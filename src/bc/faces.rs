@@ -136,6 +136,7 @@ mod tests {
             element_materials: Vec::new(),
             node_offset: 0,
             element_offset: 0,
+            whole_size: None,
         }
     }
 

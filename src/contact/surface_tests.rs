@@ -16,6 +16,7 @@ fn block(kind: SectionElementKind, nx: usize, z: [f64; 2], offset: usize) -> Bod
         element_materials: Vec::new(),
         node_offset: offset,
         element_offset: 0,
+        whole_size: None,
     }
 }
 

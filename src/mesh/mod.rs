@@ -133,6 +133,10 @@ pub struct Body {
     pub node_offset: usize,
     /// Global number of the body's first element.
     pub(crate) element_offset: usize,
+    /// [`Body::size`] of the body as written when `[[symmetry]]` planes cut
+    /// it (`None`: not cut): a quarter model's tolerances and bounds are
+    /// then those of the whole structure.
+    pub(crate) whole_size: Option<f64>,
 }
 
 impl Body {
@@ -147,6 +151,7 @@ impl Body {
             element_materials: Vec::new(),
             node_offset: 0,
             element_offset: 0,
+            whole_size: None,
         }
     }
 
@@ -219,12 +224,20 @@ impl Body {
         [x, self.axis.nodes[i], z]
     }
 
-    /// A length scale of the body (diagonal of its bounding box).
+    /// A length scale of the body: the diagonal of its bounding box, of the
+    /// body as written if symmetry planes cut it (its tolerances and bounds
+    /// are the whole structure's).
     pub fn size(&self) -> f64 {
-        let b = self.section.bounds();
-        let ly = self.axis.nodes.last().unwrap() - self.axis.nodes[0];
-        ((b[1] - b[0]).powi(2) + (b[3] - b[2]).powi(2) + ly * ly).sqrt()
+        self.whole_size.unwrap_or_else(|| diagonal(&self.section, &self.axis.nodes))
     }
+}
+
+/// The diagonal of the bounding box of a section swept along the axis
+/// nodes (or lines) `axis`.
+pub(crate) fn diagonal(section: &CrossSection, axis: &[f64]) -> f64 {
+    let b = section.bounds();
+    let ly = axis.last().unwrap_or(&0.0) - axis.first().unwrap_or(&0.0);
+    ((b[1] - b[0]).powi(2) + (b[3] - b[2]).powi(2) + ly * ly).sqrt()
 }
 
 /// All bodies of a model with their global node numbering.

@@ -64,8 +64,7 @@ pub(super) fn cut(
     if planes.is_empty() {
         return Ok((section, lines));
     }
-    let b = section.bounds();
-    let size = ((b[1] - b[0]).powi(2) + (b[3] - b[2]).powi(2) + (lines[lines.len() - 1] - lines[0]).powi(2)).sqrt();
+    let size = crate::mesh::diagonal(&section, &lines);
     for (i, p) in planes.iter().enumerate() {
         let plane = Plane { tolerance: 1e-6 * size, ..p.clone() };
         let pk = format!("symmetry[{i}].plane");

@@ -67,6 +67,10 @@ fn twin_of(
     assert!(full_solution.failure.is_none());
     let quarter_model = Model::parse(&extra_probes(quarter_text, extra)).unwrap();
     assert_eq!(quarter_model.symmetry.copies(), 4);
+    // the cut body's tolerances and bounds are the whole one's: its size is the body written
+    for (a, b) in full_model.mesh.bodies.iter().zip(&quarter_model.mesh.bodies) {
+        assert_eq!(a.size(), b.size(), "{full}: body {}", a.name);
+    }
     let quarter_solution =
         cufem::analysis::run(&quarter_model, &Default::default(), &mut cufem::analysis::Silent).unwrap();
     let (fv, qv) = (full_solution.fields(&full_model), quarter_solution.fields(&quarter_model));

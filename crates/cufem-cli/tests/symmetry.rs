@@ -286,6 +286,14 @@ fn a_drop_weight_across_both_planes_carries_a_quarter_of_its_mass() {
     let text = String::from_utf8_lossy(&out.stdout);
     let share = "impactor of 0.5 kg (its share of the full structure's 2 kg) at [0.0, 0.0, -1.0] m/s";
     assert!(text.contains(share), "{text}");
+    // a weight pushed by a force too (its weight, say): both are shared
+    let pushed =
+        quarter.replace("velocity = [0.0, 0.0, -1.0]", "velocity = [0.0, 0.0, -1.0]\nforce = [0.0, 0.0, -20.0]");
+    std::fs::write(dir.join("pushed.toml"), &pushed).unwrap();
+    let out = common::cufem().args(["check", dir.join("pushed.toml").to_str().unwrap()]).output().unwrap();
+    let text = String::from_utf8_lossy(&out.stdout);
+    let share = "at [0.0, 0.0, -1.0] m/s, pushed by force [0.0, 0.0, -5.0] N (its share of the full structure's [0.0, 0.0, -20.0] N)";
+    assert!(text.contains(share), "{text}");
 }
 
 /// The error of a quarter model with `from` replaced by `to`.

@@ -114,24 +114,24 @@ pub fn print_check(model: &Model) {
 /// its mass and velocity, with the full structure's force or mass beside
 /// the part's share across symmetry planes.
 fn indenter_motion(model: &Model, i: &cufem::contact::Indenter) -> String {
+    let force = |f: [f64; 3]| match model.symmetry.full(&i.name, f).filter(|full| *full != f) {
+        Some(full) => format!("force {f:?} N (its share of the full structure's {full:?} N)"),
+        None => format!("force {f:?} N"),
+    };
     match (&i.impactor, i.force) {
-        (Some(imp), _) => {
+        (Some(imp), f) => {
             // the part's share of the mass is the velocity's scale to the full structure's
             let speed = |v: [f64; 3]| v.iter().map(|c| c * c).sum::<f64>().sqrt();
-            match model.symmetry.full(&i.name, imp.velocity).map(|full| speed(full) / speed(imp.velocity)) {
-                Some(copies) if copies > 1.0 => format!(
-                    "impactor of {} kg (its share of the full structure's {} kg) at {:?} m/s",
-                    imp.mass,
-                    imp.mass * copies,
-                    imp.velocity
-                ),
-                _ => format!("impactor of {} kg at {:?} m/s", imp.mass, imp.velocity),
-            }
+            let mass = match model.symmetry.full(&i.name, imp.velocity).map(|full| speed(full) / speed(imp.velocity)) {
+                Some(copies) if copies > 1.0 => {
+                    format!("{} kg (its share of the full structure's {} kg)", imp.mass, imp.mass * copies)
+                }
+                _ => format!("{} kg", imp.mass),
+            };
+            let pushed = f.map(|f| format!(", pushed by {}", force(f))).unwrap_or_default();
+            format!("impactor of {mass} at {:?} m/s{pushed}", imp.velocity)
         }
-        (None, Some(f)) => match model.symmetry.full(&i.name, f).filter(|full| *full != f) {
-            Some(full) => format!("force {f:?} N (its share of the full structure's {full:?} N)"),
-            None => format!("force {f:?} N"),
-        },
+        (None, Some(f)) => force(f),
         (None, None) => format!("displacement {:?} m", i.displacement),
     }
 }

@@ -133,9 +133,9 @@ pub struct Body {
     pub node_offset: usize,
     /// Global number of the body's first element.
     pub(crate) element_offset: usize,
-    /// [`Body::size`] of the body as written when `[[symmetry]]` planes cut
-    /// it (`None`: not cut): a quarter model's tolerances and bounds are
-    /// then those of the whole structure.
+    /// [`Body::size`] of the whole structure's body when `[[symmetry]]`
+    /// planes cut it (`None`: not cut): a quarter model's tolerances and
+    /// bounds are then those of the whole structure.
     pub(crate) whole_size: Option<f64>,
 }
 
@@ -225,8 +225,8 @@ impl Body {
     }
 
     /// A length scale of the body: the diagonal of its bounding box, of the
-    /// body as written if symmetry planes cut it (its tolerances and bounds
-    /// are the whole structure's).
+    /// whole structure's body if symmetry planes cut it (its tolerances and
+    /// bounds are the whole structure's).
     pub fn size(&self) -> f64 {
         self.whole_size.unwrap_or_else(|| diagonal(&self.section, &self.axis.nodes))
     }

@@ -148,7 +148,7 @@ pub(super) fn body(
         element_materials,
         node_offset: 0,
         element_offset: 0,
-        whole_size: written.as_ref().map(|(section, lines)| crate::mesh::diagonal(section, lines)),
+        whole_size: written.as_ref().map(|(section, lines)| super::symmetry::whole_size(section, lines, planes)),
     })
 }
 

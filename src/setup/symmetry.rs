@@ -118,6 +118,24 @@ pub(super) fn cut(
     Ok((section, lines))
 }
 
+/// The size (bounding-box diagonal) of the whole structure's body of which
+/// `section` swept along `lines` is written: the box joined with its
+/// mirror image across every plane it touches, so that a body written
+/// whole and one written on the kept side only (which declares its mirror
+/// image to be the rest, `setup::mirror`) get the same size.
+pub(super) fn whole_size(section: &CrossSection, lines: &[f64], planes: &[Plane]) -> f64 {
+    let b = section.bounds();
+    let mut boxed = [[b[0], b[1]], [lines[0], lines[lines.len() - 1]], [b[2], b[3]]];
+    let tolerance = 1e-6 * crate::mesh::diagonal(section, lines);
+    for p in planes {
+        let [lo, hi] = boxed[p.axis];
+        if p.at >= lo - tolerance && p.at <= hi + tolerance {
+            boxed[p.axis] = [lo.min(2.0 * p.at - hi), hi.max(2.0 * p.at - lo)];
+        }
+    }
+    boxed.iter().map(|[lo, hi]| (hi - lo).powi(2)).sum::<f64>().sqrt()
+}
+
 /// The planes with their tolerance (1e-6 of the largest body) and a check
 /// that each touches a body.
 pub(super) fn placed(planes: Vec<Plane>, mesh: &Mesh) -> Result<Vec<Plane>, ModelError> {

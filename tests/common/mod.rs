@@ -405,3 +405,26 @@ pub fn coarse_drop_weight(text: &str) -> String {
     }
     twin
 }
+
+/// Every column of `whole`'s energy.csv against `copies` times the same
+/// column of `part`'s (a model cut by symmetry planes; `time_s` once), at
+/// every row (`every_row`) or at the last, within `tolerance` (J).
+pub fn assert_energies_scaled(whole: &Path, part: &Path, copies: f64, tolerance: f64, every_row: bool) {
+    let (ew, ep) = (csv_columns(&whole.join("energy.csv")), csv_columns(&part.join("energy.csv")));
+    for (name, column) in &ew {
+        let factor = if name == "time_s" { 1.0 } else { copies };
+        let skip = if every_row { 0 } else { column.len() - 1 };
+        for (k, (w, p)) in column.iter().zip(&ep[name]).enumerate().skip(skip) {
+            assert!((w - factor * p).abs() < tolerance, "{name} at row {k}: {p} × {factor} against {w}");
+        }
+    }
+}
+
+/// What `cufem check` prints for the model `text` (written as
+/// `<scratch>/<name>.toml`).
+pub fn check_output(prefix: &str, name: &str, text: &str) -> String {
+    let model = scratch_dir(prefix, name).join(format!("{name}.toml"));
+    std::fs::write(&model, text).unwrap();
+    let out = cufem().args(["check", model.to_str().unwrap()]).output().unwrap();
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}

@@ -664,13 +664,7 @@ fn the_quarter_drop_weight_example_hands_its_energy_to_the_tube() {
 fn the_quarter_drop_weight_follows_the_whole_tube() {
     let whole = run_cli("tube_drop_weight_whole", &drop_weight_example());
     let quarter = run_cli("tube_drop_weight_quarter_twin", &example_text("tube_drop_weight_quarter"));
-    let (ew, eq) = (columns(&whole.join("energy.csv")), columns(&quarter.join("energy.csv")));
-    for (name, w) in &ew {
-        let factor = if name == "time_s" { 1.0 } else { 4.0 };
-        let (w, q) = (*w.last().unwrap(), *eq[name].last().unwrap());
-        println!("{name}: whole {w:.6e}, quarter × {factor} {:.6e}", factor * q);
-        assert!((w - factor * q).abs() < 1e-6, "{name}: {q} × {factor} against {w}");
-    }
+    common::assert_energies_scaled(&whole, &quarter, 4.0, 1e-6, false);
     let (hw, hq) = (columns(&whole.join("history_load.csv")), columns(&quarter.join("history_load.csv")));
     assert_eq!(hw["d_z"].len(), hq["d_z"].len(), "the same steps");
     let peak = hw["d_z"].iter().fold(0.0f64, |m, v| m.max(v.abs()));

@@ -228,10 +228,7 @@ fn a_force_controlled_roller_across_both_planes_carries_the_full_force() {
         assert!((4.0 * own - f).abs() < 1e-6 * f.abs(), "increment {k}: f_z {own} × 4 against {f}");
     }
     // `cufem check` says which force the quarter's roller carries
-    let dir = common::scratch_dir("symmetry", "springback_check");
-    std::fs::write(dir.join("quarter.toml"), &quarter).unwrap();
-    let out = common::cufem().args(["check", dir.join("quarter.toml").to_str().unwrap()]).output().unwrap();
-    let text = String::from_utf8_lossy(&out.stdout);
+    let text = common::check_output("symmetry", "springback_check", &quarter);
     let share = "force [0.0, 0.0, -400.0] N (its share of the full structure's [0.0, 0.0, -1600.0] N)";
     assert!(text.contains(share), "{text}");
 }
@@ -277,29 +274,17 @@ fn a_drop_weight_across_both_planes_carries_a_quarter_of_its_mass() {
     }
     // the energies: the quarter's are a quarter of the whole's
     let (whole, _) = common::run_text("symmetry", "tube_drop_weight", &full);
-    let (e_full, e_quarter) =
-        (common::csv_columns(&whole.join("energy.csv")), common::csv_columns(&out.join("energy.csv")));
-    let scale = e_full.values().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+    let scale = common::csv_columns(&whole.join("energy.csv")).values().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
     assert!(scale > 0.1, "about 0.8 J change hands: {scale} J");
-    for (name, column) in &e_full {
-        let factor = if name == "time_s" { 1.0 } else { 4.0 };
-        for (k, (w, q)) in column.iter().zip(&e_quarter[name]).enumerate() {
-            assert!((w - factor * q).abs() < 1e-7 * scale, "{name} at step {k}: {q} × {factor} against {w}");
-        }
-    }
+    common::assert_energies_scaled(&whole, &out, 4.0, 1e-7 * scale, true);
     // `cufem check` says which mass the quarter's weight has
-    let dir = common::scratch_dir("symmetry", "drop_weight_check");
-    std::fs::write(dir.join("quarter.toml"), &quarter).unwrap();
-    let out = common::cufem().args(["check", dir.join("quarter.toml").to_str().unwrap()]).output().unwrap();
-    let text = String::from_utf8_lossy(&out.stdout);
+    let text = common::check_output("symmetry", "drop_weight_check", &quarter);
     let share = "impactor of 0.5 kg (its share of the full structure's 2 kg) at [0.0, 0.0, -1.0] m/s";
     assert!(text.contains(share), "{text}");
     // a weight pushed by a force too (its weight, say): both are shared
     let pushed =
         quarter.replace("velocity = [0.0, 0.0, -1.0]", "velocity = [0.0, 0.0, -1.0]\nforce = [0.0, 0.0, -20.0]");
-    std::fs::write(dir.join("pushed.toml"), &pushed).unwrap();
-    let out = common::cufem().args(["check", dir.join("pushed.toml").to_str().unwrap()]).output().unwrap();
-    let text = String::from_utf8_lossy(&out.stdout);
+    let text = common::check_output("symmetry", "drop_weight_pushed_check", &pushed);
     let share = "at [0.0, 0.0, -1.0] m/s, pushed by force [0.0, 0.0, -5.0] N (its share of the full structure's [0.0, 0.0, -20.0] N)";
     assert!(text.contains(share), "{text}");
 }
@@ -339,12 +324,7 @@ fn a_drop_weight_across_a_plane_delaminates_the_half_as_the_whole() {
     let worst = hw["d_z"].iter().zip(&hh["d_z"]).map(|(a, b)| (a - b).abs() / peak).fold(0.0, f64::max);
     assert!(worst < 1e-4, "the striker's motion differs by {worst:e} of its largest");
     let impact = 0.5 * 0.1 * 4.0 * 4.0;
-    let (ew, eh) = (common::csv_columns(&w.join("energy.csv")), common::csv_columns(&h.join("energy.csv")));
-    for (name, column) in &ew {
-        let factor = if name == "time_s" { 1.0 } else { 2.0 };
-        let (a, b) = (*column.last().unwrap(), *eh[name].last().unwrap());
-        assert!((a - factor * b).abs() < 1e-3 * impact, "{name}: {b} × {factor} against {a}");
-    }
+    common::assert_energies_scaled(&w, &h, 2.0, 1e-3 * impact, false);
     let area = |s: &serde_json::Value| s["delamination"]["area_m2"].as_f64().unwrap();
     assert!(area(&sw) > 1e-4, "the mid-plane delaminates: {} m²", area(&sw));
     assert!((area(&sw) / (2.0 * area(&sh)) - 1.0).abs() < 1e-3, "{} against 2 × {}", area(&sw), area(&sh));

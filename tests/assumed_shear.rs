@@ -100,13 +100,17 @@ fn assumed_shear_removes_cross_wall_bending_locking() {
 
 /// What the formulation is not made for is refused with the key, the value
 /// and what is allowed: L4 sections (one tying point would fail the patch
-/// test) and nonlinear geometry (a small-strain formulation).
+/// test), and at finite strain the logarithmic strain (the tying is of the
+/// Green–Lagrange strain); nonlinear geometry with the Green–Lagrange
+/// strain is taken.
 #[test]
-fn assumed_shear_refuses_l4_and_nonlinear_geometry() {
+fn assumed_shear_refuses_l4_and_the_logarithmic_strain() {
     let l4 = wall("L4", 2, 1, "assumed_shear", "");
     let e = Model::parse(&l4).map(drop).expect_err("L4 refused").to_string();
     assert!(e.contains("bodies[0].formulation") && e.contains("L4") && e.contains("L9 or L16"), "{e}");
     let nonlinear = format!("[analysis]\ngeometry = \"nonlinear\"\n{}", wall("L9", 2, 1, "assumed_shear", ""));
-    let e = Model::parse(&nonlinear).map(drop).expect_err("nonlinear geometry refused").to_string();
-    assert!(e.contains("bodies[0].formulation") && e.contains("small-strain"), "{e}");
+    Model::parse(&nonlinear).expect("nonlinear geometry with the Green–Lagrange strain");
+    let log = nonlinear.replace("geometry = \"nonlinear\"", "geometry = \"nonlinear\"\nstrain = \"logarithmic\"");
+    let e = Model::parse(&log).map(drop).expect_err("the logarithmic strain refused").to_string();
+    assert!(e.contains("bodies[0].formulation") && e.contains("logarithmic") && e.contains("Green–Lagrange"), "{e}");
 }

@@ -31,7 +31,17 @@ use crate::voigt::{Matrix6, Voigt};
 /// (gradient `gd`) for the geometric stiffness: `½ ∇δᵀ∇δ` is the
 /// part of the Green–Lagrange strain of the step that its linearization
 /// leaves out (engineering shear, `crate::voigt`'s order).
-pub(super) fn stress(stress: &Voigt, tangent: &Matrix6, gd: &Tensor) -> Voigt {
-    let c_q = crate::voigt::mat_vec(tangent, &crate::kinematics::quadratic_strain(gd));
+///
+/// With the assumed in-section shear (`crate::values::AssumedShear`) the
+/// step's quadratic strain gains its change `Δ m` along the direction `m`:
+/// `extra = (Δ, m)`.
+pub(super) fn stress(stress: &Voigt, tangent: &Matrix6, gd: &Tensor, extra: Option<(f64, &Voigt)>) -> Voigt {
+    let mut quadratic = crate::kinematics::quadratic_strain(gd);
+    if let Some((change, m)) = extra {
+        for (e, mi) in quadratic.iter_mut().zip(m) {
+            *e += change * mi;
+        }
+    }
+    let c_q = crate::voigt::mat_vec(tangent, &quadratic);
     std::array::from_fn(|i| stress[i] - c_q[i])
 }

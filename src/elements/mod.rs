@@ -45,6 +45,7 @@
 //! into a reusable [`Workspace`] and never allocates; the assembly only
 //! scatters what it computes.
 
+mod assumed_large;
 mod bbar;
 mod fbar;
 mod linearized;
@@ -107,6 +108,17 @@ pub struct Workspace {
     section_sums: Vec<f64>,
     section_t: Vec<f64>,
     section_z: Vec<f64>,
+    /// The assumed shear at finite strain (`assumed_large`): `(g_ξ, g_η)`
+    /// at the tying points of one axis point (of `u`, and of the last
+    /// step), `D_τ` per point and section function, the stacked `Z`
+    /// and `A` (points × element DOF), `Z Aᵀ`, and the geometric sums.
+    tying: Vec<crate::values::Covariant>,
+    tying_step: Vec<crate::values::Covariant>,
+    assumed: Vec<[f64; 3]>,
+    assumed_z: Vec<f64>,
+    assumed_a: Vec<f64>,
+    assumed_k: Vec<f64>,
+    assumed_g: Vec<f64>,
     /// Element internal force, 3 entries per node (node-major).
     pub force: Vec<f64>,
     /// Element tangent, row-major `n × n` with `n = 3 · nodes`; the upper
@@ -239,8 +251,10 @@ pub(crate) fn element_response(
         "B-bar at finite strain needs the logarithmic strain and no initial displacement"
     );
     assert!(
-        geom.shear.is_none() || !kinematics.is_nonlinear(),
-        "the assumed in-section shear is a small-strain formulation"
+        geom.shear.is_none()
+            || !kinematics.is_nonlinear()
+            || (!kinematics.is_logarithmic() && points.initial.is_none()),
+        "the assumed in-section shear at finite strain needs the Green–Lagrange strain and no initial displacement"
     );
     assert!(
         !(kinematics.is_nonlinear() && mode == TangentMode::UnlessElastic),
@@ -265,6 +279,7 @@ pub(crate) fn element_response(
     if tangent_computed && kinematics.is_nonlinear() {
         // material, geometric (and B-bar's) terms as 3×3 nuclei (nucleus)
         nucleus::large_tangent(geom, (el.es, el.eb, el.nodes), geom.volumetric.as_ref(), ws);
+        assumed_large::add_terms(geom, &el, ws);
     } else if tangent_computed {
         let contributing = product::gather_operators(geom, &el, material, mode == TangentMode::UnlessElastic, ws);
         product::tangent_product(&el, contributing, ws);
@@ -323,10 +338,14 @@ fn stresses_and_forces(
     let (sg, ag) = (&geom.section, &geom.axis);
     let bbar = geom.volumetric.is_some();
     let large = points.kinematics.is_nonlinear();
-    let (ns, nb, nodes) = (sg.n_fun, ag.n_fun, el.nodes);
+    let (ns, nodes) = (sg.n_fun, el.nodes);
     let (mut all_elastic, mut plastic_points) = (true, 0);
     let step = points.step.filter(|_| large && !points.kinematics.is_logarithmic());
     ws.contracted.resize(8 * ns, [0.0; 3]);
+    let shear_large = geom.shear.as_ref().filter(|_| large);
+    if shear_large.is_some() {
+        ws.assumed.resize(el.n_points * ns, [0.0; 3]);
+    }
     for gb in 0..ag.n_gp {
         let at = ag.point(el.eb, gb);
         let (v, rest) = ws.contracted.split_at_mut(ns);
@@ -343,6 +362,12 @@ fn stresses_and_forces(
         if let Some(d) = step {
             contract_axis(&at, d, vd, vyd);
         }
+        if let Some(sh) = shear_large {
+            sh.tying_covariants(v, &mut ws.tying);
+            if step.is_some() {
+                sh.tying_covariants(vd, &mut ws.tying_step);
+            }
+        }
         h.fill([0.0; 3]);
         hy.fill([0.0; 3]);
         for gs in 0..sg.n_gp {
@@ -357,8 +382,10 @@ fn stresses_and_forces(
                     *e += shift / 3.0;
                 }
             }
-            if let Some(sh) = &geom.shear {
-                sh.add_strain(el.es, gs, v, &mut eps);
+            match (&geom.shear, large) {
+                (Some(sh), true) => sh.add_large_strain(el.es, gs, v, &ws.tying, &mut eps),
+                (Some(sh), false) => sh.add_strain(el.es, gs, v, &mut eps),
+                (None, _) => {}
             }
             // the physical stress where the force takes another (a damaged ply point's end-of-step stress)
             let (mut r, physical) = match (&material.damage, points.damage.as_mut()) {
@@ -368,14 +395,7 @@ fn stresses_and_forces(
             // the mean stress conjugate to the dilatation (T's, before any pull-back)
             ws.pressure[q] = (r.stress[0] + r.stress[1] + r.stress[2]) / 3.0;
             if let Some(log) = &log {
-                if bbar {
-                    // fbar's coupling of the dilatation row: (Lᵀ D m, mᵀ D m / 9)
-                    let dm: Voigt = std::array::from_fn(|i| r.tangent[i][0] + r.tangent[i][1] + r.tangent[i][2]);
-                    ws.coupling[q] = (log.pull_back_stress(&dm), (dm[0] + dm[1] + dm[2]) / 9.0);
-                }
-                // the material's (T, ∂T/∂E_log) as (S, ∂S/∂E): the rest is the Green–Lagrange kernel's
-                (r.stress, r.tangent) = log.pull_back(&r.stress, &r.tangent);
-                r.elastic_tangent = false;
+                pull_back(log, bbar, &mut r, &mut ws.coupling[q]);
             }
             points.trial[q] = r.state;
             ws.tangents[q] = r.tangent;
@@ -384,10 +404,12 @@ fn stresses_and_forces(
             // the stress whose rows meet the reference gradients: σ, or P = F S
             let rows = if large {
                 let f = crate::kinematics::deformation_gradient(&grad);
-                let geometric = match step {
-                    Some(_) => linearized::stress(&r.stress, &r.tangent, &point_gradient(&sp, vd, vyd)),
-                    None => r.stress,
-                };
+                // after a step, its quadratic strain with the assumed shear's share
+                let geometric = step.map_or(r.stress, |_| {
+                    let extra =
+                        shear_large.map(|sh| (sh.quadratic_change(gs, vd, &ws.tying_step), sh.direction(el.es)));
+                    linearized::stress(&r.stress, &r.tangent, &point_gradient(&sp, vd, vyd), extra)
+                });
                 (ws.frames[q], ws.pk2[q]) = (f, geometric);
                 // σ = F S Fᵀ / J̄ with B-bar (fbar), J̄ = J e^(θ̄ − θ)
                 let scale = if bbar { (-ws.dilatation[q]).exp() } else { 1.0 };
@@ -398,8 +420,13 @@ fn stresses_and_forces(
                 crate::voigt::stress_tensor(&r.stress)
             };
             add_point_force(&sp, w, &rows, h, hy);
-            if let Some(sh) = &geom.shear {
-                sh.add_force(el.es, gs, w, &points.stress[q], h);
+            match (&geom.shear, large) {
+                (Some(sh), true) => {
+                    let d = &mut ws.assumed[q * ns..(q + 1) * ns];
+                    assumed_large::add_force(sh, (el.es, gs), w, &r.stress, (v, &ws.tying), (d, h));
+                }
+                (Some(sh), false) => sh.add_force(el.es, gs, w, &points.stress[q], h),
+                (None, _) => {}
             }
             if let Some(s) = physical {
                 points.stress[q] = s;
@@ -415,17 +442,34 @@ fn stresses_and_forces(
                 }
             }
         }
-        for i in 0..nb {
-            let (n, ny) = (at.n[i], at.ny[i]);
-            let fi = &mut ws.force[3 * i * ns..3 * (i + 1) * ns];
-            for ((fa, ht), hyt) in fi.chunks_exact_mut(3).zip(h.iter()).zip(hy.iter()) {
-                for k in 0..3 {
-                    fa[k] += n * ht[k] + ny * hyt[k];
-                }
+        expand_force(&at, h, hy, &mut ws.force);
+    }
+    (all_elastic, plastic_points)
+}
+
+/// `f_(i,τ) += N_i h_τ + N_i,y h'_τ` at one axis point.
+fn expand_force(at: &crate::values::AxisAt<'_>, h: &[[f64; 3]], hy: &[[f64; 3]], force: &mut [f64]) {
+    let ns = h.len();
+    for (i, (&n, &ny)) in at.n.iter().zip(at.ny).enumerate() {
+        let fi = &mut force[3 * i * ns..3 * (i + 1) * ns];
+        for ((fa, ht), hyt) in fi.chunks_exact_mut(3).zip(h.iter()).zip(hy.iter()) {
+            for k in 0..3 {
+                fa[k] += n * ht[k] + ny * hyt[k];
             }
         }
     }
-    (all_elastic, plastic_points)
+}
+
+/// The logarithmic strain's material response `(T, ∂T/∂E_log)` as
+/// `(S, ∂S/∂E)`, after which the rest is the Green–Lagrange kernel's; with
+/// B-bar also fbar's coupling of the dilatation row `(Lᵀ D m, mᵀ D m / 9)`.
+fn pull_back(log: &LogStrain, bbar: bool, r: &mut crate::materials::Response, coupling: &mut (Voigt, f64)) {
+    if bbar {
+        let dm: Voigt = std::array::from_fn(|i| r.tangent[i][0] + r.tangent[i][1] + r.tangent[i][2]);
+        *coupling = (log.pull_back_stress(&dm), (dm[0] + dm[1] + dm[2]) / 9.0);
+    }
+    (r.stress, r.tangent) = log.pull_back(&r.stress, &r.tangent);
+    r.elastic_tangent = false;
 }
 
 /// The update of ply point `q` of `dp` at the strain `eps`: the response

@@ -53,7 +53,7 @@ pub(super) fn mesh(
             };
             if file[i].formulation == Some(Formulation::AssumedShear) {
                 // the tying interpolation (crate::values::AssumedShear) needs p ≥ 2 to pass
-                // the patch test, and is written for the small-strain kernel
+                // the patch test; at finite strain it ties the Green–Lagrange strain
                 if b.section.kind.order() < 2 {
                     return Err(invalid(
                         format!("bodies[{i}].formulation"),
@@ -62,11 +62,20 @@ pub(super) fn mesh(
                     ));
                 }
                 if analysis.geometry == Some(Geometry::Nonlinear) {
-                    return Err(invalid(
-                        format!("bodies[{i}].formulation"),
-                        "\"assumed_shear\" with analysis.geometry = \"nonlinear\"",
-                        "\"standard\" or \"bbar\" (the assumed shear is a small-strain formulation)",
-                    ));
+                    if analysis.strain == Some(StrainMeasure::Logarithmic) {
+                        return Err(invalid(
+                            format!("bodies[{i}].formulation"),
+                            "\"assumed_shear\" with analysis.strain = \"logarithmic\"",
+                            "\"standard\" or \"bbar\", or the Green–Lagrange strain (the assumed shear ties E_ξη)",
+                        ));
+                    }
+                    if analysis.imperfection.is_some() {
+                        return Err(invalid(
+                            format!("bodies[{i}].formulation"),
+                            "\"assumed_shear\" with analysis.imperfection",
+                            "\"standard\" (a stress-free imperfection is not tied)",
+                        ));
+                    }
                 }
                 return Ok(cell.with_assumed_shear(b));
             }

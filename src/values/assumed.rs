@@ -33,6 +33,27 @@
 //! the kernel's strain, internal force and tangent stay consistent, the
 //! material point is unchanged (plasticity included).
 //!
+//! **Nonlinear geometry** (total Lagrangian, Green–Lagrange strain): the
+//! covariant component of `E` is
+//!
+//! ```text
+//! E_ξη = ½ (f_ξ · f_η − t_ξ · t_η),   f_ξ = t_ξ + g_ξ, g_ξ = ∂u/∂ξ = Σ_τ a_τ v_τ  (a_τ = ∂F_τ/∂ξ, b_τ = ∂F_τ/∂η)
+//!      = Σ_τ c_τ · v_τ + ½ g_ξ · g_η
+//! ```
+//!
+//! (`g` with all three components: the section's points move out of its
+//! plane), tied and changed as above: `Ē = E + (Ẽ_ξη − E_ξη) m`. Its
+//! variation for a unit displacement `u_(i,τ,k)` is `N_i D_τk`,
+//! `D_τ = Σ_k L_k ½ (a_τ f_η + b_τ f_ξ)(ξ_k, η_k) − ½ (a_τ f_η + b_τ f_ξ)(ξ, η)`,
+//! whose in-plane reference part is the small strain's `d_τ`; its second
+//! variation is `N_i N_j δ_kl G_τσ` with the reference numbers
+//! `G_τσ = Σ_k L_k sym(a_τ b_σ)(ξ_k, η_k) − sym(a_τ b_σ)(ξ, η)`, the
+//! geometric stiffness's share (`crate::elements`' `assumed_large`). The
+//! derivatives `a, b`, the interpolation `L_k` and `G` are those of the
+//! reference square, the same for every element. A homogeneous
+//! deformation gives a bilinear `g_ξ · g_η` on a straight-sided element,
+//! so the patch test holds at finite strain as well.
+//!
 //! On elements whose map is bilinear (straight sides, any distortion) a
 //! linear displacement gives a bilinear `ε_ξη`, reproduced exactly by the
 //! `p × p` interpolation (p ≥ 2): a constant strain is unchanged. L4 (p =
@@ -55,7 +76,18 @@ pub struct AssumedShear {
     direction: Vec<Voigt>,
     /// `d_τ = (x, z)` at `[element][point][τ]`.
     coefficients: Vec<[f64; 2]>,
+    /// Nonlinear geometry, on the reference square (module docs):
+    /// `(a_τ, b_τ)` at the tying points `[k][τ]` and at the section's
+    /// points `[point][τ]`, `L_k` at `[point][k]`, `G_τσ` at `[point][τ][σ]`.
+    tying_derivatives: Vec<[f64; 2]>,
+    point_derivatives: Vec<[f64; 2]>,
+    interpolation: Vec<f64>,
+    curvature: Vec<f64>,
 }
+
+/// `(g_ξ, g_η)`: the in-section covariant derivatives of the displacement
+/// at one point (nonlinear geometry; module docs).
+pub(crate) type Covariant = [[f64; 3]; 2];
 
 impl AssumedShear {
     /// The tying interpolation of every element of `section` at the natural
@@ -117,7 +149,47 @@ impl AssumedShear {
                 }
             }
         }
-        Some(Self { n_gp, n_fun, direction, coefficients })
+        let reference = |xi: f64, eta: f64| -> Vec<[f64; 2]> {
+            let (mut f, mut a, mut b) = (vec![0.0; n_fun], vec![0.0; n_fun], vec![0.0; n_fun]);
+            basis.eval(xi, eta, &mut f, &mut a, &mut b);
+            a.into_iter().zip(b).map(|(a, b)| [a, b]).collect()
+        };
+        let tying_points: Vec<[f64; 2]> =
+            tying.iter().flat_map(|&eta| tying.iter().map(move |&xi| [xi, eta])).collect();
+        let tying_derivatives: Vec<[f64; 2]> = tying_points.iter().flat_map(|&[xi, eta]| reference(xi, eta)).collect();
+        let point_derivatives: Vec<[f64; 2]> = natural.iter().flat_map(|&[xi, eta]| reference(xi, eta)).collect();
+        let mut interpolation = Vec::with_capacity(n_gp * tying_points.len());
+        for &[xi, eta] in natural {
+            let (lx, lz) = (lagrange(&tying, xi), lagrange(&tying, eta));
+            interpolation.extend(lz.iter().flat_map(|wz| lx.iter().map(move |wx| wx * wz)));
+        }
+        // sym(a_τ b_σ) = ½ (a_τ b_σ + b_τ a_σ) at the listed derivatives
+        let sym = |ab: &[[f64; 2]], t: usize, s: usize| 0.5 * (ab[t][0] * ab[s][1] + ab[t][1] * ab[s][0]);
+        let mut curvature = Vec::with_capacity(n_gp * n_fun * n_fun);
+        for q in 0..n_gp {
+            let here = &point_derivatives[q * n_fun..(q + 1) * n_fun];
+            let weights = &interpolation[q * tying_points.len()..(q + 1) * tying_points.len()];
+            for t in 0..n_fun {
+                for s in 0..n_fun {
+                    let tied: f64 = weights
+                        .iter()
+                        .zip(tying_derivatives.chunks_exact(n_fun))
+                        .map(|(l, ab)| l * sym(ab, t, s))
+                        .sum();
+                    curvature.push(tied - sym(here, t, s));
+                }
+            }
+        }
+        Some(Self {
+            n_gp,
+            n_fun,
+            direction,
+            coefficients,
+            tying_derivatives,
+            point_derivatives,
+            interpolation,
+            curvature,
+        })
     }
 
     /// `m` and the `d_τ` of point `q` of section element `e`.
@@ -137,6 +209,81 @@ impl AssumedShear {
         }
     }
 
+    /// `m` of section element `e`.
+    pub(crate) fn direction(&self, e: usize) -> &Voigt {
+        &self.direction[e]
+    }
+
+    /// Nonlinear geometry: `(g_ξ, g_η)` at every tying point from the
+    /// axis-contracted displacements `v_τ` (3 per node), into `out`.
+    pub(crate) fn tying_covariants(&self, v: &[[f64; 3]], out: &mut Vec<Covariant>) {
+        out.clear();
+        out.extend(self.tying_derivatives.chunks_exact(self.n_fun).map(|ab| covariant(ab, v)));
+    }
+
+    /// Nonlinear geometry: the quadratic part of `Ẽ_ξη − E_ξη` at point `q`,
+    /// `½ Σ_k L_k g_ξ·g_η(ξ_k, η_k) − ½ g_ξ·g_η(ξ, η)`, from `v_τ` and the
+    /// tying points' derivatives `tying` ([`Self::tying_covariants`] of the same `v`).
+    pub(crate) fn quadratic_change(&self, q: usize, v: &[[f64; 3]], tying: &[Covariant]) -> f64 {
+        let dot = |[gx, ge]: &Covariant| gx[0] * ge[0] + gx[1] * ge[1] + gx[2] * ge[2];
+        let here = covariant(&self.point_derivatives[q * self.n_fun..(q + 1) * self.n_fun], v);
+        let tied: f64 = self.weights(q).iter().zip(tying).map(|(l, g)| l * dot(g)).sum();
+        0.5 * (tied - dot(&here))
+    }
+
+    /// Nonlinear geometry: adds `(Ẽ_ξη − E_ξη) m` at point `q` of section
+    /// element `e` to the Green–Lagrange strain `eps` (module docs).
+    pub(crate) fn add_large_strain(&self, e: usize, q: usize, v: &[[f64; 3]], tying: &[Covariant], eps: &mut Voigt) {
+        let (m, d) = self.at(e, q);
+        let linear: f64 = d.iter().zip(v).map(|(d, v)| d[0] * v[0] + d[1] * v[2]).sum();
+        let s = linear + self.quadratic_change(q, v, tying);
+        for (e, mi) in eps.iter_mut().zip(m) {
+            *e += s * mi;
+        }
+    }
+
+    /// Nonlinear geometry: the variation `D_τ` (3 per node `τ`, into `out`)
+    /// of `Ẽ_ξη − E_ξη` at point `q` of section element `e` (module docs).
+    pub(crate) fn large_variation(
+        &self,
+        e: usize,
+        q: usize,
+        v: &[[f64; 3]],
+        tying: &[Covariant],
+        out: &mut [[f64; 3]],
+    ) {
+        let (_, d) = self.at(e, q);
+        let here_ab = &self.point_derivatives[q * self.n_fun..(q + 1) * self.n_fun];
+        let [gx, ge] = covariant(here_ab, v);
+        for (o, (d, ab)) in out.iter_mut().zip(d.iter().zip(here_ab)) {
+            // the reference part d_τ, less ½ (a_τ g_η + b_τ g_ξ) here
+            *o = std::array::from_fn(|k| -0.5 * (ab[0] * ge[k] + ab[1] * gx[k]));
+            o[0] += d[0];
+            o[2] += d[1];
+        }
+        for (l, (ab, [gx, ge])) in
+            self.weights(q).iter().zip(self.tying_derivatives.chunks_exact(self.n_fun).zip(tying))
+        {
+            for (o, ab) in out.iter_mut().zip(ab) {
+                for k in 0..3 {
+                    o[k] += 0.5 * l * (ab[0] * ge[k] + ab[1] * gx[k]);
+                }
+            }
+        }
+    }
+
+    /// Nonlinear geometry: `G_τσ` at point `q` (`n × n`, row-major; module docs).
+    pub(crate) fn curvature(&self, q: usize) -> &[f64] {
+        let n = self.n_fun * self.n_fun;
+        &self.curvature[q * n..(q + 1) * n]
+    }
+
+    /// `L_k` at point `q`.
+    fn weights(&self, q: usize) -> &[f64] {
+        let k = self.interpolation.len() / self.n_gp;
+        &self.interpolation[q * k..(q + 1) * k]
+    }
+
     /// Adds the point's share of the internal force to the kernel's `h_τ`
     /// (which the caller multiplies by `N_i`): `w (σ · m) d_τ` on x and z.
     pub(crate) fn add_force(&self, e: usize, q: usize, w: f64, stress: &Voigt, h: &mut [[f64; 3]]) {
@@ -147,6 +294,18 @@ impl AssumedShear {
             ht[2] += w * sm * dt[1];
         }
     }
+}
+
+/// `(g_ξ, g_η) = Σ_τ (a_τ, b_τ) v_τ` from the derivatives `ab` of one point.
+fn covariant(ab: &[[f64; 2]], v: &[[f64; 3]]) -> Covariant {
+    let mut g = [[0.0; 3]; 2];
+    for ([a, b], v) in ab.iter().zip(v) {
+        for k in 0..3 {
+            g[0][k] += a * v[k];
+            g[1][k] += b * v[k];
+        }
+    }
+    g
 }
 
 /// The Lagrange polynomials through `points` at `x`.

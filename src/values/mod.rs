@@ -23,6 +23,7 @@ mod facet;
 mod point;
 
 pub use assumed::AssumedShear;
+pub(crate) use assumed::Covariant;
 
 pub use facet::{FaceSide, FacetValues};
 pub use point::{Location, PointValues, locate, locate_in_model};

@@ -12,7 +12,8 @@ with a 3D reference.
                                                          # each: CalculiX on its cheapest mesh within 3 %
                                                          # (3d_L4_2_4_6_graded), cufem run of the bench file
 
-A mesh is (section element, along_flange, along_web, through, B4 elements, last/first length ratio).
+A mesh is (section element, along_flange, along_web, through, B4 elements, last/first length ratio[,
+formulation]); the bench file's own formulation is dropped, and a name ending in `_assumed` sets the body's `formulation = "assumed_shear"`.
 The 3D meshes are the CalculiX twins of CUF meshes (one hexahedron per Lagrange interval): an L4
 section gives one C3D20R through each wall. The measure is verify's: the largest |u - u_3D| over the
 20 increments, % of the reference's peak |u_3D|, at the top flange tip (u_x, u_z) and over all three
@@ -41,6 +42,15 @@ CUFEM_MESHES = {
     "L16_2_4_10_graded": ("L16", 2, 4, 1, 10, 10),
     "L16_2_4_12_graded": ("L16", 2, 4, 1, 12, 10),
     "L16_3_6_12_graded": ("L16", 3, 6, 1, 12, 10),
+    "L9_3_6_12_graded": ("L9", 3, 6, 1, 12, 10),
+    "L9_2_4_12_graded_assumed": ("L9", 2, 4, 1, 12, 10, "assumed_shear"),
+    "L9_3_6_12_graded_assumed": ("L9", 3, 6, 1, 12, 10, "assumed_shear"),
+    "L9_2_4_16_graded_assumed": ("L9", 2, 4, 1, 16, 10, "assumed_shear"),
+    "L9_4_8_12_graded_assumed": ("L9", 4, 8, 1, 12, 10, "assumed_shear"),
+    "L16_2_4_12_graded_assumed": ("L16", 2, 4, 1, 12, 10, "assumed_shear"),
+    "L9_3_6_10_graded_assumed": ("L9", 3, 6, 1, 10, 10, "assumed_shear"),
+    "L9_3_4_12_graded_assumed": ("L9", 3, 4, 1, 12, 10, "assumed_shear"),
+    "L16_2_4_10_graded_assumed": ("L16", 2, 4, 1, 10, 10, "assumed_shear"),
 }
 CCX_MESHES = {
     "3d_L9_2_4_12": ("L9", 2, 4, 1, 12, 1),
@@ -55,7 +65,7 @@ PROBES = ["top_flange_tip", "bottom_flange_tip", "web_middle"]
 
 def model(mesh):
     """The text of bench/channel_twist.toml with this mesh."""
-    el, af, aw, th, n, ratio = mesh
+    el, af, aw, th, n, ratio = mesh[:6]
     text = open(os.path.join(ROOT, "bench", "channel_twist.toml")).read()
     text, k1 = re.subn(r'element = "L\d+", origin', f'element = "{el}", origin', text)
     text, k2 = re.subn(r"along_flange = \d+, along_web = \d+, through = \d+",
@@ -63,6 +73,10 @@ def model(mesh):
     text, k3 = re.subn(r"axis = \{[^}]*\}",
                        f'axis = {{ element = "B4", from = 0.0, to = 1.0, elements = {n}, ratio = {float(ratio)} }}', text)
     assert (k1, k2, k3) == (1, 1, 1), "bench/channel_twist.toml: section or axis line not found"
+    text = re.sub(r'\nformulation = "[a-z_]+"', "", text)
+    if len(mesh) > 6:
+        text, k4 = re.subn(r"\nsection = ", f'\nformulation = "{mesh[6]}"\nsection = ', text)
+        assert k4 == 1, "bench/channel_twist.toml: one section line"
     return text
 
 

@@ -179,7 +179,7 @@ pub(crate) fn strain_variation(f: &Tensor, g: [f64; 3], k: usize) -> Voigt {
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use super::*;
 
     /// The rotation by `angle` (rad) about `axis` (Rodrigues' formula);

@@ -101,8 +101,8 @@ fn assumed_shear_removes_cross_wall_bending_locking() {
 /// What the formulation is not made for is refused with the key, the value
 /// and what is allowed: L4 sections (one tying point would fail the patch
 /// test), and at finite strain the logarithmic strain (the tying is of the
-/// Green–Lagrange strain); nonlinear geometry with the Green–Lagrange
-/// strain is taken.
+/// Green–Lagrange strain) and an imperfection; nonlinear geometry with the
+/// Green–Lagrange strain is taken.
 #[test]
 fn assumed_shear_refuses_l4_and_the_logarithmic_strain() {
     let l4 = wall("L4", 2, 1, "assumed_shear", "");
@@ -113,4 +113,10 @@ fn assumed_shear_refuses_l4_and_the_logarithmic_strain() {
     let log = nonlinear.replace("geometry = \"nonlinear\"", "geometry = \"nonlinear\"\nstrain = \"logarithmic\"");
     let e = Model::parse(&log).map(drop).expect_err("the logarithmic strain refused").to_string();
     assert!(e.contains("bodies[0].formulation") && e.contains("logarithmic") && e.contains("Green–Lagrange"), "{e}");
+    // a stress-free imperfection is not tied (the column of examples/column_postbuckling.toml, L9)
+    let column = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/column_postbuckling.toml"))
+        .unwrap()
+        .replacen("[[bodies]]\n", "[[bodies]]\nformulation = \"assumed_shear\"\n", 1);
+    let e = Model::parse(&column).map(drop).expect_err("an imperfection refused").to_string();
+    assert!(e.contains("bodies[0].formulation") && e.contains("analysis.imperfection"), "{e}");
 }

@@ -5,6 +5,7 @@
 use super::log_tests::field;
 use super::tests::{difference_error, kernel, single_element_body};
 use super::*;
+use crate::kinematics::tests::rotation;
 use crate::materials::Hardening;
 use crate::shape::{BeamElementKind, SectionElementKind};
 
@@ -102,19 +103,6 @@ fn assumed_shear_has_only_the_rigid_modes() {
         assert_eq!(zero, 6, "{sk:?} × {bk:?}: zero-energy modes");
         assert!(lambda.iter().all(|&v| v > -1e-9 * largest), "{sk:?} × {bk:?}: a negative eigenvalue");
     }
-}
-
-/// A rotation by `angle` about the unit vector of `axis` (Rodrigues).
-fn rotation(axis: [f64; 3], angle: f64) -> [[f64; 3]; 3] {
-    let n = axis.iter().map(|a| a * a).sum::<f64>().sqrt();
-    let [x, y, z] = axis.map(|a| a / n);
-    let (s, c) = angle.sin_cos();
-    let t = 1.0 - c;
-    [
-        [t * x * x + c, t * x * y - s * z, t * x * z + s * y],
-        [t * x * y + s * z, t * y * y + c, t * y * z - s * x],
-        [t * x * z - s * y, t * y * z + s * x, t * z * z + c],
-    ]
 }
 
 /// The displacement that turns `deform`'s placement `x + d(x)` by `r`

@@ -59,6 +59,7 @@ CCX_MESHES = {
     "3d_L4_2_4_8": ("L4", 2, 4, 1, 8, 1),
     "3d_L4_2_4_8_graded": ("L4", 2, 4, 1, 8, 10),
     "3d_L4_2_4_6_graded": ("L4", 2, 4, 1, 6, 10),
+    "3d_L9_3_6_12_graded": ("L9", 3, 6, 1, 12, 10),
 }
 PROBES = ["top_flange_tip", "bottom_flange_tip", "web_middle"]
 

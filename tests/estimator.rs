@@ -249,3 +249,24 @@ fn the_block_s_plastic_end_state_is_estimated() {
     common::figure("estimator.block_plastic.effectivity_whole", eta_all / error_all, "", "reported (the whole block)");
     assert!((0.5..=2.0).contains(&effectivity), "effectivity {effectivity}");
 }
+
+/// The estimate is a function of the solution, not of the solver's path:
+/// the graded block solved with and without the factor reuse (the
+/// converged states equal within Newton's tolerance, the probes to `1e-8`)
+/// is estimated alike to `1e-6`, element by element to `1e-6` of the
+/// largest. The axis recovery chose among fits equal to round-off by the
+/// last digits (`post::spr`, `TIE`): the two runs were estimated at `22.08`
+/// and `22.21 %`.
+#[test]
+fn the_block_estimate_does_not_follow_the_solver_path() {
+    let text = example("block_indentation_graded.toml");
+    assert!(text.contains("[solver]\n"));
+    let plain = text.replace("[solver]\n", "[solver]\nreuse_factorization = false\n");
+    let (a, b) = (common::run(&text), common::run(&plain));
+    let (ea, eb) = (a.error_estimate.as_ref().unwrap(), b.error_estimate.as_ref().unwrap());
+    let (ra, rb) = (ea.relative(), eb.relative());
+    assert!((ra - rb).abs() <= 1e-6 * ra, "{ra} against {rb}");
+    let largest = ea.element.iter().fold(0.0f64, |m, &v| m.max(v));
+    let worst = ea.element.iter().zip(&eb.element).map(|(x, y)| (x - y).abs()).fold(0.0f64, f64::max);
+    assert!(worst <= 1e-6 * largest, "an element's estimate moved by {worst:e} of {largest:e}");
+}

@@ -105,3 +105,28 @@ fn a_small_element_barely_moves_its_large_neighbours_fit() {
         }
     }
 }
+
+/// The choice among the axis candidates is not made by round-off (`TIE`):
+/// two candidates whose data leave residuals equal to `1e-12` of the data
+/// go to the first, whichever is smaller in the last digits; one whose
+/// residual is a tenth smaller wins. With a strict minimum (the rule
+/// before `TIE`) the first assertion fails.
+#[test]
+fn candidates_whose_fits_tie_go_to_the_first() {
+    // two 3-point candidates fitting 1 term: residual = identity (every
+    // point redundant), so r² = Σ f² / 2
+    let patch = |e: usize| Patch {
+        elements: vec![e],
+        weights: Vec::new(),
+        residual: vec![1.0, 0.0, 0.0, 0.0, 1.0, 0.0, 0.0, 0.0, 1.0],
+        turn: Vec::new(),
+    };
+    let candidates = [patch(0), patch(1)];
+    let mut values = Vec::new();
+    for second in [1.0 - 1e-12, 1.0 + 1e-12] {
+        let f = |p: &Patch, k: usize| 1e8 * [1.0, -2.0, 1.0][k] * if p.elements[0] == 0 { 1.0 } else { second };
+        assert_eq!(smoothest(&candidates, 3, 1, &f, &mut values), 0, "second candidate scaled by {second}");
+    }
+    let f = |p: &Patch, k: usize| 1e8 * [1.0, -2.0, 1.0][k] * if p.elements[0] == 0 { 1.0 } else { 0.9 };
+    assert_eq!(smoothest(&candidates, 3, 1, &f, &mut values), 1);
+}

@@ -30,8 +30,9 @@
 //! Along the axis each element has up to three candidate patches: itself
 //! with both neighbours, with the one before, with the one after; for each
 //! section point and stress component the fit with the smallest mean
-//! squared residual per redundant point is used (the choice of the
-//! smoothest stencil of ENO schemes, Harten, Engquist, Osher & Chakravarthy,
+//! squared residual per redundant point is used, fits within `1e-6` of
+//! the data of the first counting as ties that go to it (`TIE`) (the
+//! choice of the smoothest stencil of ENO schemes, Harten, Engquist, Osher & Chakravarthy,
 //! *J. Comput. Phys.* 71, 1987). A centred patch beside a singular element
 //! (the clamped root of a cantilever, a roller's contact line) fits that
 //! element's steep raw stresses and overestimated the error of its

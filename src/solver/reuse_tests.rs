@@ -294,3 +294,50 @@ fn a_finishing_request_goes_on_within_the_unworn_iterations() {
     assert!(matches!(again, SolveKind::Reused(_)) && r_again > 1e-11, "{again:?} {r_again:e}");
     assert_eq!(solver.stats().factorizations, 1);
 }
+
+/// A factor worn by a tight solve (more than half its allowance) is
+/// replaced before the next tight solve, but tried for a loose one its
+/// contraction reaches within half the allowance (module docs): the first
+/// correction of an increment after the last, tight one of the increment
+/// before. Eight scattered rows softened (rank 8: CG needs up to nine
+/// iterations with the old factor) wear it at `1e-10`; then `0.1` is
+/// solved with it and `1e-10` is not.
+#[test]
+fn a_worn_factor_still_serves_a_looser_solve() {
+    let n = 200;
+    let (pattern, v0) = tridiagonal(&vec![2.5; n]);
+    let settings =
+        ReuseSettings { min_iterations: 12, max_iterations: 12, single_precision: false, ..Default::default() };
+    let solve = |solver: &mut ReusingSolver, v: &[f64], forcing: f64| {
+        let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.1).sin() + 1.0).collect();
+        let mut x = b.clone();
+        let kind = solver.solve(&pattern, v, &mut x, forcing, false).unwrap();
+        let bn = b.iter().map(|v| v * v).sum::<f64>().sqrt();
+        assert!(residual(&pattern, v, &x, &b) <= forcing * bn, "{kind:?}");
+        kind
+    };
+    let mut d1 = vec![2.5; n];
+    for k in 0..8 {
+        d1[10 + 23 * k] = 1.2 + 0.3 * k as f64;
+    }
+    let (_, v1) = tridiagonal(&d1);
+    let mut solver = ReusingSolver::new(Cholesky::analyze(&pattern).unwrap(), settings);
+    assert_eq!(solve(&mut solver, &v0, 1e-10), SolveKind::Factorized);
+    let worn = solve(&mut solver, &v1, 1e-10);
+    assert!(matches!(worn, SolveKind::Reused(7..=12)), "{worn:?}: the factor is not worn");
+    let loose = solve(&mut solver, &v1, 0.1);
+    assert!(matches!(loose, SolveKind::Reused(1..=6)), "{loose:?}");
+    assert_eq!(solver.stats().factorizations, 1);
+    // a loose solve leaves the factor unworn: wear it again, then a tight
+    // solve refactors
+    assert!(matches!(solve(&mut solver, &v1, 1e-10), SolveKind::Reused(7..=12)));
+    assert_eq!(solve(&mut solver, &v1, 1e-10), SolveKind::Factorized);
+    // a loose solve that Newton asks to finish tight (`finish_next`) is
+    // judged by the residual it is to reach: the worn factor is not tried
+    // (else PCG stops short of the finish and a linear step, which a
+    // direct solve ends to round-off, ends at Newton's tolerance)
+    assert!(matches!(solve(&mut solver, &v0, 1e-10), SolveKind::Reused(7..=12)), "not worn again");
+    solver.finish_next(1e-10);
+    assert_eq!(solve(&mut solver, &v0, 0.1), SolveKind::Factorized);
+    assert!(solver.finished());
+}

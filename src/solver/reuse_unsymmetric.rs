@@ -47,6 +47,8 @@ impl ReusingSolver {
             let budget = allowed + self.fresh_iterations;
             let outcome = self.gmres(pattern, values, skew, rhs, eta, budget)?;
             kind = self.reused(outcome, self.fresh_iterations + allowed / 2);
+            // GMRES's iterations do not predict PCG's (`Self::serves`)
+            self.contraction = None;
             if let SolveKind::Reused(_) = kind {
                 return Ok(kind);
             }

@@ -34,25 +34,17 @@
 //! present tangent is factorized and solved directly (the *fallback*). A solve
 //! that needed more than half its allowance marks the factor as worn, and a
 //! fallback marks the tangent as changing fast: in both cases the next solve
-//! refactors at once instead of trying — but for a worn factor whose next
-//! solve asks for a looser residual: at the contraction per iteration the
-//! worn solve showed (`ln η_worn / k`), a forcing term `η` it predicts
-//! within half the allowance is tried with it — `η` the finishing target
-//! below if Newton asks for one, so that a step Newton expects to end in
-//! one correction is still solved directly (a linear step then ends at
-//! round-off, not at Newton's tolerance: the energy ledger of an elastic
-//! impact sums what is left over every step, tests/adaptive_time.rs's
-//! hammer 3.95e-7 of its kinetic energy with the finish judged, 2.6e-6
-//! without). That is the first correction
-//! of an increment after the tight last one of the increment before, as
-//! every time step of a drop weight in contact: examples/tube_drop_weight.toml
-//! (`cufem run … --threads 1`, two runs each, alternating with the rule
-//! without it) 250 → 206 factorizations, 26.6–27.0 → 24.9–25.1 s, 631 →
-//! 638 Newton corrections; examples/cantilevers_contact.toml 24 → 19
-//! factorizations, 2.00–2.02 → 1.92 s; the laminate's drop weight, both
-//! tubes, the crushed tube and the block within one factorization in a
-//! hundred and their time's noise, their results within Newton's
-//! tolerance (`bench/compare_summaries.py`). An `LDLᵀ` factor
+//! refactors at once instead of trying — but a worn factor is still tried
+//! for a solve whose target (its forcing term, or the finishing target
+//! below when Newton asks for one) the worn solve's contraction per
+//! iteration (`ln η_worn / k`) reaches within half the allowance: the loose
+//! first correction of a time step in contact after the tight last one of
+//! the step before (examples/tube_drop_weight.toml: 206 factorizations for
+//! 632 corrections, `cufem run … --threads 1`). Judged by its finishing
+//! target, a step Newton expects to end in one correction is still solved
+//! directly: a linear step ends at round-off, not at Newton's tolerance,
+//! which the energy ledger of an elastic impact sums over its steps
+//! (tests/adaptive_time.rs's hammer). An `LDLᵀ` factor
 //! (indefinite tangent) is never reused.
 //!
 //! A correction that Newton predicts to be the last of its increment

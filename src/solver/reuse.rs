@@ -44,7 +44,9 @@
 //! target, a step Newton expects to end in one correction is still solved
 //! directly: a linear step ends at round-off, not at Newton's tolerance,
 //! which the energy ledger of an elastic impact sums over its steps
-//! (tests/adaptive_time.rs's hammer). An `LDLᵀ` factor
+//! (tests/adaptive_time.rs's hammer). Not in a model whose plies damage:
+//! there the loose solves steer the iterates onto another branch of the
+//! softening path (`setup`). An `LDLᵀ` factor
 //! (indefinite tangent) is never reused.
 //!
 //! A correction that Newton predicts to be the last of its increment
@@ -95,29 +97,7 @@ use super::linear::{Cholesky, LinearError, LowerCsc};
 /// compact bar 4 L9 2–4 (small supernodes run slower).
 pub(crate) const FLOP_RATE_RATIO: f64 = 10.0;
 
-/// GMRES restart length (a model with friction): the basis holds this many
-/// vectors of the equations' size (counted in the memory estimate).
-pub(crate) const GMRES_RESTART: usize = 30;
-
-/// Most GMRES iterations with the factor of the present symmetric part
-/// before the solve is reported as failed (`LinearError::KrylovStalled`;
-/// Newton then cuts the increment back).
-pub(crate) const GMRES_MAX_FRESH: usize = 200;
-
-/// Relative residual of the GMRES solves that stand in for exact ones (the
-/// bordered solves of force control).
-pub(crate) const EXACT: f64 = 1e-12;
-
-/// Largest forcing term of a GMRES solve (a model whose points slide with
-/// friction): below the symmetric path's `η_max`. Sliding makes the
-/// residual only piecewise smooth, and steps solved to 0.1 or 1e-2 cost
-/// Newton iterations that cost more (an assembly each, with surface
-/// contact) than the GMRES iterations they save: measured (`cufem run`, one
-/// run each) on examples/cantilevers_contact_nonmatching_friction.toml 90
-/// Newton iterations with no cap below η_max, 76 with 1e-2, 66 with 1e-3
-/// (the frictionless twin: 72), and 67 → 63 on
-/// examples/cantilevers_contact_friction.toml, at equal or lower time.
-pub(crate) const UNSYMMETRIC_FORCING: f64 = 1e-3;
+pub(crate) use unsymmetric::GMRES_RESTART;
 
 /// Controls of the reuse.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -135,11 +115,21 @@ pub struct ReuseSettings {
     /// Factorize in single precision and refine by PCG in double (module
     /// docs); only with `enabled`.
     pub single_precision: bool,
+    /// Try a worn factor for a looser solve its contraction reaches (module
+    /// docs); false in a model whose materials soften (`setup`).
+    pub(crate) worn_for_loose: bool,
 }
 
 impl Default for ReuseSettings {
     fn default() -> Self {
-        Self { enabled: true, tolerance: 0.1, min_iterations: 2, max_iterations: 50, single_precision: true }
+        Self {
+            enabled: true,
+            tolerance: 0.1,
+            min_iterations: 2,
+            max_iterations: 50,
+            single_precision: true,
+            worn_for_loose: true,
+        }
     }
 }
 
@@ -540,7 +530,8 @@ impl ReusingSolver {
     fn serves(&self, eta: f64, allowed: usize) -> bool {
         // a correction asked to finish is judged by the residual it is to reach
         let eta = self.finish.map_or(eta, |f| f.min(eta));
-        !self.worn || self.contraction.is_some_and(|c| eta.ln() / c <= (allowed / 2) as f64)
+        !self.worn
+            || self.settings.worn_for_loose && self.contraction.is_some_and(|c| eta.ln() / c <= (allowed / 2) as f64)
     }
 
     /// After a PCG solve that stopped with `outcome`: whether it reached

@@ -1,6 +1,7 @@
 //! Tests of `solver::reuse` (a file of their own: the module is near the
 //! length limit).
 
+use super::unsymmetric::EXACT;
 use super::*;
 use crate::solver::nonsymmetric::NonSymmetric;
 
@@ -321,6 +322,12 @@ fn a_worn_factor_still_serves_a_looser_solve() {
         d1[10 + 23 * k] = 1.2 + 0.3 * k as f64;
     }
     let (_, v1) = tridiagonal(&d1);
+    // a model whose materials soften refactors after a worn solve, as before
+    let off = ReuseSettings { worn_for_loose: false, ..settings };
+    let mut solver = ReusingSolver::new(Cholesky::analyze(&pattern).unwrap(), off);
+    assert_eq!(solve(&mut solver, &v0, 1e-10), SolveKind::Factorized);
+    assert!(matches!(solve(&mut solver, &v1, 1e-10), SolveKind::Reused(7..=12)));
+    assert_eq!(solve(&mut solver, &v1, 0.1), SolveKind::Factorized);
     let mut solver = ReusingSolver::new(Cholesky::analyze(&pattern).unwrap(), settings);
     assert_eq!(solve(&mut solver, &v0, 1e-10), SolveKind::Factorized);
     let worn = solve(&mut solver, &v1, 1e-10);

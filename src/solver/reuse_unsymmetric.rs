@@ -7,7 +7,31 @@ use std::time::Instant;
 use super::super::krylov::{self, Krylov};
 use super::super::linear::{LinearError, LowerCsc};
 use super::super::nonsymmetric::NonSymmetric;
-use super::{EXACT, GMRES_MAX_FRESH, GMRES_RESTART, ReusingSolver, SolveKind, UNSYMMETRIC_FORCING};
+use super::{ReusingSolver, SolveKind};
+
+/// GMRES restart length (a model with friction): the basis holds this many
+/// vectors of the equations' size (counted in the memory estimate).
+pub(crate) const GMRES_RESTART: usize = 30;
+
+/// Most GMRES iterations with the factor of the present symmetric part
+/// before the solve is reported as failed (`LinearError::KrylovStalled`;
+/// Newton then cuts the increment back).
+pub(crate) const GMRES_MAX_FRESH: usize = 200;
+
+/// Relative residual of the GMRES solves that stand in for exact ones (the
+/// bordered solves of force control).
+pub(crate) const EXACT: f64 = 1e-12;
+
+/// Largest forcing term of a GMRES solve (a model whose points slide with
+/// friction): below the symmetric path's `η_max`. Sliding makes the
+/// residual only piecewise smooth, and steps solved to 0.1 or 1e-2 cost
+/// Newton iterations that cost more (an assembly each, with surface
+/// contact) than the GMRES iterations they save: measured (`cufem run`, one
+/// run each) on examples/cantilevers_contact_nonmatching_friction.toml 90
+/// Newton iterations with no cap below η_max, 76 with 1e-2, 66 with 1e-3
+/// (the frictionless twin: 72), and 67 → 63 on
+/// examples/cantilevers_contact_friction.toml, at equal or lower time.
+pub(crate) const UNSYMMETRIC_FORCING: f64 = 1e-3;
 
 impl ReusingSolver {
     /// Solves `(A + S) x = b` for the symmetric `A` (lower-triangle

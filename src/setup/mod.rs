@@ -382,6 +382,19 @@ fn damage_step_control(
     Ok(())
 }
 
+/// The solver's settings (`solver`), and the reuse of worn factors for
+/// loose solves off in a model whose materials damage: their loose solves
+/// steer a softening path onto another branch (examples/laminate_drop_weight_damage.toml
+/// with them breaks fibres at 1.98 ms that it does not break without, 4 → 42
+/// cutbacks, 27.3 → 32.4 s on one thread; 30 cutbacks each at
+/// `krylov_tolerance` 0.09 and 0.11, against 4 without them), where the
+/// tube's drop weight saves 36 of 242 factorizations (`solver::reuse`).
+fn solver_settings(file: &ModelFile, materials: &[Material], linear: bool) -> Result<SolverSettings, ModelError> {
+    let mut solver = crate::input::validate::solver_settings(&file.solver, linear)?;
+    solver.reuse.worn_for_loose = !materials.iter().any(|m| m.damage.is_some());
+    Ok(solver)
+}
+
 fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelError> {
     crate::input::validate::names(&file)?;
     interfaces::check(&file)?;
@@ -420,14 +433,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let references = crate::input::validate::references(&file.references, &file.probes)?;
     let linear = is_linear(&mesh, &materials, &indenters, &contacts, &interfaces) && !kinematics.is_nonlinear();
     damage_step_control(&file, &materials, &interfaces)?;
-    let mut solver = crate::input::validate::solver_settings(&file.solver, linear)?;
-    // a worn factor's loose solves steer a softening path onto another branch:
-    // examples/laminate_drop_weight_damage.toml with them breaks fibres at
-    // 1.98 ms that it does not break without (4 → 42 cutbacks, 27.3 → 32.4 s
-    // one thread; 30 cutbacks each at krylov_tolerance 0.09 and 0.11, against
-    // 4 without them), where the tube's drop weight saves 36 of 242
-    // factorizations (solver::reuse)
-    solver.reuse.worn_for_loose = !materials.iter().any(|m| m.damage.is_some());
+    let mut solver = solver_settings(&file, &materials, linear)?;
     let loading = path::Loading {
         steps: &file.steps,
         constraints: &constraints,

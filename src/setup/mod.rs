@@ -515,3 +515,19 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         symmetry,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::Model;
+
+    /// The worn-factor reuse is off where plies damage, on elsewhere
+    /// ([`solver_settings`]): the damaging laminate drop weight and the
+    /// same laminate with cohesive interfaces only.
+    #[test]
+    fn worn_factors_serve_loose_solves_unless_a_material_damages() {
+        let damaging = Model::parse(include_str!("../../examples/laminate_drop_weight_damage.toml")).unwrap();
+        let cohesive = Model::parse(include_str!("../../examples/laminate_drop_weight.toml")).unwrap();
+        assert!(!damaging.solver.reuse.worn_for_loose);
+        assert!(cohesive.solver.reuse.worn_for_loose);
+    }
+}

@@ -525,8 +525,9 @@ impl ReusingSolver {
     }
 
     /// True if the present factor is to be tried for a solve to `eta`: it
-    /// is not worn, or the contraction of the solve that wore it reaches
-    /// `eta` within half the allowance (module docs).
+    /// is not worn, or (unless `worn_for_loose` is off) the contraction of
+    /// the solve that wore it reaches `eta`, or the finishing target if one
+    /// is asked, within half the allowance (module docs).
     fn serves(&self, eta: f64, allowed: usize) -> bool {
         // a correction asked to finish is judged by the residual it is to reach
         let eta = self.finish.map_or(eta, |f| f.min(eta));

@@ -111,7 +111,8 @@ impl<'m> Elements<'m> {
         let linear = !d.kinematics.is_nonlinear()
             && self.initial.is_none()
             && d.materials.iter().all(|m| m.hardening.is_none() && m.damage.is_none());
-        if linear {
+        // a model whose every DOF is held has no equation, and no stiffness to cache
+        if linear && assembler.dofs.n_eq > 0 {
             let zeros = vec![0.0; d.mesh.n_dofs()];
             self.product = Some(ElasticProduct::new(assembler, &self.inputs(&zeros)));
         }

@@ -146,6 +146,13 @@ for tag, solver in (("", ""), ("_noreuse", "reuse_factorization = false")):
                                                  span=(0.005, 0.045), graded=(2e-3, 1600, 800), solver=solver)
 CASES["roll_a60_g3200_1600_noreuse"] = dict(axis=60, toughness=SHIP, supports="rollers", span=(0.005, 0.045),
                                             graded=(2e-3, 3200, 1600), solver="reuse_factorization = false")
+# the example's PCG stopped at most at 1e-4, 1e-6 or 1e-10 (solver.krylov_tolerance), and Newton's
+# tolerances at 1e-9: which of them leave the default's path, and where
+for tag, solver in (("k4", "krylov_tolerance = 1e-4"), ("k6", "krylov_tolerance = 1e-6"),
+                    ("k10", "krylov_tolerance = 1e-10"),
+                    ("tol9", "residual_tolerance = 1e-9\ndisplacement_tolerance = 1e-9")):
+    CASES[f"roll_a60_g1600_800_{tag}"] = dict(axis=60, toughness=SHIP, supports="rollers", span=(0.005, 0.045),
+                                              graded=(2e-3, 1600, 800), solver=solver)
 # a step control by the damage instead of the graded steps: from 1.25 us, steps up to 5 us
 CASES["roll_a60_sc10"] = dict(steps=4800, toughness=SHIP, supports="rollers", span=(0.005, 0.045),
                               solver="max_increment = 8.333333333333333e-4\nstep_control = { damage = 0.1 }")

@@ -159,6 +159,20 @@ pub fn check_supported(model: &Model) -> Result<(), CcxError> {
         // refused as such ([`CcxError::Transient`])
         dynamic::check(model, t)?;
     }
+    // the deck's step is static (or a frequency or dynamic one): no
+    // *BUCKLE, and its nodes are the perfect geometry
+    if model.buckling.is_some() {
+        return Err(CcxError::Unsupported {
+            key: "analysis.type = \"buckling\"".into(),
+            what: "a linear buckling analysis (the deck has no *BUCKLE step)".into(),
+        });
+    }
+    if model.imperfection.is_some() {
+        return Err(CcxError::Unsupported {
+            key: "analysis.imperfection".into(),
+            what: "an imperfection shaped by a buckling mode (the deck's nodes are those of the perfect body)".into(),
+        });
+    }
     if let Some(i) = model.interfaces.first() {
         return Err(CcxError::Unsupported {
             key: i.key.clone(),

@@ -395,7 +395,8 @@ fn a_failed_calculix_run_is_reported_and_cufem_results_are_kept() {
 /// What CalculiX cannot take is refused with the model-file key, before any
 /// file is written: a load history of several steps, a force-controlled
 /// indenter, Armstrong–Frederick back-stresses, Coulomb friction (the
-/// deck's contact pairs are frictionless).
+/// deck's contact pairs are frictionless), a buckling analysis (no
+/// `*BUCKLE`) and an imperfection from its modes.
 #[test]
 fn features_without_a_calculix_twin_are_refused_by_key() {
     let unload = example("block_indentation_unload.toml");
@@ -409,7 +410,11 @@ fn features_without_a_calculix_twin_are_refused_by_key() {
         .replace("displacement = [0.0, 0.0, -1.0e-3]", "displacement = [0.0, 0.0, -1.0e-3]\nfriction = 0.2");
     // Pagano's sine load: the deck's surface loads are uniform
     let profile = example("pagano_s4.toml");
+    // a buckling analysis was written as a static deck, and a postbuckling
+    // column's imperfection dropped, without a word
     for (name, text, key) in [
+        ("buckling", example("column_buckling.toml"), "analysis.type = \"buckling\""),
+        ("imperfection", example("column_postbuckling.toml"), "analysis.imperfection"),
         ("profile", profile, "loads[0].profile"),
         ("steps", unload, "steps"),
         ("friction", friction, "indenters[0].friction"),

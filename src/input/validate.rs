@@ -15,20 +15,29 @@ use crate::solver::reuse::ReuseSettings;
 use crate::solver::stepping::{StepControl, StepSettings};
 
 /// Names are unique per table; constraints, indenters and contacts share
-/// one name space with levers (they all write `history_<name>.csv`).
+/// one name space with levers (they all write `history_<name>.csv`), in
+/// which `probes` is taken by the probes' history (`history_probes.csv`).
 pub(crate) fn names(file: &ModelFile) -> Result<(), ModelError> {
     unique_names(keyed("materials", &file.materials, |m| &m.name))?;
     unique_names(keyed("bodies", &file.bodies, |m| &m.name))?;
     unique_names(keyed("loads", &file.loads, |m| &m.name))?;
     unique_names(keyed("probes", &file.probes, |m| &m.name))?;
     unique_names(keyed("lines", &file.lines, |m| &m.name))?;
-    unique_names(
+    let histories = || {
         keyed("constraints", &file.constraints, |m| &m.name)
             .chain(keyed("indenters", &file.indenters, |m| &m.name))
             .chain(keyed("contacts", &file.contacts, |m| &m.name))
             .chain(keyed("symmetry", &file.symmetry, |m| &m.name))
-            .chain(keyed("levers", &file.levers, |m| &m.name)),
-    )?;
+            .chain(keyed("levers", &file.levers, |m| &m.name))
+    };
+    unique_names(histories())?;
+    if let Some((key, name)) = histories().find(|(_, n)| n.as_str() == "probes") {
+        return Err(invalid(
+            format!("{key}.name"),
+            format!("{name:?}"),
+            "another name: history_probes.csv is the probes' history",
+        ));
+    }
     if file.bodies.is_empty() {
         return Err(invalid("bodies", "[]", "at least one [[bodies]] table"));
     }
@@ -537,6 +546,12 @@ mod tests {
         assert!(e.contains("probes[2].name = \"a\"") && e.contains("already used by probes[0]"), "{e}");
         let bad = [String::from("a/b")];
         assert!(err(unique_names(keyed("lines", &bad, |n| n))).contains("file names"));
+        // a constraint named "probes" wrote its history over the probes'
+        let text = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/examples/cantilever_timoshenko.toml"))
+            .unwrap()
+            .replace("name = \"root\"", "name = \"probes\"");
+        let e = crate::setup::Model::parse(&text).map(|_| ()).unwrap_err().to_string();
+        assert!(e.starts_with("constraints[0].name = \"probes\"") && e.contains("history_probes.csv"), "{e}");
     }
 
     #[test]

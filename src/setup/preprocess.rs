@@ -285,6 +285,10 @@ pub(super) fn lines(
             body: optional_body(mesh, format!("{key}.body"), &l.body)?,
             plot,
         };
+        // a line of zero length samples one point `points` times
+        if line.from == line.to {
+            return Err(invalid(format!("{key}.to"), format!("{:?}", line.to), "a point other than `from`"));
+        }
         // a line outside every body would give an empty CSV and plot
         let checked = points.min(1001);
         let outside = (0..checked)

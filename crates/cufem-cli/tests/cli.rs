@@ -250,6 +250,11 @@ fn bad_input_is_reported_with_key_value_and_allowed_values() {
             vec!["bodies[0].axis.elements", "an integer from 1 to 100000"],
         ),
         (base.replace("points = 51", "points = 9000000000000000000"), vec!["lines[0].points", "from 2 to 100000"]),
+        // a line of zero length sampled one point 51 times (a new-user review)
+        (
+            base.replace("to = [0.05, 1.0, 0.05]", "to = [0.05, 0.0, 0.05]"),
+            vec!["lines[0].to = [0.05, 0.0, 0.05]", "a point other than `from`"],
+        ),
     ];
     for (k, (text, needles)) in cases.iter().enumerate() {
         let path = dir.join(format!("bad{k}.toml"));

@@ -440,7 +440,10 @@ fn a_constraint_holding_every_node_is_warned_about() {
     ];
     for (selection, expect) in cases {
         let w = warnings(&cant.replace(root, selection));
-        assert!(w.len() == 1 && w[0].starts_with(expect) && w[0].contains("\"beam\""), "{selection}: {w:?}");
+        // the tip load, on held nodes too, is warned about by its own key
+        // (`a_load_that_cannot_act_is_warned_about`)
+        assert!(w.len() == 2 && w[1].starts_with("loads[0]: load \"tip\" acts only on"), "{selection}: {w:?}");
+        assert!(w[0].starts_with(expect) && w[0].contains("\"beam\""), "{selection}: {w:?}");
     }
 }
 
@@ -466,6 +469,33 @@ fn a_body_held_at_every_node_runs_to_rest() {
             // the tip's total_force [0, 0, -1000] N, all on the clamp
             assert!((root.force[2] - 1000.0).abs() < 1e-9 && root.force[0].abs() < 1e-9, "{:?}", root.force);
         }
+    }
+}
+
+/// A load that cannot act ran without a word: a zero `total_force`, and a
+/// tip load moved onto the clamped root (the reaction carried it, the tip
+/// stayed at zero). Both are warned about by the load's key; the shipped
+/// cantilever is not (a new-user review).
+#[test]
+fn a_load_that_cannot_act_is_warned_about() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let cant = std::fs::read_to_string(dir.join("cantilever_timoshenko.toml")).unwrap();
+    let (force, tip) = ("total_force = [0.0, 0.0, -1000.0]", "name = \"tip\"\nbody = \"beam\"\nwhere = { y = 1.0 }");
+    assert!(cant.contains(force) && cant.contains(tip));
+    let warnings = |text: &str| -> Vec<String> {
+        Model::parse(text).unwrap().warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>()
+    };
+    assert_eq!(warnings(&cant), Vec::<String>::new());
+    let cases = [
+        (cant.replace(force, "total_force = [0.0, 0.0, 0.0]"), "every nodal force of load \"tip\" is zero"),
+        (
+            cant.replace(tip, &tip.replace("y = 1.0", "y = 0.0")),
+            "load \"tip\" acts only on components the constraints hold",
+        ),
+    ];
+    for (text, expect) in cases {
+        let w = warnings(&text);
+        assert!(w.len() == 1 && w[0].starts_with("loads[0]") && w[0].contains(expect), "{w:?}");
     }
 }
 

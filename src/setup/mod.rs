@@ -426,6 +426,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         ));
     }
     let constraint_handler = restrained(&mesh, handler, (&indenters, &contacts, &interfaces), kinematics, transient)?;
+    preprocess::idle_loads(&loads, |d| constraint_handler.prescribed(d).is_some(), &mut warnings);
     let levers = levers::levers(&file.levers, &mesh, &constraint_handler, &indenters)?;
     let probes = preprocess::probes(&file.probes, &mesh, &planes)?;
     let lines = preprocess::lines(&file.lines, &mesh, &planes, &mut warnings)?;

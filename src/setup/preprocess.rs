@@ -240,6 +240,32 @@ pub(super) fn loads(
     Ok(loads)
 }
 
+/// Warnings for loads that cannot act: every nodal force zero (a zero
+/// `total_force` or pressure), or every non-zero component on a DOF the
+/// constraints hold (a load on a clamped face, carried by the reaction
+/// alone). `held(dof)` tells a held DOF (`3 node + component`).
+pub(super) fn idle_loads(loads: &[Load], held: impl Fn(usize) -> bool, warnings: &mut Vec<Warning>) {
+    for (i, load) in loads.iter().enumerate() {
+        let acting: Vec<(usize, usize)> = load
+            .nodal_forces
+            .iter()
+            .flat_map(|&(n, f)| (0..3).filter(move |&c| f[c] != 0.0).map(move |c| (n, c)))
+            .collect();
+        let message = if acting.is_empty() {
+            format!("every nodal force of load {:?} is zero: it loads nothing", load.name)
+        } else if acting.iter().all(|&(n, c)| held(3 * n + c)) {
+            format!(
+                "load {:?} acts only on components the constraints hold: the reactions carry it and nothing moves \
+                 under it; load a face that is free to move",
+                load.name
+            )
+        } else {
+            continue;
+        };
+        warnings.push(Warning { key: format!("loads[{i}]"), message });
+    }
+}
+
 /// `[[probes]]`, located once.
 /// A probe in the part a symmetry plane leaves out is located at its
 /// image (`bc::symmetry::image`) and its fields reflected back.

@@ -187,7 +187,7 @@ pub fn parse(text: &str, file: &str, scale: f64, key: &str) -> Result<CrossSecti
                     if v.len() < 4 || !v.iter().all(|c| c.is_finite()) || v[0] < 0.0 {
                         return Err(r.error(t, "expected `tag x y z` with finite coordinates"));
                     }
-                    nodes.insert(v[0] as u64, ([v[1], v[2], v[3]], t));
+                    insert_node(&r, &mut nodes, v[0] as u64, ([v[1], v[2], v[3]], t))?;
                 }
                 r.expect("$EndNodes")?;
             }
@@ -245,11 +245,25 @@ fn nodes_v4(r: &mut Reader, nodes: &mut HashMap<u64, ([f64; 3], usize)>) -> Resu
             if !x.iter().all(|c| c.is_finite()) {
                 return Err(r.error(t, "expected three finite coordinates x y z"));
             }
-            nodes.insert(tag, (x, t));
+            insert_node(r, nodes, tag, (x, t))?;
         }
     }
     r.expect("$EndNodes")?;
     Ok(())
+}
+
+/// Records node `tag` (its coordinates and line); a tag listed twice is
+/// refused, naming both lines (the later one silently replaced the first).
+fn insert_node(
+    r: &Reader,
+    nodes: &mut HashMap<u64, ([f64; 3], usize)>,
+    tag: u64,
+    node: ([f64; 3], usize),
+) -> Result<(), MeshError> {
+    match nodes.insert(tag, node) {
+        Some((_, first)) => Err(r.error(node.1, format!("node {tag} is listed twice (first on line {first})"))),
+        None => Ok(()),
+    }
 }
 
 /// `$Elements` (4.1): blocks per entity; surfaces' elements kept with
@@ -376,6 +390,20 @@ fn build(
                 None => regions.push(Region { name, elements: vec![e], normal: None }),
             }
         }
+    }
+    // duplicated or overlapping elements would count their area twice
+    let corners: Vec<[usize; 4]> =
+        connectivity.chunks(m * m).map(|c| [c[0], c[m - 1], c[m * m - 1], c[(m - 1) * m]]).collect();
+    if let Some((a, b, share)) = super::overlaps::first_overlap(&coords, &corners) {
+        return Err(r.error(
+            elements[b].line,
+            format!(
+                "element {b} covers {:.3} % of element {a} (line {}): a duplicated or overlapping element would \
+                 count that area twice",
+                100.0 * share,
+                elements[a].line
+            ),
+        ));
     }
     Ok(CrossSection { kind, nodes: coords, connectivity, regions, twins: Vec::new() })
 }

@@ -99,6 +99,25 @@ fn triangles_are_refused_with_their_line() {
     assert!(e.contains("type 36 → L16"), "{e}");
 }
 
+/// A duplicated element, one covering another, and a node tag listed twice
+/// were read without a word (the area counted twice, or the later node
+/// silently replacing the first: the tip of a cantilever 35 % off; a
+/// new-user review), as `shape = "quads"` refuses its overlapping quads.
+#[test]
+fn duplicated_and_overlapping_elements_and_nodes_are_refused() {
+    let e = error(&quad4_file("2 1 3 3\n1 1 2 5 4\n2 2 3 6 5\n3 1 2 5 4\n"));
+    assert!(e.contains("line 33") && e.contains("element 2 covers 100.000 % of element 0 (line 31)"), "{e}");
+    // the second element [0, 2] × [0, 1] covers the first, [0, 1] × [0, 1]
+    let e = error(&quad4_file("2 1 3 2\n1 1 2 5 4\n2 1 3 6 4\n"));
+    assert!(e.contains("line 32") && e.contains("element 1 covers 100.000 % of element 0"), "{e}");
+    // neighbours sharing an edge do not overlap
+    assert!(parse(&quad4_file(QUAD4), "plate.msh", 1.0, "section.file").is_ok());
+    let twice = "$MeshFormat\n2.2 0 8\n$EndMeshFormat\n$Nodes\n7\n1 0 0 0\n2 1 0 0\n3 2 0 0\n4 0 1 0\n5 1 1 0\n\
+                 6 2 1 0\n6 2 2 0\n$EndNodes\n$Elements\n2\n2 3 2 7 1 1 2 5 4\n3 3 2 7 1 2 3 6 5\n$EndElements\n";
+    let e = error(twice);
+    assert!(e.contains("line 12") && e.contains("node 6 is listed twice (first on line 11)"), "{e}");
+}
+
 #[test]
 fn inverted_and_mixed_elements_are_refused() {
     let e = error(&quad4_file("2 1 3 2\n1 1 4 5 2\n2 2 3 6 5\n"));

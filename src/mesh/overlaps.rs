@@ -43,6 +43,25 @@ fn clip_convex(subject: &[[f64; 2]], clip: &[[f64; 2]]) -> Vec<[f64; 2]> {
 /// above 1e-9 of the smaller quad is an error. Neighbours that only share an
 /// edge or a corner intersect in a set of zero area.
 pub(super) fn check_overlaps(corners: &[[f64; 2]], quads: &[[usize; 4]], key: &str) -> Result<(), MeshError> {
+    match first_overlap(corners, quads) {
+        Some((a, b, share)) => Err(MeshError::invalid(
+            format!("{key}.quads[{b}]"),
+            format!("{:?}", quads[b]),
+            format!(
+                "quads that do not overlap: it covers {:.3} % of quads[{a}] = {:?} (a duplicated or overlapping \
+                 quad would count that area twice)",
+                100.0 * share,
+                quads[a]
+            ),
+        )),
+        None => Ok(()),
+    }
+}
+
+/// The first pair of quads (`a < b`, corner indices into `corners`,
+/// counter-clockwise and convex) that overlap ([`check_overlaps`]), with
+/// the share of quad `a`'s area that `b` covers.
+pub(super) fn first_overlap(corners: &[[f64; 2]], quads: &[[usize; 4]]) -> Option<(usize, usize, f64)> {
     let polys: Vec<[[f64; 2]; 4]> = quads.iter().map(|q| q.map(|i| corners[i])).collect();
     let boxes: Vec<[f64; 4]> = polys
         .iter()
@@ -68,19 +87,10 @@ pub(super) fn check_overlaps(corners: &[[f64; 2]], quads: &[[usize; 4]], key: &s
             let smaller = polygon_area(&polys[i]).min(polygon_area(&polys[j]));
             if shared > 1e-9 * smaller {
                 let (a, b) = (i.min(j), i.max(j));
-                return Err(MeshError::invalid(
-                    format!("{key}.quads[{b}]"),
-                    format!("{:?}", quads[b]),
-                    format!(
-                        "quads that do not overlap: it covers {:.3} % of quads[{a}] = {:?} (a duplicated or \
-                         overlapping quad would count that area twice)",
-                        100.0 * shared / polygon_area(&polys[a]),
-                        quads[a]
-                    ),
-                ));
+                return Some((a, b, shared / polygon_area(&polys[a])));
             }
         }
         active.push(i);
     }
-    Ok(())
+    None
 }

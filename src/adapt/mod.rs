@@ -61,10 +61,12 @@ pub enum AdaptError {
     Analysis(#[from] AnalysisError),
     /// The model as given is already over the budget.
     #[error(
-        "adapt.max_dof = {max_dof}: expected at least the model's own {dof} DOF (the first cycle solves the \
+        "{key} = {max_dof}: expected at least the model's own {dof} DOF (the first cycle solves the \
          model as given; raise the budget or coarsen the model)"
     )]
     Budget {
+        /// Where the budget was given: `adapt.max_dof`, or the CLI's `--max-dof`.
+        key: &'static str,
         /// The budget.
         max_dof: usize,
         /// The model's DOF.
@@ -105,7 +107,7 @@ pub fn run(
     report: &mut dyn FnMut(&AdaptCycle, &Model, &Solution),
 ) -> Result<(Model, Solution), AdaptError> {
     if model.n_dofs() > settings.max_dof {
-        return Err(AdaptError::Budget { max_dof: settings.max_dof, dof: model.n_dofs() });
+        return Err(AdaptError::Budget { key: "adapt.max_dof", max_dof: settings.max_dof, dof: model.n_dofs() });
     }
     let mut run = Cycles { settings, text: source.text, cycles: Vec::new(), last: None };
     let (mut model, mut refined, mut start) = (model, String::new(), Instant::now());

@@ -286,7 +286,7 @@ fn check_quad(corners: &[[f64; 2]], q: usize, quad: &[usize; 4], key: &str) -> R
         return Err(MeshError::invalid(
             format!("{key}.quads[{q}]"),
             format!("{quad:?}"),
-            format!("indices of points 0..{}", corners.len()),
+            format!("indices of points from 0 to {} (the points listed)", corners.len().saturating_sub(1)),
         ));
     }
     let mut sorted = *quad;

@@ -262,7 +262,8 @@ fn cli_refuses_bad_adapt_options() {
         (vec!["--adapt", "2"], "between 0 and 1"),
         (vec!["--adapt", "0.05", "--max-dof", "0"], "--max-dof"),
         (vec!["--max-dof", "1000"], "--adapt TOL or an [adapt] table"),
-        (vec!["--adapt", "0.05", "--max-dof", "100"], "adapt.max_dof = 100"),
+        // the key the user gave, not the model file's (a new-user review)
+        (vec!["--adapt", "0.05", "--max-dof", "100"], "--max-dof = 100: expected at least the model's own"),
         (vec!["--adapt", "0.05", "--fraction", "0"], "Dörfler's θ"),
         (vec!["--adapt", "0.05", "--fraction", "1.5"], "Dörfler's θ"),
         (vec!["--fraction", "0.3"], "--fraction is an option of an adaptive run"),

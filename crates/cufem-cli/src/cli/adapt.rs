@@ -78,7 +78,8 @@ impl AdaptArgs {
         }
         // before the output folder is touched (the library checks it too)
         if model.n_dofs() > settings.max_dof {
-            return Err(fail(INPUT, AdaptError::Budget { max_dof: settings.max_dof, dof: model.n_dofs() }));
+            let key = if self.max_dof.is_some() { "--max-dof" } else { "adapt.max_dof" };
+            return Err(fail(INPUT, AdaptError::Budget { key, max_dof: settings.max_dof, dof: model.n_dofs() }));
         }
         Ok(Some(settings))
     }

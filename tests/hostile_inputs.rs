@@ -499,6 +499,26 @@ fn a_load_that_cannot_act_is_warned_about() {
     }
 }
 
+/// A density in g/cm³ ran a modal analysis to frequencies `√1000` times
+/// too high without a word (a new-user review): the wave speed its
+/// constants give, `√(E/ρ)`, is warned about outside the solids' `10`–`25,000`
+/// m/s, as is a Young's modulus in MPa (titanium's `110,000`); the shipped density is not.
+#[test]
+fn a_density_in_other_units_is_warned_about() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let modes = std::fs::read_to_string(dir.join("cantilever_modes.toml")).unwrap();
+    let (rho, young) = ("density = 2700.0", "young_modulus = 70e9");
+    assert!(modes.contains(rho) && modes.contains(young));
+    let warnings = |text: &str| -> Vec<String> {
+        Model::parse(text).unwrap().warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>()
+    };
+    assert_eq!(warnings(&modes), Vec::<String>::new());
+    for text in [modes.replace(rho, "density = 2.7"), modes.replace(young, "young_modulus = 1.1e5")] {
+        let w = warnings(&text);
+        assert!(w.len() == 1 && w[0].starts_with("materials[0].density") && w[0].contains("wave speed"), "{w:?}");
+    }
+}
+
 /// Two constraints giving one component different values: refused by the
 /// later one's key, naming the value of the node's owner — the first
 /// constraint that prescribes it (whose reaction counts it), also when a

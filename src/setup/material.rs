@@ -25,6 +25,36 @@ pub(super) fn materials(file: &[MaterialFile]) -> Result<Vec<Material>, ModelErr
     file.iter().enumerate().filter(|(_, m)| m.cohesive.is_none()).map(|(i, m)| material(i, m)).collect()
 }
 
+/// Elastic wave speeds of solids (m/s): an elastomer's tens to diamond's
+/// `18,000`. A material whose constants and density give a speed outside
+/// is likely in other units.
+const WAVE_SPEEDS: (f64, f64) = (10.0, 25_000.0);
+
+/// Warns about each material whose density and elastic constants give a
+/// wave speed `√(max C_ii / ρ)` (the normal stiffnesses) outside
+/// [`WAVE_SPEEDS`]: a density in g/cm³ (aluminium's `2.7` gave modes
+/// `√1000` times too high without a word), or moduli in MPa.
+pub(super) fn density_warnings(file: &[MaterialFile], materials: &[Material], warnings: &mut Vec<super::Warning>) {
+    for m in materials {
+        let Some(rho) = m.density else { continue };
+        let c = m.elastic_stiffness();
+        let speed = ((0..3).map(|i| c[i][i]).fold(0.0, f64::max) / rho).sqrt();
+        if (WAVE_SPEEDS.0..=WAVE_SPEEDS.1).contains(&speed) {
+            continue;
+        }
+        let i = file.iter().position(|f| f.name == m.name).unwrap_or_default();
+        warnings.push(super::Warning {
+            key: format!("materials[{i}].density"),
+            message: format!(
+                "density = {rho} kg/m³ with the material's elastic constants gives an elastic wave speed of {speed:.3e} \
+                 m/s, where solids lie between {:.0} and {:.0} m/s: the density in kg/m³ (g/cm³ × 1000) and the \
+                 moduli in Pa?",
+                WAVE_SPEEDS.0, WAVE_SPEEDS.1
+            ),
+        });
+    }
+}
+
 pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelError> {
     let key = format!("materials[{i}]");
     let density = m

@@ -519,6 +519,26 @@ fn a_density_in_other_units_is_warned_about() {
     }
 }
 
+/// A roller turned onto the clamped root (`axis = "y"` for `"x"`) pressed
+/// its whole travel into held nodes (`2.5e8` N), and the run blamed a soft
+/// penalty (a new-user review): the warning now says that the deepest
+/// point is held in x, y and z, and where.
+#[test]
+fn an_indenter_pressing_on_held_nodes_is_told_so() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let text = std::fs::read_to_string(dir.join("cantilevers_contact.toml")).unwrap();
+    let turned = text.replacen("axis = \"x\"", "axis = \"y\"", 1);
+    assert_ne!(turned, text);
+    let model = Model::parse(&turned).unwrap();
+    let s = analysis::run(&model, &RunOptions::default(), &mut Silent).unwrap();
+    let w: Vec<String> = s.warnings.iter().map(|w| w.to_string()).collect();
+    let held = w.iter().find(|w| w.starts_with("indenters[0]: contact \"indenter_7in\" ends with a penetration"));
+    assert!(
+        held.is_some_and(|h| h.contains("which the constraints hold in x, y and z") && !h.contains("penalty_factor")),
+        "{w:?}"
+    );
+}
+
 /// Two constraints giving one component different values: refused by the
 /// later one's key, naming the value of the node's owner — the first
 /// constraint that prescribes it (whose reaction counts it), also when a

@@ -146,6 +146,28 @@ fn contact_warnings(model: &Model, solution: &Solution, warnings: &mut Vec<Warni
         if motion > 0.0 && r.max_penetration > SOFT_PENALTY * motion {
             let key = if k < n_ind { format!("indenters[{k}]") } else { format!("contacts[{}]", k - n_ind) };
             let what = if k < n_ind { "the indenter's travel" } else { "the largest displacement of its slave nodes" };
+            // an indenter driven into held nodes (a roller turned onto a
+            // clamp) penetrates whatever its penalty: no penalty moves them
+            let points = solution.contact_points(&r.name).unwrap_or_default();
+            let deepest = points.iter().filter(|p| p.gap.is_finite()).min_by(|a, b| a.gap.total_cmp(&b.gap));
+            if let Some(p) = deepest
+                && (0..3).all(|i| model.constraint_handler.prescribed(3 * p.node + i).is_some())
+            {
+                warnings.push(Warning {
+                    key,
+                    message: format!(
+                        "contact {:?} ends with a penetration of {} m, {:.0} % of {what}, deepest at node {} {:?}, \
+                         which the constraints hold in x, y and z: it presses on supported nodes, which no penalty \
+                         moves; check its position, axis and surface",
+                        r.name,
+                        crate::numbers::limit(r.max_penetration),
+                        100.0 * r.max_penetration / motion,
+                        p.node,
+                        model.mesh.coords(p.node)
+                    ),
+                });
+                continue;
+            }
             warnings.push(Warning {
                 key: format!("{key}.penalty_factor"),
                 message: format!(

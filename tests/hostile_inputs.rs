@@ -539,6 +539,24 @@ fn an_indenter_pressing_on_held_nodes_is_told_so() {
     );
 }
 
+/// `analysis.duration` beside steps that each give their own was ignored
+/// without a word (a new-user review): warned about by its key.
+#[test]
+fn an_unused_analysis_duration_is_warned_about() {
+    let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
+    let rod = std::fs::read_to_string(dir.join("rod_impact.toml")).unwrap();
+    let warnings = |text: &str| -> Vec<String> {
+        Model::parse(text).unwrap().warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>()
+    };
+    assert_eq!(warnings(&rod), Vec::<String>::new());
+    let both = rod.replacen("type = \"transient\"\n", "type = \"transient\"\nduration = 1e-3\n", 1);
+    assert_ne!(both, rod);
+    let w = warnings(&both);
+    assert!(w.len() == 1 && w[0].starts_with("analysis.duration: duration = 0.001 s is not used"), "{w:?}");
+    // without the step's own, the analysis' duration is the step's: no warning
+    assert_eq!(warnings(&both.replacen("duration = 6e-4\n", "", 1)), Vec::<String>::new());
+}
+
 /// Two constraints giving one component different values: refused by the
 /// later one's key, naming the value of the node's owner — the first
 /// constraint that prescribes it (whose reaction counts it), also when a

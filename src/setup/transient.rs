@@ -76,6 +76,19 @@ pub(super) fn transient(
     if let Some(t) = &settings {
         time_steps(steps, file.solver.max_increments)?;
         contact_mass_warnings(&file.analysis, t, parts, warnings);
+        // each step's own duration wins: the analysis' one is then unused
+        if let Some(d) = file.analysis.duration
+            && !file.steps.is_empty()
+            && file.steps.iter().all(|s| s.duration.is_some())
+        {
+            warnings.push(super::Warning {
+                key: "analysis.duration".into(),
+                message: format!(
+                    "duration = {d} s is not used: every [[steps]] entry gives its own duration (the analysis' one \
+                     stands for the steps without)"
+                ),
+            });
+        }
     }
     Ok(settings)
 }

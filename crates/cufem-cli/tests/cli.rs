@@ -428,6 +428,18 @@ fn export_ccx_refusals_are_input_errors() {
         .output()
         .unwrap();
     assert_eq!(r.status.code(), Some(3), "{}", String::from_utf8_lossy(&r.stderr));
+    // an --out that is a file is named as `cufem run` names it (export-ccx
+    // and check --plot gave the OS error with the path alone)
+    let file = dir.join("a_file");
+    std::fs::write(&file, "").unwrap();
+    let cant = example("cantilever_timoshenko.toml");
+    for args in [["export-ccx", cant.to_str().unwrap()], ["check", cant.to_str().unwrap()]] {
+        let plot: &[&str] = if args[0] == "check" { &["--plot"] } else { &[] };
+        let r = cufem().args(args).args(plot).args(["--out", file.to_str().unwrap()]).output().unwrap();
+        let err = String::from_utf8_lossy(&r.stderr);
+        assert_eq!(r.status.code(), Some(1), "{args:?}: {err}");
+        assert!(err.contains(&format!("--out {}: expected a folder", file.display())), "{args:?}: {err}");
+    }
 }
 
 /// Option values: negative numbers got clap's "unexpected argument '-1'",

@@ -224,6 +224,7 @@ fn dispatch(cli: Cli) -> Result<u8, Failure> {
             let kind = hex_kind(&element)?;
             let refine = check_refine(refine)?;
             let dir = out.unwrap_or_else(|| default_out(&model, "-ccx"));
+            folder_or_new(&dir)?;
             let (mesh, path) = cufem_ccx::export(&m, kind, refine, &dir).map_err(ccx_failure)?;
             println!(
                 "wrote {} ({} nodes, {} {} body elements, {} tool elements)",
@@ -249,9 +250,20 @@ fn dispatch(cli: Cli) -> Result<u8, Failure> {
     }
 }
 
+/// `--out` of a command that writes into a folder: refused, naming the
+/// option as `cufem run` does, when it is an existing file (the OS error
+/// named only the path).
+fn folder_or_new(dir: &Path) -> Result<(), Failure> {
+    if dir.exists() && !dir.is_dir() {
+        return Err(fail(INPUT, cufem::io::output::OutputError::NotAFolder(dir.display().to_string())));
+    }
+    Ok(())
+}
+
 /// `cufem check --plot`: one PNG per body, `<model stem>_section_<body>.png`.
 fn plot_sections(m: &Model, model: &Path, out: Option<PathBuf>) -> Result<(), Failure> {
     let dir = out.unwrap_or_else(|| model.parent().map_or_else(|| PathBuf::from("."), Path::to_path_buf));
+    folder_or_new(&dir)?;
     std::fs::create_dir_all(&dir).map_err(|e| fail(FILES, anyhow!("cannot create {}: {e}", dir.display())))?;
     let stem = model.file_stem().map_or_else(|| "model".into(), |s| s.to_string_lossy().into_owned());
     for b in &m.mesh.bodies {

@@ -446,19 +446,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         probes: &probes,
     };
     solver.path = path::settings(&file.solver, &solver, &loading)?;
-    let output = crate::input::validate::output(&file.output);
-    if output.recovery == Recovery::Projection
-        && let Some(b) = mesh.bodies.iter().position(|b| b.is_layered())
-    {
-        return Err(invalid(
-            "output.recovery",
-            "\"projection\"",
-            format!(
-                "\"element\" with a layered body (bodies[{b}] has several materials: a continuous projection \
-                 would smooth the stress jumps between its plies and zones)"
-            ),
-        ));
-    }
+    let output = output_settings(&file.output, &mesh)?;
     let item_names = steps::ItemNames {
         indenters: indenters.iter().map(|i| i.name.as_str()).collect(),
         constraints: constraints.iter().map(|c| c.name.as_str()).collect(),
@@ -516,6 +504,25 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         transient,
         symmetry,
     })
+}
+
+/// `[output]`, its recovery checked against the bodies: a continuous
+/// projection is refused with a layered body.
+fn output_settings(file: &schema::OutputFile, mesh: &Mesh) -> Result<OutputSettings, ModelError> {
+    let output = crate::input::validate::output(file);
+    if output.recovery == Recovery::Projection
+        && let Some(b) = mesh.bodies.iter().position(|b| b.is_layered())
+    {
+        return Err(invalid(
+            "output.recovery",
+            "\"projection\"",
+            format!(
+                "\"element\" with a layered body (bodies[{b}] has several materials: a continuous projection \
+                 would smooth the stress jumps between its plies and zones)"
+            ),
+        ));
+    }
+    Ok(output)
 }
 
 #[cfg(test)]

@@ -419,6 +419,11 @@ fn a_buried_sphere_is_told_about_its_centre() {
     );
 }
 
+/// The warnings of a model that parses.
+fn warnings(text: &str) -> Vec<String> {
+    Model::parse(text).unwrap().warnings.iter().map(|w| w.to_string()).collect()
+}
+
 /// A constraint `tolerance` as large as the body selected every node and
 /// clamped the whole body without a word (the probe warning is skipped when
 /// nothing moves). The model warns, naming the key and the value; a clamp
@@ -429,9 +434,6 @@ fn a_constraint_holding_every_node_is_warned_about() {
     let cant = std::fs::read_to_string(dir.join("cantilever_timoshenko.toml")).unwrap();
     let root = "where = { y = 0.0 }";
     assert!(cant.contains(root));
-    let warnings = |text: &str| -> Vec<String> {
-        Model::parse(text).unwrap().warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>()
-    };
     assert_eq!(warnings(&cant), Vec::<String>::new());
     let cases = [
         ("where = { y = 0.0, tolerance = 1.0 }", "constraints[0].where.tolerance: tolerance = 1 m selects every node"),
@@ -482,9 +484,6 @@ fn a_load_that_cannot_act_is_warned_about() {
     let cant = std::fs::read_to_string(dir.join("cantilever_timoshenko.toml")).unwrap();
     let (force, tip) = ("total_force = [0.0, 0.0, -1000.0]", "name = \"tip\"\nbody = \"beam\"\nwhere = { y = 1.0 }");
     assert!(cant.contains(force) && cant.contains(tip));
-    let warnings = |text: &str| -> Vec<String> {
-        Model::parse(text).unwrap().warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>()
-    };
     assert_eq!(warnings(&cant), Vec::<String>::new());
     let cases = [
         (cant.replace(force, "total_force = [0.0, 0.0, 0.0]"), "every nodal force of load \"tip\" is zero"),
@@ -509,9 +508,6 @@ fn a_density_in_other_units_is_warned_about() {
     let modes = std::fs::read_to_string(dir.join("cantilever_modes.toml")).unwrap();
     let (rho, young) = ("density = 2700.0", "young_modulus = 70e9");
     assert!(modes.contains(rho) && modes.contains(young));
-    let warnings = |text: &str| -> Vec<String> {
-        Model::parse(text).unwrap().warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>()
-    };
     assert_eq!(warnings(&modes), Vec::<String>::new());
     for text in [modes.replace(rho, "density = 2.7"), modes.replace(young, "young_modulus = 1.1e5")] {
         let w = warnings(&text);
@@ -545,9 +541,6 @@ fn an_indenter_pressing_on_held_nodes_is_told_so() {
 fn an_unused_analysis_duration_is_warned_about() {
     let dir = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("examples");
     let rod = std::fs::read_to_string(dir.join("rod_impact.toml")).unwrap();
-    let warnings = |text: &str| -> Vec<String> {
-        Model::parse(text).unwrap().warnings.iter().map(|w| w.to_string()).collect::<Vec<_>>()
-    };
     assert_eq!(warnings(&rod), Vec::<String>::new());
     let both = rod.replacen("type = \"transient\"\n", "type = \"transient\"\nduration = 1e-3\n", 1);
     assert_ne!(both, rod);

@@ -321,7 +321,10 @@ pub fn run(program: &str, dir: &Path, threads: usize) -> Result<CcxRun, CcxError
     let log_text = std::fs::read_to_string(&log_path).unwrap_or_default();
     let frd_path = dir.join("model.frd");
     let frd = std::fs::read_to_string(&frd_path).unwrap_or_default();
-    let results = read_or_fail(&frd, &frd_path, &log_text)?;
+    let results = match read_or_fail(&frd, &frd_path, &log_text) {
+        Err(CcxError::Failed { reached, .. }) => return Err(failed(reached, &log_text, program, status)),
+        r => r?,
+    };
     let dat = std::fs::read_to_string(dir.join("model.dat")).unwrap_or_default();
     // a static step ends at load factor 1, dynamic steps at their total
     // time; a frequency step with every mode it wrote to the .frd file in
@@ -335,7 +338,7 @@ pub fn run(program: &str, dir: &Path, threads: usize) -> Result<CcxRun, CcxError
         results::read_frequencies(&dat).len() == results.modes.len()
     };
     if !status.success() || log_text.contains("*ERROR") || !finished {
-        return Err(CcxError::Failed { reached: results.time, tail: tail(&log_text, 15) });
+        return Err(failed(results.time, &log_text, program, status));
     }
     // kept so that a later `verify --ccx-results` reports the same cost
     let cost = format!("{} {}\n", wall_time.as_secs_f64(), peak_memory.unwrap_or(0));
@@ -373,6 +376,16 @@ fn read_or_fail(frd: &str, path: &Path, log: &str) -> Result<NodalResults, CcxEr
         Err(_) if !frd.contains(" -4") => Err(CcxError::Failed { reached: 0.0, tail: tail(log, 15) }),
         Err(e) => Err(e),
     }
+}
+
+/// A run that did not finish, with the end of its log; a program that is
+/// not ccx (`--ccx /bin/false`) writes no log, and is told so.
+fn failed(reached: f64, log: &str, program: &str, status: std::process::ExitStatus) -> CcxError {
+    let mut tail = tail(log, 15);
+    if tail.is_empty() {
+        tail = format!("(empty: {program} wrote nothing and exited with {status}; is it CalculiX's ccx?)");
+    }
+    CcxError::Failed { reached, tail }
 }
 
 fn tail(text: &str, n: usize) -> String {

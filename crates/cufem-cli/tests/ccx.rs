@@ -390,6 +390,20 @@ fn a_failed_calculix_run_is_reported_and_cufem_results_are_kept() {
     assert!(err.contains("did not finish") && err.contains("smaller than minimum"), "{err}");
     assert!(out.join("summary.json").exists() && out.join("verify/ccx/model.inp").exists());
     assert!(out.join("verify/ccx/ccx.log").exists());
+    // a program that is not ccx writes no log: "the end of its log:" was
+    // followed by nothing (a new-user review, `--ccx /bin/false`)
+    let silent = dir.join("silent");
+    std::fs::write(&silent, "#!/bin/sh\nexit 1\n").unwrap();
+    std::fs::set_permissions(&silent, std::fs::Permissions::from_mode(0o755)).unwrap();
+    let cantilever = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/cantilever_timoshenko.toml"));
+    let run = cufem()
+        .args(["verify", cantilever.to_str().unwrap(), "--ccx", silent.to_str().unwrap()])
+        .args(["--out", dir.join("out_silent").to_str().unwrap(), "--refine", "1", "--quiet"])
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(5));
+    let err = String::from_utf8_lossy(&run.stderr);
+    assert!(err.contains("wrote nothing and exited with exit status: 1; is it CalculiX's ccx?"), "{err}");
 }
 
 /// What CalculiX cannot take is refused with the model-file key, before any

@@ -84,3 +84,5 @@ mod step_error;
 mod surface_contact;
 #[path = "switch_on.rs"]
 mod switch_on;
+#[path = "user_mistakes.rs"]
+mod user_mistakes;

@@ -12,6 +12,7 @@ use crate::input::validate::{describe_selection, friction, penalty, tolerance};
 use crate::input::{ModelError, invalid, ranges};
 use crate::materials::Material;
 use crate::mesh::{Body, Mesh};
+use crate::numbers::limit;
 
 /// `[[indenters]]`, with a warning for one whose motion cannot reach its
 /// surface (not in a transient analysis, where bodies may fly into it).
@@ -51,13 +52,18 @@ pub(super) fn indenters(
         // how far the indenter's own motion brings it towards each node
         let reach = |c: &contact::ContactNode| (0..3).map(|k| ind.displacement[k] * c.normal[k]).sum::<f64>() - c.gap0;
         if !transient && ind.force.is_none() && ind.nodes.iter().all(|c| reach(c) < 0.0) {
+            let gap = ind.nodes.iter().map(|c| c.gap0).fold(f64::INFINITY, f64::min);
+            // a gap of zero (printed "-0.000e0" before): it starts touching and moves away
+            let start = if gap > 1e-9 * mesh.bodies[b].size() {
+                format!("does not close its initial gap (at least {} m) to any node of the surface", limit(gap))
+            } else {
+                "moves it away from the surface it touches at the start".to_string()
+            };
             warnings.push(Warning {
                 key: format!("{key}.displacement"),
                 message: format!(
-                    "the indenter's motion {:?} m does not close its initial gap (at least {:.3e} m) to any node of \
-                     the surface: it touches only if the body moves into it",
-                    ind.displacement,
-                    ind.nodes.iter().map(|c| c.gap0).fold(f64::INFINITY, f64::min)
+                    "the indenter's motion {:?} m {start}: it touches only if the body moves into it",
+                    ind.displacement
                 ),
             });
         }

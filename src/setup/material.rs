@@ -174,9 +174,13 @@ fn isotropic(key: &str, m: &MaterialFile) -> Result<Material, ModelError> {
 /// An anisotropic elastic material (its constants given by `which`): no
 /// isotropic constants, no plasticity.
 fn anisotropic(key: &str, m: &MaterialFile, which: &str, stiffness: Matrix6) -> Result<Material, ModelError> {
-    for (name, given) in [("young_modulus", m.young_modulus.is_some()), ("poisson_ratio", m.poisson_ratio.is_some())] {
-        if given {
-            return Err(invalid(format!("{key}.{name}"), "given", format!("no isotropic constants with {which}")));
+    for (name, given) in [("young_modulus", m.young_modulus), ("poisson_ratio", m.poisson_ratio)] {
+        if let Some(v) = given {
+            return Err(invalid(
+                format!("{key}.{name}"),
+                crate::numbers::number(v),
+                format!("no isotropic constants with {which}"),
+            ));
         }
     }
     if m.plasticity.is_some() {

@@ -369,13 +369,13 @@ fn damage_step_control(
     materials: &[Material],
     interfaces: &[crate::interfaces::Interface],
 ) -> Result<(), ModelError> {
-    if file.solver.step_control.is_some_and(|c| c.damage.is_some())
+    if let Some(d) = file.solver.step_control.and_then(|c| c.damage)
         && interfaces.is_empty()
         && !materials.iter().any(|m| m.damage.is_some())
     {
         return Err(invalid(
             "solver.step_control.damage",
-            "given",
+            crate::numbers::number(d),
             "only in a model that damages: a material with [materials.damage] or cohesive interfaces",
         ));
     }

@@ -471,6 +471,7 @@ pub(super) fn load(key: &str, l: &LoadFile, b: usize, body: &Body, young: f64) -
         let (face_list, mut faces) = surface_faces(&format!("{key}.where"), &l.selection, body)?;
         let area: f64 = faces.iter().map(|f| f.area).sum();
         if let Some(p) = profile {
+            profile_span(key, &p, &faces, body)?;
             // ∫ N_a f dA with the uniform traction's normal and area kept
             for (fi, face) in faces.iter_mut().zip(&face_list) {
                 let weighted = bc::integrate_face_with(body, face, |x| p.factor(x));
@@ -513,6 +514,43 @@ pub(super) fn load(key: &str, l: &LoadFile, b: usize, body: &Body, young: f64) -
         };
     }
     Ok(Load { name: l.name.clone(), nodal_forces: forces.into_iter().collect(), body: b, kind, profile })
+}
+
+/// `loads.profile` against the loaded faces: they must extend along its
+/// axis (else the half sine is one constant factor) and lie within
+/// `[from, to]` (outside it the sine turns negative and reverses the load).
+fn profile_span(key: &str, p: &bc::Profile, faces: &[bc::FaceIntegral], body: &Body) -> Result<(), ModelError> {
+    let axis = ["x", "y", "z"][p.along];
+    let (lo, hi) = faces
+        .iter()
+        .flat_map(|f| &f.nodes)
+        .map(|&n| body.local_coords(n - body.node_offset)[p.along])
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), c| (lo.min(c), hi.max(c)));
+    let tol = 1e-6 * body.size();
+    let short = crate::numbers::short;
+    if hi - lo <= tol {
+        return Err(invalid(
+            format!("{key}.profile.along"),
+            format!("{axis:?}"),
+            format!(
+                "an axis the loaded faces extend along: they all lie at {axis} = {} m, where the sine is one factor",
+                short(lo)
+            ),
+        ));
+    }
+    let reverses = format!(
+        "the loaded faces span {axis} from {} to {} m; the half sine turns negative outside [from, to] and would \
+         reverse the load there",
+        short(lo),
+        short(hi)
+    );
+    if lo < p.from - tol {
+        return Err(invalid(format!("{key}.profile.from"), p.from, format!("at most {} m: {reverses}", short(lo))));
+    }
+    if hi > p.to + tol {
+        return Err(invalid(format!("{key}.profile.to"), p.to, format!("at least {} m: {reverses}", short(hi))));
+    }
+    Ok(())
 }
 
 /// `loads.profile`: only on a traction or a pressure, over an interval of

@@ -30,27 +30,31 @@ fn newmark(file: &AnalysisFile) -> Result<(f64, f64, f64), ModelError> {
 
 /// The keys that only a transient analysis takes, for the refusal of a
 /// static one.
-fn transient_key(file: &AnalysisFile) -> Option<&'static str> {
-    if file.duration.is_some() {
-        Some("analysis.duration")
+fn transient_key(file: &AnalysisFile) -> Option<(&'static str, String)> {
+    use crate::numbers::number;
+    // a word as the model file spells it: "newmark"
+    fn word<T: serde::Serialize>(v: &T) -> String {
+        serde_json::to_string(v).unwrap_or_default()
+    }
+    let table = || "a table".to_string();
+    if let Some(d) = file.duration {
+        Some(("analysis.duration", number(d)))
     } else if file.newmark.is_some() {
-        Some("analysis.newmark")
+        Some(("analysis.newmark", table()))
     } else if file.damping.is_some() {
-        Some("analysis.damping")
+        Some(("analysis.damping", table()))
     } else if file.initial_velocities.is_some() {
-        Some("analysis.initial_velocities")
-    } else if file.output_interval.is_some() {
-        Some("analysis.output_interval")
-    } else if file.contact_forces.is_some() {
-        Some("analysis.contact_forces")
-    } else if file.contact_mass.is_some() {
-        Some("analysis.contact_mass")
-    } else if file.interface_forces.is_some() {
-        Some("analysis.interface_forces")
-    } else if file.ply_damage_forces.is_some() {
-        Some("analysis.ply_damage_forces")
+        Some(("analysis.initial_velocities", "a list".into()))
+    } else if let Some(d) = file.output_interval {
+        Some(("analysis.output_interval", number(d)))
+    } else if let Some(v) = &file.contact_forces {
+        Some(("analysis.contact_forces", word(v)))
+    } else if let Some(v) = &file.contact_mass {
+        Some(("analysis.contact_mass", word(v)))
+    } else if let Some(v) = &file.interface_forces {
+        Some(("analysis.interface_forces", word(v)))
     } else {
-        None
+        file.ply_damage_forces.as_ref().map(|v| ("analysis.ply_damage_forces", word(v)))
     }
 }
 
@@ -66,10 +70,10 @@ pub(super) fn transient(
     warnings: &mut Vec<super::Warning>,
 ) -> Result<Option<TransientSettings>, ModelError> {
     let settings = settings(&file.analysis, &file.steps, parts, arc_length)?;
-    if settings.is_none() && file.solver.step_control.is_some_and(|c| c.time_error.is_some()) {
+    if let Some(e) = file.solver.step_control.and_then(|c| c.time_error).filter(|_| settings.is_none()) {
         return Err(invalid(
             "solver.step_control.time_error",
-            "given",
+            crate::numbers::number(e),
             "only with analysis.type = \"transient\" (it bounds the error of a time step)",
         ));
     }
@@ -101,11 +105,15 @@ fn settings(
     arc_length: bool,
 ) -> Result<Option<TransientSettings>, ModelError> {
     if file.kind != Some(AnalysisType::Transient) {
-        if let Some(i) = steps.iter().position(|s| s.duration.is_some()) {
-            return Err(invalid(format!("steps[{i}].duration"), "given", "only with analysis.type = \"transient\""));
+        if let Some((i, d)) = steps.iter().enumerate().find_map(|(i, s)| s.duration.map(|d| (i, d))) {
+            return Err(invalid(
+                format!("steps[{i}].duration"),
+                crate::numbers::number(d),
+                "only with analysis.type = \"transient\"",
+            ));
         }
         return match transient_key(file) {
-            Some(key) => Err(invalid(key, "given", "only with analysis.type = \"transient\"")),
+            Some((key, value)) => Err(invalid(key, value, "only with analysis.type = \"transient\"")),
             None => Ok(None),
         };
     }

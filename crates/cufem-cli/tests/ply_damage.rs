@@ -235,7 +235,7 @@ fn damage_keys_are_refused_where_the_law_cannot_work() {
             "step_control_without_damage",
             base.replace(&damage_line, "")
                 .replace("max_increments = 5000\n", "max_increments = 5000\nstep_control = { damage = 0.05 }\n"),
-            "solver.step_control.damage = given: expected only in a model that damages",
+            "solver.step_control.damage = 0.05: expected only in a model that damages",
         ),
     ];
     for (name, text, expect) in cases {

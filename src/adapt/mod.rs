@@ -106,6 +106,7 @@ pub fn run(
     progress: &mut dyn Progress,
     report: &mut dyn FnMut(&AdaptCycle, &Model, &Solution),
 ) -> Result<(Model, Solution), AdaptError> {
+    model.check_adaptive()?;
     if model.n_dofs() > settings.max_dof {
         return Err(AdaptError::Budget { key: "adapt.max_dof", max_dof: settings.max_dof, dof: model.n_dofs() });
     }

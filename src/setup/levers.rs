@@ -129,9 +129,15 @@ pub(super) fn combinations(file: &ModelFile) -> Result<(), ModelError> {
         ));
     }
     if file.adapt.is_some() {
-        return Err(invalid("levers", "given with [adapt]", why("adaptive refinement")));
+        return Err(with_adapt("[adapt]"));
     }
     Ok(())
+}
+
+/// The refusal of levers in an adaptive run, asked for by `given`
+/// (`[adapt]`, or the command line's `--adapt`: `Model::check_adaptive`).
+pub(super) fn with_adapt(given: &str) -> ModelError {
+    invalid("levers", format!("given with {given}"), "no [[levers]] with adaptive refinement")
 }
 
 #[cfg(test)]

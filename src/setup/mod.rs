@@ -225,6 +225,13 @@ impl std::fmt::Display for Warning {
 }
 
 impl Model {
+    /// Refuses an adaptive run of this model asked for outside its file
+    /// (the command line's `--adapt`) where the file's `[adapt]` would be
+    /// refused: with `[[levers]]`.
+    pub fn check_adaptive(&self) -> Result<(), ModelError> {
+        if self.levers.is_empty() { Ok(()) } else { Err(levers::with_adapt("--adapt")) }
+    }
+
     /// True if any contact has Coulomb friction (its tangent is unsymmetric).
     pub(crate) fn has_friction(&self) -> bool {
         self.indenters.iter().any(|i| i.friction.is_some()) || self.contacts.iter().any(|c| c.friction.is_some())
@@ -452,6 +459,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         constraints: constraints.iter().map(|c| c.name.as_str()).collect(),
         loads: loads.iter().map(|l| l.name.as_str()).collect(),
         levers: levers.iter().map(|l| l.name.as_str()).collect(),
+        pushing: indenters.iter().map(|i| i.force.is_some()).collect(),
     };
     let mut steps = steps::steps(&file.steps, &item_names, &solver.steps)?;
     let parts = analysis::Parts {

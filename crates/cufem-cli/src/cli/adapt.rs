@@ -69,6 +69,7 @@ impl AdaptArgs {
         if let Some(t) = self.adapt {
             // (an [adapt] table with another analysis is refused with the model)
             settings.tolerance = t;
+            model.check_adaptive().map_err(|e| fail(INPUT, e))?;
         }
         if let Some(n) = self.max_dof {
             settings.max_dof = n;

@@ -130,3 +130,64 @@ fn a_contact_the_time_steps_do_not_resolve_is_warned_about() {
     assert_eq!(resolution(&steps(10)), Vec::<String>::new());
     assert_eq!(resolution(&rod), Vec::<String>::new());
 }
+
+/// A laminate's precrack that holds no node of its interface (in mm, or
+/// past the beam's end) ran as an uncracked beam without a word; a
+/// single-ply laminate with `interfaces = "cohesive"` was accepted with no
+/// interface at all (a new-user review). Both refused by key; the shipped
+/// DCB (crack from 0 to 32.8 mm of a 100 mm beam) reads.
+#[test]
+fn a_precrack_off_the_beam_and_a_lone_cohesive_ply_are_refused() {
+    let dcb = example("dcb.toml");
+    Model::parse(&dcb).unwrap();
+    let crack = "crack = { from = 0.0, to = 0.0328 }";
+    let e = refusal(&with(&dcb, crack, "crack = { from = 0.2, to = 0.3 }"));
+    assert!(
+        e.starts_with(
+            "bodies[0].section.interfaces[0].crack = { from = 0.2, to = 0.3 }: expected an interval along y that \
+             holds nodes of the interface: the body runs from y = 0 to 0.1 m"
+        ),
+        "{e}"
+    );
+    let plies = "  { thickness = 0.00156, material = \"as4_peek\", angle = 0.0, elements = 1 },\n";
+    let one = with(&dcb, &format!("{plies}{plies}"), plies);
+    let one = with(
+        &one,
+        "interfaces = [{ ply = 1, material = \"peek_interface\", crack = { from = 0.0, to = 0.0328 } }]",
+        "interfaces = \"cohesive\", interface_material = \"peek_interface\"",
+    );
+    let e = refusal(&one);
+    assert!(
+        e.starts_with("bodies[0].section.interfaces = \"cohesive\": expected \"perfect\" with a single ply"),
+        "{e}"
+    );
+}
+
+/// `cufem run --adapt` on a model with `[[levers]]` ran its cycles, where
+/// the file's `[adapt]` is refused (a new-user review): the model refuses
+/// both (`Model::check_adaptive`, which the CLI and `adapt::run` call).
+#[test]
+fn an_adaptive_run_with_levers_is_refused() {
+    let mmb = Model::parse(&example("mmb.toml")).unwrap();
+    let e = mmb.check_adaptive().unwrap_err().to_string();
+    assert!(e.starts_with("levers = given with --adapt: expected no [[levers]] with adaptive refinement"), "{e}");
+    Model::parse(&example("dcb.toml")).unwrap().check_adaptive().unwrap();
+}
+
+/// What an eigenvalue analysis cannot take was refused as `indenters =
+/// present` and `indenters.friction = present` (a new-user review): the
+/// entry's index and its value are named.
+#[test]
+fn an_eigenvalue_analysis_names_the_indenter_it_refuses() {
+    let block = example("block_indentation.toml");
+    let elastic =
+        with(&block, "plasticity = { yield_stress = 100e6, hardening = \"perfect\" }\n", "density = 7800.0\n");
+    let buckling = format!("{elastic}\n[analysis]\ntype = \"buckling\"\n");
+    let e = refusal(&buckling);
+    assert!(e.starts_with("indenters[0] = \"punch\": expected none with analysis.type = \"buckling\""), "{e}");
+    let modal = format!("{elastic}\n[analysis]\ntype = \"modal\"\n");
+    let rubbing =
+        with(&modal, "displacement = [0.0, 0.0, -1.0e-3]", "displacement = [0.0, 0.0, -1.0e-3]\nfriction = 0.3");
+    let e = refusal(&rubbing);
+    assert!(e.starts_with("indenters[0].friction = 0.3: expected frictionless contact"), "{e}");
+}

@@ -90,9 +90,17 @@ pub(super) fn imperfection(file: &AnalysisFile, parts: &Parts<'_>) -> Result<Opt
 /// (and so an imperfection from one) can take.
 fn loads_and_supports_only(parts: &Parts<'_>, what: &str) -> Result<(), ModelError> {
     let refuse = |key: String, value: &str, why: String| Err(invalid(key, value, why));
-    if !parts.indenters.is_empty() || !parts.contacts.is_empty() {
-        let key = if parts.indenters.is_empty() { "contacts" } else { "indenters" };
-        return refuse(key.into(), "present", format!("none with {what} (loads and supports only)"));
+    let first = parts
+        .indenters
+        .first()
+        .map(|i| ("indenters", &i.name))
+        .or(parts.contacts.first().map(|c| ("contacts", &c.name)));
+    if let Some((group, name)) = first {
+        return refuse(
+            format!("{group}[0]"),
+            &format!("{name:?}"),
+            format!("none with {what} (loads and supports only)"),
+        );
     }
     if parts.steps > 1 {
         return refuse("steps".into(), &format!("{} steps", parts.steps), format!("one step with {what}"));
@@ -175,13 +183,13 @@ pub(super) fn modal(file: &AnalysisFile, parts: &Parts<'_>) -> Result<Option<Mod
         return Err(invalid("analysis.imperfection", "given", "not with analysis.type = \"modal\""));
     }
     densities_given(parts, "modal")?;
-    let frictional =
-        parts.indenters.iter().any(|i| i.friction.is_some()) || parts.contacts.iter().any(|c| c.friction.is_some());
-    if frictional {
-        let key = if parts.contacts.iter().any(|c| c.friction.is_some()) { "contacts" } else { "indenters" };
+    let frictional = (parts.indenters.iter().map(|i| i.friction).enumerate().map(|(k, f)| ("indenters", k, f)))
+        .chain(parts.contacts.iter().map(|c| c.friction).enumerate().map(|(k, f)| ("contacts", k, f)))
+        .find_map(|(group, k, f)| f.map(|f| (group, k, f.coefficient)));
+    if let Some((group, k, mu)) = frictional {
         return Err(invalid(
-            format!("{key}.friction"),
-            "present",
+            format!("{group}[{k}].friction"),
+            crate::numbers::number(mu),
             "frictionless contact with analysis.type = \"modal\" (the tangent with friction is unsymmetric)",
         ));
     }

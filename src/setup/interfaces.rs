@@ -121,6 +121,21 @@ pub(super) fn interfaces(
                      one side of it out)",
                 ));
             }
+            if let Some([from, to]) = r.crack.filter(|_| !points.iter().any(|p| p.cracked)) {
+                // a precrack in mm, or off the beam's end, ran as an uncracked
+                // beam without a word (a new-user review)
+                let axis = &mesh.bodies[i].axis;
+                let short = crate::numbers::short;
+                return Err(invalid(
+                    format!("{}.crack", r.key),
+                    format!("{{ from = {}, to = {} }}", short(from), short(to)),
+                    format!(
+                        "an interval along y that holds nodes of the interface: the body runs from y = {} to {} m",
+                        short(axis.nodes[0]),
+                        short(*axis.nodes.last().expect("an axis has nodes"))
+                    ),
+                ));
+            }
             out.push(Interface { name: format!("interface{}", r.ply + 1), key: r.key, body: i, law, points });
         }
     }

@@ -117,6 +117,14 @@ pub(super) fn requests(sk: &str, s: &LaminateFile, n: usize) -> Result<Vec<Reque
             Vec::new()
         }
         Some(InterfacesFile::Every(InterfaceKind::Cohesive)) => {
+            if n < 2 {
+                // accepted in silence before (a new-user review)
+                return Err(invalid(
+                    key,
+                    "\"cohesive\"",
+                    "\"perfect\" with a single ply: a laminate of one ply has no interface",
+                ));
+            }
             (0..n - 1).map(|ply| Request { key: key.clone(), ply, material: None, crack: None }).collect()
         }
         Some(InterfacesFile::Listed(list)) => {

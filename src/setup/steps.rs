@@ -135,6 +135,8 @@ pub(crate) struct ItemNames<'a> {
     pub loads: Vec<&'a str>,
     /// Lever names.
     pub levers: Vec<&'a str>,
+    /// Which indenters are force-controlled (their force must push).
+    pub pushing: Vec<bool>,
 }
 
 /// Validates `[[steps]]` against the model's item names; `base` holds the
@@ -206,9 +208,31 @@ pub(super) fn steps(file: &[StepFile], names: &ItemNames, base: &StepSettings) -
             };
             *slot = v;
         }
+        pulled(&key, s, &step, names)?;
         out.push(step);
     }
     Ok(out)
+}
+
+/// A force-controlled indenter's force must push the body
+/// (`setup/indenters.rs`): a negative factor would turn it into a pull,
+/// which a contact cannot carry (the run stalled at the factor's first
+/// increment with a bare "Newton did not converge"; a new-user review).
+fn pulled(key: &str, s: &StepFile, step: &Step, names: &ItemNames<'_>) -> Result<(), ModelError> {
+    let Some(i) = (0..step.indenters.len()).find(|&i| names.pushing[i] && step.indenters[i] < 0.0) else {
+        return Ok(());
+    };
+    let name = names.indenters[i];
+    let own = s.factors.as_ref().is_some_and(|f| f.contains_key(name));
+    let fk = if own { format!("{key}.factors.{name}") } else { format!("{key}.factor") };
+    Err(invalid(
+        fk,
+        step.indenters[i],
+        format!(
+            "a factor of at least 0 for indenter {name:?}: its force pushes the body, which a negative factor \
+             would turn into a pull that a contact cannot carry (0 releases it)"
+        ),
+    ))
 }
 
 fn check_factor(key: &str, v: f64) -> Result<(), ModelError> {
@@ -263,8 +287,13 @@ mod tests {
 
     #[test]
     fn factors_ramp_hold_and_release_piecewise_linearly() {
-        let names =
-            ItemNames { indenters: vec!["punch"], constraints: vec!["root"], loads: vec!["tip"], levers: vec![] };
+        let names = ItemNames {
+            indenters: vec!["punch"],
+            constraints: vec!["root"],
+            loads: vec!["tip"],
+            levers: vec![],
+            pushing: vec![false],
+        };
         let base = StepSettings::default();
         let file = [
             step("load", "increments = 4"),
@@ -297,7 +326,13 @@ mod tests {
     /// pushes another further.
     #[test]
     fn unloading_steps_are_told_from_loading_ones() {
-        let names = ItemNames { indenters: vec!["punch"], constraints: vec![], loads: vec!["tip"], levers: vec![] };
+        let names = ItemNames {
+            indenters: vec!["punch"],
+            constraints: vec![],
+            loads: vec!["tip"],
+            levers: vec![],
+            pushing: vec![false],
+        };
         let base = StepSettings::default();
         let file = [
             step("pull", "factor = -1.0"),
@@ -318,7 +353,13 @@ mod tests {
 
     #[test]
     fn bad_steps_name_the_key() {
-        let names = ItemNames { indenters: vec!["punch"], constraints: vec![], loads: vec![], levers: vec![] };
+        let names = ItemNames {
+            indenters: vec!["punch"],
+            constraints: vec![],
+            loads: vec![],
+            levers: vec![],
+            pushing: vec![false],
+        };
         let base = StepSettings::default();
         let cases = [
             (
@@ -335,5 +376,29 @@ mod tests {
             let e = steps(&file, &names, &base).unwrap_err().to_string();
             assert!(e.starts_with(expect), "{e}");
         }
+    }
+
+    /// A force-controlled indenter reversed by a step's factor stalled the
+    /// run (a new-user review): refused by the key that reverses it; a
+    /// displacement-controlled one may go back, and 0 releases either.
+    #[test]
+    fn a_pushing_indenter_is_not_reversed() {
+        let names = |pushing| ItemNames {
+            indenters: vec!["punch"],
+            constraints: vec![],
+            loads: vec![],
+            levers: vec![],
+            pushing: vec![pushing],
+        };
+        let base = StepSettings::default();
+        let back = [step("load", ""), step("back", "factor = -1.0")];
+        let own = [step("load", ""), step("back", "factors = { punch = -0.5 }")];
+        let release = [step("load", ""), step("off", "factor = 0.0")];
+        for (file, expect) in [(&back, "steps[1].factor = -1: "), (&own, "steps[1].factors.punch = -0.5: ")] {
+            let e = steps(file, &names(true), &base).unwrap_err().to_string();
+            assert!(e.starts_with(expect) && e.contains("at least 0 for indenter \"punch\""), "{e}");
+            steps(file, &names(false), &base).unwrap();
+        }
+        steps(&release, &names(true), &base).unwrap();
     }
 }

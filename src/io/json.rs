@@ -478,7 +478,10 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         error_estimate: estimate_summary(model, solution),
         error_history: super::error_history::rows(model, solution),
         concentrated: crate::analysis::concentrated::find(model, solution),
-        ply_failure: crate::post::failure::summary(&solution.fields(model), solution.lambda),
+        ply_failure: crate::post::failure::summary(
+            &solution.fields(model),
+            (model.transient.is_none() && solution.damage.is_none()).then_some(solution.lambda),
+        ),
         adapt: solution.adapt.as_ref().map(|a| {
             a.cycles
                 .iter()

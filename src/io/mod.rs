@@ -195,7 +195,8 @@ pub fn write_results(model: &Model, solution: &Solution, dir: &Path) -> Result<V
 
 /// `mode_<k>.vtu` for every buckling or vibration mode: the mode shape
 /// (largest component 1, dimensionless) as the `displacement` field of the
-/// mesh, strains those of the shape, stresses those of the static state;
+/// mesh, strains and stresses those of the shape at that scale (where the
+/// mode strains);
 /// the shapes the report's view takes go to `shown`, from the same grid.
 fn write_modes(
     model: &Model,

@@ -44,8 +44,9 @@ pub struct Criterion {
     /// Where the index is largest.
     pub(crate) largest_at: Place,
     /// `λ_end · min R`: the load factor of its first failure under
-    /// proportional loading (∞ if it never fails).
-    pub first_failure_load_factor: f64,
+    /// proportional loading (∞ if it never fails); `None` (null) where the
+    /// loading is not a load factor's ([`summary`]).
+    pub first_failure_load_factor: Option<f64>,
     /// Where its strength ratio is smallest.
     pub(crate) first_failure_at: Place,
 }
@@ -55,8 +56,9 @@ pub struct Criterion {
 pub struct FailureSummary {
     /// Per criterion, in the order of [`CRITERIA`].
     pub criteria: Vec<Criterion>,
-    /// The smallest first-failure load factor of the criteria.
-    pub(crate) first_ply_failure_load_factor: f64,
+    /// The smallest first-failure load factor of the criteria (`None`
+    /// as theirs).
+    pub(crate) first_ply_failure_load_factor: Option<f64>,
     /// The interlaminar criterion (`fi_interlaminar`) over the bonded ply
     /// interfaces; `None` in a model without one.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -139,8 +141,13 @@ fn interface_lines(body: &crate::mesh::Body, materials: &[crate::materials::Mate
 }
 
 /// The failure summary of the fields `view` at load factor `lambda`,
-/// `None` if no material has strengths.
-pub fn summary(view: &FieldView<'_>, lambda: f64) -> Option<FailureSummary> {
+/// `None` if no material has strengths. `lambda` is `None` where the end
+/// state says nothing of a first failure under a growing load: a transient
+/// run (its end may lie after the rebound: the damaging drop weight's plies
+/// had cracked, and `λ_end · min R` said `10.7`; a new-user review) and a
+/// model whose plies damage (their stresses are the softened ones); the
+/// indices are still given, of the end state.
+pub fn summary(view: &FieldView<'_>, lambda: Option<f64>) -> Option<FailureSummary> {
     if view.materials.iter().all(|m| m.strengths.is_none()) {
         return None;
     }
@@ -186,12 +193,12 @@ pub fn summary(view: &FieldView<'_>, lambda: f64) -> Option<FailureSummary> {
             criterion,
             largest_index,
             largest_at,
-            first_failure_load_factor: lambda * ratio,
+            first_failure_load_factor: lambda.map(|l| l * ratio),
             first_failure_at,
         })
     };
     let criteria: Vec<Criterion> = best.into_iter().zip(CRITERIA).filter_map(criterion).collect();
     let interlaminar = criterion((interlaminar, INTERLAMINAR));
-    let first = criteria.iter().map(|c| c.first_failure_load_factor).fold(f64::INFINITY, f64::min);
+    let first = lambda.map(|_| criteria.iter().flat_map(|c| c.first_failure_load_factor).fold(f64::INFINITY, f64::min));
     (!criteria.is_empty()).then_some(FailureSummary { criteria, first_ply_failure_load_factor: first, interlaminar })
 }

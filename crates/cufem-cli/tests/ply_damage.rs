@@ -54,6 +54,12 @@ fn strip_energy_ratio(mesh: &str) -> f64 {
     let d = dissipated(&summary);
     let total: f64 = d.iter().sum();
     let ratio = d[0] / CRACK_ENERGY;
+    // a damaging run's end stresses are the softened ones: no first-failure
+    // load factor from them (one was printed; a new-user review), the end
+    // state's indices kept
+    for c in summary["ply_failure"]["criteria"].as_array().unwrap() {
+        assert!(c["first_failure_load_factor"].is_null() && c["largest_index"].as_f64().unwrap() > 0.0, "{c}");
+    }
     println!("{mesh}: D = {d:?} J, D_FT/(G A) = {ratio:.4}");
     // only fibre tension cracks the ligament: the others under 1 % of D
     assert!(d[1..].iter().all(|&x| x < 0.01 * total), "{mesh}: {d:?}");

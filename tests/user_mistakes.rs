@@ -191,3 +191,31 @@ fn an_eigenvalue_analysis_names_the_indenter_it_refuses() {
     let e = refusal(&rubbing);
     assert!(e.starts_with("indenters[0].friction = 0.3: expected frictionless contact"), "{e}");
 }
+
+/// An elastic block pressed and released ends unloaded, and its relative
+/// estimate divided round-off by round-off ("estimated error 56 %" for a
+/// roller pressed and withdrawn; a new-user review): the console says
+/// that the end state is unloaded and gives no figure for it. Pressed
+/// only, it gives the estimate as before.
+#[test]
+fn an_unloaded_end_state_is_not_given_a_relative_estimate() {
+    use cufem::analysis::{self, RunOptions, Silent};
+    let block = example("block_indentation.toml");
+    let elastic = with(&block, "plasticity = { yield_stress = 100e6, hardening = \"perfect\" }\n", "");
+    let press = "\n[[steps]]\nname = \"press\"\n";
+    let text = |steps: &str| {
+        let model = Model::parse(&format!("{elastic}{steps}")).unwrap();
+        let s = analysis::run(&model, &RunOptions::default(), &mut Silent).unwrap();
+        cufem::io::report::results(&model, &s)
+    };
+    // a line "estimated error 15.08 % …": the end state's figure
+    let figure = |t: &str| {
+        t.lines()
+            .any(|l| l.strip_prefix("estimated error ").is_some_and(|r| r.starts_with(|c: char| c.is_ascii_digit())))
+    };
+    let released = text(&format!("{press}\n[[steps]]\nname = \"release\"\nfactor = 0.0\n"));
+    assert!(released.contains("estimated error of the end state not given: it is unloaded"), "{released}");
+    assert!(!figure(&released), "{released}");
+    let pressed = text(press);
+    assert!(figure(&pressed) && !pressed.contains("unloaded"), "{pressed}");
+}

@@ -219,3 +219,20 @@ fn an_unloaded_end_state_is_not_given_a_relative_estimate() {
     let pressed = text(press);
     assert!(figure(&pressed) && !pressed.contains("unloaded"), "{pressed}");
 }
+
+/// A free–free modal analysis was refused as a static one is, with no word
+/// on why a modal analysis needs supports (a new-user review): the
+/// refusal says that free–free modes are not computed.
+#[test]
+fn a_free_free_modal_analysis_is_told_why_it_is_refused() {
+    let modes = example("cantilever_modes.toml");
+    let clamp =
+        "[[constraints]]\nname = \"root\"\nbody = \"channel\"\nwhere = { y = 0.0 }\nfix = [\"x\", \"y\", \"z\"]\n";
+    let e = refusal(&with(&modes, clamp, ""));
+    assert!(
+        e.starts_with("bodies[0] = \"channel\", free to move as a rigid body")
+            && e.contains("a modal analysis too")
+            && e.contains("free–free modes are not computed"),
+        "{e}"
+    );
+}

@@ -359,11 +359,23 @@ fn restrained(
     mut handler: constraints::ConstraintHandler,
     (indenters, contacts, interfaces): (&[Indenter], &[PairContact], &[crate::interfaces::Interface]),
     kinematics: Kinematics,
-    transient: bool,
+    kind: Option<schema::AnalysisType>,
 ) -> Result<constraints::ConstraintHandler, ModelError> {
+    use schema::AnalysisType::{Modal, Transient};
     handler.couple(mesh, (contacts, interfaces), kinematics.is_nonlinear());
-    if !transient {
-        restraint::check(mesh, &handler, indenters, contacts)?;
+    if kind != Some(Transient) {
+        restraint::check(mesh, &handler, indenters, contacts).map_err(|e| match e {
+            // free–free modes were refused without a word on why (a new-user review)
+            ModelError::Invalid { key, value, allowed } if kind == Some(Modal) => ModelError::Invalid {
+                key,
+                value,
+                allowed: format!(
+                    "{allowed}; a modal analysis too: its modes are those about a static state, which a free body \
+                     does not have (free–free modes are not computed: docs/limitations.md)"
+                ),
+            },
+            e => e,
+        })?;
     }
     Ok(handler)
 }
@@ -433,7 +445,8 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
              takes friction there, with the current normal; docs/contact.md)",
         ));
     }
-    let constraint_handler = restrained(&mesh, handler, (&indenters, &contacts, &interfaces), kinematics, transient)?;
+    let constraint_handler =
+        restrained(&mesh, handler, (&indenters, &contacts, &interfaces), kinematics, file.analysis.kind)?;
     preprocess::idle_loads(&loads, |d| constraint_handler.prescribed(d).is_some(), &mut warnings);
     let levers = levers::levers(&file.levers, &mesh, &constraint_handler, &indenters)?;
     let probes = preprocess::probes(&file.probes, &mesh, &planes)?;

@@ -236,3 +236,24 @@ fn a_free_free_modal_analysis_is_told_why_it_is_refused() {
         "{e}"
     );
 }
+
+/// A lever's force was in summary.json only, though it may be the model's
+/// only load (a new-user review): the console prints it beside the
+/// reactions. The cantilever's tip pushed 1 mm down by a lever: its force
+/// and the clamp's reaction balance.
+#[test]
+fn a_levers_force_is_printed() {
+    use cufem::analysis::{self, RunOptions, Silent};
+    let cant = example("cantilever_timoshenko.toml");
+    let lever = "[[levers]]\nname = \"push\"\nvalue = -1e-3\npoints = [{ body = \"beam\", where = { y = 1.0 }, \
+                 component = \"z\", coefficient = 1.0 }]\n";
+    let text = with(&cant, "total_force = [0.0, 0.0, -1000.0]", "total_force = [0.0, 0.0, 0.0]") + "\n" + lever;
+    let model = Model::parse(&text).unwrap();
+    let s = analysis::run(&model, &RunOptions::default(), &mut Silent).unwrap();
+    let out = cufem::io::report::results(&model, &s);
+    let line = out.lines().find(|l| l.starts_with("lever    push")).unwrap_or_else(|| panic!("{out}"));
+    let force: f64 = line.split("force ").nth(1).unwrap().split(' ').next().unwrap().parse().unwrap();
+    let root = s.reaction("root").unwrap().force[2];
+    assert!(force < 0.0 && (force + root).abs() < 1e-6 * root.abs(), "{line}: root {root}");
+    assert!(line.ends_with("at displacement -1.00000e-3 m"), "{line}");
+}

@@ -400,6 +400,11 @@ fn resultants(s: &mut String, model: &Model, summary: &super::Summary) {
             full(c)
         );
     }
+    // a lever's force may be the model's only load (it was in summary.json
+    // alone; a new-user review)
+    for l in &summary.levers {
+        out!(s, "lever    {:<12} force {:.5e} N at displacement {:.5e} m", l.name, l.force, l.displacement);
+    }
 }
 
 /// Each failure criterion's largest index and first-failure load factor,

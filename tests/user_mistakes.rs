@@ -257,3 +257,21 @@ fn a_levers_force_is_printed() {
     assert!(force < 0.0 && (force + root).abs() < 1e-6 * root.abs(), "{line}: root {root}");
     assert!(line.ends_with("at displacement -1.00000e-3 m"), "{line}");
 }
+
+/// `cufem bench --full` of a modal model accounted 0.1 of its 8.8 ms (a
+/// new-user review): the eigenproblem's time was in no phase. It is now
+/// its own (`Timings::eigen`, summary.json `eigen_s`), zero in a static run;
+/// on the buckling column it is most of the run.
+#[test]
+fn the_eigenproblem_is_timed() {
+    use cufem::analysis::{self, RunOptions, Silent};
+    let run = |name: &str| {
+        let model = Model::parse(&example(name)).unwrap();
+        analysis::run(&model, &RunOptions::default(), &mut Silent).unwrap()
+    };
+    let column = run("column_buckling.toml");
+    let t = column.timings;
+    let phases = t.setup + t.assembly + t.contact + t.solver.factorization_time + t.solver.solve_time;
+    assert!(t.eigen > phases, "eigenproblem {:?} against the other phases {phases:?}", t.eigen);
+    assert_eq!(run("cantilever_timoshenko.toml").timings.eigen, std::time::Duration::ZERO);
+}

@@ -197,7 +197,9 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
         // refresh forces at the last converged state for reactions and contact output
         structure.evaluate()?;
     }
+    let eigen_start = std::time::Instant::now();
     let (buckled, vibration, failure) = stages::eigen(&mut structure, model, &recorder.history, failure)?;
+    let eigen_time = eigen_start.elapsed();
     let mut applied = [0.0; 3];
     for (d, f) in structure.external_loads().iter().enumerate() {
         applied[d % 3] += f;
@@ -210,7 +212,10 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
     let Setup { equations, factor_nnz, memory } = setup;
     let energy = structure.energies();
     let delamination = structure.interfaces().delamination();
-    let (u, elements, stresses, timings) = structure.into_parts();
+    let (u, elements, stresses, mut timings) = structure.into_parts();
+    if model.buckling.is_some() || model.modal.is_some() {
+        timings.eigen = eigen_time;
+    }
     let mut solution = Solution {
         reactions,
         contacts,

@@ -30,6 +30,9 @@ pub struct Timings {
     pub element_tangents: Duration,
     /// Contact search and penalty terms.
     pub contact: Duration,
+    /// A modal or buckling analysis's eigenproblem about the static state
+    /// (its factorizations and solves included; zero otherwise).
+    pub eigen: Duration,
     /// Number of residual/tangent evaluations.
     pub evaluations: usize,
     /// Element tangents (or their corrections to the cached elastic

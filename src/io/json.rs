@@ -87,6 +87,9 @@ pub struct TimingSummary {
     pub(crate) factorization_s: f64,
     /// Triangular solves and preconditioned conjugate gradients.
     pub(crate) solve_s: f64,
+    /// A modal or buckling analysis's eigenproblem, its own
+    /// factorizations and solves included (0 otherwise).
+    pub(crate) eigen_s: f64,
     /// Residual and tangent evaluations.
     pub evaluations: usize,
     /// Numeric factorizations.
@@ -461,6 +464,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
             contact_s: t.contact.as_secs_f64(),
             factorization_s: t.solver.factorization_time.as_secs_f64(),
             solve_s: t.solver.solve_time.as_secs_f64(),
+            eigen_s: t.eigen.as_secs_f64(),
             evaluations: t.evaluations,
             factorizations: t.solver.factorizations,
             reused_factorizations: t.solver.reused,

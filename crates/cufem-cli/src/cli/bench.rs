@@ -26,7 +26,7 @@ pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
     println!("{} — {} DOF, {} run(s), {} thread(s)", model.title, model.n_dofs(), repeat, rayon::current_num_threads());
     if full {
         let mut walls = Vec::new();
-        let mut rows: Vec<[Duration; 6]> = Vec::new();
+        let mut rows: Vec<[Duration; 7]> = Vec::new();
         let mut last = None;
         for _ in 0..repeat {
             let sol = analysis::run(model, &analysis::RunOptions::default(), &mut Silent)?;
@@ -39,6 +39,7 @@ pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
                 t.solver.solve_time,
                 t.stress_pass,
                 t.element_tangents,
+                t.eigen,
             ]);
             last = Some(sol);
         }
@@ -80,6 +81,10 @@ pub fn run(model: &Model, repeat: usize, full: bool) -> Result<()> {
         println!("  numeric factorization      {}   per factor.    {}", ms(col(2)), ms(per_fact(col(2))));
         let per_solve = |d: Duration| d / solves as u32;
         println!("  solves (triangular + PCG)  {}   per solve      {}", ms(col(3)), ms(per_solve(col(3))));
+        if sol.modal.is_some() || sol.buckling.is_some() {
+            // its own factorizations and solves are not in the counts above
+            println!("  eigenproblem (Lanczos)     {}", ms(col(6)));
+        }
         if let Some(peak) = cufem::size::peak_memory() {
             let estimate = sol.memory.total();
             println!(

@@ -412,31 +412,22 @@ fn resultants(s: &mut String, model: &Model, summary: &super::Summary) {
 fn ply_failure(s: &mut String, summary: &super::Summary) {
     let Some(f) = &summary.ply_failure else { return };
     for c in f.criteria.iter().chain(&f.interlaminar) {
-        let Some(factor) = c.first_failure_load_factor else {
-            let w = &c.largest_at;
-            out!(
-                s,
-                "{:<18} largest index {:.4} at the end, in {} at [{:.4e}, {:.4e}, {:.4e}] m (no first-failure load \
-                 factor: the loading of a transient or damaging run is not proportional)",
-                c.criterion,
-                c.largest_index,
-                w.material,
-                w.point[0],
-                w.point[1],
-                w.point[2]
-            );
-            continue;
+        let (when, w) = match c.first_failure_load_factor {
+            Some(factor) => (format!("; first failure at load factor {factor:.4}"), &c.first_failure_at),
+            None => (" at the end,".to_string(), &c.largest_at),
         };
-        let w = &c.first_failure_at;
+        let why = if c.first_failure_load_factor.is_none() {
+            " (no first-failure load factor: the loading of a transient or damaging run is not proportional)"
+        } else {
+            ""
+        };
+        let [x, y, z] = w.point;
         out!(
             s,
-            "{:<18} largest index {:.4}; first failure at load factor {factor:.4} in {} at [{:.4e}, {:.4e}, {:.4e}] m",
+            "{:<18} largest index {:.4}{when} in {} at [{x:.4e}, {y:.4e}, {z:.4e}] m{why}",
             c.criterion,
             c.largest_index,
-            w.material,
-            w.point[0],
-            w.point[1],
-            w.point[2]
+            w.material
         );
     }
 }

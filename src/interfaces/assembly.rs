@@ -57,8 +57,10 @@ pub struct Interfaces<'m> {
 pub struct InterfaceSummary {
     /// The interface's name.
     pub name: String,
-    /// The body's index.
+    /// The body's index (0-based, in the order of `[[bodies]]`).
     pub body: usize,
+    /// The body's name.
+    pub body_name: String,
     /// Its whole area (m²).
     pub area_m2: f64,
     /// Area of the points with d = 1 (m²).
@@ -227,6 +229,7 @@ impl<'m> Interfaces<'m> {
                 let mut s = InterfaceSummary {
                     name: i.name.clone(),
                     body: i.body,
+                    body_name: i.body_name.clone(),
                     area_m2: i.area(),
                     delaminated_m2: 0.0,
                     process_zone_m2: 0.0,

@@ -37,8 +37,10 @@ pub struct Interface {
     pub name: String,
     /// The model-file key that asks for it (errors, the CalculiX refusal).
     pub key: String,
-    /// The body.
+    /// The body's index.
     pub body: usize,
+    /// The body's name (`bodies[i].name`), for summary.json.
+    pub body_name: String,
     /// The traction–separation law.
     pub law: Cohesive,
     /// Its points.

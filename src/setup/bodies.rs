@@ -139,6 +139,10 @@ pub(super) fn body(
     let axis_lines = division_parts(&ak, a.from, a.to, a.elements, a.ratio, a.lines.as_ref(), a.segments.as_ref())?;
     let axis_elements = (axis_lines.len() - 1) as u64;
     let section = Sections { key: &key, beam, axis_elements, budget }.section(&b.section, base)?;
+    if let crate::input::schema::SectionFile::Gmsh(g) = &b.section {
+        let length = axis_lines.last().zip(axis_lines.first()).map_or(0.0, |(end, start)| (end - start).abs());
+        unit_mismatch(&key, g.scale, &section, length, warnings);
+    }
     // symmetry planes cut the body to the side kept; each must be a plane
     // of symmetry of the body as written
     let written = (!planes.is_empty()).then(|| (section.clone(), axis_lines.clone()));
@@ -159,6 +163,30 @@ pub(super) fn body(
         element_offset: 0,
         whole_size: written.as_ref().map(|(section, lines)| super::symmetry::whole_size(section, lines, planes)),
     })
+}
+
+/// A gmsh section drawn in mm and read without `scale = 1e-3` is a
+/// thousand times too large: a 100 mm profile on a 1 m axis became 100 m
+/// across and ran without a word (a new-user review). A section more than
+/// ten times wider than its body is long is no beam: warned, naming the
+/// key that fixes it.
+fn unit_mismatch(key: &str, scale: Option<f64>, section: &CrossSection, length: f64, warnings: &mut Vec<Warning>) {
+    let [x0, x1, z0, z1] = section.bounds();
+    let width = (x1 - x0).max(z1 - z0);
+    if width > 10.0 * length {
+        let short = crate::numbers::short;
+        warnings.push(Warning {
+            key: format!("{key}.section.scale"),
+            message: format!(
+                "{}: the section spans {} m across, {:.0} times the body's length of {} m along y; a mesh drawn in \
+                 mm needs `scale = 1e-3` (the axis is read in m)",
+                scale.map_or("not given (1)".into(), short),
+                short(width),
+                width / length,
+                short(length)
+            ),
+        });
+    }
 }
 
 /// A section must be one region connected through shared element edges: a

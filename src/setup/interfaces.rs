@@ -136,7 +136,15 @@ pub(super) fn interfaces(
                     ),
                 ));
             }
-            out.push(Interface { name: format!("interface{}", r.ply + 1), key: r.key, body: i, law, points });
+            let body_name = mesh.bodies[i].name.clone();
+            out.push(Interface {
+                name: format!("interface{}", r.ply + 1),
+                key: r.key,
+                body: i,
+                body_name,
+                law,
+                points,
+            });
         }
     }
     if let (Some(Control::ArcLength), Some((j, v))) = (model.solver.control, viscous) {

@@ -475,6 +475,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         pushing: indenters.iter().map(|i| i.force.is_some()).collect(),
     };
     let mut steps = steps::steps(&file.steps, &item_names, &solver.steps)?;
+    steps::idle_constraint_factors(&file.steps, &constraints[..n_user], &mut warnings);
     let parts = analysis::Parts {
         mesh: &mesh,
         materials: &materials,

@@ -12,6 +12,8 @@
 
 use std::collections::BTreeMap;
 
+use super::Warning;
+use crate::bc::Constraint;
 use crate::input::schema::StepFile;
 use crate::input::validate::count;
 use crate::input::{ModelError, invalid, ranges};
@@ -233,6 +235,33 @@ fn pulled(key: &str, s: &StepFile, step: &Step, names: &ItemNames<'_>) -> Result
              would turn into a pull that a contact cannot carry (0 releases it)"
         ),
     ))
+}
+
+/// A step's own factor for a constraint that only fixes components at 0
+/// (`fix`) changes nothing: `0 × factor` stays 0, so such a support cannot
+/// be released by a step (a new-user review wrote `factors = { root = 0.0 }`
+/// to let go of a clamp, and it held in silence). Warned by the key; the
+/// step-wide `factor` is not, as it scales every item alike.
+pub(super) fn idle_constraint_factors(file: &[StepFile], constraints: &[Constraint], warnings: &mut Vec<Warning>) {
+    for (k, s) in file.iter().enumerate() {
+        for (name, &v) in s.factors.as_ref().unwrap_or(&BTreeMap::new()) {
+            let fixing = constraints
+                .iter()
+                .find(|c| &c.name == name)
+                .is_some_and(|c| c.values.iter().flatten().all(|&x| x == 0.0));
+            if fixing && v != 1.0 {
+                warnings.push(Warning {
+                    key: format!("steps[{k}].factors.{name}"),
+                    message: format!(
+                        "{} leaves constraint {name:?} as it is: it only fixes components at 0 (`fix`), which a \
+                         factor does not change, so it holds in this step as in every other (a step cannot \
+                         release a support; to move it, give it a non-zero `displacement`)",
+                        crate::numbers::short(v)
+                    ),
+                });
+            }
+        }
+    }
 }
 
 fn check_factor(key: &str, v: f64) -> Result<(), ModelError> {

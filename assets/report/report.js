@@ -59,7 +59,9 @@ function cssColour(c) {
     add(part, "h2", {}, sec.title);
     sec.tables.forEach((t) => {
       add(part, "h3", {}, t.title);
-      const table = add(part, "table", { class: "rows" });
+      // a wide table (a probe's every quantity, cycle by cycle) scrolls
+      // inside the page rather than running past it
+      const table = add(add(part, "div", { class: "scroll" }), "table", { class: "rows" });
       const head = add(table, "tr");
       t.columns.forEach((c) => add(head, "th", {}, c));
       t.rows.forEach((r) => {
@@ -227,15 +229,19 @@ function cssColour(c) {
     const render = () => renderer.render(scene, camera);
     orbit.addEventListener("change", render);
 
-    // a scale that shows a set's largest displacement at 5 % of the body's size
-    const autoScale = (set) => {
+    // a scale that shows a set's largest displacement at 5 % of the body's
+    // size: the run's states are never shrunk (a displacement larger than
+    // that is shown as it is), the mode shapes are (their amplitude is a
+    // normalisation: largest component 1, as large as the body; a new-user review)
+    const autoScale = (set, shrink) => {
       let largest = 0;
       set.forEach((f) => {
         for (let i = 0; i < n; i++) largest = Math.max(largest, Math.hypot(f.u[3 * i], f.u[3 * i + 1], f.u[3 * i + 2]));
       });
-      return largest > 0.05 * size || largest === 0 ? 1 : Number((0.05 * size / largest).toPrecision(2));
+      if (largest === 0 || (largest > 0.05 * size && !shrink)) return 1;
+      return Number((0.05 * size / largest).toPrecision(2));
     };
-    const scales = [autoScale(states), autoScale(modes)];
+    const scales = [autoScale(states, false), autoScale(modes, true)];
     let scale = scales[0];
     scaleInput.value = String(scale);
     let field = names[0];
@@ -303,7 +309,10 @@ function cssColour(c) {
     report.setFrame = (k) => ((slider.value = String(k)), slider.dispatchEvent(new Event("input")));
     report.frames = frames.length;
     report.canvas = renderer.domElement;
-    update();
+    // a modal or buckling run opens on its first mode: the shapes are what
+    // it is run for (its state is often the unloaded structure)
+    if (modeSelect && modes.length > 0) (modeSelect.value = "0"), showMode(0);
+    else update();
   }
 })();
 

@@ -41,7 +41,10 @@ pub use png::Series;
 pub use run::{Finished, RunError, RunInto, Written, run_into, solved_into, write_into};
 pub use section_plot::section_plot;
 pub(crate) use vtu::write_gauss_vtu;
-pub use vtu::{Cells, FieldArray, FieldGrid, GridElement, field_grid, write_contact_vtu, write_point_cloud, write_vtu};
+pub use vtu::{
+    Cells, FieldArray, FieldGrid, GridElement, damage_cells, field_grid, write_contact_vtu, write_point_cloud,
+    write_vtu,
+};
 
 use std::path::{Path, PathBuf};
 

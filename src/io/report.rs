@@ -282,6 +282,7 @@ pub fn results(model: &Model, solution: &Solution) -> String {
         );
     }
     ply_failure(&mut s, &summary);
+    damage(&mut s, &summary);
     if let Some(p) = &summary.path {
         let points: Vec<String> = p.limit_points.iter().map(|(i, l)| format!("increment {i} (λ = {l:.5})")).collect();
         let points = if points.is_empty() { "none".to_string() } else { points.join(", ") };
@@ -428,6 +429,38 @@ fn ply_failure(s: &mut String, summary: &super::Summary) {
             c.criterion,
             c.largest_index,
             w.material
+        );
+    }
+}
+
+/// What broke: the ply damage of each mode and the delaminated area, with
+/// the energy they dissipated (summary.json `damage`, `delamination`). A
+/// strip that had failed printed only its failure indices, as if intact
+/// (a new-user review).
+fn damage(s: &mut String, summary: &super::Summary) {
+    if let Some(d) = &summary.damage {
+        let [largest, dissipated, past_half] =
+            [&d.largest, &d.dissipated_j, &d.damaged_volume_m3].map(crate::damage::PerMode::to_array);
+        out!(s, "ply damage         {:<20} {:>8} {:>14} {:>18}", "mode", "largest", "dissipated [J]", "past ½ [m³]");
+        for (k, mode) in d.modes.iter().enumerate() {
+            out!(
+                s,
+                "                   {mode:<20} {:>8.4} {:>14.5e} {:>18.5e}",
+                largest[k],
+                dissipated[k],
+                past_half[k]
+            );
+        }
+        out!(s, "                   {:<20} {:>8} {:>14.5e}", "all modes", "", d.dissipated_total_j);
+    }
+    if let Some(d) = &summary.delamination {
+        let whole: f64 = d.interfaces.iter().map(|i| i.area_m2).sum();
+        out!(
+            s,
+            "delamination       {:.5e} m² of {:.5e} m² of interface delaminated (d = 1), {:.5e} J dissipated",
+            d.area_m2,
+            whole,
+            d.dissipated_j + d.viscous_j
         );
     }
 }

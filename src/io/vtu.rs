@@ -80,9 +80,9 @@ pub(crate) fn write_grid_vtu(path: &Path, model: &Model, solution: &Solution, g:
     let c = g.cells(model.output.vtu_cells);
     let point_data: Vec<(String, usize, Array)> =
         g.point_data.into_iter().map(|a| (a.name, a.components, Array::F64(a.values))).collect();
-    let damage = solution.damage.as_ref().map(|d| damage_cells(model, solution, d, &c.body, &c.element));
+    let damage = damage_cells(model, solution, &c.body, &c.element);
     let mut cell_data = body_element_data(c.body, c.element);
-    cell_data.extend(damage.into_iter().flatten());
+    cell_data.extend(damage.into_iter().map(|(n, v)| (n, 1, Array::F64(v))));
     if !c.degrees.is_empty() {
         cell_data.push((HIGHER_ORDER_DEGREES.to_string(), 3, Array::I32(c.degrees)));
     }
@@ -99,15 +99,19 @@ pub(crate) fn write_grid_vtu(path: &Path, model: &Model, solution: &Solution, g:
     write_file(path, &grid)
 }
 
-/// The ply damage as cell data `d_ft d_fc d_mt d_mc`: each mode's largest
-/// damage over the Gauss points of the cell's element.
-fn damage_cells(
+/// The ply damage as cell data `d_ft d_fc d_mt d_mc` (none without
+/// `[materials.damage]`): each mode's largest damage over the Gauss points
+/// of the cell's element, for the cells of `cell_body` and `cell_element`
+/// ([`FieldGrid::cells`]; also the Python package's cell data).
+pub fn damage_cells(
     model: &Model,
     solution: &Solution,
-    damage: &crate::damage::Damage,
     cell_body: &[i32],
     cell_element: &[i32],
-) -> Vec<(String, usize, Array)> {
+) -> Vec<(String, Vec<f64>)> {
+    let Some(damage) = solution.damage.as_ref() else {
+        return Vec::new();
+    };
     let mut modes: [Vec<f64>; 4] = Default::default();
     for (&b, &global) in cell_body.iter().zip(cell_element) {
         let b = b as usize;
@@ -118,7 +122,7 @@ fn damage_cells(
             values.push(d);
         }
     }
-    ["d_ft", "d_fc", "d_mt", "d_mc"].iter().zip(modes).map(|(n, v)| (n.to_string(), 1, Array::F64(v))).collect()
+    ["d_ft", "d_fc", "d_mt", "d_mc"].iter().zip(modes).map(|(n, v)| (n.to_string(), v)).collect()
 }
 
 /// The whole 3D field of every body, as [`write_vtu`] writes it.

@@ -90,6 +90,8 @@ try {
       fields: window.cufemReport.fields,
       frames: window.cufemReport.frames,
       modes: window.cufemReport.modes,
+      mode: window.cufemReport.mode,
+      scale: window.cufemReport.scale,
     }));
 
     // a verify run's overlays: one chart per line_<name>_<q>.csv of its verify
@@ -175,6 +177,14 @@ try {
     const damaged = fs.readFileSync(path.join(dir, "result.vtu"), "utf8").includes('Name="d_ft"');
     check(r.fields.includes("d_ft") === damaged, `d_ft ${damaged ? "" : "not "}in result.vtu and the field list`);
     if (r.modes > 0) {
+      // opened on mode 1, drawn with its largest displacement at a twentieth
+      // of the body's size (a shape's amplitude is its normalisation: at
+      // scale 1 it was as large as the body)
+      check(r.mode === 0, `the page opens on mode ${r.mode + 1}, not on mode 1`);
+      check(r.scale > 0 && r.scale < 1, `mode 1 drawn at scale ${r.scale}`);
+      await page.evaluate(() => window.cufemReport.setMode(-1));
+      const state = await snap();
+      check(state.changed > 0.01 * first.inked, `the run's state changed ${state.changed} pixels from mode 1`);
       await page.evaluate(() => window.cufemReport.setMode(0));
       const mode1 = await snap();
       const label = await page.textContent("#frame-label");

@@ -136,6 +136,13 @@ fn dcb_curve_follows_corrected_beam_theory() {
     assert!(error < 0.03, "curve error {error}");
     // the crack: CBT's at the last opening, a + χh = K/P
     let d = &summary["delamination"];
+    // each interface names its body (its index was all a new user saw)
+    assert_eq!(d["interfaces"][0]["body_name"], "dcb");
+    assert_eq!(d["interfaces"][0]["body"], 0);
+    // and the run's table (console, report.html) says how much let go
+    let page = std::fs::read_to_string(out.join("report.html")).unwrap();
+    let area = format!("delamination       {:.5e} m² of", d["area_m2"].as_f64().unwrap());
+    assert!(page.contains(&area), "report.html has no {area:?}");
     let a = d["area_m2"].as_f64().unwrap() / 0.0254;
     let exact = dcb.branch_crack_closed(last.0);
     let dissipated = d["dissipated_j"].as_f64().unwrap();

@@ -280,3 +280,37 @@ fn the_damage_increment_steers_the_load_steps() {
     let (coarse, fine) = (run(0.02), run(0.01));
     assert!(fine / coarse > 1.3, "{coarse} → {fine} increments");
 }
+
+/// A strip that had broken printed its failure indices only, as if intact
+/// (a new-user review): the run's table (console and report.html) names
+/// each mode's largest damage, the energy it dissipated and the volume past
+/// half damage, as summary.json has them.
+#[test]
+fn the_runs_table_says_what_broke() {
+    let dir = common::scratch_dir("ply_damage", "table");
+    let model = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join("examples/notched_strip_coarse.toml");
+    let out = dir.join("out");
+    let run = common::cufem()
+        .args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap(), "--quiet"])
+        .output()
+        .unwrap();
+    assert!(run.status.success());
+    let stdout = String::from_utf8_lossy(&run.stdout);
+    let summary: Value = serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    let line = stdout.lines().find(|l| l.trim_start().starts_with("fibre_tension")).expect("a fibre-tension row");
+    let cells: Vec<f64> = line.split_whitespace().skip(1).map(|v| v.parse().unwrap()).collect();
+    let d = &summary["damage"];
+    let expected =
+        [&d["largest"], &d["dissipated_j"], &d["damaged_volume_m3"]].map(|v| v["fibre_tension"].as_f64().unwrap());
+    println!("{line}");
+    // the strip breaks: its fibres fail (d → 1) and dissipate G_FT × the crack
+    assert!(expected[0] > 0.99 && expected[1] > 0.1, "{expected:?}");
+    for (got, want) in cells.iter().zip(expected) {
+        assert!((got / want - 1.0).abs() < 1e-3, "{line}: against summary.json's {expected:?}");
+    }
+    let all = stdout.lines().find(|l| l.trim_start().starts_with("all modes")).expect("the total");
+    let total: f64 = all.split_whitespace().last().unwrap().parse().unwrap();
+    assert!((total / d["dissipated_total_j"].as_f64().unwrap() - 1.0).abs() < 1e-4, "{all}");
+    let page = std::fs::read_to_string(out.join("report.html")).unwrap();
+    assert!(page.contains("ply damage") && page.contains("all modes"), "the report's table");
+}

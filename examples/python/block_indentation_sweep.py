@@ -33,11 +33,13 @@ def main():
     out = Path(args.out)
     out.mkdir(parents=True, exist_ok=True)
 
-    base = cufem.Model.from_file(HERE.parent / "block_indentation.toml").to_dict()
+    model = cufem.Model.from_file(HERE.parent / "block_indentation.toml")
+    base = model.to_dict()
     rows = []
     for depth in DEPTHS_MM:
         d = set_path(base, "indenters.0.displacement.2", -depth * 1e-3)
-        results = cufem.Model.from_dict(d).run(quiet=True)
+        # base=: relative paths in the model (a gmsh section) start at its folder, not the current one
+        results = cufem.Model.from_dict(d, base=model.base).run(quiet=True)
         s = results.summary
         force = -next(c for c in s["contact"] if c["name"] == "punch")["force"][2]
         peeq = {p["name"]: p["peeq"] for p in s["probes"]}

@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import copy
 import os
+import warnings
 from typing import Any, Optional
 
 from . import _native
@@ -83,7 +84,12 @@ class Model:
         quiet: print nothing but the warnings (also in
         ``summary["warnings"]``). ``cufem run --quiet`` still prints the
         final table; ``quiet=True`` does not, so that a loop of runs stays
-        silent.
+        silent, but a run that ends otherwise than converged issues a
+        Python ``UserWarning`` saying how and where its files went.
+
+        A model's ``[adapt]`` table is not run here: the model's own mesh
+        is solved (a ``UserWarning`` says so); ``cufem run`` runs its
+        adaptive cycles.
 
         The GIL is released during the solve. Ctrl-C (SIGINT) stops the
         analysis at the next safe point: the results of the last converged
@@ -98,9 +104,26 @@ class Model:
         else all cores).
         """
         out = os.fspath(out) if out is not None else None
+        if isinstance(threads, int) and threads < 1:
+            # as the native check words it for 0 (a negative count raised a bare OverflowError)
+            raise ValueError(f"threads = {threads}: expected an integer from 1 to 1024")
+        if "adapt" in _native.toml_to_object(self._text):
+            # the same file gave other results here than from the CLI, without a word (a new-user review)
+            warnings.warn(
+                "[adapt]: the Python package solves the model's own mesh, without the adaptive cycles; "
+                "`cufem run` runs them (docs/python.md)",
+                UserWarning,
+                stacklevel=2,
+            )
         native = self._native.run(out, force, threads, quiet)
         # a run that stopped early beside a converged set writes to out.partial
-        return Results(native, native.written_to or out)
+        results = Results(native, native.written_to or out)
+        if quiet and results.status != "converged":
+            # quiet prints nothing: the stop would pass unseen
+            where = f"; its files are in {results.out}" if out is not None and results.out != out else ""
+            warnings.warn(f"the run ended {results.status} at load factor {results.summary['load_factor']:.4g}{where}",
+                          UserWarning, stacklevel=2)
+        return results
 
     def __repr__(self) -> str:
         c = self._native.check()

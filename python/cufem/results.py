@@ -68,7 +68,10 @@ class Results:
     def probe(self, name: str) -> Dict[str, float]:
         """Every quantity at probe `name`: ``x, y, z`` (the point), ``u_x`` …
         ``u_z``, ``s_xx`` … ``s_yz``, ``von_mises``, ``peeq``, ``e_xx`` …
-        (the values of summary.json, strains included)."""
+        and, in a laminate, the failure indices (summary.json's probes hold
+        the displacement, stress, von Mises and peeq; the strains and
+        indices are the same evaluation's, given only here and by
+        :meth:`probes`)."""
         return dict(self._native.probe(name))
 
     def line(self, name: str):
@@ -94,10 +97,11 @@ class Results:
 
     def probes(self):
         """Every probe at the end, one row per probe (in the model's order),
-        as summary.json's ``probes``: ``probe`` (its name), the point ``x,
-        y, z`` (m), ``u_x`` … (m), ``s_xx`` … ``von_mises`` (Pa), ``peeq``,
-        ``e_xx`` … and the failure indices of a laminate; a pandas
-        DataFrame (:meth:`probe` gives one row as a dict)."""
+        ``probe`` (its name), the point ``x, y, z`` (m), ``u_x`` … (m),
+        ``s_xx`` … ``von_mises`` (Pa), ``peeq`` (as summary.json's
+        ``probes``), then ``e_xx`` … and the failure indices of a laminate
+        (not in summary.json); a pandas DataFrame (:meth:`probe` gives one
+        row as a dict)."""
         return _table(self._native.probes())
 
     def contact_points(self, name: str):
@@ -145,16 +149,20 @@ class Results:
 
     def modes(self):
         """The vibration modes of a modal analysis, as ``modes.csv`` has
-        them: ``mode`` (from 1), ``frequency_hz`` and the effective masses
-        ``effective_mass_x``, ``_y``, ``_z`` (kg), a pandas DataFrame;
-        KeyError without a modal analysis."""
+        them: ``mode`` (from 1), ``frequency_hz``, the effective masses
+        ``effective_mass_x``, ``_y``, ``_z`` (kg), the estimated relative
+        error of the frequency ``frequency_error`` and of the mode shape
+        in the energy norm ``mode_error``; a pandas DataFrame, KeyError
+        without a modal analysis."""
         return _table(self._native.modes(False))
 
     def buckling(self):
         """The buckling modes, as ``buckling.csv`` has them: ``mode``,
-        ``load_factor``, the critical load ``critical_load_*`` (N) and, cut
-        by symmetry planes, the full structure's ``full_critical_load_*``;
-        a pandas DataFrame, KeyError without a buckling analysis."""
+        ``load_factor``, the critical load ``critical_load_*`` (N), cut by
+        symmetry planes the full structure's ``full_critical_load_*``, then
+        the estimated relative error of the factor ``factor_error`` and of
+        the mode shape ``mode_error``; a pandas DataFrame, KeyError without
+        a buckling analysis."""
         return _table(self._native.modes(True))
 
     def plot_table(self, stem: str, columns=None, ax=None):
@@ -222,12 +230,29 @@ class Results:
         """The point fields of ``result.vtu``."""
         return list(self._vtu_data()["point_data"])
 
+    def cell_field(self, name: str) -> np.ndarray:
+        """Cell field `name` of ``result.vtu``, one value per linear
+        hexahedron of :meth:`to_meshio`: ``body`` and ``element`` (their
+        indices) and, in a model with ply damage, ``d_ft``, ``d_fc``,
+        ``d_mt``, ``d_mc`` (each mode's largest damage over the element's
+        Gauss points, as ``result.vtu`` has them)."""
+        data = self._vtu_data()["cell_data"]
+        if name not in data:
+            raise KeyError(f"cell field {name!r}: expected one of {list(data)}")
+        return data[name]
+
+    @property
+    def cell_field_names(self):
+        """The cell fields of ``result.vtu`` (:meth:`cell_field`)."""
+        return list(self._vtu_data()["cell_data"])
+
     def to_meshio(self):
         """The fields of ``result.vtu`` as a ``meshio.Mesh``: the linear
         hexahedra of ``output.vtu_cells = "linear"`` (meshio reads the
         Lagrange cells of ``result.vtu`` but knows no Lagrange shape), the
-        point data and the ``body``/``element`` cell data, each (n,
-        components) like ``meshio.read`` gives them. Needs meshio (the
+        point data and the cell data (``body``, ``element`` and the ply
+        damage ``d_*`` of :meth:`cell_field`), each (n, components) like
+        ``meshio.read`` gives them. Needs meshio (the
         ``meshio`` extra)."""
         meshio = require("meshio", "Results.to_meshio()")
 

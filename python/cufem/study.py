@@ -8,12 +8,14 @@
 A variant is a dict of dotted key paths into the model dict
 (``"indenters.0.displacement.2"``: list indices are numbers) and values.
 ``variants`` is a list of such dicts, or one dict of value lists: their
-product grid (:func:`grid`). Each variant is built with
+product grid (:func:`grid`; a single value that is not a list is one
+value). Each variant is built with
 :meth:`cufem.Model.from_dict` (the CLI's validation) and solved; the result
 is a pandas DataFrame with a row per variant: the variant's values, an
 ``error`` column (None, or the message of the variant that failed: an
-invalid model, a missing key) and the requested outputs (NaN where it
-failed). A variant that does not converge is not an error: its ``status``
+invalid model, a missing key, an output the run does not have) and the
+requested outputs (NaN where it failed). The outputs' forms and quantities
+are checked before anything is solved. A variant that does not converge is not an error: its ``status``
 says so and its values are those of the last converged increment.
 
 Outputs are read from the summary (summary.json):
@@ -31,6 +33,7 @@ from __future__ import annotations
 import itertools
 import math
 import os
+import warnings
 from typing import Any, Dict, Iterable, List, Optional, Sequence, Union
 
 from . import _native
@@ -47,9 +50,41 @@ DEFAULT_OUTPUTS = ("status", "load_factor", "max_peeq")
 
 def grid(variants: Dict[str, Sequence[Any]]) -> List[Dict[str, Any]]:
     """The product grid of value lists: ``{"a": [1, 2], "b": [3, 4]}`` →
-    four variants, the last key varying fastest."""
+    four variants, the last key varying fastest. A value that is not a list
+    or tuple (a number, a string, a table) is one value: ``{"a": "L4"}`` is
+    one variant, not ``"L"`` and ``"4"``; a list-valued key (a vector) is
+    given as a list of lists."""
     keys = list(variants)
-    return [dict(zip(keys, values)) for values in itertools.product(*(list(variants[k]) for k in keys))]
+
+    def values(k):
+        v = variants[k]
+        if isinstance(v, (list, tuple)):
+            return list(v)
+        if hasattr(v, "tolist") and getattr(v, "ndim", 0) > 0:  # a numpy array of values
+            return v.tolist()
+        return [v]
+
+    return [dict(zip(keys, combination)) for combination in itertools.product(*(values(k) for k in keys))]
+
+
+def check_output(spec: str) -> None:
+    """Refuses an output `spec` whose form or quantity is not one of the
+    module docs', before anything is solved (a typo there cost a whole
+    study, every row then failed; a new-user review). Names of probes,
+    constraints and contacts are checked against each run's summary."""
+    parts = spec.split(".") if isinstance(spec, str) else []
+    if parts and parts[0] in ("probe", "reaction", "contact") and len(parts) == 3:
+        kind, _, what = parts
+        allowed = sorted(_QUANTITIES) if kind == "probe" else list(_FORCE) + (["max_penetration"] if kind == "contact" else [])
+        if what not in allowed:
+            raise KeyError(f"output {spec!r}: expected a {kind} quantity of {allowed}")
+        return
+    if len(parts) == 1 and parts[0]:
+        return  # a scalar of the summary: known only from a run's summary
+    raise KeyError(
+        f"output {spec!r}: expected probe.<name>.<quantity>, reaction.<name>.f_x|f_y|f_z, "
+        "contact.<name>.f_x|f_y|f_z|max_penetration or a scalar of the summary (status, load_factor, max_peeq, …)"
+    )
 
 
 def output_value(summary: dict, spec: str) -> Any:
@@ -91,12 +126,22 @@ def run_variant(model: dict, base: str, variant: Dict[str, Any], outputs: Sequen
         d = model
         for path, value in variant.items():
             d = set_path(d, path, value)
-        results = Model.from_dict(d, base=base).run(threads=threads, quiet=True)
-        summary = results.summary
-        for spec in outputs:
-            row[spec] = output_value(summary, spec)
+        with warnings.catch_warnings():
+            # a stop is the row's status; [adapt] is warned about once, by run()
+            warnings.simplefilter("ignore", UserWarning)
+            results = Model.from_dict(d, base=base).run(threads=threads, quiet=True)
     except Exception as e:  # a failed variant is a row, not a crashed study
         row["error"] = _message(e)
+        return row
+    # each output on its own: a name one run lacks blanks that output only
+    failed = []
+    for spec in outputs:
+        try:
+            row[spec] = output_value(results.summary, spec)
+        except Exception as e:
+            failed.append(_message(e))
+    if failed:
+        row["error"] = "; ".join(failed)
     return row
 
 
@@ -146,7 +191,11 @@ def run(
 
     base_dict, base = _model_dict(model)
     variants = grid(variants) if isinstance(variants, dict) else [dict(v) for v in variants]
-    outputs = list(outputs)
+    outputs = [outputs] if isinstance(outputs, str) else list(outputs)
+    for spec in outputs:
+        check_output(spec)
+    if "adapt" in base_dict:
+        warnings.warn("[adapt]: each variant solves the model's own mesh, without the adaptive cycles", UserWarning, stacklevel=2)
     tasks = [(base_dict, base, v, outputs, threads) for v in variants]
     if client is not None:
         futures = [client.submit(run_variant, *t, pure=False) for t in tasks]
@@ -184,6 +233,11 @@ def report(df, path: Union[str, os.PathLike], title: str = "cufem parameter stud
     def numeric(column) -> bool:
         return pd.api.types.is_numeric_dtype(df[column]) and not pd.api.types.is_bool_dtype(df[column])
 
+    # a vector-valued parameter (``loads.0.total_force``) groups by its text: lists are not hashable
+    df = df.copy()
+    for c in df.columns:
+        if df[c].map(lambda v: isinstance(v, (list, dict))).any():
+            df[c] = df[c].map(repr)
     varied = list(df.columns[: list(df.columns).index("error")])
     outputs = [c for c in df.columns[list(df.columns).index("error") + 1 :] if numeric(c)]
     parameters = [p for p in varied if numeric(p) and df[p].nunique() >= 2]

@@ -139,8 +139,10 @@ fn write_warnings<'a>(py: Python<'_>, warnings: impl Iterator<Item = &'a cufem::
     Ok(())
 }
 
+/// An output folder's error in the Python arguments' words (the library
+/// words it for the CLI: `--out`, `--force`).
 fn output_error(e: impl std::fmt::Display) -> PyErr {
-    PyOSError::new_err(e.to_string())
+    PyOSError::new_err(e.to_string().replacen("--out ", "out = ", 1).replace("add --force", "pass force=True"))
 }
 
 /// Writes every result file into `dir` as `cufem run --out dir [--force]` does.
@@ -439,7 +441,7 @@ impl NativeResults {
     /// The 3D field of `result.vtu` as numpy arrays, computed here rather
     /// than read back from a file: `points` (n, 3), `connectivity` (cells,
     /// 8, the linear VTK hexahedra of `output.vtu_cells = "linear"`), `point_data` (name → (n,) or (n, components)) and
-    /// `cell_data` (`body`, `element`: (cells,)).
+    /// `cell_data` (`body`, `element` and, with ply damage, `d_ft d_fc d_mt d_mc`: (cells,)).
     fn fields<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let (model, solution) = (self.model.clone(), self.solution.clone());
         let g = py.allow_threads(|| cufem::io::field_grid(&model, &solution));
@@ -461,8 +463,12 @@ impl NativeResults {
         }
         d.set_item("point_data", point_data)?;
         let cell_data = PyDict::new(py);
+        let damage = cufem::io::damage_cells(&model, &solution, &c.body, &c.element);
         cell_data.set_item("body", c.body.into_pyarray(py))?;
         cell_data.set_item("element", c.element.into_pyarray(py))?;
+        for (name, values) in damage {
+            cell_data.set_item(name, values.into_pyarray(py))?;
+        }
         d.set_item("cell_data", cell_data)?;
         Ok(d)
     }
@@ -472,8 +478,8 @@ impl NativeResults {
     #[pyo3(signature = (dir, force=false))]
     fn write(&self, py: Python<'_>, dir: PathBuf, force: bool) -> PyResult<Vec<String>> {
         let (model, solution) = (self.model.clone(), self.solution.clone());
-        py.allow_threads(|| write_folder(&model, &solution, &dir, force).map_err(|e| e.to_string()))
-            .map_err(PyOSError::new_err)
+        // the error as it is (its text again inside an OSError read "OSError: OSError: …")
+        py.allow_threads(|| write_folder(&model, &solution, &dir, force))
     }
 }
 

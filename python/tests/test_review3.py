@@ -1,0 +1,125 @@
+"""Findings of a new-user review of the package (each test fails without its
+fix): a study's variants and outputs, warnings that a quiet run and an
+adaptive model owe the user, errors in the package's own words, and the ply
+damage as cell data."""
+
+import math
+import time
+import warnings
+
+import pytest
+
+import cufem
+from cufem import study
+from conftest import EXAMPLES
+
+TIMOSHENKO = EXAMPLES / "cantilever_timoshenko.toml"
+
+# an elastic–perfectly-plastic cantilever under three times its collapse
+# load: Newton fails in the first increments (the review's model)
+OVERLOAD = """
+title = "EPP cantilever, tip force above the limit load"
+[solver]
+increments = 5
+[[materials]]
+name = "steel"
+young_modulus = 200e9
+poisson_ratio = 0.3
+plasticity = { yield_stress = 250e6, hardening = "perfect" }
+[[bodies]]
+name = "beam"
+material = "steel"
+section = { shape = "rectangle", element = "L9", x = { from = 0.0, to = 0.02, elements = 1 }, z = { from = 0.0, to = 0.02, elements = 2 } }
+axis = { element = "B4", from = 0.0, to = 0.8, elements = 8 }
+[[constraints]]
+name = "root"
+body = "beam"
+where = { y = 0.0 }
+fix = ["x", "y", "z"]
+[[loads]]
+name = "tip"
+body = "beam"
+where = { y = 0.8 }
+total_force = [0.0, 0.0, -3000.0]
+"""
+
+
+def test_a_single_value_is_one_variant():
+    # was split into the characters "L" and "4", and a float raised a bare TypeError
+    assert study.grid({"bodies.0.section.element": "L4"}) == [{"bodies.0.section.element": "L4"}]
+    assert study.grid({"materials.0.young_modulus": 70e9, "a": [1, 2]}) == [
+        {"materials.0.young_modulus": 70e9, "a": 1},
+        {"materials.0.young_modulus": 70e9, "a": 2},
+    ]
+
+
+def test_a_bad_output_is_refused_before_anything_is_solved():
+    started = time.perf_counter()
+    with pytest.raises(KeyError, match="probe.tip.e_xx.*expected a probe quantity"):
+        study.run(TIMOSHENKO, {"materials.0.young_modulus": [70e9, 80e9]}, ["probe.tip.u_z", "probe.tip.e_xx"], max_workers=0)
+    with pytest.raises(KeyError, match="reaction.root.m_x"):
+        study.run(TIMOSHENKO, [{}], ["reaction.root.m_x"], max_workers=0)
+    assert time.perf_counter() - started < 5.0, "the variants were solved first"
+
+
+def test_an_output_a_run_lacks_blanks_that_output_only():
+    df = study.run(TIMOSHENKO, [{}], ["probe.tip.u_z", "probe.nowhere.u_z", "reaction.root.f_z"], max_workers=0)
+    row = df.iloc[0]
+    assert "no probe 'nowhere'" in row["error"]
+    assert math.isnan(row["probe.nowhere.u_z"])
+    # the converged run's other outputs are kept (were NaN after the bad one)
+    assert row["probe.tip.u_z"] < 0.0 and abs(row["reaction.root.f_z"]) > 0.0
+
+
+def test_the_report_takes_a_vector_valued_parameter(tmp_path):
+    d = cufem.Model.from_file(TIMOSHENKO).to_dict()
+    force = d["loads"][0]["total_force"]
+    twice = [2.0 * f for f in force]
+    df = study.run(TIMOSHENKO, {"materials.0.young_modulus": [70e9, 80e9], "loads.0.total_force": [force, twice]},
+                   ["probe.tip.u_z"], max_workers=0)
+    assert df["error"].isna().all()
+    page = open(study.report(df, tmp_path / "study.html"), encoding="utf-8").read()
+    assert page.count("<figure") == 1 and "total_force" in page
+
+
+def test_a_quiet_run_that_stops_says_so(tmp_path):
+    model = cufem.Model.from_toml(OVERLOAD)
+    with pytest.warns(UserWarning, match="the run ended not_converged"):
+        r = model.run(quiet=True, threads=1)
+    assert r.status == "not_converged"
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        assert cufem.Model.from_file(TIMOSHENKO).run(quiet=True, threads=1).status == "converged"
+
+
+def test_an_adaptive_model_is_told_that_python_solves_its_own_mesh():
+    text = open(TIMOSHENKO, encoding="utf-8").read() + "\n[adapt]\ntolerance = 0.05\n"
+    with pytest.warns(UserWarning, match=r"\[adapt\]: the Python package solves the model's own mesh"):
+        cufem.Model.from_toml(text).run(quiet=True, threads=1)
+
+
+def test_errors_speak_the_packages_words(tmp_path):
+    model = cufem.Model.from_file(TIMOSHENKO)
+    with pytest.raises(ValueError, match="threads = -1: expected an integer from 1 to 1024"):
+        model.run(threads=-1)
+    foreign = tmp_path / "foreign"
+    foreign.mkdir()
+    (foreign / "notes.txt").write_text("mine")
+    r = model.run(quiet=True, threads=1)
+    with pytest.raises(OSError) as e:
+        r.write(foreign)
+    text = str(e.value)
+    assert text.startswith("out = ") and "pass force=True" in text and "--" not in text, text
+    assert "OSError" not in text, text
+
+
+def test_the_ply_damage_is_cell_data(memory_runs):
+    r = memory_runs("notched_strip_coarse")
+    names = r.cell_field_names
+    assert names[:2] == ["body", "element"] and set(names[2:]) == {"d_ft", "d_fc", "d_mt", "d_mc"}, names
+    # the strip breaks: its fibres fail in tension (summary.json's damage)
+    assert r.cell_field("d_ft").max() == pytest.approx(r.summary["damage"]["largest"]["fibre_tension"], abs=1e-12)
+    mesh = r.to_meshio()
+    assert "d_ft" in mesh.cell_data and len(mesh.cell_data["d_ft"][0]) == len(r.cell_field("body"))
+    with pytest.raises(KeyError, match="cell field 'd_xx'"):
+        r.cell_field("d_xx")

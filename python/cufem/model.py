@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import copy
 import os
+import re
 import warnings
 from typing import Any, Optional
 
@@ -48,8 +49,18 @@ class Model:
         """A model from nested dicts and lists with the model file's keys
         (``{"materials": [{"name": "steel", ...}], "bodies": [...]}``):
         written as TOML text and parsed like a file. numpy numbers and arrays
-        are accepted; ``None`` is refused (TOML has no null)."""
-        return cls.from_toml(_native.object_to_toml(d), base, max_memory)
+        are accepted; ``None`` is refused (TOML has no null). An error of
+        the text is named by the dict's dotted key path
+        (``materials.0.youngs_modulus: unknown field …``), not by a line of
+        the generated text."""
+        text = _native.object_to_toml(d)
+        try:
+            return cls.from_toml(text, base, max_memory)
+        except _native.ModelError as e:
+            message = _dict_error(str(e), text, d)
+            if message is None:
+                raise
+        raise _native.ModelError(message)
 
     def to_dict(self) -> dict:
         """The model file's keys as nested dicts and lists (a deep copy:
@@ -128,6 +139,77 @@ class Model:
     def __repr__(self) -> str:
         c = self._native.check()
         return f"<cufem.Model {self.path or c['title']!r}: {len(c['bodies'])} bodies, {c['dof']} DOF>"
+
+
+def _dict_error(message: str, text: str, d: Any) -> Optional[str]:
+    """A parse error of the TOML text written from a dict ("TOML parse error
+    at line 61, column 1" and the line with a caret under it), as the dict's
+    dotted key path and the reason; None for another error (a validation
+    error already names its key)."""
+    m = re.search(r"TOML parse error at line (\d+), column \d+", message)
+    if m is None:
+        return None
+    lines = text.splitlines()
+    at = int(m.group(1))
+    arrays: dict = {}
+
+    def resolve(parts):
+        # a header's path with the index of every array of tables it passes
+        path = []
+        for p in parts:
+            path.append(p)
+            key = ".".join(path)
+            if key in arrays:
+                path.append(str(arrays[key]))
+        return path
+
+    table: list = []
+    # through the error's own line: an error in a table's keys points at its header
+    for line in lines[:at]:
+        stripped = line.strip()
+        if stripped.startswith("[["):
+            parts = [p.strip().strip('"') for p in stripped[2:-2].split(".")]
+            parent = resolve(parts[:-1])
+            key = ".".join(parent + [parts[-1]])
+            arrays[key] = arrays.get(key, -1) + 1
+            table = parent + [parts[-1], str(arrays[key])]
+        elif stripped.startswith("["):
+            table = resolve([p.strip().strip('"') for p in stripped[1:-1].split(".")])
+    line = lines[at - 1] if 0 < at <= len(lines) else ""
+    key = line.split("=", 1)[0].strip().strip('"') if "=" in line and not line.lstrip().startswith("[") else ""
+    body = message.splitlines()
+    caret = max((i for i, l in enumerate(body) if l.lstrip(" |").startswith("^")), default=len(body) - 1)
+    reason = " ".join(l.strip() for l in body[caret + 1 :]) or body[-1]
+    unknown = re.match(r"unknown field `([^`]+)`", reason)
+    if not key and unknown:
+        # the parser points at the header of the table it was reading (a
+        # section's, for a key of a segment inside it): the key's one place
+        # under that table in the dict, if it has one
+        places = list(_find_key(_at(d, table), unknown.group(1), table))
+        table, key = (places[0], "") if len(places) == 1 else (table, unknown.group(1))
+    path = ".".join(table + ([key] if key else [])) or "(the model)"
+    return f"{path}: {reason}"
+
+
+def _at(d: Any, path: list) -> Any:
+    for k in path:
+        try:
+            d = d[int(k)] if isinstance(d, list) else d[k]
+        except (KeyError, IndexError, ValueError, TypeError):
+            return None
+    return d
+
+
+def _find_key(node: Any, key: str, path: list):
+    """Every path under `node` (at `path`) whose last key is `key`."""
+    if isinstance(node, dict):
+        for k, v in node.items():
+            if k == key:
+                yield path + [k]
+            yield from _find_key(v, key, path + [k])
+    elif isinstance(node, list):
+        for i, v in enumerate(node):
+            yield from _find_key(v, key, path + [str(i)])
 
 
 def set_path(d: dict, path: str, value: Any) -> dict:

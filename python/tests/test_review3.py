@@ -123,3 +123,18 @@ def test_the_ply_damage_is_cell_data(memory_runs):
     assert "d_ft" in mesh.cell_data and len(mesh.cell_data["d_ft"][0]) == len(r.cell_field("body"))
     with pytest.raises(KeyError, match="cell field 'd_xx'"):
         r.cell_field("d_xx")
+
+
+def test_a_dict_models_error_names_its_key_path():
+    d = cufem.Model.from_file(EXAMPLES / "block_indentation_unload.toml").to_dict()
+    cases = [
+        ("materials.0.youngs_modulus", 1e9, "materials.0.youngs_modulus: unknown field `youngs_modulus`"),
+        ("materials.0.plasticity.yield_strength", 1e8, "materials.0.plasticity.yield_strength: unknown field"),
+        ("bodies.0.section.x.segments.1.ratios", 2.0, "bodies.0.section.x.segments.1.ratios: unknown field"),
+        ("steps.1.increments", "many", "steps.1.increments: invalid type"),
+    ]
+    for path, value, expected in cases:
+        with pytest.raises(cufem.ModelError) as e:
+            cufem.Model.from_dict(cufem.model.set_path(d, path, value))
+        # was "model file: TOML parse error at line 61, column 1" and a caret under text the user never saw
+        assert str(e.value).startswith(expected) and "line" not in str(e.value), str(e.value)

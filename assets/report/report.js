@@ -102,20 +102,58 @@ function cssColour(c) {
   }
   const largest = (ys) => ys.reduce((m, y) => (y === null || !isFinite(y) ? m : Math.max(m, Math.abs(y))), 0);
   const ticks = (u, vals) => vals.map((v) => (v === null ? "" : Math.abs(v) >= 1e4 || (v !== 0 && Math.abs(v) < 1e-2) ? v.toExponential(2) : String(Number(v.toPrecision(4)))));
+  // the SI unit of a CSV column by its name (the files' columns are SI,
+  // their names carry no unit but energy.csv's)
+  const unit = (name) => {
+    const q = name.split(".").pop();
+    if (/_J$/.test(q) || /_hz$/.test(q)) return "";
+    if (/^(full_)?(r|f|critical_load)_[xyz]$/.test(q) || /^full_critical_load_[xyz]$/.test(q) || /^f_[nt]$/.test(q)) return "N";
+    if (/^(u|d)_[xyz]$/.test(q) || q === "max_penetration" || q === "gap" || q === "slip" || q === "s" || q === "time" || q === "time_s")
+      return q.startsWith("time") ? "s" : "m";
+    if (/^s_(xx|yy|zz|xy|xz|yz)$/.test(q) || q === "von_mises" || q === "pressure" || q === "traction") return "Pa";
+    if (/^effective_mass_[xyz]$/.test(q)) return "kg";
+    if (q === "delaminated_area") return "m²";
+    if (/^damaged_volume_/.test(q)) return "m³";
+    if (q === "energy" || q === "error") return "√J"; // error_history.csv: the estimate's norms
+    return "";
+  };
+  const labelled = (name) => (unit(name) ? name + " [" + unit(name) + "]" : name);
+  // a line's coordinates are not results: listed, not drawn
+  const coordinate = (c, name) => c.name.startsWith("line_") && ["x", "y", "z"].includes(name);
+  report.tables = [];
   data.charts.forEach((c) => {
-    const top = Math.max(...c.data.slice(1).map(largest));
     const box = add(body, "div", { class: "chart", "data-name": c.name });
     add(box, "h3", {}, c.title);
+    if (c.data[0].length === 1) {
+      // one row (a linear, modal or buckling run's one increment) is a
+      // table of its values, not a chart of one dot
+      const table = add(add(box, "div", { class: "scroll" }), "table", { class: "rows single" });
+      const head = add(table, "tr");
+      const row = add(table, "tr");
+      [c.x].concat(c.series).forEach((name, i) => {
+        add(head, "th", {}, labelled(name));
+        add(row, "td", {}, c.data[i][0] === null ? "—" : String(Number(c.data[i][0].toPrecision(6))));
+      });
+      report.tables.push({ name: c.name, series: c.series.length });
+      return;
+    }
+    const shown = c.series.map((name, i) => !coordinate(c, name) && largest(c.data[i + 1]));
+    const top = Math.max(0, ...shown.filter((v) => v !== false));
+    // curves far smaller than the largest (another unit) start hidden
+    const visible = shown.map((v) => v !== false && v >= 1e-3 * top);
+    const units = [...new Set(c.series.filter((_, i) => visible[i]).map(unit))];
     const opts = {
       width: Math.min(1060, document.body.clientWidth || 1000),
       height: 300,
       scales: { x: { time: false } },
-      axes: [{ label: c.x, values: ticks }, { size: 80, values: ticks }],
-      // curves far smaller than the largest (another unit) start hidden
-      series: [{ label: c.x }].concat(
+      axes: [
+        { label: labelled(c.x), values: ticks },
+        { size: 80, values: ticks, label: units.length === 1 ? (units[0] ? "[" + units[0] + "]" : "") : "several units: see the legend" },
+      ],
+      series: [{ label: labelled(c.x) }].concat(
         c.series.map((name, i) => ({
-          label: name,
-          show: largest(c.data[i + 1]) >= 1e-3 * top,
+          label: labelled(name),
+          show: visible[i],
           stroke: palette[i % palette.length],
           width: 1.5,
           points: { size: 4 },

@@ -6,7 +6,10 @@ its ``plot_*`` methods."""
 
 from __future__ import annotations
 
+import re
 from typing import Optional, Sequence, Tuple
+
+import numpy as np
 
 from ._extras import require
 
@@ -45,6 +48,39 @@ def chart_columns(stem: str, table) -> Tuple[str, list]:
     return x, series
 
 
+def unit(name: str) -> str:
+    """The SI unit of a table column by its name, as ``report.html`` labels
+    it ("" for a count, a factor or a column whose name holds its unit)."""
+    q = name.split(".")[-1]
+    if re.fullmatch(r"(full_)?(r|f|critical_load)_[xyz]|f_[nt]", q):
+        return "N"
+    if q in ("time", "time_s"):
+        return "s"
+    if re.fullmatch(r"(u|d)_[xyz]|max_penetration|gap|slip|s", q):
+        return "m"
+    if re.fullmatch(r"s_(xx|yy|zz|xy|xz|yz)|von_mises|pressure|traction", q):
+        return "Pa"
+    if q.startswith("effective_mass_"):
+        return "kg"
+    if q == "delaminated_area":
+        return "m²"
+    if q.startswith("damaged_volume_"):
+        return "m³"
+    if q in ("energy", "error"):
+        return "√J"
+    return ""
+
+
+def shown(stem: str, table, series: Sequence[str]) -> list:
+    """Which series ``report.html`` draws at first: not a line's coordinates
+    ``x, y, z``, and not a curve below a thousandth of the largest shown
+    (another unit's, or round-off)."""
+    coordinate = [stem.startswith("line_") and c in ("x", "y", "z") for c in series]
+    size = [0.0 if k else float(np.nanmax(np.abs(table[c].to_numpy(dtype=float)), initial=0.0)) for c, k in zip(series, coordinate)]
+    top = max(size, default=0.0)
+    return [not k and v >= 1e-3 * top for k, v in zip(coordinate, size)]
+
+
 def _title(stem: str) -> str:
     if stem == "energy":
         return "energy balance"
@@ -57,7 +93,10 @@ def plot_table(stem: str, table, columns: Optional[Sequence[str]] = None, ax=Non
     """Draws the chart of table `stem` (a DataFrame of it) into `ax` (a new
     figure's Axes without one): the series of :func:`chart_columns`, or
     only `columns`, against its x column, each a line labelled by its
-    column name (units in the name as in the CSV). Returns the Axes."""
+    column name; without `columns` the lines ``report.html`` hides at
+    first (:func:`shown`) are drawn hidden (``line.set_visible(True)``
+    shows one). The y axis carries the unit of the lines shown, or says
+    that they have several. Returns the Axes."""
     require("matplotlib", what)
     x, series = chart_columns(stem, table)
     if columns is not None:
@@ -69,8 +108,12 @@ def plot_table(stem: str, table, columns: Optional[Sequence[str]] = None, ax=Non
         import matplotlib.pyplot as plt
 
         _, ax = plt.subplots()
-    for c in series:
-        ax.plot(table[x].to_numpy(), table[c].to_numpy(), marker="o" if len(table) <= 60 else None, label=c)
+    visible = shown(stem, table, series) if columns is None else [True] * len(series)
+    for c, v in zip(series, visible):
+        (line,) = ax.plot(table[x].to_numpy(), table[c].to_numpy(), marker="o" if len(table) <= 60 else None, label=c)
+        line.set_visible(v)
+    units = {unit(c) for c, v in zip(series, visible) if v}
+    ax.set_ylabel(f"[{units.pop()}]" if len(units) == 1 and "" not in units else "" if units == {""} else "several units: see the legend")
     ax.set_xlabel(x)
     ax.set_title(_title(stem))
     if series:

@@ -138,3 +138,23 @@ def test_a_dict_models_error_names_its_key_path():
             cufem.Model.from_dict(cufem.model.set_path(d, path, value))
         # was "model file: TOML parse error at line 61, column 1" and a caret under text the user never saw
         assert str(e.value).startswith(expected) and "line" not in str(e.value), str(e.value)
+
+
+def test_a_plot_shows_what_the_report_shows(memory_runs):
+    pytest.importorskip("matplotlib")
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    r = memory_runs("bending_compact_4L9")
+    try:
+        ax = r.plot_line("top")
+        drawn = [l.get_label() for l in ax.get_lines() if l.get_visible()]
+        # the coordinates and the displacements (a millionth of the stresses) start hidden, as in report.html
+        assert drawn and not {"x", "y", "z", "u_z"} & set(drawn) and all(c.startswith("s_") or c == "von_mises" for c in drawn), drawn
+        assert ax.get_ylabel() == "[Pa]"
+        ax = r.plot_history("load", columns=["f_z", "max_penetration"])
+        assert all(l.get_visible() for l in ax.get_lines()) and ax.get_ylabel() == "several units: see the legend"
+    finally:
+        plt.close("all")

@@ -86,6 +86,13 @@ try {
     await page.waitForFunction(() => window.cufemReport && window.cufemReport.ready, null, { timeout: 60000 });
     const r = await page.evaluate(() => ({
       charts: window.cufemReport.charts.map((c) => ({ name: c.name, series: c.series, points: c.points, width: c.plot.ctx.canvas.width })),
+      tables: window.cufemReport.tables,
+      axes: window.cufemReport.charts.filter((c) => !c.name.startsWith("section/")).map((c) => ({
+        name: c.name,
+        x: c.plot.axes[0].label,
+        y: c.plot.axes[1].label,
+        drawn: c.plot.series.slice(1).filter((s) => s.show).map((s) => s.label),
+      })),
       bbox: window.cufemReport.bbox,
       fields: window.cufemReport.fields,
       frames: window.cufemReport.frames,
@@ -123,8 +130,22 @@ try {
   }
   r.charts = r.charts.filter((c) => !c.name.startsWith("section/"));
   const drawn = Object.fromEntries(r.charts.map((c) => [c.name, c]));
+    // a CSV of one row is a table of its values, not a chart of one dot
+    const single = Object.fromEntries(Object.entries(expected).filter(([, e]) => e.points === 1));
+    for (const name of Object.keys(single)) delete expected[name];
+    const tables = Object.fromEntries(r.tables.map((t) => [t.name, t]));
+    check(Object.keys(tables).sort().join() === Object.keys(single).sort().join() &&
+      Object.entries(single).every(([name, e]) => tables[name].series === e.series),
+      `one-row tables ${Object.keys(tables).sort()} are the CSVs of one row ${Object.keys(single).sort()}`);
     check(Object.keys(drawn).sort().join() === Object.keys(expected).sort().join(),
       `charts ${Object.keys(drawn).sort()} are the CSVs ${Object.keys(expected).sort()}`);
+    // units: the abscissa's and the ordinate's (one unit, or a pointer to
+    // the legend), and a line's coordinates are not drawn
+    for (const a of r.axes) {
+      check(a.y !== undefined && (a.y === "" || a.y === "several units: see the legend" || /^\[.+\]$/.test(a.y)) &&
+        !a.drawn.some((l) => /^[xyz]( \[m\])?$/.test(l) && a.name.startsWith("line_")),
+        `chart ${a.name}: x ${a.x}, y ${a.y}, drawn ${a.drawn.join(" ")}`);
+    }
     for (const [name, e] of Object.entries(expected)) {
       const c = drawn[name] || {};
       check(c.series === e.series && c.points === e.points && c.width > 0,
@@ -180,7 +201,7 @@ try {
       // opened on mode 1, drawn with its largest displacement at a twentieth
       // of the body's size (a shape's amplitude is its normalisation: at
       // scale 1 it was as large as the body)
-      check(r.mode === 0, `the page opens on mode ${r.mode + 1}, not on mode 1`);
+      check(r.mode === 0, `the page opens on mode ${r.mode + 1} (mode 1 expected)`);
       check(r.scale > 0 && r.scale < 1, `mode 1 drawn at scale ${r.scale}`);
       await page.evaluate(() => window.cufemReport.setMode(-1));
       const state = await snap();

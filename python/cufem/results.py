@@ -205,6 +205,36 @@ class Results:
             raise KeyError('modes.csv, buckling.csv: this run has no modal or buckling analysis (analysis.type = "modal" or "buckling")')
         return self.plot_table(stem, columns, ax)
 
+    @property
+    def kept(self) -> Dict[str, int]:
+        """How many states beside the final one the run kept: ``frames`` (a
+        transient run's, every ``analysis.output_interval``), ``steps``
+        (the step ends of a history of several steps) and ``modes`` (the
+        mode shapes of a modal or buckling analysis)."""
+        frames, steps, modes = self._native.kept()
+        return {"frames": frames, "steps": steps, "modes": modes}
+
+    def frame(self, k: int) -> "Results":
+        """Frame `k` (from 0) of a transient run as a :class:`Results`: its
+        :attr:`points`, :meth:`field`, :meth:`cell_field` and
+        :meth:`to_meshio` are those of ``frame_<k+1>.vtu``; KeyError past
+        the frames kept."""
+        return Results(self._native.state("frame", k))
+
+    def step(self, k: int) -> "Results":
+        """The end of load step `k` (from 0) as a :class:`Results`, its
+        fields those of ``result_<k+1>_<name>.vtu``; KeyError for a step that
+        kept none (a history of one step keeps none: the final state is its
+        end)."""
+        return Results(self._native.state("step", k))
+
+    def mode(self, k: int) -> "Results":
+        """Mode shape `k` (from 0) of a modal or buckling analysis as a
+        :class:`Results`, its fields those of ``mode_<k+1>.vtu``: the shape
+        as ``displacement`` (largest component 1) with the strains and
+        stresses of the shape at that scale; KeyError past the modes."""
+        return Results(self._native.state("mode", k))
+
     def _vtu_data(self) -> dict:
         # the arrays result.vtu holds, computed by the native module
         if self._vtu is None:

@@ -438,6 +438,56 @@ impl NativeResults {
         }
     }
 
+    /// How many states beside the final one the run kept: `(frames, steps,
+    /// modes)`: a transient run's frames, the step ends that kept their
+    /// fields, the mode shapes of a modal or buckling analysis.
+    fn kept(&self) -> (usize, usize, usize) {
+        let s = &self.solution;
+        let modes = s.buckling.as_ref().map(|b| b.modes.len()).or(s.modal.as_ref().map(|m| m.modes.len()));
+        (s.frames.len(), s.steps.len(), modes.unwrap_or(0))
+    }
+
+    /// The results of one kept state (`kind` `"frame"`, `"step"` or
+    /// `"mode"`, `k` from 0): its fields as `frame_<k>.vtu`,
+    /// `result_<k>_<name>.vtu` or `mode_<k>.vtu` hold them.
+    fn state(&self, py: Python<'_>, kind: &str, k: usize) -> PyResult<NativeResults> {
+        let (model, s) = (self.model.clone(), self.solution.clone());
+        let (frames, steps, modes) = self.kept();
+        let count = match kind {
+            "frame" => frames,
+            "step" => steps,
+            "mode" => modes,
+            _ => return Err(PyValueError::new_err(format!("{kind:?}: expected \"frame\", \"step\" or \"mode\""))),
+        };
+        if k >= count {
+            return Err(PyKeyError::new_err(format!("{kind} {k}: this run kept {count} (numbered from 0)")));
+        }
+        let state = py
+            .allow_threads(|| -> Result<Option<Solution>, String> {
+                match kind {
+                    "frame" => s.at_frame(&model, k).map(Some).map_err(|e| e.to_string()),
+                    "step" => s.at_step(&model, k).map_err(|e| e.to_string()),
+                    _ => {
+                        // as `mode_<k>.vtu`: the shape (largest component 1) as the displacement
+                        let mut shape = (*s).clone();
+                        let (shapes, errors) = match (&s.buckling, &s.modal) {
+                            (Some(b), _) => (&b.modes, &b.errors),
+                            (None, Some(m)) => (&m.modes, &m.errors),
+                            (None, None) => unreachable!("counted above"),
+                        };
+                        shape.u.clone_from(&shapes[k]);
+                        shape.error_estimate = errors.get(k).map(|e| e.estimate.clone());
+                        Ok(Some(shape))
+                    }
+                }
+            })
+            .map_err(PyRuntimeError::new_err)?
+            .ok_or_else(|| {
+                PyKeyError::new_err(format!("step {k}: its end kept no fields (a step that did not complete)"))
+            })?;
+        Ok(NativeResults { model, solution: Arc::new(state), files: None, written_to: None })
+    }
+
     /// The 3D field of `result.vtu` as numpy arrays, computed here rather
     /// than read back from a file: `points` (n, 3), `connectivity` (cells,
     /// 8, the linear VTK hexahedra of `output.vtu_cells = "linear"`), `point_data` (name → (n,) or (n, components)) and

@@ -158,3 +158,28 @@ def test_a_plot_shows_what_the_report_shows(memory_runs):
         assert all(l.get_visible() for l in ax.get_lines()) and ax.get_ylabel() == "several units: see the legend"
     finally:
         plt.close("all")
+
+
+def test_frames_steps_and_mode_shapes_are_reachable(memory_runs, cli_runs):
+    import meshio
+    import numpy as np
+
+    modes = memory_runs("cantilever_modes")
+    assert modes.kept["modes"] >= 2
+    # the shape as mode_1.vtu holds it: the same points and displacement
+    vtu = meshio.read(cli_runs("cantilever_modes") / "mode_1.vtu")
+    shape = modes.mode(0)
+    u = shape.field("displacement")
+    assert np.abs(u).max() == pytest.approx(1.0, abs=1e-12)
+    np.testing.assert_allclose(shape.points, vtu.points, atol=1e-12)
+    np.testing.assert_allclose(u, vtu.point_data["displacement"], rtol=1e-9, atol=1e-12)
+    # the unloaded run's own state is zero everywhere: the shapes were all it had to show
+    assert np.abs(modes.field("displacement")).max() == 0.0
+    with pytest.raises(KeyError, match=r"mode 99: this run kept"):
+        modes.mode(99)
+    rod = memory_runs("rod_impact")
+    n = rod.kept["frames"]
+    assert n >= 2
+    vtu = meshio.read(cli_runs("rod_impact") / "frame_0001.vtu")
+    np.testing.assert_allclose(rod.frame(0).field("displacement"), vtu.point_data["displacement"], rtol=1e-9, atol=1e-15)
+    assert not np.allclose(rod.frame(0).field("displacement"), rod.frame(n - 1).field("displacement"))

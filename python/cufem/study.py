@@ -21,7 +21,8 @@ says so and its values are those of the last converged increment.
 Outputs are read from the summary (summary.json):
 
 * ``probe.<name>.<quantity>``: ``u_x`` … ``u_z``, ``s_xx`` … ``s_yz``,
-  ``von_mises``, ``peeq``;
+  ``von_mises``, ``peeq``, the strains ``e_xx`` … ``e_yz`` and, in a
+  laminate, the failure indices ``fi_*`` (those of ``Results.probe``);
 * ``reaction.<name>.f_x|f_y|f_z``, ``contact.<name>.f_x|f_y|f_z`` or
   ``contact.<name>.max_penetration``;
 * any scalar of the summary: ``status``, ``load_factor``, ``max_peeq``,
@@ -44,6 +45,8 @@ _QUANTITIES = {"u_x": ("u", 0), "u_y": ("u", 1), "u_z": ("u", 2)}
 _QUANTITIES.update({f"s_{c}": ("stress", k) for k, c in enumerate(["xx", "yy", "zz", "xy", "xz", "yz"])})
 _QUANTITIES.update({"von_mises": ("von_mises", None), "peeq": ("peeq", None)})
 _FORCE = {"f_x": 0, "f_y": 1, "f_z": 2}
+# a probe's strains (and a laminate's failure indices, fi_*): Results.probe's, not summary.json's
+_STRAINS = tuple(f"e_{c}" for c in ["xx", "yy", "zz", "xy", "xz", "yz"])
 
 DEFAULT_OUTPUTS = ("status", "load_factor", "max_peeq")
 
@@ -75,8 +78,8 @@ def check_output(spec: str) -> None:
     parts = spec.split(".") if isinstance(spec, str) else []
     if parts and parts[0] in ("probe", "reaction", "contact") and len(parts) == 3:
         kind, _, what = parts
-        allowed = sorted(_QUANTITIES) if kind == "probe" else list(_FORCE) + (["max_penetration"] if kind == "contact" else [])
-        if what not in allowed:
+        allowed = sorted(_QUANTITIES) + list(_STRAINS) + ["fi_*"] if kind == "probe" else list(_FORCE) + (["max_penetration"] if kind == "contact" else [])
+        if what not in allowed and not (kind == "probe" and what.startswith("fi_")):
             raise KeyError(f"output {spec!r}: expected a {kind} quantity of {allowed}")
         return
     if len(parts) == 1 and parts[0]:
@@ -87,8 +90,9 @@ def check_output(spec: str) -> None:
     )
 
 
-def output_value(summary: dict, spec: str) -> Any:
-    """The value of output `spec` (module docs) in a summary dict."""
+def output_value(summary: dict, spec: str, probe=None) -> Any:
+    """The value of output `spec` (module docs) in a summary dict; a probe's
+    strain or failure index from `probe` (``Results.probe``)."""
     parts = spec.split(".")
     if parts[0] in ("probe", "reaction", "contact") and len(parts) == 3:
         kind, name, what = parts
@@ -98,6 +102,11 @@ def output_value(summary: dict, spec: str) -> Any:
             names = [e["name"] for e in summary[table]]
             raise KeyError(f"output {spec!r}: no {kind} {name!r} (the model has {names})")
         if kind == "probe":
+            if what not in _QUANTITIES and probe is not None:
+                values = probe(name)
+                if what not in values:
+                    raise KeyError(f"output {spec!r}: expected a quantity of {sorted(values)}")
+                return values[what]
             if what not in _QUANTITIES:
                 raise KeyError(f"output {spec!r}: expected a quantity of {sorted(_QUANTITIES)}")
             key, k = _QUANTITIES[what]
@@ -137,7 +146,7 @@ def run_variant(model: dict, base: str, variant: Dict[str, Any], outputs: Sequen
     failed = []
     for spec in outputs:
         try:
-            row[spec] = output_value(results.summary, spec)
+            row[spec] = output_value(results.summary, spec, results.probe)
         except Exception as e:
             failed.append(_message(e))
     if failed:

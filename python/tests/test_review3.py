@@ -55,11 +55,18 @@ def test_a_single_value_is_one_variant():
 
 def test_a_bad_output_is_refused_before_anything_is_solved():
     started = time.perf_counter()
-    with pytest.raises(KeyError, match="probe.tip.e_xx.*expected a probe quantity"):
-        study.run(TIMOSHENKO, {"materials.0.young_modulus": [70e9, 80e9]}, ["probe.tip.u_z", "probe.tip.e_xx"], max_workers=0)
+    with pytest.raises(KeyError, match="probe.tip.u_q.*expected a probe quantity"):
+        study.run(TIMOSHENKO, {"materials.0.young_modulus": [70e9, 80e9]}, ["probe.tip.u_z", "probe.tip.u_q"], max_workers=0)
     with pytest.raises(KeyError, match="reaction.root.m_x"):
         study.run(TIMOSHENKO, [{}], ["reaction.root.m_x"], max_workers=0)
     assert time.perf_counter() - started < 5.0, "the variants were solved first"
+
+
+def test_a_probes_strain_is_an_output():
+    # summary.json holds no strains: they come from Results.probe (were refused)
+    df = study.run(TIMOSHENKO, [{}], ["probe.tip.e_yy"], max_workers=0)
+    single = cufem.Model.from_file(TIMOSHENKO).run(quiet=True, threads=1).probe("tip")["e_yy"]
+    assert df["error"].isna().all() and df.iloc[0]["probe.tip.e_yy"] == single
 
 
 def test_an_output_a_run_lacks_blanks_that_output_only():

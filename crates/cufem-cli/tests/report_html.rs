@@ -386,6 +386,9 @@ fn the_page_of_an_adaptive_run_shows_every_cycle() {
         section["tables"].as_array().unwrap().iter().find(|t| t["title"].as_str().unwrap().starts_with("probe tip"));
     let columns = t.unwrap()["columns"].as_array().unwrap();
     let col = |name: &str| columns.iter().position(|c| c == name).unwrap();
+    // u_y of the cantilever bent in x–z is round-off (1e-19 m beside 1e-4 m):
+    // left out of the table, which ran past the page (a new-user review)
+    assert!(!columns.iter().any(|c| c == "u_y" || c == "u_x"), "{columns:?}");
     assert_eq!(tip.len(), cycles.len());
     for (row, summary) in [(&tip[0], &s0), (&tip[tip.len() - 1], &s)] {
         let probe = &summary["probes"][0];

@@ -131,6 +131,7 @@ pub(crate) fn adapt(a: &Adaptivity) -> Section {
     let first = a.cycles.first().map(|c| &c.probes);
     for (p, name) in first.and_then(|t| t.text("probe")).unwrap_or_default().iter().enumerate() {
         let columns: Vec<&Column> = first.map_or(Vec::new(), |t| t.columns.iter().skip(4).collect());
+        let columns = without_round_off(columns, &a.cycles, p);
         tables.push(SectionTable {
             title: format!("probe {name}: its values cycle by cycle (SI units)"),
             columns: ["cycle", "DOF"]
@@ -176,6 +177,27 @@ pub(crate) fn adapt(a: &Adaptivity) -> Section {
 
 /// The marker of the page's data.
 const DATA: &str = "id=\"cufem-data\">";
+
+/// The probe columns of `p` that are not round-off in every cycle: a
+/// column whose values stay below `1e-9` of the largest of its unit (u_y of
+/// a beam bent in x–z, `1.7e-19` m beside `5.7e-4` m) filled the table
+/// past the page (a new-user review).
+fn without_round_off<'a>(
+    columns: Vec<&'a Column>,
+    cycles: &[crate::analysis::AdaptCycle],
+    p: usize,
+) -> Vec<&'a Column> {
+    let largest = |c: &Column| {
+        cycles
+            .iter()
+            .filter_map(|cy| cy.probes.column(&c.name).map(|v| v.values.get(p).abs()))
+            .filter(|v| v.is_finite())
+            .fold(0.0f64, f64::max)
+    };
+    let size: Vec<f64> = columns.iter().map(|c| largest(c)).collect();
+    let of_unit = |u: &str| columns.iter().zip(&size).filter(|(c, _)| c.unit == u).map(|(_, &s)| s).fold(0.0, f64::max);
+    columns.iter().zip(&size).filter(|(c, s)| **s > 1e-9 * of_unit(c.unit)).map(|(c, _)| *c).collect()
+}
 
 /// Adds `section` to the report.html at `path` (written by the run), in
 /// place: its data gains the section, the rest of the page is unchanged.

@@ -121,6 +121,17 @@ function cssColour(c) {
   // a line's coordinates are not results: listed, not drawn
   const coordinate = (c, name) => c.name.startsWith("line_") && ["x", "y", "z"].includes(name);
   report.tables = [];
+  // the largest value of each unit over every chart of the page: a curve
+  // below a millionth of it (Newton's default tolerance) is the solver's
+  // noise (a symmetry plane's reaction of 1e-6 N beside kN elsewhere),
+  // hidden even where it is the largest of its own chart
+  const pageTop = {};
+  data.charts.forEach((c) =>
+    c.series.forEach((name, i) => {
+      const u = unit(name);
+      if (u) pageTop[u] = Math.max(pageTop[u] || 0, largest(c.data[i + 1]));
+    })
+  );
   data.charts.forEach((c) => {
     const box = add(body, "div", { class: "chart", "data-name": c.name });
     add(box, "h3", {}, c.title);
@@ -140,15 +151,17 @@ function cssColour(c) {
     const shown = c.series.map((name, i) => !coordinate(c, name) && largest(c.data[i + 1]));
     const top = Math.max(0, ...shown.filter((v) => v !== false));
     // curves far smaller than the largest (another unit) start hidden
-    const visible = shown.map((v) => v !== false && v >= 1e-3 * top);
+    const visible = shown.map((v, i) => v !== false && v >= 1e-3 * top && !(unit(c.series[i]) && v < 1e-6 * pageTop[unit(c.series[i])]));
     const units = [...new Set(c.series.filter((_, i) => visible[i]).map(unit))];
+    if (!visible.some((v) => v))
+      add(box, "p", { class: "note" }, "Every curve is below a millionth of the page's largest value of its unit (the solver's noise): hidden; click a legend entry to show it.");
     const opts = {
       width: Math.min(1060, document.body.clientWidth || 1000),
       height: 300,
       scales: { x: { time: false } },
       axes: [
         { label: labelled(c.x), values: ticks },
-        { size: 80, values: ticks, label: units.length === 1 ? (units[0] ? "[" + units[0] + "]" : "") : "several units: see the legend" },
+        { size: 80, values: ticks, label: units.length === 1 ? (units[0] ? "[" + units[0] + "]" : "") : units.length ? "several units: see the legend" : "" },
       ],
       series: [{ label: labelled(c.x) }].concat(
         c.series.map((name, i) => ({

@@ -30,6 +30,7 @@ run() { # run MODEL.toml FOLDER
 : > target/browser/run.log
 run "$example" run
 run examples/column_buckling.toml buckling
+run examples/bending_compact_4L9.toml bending
 strip=target/browser/strip.toml
 sed 's/displacement = { x = 1.5e-4 }/displacement = { x = 5e-5 }/; s/^increments = 150$/increments = 20/' \
   examples/notched_strip_coarse.toml > "$strip"
@@ -44,4 +45,4 @@ target/release/cufem run --quiet --threads 1 --adapt 0.05 --max-dof 6000 --out t
 rm -rf target/browser/verify
 target/release/cufem verify --quiet --threads 1 --refine 1 --out target/browser/verify \
   examples/cantilever_timoshenko.toml >> target/browser/run.log
-node tests/browser/test.mjs target/browser target/browser/{run,buckling,strip,adapt,verify}
+node tests/browser/test.mjs target/browser target/browser/{run,buckling,bending,strip,adapt,verify}

@@ -327,7 +327,9 @@ fn figures(text: &str) -> Vec<Figure> {
                     .any(|w| head.ends_with(w));
             let date = chars.get(j) == Some(&'-') && j - start == 4 && !point;
             let times = start > 0 && chars[start - 1] == '×';
-            if !numbered && !date && (point || comma || exponent || unit || times) {
+            // a tag makes a bare count a figure (README's test count was
+            // left a run behind its row: a docs audit)
+            if !numbered && !date && (point || comma || exponent || unit || times || tag.is_some()) {
                 out.push(Figure { line: n + 1, text, tag });
             }
             i = j.max(i + 1);

@@ -1,4 +1,4 @@
-//! The `cufem` command-line program: `run`, `check` and `bench` a model file.
+//! The `cufem` command-line program: `check`, `run` (`--adapt`), `bench`, `export-ccx`, `verify` and `schema`.
 
 mod cli;
 

@@ -98,9 +98,10 @@ class Model:
         silent, but a run that ends otherwise than converged issues a
         Python ``UserWarning`` saying how and where its files went.
 
-        A model's ``[adapt]`` table is not run here: the model's own mesh
-        is solved (a ``UserWarning`` says so); ``cufem run`` runs its
-        adaptive cycles.
+        A model with an ``[adapt]`` table runs its adaptive cycles as
+        ``cufem run`` does (a line per cycle on stderr unless `quiet`); the
+        results are the last finished cycle's, ``summary["adapt"]`` lists
+        the cycles.
 
         The GIL is released during the solve. Ctrl-C (SIGINT) stops the
         analysis at the next safe point: the results of the last converged
@@ -118,15 +119,10 @@ class Model:
         if isinstance(threads, int) and threads < 1:
             # as the native check words it for 0 (a negative count raised a bare OverflowError)
             raise ValueError(f"threads = {threads}: expected an integer from 1 to 1024")
-        if "adapt" in _native.toml_to_object(self._text):
-            # the same file gave other results here than from the CLI, without a word (a new-user review)
-            warnings.warn(
-                "[adapt]: the Python package solves the model's own mesh, without the adaptive cycles; "
-                "`cufem run` runs them (docs/python.md)",
-                UserWarning,
-                stacklevel=2,
-            )
-        native = self._native.run(out, force, threads, quiet)
+        # the text and folder let a model with an [adapt] table run its cycles
+        # (it solved its own mesh alone: the same file gave other results than
+        # from the CLI; a new-user review)
+        native = self._native.run(out, force, threads, quiet, self._text, self._base)
         # a run that stopped early beside a converged set writes to out.partial
         results = Results(native, native.written_to or out)
         if quiet and results.status != "converged":

@@ -136,7 +136,7 @@ def run_variant(model: dict, base: str, variant: Dict[str, Any], outputs: Sequen
         for path, value in variant.items():
             d = set_path(d, path, value)
         with warnings.catch_warnings():
-            # a stop is the row's status; [adapt] is warned about once, by run()
+            # a stop is the row's status
             warnings.simplefilter("ignore", UserWarning)
             results = Model.from_dict(d, base=base).run(threads=threads, quiet=True)
     except Exception as e:  # a failed variant is a row, not a crashed study
@@ -203,8 +203,6 @@ def run(
     outputs = [outputs] if isinstance(outputs, str) else list(outputs)
     for spec in outputs:
         check_output(spec)
-    if "adapt" in base_dict:
-        warnings.warn("[adapt]: each variant solves the model's own mesh, without the adaptive cycles", UserWarning, stacklevel=2)
     tasks = [(base_dict, base, v, outputs, threads) for v in variants]
     if client is not None:
         futures = [client.submit(run_variant, *t, pure=False) for t in tasks]

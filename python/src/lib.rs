@@ -80,7 +80,8 @@ enum Stream {
 /// What the analysis thread tells the caller's thread.
 enum Message {
     Line(Stream, String),
-    Done(Box<Result<Solution, String>>),
+    /// The model solved (an adaptive run's last cycle's) and its solution.
+    Done(Box<Result<(Arc<Model>, Solution), String>>),
 }
 
 /// Progress lines sent to the caller's thread (printed there through
@@ -196,7 +197,12 @@ impl NativeModel {
     /// for Ctrl-C: a first one stops the analysis at the next safe point
     /// (the last converged increment is kept and, with `out`, written), a
     /// second one raises `KeyboardInterrupt` at once.
-    #[pyo3(signature = (out=None, force=false, threads=None, quiet=false))]
+    ///
+    /// With the model's text and folder (`text`, `base`) a model with an
+    /// `[adapt]` table runs its adaptive cycles as `cufem run` does, and the
+    /// results are the last finished cycle's.
+    #[pyo3(signature = (out=None, force=false, threads=None, quiet=false, text=None, base=None))]
+    #[allow(clippy::too_many_arguments)] // the Python keyword arguments
     fn run(
         &self,
         py: Python<'_>,
@@ -204,6 +210,8 @@ impl NativeModel {
         force: bool,
         threads: Option<usize>,
         quiet: bool,
+        text: Option<String>,
+        base: Option<PathBuf>,
     ) -> PyResult<NativeResults> {
         let threads = threads.or(self.model.solver.threads);
         if let Some(n) = threads
@@ -233,7 +241,31 @@ impl NativeModel {
             .name("cufem-analysis".into())
             .spawn(move || {
                 let mut sink = Channel { tx: tx.clone(), print: !quiet };
-                let result = pool.install(|| analysis::run(&model, &options, &mut sink)).map_err(|e| e.to_string());
+                let result = pool.install(|| match (model.adapt.as_ref(), &text, &base) {
+                    (Some(settings), Some(text), Some(base)) => {
+                        // the cycles as the CLI runs them (a new-user review: the
+                        // same file gave other results here)
+                        let source = cufem::adapt::Source { text, base, limits: limits(None) };
+                        let cycles = tx.clone();
+                        let mut line = |c: &cufem::analysis::AdaptCycle, _: &Model, _: &Solution| {
+                            let text = format!(
+                                "adaptive cycle {}: {} DOF, estimated error {:.2} %",
+                                c.cycle,
+                                c.dof,
+                                100.0 * c.estimate
+                            );
+                            if !quiet {
+                                let _ = cycles.send(Message::Line(Stream::Err, text));
+                            }
+                        };
+                        cufem::adapt::run((*model).clone(), source, settings, &options, &mut sink, &mut line)
+                            .map(|(m, s)| (Arc::new(m), s))
+                            .map_err(|e| e.to_string())
+                    }
+                    _ => analysis::run(&model, &options, &mut sink)
+                        .map(|s| (model.clone(), s))
+                        .map_err(|e| e.to_string()),
+                });
                 let _ = tx.send(Message::Done(Box::new(result)));
             })
             .map_err(|e| PyRuntimeError::new_err(format!("cannot start the analysis thread: {e}")))?;
@@ -265,16 +297,16 @@ impl NativeModel {
             }
         };
         let _ = worker.join();
-        let solution = result.map_err(|e| PyRuntimeError::new_err(format!("analysis failed: {e}")))?;
+        let (model, solution) = result.map_err(|e| PyRuntimeError::new_err(format!("analysis failed: {e}")))?;
         if !quiet {
-            write_to(py, Stream::Out, &report::results(&self.model, &solution))?;
+            write_to(py, Stream::Out, &report::results(&model, &solution))?;
         }
         write_warnings(py, solution.warnings.iter())?;
         let mut files = None;
         let mut written_to = None;
         let mut kept = false;
         if let Some(folder) = folder {
-            let model = self.model.clone();
+            let model = model.clone();
             let written =
                 py.allow_threads(|| cufem::io::write_into(&model, &solution, folder, |_| ())).map_err(output_error)?;
             if !quiet {
@@ -286,12 +318,12 @@ impl NativeModel {
         }
         if !quiet {
             let kept = out.as_deref().filter(|_| kept);
-            if let Some(text) = report::stopped_early(&self.model, &solution, written_to.as_deref(), kept) {
+            if let Some(text) = report::stopped_early(&model, &solution, written_to.as_deref(), kept) {
                 write_stderr(py, &text)?;
             }
         }
         let written_to = written_to.map(|w| w.display().to_string());
-        Ok(NativeResults { model: self.model.clone(), solution: Arc::new(solution), files, written_to })
+        Ok(NativeResults { model, solution: Arc::new(solution), files, written_to })
     }
 }
 

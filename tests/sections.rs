@@ -424,7 +424,9 @@ fn gmsh_ipe100_matches_the_tables() {
     let m = Model::parse_in(&model(mm, 1.0, 1), cufem::setup::Limits::none(), &sections_dir()).unwrap();
     let w: Vec<String> = m.warnings.iter().map(|w| w.to_string()).collect();
     assert!(
-        w.len() == 1 && w[0].starts_with("bodies[0].section.scale: not given (1): the section spans 100 m across"),
+        w.len() == 1
+            && w[0].starts_with("bodies[0].section.scale: not given (1): the section spans 100 m across")
+            && w[0].contains("if it was drawn in mm, give `scale = 1e-3`"),
         "{w:?}"
     );
 }

@@ -102,8 +102,8 @@ function cssColour(c) {
   }
   const largest = (ys) => ys.reduce((m, y) => (y === null || !isFinite(y) ? m : Math.max(m, Math.abs(y))), 0);
   const ticks = (u, vals) => vals.map((v) => (v === null ? "" : Math.abs(v) >= 1e4 || (v !== 0 && Math.abs(v) < 1e-2) ? v.toExponential(2) : String(Number(v.toPrecision(4)))));
-  // the SI unit of a CSV column by its name (the files' columns are SI,
-  // their names carry no unit but energy.csv's)
+  // the SI unit of a CSV column by its name, where the table does not
+  // give it (the files' columns are SI)
   const unit = (name) => {
     const q = name.split(".").pop();
     if (/_J$/.test(q) || /_hz$/.test(q)) return "";
@@ -117,7 +117,10 @@ function cssColour(c) {
     if (q === "energy" || q === "error") return "√J"; // error_history.csv: the estimate's norms
     return "";
   };
-  const labelled = (name) => (unit(name) ? name + " [" + unit(name) + "]" : name);
+  // column k of chart c (0: the abscissa): the table's unit, else the name's
+  const uOf = (c, k) => (c.units && c.units[k]) || unit(k === 0 ? c.x : c.series[k - 1]);
+  // a name that ends in its unit (energy.csv's kinetic_J, time_s) keeps it
+  const labelled = (name, u) => (u && !name.endsWith("_" + u) ? name + " [" + u + "]" : name);
   // a line's coordinates are not results: listed, not drawn
   const coordinate = (c, name) => c.name.startsWith("line_") && ["x", "y", "z"].includes(name);
   report.tables = [];
@@ -128,7 +131,7 @@ function cssColour(c) {
   const pageTop = {};
   data.charts.forEach((c) =>
     c.series.forEach((name, i) => {
-      const u = unit(name);
+      const u = uOf(c, i + 1);
       if (u) pageTop[u] = Math.max(pageTop[u] || 0, largest(c.data[i + 1]));
     })
   );
@@ -142,7 +145,7 @@ function cssColour(c) {
       const head = add(table, "tr");
       const row = add(table, "tr");
       [c.x].concat(c.series).forEach((name, i) => {
-        add(head, "th", {}, labelled(name));
+        add(head, "th", {}, labelled(name, uOf(c, i)));
         add(row, "td", {}, c.data[i][0] === null ? "—" : String(Number(c.data[i][0].toPrecision(6))));
       });
       report.tables.push({ name: c.name, series: c.series.length });
@@ -151,21 +154,21 @@ function cssColour(c) {
     const shown = c.series.map((name, i) => !coordinate(c, name) && largest(c.data[i + 1]));
     const top = Math.max(0, ...shown.filter((v) => v !== false));
     // curves far smaller than the largest (another unit) start hidden
-    const visible = shown.map((v, i) => v !== false && v >= 1e-3 * top && !(unit(c.series[i]) && v < 1e-6 * pageTop[unit(c.series[i])]));
-    const units = [...new Set(c.series.filter((_, i) => visible[i]).map(unit))];
+    const visible = shown.map((v, i) => v !== false && v > 0 && v >= 1e-3 * top && !(uOf(c, i + 1) && v < 1e-6 * pageTop[uOf(c, i + 1)]));
+    const units = [...new Set(c.series.map((_, i) => uOf(c, i + 1)).filter((_, i) => visible[i]))];
     if (!visible.some((v) => v))
-      add(box, "p", { class: "note" }, "Every curve is below a millionth of the page's largest value of its unit (the solver's noise): hidden; click a legend entry to show it.");
+      add(box, "p", { class: "note" }, "No curve reaches a millionth of the page's largest value of its unit (the solver's noise, or nothing recorded): all hidden; click a legend entry to show one.");
     const opts = {
       width: Math.min(1060, document.body.clientWidth || 1000),
       height: 300,
       scales: { x: { time: false } },
       axes: [
-        { label: labelled(c.x), values: ticks },
+        { label: labelled(c.x, uOf(c, 0)), values: ticks },
         { size: 80, values: ticks, label: units.length === 1 ? (units[0] ? "[" + units[0] + "]" : "") : units.length ? "several units: see the legend" : "" },
       ],
-      series: [{ label: labelled(c.x) }].concat(
+      series: [{ label: labelled(c.x, uOf(c, 0)) }].concat(
         c.series.map((name, i) => ({
-          label: labelled(name),
+          label: labelled(name, uOf(c, i + 1)),
           show: visible[i],
           stroke: palette[i % palette.length],
           width: 1.5,

@@ -160,9 +160,14 @@ def _dict_error(message: str, text: str, d: Any) -> Optional[str]:
         return path
 
     table: list = []
+    inside = False  # within a multi-line string (a description): its lines are text
     # through the error's own line: an error in a table's keys points at its header
     for line in lines[:at]:
         stripped = line.strip()
+        quotes = line.count('"""') + line.count("'''")
+        if inside or quotes % 2 == 1:
+            inside = inside != (quotes % 2 == 1)
+            continue
         if stripped.startswith("[["):
             parts = [p.strip().strip('"') for p in stripped[2:-2].split(".")]
             parent = resolve(parts[:-1])

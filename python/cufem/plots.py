@@ -113,7 +113,11 @@ def plot_table(stem: str, table, columns: Optional[Sequence[str]] = None, ax=Non
         (line,) = ax.plot(table[x].to_numpy(), table[c].to_numpy(), marker="o" if len(table) <= 60 else None, label=c)
         line.set_visible(v)
     units = {unit(c) for c, v in zip(series, visible) if v}
-    ax.set_ylabel(f"[{units.pop()}]" if len(units) == 1 and "" not in units else "" if units == {""} else "several units: see the legend")
+    if len(units) == 1:
+        only = units.pop()
+        ax.set_ylabel(f"[{only}]" if only else "")
+    elif units:
+        ax.set_ylabel("several units: see the legend")
     ax.set_xlabel(x)
     ax.set_title(_title(stem))
     if series:

@@ -217,8 +217,10 @@ class Results:
     def frame(self, k: int) -> "Results":
         """Frame `k` (from 0) of a transient run as a :class:`Results`: its
         :attr:`points`, :meth:`field`, :meth:`cell_field` and
-        :meth:`to_meshio` are those of ``frame_<k+1>.vtu``; KeyError past
-        the frames kept."""
+        :meth:`to_meshio` are those of the (k+1)-th ``frame_<n>.vtu``
+        (``frame_0001.vtu`` for k = 0); KeyError past the frames kept."""
+        if k < 0:
+            raise KeyError(f"frame {k}: numbered from 0")
         return Results(self._native.state("frame", k))
 
     def step(self, k: int) -> "Results":
@@ -226,6 +228,8 @@ class Results:
         fields those of ``result_<k+1>_<name>.vtu``; KeyError for a step that
         kept none (a history of one step keeps none: the final state is its
         end)."""
+        if k < 0:
+            raise KeyError(f"step {k}: numbered from 0")
         return Results(self._native.state("step", k))
 
     def mode(self, k: int) -> "Results":
@@ -233,6 +237,8 @@ class Results:
         :class:`Results`, its fields those of ``mode_<k+1>.vtu``: the shape
         as ``displacement`` (largest component 1) with the strains and
         stresses of the shape at that scale; KeyError past the modes."""
+        if k < 0:
+            raise KeyError(f"mode {k}: numbered from 0")
         return Results(self._native.state("mode", k))
 
     def _vtu_data(self) -> dict:

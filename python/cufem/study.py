@@ -54,18 +54,21 @@ DEFAULT_OUTPUTS = ("status", "load_factor", "max_peeq")
 def grid(variants: Dict[str, Sequence[Any]]) -> List[Dict[str, Any]]:
     """The product grid of value lists: ``{"a": [1, 2], "b": [3, 4]}`` →
     four variants, the last key varying fastest. A value that is not a list
-    or tuple (a number, a string, a table) is one value: ``{"a": "L4"}`` is
+    or other iterable (a number, a string, a table) is one value: ``{"a": "L4"}`` is
     one variant, not ``"L"`` and ``"4"``; a list-valued key (a vector) is
     given as a list of lists."""
     keys = list(variants)
 
     def values(k):
         v = variants[k]
-        if isinstance(v, (list, tuple)):
-            return list(v)
-        if hasattr(v, "tolist") and getattr(v, "ndim", 0) > 0:  # a numpy array of values
+        if isinstance(v, (str, bytes, dict)) or getattr(v, "ndim", None) == 0:
+            return [v]  # one value (a numpy scalar included)
+        if hasattr(v, "tolist"):  # a numpy array of values
             return v.tolist()
-        return [v]
+        try:
+            return list(v)  # a list, tuple, range, generator, set …
+        except TypeError:
+            return [v]  # a number
 
     return [dict(zip(keys, combination)) for combination in itertools.product(*(values(k) for k in keys))]
 

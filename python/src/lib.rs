@@ -476,7 +476,10 @@ impl NativeResults {
     fn kept(&self) -> (usize, usize, usize) {
         let s = &self.solution;
         let modes = s.buckling.as_ref().map(|b| b.modes.len()).or(s.modal.as_ref().map(|m| m.modes.len()));
-        (s.frames.len(), s.steps.len(), modes.unwrap_or(0))
+        // a history of one step keeps no fields (its end is the final state);
+        // one of several keeps them at each completed step's end
+        let steps = s.steps.iter().take_while(|end| end.fields.is_some()).count();
+        (s.frames.len(), steps, modes.unwrap_or(0))
     }
 
     /// The results of one kept state (`kind` `"frame"`, `"step"` or
@@ -514,9 +517,7 @@ impl NativeResults {
                 }
             })
             .map_err(PyRuntimeError::new_err)?
-            .ok_or_else(|| {
-                PyKeyError::new_err(format!("step {k}: its end kept no fields (a step that did not complete)"))
-            })?;
+            .ok_or_else(|| PyKeyError::new_err(format!("step {k}: its end kept no fields")))?;
         Ok(NativeResults { model, solution: Arc::new(state), files: None, written_to: None })
     }
 

@@ -198,3 +198,33 @@ def test_frames_steps_and_mode_shapes_are_reachable(memory_runs, cli_runs):
     vtu = meshio.read(cli_runs("rod_impact") / "frame_0001.vtu")
     np.testing.assert_allclose(rod.frame(0).field("displacement"), vtu.point_data["displacement"], rtol=1e-9, atol=1e-15)
     assert not np.allclose(rod.frame(0).field("displacement"), rod.frame(n - 1).field("displacement"))
+
+
+def test_step_ends_are_reachable_where_kept(memory_runs, cli_runs):
+    import meshio
+    import numpy as np
+
+    two = memory_runs("block_indentation_unload")
+    assert two.kept["steps"] == 2
+    vtu = meshio.read(cli_runs("block_indentation_unload") / "result_1_load.vtu")
+    np.testing.assert_allclose(two.step(0).field("displacement"), vtu.point_data["displacement"], rtol=1e-9, atol=1e-15)
+    # a history of one step keeps none: its end is the final state (kept counted it, step(0) refused it)
+    one = memory_runs("cantilever_timoshenko")
+    assert one.kept["steps"] == 0
+    for call in (lambda: one.step(0), lambda: two.frame(-1), lambda: two.step(-1)):
+        with pytest.raises(KeyError):
+            call()
+
+
+def test_a_range_of_values_is_a_list_of_variants():
+    # a range or a generator was taken as one value, and every row failed
+    assert study.grid({"a": range(4, 13, 4)}) == [{"a": 4}, {"a": 8}, {"a": 12}]
+    assert study.grid({"a": (v for v in [1, 2])}) == [{"a": 1}, {"a": 2}]
+
+
+def test_a_dict_error_past_a_multi_line_description_names_its_key():
+    d = cufem.Model.from_file(EXAMPLES / "block_indentation_unload.toml").to_dict()
+    d["description"] = "Indentation.\n[1] Johnson 1985.\n[[materials]]\nname = 'x'\n"
+    with pytest.raises(cufem.ModelError) as e:
+        cufem.Model.from_dict(cufem.model.set_path(d, "materials.0.youngs_modulus", 1e9))
+    assert str(e.value).startswith("materials.0.youngs_modulus: unknown field"), str(e.value)

@@ -139,9 +139,11 @@ pub(super) fn body(
     let axis_lines = division_parts(&ak, a.from, a.to, a.elements, a.ratio, a.lines.as_ref(), a.segments.as_ref())?;
     let axis_elements = (axis_lines.len() - 1) as u64;
     let section = Sections { key: &key, beam, axis_elements, budget }.section(&b.section, base)?;
-    if let crate::input::schema::SectionFile::Gmsh(g) = &b.section {
+    if let crate::input::schema::SectionFile::Gmsh(g) = &b.section
+        && g.scale.is_none()
+    {
         let length = axis_lines.last().zip(axis_lines.first()).map_or(0.0, |(end, start)| (end - start).abs());
-        unit_mismatch(&key, g.scale, &section, length, warnings);
+        unit_mismatch(&key, &section, length, warnings);
     }
     // symmetry planes cut the body to the side kept; each must be a plane
     // of symmetry of the body as written
@@ -167,20 +169,20 @@ pub(super) fn body(
 
 /// A gmsh section drawn in mm and read without `scale = 1e-3` is a
 /// thousand times too large: a 100 mm profile on a 1 m axis became 100 m
-/// across and ran without a word (a new-user review). A section more than
-/// ten times wider than its body is long is no beam: warned, naming the
-/// key that fixes it.
-fn unit_mismatch(key: &str, scale: Option<f64>, section: &CrossSection, length: f64, warnings: &mut Vec<Warning>) {
+/// across and ran without a word (a new-user review). Without a `scale`, a
+/// section at least 20 m across (no beam's) or a hundred times wider than
+/// its body is long (a plane-strain slice is ten to forty) is warned
+/// about, naming the key that fixes it if it was drawn in mm.
+fn unit_mismatch(key: &str, section: &CrossSection, length: f64, warnings: &mut Vec<Warning>) {
     let [x0, x1, z0, z1] = section.bounds();
     let width = (x1 - x0).max(z1 - z0);
-    if width > 10.0 * length {
+    if width >= 20.0 || width > 100.0 * length {
         let short = crate::numbers::short;
         warnings.push(Warning {
             key: format!("{key}.section.scale"),
             message: format!(
-                "{}: the section spans {} m across, {:.0} times the body's length of {} m along y; a mesh drawn in \
-                 mm needs `scale = 1e-3` (the axis is read in m)",
-                scale.map_or("not given (1)".into(), short),
+                "not given (1): the section spans {} m across, {:.0} times the body's length of {} m along y; if it \
+                 was drawn in mm, give `scale = 1e-3` (the axis is read in m)",
                 short(width),
                 width / length,
                 short(length)

@@ -149,6 +149,7 @@ try {
     // a symmetry plane's reaction along its normal is the solver's noise
     // (1e-6 N beside kN): not drawn, as a full-height curve it looked like data
     const sym = r.axes.find((a) => a.name === "history_symmetry_y");
+    if (path.basename(dir) === "bending") check(sym, "the compact bar's page charts history_symmetry_y");
     if (sym) check(!sym.drawn.includes("r_y [N]"), `history_symmetry_y draws ${sym.drawn.join(" ") || "nothing"}`);
     for (const [name, e] of Object.entries(expected)) {
       const c = drawn[name] || {};

@@ -258,6 +258,8 @@ fn quantize(values: &[f32]) -> (String, f64, f64) {
 fn chart(table: &Table, x: &str, title: &str) -> Option<Value> {
     let xc = table.column(x).filter(|_| table.rows() > 0)?;
     let mut series = Vec::new();
+    // each column's SI unit (`Column::unit`), the abscissa's first: the page labels curves and axes with them
+    let mut units = vec![xc.unit];
     let mut data = vec![xc.values.to_f64()];
     for c in &table.columns {
         let skip = c.name == x
@@ -267,10 +269,13 @@ fn chart(table: &Table, x: &str, title: &str) -> Option<Value> {
             || (table.name != "history" && COUNTS.contains(&c.name.as_str()));
         if !skip {
             series.push(table.header(c));
+            units.push(c.unit);
             data.push(c.values.to_f64());
         }
     }
-    Some(json!({"name": table.name, "title": title, "x": table.header(xc), "series": series, "data": data}))
+    Some(
+        json!({"name": table.name, "title": title, "x": table.header(xc), "series": series, "units": units, "data": data}),
+    )
 }
 
 /// The charts of a run's tables: histories against λ, lines along their

@@ -13,19 +13,20 @@ use std::sync::Arc;
 use std::sync::mpsc;
 use std::time::Duration;
 
-use cufem::analysis::{self, IncrementLog, Progress, RunOptions, Solution, tables};
+use cufem::analysis::{self, RunOptions, Solution, tables};
 use cufem::io::output::OutputDir;
 use cufem::io::report;
 use cufem::setup::{Limits, Model, ModelError as RustModelError};
 use cufem::solver::Interrupt;
-use cufem::solver::stepping::Cutback;
 use numpy::{IntoPyArray, PyArrayMethods};
 use pyo3::create_exception;
 use pyo3::exceptions::{PyKeyError, PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
+mod thread;
 mod toml_objects;
+use thread::{Channel, Message, Stream, kept_state, solve};
 use toml_objects::{object_to_toml, toml_to_object};
 
 create_exception!(
@@ -67,51 +68,6 @@ fn parse_toml(py: Python<'_>, text: String, base: Option<PathBuf>, max_memory: O
     let base = base.unwrap_or_else(|| PathBuf::from("."));
     let model = py.allow_threads(|| Model::parse_in(&text, limits(max_memory), &base)).map_err(model_error)?;
     Ok(NativeModel { model: Arc::new(model) })
-}
-
-/// Where a line of text goes: as `cufem run` prints it, the header and the
-/// final report to stdout, progress and warnings to stderr.
-#[derive(Clone, Copy)]
-enum Stream {
-    Out,
-    Err,
-}
-
-/// What the analysis thread tells the caller's thread.
-enum Message {
-    Line(Stream, String),
-    /// The model solved (an adaptive run's last cycle's) and its solution.
-    Done(Box<Result<(Arc<Model>, Solution), String>>),
-}
-
-/// Progress lines sent to the caller's thread (printed there through
-/// Python's `sys.stderr`, so Jupyter shows them): the CLI's lines, from
-/// the same functions (`cufem::io::report`).
-struct Channel {
-    tx: mpsc::Sender<Message>,
-    print: bool,
-}
-
-impl Channel {
-    fn send(&self, text: String) {
-        if self.print {
-            let _ = self.tx.send(Message::Line(Stream::Err, text));
-        }
-    }
-}
-
-impl Progress for Channel {
-    fn start(&mut self, _model: &Model, setup: &analysis::Setup) {
-        self.send(report::start_line(setup));
-    }
-
-    fn increment(&mut self, log: &IncrementLog) {
-        self.send(report::increment_line(log));
-    }
-
-    fn cutback(&mut self, c: &Cutback) {
-        self.send(report::cutback_line(c));
-    }
 }
 
 /// Writes `text`, ending in a newline, to Python's `sys.stdout` or `sys.stderr`
@@ -241,31 +197,7 @@ impl NativeModel {
             .name("cufem-analysis".into())
             .spawn(move || {
                 let mut sink = Channel { tx: tx.clone(), print: !quiet };
-                let result = pool.install(|| match (model.adapt.as_ref(), &text, &base) {
-                    (Some(settings), Some(text), Some(base)) => {
-                        // the cycles as the CLI runs them (a new-user review: the
-                        // same file gave other results here)
-                        let source = cufem::adapt::Source { text, base, limits: limits(None) };
-                        let cycles = tx.clone();
-                        let mut line = |c: &cufem::analysis::AdaptCycle, _: &Model, _: &Solution| {
-                            let text = format!(
-                                "adaptive cycle {}: {} DOF, estimated error {:.2} %",
-                                c.cycle,
-                                c.dof,
-                                100.0 * c.estimate
-                            );
-                            if !quiet {
-                                let _ = cycles.send(Message::Line(Stream::Err, text));
-                            }
-                        };
-                        cufem::adapt::run((*model).clone(), source, settings, &options, &mut sink, &mut line)
-                            .map(|(m, s)| (Arc::new(m), s))
-                            .map_err(|e| e.to_string())
-                    }
-                    _ => analysis::run(&model, &options, &mut sink)
-                        .map(|s| (model.clone(), s))
-                        .map_err(|e| e.to_string()),
-                });
+                let result = pool.install(|| solve(&model, text.as_deref().zip(base.as_deref()), &options, &mut sink));
                 let _ = tx.send(Message::Done(Box::new(result)));
             })
             .map_err(|e| PyRuntimeError::new_err(format!("cannot start the analysis thread: {e}")))?;
@@ -498,24 +430,7 @@ impl NativeResults {
             return Err(PyKeyError::new_err(format!("{kind} {k}: this run kept {count} (numbered from 0)")));
         }
         let state = py
-            .allow_threads(|| -> Result<Option<Solution>, String> {
-                match kind {
-                    "frame" => s.at_frame(&model, k).map(Some).map_err(|e| e.to_string()),
-                    "step" => s.at_step(&model, k).map_err(|e| e.to_string()),
-                    _ => {
-                        // as `mode_<k>.vtu`: the shape (largest component 1) as the displacement
-                        let mut shape = (*s).clone();
-                        let (shapes, errors) = match (&s.buckling, &s.modal) {
-                            (Some(b), _) => (&b.modes, &b.errors),
-                            (None, Some(m)) => (&m.modes, &m.errors),
-                            (None, None) => unreachable!("counted above"),
-                        };
-                        shape.u.clone_from(&shapes[k]);
-                        shape.error_estimate = errors.get(k).map(|e| e.estimate.clone());
-                        Ok(Some(shape))
-                    }
-                }
-            })
+            .allow_threads(|| kept_state(&model, &s, kind, k))
             .map_err(PyRuntimeError::new_err)?
             .ok_or_else(|| PyKeyError::new_err(format!("step {k}: its end kept no fields")))?;
         Ok(NativeResults { model, solution: Arc::new(state), files: None, written_to: None })

@@ -102,23 +102,9 @@ function cssColour(c) {
   }
   const largest = (ys) => ys.reduce((m, y) => (y === null || !isFinite(y) ? m : Math.max(m, Math.abs(y))), 0);
   const ticks = (u, vals) => vals.map((v) => (v === null ? "" : Math.abs(v) >= 1e4 || (v !== 0 && Math.abs(v) < 1e-2) ? v.toExponential(2) : String(Number(v.toPrecision(4)))));
-  // the SI unit of a CSV column by its name, where the table does not
-  // give it (the files' columns are SI)
-  const unit = (name) => {
-    const q = name.split(".").pop();
-    if (/_J$/.test(q) || /_hz$/.test(q)) return "";
-    if (/^(full_)?(r|f|critical_load)_[xyz]$/.test(q) || /^full_critical_load_[xyz]$/.test(q) || /^f_[nt]$/.test(q)) return "N";
-    if (/^(u|d)_[xyz]$/.test(q) || q === "max_penetration" || q === "gap" || q === "slip" || q === "s" || q === "time" || q === "time_s")
-      return q.startsWith("time") ? "s" : "m";
-    if (/^s_(xx|yy|zz|xy|xz|yz)$/.test(q) || q === "von_mises" || q === "pressure" || q === "traction") return "Pa";
-    if (/^effective_mass_[xyz]$/.test(q)) return "kg";
-    if (q === "delaminated_area") return "m²";
-    if (/^damaged_volume_/.test(q)) return "m³";
-    if (q === "energy" || q === "error") return "√J"; // error_history.csv: the estimate's norms
-    return "";
-  };
-  // column k of chart c (0: the abscissa): the table's unit, else the name's
-  const uOf = (c, k) => (c.units && c.units[k]) || unit(k === 0 ? c.x : c.series[k - 1]);
+  // the SI unit of column k of chart c (0: the abscissa), as its table
+  // gives it (src/io/html: `Column::unit`; "" for counts and ratios)
+  const uOf = (c, k) => c.units[k];
   // a name that ends in its unit (energy.csv's kinetic_J, time_s) keeps it
   const labelled = (name, u) => (u && !name.endsWith("_" + u) ? name + " [" + u + "]" : name);
   // a line's coordinates are not results: listed, not drawn

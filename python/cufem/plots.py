@@ -6,8 +6,7 @@ its ``plot_*`` methods."""
 
 from __future__ import annotations
 
-import re
-from typing import Optional, Sequence, Tuple
+from typing import Dict, Optional, Sequence, Tuple
 
 import numpy as np
 
@@ -48,29 +47,6 @@ def chart_columns(stem: str, table) -> Tuple[str, list]:
     return x, series
 
 
-def unit(name: str) -> str:
-    """The SI unit of a table column by its name, as ``report.html`` labels
-    it ("" for a count, a factor or a column whose name holds its unit)."""
-    q = name.split(".")[-1]
-    if re.fullmatch(r"(full_)?(r|f|critical_load)_[xyz]|f_[nt]", q):
-        return "N"
-    if q in ("time", "time_s"):
-        return "s"
-    if re.fullmatch(r"(u|d)_[xyz]|max_penetration|gap|slip|s", q):
-        return "m"
-    if re.fullmatch(r"s_(xx|yy|zz|xy|xz|yz)|von_mises|pressure|traction", q):
-        return "Pa"
-    if q.startswith("effective_mass_"):
-        return "kg"
-    if q == "delaminated_area":
-        return "m²"
-    if q.startswith("damaged_volume_"):
-        return "m³"
-    if q in ("energy", "error"):
-        return "√J"
-    return ""
-
-
 def shown(stem: str, table, series: Sequence[str]) -> list:
     """Which series ``report.html`` draws at first: not a line's coordinates
     ``x, y, z``, and not a curve below a thousandth of the largest shown
@@ -89,14 +65,22 @@ def _title(stem: str) -> str:
     return stem
 
 
-def plot_table(stem: str, table, columns: Optional[Sequence[str]] = None, ax=None, what: str = "a plot"):
+def plot_table(
+    stem: str,
+    table,
+    columns: Optional[Sequence[str]] = None,
+    ax=None,
+    what: str = "a plot",
+    units: Optional[Dict[str, str]] = None,
+):
     """Draws the chart of table `stem` (a DataFrame of it) into `ax` (a new
     figure's Axes without one): the series of :func:`chart_columns`, or
     only `columns`, against its x column, each a line labelled by its
     column name; without `columns` the lines ``report.html`` hides at
     first (:func:`shown`) are drawn hidden (``line.set_visible(True)``
-    shows one). The y axis carries the unit of the lines shown, or says
-    that they have several. Returns the Axes."""
+    shows one). The y axis carries the unit of the lines shown (`units`:
+    column → SI unit, as the native tables give them), or says that they
+    have several. Returns the Axes."""
     require("matplotlib", what)
     x, series = chart_columns(stem, table)
     if columns is not None:
@@ -112,7 +96,8 @@ def plot_table(stem: str, table, columns: Optional[Sequence[str]] = None, ax=Non
     for c, v in zip(series, visible):
         (line,) = ax.plot(table[x].to_numpy(), table[c].to_numpy(), marker="o" if len(table) <= 60 else None, label=c)
         line.set_visible(v)
-    units = {unit(c) for c, v in zip(series, visible) if v}
+    given = units or {}
+    units = {given.get(c, "") for c, v in zip(series, visible) if v}
     if len(units) == 1:
         only = units.pop()
         ax.set_ylabel(f"[{only}]" if only else "")

@@ -29,10 +29,11 @@ def _column(kind, values):
 
 
 def _table(columns):
-    """Typed columns ``(CSV header, kind, values)`` of the native module as
-    a pandas DataFrame, equal to ``pandas.read_csv`` of the CSV file."""
+    """Typed columns ``(CSV header, kind, values, unit)`` of the native
+    module as a pandas DataFrame, equal to ``pandas.read_csv`` of the CSV
+    file."""
     pd = require("pandas", "a table of results (Results.line, Results.history, Results.table)")
-    return pd.DataFrame({name: _column(kind, values) for name, kind, values in columns})
+    return pd.DataFrame({name: _column(kind, values) for name, kind, values, _ in columns})
 
 
 class Results:
@@ -175,7 +176,9 @@ class Results:
         extra)."""
         from . import plots
 
-        return plots.plot_table(stem, self.table(stem), columns, ax, f"Results.plot_table({stem!r})")
+        typed = self._native.table(stem)
+        units = {name: unit for name, _, _, unit in typed}
+        return plots.plot_table(stem, _table(typed), columns, ax, f"Results.plot_table({stem!r})", units)
 
     def plot_history(self, name: Optional[str] = None, columns=None, ax=None):
         """:meth:`plot_table` of ``history_<name>`` (reactions, contact
@@ -219,27 +222,26 @@ class Results:
         :attr:`points`, :meth:`field`, :meth:`cell_field` and
         :meth:`to_meshio` are those of the (k+1)-th ``frame_<n>.vtu``
         (``frame_0001.vtu`` for k = 0); KeyError past the frames kept."""
-        if k < 0:
-            raise KeyError(f"frame {k}: numbered from 0")
-        return Results(self._native.state("frame", k))
+        return self._kept_state("frame", k)
 
     def step(self, k: int) -> "Results":
         """The end of load step `k` (from 0) as a :class:`Results`, its
         fields those of ``result_<k+1>_<name>.vtu``; KeyError for a step that
         kept none (a history of one step keeps none: the final state is its
         end)."""
-        if k < 0:
-            raise KeyError(f"step {k}: numbered from 0")
-        return Results(self._native.state("step", k))
+        return self._kept_state("step", k)
 
     def mode(self, k: int) -> "Results":
         """Mode shape `k` (from 0) of a modal or buckling analysis as a
         :class:`Results`, its fields those of ``mode_<k+1>.vtu``: the shape
         as ``displacement`` (largest component 1) with the strains and
         stresses of the shape at that scale; KeyError past the modes."""
+        return self._kept_state("mode", k)
+
+    def _kept_state(self, kind: str, k: int) -> "Results":
         if k < 0:
-            raise KeyError(f"mode {k}: numbered from 0")
-        return Results(self._native.state("mode", k))
+            raise KeyError(f"{kind} {k}: numbered from 0")
+        return Results(self._native.state(kind, k))
 
     def _vtu_data(self) -> dict:
         # the arrays result.vtu holds, computed by the native module

@@ -482,9 +482,10 @@ impl NativeResults {
 }
 
 /// A column for Python: its CSV header, its kind (`"real"`, `"count"`,
-/// `"optional_count"`, `"text"`) and its values (a float64 array with NaN
-/// where absent, an int64 array of counts, or a list of text).
-type TypedColumn = (String, &'static str, PyObject);
+/// `"optional_count"`, `"text"`), its values (a float64 array with NaN
+/// where absent, an int64 array of counts, or a list of text) and its SI
+/// unit (`tables::Column::unit`, `""` for counts and ratios).
+type TypedColumn = (String, &'static str, PyObject, &'static str);
 
 /// A result table as typed columns named by their CSV headers
 /// ([`tables::Table::header`]: `kinetic_J` in `energy.csv`).
@@ -500,7 +501,7 @@ fn columns(py: Python<'_>, table: &tables::Table) -> PyResult<Vec<TypedColumn>> 
             Values::OptionalCount(_) => ("optional_count", c.values.to_f64().into_pyarray(py).into_any().unbind()),
             Values::Real(_) | Values::Optional(_) => ("real", c.values.to_f64().into_pyarray(py).into_any().unbind()),
         };
-        Ok((table.header(c), kind, values))
+        Ok((table.header(c), kind, values, c.unit))
     };
     table.columns.iter().map(column).collect()
 }

@@ -5,7 +5,6 @@ damage as cell data."""
 
 import json
 import math
-import time
 import warnings
 
 import pytest
@@ -55,12 +54,11 @@ def test_a_single_value_is_one_variant():
 
 
 def test_a_bad_output_is_refused_before_anything_is_solved():
-    started = time.perf_counter()
+    # (solved first, each row then failed: the KeyError below would not be raised)
     with pytest.raises(KeyError, match="probe.tip.u_q.*expected a probe quantity"):
         study.run(TIMOSHENKO, {"materials.0.young_modulus": [70e9, 80e9]}, ["probe.tip.u_z", "probe.tip.u_q"], max_workers=0)
     with pytest.raises(KeyError, match="reaction.root.m_x"):
         study.run(TIMOSHENKO, [{}], ["reaction.root.m_x"], max_workers=0)
-    assert time.perf_counter() - started < 5.0, "the variants were solved first"
 
 
 def test_a_probes_strain_is_an_output():

@@ -167,7 +167,7 @@ impl<'m> Structure<'m> {
             Some(transient) => Some(transient::inertia(&loading, transient, &assembler, &elements)?),
             None => None,
         };
-        let massive = inertia.as_ref().map(|i| i.massive(&assembler.pattern));
+        let massive = inertia.as_ref().map(|i| i.massive());
         let impulse =
             transient::impulse(&loading, !discretisation.interfaces.is_empty(), settings.transient, mesh.n_dofs());
         let parts = Parts {

@@ -105,3 +105,32 @@ fn lumped_masses_are_the_newton_cotes_weights() {
         assert!(ws.tangent[p * n + p] > 0.0);
     }
 }
+
+/// The mass couples a node's displacement component only with the same
+/// component of the other nodes (`M = ∫ ρ Nᵀ N` with `N` the same scalar
+/// basis for x, y and z): every entry between two different components is
+/// zero, for both matrices. The inertia keeps `M`'s non-zero entries only
+/// (`LowerCsc::compress`: a third of the structure's pattern), so a
+/// coupling term here would be dropped there.
+#[test]
+fn the_mass_couples_equal_components_only() {
+    let b = body(SectionElementKind::L9, BeamElementKind::B3, 2);
+    let cells = CellValues::new(&b).unwrap();
+    let mut ws = Workspace::default();
+    let n = 3 * b.nodes_per_element();
+    for kind in [MassKind::Consistent, MassKind::Lumped] {
+        element_mass(&cells, 0, b.section.n_elements(), RHO, kind, &mut ws);
+        let mut same = 0;
+        for p in 0..n {
+            for q in 0..n {
+                let m = ws.tangent[p * n + q];
+                if p % 3 != q % 3 {
+                    assert_eq!(m, 0.0, "{kind:?}: entry ({p}, {q})");
+                } else if m != 0.0 {
+                    same += 1;
+                }
+            }
+        }
+        assert!(same >= n, "{kind:?}: {same} non-zero entries");
+    }
+}

@@ -113,6 +113,27 @@ impl LowerCsc {
         (col_ptr, row_idx)
     }
 
+    /// The entries of `values` (on this pattern) that are not zero, as a
+    /// matrix on a pattern of its own, with each kept entry's position in
+    /// `values`. A consistent mass couples a node's displacement only with
+    /// the same component of its neighbours' (`dynamics::mass`): two thirds
+    /// of the structure's pattern hold zeros of `M`, which its products and
+    /// its additions to the tangent then skip.
+    pub(crate) fn compress(&self, values: &[f64]) -> Compressed {
+        let mut columns = vec![Vec::new(); self.n];
+        let (mut kept, mut at) = (Vec::new(), Vec::new());
+        for (c, column) in columns.iter_mut().enumerate() {
+            for k in self.col_ptr[c]..self.col_ptr[c + 1] {
+                if values[k] != 0.0 {
+                    column.push(self.row_idx[k] as usize);
+                    kept.push(values[k]);
+                    at.push(k);
+                }
+            }
+        }
+        Compressed { pattern: Self::from_columns(self.n, &columns), values: kept, at }
+    }
+
     /// Number of stored entries.
     pub fn nnz(&self) -> usize {
         self.row_idx.len()
@@ -150,6 +171,43 @@ impl LowerCsc {
                 acc[0] += v * x[r];
             }
             y[c] += diag * xc + (acc[0] + acc[1]) + (acc[2] + acc[3]);
+        }
+    }
+}
+
+/// A symmetric matrix's non-zero entries on a pattern of their own
+/// ([`LowerCsc::compress`]).
+#[derive(Debug, Clone)]
+pub(crate) struct Compressed {
+    /// The entries' pattern.
+    pub pattern: LowerCsc,
+    /// Their values, in the order of `pattern`.
+    pub values: Vec<f64>,
+    /// Each entry's position on the pattern it was compressed from.
+    pub at: Vec<usize>,
+}
+
+impl Compressed {
+    /// `y = A x`.
+    pub fn mul(&self, x: &[f64], y: &mut [f64]) {
+        self.pattern.mul_symmetric(&self.values, x, y);
+    }
+
+    /// `target[at] += factor · values`: the matrix scaled, added to one
+    /// on the pattern it was compressed from.
+    pub fn add_scaled_to(&self, factor: f64, target: &mut [f64]) {
+        for (&k, &v) in self.at.iter().zip(&self.values) {
+            target[k] += factor * v;
+        }
+    }
+
+    /// The diagonal entry of column `c` (zero if not stored).
+    pub fn diagonal(&self, c: usize) -> f64 {
+        let first = self.pattern.col_ptr[c];
+        if first < self.pattern.col_ptr[c + 1] && self.pattern.row_idx[first] as usize == c {
+            self.values[first]
+        } else {
+            0.0
         }
     }
 }

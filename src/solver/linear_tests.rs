@@ -149,3 +149,40 @@ fn orderings_made_at_once_on_two_threads_equal_the_one_made_alone() {
     });
     assert_eq!(differing, 0, "{differing} of 80 concurrent orderings differ from the one made alone");
 }
+
+/// `LowerCsc::compress` keeps the non-zero entries only, and its product,
+/// its scaled addition and its diagonal are those of the full matrix (a
+/// dropped or misplaced entry changes the product; an entry kept at the
+/// wrong position changes the addition).
+#[test]
+fn a_compressed_matrix_acts_as_the_full_one() {
+    let n = 7;
+    let columns: Vec<Vec<usize>> = (0..n).map(|c| (c..n).collect()).collect();
+    let pat = LowerCsc::from_columns(n, &columns);
+    // zeros wherever row and column differ in parity (as the mass couples
+    // only equal components), and one zero diagonal
+    let mut values = Vec::new();
+    for (c, rows) in columns.iter().enumerate() {
+        for &r in rows {
+            let v = if (r + c) % 2 == 1 || (r == 3 && c == 3) { 0.0 } else { 1.0 + (r * n + c) as f64 * 0.1 };
+            values.push(v);
+        }
+    }
+    let m = pat.compress(&values);
+    assert_eq!(m.values.len(), values.iter().filter(|&&v| v != 0.0).count());
+    let x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.7).cos()).collect();
+    let (mut full, mut compact) = (vec![0.0; n], vec![0.0; n]);
+    pat.mul_symmetric(&values, &x, &mut full);
+    m.mul(&x, &mut compact);
+    for (a, b) in full.iter().zip(&compact) {
+        assert!((a - b).abs() < 1e-14 * a.abs().max(1.0), "{full:?} against {compact:?}");
+    }
+    let mut target: Vec<f64> = (0..values.len()).map(|k| k as f64).collect();
+    m.add_scaled_to(2.5, &mut target);
+    for (k, (t, v)) in target.iter().zip(&values).enumerate() {
+        assert_eq!(*t, k as f64 + 2.5 * v);
+    }
+    for c in 0..n {
+        assert_eq!(m.diagonal(c), values[pat.find(c, c).unwrap()]);
+    }
+}

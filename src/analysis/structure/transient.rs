@@ -46,13 +46,13 @@ pub(super) fn inertia(
             }
         }
     }
-    let mut inertia = crate::dynamics::Inertia::new(settings.clone(), m, &k0, v0, assembler.dofs.n_eq);
+    let mut inertia = crate::dynamics::Inertia::new(settings.clone(), (&assembler.pattern, m), &k0, v0);
     let impactors = loading
         .indenters
         .iter()
         .filter_map(|i| i.impactor)
         .map(|i| 0.5 * i.mass * i.velocity.iter().map(|v| v * v).sum::<f64>());
-    inertia.start(eq, &assembler.pattern, impactors.sum());
+    inertia.start(eq, impactors.sum());
     Ok(inertia)
 }
 
@@ -112,7 +112,6 @@ pub(super) fn account_energy(
         &du,
         [elements.forces().values, loads.forces().values, contact, &supports, interface],
         eq,
-        &system.assembler.pattern,
     );
 }
 

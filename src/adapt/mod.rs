@@ -61,8 +61,9 @@ pub enum AdaptError {
     Analysis(#[from] AnalysisError),
     /// The model as given is already over the budget.
     #[error(
-        "{key} = {max_dof}: expected at least the model's own {dof} DOF (the first cycle solves the \
-         model as given; raise the budget or coarsen the model)"
+        "{key} = {max_dof}: expected at least the model's own {} DOF (the first cycle solves the \
+         model as given; raise the budget or coarsen the model)",
+        crate::numbers::thousands(*.dof)
     )]
     Budget {
         /// Where the budget was given: `adapt.max_dof`, or the CLI's `--max-dof`.
@@ -192,7 +193,15 @@ impl Cycles<'_> {
     fn adaptivity(&mut self, stop: String, end: AdaptEnd, plan: &MeshPlan) -> Adaptivity {
         let (tolerance, max_dof) = (self.settings.tolerance, self.settings.max_dof);
         // the plan was made from this text and its models were built from it
-        let model_file = crate::setup::planned_text(self.text, plan).unwrap_or_else(|e| format!("# {e}\n"));
+        let about = self.cycles.last().map_or_else(String::new, |c| {
+            format!(
+                "cycle {} ({} DOF, estimate {:.2} %)",
+                c.cycle,
+                crate::numbers::thousands(c.dof),
+                100.0 * c.estimate
+            )
+        });
+        let model_file = crate::setup::adapted_text(self.text, plan, &about).unwrap_or_else(|e| format!("# {e}\n"));
         Adaptivity { cycles: std::mem::take(&mut self.cycles), stop, tolerance, max_dof, end, model_file }
     }
 
@@ -298,15 +307,18 @@ fn refined(
     let next = match Model::parse_planned(source.text, source.limits, source.base, &plan) {
         Ok(m) => m,
         Err(ModelError::TooLarge { dofs, .. }) => {
-            return Ok(Refined::Over(format!("the next mesh ({dofs} DOF) would not fit in the memory allowed")));
+            return Ok(Refined::Over(format!(
+                "the next mesh ({} DOF) would not fit in the memory allowed",
+                crate::numbers::thousands(usize::try_from(dofs).unwrap_or(usize::MAX))
+            )));
         }
         Err(e) => return Err(e.into()),
     };
     if next.n_dofs() > settings.max_dof {
         return Ok(Refined::Over(format!(
             "the next mesh ({} DOF) would exceed the budget max_dof = {}",
-            next.n_dofs(),
-            settings.max_dof
+            crate::numbers::thousands(next.n_dofs()),
+            crate::numbers::thousands(settings.max_dof)
         )));
     }
     Ok(Refined::Fits(Box::new(next)))

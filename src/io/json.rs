@@ -197,7 +197,7 @@ pub struct Summary {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub adapt_cycle: Option<usize>,
     /// How the adaptive run ended: `"done"` (tolerance, budget, memory,
-    /// max_cycles), `"stopped"` (a later cycle failed or stopped early) or
+    /// max_cycles), `"stopped"` (a cycle failed or stopped early) or
     /// `"interrupted"`; absent for a single run.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub adapt_end: Option<&'static str>,
@@ -513,11 +513,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         }),
         adapt_stop: solution.adapt.as_ref().map(|a| a.stop.clone()),
         adapt_cycle: solution.adapt.as_ref().and_then(|a| a.cycles.last()).map(|c| c.cycle),
-        adapt_end: solution.adapt.as_ref().map(|a| match a.end {
-            crate::analysis::AdaptEnd::Done => "done",
-            crate::analysis::AdaptEnd::Stopped => "stopped",
-            crate::analysis::AdaptEnd::Interrupted => "interrupted",
-        }),
+        adapt_end: adapt_end(solution),
         buckling: buckling_summary(model, solution),
         modal: modal_summary(model, solution),
         energy: energy_at_end(solution, 1.0),
@@ -536,6 +532,22 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         damage: solution.damage.as_ref().map(|d| d.summary()),
         files: Vec::new(),
     }
+}
+
+/// How an adaptive run ended (summary.json `adapt_end`): `"done"` as asked,
+/// `"stopped"` or `"interrupted"` otherwise; `None` for a single run.
+fn adapt_end(solution: &Solution) -> Option<&'static str> {
+    solution.adapt.as_ref().map(|a| match a.end {
+        // a first cycle that stopped early ended as a single run that
+        // stops does (exit 2, or 130 when interrupted): not as asked
+        crate::analysis::AdaptEnd::Done => match solution.failure.as_ref().map(|f| f.reason) {
+            None => "done",
+            Some(crate::solver::stepping::StopReason::Interrupted) => "interrupted",
+            Some(_) => "stopped",
+        },
+        crate::analysis::AdaptEnd::Stopped => "stopped",
+        crate::analysis::AdaptEnd::Interrupted => "interrupted",
+    })
 }
 
 /// The last row of the energy table (`analysis::tables::energy`), its

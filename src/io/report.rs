@@ -24,18 +24,7 @@ macro_rules! out {
     }};
 }
 
-/// `12345` → `12,345`.
-pub fn thousands(n: usize) -> String {
-    let s = n.to_string();
-    let mut out = String::new();
-    for (i, c) in s.chars().enumerate() {
-        if i > 0 && (s.len() - i).is_multiple_of(3) {
-            out.push(',');
-        }
-        out.push(c);
-    }
-    out
-}
+pub use crate::numbers::thousands;
 
 /// Each body's discretization: `block 1B4 - 108L9, punch …`.
 fn discretization(model: &Model) -> String {
@@ -472,7 +461,7 @@ fn modes(s: &mut String, model: &Model, solution: &Solution) {
     if let (Some(m), Some(t)) = (&solution.modal, tables::modes(solution)) {
         let share = |k: usize, v: f64| if m.free_mass[k] > 0.0 { 100.0 * v / m.free_mass[k] } else { 0.0 };
         let of = if m.full_structure { " of the full structure" } else { "" };
-        out!(s, "modal  mode  frequency [Hz]   est. error [%]   effective mass [% of the free mass{of}]  x / y / z");
+        out!(s, "modal  mode  frequency [Hz]   freq. err. [%]   effective mass [% of the free mass{of}]  x / y / z");
         let (f, e) = (t.real("frequency_hz").unwrap_or_default(), t.xyz("effective_mass_").unwrap_or_default());
         let error = t.real("frequency_error").unwrap_or_default();
         for (k, (f, e)) in f.iter().zip(&e).enumerate() {
@@ -493,7 +482,7 @@ fn modes(s: &mut String, model: &Model, solution: &Solution) {
             Some(full) => (full, "critical load of the full structure [N]"),
             None => (t.xyz("critical_load_").unwrap_or_default(), "critical load [N]"),
         };
-        out!(s, "buckling  mode  load factor   est. error [%]   {of}");
+        out!(s, "buckling  mode  load factor   factor err.[%]   {of}");
         let error = t.real("factor_error").unwrap_or_default();
         for (k, (f, p)) in t.real("load_factor").unwrap_or_default().iter().zip(&loads).enumerate() {
             let e = 100.0 * error.get(k).copied().unwrap_or(f64::NAN);

@@ -44,7 +44,7 @@ use crate::quantity::Quantity;
 use crate::values::{CellValues, Location};
 pub use analysis::{BucklingSettings, Imperfection, ModalSettings};
 
-pub(crate) use plan_file::planned_text;
+pub(crate) use plan_file::adapted_text;
 pub(crate) use plan_file::{TUBE_ALONG, TUBE_THROUGH, count_keys};
 pub use refine::{AdaptSettings, BodyPlan, MAX_BUDGET, MeshPlan, SectionPlan};
 

@@ -35,6 +35,49 @@ use crate::mesh::CrossSection;
 /// `text` with the divisions of `plan` (module docs). `text` must be the
 /// model file the plan was made from (a file with other bodies is refused).
 pub(crate) fn planned_text(text: &str, plan: &MeshPlan) -> Result<String, ModelError> {
+    Ok(planned_doc(text, plan)?.to_string())
+}
+
+/// The model file an adaptive run writes beside its results
+/// (`adapted.toml`): [`planned_text`] with a header that says what it is
+/// (`about`: the cycle, its DOF and estimate), the title marked as
+/// adapted, and the `[adapt]` table left out — written in the header as
+/// comments — so that `cufem run adapted.toml` solves this mesh again
+/// instead of refining it further.
+pub(crate) fn adapted_text(text: &str, plan: &MeshPlan, about: &str) -> Result<String, ModelError> {
+    let mut doc = planned_doc(text, plan)?;
+    // in place: the comments above the title (the file's first lines) are its key's
+    if let Some(title) = doc.get_mut("title").and_then(Item::as_value_mut)
+        && let Some(text) = title.as_str().map(str::to_owned)
+    {
+        let decor = title.decor().clone();
+        *title = Value::from(format!("{text} (adapted mesh: {about})"));
+        *title.decor_mut() = decor;
+    }
+    let mut header = format!(
+        "# Written by `cufem run` with adaptive refinement: the run's model file with the divisions\n\
+         # of its {about} written in, every other line as it was.\n"
+    );
+    match doc.remove("adapt") {
+        Some(adapt) => {
+            header.push_str(
+                "# The [adapt] table is left out, so that `cufem run` on this file solves this mesh again;\n\
+                 # to refine it further, remove the leading \"# \" of these lines:\n# [adapt]\n",
+            );
+            if let Some(t) = adapt.as_table_like() {
+                for (key, value) in t.iter() {
+                    let value = value.as_value().map_or_else(|| value.to_string(), |v| v.to_string());
+                    header.push_str(&format!("# {key} = {}\n", value.trim()));
+                }
+            }
+        }
+        None => header.push_str("# The adaptive settings came from the command line (`--adapt`).\n"),
+    }
+    Ok(format!("{header}\n{doc}"))
+}
+
+/// The model file's document with the divisions of `plan` (module docs).
+fn planned_doc(text: &str, plan: &MeshPlan) -> Result<DocumentMut, ModelError> {
     let mut doc: DocumentMut = text.parse().map_err(|e: toml_edit::TomlError| {
         invalid("(model file)", e.message().trim(), "a TOML model file (the one the mesh plan was made from)")
     })?;
@@ -72,7 +115,7 @@ pub(crate) fn planned_text(text: &str, plan: &MeshPlan) -> Result<String, ModelE
             SectionPlan::Fixed { .. } => {}
         }
     }
-    Ok(doc.to_string())
+    Ok(doc)
 }
 
 /// Each body's table, `[[bodies]]` or `bodies = [{…}, …]`.

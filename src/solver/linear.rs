@@ -189,20 +189,20 @@ pub(crate) struct Compressed {
 
 impl Compressed {
     /// `y = A x`.
-    pub fn mul(&self, x: &[f64], y: &mut [f64]) {
+    pub(crate) fn mul(&self, x: &[f64], y: &mut [f64]) {
         self.pattern.mul_symmetric(&self.values, x, y);
     }
 
     /// `target[at] += factor · values`: the matrix scaled, added to one
     /// on the pattern it was compressed from.
-    pub fn add_scaled_to(&self, factor: f64, target: &mut [f64]) {
+    pub(crate) fn add_scaled_to(&self, factor: f64, target: &mut [f64]) {
         for (&k, &v) in self.at.iter().zip(&self.values) {
             target[k] += factor * v;
         }
     }
 
     /// The diagonal entry of column `c` (zero if not stored).
-    pub fn diagonal(&self, c: usize) -> f64 {
+    pub(crate) fn diagonal(&self, c: usize) -> f64 {
         let first = self.pattern.col_ptr[c];
         if first < self.pattern.col_ptr[c + 1] && self.pattern.row_idx[first] as usize == c {
             self.values[first]

@@ -227,11 +227,21 @@ fn cli_run_adapt_refines_until_the_budget() {
     assert!(s["adapt_stop"].as_str().unwrap().contains("budget"));
     assert_eq!(s["probes"][0]["name"], "tip");
     // the adapted mesh as a model file: the user's file (its comments kept)
-    // with the last cycle's divisions, which solves to the same result
+    // with the last cycle's divisions, which solves to the same result,
+    // under a header that says what it is
     let adapted = std::fs::read_to_string(dir.join("out/adapted.toml")).unwrap();
     let original = std::fs::read_to_string(&model).unwrap();
-    let comments = |t: &str| t.lines().filter(|l| l.trim_start().starts_with('#')).count();
-    assert!(comments(&original) > 0 && comments(&adapted) == comments(&original), "{adapted}");
+    let comments =
+        |t: &str| t.lines().filter(|l| l.trim_start().starts_with('#')).map(str::to_owned).collect::<Vec<_>>();
+    let kept = comments(&adapted);
+    assert!(!comments(&original).is_empty() && comments(&original).iter().all(|c| kept.contains(c)), "{adapted}");
+    let last_dof = cufem::io::report::thousands(last["dof"].as_u64().unwrap() as usize);
+    let header = format!("of its cycle {} ({last_dof} DOF, estimate ", cycles.len() - 1);
+    assert!(
+        adapted.starts_with("# Written by `cufem run` with adaptive refinement") && adapted.contains(&header),
+        "{adapted}"
+    );
+    assert!(adapted.contains("settings came from the command line (`--adapt`)"), "{adapted}");
     assert!(s["files"].as_array().unwrap().iter().any(|f| f == "adapted.toml"), "{}", s["files"]);
     let out = Command::new(env!("CARGO_BIN_EXE_cufem"))
         .args(["run", dir.join("out/adapted.toml").to_str().unwrap(), "--quiet", "--out"])
@@ -253,6 +263,42 @@ fn cli_run_adapt_refines_until_the_budget() {
     assert!(out.status.success());
     let single = std::fs::read_to_string(dir.join("single/summary.json")).unwrap();
     assert!(!single.contains("\"adapt\""));
+}
+
+/// A model whose file holds the `[adapt]` table: `adapted.toml` leaves the
+/// table out (written as comments in its header) and marks its title, so
+/// that running it solves the adapted mesh again — it used to keep the
+/// table and refine once more (a new user's review: 720 → 1,539 DOF, other
+/// results), against model-format.md's "`cufem run adapted.toml` solves the
+/// same mesh again".
+#[test]
+fn an_adapted_file_of_a_model_with_an_adapt_table_solves_its_mesh_again() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("adapt_table_rerun");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let model = dir.join("cantilever.toml");
+    std::fs::write(&model, format!("{}\n[adapt]\ntolerance = 0.001\nmax_cycles = 1\n", cantilever(1, 1, 2))).unwrap();
+    let run = |file: &Path, out: &str| {
+        let o = Command::new(env!("CARGO_BIN_EXE_cufem"))
+            .args(["run", file.to_str().unwrap(), "--quiet", "--out"])
+            .arg(dir.join(out))
+            .output()
+            .unwrap();
+        assert!(o.status.success(), "{}", String::from_utf8_lossy(&o.stderr));
+        let text = std::fs::read_to_string(dir.join(out).join("summary.json")).unwrap();
+        serde_json::from_str::<serde_json::Value>(&text).unwrap()
+    };
+    let s = run(&model, "out");
+    assert_eq!(s["adapt"].as_array().unwrap().len(), 2, "{}", s["adapt"]);
+    let adapted = std::fs::read_to_string(dir.join("out/adapted.toml")).unwrap();
+    for line in ["# [adapt]\n# tolerance = 0.001\n# max_cycles = 1\n", "(adapted mesh: cycle 1 ("] {
+        assert!(adapted.contains(line), "{line}: {adapted}");
+    }
+    let again = run(&dir.join("out/adapted.toml"), "again");
+    assert!(again.get("adapt").is_none(), "the adapted file refined again: {}", again["adapt"]);
+    assert_eq!(again["dof"], s["dof"]);
+    assert_eq!(again["error_estimate"]["relative_energy_norm"], s["error_estimate"]["relative_energy_norm"]);
+    assert_eq!(again["probes"][0]["values"], s["probes"][0]["values"]);
 }
 
 #[test]

@@ -399,6 +399,11 @@ fn adapt_on_buckling_writes_each_cycles_factors_and_estimates() {
     assert!(html.contains("critical load factor and its estimated error"));
     // a value and an estimate column per mode followed, the fourth the last
     assert!(html.contains("μ4 est. error [%]") && !html.contains("μ5"), "the report's table of the four modes");
+    // the estimate charted and printed is the factors', not an energy norm (a new user's review)
+    let chart = "largest estimated critical load factor error of the followed modes against DOF";
+    assert!(html.contains(chart) && !html.contains("(energy norm) against DOF"), "the chart's title");
+    let printed = String::from_utf8_lossy(&out.stdout);
+    assert!(printed.contains("load factor   factor err.[%]"), "{printed}");
     let again = Command::new(env!("CARGO_BIN_EXE_cufem"))
         .args(["run", dir.join("out/adapted.toml").to_str().unwrap(), "--quiet", "--out"])
         .arg(dir.join("again"))

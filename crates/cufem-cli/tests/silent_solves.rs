@@ -405,3 +405,51 @@ fn an_interrupted_adaptive_run_keeps_its_last_cycle() {
     assert!((s["load_factor"].as_f64().unwrap() - 1.0).abs() < 1e-9);
     assert!(out.join("result.vtu").exists() && !dir.join("out.partial").exists());
 }
+
+/// A first cycle that stops early: a perfectly plastic cantilever (20 × 40 mm,
+/// 0.5 m, σ_y = 250 MPa: its plastic hinge at the root carries
+/// `σ_y b h² / 4 / L = 4` kN) pushed at its tip towards 12 kN with an
+/// `[adapt]` table. Cycle 0 cannot pass the collapse load; the run exits 2
+/// with that cycle's last converged increment, as a single run does, and
+/// summary.json said `adapt_end = "done"` — the word of a run that ended as
+/// asked (exit 0), so a script reading it took the collapse for a success.
+#[test]
+fn an_adaptive_run_whose_first_cycle_stops_early_is_not_done() {
+    let text = r#"title = "A cantilever pushed past its collapse load, with an [adapt] table"
+[solver]
+increments = 5
+[[materials]]
+name = "steel"
+young_modulus = 200e9
+poisson_ratio = 0.3
+plasticity = { yield_stress = 250e6, hardening = "perfect" }
+[[bodies]]
+name = "beam"
+material = "steel"
+section = { shape = "rectangle", element = "L9", x = { from = 0.0, to = 0.02, elements = 1 }, z = { from = 0.0, to = 0.04, elements = 1 } }
+axis = { element = "B4", from = 0.0, to = 0.5, elements = 4 }
+[[constraints]]
+name = "root"
+body = "beam"
+where = { y = 0.0 }
+fix = ["x", "y", "z"]
+[[loads]]
+name = "tip"
+body = "beam"
+where = { y = 0.5 }
+total_force = [0.0, 0.0, -12000.0]
+[adapt]
+tolerance = 0.03
+max_dof = 15000
+"#;
+    let r = run("adapt_collapse", text, &[]);
+    assert_eq!(r.code, Some(2), "{}", r.stderr);
+    let s = r.summary();
+    assert_eq!((s["status"].as_str(), s["adapt_end"].as_str()), (Some("not_converged"), Some("stopped")));
+    assert_eq!(s["adapt_cycle"].as_u64(), Some(0));
+    let stop = s["adapt_stop"].as_str().unwrap();
+    assert!(stop.contains("cycle 0 stopped early"), "{stop}");
+    // the load reached lies past the hinge's 4 kN (the coarse section is stiffer) but short of 12 kN
+    let reached = 12.0 * s["load_factor"].as_f64().unwrap();
+    assert!((4.0..12.0).contains(&reached), "{reached} kN");
+}

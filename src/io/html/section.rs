@@ -167,11 +167,22 @@ pub(crate) fn adapt(a: &Adaptivity) -> Section {
         tables,
         plots: vec![Plot {
             name: "adapt".into(),
-            title: "estimated error (energy norm) against DOF".into(),
+            title: estimate_title(a),
             x: "DOF".into(),
             y: "estimate [%]".into(),
             series: vec![estimate],
         }],
+    }
+}
+
+/// The title of an adaptive run's estimate chart, by what the estimate
+/// measures: the energy norm, or of a
+/// modal (buckling) run the largest relative error of the followed modes'
+/// frequencies (critical load factors; model-format.md, `[adapt]`).
+fn estimate_title(a: &Adaptivity) -> String {
+    match a.cycles.first().and_then(|c| c.modes.as_ref()) {
+        Some(m) => format!("largest estimated {} error of the followed modes against DOF", m.quantity.name()),
+        None => "estimated error (energy norm) against DOF".into(),
     }
 }
 

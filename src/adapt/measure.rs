@@ -49,6 +49,10 @@ pub(crate) struct Measure {
     /// Modal and buckling: the followed modes and their estimated
     /// errors; `None` otherwise.
     pub(crate) modes: Option<FollowedModes>,
+    /// Transient: the kept state measured, its worst (`frame_0004`, or
+    /// `end`: the last state, the only one seen without frames); `None`
+    /// otherwise.
+    pub(crate) state: Option<String>,
 }
 
 impl Measure {
@@ -65,16 +69,21 @@ impl Measure {
                 |e| e.eigenvalue,
                 settings,
             ),
-            (None, None) => match Self::worst_kept(solution).or(solution.error_estimate.as_ref()) {
-                Some(e) => Self {
-                    estimate: e.relative(),
-                    element: e.element.clone(),
-                    section: e.section.clone(),
-                    direction: e.direction.clone(),
-                    ..Default::default()
-                },
-                None => Self::default(),
-            },
+            (None, None) => {
+                let transient = solution.energy.is_some();
+                let worst = Self::worst_kept(solution).or(solution.error_estimate.as_ref().map(|e| ("end".into(), e)));
+                match worst {
+                    Some((state, e)) => Self {
+                        estimate: e.relative(),
+                        element: e.element.clone(),
+                        section: e.section.clone(),
+                        direction: e.direction.clone(),
+                        state: transient.then_some(state),
+                        ..Default::default()
+                    },
+                    None => Self::default(),
+                }
+            }
         }
     }
 
@@ -82,12 +91,17 @@ impl Measure {
     /// state whose estimated error `η` is largest (the largest relative
     /// error belongs to a state of little energy, before the load arrives);
     /// `None` for a run without frames.
-    fn worst_kept(solution: &Solution) -> Option<&crate::post::ErrorEstimate> {
+    fn worst_kept(solution: &Solution) -> Option<(String, &crate::post::ErrorEstimate)> {
         if solution.frames.is_empty() {
             return None;
         }
-        let kept = solution.error_history.rows.iter().map(|r| &r.estimate).chain(solution.error_estimate.as_ref());
-        kept.max_by(|a, b| a.error.total_cmp(&b.error))
+        let name = |s: &crate::analysis::state_errors::State| match s {
+            crate::analysis::state_errors::State::Frame(k) => format!("frame_{:04}", k + 1),
+            crate::analysis::state_errors::State::Step(k) => format!("the end of step {}", k + 1),
+        };
+        let kept = solution.error_history.rows.iter().map(|r| (name(&r.state), &r.estimate));
+        let kept = kept.chain(solution.error_estimate.as_ref().map(|e| ("end".to_string(), e)));
+        kept.max_by(|a, b| a.1.error.total_cmp(&b.1.error))
     }
 
     /// The measure of the lowest `settings.modes` of an eigen-analysis's
@@ -107,14 +121,19 @@ impl Measure {
         let above = errors[..n].iter().filter(|e| error(e) >= settings.tolerance).map(|e| &e.estimate);
         let Combined { element, section, direction } = combined(above);
         let modes = FollowedModes { quantity, values: values[..n].to_vec(), errors: relative };
-        Self { estimate, element, section, direction, modes: Some(modes) }
+        Self { estimate, element, section, direction, modes: Some(modes), state: None }
     }
 
     /// The words of the stop at the tolerance.
     pub(crate) fn below(&self, tolerance: f64) -> String {
         match &self.modes {
             None => {
-                format!("the estimate {:.2} % is below the tolerance {:.2} %", 100.0 * self.estimate, 100.0 * tolerance)
+                let of = self.state.as_ref().map_or_else(String::new, |s| format!(" of the worst kept time ({s})"));
+                format!(
+                    "the estimate {:.2} %{of} is below the tolerance {:.2} %",
+                    100.0 * self.estimate,
+                    100.0 * tolerance
+                )
             }
             Some(m) => format!(
                 "the largest estimated {} error of the {} modes followed, {:.2} %, is below the tolerance {:.2} %",

@@ -150,6 +150,7 @@ pub fn run(
             dof: model.n_dofs(),
             estimate: measure.estimate,
             modes: measure.modes.clone(),
+            state: measure.state.clone(),
             time_s: start.elapsed().as_secs_f64(),
             refined: std::mem::take(&mut refined),
             probes: analysis::tables::probes(&model, &solution.fields(&model)),

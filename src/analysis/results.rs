@@ -140,6 +140,9 @@ pub struct AdaptCycle {
     /// Modal and buckling: the modes followed, with their estimated
     /// errors; `None` otherwise.
     pub modes: Option<FollowedModes>,
+    /// Transient: the kept state whose estimate is `estimate` (the worst
+    /// of the frames and the end: `frame_0004`, or `end`); `None` otherwise.
+    pub state: Option<String>,
     /// Wall time of the cycle: building the refined model and solving it (s).
     pub time_s: f64,
     /// What its mesh refined in the previous one (empty for cycle 0).

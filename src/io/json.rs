@@ -274,6 +274,10 @@ pub struct CycleSummary {
     /// Buckling: their estimated relative errors (0–1); absent otherwise.
     #[serde(skip_serializing_if = "Vec::is_empty")]
     pub factor_errors: Vec<f64>,
+    /// Transient: the kept state the estimate is of, the worst of the
+    /// frames and the end (`frame_0004`, `end`); absent otherwise.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub state: Option<String>,
     /// Wall time of the cycle: building its model and solving it (s).
     pub time_s: f64,
     /// What its mesh refined in the previous cycle's.
@@ -505,6 +509,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
                         frequency_errors,
                         factors,
                         factor_errors,
+                        state: c.state.clone(),
                         time_s: c.time_s,
                         refined: c.refined.clone(),
                     }

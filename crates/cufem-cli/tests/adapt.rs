@@ -933,16 +933,25 @@ fn adapt_on_a_transient_run_follows_its_worst_kept_time() {
         &mut |c, _, s| {
             // the worst kept time by η, measured relative to its own energy
             assert!(!s.frames.is_empty());
-            let kept = s.error_history.rows.iter().map(|r| &r.estimate).chain(s.error_estimate.as_ref());
-            let worst = kept.max_by(|a, b| a.error.total_cmp(&b.error)).unwrap();
+            let name = |r: &cufem::analysis::state_errors::StateError| match r.state {
+                cufem::analysis::state_errors::State::Frame(k) => format!("frame_{:04}", k + 1),
+                cufem::analysis::state_errors::State::Step(k) => format!("the end of step {}", k + 1),
+            };
+            let kept = s.error_history.rows.iter().map(|r| (name(r), &r.estimate));
+            let kept = kept.chain(s.error_estimate.as_ref().map(|e| ("end".to_string(), e)));
+            let (state, worst) = kept.max_by(|a, b| a.1.error.total_cmp(&b.1.error)).unwrap();
             assert_eq!(c.estimate, worst.relative());
             assert!(c.modes.is_none());
+            // which kept time it is, named (a new user saw three numbers for one mesh)
+            assert_eq!(c.state.as_deref(), Some(state.as_str()));
             estimates.push(c.estimate);
         },
     )
     .unwrap();
     let adapt = last.adapt.as_ref().unwrap();
     assert!(adapt.stop.contains("below the tolerance 5.00 %"), "{}", adapt.stop);
+    let named = format!("of the worst kept time ({})", adapt.cycles.last().unwrap().state.as_deref().unwrap());
+    assert!(adapt.stop.contains(&named), "{}", adapt.stop);
     assert!(estimates.len() >= 2 && estimates[0] > 0.05, "{estimates:?}");
     assert!(*estimates.last().unwrap() < 0.05, "{estimates:?}");
     assert_eq!(Model::parse(&adapt.model_file).unwrap().n_dofs(), model.n_dofs());

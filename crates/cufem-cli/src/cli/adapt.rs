@@ -140,9 +140,10 @@ pub(super) fn exit_code(solution: &Solution) -> Option<u8> {
 /// The report line of one cycle.
 pub(super) fn cycle_line(c: &cufem::analysis::AdaptCycle) -> String {
     let refined = if c.refined.is_empty() { String::new() } else { format!("  (refined {})", c.refined) };
-    let what = match &c.modes {
-        Some(m) => format!("largest {} error estimate", m.quantity.name()),
-        None => "estimate".to_string(),
+    let what = match (&c.modes, &c.state) {
+        (Some(m), _) => format!("largest {} error estimate", m.quantity.name()),
+        (None, Some(state)) => format!("estimate of the worst kept time ({state})"),
+        (None, None) => "estimate".to_string(),
     };
     format!(
         "cycle {}: {} DOF, {what} {:.2} %, {:.1} s{refined}",

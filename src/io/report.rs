@@ -245,6 +245,11 @@ pub fn results(model: &Model, solution: &Solution) -> String {
              against {largest:.3e} √J in the run), so its relative error measures round-off; the kept states' \
              estimates follow"
         );
+    } else if solution.error_estimate.as_ref().is_some_and(|e| e.energy == 0.0 && e.error == 0.0) {
+        // no stress at all (a modal analysis of the unloaded structure): a
+        // relative error of 0 / 0, which read as "0.00 %, converged"
+        let modes = if solution.modal.is_some() { "; the modes' estimates are in their table" } else { "" };
+        out!(s, "estimated error of the end state not given: it carries no stress{modes}");
     } else if let Some(e) = &summary.error_estimate {
         let largest: Vec<String> =
             e.largest.iter().take(3).map(|l| format!("{} #{} ({:.0} %)", l.body, l.element, 100.0 * l.share)).collect();

@@ -17,8 +17,9 @@ use super::{Failure, INPUT, INTERRUPTED, NOT_CONVERGED, Reporter, TOO_LARGE, fai
 #[derive(clap::Args)]
 pub(super) struct AdaptArgs {
     /// Refine where the error estimate is largest and solve again until the relative estimate (energy
-    /// norm; of a modal analysis, the largest estimated relative frequency error of the modes followed)
-    /// is below TOL, e.g. 0.05 (overrides the model's `adapt.tolerance`).
+    /// norm, of a transient run's worst kept time; of a modal or buckling analysis, the largest
+    /// estimated relative frequency or critical load factor error of the modes followed) is below TOL,
+    /// e.g. 0.05 (overrides the model's `adapt.tolerance`).
     #[arg(long, value_name = "TOL", allow_negative_numbers = true, value_parser = parse_tolerance)]
     adapt: Option<f64>,
     /// DOF budget of an adaptive run: no mesh with more DOF is solved (overrides `adapt.max_dof`;

@@ -431,9 +431,15 @@ pub(crate) fn describe(mesh: &Mesh, before: &MeshPlan, after: &MeshPlan) -> Stri
     let mut parts = Vec::new();
     for ((b, p), q) in mesh.bodies.iter().zip(&before.bodies).zip(&after.bodies) {
         let mut what = Vec::new();
+        // the counts that changed only (a new user read `x 1 → 1` as a refinement)
+        let mut changed = |name: &str, a: usize, b: usize| {
+            if a != b {
+                what.push(format!("{name} {a} → {b}"));
+            }
+        };
         if let (SectionPlan::Grid { x, z, .. }, SectionPlan::Grid { x: x2, z: z2, .. }) = (&p.section, &q.section) {
-            what.push(format!("x {} → {}", x.len() - 1, x2.len() - 1));
-            what.push(format!("z {} → {}", z.len() - 1, z2.len() - 1));
+            changed("x", x.len() - 1, x2.len() - 1);
+            changed("z", z.len() - 1, z2.len() - 1);
         }
         if let (
             SectionPlan::Doubled { times, parts, junction, .. },
@@ -454,8 +460,12 @@ pub(crate) fn describe(mesh: &Mesh, before: &MeshPlan, after: &MeshPlan) -> Stri
                 }
             }
         }
-        what.push(format!("axis {} → {}", p.axis.len() - 1, q.axis.len() - 1));
-        parts.push(format!("{}: {}", b.name, what.join(", ")));
+        if p.axis.len() != q.axis.len() {
+            what.push(format!("axis {} → {}", p.axis.len() - 1, q.axis.len() - 1));
+        }
+        if !what.is_empty() {
+            parts.push(format!("{}: {}", b.name, what.join(", ")));
+        }
     }
     parts.join("; ")
 }

@@ -208,6 +208,10 @@ fn cli_run_adapt_refines_until_the_budget() {
     assert!(out.status.success(), "{stderr}\n{stdout}");
     assert!(stderr.contains("cycle 0:") && stderr.contains("cycle 1:"), "{stderr}");
     assert!(stdout.contains("adaptive run stopped: the next mesh"), "{stdout}");
+    // where the adapted mesh went, on the console and in the report (a new user found it in summary.json only)
+    assert!(stdout.contains("as a model file: ") && stdout.contains("adapted.toml\n"), "{stdout}");
+    let html = std::fs::read_to_string(dir.join("out/report.html")).unwrap();
+    assert!(html.contains("as a model file, adapted.toml"), "the report's adaptive section");
     let s: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(dir.join("out/summary.json")).unwrap()).unwrap();
     let cycles = s["adapt"].as_array().unwrap();

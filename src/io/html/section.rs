@@ -159,9 +159,10 @@ pub(crate) fn adapt(a: &Adaptivity) -> Section {
     Section {
         title: format!("Adaptive refinement: {} cycles", a.cycles.len()),
         text: format!(
-            "until the estimate is below {:.2} %, at most {} DOF; stopped: {}",
+            "until the estimate is below {:.2} %, at most {} DOF; stopped: {}. The last cycle's mesh is written \
+             beside these results as a model file, adapted.toml.",
             100.0 * a.tolerance,
-            a.max_dof,
+            crate::numbers::thousands(a.max_dof),
             a.stop
         ),
         tables,

@@ -122,7 +122,11 @@ pub(super) fn run_into(
             eprintln!("adaptive run stopped: {}", a.stop);
         }
     }
+    let cycle = solution.adapt.as_ref().and_then(|a| a.cycles.last()).map(|c| c.cycle);
     let written = solved_into(&model, solution, folder, |_| ()).map_err(run_failure)?;
+    if let Some(cycle) = cycle {
+        println!("the mesh of cycle {cycle} as a model file: {}", written.folder.join("adapted.toml").display());
+    }
     Ok((model, written))
 }
 

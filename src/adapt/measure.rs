@@ -95,11 +95,7 @@ impl Measure {
         if solution.frames.is_empty() {
             return None;
         }
-        let name = |s: &crate::analysis::state_errors::State| match s {
-            crate::analysis::state_errors::State::Frame(k) => format!("frame_{:04}", k + 1),
-            crate::analysis::state_errors::State::Step(k) => format!("the end of step {}", k + 1),
-        };
-        let kept = solution.error_history.rows.iter().map(|r| (name(&r.state), &r.estimate));
+        let kept = solution.error_history.rows.iter().map(|r| (r.state.name(&solution.steps), &r.estimate));
         let kept = kept.chain(solution.error_estimate.as_ref().map(|e| ("end".to_string(), e)));
         kept.max_by(|a, b| a.1.error.total_cmp(&b.1.error))
     }

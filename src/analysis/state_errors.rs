@@ -25,6 +25,17 @@ pub enum State {
     Frame(usize),
 }
 
+impl State {
+    /// Its name in tables and messages: the step's own name, or the
+    /// frame's file stem (`frame_0004`).
+    pub fn name(self, steps: &[StepEnd]) -> String {
+        match self {
+            Self::Step(k) => steps[k].name.clone(),
+            Self::Frame(k) => format!("frame_{:04}", k + 1),
+        }
+    }
+}
+
 /// The estimate of one kept state.
 #[derive(Debug, Clone, PartialEq)]
 pub struct StateError {

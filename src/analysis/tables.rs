@@ -485,8 +485,8 @@ pub fn error_history(model: &Model, solution: &Solution) -> Option<Table> {
     let (state, name, increment): (Vec<_>, Vec<_>, Vec<_>) = rows
         .iter()
         .map(|r| match r.state {
-            State::Step(k) => ("step".to_string(), solution.steps[k].name.clone(), solution.steps[k].increment),
-            State::Frame(k) => ("frame".to_string(), format!("frame_{:04}", k + 1), solution.frames[k].increment),
+            State::Step(k) => ("step".to_string(), r.state.name(&solution.steps), solution.steps[k].increment),
+            State::Frame(k) => ("frame".to_string(), r.state.name(&solution.steps), solution.frames[k].increment),
         })
         .fold((Vec::new(), Vec::new(), Vec::new()), |(mut a, mut b, mut c), (x, y, z)| {
             a.push(x);

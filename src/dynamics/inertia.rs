@@ -34,11 +34,9 @@
 //! couples each displacement component with the same component of the
 //! neighbouring nodes, a third of the structure's pattern, so the product
 //! `M a` of every evaluation and the addition of `M / (β Δt²)` to the tangent
-//! pass over a third of the entries (measured on one thread: a free
-//! vibration of the drop weight's tube, its 100 steps each a residual and
-//! a solve with the kept tangent, 18 % less time; the drop weight itself,
-//! whose steps in contact are dominated by the solves, within the spread
-//! of its runs).
+//! pass over a third of the entries (the steps of an impact in contact
+//! are dominated by the solves: the drop weight's time is within the
+//! spread of its runs either way).
 //!
 //! The structure starts at rest with the initial velocities of the model
 //! (`a₀ = 0`: no load at t = 0, as every load history starts from zero).

@@ -937,11 +937,7 @@ fn adapt_on_a_transient_run_follows_its_worst_kept_time() {
         &mut |c, _, s| {
             // the worst kept time by η, measured relative to its own energy
             assert!(!s.frames.is_empty());
-            let name = |r: &cufem::analysis::state_errors::StateError| match r.state {
-                cufem::analysis::state_errors::State::Frame(k) => format!("frame_{:04}", k + 1),
-                cufem::analysis::state_errors::State::Step(k) => format!("the end of step {}", k + 1),
-            };
-            let kept = s.error_history.rows.iter().map(|r| (name(r), &r.estimate));
+            let kept = s.error_history.rows.iter().map(|r| (r.state.name(&s.steps), &r.estimate));
             let kept = kept.chain(s.error_estimate.as_ref().map(|e| ("end".to_string(), e)));
             let (state, worst) = kept.max_by(|a, b| a.1.error.total_cmp(&b.1.error)).unwrap();
             assert_eq!(c.estimate, worst.relative());

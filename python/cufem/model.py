@@ -181,6 +181,11 @@ def _dict_error(message: str, text: str, d: Any) -> Optional[str]:
     body = message.splitlines()
     caret = max((i for i, l in enumerate(body) if l.lstrip(" |").startswith("^")), default=len(body) - 1)
     reason = " ".join(l.strip() for l in body[caret + 1 :]) or body[-1]
+    # the reader names the key itself (`bodies[0].axis.elements: …`): as the dict's dotted path
+    named = re.match(r"([A-Za-z_]\w*(?:\[\d+\]|\.[A-Za-z_]\w*)*): (.*)$", reason)
+    if named:
+        dotted = re.sub(r"\[(\d+)\]", r".\1", named.group(1))
+        return f"{dotted}: {named.group(2)}"
     unknown = re.match(r"unknown field `([^`]+)`", reason)
     if not key and unknown:
         # the parser points at the header of the table it was reading (a

@@ -12,6 +12,7 @@
 
 pub(crate) mod bounds;
 pub(crate) mod defaults;
+mod parse_error;
 pub(crate) mod ranges;
 pub(crate) mod schema;
 mod settings;
@@ -146,5 +147,5 @@ pub fn read_text(path: &Path) -> Result<(String, PathBuf), ModelError> {
 /// Reads model-file text into its typed schema (TOML syntax, unknown keys,
 /// types and word values; the values themselves are checked later).
 pub(crate) fn parse(text: &str) -> Result<schema::ModelFile, ModelError> {
-    toml::from_str(text).map_err(|e| ModelError::Parse(shorten_lines(&e.to_string())))
+    toml::from_str(text).map_err(|e| ModelError::Parse(shorten_lines(&parse_error::explain(text, &e))))
 }

@@ -221,7 +221,10 @@ fn bad_input_is_reported_with_key_value_and_allowed_values() {
         ),
         (
             base.replace("plot = [\"u_z\"]", "plot = [\"uz\"]"),
-            vec!["TOML parse error at line", "invalid value: string \"uz\", expected one of u_x, u_y, u_z"],
+            vec![
+                "TOML parse error at line",
+                "lines[0].plot: invalid value: text \"uz\", expected one of u_x, u_y, u_z",
+            ],
         ),
         (
             base.replace(

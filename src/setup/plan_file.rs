@@ -142,8 +142,22 @@ fn table<'a>(body: &'a mut dyn TableLike, key: &str, i: usize) -> Result<&'a mut
         .ok_or_else(|| invalid(format!("bodies[{i}].{key}"), "(not a table)", format!("a `{key}` table")))
 }
 
+/// A line's coordinates as written: each with the fewest significant
+/// digits that keep it within `10⁻¹²` of the line's largest coordinate, so
+/// that the round-off of their sums (`0.037500000000000006`) is not written
+/// (a new user's review); the mesh moves by at most that, far below the
+/// set-up's node-matching tolerance.
 fn numbers(v: &[f64]) -> Value {
-    Value::Array(v.iter().copied().collect::<Array>())
+    let scale = v.iter().fold(0.0_f64, |m, x| m.max(x.abs()));
+    Value::Array(v.iter().map(|&x| shortest(x, 1e-12 * scale)).collect::<Array>())
+}
+
+/// `x` with the fewest significant digits within `tolerance` of it.
+fn shortest(x: f64, tolerance: f64) -> f64 {
+    (0..17)
+        .filter_map(|digits| format!("{x:.digits$e}").parse::<f64>().ok())
+        .find(|y| (y - x).abs() <= tolerance)
+        .unwrap_or(x)
 }
 
 /// The count `key` of `t` (its default when absent).
@@ -310,6 +324,21 @@ thickness = 0.001
         // a plan of another file (two bodies) is refused by key
         let two = MeshPlan { bodies: vec![plan.bodies[0].clone(), plan.bodies[0].clone()] };
         assert!(planned_text(text, &two).unwrap_err().to_string().contains("bodies"));
+    }
+
+    /// Written lines carry no round-off digits: `0.025 + 0.0125` is written
+    /// `0.0375`, a third of `0.1` `0.033333333333` (beside a `1.0`); within `10⁻¹²` of the largest
+    /// coordinate, and exact values kept.
+    #[test]
+    fn lines_are_written_without_round_off_digits() {
+        let v = [0.0, 0.025 + 0.0125, 0.1 / 3.0, 0.1, -2.5e-3, 1.0 - 1e-16];
+        assert_eq!(v[1].to_string(), "0.037500000000000006");
+        let written = numbers(&v).to_string();
+        assert_eq!(written.trim(), "[0.0, 0.0375, 0.033333333333, 0.1, -0.0025, 1.0]");
+        let back: Vec<f64> = numbers(&v).as_array().unwrap().iter().map(|x| x.as_float().unwrap()).collect();
+        for (a, b) in v.iter().zip(&back) {
+            assert!((a - b).abs() <= 1e-12, "{a} {b}");
+        }
     }
 
     /// A tube's counts: `times` and `along` double the elements along the

@@ -273,6 +273,35 @@ fn cli_run_adapt_refines_until_the_budget() {
     assert!(!single.contains("\"adapt\""));
 }
 
+/// An adaptive transient run without frames is measured by its end alone,
+/// and says so before its first cycle (a new user's review: the cycle line
+/// named `end` and nothing more); with frames it does not.
+#[test]
+fn an_adaptive_transient_run_without_frames_says_its_end_alone_is_measured() {
+    let dir = Path::new(env!("CARGO_TARGET_TMPDIR")).join("adapt_transient_no_frames");
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/rod_impact.toml");
+    let with_frames = std::fs::read_to_string(path).unwrap();
+    assert!(with_frames.contains("\noutput_interval = 5e-5\n"));
+    let without = with_frames.replace("\noutput_interval = 5e-5\n", "\n");
+    let said = "a transient run without frames: each cycle is measured by its end alone";
+    for (name, text, says) in [("without", &without, true), ("with", &with_frames, false)] {
+        let model = dir.join(format!("{name}.toml"));
+        std::fs::write(&model, text).unwrap();
+        let out = Command::new(env!("CARGO_BIN_EXE_cufem"))
+            .args(["run", model.to_str().unwrap(), "--adapt", "0.9", "--out"])
+            .arg(dir.join(name))
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        // the progress lines (stderr), with the adaptive run's own first line
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert!(stderr.contains("adaptive run: until the estimate is below 90.00 %"), "{stderr}");
+        assert_eq!(stderr.contains(said), says, "{stderr}");
+    }
+}
+
 /// A model whose file holds the `[adapt]` table: `adapted.toml` leaves the
 /// table out (written as comments in its header) and marks its title, so
 /// that running it solves the adapted mesh again — it used to keep the

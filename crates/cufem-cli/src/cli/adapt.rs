@@ -105,6 +105,14 @@ pub(super) fn run_into(
         settings.max_cycles,
         settings.fraction
     ));
+    if model.transient.as_ref().is_some_and(|t| t.output_interval.is_none()) {
+        progress.line(
+            "a transient run without frames: each cycle is measured by its end alone (the run's largest \
+             error, at an impact, may lie before it); set analysis.output_interval to keep frames and \
+             measure the worst of them"
+                .to_string(),
+        );
+    }
     let print = progress.printer();
     let result = cufem::adapt::run(model, source, settings, options, progress, &mut |c, _, _| print(cycle_line(c)));
     let (model, solution) = result.map_err(|e| match e {

@@ -205,6 +205,14 @@ pub struct Adaptivity {
     pub model_file: String,
 }
 
+impl Adaptivity {
+    /// Wall time of all its cycles (s): the run's, where a solution's own
+    /// `wall_time` is its last cycle's.
+    pub fn time_s(&self) -> f64 {
+        self.cycles.iter().map(|c| c.time_s).sum()
+    }
+}
+
 /// How an adaptive run ended.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub enum AdaptEnd {

@@ -201,6 +201,10 @@ pub struct Summary {
     /// `"interrupted"`; absent for a single run.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub adapt_end: Option<&'static str>,
+    /// Wall time of all the cycles of an adaptive run (s; `wall_time_s`
+    /// is the last cycle's), absent for a single run.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub adapt_time_s: Option<f64>,
     /// `analysis.type = "buckling"`: the critical load factors and their
     /// mode files, absent for a static analysis.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -519,6 +523,7 @@ pub fn summary(model: &Model, solution: &Solution) -> Summary {
         adapt_stop: solution.adapt.as_ref().map(|a| a.stop.clone()),
         adapt_cycle: solution.adapt.as_ref().and_then(|a| a.cycles.last()).map(|c| c.cycle),
         adapt_end: adapt_end(solution),
+        adapt_time_s: solution.adapt.as_ref().map(|a| a.time_s()),
         buckling: buckling_summary(model, solution),
         modal: modal_summary(model, solution),
         energy: energy_at_end(solution, 1.0),

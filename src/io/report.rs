@@ -207,6 +207,8 @@ pub fn results(model: &Model, solution: &Solution) -> String {
                 c.refined
             );
         }
+        let n = a.cycles.len();
+        out!(s, "cycles: {n}, {:.1} s in all (the Model row above: the last cycle's)", a.time_s());
         out!(s, "adaptive run stopped: {}", a.stop);
     }
     let summary = super::summary(model, solution);

@@ -233,6 +233,13 @@ fn cli_run_adapt_refines_until_the_budget() {
     assert_eq!(s["dof"], last["dof"], "the results are the last cycle's");
     assert_eq!(s["error_estimate"]["relative_energy_norm"], last["estimate"]);
     assert!(s["adapt_stop"].as_str().unwrap().contains("budget"));
+    // the run's time is all its cycles', `wall_time_s` the last one's (a
+    // new user read the last cycle's as the run's), on the console too
+    let times: f64 = cycles.iter().map(|c| c["time_s"].as_f64().unwrap()).sum();
+    assert!((s["adapt_time_s"].as_f64().unwrap() - times).abs() <= 1e-9 * times, "{}", s["adapt_time_s"]);
+    assert!(s["wall_time_s"].as_f64().unwrap() < times);
+    let all = format!("cycles: {}, {:.1} s in all (the Model row above: the last cycle's)", cycles.len(), times);
+    assert!(stdout.contains(&all), "{stdout}");
     assert_eq!(s["probes"][0]["name"], "tip");
     // the adapted mesh as a model file: the user's file (its comments kept)
     // with the last cycle's divisions, which solves to the same result,

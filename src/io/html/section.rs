@@ -96,7 +96,11 @@ pub(crate) fn adapt(a: &Adaptivity) -> Section {
         rows: a
             .cycles
             .iter()
-            .map(|c| vec![json!(c.cycle), json!(c.dof), json!(100.0 * c.estimate), json!(c.time_s), json!(c.refined)])
+            .map(|c| {
+                // as the console prints them
+                let (estimate, time) = ((1e4 * c.estimate).round() / 100.0, (10.0 * c.time_s).round() / 10.0);
+                vec![json!(c.cycle), json!(c.dof), json!(estimate), json!(time), json!(c.refined)]
+            })
             .collect(),
     };
     let mut tables = vec![cycles];

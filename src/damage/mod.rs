@@ -215,6 +215,15 @@ pub struct DamageSummary {
     pub dissipated_j: PerMode,
     /// Their sum (J).
     pub(crate) dissipated_total_j: f64,
+    /// The energy each mode released at fixed strain, increment by
+    /// increment, `Σ_q w_q Σ_n W(ε_n; d_n) − W(ε_n; d_(n+1))` (J), at the
+    /// strain `ε_n` each increment starts from: never more than the work
+    /// of the loads, and the same as `dissipated_j` as the increments
+    /// shrink; `dissipated_j` (the law's trapezoidal sums of `Y Δd`) above
+    /// it means a damaged point's strain jumped within an increment.
+    pub(crate) released_j: PerMode,
+    /// Their sum (J).
+    pub(crate) released_total_j: f64,
     /// The volume of the points where the mode's damage started, `d > 0` (m³).
     pub(crate) initiated_volume_m3: PerMode,
     /// The volume of the points where the mode's damage passed ½ (m³).
@@ -240,6 +249,12 @@ impl Damage {
     /// Its `summary.json` entry.
     pub fn summary(&self) -> DamageSummary {
         let dissipated = dissipated(&self.states, &self.volume);
+        let mut released = [0.0; 4];
+        for (s, &w) in self.states.iter().zip(&self.volume) {
+            for (o, g) in released.iter_mut().zip(&s.released) {
+                *o += w * g;
+            }
+        }
         let initiated = volume_above(&self.states, &self.volume, 0.0);
         let damaged = volume_above(&self.states, &self.volume, 0.5);
         let mut largest = [0.0f64; 4];
@@ -254,6 +269,8 @@ impl Damage {
             modes: MODES,
             dissipated_j: PerMode::from_array(dissipated),
             dissipated_total_j: dissipated.iter().sum(),
+            released_j: PerMode::from_array(released),
+            released_total_j: released.iter().sum(),
             initiated_volume_m3: PerMode::from_array(initiated),
             damaged_volume_m3: PerMode::from_array(damaged),
             largest: PerMode::from_array(largest),

@@ -132,7 +132,8 @@ fn a_contact_the_time_steps_do_not_resolve_is_warned_about() {
 }
 
 /// A laminate's precrack that holds no node of its interface (in mm, or
-/// past the beam's end) ran as an uncracked beam without a word; a
+/// past the beam's end) ran as an uncracked beam without a word, one
+/// from inside past an end as a crack to it; a
 /// single-ply laminate with `interfaces = "cohesive"` was accepted with no
 /// interface at all (a new-user review). Both refused by key; the shipped
 /// DCB (crack from 0 to 32.8 mm of a 100 mm beam) reads.
@@ -144,11 +145,19 @@ fn a_precrack_off_the_beam_and_a_lone_cohesive_ply_are_refused() {
     let e = refusal(&with(&dcb, crack, "crack = { from = 0.2, to = 0.3 }"));
     assert!(
         e.starts_with(
-            "bodies[0].section.interfaces[0].crack = { from = 0.2, to = 0.3 }: expected an interval along y that \
-             holds nodes of the interface: the body runs from y = 0 to 0.1 m"
+            "bodies[0].section.interfaces[0].crack = { from = 0.2, to = 0.3 }: expected an interval along y within \
+             the body that holds nodes of the interface: the body runs from y = 0 to 0.1 m"
         ),
         "{e}"
     );
+    // one that runs past the end was read as a crack to it (a second review)
+    let e = refusal(&with(&dcb, crack, "crack = { from = 0.05, to = 0.5 }"));
+    assert!(
+        e.starts_with("bodies[0].section.interfaces[0].crack = { from = 0.05, to = 0.5 }: expected an interval"),
+        "{e}"
+    );
+    let e = refusal(&with(&dcb, crack, "crack = { from = -0.01, to = 0.0328 }"));
+    assert!(e.contains("the body runs from y = 0 to 0.1 m"), "{e}");
     let plies = "  { thickness = 0.00156, material = \"as4_peek\", angle = 0.0, elements = 1 },\n";
     let one = with(&dcb, &format!("{plies}{plies}"), plies);
     let one = with(
@@ -296,4 +305,16 @@ fn a_step_factor_on_a_fixed_support_is_warned_about() {
     // a support that moves is scaled by its factor: no warning
     let moved = with(&release, "fix = [\"x\", \"y\", \"z\"]", "fix = [\"x\", \"y\"]\ndisplacement = { z = 1e-6 }");
     assert!(Model::parse(&moved).unwrap().warnings.is_empty(), "{:?}", Model::parse(&moved).unwrap().warnings);
+}
+
+/// A cohesive law's warning was printed once per interface that uses it
+/// (three times for a `[0/90]s` beam; a new-user review): each warning of
+/// a model is given once.
+#[test]
+fn a_warning_of_a_law_used_by_several_interfaces_is_given_once() {
+    let text = with(&example("laminate_drop_weight.toml"), "shear_strength = 16.3e6", "shear_strength = 49e3");
+    let model = Model::parse(&text).unwrap();
+    let of_law: Vec<_> = model.warnings.iter().filter(|w| w.key.ends_with("cohesive.shear_strength")).collect();
+    assert_eq!(of_law.len(), 1, "{:?}", model.warnings);
+    assert!(of_law[0].message.contains("is more than 10 % from normal_strength"), "{}", of_law[0]);
 }

@@ -5,7 +5,9 @@
 //! scales is extreme — the stop message names the scales that make the
 //! matrix ill-conditioned, each with its key (issue 46): the smallest
 //! element against its section or axis, a Poisson's ratio near ½, the
-//! contrast of the materials' stiffnesses.
+//! contrast of the materials' stiffnesses. A model whose plies damage
+//! without viscosity is told what lets Newton past a damage peak
+//! ([`softening`]).
 
 use crate::numbers::limit;
 use crate::setup::Model;
@@ -143,5 +145,28 @@ pub(super) fn diagnose(model: &Model) -> Option<String> {
         "{lead}; the model's scales: {}; make the extreme scale less extreme (thicker elements, fewer and thicker \
          plies, a Poisson's ratio further from 0.5)",
         list.join("; ")
+    ))
+}
+
+/// Why a model whose plies damage may stop past a peak: a damaging
+/// material without Duvaut–Lions viscosity, whose points switch between
+/// their softening and unloading branches from one Newton iteration to the
+/// next (docs/composites.md; a new user's beam stopped at λ = 0.33 with
+/// residuals cycling, and no word of the viscosity); `None` if every
+/// damaging material has one.
+pub(super) fn softening(model: &Model) -> Option<String> {
+    let mut used: Vec<usize> = model.mesh.bodies.iter().flat_map(|b| b.materials()).collect();
+    used.sort_unstable();
+    let mut keys: Vec<usize> = used
+        .into_iter()
+        .filter(|&k| model.materials[k].damage.as_ref().is_some_and(|d| d.viscosity() == 0.0))
+        .map(|k| super::checks::file_material(model, k))
+        .collect();
+    keys.dedup();
+    let k = *keys.first()?;
+    Some(format!(
+        "materials[{k}].damage has no viscosity: past a damage peak Newton cycles between the points' softening \
+         and unloading branches; a Duvaut–Lions viscosity (materials[{k}].damage.viscosity, e.g. 1e-3 in \
+         load-factor units) lets it pass (docs/composites.md)"
     ))
 }

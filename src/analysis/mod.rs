@@ -193,6 +193,11 @@ pub fn run(model: &Model, options: &RunOptions, progress: &mut dyn Progress) -> 
     {
         f.newton.message = Some(f.newton.message.take().map_or(why.clone(), |m| format!("{m}; {why}")));
     }
+    if let Some(f) = failure.as_mut().filter(|f| f.reason == stepping::StopReason::IncrementTooSmall)
+        && let Some(why) = conditioning::softening(model)
+    {
+        f.newton.message = Some(f.newton.message.take().map_or(why.clone(), |m| format!("{m}; {why}")));
+    }
     if failure.is_some() {
         // refresh forces at the last converged state for reactions and contact output
         structure.evaluate()?;

@@ -121,18 +121,24 @@ pub(super) fn interfaces(
                      one side of it out)",
                 ));
             }
-            if let Some([from, to]) = r.crack.filter(|_| !points.iter().any(|p| p.cracked)) {
+            // a plane normal to y cuts the axis: a crack across it runs past the part modelled
+            let cut = model.symmetry.iter().any(|s| s.plane.y.is_some());
+            let axis = &mesh.bodies[i].axis;
+            let (y0, y1) = (axis.nodes[0], *axis.nodes.last().expect("an axis has nodes"));
+            let past = |[from, to]: [f64; 2]| !cut && (from < y0 - 1e-9 * (y1 - y0) || to > y1 + 1e-9 * (y1 - y0));
+            if let Some([from, to]) = r.crack.filter(|&c| !points.iter().any(|p| p.cracked) || past(c)) {
                 // a precrack in mm, or off the beam's end, ran as an uncracked
-                // beam without a word (a new-user review)
-                let axis = &mesh.bodies[i].axis;
+                // beam without a word, one running past an end as a crack to
+                // it (new-user reviews)
                 let short = crate::numbers::short;
                 return Err(invalid(
                     format!("{}.crack", r.key),
                     format!("{{ from = {}, to = {} }}", short(from), short(to)),
                     format!(
-                        "an interval along y that holds nodes of the interface: the body runs from y = {} to {} m",
-                        short(axis.nodes[0]),
-                        short(*axis.nodes.last().expect("an axis has nodes"))
+                        "an interval along y within the body that holds nodes of the interface: the body runs \
+                         from y = {} to {} m",
+                        short(y0),
+                        short(y1)
                     ),
                 ));
             }

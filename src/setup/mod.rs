@@ -497,6 +497,10 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     analysis::adapt_combinations(adapt.as_ref(), modes)?;
     analysis::damage_combinations(kind, kinematics, &materials, solver.path.is_some())?;
     warnings.extend(analysis::eigen_warnings(modes, &mesh, &constraint_handler, !symmetry.planes.is_empty()));
+    // a material's warning is found once per use (a cohesive law per
+    // interface: printed three times, a new-user review): each once
+    let mut seen = std::collections::HashSet::new();
+    warnings.retain(|w| seen.insert((w.key.clone(), w.message.clone())));
     Ok(Model {
         title: file.title.unwrap_or_else(|| defaults::TITLE.into()),
         description: file.description.unwrap_or_else(|| defaults::DESCRIPTION.into()),

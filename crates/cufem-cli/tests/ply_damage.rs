@@ -114,6 +114,27 @@ fn a_crushed_ply_s_dissipation_is_not_booked_past_the_work() {
     assert!(warnings.contains("solver.step_control = { damage = 0.1 }"), "{warnings}");
 }
 
+/// The same beam without the damage's viscosity stops past its peak, its
+/// residuals cycling; the stop message names the viscosity that lets
+/// Newton pass (a new-user review: it said only that Newton did not
+/// converge).
+#[test]
+fn a_damage_stop_without_viscosity_names_the_viscosity() {
+    assert!(TPB.contains("matrix_compression = 800.0, viscosity = 1e-3 }"));
+    let text = TPB.replace("matrix_compression = 800.0, viscosity = 1e-3 }", "matrix_compression = 800.0 }");
+    let dir = common::scratch_dir("ply_damage", "tpb_no_viscosity");
+    let model = dir.join("m.toml");
+    std::fs::write(&model, text).unwrap();
+    let run = common::cufem()
+        .args(["run", model.to_str().unwrap(), "--quiet", "--out"])
+        .arg(dir.join("out"))
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&run.stderr);
+    assert_eq!(run.status.code(), Some(2), "{stderr}");
+    assert!(stderr.contains("materials[0].damage has no viscosity: past a damage peak Newton cycles"), "{stderr}");
+}
+
 /// The model of [`a_crushed_ply_s_dissipation_is_not_booked_past_the_work`].
 const TPB: &str = r#"title = "My [0/90]s three-point bend with ply damage and cohesive interfaces"
 

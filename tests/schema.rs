@@ -84,6 +84,14 @@ fn a_misspelt_section_shape_is_refused_with_its_line_and_the_shapes() {
         &["unknown field `web_thickness`, expected one of `element`, `origin`, `width`, `height`, `thickness`, \
            `around`, `along_x`, `along_z`, `through`"],
     );
+    // and the shapes that have it (a new user wrote a laminate's
+    // `interfaces` in a rectangle and was told the rectangle's keys alone)
+    refused(
+        &text,
+        line_of(&text, "section ="),
+        &["(a key of shape = \"i_beam\", shape = \"channel\", shape = \"z_section\", shape = \"angle\", \
+           shape = \"hat\", shape = \"box\")"],
+    );
     // a bad value in a shape's own key is reported with the key
     let text = edit(&example("bending_tube_20L9.toml"), "around = 20 }", "around = \"twenty\" }");
     refused(
@@ -112,7 +120,11 @@ fn a_misspelt_contact_method_is_refused_with_its_line_and_the_methods() {
     refused(
         &text,
         line_of(&text, "[[contacts]]"),
-        &["unknown field `search_distance`, expected one of `name`, `master`, `slave`", "`tolerance`, `pairs`"],
+        &[
+            "unknown field `search_distance`, expected one of `name`, `master`, `slave`",
+            "`tolerance`, `pairs`",
+            "(a key of method = \"surface\")",
+        ],
     );
     let text = edit(&base, slave, &format!("{slave}method = \"surface\"\ntolerance = 1e-6\n"));
     refused(&text, line_of(&text, "[[contacts]]"), &["unknown field `tolerance`", "`search_distance`"]);

@@ -91,8 +91,25 @@ impl SectionFile {
 /// Reads `[bodies.section]` naming the key of a bad value
 /// ([`super::tagged::read_tagged`]).
 pub(super) fn read<'de, D: Deserializer<'de>>(d: D) -> Result<SectionFile, D::Error> {
-    super::tagged::read_tagged(d, "shape", None, None)
+    super::tagged::read_tagged(d, ("shape", SHAPES), None, None)
 }
+
+/// The values of `shape`, in the order of [`SectionFile`]'s variants.
+const SHAPES: &[&str] = &[
+    "rectangle",
+    "tube",
+    "quads",
+    "i_beam",
+    "channel",
+    "z_section",
+    "angle",
+    "hat",
+    "box",
+    "circular_tube",
+    "circle",
+    "gmsh",
+    "laminate",
+];
 
 /// `shape = "rectangle"`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]

@@ -77,7 +77,7 @@ macro_rules! tagged_table {
             fn deserialize<D: serde::Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
                 let default: Option<&'static str> = None $(.or(Some($default)))?;
                 let tagged: $mirror::Tagged =
-                    $crate::input::schema::tagged::read_tagged(d, $tag, default, Some($mirror::NAMES))?;
+                    $crate::input::schema::tagged::read_tagged(d, ($tag, $mirror::NAMES), default, Some($mirror::NAMES))?;
                 Ok(match tagged {
                     $( $mirror::Tagged::$variant(m) => $crate::input::schema::tagged::tagged_table!(
                         @convert m $name $tag_field $enum $variant $shared $own
@@ -158,7 +158,7 @@ pub(crate) fn optional_tag(schema: &mut schemars::Schema, tag: &str, default: &s
 /// the key named ([`culprit`]: serde's buffered tables lose key names).
 pub(crate) fn read_tagged<'de, D, T>(
     d: D,
-    tag: &'static str,
+    (tag, variants): (&'static str, &'static [&'static str]),
     default: Option<&'static str>,
     names: Option<&'static [&'static str]>,
 ) -> Result<T, D::Error>
@@ -170,7 +170,43 @@ where
     if let Some(default) = default {
         table.entry(tag).or_insert_with(|| toml::Value::String(default.to_string()));
     }
-    T::deserialize(toml::Value::Table(table.clone())).map_err(|e| de::Error::custom(culprit::<T>(&table, tag, &e)))
+    T::deserialize(toml::Value::Table(table.clone())).map_err(|e| {
+        let message = culprit::<T>(&table, tag, &e);
+        de::Error::custom(match owners::<T>(&table, (tag, variants), &message) {
+            Some(owners) => format!("{message} ({owners})"),
+            None => message,
+        })
+    })
+}
+
+/// For an unknown key of one variant, the other variants that have it
+/// (`a key of shape = "laminate"`): a new user wrote a laminate's
+/// `interfaces` in a rectangle and was told only the rectangle's keys.
+fn owners<T: de::DeserializeOwned>(
+    table: &toml::Table,
+    (tag, variants): (&str, &[&str]),
+    message: &str,
+) -> Option<String> {
+    let field = message.strip_prefix("unknown field `")?.split('`').next()?;
+    let given = table.get(tag).and_then(toml::Value::as_str);
+    let value = table.get(field)?;
+    let owners: Vec<String> = variants
+        .iter()
+        .filter(|&&v| Some(v) != given)
+        .filter(|&&v| {
+            // the key alone with the tag: an unknown key is refused as it
+            // is read, missing ones after
+            let mut other = toml::Table::new();
+            other.insert(tag.to_string(), toml::Value::String(v.to_string()));
+            other.insert(field.to_string(), value.clone());
+            match T::deserialize(toml::Value::Table(other)) {
+                Ok(_) => true,
+                Err(e) => !e.message().contains(&format!("unknown field `{field}`")),
+            }
+        })
+        .map(|v| format!("{tag} = {v:?}"))
+        .collect();
+    (!owners.is_empty()).then(|| format!("a key of {}", owners.join(", ")))
 }
 
 /// The message of `error`, read from `table`, prefixed with the key whose

@@ -318,3 +318,22 @@ fn a_warning_of_a_law_used_by_several_interfaces_is_given_once() {
     assert_eq!(of_law.len(), 1, "{:?}", model.warnings);
     assert!(of_law[0].message.contains("is more than 10 % from normal_strength"), "{}", of_law[0]);
 }
+
+/// A ply angle written in radians (`1.5708` for 90°) was taken as 1.57° in
+/// silence (a new-user review): an angle within `10⁻³` of a multiple of
+/// π/4 is named; the shipped laminate's degrees are not.
+#[test]
+fn a_ply_angle_in_radians_is_named() {
+    let base = example("laminate_drop_weight.toml");
+    assert!(Model::parse(&base).unwrap().warnings.iter().all(|w| !w.key.ends_with(".angle")));
+    let text = with(&base, "angle = 90, elements = 1 },", "angle = 1.5708, elements = 1 },");
+    let model = Model::parse(&text).unwrap();
+    let w: Vec<String> = model.warnings.iter().filter(|w| w.key.ends_with(".angle")).map(|w| w.to_string()).collect();
+    assert_eq!(
+        w,
+        [
+            "bodies[0].section.plies[1].angle: 1.5708 reads as π/2 in radians, but angles are in degrees (1.5708° here): \
+          write 90 for 90°"
+        ],
+    );
+}

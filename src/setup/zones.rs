@@ -206,3 +206,36 @@ fn oriented(z: &Zone<'_>, m: usize, materials: &mut Vec<Material>) -> Result<usi
     materials.push(copy);
     Ok(materials.len() - 1)
 }
+
+/// Ply and zone angles that read as radians: within `10⁻³` of a multiple
+/// of π/4 up to 2π (`1.5708` for 90°), which as degrees no one lays a ply
+/// at (a new user's review: `angle = 1.5708` was taken as 1.57° in
+/// silence).
+pub(super) fn radian_warnings(bodies: &[BodyFile], warnings: &mut Vec<super::Warning>) {
+    for (i, b) in bodies.iter().enumerate() {
+        let plies = b.section.wall_plies().or(match &b.section {
+            SectionFile::Laminate(l) => l.plies.as_deref(),
+            _ => None,
+        });
+        let plies = plies.unwrap_or(&[]).iter().enumerate().map(|(k, p)| (format!("section.plies[{k}]"), p.angle));
+        let zones = b.zones.as_deref().unwrap_or(&[]).iter().enumerate().map(|(k, z)| (format!("zones[{k}]"), z.angle));
+        for (key, angle) in plies.chain(zones) {
+            let Some(a) = angle else { continue };
+            let quarters = a / std::f64::consts::FRAC_PI_4;
+            let k = quarters.round();
+            if k != 0.0 && k.abs() <= 8.0 && (a - k * std::f64::consts::FRAC_PI_4).abs() <= 1e-3 {
+                let sign = if k < 0.0 { "−" } else { "" };
+                let pi = ["π/4", "π/2", "3π/4", "π", "5π/4", "3π/2", "7π/4", "2π"][k.abs() as usize - 1];
+                let a = crate::numbers::short(a);
+                warnings.push(super::Warning {
+                    key: format!("bodies[{i}].{key}.angle"),
+                    message: format!(
+                        "{a} reads as {sign}{pi} in radians, but angles are in degrees ({a}° here): write {} for {}°",
+                        45.0 * k,
+                        45.0 * k
+                    ),
+                });
+            }
+        }
+    }
+}

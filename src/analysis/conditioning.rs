@@ -90,12 +90,7 @@ pub(super) fn diagnose(model: &Model) -> Option<String> {
     if let Some(t) = thinnest(model).filter(|t| linear || t.share < THIN) {
         scales.push(t);
     }
-    let used: Vec<usize> = {
-        let mut m: Vec<usize> = model.mesh.bodies.iter().flat_map(|b| b.materials()).collect();
-        m.sort_unstable();
-        m.dedup();
-        m
-    };
+    let used = used(model);
     for &k in &used {
         let m = &model.materials[k];
         if m.anisotropic.is_none() && m.poisson > NEAR_HALF {
@@ -155,9 +150,7 @@ pub(super) fn diagnose(model: &Model) -> Option<String> {
 /// residuals cycling, and no word of the viscosity); `None` if every
 /// damaging material has one.
 pub(super) fn softening(model: &Model) -> Option<String> {
-    let mut used: Vec<usize> = model.mesh.bodies.iter().flat_map(|b| b.materials()).collect();
-    used.sort_unstable();
-    let mut keys: Vec<usize> = used
+    let mut keys: Vec<usize> = used(model)
         .into_iter()
         .filter(|&k| model.materials[k].damage.as_ref().is_some_and(|d| d.viscosity() == 0.0))
         .map(|k| super::checks::file_material(model, k))
@@ -169,4 +162,12 @@ pub(super) fn softening(model: &Model) -> Option<String> {
          and unloading branches; a Duvaut–Lions viscosity (materials[{k}].damage.viscosity, e.g. 1e-3 in \
          load-factor units) lets it pass (docs/composites.md)"
     ))
+}
+
+/// The materials (indices into `model.materials`) some element uses, each once.
+fn used(model: &Model) -> Vec<usize> {
+    let mut m: Vec<usize> = model.mesh.bodies.iter().flat_map(|b| b.materials()).collect();
+    m.sort_unstable();
+    m.dedup();
+    m
 }

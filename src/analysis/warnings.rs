@@ -114,8 +114,9 @@ const SOFT_PENALTY: f64 = 0.1;
 /// How far the ply damage's dissipation by the law's sums may exceed its
 /// release at fixed strain before a run warns: the two agree within a few
 /// percent where the increments follow the damage (the notched strips
-/// `1.01`, the damaging drop weight `1.05`; `cufem run examples/… `,
-/// summary.json `damage`).
+/// `1.01`, asserted in crates/cufem-cli/tests/ply_damage.rs; the damaging
+/// drop weight `1.05`, measured once: `cufem run
+/// examples/laminate_drop_weight_damage.toml`, summary.json `damage`).
 pub(crate) const DISSIPATION_OVER_RELEASE: f64 = 1.25;
 
 /// A warning when the damage's `dissipated_j` (the law's trapezoidal sums

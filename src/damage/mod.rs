@@ -103,13 +103,7 @@ impl BodyDamage {
     /// `DamageState::released`): what the energy ledger of a transient run
     /// books per mode.
     pub fn released(&self) -> [f64; 4] {
-        let mut out = [0.0; 4];
-        for (s, &w) in self.trial.iter().zip(&self.volume) {
-            for (o, g) in out.iter_mut().zip(&s.released) {
-                *o += w * g;
-            }
-        }
-        out
+        per_mode(&self.trial, &self.volume, |s| &s.released)
     }
 
     /// The energy the end-of-step stress dissipated in the trial states,
@@ -140,12 +134,12 @@ impl BodyDamage {
     }
 }
 
-/// `Σ_q w_q g_I` per mode of the states `states` with volume weights
-/// `volume` (J).
-fn dissipated(states: &[DamageState], volume: &[f64]) -> [f64; 4] {
+/// `Σ_q w_q x_I` per mode of the states `states` with volume weights
+/// `volume`, `x` a per-mode energy density of a state (J/m³ → J).
+fn per_mode(states: &[DamageState], volume: &[f64], x: impl Fn(&DamageState) -> &[f64; 4]) -> [f64; 4] {
     let mut out = [0.0; 4];
     for (s, &w) in states.iter().zip(volume) {
-        for (o, g) in out.iter_mut().zip(&s.dissipated) {
+        for (o, g) in out.iter_mut().zip(x(s)) {
             *o += w * g;
         }
     }
@@ -248,13 +242,8 @@ impl Damage {
 
     /// Its `summary.json` entry.
     pub fn summary(&self) -> DamageSummary {
-        let dissipated = dissipated(&self.states, &self.volume);
-        let mut released = [0.0; 4];
-        for (s, &w) in self.states.iter().zip(&self.volume) {
-            for (o, g) in released.iter_mut().zip(&s.released) {
-                *o += w * g;
-            }
-        }
+        let dissipated = per_mode(&self.states, &self.volume, |s| &s.dissipated);
+        let released = per_mode(&self.states, &self.volume, |s| &s.released);
         let initiated = volume_above(&self.states, &self.volume, 0.0);
         let damaged = volume_above(&self.states, &self.volume, 0.5);
         let mut largest = [0.0f64; 4];

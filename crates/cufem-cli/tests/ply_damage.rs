@@ -39,6 +39,24 @@ fn pull(out: &Path) -> Vec<(f64, f64)> {
     std::iter::once((0.0, 0.0)).chain(c["u_x"].iter().copied().zip(c["r_x"].iter().copied())).collect()
 }
 
+/// `∫ F du` of a force–displacement path by the trapezoidal rule (J).
+fn work(path: &[(f64, f64)]) -> f64 {
+    path.windows(2).map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0)).sum()
+}
+
+/// The nose's path of the three-point bend in `out`: `(−d_z, −f_z)` per
+/// converged increment, from the unloaded start.
+fn nose(out: &Path) -> Vec<(f64, f64)> {
+    let c = common::csv_columns(&out.join("history_nose.csv"));
+    std::iter::once((0.0, 0.0)).chain(c["d_z"].iter().zip(&c["f_z"]).map(|(&u, &f)| (-u, -f))).collect()
+}
+
+/// `(the law's sums, the release at fixed strain)` of a summary's damage (J).
+fn sums_and_release(summary: &Value) -> (f64, f64) {
+    let d = &summary["damage"];
+    (d["dissipated_total_j"].as_f64().unwrap(), d["released_total_j"].as_f64().unwrap())
+}
+
 /// `G_FT × ligament × depth` = 133.3e3 J/m² × 4.8 mm × 1 mm (the examples'
 /// constants).
 const CRACK_ENERGY: f64 = 133.3e3 * 4.8e-3 * 1.0e-3;
@@ -66,7 +84,7 @@ fn strip_energy_ratio(mesh: &str) -> f64 {
     // the energy balance: the work of the pull is what the damage
     // dissipated plus what the strip stores at the end
     let curve = pull(&out);
-    let work: f64 = curve.windows(2).map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0)).sum();
+    let work = work(&curve);
     let (u, p) = *curve.last().unwrap();
     let stored = 0.5 * p * u;
     let balance = (work - total - stored) / work;
@@ -94,24 +112,39 @@ fn strip_energy_ratio(mesh: &str) -> f64 {
 /// work (as it must), and the run warns that the sums are not the energy
 /// dissipated; with the increments steered by the damage
 /// (`solver.step_control = { damage = 0.1 }`) the two agree within `10 %`
-/// (`0.142` and `0.130` J; that run stalls at λ = `0.68`, not run here).
+/// (`0.142` and `0.130` J), but that run stalls at λ = `0.68` (exit 2).
+/// The figures of docs/limitations.md "Ply damage", each held within 3 %.
 #[test]
 fn a_crushed_ply_s_dissipation_is_not_booked_past_the_work() {
+    let near = |x: f64, measured: f64| (x / measured - 1.0).abs() < 0.03;
     let (out, summary) = run_cli("tpb_crushed", TPB);
-    let c = common::csv_columns(&out.join("history_nose.csv"));
-    let path = std::iter::once((0.0, 0.0)).chain(c["d_z"].iter().zip(&c["f_z"]).map(|(&u, &f)| (-u, -f)));
-    let path: Vec<(f64, f64)> = path.collect();
-    let work: f64 = path.windows(2).map(|w| 0.5 * (w[0].1 + w[1].1) * (w[1].0 - w[0].0)).sum();
-    let damage = &summary["damage"];
-    let (sums, released) =
-        (damage["dissipated_total_j"].as_f64().unwrap(), damage["released_total_j"].as_f64().unwrap());
-    println!("work {work:.4} J, the law's sums {sums:.4} J, released at fixed strain {released:.4} J");
-    assert!(released > 0.0 && released < work, "released {released} J, work {work} J");
-    // the known limit: measured 0.6454 / 0.1034 = 6.24
-    assert!((5.5..7.0).contains(&(sums / released)), "{sums} / {released}");
+    let done = work(&nose(&out));
+    let (sums, released) = sums_and_release(&summary);
+    println!("work {done:.4} J, the law's sums {sums:.4} J, released at fixed strain {released:.4} J");
+    assert!(released > 0.0 && released < done, "released {released} J, work {done} J");
+    // the known limit: measured 0.6454 J and 0.1034 J (6.24 times) of 0.4121 J of work
+    assert!(near(done, 0.4121) && near(sums, 0.6454) && near(released, 0.1034), "{done} {sums} {released}");
     let warnings = summary["warnings"].to_string();
     assert!(warnings.contains("is 6.2 times the energy it released at fixed strain"), "{warnings}");
     assert!(warnings.contains("solver.step_control = { damage = 0.1 }"), "{warnings}");
+    // steered by the damage: the two within 10 %, the run stopping early
+    assert!(TPB.contains("max_increments = 400\n"));
+    let steered = TPB.replace("max_increments = 400\n", "max_increments = 4000\nstep_control = { damage = 0.1 }\n");
+    let dir = common::scratch_dir("ply_damage", "tpb_steered");
+    std::fs::write(dir.join("m.toml"), steered).unwrap();
+    let run = common::cufem()
+        .args(["run", dir.join("m.toml").to_str().unwrap(), "--quiet", "--out"])
+        .arg(dir.join("out"))
+        .output()
+        .unwrap();
+    assert_eq!(run.status.code(), Some(2), "{}", String::from_utf8_lossy(&run.stderr));
+    let s: Value = serde_json::from_str(&std::fs::read_to_string(dir.join("out/summary.json")).unwrap()).unwrap();
+    let (sums, released) = sums_and_release(&s);
+    let lambda = s["load_factor"].as_f64().unwrap();
+    println!("steered: the law's sums {sums:.4} J, released {released:.4} J, stopped at λ = {lambda:.4}");
+    let steered_work = work(&nose(&dir.join("out")));
+    assert!(sums / released < 1.1 && sums < steered_work, "{sums} / {released}, work {steered_work}");
+    assert!(near(sums, 0.1423) && near(released, 0.1301) && near(lambda, 0.6815), "{sums} {released} {lambda}");
 }
 
 /// The same beam without the damage's viscosity stops past its peak, its

@@ -43,6 +43,9 @@ pub struct Interface {
     pub body_name: String,
     /// The traction–separation law.
     pub law: Cohesive,
+    /// The model-file key of the law (`materials[j].cohesive`), for
+    /// warnings about it.
+    pub law_key: String,
     /// Its points.
     pub points: Vec<InterfacePoint>,
 }

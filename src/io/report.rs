@@ -279,6 +279,7 @@ pub fn results(model: &Model, solution: &Solution) -> String {
     }
     ply_failure(&mut s, &summary);
     damage(&mut s, &summary);
+    energy(&mut s, solution);
     if let Some(p) = &summary.path {
         let points: Vec<String> = p.limit_points.iter().map(|(i, l)| format!("increment {i} (λ = {l:.5})")).collect();
         let points = if points.is_empty() { "none".to_string() } else { points.join(", ") };
@@ -451,12 +452,69 @@ fn damage(s: &mut String, summary: &super::Summary) {
     }
     if let Some(d) = &summary.delamination {
         let whole: f64 = d.interfaces.iter().map(|i| i.area_m2).sum();
+        let viscous = if d.viscous_j > 0.0 {
+            format!(": the law's {:.5e} J and its viscous over-stress's {:.5e} J", d.dissipated_j, d.viscous_j)
+        } else {
+            String::new()
+        };
         out!(
             s,
-            "delamination       {:.5e} m² of {:.5e} m² of interface delaminated (d = 1), {:.5e} J dissipated",
+            "delamination       {:.5e} m² of {:.5e} m² of interface delaminated (d = 1), {:.5e} J dissipated{viscous}",
             d.area_m2,
             whole,
             d.dissipated_j + d.viscous_j
+        );
+    }
+}
+
+/// Terms of the energy ledger below this share of its largest are round-off.
+const ROUND_OFF: f64 = 1e-9;
+
+/// A transient run's energy ledger at its end (`energy.csv`'s last row):
+/// the terms that are not zero, the energy at the start (the bodies' and
+/// the impactors' kinetic energy) and the balance as a share of it. The
+/// console gave the delamination's dissipation by its law, and the
+/// ledger's `delamination_J` (the interfaces' work less the energy they
+/// hold) another number, without a word (a new-user review).
+fn energy(s: &mut String, solution: &Solution) {
+    let Some(rows) = solution.energy.as_ref().filter(|r| !r.is_empty()) else { return };
+    let (first, last) = (rows[0], rows[rows.len() - 1]);
+    let start = first.kinetic + first.impactors;
+    let terms = [
+        ("kinetic", last.kinetic),
+        ("elastic", last.elastic),
+        ("impactors' kinetic", last.impactors),
+        ("loads' work", last.external),
+        ("contacts' work", last.contact),
+        ("supports' work", last.supports),
+        ("plastic", last.plastic),
+        ("damage", last.damage.iter().sum()),
+        ("damage scheme", last.damage_scheme),
+        ("damping", last.damping),
+        ("delamination", last.delamination),
+    ];
+    // a term within round-off of the largest (a body without plasticity's
+    // `plastic`, 1e-13 of the impact's) is left out
+    let scale = terms.iter().map(|(_, v)| v.abs()).fold(start, f64::max);
+    let listed: Vec<String> = terms
+        .iter()
+        .filter(|(_, v)| v.abs() > ROUND_OFF * scale)
+        .map(|(name, v)| format!("{name} {v:.5e}"))
+        .collect();
+    let share = if start > 0.0 { format!(" ({:.1e} of the start)", last.balance.abs() / start) } else { String::new() };
+    out!(
+        s,
+        "energy [J]         at the start {start:.5e}; at t = {:.5e} s: {}; balance {:.3e}{share} (energy.csv)",
+        last.time,
+        listed.join(", "),
+        last.balance
+    );
+    if last.interfaces != 0.0 {
+        out!(
+            s,
+            "                   delamination: the interfaces' work less the energy they hold; it differs from the \
+             law's and the viscous sums above where a point fails within a time step (docs/model-format.md, \
+             analysis.interface_forces)"
         );
     }
 }

@@ -103,8 +103,9 @@ pub(super) fn interfaces(
             let above = &plies[r.ply + 1];
             let thin = if below.thickness <= above.thickness { below } else { above };
             let e3 = materials.iter().find(|m| m.name == thin.material).map_or(f64::NAN, through_thickness_modulus);
+            let law_key = format!("materials[{j}].cohesive");
             let law = law(
-                &format!("materials[{j}].cohesive"),
+                &law_key,
                 c,
                 defaults::PENALTY_PER_STIFFNESS * e3 / thin.thickness,
                 warnings,
@@ -149,6 +150,7 @@ pub(super) fn interfaces(
                 body: i,
                 body_name,
                 law,
+                law_key,
                 points,
             });
         }
@@ -186,6 +188,11 @@ fn through_thickness_modulus(m: &Material) -> f64 {
     }
 }
 
+/// Largest final opening `2 G_c / strength` (m) of a plausible cohesive
+/// law: a tough structural adhesive (`G_Ic ≈ 5` kJ/m², `N ≈ 10` MPa) opens
+/// `1` mm; a strength typed in MPa opens metres.
+const MAX_FINAL_OPENING: f64 = 0.01;
+
 /// The law of `[materials.cohesive]` (key `ck`), with `penalty` the
 /// default penalty of its interface. The shear strength defaults to
 /// `N √(G_IIc/G_Ic)`, the one value for which the Camanho–Dávila law with
@@ -215,6 +222,19 @@ fn law(ck: &str, c: &CohesiveFile, penalty: f64, warnings: &mut Vec<Warning>) ->
             s
         }
     };
+    for (key, strength, toughness, g) in [("normal_strength", c.normal_strength, c.gic, "gic"), ("shear_strength", shear, c.giic, "giic")] {
+        let opening = 2.0 * toughness / strength;
+        if opening > MAX_FINAL_OPENING && (key == "normal_strength" || c.shear_strength.is_some()) {
+            warnings.push(Warning {
+                key: format!("{ck}.{key}"),
+                message: format!(
+                    "{key} = {strength} Pa with {g} = {toughness} J/m² lets the interface open {opening:.3e} m \
+                     before it fails (2 {g}/{key}), where a tough adhesive fails within about a millimetre: the \
+                     strength in Pa (MPa × 1e6)?"
+                ),
+            });
+        }
+    }
     let penalty = match c.penalty {
         Some(k) => ranges::COHESIVE_PENALTY.check(&format!("{ck}.penalty"), k, "the penalty stiffness in Pa/m")?,
         None => penalty,

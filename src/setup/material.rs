@@ -55,6 +55,45 @@ pub(super) fn density_warnings(file: &[MaterialFile], materials: &[Material], wa
     }
 }
 
+/// Smallest strength over the largest normal stiffness of any engineering
+/// material: a ply's transverse tensile strength over its fibre modulus is
+/// about `2e-4` (T300/5208: `40 MPa / 181 GPa`), concrete's `1e-4`, a foam's
+/// `1e-2`; a strength typed in MPa against moduli in Pa gives `1e-8` or less.
+const MIN_STRENGTH_OVER_MODULUS: f64 = 1e-6;
+
+/// Warns about each material whose smallest strength is below
+/// [`MIN_STRENGTH_OVER_MODULUS`] times its largest normal stiffness `max
+/// C_ii`: strengths in MPa (a new user's `xt = 1500` was taken as 1500 Pa,
+/// and every failure index read in the millions).
+pub(super) fn strength_warnings(file: &[MaterialFile], materials: &[Material], warnings: &mut Vec<super::Warning>) {
+    const NAMES: [[&str; 3]; 3] = [["xt", "yt", "zt"], ["xc", "yc", "zc"], ["s12", "s13", "s23"]];
+    for m in materials {
+        let Some(s) = &m.strengths else { continue };
+        let c = m.elastic_stiffness();
+        let modulus = (0..3).map(|i| c[i][i]).fold(0.0, f64::max);
+        let values = [s.tension, s.compression, s.shear];
+        let (name, value) = NAMES
+            .iter()
+            .flatten()
+            .zip(values.iter().flatten())
+            .min_by(|a, b| a.1.total_cmp(b.1))
+            .expect("nine strengths");
+        if *value >= MIN_STRENGTH_OVER_MODULUS * modulus {
+            continue;
+        }
+        let i = file.iter().position(|f| f.name == m.name).unwrap_or_default();
+        warnings.push(super::Warning {
+            key: format!("materials[{i}].strengths.{name}"),
+            message: format!(
+                "{name} = {value} Pa is {:.1e} of the material's largest modulus ({modulus:.4e} Pa), where the \
+                 strengths of engineering materials lie above {MIN_STRENGTH_OVER_MODULUS:e} of it (a ply's \
+                 transverse strength about 2e-4): the strengths in Pa (MPa × 1e6)?",
+                value / modulus
+            ),
+        });
+    }
+}
+
 pub(super) fn material(i: usize, m: &MaterialFile) -> Result<Material, ModelError> {
     let key = format!("materials[{i}]");
     let density = m

@@ -422,6 +422,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     let planes = symmetry::planes(&file.symmetry)?;
     let mut warnings = Vec::new();
     material::density_warnings(&file.materials, &materials, &mut warnings);
+    material::strength_warnings(&file.materials, &materials, &mut warnings);
     zones::radian_warnings(&file.bodies, &mut warnings);
     let bodies = bodies::Input { file: &file.bodies, analysis: &file.analysis, limits, base, planes: &planes };
     let (mesh, cells) = bodies::mesh(&bodies, &mut materials, &mut warnings)?;

@@ -496,3 +496,66 @@ fn the_damaging_drop_weights_crack_arrest_follows_the_linear_solves() {
         "delaminated (350 mm² by default)",
     );
 }
+
+/// The example's first `0.8` ms (`320` steps of `2.5` µs: through the
+/// mid-plane's separation), at its own viscosity and at a tenth of it, run
+/// by the CLI: the console's result lines and summary.json.
+fn run_short(viscosity: &str) -> (String, Value) {
+    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../../examples/laminate_drop_weight.toml"));
+    let text = std::fs::read_to_string(path).unwrap();
+    let short = [("duration = 0.006\n", "duration = 0.0008\n"), ("increments = 2400\n", "increments = 320\n")]
+        .iter()
+        .chain([("viscosity = 1e-06 }", viscosity)].iter())
+        .fold(text, |t, (from, to)| {
+            assert_eq!(t.matches(from).count(), 1, "the example changed: {from}");
+            t.replace(from, to)
+        });
+    let dir = common::scratch_dir("drop_weight_laminate", &format!("short_{viscosity}"));
+    let (model, out) = (dir.join("short.toml"), dir.join("out"));
+    std::fs::write(&model, short).unwrap();
+    let run = common::cufem().args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap()]).output().unwrap();
+    let console = String::from_utf8_lossy(&run.stdout).into_owned() + &String::from_utf8_lossy(&run.stderr);
+    assert!(run.status.success(), "{console}");
+    (console, serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap())
+}
+
+/// A new user's review: the console gave the delamination's energy by its
+/// law and its viscosity (0.489 J) while energy.csv's `delamination_J`
+/// said 0.455 J, without a word; and the viscous over-stress did 29 % of
+/// that energy, unwarned. Now the console splits the law's and the viscous
+/// part, prints the ledger's end row beside them (its delamination the
+/// interfaces' work less what they hold, told as such), and warns, naming
+/// `materials[1].cohesive.viscosity`, when the viscous part exceeds a tenth
+/// of the interfaces' dissipation: at the example's `1e-6` s through the
+/// separation (`29 %`), not at `1e-7` s (`6.5 %`). The percentages are
+/// checked against summary.json's `delamination` (an independent
+/// reckoning of the same sums), the ledger's figures against energy.csv's
+/// last row.
+#[test]
+fn the_console_tells_the_delamination_energy_apart_and_warns_of_viscosity() {
+    let (console, summary) = run_short("viscosity = 1e-06 }");
+    let d = &summary["delamination"];
+    let (law, viscous) = (d["dissipated_j"].as_f64().unwrap(), d["viscous_j"].as_f64().unwrap());
+    let share = viscous / (law + viscous);
+    assert!((0.2..0.4).contains(&share), "{share}");
+    assert!(
+        console.contains(&format!("J dissipated: the law's {law:.5e} J and its viscous over-stress's {viscous:.5e} J")),
+        "{console}"
+    );
+    let warning = format!(
+        "warning: materials[1].cohesive.viscosity: the viscous over-stress of viscosity = 1e-6 did {:.0} % of its \
+         interfaces' dissipation",
+        100.0 * share
+    );
+    assert!(console.contains(&warning), "{console}");
+    let ledger = summary["energy"]["delamination"].as_f64().unwrap();
+    assert!(console.contains(&format!("delamination {ledger:.5e}; balance")), "{console}");
+    assert!(console.contains("delamination: the interfaces' work less the energy they hold"), "{console}");
+    assert!(console.contains("energy [J]         at the start 8.00000e-1;"), "{console}");
+
+    let (console, summary) = run_short("viscosity = 1e-07 }");
+    let d = &summary["delamination"];
+    let share = d["viscous_j"].as_f64().unwrap() / (d["dissipated_j"].as_f64().unwrap() + d["viscous_j"].as_f64().unwrap());
+    assert!((0.02..0.1).contains(&share), "{share}");
+    assert!(!console.contains("cohesive.viscosity"), "{console}");
+}

@@ -410,9 +410,9 @@ fn resultants(s: &mut String, model: &Model, summary: &super::Summary) {
 fn ply_failure(s: &mut String, summary: &super::Summary) {
     let Some(f) = &summary.ply_failure else { return };
     for c in f.criteria.iter().chain(&f.interlaminar) {
-        let (when, w) = match c.first_failure_load_factor {
-            Some(factor) => (format!("; first failure at load factor {factor:.4}"), &c.first_failure_at),
-            None => (" at the end,".to_string(), &c.largest_at),
+        let (when, w) = match (c.first_failure_load_factor, &c.first_failure_at) {
+            (Some(factor), Some(at)) => (format!("; first failure at load factor {factor:.4}"), at),
+            _ => (" at the end,".to_string(), &c.largest_at),
         };
         let why = if c.first_failure_load_factor.is_none() {
             " (no first-failure load factor: the loading of a transient or damaging run is not proportional)"

@@ -47,8 +47,10 @@ pub struct Criterion {
     /// proportional loading (∞ if it never fails); `None` (null) where the
     /// loading is not a load factor's ([`summary`]).
     pub first_failure_load_factor: Option<f64>,
-    /// Where its strength ratio is smallest.
-    pub(crate) first_failure_at: Place,
+    /// Where its strength ratio is smallest: `None` (null) with the load
+    /// factor (a new-user review found a place of first failure beside a
+    /// null load factor of it).
+    pub(crate) first_failure_at: Option<Place>,
 }
 
 /// The failure indices of a run (`summary.json` `ply_failure`).
@@ -194,7 +196,7 @@ pub fn summary(view: &FieldView<'_>, lambda: Option<f64>) -> Option<FailureSumma
             largest_index,
             largest_at,
             first_failure_load_factor: lambda.map(|l| l * ratio),
-            first_failure_at,
+            first_failure_at: lambda.map(|_| first_failure_at),
         })
     };
     let criteria: Vec<Criterion> = best.into_iter().zip(CRITERIA).filter_map(criterion).collect();

@@ -156,6 +156,8 @@ fn the_interlaminar_index_follows_pagano_at_the_interfaces() {
     assert!(at[1].min(span - at[1]) < 1e-9, "at y = {} m, not at a support", at[1]);
     let factor = entry["first_failure_load_factor"].as_f64().unwrap();
     assert!((factor * expected.sqrt() - 1.0).abs() < 0.01, "first failure at λ = {factor}");
+    // an elastic static run's first failure has its place (null only with its factor)
+    assert_eq!(entry["first_failure_at"]["point"], entry["largest_at"]["point"]);
     // one material throughout: no bonded interface between materials
     let (_, single) = run_cli("interlaminar_single", Some(&with.replace(middle, "material = \"ply\", angle = 0.0,")));
     assert!(single["ply_failure"]["criteria"].is_array() && single["ply_failure"].get("interlaminar").is_none());

@@ -315,8 +315,11 @@ fn a_warning_of_a_law_used_by_several_interfaces_is_given_once() {
     let text = with(&example("laminate_drop_weight.toml"), "shear_strength = 16.3e6", "shear_strength = 49e3");
     let model = Model::parse(&text).unwrap();
     // (49 kPa also opens 3.3 cm before it fails: the units warning, given once too)
-    let of_law: Vec<_> =
-        model.warnings.iter().filter(|w| w.key.ends_with("cohesive.shear_strength") && !w.message.contains("MPa")).collect();
+    let of_law: Vec<_> = model
+        .warnings
+        .iter()
+        .filter(|w| w.key.ends_with("cohesive.shear_strength") && !w.message.contains("MPa"))
+        .collect();
     assert_eq!(of_law.len(), 1, "{:?}", model.warnings);
     assert!(of_law[0].message.contains("is more than 10 % from normal_strength"), "{}", of_law[0]);
 }
@@ -357,11 +360,18 @@ fn strengths_in_mpa_are_named() {
     assert_eq!(w.len(), 1, "{w:?}");
     // the smallest of the strengths, the three in MPa: yt = 45 Pa
     assert!(w[0].starts_with("materials[0].strengths.yt: yt = 45 Pa is 2.9e-10 of the material's"), "{}", w[0]);
-    let law = with(&base, "normal_strength = 10e6, shear_strength = 16.3e6", "normal_strength = 10, shear_strength = 16.3");
+    let law =
+        with(&base, "normal_strength = 10e6, shear_strength = 16.3e6", "normal_strength = 10, shear_strength = 16.3");
     let model = Model::parse(&law).unwrap();
     let w: Vec<String> = model.warnings.iter().filter(units).map(|w| w.to_string()).collect();
     assert_eq!(w.len(), 2, "{w:?}");
     // 2 × 300 / 10 = 60 m; 2 × 800 / 16.3 = 98.2 m
     assert!(w[0].starts_with("materials[1].cohesive.normal_strength: normal_strength = 10 Pa with gic = 300 J/m² lets the interface open 6.000e1 m"), "{}", w[0]);
-    assert!(w[1].contains("cohesive.shear_strength: shear_strength = 16.3 Pa with giic = 800 J/m² lets the interface open 9.816e1 m"), "{}", w[1]);
+    assert!(
+        w[1].contains(
+            "cohesive.shear_strength: shear_strength = 16.3 Pa with giic = 800 J/m² lets the interface open 9.816e1 m"
+        ),
+        "{}",
+        w[1]
+    );
 }

@@ -496,11 +496,8 @@ fn energy(s: &mut String, solution: &Solution) {
     // a term within round-off of the largest (a body without plasticity's
     // `plastic`, 1e-13 of the impact's) is left out
     let scale = terms.iter().map(|(_, v)| v.abs()).fold(start, f64::max);
-    let listed: Vec<String> = terms
-        .iter()
-        .filter(|(_, v)| v.abs() > ROUND_OFF * scale)
-        .map(|(name, v)| format!("{name} {v:.5e}"))
-        .collect();
+    let listed: Vec<String> =
+        terms.iter().filter(|(_, v)| v.abs() > ROUND_OFF * scale).map(|(name, v)| format!("{name} {v:.5e}")).collect();
     let share = if start > 0.0 { format!(" ({:.1e} of the start)", last.balance.abs() / start) } else { String::new() };
     out!(
         s,

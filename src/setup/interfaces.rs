@@ -104,12 +104,7 @@ pub(super) fn interfaces(
             let thin = if below.thickness <= above.thickness { below } else { above };
             let e3 = materials.iter().find(|m| m.name == thin.material).map_or(f64::NAN, through_thickness_modulus);
             let law_key = format!("materials[{j}].cohesive");
-            let law = law(
-                &law_key,
-                c,
-                defaults::PENALTY_PER_STIFFNESS * e3 / thin.thickness,
-                warnings,
-            )?;
+            let law = law(&law_key, c, defaults::PENALTY_PER_STIFFNESS * e3 / thin.thickness, warnings)?;
             if law.viscosity > 0.0 && viscous.is_none() {
                 viscous = Some((j, law.viscosity));
             }
@@ -222,7 +217,9 @@ fn law(ck: &str, c: &CohesiveFile, penalty: f64, warnings: &mut Vec<Warning>) ->
             s
         }
     };
-    for (key, strength, toughness, g) in [("normal_strength", c.normal_strength, c.gic, "gic"), ("shear_strength", shear, c.giic, "giic")] {
+    for (key, strength, toughness, g) in
+        [("normal_strength", c.normal_strength, c.gic, "gic"), ("shear_strength", shear, c.giic, "giic")]
+    {
         let opening = 2.0 * toughness / strength;
         if opening > MAX_FINAL_OPENING && (key == "normal_strength" || c.shear_strength.is_some()) {
             warnings.push(Warning {

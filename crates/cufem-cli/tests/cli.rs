@@ -171,6 +171,25 @@ fn check_prints_the_model_size() {
     let text = String::from_utf8(out.stdout).unwrap();
     assert!(text.contains("indenter support_left: ") && text.contains("displacement [0.0, 0.0, 0.0] m"), "{text}");
     assert!(text.contains("impactor of 2 kg at [0.0, 0.0, -1.0] m/s"), "{text}");
+    // the materials the elements use: a laminate's turned plies, not the
+    // unturned base material no element has (a new-user review); a material
+    // nothing uses is said to be unused
+    let laminate = std::fs::read_to_string(example("laminate_drop_weight.toml")).unwrap();
+    let spare = laminate.replacen(
+        "[[materials]]",
+        "[[materials]]\nname = \"spare\"\nyoung_modulus = 70e9\npoisson_ratio = 0.3\n\n[[materials]]",
+        1,
+    );
+    let dir = out_dir("check_materials");
+    std::fs::create_dir_all(&dir).unwrap();
+    let path = dir.join("spare.toml");
+    std::fs::write(&path, spare).unwrap();
+    let out = cufem().args(["check", path.to_str().unwrap()]).output().unwrap();
+    let text = String::from_utf8(out.stdout).unwrap();
+    let materials: Vec<&str> =
+        text.lines().filter(|l| l.starts_with("material ")).map(|l| &l[..l.find(':').unwrap()]).collect();
+    assert_eq!(materials, ["material spare", "material cfrp@0", "material cfrp@90"], "{text}");
+    assert!(text.contains("material spare: not used by any element"), "{text}");
 }
 
 /// Bad input: exit code 1 and a message naming the key, the value and what is allowed.

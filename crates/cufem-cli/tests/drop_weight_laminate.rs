@@ -555,7 +555,8 @@ fn the_console_tells_the_delamination_energy_apart_and_warns_of_viscosity() {
 
     let (console, summary) = run_short("viscosity = 1e-07 }");
     let d = &summary["delamination"];
-    let share = d["viscous_j"].as_f64().unwrap() / (d["dissipated_j"].as_f64().unwrap() + d["viscous_j"].as_f64().unwrap());
+    let share =
+        d["viscous_j"].as_f64().unwrap() / (d["dissipated_j"].as_f64().unwrap() + d["viscous_j"].as_f64().unwrap());
     assert!((0.02..0.1).contains(&share), "{share}");
     assert!(!console.contains("cohesive.viscosity"), "{console}");
 }

@@ -173,9 +173,21 @@ pub fn print_memory(s: &cufem::size::Sizes, limit: Option<u64>) {
     }
 }
 
-/// One line per material: its constants, or an anisotropic one's moduli along its axes and where they point.
+/// One line per material an element uses: its constants, or an
+/// anisotropic one's moduli along its axes and where they point. A
+/// material whose turned copies (`name@angle`, per ply or zone) are used
+/// instead is left out (a new-user review: the unturned base was listed
+/// as if some element had it); one no element uses is said to be unused.
 fn print_materials(model: &Model) {
-    for m in &model.materials {
+    let used: std::collections::BTreeSet<usize> = model.mesh.bodies.iter().flat_map(|b| b.materials()).collect();
+    for (k, m) in model.materials.iter().enumerate() {
+        if !used.contains(&k) {
+            let turned = |j: &usize| model.materials[*j].name.strip_prefix(&m.name).is_some_and(|r| r.starts_with('@'));
+            if !used.iter().any(turned) {
+                println!("material {}: not used by any element", m.name);
+            }
+            continue;
+        }
         let plastic = match &m.hardening {
             None => "elastic".to_string(),
             Some(h) => format!("von Mises, {h}"),

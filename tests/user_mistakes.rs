@@ -375,3 +375,13 @@ fn strengths_in_mpa_are_named() {
         w[1]
     );
 }
+
+/// A modal analysis of a damaging strip without a density was refused for
+/// the density, and once the density was given, for the damage (a new-user
+/// review): the damage, which no density mends, is named first.
+#[test]
+fn ply_damage_in_a_modal_analysis_is_refused_before_its_density() {
+    let text = with(&example("notched_strip_coarse.toml"), "[solver]", "[analysis]\ntype = \"modal\"\n\n[solver]");
+    let e = Model::parse(&text).unwrap_err().to_string();
+    assert!(e.starts_with("materials[0].damage = given with analysis.type = \"modal\""), "{e}");
+}

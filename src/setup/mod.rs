@@ -486,6 +486,16 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         contacts: &contacts,
         steps: file.steps.len(),
     };
+    // ply damage with an eigenvalue analysis is refused before what such
+    // an analysis asks of the model (a modal strip with damage was refused
+    // for its density, then for the damage; a new-user review)
+    let asked = |k| file.analysis.kind == Some(k);
+    let kind = analysis::Kind::of(
+        asked(schema::AnalysisType::Buckling),
+        asked(schema::AnalysisType::Modal),
+        asked(schema::AnalysisType::Transient),
+    );
+    analysis::damage_combinations(kind, kinematics, &materials, solver.path.is_some())?;
     let buckling = analysis::buckling(&file.analysis, &parts)?;
     let imperfection = analysis::imperfection(&file.analysis, &parts)?;
     let modal = analysis::modal(&file.analysis, &parts)?;
@@ -493,11 +503,10 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     if let Some(t) = &transient {
         symmetry::check_velocities(&t.initial_velocities, &symmetry.planes, &mesh)?;
     }
-    let kind = analysis::Kind::of(buckling.is_some(), modal.is_some(), transient.is_some());
+    debug_assert_eq!(kind, analysis::Kind::of(buckling.is_some(), modal.is_some(), transient.is_some()));
     analysis::combinations(kind, solver.path.is_some())?;
     let modes = buckling.map(|b| b.modes).or(modal.map(|m| m.modes));
     analysis::adapt_combinations(adapt.as_ref(), modes)?;
-    analysis::damage_combinations(kind, kinematics, &materials, solver.path.is_some())?;
     warnings.extend(analysis::eigen_warnings(modes, &mesh, &constraint_handler, !symmetry.planes.is_empty()));
     // a material's warning is found once per use (a cohesive law per
     // interface: printed three times, a new-user review): each once

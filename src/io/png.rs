@@ -181,8 +181,11 @@ pub(crate) fn line_plots(line: &Line, table: &Table, dir: &Path) -> Result<Vec<P
 pub(crate) fn history_plots(model: &Model, histories: &[Table], dir: &Path) -> Result<Vec<PathBuf>, IoError> {
     let mut out = Vec::new();
     for ind in &model.indenters {
-        // the direction of motion: the prescribed displacement, or the force
-        let d = ind.force.unwrap_or(ind.displacement);
+        // the direction of motion: the prescribed displacement, the force,
+        // or an impactor's velocity (whose force is drawn against time: an
+        // impactor had no plot; a new-user review)
+        let impactor = ind.impactor.filter(|_| ind.force.is_none() && ind.displacement == [0.0; 3]);
+        let d = impactor.map_or(ind.force.unwrap_or(ind.displacement), |i| i.velocity);
         let norm = (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]).sqrt();
         if norm == 0.0 {
             continue;
@@ -198,7 +201,11 @@ pub(crate) fn history_plots(model: &Model, histories: &[Table], dir: &Path) -> R
             (0..x.len()).map(|i| [x[i], y[i], z[i]]).collect()
         };
         let mut points = vec![(0.0, 0.0)];
-        points.extend(vectors("d_").into_iter().zip(vectors(force)).map(|(d, f)| (along(d) * 1e3, along(f))));
+        let abscissa: Vec<f64> = match (impactor, table) {
+            (Some(_), Some(t)) => t.real("time").unwrap_or_default().iter().map(|t| t * 1e3).collect(),
+            _ => vectors("d_").into_iter().map(|d| along(d) * 1e3).collect(),
+        };
+        points.extend(abscissa.into_iter().zip(vectors(force)).map(|(x, f)| (x, along(f))));
         // short tick labels keep the axis label clear of them
         let largest = points.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
         let (unit, scale) = match largest {
@@ -210,10 +217,14 @@ pub(crate) fn history_plots(model: &Model, histories: &[Table], dir: &Path) -> R
             p.1 *= scale;
         }
         let path = dir.join(format!("history_{}.png", ind.name));
+        let (title, abscissa) = match impactor {
+            Some(_) => (format!("Impactor {}: contact force against time", ind.name), "time [ms]"),
+            None => (format!("Indenter {}: force against displacement", ind.name), "indenter displacement [mm]"),
+        };
         line_plot(
             &path,
-            &format!("Indenter {}: force against displacement", ind.name),
-            "indenter displacement [mm]",
+            &title,
+            abscissa,
             &format!("force along the motion{} [{unit}]", if full { ", full structure" } else { "" }),
             &[Series { name: "cufem".into(), points, dashed: false }],
         )?;

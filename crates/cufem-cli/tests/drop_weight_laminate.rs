@@ -516,6 +516,8 @@ fn run_short(viscosity: &str) -> (String, Value) {
     let run = common::cufem().args(["run", model.to_str().unwrap(), "--out", out.to_str().unwrap()]).output().unwrap();
     let console = String::from_utf8_lossy(&run.stdout).into_owned() + &String::from_utf8_lossy(&run.stderr);
     assert!(run.status.success(), "{console}");
+    // the impactor's force against time (it had no plot; a new-user review)
+    assert!(out.join("history_striker.png").is_file(), "{console}");
     (console, serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap())
 }
 

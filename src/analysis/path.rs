@@ -84,6 +84,10 @@ impl PathProblem for PathStructure<'_, '_> {
     fn negative_pivots(&self) -> Option<usize> {
         self.structure.negative_pivots()
     }
+
+    fn pseudo_time_step(&mut self, step: f64) {
+        self.structure.set_path_viscous_step(step);
+    }
 }
 
 /// Why a path following ended as the model asked.

@@ -37,6 +37,12 @@ pub struct At<'a> {
     /// geometric stiffness then takes the stress linearized along that step
     /// (`elements`, "The stress of the geometric stiffness").
     pub u_before: Option<&'a [f64]>,
+    /// The step of the damage's and the interfaces' viscous regularisation
+    /// where it is not the change of the load factor since the committed
+    /// state: a path increment's pseudo-time (`analysis::path`), set for
+    /// the increment before its iterations, so it does not change sign
+    /// with λ.
+    pub viscous_step: Option<f64>,
 }
 
 /// Where contributions add stiffness: the lower-triangle values of the

@@ -284,6 +284,9 @@ pub struct SolverFile {
     /// Arc length of the first increment (m), `control = "arc_length"`.
     #[schemars(transform = ranges::POSITIVE.schema())]
     pub arc_length: Option<f64>,
+    /// `"cylinder"` (default) or `"dissipation"`: what holds a path increment.
+    #[schemars(transform = defaults::schema(PathConstraint::default()))]
+    pub constraint: Option<PathConstraint>,
     /// The path following ends at the first point with λ at least this.
     #[schemars(transform = ranges::MAX_LOAD_FACTOR.with_default(defaults::MAX_LOAD_FACTOR))]
     pub max_load_factor: Option<f64>,

@@ -393,7 +393,7 @@ impl Contribution for Interfaces<'_> {
         let mut changes = 0;
         let dt = match self.clock {
             Some(clock) => (clock.time(at.lambda) - clock.time(self.lambda)).abs(),
-            None => (at.lambda - self.lambda).abs(),
+            None => at.viscous_step.unwrap_or((at.lambda - self.lambda).abs()),
         };
         let gradient =
             self.clock.is_some_and(|c| c.interface_forces == crate::dynamics::InterfaceForces::DiscreteGradient);

@@ -242,7 +242,9 @@ pub(super) fn material_key(materials: &[Material], m: &Material) -> String {
 
 /// Ply damage only in a static or transient small-strain analysis: an
 /// eigenvalue analysis is about an elastic state, and the law is written
-/// for small strains.
+/// for small strains. Checked before what an eigenvalue analysis asks of
+/// the model (a modal strip was refused for its density, then, once
+/// given, for the damage; a new-user review).
 pub(super) fn damage_combinations(
     kind: Kind,
     kinematics: crate::kinematics::Kinematics,
@@ -291,6 +293,12 @@ pub(super) enum Kind {
 
 impl Kind {
     /// The kind from which analysis the model holds.
+    /// The kind `analysis.type` asks for.
+    pub(super) fn asked(file: &AnalysisFile) -> Self {
+        let asked = |k| file.kind == Some(k);
+        Self::of(asked(AnalysisType::Buckling), asked(AnalysisType::Modal), asked(AnalysisType::Transient))
+    }
+
     pub(super) fn of(buckling: bool, modal: bool, transient: bool) -> Self {
         match (buckling, modal, transient) {
             (true, _, _) => Self::Buckling,

@@ -6,7 +6,7 @@
 
 use super::Warning;
 use super::laminate;
-use crate::input::schema::{BodyFile, CohesiveFile, Control, MaterialFile, ModelFile, SectionFile};
+use crate::input::schema::{BodyFile, CohesiveFile, MaterialFile, ModelFile, SectionFile};
 use crate::input::{ModelError, defaults, invalid, ranges};
 use crate::interfaces::Interface;
 use crate::materials::Material;
@@ -87,7 +87,6 @@ pub(super) fn interfaces(
     let (bodies, file) = (&model.bodies, &model.materials);
     let mut out: Vec<Interface> = Vec::new();
     // the first material with a viscosity, for the arc-length refusal
-    let mut viscous = None;
     for (i, b) in bodies.iter().enumerate() {
         let SectionFile::Laminate(l) = &b.section else { continue };
         let sk = format!("bodies[{i}].section");
@@ -105,9 +104,6 @@ pub(super) fn interfaces(
             let e3 = materials.iter().find(|m| m.name == thin.material).map_or(f64::NAN, through_thickness_modulus);
             let law_key = format!("materials[{j}].cohesive");
             let law = law(&law_key, c, defaults::PENALTY_PER_STIFFNESS * e3 / thin.thickness, warnings)?;
-            if law.viscosity > 0.0 && viscous.is_none() {
-                viscous = Some((j, law.viscosity));
-            }
             let points = crate::interfaces::points(&mesh.bodies[i], r.ply, r.crack);
             if points.is_empty() {
                 return Err(invalid(
@@ -149,14 +145,6 @@ pub(super) fn interfaces(
                 points,
             });
         }
-    }
-    if let (Some(Control::ArcLength), Some((j, v))) = (model.solver.control, viscous) {
-        return Err(invalid(
-            format!("materials[{j}].cohesive.viscosity"),
-            v,
-            "0 with solver.control = \"arc_length\" (the viscosity's time is the increment of the load factor, an \
-             unknown of either sign there)",
-        ));
     }
     Ok(out)
 }

@@ -466,6 +466,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         indenters: &indenters,
         contacts: &contacts,
         probes: &probes,
+        delaminating: !interfaces.is_empty() && !materials.iter().any(|m| m.is_plastic() || m.damage.is_some()),
     };
     solver.path = path::settings(&file.solver, &solver, &loading)?;
     let output = output_settings(&file.output, &mesh)?;
@@ -486,15 +487,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         contacts: &contacts,
         steps: file.steps.len(),
     };
-    // ply damage with an eigenvalue analysis is refused before what such
-    // an analysis asks of the model (a modal strip with damage was refused
-    // for its density, then for the damage; a new-user review)
-    let asked = |k| file.analysis.kind == Some(k);
-    let kind = analysis::Kind::of(
-        asked(schema::AnalysisType::Buckling),
-        asked(schema::AnalysisType::Modal),
-        asked(schema::AnalysisType::Transient),
-    );
+    let kind = analysis::Kind::asked(&file.analysis);
     analysis::damage_combinations(kind, kinematics, &materials, solver.path.is_some())?;
     let buckling = analysis::buckling(&file.analysis, &parts)?;
     let imperfection = analysis::imperfection(&file.analysis, &parts)?;
@@ -503,7 +496,6 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
     if let Some(t) = &transient {
         symmetry::check_velocities(&t.initial_velocities, &symmetry.planes, &mesh)?;
     }
-    debug_assert_eq!(kind, analysis::Kind::of(buckling.is_some(), modal.is_some(), transient.is_some()));
     analysis::combinations(kind, solver.path.is_some())?;
     let modes = buckling.map(|b| b.modes).or(modal.map(|m| m.modes));
     analysis::adapt_combinations(adapt.as_ref(), modes)?;

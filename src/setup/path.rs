@@ -10,7 +10,7 @@ use super::Probe;
 use super::constraints::ConstraintHandler;
 use crate::bc::{Constraint, Load};
 use crate::contact::{Indenter, PairContact};
-use crate::input::schema::{Control, SolverFile, StepFile};
+use crate::input::schema::{Control, PathConstraint, SolverFile, StepFile};
 use crate::input::validate::finite_positive;
 use crate::input::{DisplacementStop, ModelError, PathSettings, SolverSettings, invalid, ranges};
 use crate::solver::arclength::ArcLengthSettings;
@@ -24,7 +24,18 @@ pub(super) struct Loading<'a> {
     pub indenters: &'a [Indenter],
     pub contacts: &'a [PairContact],
     pub probes: &'a [Probe],
+    /// The model has cohesive interfaces, and no material yields or
+    /// damages in its plies: what the dissipation constraint is made and
+    /// checked for (with ply damage a notched strip under a force stalled
+    /// under it, λ swinging about zero; docs/limitations.md).
+    pub(super) delaminating: bool,
 }
+
+/// The share of the elastic energy `½ λ fᵀu` one increment must dissipate
+/// before `constraint = "dissipation"` holds the increments to their
+/// dissipation (smaller shares are the process zone's first points, whose
+/// dissipation rate along the tangent is still round-off).
+const DISSIPATION_SWITCH: f64 = 1e-3;
 
 const ARC: &str = "solver.control = \"arc_length\"";
 
@@ -40,6 +51,7 @@ pub(super) fn settings(
             ("arc_length", s.arc_length.is_some()),
             ("max_load_factor", s.max_load_factor.is_some()),
             ("stop", s.stop.is_some()),
+            ("constraint", s.constraint.is_some()),
         ];
         if let Some((key, _)) = given.iter().find(|g| g.1) {
             return Err(invalid(format!("solver.{key}"), "(given)", format!("no value without {ARC}")));
@@ -81,11 +93,21 @@ pub(super) fn settings(
         }
     };
     let stop = s.stop.as_ref().map(|st| stop(st, model.probes)).transpose()?;
+    if s.constraint == Some(PathConstraint::Dissipation) && !model.delaminating {
+        return Err(invalid(
+            "solver.constraint",
+            "\"dissipation\"",
+            "\"cylinder\" in a model without cohesive interfaces, or with plasticity or ply damage: the \
+             dissipation of an increment, ½ (λ fᵀΔu − Δλ fᵀu), is that of elastic plies whose interfaces \
+             damage and unload on their secant",
+        ));
+    }
     let arc = ArcLengthSettings {
         initial_dlambda: solver.steps.initial,
         max_increments: solver.steps.max_increments,
         max_iterations: solver.newton.max_iterations,
         residual_tolerance: solver.newton.residual_tolerance,
+        dissipation: (s.constraint == Some(PathConstraint::Dissipation)).then_some(DISSIPATION_SWITCH),
         ..ArcLengthSettings::default()
     };
     Ok(Some(PathSettings { arc, arc_length, max_load_factor, stop }))

@@ -75,6 +75,10 @@
 //! closing — turns the direction however short the arc, and is then
 //! accepted).
 //!
+//! **Dissipation control** ([`ArcLengthSettings::dissipation`]): once the
+//! structure dissipates, each increment is held to the energy it dissipates
+//! instead of its length (`src/solver/arclength_dissipation.rs`).
+//!
 //! **Landing on the end.** An increment that carries `λ` past
 //! `ArcLengthSettings::max_lambda` is redone from its start with `λ`
 //! prescribed there (Newton at fixed `λ`, the predictor the tangent's), as
@@ -104,6 +108,12 @@ pub trait PathProblem {
     fn commit(&mut self);
     /// Returns to the last committed state.
     fn restore(&mut self);
+    /// The pseudo-time of the increment about to start: its arc length
+    /// over the first one's, times the first one's `|Δλ|` — positive and
+    /// fixed through the increment's iterations, where `Δλ` changes sign
+    /// past a limit point —, for a rate-dependent regularisation of the
+    /// problem (a Duvaut–Lions viscosity). The default ignores it.
+    fn pseudo_time_step(&mut self, _step: f64) {}
     /// Negative pivots of the last tangent, if the problem knows them.
     fn negative_pivots(&self) -> Option<usize> {
         None
@@ -147,6 +157,10 @@ pub struct ArcLengthSettings {
     /// Smallest cosine between an increment's predictor and its converged
     /// `Δu` (module docs, "No jump along the path").
     pub(crate) min_cosine: f64,
+    /// Switch to the dissipation constraint (module docs, "Dissipation
+    /// control") once an increment dissipates this share of the elastic
+    /// energy `½ λ fᵀu`; `None`: the cylinder throughout.
+    pub dissipation: Option<f64>,
 }
 
 /// Most rollbacks of one increment for having turned too far from its
@@ -172,111 +186,7 @@ impl Default for ArcLengthSettings {
             // most 3.7° (20, 5 or 1 increments per unit λ); a jump over its
             // snap-through turned by 23°
             min_cosine: 0.98,
-        }
-    }
-}
-
-/// Why an increment failed.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum PathFailure {
-    /// The iteration limit was reached.
-    MaxIterations,
-    /// The residual grew past the divergence ratio or became non-finite.
-    Diverged,
-    /// The constraint's quadratic had complex roots.
-    ComplexRoots,
-    /// The problem failed (e.g. a singular tangent); see the message.
-    Problem,
-    /// A stop was requested through the [`Interrupt`].
-    Interrupted,
-    /// The increment converged but turned from its predictor by more than
-    /// `ArcLengthSettings::min_cosine` allows (a jump along the path).
-    Turned,
-}
-
-/// One increment, converged or failed.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PathStep {
-    /// 1-based index of the increment.
-    pub index: usize,
-    /// Load factor reached (or, failed, last iterated).
-    pub lambda: f64,
-    /// Its change over the increment.
-    pub dlambda: f64,
-    /// The arc length `Δl` of the increment.
-    pub arc_length: f64,
-    /// Corrections made.
-    pub iterations: usize,
-    /// `‖R‖/‖f‖` at each evaluation.
-    pub residuals: Vec<f64>,
-    /// True if the increment converged (and was committed).
-    pub converged: bool,
-    /// Why it failed, if it did.
-    pub failure: Option<PathFailure>,
-    /// The problem's error message, if any.
-    pub message: Option<String>,
-    /// Failed attempts before this one (for a converged increment).
-    pub cutbacks: usize,
-    /// Negative pivots of the tangent at the converged point, if known.
-    pub negative_pivots: Option<usize>,
-}
-
-/// Callbacks of the path following.
-pub trait PathObserver<P> {
-    /// After each converged and committed increment; false ends the run.
-    fn converged(&mut self, problem: &P, step: &PathStep) -> bool;
-    /// After each failed attempt (before the retry with half the arc length).
-    fn cut_back(&mut self, _step: &PathStep) {}
-}
-
-/// Why the path following stopped with an error.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum PathStop {
-    /// The first tangent could not be formed or solved, or `f = 0`.
-    Start,
-    /// A cutback would bring `Δl` below its minimum.
-    ArcTooSmall,
-    /// A stop was requested through the [`Interrupt`].
-    Interrupted,
-}
-
-/// The path following stopped (the problem is left at its last converged
-/// increment).
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-#[error("{}", describe(self))]
-pub struct PathError {
-    /// Why.
-    pub reason: PathStop,
-    /// The last converged load factor.
-    pub(crate) last_lambda: f64,
-    /// Converged increments before the stop.
-    pub increments: usize,
-    /// The last attempt, if any.
-    pub attempt: Option<PathStep>,
-    /// The problem's message (at the start).
-    pub message: Option<String>,
-}
-
-fn describe(e: &PathError) -> String {
-    let at = format!("after {} increments, at load factor {:.6}", e.increments, e.last_lambda);
-    match e.reason {
-        PathStop::Start => format!(
-            "the path following could not start: {}",
-            e.message.as_deref().unwrap_or("the reference load is zero")
-        ),
-        PathStop::Interrupted => format!("path following interrupted {at}"),
-        PathStop::ArcTooSmall => {
-            let why = e.attempt.as_ref().map_or(String::new(), |s| {
-                let res: Vec<String> = s.residuals.iter().map(|r| format!("{r:.2e}")).collect();
-                format!(
-                    ": {:?} after {} iterations, relative residuals [{}]{}",
-                    s.failure.unwrap_or(PathFailure::MaxIterations),
-                    s.iterations,
-                    res.join(", "),
-                    s.message.as_ref().map(|m| format!("; {m}")).unwrap_or_default()
-                )
-            });
-            format!("the arc length fell below its minimum {at}{why}")
+            dissipation: None,
         }
     }
 }
@@ -318,7 +228,7 @@ pub fn trace<P: PathProblem>(
             }
         }
         step.index = history.len() + 1;
-        if step.converged && path.turns < MAX_TURNS && path.cosine() < settings.min_cosine {
+        if step.converged && !path.dissipating && path.turns < MAX_TURNS && path.cosine() < settings.min_cosine {
             step.converged = false;
             step.message = Some(format!(
                 "the converged increment turned by {:.1}° from its predictor (at most {:.1}°: a jump along the path, \
@@ -333,6 +243,10 @@ pub fn trace<P: PathProblem>(
             path.p.commit();
             path.fresh = true;
             path.turns = 0;
+            let dissipated = path.dissipated(step.dlambda);
+            for (t, d) in path.total.iter_mut().zip(&path.du) {
+                *t += d;
+            }
             path.lambda = step.lambda;
             std::mem::swap(&mut path.prev, &mut path.du);
             path.prev_dlambda = step.dlambda;
@@ -341,7 +255,14 @@ pub fn trace<P: PathProblem>(
             cutbacks = 0;
             let go_on = observer.converged(path.p, &step);
             let factor = (settings.desired_iterations as f64 / step.iterations.max(1) as f64).sqrt();
-            path.arc = (path.arc * factor.clamp(0.5, settings.max_growth)).clamp(min, max);
+            if path.dissipating {
+                // the arc follows the increments' length, for a return to the cylinder
+                let length = path.p.dot(&path.prev, &path.prev).sqrt();
+                path.arc = length.clamp(min, max);
+                path.tau = Some(dissipated.abs() * factor.clamp(0.5, settings.max_growth));
+            } else {
+                path.arc = (path.arc * factor.clamp(0.5, settings.max_growth)).clamp(min, max);
+            }
             history.push(step);
             if !go_on {
                 break;
@@ -354,6 +275,9 @@ pub fn trace<P: PathProblem>(
             }
             observer.cut_back(&step);
             cutbacks += 1;
+            if path.dissipating {
+                path.tau = path.tau.map(|t| t * shorten);
+            }
             path.arc *= shorten;
             if path.arc < min {
                 return Err(stop(PathStop::ArcTooSmall, &path, history.len(), Some(step)));
@@ -390,6 +314,19 @@ struct Path<'a, P: PathProblem> {
     predictor: Vec<f64>,
     /// Rollbacks of the present increment for turning too far.
     turns: usize,
+    /// `Δl₀` and the first increment's `|Δλ|`: the pseudo-time's unit.
+    clock: (f64, f64),
+    /// `u` since the start of the path (`λ₀ = 0`, `u = 0` there), for the
+    /// dissipation constraint.
+    total: Vec<f64>,
+    /// `ArcLengthSettings::dissipation` of a path from `λ = 0`.
+    switch: Option<f64>,
+    /// The dissipation `Δτ` each increment is held to, once switched
+    /// (module docs, "Dissipation control").
+    tau: Option<f64>,
+    /// The present attempt is held to `tau` (its predictor found the
+    /// structure dissipating).
+    dissipating: bool,
 }
 
 impl<'a, P: PathProblem> Path<'a, P> {
@@ -422,6 +359,11 @@ impl<'a, P: PathProblem> Path<'a, P> {
             first_sign: if settings.initial_dlambda < 0.0 { -1.0 } else { 1.0 },
             predictor: vec![0.0; n],
             turns: 0,
+            clock: (0.0, settings.initial_dlambda.abs()),
+            total: vec![0.0; n],
+            switch: settings.dissipation.filter(|_| lambda == 0.0),
+            tau: None,
+            dissipating: false,
         };
         path.p.residual(lambda, &mut path.r).map_err(|e| fail(Some(e.to_string())))?;
         path.p.solve(&mut [&mut path.df[..]]).map_err(|e| fail(Some(e.to_string())))?;
@@ -430,6 +372,7 @@ impl<'a, P: PathProblem> Path<'a, P> {
         if !(path.arc > 0.0 && path.arc.is_finite()) {
             return Err(fail(Some(format!("the first predictor has length {:e}", path.arc))));
         }
+        path.clock.0 = path.arc;
         Ok(path)
     }
 
@@ -450,6 +393,7 @@ impl<'a, P: PathProblem> Path<'a, P> {
             cutbacks: 0,
             negative_pivots: None,
         };
+        self.p.pseudo_time_step(self.arc / self.clock.0 * self.clock.1);
         match self.predict(land.map(|l| l - self.lambda)) {
             Ok(dlambda) => step.dlambda = dlambda,
             Err(e) => return failed(step, PathFailure::Problem, Some(e.to_string())),
@@ -501,7 +445,17 @@ impl<'a, P: PathProblem> Path<'a, P> {
         } else {
             1.0
         };
-        let dlambda = fixed.unwrap_or(sign * self.arc / norm);
+        // the dissipation constraint's Δλ₁ = 2 Δτ / (λ₀ fᵀδu_F − fᵀu₀),
+        // while the structure dissipates along the tangent (else the
+        // cylinder); its sign is Δλ's: negative on a softening branch
+        let rate = self.rate();
+        self.switch_to_dissipation(rate, self.arc / norm);
+        self.dissipating = fixed.is_none() && self.tau.is_some() && self.dissipates(rate);
+        let dlambda = match (fixed, self.tau) {
+            (Some(d), _) => d,
+            (None, Some(tau)) if self.dissipating => 2.0 * tau / rate,
+            _ => sign * self.arc / norm,
+        };
         for (d, x) in self.du.iter_mut().zip(&self.df) {
             *d = dlambda * x;
         }
@@ -530,6 +484,12 @@ impl<'a, P: PathProblem> Path<'a, P> {
         let disc = b * b - 4.0 * a * c;
         if fixed {
             return self.apply(0.0).map(Some);
+        }
+        if self.dissipating {
+            return match self.dissipation_root(dlambda) {
+                Some(root) => self.apply(root).map(Some),
+                None => Ok(None),
+            };
         }
         if !(disc >= 0.0) || !(a > 0.0) {
             return Ok(None);
@@ -580,6 +540,12 @@ fn failed(mut step: PathStep, failure: PathFailure, message: Option<String>) -> 
     step.message = message;
     step
 }
+
+#[path = "arclength_dissipation.rs"]
+mod dissipation;
+#[path = "arclength_outcome.rs"]
+mod outcome;
+pub use outcome::{PathError, PathFailure, PathObserver, PathStep, PathStop};
 
 #[cfg(test)]
 #[path = "arclength_tests.rs"]

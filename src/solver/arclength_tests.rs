@@ -356,3 +356,165 @@ fn the_path_lands_on_its_end() {
     assert!(record.1[..record.1.len() - 1].iter().all(|p| p.0 < 0.5));
     assert_eq!((record.2, steps.last().unwrap().cutbacks), (0, 0));
 }
+
+/// A bar that damages (elastic `k0` to its strength `s` at `v0 = s/k0`,
+/// then exponential softening `σ = s exp(−(κ − v0)/ℓ)`, unloading on its
+/// secant) in series with an elastic spring `ks`, pulled by `λ P` at the
+/// spring's free end: `u = [v, w]`, the bar's end and the load point. With
+/// `ks < s/ℓ` the load point snaps back as the bar starts to soften
+/// (`w = v + λP/ks`, `dw/dv < 0`), the path the dissipation constraint is
+/// made for; the curved branch makes each increment take corrections.
+struct Softening {
+    u: [f64; 2],
+    committed: [f64; 2],
+    /// Largest `v` so far (committed).
+    kappa: f64,
+    k: [[f64; 2]; 2],
+}
+
+const K0: f64 = 100.0;
+const STRENGTH: f64 = 1.0;
+const ELL: f64 = 0.05;
+const KS: f64 = 2.0;
+
+impl Softening {
+    /// The envelope's stress at `kappa` past the peak.
+    fn envelope(kappa: f64) -> f64 {
+        STRENGTH * (-(kappa - STRENGTH / K0) / ELL).exp()
+    }
+
+    /// The bar's force and its tangent at `v`, from the committed `kappa`.
+    fn bar(&self, v: f64) -> (f64, f64) {
+        let v0 = STRENGTH / K0;
+        let kappa = self.kappa.max(v0);
+        if v >= kappa && v > v0 * (1.0 - 1e-12) {
+            // loading from the largest so far: the envelope (at the peak
+            // itself too: its tangent points where the path goes)
+            (Self::envelope(v), -Self::envelope(v) / ELL)
+        } else {
+            // on the secant of the largest so far
+            let secant = Self::envelope(kappa) / kappa;
+            (secant * v, secant)
+        }
+    }
+
+    /// The energy the bar has dissipated at `kappa`: the work along its
+    /// envelope less what it holds on its secant.
+    fn dissipated(kappa: f64) -> f64 {
+        let v0 = STRENGTH / K0;
+        if kappa <= v0 {
+            return 0.0;
+        }
+        let work = 0.5 * STRENGTH * v0 + STRENGTH * ELL * (1.0 - (-(kappa - v0) / ELL).exp());
+        work - 0.5 * kappa * Self::envelope(kappa)
+    }
+}
+
+impl PathProblem for Softening {
+    type Error = std::io::Error;
+    fn dimension(&self) -> usize {
+        2
+    }
+    fn reference_load(&self, f: &mut [f64]) {
+        f.copy_from_slice(&[0.0, STRENGTH]);
+    }
+    fn residual(&mut self, lambda: f64, r: &mut [f64]) -> Result<(), Self::Error> {
+        let (force, tangent) = self.bar(self.u[0]);
+        let stretch = self.u[1] - self.u[0];
+        r[0] = force - KS * stretch;
+        r[1] = KS * stretch - lambda * STRENGTH;
+        self.k = [[tangent + KS, -KS], [-KS, KS]];
+        Ok(())
+    }
+    fn solve(&mut self, rhs: &mut [&mut [f64]]) -> Result<(), Self::Error> {
+        let k = self.k;
+        let det = k[0][0] * k[1][1] - k[0][1] * k[1][0];
+        if det == 0.0 {
+            return Err(std::io::Error::other("singular tangent"));
+        }
+        for b in rhs.iter_mut() {
+            let (x, y) = (b[0], b[1]);
+            b[0] = (k[1][1] * x - k[0][1] * y) / det;
+            b[1] = (k[0][0] * y - k[1][0] * x) / det;
+        }
+        Ok(())
+    }
+    fn update(&mut self, du: &[f64]) -> Result<(), Self::Error> {
+        self.u.iter_mut().zip(du).for_each(|(u, d)| *u += d);
+        Ok(())
+    }
+    fn commit(&mut self) {
+        self.committed = self.u;
+        self.kappa = self.kappa.max(self.u[0]);
+    }
+    fn restore(&mut self) {
+        self.u = self.committed;
+    }
+}
+
+/// The converged points `(λ, v, w)` until the bar holds 1 % of its strength.
+#[derive(Default)]
+struct SofteningRecord(Vec<(f64, f64, f64)>, usize);
+
+impl PathObserver<Softening> for SofteningRecord {
+    fn converged(&mut self, problem: &Softening, step: &PathStep) -> bool {
+        self.0.push((step.lambda, problem.u[0], problem.u[1]));
+        self.1 += step.iterations;
+        step.lambda > 0.01 || problem.u[0] < STRENGTH / K0
+    }
+}
+
+/// The dissipation constraint traces the softening bar through its
+/// snap-back until it holds 1 % of its strength: the bar's end `v` never
+/// goes back once it softens (no point of the path unloads: the constraint
+/// asks each increment to dissipate), the load point `w` turns back (the
+/// snap-back: `w` falls from `v0 + s/ks = 0.51` to below half of it), each
+/// point on the exact envelope `λ P = s exp(−(v − v0)/ℓ)` (to 1e-8), and
+/// the energy the increments were held to, `Σ ½ (λ₀ fᵀΔu − Δλ fᵀu₀)`,
+/// sums to the bar's dissipation `D(v)` of its law within 1 % (a first-order
+/// rule along a curved path). Mutation: the corrector's `Δλ fᵀu₀` with
+/// the wrong sign fails it.
+#[test]
+fn the_dissipation_constraint_follows_a_softening_bar_through_its_snap_back() {
+    let settings = ArcLengthSettings {
+        initial_dlambda: 0.05,
+        residual_tolerance: 1e-11,
+        max_increments: 2000,
+        // each increment's dissipation at most that of the one before
+        max_growth: 1.0,
+        dissipation: Some(1e-3),
+        ..Default::default()
+    };
+    let mut bar = Softening { u: [0.0; 2], committed: [0.0; 2], kappa: 0.0, k: [[0.0; 2]; 2] };
+    let mut record = SofteningRecord::default();
+    trace(&mut bar, 0.0, &settings, &mut record, &Interrupt::new()).map_err(|e| e.to_string()).unwrap();
+    let points = &record.0;
+    let v0 = STRENGTH / K0;
+    let (lambda, v, _) = *points.last().unwrap();
+    assert!(lambda <= 0.01, "ended at λ = {lambda}, v = {v}");
+    let softening: Vec<_> = points.iter().filter(|p| p.1 > v0 * (1.0 + 1e-9)).collect();
+    for p in &softening {
+        let exact = Softening::envelope(p.1) / STRENGTH;
+        assert!((p.0 - exact).abs() < 1e-8, "λ = {} at v = {}: the envelope's {exact}", p.0, p.1);
+    }
+    assert!(softening.windows(2).all(|p| p[1].1 > p[0].1), "v went back");
+    let w_peak = v0 + STRENGTH / KS;
+    let w_min = points.iter().map(|p| p.2).fold(f64::INFINITY, f64::min);
+    assert!(w_min < 0.5 * w_peak, "the load point's least {w_min}, its peak {w_peak}");
+    // the increments' dissipation, as the constraint reckons it, against the law's
+    let reckoned: f64 = std::iter::once((0.0, 0.0, 0.0))
+        .chain(points.iter().copied())
+        .collect::<Vec<_>>()
+        .windows(2)
+        .map(|p| 0.5 * STRENGTH * (p[0].0 * (p[1].2 - p[0].2) - (p[1].0 - p[0].0) * p[0].2))
+        .sum();
+    let exact = Softening::dissipated(v);
+    eprintln!(
+        "{} points, {} past the peak, {} corrections; w least {w_min:.4}; dissipation reckoned {reckoned:.6}, the law's {exact:.6}",
+        points.len(),
+        softening.len(),
+        record.1
+    );
+    assert!(softening.len() >= 10 && record.1 > softening.len(), "{} points past the peak", softening.len());
+    assert!((reckoned / exact - 1.0).abs() < 0.01, "reckoned {reckoned} against the law's {exact}");
+}

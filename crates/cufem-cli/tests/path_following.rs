@@ -222,6 +222,16 @@ fn the_keys_are_checked_and_load_control_is_unchanged() {
             "constraints[4].displacement = [free, free, -0.01]",
         ),
         (dc.replace("increments = 4", "control = \"arc_length\""), "loads = []: expected at least one [[loads]]"),
+        // the dissipation constraint: with arc length, in a model that damages (the arch does not)
+        (
+            dc.replace("\n[solver]", "\n[solver]\nconstraint = \"dissipation\""),
+            "solver.constraint = (given): expected no value without",
+        ),
+        (
+            text().replace("increments = 20", "increments = 20\nconstraint = \"dissipation\""),
+            "solver.constraint = \"dissipation\": expected \"cylinder\" in a model without cohesive interfaces",
+        ),
+        (text().replace("increments = 20", "increments = 20\nconstraint = \"cylinder\""), ""),
         (
             format!("{}\n[[steps]]\nname = \"a\"\n\n[[steps]]\nname = \"b\"\n", text()),
             "steps = 2 steps: expected at most one step",

@@ -16,6 +16,12 @@ impl Structure<'_> {
         self.elimination.set_load_factor(self.loading.steps, lambda);
     }
 
+    /// The viscous regularisation's step of the path increments to come
+    /// (`At::viscous_step`).
+    pub(crate) fn set_path_viscous_step(&mut self, step: f64) {
+        self.state.viscous_step = Some(step);
+    }
+
     /// A new increment of the path starts from the committed state.
     pub(crate) fn start_path_increment(&mut self) {
         self.parts.contacts.start_increment();

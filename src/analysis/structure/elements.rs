@@ -224,7 +224,7 @@ impl Contribution for Elements<'_> {
         let crate::damage::BodyDamage { committed, band, trial: damage_trial, lambda, .. } = &mut self.damage;
         let step = match self.clock {
             Some(clock) => (clock.time(at.lambda) - clock.time(*lambda)).abs(),
-            None => (at.lambda - *lambda).abs(),
+            None => at.viscous_step.unwrap_or((at.lambda - *lambda).abs()),
         };
         // the end-of-step stress of damaged points (`dynamics::ply_forces`)
         let impulse = self.clock.map(|c| crate::materials::damage_impulse::PointForces {

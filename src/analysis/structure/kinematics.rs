@@ -33,6 +33,8 @@ pub(crate) struct Kinematics {
     pub(crate) u_before: Vec<f64>,
     /// `u` was reached from `u_before` by one linear step.
     pub(crate) linear_step: bool,
+    /// The viscous regularisation's step of a path increment (`At::viscous_step`).
+    pub(crate) viscous_step: Option<f64>,
 }
 
 impl Kinematics {
@@ -49,6 +51,7 @@ impl Kinematics {
             line: None,
             u_before: vec![0.0; n_dofs],
             linear_step: false,
+            viscous_step: None,
         }
     }
 
@@ -60,6 +63,7 @@ impl Kinematics {
             lambda: self.lambda,
             predictor: self.predictor,
             u_before: self.linear_step.then_some(&self.u_before[..]),
+            viscous_step: self.viscous_step,
         }
     }
 

@@ -39,6 +39,19 @@ pub(crate) enum Control {
     ArcLength,
 }
 
+/// `solver.constraint`: what holds each path increment's length.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default, Deserialize, serde::Serialize, schemars::JsonSchema)]
+#[serde(rename_all = "snake_case")]
+pub(crate) enum PathConstraint {
+    /// The cylinder of the displacements' change (Crisfield; the default).
+    #[default]
+    Cylinder,
+    /// The energy dissipated per increment once the structure dissipates
+    /// (Gutiérrez 2004; Verhoosel, Remmers & Gutiérrez 2009), the cylinder
+    /// before.
+    Dissipation,
+}
+
 /// `solver.stop = { probe, component, beyond }`.
 #[derive(Debug, Deserialize, schemars::JsonSchema)]
 #[serde(deny_unknown_fields)]

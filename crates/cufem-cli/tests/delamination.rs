@@ -832,8 +832,9 @@ fn dcb_by_dissipation(name: &str, viscosity: &str) -> (Vec<(f64, f64)>, Value) {
 /// the example's `3 %` of P_c of corrected beam theory (Williams 1989,
 /// tests/common/cbt.rs), the law's dissipation G_Ic times the new crack
 /// (within 5 %, as the example). Measured: `2.1 %` each, `35`–`36` points,
-/// no cutback; G_Ic `+10 %` in the model puts the peak `4.8 %` above
-/// (λ `0.719` against `0.686`) and fails. The same model held by the
+/// no cutback; with G_Ic `+10 %` in the model the peak is λ `0.719`
+/// instead of `0.686`, `143.8` N: `3.6 %` of P_c above the closed form's,
+/// and fails. The same model held by the
 /// cylinder stalls just past the peak ("the arc-length constraint has no
 /// real root": the displacements' change turns as the crack grows), and
 /// without viscosity Newton cycles at the crack front before it.

@@ -13,7 +13,7 @@ pub enum PathFailure {
     ComplexRoots,
     /// The problem failed (e.g. a singular tangent); see the message.
     Problem,
-    /// A stop was requested through the [`Interrupt`].
+    /// A stop was requested through the [`Interrupt`](crate::solver::Interrupt).
     Interrupted,
     /// The increment converged but turned from its predictor by more than
     /// `ArcLengthSettings::min_cosine` allows (a jump along the path).
@@ -62,7 +62,7 @@ pub enum PathStop {
     Start,
     /// A cutback would bring `Δl` below its minimum.
     ArcTooSmall,
-    /// A stop was requested through the [`Interrupt`].
+    /// A stop was requested through the [`Interrupt`](crate::solver::Interrupt).
     Interrupted,
 }
 

@@ -158,8 +158,8 @@ pub struct ArcLengthSettings {
     /// `Δu` (module docs, "No jump along the path").
     pub(crate) min_cosine: f64,
     /// Switch to the dissipation constraint (module docs, "Dissipation
-    /// control") once an increment dissipates this share of the elastic
-    /// energy `½ λ fᵀu`; `None`: the cylinder throughout.
+    /// control") once the cylinder's predictor would dissipate this share of
+    /// the elastic energy `½ λ fᵀu`; `None`: the cylinder throughout.
     pub dissipation: Option<f64>,
 }
 

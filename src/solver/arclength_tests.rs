@@ -84,21 +84,7 @@ impl PathProblem for Truss {
         Ok(())
     }
     fn solve(&mut self, rhs: &mut [&mut [f64]]) -> Result<(), Self::Error> {
-        let k = self.k;
-        let det = if self.u.len() == 1 { k[0][0] } else { k[0][0] * k[1][1] - k[0][1] * k[1][0] };
-        if det == 0.0 {
-            return Err(std::io::Error::other("singular tangent"));
-        }
-        for b in rhs.iter_mut() {
-            if b.len() == 1 {
-                b[0] /= k[0][0];
-            } else {
-                let (x, y) = (b[0], b[1]);
-                b[0] = (k[1][1] * x - k[0][1] * y) / det;
-                b[1] = (k[0][0] * y - k[1][0] * x) / det;
-            }
-        }
-        Ok(())
+        solve_small(&self.k, self.u.len(), rhs)
     }
     fn update(&mut self, du: &[f64]) -> Result<(), Self::Error> {
         self.u.iter_mut().zip(du).for_each(|(u, d)| *u += d);
@@ -110,6 +96,25 @@ impl PathProblem for Truss {
     fn restore(&mut self) {
         self.u.clone_from(&self.committed);
     }
+}
+
+/// Solves `k x = b` in place for each right-hand side, `k` the leading
+/// `n × n` (1 or 2) block, by Cramer's rule.
+fn solve_small(k: &[[f64; 2]; 2], n: usize, rhs: &mut [&mut [f64]]) -> Result<(), std::io::Error> {
+    let det = if n == 1 { k[0][0] } else { k[0][0] * k[1][1] - k[0][1] * k[1][0] };
+    if det == 0.0 {
+        return Err(std::io::Error::other("singular tangent"));
+    }
+    for b in rhs.iter_mut() {
+        if n == 1 {
+            b[0] /= k[0][0];
+        } else {
+            let (x, y) = (b[0], b[1]);
+            b[0] = (k[1][1] * x - k[0][1] * y) / det;
+            b[1] = (k[0][0] * y - k[1][0] * x) / det;
+        }
+    }
+    Ok(())
 }
 
 /// The converged points `(λ, u)` and steps; stops once `λ` has gone below
@@ -427,17 +432,7 @@ impl PathProblem for Softening {
         Ok(())
     }
     fn solve(&mut self, rhs: &mut [&mut [f64]]) -> Result<(), Self::Error> {
-        let k = self.k;
-        let det = k[0][0] * k[1][1] - k[0][1] * k[1][0];
-        if det == 0.0 {
-            return Err(std::io::Error::other("singular tangent"));
-        }
-        for b in rhs.iter_mut() {
-            let (x, y) = (b[0], b[1]);
-            b[0] = (k[1][1] * x - k[0][1] * y) / det;
-            b[1] = (k[0][0] * y - k[1][0] * x) / det;
-        }
-        Ok(())
+        solve_small(&self.k, 2, rhs)
     }
     fn update(&mut self, du: &[f64]) -> Result<(), Self::Error> {
         self.u.iter_mut().zip(du).for_each(|(u, d)| *u += d);

@@ -787,30 +787,17 @@ fn calculix_export_refuses_cohesive_interfaces_by_key() {
     }
 }
 
-/// The DCB loaded by forces on its arms (`±200` N at λ = 1 on each arm's
-/// end face, the example's opening control removed), its interface's
-/// `viscosity = 1e-5` replaced by `viscosity`, traced by path following
-/// held to its dissipation per increment once it dissipates
-/// (`solver.constraint = "dissipation"`) to an opening of 10 mm: the
+/// examples/dcb_arm_forces.toml (the DCB loaded by forces on its arms,
+/// `±200` N at λ = 1 on each arm's end face, traced by path following held
+/// to its dissipation per increment once it dissipates,
+/// `solver.constraint = "dissipation"`, to an opening of 10 mm), its
+/// interface's law closed by `viscosity` (`" }"`: the example's, none): the
 /// points `(δ, P)` and the summary.
 fn dcb_by_dissipation(name: &str, viscosity: &str) -> (Vec<(f64, f64)>, Value) {
-    let text = example();
-    assert_eq!(text.matches(", viscosity = 1e-5 }").count(), 1, "the example's viscosity changed");
-    let text = text.replace(", viscosity = 1e-5 }", viscosity);
-    let arms = [
-        ("name = \"upper_arm\"", "displacement = { z = 0.005 }", "[0.0, 0.0, 16.666666666666668]"),
-        ("name = \"lower_arm\"", "displacement = { z = -0.005 }", "[0.0, 0.0, -16.666666666666668]"),
-    ];
-    let mut text = arms.iter().fold(text, |t, (name, moved, force)| {
-        let block = format!("[[constraints]]\n{name}\n");
-        assert_eq!(t.matches(&block).count(), 1, "the example's {name} changed");
-        assert_eq!(t.matches(moved).count(), 1);
-        t.replace(&block, &format!("[[loads]]\n{name}\n")).replace(moved, &format!("force_per_node = {force}"))
-    });
-    let solver = text.find("[solver]").unwrap();
-    text.truncate(solver);
-    text += "[solver]\ncontrol = \"arc_length\"\nconstraint = \"dissipation\"\nincrements = 200\nmax_increments = 2000\n\
-             stop = { probe = \"upper_end\", component = \"z\", beyond = 0.005 }\n";
+    let text = read_example("dcb_arm_forces");
+    let law = "normal_strength = 80e6 }";
+    assert_eq!(text.matches(law).count(), 1, "the example's law changed");
+    let text = text.replace(law, &format!("normal_strength = 80e6{viscosity}"));
     let (out, summary) = run_cli(name, &text, true);
     // 12 nodes on each arm's face
     let total = 12.0 * 16.666666666666668;
@@ -824,8 +811,9 @@ fn dcb_by_dissipation(name: &str, viscosity: &str) -> (Vec<(f64, f64)>, Value) {
     (points, summary)
 }
 
-/// The DCB under arm forces (`dcb_by_dissipation`), without the
-/// example's viscosity and with it (over the path's pseudo-time): through
+/// The DCB under arm forces (`dcb_by_dissipation`), as shipped (without
+/// viscosity) and with examples/dcb.toml's `1e-5` (over the path's
+/// pseudo-time): through
 /// the peak, where λ turns back, to an opening of 10 mm. Under load
 /// control a point past the peak carries less than the peak's load, which
 /// only a path following that lets λ fall can reach. Both curves within

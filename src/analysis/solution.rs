@@ -294,6 +294,7 @@ impl Solution {
             stresses: &self.stresses,
             recovered: self.recovered.as_ref(),
             symmetry: &model.symmetry.planes,
+            damage: self.damage.as_ref(),
         }
     }
 }

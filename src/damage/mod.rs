@@ -267,6 +267,14 @@ impl Damage {
         }
     }
 
+    /// Whether the stiffness of point `g` (global Gauss-point index) has
+    /// lost anything: some mode's damage `d_v` above zero. Its stress is
+    /// then not the elastic stiffness's times its strain
+    /// ([`crate::post::FieldView`]).
+    pub(crate) fn softened(&self, g: usize) -> bool {
+        self.states.get(g).is_some_and(|s| s.viscous.iter().any(|&d| d > 0.0))
+    }
+
     /// The largest damage of each mode over the points `range` (an
     /// element's), for the cell fields `d_ft d_fc d_mt d_mc`.
     pub(crate) fn largest_in(&self, range: std::ops::Range<usize>) -> [f64; 4] {

@@ -85,6 +85,10 @@ pub struct FieldView<'a> {
     /// The model's planes of symmetry: a point in the part they leave out
     /// is evaluated at its image, its fields reflected back.
     pub symmetry: &'a [crate::bc::symmetry::Plane],
+    /// The ply damage of the Gauss points (same layout as `stresses`),
+    /// `None` where no material damages: an element with a softened point
+    /// takes its stress from its Gauss points, as a plastic one.
+    pub damage: Option<&'a crate::damage::Damage>,
 }
 
 impl<'a> std::ops::Deref for FieldView<'a> {
@@ -144,6 +148,7 @@ impl FieldView<'_> {
         // range of the element's Gauss-point values, for the limiter
         let mut lo = [f64::INFINITY; 7];
         let mut hi = [f64::NEG_INFINITY; 7];
+        let mut softened = false;
         for (gb, wy) in ly.iter().enumerate() {
             for j in 0..m {
                 for i in 0..m {
@@ -155,6 +160,7 @@ impl FieldView<'_> {
                         lo[k] = lo[k].min(values[k]);
                         hi[k] = hi[k].max(values[k]);
                     }
+                    softened |= self.damage.is_some_and(|d| d.softened(g));
                     let p = self.states[g].peeq;
                     peeq += w * p;
                     lo[6] = lo[6].min(p);
@@ -162,7 +168,14 @@ impl FieldView<'_> {
                 }
             }
         }
-        if hi[6] > 0.0 {
+        if hi[6] > 0.0 || softened {
+            // a yielded or damaged element: the stress at a point is not
+            // the elastic stiffness's times the strain there but the Gauss
+            // points' through them, limited to their range. With damage,
+            // the intact stiffness times the strain of a softened band (or
+            // the law's secant at the damage interpolated to the point,
+            // tried) gave failure indices of tens to hundreds at a crack
+            // that carries nothing
             for k in 0..6 {
                 s.stress[k] = sigma[k].clamp(lo[k], hi[k]);
             }

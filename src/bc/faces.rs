@@ -134,6 +134,7 @@ mod tests {
             axis: BeamAxis::from_lines(BeamElementKind::B4, &yl),
             material: 0,
             element_materials: Vec::new(),
+            element_layers: Vec::new(),
             node_offset: 0,
             element_offset: 0,
             whole_size: None,

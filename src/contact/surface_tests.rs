@@ -14,6 +14,7 @@ fn block(kind: SectionElementKind, nx: usize, z: [f64; 2], offset: usize) -> Bod
         axis: BeamAxis::from_lines(BeamElementKind::B3, &yl),
         material: 0,
         element_materials: Vec::new(),
+        element_layers: Vec::new(),
         node_offset: offset,
         element_offset: 0,
         whole_size: None,

@@ -129,6 +129,12 @@ pub struct Body {
     /// zones; indices into the model's list, oriented copies included);
     /// empty: [`Body::material`] everywhere.
     pub element_materials: Vec<usize>,
+    /// The layer of each section element where the section has layers
+    /// (the ply or `[[bodies.zones]]` entry that gave it its material, in
+    /// the order `setup::zones` applies them); empty: one layer. Two plies
+    /// of one material and orientation are two layers, bonded at their
+    /// boundary (`post::failure`'s interlaminar criterion).
+    pub(crate) element_layers: Vec<usize>,
     /// Global number of the body's first node.
     pub node_offset: usize,
     /// Global number of the body's first element.
@@ -149,6 +155,7 @@ impl Body {
             axis,
             material,
             element_materials: Vec::new(),
+            element_layers: Vec::new(),
             node_offset: 0,
             element_offset: 0,
             whole_size: None,
@@ -158,6 +165,12 @@ impl Body {
     /// The material of section element `es` (of every body element over it).
     pub fn material_of(&self, es: usize) -> usize {
         self.element_materials.get(es).copied().unwrap_or(self.material)
+    }
+
+    /// The layer of section element `es` ([`Body::element_layers`]; `0`
+    /// where the section has one).
+    pub(crate) fn layer_of(&self, es: usize) -> usize {
+        self.element_layers.get(es).copied().unwrap_or(0)
     }
 
     /// Every material the body uses, without repeats, in increasing order.

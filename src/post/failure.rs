@@ -2,7 +2,8 @@
 //! criterion of [`crate::materials::failure`] its largest index and where,
 //! and the first-ply-failure load factor; and the interlaminar criterion's
 //! at the bonded ply interfaces (straight edges between section elements of
-//! two materials whose axis 3 both lie along the edge's normal), where the
+//! two plies — two materials, or two layers of one —, whose axis 3 both lie
+//! along the edge's normal), where the
 //! traction `(σ33, τ13, τ23)` in the material axes is the interface's, from
 //! the ply on each side with its own strengths.
 //!
@@ -100,7 +101,9 @@ fn take(slot: &mut Extremes, (value, ratio): (f64, f64), place: &dyn Fn() -> Pla
 
 /// Per section element of `body`, the natural lines `(coordinate,
 /// value)` (`0`: ξ, `1`: η) of its edges that are bonded ply interfaces:
-/// straight, shared with an element of another material, both materials'
+/// straight, shared with an element of another material or layer
+/// ([`crate::mesh::Body::layer_of`]: the two middle plies of a `[0/90]s`
+/// are two layers of one material), both materials'
 /// axis 3 along the edge's normal (plies of a laminate stacked along z, a
 /// web's plies stacked along x, any stack of a gmsh section; not a
 /// profile's web against its flange; a cohesive interface's twin nodes are
@@ -131,7 +134,8 @@ fn interface_lines(body: &crate::mesh::Body, materials: &[crate::materials::Mate
                     let normal = [-dz / length, dx / length];
                     let bonded = section.across(&holding, es, &nodes).is_some_and(|f| {
                         let (mf, me) = (body.material_of(f), body.material_of(es));
-                        mf != me && along(mf, normal) && along(me, normal)
+                        let apart = mf != me || body.layer_of(f) != body.layer_of(es);
+                        apart && along(mf, normal) && along(me, normal)
                     });
                     let (a, b) = (basis.node(local[0]), basis.node(local[local.len() - 1]));
                     let d = usize::from(a[0] != b[0]);

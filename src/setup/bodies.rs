@@ -155,12 +155,14 @@ pub(super) fn body(
     }
     connected(&format!("{key}.section"), &section)?;
     let (material, element_materials) = super::zones::assign(&key, b, &section, materials)?;
+    let element_layers = super::zones::layers(&key, b, &section);
     Ok(Body {
         name: b.name.clone(),
         section,
         axis: BeamAxis::from_lines(beam, &axis_lines),
         material,
         element_materials,
+        element_layers,
         node_offset: 0,
         element_offset: 0,
         whole_size: written.as_ref().map(|(section, lines)| super::symmetry::whole_size(section, lines, planes)),

@@ -94,6 +94,29 @@ pub(super) fn assign(
     assign_traced(key, b, section, materials).map(|(base, per_element, _)| (base, per_element))
 }
 
+/// The layer of each section element ([`crate::mesh::Body::element_layers`]):
+/// the index of the last zone (ply or `[[bodies.zones]]` entry) that
+/// covers it, in the order [`assign`] applies them; empty without zones.
+/// A zone naming no region of the section covers nothing ([`assign`]
+/// refuses it).
+pub(super) fn layers(key: &str, b: &BodyFile, section: &CrossSection) -> Vec<usize> {
+    let list = zones(key, b, section);
+    if list.is_empty() {
+        return Vec::new();
+    }
+    let mut layer = vec![0; section.n_elements()];
+    for (k, z) in list.iter().enumerate() {
+        let elements: Vec<usize> = match &z.region {
+            None => (0..section.n_elements()).collect(),
+            Some(r) => section.regions.iter().find(|g| &g.name == r).map_or_else(Vec::new, |g| g.elements.clone()),
+        };
+        for e in elements {
+            layer[e] = k + 1;
+        }
+    }
+    layer
+}
+
 /// [`assign`], with what gave each section element its material, as the
 /// file says it (`bodies[0].section.plies[1] (material "cfrp", angle 30°)`;
 /// empty when every element has the body's own material).

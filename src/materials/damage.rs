@@ -61,9 +61,11 @@
 //!   stiffness variables: `Y_I = Σ_k ½ σ_k²/((1 − d_I)² E_k)` over the
 //!   normal stresses whose compliance mode `I` holds,
 //!   `Y_s = ½ Σ τ²/((1 − d_s)² G)`: each update adds
-//!   `(Ȳ_I + Ȳ_s ∂d_s/∂d_I) Δd_I` with the trapezoidal means `Ȳ`, so
-//!   the work of any closed strain cycle equals the dissipated energy to
-//!   the rule's second order.
+//!   `(Ȳ_I + Ȳ_s ∂d_s/∂d_I) Δd_I` with the trapezoidal means `Ȳ` over
+//!   steps of its straight strain path that grow no mode by more than
+//!   `0.02` (`damage_dissipation`), so the work of any closed strain cycle
+//!   equals the dissipated energy to the rule's second order, and a point
+//!   that softens through within one update books its `G_I/L`.
 
 use thiserror::Error;
 
@@ -307,26 +309,8 @@ impl PlyDamage {
         let ds = 1.0 - d.iter().map(|x| 1.0 - x).product::<f64>();
         let (normal, tangent, stress) = self.closed_or_open(&d, ds, strain, &effective);
         state.stored = 0.5 * stress.iter().zip(strain).map(|(s, e)| s * e).sum::<f64>();
-        state.release = [0.0; 5];
-        for k in 0..3 {
-            let (mode, young) = (normal[k], self.elastic.young[k]);
-            state.release[mode] += 0.5 * stress[k] * stress[k] / ((1.0 - d[mode]).powi(2) * young);
-        }
-        let [g12, g13, g23] = self.elastic.shear;
-        state.release[4] = 0.5
-            * (stress[3] * stress[3] / g12 + stress[4] * stress[4] / g13 + stress[5] * stress[5] / g23)
-            / (1.0 - ds).powi(2);
-        for mode in 0..4 {
-            let grown = state.viscous[mode] - old.viscous[mode];
-            if grown > 0.0 {
-                let others =
-                    |s: &DamageState| (0..4).filter(|&j| j != mode).map(|j| 1.0 - s.viscous[j]).product::<f64>();
-                let coupling = 0.5 * (others(old) + others(state));
-                let rate = 0.5 * (old.release[mode] + state.release[mode])
-                    + 0.5 * (old.release[4] + state.release[4]) * coupling;
-                state.dissipated[mode] += rate * grown;
-            }
-        }
+        state.release = self.release_rates(&d, ds, normal, &stress);
+        self.book_dissipation((strain, band, step), ([fibre, matrix], tension), old, state);
         self.release_at(old, state);
         let tangent = if self.consistent {
             self.consistent_tangent(strain, &effective, band, ([fibre, matrix], normal), (old, share), state, &tangent)
@@ -587,3 +571,6 @@ fn equivalent(mode: usize, strain: &Voigt, effective: &Voigt) -> (f64, f64) {
 #[cfg(test)]
 #[path = "damage_tests.rs"]
 mod tests;
+
+#[path = "damage_dissipation.rs"]
+mod dissipation;

@@ -117,11 +117,14 @@ fn strip_energy_ratio(mesh: &str) -> f64 {
 /// cohesive interfaces, pressed `2 mm` by a cylinder in `20` increments
 /// (a new-user review): the plies under the nose crush in matrix
 /// compression and the strain of their damaged points jumps within an
-/// increment, where the law's trapezoidal sums of `Y Δd` book far more
-/// than the nose's work (`0.645` J of `0.412` J) — a known limit, held from
-/// both sides. The release at fixed strain, `released_j`, stays below the
-/// work (as it must), and the run warns that the sums are not the energy
-/// dissipated; with the increments steered by the damage
+/// increment. The law's sums of `Y Δd` follow each update's straight
+/// strain path (`materials::damage_dissipation`): `0.253` J of the nose's
+/// `0.412` J of work, the end state holding about `½ P u` = `0.184` J, so
+/// the balance closes within `6 %` (the damage viscosity's excess, as the
+/// notched strips'); one trapezoid per update booked `0.645` J, past the
+/// work (the review). The release at fixed strain, `released_j`, a lower
+/// bound, stays far below (`0.103` J), and the run warns that the
+/// increments do not follow the damage; with them steered by it
 /// (`solver.step_control = { damage = 0.1 }`) the two agree within `10 %`
 /// (`0.142` and `0.130` J), but that run stalls at λ = `0.68` (exit 2).
 /// The figures of docs/limitations.md "Ply damage", each held within 3 %.
@@ -133,8 +136,16 @@ fn a_crushed_ply_s_dissipation_is_not_booked_past_the_work() {
     let (sums, released) = sums_and_release(&summary);
     println!("work {done:.4} J, the law's sums {sums:.4} J, released at fixed strain {released:.4} J");
     assert!(released > 0.0 && released < done, "released {released} J, work {done} J");
-    // the known limit: measured 0.6454 J and 0.1034 J (6.24 times) of 0.4121 J of work
-    assert!(near(done, 0.4121) && near(sums, 0.6454) && near(released, 0.1034), "{done} {sums} {released}");
+    // measured 0.2530 J and 0.1034 J (2.45 times) of 0.4121 J of work
+    assert!(sums < done, "the law's sums {sums} J past the work {done} J");
+    assert!(near(done, 0.4121) && near(sums, 0.2530) && near(released, 0.1034), "{done} {sums} {released}");
+    // the balance: the work is what the damage dissipated plus what the
+    // beam holds at the end, ½ P u of the nose (Clapeyron, the damaged beam
+    // secant-linear); measured 1.060 of the work, the viscosity's excess
+    let (u, p) = *nose(&out).last().unwrap();
+    let balance = (sums + 0.5 * p * u) / done;
+    println!("(D + ½ P u) / W = {balance:.4}");
+    assert!(near(balance, 1.060), "{balance}");
     // the failure indices of its fields: the crushed plies' softened
     // stresses, not the intact stiffness times their strain, which showed
     // a Tsai–Wu index of 95,887 at the support line (the review's "1e4–1e5
@@ -144,7 +155,7 @@ fn a_crushed_ply_s_dissipation_is_not_booked_past_the_work() {
         assert!(largest < 1.5, "{} {largest} at {}", c["criterion"], c["largest_at"]["point"]);
     }
     let warnings = summary["warnings"].to_string();
-    assert!(warnings.contains("is 6.2 times the energy it released at fixed strain"), "{warnings}");
+    assert!(warnings.contains("is 2.4 times the energy it released at fixed strain"), "{warnings}");
     assert!(warnings.contains("solver.step_control = { damage = 0.1 }"), "{warnings}");
     // steered by the damage: the two within 10 %, the run stopping early
     assert!(TPB.contains("max_increments = 400\n"));

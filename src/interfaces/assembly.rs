@@ -72,6 +72,13 @@ pub struct InterfaceSummary {
     /// Work of the Duvaut–Lions over-stress (J; 0 without viscosity):
     /// dissipated beyond `dissipated_j`.
     pub viscous_j: f64,
+    /// The largest onset index `(⟨t3⟩/N)² + (t_s/S)²` of the intact
+    /// traction `K δ` over its points not yet separated (d < 1) at the end
+    /// (`Cohesive::onset_index`): below 1 where no point has started to
+    /// damage, how close the interface is to delaminating (the
+    /// interlaminar index of a cohesive interface); 0 where every point
+    /// has separated.
+    pub largest_onset_index: f64,
 }
 
 /// The interfaces at the end of a run.
@@ -224,8 +231,8 @@ impl<'m> Interfaces<'m> {
     pub fn summaries(&self) -> Vec<InterfaceSummary> {
         self.interfaces
             .iter()
-            .zip(self.committed.iter().zip(&self.viscous_work))
-            .map(|(i, (states, work))| {
+            .zip(self.committed.iter().zip(&self.viscous_work).zip(&self.separation))
+            .map(|(i, ((states, work), separations))| {
                 let mut s = InterfaceSummary {
                     name: i.name.clone(),
                     body: i.body,
@@ -235,6 +242,12 @@ impl<'m> Interfaces<'m> {
                     process_zone_m2: 0.0,
                     dissipated_j: 0.0,
                     viscous_j: i.points.iter().zip(work).map(|(p, w)| p.area * w).sum(),
+                    largest_onset_index: separations
+                        .iter()
+                        .zip(states)
+                        .filter(|(_, st)| st.damage < 1.0)
+                        .map(|(&d, _)| i.law.onset_index(d))
+                        .fold(0.0, f64::max),
                 };
                 for (p, st) in i.points.iter().zip(states) {
                     if st.damage >= 1.0 {

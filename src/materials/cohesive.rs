@@ -183,6 +183,16 @@ impl Cohesive {
         Envelope { onset, last }
     }
 
+    /// The onset index of the separation `δ`: the quadratic criterion
+    /// `(⟨t3⟩/N)² + (t_s/S)²` of the intact traction `t = K δ` (1 on the
+    /// onset envelope of every mixity, [`Self::envelope`]; past it once the
+    /// point has damaged). In closure the shear term alone.
+    pub(crate) fn onset_index(&self, separation: [f64; 3]) -> f64 {
+        let k = self.penalty;
+        let [d1, d2, d3] = separation;
+        (k * d3.max(0.0) / self.normal_strength).powi(2) + k * k * (d1 * d1 + d2 * d2) / self.shear_strength.powi(2)
+    }
+
     /// Energy dissipated per unit area from intact to damage `d` along the
     /// curve of the envelope `e` (J/m²).
     pub fn dissipation(&self, e: Envelope, d: f64) -> f64 {

@@ -171,3 +171,27 @@ fn constants_that_cannot_work_are_refused_by_key() {
     assert!(matches!(err, CohesiveError::OnsetAboveToughness { strength: "shear_strength", toughness: "g_ic", .. }));
     assert!(err.to_string().contains("`shear_strength`") && err.to_string().contains("`g_ic`"));
 }
+
+/// The onset index `(⟨t3⟩/N)² + (t_s/S)²` of the intact traction is 1
+/// where the law starts to damage — on the envelope's onset separation of
+/// every mixity (Camanho & Dávila's `δ_m⁰`, an independent closed form of
+/// the same criterion), in closure at the shear onset — and grows as the
+/// separation squared. Mutation: N and S swapped in the index gives
+/// `(100/80)²` in pure opening.
+#[test]
+fn the_onset_index_is_one_on_the_onset_envelope() {
+    let law = peek();
+    let directions: [[f64; 3]; 6] =
+        [[0.0, 0.0, 1.0], [1.0, 0.0, 0.0], [0.6, 0.8, 0.0], [1.0, 0.0, 1.0], [0.3, 0.4, 2.0], [1.0, 0.0, -0.5]];
+    for dir in directions {
+        let norm = (dir[0] * dir[0] + dir[1] * dir[1] + dir[2].max(0.0) * dir[2].max(0.0)).sqrt();
+        let onset = law.envelope(dir).onset;
+        let at = dir.map(|c| c * onset / norm);
+        let index = law.onset_index(at);
+        assert!((index - 1.0).abs() < 1e-12, "{dir:?}: {index}");
+        assert!((law.onset_index(at.map(|c| 0.5 * c)) - 0.25).abs() < 1e-12, "{dir:?}");
+        // the law's damage starts just past it, not before
+        assert_eq!(law.update(at.map(|c| 0.999 * c), &CohesiveState::default()).state.damage, 0.0);
+        assert!(law.update(at.map(|c| 1.001 * c), &CohesiveState::default()).state.damage > 0.0, "{dir:?}");
+    }
+}

@@ -107,6 +107,17 @@ fn held_crack_compliance_matches_corrected_beam_theory() {
         let area = summary["delamination"]["area_m2"].as_f64().unwrap();
         assert_eq!(summary["delamination"]["interfaces"][0]["process_zone_m2"].as_f64().unwrap(), 0.0);
         assert!((area / 0.0254 - a).abs() < 0.2e-3, "{name}: delaminated {area} m²");
+        // and the interface's onset index says how far it is from damaging:
+        // below 1, and four times as large at twice the opening (elastic)
+        let index = |s: &Value| s["delamination"]["interfaces"][0]["largest_onset_index"].as_f64().unwrap();
+        let (_, doubled) = run_cli(
+            &format!("{name}_doubled"),
+            &text.replace("z = 0.000125 }", "z = 0.00025 }").replace("z = -0.000125 }", "z = -0.00025 }"),
+            true,
+        );
+        eprintln!("{name}: largest onset index {:.4e}, at twice the opening {:.4e}", index(&summary), index(&doubled));
+        assert!(index(&summary) > 0.0 && index(&doubled) < 1.0, "{} {}", index(&summary), index(&doubled));
+        assert!((index(&doubled) / index(&summary) - 4.0).abs() < 1e-6, "{} {}", index(&summary), index(&doubled));
     }
 }
 

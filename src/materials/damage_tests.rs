@@ -12,8 +12,24 @@ fn ply(poisson: [f64; 3]) -> PlyDamage {
     let elastic = Orthotropic { young: [122.7e9, 10.1e9, 10.1e9], shear: [5.5e9, 5.5e9, 3.7e9], poisson };
     let strengths =
         Strengths { tension: [2070e6, 86e6, 86e6], compression: [1360e6, 196e6, 196e6], shear: [147e6, 147e6, 98e6] };
-    // Fracture energies (J/m²): fibre tension, compression, matrix tension, compression.
-    PlyDamage::new(elastic, strengths, [12.5e3, 10e3, 1.0e3, 2.0e3], 1.0 - 1e-9).unwrap()
+    PlyDamage::new(elastic, strengths, TOUGHNESS, 1.0 - 1e-9).unwrap()
+}
+
+/// The fracture energies of [`ply`] (J/m²), in [`MODES`] order.
+const TOUGHNESS: [f64; 4] = [12.5e3, 10e3, 1.0e3, 2.0e3];
+
+/// `(mode, strain direction, strength, modulus)` of each mode of [`ply`]
+/// without Poisson ratios: a uniaxial stress in the material axes, whose
+/// Hashin index is 1 at the strength (Hashin 1980: uniaxial strengths
+/// calibrate their modes).
+fn uniaxial() -> [(usize, Voigt, f64, f64); 4] {
+    let unit = |k: usize, sign: f64| std::array::from_fn::<f64, 6, _>(|i| if i == k { sign } else { 0.0 });
+    [
+        (FT, unit(0, 1.0), 2070e6, 122.7e9),
+        (FC, unit(0, -1.0), 1360e6, 122.7e9),
+        (MT, unit(1, 1.0), 86e6, 10.1e9),
+        (MC, unit(1, -1.0), 196e6, 10.1e9),
+    ]
 }
 
 /// Work per unit volume `∫ σ·dε` along `direction · s` for `s` over
@@ -48,21 +64,10 @@ fn cycle(
 #[test]
 fn each_mode_peaks_at_its_strength_and_dissipates_its_toughness_per_band() {
     let law = ply([0.0; 3]);
-    // (mode, strain direction, strength, modulus): a uniaxial stress in the
-    // material axes (zero Poisson ratios), whose Hashin index is 1 at the
-    // strength (Hashin 1980: uniaxial strengths calibrate their modes).
-    let unit = |k: usize, sign: f64| std::array::from_fn::<f64, 6, _>(|i| if i == k { sign } else { 0.0 });
-    let cases = [
-        (FT, unit(0, 1.0), 2070e6, 122.7e9),
-        (FC, unit(0, -1.0), 1360e6, 122.7e9),
-        (MT, unit(1, 1.0), 86e6, 10.1e9),
-        (MC, unit(1, -1.0), 196e6, 10.1e9),
-    ];
-    let toughness = [12.5e3, 10e3, 1.0e3, 2.0e3];
-    for (mode, dir, strength, young) in cases {
+    for (mode, dir, strength, young) in uniaxial() {
         let band = 0.2e-3;
         let onset = strength / young;
-        let last = 2.0 * toughness[mode] / (strength * band);
+        let last = 2.0 * TOUGHNESS[mode] / (strength * band);
         let (work, state, curve) = cycle(&law, dir, &[1.05 * last], [band, band], 40_000);
         let peak = curve.iter().map(|p| p.1).fold(0.0, f64::max);
         assert!((peak / strength - 1.0).abs() < 1e-3, "{}: peak {peak} Pa", MODES[mode]);
@@ -73,7 +78,7 @@ fn each_mode_peaks_at_its_strength_and_dissipates_its_toughness_per_band() {
         assert!((at_mid.1 / expected - 1.0).abs() < 1e-6, "{}: σ {} against {expected}", MODES[mode], at_mid.1);
         // Crack band: G_I per unit crack area, G_I/L per unit volume.
         let per_area = state.dissipated[mode] * band;
-        assert!((per_area / toughness[mode] - 1.0).abs() < 1e-4, "{}: {per_area} J/m²", MODES[mode]);
+        assert!((per_area / TOUGHNESS[mode] - 1.0).abs() < 1e-4, "{}: {per_area} J/m²", MODES[mode]);
         assert!((work / state.dissipated[mode] - 1.0).abs() < 1e-4, "{}: work {work} J/m³", MODES[mode]);
         assert_eq!(state.dissipated.iter().filter(|&&g| g > 0.0).count(), 1, "{}: one mode dissipates", MODES[mode]);
         assert!(!state.reduced[mode]);
@@ -300,22 +305,14 @@ fn the_tangent_is_the_derivative_where_the_growing_mode_holds_no_normal_complian
 #[test]
 fn a_point_that_softens_through_within_one_update_books_its_toughness() {
     let law = ply([0.0; 3]);
-    let unit = |k: usize, sign: f64| std::array::from_fn::<f64, 6, _>(|i| if i == k { sign } else { 0.0 });
-    let cases = [
-        (FT, unit(0, 1.0), 2070e6, 122.7e9),
-        (FC, unit(0, -1.0), 1360e6, 122.7e9),
-        (MT, unit(1, 1.0), 86e6, 10.1e9),
-        (MC, unit(1, -1.0), 196e6, 10.1e9),
-    ];
-    let toughness = [12.5e3, 10e3, 1.0e3, 2.0e3];
-    for (mode, dir, strength, young) in cases {
+    for (mode, dir, strength, young) in uniaxial() {
         let band = 0.2e-3;
         let onset = strength / young;
-        let last = 2.0 * toughness[mode] / (strength * band);
+        let last = 2.0 * TOUGHNESS[mode] / (strength * band);
         let (_, state, _) = cycle(&law, dir, &[0.99 * onset, 1.05 * last], [band, band], 1);
         let per_area = state.dissipated[mode] * band;
-        println!("{}: {:.4} of G_I (ε0 {onset:.3e}, εf {last:.3e})", MODES[mode], per_area / toughness[mode]);
+        println!("{}: {:.4} of G_I (ε0 {onset:.3e}, εf {last:.3e})", MODES[mode], per_area / TOUGHNESS[mode]);
         assert!(state.damage[mode] > 0.99, "{}: d = {}", MODES[mode], state.damage[mode]);
-        assert!((per_area / toughness[mode] - 1.0).abs() < 0.01, "{}: {per_area} J/m²", MODES[mode]);
+        assert!((per_area / TOUGHNESS[mode] - 1.0).abs() < 0.01, "{}: {per_area} J/m²", MODES[mode]);
     }
 }

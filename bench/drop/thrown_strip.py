@@ -13,7 +13,7 @@ def make(v, forces, steps, dur, visc="0.0", name="x", gamma=None):
     t=src.replace('name = "im7_8552"','name = "im7_8552"\ndensity = 1580.0',1)
     t=t.replace('viscosity = 1e-3','viscosity = '+visc,1)
     t=t.replace('increments = 150','increments = %d'%steps,1)
-    t=t.replace('max_increment = 0.01\n','',1)
+    t=t.replace('max_increment = 0.001\n','',1)
     i=t.index('[[constraints]]\nname = "pull"'); j=t.index('[[constraints]]',i+5); t=t[:i]+t[j:]
     t+='\n[analysis]\ntype = "transient"\nduration = %g\nply_damage_forces = "%s"\ninitial_velocities = [{ body = "strip", velocity = [%g, 0.0, 0.0] }]\n'%(dur,forces,v)
     if gamma: t+='newmark = { beta = %g, gamma = %g }\n'%(0.25*(gamma+0.5)**2,gamma)

@@ -57,7 +57,7 @@ pub(crate) fn model_sizes(model: &Model) -> Sizes {
         nodes: mesh.n_nodes() as u64,
         dofs: mesh.n_dofs() as u64,
         elements: mesh.n_elements() as u64,
-        krylov_vectors: if model.has_friction() {
+        krylov_vectors: if model.has_unsymmetric_tangent() {
             crate::solver::krylov::GmresWork::vectors(crate::solver::reuse::GMRES_RESTART) as u64
         } else {
             0

@@ -180,12 +180,14 @@ impl<'m> Structure<'m> {
             impulse,
             time_error: massive.map(crate::dynamics::TimeError::new),
         };
-        let (reuse, friction) = (settings.solver.reuse, loading.has_friction());
+        // friction's tangent and a loading ply's consistent one are unsymmetric
+        let softening = discretisation.materials.iter().any(|m| m.damage.as_ref().is_some_and(|d| d.is_consistent()));
+        let (reuse, unsymmetric) = (settings.solver.reuse, loading.has_friction() || softening);
         Ok(Self {
             state: Kinematics::new(mesh.n_dofs()),
             force: ForceControl::new(loading, mesh, settings.transient, n_eq),
             levers: Levers::new(loading.levers, loading.steps, &assembler.dofs.eq),
-            system: LinearSystem::new(assembler, chol, reuse, friction, mesh.n_dofs()),
+            system: LinearSystem::new(assembler, chol, reuse, unsymmetric, mesh.n_dofs()),
             report: Report { timings, memory, pivots: None },
             loading,
             settings,

@@ -47,14 +47,16 @@
 
 mod assumed_large;
 mod bbar;
+mod damaged;
 mod fbar;
 mod linearized;
 mod nucleus;
 mod product;
+mod softening;
+pub use damaged::DamagePoints;
 pub(crate) use nucleus::geometric_matrix;
 
 use crate::kinematics::{Kinematics, LogStrain, Tensor};
-use crate::materials::damage::DamageState;
 use crate::materials::{Material, PointState, Predictor};
 use crate::values::CellValues;
 pub use crate::values::ElementError;
@@ -119,6 +121,12 @@ pub struct Workspace {
     assumed_a: Vec<f64>,
     assumed_k: Vec<f64>,
     assumed_g: Vec<f64>,
+    /// A damaging element's loading points' rank-one tangent terms, and
+    /// after the tangent their vectors `Bᵀs`, `Bᵀg` (`softening`, whose
+    /// sums use `skew_h`): the unsymmetric rest the assembly scatters.
+    pub(crate) softening: Vec<softening::Term>,
+    pub(crate) skew: Vec<f64>,
+    skew_h: Vec<[f64; 3]>,
     /// Element internal force, 3 entries per node (node-major).
     pub force: Vec<f64>,
     /// Element tangent, row-major `n × n` with `n = 3 · nodes`; the upper
@@ -199,24 +207,6 @@ pub struct PointData<'a> {
     pub damage: Option<DamagePoints<'a>>,
 }
 
-/// The ply-damage history of one element's Gauss points
-/// ([`crate::materials::damage`]): read from the committed states, written
-/// to the trial ones.
-pub struct DamagePoints<'a> {
-    /// Committed states (read).
-    pub committed: &'a [DamageState],
-    /// Crack-band lengths `[fibre, matrix]` per point (m).
-    pub band: &'a [[f64; 2]],
-    /// The change of the load factor since the committed states.
-    pub step: f64,
-    /// How a transient run integrates the points' forces (Newmark's γ and
-    /// whether damaged points take the end-of-step stress,
-    /// `crate::dynamics::ply_forces`); `None` in a static run.
-    pub(crate) impulse: Option<crate::materials::damage_impulse::PointForces>,
-    /// Trial states (written).
-    pub trial: &'a mut [DamageState],
-}
-
 /// Computes the internal force (and the tangent, per `mode`) of body
 /// element `e` from its nodal displacements `u` (3 per node, node-major in
 /// the order of [`crate::mesh::Body::element_nodes`]).
@@ -284,6 +274,11 @@ pub(crate) fn element_response(
         let contributing = product::gather_operators(geom, &el, material, mode == TangentMode::UnlessElastic, ws);
         product::tangent_product(&el, contributing, ws);
     }
+    if tangent_computed {
+        softening::operators(geom, &el, ws);
+    } else {
+        ws.skew.clear();
+    }
     let stress_pass = stressed - start;
     let tangent_pass = if tangent_computed { stressed.elapsed() } else { std::time::Duration::ZERO };
     ElementStats { plastic_points, tangent_computed, all_elastic, stress_pass, tangent_pass }
@@ -340,6 +335,7 @@ fn stresses_and_forces(
     let large = points.kinematics.is_nonlinear();
     let (ns, nodes) = (sg.n_fun, el.nodes);
     let (mut all_elastic, mut plastic_points) = (true, 0);
+    ws.softening.clear();
     let step = points.step.filter(|_| large && !points.kinematics.is_logarithmic());
     ws.contracted.resize(8 * ns, [0.0; 3]);
     let shear_large = geom.shear.as_ref().filter(|_| large);
@@ -388,10 +384,7 @@ fn stresses_and_forces(
                 (None, _) => {}
             }
             // the physical stress where the force takes another (a damaged ply point's end-of-step stress)
-            let (mut r, physical) = match (&material.damage, points.damage.as_mut()) {
-                (Some(law), Some(dp)) => damaged_point(material, law, &eps, dp, q),
-                _ => (material.update_for_element(&eps, &points.committed[q], points.predictor), None),
-            };
+            let (mut r, physical) = damaged::update_point(material, &mut points, &eps, (q, w), &mut ws.softening);
             // the mean stress conjugate to the dilatation (T's, before any pull-back)
             ws.pressure[q] = (r.stress[0] + r.stress[1] + r.stress[2]) / 3.0;
             if let Some(log) = &log {
@@ -470,23 +463,6 @@ fn pull_back(log: &LogStrain, bbar: bool, r: &mut crate::materials::Response, co
     }
     (r.stress, r.tangent) = log.pull_back(&r.stress, &r.tangent);
     r.elastic_tangent = false;
-}
-
-/// The update of ply point `q` of `dp` at the strain `eps`: the response
-/// whose stress the force takes (the end-of-step stress where
-/// `dp.impulse` asks for it, `crate::materials::damage_impulse`) and then
-/// the physical stress apart.
-fn damaged_point(
-    material: &Material,
-    law: &crate::materials::damage::PlyDamage,
-    eps: &Voigt,
-    dp: &mut DamagePoints<'_>,
-    q: usize,
-) -> (crate::materials::Response, Option<Voigt>) {
-    let mut r =
-        material.update_damaged(law, eps, (dp.band[q], dp.step, dp.impulse), (&dp.committed[q], &mut dp.trial[q]));
-    let physical = dp.impulse.map(|_| std::mem::replace(&mut r.stress, dp.trial[q].force_stress));
-    (r, physical)
 }
 
 /// B-bar's `θ̄ − θ` at point `q` (`ε̄ = ε + (θ̄ − θ)/3 · 1`): in small strain
@@ -582,5 +558,7 @@ mod fbar_tests;
 mod log_tests;
 #[cfg(test)]
 mod nucleus_tests;
+#[cfg(test)]
+mod softening_tests;
 #[cfg(test)]
 mod tests;

@@ -50,8 +50,9 @@
 //!   the signs, `PlyDamage::closed_or_open`): a closed crack carries
 //!   compression again, without a jump that would make Newton cycle (Maimí
 //!   et al. 2007, *Mech. Mater.* 39:897, take the signs of the stress the
-//!   same way). The tangent returned is the consistent one (below), or the
-//!   secant `C_d = S(d)⁻¹` (symmetric, positive definite).
+//!   same way). The tangent returned is the consistent one (`damage_tangent`:
+//!   unsymmetric where a mode loads), or the secant `C_d = S(d)⁻¹`
+//!   (symmetric, positive definite).
 //! * **Snap-back inside a point**: the law needs `δf > δ0`, i.e.
 //!   `L < 2 E G_I/X²` (`PlyDamage::longest_band`). A longer band lowers the
 //!   mode's strength by `√(L_max/L)` (Bažant & Oh), so that the band's
@@ -239,6 +240,12 @@ impl PlyDamage {
         self
     }
 
+    /// True if its tangent is the consistent one, unsymmetric where a mode
+    /// loads (`damage_tangent`).
+    pub(crate) fn is_consistent(&self) -> bool {
+        self.consistent
+    }
+
     /// Its Duvaut–Lions viscosity.
     pub fn viscosity(&self) -> f64 {
         self.viscosity
@@ -271,21 +278,25 @@ impl PlyDamage {
     /// `d_v = (η d_v,n + Δ d)/(η + Δ)` (Duvaut–Lions; Lapczyk & Hurtado).
     pub(crate) fn update_over(&self, strain: &Voigt, band: [f64; 2], step: f64, old: &DamageState) -> DamageResponse {
         let mut state = DamageState::default();
-        let (stress, tangent) = self.update_into(strain, band, step, old, &mut state);
+        let (stress, tangent, _) = self.update_into(strain, band, (step, true), old, &mut state);
         DamageResponse { stress, tangent, state }
     }
 
     /// As [`PlyDamage::update_over`], the trial state written into `state`
     /// (the caller's slot: a point's state is not copied on its way there)
-    /// and the stress and tangent returned.
+    /// and the stress, the tangent and the consistent tangent's rank-one
+    /// terms returned (`damage_tangent`; none with the secant). A point on
+    /// its damage surface (its strain the committed one's, as at an
+    /// increment's first iteration) takes the softening branch's tangent if
+    /// `loading` (the next increment goes on cracking), else the secant.
     pub(crate) fn update_into(
         &self,
         strain: &Voigt,
         band: [f64; 2],
-        step: f64,
+        (step, loading): (f64, bool),
         old: &DamageState,
         state: &mut DamageState,
-    ) -> (Voigt, Matrix6) {
+    ) -> (Voigt, Matrix6, Softening) {
         let effective = mat_vec(&self.stiffness, strain);
         // the branches of the committed state (module docs), this strain's
         // at a point's first update; this strain's for the next increment
@@ -312,79 +323,25 @@ impl PlyDamage {
         state.release = self.release_rates(&d, ds, normal, &stress);
         self.book_dissipation((strain, band, step), ([fibre, matrix], tension), old, state);
         self.release_at(old, state);
-        let tangent = if self.consistent {
-            self.consistent_tangent(strain, &effective, band, ([fibre, matrix], normal), (old, share), state, &tangent)
-        } else {
-            tangent
-        };
-        (stress, tangent)
-    }
-
-    /// The consistent tangent `C_T = C_d + Σ_I (∂σ/∂d_I) ⊗ (∂d_I/∂ε)` over
-    /// the active modes that load in this update (κ grew and d below the
-    /// cap): `∂d_I/∂ε = δf δ0/(κ² (δf − δ0)) · L_I ∂e_I/∂ε`, and
-    /// `∂σ/∂d_I` through the normal compliance it holds (central differences of `C_d ε`) and
-    /// `d_s` (`∂d_s/∂d_I = Π_{J≠I} (1 − d_J)`, the shear stresses
-    /// `−G γ`). Unsymmetric; the element takes its symmetric part.
-    #[allow(clippy::too_many_arguments)] // the update's own intermediate values, not recomputed
-    fn consistent_tangent(
-        &self,
-        strain: &Voigt,
-        effective: &Voigt,
-        band: [f64; 2],
-        ([fibre, matrix], normal): ([usize; 2], [usize; 3]),
-        (old, share): (&DamageState, f64),
-        state: &DamageState,
-        secant: &Matrix6,
-    ) -> Matrix6 {
-        let mut c = *secant;
-        let (d, law) = (state.viscous, state.damage);
-        for (mode, length) in [(fibre, band[0]), (matrix, band[1])] {
-            let (onset, last, kappa) = (state.onset[mode], state.last[mode], state.kappa[mode]);
-            if onset == 0.0 || kappa <= old.kappa[mode] || kappa <= onset || law[mode] >= self.max_damage {
-                continue;
-            }
-            let (e, _) = equivalent(mode, strain, effective);
-            let slope = share * length * last * onset / (kappa * kappa * (last - onset));
-            let grad: Voigt = equivalent_gradient(mode, strain).map(|g| slope * g / e);
-            let sensitivity = self.stress_sensitivity(mode, normal, &d, strain);
-            for (row, s) in c.iter_mut().zip(sensitivity) {
-                for (v, g) in row.iter_mut().zip(grad) {
-                    *v += s * g;
-                }
-            }
+        if !self.consistent {
+            return (stress, tangent, Softening::default());
         }
-        c
+        let (tangent, terms) = self.consistent_tangent(
+            strain,
+            &effective,
+            band,
+            ([fibre, matrix], normal),
+            (old, share, loading),
+            state,
+            &tangent,
+        );
+        (stress, tangent, terms)
     }
 
     /// The share `Δ/(η + Δ)` of the law's damage in the regularised one
     /// over a step `step` (1 without viscosity).
     fn share(&self, step: f64) -> f64 {
         if self.viscosity > 0.0 && step.is_finite() { step / (self.viscosity + step) } else { 1.0 }
-    }
-
-    /// `∂σ/∂d_I` at the damage `d` and strain `strain` (material axes),
-    /// the normal stresses' modes `normal` held.
-    fn stress_sensitivity(&self, mode: usize, normal: [usize; 3], d: &[f64; 4], strain: &Voigt) -> Voigt {
-        let ds = 1.0 - d.iter().map(|x| 1.0 - x).product::<f64>();
-        let mut out = [0.0; 6];
-        if normal.contains(&mode) {
-            let h = 1e-6 * (1.0 - d[mode]);
-            let stress = |dm: f64| {
-                let diagonal = normal.map(|m| if m == mode { dm } else { d[m] });
-                mat_vec(&self.damaged_stiffness(diagonal, ds), strain)
-            };
-            let (plus, minus) = (stress(d[mode] + h), stress(d[mode] - h));
-            for k in 0..6 {
-                out[k] = (plus[k] - minus[k]) / (2.0 * h);
-            }
-        }
-        // d_s scales the shear moduli: ∂τ_k/∂d_s = −G_k γ_k
-        let others: f64 = (0..4).filter(|&j| j != mode).map(|j| 1.0 - d[j]).product();
-        for k in 0..3 {
-            out[3 + k] -= others * self.elastic.shear[k] * strain[3 + k];
-        }
-        out
     }
 
     /// Adds to `state.released` what each mode's growth from `old` releases
@@ -574,3 +531,7 @@ mod tests;
 
 #[path = "damage_dissipation.rs"]
 mod dissipation;
+
+#[path = "damage_tangent.rs"]
+mod tangent;
+pub(crate) use tangent::Softening;

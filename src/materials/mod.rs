@@ -24,6 +24,7 @@ pub(crate) mod damage_impulse;
 pub mod failure;
 mod hardening;
 pub mod kinematic;
+mod ply_point;
 
 pub use anisotropic::{Frame, Orthotropic};
 pub use failure::{Indices, Strengths};
@@ -204,53 +205,6 @@ impl Material {
     pub(crate) fn with_damage(mut self, damage: Option<damage::PlyDamage>) -> Self {
         self.damage = damage;
         self
-    }
-
-    /// The material-point update of a damaging ply ([`damage`]): the global
-    /// strain turned to the material axes, the law's stress and secant
-    /// stiffness turned back (`σ = Tᵀ σ_m`, `C = Tᵀ C_d T`), with the
-    /// crack-band lengths `band` (m) over the step `step` (the viscosity's)
-    /// from the committed state `old`, the trial state written into `state`.
-    /// The tangent is reported elastic while no mode has damaged (the cached
-    /// elastic matrices stay valid); `plastic` is never set.
-    pub(crate) fn update_damaged(
-        &self,
-        law: &damage::PlyDamage,
-        strain: &Voigt,
-        (band, step, impulse): ([f64; 2], f64, Option<damage_impulse::PointForces>),
-        (old, state): (&damage::DamageState, &mut damage::DamageState),
-    ) -> Response {
-        let t = self.frame.strain_rotation();
-        let local = voigt::mat_vec(&t, strain);
-        let (local_stress, tangent) = law.update_into(&local, band, step, old, state);
-        let stress: Voigt = std::array::from_fn(|i| (0..6).map(|k| t[k][i] * local_stress[k]).sum());
-        // the end-of-step stress of a damaged point in a transient run
-        // (`damage_impulse`): its force stress, and 1/γ on its tangent
-        let factor = impulse
-            .map_or(1.0, |forces| damage_impulse::end_of_step(forces, law, old, state, (&stress, &local_stress)));
-        let intact = state.damage.iter().all(|&d| d == 0.0) && factor == 1.0;
-        if intact {
-            return Response {
-                stress,
-                tangent: self.elastic,
-                state: PointState::default(),
-                plastic: false,
-                elastic_tangent: true,
-            };
-        }
-        // the consistent tangent is unsymmetric: its symmetric part, as
-        // with kinematic hardening (`update_for_element`)
-        let mut symmetric = tangent;
-        for i in 0..6 {
-            for j in 0..i {
-                let m = 0.5 * (symmetric[i][j] + symmetric[j][i]);
-                symmetric[i][j] = m;
-                symmetric[j][i] = m;
-            }
-        }
-        damage_impulse::scale(&mut symmetric, factor);
-        let tangent = self.frame.stiffness_to_global(&symmetric);
-        Response { stress, tangent, state: PointState::default(), plastic: false, elastic_tangent: false }
     }
 
     /// The same material with kinematic hardening terms (validated: at most

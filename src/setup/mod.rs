@@ -237,6 +237,12 @@ impl Model {
         self.indenters.iter().any(|i| i.friction.is_some()) || self.contacts.iter().any(|c| c.friction.is_some())
     }
 
+    /// True if the tangent has an unsymmetric rest (solved by GMRES):
+    /// Coulomb friction, or ply damage with its consistent tangent.
+    pub(crate) fn has_unsymmetric_tangent(&self) -> bool {
+        self.has_friction() || self.materials.iter().any(|m| m.damage.as_ref().is_some_and(|d| d.is_consistent()))
+    }
+
     /// Reads and validates a model file.
     pub fn from_file(path: &Path) -> Result<Self, ModelError> {
         Self::from_file_with(path, Limits::machine())

@@ -116,19 +116,23 @@ fn strip_energy_ratio(mesh: &str) -> f64 {
 /// A new user's three-point bend of a `[0/90]s` beam with ply damage and
 /// cohesive interfaces, pressed `2 mm` by a cylinder in `20` increments
 /// (a new-user review): the plies under the nose crush in matrix
-/// compression and the strain of their damaged points jumps within an
-/// increment. The law's sums of `Y Δd` follow each update's straight
-/// strain path (`materials::damage_dissipation`): `0.253` J of the nose's
-/// `0.412` J of work, the end state holding about `½ P u` = `0.184` J, so
-/// the two exceed the work by `6 %`: the straight strain path within an
-/// increment is the crushed points' approximation, and `½ P u` what a beam
-/// in spreading contact holds (the notched strips, whose increments follow
-/// their damage, balance within 1 %); one trapezoid per update booked
-/// `0.645` J, past the work (the review). The release at fixed strain, `released_j`, a lower
-/// bound, stays far below (`0.103` J), and the run warns that the
-/// increments do not follow the damage; with them steered by it
+/// compression. Increments that coarse do not follow the crushing: the
+/// path is the one of finer steps only until the first load drop. At
+/// `Δλ = 2.5e-3` (400 increments) the nose's force peaks at `336` N
+/// (λ = 0.3), holds about `230` N and falls to `26` N at λ ≈ 0.64, with
+/// the secant or the consistent tangent alike (the law's sums `0.2321`
+/// and `0.2312` J); there the balance closes: the law's sums plus the end
+/// state's `½ P u` (Clapeyron: the damaged beam is secant-linear) are
+/// `1.004` of the nose's `0.270` J of work. With 20 increments the crushed
+/// points jump far within an increment: the law's sums of `Y Δd` follow
+/// each update's straight strain path (`materials::damage_dissipation`),
+/// `0.434` J of `0.489` J of work, the balance `0.948`; one trapezoid per
+/// update booked past the work (the review). The release at fixed
+/// strain, `released_j`, a lower bound, is `0.227` J, and the run warns
+/// that the increments do not follow the damage. Steered by it
 /// (`solver.step_control = { damage = 0.1 }`) the two agree within `10 %`
-/// (`0.142` and `0.130` J), but that run stalls at λ = `0.68` (exit 2).
+/// (`0.142` and `0.130` J), but that run stops at λ = `0.68`, the foot of
+/// the load drop, which displacement control cannot pass (exit 2).
 /// The figures of docs/limitations.md "Ply damage", each held within 3 %.
 #[test]
 fn a_crushed_ply_s_dissipation_is_not_booked_past_the_work() {
@@ -138,16 +142,27 @@ fn a_crushed_ply_s_dissipation_is_not_booked_past_the_work() {
     let (sums, released) = sums_and_release(&summary);
     println!("work {done:.4} J, the law's sums {sums:.4} J, released at fixed strain {released:.4} J");
     assert!(released > 0.0 && released < done, "released {released} J, work {done} J");
-    // measured 0.2530 J and 0.1034 J (2.45 times) of 0.4121 J of work
+    // measured 0.4342 J and 0.2265 J (1.9 times) of 0.4892 J of work
     assert!(sums < done, "the law's sums {sums} J past the work {done} J");
-    assert!(near(done, 0.4121) && near(sums, 0.2530) && near(released, 0.1034), "{done} {sums} {released}");
+    assert!(near(done, 0.4892) && near(1e3 * sums, 434.2) && near(released, 0.2265), "{done} {sums} {released}");
     // the balance: the work is what the damage dissipated plus what the
-    // beam holds at the end, ½ P u of the nose (Clapeyron, the damaged beam
-    // secant-linear); measured 1.060 of the work: both approximate (above)
+    // beam holds at the end, ½ P u of the nose; measured 0.948 of the work
     let (u, p) = *nose(&out).last().unwrap();
     let balance = (sums + 0.5 * p * u) / done;
     println!("(D + ½ P u) / W = {balance:.4}");
-    assert!(near(balance, 1.060), "{balance}");
+    assert!(near(balance, 0.948), "{balance}");
+    // the fine steps' path, where the balance closes within 1 %
+    assert!(TPB.contains("increments = 20\n"));
+    let fine = TPB.replace("increments = 20\n", "increments = 400\nmax_increment = 0.0025\n");
+    let (fine_out, fine_summary) =
+        run_cli("tpb_crushed_fine", &fine.replace("max_increments = 400\n", "max_increments = 4000\n"));
+    let fine_work = work(&nose(&fine_out));
+    let (fine_sums, _) = sums_and_release(&fine_summary);
+    let (u, p) = *nose(&fine_out).last().unwrap();
+    let fine_balance = (fine_sums + 0.5 * p * u) / fine_work;
+    println!("fine steps: work {fine_work:.4} J, the law's sums {fine_sums:.4} J, (D + ½ P u) / W = {fine_balance:.4}");
+    assert!((fine_balance - 1.0).abs() < 0.01, "{fine_balance}");
+    assert!(near(fine_work, 0.2698) && near(fine_sums, 0.2312), "{fine_work} {fine_sums}");
     // the failure indices of its fields: the crushed plies' softened
     // stresses, not the intact stiffness times their strain, which showed
     // a Tsai–Wu index of 95,887 at the support line (the review's "1e4–1e5
@@ -157,9 +172,9 @@ fn a_crushed_ply_s_dissipation_is_not_booked_past_the_work() {
         assert!(largest < 1.5, "{} {largest} at {}", c["criterion"], c["largest_at"]["point"]);
     }
     let warnings = summary["warnings"].to_string();
-    assert!(warnings.contains("is 2.4 times the energy it released at fixed strain"), "{warnings}");
+    assert!(warnings.contains("is 1.9 times the energy it released at fixed strain"), "{warnings}");
     assert!(warnings.contains("solver.step_control = { damage = 0.1 }"), "{warnings}");
-    // steered by the damage: the two within 10 %, the run stopping early
+    // steered by the damage: the two within 10 %, the run stopping at the load drop
     assert!(TPB.contains("max_increments = 400\n"));
     let steered = TPB.replace("max_increments = 400\n", "max_increments = 4000\nstep_control = { damage = 0.1 }\n");
     let dir = common::scratch_dir("ply_damage", "tpb_steered");
@@ -432,15 +447,18 @@ fn damage_keys_are_refused_where_the_law_cannot_work() {
 
 /// `solver.step_control.damage` steers the increments by the largest
 /// increment of a damage variable (`solver::step_control`): on the coarse
-/// strip, halving the target from `0.02` to `0.01` per increment takes
-/// more increments, at least 1.3 times as many (measured 596 → 909; the
-/// increments before onset are not steered, so not twice), and the crack
-/// band's energy stays in its band. A damage measure
-/// that is not wired to the stepping leaves both runs at the uncontrolled
-/// count (624).
+/// strip (its cap on the step lifted to `0.01`), halving the target from
+/// `0.02` to `0.01` per increment takes more increments, at least 1.3 times
+/// as many (measured 303 → 583; the increments before onset are not
+/// steered, so not twice), and the crack band's energy stays in its band.
+/// A damage measure that is not wired to the stepping leaves both runs at
+/// the uncontrolled count (106).
 #[test]
 fn the_damage_increment_steers_the_load_steps() {
+    // the example's own cap on the step lifted, so that the damage steers
     let base = example("notched_strip_coarse");
+    assert!(base.contains("max_increment = 0.001\n"));
+    let base = base.replace("max_increment = 0.001\n", "max_increment = 0.01\n");
     let anchor = "max_increments = 5000\n";
     assert!(base.contains(anchor));
     let run = |target: f64| {
@@ -489,4 +507,23 @@ fn the_runs_table_says_what_broke() {
     assert!((total / d["dissipated_total_j"].as_f64().unwrap() - 1.0).abs() < 1e-4, "{all}");
     let page = std::fs::read_to_string(out.join("report.html")).unwrap();
     assert!(page.contains("ply damage") && page.contains("all modes"), "the report's table");
+}
+
+/// The coarse strip without its viscosity: the consistent tangent, its
+/// unsymmetric rest included, takes Newton through the peak and the whole
+/// softening under displacement control (the symmetric part alone did not:
+/// it converged linearly and the run stopped at the peak). Measured
+/// D_FT/(G_FT A) = 1.068: the crack spreads over the snap of the band
+/// beyond one element row where the viscosity holds it (1.065 with it);
+/// held within 3 %.
+#[test]
+fn the_coarse_strip_passes_its_peak_without_viscosity() {
+    let text = example("notched_strip_coarse");
+    assert!(text.contains(", viscosity = 1e-3 }"));
+    let (_, summary) = run_cli("strip_no_viscosity", &text.replace(", viscosity = 1e-3 }", " }"));
+    assert_eq!(summary["load_factor"].as_f64(), Some(1.0), "{}", summary["load_factor"]);
+    let ratio = dissipated(&summary)[0] / CRACK_ENERGY;
+    let iterations = summary["newton_iterations"].as_f64().unwrap() / summary["increments"].as_f64().unwrap();
+    println!("without viscosity: D_FT/(G_FT A) = {ratio:.4}, {iterations:.2} Newton iterations per increment");
+    assert!((ratio / 1.068 - 1.0).abs() < 0.03, "D_FT/(G_FT A) = {ratio}");
 }

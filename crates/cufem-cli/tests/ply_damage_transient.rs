@@ -186,7 +186,7 @@ fn thrown(speed: f64, steps: usize, forces: &str) -> String {
         ("name = \"im7_8552\"", "name = \"im7_8552\"\ndensity = 1580.0".to_string()),
         ("viscosity = 1e-3", "viscosity = 0.0".to_string()),
         ("increments = 150", format!("increments = {steps}")),
-        ("max_increment = 0.01\n", String::new()),
+        ("max_increment = 0.001\n", String::new()),
         (
             "[[constraints]]\nname = \"pull\"\nbody = \"strip\"\nwhere = { x = 0.0048 }\ndisplacement = { x = 1.5e-4 }\n",
             String::new(),

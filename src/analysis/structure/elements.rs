@@ -138,6 +138,7 @@ impl<'m> Elements<'m> {
                     trial: &mut vec![PointState::default(); n_gp],
                     stress: &mut s.values,
                     damage: &mut [],
+                    rest: None,
                 },
             );
         }
@@ -246,6 +247,7 @@ impl Contribution for Elements<'_> {
                 trial: &mut self.trial,
                 stress: &mut stress.values,
                 damage: damage_trial,
+                rest: if tangent.wanted { tangent.rest.as_deref_mut() } else { None },
             },
         );
         if tangent.wanted {

@@ -73,7 +73,8 @@ pub(crate) struct DamageFile {
 #[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
 #[serde(rename_all = "lowercase")]
 pub(crate) enum DamageTangent {
-    /// The derivative of the stress (symmetric part): Newton converges
+    /// The derivative of the stress, unsymmetric where a point softens
+    /// (its symmetric part factorized, the rest by GMRES): Newton converges
     /// quadratically through softening; indefinite there.
     #[default]
     Consistent,

@@ -161,9 +161,9 @@ const INTERFACE_POINT_BYTES: u64 = (2 * std::mem::size_of::<crate::materials::co
     + std::mem::size_of::<[f64; 3]>()
     + std::mem::size_of::<f64>()) as u64;
 
-/// Bytes per cohesive-interface point of a snapshot: its nodes and damage
-/// (`interfaces::PointDamage`).
-const SNAPSHOT_INTERFACE_BYTES: u64 = std::mem::size_of::<(usize, usize, f64)>() as u64;
+/// Bytes per cohesive-interface point of a snapshot: its nodes, damage
+/// and onset index (`interfaces::PointDamage`).
+const SNAPSHOT_INTERFACE_BYTES: u64 = std::mem::size_of::<(usize, usize, f64, f64)>() as u64;
 
 /// Bytes of a record kept for every converged increment.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]

@@ -90,8 +90,10 @@ pub struct Delamination {
     pub damage: Vec<(String, Vec<PointDamage>)>,
 }
 
-/// The damage of an interface point: `(lower node, upper node, d)`.
-pub type PointDamage = (usize, usize, f64);
+/// The damage of an interface point: `(lower node, upper node, d, onset
+/// index)`, the index `(⟨t3⟩/N)² + (t_s/S)²` of the intact traction at its
+/// committed separation (`Cohesive::onset_index`; 0 once separated, d = 1).
+pub type PointDamage = (usize, usize, f64, f64);
 
 /// `summary.json` `delamination`.
 #[derive(Debug, Clone, PartialEq, serde::Serialize)]
@@ -117,14 +119,14 @@ impl Delamination {
         }
     }
 
-    /// The damage at each interface node (both twins of a point), for the
-    /// `d_interface` field.
-    pub fn node_damage(&self) -> std::collections::HashMap<usize, f64> {
+    /// The damage and the onset index at each interface node (both twins
+    /// of a point), for the `d_interface` and `onset_interface` fields.
+    pub fn node_damage(&self) -> std::collections::HashMap<usize, (f64, f64)> {
         let mut out = std::collections::HashMap::new();
         for (_, points) in &self.damage {
-            for &(l, u, d) in points {
-                out.insert(l, d);
-                out.insert(u, d);
+            for &(l, u, d, onset) in points {
+                out.insert(l, (d, onset));
+                out.insert(u, (d, onset));
             }
         }
         out
@@ -197,8 +199,14 @@ impl<'m> Interfaces<'m> {
         self.is_active().then(|| Delamination {
             interfaces: self.summaries(),
             damage: self
-                .damage()
-                .map(|(i, d)| (i.name.clone(), i.points.iter().zip(d).map(|(p, d)| (p.lower, p.upper, d)).collect()))
+                .interfaces
+                .iter()
+                .zip(self.committed.iter().zip(&self.separation))
+                .map(|(i, (states, separations))| {
+                    let points = i.points.iter().zip(states.iter().zip(separations));
+                    let onset = |st: &CohesiveState, &d| if st.damage < 1.0 { i.law.onset_index(d) } else { 0.0 };
+                    (i.name.clone(), points.map(|(p, (st, d))| (p.lower, p.upper, st.damage, onset(st, d))).collect())
+                })
                 .collect(),
         })
     }

@@ -169,9 +169,10 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
         }
     }
 
-    // the damage of the interface points on their nodes (`d_interface`)
+    // the damage and onset index of the interface points on their nodes
+    // (`d_interface`, `onset_interface`)
     let interface_damage = solution.delamination.as_ref().map(|d| d.node_damage());
-    let mut d_interface = Vec::new();
+    let (mut d_interface, mut onset_interface) = (Vec::new(), Vec::new());
     for (b, body) in model.mesh.bodies.iter().enumerate() {
         let ps = body.section.kind.order();
         let m = ps + 1;
@@ -205,7 +206,9 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
                     contact_pressure.push(p);
                     contact_gap.push(node_gap.get(&node).copied().unwrap_or(f64::NAN));
                     if let Some(map) = &interface_damage {
-                        d_interface.push(map.get(&node).copied().unwrap_or(0.0));
+                        let (d, onset) = map.get(&node).copied().unwrap_or_default();
+                        d_interface.push(d);
+                        onset_interface.push(onset);
                     }
                     if !marked.is_empty() {
                         concentrated.push(if marked.contains(&(body.element_offset + e)) { 1.0 } else { 0.0 });
@@ -232,6 +235,7 @@ pub fn field_grid(model: &Model, solution: &Solution) -> FieldGrid {
     }
     if interface_damage.is_some() {
         point_data.push(FieldArray { name: "d_interface".into(), components: 1, values: d_interface });
+        point_data.push(FieldArray { name: "onset_interface".into(), components: 1, values: onset_interface });
     }
     if !marked.is_empty() {
         point_data.push(FieldArray { name: "concentrated".into(), components: 1, values: concentrated });

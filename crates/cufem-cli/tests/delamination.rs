@@ -86,7 +86,8 @@ fn with_toughness(factor: f64) -> String {
 /// damages) with the precrack to `to` (m), against CBT's
 /// `C = 8 (a + χh)³/(E11 B h³)` at `a`, the midpoint between the last
 /// cracked and the first intact nodes. Measured: −0.44 % at a = 32.8 mm,
-/// −0.45 % at 39.9 mm; asserted 1 % (design48 §3.1).
+/// −0.45 % at 39.9 mm; asserted 1 % (design48 §3.1). The interface's
+/// onset index (summary and node field) below 1, ×4 at twice the opening.
 #[test]
 fn held_crack_compliance_matches_corrected_beam_theory() {
     for (name, to, a) in [("held_a33", 0.0328, A0), ("held_a40", 0.0399, 0.0399375)] {
@@ -118,6 +119,14 @@ fn held_crack_compliance_matches_corrected_beam_theory() {
         eprintln!("{name}: largest onset index {:.4e}, at twice the opening {:.4e}", index(&summary), index(&doubled));
         assert!(index(&summary) > 0.0 && index(&doubled) < 1.0, "{} {}", index(&summary), index(&doubled));
         assert!((index(&doubled) / index(&summary) - 4.0).abs() < 1e-6, "{} {}", index(&summary), index(&doubled));
+        // the node field `onset_interface` holds the index where it sits:
+        // its largest is the summary's, and it is 0 on the precrack (d = 1)
+        let onset = common::vtu_array(&out.join("result.vtu"), Some("onset_interface"));
+        let damage = common::vtu_array(&out.join("result.vtu"), Some("d_interface"));
+        let largest = onset.iter().copied().fold(0.0, f64::max);
+        assert!((largest / index(&summary) - 1.0).abs() < 1e-9, "field {largest}, summary {}", index(&summary));
+        let cracked = damage.iter().zip(&onset).filter(|(d, _)| **d >= 1.0);
+        assert!(cracked.clone().count() > 0 && cracked.clone().all(|(_, i)| *i == 0.0), "{name}: precrack");
     }
 }
 

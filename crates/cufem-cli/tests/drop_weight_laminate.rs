@@ -490,7 +490,7 @@ fn a_drop_weight_cracks_and_delaminates_a_damaging_laminate_and_the_ledger_close
         assert!(explained[i], "d_mt > 0 at y {y} z {z} from {} s, where no index of its crack reached 1", frames[k].0);
     }
     common::figure("drop_weight_damage.crack_origins", origins as f64, "", "cracked cells whose own index reached 1");
-    // most cracks start where their own index shows 1 (measured 48 of 58
+    // most cracks start where their own index shows 1 (measured 44 of 56
     // cells; the others lie on the cracks running along the 90° plies)
     assert!(2 * origins >= cracked.len(), "{origins} of {} cracked cells showed their index at 1", cracked.len());
     let k = frames.iter().position(|f| f.1.iter().any(|c| interior(c.0) && c.2 >= 1.0)).unwrap();

@@ -45,6 +45,10 @@ pub struct Interfaces<'m> {
     viscous_work: Vec<Vec<f64>>,
     /// Each point's separation at the last converged increment, `δ_n`.
     separation: Vec<Vec<[f64; 3]>>,
+    /// Each interface's first onset: the load factor (a transient run's
+    /// time) of the first converged increment after which a point that
+    /// was not precracked had damaged.
+    onset: Vec<Option<f64>>,
     /// Each point's dissipation over the present step under the discrete
     /// gradient (`analysis.interface_forces = "discrete_gradient"`),
     /// `t*·Δδ − Δψ` (J/m², trial).
@@ -79,6 +83,12 @@ pub struct InterfaceSummary {
     /// interlaminar index of a cohesive interface); 0 where every point
     /// has separated.
     pub largest_onset_index: f64,
+    /// The load factor of the first converged increment after which a
+    /// point (not precracked) had damaged: where the onset index first
+    /// reached 1 (`None`: none has, or a transient run).
+    pub first_onset_load_factor: Option<f64>,
+    /// The same time in a transient run (s).
+    pub first_onset_time_s: Option<f64>,
 }
 
 /// The interfaces at the end of a run.
@@ -165,6 +175,7 @@ impl<'m> Interfaces<'m> {
             booked: viscous_work.clone(),
             viscous_work,
             separation,
+            onset: vec![None; interfaces.len()],
         }
     }
 
@@ -240,7 +251,8 @@ impl<'m> Interfaces<'m> {
         self.interfaces
             .iter()
             .zip(self.committed.iter().zip(&self.viscous_work).zip(&self.separation))
-            .map(|(i, ((states, work), separations))| {
+            .zip(&self.onset)
+            .map(|((i, ((states, work), separations)), &onset)| {
                 let mut s = InterfaceSummary {
                     name: i.name.clone(),
                     body: i.body,
@@ -256,6 +268,8 @@ impl<'m> Interfaces<'m> {
                         .filter(|(_, st)| st.damage < 1.0)
                         .map(|(&d, _)| i.law.onset_index(d))
                         .fold(0.0, f64::max),
+                    first_onset_load_factor: onset.filter(|_| self.clock.is_none()),
+                    first_onset_time_s: onset.filter(|_| self.clock.is_some()),
                 };
                 for (p, st) in i.points.iter().zip(states) {
                     if st.damage >= 1.0 {
@@ -493,6 +507,12 @@ impl Contribution for Interfaces<'_> {
                 self.committed[i][j] = *t;
                 self.viscous[0][i][j] = self.viscous[1][i][j];
                 self.separation[i][j] = std::array::from_fn(|k| at.u[3 * p.upper + k] - at.u[3 * p.lower + k]);
+            }
+        }
+        let now = self.clock.map_or(at.lambda, |c| c.time(at.lambda));
+        for ((interface, states), onset) in self.interfaces.iter().zip(&self.committed).zip(&mut self.onset) {
+            if onset.is_none() && interface.points.iter().zip(states).any(|(p, st)| !p.cracked && st.damage > 0.0) {
+                *onset = Some(now);
             }
         }
         self.lambda = at.lambda;

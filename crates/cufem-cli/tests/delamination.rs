@@ -159,6 +159,28 @@ fn dcb_curve_follows_corrected_beam_theory() {
     // each interface names its body (its index was all a new user saw)
     assert_eq!(d["interfaces"][0]["body_name"], "dcb");
     assert_eq!(d["interfaces"][0]["body"], 0);
+    // the first onset: the increment after which a point first damaged.
+    // Elastic before it, the onset index grows as δ² (the held crack's
+    // test: 0.035535 at δ = 0.25 mm, ×4 at twice the opening), so it
+    // reaches 1 at δ = 0.25 mm/√0.035535 = 1.326 mm, λ = 0.1326 of the 10 mm:
+    // the first increment at or past it, before the load peaks; a static
+    // run gives no time
+    let lambda = common::csv_columns(&out.join("history_probes.csv"))["lambda"].clone();
+    let peak = (0..points.len()).max_by(|&i, &j| points[i].1.total_cmp(&points[j].1)).unwrap();
+    let onset = d["interfaces"][0]["first_onset_load_factor"].as_f64().unwrap();
+    let expected = 0.25e-3 / 0.035535f64.sqrt() / 0.01;
+    let at = lambda.iter().position(|&l| l >= expected).unwrap();
+    eprintln!(
+        "DCB: first onset at λ = {onset:.4} (index 1 at {expected:.4}), the peak load at λ = {:.4}",
+        lambda[peak]
+    );
+    assert!(
+        onset == lambda[at] && onset < lambda[peak],
+        "onset {onset}, expected {}, peak {}",
+        lambda[at],
+        lambda[peak]
+    );
+    assert!(d["interfaces"][0]["first_onset_time_s"].is_null());
     // and the run's table (console, report.html) says how much let go
     let page = std::fs::read_to_string(out.join("report.html")).unwrap();
     let area = format!("delamination       {:.5e} m² of", d["area_m2"].as_f64().unwrap());

@@ -85,6 +85,12 @@ pub(crate) fn stress_like_to_strain_like(s: &Voigt) -> Voigt {
     [s[0], s[1], s[2], 2.0 * s[3], 2.0 * s[4], 2.0 * s[5]]
 }
 
+/// The symmetric part `½ (C + Cᵀ)` of a 6×6 matrix (a tangent the
+/// structure factorizes).
+pub(crate) fn symmetric_part(c: &Matrix6) -> Matrix6 {
+    std::array::from_fn(|i| std::array::from_fn(|j| 0.5 * (c[i][j] + c[j][i])))
+}
+
 /// Matrix–vector product `C ε`.
 #[inline]
 pub fn mat_vec(c: &Matrix6, e: &Voigt) -> Voigt {

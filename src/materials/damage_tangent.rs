@@ -82,10 +82,12 @@ impl PlyDamage {
         let (d, law) = (state.viscous, state.damage);
         for (mode, length) in [(fibre, band[0]), (matrix, band[1])] {
             let (onset, last, kappa) = (state.onset[mode], state.last[mode], state.kappa[mode]);
+            if onset == 0.0 || kappa <= onset || law[mode] >= self.max_damage {
+                continue;
+            }
             // unloading (inside the surface), or on it with the secant asked for
             let (e, _) = equivalent(mode, strain, effective);
-            let inside = length * e < old.kappa[mode] || (length * e == old.kappa[mode] && !loading);
-            if onset == 0.0 || inside || kappa <= onset || law[mode] >= self.max_damage {
+            if length * e < old.kappa[mode] || (length * e == old.kappa[mode] && !loading) {
                 continue;
             }
             let grad = if old.onset[mode] == 0.0 {

@@ -171,6 +171,15 @@ fn tangent_error(law: &PlyDamage, strain: &Voigt, band: [f64; 2], committed: &Da
     worst
 }
 
+/// A strain of each mode that damages [`ply`] (from intact, and further
+/// from 0.9 of it) without breaking it, in [`MODES`] order.
+const LOADING: [(usize, Voigt); 4] = [
+    (FT, [0.02, -0.004, -0.004, 0.004, 0.002, 0.0]),
+    (FC, [-0.0135, 0.003, 0.003, 0.002, 0.0, 0.0]),
+    (MT, [0.0, 0.012, 0.004, 0.003, 0.0, 0.002]),
+    (MC, [0.0, -0.03, 0.01, 0.002, 0.0, 0.003]),
+];
+
 /// The consistent tangent is the derivative of the stress (central
 /// differences of the update from the same committed state) at loading
 /// points inside each mode, and the secant where a point unloads.
@@ -178,14 +187,8 @@ fn tangent_error(law: &PlyDamage, strain: &Voigt, band: [f64; 2], committed: &Da
 fn the_consistent_tangent_is_the_derivative_of_the_stress() {
     let law = ply([0.25, 0.25, 0.45]);
     let band = [0.2e-3, 0.1e-3];
-    // a committed state past onset in each mode, then loading further
-    let cases: [(usize, Voigt); 4] = [
-        (FT, [0.02, -0.004, -0.004, 0.004, 0.002, 0.0]),
-        (FC, [-0.0135, 0.003, 0.003, 0.002, 0.0, 0.0]),
-        (MT, [0.0, 0.012, 0.004, 0.003, 0.0, 0.002]),
-        (MC, [0.0, -0.03, 0.01, 0.002, 0.0, 0.003]),
-    ];
-    for (mode, strain) in cases {
+    // a committed state past onset in each mode (at 0.9 of the strain), then loading further
+    for (mode, strain) in LOADING {
         let committed = law.update(&strain.map(|e| 0.9 * e), band, &DamageState::default()).state;
         assert!(committed.damage[mode] > 0.0 && committed.damage[mode] < 0.99, "{mode}: {:?}", committed.damage);
         let r = law.update(&strain, band, &committed);
@@ -328,13 +331,7 @@ fn a_point_that_softens_through_within_one_update_books_its_toughness() {
 fn the_consistent_tangent_holds_at_a_point_s_first_onset() {
     let law = ply([0.25, 0.25, 0.45]);
     let band = [0.2e-3, 0.1e-3];
-    let cases: [(usize, Voigt); 4] = [
-        (FT, [0.02, -0.004, -0.004, 0.004, 0.002, 0.0]),
-        (FC, [-0.0135, 0.003, 0.003, 0.002, 0.0, 0.0]),
-        (MT, [0.0, 0.012, 0.004, 0.003, 0.0, 0.002]),
-        (MC, [0.0, -0.03, 0.01, 0.002, 0.0, 0.003]),
-    ];
-    for (mode, strain) in cases {
+    for (mode, strain) in LOADING {
         let r = law.update(&strain, band, &DamageState::default());
         assert!(r.state.damage[mode] > 0.0 && r.state.damage[mode] < 0.99, "{mode}: {:?}", r.state.damage);
         let worst = tangent_error(&law, &strain, band, &DamageState::default());

@@ -255,14 +255,7 @@ impl Material {
     pub(crate) fn update_for_element(&self, strain: &Voigt, old: &PointState, predictor: Predictor) -> Response {
         let mut r = self.update_with(strain, old, predictor);
         if !self.kinematic.is_empty() {
-            let t = &mut r.tangent;
-            for i in 0..6 {
-                for j in 0..i {
-                    let m = 0.5 * (t[i][j] + t[j][i]);
-                    t[i][j] = m;
-                    t[j][i] = m;
-                }
-            }
+            r.tangent = voigt::symmetric_part(&r.tangent);
         }
         r
     }

@@ -49,14 +49,7 @@ impl Material {
         }
         // the consistent tangent is unsymmetric: its symmetric part here,
         // the rest from the terms (`damage::Softening`)
-        let mut symmetric = tangent;
-        for i in 0..6 {
-            for j in 0..i {
-                let m = 0.5 * (symmetric[i][j] + symmetric[j][i]);
-                symmetric[i][j] = m;
-                symmetric[j][i] = m;
-            }
-        }
+        let mut symmetric = voigt::symmetric_part(&tangent);
         damage_impulse::scale(&mut symmetric, factor);
         let tangent = self.frame.stiffness_to_global(&symmetric);
         let response =

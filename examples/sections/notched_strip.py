@@ -1,7 +1,9 @@
 #!/usr/bin/env python3
 """Writes examples/notched_strip_{coarse,medium,fine}.toml: a notched ply strip
 pulled along its fibres, at three element sizes h around the crack path
-(the crack-band check of docs/composites.md, "Ply damage").
+(the crack-band check of docs/composites.md, "Ply damage"), and
+examples/notched_strip_snap_back.toml: a double-edge notched strip with long
+arms pulled by an end force through its snap-back (path following).
 
 Section in the x–z plane (x along the fibres and the pull, z across the
 strip), one B2 element of depth t along y. The crack path is one column of
@@ -48,10 +50,12 @@ def lines(h):
     return x, z, len(w)
 
 
-def mesh(h):
-    x, z, n_side = lines(h)
-    notch_rows = round(A / h)
-    band = n_side  # index of the crack column among the x intervals
+def mesh(h, both_edges=False):
+    """The grid's x lines, the crack column's index among the x intervals,
+    the points and the quads: the column's bottom rows (and, with
+    `both_edges`, its top rows) left out as the notch."""
+    x, z, band = lines(h)
+    rows, notch_rows = len(z) - 1, round(A / h)
     index, points, quads = {}, [], []
 
     def point(i, k):
@@ -60,21 +64,26 @@ def mesh(h):
             points.append((x[i], z[k]))
         return index[(i, k)]
 
-    for k in range(len(z) - 1):
+    for k in range(rows):
         for i in range(len(x) - 1):
-            if i == band and k < notch_rows:
+            if i == band and (k < notch_rows or (both_edges and k >= rows - notch_rows)):
                 continue
             # counter-clockwise in the x–z plane
             quads.append((point(i, k), point(i + 1, k), point(i + 1, k + 1), point(i, k + 1)))
-    return x, z, points, quads
+    return x, band, points, quads
 
 
 def fmt(v):
     return f"{v:.9g}"
 
 
+def constraint(name, where, fix):
+    """A [[constraints]] entry holding `fix` (a TOML list) at `where`."""
+    return f'[[constraints]]\nname = "{name}"\nbody = "strip"\nwhere = {{ {where} }}\nfix = {fix}\n'
+
+
 def write(name, h):
-    x, z, points, quads = mesh(h)
+    x, _, points, quads = mesh(h)
     length = x[-1]
     pts = ", ".join(f"[{fmt(px)}, {fmt(pz)}]" for px, pz in points)
     qs = ", ".join(f"[{a}, {b}, {c}, {d}]" for a, b, c, d in quads)
@@ -124,34 +133,109 @@ material = "im7_8552"
 axis = {{ element = "B2", from = 0.0, to = {fmt(T)}, elements = 1 }}
 section = {{ shape = "quads", element = "L4", points = [{pts}], quads = [{qs}] }}
 
-[[constraints]]
-name = "held"
-body = "strip"
-where = {{ x = 0.0 }}
-fix = ["x"]
-
+{constraint("held", "x = 0.0", '["x"]')}
 [[constraints]]
 name = "pull"
 body = "strip"
 where = {{ x = {fmt(length)} }}
 displacement = {{ x = 1.5e-4 }}
 
-[[constraints]]
-name = "depth"
-body = "strip"
-where = {{ y = 0.0 }}
-fix = ["y"]
-
-[[constraints]]
-name = "corner"
-body = "strip"
-where = {{ x = 0.0, z = 0.0 }}
-fix = ["z"]
-'''
+{constraint("depth", "y = 0.0", '["y"]')}
+{constraint("corner", "x = 0.0, z = 0.0", '["z"]')}'''
     with open(f"examples/notched_strip_{name}.toml", "w") as f:
+        f.write(text)
+
+
+# The snap-back strip: both edges notched (no bending under an end force),
+# arms of SNAP_ARM beside the crack column, the coarse h.
+SNAP_ARM = 20.0e-3
+SNAP_H = 0.8e-3
+SNAP_FORCE = 10.0e3  # reference load (N): λ = 1 is 10 kN
+
+
+def write_snap_back():
+    global S
+    S, arm = SNAP_ARM, S
+    x, band, points, quads = mesh(SNAP_H, both_edges=True)
+    S = arm
+    length = x[-1]
+    pts = ", ".join(f"[{fmt(px)}, {fmt(pz)}]" for px, pz in points)
+    qs = ", ".join(f"[{a}, {b}, {c}, {d}]" for a, b, c, d in quads)
+    text = f'''# A double-edge notched ply strip pulled by an end force through its
+# snap-back. Written by examples/sections/notched_strip.py; docs/composites.md
+# ("Ply damage", path following).
+#
+# Section x ∈ [0, {fmt(length * 1e3)}] mm along the fibres, z ∈ [0, 6.4] mm;
+# notches one element (h = {SNAP_H * 1e3:g} mm) wide from both edges, 1.6 mm
+# deep, at x = {fmt(x[band] * 1e3)} mm: a ligament of 3.2 mm about the strip's
+# axis, so the end force pulls it without bending. One B2 element of depth
+# 1 mm along y. The end x = 0 is held in x; the end x = L carries a uniform
+# traction of λ × {SNAP_FORCE / 1e3:g} kN, λ an unknown of the path
+# following. Ply and its fibre-tension crack as in
+# examples/notched_strip_coarse.toml, without viscosity.
+#
+# Why path following: the arms store ½ P u ≈ 0.78 J at the peak, more than
+# the crack dissipates (G_FT × 3.2 mm × 1 mm = 0.43 J by the crack band;
+# 1.31 times that here, docs/limitations.md), so
+# past the peak the force and the end's displacement both fall (a
+# snap-back): neither load nor displacement control follows it; the
+# dissipation constraint does, each increment dissipating at most
+# max_dissipation. Checked in crates/cufem-cli/tests/snap_back.rs: the peak
+# against displacement control, the snap-back, the path's dissipation
+# against the law's.
+
+title = "Double-edge notched IM7/8552 strip through its snap-back, h = {SNAP_H * 1e3:g} mm"
+
+[solver]
+control = "arc_length"
+constraint = "dissipation"
+# the pre-peak increments set the peak (damage at the notch roots): with a
+# first Δλ of 1e-3 it is within 0.1 % of displacement control's
+increments = 1000
+max_dissipation = 0.001
+max_increments = 3000
+# the crack through: the crack column's right face, mid-ligament, 0.3 mm on
+# (the arms have unloaded; the crack's own opening at full damage is 0.11 mm)
+stop = {{ probe = "crack_right", component = "x", beyond = 3e-4 }}
+
+[[materials]]
+name = "im7_8552"
+orthotropic = {{ e1 = 171.42e9, e2 = 9.08e9, e3 = 9.08e9, g12 = 5.29e9, g13 = 5.29e9, g23 = 2.98e9, nu12 = 0.32, nu13 = 0.32, nu23 = 0.52 }}
+strengths = {{ xt = 2326.2e6, xc = 1200.1e6, yt = 5e9, yc = 5e9, s12 = 3e9, s23 = 3e9 }}
+damage = {{ fibre_tension = 133.3e3, fibre_compression = 61.0e3, matrix_tension = 1e7, matrix_compression = 1e7 }}
+
+[[bodies]]
+name = "strip"
+material = "im7_8552"
+axis = {{ element = "B2", from = 0.0, to = {fmt(T)}, elements = 1 }}
+section = {{ shape = "quads", element = "L4", points = [{pts}], quads = [{qs}] }}
+
+[[loads]]
+name = "pull"
+body = "strip"
+where = {{ x = {fmt(length)} }}
+total_force = [{SNAP_FORCE!r}, 0.0, 0.0]
+
+[[probes]]
+name = "end"
+point = [{fmt(length)}, 0.0, 0.0032]
+
+[[probes]]
+name = "crack_left"
+point = [{fmt(x[band])}, 0.0, 0.0032]
+
+[[probes]]
+name = "crack_right"
+point = [{fmt(x[band + 1])}, 0.0, 0.0032]
+
+{constraint("held", "x = 0.0", '["x"]')}
+{constraint("depth", "y = 0.0", '["y"]')}
+{constraint("centre", "x = 0.0, z = 0.0032", '["z"]')}'''
+    with open("examples/notched_strip_snap_back.toml", "w") as f:
         f.write(text)
 
 
 if __name__ == "__main__":
     for name, h in MESHES.items():
         write(name, h)
+    write_snap_back()

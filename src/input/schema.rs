@@ -287,6 +287,9 @@ pub struct SolverFile {
     /// `"cylinder"` (default) or `"dissipation"`: what holds a path increment.
     #[schemars(transform = defaults::schema(PathConstraint::default()))]
     pub constraint: Option<PathConstraint>,
+    /// Largest dissipation of one increment (J), `constraint = "dissipation"`.
+    #[schemars(transform = ranges::POSITIVE.schema())]
+    pub max_dissipation: Option<f64>,
     /// The path following ends at the first point with λ at least this.
     #[schemars(transform = ranges::MAX_LOAD_FACTOR.with_default(defaults::MAX_LOAD_FACTOR))]
     pub max_load_factor: Option<f64>,

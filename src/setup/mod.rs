@@ -472,7 +472,7 @@ fn build(file: ModelFile, limits: Limits, base: &Path) -> Result<Model, ModelErr
         indenters: &indenters,
         contacts: &contacts,
         probes: &probes,
-        delaminating: !interfaces.is_empty() && !materials.iter().any(|m| m.is_plastic() || m.damage.is_some()),
+        secant_unloading: path::unloads_on_its_secant(&materials, !interfaces.is_empty()),
     };
     solver.path = path::settings(&file.solver, &solver, &loading)?;
     let output = output_settings(&file.output, &mesh)?;

@@ -24,11 +24,10 @@ pub(super) struct Loading<'a> {
     pub indenters: &'a [Indenter],
     pub contacts: &'a [PairContact],
     pub probes: &'a [Probe],
-    /// The model has cohesive interfaces, and no material yields or
-    /// damages in its plies: what the dissipation constraint is made and
-    /// checked for (with ply damage a notched strip under a force stalled
-    /// under it, λ swinging about zero; docs/limitations.md).
-    pub(super) delaminating: bool,
+    /// The model has cohesive interfaces or ply damage, and no material
+    /// yields: a structure that damages and unloads on its secant, what
+    /// the dissipation constraint is made for.
+    pub(super) secant_unloading: bool,
 }
 
 /// The share of the elastic energy `½ λ fᵀu` one increment must dissipate
@@ -38,6 +37,13 @@ pub(super) struct Loading<'a> {
 const DISSIPATION_SWITCH: f64 = 1e-3;
 
 const ARC: &str = "solver.control = \"arc_length\"";
+
+/// A model that damages (cohesive interfaces or ply damage) and does not
+/// yield: one that unloads on its secant, as the dissipation constraint
+/// assumes ([`Loading::secant_unloading`]).
+pub(super) fn unloads_on_its_secant(materials: &[crate::materials::Material], cohesive: bool) -> bool {
+    (cohesive || materials.iter().any(|m| m.damage.is_some())) && !materials.iter().any(|m| m.is_plastic())
+}
 
 /// `None` for load control (refusing the path-following keys there),
 /// else the path settings, the model checked for proportional loading.
@@ -52,6 +58,7 @@ pub(super) fn settings(
             ("max_load_factor", s.max_load_factor.is_some()),
             ("stop", s.stop.is_some()),
             ("constraint", s.constraint.is_some()),
+            ("max_dissipation", s.max_dissipation.is_some()),
         ];
         if let Some((key, _)) = given.iter().find(|g| g.1) {
             return Err(invalid(format!("solver.{key}"), "(given)", format!("no value without {ARC}")));
@@ -93,21 +100,30 @@ pub(super) fn settings(
         }
     };
     let stop = s.stop.as_ref().map(|st| stop(st, model.probes)).transpose()?;
-    if s.constraint == Some(PathConstraint::Dissipation) && !model.delaminating {
+    let dissipation = s.constraint == Some(PathConstraint::Dissipation);
+    if dissipation && !model.secant_unloading {
         return Err(invalid(
             "solver.constraint",
             "\"dissipation\"",
-            "\"cylinder\" in a model without cohesive interfaces, or with plasticity or ply damage: the \
-             dissipation of an increment, ½ (λ fᵀΔu − Δλ fᵀu), is that of elastic plies whose interfaces \
-             damage and unload on their secant",
+            "\"cylinder\" in a model without cohesive interfaces or ply damage, or with plasticity: the \
+             dissipation of an increment, ½ (λ fᵀΔu − Δλ fᵀu), is that of a structure that damages and \
+             unloads on its secant",
         ));
     }
+    let max_dissipation = match s.max_dissipation {
+        Some(m) if !dissipation => {
+            return Err(invalid("solver.max_dissipation", m, "no value without solver.constraint = \"dissipation\""));
+        }
+        Some(m) => finite_positive("solver.max_dissipation", m)?,
+        None => f64::INFINITY,
+    };
     let arc = ArcLengthSettings {
         initial_dlambda: solver.steps.initial,
         max_increments: solver.steps.max_increments,
         max_iterations: solver.newton.max_iterations,
         residual_tolerance: solver.newton.residual_tolerance,
-        dissipation: (s.constraint == Some(PathConstraint::Dissipation)).then_some(DISSIPATION_SWITCH),
+        dissipation: dissipation.then_some(DISSIPATION_SWITCH),
+        max_dissipation,
         ..ArcLengthSettings::default()
     };
     Ok(Some(PathSettings { arc, arc_length, max_load_factor, stop }))

@@ -161,6 +161,9 @@ pub struct ArcLengthSettings {
     /// control") once the cylinder's predictor would dissipate this share of
     /// the elastic energy `½ λ fᵀu`; `None`: the cylinder throughout.
     pub dissipation: Option<f64>,
+    /// Largest `Δτ` of an increment held to its dissipation
+    /// (`f64::INFINITY`: only the corrections' adaptation).
+    pub(crate) max_dissipation: f64,
 }
 
 /// Most rollbacks of one increment for having turned too far from its
@@ -187,6 +190,7 @@ impl Default for ArcLengthSettings {
             // snap-through turned by 23°
             min_cosine: 0.98,
             dissipation: None,
+            max_dissipation: f64::INFINITY,
         }
     }
 }
@@ -259,7 +263,8 @@ pub fn trace<P: PathProblem>(
                 // the arc follows the increments' length, for a return to the cylinder
                 let length = path.p.dot(&path.prev, &path.prev).sqrt();
                 path.arc = length.clamp(min, max);
-                path.tau = Some(dissipated.abs() * factor.clamp(0.5, settings.max_growth));
+                path.tau =
+                    Some((dissipated.abs() * factor.clamp(0.5, settings.max_growth)).min(settings.max_dissipation));
             } else {
                 path.arc = (path.arc * factor.clamp(0.5, settings.max_growth)).clamp(min, max);
             }
@@ -327,6 +332,8 @@ struct Path<'a, P: PathProblem> {
     /// The present attempt is held to `tau` (its predictor found the
     /// structure dissipating).
     dissipating: bool,
+    /// `ArcLengthSettings::max_dissipation`.
+    max_dissipation: f64,
 }
 
 impl<'a, P: PathProblem> Path<'a, P> {
@@ -362,6 +369,7 @@ impl<'a, P: PathProblem> Path<'a, P> {
             clock: (0.0, settings.initial_dlambda.abs()),
             total: vec![0.0; n],
             switch: settings.dissipation.filter(|_| lambda == 0.0),
+            max_dissipation: settings.max_dissipation,
             tau: None,
             dissipating: false,
         };

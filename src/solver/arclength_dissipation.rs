@@ -18,7 +18,9 @@
 //! predictor is `Δλ₁ = 2Δτ / (λ₀ fᵀδu_F − fᵀu₀)` — its sign is the path's,
 //! negative past a peak — and each correction's `δλ` has one root.
 //! `Δτ` follows the converged increments' corrections as `Δl` does (from
-//! the dissipation of the last). An increment along which the tangent does
+//! the dissipation of the last), at most `ArcLengthSettings::max_dissipation`
+//! (a path whose points soften depends on its increments: fast convergence
+//! alone would let them grow to a large share of a crack's energy). An increment along which the tangent does
 //! not dissipate (`λ₀ fᵀδu_F = fᵀu₀` to round-off: an elastic state) takes
 //! the cylinder. [`super::PathProblem::pseudo_time_step`] gives a rate-dependent
 //! regularisation its time: the increment's arc length over the first's,
@@ -54,7 +56,7 @@ impl<P: PathProblem> Path<'_, P> {
         if let (Some(share), None) = (self.switch, self.tau) {
             let along = 0.5 * (rate * dlambda).abs();
             if self.dissipates(rate) && along > share * 0.5 * (self.lambda * dot(&self.f, &self.total)).abs() {
-                self.tau = Some(along);
+                self.tau = Some(along.min(self.max_dissipation));
             }
         }
     }

@@ -66,6 +66,8 @@ mod schema_docs;
 mod silent_answers;
 #[path = "silent_solves.rs"]
 mod silent_solves;
+#[path = "snap_back.rs"]
+mod snap_back;
 #[path = "step_control.rs"]
 mod step_control;
 #[path = "symmetry.rs"]

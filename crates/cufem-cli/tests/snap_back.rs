@@ -1,0 +1,117 @@
+//! Path following through a ply crack's snap-back (issue 48):
+//! `examples/notched_strip_snap_back.toml`, a double-edge notched ply strip
+//! whose long arms store more elastic energy at the peak than the crack
+//! dissipates, pulled by an end force whose factor λ is an unknown held by
+//! the dissipation constraint. Checked against displacement control of the
+//! same strip (the peak), against the energy the arms must give back (the
+//! snap-back), and the path's dissipation against the damage law's.
+
+#[path = "../../../tests/common/mod.rs"]
+mod common;
+
+use std::path::Path;
+
+/// The example's text.
+fn example() -> String {
+    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../..")).join("examples/notched_strip_snap_back.toml");
+    std::fs::read_to_string(path).unwrap()
+}
+
+/// The example's reference load (N): `total_force` at λ = 1.
+const FORCE: f64 = 10.0e3;
+
+/// `G_FT × ligament × depth` = 133.3e3 J/m² × 3.2 mm × 1 mm (the crack
+/// band's promise for a crack through the ligament, Bažant & Oh 1983).
+const CRACK_ENERGY: f64 = 133.3e3 * 3.2e-3 * 1e-3;
+
+/// The strip pulled through its peak by the end's displacement (load
+/// control of a prescribed 0.293 mm, increments of 1e-3): the largest
+/// reaction (N) and whether it came before the last increment.
+fn displacement_controlled_peak() -> (f64, bool) {
+    let text = example();
+    let solver = text.find("[solver]").unwrap();
+    let materials = text.find("[[materials]]").unwrap();
+    let load = text.find("[[loads]]").unwrap();
+    let probes = text.find("[[probes]]").unwrap();
+    let length = text[load..probes].split("x = ").nth(1).unwrap().split(' ').next().unwrap().to_string();
+    let text = format!(
+        "{}[solver]\nincrements = 1000\nmax_increment = 0.001\nmax_increments = 2000\n\n{}[[constraints]]\nname = \
+         \"pull\"\nbody = \"strip\"\nwhere = {{ x = {length} }}\ndisplacement = {{ x = 2.93e-4 }}\n\n{}",
+        &text[..solver],
+        &text[materials..load],
+        &text[probes..]
+    );
+    let (out, _) = common::run_text("snap_back", "displacement", &text);
+    let r = common::csv_columns(&out.join("history_pull.csv"))["r_x"].clone();
+    let (k, peak) = r.iter().enumerate().fold((0, f64::MIN), |m, (i, &v)| if v > m.1 { (i, v) } else { m });
+    (peak, k + 1 < r.len())
+}
+
+#[test]
+fn the_strip_is_followed_through_its_snap_back_by_its_dissipation() {
+    let (out, summary) = common::run_text("snap_back", "example", &example());
+    assert_eq!(summary["path"]["end"], "displacement", "the run ends on its stop (the crack through)");
+    let c = common::csv_columns(&out.join("history_probes.csv"));
+    let (lambda, u) = (&c["lambda"], &c["end.u_x"]);
+    let k = (0..lambda.len()).fold(0, |m, i| if lambda[i] > lambda[m] { i } else { m });
+
+    // the peak: displacement control reaches the same one (the arms are
+    // 20 mm long, so how the end is pulled does not reach the ligament);
+    // measured 0.538 both, 0.09 % apart (with a first Δλ of 1e-2 the path's
+    // peak is 2 % low: the pre-peak increments set the notch roots' damage)
+    let (peak, before_end) = displacement_controlled_peak();
+    assert!(before_end, "displacement control passed its peak");
+    let p = lambda[k] * FORCE;
+    assert!((p - peak).abs() < 5e-3 * peak, "peak {p} N by the path, {peak} N by displacement control");
+
+    // the snap-back: the arms store ½ P u at the peak, more than the crack
+    // can dissipate, so past it the end's displacement falls with the force
+    let stored = 0.5 * p * u[k];
+    assert!(stored > 1.5 * CRACK_ENERGY, "stored {stored} J at the peak");
+    let low = (k..lambda.len()).find(|&i| lambda[i] < 0.1 * lambda[k]).expect("the force falls below a tenth");
+    assert!(u[low] < 0.7 * u[k], "end at {} m with λ {}, {} m at the peak", u[low], lambda[low], u[k]);
+    assert!((k..low).all(|i| lambda[i + 1] <= lambda[i] + 1e-9), "λ falls monotonically past the peak");
+
+    // the path's dissipation, ½ (λ₀ fᵀΔu − Δλ fᵀu₀) summed from the end's
+    // displacement (fᵀu = P u: a uniform traction on an end that stays flat),
+    // against the damage law's sums over its points: two independent
+    // bookkeepings of the same energy (measured 0.45 % apart)
+    let mut path = 0.0;
+    let (mut l0, mut u0) = (0.0, 0.0);
+    for (&l, &x) in lambda.iter().zip(u) {
+        path += 0.5 * FORCE * (l0 * (x - u0) - (l - l0) * u0);
+        (l0, u0) = (l, x);
+    }
+    let law = summary["damage"]["dissipated_total_j"].as_f64().unwrap();
+    assert!((path - law).abs() < 0.02 * law, "path {path} J, law {law} J");
+    // a known limit (docs/limitations.md): the double-edge notched band
+    // dissipates 1.31 G_FT A, where the single-edge notched strips under
+    // displacement control dissipate 1.06-1.07 G_FT A
+    let ratio = law / CRACK_ENERGY;
+    assert!((1.25..1.37).contains(&ratio), "dissipated {law} J = {ratio} G_FT A");
+}
+
+#[test]
+fn the_largest_dissipation_of_an_increment_is_checked_by_key() {
+    let text = example();
+    let key = "max_dissipation = 0.001";
+    let cases = [
+        (text.replace(key, "max_dissipation = -0.001"), "solver.max_dissipation = -0.001"),
+        (
+            text.replace("constraint = \"dissipation\"", "constraint = \"cylinder\""),
+            "solver.max_dissipation = 0.001: expected no value without solver.constraint = \"dissipation\"",
+        ),
+        (
+            // load control, the path's other keys gone
+            text.replace("control = \"arc_length\"", "control = \"load\"")
+                .replace("constraint = \"dissipation\"\n", "")
+                .replace("stop = { probe = \"crack_right\", component = \"x\", beyond = 3e-4 }\n", ""),
+            "solver.max_dissipation = (given): expected no value without solver.control = \"arc_length\"",
+        ),
+    ];
+    for (t, expect) in cases {
+        let e = cufem::Model::parse(&t).unwrap_err().to_string();
+        assert!(e.contains(expect), "{expect}: {e}");
+    }
+    cufem::Model::parse(&text).unwrap();
+}

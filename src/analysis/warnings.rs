@@ -47,7 +47,7 @@ pub(super) fn result_warnings(model: &Model, solution: &Solution) -> Vec<Warning
             ),
         });
     }
-    if let Some(w) = solution.damage.as_ref().and_then(|d| unbooked_dissipation(&d.summary())) {
+    if let Some(w) = solution.damage.as_ref().and_then(|d| unbooked_dissipation(&d.summary(), model)) {
         warnings.push(w);
     }
     viscous_delamination(model, solution, &mut warnings);
@@ -127,9 +127,17 @@ pub(crate) const DISSIPATION_OVER_RELEASE: f64 = 1.25;
 /// under an indenter), so the increments do not follow the damage and
 /// both figures rest on a path the points need not have taken (a new
 /// user's three-point bend: `0.253` J summed, `0.103` J released, of
-/// `0.412` J of work; crates/cufem-cli/tests/ply_damage.rs).
-fn unbooked_dissipation(d: &crate::damage::DamageSummary) -> Option<Warning> {
+/// `0.412` J of work; crates/cufem-cli/tests/ply_damage.rs). The remedy
+/// named is the model's own control's: load stepping's damage step
+/// control, or path following's bound on an increment's dissipation or
+/// its arc length (crates/cufem-cli/tests/snap_back.rs).
+fn unbooked_dissipation(d: &crate::damage::DamageSummary, model: &Model) -> Option<Warning> {
     let (sums, released) = (d.dissipated_total_j, d.released_total_j);
+    let remedy = match &model.solver.path {
+        None => "solver.step_control = { damage = 0.1 }",
+        Some(p) if p.arc.dissipation.is_some() => "solver.max_dissipation, e.g. a thousandth of the energy to break",
+        Some(_) => "a shorter solver.arc_length",
+    };
     (sums > DISSIPATION_OVER_RELEASE * released && sums > 0.0).then(|| Warning {
         key: "materials.damage".into(),
         message: format!(
@@ -137,7 +145,7 @@ fn unbooked_dissipation(d: &crate::damage::DamageSummary) -> Option<Warning> {
              times the energy it released at fixed strain, {released:.4e} J (damage.released_j, a lower bound): \
              the strain of damaged points jumped within increments, and both rest on each increment's straight \
              strain path, which the points need not have taken; make the increments follow the damage \
-             (solver.step_control = {{ damage = 0.1 }})",
+             ({remedy})",
             sums / released.max(f64::MIN_POSITIVE)
         ),
     })

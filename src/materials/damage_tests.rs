@@ -347,9 +347,10 @@ fn the_consistent_tangent_holds_at_a_point_s_first_onset() {
 /// set with the onset's soft mixed modulus `(E1 + G13 r²)/(1 + r²)`, its
 /// release `½ (E1 ε11² + G13 γ13²) dd` then runs on the stiff `E1` — up to
 /// `(1 + r²)/(1 + r² G13/E1)` times `G/L` (`Y ≤ ½ E1 e²` on the way to
-/// full damage; bounds 1.240 and 1.940). Measured 1.217 at `r = 0.5`, 1.846 at `r = 1`; the notched
-/// strips' band points next to a notch root start so (their dissipation
-/// `1.06`–`1.07` G A, the double-edge notched strip's `1.31`).
+/// full damage; bounds 1.240 and 1.940). Measured 1.217 at `r = 0.5`,
+/// 1.846 at `r = 1`. Band points next to a notch root that start so are the
+/// likely cause of the notched strips' excess (`1.06`–`1.07` G A, the
+/// double-edge notched strip's `1.31`; not measured point by point).
 #[test]
 fn a_point_whose_shear_share_falls_after_onset_dissipates_more_than_its_band_energy() {
     let elastic = Orthotropic { young: [171.42e9, 9.08e9, 9.08e9], shear: [5.29e9, 5.29e9, 2.98e9], poisson: [0.0; 3] };

@@ -95,8 +95,10 @@ def write(name, h):
 # material's own axes), z ∈ [0, 6.4] mm; a notch one element wide from z = 0
 # to 1.6 mm at x = 2 + h/2 mm, so the ligament is 4.8 mm; one B2 element of
 # depth 1 mm along y (u_y free at y = 1 mm). The end x = 0 is held in x, the
-# end x = L pulled by 0.15 mm in x; the crack crosses the ligament in fibre
-# tension. IM7/8552-like ply (Camanho, Maimí & Dávila 2007, Compos. Sci.
+# end x = L pulled by 0.15 mm in x; a fibre-tension crack starts at the notch
+# root and crosses the strip, stepping towards the pulled end as it goes (the
+# ends held flat, the eccentric ligament bends; crates/cufem-cli/tests/
+# ply_damage.rs, docs/limitations.md). IM7/8552-like ply (Camanho, Maimí & Dávila 2007, Compos. Sci.
 # Technol. 67:2715; values as in design 48 §3.5): l_ch = E1 G_FT/Xt² =
 # 4.2 mm, so every band here is far below 2 l_ch (no strength reduction).
 #

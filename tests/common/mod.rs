@@ -89,6 +89,25 @@ pub fn vtu_array(path: &std::path::Path, name: Option<&str>) -> Vec<f64> {
     }
 }
 
+/// The centroids `(x, z)` (m, the mean of each cell's nodes) of a
+/// `result.vtu`'s cells whose cell field `field` exceeds ½: where a ply
+/// damage mode has passed half (`d_ft`, ...).
+pub fn cells_past_half(result: &Path, field: &str) -> Vec<(f64, f64)> {
+    let (d, points) = (vtu_array(result, Some(field)), vtu_array(result, None));
+    let (connectivity, offsets) = (vtu_array(result, Some("connectivity")), vtu_array(result, Some("offsets")));
+    let mut start = 0;
+    let mut cells = Vec::new();
+    for (c, &end) in offsets.iter().enumerate() {
+        let nodes = &connectivity[start..end as usize];
+        start = end as usize;
+        if d[c] > 0.5 {
+            let mean = |k: usize| nodes.iter().map(|&i| points[3 * i as usize + k]).sum::<f64>() / nodes.len() as f64;
+            cells.push((mean(0), mean(2)));
+        }
+    }
+    cells
+}
+
 /// A CSV file's columns by header name (comment lines `#` skipped; an
 /// empty field, such as a free component's prescribed displacement in a
 /// constraint's history, is NaN).

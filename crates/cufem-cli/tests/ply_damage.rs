@@ -1,6 +1,6 @@
 //! Progressive ply damage in a body (issue 48): the notched strip of
-//! `examples/notched_strip_{coarse,medium,fine}.toml` (a crack crossing a
-//! 4.8 mm ligament of a 1 mm deep IM7/8552-like strip in fibre tension,
+//! `examples/notched_strip_{coarse,medium,fine}.toml` (a crack from a notch
+//! across a 4.8 mm ligament of a 1 mm deep IM7/8552-like strip in fibre tension,
 //! written by `examples/sections/notched_strip.py`) against the crack band's
 //! promise (Bažant & Oh 1983): the energy dissipated is `G_FT` times the
 //! cracked area whatever the element size; the energy balance of the run;
@@ -61,6 +61,28 @@ fn sums_and_release(summary: &Value) -> (f64, f64) {
 /// constants).
 const CRACK_ENERGY: f64 = 133.3e3 * 4.8e-3 * 1.0e-3;
 
+/// A known limit (docs/limitations.md "Ply damage"): the fibre crack starts
+/// at the notch root in the notch's column, but does not cross the
+/// ligament there — it turns into the wider columns towards the pulled end
+/// (held flat, so the eccentric ligament bends the strip) and crosses to
+/// the far edge in another one. Measured (cells past half damage, `d_ft`):
+/// coarse 2 rows in the notch column, across at x = 4.2 mm; medium 5 rows,
+/// across at 3.9 mm; fine 9 rows, across at 3.5 mm. The band's energy
+/// counts each column the crack steps through.
+fn crack_leaves_the_notch_column(result: &Path, mesh: &str) {
+    let h = match mesh {
+        "coarse" => 0.8e-3,
+        "medium" => 0.4e-3,
+        _ => 0.2e-3,
+    };
+    let (column, notch, width) = ((2.0e-3, 2.0e-3 + h), 1.6e-3, 6.4e-3);
+    let cells = common::cells_past_half(result, "d_ft");
+    let inside: Vec<f64> = cells.iter().filter(|c| c.0 > column.0 && c.0 < column.1).map(|c| c.1).collect();
+    assert!(inside.iter().any(|&z| z < notch + h), "{mesh}: the crack starts at the notch root: {cells:?}");
+    assert!(inside.iter().all(|&z| z < width - h), "{mesh}: it does not cross in the notch's column: {cells:?}");
+    assert!(cells.iter().any(|c| c.0 > column.1 && c.1 > width - h), "{mesh}: it crosses elsewhere: {cells:?}");
+}
+
 /// One mesh of the notched strip: the energy it dissipates in fibre
 /// tension over `G_FT` × the ligament (returned), the other modes under
 /// `1 %` of the total, and the balance `∫ P du = D + E_el` within `1 %`, with
@@ -106,6 +128,7 @@ fn strip_energy_ratio(mesh: &str) -> f64 {
     let released = summary["damage"]["released_total_j"].as_f64().unwrap();
     assert!((0.98..=1.0).contains(&(released / total)), "{mesh}: released {released} J of {total} J");
     assert!(!summary["warnings"].to_string().contains("released at fixed strain"), "{}", summary["warnings"]);
+    crack_leaves_the_notch_column(&out.join("result.vtu"), mesh);
     // G_FT × area and a known excess of 6–7 % (measured 1.065, 1.061, 1.071
     // on the three meshes; 1.068 on the coarse one without viscosity: the
     // law's onset mixity, docs/limitations.md "Ply damage"), asserted from

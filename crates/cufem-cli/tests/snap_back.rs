@@ -94,6 +94,12 @@ fn the_strip_is_followed_through_its_snap_back_by_its_dissipation() {
     // displacement control dissipate 1.06-1.07 G_FT A
     let ratio = law / CRACK_ENERGY;
     assert!((1.25..1.37).contains(&ratio), "dissipated {law} J = {ratio} G_FT A");
+    // the crack crosses the ligament in the notches' column, every row of it
+    // (where the single-edge strips' turns away: ply_damage.rs): the cells
+    // past half fibre-tension damage are the column's four
+    let cells = common::cells_past_half(&out.join("result.vtu"), "d_ft");
+    assert_eq!(cells.len(), 4, "{cells:?}");
+    assert!(cells.iter().all(|c| (c.0 - 20.4e-3).abs() < 0.4e-3 && (c.1 - 3.2e-3).abs() < 1.6e-3), "{cells:?}");
     // increments that follow the damage: no warning that they do not
     assert!(!summary["warnings"].to_string().contains("released at fixed strain"), "{}", summary["warnings"]);
 }

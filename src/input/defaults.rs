@@ -150,3 +150,6 @@ pub(crate) const MAX_DAMAGE: f64 = 0.999;
 pub(crate) const DAMAGE_TANGENT: &str = "consistent";
 /// `materials.damage.viscosity`: none.
 pub(crate) const DAMAGE_VISCOSITY: f64 = 0.0;
+/// `materials.damage.fibre_shear`: Hashin's fibre-tension criterion, its
+/// shear term whole.
+pub(crate) const FIBRE_SHEAR: f64 = 1.0;

@@ -255,6 +255,9 @@ pub(crate) const MAX_DAMAGE: Range = Range::closed(0.9, 0.99999);
 /// A ply damage's Duvaut–Lions viscosity in load-factor units: 0 (none) up
 /// to the whole load step.
 pub(crate) const DAMAGE_VISCOSITY: Range = Range::closed(0.0, 1.0);
+/// The weight α of the longitudinal shear in fibre tension (Abaqus's α):
+/// none to Hashin's whole term.
+pub(crate) const FIBRE_SHEAR: Range = Range::closed(0.0, 1.0);
 /// An impactor's mass (kg; at least a billionth of the body's, checked apart).
 pub(crate) const IMPACTOR_MASS: Range = Range::above_up_to(0.0, 1e9);
 

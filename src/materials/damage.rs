@@ -17,7 +17,9 @@
 //!   matrix mode falls to 1 (`Strengths::hashin_ratios`); the
 //!   onset measure `φ = 1/R` is homogeneous of degree one in the strain.
 //! * **Equivalent displacement and stress** of a mode, from the strain
-//!   components that drive it: FT `e = √(⟨ε11⟩² + γ12² + γ13²)`, FC
+//!   components that drive it: FT `e = √(⟨ε11⟩² + α (γ12² + γ13²))` (α the
+//!   `fibre_shear` key, 1 by default, which also weighs the shear term of
+//!   Hashin's FT criterion), FC
 //!   `e = ⟨−ε11⟩`, MT `e = √(⟨ε22⟩² + ⟨ε33⟩² + γ12² + γ13² + γ23²)`, MC the
 //!   same with `⟨−ε22⟩, ⟨−ε33⟩`; `s` the matching work conjugate `σ̃·ε/e`;
 //!   `δ = L e` with `L` the crack-band length (fibre modes `band[0]`,
@@ -100,6 +102,9 @@ pub struct PlyDamage {
     max_damage: f64,
     consistent: bool,
     viscosity: f64,
+    /// α: the weight of the longitudinal shear in fibre tension's onset
+    /// criterion and equivalent strain (1: Hashin's; [`PlyDamage::with_fibre_shear`]).
+    fibre_shear: f64,
 }
 
 /// A damage law that cannot be used, by the key of its constant.
@@ -220,6 +225,7 @@ impl PlyDamage {
             max_damage,
             consistent: true,
             viscosity: 0.0,
+            fibre_shear: 1.0,
         };
         law.intact = law.damaged_stiffness([0.0; 3], 0.0);
         Ok(law)
@@ -237,6 +243,17 @@ impl PlyDamage {
     /// steps given to [`PlyDamage::update_over`]; 0: rate independent).
     pub(crate) fn with_viscosity(mut self, eta: f64) -> Self {
         self.viscosity = eta;
+        self
+    }
+
+    /// The same law with the longitudinal shear weighed by `alpha` ∈ [0, 1]
+    /// in fibre tension: in Hashin's criterion `(σ11/Xt)² + α (τ12² + τ13²)/S12²`
+    /// and in the equivalent strain `e = √(ε11² + α (γ12² + γ13²))` (Abaqus's
+    /// α; 1 by default, Hashin's own criterion). With `α = 0` a point's
+    /// fibre-tension softening does not depend on the shear it carried at
+    /// onset (docs/limitations.md, "Ply damage").
+    pub(crate) fn with_fibre_shear(mut self, alpha: f64) -> Self {
+        self.fibre_shear = alpha;
         self
     }
 
@@ -302,7 +319,7 @@ impl PlyDamage {
         // at a point's first update; this strain's for the next increment
         let own = [effective[0] >= 0.0, effective[1] + effective[2] >= 0.0];
         let tension = old.tension.unwrap_or(own);
-        let [fibre_ratio, matrix_ratio] = self.strengths.hashin_ratios(&effective, tension);
+        let [fibre_ratio, matrix_ratio] = self.strengths.hashin_ratios(&effective, tension, self.fibre_shear);
         let fibre = if tension[0] { FT } else { FC };
         let matrix = if tension[1] { MT } else { MC };
         *state = *old;
@@ -385,7 +402,7 @@ impl PlyDamage {
 
     /// Onset and damage of one active mode at the onset measure `phi`.
     fn soften(&self, mode: usize, phi: f64, length: f64, strain: &Voigt, effective: &Voigt, state: &mut DamageState) {
-        let (e, s) = equivalent(mode, strain, effective);
+        let (e, s) = equivalent(mode, strain, effective, self.fibre_shear);
         if !(e > 0.0) {
             return;
         }
@@ -483,14 +500,14 @@ impl PlyDamage {
 
 /// `e ∂e/∂ε` of a mode: each driving component of the strain times the
 /// sign with which it enters (the brackets `⟨±ε⟩` where they are open).
-fn equivalent_gradient(mode: usize, strain: &Voigt) -> Voigt {
+fn equivalent_gradient(mode: usize, strain: &Voigt, fibre_shear: f64) -> Voigt {
     let pos = |x: f64| x.max(0.0);
     let mut g = [0.0; 6];
     match mode {
         FT => {
             g[0] = pos(strain[0]);
-            g[3] = strain[3];
-            g[4] = strain[4];
+            g[3] = fibre_shear * strain[3];
+            g[4] = fibre_shear * strain[4];
         }
         FC => g[0] = -pos(-strain[0]),
         MT => {
@@ -507,13 +524,16 @@ fn equivalent_gradient(mode: usize, strain: &Voigt) -> Voigt {
     g
 }
 
-/// The equivalent strain `e` and stress `s` of a mode.
-fn equivalent(mode: usize, strain: &Voigt, effective: &Voigt) -> (f64, f64) {
+/// The equivalent strain `e` and stress `s` of a mode (`fibre_shear`: α
+/// of fibre tension, [`PlyDamage::with_fibre_shear`]).
+fn equivalent(mode: usize, strain: &Voigt, effective: &Voigt, fibre_shear: f64) -> (f64, f64) {
     let pos = |x: f64| x.max(0.0);
     let shear = |k: usize| (strain[k], effective[k]);
+    let root = fibre_shear.sqrt();
+    let weighed = |k: usize| (root * strain[k], root * effective[k]);
     // (strain, stress) pairs that drive the mode; unused entries zero
     let pairs: [(f64, f64); 5] = match mode {
-        FT => [(pos(strain[0]), pos(effective[0])), shear(3), shear(4), (0.0, 0.0), (0.0, 0.0)],
+        FT => [(pos(strain[0]), pos(effective[0])), weighed(3), weighed(4), (0.0, 0.0), (0.0, 0.0)],
         FC => [(pos(-strain[0]), pos(-effective[0])), (0.0, 0.0), (0.0, 0.0), (0.0, 0.0), (0.0, 0.0)],
         MT => [(pos(strain[1]), pos(effective[1])), (pos(strain[2]), pos(effective[2])), shear(3), shear(4), shear(5)],
         _ => {

@@ -70,7 +70,7 @@ impl PlyDamage {
                 let t = k as f64 / steps as f64;
                 let eps: Voigt = std::array::from_fn(|i| old.strain[i] + t * (strain[i] - old.strain[i]));
                 let effective = mat_vec(&self.stiffness, &eps);
-                let [fibre_ratio, matrix_ratio] = self.strengths.hashin_ratios(&effective, tension);
+                let [fibre_ratio, matrix_ratio] = self.strengths.hashin_ratios(&effective, tension, self.fibre_shear);
                 for (mode, ratio, length) in [(fibre, fibre_ratio, band[0]), (matrix, matrix_ratio, band[1])] {
                     self.soften(mode, 1.0 / ratio, length, &eps, &effective, &mut path);
                 }

@@ -86,7 +86,7 @@ impl PlyDamage {
                 continue;
             }
             // unloading (inside the surface), or on it with the secant asked for
-            let (e, _) = equivalent(mode, strain, effective);
+            let (e, _) = equivalent(mode, strain, effective, self.fibre_shear);
             if length * e < old.kappa[mode] || (length * e == old.kappa[mode] && !loading) {
                 continue;
             }
@@ -94,7 +94,7 @@ impl PlyDamage {
                 self.onset_gradient(mode, [fibre == FT, matrix == MT], length, strain, old).map(|g| share * g)
             } else {
                 let slope = share * length * last * onset / (kappa * kappa * (last - onset));
-                equivalent_gradient(mode, strain).map(|g| slope * g / e)
+                equivalent_gradient(mode, strain, self.fibre_shear).map(|g| slope * g / e)
             };
             terms.terms[terms.len] = (self.stress_sensitivity(mode, normal, &d, strain), grad);
             terms.len += 1;
@@ -114,7 +114,7 @@ impl PlyDamage {
     fn onset_gradient(&self, mode: usize, tension: [bool; 2], length: f64, strain: &Voigt, old: &DamageState) -> Voigt {
         let damage = |e: &Voigt| {
             let effective = mat_vec(&self.stiffness, e);
-            let ratios = self.strengths.hashin_ratios(&effective, tension);
+            let ratios = self.strengths.hashin_ratios(&effective, tension, self.fibre_shear);
             let ratio = if mode == FT || mode == FC { ratios[0] } else { ratios[1] };
             let mut state = *old;
             self.soften(mode, 1.0 / ratio, length, e, &effective, &mut state);

@@ -363,7 +363,7 @@ fn a_point_whose_shear_share_falls_after_onset_dissipates_more_than_its_band_ene
     let onset = 2326.2e6 / 171.42e9;
     // three times the strain at which a pure fibre-tension band is done
     let last = 3.0 * 2.0 * 133.3e3 / (2326.2e6 * band[0]);
-    for (r, measured) in [(0.0, 1.0), (0.5, 1.217), (1.0, 1.846)] {
+    let turned = |law: &PlyDamage, r: f64| {
         let mut state = DamageState::default();
         let mut strain = [0.0; 6];
         let n = 20_000;
@@ -377,9 +377,40 @@ fn a_point_whose_shear_share_falls_after_onset_dissipates_more_than_its_band_ene
             strain[0] = 1.01 * onset + (last - 1.01 * onset) * i as f64 / n as f64;
             state = law.update(&strain, band, &state).state;
         }
-        let ratio = state.dissipated[FT] / per_volume;
+        state.dissipated[FT] / per_volume
+    };
+    for (r, measured) in [(0.0, 1.0), (0.5, 1.217), (1.0, 1.846)] {
+        let ratio = turned(&law, r);
         let bound = (1.0 + r * r) / (1.0 + r * r * 5.29e9 / 171.42e9);
         assert!(ratio <= bound * (1.0 + 1e-3), "r = {r}: {ratio} G/L above the bound {bound}");
         assert!((ratio / measured - 1.0).abs() < 0.01, "r = {r}: {ratio} G/L, measured {measured}");
+        // without the shear in fibre tension (fibre_shear = 0, Abaqus's
+        // α = 0) the shear at onset does not enter δ0, δf: G/L on every path,
+        // but for the shear energy the fibre damage releases through d_s
+        // (½ G13 γ13² per unit damage: measured 1.0030 at r = 1)
+        let without = turned(&law.with_fibre_shear(0.0), r);
+        assert!((without - 1.0).abs() < 5e-3, "r = {r}, α = 0: {without} G/L");
     }
+}
+
+/// The consistent tangent with the shear weighed in fibre tension
+/// (`fibre_shear` α = 0, ½): the derivative of the stress at a loading
+/// point past onset and at a first onset, the strain carrying shear.
+#[test]
+fn the_consistent_tangent_holds_with_the_fibre_shear_weighed() {
+    let band = [0.2e-3, 0.1e-3];
+    let (_, strain) = LOADING[FT];
+    for alpha in [0.0, 0.5] {
+        let law = ply([0.25, 0.25, 0.45]).with_fibre_shear(alpha);
+        let committed = law.update(&strain.map(|e| 0.9 * e), band, &DamageState::default()).state;
+        assert!(committed.damage[FT] > 0.0 && committed.damage[FT] < 0.99, "α {alpha}: {:?}", committed.damage);
+        for from in [committed, DamageState::default()] {
+            let worst = tangent_error(&law, &strain, band, &from);
+            assert!(worst < 1e-5, "α {alpha}: relative tangent error {worst}");
+        }
+    }
+    // α changes the point's softening: the same strain damages it less
+    // without the shear (the onset later, e smaller)
+    let d = |alpha: f64| ply([0.25, 0.25, 0.45]).with_fibre_shear(alpha).update(&strain, band, &DamageState::default());
+    assert!(d(0.0).state.damage[FT] < d(1.0).state.damage[FT], "{:?} {:?}", d(0.0).state.damage, d(1.0).state.damage);
 }

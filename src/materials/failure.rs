@@ -125,21 +125,23 @@ impl Strengths {
     }
 
     fn hashin(&self, s: &[f64; 6]) -> (Mode, Mode) {
-        self.hashin_in(s, [s[0] >= 0.0, s[1] + s[2] >= 0.0])
+        self.hashin_in(s, [s[0] >= 0.0, s[1] + s[2] >= 0.0], 1.0)
     }
 
     /// Hashin's fibre and matrix modes of the branches `tension` (`[fibre,
     /// matrix]`, `true`: the tension mode), whatever the stress's signs: a
     /// normal stress of the other sign counts as zero (`⟨σ11⟩`, `⟨σ22 + σ33⟩`
     /// and their negatives), so each mode is continuous across its own
-    /// branch's boundary.
-    fn hashin_in(&self, s: &[f64; 6], [fibre_tension, matrix_tension]: [bool; 2]) -> (Mode, Mode) {
+    /// branch's boundary. `fibre_shear` (α) weighs the longitudinal shear in
+    /// the fibre-tension mode (Hashin: 1, the failure indices'; the ply
+    /// damage law's `fibre_shear` key).
+    fn hashin_in(&self, s: &[f64; 6], [fibre_tension, matrix_tension]: [bool; 2], fibre_shear: f64) -> (Mode, Mode) {
         let [xt, yt, _] = self.tension;
         let [xc, yc, _] = self.compression;
         let [s12, _, s23] = self.shear;
         let shear12 = (s[3] * s[3] + s[4] * s[4]) / (s12 * s12);
         let fibre = if fibre_tension {
-            Mode { a: (s[0].max(0.0) / xt).powi(2) + shear12, b: 0.0 }
+            Mode { a: (s[0].max(0.0) / xt).powi(2) + fibre_shear * shear12, b: 0.0 }
         } else {
             Mode { a: (s[0].min(0.0) / xc).powi(2), b: 0.0 }
         };
@@ -159,8 +161,8 @@ impl Strengths {
     /// multipliers at which the fibre and matrix modes reach 1 (∞ for a mode
     /// that never fails). The onset measure of the ply damage law
     /// ([`super::damage`]).
-    pub(crate) fn hashin_ratios(&self, material_stress: &[f64; 6], tension: [bool; 2]) -> [f64; 2] {
-        let (fibre, matrix) = self.hashin_in(material_stress, tension);
+    pub(crate) fn hashin_ratios(&self, material_stress: &[f64; 6], tension: [bool; 2], fibre_shear: f64) -> [f64; 2] {
+        let (fibre, matrix) = self.hashin_in(material_stress, tension, fibre_shear);
         [fibre.ratio(), matrix.ratio()]
     }
 

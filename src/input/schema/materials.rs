@@ -67,6 +67,10 @@ pub(crate) struct DamageFile {
     /// The tangent the points hand to Newton: `"consistent"` or `"secant"`.
     #[schemars(transform = defaults::schema(defaults::DAMAGE_TANGENT))]
     pub tangent: Option<DamageTangent>,
+    /// α: the weight of the longitudinal shear in fibre tension's onset
+    /// criterion and equivalent strain (1: Hashin's; Abaqus's α).
+    #[schemars(transform = ranges::FIBRE_SHEAR.with_default(defaults::FIBRE_SHEAR))]
+    pub fibre_shear: Option<f64>,
 }
 
 /// The tangent of a damaging point (`materials.damage.tangent`).

@@ -215,8 +215,8 @@ impl<'m> Interfaces<'m> {
                 .zip(self.committed.iter().zip(&self.separation))
                 .map(|(i, (states, separations))| {
                     let points = i.points.iter().zip(states.iter().zip(separations));
-                    let onset = |st: &CohesiveState, &d| if st.damage < 1.0 { i.law.onset_index(d) } else { 0.0 };
-                    (i.name.clone(), points.map(|(p, (st, d))| (p.lower, p.upper, st.damage, onset(st, d))).collect())
+                    let point = points.map(|(p, (st, d))| (p.lower, p.upper, st.damage, onset_index(&i.law, st, *d)));
+                    (i.name.clone(), point.collect())
                 })
                 .collect(),
         })
@@ -265,8 +265,7 @@ impl<'m> Interfaces<'m> {
                     largest_onset_index: separations
                         .iter()
                         .zip(states)
-                        .filter(|(_, st)| st.damage < 1.0)
-                        .map(|(&d, _)| i.law.onset_index(d))
+                        .map(|(&d, st)| onset_index(&i.law, st, d))
                         .fold(0.0, f64::max),
                     first_onset_load_factor: onset.filter(|_| self.clock.is_none()),
                     first_onset_time_s: onset.filter(|_| self.clock.is_some()),
@@ -290,6 +289,12 @@ impl<'m> Interfaces<'m> {
 /// retry of a failed increment ([`Predictor::Elastic`]): a point cycling
 /// between its softening and its unloading tangent from one iteration to
 /// the next (measured on examples/dcb.toml) converges on its secant.
+/// A point's onset index at its committed separation `d`
+/// (`Cohesive::onset_index`), 0 once it has separated (d = 1).
+fn onset_index(law: &Cohesive, state: &CohesiveState, d: [f64; 3]) -> f64 {
+    if state.damage < 1.0 { law.onset_index(d) } else { 0.0 }
+}
+
 fn secant(law: &Cohesive, state: &CohesiveState, delta: [f64; 3]) -> [[f64; 3]; 3] {
     let soft = (1.0 - state.damage) * law.penalty;
     let closing = if law.is_closed(delta[2]) { law.penalty } else { soft };

@@ -130,9 +130,10 @@ fn strip_energy_ratio(mesh: &str) -> f64 {
     assert!(!summary["warnings"].to_string().contains("released at fixed strain"), "{}", summary["warnings"]);
     crack_leaves_the_notch_column(&out.join("result.vtu"), mesh);
     // G_FT × area and a known excess of 6–7 % (measured 1.065, 1.061, 1.071
-    // on the three meshes; 1.068 on the coarse one without viscosity: the
-    // law's onset mixity, docs/limitations.md "Ply damage"), asserted from
-    // both sides
+    // on the three meshes; 1.068 on the coarse one without viscosity, 1.056
+    // with fibre_shear = 0: mostly the crack's steps through the columns
+    // above, a little the law's onset mixity; docs/limitations.md "Ply
+    // damage"), asserted from both sides
     assert!((1.04..1.09).contains(&ratio), "{mesh}: D_FT/(G_FT A) = {ratio}");
     ratio
 }
@@ -491,7 +492,7 @@ fn the_damage_increment_steers_the_load_steps() {
         let ratio = dissipated(&s)[0] / CRACK_ENERGY;
         let increments = s["increments"].as_u64().unwrap();
         println!("damage target {target}: {increments} increments, D_FT/(G_FT A) = {ratio:.4}");
-        // the known band of `strip_energy_ratio` (the law's onset mixity)
+        // the known band of `strip_energy_ratio` (the crack's steps)
         assert!((1.04..1.09).contains(&ratio), "target {target}: D_FT/(G_FT A) = {ratio}");
         increments as f64
     };

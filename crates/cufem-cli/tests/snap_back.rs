@@ -43,8 +43,13 @@ fn displacement_controlled_peak() -> (f64, bool) {
     );
     let (out, _) = common::run_text("snap_back", "displacement", &text);
     let r = common::csv_columns(&out.join("history_pull.csv"))["r_x"].clone();
-    let (k, peak) = r.iter().enumerate().fold((0, f64::MIN), |m, (i, &v)| if v > m.1 { (i, v) } else { m });
-    (peak, k + 1 < r.len())
+    let k = peak(&r);
+    (r[k], k + 1 < r.len())
+}
+
+/// The index of a history's largest value.
+fn peak(values: &[f64]) -> usize {
+    (0..values.len()).fold(0, |m, i| if values[i] > values[m] { i } else { m })
 }
 
 #[test]
@@ -53,7 +58,7 @@ fn the_strip_is_followed_through_its_snap_back_by_its_dissipation() {
     assert_eq!(summary["path"]["end"], "displacement", "the run ends on its stop (the crack through)");
     let c = common::csv_columns(&out.join("history_probes.csv"));
     let (lambda, u) = (&c["lambda"], &c["end.u_x"]);
-    let k = (0..lambda.len()).fold(0, |m, i| if lambda[i] > lambda[m] { i } else { m });
+    let k = peak(lambda);
 
     // the peak: displacement control reaches the same one (the arms are
     // 20 mm long, so how the end is pulled does not reach the ligament);
@@ -168,6 +173,6 @@ fn without_the_shear_in_fibre_tension_the_strip_dissipates_its_crack_energy() {
     assert!(cells.len() == 4 && cells.iter().all(|c| (c.0 - 20.4e-3).abs() < 0.4e-3), "{cells:?}");
     let c = common::csv_columns(&out.join("history_probes.csv"));
     let (lambda, u) = (&c["lambda"], &c["end.u_x"]);
-    let k = (0..lambda.len()).fold(0, |m, i| if lambda[i] > lambda[m] { i } else { m });
+    let k = peak(lambda);
     assert!(u[k..].iter().any(|&x| x < 0.7 * u[k]), "the snap-back");
 }

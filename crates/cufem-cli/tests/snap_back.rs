@@ -47,6 +47,20 @@ fn displacement_controlled_peak() -> (f64, bool) {
     (r[k], k + 1 < r.len())
 }
 
+/// The path's dissipation `Σ ½ (λ₀ fᵀΔu − Δλ fᵀu₀)` from the load factors
+/// and the end's displacements (`fᵀu = P u`: a uniform traction on an end
+/// that stays flat), and the largest of one increment (J).
+fn path_dissipation(lambda: &[f64], u: &[f64]) -> (f64, f64) {
+    let (mut path, mut largest) = (0.0, 0.0f64);
+    let (mut l0, mut u0) = (0.0, 0.0);
+    for (&l, &x) in lambda.iter().zip(u) {
+        let step = 0.5 * FORCE * (l0 * (x - u0) - (l - l0) * u0);
+        (path, largest) = (path + step, largest.max(step));
+        (l0, u0) = (l, x);
+    }
+    (path, largest)
+}
+
 /// The index of a history's largest value.
 fn peak(values: &[f64]) -> usize {
     (0..values.len()).fold(0, |m, i| if values[i] > values[m] { i } else { m })
@@ -81,13 +95,7 @@ fn the_strip_is_followed_through_its_snap_back_by_its_dissipation() {
     // displacement (fᵀu = P u: a uniform traction on an end that stays flat),
     // against the damage law's sums over its points: two independent
     // bookkeepings of the same energy (measured 0.45 % apart)
-    let (mut path, mut largest) = (0.0, 0.0f64);
-    let (mut l0, mut u0) = (0.0, 0.0);
-    for (&l, &x) in lambda.iter().zip(u) {
-        let step = 0.5 * FORCE * (l0 * (x - u0) - (l - l0) * u0);
-        (path, largest) = (path + step, largest.max(step));
-        (l0, u0) = (l, x);
-    }
+    let (path, largest) = path_dissipation(lambda, u);
     // and no increment dissipated more than max_dissipation = 1 mJ (to the
     // probe's reading of fᵀu: measured 1.0007e-3; without the key one took
     // 0.17 J, two fifths of the crack's energy)
@@ -155,24 +163,80 @@ fn the_largest_dissipation_of_an_increment_is_checked_by_key() {
     cufem::Model::parse(&text).unwrap();
 }
 
-/// The same strip with `fibre_shear = 0` (Abaqus's α = 0: no shear in fibre
-/// tension's onset criterion and equivalent strain): the notch roots' shear
-/// at onset no longer sets the band's softening, and the strip dissipates
-/// `G_FT A` as the crack band promises (within 5 %; measured 0.975), its
-/// crack still in the notches' column, through a snap-back still.
-#[test]
-fn without_the_shear_in_fibre_tension_the_strip_dissipates_its_crack_energy() {
-    let text = example();
-    let damage = "matrix_compression = 1e7 }";
-    assert!(text.contains(damage));
-    let text = text.replace(damage, "matrix_compression = 1e7, fibre_shear = 0.0 }");
-    let (out, summary) = common::run_text("snap_back", "no_fibre_shear", &text);
-    let ratio = summary["damage"]["dissipated_total_j"].as_f64().unwrap() / CRACK_ENERGY;
-    assert!((ratio - 1.0).abs() < 0.05, "dissipated {ratio} G_FT A");
+/// The crack-band strips (`examples/notched_strip_band_{mesh}.toml`: the
+/// snap-back strip with `fibre_shear = 0` and `max_damage = 0.9999`, h =
+/// 0.8, 0.4, 0.2 mm across the crack path), run as shipped or with the
+/// Poisson ratios zeroed: the energy the damage law dissipated over `G_FT A`
+/// (returned), after checking that the crack is the notches' column and
+/// nothing else, that only fibre tension dissipates, and the path's own
+/// dissipation against the law's (`test` names the scratch folders).
+fn band_ratio(test: &str, mesh: &str, poisson: bool) -> f64 {
+    let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
+        .join(format!("examples/notched_strip_band_{mesh}.toml"));
+    let mut text = std::fs::read_to_string(path).unwrap();
+    let nu = "nu12 = 0.32, nu13 = 0.32, nu23 = 0.52";
+    assert_eq!(text.matches(nu).count(), 1);
+    if !poisson {
+        text = text.replace(nu, "nu12 = 0.0, nu13 = 0.0, nu23 = 0.0");
+    }
+    let (out, summary) = common::run_text(test, &format!("band_{mesh}_{poisson}"), &text);
+    assert_eq!(summary["path"]["end"], "displacement", "{mesh}: the run ends on its stop");
+    // the crack: every cell of the notches' column past half damage, no
+    // other (3.2 mm / h cells, centred at x = 20 mm + h/2)
+    let h: f64 = match mesh {
+        "coarse" => 0.8e-3,
+        "medium" => 0.4e-3,
+        _ => 0.2e-3,
+    };
     let cells = common::cells_past_half(&out.join("result.vtu"), "d_ft");
-    assert!(cells.len() == 4 && cells.iter().all(|c| (c.0 - 20.4e-3).abs() < 0.4e-3), "{cells:?}");
+    assert_eq!(cells.len(), (3.2e-3 / h).round() as usize, "{mesh}: {cells:?}");
+    assert!(cells.iter().all(|c| (c.0 - 20e-3 - h / 2.0).abs() < 0.1 * h), "{mesh}: {cells:?}");
+    // only fibre tension dissipates (the others under 0.1 % of it)
+    let modes = &summary["damage"]["dissipated_j"];
+    let ft = modes["fibre_tension"].as_f64().unwrap();
+    let total = summary["damage"]["dissipated_total_j"].as_f64().unwrap();
+    assert!(total - ft < 1e-3 * ft, "{mesh}: {modes}");
+    // the path's dissipation against the law's sums (as in the snap-back
+    // test above; measured within 0.6 %)
     let c = common::csv_columns(&out.join("history_probes.csv"));
-    let (lambda, u) = (&c["lambda"], &c["end.u_x"]);
-    let k = peak(lambda);
-    assert!(u[k..].iter().any(|&x| x < 0.7 * u[k]), "the snap-back");
+    let (path, _) = path_dissipation(&c["lambda"], &c["end.u_x"]);
+    assert!((path - total).abs() < 0.02 * total, "{mesh}: path {path} J, law {total} J");
+    let ratio = ft / CRACK_ENERGY;
+    println!("{mesh} (Poisson {poisson}): D_FT/(G_FT A) = {ratio:.4}");
+    ratio
+}
+
+/// The crack band (Bažant & Oh 1983), coarse strip: `G_FT A` within 5 %
+/// (issue 48's criterion; measured 0.984), and without the Poisson terms
+/// within 1 % (measured 1.004): what the strips dissipate short of `G_FT A`
+/// comes with the Poisson ratios (a known limit that grows as the band
+/// narrows, docs/limitations.md; the three meshes are
+/// `the_band_strips_dissipate_their_crack_energy_on_three_meshes`).
+#[test]
+fn the_coarse_band_strip_dissipates_its_crack_energy() {
+    let ratio = band_ratio("snap_back_coarse", "coarse", true);
+    assert!((ratio - 1.0).abs() < 0.05, "D_FT/(G_FT A) = {ratio}");
+    let without = band_ratio("snap_back_coarse", "coarse", false);
+    assert!((without - 1.0).abs() < 0.01, "without Poisson D_FT/(G_FT A) = {without}");
+}
+
+/// The crack band's promise on three meshes (h = 0.8, 0.4, 0.2 mm, each
+/// halving the last): each within 5 % of `G_FT A` and within 5 % of each
+/// other (measured 0.984, 0.969, 0.954: 3.2 % apart). A known limit,
+/// asserted from both sides: the ratio falls as the band narrows, by the
+/// Poisson terms the damaged compliance keeps — with the Poisson ratios
+/// zeroed the three give 1.004, 1.000, 0.997 (each asserted within 1 %).
+#[test]
+#[ignore = "validate: slow — the three crack-band strips twice, about a minute (CI: the coarse strip)"]
+fn the_band_strips_dissipate_their_crack_energy_on_three_meshes() {
+    let meshes = ["coarse", "medium", "fine"];
+    let with: Vec<f64> = meshes.iter().map(|m| band_ratio("snap_back_three", m, true)).collect();
+    assert!(with.iter().all(|r| (r - 1.0).abs() < 0.05), "D_FT/(G_FT A) = {with:?}");
+    let (lo, hi) = with.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &r| (a.min(r), b.max(r)));
+    assert!(hi / lo - 1.0 < 0.05, "D_FT/(G_FT A) = {with:?}");
+    // the known limit: below G_FT A and falling with h, the fine strip
+    // between 3 % and 5 % short
+    assert!(with[0] < 1.0 && with[1] < with[0] && with[2] < with[1] && with[2] > 0.95 && with[2] < 0.97, "{with:?}");
+    let without: Vec<f64> = meshes.iter().map(|m| band_ratio("snap_back_three", m, false)).collect();
+    assert!(without.iter().all(|r| (r - 1.0).abs() < 0.01), "without Poisson D_FT/(G_FT A) = {without:?}");
 }

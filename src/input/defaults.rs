@@ -148,6 +148,9 @@ pub(crate) const MAX_DAMAGE: f64 = 0.999;
 /// `materials.damage.tangent`: the consistent one (the secant stalls
 /// Newton through softening, `examples/notched_strip_coarse.toml`).
 pub(crate) const DAMAGE_TANGENT: &str = "consistent";
+/// `materials.damage.softening_stress`: the effective stress (Lapczyk &
+/// Hurtado's law as Abaqus has it).
+pub(crate) const SOFTENING_STRESS: &str = "effective";
 /// `materials.damage.viscosity`: none.
 pub(crate) const DAMAGE_VISCOSITY: f64 = 0.0;
 /// `materials.damage.fibre_shear`: Hashin's fibre-tension criterion, its

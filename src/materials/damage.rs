@@ -105,6 +105,10 @@ pub struct PlyDamage {
     /// α: the weight of the longitudinal shear in fibre tension's onset
     /// criterion and equivalent strain (1: Hashin's; [`PlyDamage::with_fibre_shear`]).
     fibre_shear: f64,
+    /// Each mode's softening line drawn for `E_k ε_k` in the normal
+    /// components instead of the effective stress
+    /// ([`PlyDamage::with_uniaxial_softening`]).
+    uniaxial_softening: bool,
 }
 
 /// A damage law that cannot be used, by the key of its constant.
@@ -226,6 +230,7 @@ impl PlyDamage {
             consistent: true,
             viscosity: 0.0,
             fibre_shear: 1.0,
+            uniaxial_softening: false,
         };
         law.intact = law.damaged_stiffness([0.0; 3], 0.0);
         Ok(law)
@@ -254,6 +259,18 @@ impl PlyDamage {
     /// onset (docs/limitations.md, "Ply damage").
     pub(crate) fn with_fibre_shear(mut self, alpha: f64) -> Self {
         self.fibre_shear = alpha;
+        self
+    }
+
+    /// The same law with each mode's softening line drawn for `E_k ε_k`
+    /// in the normal components (`uniaxial`) instead of the effective
+    /// stress `C⁰ε`: the onset stress `σ0` and so `δf = 2 G/σ0` follow the
+    /// stress the damaged compliance leaves as `d → 1` (`1/E_k` divided by
+    /// `1 − d`, the Poisson terms kept), so that a band held laterally
+    /// dissipates `G/L` as one free does (docs/limitations.md). A point in
+    /// uniaxial stress softens the same either way.
+    pub(crate) fn with_uniaxial_softening(mut self, uniaxial: bool) -> Self {
+        self.uniaxial_softening = uniaxial;
         self
     }
 
@@ -400,9 +417,22 @@ impl PlyDamage {
         0.5 * self.stress(d, strain).iter().zip(strain).map(|(s, e)| s * e).sum::<f64>()
     }
 
+    /// The stress whose work conjugate draws a mode's softening line: the
+    /// effective stress, or with `uniaxial` its normal components
+    /// `ε_k / S⁰_kk` (what the damaged compliance's own entry carries).
+    fn softening_stress(&self, strain: &Voigt, effective: &Voigt) -> Voigt {
+        let mut s = *effective;
+        if self.uniaxial_softening {
+            for k in 0..3 {
+                s[k] = strain[k] / self.compliance[k][k];
+            }
+        }
+        s
+    }
+
     /// Onset and damage of one active mode at the onset measure `phi`.
     fn soften(&self, mode: usize, phi: f64, length: f64, strain: &Voigt, effective: &Voigt, state: &mut DamageState) {
-        let (e, s) = equivalent(mode, strain, effective, self.fibre_shear);
+        let (e, s) = equivalent(mode, strain, &self.softening_stress(strain, effective), self.fibre_shear);
         if !(e > 0.0) {
             return;
         }

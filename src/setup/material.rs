@@ -168,8 +168,10 @@ fn damage(key: &str, m: &MaterialFile, d: &DamageFile, strengths: Option<Strengt
     let alpha = "the weight of the longitudinal shear in fibre tension (0: none, 1: Hashin's)";
     let fibre_shear = d.fibre_shear.map(|v| ranges::FIBRE_SHEAR.check(&format!("{dk}.fibre_shear"), v, alpha));
     let fibre_shear = fibre_shear.transpose()?.unwrap_or(defaults::FIBRE_SHEAR);
-    PlyDamage::new(constants, strengths, toughness, max_damage)
-        .map(|law| law.with_consistent_tangent(consistent).with_viscosity(viscosity).with_fibre_shear(fibre_shear))
+    let uniaxial = d.softening_stress.unwrap_or_default() == SofteningStress::Uniaxial;
+    let law =
+        PlyDamage::new(constants, strengths, toughness, max_damage).map(|law| law.with_uniaxial_softening(uniaxial));
+    law.map(|law| law.with_consistent_tangent(consistent).with_viscosity(viscosity).with_fibre_shear(fibre_shear))
         .map_err(|e| invalid(&dk, "refused", e.to_string()))
 }
 

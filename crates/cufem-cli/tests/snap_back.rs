@@ -145,6 +145,10 @@ fn the_largest_dissipation_of_an_increment_is_checked_by_key() {
             "materials[0].damage.fibre_shear = 1.5",
         ),
         (
+            text.replace("matrix_compression = 1e7 }", "matrix_compression = 1e7, softening_stress = \"plastic\" }"),
+            "materials[0].damage.softening_stress: unknown variant `plastic`, expected `effective` or `uniaxial`",
+        ),
+        (
             text.replace("constraint = \"dissipation\"", "constraint = \"cylinder\""),
             "solver.max_dissipation = 0.001: expected no value without solver.constraint = \"dissipation\"",
         ),
@@ -164,23 +168,26 @@ fn the_largest_dissipation_of_an_increment_is_checked_by_key() {
 }
 
 /// The crack-band strips (`examples/notched_strip_band_{mesh}.toml`: the
-/// snap-back strip with `fibre_shear = 0` and `max_damage = 0.9999`, h =
-/// 0.8, 0.4, 0.2 mm across the crack path), run as shipped or with the
-/// Poisson ratios zeroed: the energy the damage law dissipated over `G_FT A`
-/// (returned), after checking that the crack is the notches' column and
-/// nothing else, that only fibre tension dissipates, and the path's own
-/// dissipation against the law's (`test` names the scratch folders).
-fn band_ratio(test: &str, mesh: &str, poisson: bool) -> f64 {
+/// snap-back strip with `fibre_shear = 0`, `softening_stress = "uniaxial"`
+/// and `max_damage = 0.9999`, h = 0.8, 0.4, 0.2 mm across the crack path),
+/// run as shipped or with the softening line of the effective stress
+/// (`uniaxial` false: the key removed): the energy the damage law
+/// dissipated over `G_FT A` (returned), after checking that the crack is
+/// the notches' column and nothing else, that only fibre tension
+/// dissipates, and the path's own dissipation against the law's (`test`
+/// names the scratch folders).
+fn band_ratio(test: &str, mesh: &str, uniaxial: bool) -> f64 {
     let path = Path::new(concat!(env!("CARGO_MANIFEST_DIR"), "/../.."))
         .join(format!("examples/notched_strip_band_{mesh}.toml"));
     let mut text = std::fs::read_to_string(path).unwrap();
-    let nu = "nu12 = 0.32, nu13 = 0.32, nu23 = 0.52";
-    assert_eq!(text.matches(nu).count(), 1);
-    if !poisson {
-        text = text.replace(nu, "nu12 = 0.0, nu13 = 0.0, nu23 = 0.0");
+    let key = " softening_stress = \"uniaxial\",";
+    assert_eq!(text.matches(key).count(), 1);
+    if !uniaxial {
+        text = text.replace(key, "");
     }
-    let (out, summary) = common::run_text(test, &format!("band_{mesh}_{poisson}"), &text);
+    let (out, summary) = common::run_text(test, &format!("band_{mesh}_{uniaxial}"), &text);
     assert_eq!(summary["path"]["end"], "displacement", "{mesh}: the run ends on its stop");
+    assert_eq!(summary["warnings"].as_array().map_or(0, Vec::len), 0, "{mesh}: {}", summary["warnings"]);
     // the crack: every cell of the notches' column past half damage, no
     // other (3.2 mm / h cells, centred at x = 20 mm + h/2)
     let h: f64 = match mesh {
@@ -202,41 +209,39 @@ fn band_ratio(test: &str, mesh: &str, poisson: bool) -> f64 {
     let (path, _) = path_dissipation(&c["lambda"], &c["end.u_x"]);
     assert!((path - total).abs() < 0.02 * total, "{mesh}: path {path} J, law {total} J");
     let ratio = ft / CRACK_ENERGY;
-    println!("{mesh} (Poisson {poisson}): D_FT/(G_FT A) = {ratio:.4}");
+    println!("{mesh} (uniaxial {uniaxial}): D_FT/(G_FT A) = {ratio:.4}");
     ratio
 }
 
-/// The crack band (Bažant & Oh 1983), coarse strip: `G_FT A` within 5 %
-/// (issue 48's criterion; measured 0.984), and without the Poisson terms
-/// within 1 % (measured 1.004): what the strips dissipate short of `G_FT A`
-/// comes with the Poisson ratios (a known limit that grows as the band
-/// narrows, docs/limitations.md; the three meshes are
+/// The crack band (Bažant & Oh 1983), coarse strip as shipped: `G_FT A`
+/// within 2 % (issue 48 asks 5 %; measured 1.015); with the effective
+/// stress's softening line (the default) `0.984`, a known limit asserted
+/// from both sides (docs/limitations.md; the three meshes are
 /// `the_band_strips_dissipate_their_crack_energy_on_three_meshes`).
 #[test]
 fn the_coarse_band_strip_dissipates_its_crack_energy() {
     let ratio = band_ratio("snap_back_coarse", "coarse", true);
-    assert!((ratio - 1.0).abs() < 0.05, "D_FT/(G_FT A) = {ratio}");
-    let without = band_ratio("snap_back_coarse", "coarse", false);
-    assert!((without - 1.0).abs() < 0.01, "without Poisson D_FT/(G_FT A) = {without}");
+    assert!((ratio - 1.0).abs() < 0.02, "D_FT/(G_FT A) = {ratio}");
+    let effective = band_ratio("snap_back_coarse", "coarse", false);
+    assert!((0.975..0.995).contains(&effective), "with the effective stress D_FT/(G_FT A) = {effective}");
 }
 
 /// The crack band's promise on three meshes (h = 0.8, 0.4, 0.2 mm, each
-/// halving the last): each within 5 % of `G_FT A` and within 5 % of each
-/// other (measured 0.984, 0.969, 0.954: 3.2 % apart). A known limit,
-/// asserted from both sides: the ratio falls as the band narrows, by the
-/// Poisson terms the damaged compliance keeps — with the Poisson ratios
-/// zeroed the three give 1.004, 1.000, 0.997 (each asserted within 1 %).
+/// halving the last): as shipped each within 2 % of `G_FT A` and within
+/// 5 % of each other (issue 48; measured 1.015, 1.010, 1.004: 1.1 %
+/// apart, nearing `G_FT A` as the band narrows). With the effective
+/// stress's softening line (the default) a known limit, asserted from both
+/// sides: below `G_FT A` and falling as the band narrows (measured 0.984,
+/// 0.969, 0.954), the fine strip 3–5 % short.
 #[test]
 #[ignore = "validate: slow — the three crack-band strips twice, about a minute (CI: the coarse strip)"]
 fn the_band_strips_dissipate_their_crack_energy_on_three_meshes() {
     let meshes = ["coarse", "medium", "fine"];
-    let with: Vec<f64> = meshes.iter().map(|m| band_ratio("snap_back_three", m, true)).collect();
-    assert!(with.iter().all(|r| (r - 1.0).abs() < 0.05), "D_FT/(G_FT A) = {with:?}");
-    let (lo, hi) = with.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &r| (a.min(r), b.max(r)));
-    assert!(hi / lo - 1.0 < 0.05, "D_FT/(G_FT A) = {with:?}");
-    // the known limit: below G_FT A and falling with h, the fine strip
-    // between 3 % and 5 % short
-    assert!(with[0] < 1.0 && with[1] < with[0] && with[2] < with[1] && with[2] > 0.95 && with[2] < 0.97, "{with:?}");
-    let without: Vec<f64> = meshes.iter().map(|m| band_ratio("snap_back_three", m, false)).collect();
-    assert!(without.iter().all(|r| (r - 1.0).abs() < 0.01), "without Poisson D_FT/(G_FT A) = {without:?}");
+    let shipped: Vec<f64> = meshes.iter().map(|m| band_ratio("snap_back_three", m, true)).collect();
+    assert!(shipped.iter().all(|r| (r - 1.0).abs() < 0.02), "D_FT/(G_FT A) = {shipped:?}");
+    let (lo, hi) = shipped.iter().fold((f64::INFINITY, 0.0f64), |(a, b), &r| (a.min(r), b.max(r)));
+    assert!(hi / lo - 1.0 < 0.05, "D_FT/(G_FT A) = {shipped:?}");
+    let effective: Vec<f64> = meshes.iter().map(|m| band_ratio("snap_back_three", m, false)).collect();
+    let w = &effective;
+    assert!(w[0] < 1.0 && w[1] < w[0] && w[2] < w[1] && w[2] > 0.95 && w[2] < 0.97, "effective: {w:?}");
 }

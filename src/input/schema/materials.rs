@@ -71,6 +71,26 @@ pub(crate) struct DamageFile {
     /// criterion and equivalent strain (1: Hashin's; Abaqus's α).
     #[schemars(transform = ranges::FIBRE_SHEAR.with_default(defaults::FIBRE_SHEAR))]
     pub fibre_shear: Option<f64>,
+    /// The stress whose work conjugate draws each mode's softening line:
+    /// `"effective"` (`C⁰ε`) or `"uniaxial"` (`E_k ε_k` in the normal
+    /// components).
+    #[schemars(transform = defaults::schema(defaults::SOFTENING_STRESS))]
+    pub softening_stress: Option<SofteningStress>,
+}
+
+/// The stress of a mode's softening line (`materials.damage.softening_stress`).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Deserialize, schemars::JsonSchema)]
+#[serde(rename_all = "lowercase")]
+pub(crate) enum SofteningStress {
+    /// The undamaged stress `C⁰ε` (Lapczyk & Hurtado's, Abaqus's): a band
+    /// held laterally dissipates less than `G/L`, by the Poisson terms the
+    /// damaged compliance keeps.
+    #[default]
+    Effective,
+    /// `E_k ε_k` in the normal components (the stress the damaged
+    /// compliance's own entry leaves as the damage grows): a band held
+    /// laterally dissipates `G/L` as one free.
+    Uniaxial,
 }
 
 /// The tangent of a damaging point (`materials.damage.tangent`).

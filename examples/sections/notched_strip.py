@@ -251,7 +251,7 @@ def band_text(text, h, name):
 # crack path, followed through its snap-back by the dissipation of each
 # increment; docs/composites.md ("Ply damage").
 #
-# Three keys differ from the snap-back strip, each for a measured reason
+# Three material keys differ from the snap-back strip, each for a measured reason
 # (docs/limitations.md "Ply damage"):
 # * fibre_shear = 0 (Abaqus's α): with Hashin's 1 a notch root's shear at
 #   onset sets a longer softening than the stretch that follows needs, and
@@ -275,6 +275,12 @@ def band_text(text, h, name):
     pieces = [
         ("through its snap-back, h", "for the crack band, h"),
         ("beyond = 3e-4 }", "beyond = 1.5e-4 }"),
+        (
+            "# the pre-peak increments set the peak (damage at the notch roots): with a\n"
+            "# first Δλ of 1e-3 it is within 0.1 % of displacement control's\n",
+            "# the pre-peak increments as the snap-back strip's (there they set the\n"
+            "# peak within 0.1 % of displacement control's)\n",
+        ),
         (
             "# the crack through: the crack column's right face, mid-ligament, 0.3 mm on\n"
             "# (the arms have unloaded; the crack's own opening at full damage is 0.11 mm)\n",
